@@ -1,0 +1,35 @@
+// PatchScene: the flat, library-free description of a meshed scene that the solver works on and
+// that the farm ships to agents. mesh/ builds it from an input scene; nothing here knows OpenMesh.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/rgb.h"
+#include "core/vec3.h"
+
+namespace radfarm {
+
+// One radiosity patch: a planar, convex triangle or quad with constant radiosity.
+struct Patch {
+  // Corners counter-clockwise seen from the side the normal points to; corners[3] unused for
+  // triangles. A quad is split into triangles (0,1,2) and (0,2,3) wherever triangles are needed.
+  std::array<Vec3, 4> corners;
+  uint8_t corner_count = 3;
+  Vec3 normal;  // unit
+  Vec3 centre;  // area centroid
+  double area = 0;
+  Rgb reflectance;  // diffuse reflectance, each channel in [0, 1)
+  Rgb emission;     // emitted radiance (MTL Ke units)
+  uint32_t surface = 0;   // id of the smooth surface the patch belongs to (vertex averaging)
+  uint32_t material = 0;  // index into PatchScene::material_names
+};
+
+struct PatchScene {
+  std::vector<Patch> patches;
+  std::vector<std::string> material_names;
+};
+
+}  // namespace radfarm

@@ -1,0 +1,27 @@
+// Figures of a finished (or stopped) solve, written to stats.json.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace radfarm {
+
+struct SolveStats {
+  uint64_t rays = 0;
+  uint64_t rounds = 0;
+  double seconds = 0;
+  double rays_per_second = 0;
+  uint64_t patches = 0;
+  double unshot_fraction = 0;  // unshot power / emitted power when the solve stopped
+  uint64_t escaped_rays = 0;   // rays that left the scene without a hit
+  uint64_t backface_hits = 0;  // rays that hit the back of a patch (absorbed)
+  uint32_t threads = 0;
+  uint64_t seed = 0;
+  std::string sampler;
+  std::string stop_reason;  // "converged", "ray budget", "time budget"
+  double emitted_power = 0;   // sum of area * emission over patches (channel sum)
+  double absorbed_power = 0;  // channel sums, so emitted = absorbed + unshot + escaped
+  double escaped_power = 0;
+};
+
+}  // namespace radfarm

@@ -1,0 +1,40 @@
+// Settings of the progressive-refinement solver; every field has a working default.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace radfarm {
+
+enum class SamplerKind {
+  kGrid,    // the seed paper's method: a fixed hemisphere grid from the patch centre
+  kRandom,  // independent uniform origins and cosine-weighted directions
+  kSobol,   // Owen-scrambled Sobol points over origin and direction
+};
+
+std::string_view SamplerName(SamplerKind kind);
+// Parses "grid", "random" or "sobol"; returns false for anything else.
+bool ParseSamplerName(std::string_view name, SamplerKind* kind);
+
+struct SolverSettings {
+  SamplerKind sampler = SamplerKind::kSobol;
+  uint64_t seed = 1;
+  // Stop when the unshot power falls below this fraction of the emitted power.
+  double tolerance = 1e-3;
+  // Stop after this many rays (0: no limit) or this many seconds (0: no limit).
+  uint64_t max_rays = 0;
+  double max_seconds = 0;
+  // Rays spent on shooting power equal to the scene's total emitted power: a shooter with unshot
+  // power P gets shot_rays * P / emitted rays (at least min_shooter_rays).
+  uint64_t shot_rays = 1 << 22;
+  uint32_t min_shooter_rays = 64;
+  // Upper bound on shooters per round (0: every patch with unshot power).
+  uint32_t shooters_per_round = 0;
+  // Grid sampler: angular step of the hemisphere grid in degrees.
+  double grid_step_degrees = 1.0;
+  // Worker threads (0: all cores). Never changes the result.
+  uint32_t threads = 0;
+};
+
+}  // namespace radfarm

@@ -1,0 +1,39 @@
+// InputScene: polygons and materials as read from a Wavefront OBJ + MTL, validated, before meshing.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+#include "core/rgb.h"
+#include "core/vec3.h"
+
+namespace radfarm {
+
+struct Material {
+  std::string name;
+  Rgb diffuse;   // MTL Kd, each channel in [0, 1)
+  Rgb emission;  // MTL Ke, emitted radiance, each channel >= 0
+};
+
+struct InputFace {
+  std::vector<uint32_t> indices;  // into InputScene::positions; 3 or more, as written in the file
+  uint32_t material = 0;          // into InputScene::materials
+  uint32_t line = 0;              // 1-based line of the `f` statement, for messages
+};
+
+struct InputScene {
+  std::string path;  // the OBJ file, as given
+  std::vector<Vec3> positions;
+  std::vector<Material> materials;
+  std::vector<InputFace> faces;
+  std::vector<std::string> warnings;  // one line each, already prefixed with the file name
+};
+
+// Reads and validates an OBJ (and the MTL files it names). Errors are one line naming the file and
+// the line, face or material: missing file, unparseable line, index out of range, non-finite
+// coordinates, reflectance outside [0, 1), negative emission, no emitter ("nothing to light").
+Result<InputScene> LoadObjScene(const std::string& path);
+
+}  // namespace radfarm

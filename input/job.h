@@ -1,0 +1,25 @@
+// A render job: the scene file plus meshing, solver and camera settings. Read from a TOML job file,
+// or made with defaults for a bare OBJ.
+#pragma once
+
+#include <string>
+
+#include "core/result.h"
+#include "core/solver_settings.h"
+#include "mesh/mesh_settings.h"
+#include "output/camera.h"
+
+namespace radfarm {
+
+struct Job {
+  std::string scene_path;  // the OBJ; relative paths in a job file are relative to the job file
+  MeshSettings mesh;
+  SolverSettings solver;
+  Camera camera;
+};
+
+// Loads SCENE: a `.toml` job file, or an `.obj` that becomes a job with default settings.
+// Unknown keys, wrong types and out-of-range values are errors naming the file, line and key.
+Result<Job> LoadJob(const std::string& path);
+
+}  // namespace radfarm
