@@ -1,0 +1,47 @@
+// Batches: the unit of work the solver hands out, locally to threads and in the farm to agents.
+//
+// THE DETERMINISM CONTRACT (the farm relies on it; tests/core/determinism_test.cc checks it):
+//  1. A round is planned from the solver state alone: which patches shoot and how many rays each
+//     casts (RoundPlan). Planning is deterministic and sequential.
+//  2. Ray k of shooter s in round r is RaySampler::Sample(patch s, s, r, k): a pure function of
+//     (seed, round, shooter, k). A batch is the contiguous range [first_ray, first_ray + ray_count)
+//     of one shooter's rays in one round, so its rays depend only on (seed, round, batch), never on
+//     which thread or machine computes it, how often, or how the shot was cut into batches.
+//  3. A batch's result is integer ray weights per hit patch, plus integer escaped and back-face
+//     weights. Integer sums are exact in any order, so the reduction of a round (sum per shooter,
+//     then the Southwell update in increasing shooter order, hits in increasing patch order) gives
+//     bit-identical radiosity however the batches were scheduled.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace radfarm {
+
+struct Batch {
+  uint32_t round = 0;
+  uint32_t shooter = 0;  // patch id
+  uint64_t first_ray = 0;
+  uint32_t ray_count = 0;
+};
+
+struct PatchHits {
+  uint32_t patch = 0;
+  uint64_t weight = 0;  // sum of the weights of the rays that hit the front of this patch
+  bool operator==(const PatchHits&) const = default;
+};
+
+struct BatchResult {
+  std::vector<PatchHits> hits;  // sorted by patch id, no zero weights
+  uint64_t escaped_weight = 0;  // rays that left the scene
+  uint64_t escaped_rays = 0;
+  uint64_t back_weight = 0;  // rays that hit the back of a patch: absorbed there
+  uint64_t back_rays = 0;
+  bool operator==(const BatchResult&) const = default;
+};
+
+// Splits one shooter's shot of `rays` rays in `round` into batches of at most `batch_rays` rays.
+void AppendShotBatches(uint32_t round, uint32_t shooter, uint64_t rays, uint32_t batch_rays,
+                       std::vector<Batch>* batches);
+
+}  // namespace radfarm

@@ -1,0 +1,130 @@
+#include "core/progressive_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace radfarm {
+namespace {
+
+// Sobol indices are 32-bit; a single shot never needs more rays than this.
+constexpr uint64_t kMaxRaysPerShot = uint64_t{1} << 31;
+
+}  // namespace
+
+ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettings& settings)
+    : scene_(scene),
+      settings_(settings),
+      sampler_(settings.sampler, settings.seed, settings.grid_step_degrees),
+      radiosity_(scene.patches.size()),
+      unshot_(scene.patches.size()) {
+  for (size_t i = 0; i < scene.patches.size(); ++i) {
+    const Patch& p = scene.patches[i];
+    radiosity_[i] = p.emission;
+    unshot_[i] = p.emission;
+    energy_.emitted += p.area * p.emission.Sum();
+  }
+  energy_.unshot = energy_.emitted;
+}
+
+double ProgressiveSolver::UnshotPower(uint32_t patch) const {
+  return scene_.patches[patch].area * unshot_[patch].Sum();
+}
+
+double ProgressiveSolver::UnshotFraction() const {
+  return energy_.emitted > 0 ? energy_.unshot / energy_.emitted : 0.0;
+}
+
+RoundPlan ProgressiveSolver::PlanRound(uint32_t batch_rays) const {
+  RoundPlan plan;
+  plan.round = rounds_done_;
+  std::vector<uint32_t> candidates;
+  for (uint32_t i = 0; i < scene_.patches.size(); ++i) {
+    if (UnshotPower(i) > 0) candidates.push_back(i);
+  }
+  // Most unshot power first; ties broken by patch id so the order is total.
+  std::sort(candidates.begin(), candidates.end(), [&](uint32_t a, uint32_t b) {
+    const double pa = UnshotPower(a), pb = UnshotPower(b);
+    return pa != pb ? pa > pb : a < b;
+  });
+  if (settings_.shooters_per_round > 0 && candidates.size() > settings_.shooters_per_round) {
+    candidates.resize(settings_.shooters_per_round);
+  }
+  std::sort(candidates.begin(), candidates.end());
+
+  const uint64_t fixed = sampler_.FixedRaysPerShot();
+  for (uint32_t shooter : candidates) {
+    uint64_t rays = fixed;
+    if (rays == 0) {
+      // Rays in proportion to the power shot, so every unit of power is carried by the same
+      // number of rays whichever round it is shot in.
+      const double share = UnshotPower(shooter) / energy_.emitted;
+      const double wanted = std::ceil(double(settings_.shot_rays) * share);
+      rays = std::clamp<uint64_t>(static_cast<uint64_t>(std::min(wanted, 1e18)),
+                                  settings_.min_shooter_rays, kMaxRaysPerShot);
+    }
+    plan.shots.push_back({shooter, rays});
+    plan.rays += rays;
+    AppendShotBatches(plan.round, shooter, rays, batch_rays, &plan.batches);
+  }
+  return plan;
+}
+
+void ProgressiveSolver::ApplyRound(const RoundPlan& plan, const std::vector<BatchResult>& results) {
+  // Sum each shot's batches (integers: exact in any order).
+  std::vector<uint64_t> hit_weight(scene_.patches.size());
+  std::vector<Rgb> shot_power(plan.shots.size());
+  // Take every shooter's unshot radiosity first: shots of one round all start from the state at
+  // the start of the round (a shooter may also receive light in its own round).
+  for (size_t s = 0; s < plan.shots.size(); ++s) {
+    const uint32_t i = plan.shots[s].shooter;
+    shot_power[s] = unshot_[i] * scene_.patches[i].area;
+    unshot_[i] = Rgb{};
+  }
+  size_t b = 0;
+  for (size_t s = 0; s < plan.shots.size(); ++s) {
+    const Shot& shot = plan.shots[s];
+    uint64_t escaped = 0, back = 0;
+    std::vector<uint32_t> touched;
+    for (; b < plan.batches.size() && plan.batches[b].shooter == shot.shooter; ++b) {
+      const BatchResult& r = results[b];
+      escaped += r.escaped_weight;
+      back += r.back_weight;
+      for (const PatchHits& h : r.hits) {
+        if (hit_weight[h.patch] == 0) touched.push_back(h.patch);
+        hit_weight[h.patch] += h.weight;
+      }
+    }
+    std::sort(touched.begin(), touched.end());
+    const double total = double(sampler_.TotalWeight(shot.rays));
+    const Rgb power = shot_power[s];
+    // Southwell update: receiver j gets flux power * F_ij; it reflects rho_j of it, which raises its
+    // radiosity and unshot radiosity by rho_j * flux / A_j (= rho_j * dB_i * F_ij * A_i / A_j).
+    for (uint32_t j : touched) {
+      const Patch& receiver = scene_.patches[j];
+      const Rgb flux = power * (double(hit_weight[j]) / total);
+      const Rgb reflected = receiver.reflectance * flux;
+      const Rgb gain = reflected / receiver.area;
+      radiosity_[j] += gain;
+      unshot_[j] += gain;
+      energy_.absorbed += (flux - reflected).Sum();
+      hit_weight[j] = 0;
+    }
+    energy_.escaped += power.Sum() * (double(escaped) / total);
+    energy_.absorbed += power.Sum() * (double(back) / total);
+  }
+  double unshot = 0;
+  for (uint32_t i = 0; i < scene_.patches.size(); ++i) unshot += UnshotPower(i);
+  energy_.unshot = unshot;
+  rounds_done_ = plan.round + 1;
+}
+
+void ProgressiveSolver::Restore(uint32_t rounds_done, std::vector<Rgb> radiosity,
+                                std::vector<Rgb> unshot, const EnergyAccount& energy) {
+  rounds_done_ = rounds_done;
+  radiosity_ = std::move(radiosity);
+  unshot_ = std::move(unshot);
+  energy_ = energy;
+}
+
+}  // namespace radfarm

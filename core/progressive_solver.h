@@ -1,0 +1,80 @@
+// ProgressiveSolver: the state of a progressive-refinement (Southwell) radiosity solution and the
+// two deterministic steps of a round. It does no ray casting itself: PlanRound() says which rays to
+// cast (as batches), and ApplyRound() folds their integer hit counts into the solution. Local
+// solves (solve.h) and the farm's master both drive it, so they produce bit-identical results.
+//
+// Units: radiosity is kept in the units of emitted radiance (MTL Ke), i.e. B/pi. The radiosity
+// equation is linear, so the factor pi cancels everywhere and the CSV can print B directly.
+// "Power" of patch i is A_i times a radiance, summed over the three channels.
+//
+// Round lifecycle:  PlanRound() -> [batches computed anywhere, any order] -> ApplyRound().
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/batch.h"
+#include "core/patch_scene.h"
+#include "core/rgb.h"
+#include "core/ray_sampler.h"
+#include "core/solver_settings.h"
+
+namespace radfarm {
+
+struct Shot {
+  uint32_t shooter = 0;  // patch id
+  uint64_t rays = 0;
+};
+
+struct RoundPlan {
+  uint32_t round = 0;
+  std::vector<Shot> shots;      // increasing patch id
+  std::vector<Batch> batches;   // every shot cut into batches, in shot order
+  uint64_t rays = 0;
+};
+
+// Energy bookkeeping (channel sums). At every round boundary
+//   emitted == absorbed + unshot + escaped   (to rounding)
+// because each shot's power is divided exactly among its rays' fates.
+struct EnergyAccount {
+  double emitted = 0;
+  double absorbed = 0;
+  double escaped = 0;
+  double unshot = 0;
+};
+
+class ProgressiveSolver {
+ public:
+  ProgressiveSolver(const PatchScene& scene, const SolverSettings& settings);
+
+  // Plans the next round from the current unshot radiosity. Empty when nothing is left to shoot.
+  RoundPlan PlanRound(uint32_t batch_rays) const;
+
+  // Folds the round's results into the solution. `results[k]` is the result of plan.batches[k].
+  void ApplyRound(const RoundPlan& plan, const std::vector<BatchResult>& results);
+
+  const std::vector<Rgb>& radiosity() const { return radiosity_; }
+  const std::vector<Rgb>& unshot() const { return unshot_; }
+  const EnergyAccount& energy() const { return energy_; }
+  // Unshot power over emitted power: the convergence measure.
+  double UnshotFraction() const;
+  uint32_t rounds_done() const { return rounds_done_; }
+  const RaySampler& sampler() const { return sampler_; }
+
+  // Replaces the state, e.g. when resuming from a checkpoint; sizes must match the scene.
+  void Restore(uint32_t rounds_done, std::vector<Rgb> radiosity, std::vector<Rgb> unshot,
+               const EnergyAccount& energy);
+
+ private:
+  double UnshotPower(uint32_t patch) const;
+
+  const PatchScene& scene_;
+  SolverSettings settings_;
+  RaySampler sampler_;
+  std::vector<Rgb> radiosity_;
+  std::vector<Rgb> unshot_;
+  EnergyAccount energy_;
+  uint32_t rounds_done_ = 0;
+};
+
+}  // namespace radfarm

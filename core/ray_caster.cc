@@ -1,0 +1,115 @@
+#include "core/ray_caster.h"
+
+#include <embree3/rtcore.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+namespace radfarm {
+
+// Owns the Embree device and scene; released in reverse order of creation.
+struct RayCaster::Embree {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  ~Embree() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+namespace {
+
+void CheckDevice(RTCDevice device, const char* what) {
+  const RTCError error = rtcGetDeviceError(device);
+  if (error != RTC_ERROR_NONE) {
+    throw std::runtime_error(std::string("Embree error ") + std::to_string(int(error)) + " in " +
+                             what);
+  }
+}
+
+}  // namespace
+
+RayCaster::RayCaster(const PatchScene& scene) : scene_(scene), embree_(std::make_unique<Embree>()) {
+  Bounds3 bounds;
+  for (const Patch& p : scene.patches) {
+    for (int k = 0; k < p.corner_count; ++k) bounds.Extend(p.corners[k]);
+  }
+  centre_ = bounds.Empty() ? Vec3{} : bounds.Centre();
+  // A few thousand float ulps at the scene's scale: far above rounding, far below any feature.
+  origin_offset_ = std::max(bounds.Diagonal(), 1e-30) * 1e-6;
+
+  embree_->device = rtcNewDevice(nullptr);
+  if (!embree_->device) throw std::runtime_error("cannot create an Embree device");
+  embree_->scene = rtcNewScene(embree_->device);
+  rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);
+
+  size_t triangle_count = 0;
+  for (const Patch& p : scene.patches) triangle_count += p.corner_count - 2;
+  RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+      3 * triangle_count + 1));  // +1: Embree may read 16 bytes past the last float3
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangle_count));
+  CheckDevice(embree_->device, "buffer allocation");
+
+  // Each triangle gets its own three vertices; identical input coordinates map to identical floats,
+  // which is all watertightness needs.
+  size_t t = 0;
+  auto emit = [&](const Vec3& a, const Vec3& b, const Vec3& c, uint32_t patch) {
+    const Vec3 corners[3] = {a - centre_, b - centre_, c - centre_};
+    for (int k = 0; k < 3; ++k) {
+      vertices[9 * t + 3 * k + 0] = static_cast<float>(corners[k].x);
+      vertices[9 * t + 3 * k + 1] = static_cast<float>(corners[k].y);
+      vertices[9 * t + 3 * k + 2] = static_cast<float>(corners[k].z);
+      indices[3 * t + k] = static_cast<unsigned>(3 * t + k);
+    }
+    triangle_patch_.push_back(patch);
+    ++t;
+  };
+  for (uint32_t i = 0; i < scene.patches.size(); ++i) {
+    const Patch& p = scene.patches[i];
+    emit(p.corners[0], p.corners[1], p.corners[2], i);
+    if (p.corner_count == 4) emit(p.corners[0], p.corners[2], p.corners[3], i);
+  }
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(embree_->scene, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(embree_->scene);
+  CheckDevice(embree_->device, "scene build");
+}
+
+RayCaster::~RayCaster() = default;
+
+RayHit RayCaster::Trace(const Vec3& origin, const Vec3& direction,
+                        const Vec3& surface_normal) const {
+  const Vec3 o = origin - centre_ + surface_normal * origin_offset_;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  rh.ray.org_x = static_cast<float>(o.x);
+  rh.ray.org_y = static_cast<float>(o.y);
+  rh.ray.org_z = static_cast<float>(o.z);
+  rh.ray.dir_x = static_cast<float>(direction.x);
+  rh.ray.dir_y = static_cast<float>(direction.y);
+  rh.ray.dir_z = static_cast<float>(direction.z);
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = INFINITY;
+  rh.ray.time = 0.0f;
+  rh.ray.mask = 0xffffffffu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(embree_->scene, &context, &rh);
+  RayHit hit;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+  hit.patch = triangle_patch_[rh.hit.primID];
+  hit.front = Dot(direction, scene_.patches[hit.patch].normal) < 0;
+  return hit;
+}
+
+}  // namespace radfarm

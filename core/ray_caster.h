@@ -1,0 +1,50 @@
+// RayCaster: closest-hit queries against one Embree BVH of all patches.
+//
+// Precision: Embree works in single precision, so the scene is translated to be centred on the
+// origin (in double) before it is handed to Embree; a room far from the origin then traces exactly
+// like the same room at the origin. The BVH is built in robust (watertight) mode so that rays do
+// not slip between triangles that share an edge.
+//
+// Thread safety: Trace() is const and may be called from any number of threads at once.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "core/patch_scene.h"
+#include "core/vec3.h"
+
+namespace radfarm {
+
+struct RayHit {
+  static constexpr uint32_t kMiss = 0xffffffffu;
+  uint32_t patch = kMiss;  // patch id, or kMiss when the ray left the scene
+  bool front = true;       // false when the ray hit the back of the patch
+};
+
+class RayCaster {
+ public:
+  // Builds the BVH. The scene must outlive the caster.
+  explicit RayCaster(const PatchScene& scene);
+  ~RayCaster();
+  RayCaster(const RayCaster&) = delete;
+  RayCaster& operator=(const RayCaster&) = delete;
+
+  // Closest hit along origin + t * direction for t > 0; origin in scene coordinates. The origin is
+  // lifted off its surface by a small scene-relative offset along `surface_normal` so the ray does
+  // not hit the surface it starts on.
+  RayHit Trace(const Vec3& origin, const Vec3& direction, const Vec3& surface_normal) const;
+
+  // The origin offset used by Trace, in scene units (useful for tests and diagnostics).
+  double origin_offset() const { return origin_offset_; }
+
+ private:
+  struct Embree;
+  const PatchScene& scene_;
+  std::unique_ptr<Embree> embree_;
+  std::vector<uint32_t> triangle_patch_;  // Embree primitive id -> patch id
+  Vec3 centre_;                           // subtracted from every coordinate given to Embree
+  double origin_offset_ = 0;
+};
+
+}  // namespace radfarm

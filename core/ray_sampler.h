@@ -1,0 +1,60 @@
+// RaySampler: where ray k of a shooter starts and where it goes. Every sampler is a pure function
+// of (seed, round, shooter, ray index), so any subset of a shot's rays can be generated anywhere.
+//
+// Each ray carries an integer weight. The form factor from shooter i to patch j is estimated as
+// (sum of weights of i's rays that hit j) / (sum of weights of all of i's rays), so reductions are
+// integer sums and exact in any order. Random and Sobol rays weigh 1; the seed paper's hemisphere
+// grid weighs each direction by its cell's cosine-weighted solid angle, in fixed point.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/patch_scene.h"
+#include "core/solver_settings.h"
+#include "core/vec3.h"
+
+namespace radfarm {
+
+struct RaySample {
+  Vec3 origin;     // on the shooter's surface
+  Vec3 direction;  // unit, into the shooter's front hemisphere
+  uint64_t weight = 1;
+};
+
+class RaySampler {
+ public:
+  RaySampler(SamplerKind kind, uint64_t seed, double grid_step_degrees);
+
+  SamplerKind kind() const { return kind_; }
+
+  // Number of rays one shot of a shooter takes when the sampler fixes it (the grid), else 0: the
+  // solver chooses the count from the shooter's unshot power.
+  uint64_t FixedRaysPerShot() const;
+
+  // Ray `index` of `shooter` (a patch id) in `round`.
+  RaySample Sample(const Patch& shooter, uint32_t shooter_id, uint32_t round, uint64_t index) const;
+
+  // Sum of the weights of rays [0, count) of one shot: what a shooter's hit weights divide by.
+  uint64_t TotalWeight(uint64_t count) const;
+
+ private:
+  RaySample GridSample(const Patch& shooter, uint64_t index) const;
+
+  SamplerKind kind_;
+  uint64_t seed_;
+  // Grid sampler tables: theta rows times phi columns, one fixed-point weight per row.
+  uint32_t grid_theta_steps_ = 0;
+  uint32_t grid_phi_steps_ = 0;
+  std::vector<uint64_t> grid_row_weight_;
+  uint64_t grid_total_weight_ = 0;
+};
+
+// Maps two uniform numbers to a uniformly distributed point on the patch (a quad is picked as one of
+// its two triangles in proportion to their areas).
+Vec3 SamplePatchPoint(const Patch& patch, double u, double v);
+
+// Maps two uniform numbers to a cosine-weighted direction around the unit normal n.
+Vec3 SampleCosineDirection(const Vec3& n, double u, double v);
+
+}  // namespace radfarm
