@@ -1,0 +1,51 @@
+#include "output/png_writer.h"
+
+#include <png.h>
+
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "output/atomic_file.h"
+#include "output/tone_map.h"
+
+namespace radfarm {
+
+Status WritePng(const std::string& path, const Image& linear, const Camera& camera) {
+  if (linear.width == 0 || linear.height == 0 ||
+      linear.pixels.size() != static_cast<size_t>(linear.width) * linear.height) {
+    return Error{path + ": cannot write PNG: image is empty or its size does not match its pixels"};
+  }
+  if (linear.width > std::numeric_limits<png_int_32>::max() / 3) {
+    return Error{path + ": cannot write PNG: image too wide"};
+  }
+  const std::vector<uint8_t> rgb = ToneMapImage(linear, camera);
+
+  // libpng's simplified API reports errors through image.message instead of longjmp, and writing
+  // to memory lets the atomic-file helper own the file handling.
+  png_image image;
+  std::memset(&image, 0, sizeof(image));
+  image.version = PNG_IMAGE_VERSION;
+  image.width = linear.width;
+  image.height = linear.height;
+  image.format = PNG_FORMAT_RGB;  // 8-bit non-linear: libpng tags it as sRGB
+  const png_int_32 stride = static_cast<png_int_32>(linear.width * 3);
+
+  png_alloc_size_t size = 0;
+  if (!png_image_write_get_memory_size(image, size, 0, rgb.data(), stride, nullptr)) {
+    const std::string message = image.message;
+    png_image_free(&image);
+    return Error{path + ": cannot encode PNG: " + message};
+  }
+  std::vector<char> encoded(size);
+  if (!png_image_write_to_memory(&image, encoded.data(), &size, 0, rgb.data(), stride, nullptr)) {
+    const std::string message = image.message;
+    png_image_free(&image);
+    return Error{path + ": cannot encode PNG: " + message};
+  }
+  png_image_free(&image);
+  return WriteFileAtomically(path, std::string_view(encoded.data(), size));
+}
+
+}  // namespace radfarm

@@ -1,0 +1,15 @@
+// Tone-mapped 8-bit sRGB PNG of a linear image (see tone_map.h for the exposure).
+#pragma once
+
+#include <string>
+
+#include "core/result.h"
+#include "output/camera.h"
+#include "output/image.h"
+
+namespace radfarm {
+
+// Written atomically (output/atomic_file.h); errors name `path`.
+Status WritePng(const std::string& path, const Image& linear, const Camera& camera);
+
+}  // namespace radfarm
