@@ -1,0 +1,187 @@
+// LoadJob. A job file is TOML; every key is optional except `scene`, and any other key is an error:
+//
+//   scene = "cornell-box.obj"     # the OBJ; a relative path is relative to this file's directory
+//   [mesh]
+//   patch_size = 30.0             # largest patch edge in scene units, > 0 (absent: automatic)
+//   [solver]
+//   sampler = "sobol"             # grid | random | sobol
+//   seed = 1                      # integer >= 0
+//   tolerance = 0.001             # stop when unshot power < tolerance * emitted, in (0, 1)
+//   rays = 0                      # ray budget, integer >= 0, 0 = none
+//   seconds = 0                   # time budget, >= 0, 0 = none
+//   shot_rays = 4194304           # rays per emitted power, integer > 0
+//   min_shooter_rays = 64         # integer >= 1
+//   shooters_per_round = 0        # integer >= 0, 0 = every patch with unshot power
+//   grid_step_degrees = 1.0       # grid sampler's angular step, in (0, 90]
+//   threads = 0                   # integer in [0, 65536], 0 = all cores
+//   [camera]
+//   eye = [278, 273, -800]        # eye and target go together; setting them turns off the
+//   target = [278, 273, 0]        # automatic camera
+//   up = [0, 1, 0]                # not parallel to target - eye
+//   fov = 39.3077                 # vertical field of view in degrees, in (0, 180)
+//   width = 512                   # pixels, in [1, 16384]
+//   height = 512                  # pixels, in [1, 16384]
+//   exposure = 0.0                # stops; setting it turns off automatic exposure
+//   samples_per_pixel = 4         # in [1, 1024]
+//
+// Errors are one line naming the file, the line and the dotted key:
+// "job.toml:7: unknown key 'solver.sampel'".
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <limits>
+
+#include "input/diagnostic.h"
+#include "input/job.h"
+#include "input/text_file.h"
+#include "input/toml_table_reader.h"
+
+namespace radfarm {
+namespace {
+
+constexpr int64_t kMaxInt64 = std::numeric_limits<int64_t>::max();
+constexpr int64_t kMaxUint32 = std::numeric_limits<uint32_t>::max();
+constexpr int64_t kMaxThreads = 65536;
+constexpr int64_t kMaxImageSide = 16384;
+constexpr int64_t kMaxSamplesPerPixel = 1024;
+
+// Runs each read in turn and returns the first failure.
+#define RADFARM_TRY(expr)                   \
+  do {                                      \
+    if (Status s_ = (expr); !s_) return s_; \
+  } while (0)
+
+Result<toml::table> ParseToml(const std::string& path, const std::string& text) {
+#if TOML_EXCEPTIONS
+  try {
+    return toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    const std::string what(e.description());
+    return ErrorAt(path, e.source().begin.line, what.substr(0, what.find('\n')));
+  }
+#else
+  toml::parse_result parsed = toml::parse(text, path);
+  if (!parsed) {
+    const std::string what(parsed.error().description());
+    return ErrorAt(path, parsed.error().source().begin.line, what.substr(0, what.find('\n')));
+  }
+  return std::move(parsed).table();
+#endif
+}
+
+// Applies a section's reads to the sub-table `name` of `root`, then rejects its unknown keys.
+template <typename ReadSection>
+Status ReadTable(const std::string& path, TomlTableReader* root, std::string_view name,
+                 ReadSection read) {
+  Result<const toml::table*> table = root->Table(name);
+  if (!table) return Error{table.error()};
+  if (*table == nullptr) return Ok{};
+  TomlTableReader reader(path, **table, std::string(name) + ".");
+  RADFARM_TRY(read(&reader));
+  return reader.CheckNoUnknownKeys();
+}
+
+Status ReadMesh(TomlTableReader* r, MeshSettings* mesh) {
+  return r->Real("patch_size", Interval::Above(0), &mesh->patch_size);
+}
+
+Status ReadSolver(TomlTableReader* r, SolverSettings* solver) {
+  std::string sampler;
+  bool has_sampler = false;
+  RADFARM_TRY(r->String("sampler", &sampler, &has_sampler));
+  if (has_sampler && !ParseSamplerName(sampler, &solver->sampler)) {
+    return r->ErrorFor("sampler",
+                       "must be \"grid\", \"random\" or \"sobol\", got \"" + sampler + "\"");
+  }
+  RADFARM_TRY(r->Integer("seed", 0, kMaxInt64, &solver->seed));
+  RADFARM_TRY(r->Real("tolerance", Interval::Open(0, 1), &solver->tolerance));
+  RADFARM_TRY(r->Integer("rays", 0, kMaxInt64, &solver->max_rays));
+  RADFARM_TRY(r->Real("seconds", Interval::AtLeast(0), &solver->max_seconds));
+  RADFARM_TRY(r->Integer("shot_rays", 1, kMaxInt64, &solver->shot_rays));
+  RADFARM_TRY(r->Integer("min_shooter_rays", 1, kMaxUint32, &solver->min_shooter_rays));
+  RADFARM_TRY(r->Integer("shooters_per_round", 0, kMaxUint32, &solver->shooters_per_round));
+  RADFARM_TRY(
+      r->Real("grid_step_degrees", Interval::OpenClosed(0, 90), &solver->grid_step_degrees));
+  return r->Integer("threads", 0, kMaxThreads, &solver->threads);
+}
+
+// An explicit camera needs both ends of its view direction and an up vector off that direction.
+Status CheckExplicitCamera(TomlTableReader* r, bool has_eye, bool has_target,
+                           const Camera& camera) {
+  if (has_eye != has_target) {
+    return r->ErrorFor(has_eye ? "eye" : "target", "needs camera.eye and camera.target both set");
+  }
+  const Vec3 view = camera.target - camera.eye;
+  if (Length(view) == 0) return r->ErrorFor("eye", "must differ from camera.target");
+  if (Length(Cross(view, camera.up)) <= 1e-9 * Length(view) * Length(camera.up)) {
+    return r->ErrorFor("up", "must be nonzero and not parallel to camera.target - camera.eye");
+  }
+  return Ok{};
+}
+
+Status ReadCamera(TomlTableReader* r, Camera* camera) {
+  bool has_eye = false, has_target = false, has_exposure = false;
+  RADFARM_TRY(r->Vector("eye", &camera->eye, &has_eye));
+  RADFARM_TRY(r->Vector("target", &camera->target, &has_target));
+  RADFARM_TRY(r->Vector("up", &camera->up));
+  RADFARM_TRY(r->Real("fov", Interval::Open(0, 180), &camera->fov_degrees));
+  RADFARM_TRY(r->Integer("width", 1, kMaxImageSide, &camera->width));
+  RADFARM_TRY(r->Integer("height", 1, kMaxImageSide, &camera->height));
+  RADFARM_TRY(r->Real("exposure", Interval::Any(), &camera->exposure, &has_exposure));
+  RADFARM_TRY(r->Integer("samples_per_pixel", 1, kMaxSamplesPerPixel, &camera->samples_per_pixel));
+  if (has_exposure) camera->auto_exposure = false;
+  if (has_eye || has_target) {
+    RADFARM_TRY(CheckExplicitCamera(r, has_eye, has_target, *camera));
+    camera->automatic = false;
+  }
+  return Ok{};
+}
+
+Result<Job> LoadTomlJob(const std::string& path) {
+  Result<std::string> text = ReadTextFile(path);
+  if (!text) return Error{text.error()};
+  Result<toml::table> table = ParseToml(path, *text);
+  if (!table) return Error{table.error()};
+
+  Job job;
+  TomlTableReader root(path, *table, "");
+  std::string scene;
+  bool has_scene = false;
+  auto read = [&]() -> Status {
+    RADFARM_TRY(root.String("scene", &scene, &has_scene));
+    if (!has_scene) return ErrorAt(path, 0, "missing key 'scene'");
+    if (scene.empty()) return root.ErrorFor("scene", "must not be empty");
+    RADFARM_TRY(
+        ReadTable(path, &root, "mesh", [&](TomlTableReader* r) { return ReadMesh(r, &job.mesh); }));
+    RADFARM_TRY(ReadTable(path, &root, "solver",
+                          [&](TomlTableReader* r) { return ReadSolver(r, &job.solver); }));
+    RADFARM_TRY(ReadTable(path, &root, "camera",
+                          [&](TomlTableReader* r) { return ReadCamera(r, &job.camera); }));
+    return root.CheckNoUnknownKeys();
+  };
+  if (Status s = read(); !s) return Error{s.error()};
+  job.scene_path = (std::filesystem::path(path).parent_path() / scene).string();
+  return job;
+}
+
+std::string LowercaseExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+Result<Job> LoadJob(const std::string& path) {
+  const std::string ext = LowercaseExtension(path);
+  if (ext == ".toml") return LoadTomlJob(path);
+  if (ext == ".obj") {
+    Job job;
+    job.scene_path = path;
+    return job;
+  }
+  return ErrorAt(path, 0, "not a scene: expected a .obj or a .toml job file");
+}
+
+}  // namespace radfarm

@@ -1,0 +1,59 @@
+#include "input/mtl_library_reader.h"
+
+#include <sstream>
+
+#include "input/text_file.h"
+
+namespace radfarm {
+namespace {
+
+// tinyobjloader keeps the text after "newmtl " verbatim, so "newmtl  white" names " white", which
+// no `usemtl` can match. Trim the names and re-key them as IndexMtlLines reads them.
+void TrimNames(size_t first, std::vector<tinyobj::material_t>* materials,
+               std::map<std::string, int>* material_map) {
+  for (size_t i = first; i < materials->size(); ++i) {
+    std::string& name = (*materials)[i].name;
+    const size_t begin = name.find_first_not_of(" \t");
+    if (begin == 0 || begin == std::string::npos) continue;
+    auto it = material_map->find(name);
+    if (it != material_map->end() && it->second == static_cast<int>(i)) material_map->erase(it);
+    name.erase(0, begin);
+    material_map->emplace(name, static_cast<int>(i));
+  }
+}
+
+}  // namespace
+
+bool MtlLibraryReader::operator()(const std::string& name,
+                                  std::vector<tinyobj::material_t>* materials,
+                                  std::map<std::string, int>* material_map, std::string* /*warn*/,
+                                  std::string* /*err*/) {
+  // tinyobjloader's own messages carry no file name; ours come from IndexMtlLines and the loader.
+  if (error_ || !requested_.insert(name).second) return false;
+  const std::string path = (directory_ / name).string();
+  Result<std::string> text = ReadTextFile(path);
+  if (!text) {
+    missing_.push_back(name);
+    return false;
+  }
+  BlankComments(&*text);
+  Result<MtlLineIndex> index = IndexMtlLines(path, *text);
+  if (!index) {
+    error_ = Error{index.error()};
+    return false;
+  }
+  warnings_.insert(warnings_.end(), index->warnings.begin(), index->warnings.end());
+
+  const size_t first = materials->size();
+  std::istringstream stream(*text);
+  tinyobj::LoadMtl(material_map, materials, &stream, nullptr, nullptr);
+  TrimNames(first, materials, material_map);
+  for (size_t i = first; i < materials->size(); ++i) {
+    auto lines = index->materials.find((*materials)[i].name);
+    origins_.push_back(
+        {path, lines != index->materials.end() ? lines->second : MtlMaterialLines{}});
+  }
+  return false;
+}
+
+}  // namespace radfarm

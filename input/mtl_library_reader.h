@@ -1,0 +1,54 @@
+// Supplies tinyobjloader with the MTL files an OBJ names (`mtllib`), read from the OBJ's directory
+// through ReadTextFile and IndexMtlLines, and remembers where each material came from so that
+// material errors can name the MTL file and line.
+#pragma once
+
+#include <tiny_obj_loader.h>
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+#include "input/mtl_line_index.h"
+
+namespace radfarm {
+
+struct MaterialOrigin {
+  std::string mtl_path;  // the MTL file, as opened
+  MtlMaterialLines lines;
+};
+
+class MtlLibraryReader : public tinyobj::MaterialReader {
+ public:
+  explicit MtlLibraryReader(std::filesystem::path directory) : directory_(std::move(directory)) {}
+
+  // Called by tinyobjloader once per file named by `mtllib`. Always returns false: tinyobjloader
+  // stops at the first file of a `mtllib` line that loads, but the OBJ specification loads them
+  // all.
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* material_map, std::string* warn,
+                  std::string* err) override;
+
+  // Where each of tinyobjloader's materials was defined, by material id.
+  const std::vector<MaterialOrigin>& origins() const { return origins_; }
+  // `mtllib` names that could not be read, as written in the OBJ.
+  const std::vector<std::string>& missing() const { return missing_; }
+  // Warnings from the MTL files, already prefixed with their names.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  // The first error found in an MTL file, if any.
+  const std::optional<Error>& error() const { return error_; }
+
+ private:
+  std::filesystem::path directory_;
+  std::set<std::string> requested_;
+  std::vector<MaterialOrigin> origins_;
+  std::vector<std::string> missing_;
+  std::vector<std::string> warnings_;
+  std::optional<Error> error_;
+};
+
+}  // namespace radfarm

@@ -1,0 +1,177 @@
+// LoadObjScene: tinyobjloader parses; IndexObjLines and MtlLibraryReader validate what it would
+// misread and supply the line numbers it does not keep. Faces stay polygons (no triangulation):
+// meshing is mesh/'s job.
+#include <tiny_obj_loader.h>
+
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "input/diagnostic.h"
+#include "input/input_scene.h"
+#include "input/material_check.h"
+#include "input/mtl_library_reader.h"
+#include "input/obj_line_index.h"
+#include "input/text_file.h"
+
+namespace radfarm {
+namespace {
+
+// What a face gets when its material is missing: a mid grey that neither emits nor reflects much.
+Material DefaultGrey() { return {"default-grey", Rgb(0.5, 0.5, 0.5), Rgb()}; }
+
+constexpr int kNoMaterial = -1;  // tinyobjloader's material id for "none" or "unknown"
+
+Material FromTinyObj(const tinyobj::material_t& m) {
+  return {m.name, Rgb(m.diffuse[0], m.diffuse[1], m.diffuse[2]),
+          Rgb(m.emission[0], m.emission[1], m.emission[2])};
+}
+
+// Builds the scene's material list from tinyobjloader's material ids: only the materials faces use,
+// in order of first use, each checked against its physical limits.
+class MaterialTable {
+ public:
+  MaterialTable(const std::vector<tinyobj::material_t>& materials,
+                const std::vector<MaterialOrigin>& origins)
+      : materials_(materials), origins_(origins) {}
+
+  Result<uint32_t> Index(int id) {
+    auto [it, added] = scene_index_.try_emplace(id, static_cast<uint32_t>(used_.size()));
+    if (!added) return it->second;
+    if (id == kNoMaterial) {
+      used_.push_back(DefaultGrey());
+    } else {
+      used_.push_back(FromTinyObj(materials_[id]));
+      const MaterialOrigin& origin = origins_[id];
+      if (Status s = CheckMaterial(used_.back(), origin.mtl_path, origin.lines); !s) {
+        return Error{s.error()};
+      }
+    }
+    return it->second;
+  }
+
+  std::vector<Material> Take() { return std::move(used_); }
+
+ private:
+  const std::vector<tinyobj::material_t>& materials_;
+  const std::vector<MaterialOrigin>& origins_;
+  std::map<int, uint32_t> scene_index_;
+  std::vector<Material> used_;
+};
+
+// Copies tinyobjloader's faces, in file order, pairing the k-th with the k-th `f` statement.
+Status CollectFaces(const std::string& path, const std::vector<tinyobj::shape_t>& shapes,
+                    const ObjLineIndex& index, MaterialTable* materials, InputScene* scene) {
+  for (const tinyobj::shape_t& shape : shapes) {
+    const tinyobj::mesh_t& mesh = shape.mesh;
+    size_t corner = 0;
+    for (size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
+      const size_t k = scene->faces.size();
+      const uint32_t corners = mesh.num_face_vertices[f];
+      // IndexObjLines accepts exactly the faces tinyobjloader keeps; disagreement is our bug.
+      if (k >= index.faces.size() || index.faces[k].corners != corners) {
+        return Error{path + ": internal error: tinyobjloader's face " + std::to_string(k + 1) +
+                     " does not match the line index"};
+      }
+      InputFace face;
+      face.line = index.faces[k].line;
+      for (uint32_t c = 0; c < corners; ++c) {
+        face.indices.push_back(static_cast<uint32_t>(mesh.indices[corner++].vertex_index));
+      }
+      Result<uint32_t> material = materials->Index(mesh.material_ids[f]);
+      if (!material) return Error{material.error()};
+      face.material = *material;
+      scene->faces.push_back(std::move(face));
+    }
+  }
+  if (scene->faces.size() != index.faces.size()) {
+    return Error{path + ": internal error: tinyobjloader read " +
+                 std::to_string(scene->faces.size()) + " of " + std::to_string(index.faces.size()) +
+                 " faces"};
+  }
+  return Ok{};
+}
+
+// Warnings for every way a face can end up grey: a library that is missing, a `usemtl` naming no
+// known material, faces before any `usemtl`.
+void WarnAboutGrey(const std::string& path, const ObjLineIndex& index,
+                   const MtlLibraryReader& reader,
+                   const std::vector<tinyobj::material_t>& materials, InputScene* scene) {
+  for (const std::string& missing : reader.missing()) {
+    for (const ObjNamedLine& library : index.material_libraries) {
+      if (library.name != missing) continue;
+      scene->warnings.push_back(WarningAt(
+          path, library.line, "material library '" + missing + "' not found; using grey"));
+      break;
+    }
+  }
+  std::set<std::string> known;
+  for (const tinyobj::material_t& m : materials) known.insert(m.name);
+  for (const ObjNamedLine& use : index.material_uses) {
+    if (known.insert(use.name).second) {
+      scene->warnings.push_back(
+          WarningAt(path, use.line, "material '" + use.name + "' not defined; using grey"));
+    }
+  }
+  if (!index.faces.empty() &&
+      (index.material_uses.empty() || index.faces[0].line < index.material_uses[0].line)) {
+    scene->warnings.push_back(WarningAt(path, index.faces[0].line,
+                                        "faces before any 'usemtl' have no material; using grey"));
+  }
+}
+
+Status CheckSomethingEmits(const std::string& path, const MtlLibraryReader& reader,
+                           const InputScene& scene) {
+  if (scene.faces.empty()) return ErrorAt(path, 0, "no faces");
+  for (const InputFace& face : scene.faces) {
+    if (scene.materials[face.material].emission.Max() > 0) return Ok{};
+  }
+  std::string why = "nothing to light: no face uses a material with Ke > 0";
+  // The usual cause, named here because the warnings may never be shown once loading fails.
+  if (!reader.missing().empty()) {
+    why += " (material library '" + reader.missing().front() + "' not found)";
+  }
+  return ErrorAt(path, 0, why);
+}
+
+}  // namespace
+
+Result<InputScene> LoadObjScene(const std::string& path) {
+  Result<std::string> text = ReadTextFile(path);
+  if (!text) return Error{text.error()};
+  BlankComments(&*text);
+  Result<ObjLineIndex> index = IndexObjLines(path, *text);
+  if (!index) return Error{index.error()};
+
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string warn, err;
+  MtlLibraryReader reader(std::filesystem::path(path).parent_path());
+  std::istringstream stream(*text);
+  const bool parsed = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &stream, &reader,
+                                       /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  if (reader.error()) return *reader.error();
+  if (!parsed) return ErrorAt(path, 0, err.substr(0, err.find('\n')));
+
+  InputScene scene;
+  scene.path = path;
+  scene.warnings = index->warnings;
+  scene.warnings.insert(scene.warnings.end(), reader.warnings().begin(), reader.warnings().end());
+  for (size_t i = 0; i + 2 < attrib.vertices.size(); i += 3) {
+    scene.positions.emplace_back(attrib.vertices[i], attrib.vertices[i + 1],
+                                 attrib.vertices[i + 2]);
+  }
+  if (scene.positions.size() != index->vertex_count) {
+    return ErrorAt(path, 0, "internal error: tinyobjloader's vertex count does not match");
+  }
+  MaterialTable table(materials, reader.origins());
+  if (Status s = CollectFaces(path, shapes, *index, &table, &scene); !s) return Error{s.error()};
+  scene.materials = table.Take();
+  WarnAboutGrey(path, *index, reader, materials, &scene);
+  if (Status s = CheckSomethingEmits(path, reader, scene); !s) return Error{s.error()};
+  return scene;
+}
+
+}  // namespace radfarm

@@ -1,0 +1,77 @@
+// Typed, range-checked reads of one TOML table's keys, for the job file. The reader remembers which
+// keys it read, so that every key it was never asked for can be reported as unknown. Messages name
+// the file, the line and the dotted key: "job.toml:7: 'solver.tolerance' must be in (0, 1), got 2".
+#pragma once
+
+#include <toml++/toml.h>
+
+#include <cstdint>
+#include <limits>
+#include <set>
+#include <string>
+#include <string_view>
+
+#include "core/result.h"
+#include "core/vec3.h"
+
+namespace radfarm {
+
+// A range of allowed real values, each end open or closed (or unbounded).
+struct Interval {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  bool lo_open = false;
+  bool hi_open = false;
+
+  static Interval Any() { return {}; }
+  static Interval Above(double lo) { return {lo, Interval().hi, true, false}; }
+  static Interval AtLeast(double lo) { return {lo, Interval().hi, false, false}; }
+  static Interval Open(double lo, double hi) { return {lo, hi, true, true}; }
+  static Interval OpenClosed(double lo, double hi) { return {lo, hi, true, false}; }
+
+  bool Contains(double x) const;
+  std::string Describe() const;  // "in (0, 1)", "in (0, 90]", "> 0", ">= 0"
+};
+
+class TomlTableReader {
+ public:
+  // `prefix` is the dotted path of `table` ("" for the root, "solver." for [solver]).
+  TomlTableReader(const std::string& file, const toml::table& table, std::string prefix)
+      : file_(file), table_(table), prefix_(std::move(prefix)) {}
+
+  // Each read leaves *out alone when the key is absent, and sets *present (when given) to whether
+  // it was there. Integers are accepted where reals are expected, not the other way round.
+  Status Real(std::string_view key, Interval range, double* out, bool* present = nullptr);
+  Status Integer(std::string_view key, int64_t lo, int64_t hi, int64_t* out,
+                 bool* present = nullptr);
+  template <typename T>
+  Status Integer(std::string_view key, int64_t lo, int64_t hi, T* out) {
+    int64_t value = 0;
+    bool present = false;
+    Status s = Integer(key, lo, hi, &value, &present);
+    if (s && present) *out = static_cast<T>(value);
+    return s;
+  }
+  Status String(std::string_view key, std::string* out, bool* present = nullptr);
+  Status Vector(std::string_view key, Vec3* out, bool* present = nullptr);
+  // The sub-table at `key`, or null when absent.
+  Result<const toml::table*> Table(std::string_view key);
+
+  // An error for the first (by line) key that no read asked for.
+  Status CheckNoUnknownKeys() const;
+
+  // "file:line: 'prefix.key' what", for checks that involve several keys.
+  Error ErrorFor(std::string_view key, std::string_view what) const;
+  std::string DottedKey(std::string_view key) const { return prefix_ + std::string(key); }
+
+ private:
+  // The node at `key`, marking the key as read; null when absent.
+  const toml::node* Find(std::string_view key);
+
+  const std::string& file_;
+  const toml::table& table_;
+  std::string prefix_;
+  std::set<std::string, std::less<>> read_;
+};
+
+}  // namespace radfarm
