@@ -28,12 +28,20 @@ Vec3 SampleTriangle(const Vec3& a, const Vec3& b, const Vec3& c, double u, doubl
 
 Vec3 SamplePatchPoint(const Patch& patch, double u, double v) {
   const auto& p = patch.corners;
-  if (patch.corner_count == 3) return SampleTriangle(p[0], p[1], p[2], u, v);
-  const double a0 = Length(Cross(p[1] - p[0], p[2] - p[0]));
-  const double a1 = Length(Cross(p[2] - p[0], p[3] - p[0]));
-  const double split = a0 / (a0 + a1);
-  if (u < split) return SampleTriangle(p[0], p[1], p[2], u / split, v);
-  return SampleTriangle(p[0], p[2], p[3], std::min((u - split) / (1 - split), 1.0), v);
+  Vec3 point;
+  if (patch.corner_count == 3) {
+    point = SampleTriangle(p[0], p[1], p[2], u, v);
+  } else {
+    const double a0 = Length(Cross(p[1] - p[0], p[2] - p[0]));
+    const double a1 = Length(Cross(p[2] - p[0], p[3] - p[0]));
+    const double split = a0 / (a0 + a1);
+    point = u < split ? SampleTriangle(p[0], p[1], p[2], u / split, v)
+                      : SampleTriangle(p[0], p[2], p[3], std::min((u - split) / (1 - split), 1.0), v);
+  }
+  // Pull the point a hair toward the centre: a ray starting within a float ulp of the patch's rim
+  // could otherwise start behind a wall that meets the patch there and hit its back.
+  constexpr double kRimShrink = 1e-5;
+  return point + (patch.centre - point) * kRimShrink;
 }
 
 Vec3 SampleCosineDirection(const Vec3& n, double u, double v) {

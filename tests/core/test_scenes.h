@@ -1,0 +1,34 @@
+// Hand-built PatchScenes for core tests, independent of the OBJ loader and the mesher.
+#pragma once
+
+#include <cstdint>
+
+#include "core/patch_scene.h"
+
+namespace radfarm::testing {
+
+struct Surface {
+  Rgb reflectance;
+  Rgb emission;
+  uint32_t surface = 0;
+};
+
+// Appends the quad a,b,c,d (counter-clockwise seen from its front) as an n x n grid of patches.
+void AddQuadGrid(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, int n,
+                 const Surface& s, PatchScene* scene);
+
+// Appends a regular polygon approximating a disc (centre, unit normal, radius) as a fan of
+// triangles around the centre.
+void AddDisc(const Vec3& centre, const Vec3& normal, double radius, int segments, const Surface& s,
+             PatchScene* scene);
+
+// A closed axis-aligned box [lo, hi] with faces facing inward, each split n x n; all faces get s
+// (surface ids 0..5 in the order -x, +x, -y, +y, -z, +z).
+PatchScene MakeClosedBox(const Vec3& lo, const Vec3& hi, int n, const Surface& s);
+
+// Patch index range helper: patches [first, last) of a scene.
+struct PatchRange {
+  uint32_t first = 0, last = 0;
+};
+
+}  // namespace radfarm::testing
