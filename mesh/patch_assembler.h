@@ -1,0 +1,64 @@
+// PatchAssembler: adds patch pieces to the OpenMesh mesh and the PatchScene in step, welding
+// corners within tol, then finds the T-vertices. The result, PatchMeshData, is what PatchMesh
+// keeps.
+#pragma once
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "core/patch_scene.h"
+#include "input/input_scene.h"
+#include "mesh/om_mesh.h"
+#include "mesh/point_grid.h"
+#include "mesh/polygon_split.h"
+
+namespace radfarm {
+
+// A display vertex on the interior of a patch edge: a T-vertex, where a neighbouring patch of the
+// same surface was gridded differently. Display triangles of the patch include it, and its value
+// includes the patch, so shading is continuous across the edge.
+struct EdgePoint {
+  uint32_t face;
+  uint32_t edge;  // from corner `edge` to corner `edge + 1`
+  double t;       // position along the edge, in (0, 1)
+  uint32_t group;
+};
+
+struct PatchMeshData {
+  OmMesh mesh;
+  PatchProperties props;
+  PatchScene scene;
+  // Display vertices ("groups": one per surface and welded position), each with one OpenMesh vertex
+  // standing for it. Several OpenMesh vertices share a group where a face could not be connected
+  // without making the mesh non-manifold (it then gets vertices of its own).
+  std::vector<OmMesh::VertexHandle> group_vertex;
+  std::vector<EdgePoint> edge_points;  // sorted by face, edge, t
+};
+
+class PatchAssembler {
+ public:
+  // tol: welding distance; min_area: pieces smaller than this after welding are skipped.
+  PatchAssembler(double tol, double min_area, const std::vector<Material>& materials);
+
+  // Adds one piece as the next patch. Returns false when welding left it degenerate.
+  bool Add(const PieceCorners& piece, uint32_t surface, uint32_t material);
+
+  PatchMeshData Finish() &&;
+
+ private:
+  uint32_t GroupOf(uint32_t surface, uint32_t weld);
+  std::vector<OmMesh::VertexHandle> ConnectableVertices(const std::vector<uint32_t>& groups);
+  void FindEdgePoints();
+
+  double tol_;
+  double min_area_;
+  const std::vector<Material>& materials_;
+  PointWelder welder_;
+  std::unordered_map<uint64_t, uint32_t> group_of_key_;  // surface << 32 | weld id
+  std::vector<uint32_t> group_surface_;
+  double edge_length_sum_ = 0;
+  PatchMeshData data_;
+};
+
+}  // namespace radfarm

@@ -1,0 +1,124 @@
+#include "mesh/patch_mesh.h"
+
+#include <cmath>
+#include <cstddef>
+#include <sstream>
+#include <utility>
+
+#include "mesh/clean_faces.h"
+#include "mesh/hidden_faces.h"
+#include "mesh/polygon_split.h"
+#include "mesh/surfaces.h"
+
+namespace radfarm {
+namespace {
+
+constexpr double kLengthTolerance = 1e-6;  // times the diagonal
+constexpr double kAreaTolerance = 1e-12;   // times the diagonal squared
+constexpr size_t kListedLines = 10;        // lines named in one warning
+
+// The loader validates its scenes, but InputScene is a plain struct: check what meshing relies on.
+Status CheckScene(const InputScene& scene) {
+  for (const InputFace& face : scene.faces) {
+    const std::string where = scene.path + ":" + std::to_string(face.line) + ": ";
+    if (face.material >= scene.materials.size()) {
+      return Error{where + "material index " + std::to_string(face.material) + " out of range"};
+    }
+    for (uint32_t index : face.indices) {
+      if (index >= scene.positions.size()) {
+        return Error{where + "vertex index " + std::to_string(index) + " out of range"};
+      }
+      if (!IsFinite(scene.positions[index])) return Error{where + "non-finite vertex position"};
+    }
+  }
+  return Ok{};
+}
+
+Bounds3 FaceBounds(const InputScene& scene) {
+  Bounds3 bounds;
+  for (const InputFace& face : scene.faces) {
+    for (uint32_t index : face.indices) bounds.Extend(scene.positions[index]);
+  }
+  return bounds;
+}
+
+// "scene.obj: dropped 2 zero-area faces (lines 3, 7)".
+void WarnDropped(const std::string& path, const std::vector<uint32_t>& lines, const char* one,
+                 const char* many, std::vector<std::string>* warnings) {
+  if (lines.empty() || warnings == nullptr) return;
+  std::ostringstream out;
+  out << path << ": dropped " << lines.size() << " " << (lines.size() == 1 ? one : many)
+      << (lines.size() == 1 ? " (line " : " (lines ");
+  for (size_t i = 0; i < lines.size() && i < kListedLines; ++i) out << (i ? ", " : "") << lines[i];
+  if (lines.size() > kListedLines) out << " and " << lines.size() - kListedLines << " more";
+  out << ")";
+  warnings->push_back(out.str());
+}
+
+}  // namespace
+
+Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& settings,
+                                   std::vector<std::string>* warnings) {
+  if (!std::isfinite(settings.patch_size) || settings.patch_size < 0) {
+    return Error{scene.path + ": patch size must be a finite number >= 0"};
+  }
+  if (Status status = CheckScene(scene); !status.ok()) return Error{status.error()};
+  const double diagonal = FaceBounds(scene).Diagonal();
+  const double tol = kLengthTolerance * diagonal;
+  const double min_area = kAreaTolerance * diagonal * diagonal;
+
+  PatchMesh pm;
+  pm.patch_size_ = settings.patch_size > 0 ? settings.patch_size : diagonal / kAutoPatchDivisions;
+
+  CleanFaces clean = CleanInputFaces(scene, tol, min_area);
+  const std::vector<bool> hidden = FindHiddenFaces(clean.faces, tol);
+  std::vector<CleanFace> faces;
+  std::vector<uint32_t> hidden_lines;
+  for (size_t i = 0; i < clean.faces.size(); ++i) {
+    if (hidden[i]) {
+      hidden_lines.push_back(clean.faces[i].line);
+    } else {
+      faces.push_back(std::move(clean.faces[i]));
+    }
+  }
+  pm.dropped_degenerate_ = clean.degenerate_lines.size();
+  pm.dropped_hidden_ = hidden_lines.size();
+  WarnDropped(scene.path, clean.degenerate_lines, "zero-area face", "zero-area faces", warnings);
+  WarnDropped(scene.path, hidden_lines, "face hidden inside a coplanar overlap",
+              "faces hidden inside a coplanar overlap", warnings);
+  if (faces.empty()) return Error{scene.path + ": no faces left to mesh"};
+
+  const SurfaceGroups surfaces = GroupSurfaces(faces, tol);
+  pm.surface_count_ = surfaces.count;
+
+  std::vector<SplitPlan> plans;
+  double piece_count = 0;
+  for (const CleanFace& face : faces) {
+    plans.push_back(PlanSplit(face.corners, face.normal, pm.patch_size_, tol));
+    piece_count += static_cast<double>(plans.back().PieceCount());
+    if (!plans.back().simple && warnings != nullptr) {
+      warnings->push_back(scene.path + ":" + std::to_string(face.line) +
+                          ": face is self-intersecting; its patches may overlap");
+    }
+  }
+  if (piece_count > kMaxPatches) {
+    std::ostringstream out;
+    out << scene.path << ": patch size " << pm.patch_size_ << " would make " << piece_count
+        << " patches (at most " << kMaxPatches << ")";
+    return Error{out.str()};
+  }
+
+  PatchAssembler assembler(tol, min_area, scene.materials);
+  std::vector<PieceCorners> pieces;
+  for (size_t f = 0; f < faces.size(); ++f) {
+    pieces.clear();
+    EmitPieces(plans[f], &pieces);
+    for (const PieceCorners& piece : pieces) {
+      assembler.Add(piece, surfaces.surface[f], faces[f].material);
+    }
+  }
+  pm.data_ = std::move(assembler).Finish();
+  return pm;
+}
+
+}  // namespace radfarm

@@ -1,0 +1,77 @@
+// PatchMesh: the scene split into radiosity patches, held in an OpenMesh polygon mesh (om_mesh.h)
+// with a flat PatchScene copy for the solver; after the solve it turns patch radiosities into
+// per-vertex radiance for display.
+//
+// Build, in order (each step in its own file):
+//   1. clean_faces.h     repeated and straight-through corners removed; zero-area faces dropped
+//   2. hidden_faces.h    faces hidden inside a coplanar overlap dropped
+//   3. surfaces.h        faces grouped into smooth surfaces (the units of vertex averaging)
+//   4. polygon_split.h   each face split into patches no longer than the patch size on any edge
+//   5. patch_assembler.h patches welded into the mesh; T-vertices between differently split faces
+//                        of one surface found
+// Tolerances scale with the bounding-box diagonal D of the faces: lengths 1e-6 D, areas 1e-12 D².
+// Everything is deterministic: the same input gives the same patches in the same order.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/patch_scene.h"
+#include "core/result.h"
+#include "core/rgb.h"
+#include "input/input_scene.h"
+#include "mesh/display_mesh.h"
+#include "mesh/mesh_settings.h"
+#include "mesh/patch_assembler.h"
+
+namespace radfarm {
+
+// With MeshSettings::patch_size == 0 the patch size is D / kAutoPatchDivisions: about 40 patches
+// along the scene's diagonal, a few thousand patches for a room.
+inline constexpr double kAutoPatchDivisions = 40;
+// Build refuses scenes that would need more patches than this (a patch size far too small).
+inline constexpr double kMaxPatches = 1 << 23;
+
+class PatchMesh {
+ public:
+  // Splits every input polygon into patches no larger than the target size. Appends one-line
+  // warnings (prefixed with scene.path) to *warnings (may be null) for dropped geometry. Errors: an
+  // invalid patch size, an index out of range, no face left to mesh, too many patches.
+  static Result<PatchMesh> Build(const InputScene& scene, const MeshSettings& settings,
+                                 std::vector<std::string>* warnings);
+
+  // Flat copy the solver uses; patch i == OpenMesh face i.
+  const PatchScene& patch_scene() const { return data_.scene; }
+  // Target size actually used (automatic when settings.patch_size == 0).
+  double patch_size() const { return patch_size_; }
+  size_t dropped_degenerate() const { return dropped_degenerate_; }
+  size_t dropped_hidden() const { return dropped_hidden_; }
+  size_t surface_count() const { return surface_count_; }
+
+  // Stores the solution (one value per patch, in the solver's units: those of the emission) in the
+  // face properties B and dB, and sets each vertex's radiance to the area-weighted average of B
+  // over the patches of its surface that touch it: as a corner, or with the vertex on an edge (a
+  // T-vertex). Values never mix across surfaces, so creases stay sharp.
+  void SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot);
+
+  // Triangles with per-vertex radiance for the image and the PLY: one vertex per surface and
+  // position, patches with T-vertices on their edges triangulated through them, so Gouraud shading
+  // is continuous within a surface. Radiance is zero before SetSolution.
+  DisplayMesh MakeDisplayMesh() const;
+
+  // The OpenMesh mesh and its property handles, for inspection and tests.
+  const OmMesh& mesh() const { return data_.mesh; }
+  const PatchProperties& properties() const { return data_.props; }
+
+ private:
+  PatchMesh() = default;
+
+  PatchMeshData data_;
+  double patch_size_ = 0;
+  size_t dropped_degenerate_ = 0;
+  size_t dropped_hidden_ = 0;
+  size_t surface_count_ = 0;
+};
+
+}  // namespace radfarm
