@@ -1,0 +1,34 @@
+// Progress of a solve for a person watching: a redrawn bar on a terminal, plain log lines (at most
+// one a second, plus the last) when stdout is a pipe or a file.
+#pragma once
+
+#include <cstdio>
+
+#include "core/solve.h"
+
+namespace radfarm {
+
+class ProgressReporter {
+ public:
+  // `interactive`: redraw one line in place (a terminal); otherwise print log lines.
+  ProgressReporter(std::FILE* out, bool interactive);
+
+  void OnRound(const RoundProgress& progress);
+  // Ends the bar's line (interactive) so later output starts on a fresh line.
+  void Finish();
+
+ private:
+  std::FILE* out_;
+  bool interactive_;
+  double last_print_seconds_ = -1;
+  bool drew_ = false;
+};
+
+// Fraction of the way to convergence: unshot power falls geometrically, so progress is measured in
+// log space from 1 (start) to the tolerance (done).
+double ConvergenceFraction(double unshot_fraction, double tolerance);
+
+// Seconds left, extrapolating the geometric decay seen so far; negative when unknown.
+double EstimateSecondsLeft(double unshot_fraction, double tolerance, double seconds);
+
+}  // namespace radfarm
