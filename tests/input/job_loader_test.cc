@@ -1,0 +1,204 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "input/job.h"
+#include "tests/input/test_files.h"
+
+namespace radfarm {
+namespace {
+
+using testing::DataPath;
+using testing::WriteScratchFile;
+
+std::string JobError(const std::string& path) {
+  Result<Job> job = LoadJob(path);
+  EXPECT_FALSE(job.ok()) << path << " loaded but should not have";
+  if (job.ok()) return "";
+  EXPECT_EQ(job.error().find('\n'), std::string::npos) << job.error();
+  return job.error();
+}
+
+void ExpectDefaults(const Job& job) {
+  const Job defaults;
+  EXPECT_EQ(job.mesh.patch_size, defaults.mesh.patch_size);
+  EXPECT_EQ(job.solver.sampler, defaults.solver.sampler);
+  EXPECT_EQ(job.solver.seed, defaults.solver.seed);
+  EXPECT_EQ(job.solver.tolerance, defaults.solver.tolerance);
+  EXPECT_EQ(job.solver.max_rays, defaults.solver.max_rays);
+  EXPECT_EQ(job.solver.shot_rays, defaults.solver.shot_rays);
+  EXPECT_TRUE(job.camera.automatic);
+  EXPECT_TRUE(job.camera.auto_exposure);
+  EXPECT_EQ(job.camera.width, defaults.camera.width);
+  EXPECT_EQ(job.camera.fov_degrees, defaults.camera.fov_degrees);
+}
+
+TEST(LoadJobTest, BareObjGetsDefaults) {
+  Result<Job> job = LoadJob("scenes/cornell-box.obj");
+  ASSERT_TRUE(job.ok()) << job.error();
+  EXPECT_EQ(job->scene_path, "scenes/cornell-box.obj");
+  ExpectDefaults(*job);
+  EXPECT_TRUE(LoadJob("scenes/BOX.OBJ").ok());
+}
+
+TEST(LoadJobTest, OtherExtensionsAreRefused) {
+  EXPECT_EQ(JobError("scene.ply"), "scene.ply: not a scene: expected a .obj or a .toml job file");
+}
+
+TEST(LoadJobTest, MissingJobFile) {
+  EXPECT_EQ(JobError(DataPath("jobs/none.toml")),
+            DataPath("jobs/none.toml") + ": cannot open: No such file or directory");
+}
+
+TEST(LoadJobTest, MinimalJobKeepsDefaultsAndResolvesTheSceneBesideIt) {
+  Result<Job> job = LoadJob(DataPath("jobs/minimal.toml"));
+  ASSERT_TRUE(job.ok()) << job.error();
+  ExpectDefaults(*job);
+  EXPECT_EQ(job->scene_path, DataPath("jobs/../polygons.obj"));
+  EXPECT_TRUE(std::filesystem::equivalent(job->scene_path, DataPath("polygons.obj")));
+}
+
+TEST(LoadJobTest, SceneRelativeToAJobGivenByRelativePath) {
+  const std::filesystem::path saved = std::filesystem::current_path();
+  std::filesystem::current_path(DataPath(""));
+  Result<Job> job = LoadJob("jobs/minimal.toml");
+  std::filesystem::current_path(saved);
+  ASSERT_TRUE(job.ok()) << job.error();
+  EXPECT_EQ(job->scene_path, "jobs/../polygons.obj");
+}
+
+TEST(LoadJobTest, AbsoluteScenePathIsKept) {
+  Result<Job> job = LoadJob(WriteScratchFile("abs.toml", "scene = \"/data/room.obj\"\n"));
+  ASSERT_TRUE(job.ok()) << job.error();
+  EXPECT_EQ(job->scene_path, "/data/room.obj");
+}
+
+TEST(LoadJobTest, ReadsEveryKey) {
+  Result<Job> job = LoadJob(DataPath("jobs/full.toml"));
+  ASSERT_TRUE(job.ok()) << job.error();
+  EXPECT_EQ(job->mesh.patch_size, 30.0);
+  const SolverSettings& s = job->solver;
+  EXPECT_EQ(s.sampler, SamplerKind::kGrid);
+  EXPECT_EQ(s.seed, 7u);
+  EXPECT_EQ(s.tolerance, 0.01);
+  EXPECT_EQ(s.max_rays, 1000000u);
+  EXPECT_EQ(s.max_seconds, 2.5);
+  EXPECT_EQ(s.shot_rays, 1000u);
+  EXPECT_EQ(s.min_shooter_rays, 16u);
+  EXPECT_EQ(s.shooters_per_round, 8u);
+  EXPECT_EQ(s.grid_step_degrees, 2.0);
+  EXPECT_EQ(s.threads, 3u);
+  const Camera& c = job->camera;
+  EXPECT_FALSE(c.automatic);
+  EXPECT_EQ(c.eye, Vec3(278, 273, -800));
+  EXPECT_EQ(c.target, Vec3(278, 273, 0));
+  EXPECT_EQ(c.up, Vec3(1, 0, 0));
+  EXPECT_EQ(c.fov_degrees, 39.3077);
+  EXPECT_EQ(c.width, 640u);
+  EXPECT_EQ(c.height, 480u);
+  EXPECT_EQ(c.exposure, -1.5);
+  EXPECT_FALSE(c.auto_exposure);
+  EXPECT_EQ(c.samples_per_pixel, 9u);
+}
+
+TEST(LoadJobTest, ExposureAloneKeepsTheAutomaticCamera) {
+  Result<Job> job =
+      LoadJob(WriteScratchFile("exp.toml", "scene = \"x.obj\"\n[camera]\nexposure = 0\n"));
+  ASSERT_TRUE(job.ok()) << job.error();
+  EXPECT_TRUE(job->camera.automatic);
+  EXPECT_FALSE(job->camera.auto_exposure);
+}
+
+TEST(LoadJobTest, UnknownKeyNamesLineAndDottedKey) {
+  const std::string path = DataPath("jobs/unknown_key.toml");
+  EXPECT_EQ(JobError(path), path + ":7: unknown key 'solver.sampel'");
+}
+
+TEST(LoadJobTest, SyntaxErrorGivesTomlsDescriptionAndLine) {
+  const std::string path = DataPath("jobs/syntax_error.toml");
+  const std::string error = JobError(path);
+  EXPECT_EQ(error.rfind(path + ":4: ", 0), 0u) << error;
+}
+
+TEST(LoadJobTest, DuplicateKeyIsASyntaxError) {
+  const std::string path = WriteScratchFile("dup.toml", "scene = \"x.obj\"\nscene = \"y.obj\"\n");
+  const std::string error = JobError(path);
+  EXPECT_EQ(error.rfind(path + ":2: ", 0), 0u) << error;
+}
+
+TEST(LoadJobTest, MissingScene) {
+  const std::string path = WriteScratchFile("noscene.toml", "[mesh]\npatch_size = 1\n");
+  EXPECT_EQ(JobError(path), path + ": missing key 'scene'");
+}
+
+struct BadJob {
+  std::string name;     // names the case in the test list
+  std::string body;     // after `scene = "x.obj"` on line 1
+  std::string message;  // expected error after "path:"
+};
+
+void PrintTo(const BadJob& job, std::ostream* out) { *out << job.name; }
+
+class BadJobTest : public ::testing::TestWithParam<BadJob> {};
+
+TEST_P(BadJobTest, IsRefusedWithFileLineAndKey) {
+  const std::string path = WriteScratchFile("job.toml", "scene = \"x.obj\"\n" + GetParam().body);
+  EXPECT_EQ(JobError(path), path + ":" + GetParam().message);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Values, BadJobTest,
+    ::testing::Values(
+        BadJob{"UnknownRootKey", "color = 3\n", "2: unknown key 'color'"},
+        BadJob{"UnknownTable", "[render]\nwidth = 3\n", "2: unknown key 'render'"},
+        BadJob{"UnknownCameraKey", "[camera]\nwidht = 3\n", "3: unknown key 'camera.widht'"},
+        BadJob{"SectionNotATable", "mesh = 3\n", "2: 'mesh' must be a table, not an integer"},
+        BadJob{"PatchSizeZero", "[mesh]\npatch_size = 0\n",
+               "3: 'mesh.patch_size' must be > 0, got 0"},
+        BadJob{"PatchSizeString", "[mesh]\npatch_size = \"big\"\n",
+               "3: 'mesh.patch_size' must be a number, not a string"},
+        BadJob{"UnknownSampler", "[solver]\nsampler = \"halton\"\n",
+               "3: 'solver.sampler' must be \"grid\", \"random\" or \"sobol\", got \"halton\""},
+        BadJob{"SamplerNotString", "[solver]\nsampler = 1\n",
+               "3: 'solver.sampler' must be a string, not an integer"},
+        BadJob{"NegativeSeed", "[solver]\nseed = -1\n", "3: 'solver.seed' must be >= 0, got -1"},
+        BadJob{"RealSeed", "[solver]\nseed = 1.0\n",
+               "3: 'solver.seed' must be an integer, not a real number"},
+        BadJob{"ToleranceOne", "[solver]\ntolerance = 1\n",
+               "3: 'solver.tolerance' must be in (0, 1), got 1"},
+        BadJob{"ToleranceNan", "[solver]\ntolerance = nan\n",
+               "3: 'solver.tolerance' must be finite"},
+        BadJob{"NegativeRays", "[solver]\nrays = -5\n", "3: 'solver.rays' must be >= 0, got -5"},
+        BadJob{"NegativeSeconds", "[solver]\nseconds = -1\n",
+               "3: 'solver.seconds' must be >= 0, got -1"},
+        BadJob{"ZeroShotRays", "[solver]\nshot_rays = 0\n",
+               "3: 'solver.shot_rays' must be >= 1, got 0"},
+        BadJob{"ZeroMinShooterRays", "[solver]\nmin_shooter_rays = 0\n",
+               "3: 'solver.min_shooter_rays' must be in [1, 4294967295], got 0"},
+        BadJob{"ShootersPerRoundTooBig", "[solver]\nshooters_per_round = 4294967296\n",
+               "3: 'solver.shooters_per_round' must be in [0, 4294967295], got 4294967296"},
+        BadJob{"GridStepTooBig", "[solver]\ngrid_step_degrees = 91\n",
+               "3: 'solver.grid_step_degrees' must be in (0, 90], got 91"},
+        BadJob{"TooManyThreads", "[solver]\nthreads = 100000\n",
+               "3: 'solver.threads' must be in [0, 65536], got 100000"},
+        BadJob{"Fov180", "[camera]\nfov = 180\n", "3: 'camera.fov' must be in (0, 180), got 180"},
+        BadJob{"WidthZero", "[camera]\nwidth = 0\n",
+               "3: 'camera.width' must be in [1, 16384], got 0"},
+        BadJob{"HeightTooBig", "[camera]\nheight = 16385\n",
+               "3: 'camera.height' must be in [1, 16384], got 16385"},
+        BadJob{"ZeroSamples", "[camera]\nsamples_per_pixel = 0\n",
+               "3: 'camera.samples_per_pixel' must be in [1, 1024], got 0"},
+        BadJob{"EyeTwoNumbers", "[camera]\neye = [1, 2]\ntarget = [0, 0, 0]\n",
+               "3: 'camera.eye' must be an array of 3 finite numbers, e.g. [0, 1, 0]"},
+        BadJob{"EyeWithString", "[camera]\neye = [1, 2, \"3\"]\n",
+               "3: 'camera.eye' must be an array of 3 finite numbers, e.g. [0, 1, 0]"},
+        BadJob{"EyeWithoutTarget", "[camera]\neye = [0, 0, -5]\n",
+               "3: 'camera.eye' needs camera.eye and camera.target both set"},
+        BadJob{"EyeEqualsTarget", "[camera]\neye = [1, 1, 1]\ntarget = [1, 1, 1]\n",
+               "3: 'camera.eye' must differ from camera.target"},
+        BadJob{"UpAlongView", "[camera]\neye = [0, 0, 0]\ntarget = [0, 0, 1]\nup = [0, 0, 2]\n",
+               "5: 'camera.up' must be nonzero and not parallel to camera.target - camera.eye"}));
+
+}  // namespace
+}  // namespace radfarm
