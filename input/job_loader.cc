@@ -164,6 +164,8 @@ Result<Job> LoadTomlJob(const std::string& path) {
   return job;
 }
 
+#undef RADFARM_TRY
+
 std::string LowercaseExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),

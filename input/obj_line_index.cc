@@ -1,5 +1,7 @@
 #include "input/obj_line_index.h"
 
+#include <algorithm>
+#include <iterator>
 #include <set>
 
 #include "input/diagnostic.h"
@@ -13,11 +15,16 @@ constexpr uint32_t kMaxCorners = 255;
 
 // Statements of the OBJ specification that describe nothing a radiosity scene can use (curves,
 // surfaces, lines, points, display attributes): skipped with one warning each.
-const std::set<std::string_view, std::less<>> kIgnoredStatements = {
+constexpr std::string_view kIgnoredStatements[] = {
     "vp",    "l",     "p",        "cstype",   "deg",    "bmat",       "step",      "curv",
     "curv2", "surf",  "parm",     "trim",     "hole",   "scrv",       "sp",        "end",
     "con",   "mg",    "lod",      "usemap",   "maplib", "shadow_obj", "trace_obj", "ctech",
     "stech", "bevel", "c_interp", "d_interp", "call",   "csh"};
+
+bool IsIgnoredStatement(std::string_view keyword) {
+  return std::find(std::begin(kIgnoredStatements), std::end(kIgnoredStatements), keyword) !=
+         std::end(kIgnoredStatements);
+}
 
 class ObjIndexer {
  public:
@@ -67,7 +74,7 @@ Status ObjIndexer::Statement(uint32_t line, const std::vector<std::string_view>&
     return Ok{};
   }
   if (keyword == "g" || keyword == "o" || keyword == "s") return Ok{};
-  if (kIgnoredStatements.contains(keyword)) {
+  if (IsIgnoredStatement(keyword)) {
     if (warned_statements_.emplace(keyword).second) {
       index_.warnings.push_back(WarningAt(
           path_, line, "ignoring '" + std::string(keyword) + "' statements (not surfaces)"));
