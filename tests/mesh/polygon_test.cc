@@ -1,0 +1,85 @@
+#include "mesh/polygon.h"
+
+#include <gtest/gtest.h>
+
+#include "mesh/point_grid.h"
+
+namespace radfarm {
+namespace {
+
+const std::vector<Vec3> kLShape = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0},
+                                   {1, 1, 0}, {1, 2, 0}, {0, 2, 0}};
+
+TEST(PolygonTest, VectorAreaOfLShapeIsItsAreaAlongTheNormal) {
+  const Vec3 a = VectorArea(kLShape);
+  EXPECT_DOUBLE_EQ(a.z, 3.0);
+  EXPECT_DOUBLE_EQ(a.x, 0.0);
+  EXPECT_DOUBLE_EQ(a.y, 0.0);
+}
+
+TEST(PolygonTest, VectorAreaKeepsPrecisionFarFromTheOrigin) {
+  std::vector<Vec3> far;
+  for (const Vec3& p : kLShape) far.push_back(p + Vec3{1e9, -1e9, 1e9});
+  EXPECT_NEAR(VectorArea(far).z, 3.0, 1e-6);
+}
+
+TEST(PolygonTest, AreaCentroidOfConcavePolygon) {
+  // Three unit squares: (0.5, 0.5), (1.5, 0.5), (0.5, 1.5).
+  const Vec3 c = AreaCentroid(kLShape);
+  EXPECT_NEAR(c.x, 2.5 / 3, 1e-12);
+  EXPECT_NEAR(c.y, 2.5 / 3, 1e-12);
+}
+
+TEST(PolygonTest, ConvexityAndPlanarity) {
+  const Vec3 up{0, 0, 1};
+  EXPECT_FALSE(IsStrictlyConvex(kLShape, up));
+  EXPECT_TRUE(IsStrictlyConvex({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, up));
+  EXPECT_FALSE(IsStrictlyConvex({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, -up));
+  EXPECT_NEAR(MaxPlaneDistance({{0, 0, 0}, {1, 0, 0}, {1, 1, 0.4}, {0, 1, 0}}, up), 0.3, 1e-12);
+}
+
+TEST(PolygonTest, RemovesRepeatedStraightAndSpikeCorners) {
+  std::vector<Vec3> p = {{0, 0, 0}, {0, 0, 0},   {1, 0, 0}, {2, 0, 0},  // repeat, straight
+                         {2, 2, 0}, {2, 3, 0},   {2, 2, 0},             // spike out and back
+                         {0, 2, 0}, {0, 1e-9, 0}};                      // near repeat
+  RemoveRedundantCorners(1e-6, &p);
+  ASSERT_EQ(p.size(), 4u);
+  EXPECT_NEAR(VectorArea(p).z, 4.0, 1e-8);  // (0, 0) or its near repeat may stay
+}
+
+TEST(PolygonTest, CollinearPolygonVanishes) {
+  std::vector<Vec3> p = {{0, 0, 0}, {1, 1, 1}, {3, 3, 3}};
+  RemoveRedundantCorners(1e-6, &p);
+  EXPECT_TRUE(p.empty());
+}
+
+TEST(PolygonTest, ProjectionKeepsCounterClockwise) {
+  const Vec3 n = Normalize({1, 2, 3});
+  Vec3 t, b;
+  OrthonormalBasis(n, &t, &b);
+  const std::vector<Vec3> tri = {{0, 0, 0}, t, b};  // counter-clockwise about n
+  const std::vector<Point2> q = ProjectToPlane(tri, {0, 0, 0}, n);
+  EXPECT_GT(Orient2(q[0], q[1], q[2]), 0);
+}
+
+TEST(PointGridTest, FindsPointsNearLongSegmentsAcrossManyCells) {
+  PointGrid grid(0.1);
+  grid.Add({0.5, 0.5, 0.5});   // 0: on the segment
+  grid.Add({0.5, 0.55, 0.5});  // 1: 0.05 away
+  grid.Add({0.9, 0.9, 0.9});   // 2: on the segment, near its end
+  grid.Add({1.2, 1.2, 1.2});   // 3: beyond the end
+  const std::vector<uint32_t> near = grid.NearSegment({0, 0, 0}, {1, 1, 1}, 0.01);
+  EXPECT_EQ(near, (std::vector<uint32_t>{0, 2}));
+  EXPECT_EQ(grid.NearSegment({0, 0, 0}, {1, 1, 1}, 0.05).size(), 3u);
+}
+
+TEST(PointWelderTest, FirstPointOfAClusterStandsForIt) {
+  PointWelder welder(1e-6);
+  EXPECT_EQ(welder.Weld({1, 2, 3}), 0u);
+  EXPECT_EQ(welder.Weld({1, 2, 3 + 5e-7}), 0u);
+  EXPECT_EQ(welder.Weld({1, 2, 3 + 5e-6}), 1u);
+  EXPECT_EQ(welder.point(0).z, 3.0);
+}
+
+}  // namespace
+}  // namespace radfarm

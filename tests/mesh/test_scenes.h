@@ -1,0 +1,49 @@
+// Hand-built InputScenes for the mesh tests (the OBJ loader is not linked here), and checks shared
+// by several test files.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/patch_scene.h"
+#include "core/rgb.h"
+#include "core/vec3.h"
+#include "input/input_scene.h"
+#include "mesh/display_mesh.h"
+
+namespace radfarm::testing {
+
+class SceneBuilder {
+ public:
+  explicit SceneBuilder(std::string path = "scenes/test.obj");
+
+  // Returns the material index.
+  uint32_t AddMaterial(const std::string& name, Rgb diffuse, Rgb emission = {});
+  // Adds a face with its own new positions; its line is the face number counted from 1 unless
+  // given. Returns the line.
+  uint32_t AddFace(const std::vector<Vec3>& corners, uint32_t material = 0, uint32_t line = 0);
+  // An axis-aligned box with normals out (or in, for a room), six quads.
+  void AddBox(const Vec3& lo, const Vec3& hi, uint32_t material, bool normals_in = false);
+
+  const InputScene& scene() const { return scene_; }
+
+ private:
+  InputScene scene_;
+};
+
+// A scene with one white material and these faces.
+InputScene SceneOf(const std::vector<std::vector<Vec3>>& faces);
+
+// The Cornell box from shared/reference/cornell-box.md, with the light lowered to y = 548 and the
+// red wall as its published non-planar quad. Materials: white, red, green, light.
+InputScene CornellBox(bool with_block_bottoms = false);
+
+double TotalArea(const PatchScene& scene);
+double LongestEdge(const Patch& patch);
+// Value at p of the Gouraud-shaded display triangle t (barycentric interpolation in its plane).
+Rgb Interpolate(const DisplayMesh& mesh, size_t t, const Vec3& p);
+// Whether p lies in display triangle t (within tol of its plane and of its outline).
+bool Contains(const DisplayMesh& mesh, size_t t, const Vec3& p, double tol);
+
+}  // namespace radfarm::testing

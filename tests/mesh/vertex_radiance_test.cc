@@ -1,0 +1,154 @@
+// Vertex radiance: area-weighted averages within a surface, sharp creases, and continuous shading
+// across T-vertices.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "mesh/patch_mesh.h"
+#include "test_scenes.h"
+
+namespace radfarm {
+namespace {
+
+using testing::SceneBuilder;
+
+std::vector<Rgb> Uniform(const PatchMesh& mesh, Rgb value) {
+  return std::vector<Rgb>(mesh.patch_scene().patches.size(), value);
+}
+
+TEST(VertexRadianceTest, UniformRadianceStaysUniform) {
+  Result<PatchMesh> mesh = PatchMesh::Build(testing::CornellBox(true), {40}, nullptr);
+  ASSERT_TRUE(mesh.ok());
+  mesh->SetSolution(Uniform(*mesh, {0.25, 0.5, 0.75}), Uniform(*mesh, {}));
+  const DisplayMesh d = mesh->MakeDisplayMesh();
+  ASSERT_FALSE(d.positions.empty());
+  ASSERT_EQ(d.positions.size(), d.radiance.size());
+  ASSERT_EQ(d.triangles.size(), d.triangle_patch.size());
+  for (const Rgb& r : d.radiance) {
+    EXPECT_NEAR(r.r, 0.25, 1e-14);
+    EXPECT_NEAR(r.g, 0.5, 1e-14);
+    EXPECT_NEAR(r.b, 0.75, 1e-14);
+  }
+}
+
+TEST(VertexRadianceTest, SolutionIsStoredOnTheOpenMeshFaces) {
+  Result<PatchMesh> mesh =
+      PatchMesh::Build(testing::SceneOf({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}), {0.5}, nullptr);
+  ASSERT_TRUE(mesh.ok());
+  const size_t n = mesh->patch_scene().patches.size();
+  std::vector<Rgb> b, db;
+  for (size_t i = 0; i < n; ++i) {
+    b.push_back({static_cast<double>(i), 0, 0});
+    db.push_back({0, static_cast<double>(i), 0});
+  }
+  mesh->SetSolution(b, db);
+  const OmMesh& om = mesh->mesh();
+  for (uint32_t i = 0; i < n; ++i) {
+    EXPECT_EQ(om.property(mesh->properties().radiosity, om.face_handle(i)), b[i]);
+    EXPECT_EQ(om.property(mesh->properties().unshot, om.face_handle(i)), db[i]);
+  }
+}
+
+TEST(VertexRadianceTest, CreaseKeepsTwoValues) {
+  SceneBuilder s;
+  s.AddMaterial("white", {0.5, 0.5, 0.5}, {1, 1, 1});
+  s.AddFace({{0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0}});  // floor, up
+  s.AddFace({{0, 0, 0}, {0, 2, 0}, {0, 2, 2}, {0, 0, 2}});  // wall at x = 0, facing +x
+  Result<PatchMesh> mesh = PatchMesh::Build(s.scene(), {1}, nullptr);
+  ASSERT_TRUE(mesh.ok());
+  ASSERT_EQ(mesh->surface_count(), 2u);
+  std::vector<Rgb> b;
+  for (const Patch& p : mesh->patch_scene().patches)
+    b.push_back(p.normal.y > 0.5 ? Rgb(1, 1, 1) : Rgb(3, 3, 3));
+  mesh->SetSolution(b, Uniform(*mesh, {}));
+  const DisplayMesh d = mesh->MakeDisplayMesh();
+  EXPECT_EQ(d.positions.size(), 9u + 9u);  // each surface keeps its own corner vertices
+  std::map<std::tuple<double, double, double>, std::vector<double>> at_position;
+  for (size_t v = 0; v < d.positions.size(); ++v) {
+    at_position[{d.positions[v].x, d.positions[v].y, d.positions[v].z}].push_back(d.radiance[v].r);
+  }
+  for (double z : {0.0, 1.0, 2.0}) {
+    const std::vector<double>& values = at_position[{0.0, 0.0, z}];
+    ASSERT_EQ(values.size(), 2u);
+    EXPECT_EQ(std::min(values[0], values[1]), 1.0);
+    EXPECT_EQ(std::max(values[0], values[1]), 3.0);
+  }
+}
+
+// A linear field on one surface made of two input quads gridded differently: 2 cells along the
+// shared edge on one side, 3 on the other (the trapezoid's far edge is longer).
+class TVertexTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    SceneBuilder s;
+    s.AddMaterial("white", {0.5, 0.5, 0.5}, {1, 1, 1});
+    s.AddFace({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+    s.AddFace({{1, 0, 0}, {2, -0.25, 0}, {2, 1.25, 0}, {1, 1, 0}});
+    Result<PatchMesh> built = PatchMesh::Build(s.scene(), {0.5}, nullptr);
+    ASSERT_TRUE(built.ok());
+    mesh_ = std::make_unique<PatchMesh>(std::move(built).value());
+    ASSERT_EQ(mesh_->surface_count(), 1u);
+    ASSERT_EQ(mesh_->patch_scene().patches.size(), 4u + 9u);
+    std::vector<Rgb> b;
+    for (const Patch& p : mesh_->patch_scene().patches) b.push_back(Field(p.centre));
+    mesh_->SetSolution(b, Uniform(*mesh_, {}));
+    display_ = mesh_->MakeDisplayMesh();
+  }
+
+  static Rgb Field(const Vec3& p) { return {1 + 2 * p.x + 3 * p.y, 2 - p.y, 5 + p.x}; }
+
+  std::unique_ptr<PatchMesh> mesh_;
+  DisplayMesh display_;
+};
+
+TEST_F(TVertexTest, ShadingIsContinuousAcrossTheSharedEdge) {
+  for (int i = 1; i < 200; ++i) {
+    const Vec3 p{1, i / 200.0, 0};
+    std::vector<Rgb> left, right;
+    for (size_t t = 0; t < display_.triangles.size(); ++t) {
+      if (!testing::Contains(display_, t, p, 1e-12)) continue;
+      const bool is_left = mesh_->patch_scene().patches[display_.triangle_patch[t]].centre.x < 1;
+      (is_left ? left : right).push_back(testing::Interpolate(display_, t, p));
+    }
+    ASSERT_FALSE(left.empty()) << p.y;
+    ASSERT_FALSE(right.empty()) << p.y;
+    for (const Rgb& r : right) {
+      EXPECT_NEAR(r.r, left[0].r, 1e-12) << p.y;
+      EXPECT_NEAR(r.g, left[0].g, 1e-12) << p.y;
+      EXPECT_NEAR(r.b, left[0].b, 1e-12) << p.y;
+    }
+  }
+}
+
+TEST_F(TVertexTest, LinearFieldIsReproducedClosely) {
+  // Exact where a vertex is surrounded symmetrically (the centre of the left quad), close inside
+  // the shared edge, where each side contributes patches of different shapes. (On the outline an
+  // average of patches on one side is off by up to half a patch; that is what averaging does.)
+  for (size_t v = 0; v < display_.positions.size(); ++v) {
+    const Vec3& p = display_.positions[v];
+    const Rgb want = Field(p);
+    if (Length(p - Vec3{0.5, 0.5, 0}) < 1e-12) {
+      EXPECT_NEAR(display_.radiance[v].r, want.r, 1e-12);
+    }
+    if (std::fabs(p.x - 1) < 1e-12 && p.y > 1e-12 && p.y < 1 - 1e-12) {  // not the outline
+      EXPECT_NEAR(display_.radiance[v].r, want.r, 0.6) << p.y;  // gradient 3.6, patch size 0.5
+      EXPECT_NEAR(display_.radiance[v].g, want.g, 0.1) << p.y;
+    }
+  }
+}
+
+TEST_F(TVertexTest, PatchesWithTVerticesAreTriangulatedThroughThem) {
+  // Left patches along x = 1 have a right-hand corner on their edge; right patches have the left
+  // side's midpoint on theirs. Each such patch gets one more display triangle.
+  size_t quads = 0;
+  for (const Patch& p : mesh_->patch_scene().patches) quads += p.corner_count == 4;
+  ASSERT_EQ(quads, 13u);
+  // Left edge vertices: y = 1/3 and 2/3 lie on the two left patches' edges; y = 1/2 on the middle
+  // right patch's edge.
+  EXPECT_EQ(display_.triangles.size(), 2 * quads + 2 + 1);
+}
+
+}  // namespace
+}  // namespace radfarm
