@@ -4,7 +4,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <functional>
+#include <string>
 
 namespace radfarm {
 namespace {
