@@ -44,7 +44,7 @@ double Perimeter(const std::vector<Vec3>& corners) {
 
 PatchAssembler::PatchAssembler(double tol, double min_area, const std::vector<Material>& materials)
     : tol_(tol), min_area_(min_area), materials_(materials), welder_(tol) {
-  data_.props.AddTo(&data_.mesh);
+  data_.props.AddTo(data_.mesh.get());
   for (const Material& m : materials) data_.scene.material_names.push_back(m.name);
 }
 
@@ -53,8 +53,8 @@ uint32_t PatchAssembler::GroupOf(uint32_t surface, uint32_t weld) {
   const auto [it, inserted] =
       group_of_key_.try_emplace(key, static_cast<uint32_t>(group_surface_.size()));
   if (inserted) {
-    const OmMesh::VertexHandle vh = data_.mesh.add_vertex(ToOm(welder_.point(weld)));
-    data_.mesh.property(data_.props.group, vh) = it->second;
+    const OmMesh::VertexHandle vh = data_.mesh->add_vertex(ToOm(welder_.point(weld)));
+    data_.mesh->property(data_.props.group, vh) = it->second;
     data_.group_vertex.push_back(vh);
     group_surface_.push_back(surface);
   }
@@ -65,10 +65,10 @@ std::vector<OmMesh::VertexHandle> PatchAssembler::ConnectableVertices(
     const std::vector<uint32_t>& groups) {
   std::vector<OmMesh::VertexHandle> vhs;
   for (uint32_t g : groups) vhs.push_back(data_.group_vertex[g]);
-  if (CanAddFace(data_.mesh, vhs)) return vhs;
+  if (CanAddFace(*data_.mesh, vhs)) return vhs;
   for (size_t i = 0; i < vhs.size(); ++i) {
-    vhs[i] = data_.mesh.add_vertex(data_.mesh.point(vhs[i]));
-    data_.mesh.property(data_.props.group, vhs[i]) = groups[i];
+    vhs[i] = data_.mesh->add_vertex(data_.mesh->point(vhs[i]));
+    data_.mesh->property(data_.props.group, vhs[i]) = groups[i];
   }
   return vhs;
 }
@@ -91,7 +91,7 @@ bool PatchAssembler::Add(const PieceCorners& piece, uint32_t surface, uint32_t m
   std::vector<uint32_t> groups;
   for (uint32_t w : welds) groups.push_back(GroupOf(surface, w));
   const std::vector<OmMesh::VertexHandle> vhs = ConnectableVertices(groups);
-  OmMesh& mesh = data_.mesh;
+  OmMesh& mesh = *data_.mesh;
   const OmMesh::FaceHandle face = mesh.add_face(vhs);
   mesh.set_halfedge_handle(face, mesh.find_halfedge(vhs.back(), vhs.front()));  // see FaceCorners
 
@@ -120,7 +120,7 @@ bool PatchAssembler::Add(const PieceCorners& piece, uint32_t surface, uint32_t m
 }
 
 void PatchAssembler::FindEdgePoints() {
-  const OmMesh& mesh = data_.mesh;
+  const OmMesh& mesh = *data_.mesh;
   const size_t faces = data_.scene.patches.size();
   const double mean_edge = faces > 0 ? edge_length_sum_ / (3.0 * static_cast<double>(faces)) : 0;
   PointGrid grid(std::max(mean_edge, 2 * tol_));

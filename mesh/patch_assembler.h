@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -26,7 +27,8 @@ struct EdgePoint {
 };
 
 struct PatchMeshData {
-  OmMesh mesh;
+  // Behind a pointer because OpenMesh meshes have no move constructor: every "move" would copy.
+  std::unique_ptr<OmMesh> mesh = std::make_unique<OmMesh>();
   PatchProperties props;
   PatchScene scene;
   // Display vertices ("groups": one per surface and welded position), each with one OpenMesh vertex

@@ -33,6 +33,7 @@ inline constexpr double kAutoPatchDivisions = 40;
 // Build refuses scenes that would need more patches than this (a patch size far too small).
 inline constexpr double kMaxPatches = 1 << 23;
 
+// Move-only: a copy of a large mesh is never wanted by accident.
 class PatchMesh {
  public:
   // Splits every input polygon into patches no larger than the target size. Appends one-line
@@ -61,7 +62,7 @@ class PatchMesh {
   DisplayMesh MakeDisplayMesh() const;
 
   // The OpenMesh mesh and its property handles, for inspection and tests.
-  const OmMesh& mesh() const { return data_.mesh; }
+  const OmMesh& mesh() const { return *data_.mesh; }
   const PatchProperties& properties() const { return data_.props; }
 
  private:

@@ -9,7 +9,7 @@
 namespace radfarm {
 
 void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot) {
-  OmMesh& mesh = data_.mesh;
+  OmMesh& mesh = *data_.mesh;
   const PatchProperties& p = data_.props;
   const size_t faces = data_.scene.patches.size();
   if (radiosity.size() != faces || unshot.size() != faces) {
@@ -39,7 +39,7 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
 }
 
 DisplayMesh PatchMesh::MakeDisplayMesh() const {
-  const OmMesh& mesh = data_.mesh;
+  const OmMesh& mesh = *data_.mesh;
   const PatchProperties& p = data_.props;
   DisplayMesh out;
   for (OmMesh::VertexHandle vh : data_.group_vertex) {

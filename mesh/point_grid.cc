@@ -19,10 +19,16 @@ PointGrid::PointGrid(double cell_size)
     : cell_size_(cell_size > 0 && std::isfinite(cell_size) ? cell_size : 1.0) {}
 
 size_t PointGrid::CellHash::operator()(const Cell& c) const {
-  uint64_t h = static_cast<uint64_t>(c.x) * 0x9E3779B97F4A7C15ull;
-  h ^= static_cast<uint64_t>(c.y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
-  h ^= static_cast<uint64_t>(c.z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
-  return static_cast<size_t>(h);
+  // splitmix64's finaliser over a combination of the three: lattice-like cell coordinates (grids
+  // of patch corners) must not collide in the table's buckets.
+  auto mix = [](uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  };
+  return static_cast<size_t>(
+      mix(static_cast<uint64_t>(c.x) +
+          mix(static_cast<uint64_t>(c.y) + mix(static_cast<uint64_t>(c.z)))));
 }
 
 PointGrid::Cell PointGrid::CellOf(const Vec3& p) const {
@@ -38,20 +44,26 @@ uint32_t PointGrid::Add(const Vec3& p) {
 }
 
 std::vector<uint32_t> PointGrid::NearSegment(const Vec3& a, const Vec3& b, double tol) const {
-  // Samples every half cell along the segment: a point within tol <= cell/2 of the segment is then
-  // within one cell of some sample in each axis, so the 27 cells around the samples hold it.
+  // Samples the segment at most half a cell apart: a point within tol of it is within
+  // `reach` = half the spacing + tol of some sample in every axis, so only the cells overlapping
+  // the box of that reach around each sample are visited (one cell for most point queries).
   const double length = Length(b - a);
-  const int64_t steps =
-      std::max<int64_t>(1, static_cast<int64_t>(std::ceil(2 * length / cell_size_)));
+  const int64_t steps = static_cast<int64_t>(std::ceil(2 * length / cell_size_));
+  const double reach = (steps > 0 ? length / static_cast<double>(2 * steps) : 0.0) + tol;
+  const Vec3 r{reach, reach, reach};
   std::vector<Cell> visit;
   for (int64_t s = 0; s <= steps; ++s) {
-    const Cell c = CellOf(a + (b - a) * (static_cast<double>(s) / static_cast<double>(steps)));
-    for (int64_t dx = -1; dx <= 1; ++dx)
-      for (int64_t dy = -1; dy <= 1; ++dy)
-        for (int64_t dz = -1; dz <= 1; ++dz) visit.push_back({c.x + dx, c.y + dy, c.z + dz});
+    const Vec3 c =
+        steps > 0 ? a + (b - a) * (static_cast<double>(s) / static_cast<double>(steps)) : a;
+    const Cell lo = CellOf(c - r), hi = CellOf(c + r);
+    for (int64_t x = lo.x; x <= hi.x; ++x)
+      for (int64_t y = lo.y; y <= hi.y; ++y)
+        for (int64_t z = lo.z; z <= hi.z; ++z) visit.push_back({x, y, z});
   }
-  std::sort(visit.begin(), visit.end());
-  visit.erase(std::unique(visit.begin(), visit.end()), visit.end());
+  if (steps > 0) {
+    std::sort(visit.begin(), visit.end());
+    visit.erase(std::unique(visit.begin(), visit.end()), visit.end());
+  }
 
   std::vector<uint32_t> ids;
   for (const Cell& c : visit) {

@@ -13,8 +13,9 @@ namespace radfarm {
 
 class PointGrid {
  public:
-  // Cubic cells of this side. Queries work for any tol up to half a cell; cells near the typical
-  // query length keep both the cells visited and the points per cell few.
+  // Cubic cells of this side. Queries work for any tol; cells a little larger than the typical
+  // query (the tolerance for points, the edge length for segments) keep both the cells visited
+  // and the points per cell few.
   explicit PointGrid(double cell_size);
 
   // Adds a point; ids are 0, 1, 2, ... in insertion order.

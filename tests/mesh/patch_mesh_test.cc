@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <type_traits>
 
 #include "test_scenes.h"
 
@@ -194,14 +195,20 @@ TEST(PatchMeshTest, SameInputGivesTheSameMesh) {
   EXPECT_EQ(da.triangle_patch, db.triangle_patch);
 }
 
-TEST(PatchMeshTest, CopiesAndMovesKeepTheMeshAndItsProperties) {
+static_assert(std::is_nothrow_move_constructible_v<PatchMesh>);
+static_assert(!std::is_copy_constructible_v<PatchMesh>);
+
+TEST(PatchMeshTest, MovesKeepTheMeshAndItsProperties) {
   Result<PatchMesh> built = PatchMesh::Build(SceneOf({kFloor}), {1}, nullptr);
   ASSERT_TRUE(built.ok());
+  const OmMesh* om = &built->mesh();
   PatchMesh moved = std::move(built).value();
-  PatchMesh copy = moved;
-  copy.SetSolution(std::vector<Rgb>(16, Rgb(1, 2, 3)), std::vector<Rgb>(16));
-  for (const Rgb& r : copy.MakeDisplayMesh().radiance) EXPECT_EQ(r, Rgb(1, 2, 3));
-  for (const Rgb& r : moved.MakeDisplayMesh().radiance) EXPECT_EQ(r, Rgb());
+  EXPECT_EQ(&moved.mesh(), om);  // moved, not copied
+  moved.SetSolution(std::vector<Rgb>(16, Rgb(1, 2, 3)), std::vector<Rgb>(16));
+  PatchMesh assigned = PatchMesh::Build(SceneOf({kFloor}), {2}, nullptr).value();
+  assigned = std::move(moved);
+  EXPECT_EQ(assigned.patch_scene().patches.size(), 16u);
+  for (const Rgb& r : assigned.MakeDisplayMesh().radiance) EXPECT_EQ(r, Rgb(1, 2, 3));
 }
 
 }  // namespace
