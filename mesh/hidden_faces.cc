@@ -60,12 +60,13 @@ bool Covers(const std::vector<Point2>& g, const std::vector<Point2>& f, double t
   return true;
 }
 
-// Every corner of f within tol of g's plane, widened by g's own deviation from planarity (measured
-// from g's corner 0, which may itself be off g's best plane by that much).
+// Every corner of f within tol of g's plane (through g's corner average). A g that is itself not
+// planar within tol is coplanar with nothing.
 bool InPlane(const CleanFace& f, const CleanFace& g, double tol) {
-  const double limit = tol + 2 * MaxPlaneDistance(g.corners, g.normal);
+  if (MaxPlaneDistance(g.corners, g.normal) > tol) return false;
+  const Vec3 origin = AreaCentroid(g.corners);
   for (const Vec3& p : f.corners) {
-    if (std::fabs(Dot(p - g.corners[0], g.normal)) > limit) return false;
+    if (std::fabs(Dot(p - origin, g.normal)) > tol) return false;
   }
   return true;
 }
@@ -80,33 +81,37 @@ bool BoxInside(const Bounds3& inner, const Bounds3& outer, double tol) {
 }  // namespace
 
 std::vector<bool> FindHiddenFaces(const std::vector<CleanFace>& faces, double tol) {
-  // Opposite coplanar faces have the same distance |n . p| from the origin: sort by it and compare
-  // each face only with those in its window.
+  // Opposite coplanar faces have opposite signed plane offsets d = n . (c - o): sort by d and
+  // compare each face only with the faces around -d. The reference point o sits off the scene at a
+  // generic offset, so that faces of one orientation in a common plane (a tiled floor at y = 0)
+  // are not all around -d as they would be for a plane through o.
   const size_t count = faces.size();
-  std::vector<double> plane_distance(count);
+  Bounds3 scene;
   std::vector<Bounds3> bounds(count);
   for (size_t i = 0; i < count; ++i) {
-    plane_distance[i] = std::fabs(Dot(faces[i].normal, AreaCentroid(faces[i].corners)));
     for (const Vec3& p : faces[i].corners) bounds[i].Extend(p);
+    scene.Extend(bounds[i].lo);
+    scene.Extend(bounds[i].hi);
+  }
+  const Vec3 reference = scene.lo - Vec3{0.3183, 0.5772, 0.2718} * (scene.Diagonal() + 1);
+  std::vector<double> offset(count);
+  for (size_t i = 0; i < count; ++i) {
+    offset[i] = Dot(faces[i].normal, AreaCentroid(faces[i].corners) - reference);
   }
   std::vector<size_t> order(count);
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t b) { return plane_distance[a] < plane_distance[b]; });
-
-  // Non-planar faces (within their own deviation) still find their partner.
-  double slack = tol;
-  for (const CleanFace& f : faces)
-    slack = std::max(slack, tol + MaxPlaneDistance(f.corners, f.normal));
+                   [&](size_t a, size_t b) { return offset[a] < offset[b]; });
+  std::vector<double> sorted(count);
+  for (size_t i = 0; i < count; ++i) sorted[i] = offset[order[i]];
 
   std::vector<bool> hidden(count, false);
-  size_t window_start = 0;
-  for (size_t oi = 0; oi < count; ++oi) {
-    const size_t f = order[oi];
-    while (plane_distance[order[window_start]] < plane_distance[f] - slack) ++window_start;
-    for (size_t oj = window_start; oj < count; ++oj) {
-      const size_t g = order[oj];
-      if (plane_distance[g] > plane_distance[f] + slack) break;
+  for (size_t f = 0; f < count; ++f) {
+    const double want = -offset[f];
+    const size_t first = static_cast<size_t>(
+        std::lower_bound(sorted.begin(), sorted.end(), want - 2 * tol) - sorted.begin());
+    for (size_t k = first; k < count && sorted[k] <= want + 2 * tol; ++k) {
+      const size_t g = order[k];
       if (g == f || Dot(faces[f].normal, faces[g].normal) > kOppositeCos) continue;
       if (!BoxInside(bounds[f], bounds[g], tol) || !InPlane(faces[f], faces[g], tol)) continue;
       const Vec3& origin = faces[g].corners[0];

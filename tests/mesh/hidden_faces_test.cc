@@ -93,5 +93,27 @@ TEST(HiddenFacesTest, FaceCrossingIntoTheNotchIsKept) {
   EXPECT_EQ(mesh->dropped_hidden(), 0u);
 }
 
+// 40,000 tiles in the plane y = 0 facing up, and a copy of one facing down: the pair cover each
+// other, so both go. The search compares each tile only with faces around its opposite plane
+// offset; comparing all pairs in the plane would take minutes.
+TEST(HiddenFacesTest, ManyCoplanarTilesThroughTheOrigin) {
+  SceneBuilder b;
+  const uint32_t m = b.AddMaterial("white", {0.5, 0.5, 0.5}, {1, 1, 1});
+  for (int i = 0; i < 200; ++i) {
+    for (int j = 0; j < 200; ++j) {
+      const double x = i, z = j;
+      b.AddFace({{x, 0, z}, {x, 0, z + 1}, {x + 1, 0, z + 1}, {x + 1, 0, z}}, m);
+    }
+  }
+  b.AddFace({{5, 0, 7}, {6, 0, 7}, {6, 0, 8}, {5, 0, 8}}, m);  // tile (5, 7) upside down
+  const CleanFaces clean = CleanInputFaces(b.scene(), 1e-9, 1e-18);
+  const std::vector<bool> hidden = FindHiddenFaces(clean.faces, 1e-6);
+  std::vector<size_t> dropped;
+  for (size_t i = 0; i < hidden.size(); ++i) {
+    if (hidden[i]) dropped.push_back(i);
+  }
+  EXPECT_EQ(dropped, (std::vector<size_t>{5 * 200 + 7, 200 * 200}));
+}
+
 }  // namespace
 }  // namespace radfarm
