@@ -69,7 +69,7 @@ class ProgressiveSolver {
   double UnshotPower(uint32_t patch) const;
 
   const PatchScene& scene_;
-  SolverSettings settings_;
+  SolverSettings settings_;  // shot_rays resolved (never 0)
   RaySampler sampler_;
   std::vector<Rgb> radiosity_;
   std::vector<Rgb> unshot_;

@@ -17,6 +17,9 @@ std::string_view SamplerName(SamplerKind kind);
 // Parses "grid", "random" or "sobol"; returns false for anything else.
 bool ParseSamplerName(std::string_view name, SamplerKind* kind);
 
+inline constexpr uint64_t kAutoShotRaysPerPatch = 1024;
+inline constexpr uint64_t kMinAutoShotRays = 1 << 16;
+
 struct SolverSettings {
   SamplerKind sampler = SamplerKind::kSobol;
   uint64_t seed = 1;
@@ -26,8 +29,10 @@ struct SolverSettings {
   uint64_t max_rays = 0;
   double max_seconds = 0;
   // Rays spent on shooting power equal to the scene's total emitted power: a shooter with unshot
-  // power P gets shot_rays * P / emitted rays (at least min_shooter_rays).
-  uint64_t shot_rays = 1 << 22;
+  // power P gets shot_rays * P / emitted rays (at least min_shooter_rays). 0 picks
+  // kAutoShotRaysPerPatch rays per patch (at least kMinAutoShotRays): accuracy per patch then
+  // stays about the same whatever the mesh size.
+  uint64_t shot_rays = 0;
   uint32_t min_shooter_rays = 64;
   // Upper bound on shooters per round (0: every patch with unshot power).
   uint32_t shooters_per_round = 0;

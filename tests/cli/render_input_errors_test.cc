@@ -1,0 +1,100 @@
+// Bad input to `radfarm render`: a one-line error naming the file and the line or key, exit code 2.
+#include <gtest/gtest.h>
+
+#include "cli/exit_codes.h"
+#include "tests/cli/run_command.h"
+
+namespace radfarm {
+namespace {
+
+using testing::RunCommand;
+using testing::TempDir;
+
+const std::string kData = RADFARM_SOURCE_DIR "/tests/input/data/";
+
+struct BadInput {
+  std::string file;
+  std::string message;  // must appear in stderr
+};
+
+class RenderInputErrorTest : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(RenderInputErrorTest, OneLineErrorNamingTheLocationAndExitTwo) {
+  TempDir out;
+  const BadInput& bad = GetParam();
+  const auto r = RunCommand({RADFARM_CLI_PATH, "render", kData + bad.file, "--out", out.path()});
+  EXPECT_EQ(r.exit_code, kExitBadInput) << r.err;
+  EXPECT_NE(r.err.find(bad.message), std::string::npos) << r.err;
+  // The error is the last line of stderr and a single line.
+  const std::string last = r.err.substr(r.err.rfind('\n', r.err.size() - 2) + 1);
+  EXPECT_EQ(last.find('\n'), last.size() - 1) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    BadScenes, RenderInputErrorTest,
+    ::testing::Values(
+        BadInput{"does_not_exist.obj", "does_not_exist.obj: cannot open"},
+        BadInput{"garbage.obj", "garbage.obj:4: unknown statement 'hello'"},
+        BadInput{"bad_number.obj", "bad_number.obj:3: 'v': cannot parse 'abc' as a number"},
+        BadInput{"index_out_of_range.obj",
+                 "index_out_of_range.obj:11: vertex index 9 out of range (8 vertices)"},
+        BadInput{"nan.obj", "nan.obj:3: 'v': 'nan' is not a finite number"},
+        BadInput{"kd_too_high.obj", "kd_too_high.mtl:5: material 'mirror': reflectance Kd 1 0.5 "
+                                    "0.5 outside [0, 1)"},
+        BadInput{"negative_ke.obj", "negative_ke.mtl:4: material 'sink': emission Ke 1 -1 1 is "
+                                    "negative"},
+        BadInput{"no_light.obj", "no_light.obj: nothing to light"},
+        BadInput{"jobs/unknown_key.toml", "unknown_key.toml:"},
+        BadInput{"jobs/syntax_error.toml", "syntax_error.toml:"}),
+    [](const auto& info) {
+      std::string name = info.param.file.substr(info.param.file.rfind('/') + 1);
+      for (char& c : name) {
+        if (!isalnum(static_cast<unsigned char>(c))) c = '_';
+      }
+      return name;
+    });
+
+TEST(RenderUsageTest, BadOptionValuesExitTwo) {
+  TempDir out;
+  const std::string scene = RADFARM_SOURCE_DIR "/scenes/furnace.obj";
+  for (const std::vector<std::string>& extra :
+       {std::vector<std::string>{"--sampler", "magic"}, {"--threads", "0"}, {"--tolerance", "-1"},
+        {"--rays", "many"}, {"--no-such-option"}}) {
+    std::vector<std::string> args = {RADFARM_CLI_PATH, "render", scene, "--out", out.path()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = RunCommand(args);
+    EXPECT_EQ(r.exit_code, kExitBadInput) << extra[0] << ": " << r.err;
+    EXPECT_NE(r.err.find(extra[0]), std::string::npos) << r.err;
+  }
+}
+
+TEST(RenderUsageTest, MissingArgumentsExitTwo) {
+  EXPECT_EQ(RunCommand({RADFARM_CLI_PATH}).exit_code, kExitBadInput);
+  EXPECT_EQ(RunCommand({RADFARM_CLI_PATH, "render"}).exit_code, kExitBadInput);
+  EXPECT_EQ(RunCommand({RADFARM_CLI_PATH, "render", "x.obj"}).exit_code, kExitBadInput);
+}
+
+TEST(RenderUsageTest, HelpDescribesEveryOption) {
+  const auto r = RunCommand({RADFARM_CLI_PATH, "render", "--help"});
+  EXPECT_EQ(r.exit_code, kExitOk);
+  for (const char* option : {"--out", "--threads", "--seed", "--tolerance", "--rays", "--seconds",
+                             "--sampler", "--patch-size"}) {
+    EXPECT_NE(r.out.find(option), std::string::npos) << option;
+  }
+  EXPECT_EQ(RunCommand({RADFARM_CLI_PATH, "--help"}).exit_code, kExitOk);
+}
+
+TEST(RenderUsageTest, UnwritableOutputDirectoryIsAFailure) {
+  TempDir dir;
+  const std::string blocker = dir.File("file");
+  FILE* f = fopen(blocker.c_str(), "w");
+  fclose(f);
+  const auto r = RunCommand({RADFARM_CLI_PATH, "render", RADFARM_SOURCE_DIR "/scenes/furnace.obj",
+                             "--out", blocker + "/sub", "-q"});
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  EXPECT_NE(r.err.find(blocker), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace radfarm
