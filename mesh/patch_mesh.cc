@@ -1,5 +1,6 @@
 #include "mesh/patch_mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <sstream>
@@ -55,6 +56,20 @@ void WarnDropped(const std::string& path, const std::vector<uint32_t>& lines, co
   warnings->push_back(out.str());
 }
 
+std::vector<CleanFace> DropHidden(std::vector<CleanFace> faces, double tol,
+                                  std::vector<uint32_t>* hidden_lines) {
+  const std::vector<bool> hidden = FindHiddenFaces(faces, tol);
+  std::vector<CleanFace> kept;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    if (hidden[i]) {
+      hidden_lines->push_back(faces[i].line);
+    } else {
+      kept.push_back(std::move(faces[i]));
+    }
+  }
+  return kept;
+}
+
 }  // namespace
 
 Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& settings,
@@ -71,16 +86,8 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   pm.patch_size_ = settings.patch_size > 0 ? settings.patch_size : diagonal / kAutoPatchDivisions;
 
   CleanFaces clean = CleanInputFaces(scene, tol, min_area);
-  const std::vector<bool> hidden = FindHiddenFaces(clean.faces, tol);
-  std::vector<CleanFace> faces;
   std::vector<uint32_t> hidden_lines;
-  for (size_t i = 0; i < clean.faces.size(); ++i) {
-    if (hidden[i]) {
-      hidden_lines.push_back(clean.faces[i].line);
-    } else {
-      faces.push_back(std::move(clean.faces[i]));
-    }
-  }
+  const std::vector<CleanFace> faces = DropHidden(std::move(clean.faces), tol, &hidden_lines);
   pm.dropped_degenerate_ = clean.degenerate_lines.size();
   pm.dropped_hidden_ = hidden_lines.size();
   WarnDropped(scene.path, clean.degenerate_lines, "zero-area face", "zero-area faces", warnings);
@@ -92,10 +99,10 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   pm.surface_count_ = surfaces.count;
 
   std::vector<SplitPlan> plans;
-  double piece_count = 0;
+  uint64_t piece_count = 0;
   for (const CleanFace& face : faces) {
     plans.push_back(PlanSplit(face.corners, face.normal, pm.patch_size_, tol));
-    piece_count += static_cast<double>(plans.back().PieceCount());
+    piece_count += std::min(plans.back().PieceCount(), kMaxPatches + 1);  // no overflow
     if (!plans.back().simple && warnings != nullptr) {
       warnings->push_back(scene.path + ":" + std::to_string(face.line) +
                           ": face is self-intersecting; its patches may overlap");
@@ -103,8 +110,8 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   }
   if (piece_count > kMaxPatches) {
     std::ostringstream out;
-    out << scene.path << ": patch size " << pm.patch_size_ << " would make " << piece_count
-        << " patches (at most " << kMaxPatches << ")";
+    out << scene.path << ": patch size " << pm.patch_size_ << " would make over " << kMaxPatches
+        << " patches";
     return Error{out.str()};
   }
 

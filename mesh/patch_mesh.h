@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,7 @@ namespace radfarm {
 // along the scene's diagonal, a few thousand patches for a room.
 inline constexpr double kAutoPatchDivisions = 40;
 // Build refuses scenes that would need more patches than this (a patch size far too small).
-inline constexpr double kMaxPatches = 1 << 23;
+inline constexpr uint64_t kMaxPatches = uint64_t{1} << 23;
 
 // Move-only: a copy of a large mesh is never wanted by accident.
 class PatchMesh {
