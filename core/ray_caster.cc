@@ -84,6 +84,8 @@ RayCaster::RayCaster(const PatchScene& scene) : scene_(scene), embree_(std::make
 
 RayCaster::~RayCaster() = default;
 
+RTCSceneTy* RayCaster::embree_scene() const { return embree_->scene; }
+
 RayHit RayCaster::Trace(const Vec3& origin, const Vec3& direction,
                         const Vec3& surface_normal) const {
   const Vec3 o = origin - centre_ + surface_normal * origin_offset_;

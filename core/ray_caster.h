@@ -10,9 +10,12 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "core/patch_scene.h"
 #include "core/vec3.h"
+
+struct RTCSceneTy;  // Embree's scene handle type (embree3/rtcore_scene.h)
 
 namespace radfarm {
 
@@ -37,6 +40,13 @@ class RayCaster {
 
   // The origin offset used by Trace, in scene units (useful for tests and diagnostics).
   double origin_offset() const { return origin_offset_; }
+
+  // For benchmarks that time raw Embree calls on the same BVH: the committed scene, whose
+  // coordinates are scene coordinates minus embree_origin(); primitive k belongs to
+  // triangle_patch()[k].
+  RTCSceneTy* embree_scene() const;
+  const Vec3& embree_origin() const { return centre_; }
+  const std::vector<uint32_t>& triangle_patch() const { return triangle_patch_; }
 
  private:
   struct Embree;
