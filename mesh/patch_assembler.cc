@@ -67,7 +67,9 @@ std::vector<OmMesh::VertexHandle> PatchAssembler::ConnectableVertices(
   for (uint32_t g : groups) vhs.push_back(data_.group_vertex[g]);
   if (CanAddFace(*data_.mesh, vhs)) return vhs;
   for (size_t i = 0; i < vhs.size(); ++i) {
-    vhs[i] = data_.mesh->add_vertex(data_.mesh->point(vhs[i]));
+    // A copy: add_vertex may reallocate the storage that point() refers to.
+    const OmMesh::Point p = data_.mesh->point(vhs[i]);
+    vhs[i] = data_.mesh->add_vertex(p);
     data_.mesh->property(data_.props.group, vhs[i]) = groups[i];
   }
   return vhs;
