@@ -11,8 +11,9 @@ BatchRunner::BatchRunner(const PatchScene& scene, const RayCaster& caster,
 BatchResult BatchRunner::Run(const Batch& batch) {
   BatchResult result;
   const Patch& shooter = scene_.patches[batch.shooter];
+  const ShotSampler shot = sampler_.Shot(shooter, batch.shooter, batch.round);
   for (uint64_t k = batch.first_ray; k < batch.first_ray + batch.ray_count; ++k) {
-    const RaySample ray = sampler_.Sample(shooter, batch.shooter, batch.round, k);
+    const RaySample ray = shot.Sample(k);
     const RayHit hit = caster_.Trace(ray.origin, ray.direction, shooter.normal);
     if (hit.patch == RayHit::kMiss) {
       result.escaped_weight += ray.weight;

@@ -31,7 +31,7 @@ void CheckDevice(RTCDevice device, const char* what) {
 
 }  // namespace
 
-RayCaster::RayCaster(const PatchScene& scene) : scene_(scene), embree_(std::make_unique<Embree>()) {
+RayCaster::RayCaster(const PatchScene& scene) : embree_(std::make_unique<Embree>()) {
   Bounds3 bounds;
   for (const Patch& p : scene.patches) {
     for (int k = 0; k < p.corner_count; ++k) bounds.Extend(p.corners[k]);
@@ -72,6 +72,7 @@ RayCaster::RayCaster(const PatchScene& scene) : scene_(scene), embree_(std::make
   };
   for (uint32_t i = 0; i < scene.patches.size(); ++i) {
     const Patch& p = scene.patches[i];
+    patch_normals_.push_back(p.normal);
     emit(p.corners[0], p.corners[1], p.corners[2], i);
     if (p.corner_count == 4) emit(p.corners[0], p.corners[2], p.corners[3], i);
   }
@@ -110,7 +111,7 @@ RayHit RayCaster::Trace(const Vec3& origin, const Vec3& direction,
   RayHit hit;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
   hit.patch = triangle_patch_[rh.hit.primID];
-  hit.front = Dot(direction, scene_.patches[hit.patch].normal) < 0;
+  hit.front = Dot(direction, patch_normals_[hit.patch]) < 0;
   return hit;
 }
 

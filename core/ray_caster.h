@@ -27,7 +27,7 @@ struct RayHit {
 
 class RayCaster {
  public:
-  // Builds the BVH. The scene must outlive the caster.
+  // Builds the BVH (a copy: the scene need not outlive the caster).
   explicit RayCaster(const PatchScene& scene);
   ~RayCaster();
   RayCaster(const RayCaster&) = delete;
@@ -50,8 +50,8 @@ class RayCaster {
 
  private:
   struct Embree;
-  const PatchScene& scene_;
   std::unique_ptr<Embree> embree_;
+  std::vector<Vec3> patch_normals_;       // compact copy: Trace reads one per hit
   std::vector<uint32_t> triangle_patch_;  // Embree primitive id -> patch id
   Vec3 centre_;                           // subtracted from every coordinate given to Embree
   double origin_offset_ = 0;

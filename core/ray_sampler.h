@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/patch_scene.h"
+#include "core/sobol.h"
 #include "core/solver_settings.h"
 #include "core/vec3.h"
 
@@ -20,6 +21,27 @@ struct RaySample {
   Vec3 origin;     // on the shooter's surface
   Vec3 direction;  // unit, into the shooter's front hemisphere
   uint64_t weight = 1;
+};
+
+class RaySampler;
+
+// The rays of one shot (one shooter in one round), with everything that does not depend on the ray
+// index computed once: the shooter's frame, its triangle split and the shot's scramble. Cheap to
+// copy; valid while the RaySampler and the patch it came from live.
+class ShotSampler {
+ public:
+  RaySample Sample(uint64_t index) const;
+
+ private:
+  friend class RaySampler;
+  ShotSampler(const RaySampler& sampler, const Patch& shooter, uint64_t shot_key);
+
+  const RaySampler& sampler_;
+  const Patch& shooter_;
+  Vec3 tangent_, bitangent_;
+  double triangle_split_;  // share of the first triangle (0,1,2) in a quad's area
+  uint64_t shot_key_;
+  ScrambledSobol4 sobol_;
 };
 
 class RaySampler {
@@ -32,14 +54,18 @@ class RaySampler {
   // solver chooses the count from the shooter's unshot power.
   uint64_t FixedRaysPerShot() const;
 
-  // Ray `index` of `shooter` (a patch id) in `round`.
+  // The rays of `shooter` (a patch id) in `round`.
+  ShotSampler Shot(const Patch& shooter, uint32_t shooter_id, uint32_t round) const;
+
+  // Ray `index` of `shooter` in `round` (same as Shot(...).Sample(index)).
   RaySample Sample(const Patch& shooter, uint32_t shooter_id, uint32_t round, uint64_t index) const;
 
   // Sum of the weights of rays [0, count) of one shot: what a shooter's hit weights divide by.
   uint64_t TotalWeight(uint64_t count) const;
 
  private:
-  RaySample GridSample(const Patch& shooter, uint64_t index) const;
+  friend class ShotSampler;
+  RaySample GridSample(const Patch& shooter, const Vec3& t, const Vec3& b, uint64_t index) const;
 
   SamplerKind kind_;
   uint64_t seed_;
@@ -50,11 +76,14 @@ class RaySampler {
   uint64_t grid_total_weight_ = 0;
 };
 
-// Maps two uniform numbers to a uniformly distributed point on the patch (a quad is picked as one of
-// its two triangles in proportion to their areas).
-Vec3 SamplePatchPoint(const Patch& patch, double u, double v);
+// Share of a quad's area in its first triangle (0,1,2); 1 for a triangle.
+double TriangleSplit(const Patch& patch);
 
-// Maps two uniform numbers to a cosine-weighted direction around the unit normal n.
-Vec3 SampleCosineDirection(const Vec3& n, double u, double v);
+// Maps two uniform numbers to a uniformly distributed point on the patch (a quad is picked as one of
+// its two triangles in proportion to their areas; `split` is TriangleSplit(patch)).
+Vec3 SamplePatchPoint(const Patch& patch, double split, double u, double v);
+
+// Maps two uniform numbers to a cosine-weighted direction in the frame (t, b, n), n the normal.
+Vec3 SampleCosineDirection(const Vec3& t, const Vec3& b, const Vec3& n, double u, double v);
 
 }  // namespace radfarm

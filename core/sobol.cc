@@ -37,22 +37,27 @@ constexpr DirectionTable MakeDirections() {
   return v;
 }
 
-constexpr DirectionTable kDirections = MakeDirections();
-
-uint32_t SobolCoordinate(uint32_t index, int dim) {
-  uint32_t x = 0;
-  for (int bit = 0; index != 0; ++bit, index >>= 1) {
-    if (index & 1u) x ^= kDirections[dim][bit];
+// Direction numbers stored bit-reversed: the XOR of reversed numbers is the reversed coordinate,
+// which is the form the Owen scramble below wants, so one reversal per coordinate is saved.
+constexpr DirectionTable MakeReversedDirections() {
+  DirectionTable v = MakeDirections();
+  for (auto& dim : v) {
+    for (uint32_t& x : dim) {
+      uint32_t r = 0;
+      for (int bit = 0; bit < 32; ++bit) r |= ((x >> bit) & 1u) << (31 - bit);
+      x = r;
+    }
   }
-  return x;
+  return v;
 }
 
-uint32_t ReverseBits(uint32_t x) {
-  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
-  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+constexpr DirectionTable kReversedDirections = MakeReversedDirections();
+
+inline uint32_t ReverseBits(uint32_t x) {
+  x = __builtin_bswap32(x);
   x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
-  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
-  return (x >> 16) | (x << 16);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  return ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
 }
 
 // Laine-Karras style hash that only lets lower bits affect higher ones; on bit-reversed input that
@@ -70,6 +75,11 @@ uint32_t NestedUniformScramble(uint32_t x, uint32_t seed) {
   return ReverseBits(LaineKarrasPermutation(ReverseBits(x), seed));
 }
 
+// Same scramble for an input given already bit-reversed.
+uint32_t NestedUniformScrambleReversed(uint32_t reversed_x, uint32_t seed) {
+  return ReverseBits(LaineKarrasPermutation(reversed_x, seed));
+}
+
 }  // namespace
 
 ScrambledSobol4::ScrambledSobol4(uint64_t seed) {
@@ -83,12 +93,19 @@ std::array<double, ScrambledSobol4::kDimensions> ScrambledSobol4::Point(uint32_t
   // Shuffling the index with an Owen scramble keeps every power-of-two prefix stratified while
   // decorrelating the dimensions' padding (Burley 2020, section 4).
   const uint32_t shuffled = NestedUniformScramble(index, index_seed_);
-  std::array<double, kDimensions> p;
-  for (int d = 0; d < kDimensions; ++d) {
-    const uint32_t x = NestedUniformScramble(SobolCoordinate(shuffled, d), dim_seeds_[d]);
-    p[d] = double(x) * 0x1.0p-32;
+  static_assert(kDimensions == 4);
+  uint32_t x0 = 0, x1 = 0, x2 = 0, x3 = 0;  // registers, not an array: this loop is hot
+  for (uint32_t bits = shuffled; bits != 0; bits &= bits - 1) {
+    const int bit = __builtin_ctz(bits);
+    x0 ^= kReversedDirections[0][bit];
+    x1 ^= kReversedDirections[1][bit];
+    x2 ^= kReversedDirections[2][bit];
+    x3 ^= kReversedDirections[3][bit];
   }
-  return p;
+  return {double(NestedUniformScrambleReversed(x0, dim_seeds_[0])) * 0x1.0p-32,
+          double(NestedUniformScrambleReversed(x1, dim_seeds_[1])) * 0x1.0p-32,
+          double(NestedUniformScrambleReversed(x2, dim_seeds_[2])) * 0x1.0p-32,
+          double(NestedUniformScrambleReversed(x3, dim_seeds_[3])) * 0x1.0p-32};
 }
 
 }  // namespace radfarm

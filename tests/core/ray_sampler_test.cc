@@ -24,7 +24,7 @@ TEST(RaySamplerTest, RaysStartOnThePatchAndLeaveIntoItsHemisphere) {
       EXPECT_NEAR(r.origin.z, 0.0, 1e-12);
       EXPECT_GE(r.origin.x, -1e-12);
       EXPECT_LE(r.origin.x, 2.5 + 1e-12);
-      EXPECT_NEAR(Length(r.direction), 1.0, 1e-12);
+      EXPECT_NEAR(Length(r.direction), 1.0, 1e-6);  // single-precision trigonometry
       EXPECT_GE(Dot(r.direction, s.patches[0].normal), 0.0);
       EXPECT_GT(r.weight, 0u);
     }
