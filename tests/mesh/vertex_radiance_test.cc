@@ -77,40 +77,30 @@ TEST(VertexRadianceTest, CreaseKeepsTwoValues) {
   }
 }
 
-// A linear field on one surface made of two input quads gridded differently: 2 cells along the
-// shared edge on one side, 3 on the other (the trapezoid's far edge is longer).
-class TVertexTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    SceneBuilder s;
-    s.AddMaterial("white", {0.5, 0.5, 0.5}, {1, 1, 1});
-    s.AddFace({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
-    s.AddFace({{1, 0, 0}, {2, -0.25, 0}, {2, 1.25, 0}, {1, 1, 0}});
-    Result<PatchMesh> built = PatchMesh::Build(s.scene(), {0.5}, nullptr);
-    ASSERT_TRUE(built.ok());
-    mesh_ = std::make_unique<PatchMesh>(std::move(built).value());
-    ASSERT_EQ(mesh_->surface_count(), 1u);
-    ASSERT_EQ(mesh_->patch_scene().patches.size(), 4u + 9u);
-    std::vector<Rgb> b;
-    for (const Patch& p : mesh_->patch_scene().patches) b.push_back(Field(p.centre));
-    mesh_->SetSolution(b, Uniform(*mesh_, {}));
-    display_ = mesh_->MakeDisplayMesh();
-  }
+Rgb Field(const Vec3& p) { return {1 + 2 * p.x + 3 * p.y, 2 - p.y, 5 + p.x}; }
 
-  static Rgb Field(const Vec3& p) { return {1 + 2 * p.x + 3 * p.y, 2 - p.y, 5 + p.x}; }
+// Builds the scene with patch size h and gives each patch the field's value at its centre.
+std::unique_ptr<PatchMesh> WithLinearField(const InputScene& scene, double h) {
+  Result<PatchMesh> built = PatchMesh::Build(scene, {h}, nullptr);
+  EXPECT_TRUE(built.ok());
+  if (!built.ok()) return nullptr;
+  auto mesh = std::make_unique<PatchMesh>(std::move(built).value());
+  std::vector<Rgb> b;
+  for (const Patch& p : mesh->patch_scene().patches) b.push_back(Field(p.centre));
+  mesh->SetSolution(b, Uniform(*mesh, {}));
+  return mesh;
+}
 
-  std::unique_ptr<PatchMesh> mesh_;
-  DisplayMesh display_;
-};
-
-TEST_F(TVertexTest, ShadingIsContinuousAcrossTheSharedEdge) {
+// Interpolated values along the segment x = 1, y in (0, y_max) (z = 0) agree from both sides.
+void ExpectContinuousAtXEqualsOne(const PatchMesh& mesh, double y_max) {
+  const DisplayMesh display = mesh.MakeDisplayMesh();
   for (int i = 1; i < 200; ++i) {
-    const Vec3 p{1, i / 200.0, 0};
+    const Vec3 p{1, y_max * i / 200.0, 0};
     std::vector<Rgb> left, right;
-    for (size_t t = 0; t < display_.triangles.size(); ++t) {
-      if (!testing::Contains(display_, t, p, 1e-12)) continue;
-      const bool is_left = mesh_->patch_scene().patches[display_.triangle_patch[t]].centre.x < 1;
-      (is_left ? left : right).push_back(testing::Interpolate(display_, t, p));
+    for (size_t t = 0; t < display.triangles.size(); ++t) {
+      if (!testing::Contains(display, t, p, 1e-12)) continue;
+      const bool is_left = mesh.patch_scene().patches[display.triangle_patch[t]].centre.x < 1;
+      (is_left ? left : right).push_back(testing::Interpolate(display, t, p));
     }
     ASSERT_FALSE(left.empty()) << p.y;
     ASSERT_FALSE(right.empty()) << p.y;
@@ -120,6 +110,44 @@ TEST_F(TVertexTest, ShadingIsContinuousAcrossTheSharedEdge) {
       EXPECT_NEAR(r.b, left[0].b, 1e-12) << p.y;
     }
   }
+}
+
+// A linear field on one surface made of two input quads gridded differently: 2 cells along the
+// shared edge on one side, 3 on the other (the trapezoid's far edge is longer).
+class TVertexTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    SceneBuilder s;
+    s.AddMaterial("white", {0.5, 0.5, 0.5}, {1, 1, 1});
+    s.AddFace({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+    s.AddFace({{1, 0, 0}, {2, -0.25, 0}, {2, 1.25, 0}, {1, 1, 0}});
+    mesh_ = WithLinearField(s.scene(), 0.5);
+    ASSERT_NE(mesh_, nullptr);
+    ASSERT_EQ(mesh_->surface_count(), 1u);
+    ASSERT_EQ(mesh_->patch_scene().patches.size(), 4u + 9u);
+    display_ = mesh_->MakeDisplayMesh();
+  }
+
+  std::unique_ptr<PatchMesh> mesh_;
+  DisplayMesh display_;
+};
+
+TEST_F(TVertexTest, ShadingIsContinuousAcrossTheSharedEdge) {
+  ExpectContinuousAtXEqualsOne(*mesh_, 1);
+}
+
+// The same across an edge that is a T-junction in the input itself: one tall quad on the left,
+// a square and a triangle on the right, each split its own way.
+TEST(VertexRadianceTest, ShadingIsContinuousAcrossAnInputTJunction) {
+  SceneBuilder s;
+  s.AddMaterial("white", {0.5, 0.5, 0.5}, {1, 1, 1});
+  s.AddFace({{0, 0, 0}, {1, 0, 0}, {1, 2, 0}, {0, 2, 0}});
+  s.AddFace({{1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}});
+  s.AddFace({{1, 1, 0}, {2, 1, 0}, {1, 2, 0}});
+  const std::unique_ptr<PatchMesh> mesh = WithLinearField(s.scene(), 0.3);
+  ASSERT_NE(mesh, nullptr);
+  ASSERT_EQ(mesh->surface_count(), 1u);
+  ExpectContinuousAtXEqualsOne(*mesh, 2);
 }
 
 TEST_F(TVertexTest, LinearFieldIsReproducedClosely) {
