@@ -70,9 +70,9 @@ Result<toml::table> ParseToml(const std::string& path, const std::string& text) 
 }
 
 // Applies a section's reads to the sub-table `name` of `root`, then rejects its unknown keys.
-template <typename ReadSection>
-Status ReadTable(const std::string& path, TomlTableReader* root, std::string_view name,
-                 ReadSection read) {
+template <typename ReadKeys>
+Status ReadSection(const std::string& path, TomlTableReader* root, std::string_view name,
+                   ReadKeys read) {
   Result<const toml::table*> table = root->Table(name);
   if (!table) return Error{table.error()};
   if (*table == nullptr) return Ok{};
@@ -109,7 +109,9 @@ Status ReadSolver(TomlTableReader* r, SolverSettings* solver) {
 Status CheckExplicitCamera(TomlTableReader* r, bool has_eye, bool has_target,
                            const Camera& camera) {
   if (has_eye != has_target) {
-    return r->ErrorFor(has_eye ? "eye" : "target", "needs camera.eye and camera.target both set");
+    return r->ErrorFor(has_eye ? "eye" : "target",
+                       has_eye ? "is set without 'camera.target'; set both or neither"
+                               : "is set without 'camera.eye'; set both or neither");
   }
   const Vec3 view = camera.target - camera.eye;
   if (Length(view) == 0) return r->ErrorFor("eye", "must differ from camera.target");
@@ -137,30 +139,30 @@ Status ReadCamera(TomlTableReader* r, Camera* camera) {
   return Ok{};
 }
 
+Status ReadJob(const std::string& path, const toml::table& table, Job* job) {
+  TomlTableReader root(path, table, "");
+  std::string scene;
+  bool has_scene = false;
+  RADFARM_TRY(root.String("scene", &scene, &has_scene));
+  if (!has_scene) return ErrorAt(path, 0, "missing key 'scene'");
+  if (scene.empty()) return root.ErrorFor("scene", "must not be empty");
+  job->scene_path = (std::filesystem::path(path).parent_path() / scene).string();
+  RADFARM_TRY(ReadSection(path, &root, "mesh",
+                          [&](TomlTableReader* r) { return ReadMesh(r, &job->mesh); }));
+  RADFARM_TRY(ReadSection(path, &root, "solver",
+                          [&](TomlTableReader* r) { return ReadSolver(r, &job->solver); }));
+  RADFARM_TRY(ReadSection(path, &root, "camera",
+                          [&](TomlTableReader* r) { return ReadCamera(r, &job->camera); }));
+  return root.CheckNoUnknownKeys();
+}
+
 Result<Job> LoadTomlJob(const std::string& path) {
   Result<std::string> text = ReadTextFile(path);
   if (!text) return Error{text.error()};
   Result<toml::table> table = ParseToml(path, *text);
   if (!table) return Error{table.error()};
-
   Job job;
-  TomlTableReader root(path, *table, "");
-  std::string scene;
-  bool has_scene = false;
-  auto read = [&]() -> Status {
-    RADFARM_TRY(root.String("scene", &scene, &has_scene));
-    if (!has_scene) return ErrorAt(path, 0, "missing key 'scene'");
-    if (scene.empty()) return root.ErrorFor("scene", "must not be empty");
-    RADFARM_TRY(
-        ReadTable(path, &root, "mesh", [&](TomlTableReader* r) { return ReadMesh(r, &job.mesh); }));
-    RADFARM_TRY(ReadTable(path, &root, "solver",
-                          [&](TomlTableReader* r) { return ReadSolver(r, &job.solver); }));
-    RADFARM_TRY(ReadTable(path, &root, "camera",
-                          [&](TomlTableReader* r) { return ReadCamera(r, &job.camera); }));
-    return root.CheckNoUnknownKeys();
-  };
-  if (Status s = read(); !s) return Error{s.error()};
-  job.scene_path = (std::filesystem::path(path).parent_path() / scene).string();
+  if (Status s = ReadJob(path, *table, &job); !s) return Error{s.error()};
   return job;
 }
 

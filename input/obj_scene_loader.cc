@@ -18,7 +18,7 @@
 namespace radfarm {
 namespace {
 
-// What a face gets when its material is missing: a mid grey that neither emits nor reflects much.
+// What a face gets when its material is missing: a mid grey that does not emit.
 Material DefaultGrey() { return {"default-grey", Rgb(0.5, 0.5, 0.5), Rgb()}; }
 
 constexpr int kNoMaterial = -1;  // tinyobjloader's material id for "none" or "unknown"
@@ -99,16 +99,20 @@ void WarnAboutGrey(const std::string& path, const ObjLineIndex& index,
                    const MtlLibraryReader& reader,
                    const std::vector<tinyobj::material_t>& materials, InputScene* scene) {
   for (const std::string& missing : reader.missing()) {
+    uint32_t line = 0;  // stays 0 for a name tinyobjloader unescaped ("a\ b.mtl")
     for (const ObjNamedLine& library : index.material_libraries) {
-      if (library.name != missing) continue;
-      scene->warnings.push_back(WarningAt(
-          path, library.line, "material library '" + missing + "' not found; using grey"));
-      break;
+      if (library.name == missing) {
+        line = library.line;
+        break;
+      }
     }
+    scene->warnings.push_back(
+        WarningAt(path, line, "material library '" + missing + "' not found; using grey"));
   }
   std::set<std::string> known;
   for (const tinyobj::material_t& m : materials) known.insert(m.name);
   for (const ObjNamedLine& use : index.material_uses) {
+    // Inserting the unknown name too makes each one warn once.
     if (known.insert(use.name).second) {
       scene->warnings.push_back(
           WarningAt(path, use.line, "material '" + use.name + "' not defined; using grey"));

@@ -68,9 +68,18 @@ std::vector<std::string_view> SplitWords(std::string_view line) {
   return words;
 }
 
-bool ParseDouble(std::string_view word, double* value) {
-  // std::from_chars rejects a leading '+', which OBJ exporters do write.
+namespace {
+
+// std::from_chars rejects a leading '+', which OBJ exporters do write.
+std::string_view WithoutPlus(std::string_view word) {
   if (word.size() > 1 && word[0] == '+' && word[1] != '-') word.remove_prefix(1);
+  return word;
+}
+
+}  // namespace
+
+bool ParseDouble(std::string_view word, double* value) {
+  word = WithoutPlus(word);
   const char* end = word.data() + word.size();
   auto [ptr, ec] = std::from_chars(word.data(), end, *value);
   if (ptr != end) return false;
@@ -84,7 +93,7 @@ bool ParseDouble(std::string_view word, double* value) {
 }
 
 bool ParseInt(std::string_view word, long long* value) {
-  if (word.size() > 1 && word[0] == '+' && word[1] != '-') word.remove_prefix(1);
+  word = WithoutPlus(word);
   const char* end = word.data() + word.size();
   auto [ptr, ec] = std::from_chars(word.data(), end, *value);
   return ec == std::errc() && ptr == end;

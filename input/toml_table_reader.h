@@ -35,7 +35,8 @@ struct Interval {
 
 class TomlTableReader {
  public:
-  // `prefix` is the dotted path of `table` ("" for the root, "solver." for [solver]).
+  // `prefix` is the dotted path of `table` ("" for the root, "solver." for [solver]). `file` and
+  // `table` are borrowed and must outlive the reader.
   TomlTableReader(const std::string& file, const toml::table& table, std::string prefix)
       : file_(file), table_(table), prefix_(std::move(prefix)) {}
 
