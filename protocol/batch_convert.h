@@ -1,0 +1,30 @@
+// Between core's batches (core/batch.h) and the wire messages. Every field is an integer or a
+// copied value, so Batch -> message -> Batch and BatchResult -> message -> BatchResult are exact,
+// which the determinism contract needs.
+#pragma once
+
+#include <cstdint>
+
+#include "core/batch.h"
+#include "core/solver_settings.h"
+#include "protocol/messages.h"
+
+namespace radfarm::protocol {
+
+// What the master knows about a job when it leases one of its batches.
+struct JobWireInfo {
+  uint64_t job_id = 0;
+  SolverSettings settings;  // sampler, seed and grid step are sent
+  SceneHash scene_hash{};
+  uint32_t patch_count = 0;
+};
+
+BatchAssignmentMsg MakeBatchAssignment(const JobWireInfo& job, uint64_t batch_id,
+                                       uint32_t attempt_id, const Batch& batch, uint32_t lease_ms);
+Batch ToBatch(const BatchAssignmentMsg& assignment);
+
+BatchResultMsg MakeBatchResult(const LeaseRef& lease, const BatchResult& result,
+                               double compute_seconds);
+BatchResult ToBatchResult(const BatchResultMsg& message);
+
+}  // namespace radfarm::protocol

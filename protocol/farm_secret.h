@@ -1,0 +1,38 @@
+// The farm's shared secret: the HMAC key of the handshake. It never goes into a message; only
+// tags computed with it do. Copies are wiped when destroyed.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/result.h"
+
+namespace radfarm::protocol {
+
+class FarmSecret {
+ public:
+  // kMinSecretBytes..kMaxSecretBytes bytes.
+  static Result<FarmSecret> FromBytes(std::span<const uint8_t> bytes);
+  // Hex digits, as in a key file; surrounding whitespace is ignored.
+  static Result<FarmSecret> FromHex(std::string_view hex);
+  // 32 fresh random bytes, for making a key file.
+  static Result<FarmSecret> Generate();
+
+  FarmSecret(const FarmSecret&) = default;
+  FarmSecret(FarmSecret&&) = default;
+  FarmSecret& operator=(const FarmSecret&) = default;
+  FarmSecret& operator=(FarmSecret&&) = default;
+  ~FarmSecret();
+
+  std::span<const uint8_t> bytes() const { return key_; }
+  std::string ToHex() const;
+
+ private:
+  explicit FarmSecret(std::vector<uint8_t> key) : key_(std::move(key)) {}
+  std::vector<uint8_t> key_;
+};
+
+}  // namespace radfarm::protocol

@@ -1,0 +1,38 @@
+// The protocol's version numbers and size limits. Every incoming frame is checked against these
+// before anything uses it (docs/PROTOCOL.md, "Limits").
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace radfarm::protocol {
+
+// The version this build writes, and the oldest one it still accepts in a Hello.
+inline constexpr uint16_t kProtocolVersion = 1;
+inline constexpr uint16_t kMinProtocolVersion = 1;
+
+// Frame: a 4-byte little-endian length prefix, then that many bytes of FlatBuffer.
+inline constexpr size_t kLengthPrefixBytes = 4;
+inline constexpr uint32_t kDefaultMaxFrameBytes = 16u << 20;
+// Smallest well-formed frame body: root offset, identifier, a table. Anything shorter is junk.
+inline constexpr uint32_t kMinFrameBytes = 12;
+// No peer may announce (Welcome) or use a frame limit below this: the largest scene chunk and a
+// modest batch result must always fit.
+inline constexpr uint32_t kMinPeerFrameBytes = 2u << 20;
+
+inline constexpr size_t kNonceBytes = 32;
+inline constexpr size_t kTagBytes = 32;        // HMAC-SHA-256
+inline constexpr size_t kSceneHashBytes = 32;  // SHA-256
+// A shared secret shorter than this is refused: HMAC-SHA-256 is only as strong as its key.
+inline constexpr size_t kMinSecretBytes = 32;
+inline constexpr size_t kMaxSecretBytes = 1024;
+
+inline constexpr size_t kMaxAgentNameBytes = 64;
+inline constexpr uint32_t kMaxAgentThreads = 4096;
+inline constexpr size_t kMaxCloseDetailBytes = 256;
+inline constexpr uint32_t kMaxSceneChunkBytes = 1u << 20;
+inline constexpr uint64_t kDefaultMaxSceneBytes = uint64_t{1} << 30;
+inline constexpr size_t kMaxLeaseReturnEntries = 65536;
+inline constexpr double kMaxGridStepDegrees = 90;
+
+}  // namespace radfarm::protocol

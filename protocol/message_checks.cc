@@ -1,0 +1,176 @@
+#include "protocol/message_checks.h"
+
+#include <cmath>
+#include <string>
+
+namespace radfarm::protocol {
+namespace {
+
+std::string Str(uint64_t v) { return std::to_string(v); }
+
+Status Fail(std::string_view message, const std::string& why) {
+  return Error{std::string(message) + ": " + why};
+}
+
+bool IsNonNegativeFinite(double v) { return std::isfinite(v) && v >= 0; }
+
+bool IsPrintableAscii(std::string_view s) {
+  for (char c : s) {
+    if (c < 0x20 || c > 0x7e) return false;
+  }
+  return true;
+}
+
+Status Check(const HelloMsg& m) {
+  if (m.min_version < 1 || m.min_version > m.max_version) {
+    return Fail("Hello", "bad version range " + Str(m.min_version) + ".." + Str(m.max_version));
+  }
+  if (!IsValidAgentName(m.agent_name)) {
+    return Fail("Hello", "agent name must be 1.." + Str(kMaxAgentNameBytes) +
+                             " characters of [A-Za-z0-9._:@-]");
+  }
+  if (m.threads < 1 || m.threads > kMaxAgentThreads) {
+    return Fail("Hello", "threads " + Str(m.threads) + " not in 1.." + Str(kMaxAgentThreads));
+  }
+  return Ok{};
+}
+
+Status Check(const ChallengeMsg& m) {
+  if (m.version < 1) return Fail("Challenge", "version 0");
+  return Ok{};
+}
+
+Status Check(const ProofMsg&) { return Ok{}; }
+
+Status Check(const WelcomeMsg& m) {
+  if (m.heartbeat_interval_ms < 1) return Fail("Welcome", "heartbeat interval 0");
+  if (m.max_frame_bytes < kMinPeerFrameBytes) {
+    return Fail("Welcome",
+                "max frame bytes " + Str(m.max_frame_bytes) + " < " + Str(kMinPeerFrameBytes));
+  }
+  return Ok{};
+}
+
+Status Check(const HeartbeatMsg& m) {
+  if (!IsNonNegativeFinite(m.load)) return Fail("Heartbeat", "load not finite and >= 0");
+  if (!IsNonNegativeFinite(m.rays_per_second)) {
+    return Fail("Heartbeat", "rays_per_second not finite and >= 0");
+  }
+  return Ok{};
+}
+
+bool IsKnown(SamplerKind k) {
+  return k == SamplerKind::kGrid || k == SamplerKind::kRandom || k == SamplerKind::kSobol;
+}
+
+Status Check(const BatchAssignmentMsg& m) {
+  if (m.patch_count < 1) return Fail("BatchAssignment", "patch_count 0");
+  if (m.shooter >= m.patch_count) {
+    return Fail("BatchAssignment",
+                "shooter " + Str(m.shooter) + " >= patch_count " + Str(m.patch_count));
+  }
+  if (m.ray_count < 1) return Fail("BatchAssignment", "ray_count 0");
+  if (m.first_ray > UINT64_MAX - m.ray_count) {
+    return Fail("BatchAssignment", "first_ray + ray_count overflows");
+  }
+  if (!IsKnown(m.sampler)) {
+    return Fail("BatchAssignment", "unknown sampler " + Str(static_cast<uint8_t>(m.sampler)));
+  }
+  if (!std::isfinite(m.grid_step_degrees)) {
+    return Fail("BatchAssignment", "grid_step_degrees not finite");
+  }
+  if (m.sampler == SamplerKind::kGrid &&
+      !(m.grid_step_degrees > 0 && m.grid_step_degrees <= kMaxGridStepDegrees)) {
+    return Fail("BatchAssignment", "grid_step_degrees not in (0, 90]");
+  }
+  if (m.lease_ms < 1) return Fail("BatchAssignment", "lease_ms 0");
+  return Ok{};
+}
+
+Status Check(const BatchResultMsg& m) {
+  for (size_t i = 0; i < m.hits.size(); ++i) {
+    if (m.hits[i].weight == 0) {
+      return Fail("BatchResult",
+                  "hit " + Str(i) + " (patch " + Str(m.hits[i].patch) + ") has weight 0");
+    }
+    if (i > 0 && m.hits[i].patch <= m.hits[i - 1].patch) {
+      return Fail("BatchResult", "hit " + Str(i) + " patch " + Str(m.hits[i].patch) +
+                                     " not above the previous patch " + Str(m.hits[i - 1].patch));
+    }
+  }
+  if (!IsNonNegativeFinite(m.compute_seconds)) {
+    return Fail("BatchResult", "compute_seconds not finite and >= 0");
+  }
+  return Ok{};
+}
+
+Status Check(const LeaseReturnMsg& m) {
+  if (m.leases.empty() || m.leases.size() > kMaxLeaseReturnEntries) {
+    return Fail("LeaseReturn",
+                Str(m.leases.size()) + " leases, not 1.." + Str(kMaxLeaseReturnEntries));
+  }
+  if (static_cast<uint8_t>(m.reason) > static_cast<uint8_t>(LeaseReturnReason::kFailed)) {
+    return Fail("LeaseReturn", "unknown reason " + Str(static_cast<uint8_t>(m.reason)));
+  }
+  return Ok{};
+}
+
+Status Check(const CancelMsg&) { return Ok{}; }
+
+Status Check(const SceneRequestMsg& m) {
+  if (m.max_length < 1 || m.max_length > kMaxSceneChunkBytes) {
+    return Fail("SceneRequest",
+                "max_length " + Str(m.max_length) + " not in 1.." + Str(kMaxSceneChunkBytes));
+  }
+  return Ok{};
+}
+
+Status Check(const SceneChunkMsg& m) {
+  if (m.data.empty() || m.data.size() > kMaxSceneChunkBytes) {
+    return Fail("SceneChunk",
+                Str(m.data.size()) + " data bytes, not 1.." + Str(kMaxSceneChunkBytes));
+  }
+  if (m.offset > m.total_size || m.data.size() > m.total_size - m.offset) {
+    return Fail("SceneChunk", "bytes " + Str(m.offset) + "+" + Str(m.data.size()) +
+                                  " beyond total_size " + Str(m.total_size));
+  }
+  return Ok{};
+}
+
+Status Check(const SceneUnavailableMsg&) { return Ok{}; }
+
+Status Check(const DrainMsg& m) {
+  if (static_cast<uint8_t>(m.mode) > static_cast<uint8_t>(DrainMode::kReturnLeases)) {
+    return Fail("Drain", "unknown mode " + Str(static_cast<uint8_t>(m.mode)));
+  }
+  return Ok{};
+}
+
+Status Check(const CloseMsg& m) {
+  if (static_cast<uint8_t>(m.code) > static_cast<uint8_t>(CloseCode::kInternalError)) {
+    return Fail("Close", "unknown code " + Str(static_cast<uint8_t>(m.code)));
+  }
+  if (m.detail.size() > kMaxCloseDetailBytes || !IsPrintableAscii(m.detail)) {
+    return Fail("Close", "detail must be at most " + Str(kMaxCloseDetailBytes) +
+                             " bytes of printable ASCII");
+  }
+  return Ok{};
+}
+
+}  // namespace
+
+bool IsValidAgentName(std::string_view name) {
+  if (name.empty() || name.size() > kMaxAgentNameBytes) return false;
+  for (char c : name) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '.' || c == '_' || c == ':' || c == '@' || c == '-';
+    if (!ok) return false;
+  }
+  return true;
+}
+
+Status CheckMessage(const Message& message) {
+  return std::visit([](const auto& m) { return Check(m); }, message);
+}
+
+}  // namespace radfarm::protocol

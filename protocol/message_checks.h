@@ -1,0 +1,18 @@
+// Context-free checks of a message's values: lengths, ranges, enum values, finite numbers, sorted
+// hits. The frame decoder runs them on every incoming frame, ProtocolSession::Encode on every
+// outgoing one. Checks that need context (the scene's patch count, the batch's ray count) are in
+// batch_validation.h.
+#pragma once
+
+#include "core/result.h"
+#include "protocol/messages.h"
+
+namespace radfarm::protocol {
+
+// OK, or an error naming the message and the field ("BatchAssignment: shooter 9 >= patch_count 4").
+Status CheckMessage(const Message& message);
+
+// The agent name rule: 1..kMaxAgentNameBytes of [A-Za-z0-9._:@-] (it goes into logs).
+bool IsValidAgentName(std::string_view name);
+
+}  // namespace radfarm::protocol

@@ -1,0 +1,36 @@
+#include "protocol/messages.h"
+
+namespace radfarm::protocol {
+namespace {
+
+// One name per Message alternative, in variant order.
+constexpr std::string_view kMessageNames[] = {
+    "Hello",           "Challenge",        "Proof",       "Welcome", "Heartbeat",
+    "BatchAssignment", "BatchResult",      "LeaseReturn", "Cancel",  "SceneRequest",
+    "SceneChunk",      "SceneUnavailable", "Drain",       "Close",
+};
+static_assert(std::size(kMessageNames) == std::variant_size_v<Message>);
+
+}  // namespace
+
+std::string_view MessageName(const Message& message) { return kMessageNames[message.index()]; }
+
+std::string_view CloseCodeName(CloseCode code) {
+  switch (code) {
+    case CloseCode::kNormal:
+      return "normal";
+    case CloseCode::kShutdown:
+      return "shutdown";
+    case CloseCode::kProtocolError:
+      return "protocol error";
+    case CloseCode::kAuthFailed:
+      return "authentication failed";
+    case CloseCode::kVersionMismatch:
+      return "version mismatch";
+    case CloseCode::kInternalError:
+      return "internal error";
+  }
+  return "unknown";
+}
+
+}  // namespace radfarm::protocol

@@ -1,0 +1,176 @@
+// The farm's wire messages as plain C++ values. The daemon and the agent work with these; only
+// protocol/*.cc sees the FlatBuffers schema (schema/*.fbs), whose tables these mirror field for
+// field. docs/PROTOCOL.md describes every field, who sends what, and when.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "core/batch.h"
+#include "core/solver_settings.h"
+#include "protocol/limits.h"
+
+namespace radfarm::protocol {
+
+using Bytes32 = std::array<uint8_t, 32>;
+using Nonce = Bytes32;
+using Tag = Bytes32;        // HMAC-SHA-256
+using SceneHash = Bytes32;  // SHA-256 of a scene blob
+
+// Wire values are fixed (schema/common.fbs); append, never renumber.
+enum class DrainMode : uint8_t { kFinishLeases = 0, kReturnLeases = 1 };
+enum class LeaseReturnReason : uint8_t {
+  kDraining = 0,
+  kSceneUnavailable = 1,
+  kOverloaded = 2,
+  kFailed = 3
+};
+enum class CloseCode : uint8_t {
+  kNormal = 0,
+  kShutdown = 1,
+  kProtocolError = 2,
+  kAuthFailed = 3,
+  kVersionMismatch = 4,
+  kInternalError = 5
+};
+
+// One attempt at one batch of one job: the master's unit of bookkeeping.
+struct LeaseRef {
+  uint64_t job_id = 0;
+  uint64_t batch_id = 0;
+  uint32_t attempt_id = 0;
+  bool operator==(const LeaseRef&) const = default;
+};
+
+// --- Handshake (agent opens) ---
+
+struct HelloMsg {  // agent -> master
+  uint16_t min_version = kMinProtocolVersion;
+  uint16_t max_version = kProtocolVersion;
+  std::string agent_name;  // 1..kMaxAgentNameBytes of [A-Za-z0-9._:@-]
+  uint32_t threads = 0;    // 1..kMaxAgentThreads
+  Nonce nonce{};
+  bool operator==(const HelloMsg&) const = default;
+};
+
+struct ChallengeMsg {    // master -> agent
+  uint16_t version = 0;  // chosen version, used by every later frame
+  Nonce nonce{};
+  bool operator==(const ChallengeMsg&) const = default;
+};
+
+struct ProofMsg {  // agent -> master
+  Tag tag{};
+  bool operator==(const ProofMsg&) const = default;
+};
+
+struct WelcomeMsg {  // master -> agent
+  Tag tag{};
+  uint64_t agent_id = 0;
+  uint32_t heartbeat_interval_ms = 0;  // >= 1
+  uint32_t max_frame_bytes = 0;        // >= kMinPeerFrameBytes
+  bool operator==(const WelcomeMsg&) const = default;
+};
+
+// --- Steady state ---
+
+struct HeartbeatMsg {          // both ways
+  double load = 0;             // finite, >= 0
+  double rays_per_second = 0;  // finite, >= 0
+  uint32_t leases_held = 0;
+  bool operator==(const HeartbeatMsg&) const = default;
+};
+
+struct BatchAssignmentMsg {  // master -> agent
+  LeaseRef lease;
+  uint32_t round = 0;
+  uint32_t shooter = 0;  // < patch_count
+  uint64_t first_ray = 0;
+  uint32_t ray_count = 0;  // >= 1; first_ray + ray_count does not overflow
+  uint64_t seed = 0;
+  SamplerKind sampler = SamplerKind::kSobol;
+  double grid_step_degrees = 1;  // finite; in (0, 90] for the grid sampler
+  SceneHash scene_hash{};
+  uint32_t patch_count = 0;  // >= 1
+  uint32_t lease_ms = 0;     // >= 1
+  bool operator==(const BatchAssignmentMsg&) const = default;
+};
+
+struct BatchResultMsg {  // agent -> master
+  LeaseRef lease;
+  std::vector<PatchHits> hits;  // strictly increasing patch id, no zero weights
+  uint64_t escaped_weight = 0;
+  uint64_t escaped_rays = 0;
+  uint64_t back_weight = 0;
+  uint64_t back_rays = 0;
+  double compute_seconds = 0;  // finite, >= 0
+  bool operator==(const BatchResultMsg&) const = default;
+};
+
+struct LeaseReturnMsg {          // agent -> master
+  std::vector<LeaseRef> leases;  // 1..kMaxLeaseReturnEntries
+  LeaseReturnReason reason = LeaseReturnReason::kDraining;
+  bool operator==(const LeaseReturnMsg&) const = default;
+};
+
+struct CancelMsg {  // master -> agent
+  uint64_t job_id = 0;
+  bool operator==(const CancelMsg&) const = default;
+};
+
+// --- Scene distribution ---
+
+struct SceneRequestMsg {  // agent -> master
+  SceneHash scene_hash{};
+  uint64_t offset = 0;
+  uint32_t max_length = kMaxSceneChunkBytes;  // 1..kMaxSceneChunkBytes
+  bool operator==(const SceneRequestMsg&) const = default;
+};
+
+struct SceneChunkMsg {  // master -> agent
+  SceneHash scene_hash{};
+  uint64_t total_size = 0;    // >= 1
+  uint64_t offset = 0;        // offset + data.size() <= total_size
+  std::vector<uint8_t> data;  // 1..kMaxSceneChunkBytes
+  bool operator==(const SceneChunkMsg&) const = default;
+};
+
+struct SceneUnavailableMsg {  // master -> agent
+  SceneHash scene_hash{};
+  bool operator==(const SceneUnavailableMsg&) const = default;
+};
+
+// --- Control ---
+
+struct DrainMsg {  // master -> agent
+  DrainMode mode = DrainMode::kFinishLeases;
+  bool exit_after = false;
+  bool operator==(const DrainMsg&) const = default;
+};
+
+struct CloseMsg {  // both ways, any state; the sender closes the connection after it
+  CloseCode code = CloseCode::kNormal;
+  std::string detail;  // 0..kMaxCloseDetailBytes of printable ASCII
+  bool operator==(const CloseMsg&) const = default;
+};
+
+// In the order of the schema's Payload union: index() + 1 is the wire type.
+using Message =
+    std::variant<HelloMsg, ChallengeMsg, ProofMsg, WelcomeMsg, HeartbeatMsg, BatchAssignmentMsg,
+                 BatchResultMsg, LeaseReturnMsg, CancelMsg, SceneRequestMsg, SceneChunkMsg,
+                 SceneUnavailableMsg, DrainMsg, CloseMsg>;
+
+// A verified incoming frame.
+struct DecodedFrame {
+  uint16_t version = 0;  // the protocol version the sender wrote it in
+  Message message;
+};
+
+std::string_view MessageName(const Message& message);
+std::string_view CloseCodeName(CloseCode code);
+
+}  // namespace radfarm::protocol

@@ -1,0 +1,63 @@
+// Scene distribution by content hash. A scene blob (whatever the master serialises a job's scene
+// as; opaque here) is named by its SHA-256. An agent that lacks it sends SceneRequests and the
+// master answers each with one SceneChunk, in order; the agent checks the hash once the last byte
+// is in and only then uses the scene.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/result.h"
+#include "protocol/limits.h"
+#include "protocol/messages.h"
+
+namespace radfarm::protocol {
+
+SceneHash HashScene(std::span<const uint8_t> blob);  // SHA-256 (libsodium)
+std::string HashToHex(const SceneHash& hash);        // 64 lower-case hex digits
+Result<SceneHash> HashFromHex(std::string_view hex);
+
+// Master: the chunk answering `request`, cut from `blob` (the scene stored under request's hash).
+// Fails for an offset at or past the end.
+Result<SceneChunkMsg> MakeSceneChunk(std::span<const uint8_t> blob, const SceneRequestMsg& request);
+
+// Agent: one scene being fetched. Requests may be pipelined (NextRequest() again before the chunk
+// arrives); chunks must then arrive in request order, as one master connection sends them.
+class SceneAssembler {
+ public:
+  explicit SceneAssembler(const SceneHash& hash, uint64_t max_scene_bytes = kDefaultMaxSceneBytes,
+                          uint32_t chunk_bytes = kMaxSceneChunkBytes);
+
+  // The next request to send, or nullopt when every byte has been asked for (or, before the
+  // first chunk tells the size, when the first request is out).
+  std::optional<SceneRequestMsg> NextRequest();
+
+  // Takes the next chunk: same hash, the expected offset, the same total size every time, total
+  // within the limit. After the last byte, checks the SHA-256. An error means the fetch failed
+  // for good (failed() is then true): start a new SceneAssembler to retry.
+  Status Add(const SceneChunkMsg& chunk);
+
+  bool complete() const { return complete_; }
+  bool failed() const { return failed_; }
+  const SceneHash& hash() const { return hash_; }
+  // The verified blob, once complete.
+  std::vector<uint8_t> TakeBlob() { return std::move(blob_); }
+
+ private:
+  Status Fail(std::string reason);
+
+  SceneHash hash_;
+  uint64_t max_scene_bytes_;
+  uint32_t chunk_bytes_;
+  std::optional<uint64_t> total_size_;
+  uint64_t requested_ = 0;  // bytes asked for so far
+  std::vector<uint8_t> blob_;
+  bool complete_ = false;
+  bool failed_ = false;
+};
+
+}  // namespace radfarm::protocol

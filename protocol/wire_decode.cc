@@ -1,0 +1,192 @@
+// FlatBuffers tables -> C++ messages, for frames that already passed the verifier. The verifier
+// guarantees every offset and length is inside the buffer; this adds what it does not check.
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "protocol/wire_convert.h"
+
+namespace radfarm::protocol {
+namespace {
+
+Error Missing(const char* message, const char* field) {
+  return Error{std::string(message) + ": missing " + field};
+}
+
+Bytes32 FromWire(const wire::Bytes32& b) {
+  Bytes32 out;
+  std::memcpy(out.data(), b.bytes()->Data(), out.size());
+  return out;
+}
+
+LeaseRef FromWire(const wire::LeaseRef& l) { return {l.job_id(), l.batch_id(), l.attempt_id()}; }
+
+// The verifier checks a struct vector's length word, not its elements' alignment; a hand-made
+// frame could place 8-byte fields off alignment, and reading them would be undefined.
+template <typename T>
+bool IsAligned(const flatbuffers::Vector<const T*>& v) {
+  return reinterpret_cast<uintptr_t>(v.Data()) % alignof(T) == 0;
+}
+
+Result<Message> Read(const wire::Hello& t) {
+  if (!t.agent_name()) return Missing("Hello", "agent_name");
+  if (!t.nonce()) return Missing("Hello", "nonce");
+  return Message{HelloMsg{t.min_version(), t.max_version(), t.agent_name()->str(), t.threads(),
+                          FromWire(*t.nonce())}};
+}
+
+Result<Message> Read(const wire::Challenge& t) {
+  if (!t.nonce()) return Missing("Challenge", "nonce");
+  return Message{ChallengeMsg{t.version(), FromWire(*t.nonce())}};
+}
+
+Result<Message> Read(const wire::Proof& t) {
+  if (!t.tag()) return Missing("Proof", "tag");
+  return Message{ProofMsg{FromWire(*t.tag())}};
+}
+
+Result<Message> Read(const wire::Welcome& t) {
+  if (!t.tag()) return Missing("Welcome", "tag");
+  return Message{
+      WelcomeMsg{FromWire(*t.tag()), t.agent_id(), t.heartbeat_interval_ms(), t.max_frame_bytes()}};
+}
+
+Result<Message> Read(const wire::Heartbeat& t) {
+  return Message{HeartbeatMsg{t.load(), t.rays_per_second(), t.leases_held()}};
+}
+
+Result<Message> Read(const wire::BatchAssignment& t) {
+  if (!t.lease()) return Missing("BatchAssignment", "lease");
+  if (!t.scene_hash()) return Missing("BatchAssignment", "scene_hash");
+  BatchAssignmentMsg m;
+  switch (t.sampler()) {
+    case wire::SamplerKind::Grid:
+      m.sampler = SamplerKind::kGrid;
+      break;
+    case wire::SamplerKind::Random:
+      m.sampler = SamplerKind::kRandom;
+      break;
+    case wire::SamplerKind::Sobol:
+      m.sampler = SamplerKind::kSobol;
+      break;
+    default:
+      return Error{"BatchAssignment: unknown sampler " +
+                   std::to_string(static_cast<unsigned>(t.sampler()))};
+  }
+  m.lease = FromWire(*t.lease());
+  m.round = t.round();
+  m.shooter = t.shooter();
+  m.first_ray = t.first_ray();
+  m.ray_count = t.ray_count();
+  m.seed = t.seed();
+  m.grid_step_degrees = t.grid_step_degrees();
+  m.scene_hash = FromWire(*t.scene_hash());
+  m.patch_count = t.patch_count();
+  m.lease_ms = t.lease_ms();
+  return Message{std::move(m)};
+}
+
+Result<Message> Read(const wire::BatchResult& t) {
+  if (!t.lease()) return Missing("BatchResult", "lease");
+  if (!t.hits()) return Missing("BatchResult", "hits");
+  if (!IsAligned(*t.hits())) return Error{"BatchResult: misaligned hits"};
+  BatchResultMsg m;
+  m.lease = FromWire(*t.lease());
+  m.hits.reserve(t.hits()->size());
+  for (const wire::PatchHit* h : *t.hits()) m.hits.push_back({h->patch(), h->weight()});
+  m.escaped_weight = t.escaped_weight();
+  m.escaped_rays = t.escaped_rays();
+  m.back_weight = t.back_weight();
+  m.back_rays = t.back_rays();
+  m.compute_seconds = t.compute_seconds();
+  return Message{std::move(m)};
+}
+
+Result<Message> Read(const wire::LeaseReturn& t) {
+  if (!t.leases()) return Missing("LeaseReturn", "leases");
+  if (!IsAligned(*t.leases())) return Error{"LeaseReturn: misaligned leases"};
+  LeaseReturnMsg m;
+  m.leases.reserve(t.leases()->size());
+  for (const wire::LeaseRef* l : *t.leases()) m.leases.push_back(FromWire(*l));
+  // Same numbering as the schema; CheckMessage rejects values past the last one.
+  m.reason = static_cast<LeaseReturnReason>(t.reason());
+  return Message{std::move(m)};
+}
+
+Result<Message> Read(const wire::Cancel& t) { return Message{CancelMsg{t.job_id()}}; }
+
+Result<Message> Read(const wire::SceneRequest& t) {
+  if (!t.scene_hash()) return Missing("SceneRequest", "scene_hash");
+  return Message{SceneRequestMsg{FromWire(*t.scene_hash()), t.offset(), t.max_length()}};
+}
+
+Result<Message> Read(const wire::SceneChunk& t) {
+  if (!t.scene_hash()) return Missing("SceneChunk", "scene_hash");
+  if (!t.data()) return Missing("SceneChunk", "data");
+  return Message{SceneChunkMsg{FromWire(*t.scene_hash()), t.total_size(), t.offset(),
+                               std::vector<uint8_t>(t.data()->begin(), t.data()->end())}};
+}
+
+Result<Message> Read(const wire::SceneUnavailable& t) {
+  if (!t.scene_hash()) return Missing("SceneUnavailable", "scene_hash");
+  return Message{SceneUnavailableMsg{FromWire(*t.scene_hash())}};
+}
+
+Result<Message> Read(const wire::Drain& t) {
+  return Message{DrainMsg{static_cast<DrainMode>(t.mode()), t.exit_after()}};
+}
+
+Result<Message> Read(const wire::Close& t) {
+  return Message{CloseMsg{static_cast<CloseCode>(t.code()), t.detail() ? t.detail()->str() : ""}};
+}
+
+// Reads the table of union type T, or reports it missing.
+template <typename T>
+Result<Message> ReadAs(const wire::Frame& frame) {
+  const T* table = frame.payload_as<T>();
+  if (!table) return Error{"frame: missing payload"};
+  return Read(*table);
+}
+
+}  // namespace
+
+Result<Message> ReadPayload(const wire::Frame& frame) {
+  using P = wire::Payload;
+  switch (frame.payload_type()) {
+    case P::Hello:
+      return ReadAs<wire::Hello>(frame);
+    case P::Challenge:
+      return ReadAs<wire::Challenge>(frame);
+    case P::Proof:
+      return ReadAs<wire::Proof>(frame);
+    case P::Welcome:
+      return ReadAs<wire::Welcome>(frame);
+    case P::Heartbeat:
+      return ReadAs<wire::Heartbeat>(frame);
+    case P::BatchAssignment:
+      return ReadAs<wire::BatchAssignment>(frame);
+    case P::BatchResult:
+      return ReadAs<wire::BatchResult>(frame);
+    case P::LeaseReturn:
+      return ReadAs<wire::LeaseReturn>(frame);
+    case P::Cancel:
+      return ReadAs<wire::Cancel>(frame);
+    case P::SceneRequest:
+      return ReadAs<wire::SceneRequest>(frame);
+    case P::SceneChunk:
+      return ReadAs<wire::SceneChunk>(frame);
+    case P::SceneUnavailable:
+      return ReadAs<wire::SceneUnavailable>(frame);
+    case P::Drain:
+      return ReadAs<wire::Drain>(frame);
+    case P::Close:
+      return ReadAs<wire::Close>(frame);
+    default:
+      break;
+  }
+  return Error{"frame: unknown message type " +
+               std::to_string(static_cast<unsigned>(frame.payload_type()))};
+}
+
+}  // namespace radfarm::protocol

@@ -1,0 +1,127 @@
+// C++ messages -> FlatBuffers tables. Enum values are mapped one by one rather than cast, so the
+// wire values stay fixed whatever happens to core's enums.
+#include <vector>
+
+#include "protocol/wire_convert.h"
+
+namespace radfarm::protocol {
+namespace {
+
+using flatbuffers::FlatBufferBuilder;
+using flatbuffers::Offset;
+
+wire::Bytes32 ToWire(const Bytes32& b) {
+  return wire::Bytes32(flatbuffers::span<const uint8_t, 32>(b));
+}
+
+wire::LeaseRef ToWire(const LeaseRef& l) { return {l.job_id, l.batch_id, l.attempt_id}; }
+
+wire::SamplerKind ToWire(SamplerKind k) {
+  switch (k) {
+    case SamplerKind::kGrid:
+      return wire::SamplerKind::Grid;
+    case SamplerKind::kRandom:
+      return wire::SamplerKind::Random;
+    case SamplerKind::kSobol:
+      return wire::SamplerKind::Sobol;
+  }
+  // Out-of-range values pass through so tests can send them; the receiver rejects them.
+  return static_cast<wire::SamplerKind>(k);
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const HelloMsg& m) {
+  const wire::Bytes32 nonce = ToWire(m.nonce);
+  return wire::CreateHello(fbb, m.min_version, m.max_version, fbb.CreateString(m.agent_name),
+                           m.threads, &nonce)
+      .Union();
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const ChallengeMsg& m) {
+  const wire::Bytes32 nonce = ToWire(m.nonce);
+  return wire::CreateChallenge(fbb, m.version, &nonce).Union();
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const ProofMsg& m) {
+  const wire::Bytes32 tag = ToWire(m.tag);
+  return wire::CreateProof(fbb, &tag).Union();
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const WelcomeMsg& m) {
+  const wire::Bytes32 tag = ToWire(m.tag);
+  return wire::CreateWelcome(fbb, &tag, m.agent_id, m.heartbeat_interval_ms, m.max_frame_bytes)
+      .Union();
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const HeartbeatMsg& m) {
+  return wire::CreateHeartbeat(fbb, m.load, m.rays_per_second, m.leases_held).Union();
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const BatchAssignmentMsg& m) {
+  const wire::LeaseRef lease = ToWire(m.lease);
+  const wire::Bytes32 hash = ToWire(m.scene_hash);
+  return wire::CreateBatchAssignment(fbb, &lease, m.round, m.shooter, m.first_ray, m.ray_count,
+                                     m.seed, ToWire(m.sampler), m.grid_step_degrees, &hash,
+                                     m.patch_count, m.lease_ms)
+      .Union();
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const BatchResultMsg& m) {
+  // CreateVectorOfStructs aligns by the struct's alignment (the uninitialized variant aligns by
+  // its size, which is wrong for 24-byte structs).
+  std::vector<wire::PatchHit> wire_hits;
+  wire_hits.reserve(m.hits.size());
+  for (const PatchHits& h : m.hits) wire_hits.emplace_back(h.patch, h.weight);
+  const auto hits = fbb.CreateVectorOfStructs(wire_hits.data(), wire_hits.size());
+  const wire::LeaseRef lease = ToWire(m.lease);
+  return wire::CreateBatchResult(fbb, &lease, hits, m.escaped_weight, m.escaped_rays, m.back_weight,
+                                 m.back_rays, m.compute_seconds)
+      .Union();
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const LeaseReturnMsg& m) {
+  std::vector<wire::LeaseRef> wire_leases;
+  wire_leases.reserve(m.leases.size());
+  for (const LeaseRef& l : m.leases) wire_leases.push_back(ToWire(l));
+  const auto leases = fbb.CreateVectorOfStructs(wire_leases.data(), wire_leases.size());
+  return wire::CreateLeaseReturn(fbb, leases, static_cast<wire::LeaseReturnReason>(m.reason))
+      .Union();
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const CancelMsg& m) {
+  return wire::CreateCancel(fbb, m.job_id).Union();
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const SceneRequestMsg& m) {
+  const wire::Bytes32 hash = ToWire(m.scene_hash);
+  return wire::CreateSceneRequest(fbb, &hash, m.offset, m.max_length).Union();
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const SceneChunkMsg& m) {
+  const auto data = fbb.CreateVector(m.data);
+  const wire::Bytes32 hash = ToWire(m.scene_hash);
+  return wire::CreateSceneChunk(fbb, &hash, m.total_size, m.offset, data).Union();
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const SceneUnavailableMsg& m) {
+  const wire::Bytes32 hash = ToWire(m.scene_hash);
+  return wire::CreateSceneUnavailable(fbb, &hash).Union();
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const DrainMsg& m) {
+  return wire::CreateDrain(fbb, static_cast<wire::DrainMode>(m.mode), m.exit_after).Union();
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const CloseMsg& m) {
+  const auto detail = fbb.CreateString(m.detail);
+  return wire::CreateClose(fbb, static_cast<wire::CloseCode>(m.code), detail).Union();
+}
+
+}  // namespace
+
+Offset<void> BuildPayload(FlatBufferBuilder& fbb, const Message& message, wire::Payload* type) {
+  // Message alternatives are in Payload order, starting after NONE.
+  *type = static_cast<wire::Payload>(message.index() + 1);
+  return std::visit([&fbb](const auto& m) { return Build(fbb, m); }, message);
+}
+
+}  // namespace radfarm::protocol

@@ -1,0 +1,77 @@
+#include "protocol/frame_codec.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "protocol/message_checks.h"
+#include "tests/protocol/sample_messages.h"
+
+namespace radfarm::protocol {
+namespace {
+
+using testing::SampleMessages;
+
+TEST(ProtocolCodecTest, SamplesCoverEveryMessageTypeAndAreValid) {
+  const std::vector<Message> samples = SampleMessages();
+  ASSERT_EQ(samples.size(), std::variant_size_v<Message>);
+  for (size_t i = 0; i < samples.size(); ++i) {
+    EXPECT_EQ(samples[i].index(), i);
+    EXPECT_TRUE(CheckMessage(samples[i])) << CheckMessage(samples[i]).error();
+  }
+}
+
+TEST(ProtocolCodecTest, EveryMessageTypeRoundTrips) {
+  for (const Message& message : SampleMessages()) {
+    const std::vector<uint8_t> frame = EncodeFrame(message);
+    Result<DecodedFrame> decoded = DecodeFrame(frame);
+    ASSERT_TRUE(decoded) << MessageName(message) << ": " << decoded.error();
+    EXPECT_EQ(decoded->version, kProtocolVersion);
+    EXPECT_TRUE(decoded->message == message) << MessageName(message);
+  }
+}
+
+TEST(ProtocolCodecTest, DefaultValuedMessagesRoundTrip) {
+  // Zero fields are left out of a FlatBuffer; they must come back as zeros.
+  const std::vector<Message> messages = {
+      CancelMsg{0},
+      HeartbeatMsg{0, 0, 0},
+      DrainMsg{DrainMode::kFinishLeases, false},
+      CloseMsg{CloseCode::kNormal, ""},
+      BatchResultMsg{{}, {}, 0, 0, 0, 0, 0},
+  };
+  for (const Message& message : messages) {
+    Result<DecodedFrame> decoded = DecodeFrame(EncodeFrame(message));
+    ASSERT_TRUE(decoded) << MessageName(message) << ": " << decoded.error();
+    EXPECT_TRUE(decoded->message == message) << MessageName(message);
+  }
+}
+
+TEST(ProtocolCodecTest, FrameStartsWithLittleEndianLengthAndIdentifier) {
+  const std::vector<uint8_t> frame = EncodeFrame(CancelMsg{1});
+  ASSERT_GE(frame.size(), 12u);
+  EXPECT_EQ(ReadLengthPrefix(frame.data()), frame.size() - kLengthPrefixBytes);
+  EXPECT_EQ(std::string(frame.begin() + 8, frame.begin() + 12), "RDFM");
+}
+
+TEST(ProtocolCodecTest, VersionIsCarried) {
+  Result<DecodedFrame> decoded = DecodeFrame(EncodeFrame(CancelMsg{1}, 7));
+  ASSERT_TRUE(decoded) << decoded.error();
+  EXPECT_EQ(decoded->version, 7);
+  Result<DecodedFrame> zero = DecodeFrame(EncodeFrame(CancelMsg{1}, 0));
+  ASSERT_FALSE(zero);
+  EXPECT_NE(zero.error().find("version 0"), std::string::npos) << zero.error();
+}
+
+TEST(ProtocolCodecTest, MisalignedBufferDecodes) {
+  const std::vector<uint8_t> frame = EncodeFrame(SampleMessages()[6]);
+  std::vector<uint8_t> shifted(frame.size() + 1);
+  std::copy(frame.begin(), frame.end(), shifted.begin() + 1);
+  Result<DecodedFrame> decoded = DecodeFrame(std::span(shifted).subspan(1));
+  ASSERT_TRUE(decoded) << decoded.error();
+  EXPECT_TRUE(decoded->message == SampleMessages()[6]);
+}
+
+}  // namespace
+}  // namespace radfarm::protocol

@@ -1,0 +1,35 @@
+#include "tests/protocol/sample_messages.h"
+
+namespace radfarm::protocol::testing {
+
+Bytes32 Pattern(uint8_t seed) {
+  Bytes32 b;
+  for (size_t i = 0; i < b.size(); ++i) b[i] = static_cast<uint8_t>(seed + 37 * i);
+  return b;
+}
+
+std::vector<Message> SampleMessages() {
+  const LeaseRef lease{0x0102030405060708ull, 0x1112131415161718ull, 3};
+  std::vector<uint8_t> scene_bytes(300);
+  for (size_t i = 0; i < scene_bytes.size(); ++i) scene_bytes[i] = static_cast<uint8_t>(i * 7);
+  return {
+      HelloMsg{1, 1, "render-node-07.example:4", 48, Pattern(1)},
+      ChallengeMsg{1, Pattern(2)},
+      ProofMsg{Pattern(3)},
+      WelcomeMsg{Pattern(4), 77, 2500, kDefaultMaxFrameBytes},
+      HeartbeatMsg{3.25, 1.5e8, 12},
+      BatchAssignmentMsg{lease, 9, 1234, uint64_t{1} << 40, 65536, 0xdeadbeefcafef00dull,
+                         SamplerKind::kGrid, 2.5, Pattern(5), 5000, 30000},
+      BatchResultMsg{
+          lease, {{0, 5}, {17, 1}, {4999, uint64_t{1} << 50}}, 11, 11, uint64_t{1} << 33, 2, 0.125},
+      LeaseReturnMsg{{lease, {2, 3, 4}}, LeaseReturnReason::kSceneUnavailable},
+      CancelMsg{42},
+      SceneRequestMsg{Pattern(6), 1 << 20, 4096},
+      SceneChunkMsg{Pattern(7), 1 << 21, 1 << 20, scene_bytes},
+      SceneUnavailableMsg{Pattern(8)},
+      DrainMsg{DrainMode::kReturnLeases, true},
+      CloseMsg{CloseCode::kShutdown, "master shutting down: maintenance"},
+  };
+}
+
+}  // namespace radfarm::protocol::testing

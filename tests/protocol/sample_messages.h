@@ -1,0 +1,14 @@
+// One valid, non-trivial value of every message type (every field away from its default, so a
+// field the codec forgets shows up), shared by the tests and the fuzz-corpus writer.
+#pragma once
+
+#include <vector>
+
+#include "protocol/messages.h"
+
+namespace radfarm::protocol::testing {
+
+Bytes32 Pattern(uint8_t seed);          // 32 distinct bytes
+std::vector<Message> SampleMessages();  // in variant order: one of each type
+
+}  // namespace radfarm::protocol::testing
