@@ -17,6 +17,8 @@ struct BadInput {
   std::string message;  // must appear in stderr
 };
 
+void PrintTo(const BadInput& bad, std::ostream* os) { *os << bad.file; }
+
 class RenderInputErrorTest : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(RenderInputErrorTest, OneLineErrorNamingTheLocationAndExitTwo) {
