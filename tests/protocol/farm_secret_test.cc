@@ -1,0 +1,44 @@
+#include "protocol/farm_secret.h"
+
+#include <gtest/gtest.h>
+
+#include "protocol/handshake_auth.h"
+
+namespace radfarm::protocol {
+namespace {
+
+TEST(ProtocolSecretTest, LengthLimits) {
+  EXPECT_FALSE(FarmSecret::FromBytes(std::vector<uint8_t>(kMinSecretBytes - 1, 1)));
+  EXPECT_TRUE(FarmSecret::FromBytes(std::vector<uint8_t>(kMinSecretBytes, 1)));
+  EXPECT_FALSE(FarmSecret::FromBytes(std::vector<uint8_t>(kMaxSecretBytes + 1, 1)));
+}
+
+TEST(ProtocolSecretTest, HexRoundTripAndErrors) {
+  Result<FarmSecret> generated = FarmSecret::Generate();
+  ASSERT_TRUE(generated);
+  EXPECT_EQ(generated->bytes().size(), kMinSecretBytes);
+  Result<FarmSecret> parsed = FarmSecret::FromHex("  " + generated->ToHex() + "\n");
+  ASSERT_TRUE(parsed) << parsed.error();
+  EXPECT_TRUE(std::equal(parsed->bytes().begin(), parsed->bytes().end(), generated->bytes().begin(),
+                         generated->bytes().end()));
+  EXPECT_FALSE(FarmSecret::FromHex(std::string(64, 'x')));
+  EXPECT_FALSE(FarmSecret::FromHex(std::string(63, 'a')));
+  EXPECT_FALSE(FarmSecret::FromHex("abcd"));  // too short
+  EXPECT_NE(FarmSecret::Generate()->ToHex(), generated->ToHex());
+}
+
+TEST(ProtocolSecretTest, TagsDependOnSecretTranscriptAndDirection) {
+  const FarmSecret a = *FarmSecret::FromBytes(std::vector<uint8_t>(32, 1));
+  const FarmSecret b = *FarmSecret::FromBytes(std::vector<uint8_t>(32, 2));
+  HelloMsg hello{1, 1, "n", 1, *FreshNonce()};
+  const ChallengeMsg challenge{1, *FreshNonce()};
+  const Tag agent = AgentTag(a, hello, challenge);
+  EXPECT_TRUE(TagsEqual(agent, AgentTag(a, hello, challenge)));
+  EXPECT_FALSE(TagsEqual(agent, AgentTag(b, hello, challenge)));
+  EXPECT_FALSE(TagsEqual(agent, MasterTag(a, hello, challenge)));
+  hello.threads = 2;
+  EXPECT_FALSE(TagsEqual(agent, AgentTag(a, hello, challenge)));
+}
+
+}  // namespace
+}  // namespace radfarm::protocol

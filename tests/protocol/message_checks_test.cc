@@ -1,0 +1,179 @@
+// Every value rule of CheckMessage, seen from the receiving end: a frame carrying a bad value is
+// rejected by the decoder with a reason that names the message and the field.
+#include "protocol/message_checks.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "protocol/frame_codec.h"
+#include "tests/protocol/sample_messages.h"
+
+namespace radfarm::protocol {
+namespace {
+
+using testing::SampleMessages;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+template <typename T>
+T Sample() {
+  for (const Message& m : SampleMessages()) {
+    if (const T* t = std::get_if<T>(&m)) return *t;
+  }
+  return T{};
+}
+
+// The message is rejected on decode, with `text` in the reason.
+void ExpectRejected(const Message& message, const std::string& text) {
+  EXPECT_FALSE(CheckMessage(message)) << text;
+  Result<DecodedFrame> r = DecodeFrame(EncodeFrame(message));
+  ASSERT_FALSE(r) << "accepted: " << text;
+  EXPECT_NE(r.error().find(text), std::string::npos) << r.error();
+}
+
+TEST(ProtocolCheckTest, Hello) {
+  HelloMsg m = Sample<HelloMsg>();
+  m.min_version = 0;
+  ExpectRejected(m, "Hello: bad version range");
+  m = Sample<HelloMsg>();
+  m.min_version = 3;
+  m.max_version = 2;
+  ExpectRejected(m, "Hello: bad version range");
+  for (std::string name : {std::string(), std::string(65, 'a'), std::string("bad name"),
+                           std::string("evil\nlog"), std::string("nul\0x", 5)}) {
+    m = Sample<HelloMsg>();
+    m.agent_name = name;
+    ExpectRejected(m, "Hello: agent name");
+  }
+  m = Sample<HelloMsg>();
+  m.threads = 0;
+  ExpectRejected(m, "Hello: threads");
+  m.threads = kMaxAgentThreads + 1;
+  ExpectRejected(m, "Hello: threads");
+  EXPECT_TRUE(IsValidAgentName(std::string(kMaxAgentNameBytes, 'z')));
+}
+
+TEST(ProtocolCheckTest, ChallengeAndWelcome) {
+  ChallengeMsg c = Sample<ChallengeMsg>();
+  c.version = 0;
+  ExpectRejected(c, "Challenge: version 0");
+  WelcomeMsg w = Sample<WelcomeMsg>();
+  w.heartbeat_interval_ms = 0;
+  ExpectRejected(w, "Welcome: heartbeat");
+  w = Sample<WelcomeMsg>();
+  w.max_frame_bytes = kMinPeerFrameBytes - 1;
+  ExpectRejected(w, "Welcome: max frame bytes");
+}
+
+TEST(ProtocolCheckTest, HeartbeatNumbersMustBeFiniteAndNonNegative) {
+  for (double bad : {kNaN, kInf, -kInf, -1.0}) {
+    HeartbeatMsg m = Sample<HeartbeatMsg>();
+    m.load = bad;
+    ExpectRejected(m, "Heartbeat: load");
+    m = Sample<HeartbeatMsg>();
+    m.rays_per_second = bad;
+    ExpectRejected(m, "Heartbeat: rays_per_second");
+  }
+}
+
+TEST(ProtocolCheckTest, BatchAssignment) {
+  BatchAssignmentMsg m = Sample<BatchAssignmentMsg>();
+  m.patch_count = 0;
+  ExpectRejected(m, "BatchAssignment: patch_count 0");
+  m = Sample<BatchAssignmentMsg>();
+  m.shooter = m.patch_count;
+  ExpectRejected(m, "BatchAssignment: shooter 5000 >= patch_count 5000");
+  m = Sample<BatchAssignmentMsg>();
+  m.ray_count = 0;
+  ExpectRejected(m, "BatchAssignment: ray_count 0");
+  m = Sample<BatchAssignmentMsg>();
+  m.first_ray = UINT64_MAX - 10;
+  ExpectRejected(m, "overflows");
+  m = Sample<BatchAssignmentMsg>();
+  m.sampler = static_cast<SamplerKind>(9);
+  ExpectRejected(m, "unknown sampler 9");
+  for (double bad : {kNaN, kInf, 0.0, -1.0, 90.5}) {
+    m = Sample<BatchAssignmentMsg>();
+    m.grid_step_degrees = bad;
+    ExpectRejected(m, "grid_step_degrees");
+  }
+  m = Sample<BatchAssignmentMsg>();
+  m.sampler = SamplerKind::kSobol;
+  m.grid_step_degrees = 0;  // unused by sobol: any finite value is fine
+  EXPECT_TRUE(CheckMessage(m));
+  m.grid_step_degrees = kNaN;  // but never a non-finite one
+  ExpectRejected(m, "grid_step_degrees not finite");
+  m = Sample<BatchAssignmentMsg>();
+  m.lease_ms = 0;
+  ExpectRejected(m, "lease_ms 0");
+}
+
+TEST(ProtocolCheckTest, BatchResult) {
+  BatchResultMsg m = Sample<BatchResultMsg>();
+  m.hits[1].weight = 0;
+  ExpectRejected(m, "BatchResult: hit 1 (patch 17) has weight 0");
+  m = Sample<BatchResultMsg>();
+  m.hits[2].patch = m.hits[1].patch;
+  ExpectRejected(m, "BatchResult: hit 2 patch 17 not above");
+  m = Sample<BatchResultMsg>();
+  std::swap(m.hits[0], m.hits[1]);
+  ExpectRejected(m, "not above");
+  for (double bad : {kNaN, kInf, -0.5}) {
+    m = Sample<BatchResultMsg>();
+    m.compute_seconds = bad;
+    ExpectRejected(m, "compute_seconds");
+  }
+}
+
+TEST(ProtocolCheckTest, LeaseReturn) {
+  LeaseReturnMsg m = Sample<LeaseReturnMsg>();
+  m.leases.clear();
+  ExpectRejected(m, "LeaseReturn: 0 leases");
+  m = Sample<LeaseReturnMsg>();
+  m.leases.resize(kMaxLeaseReturnEntries + 1);
+  ExpectRejected(m, "LeaseReturn: 65537 leases");
+  m = Sample<LeaseReturnMsg>();
+  m.reason = static_cast<LeaseReturnReason>(4);
+  ExpectRejected(m, "LeaseReturn: unknown reason 4");
+}
+
+TEST(ProtocolCheckTest, SceneMessages) {
+  SceneRequestMsg r = Sample<SceneRequestMsg>();
+  r.max_length = 0;
+  ExpectRejected(r, "SceneRequest: max_length 0");
+  r.max_length = kMaxSceneChunkBytes + 1;
+  ExpectRejected(r, "SceneRequest: max_length");
+  SceneChunkMsg c = Sample<SceneChunkMsg>();
+  c.data.clear();
+  ExpectRejected(c, "SceneChunk: 0 data bytes");
+  c = Sample<SceneChunkMsg>();
+  c.data.resize(kMaxSceneChunkBytes + 1);
+  c.total_size = uint64_t{1} << 40;
+  ExpectRejected(c, "SceneChunk: 1048577 data bytes");
+  c = Sample<SceneChunkMsg>();
+  c.offset = c.total_size - 10;
+  ExpectRejected(c, "beyond total_size");
+  c = Sample<SceneChunkMsg>();
+  c.offset = UINT64_MAX;
+  ExpectRejected(c, "beyond total_size");
+}
+
+TEST(ProtocolCheckTest, DrainAndClose) {
+  DrainMsg d = Sample<DrainMsg>();
+  d.mode = static_cast<DrainMode>(2);
+  ExpectRejected(d, "Drain: unknown mode 2");
+  CloseMsg c = Sample<CloseMsg>();
+  c.code = static_cast<CloseCode>(6);
+  ExpectRejected(c, "Close: unknown code 6");
+  c = Sample<CloseMsg>();
+  c.detail = std::string(kMaxCloseDetailBytes + 1, 'x');
+  ExpectRejected(c, "Close: detail");
+  c.detail = "line\nbreak";
+  ExpectRejected(c, "Close: detail");
+}
+
+}  // namespace
+}  // namespace radfarm::protocol
