@@ -12,13 +12,13 @@
 #include "input/input_scene.h"
 #include "input/job.h"
 #include "mesh/patch_mesh.h"
+#include "output/exposure_meter.h"
 #include "output/exr_writer.h"
 #include "output/image.h"
 #include "output/patches_csv.h"
 #include "output/ply_writer.h"
 #include "output/png_writer.h"
 #include "output/stats_json.h"
-#include "output/tone_map.h"
 
 namespace radfarm {
 namespace {
@@ -50,10 +50,11 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
   namespace fs = std::filesystem;
   mesh.SetSolution(solution.radiosity, solution.unshot);
   const DisplayMesh display = mesh.MakeDisplayMesh();
-  const Camera camera = ResolveCamera(display, job.camera);
-  const Image image = RenderImage(display, camera);
-  // One exposure for the PNG and the PLY's colours.
-  const Camera exposed = WithResolvedExposure(image, camera);
+  std::vector<bool> emitter_patch;
+  for (const Patch& p : mesh.patch_scene().patches) emitter_patch.push_back(p.emission.Max() > 0);
+  // One exposure, metered on the lit surfaces, for the PNG and the PLY's colours.
+  const Camera exposed = MeterExposure(display, emitter_patch, ResolveCamera(display, job.camera));
+  const Image image = RenderImage(display, exposed);
   const auto path = [&](const char* name) { return (fs::path(dir) / name).string(); };
   for (const Status& s :
        {WritePng(path("image.png"), image, exposed), WriteExr(path("image.exr"), image),
