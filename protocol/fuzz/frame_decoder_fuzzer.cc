@@ -21,6 +21,16 @@ void CheckReencodes(const DecodedFrame& frame) {
   if (!decoded || !(decoded->message == frame.message)) std::abort();
 }
 
+void Authenticate(radfarm::protocol::ProtocolSession& master,
+                  radfarm::protocol::ProtocolSession& agent) {
+  using radfarm::protocol::DecodeFrame;
+  auto challenge = master.Accept(*DecodeFrame(*agent.Start()));
+  auto proof = agent.Accept(*DecodeFrame(challenge->reply));
+  auto welcome = master.Accept(*DecodeFrame(proof->reply));
+  (void)agent.Accept(*DecodeFrame(welcome->reply));
+  if (!master.authenticated() || !agent.authenticated()) std::abort();
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -28,9 +38,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const FarmSecret secret = *FarmSecret::FromBytes(std::vector<uint8_t>(32, 7));
   // Small limit so the fuzzer also explores the oversized-frame path.
   FrameDecoder decoder(1u << 16);
+  // Fresh sessions see the fuzzed frames as handshake input; an authenticated pair (a real
+  // handshake first) sees them as steady-state traffic.
   ProtocolSession master = ProtocolSession::ForMaster(secret, MasterConfig{});
   ProtocolSession agent = ProtocolSession::ForAgent(secret, AgentConfig{"fuzz", 1});
   (void)agent.Start();
+  ProtocolSession authed_master = ProtocolSession::ForMaster(secret, MasterConfig{});
+  ProtocolSession authed_agent = ProtocolSession::ForAgent(secret, AgentConfig{"fuzz", 1});
+  Authenticate(authed_master, authed_agent);
   std::span<const uint8_t> rest(data, size);
   // The first byte picks the chunk size, so frames split across every kind of boundary.
   const size_t chunk = size > 0 ? 1 + data[0] % 64 : 1;
@@ -44,6 +59,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       CheckReencodes(**next);
       (void)master.Accept(**next);
       (void)agent.Accept(**next);
+      (void)authed_master.Accept(**next);
+      (void)authed_agent.Accept(**next);
     }
   }
   // The whole input as one frame, too.
