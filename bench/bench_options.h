@@ -1,0 +1,24 @@
+// Command line of solver_bench.
+#pragma once
+
+#include <string>
+
+namespace radfarm::bench {
+
+struct BenchOptions {
+  bool quick = false;      // smoke check: fewer budgets, one repetition, under a minute
+  std::string out_dir;     // where BENCHMARKS.md and the PNGs go
+  std::string scenes_dir;  // where cornell-box.obj and seed-room.obj are
+};
+
+inline constexpr char kUsage[] =
+    "usage: solver_bench [--quick] [--out-dir DIR] [--scenes DIR]\n"
+    "  --quick         smoke check: fewer budgets, 1 repetition (under a minute)\n"
+    "  --out-dir DIR   write BENCHMARKS.md and benchmarks-*.png there (default: the source\n"
+    "                  tree's docs/)\n"
+    "  --scenes DIR    read the scenes from there (default: the source tree's scenes/)\n";
+
+// Returns false (with a message in *error, empty for --help) when the program should stop.
+bool ParseBenchOptions(int argc, char** argv, BenchOptions* options, std::string* error);
+
+}  // namespace radfarm::bench

@@ -1,0 +1,25 @@
+// A benchmark scene: an OBJ meshed into patches once, then solved many times.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "core/patch_scene.h"
+#include "mesh/patch_mesh.h"
+
+namespace radfarm::bench {
+
+struct BenchScene {
+  std::string name;  // short name for tables and file names, e.g. "cornell-box"
+  std::string path;  // the OBJ as given
+  std::unique_ptr<PatchMesh> mesh;
+  double load_seconds = 0;  // LoadObjScene + PatchMesh::Build
+
+  const PatchScene& patches() const { return mesh->patch_scene(); }
+};
+
+// Loads and meshes `path` with the given patch size (0: automatic). Throws std::runtime_error with
+// the loader's or mesher's message on failure.
+BenchScene LoadBenchScene(const std::string& name, const std::string& path, double patch_size);
+
+}  // namespace radfarm::bench

@@ -1,0 +1,114 @@
+// solver_bench: measures the radiosity solver's speed against its error for every sampler, the
+// solver's ray loop against raw Embree, and the seed paper's workload; prints the figures and
+// writes BENCHMARKS.md with one error-against-time plot per scene. See bench_options.h for the
+// flags.
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench/bench_options.h"
+#include "bench/bench_report.h"
+#include "bench/bench_scene.h"
+#include "bench/conclusions.h"
+#include "bench/plot.h"
+#include "bench/raw_throughput.h"
+#include "bench/report.h"
+#include "bench/seed_workload.h"
+#include "bench/stopwatch.h"
+#include "bench/sweep.h"
+#include "bench/sweep_plot.h"
+
+namespace radfarm::bench {
+namespace {
+
+// Patch sizes: the seed room's is its job file's (scenes/seed-room.toml). The Cornell box's job
+// file says 25 mm (about 4800 patches); 50 mm (a quarter as many) keeps a 64x reference affordable
+// on a small machine, and the samplers compare the same way.
+constexpr double kCornellPatchSize = 50;
+constexpr double kSeedRoomPatchSize = 0.5;
+
+std::vector<uint64_t> Ladder(uint64_t first, int rungs) {
+  std::vector<uint64_t> ladder;
+  for (int i = 0; i < rungs; ++i) ladder.push_back(first << i);
+  return ladder;
+}
+
+int Run(int argc, char** argv) {
+  BenchOptions options;
+  std::string error;
+  if (!ParseBenchOptions(argc, argv, &options, &error)) {
+    std::fprintf(error.empty() ? stdout : stderr, "%s%s%s",
+                 error.empty() ? "" : "solver_bench: ", error.empty() ? "" : (error + "\n").c_str(),
+                 kUsage);
+    return error.empty() ? 0 : 2;
+  }
+  const Stopwatch total;
+  BenchReport report;
+  report.machine = ReadMachineInfo(argc, argv);
+  report.quick = options.quick;
+  std::printf("solver_bench%s: %u CPUs, %s, load %s\n", options.quick ? " --quick" : "",
+              report.machine.cpus, report.machine.cpu_model.c_str(),
+              report.machine.load_average.c_str());
+
+  SweepConfig config;
+  config.repetitions = options.quick ? 1 : 3;
+  config.reference_factor = options.quick ? 8 : 64;
+  config.grid_steps = options.quick ? std::vector<double>{} : std::vector<double>{8, 4, 2, 1};
+  config.grid_converged_steps = options.quick ? std::vector<double>{8} : std::vector<double>{8, 4};
+  report.sweep_config = config;
+  const int rungs = options.quick ? 3 : 5;
+
+  const BenchScene cornell =
+      LoadBenchScene("cornell-box", options.scenes_dir + "/cornell-box.obj", kCornellPatchSize);
+  const BenchScene room =
+      LoadBenchScene("seed-room", options.scenes_dir + "/seed-room.obj", kSeedRoomPatchSize);
+
+  SweepConfig cornell_config = config;
+  cornell_config.shot_rays = Ladder(uint64_t{1} << 17, rungs);
+  report.sweeps.push_back(RunSweep(cornell, cornell_config));
+  SweepConfig room_config = config;
+  room_config.shot_rays = Ladder(uint64_t{1} << 16, rungs);
+  report.sweeps.push_back(RunSweep(room, room_config));
+
+  const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  report.raw = MeasureRawThroughput(cornell, SolverSettings{}, 3, options.quick ? 1 : 5, threads);
+  report.seed =
+      RunSeedWorkload(room, report.sweeps[1].reference, options.quick ? 1 : 5, config.repetitions);
+
+  std::filesystem::create_directories(options.out_dir);
+  for (size_t i = 0; i < report.sweeps.size(); ++i) {
+    const SceneSweep& sweep = report.sweeps[i];
+    const std::string name = "benchmarks-" + sweep.scene + ".png";
+    const std::string plot_error = WritePlot(MakeSweepPlot(
+        sweep, config, i == 1 ? &report.seed : nullptr, options.out_dir + "/" + name));
+    if (!plot_error.empty()) std::fprintf(stderr, "solver_bench: %s\n", plot_error.c_str());
+    report.plots.push_back(plot_error.empty() ? name : "");
+  }
+  report.total_seconds = total.Seconds();
+  const std::string path = options.out_dir + "/BENCHMARKS.md";
+  if (const std::string write_error = WriteReport(report, path); !write_error.empty()) {
+    std::fprintf(stderr, "solver_bench: %s\n", write_error.c_str());
+    return 1;
+  }
+  std::printf("\n");
+  for (const std::string& paragraph : Conclusions(report)) std::printf("%s\n\n", paragraph.c_str());
+  std::printf("wrote %s in %.0f s\n", path.c_str(), report.total_seconds);
+  return 0;
+}
+
+}  // namespace
+}  // namespace radfarm::bench
+
+int main(int argc, char** argv) {
+  try {
+    return radfarm::bench::Run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "solver_bench: %s\n", e.what());
+    return 1;
+  }
+}

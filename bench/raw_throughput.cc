@@ -1,0 +1,254 @@
+#include "bench/raw_throughput.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include "bench/stopwatch.h"
+#include "core/batch_runner.h"
+#include "core/progressive_solver.h"
+#include "core/ray_caster.h"
+#include "core/solve.h"
+#include "core/thread_pool.h"
+
+namespace radfarm::bench {
+namespace {
+
+// Batches and their rays, in plan order; ray_begin[b] is batch b's first ray in the arrays.
+struct RayWork {
+  std::vector<Batch> batches;
+  std::vector<size_t> ray_begin;
+  std::vector<RTCRayHit> rays;
+  std::vector<uint64_t> weights;
+  std::vector<Vec3> directions;  // unrounded: Trace decides front or back with these
+};
+
+// Solves `rounds` rounds (the solver needs each round's results to plan the next) and keeps their
+// batches.
+std::vector<Batch> PlanRounds(uint32_t rounds, ThreadPool* pool,
+                              std::vector<std::unique_ptr<BatchRunner>>* runners,
+                              ProgressiveSolver* solver) {
+  std::vector<Batch> batches;
+  for (uint32_t r = 0; r < rounds; ++r) {
+    const RoundPlan plan = solver->PlanRound(kLocalBatchRays);
+    if (plan.batches.empty()) break;
+    std::vector<BatchResult> results(plan.batches.size());
+    pool->ParallelFor(plan.batches.size(), [&](unsigned worker, size_t b) {
+      results[b] = (*runners)[worker]->Run(plan.batches[b]);
+    });
+    solver->ApplyRound(plan, results);
+    batches.insert(batches.end(), plan.batches.begin(), plan.batches.end());
+  }
+  return batches;
+}
+
+// The rays as RayCaster::Trace builds them: origin moved into Embree's frame and lifted off the
+// surface along the shooter's normal, then rounded to float.
+void GenerateRays(const PatchScene& scene, const RayCaster& caster, const RaySampler& sampler,
+                  RayWork* work) {
+  size_t total = 0;
+  for (const Batch& b : work->batches) {
+    work->ray_begin.push_back(total);
+    total += b.ray_count;
+  }
+  work->rays.resize(total);
+  work->weights.resize(total);
+  work->directions.resize(total);
+  for (size_t bi = 0; bi < work->batches.size(); ++bi) {
+    const Batch& b = work->batches[bi];
+    const Patch& shooter = scene.patches[b.shooter];
+    for (uint32_t k = 0; k < b.ray_count; ++k) {
+      const RaySample s = sampler.Sample(shooter, b.shooter, b.round, b.first_ray + k);
+      const Vec3 o = s.origin - caster.embree_origin() + shooter.normal * caster.origin_offset();
+      RTCRayHit& rh = work->rays[work->ray_begin[bi] + k];
+      rh.ray.org_x = static_cast<float>(o.x);
+      rh.ray.org_y = static_cast<float>(o.y);
+      rh.ray.org_z = static_cast<float>(o.z);
+      rh.ray.dir_x = static_cast<float>(s.direction.x);
+      rh.ray.dir_y = static_cast<float>(s.direction.y);
+      rh.ray.dir_z = static_cast<float>(s.direction.z);
+      rh.ray.tnear = 0.0f;
+      rh.ray.tfar = INFINITY;
+      rh.ray.time = 0.0f;
+      rh.ray.mask = 0xffffffffu;
+      rh.ray.id = 0;
+      rh.ray.flags = 0;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+      work->weights[work->ray_begin[bi] + k] = s.weight;
+      work->directions[work->ray_begin[bi] + k] = s.direction;
+    }
+  }
+}
+
+// Cuts the batches into `threads` contiguous groups of about equal ray counts; group t is batches
+// [first[t], first[t + 1]).
+std::vector<size_t> SplitBatches(const RayWork& work, unsigned threads) {
+  const size_t total = work.rays.size();
+  std::vector<size_t> first{0};
+  for (unsigned t = 1; t < threads; ++t) {
+    const size_t target = total * t / threads;
+    size_t b = first.back();
+    while (b < work.batches.size() && work.ray_begin[b] < target) ++b;
+    first.push_back(b);
+  }
+  first.push_back(work.batches.size());
+  return first;
+}
+
+size_t RayIndex(const RayWork& work, size_t batch) {
+  return batch < work.batches.size() ? work.ray_begin[batch] : work.rays.size();
+}
+
+// Runs body(t) on `threads` std::threads and returns the wall time from start to the last join.
+template <typename Body>
+double TimeThreads(unsigned threads, const Body& body) {
+  const Stopwatch clock;
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < threads; ++t) pool.emplace_back([&body, t] { body(t); });
+  for (std::thread& th : pool) th.join();
+  return clock.Seconds();
+}
+
+// Counts the traced rays' fates per batch the way BatchRunner does.
+std::vector<BatchResult> CountHits(const PatchScene& scene, const RayCaster& caster,
+                                   const RayWork& work, const std::vector<RTCRayHit>& traced) {
+  std::vector<BatchResult> results(work.batches.size());
+  std::vector<uint64_t> weight(scene.patches.size());
+  for (size_t b = 0; b < work.batches.size(); ++b) {
+    std::vector<uint32_t> touched;
+    for (size_t i = work.ray_begin[b]; i < RayIndex(work, b + 1); ++i) {
+      const RTCRayHit& rh = traced[i];
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+        results[b].escaped_weight += work.weights[i];
+        ++results[b].escaped_rays;
+        continue;
+      }
+      const uint32_t patch = caster.triangle_patch()[rh.hit.primID];
+      if (Dot(work.directions[i], scene.patches[patch].normal) >= 0) {
+        results[b].back_weight += work.weights[i];
+        ++results[b].back_rays;
+        continue;
+      }
+      if (weight[patch] == 0) touched.push_back(patch);
+      weight[patch] += work.weights[i];
+    }
+    std::sort(touched.begin(), touched.end());
+    for (uint32_t p : touched) {
+      results[b].hits.push_back({p, weight[p]});
+      weight[p] = 0;
+    }
+  }
+  return results;
+}
+
+}  // namespace
+
+RawThroughput MeasureRawThroughput(const BenchScene& bench_scene, const SolverSettings& settings,
+                                   uint32_t rounds, int repetitions, unsigned threads) {
+  const PatchScene& scene = bench_scene.patches();
+  const RayCaster caster(scene);
+  ProgressiveSolver solver(scene, settings);
+  ThreadPool pool(threads);
+  std::vector<std::unique_ptr<BatchRunner>> runners;
+  for (unsigned w = 0; w < pool.size(); ++w) {
+    runners.push_back(std::make_unique<BatchRunner>(scene, caster, solver.sampler()));
+  }
+  RayWork work;
+  work.batches = PlanRounds(rounds, &pool, &runners, &solver);
+  GenerateRays(scene, caster, solver.sampler(), &work);
+  const std::vector<size_t> group = SplitBatches(work, threads);
+
+  RawThroughput out;
+  out.scene = bench_scene.name;
+  out.patches = scene.patches.size();
+  out.rounds = solver.rounds_done();
+  out.rays = work.rays.size();
+  out.batches = work.batches.size();
+  out.threads = threads;
+  out.repetitions = repetitions;
+
+  RTCScene embree = caster.embree_scene();
+  std::vector<RTCRayHit> traced(work.rays.size());
+  std::vector<BatchResult> results(work.batches.size());
+  auto raw = [&] {
+    std::copy(work.rays.begin(), work.rays.end(), traced.begin());  // untimed: reset tfar and hits
+    return TimeThreads(threads, [&](unsigned t) {
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      const size_t end = RayIndex(work, group[t + 1]);
+      for (size_t i = RayIndex(work, group[t]); i < end; ++i) {
+        rtcIntersect1(embree, &context, &traced[i]);
+      }
+    });
+  };
+  auto runner = [&] {
+    return TimeThreads(threads, [&](unsigned t) {
+      for (size_t b = group[t]; b < group[t + 1]; ++b)
+        results[b] = runners[t]->Run(work.batches[b]);
+    });
+  };
+  std::vector<double> sink(threads);  // keeps the sampling loop from being optimised away
+  auto sampling = [&] {
+    return TimeThreads(threads, [&](unsigned t) {
+      double sum = 0;
+      for (size_t b = group[t]; b < group[t + 1]; ++b) {
+        const Batch& batch = work.batches[b];
+        const ShotSampler shot =
+            solver.sampler().Shot(scene.patches[batch.shooter], batch.shooter, batch.round);
+        for (uint64_t k = batch.first_ray; k < batch.first_ray + batch.ray_count; ++k) {
+          const RaySample ray = shot.Sample(k);
+          sum += ray.origin.x + ray.direction.x;
+        }
+      }
+      sink[t] = sum;
+    });
+  };
+  auto pooled = [&] {
+    const Stopwatch clock;
+    pool.ParallelFor(work.batches.size(), [&](unsigned worker, size_t b) {
+      results[b] = runners[worker]->Run(work.batches[b]);
+    });
+    return clock.Seconds();
+  };
+
+  // Warm-up (untimed): page in the arrays, and check that the raw loop finds the solver's hits.
+  raw();
+  runner();
+  out.same_hits = CountHits(scene, caster, work, traced) == results;
+  for (const BatchResult& r : results) {
+    out.escaped_rays += r.escaped_rays;
+    out.back_rays += r.back_rays;
+  }
+
+  std::vector<double> runner_ratio, pool_ratio;
+  for (int rep = 0; rep < repetitions; ++rep) {
+    out.raw_seconds.push_back(raw());
+    out.runner_seconds.push_back(runner());
+    out.pool_seconds.push_back(pooled());
+    out.sample_seconds.push_back(sampling());
+    runner_ratio.push_back(out.raw_seconds.back() / out.runner_seconds.back());
+    pool_ratio.push_back(out.raw_seconds.back() / out.pool_seconds.back());
+    std::printf(
+        "%s raw throughput, repetition %d: raw %.3f s, runner %.3f s, pool %.3f s, sampling "
+        "%.3f s\n",
+        out.scene.c_str(), rep + 1, out.raw_seconds.back(), out.runner_seconds.back(),
+        out.pool_seconds.back(), out.sample_seconds.back());
+    std::fflush(stdout);
+  }
+  const double rays = double(out.rays);
+  out.raw_rays_per_second = rays / Median(out.raw_seconds);
+  out.runner_rays_per_second = rays / Median(out.runner_seconds);
+  out.pool_rays_per_second = rays / Median(out.pool_seconds);
+  out.sample_rays_per_second = rays / Median(out.sample_seconds);
+  out.runner_over_raw = Median(runner_ratio);
+  out.pool_over_raw = Median(pool_ratio);
+  return out;
+}
+
+}  // namespace radfarm::bench

@@ -1,0 +1,39 @@
+// Sections 3 and 4 of the report: the seed paper's workload (its room, 20 shots of a 1 degree
+// hemisphere grid, one shooter per round) timed on this machine, and the default sampler given
+// about the same wall time on the same room.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bench/bench_scene.h"
+#include "bench/sweep.h"
+
+namespace radfarm::bench {
+
+// The seed paper's figure: 187 s for this workload on a Pentium 4.
+inline constexpr double kSeedPaperSeconds = 187;
+inline constexpr uint32_t kSeedShots = 20;
+
+struct SeedWorkload {
+  SweepPoint seed;                // all threads; seconds: median of the repetitions
+  double one_thread_seconds = 0;  // median, SolverSettings::threads = 1
+  int repetitions = 0;
+  int match_repetitions = 0;
+  size_t patches = 0;
+  SweepPoint default_auto;        // the default settings as they are (automatic shot_rays)
+  std::vector<SweepPoint> tried;  // default_auto, then halved shot_rays: ascending budget
+  SweepPoint equal_time;          // the one of `tried` matched to the seed's time
+  double error_ratio = 0;         // seed.error / equal_time.error
+  double error_ratio_lit = 0;     // seed.error_lit / equal_time.error_lit
+};
+
+SolverSettings SeedSettings();
+
+// `reference` must be the seed room's. Times the seed workload (median of `repetitions`), then
+// halves the default sampler's shot_rays down from its automatic value until a solve (median of
+// `match_repetitions`) takes about as long as the seed workload, and scores both.
+SeedWorkload RunSeedWorkload(const BenchScene& room, const Reference& reference, int repetitions,
+                             int match_repetitions);
+
+}  // namespace radfarm::bench
