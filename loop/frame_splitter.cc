@@ -1,0 +1,64 @@
+#include "loop/frame_splitter.h"
+
+#include <algorithm>
+
+namespace radfarm::loop {
+namespace {
+// A buffer grown for one big frame is given back afterwards, so an idle connection that once
+// received 16 MiB does not keep 16 MiB.
+constexpr size_t kKeptCapacity = 64 * 1024;
+}  // namespace
+
+void WriteFramePrefix(uint32_t payload_bytes, uint8_t* out) {
+  for (size_t i = 0; i < kFramePrefixBytes; ++i)
+    out[i] = static_cast<uint8_t>(payload_bytes >> (8 * i));
+}
+
+uint32_t ReadFramePrefix(const uint8_t* bytes) {
+  uint32_t value = 0;
+  for (size_t i = 0; i < kFramePrefixBytes; ++i) value |= uint32_t{bytes[i]} << (8 * i);
+  return value;
+}
+
+FrameSplitter::FrameSplitter(uint32_t max_payload_bytes) : max_payload_bytes_(max_payload_bytes) {}
+
+Status FrameSplitter::Feed(std::span<const uint8_t> bytes, const OnPayload& on_payload) {
+  if (failed()) return Error{error_};
+  while (!bytes.empty()) {
+    if (!in_payload_) {
+      const size_t take = std::min(kFramePrefixBytes - prefix_have_, bytes.size());
+      std::copy_n(bytes.begin(), take, prefix_.begin() + prefix_have_);
+      prefix_have_ += take;
+      bytes = bytes.subspan(take);
+      if (prefix_have_ < kFramePrefixBytes) break;
+      prefix_have_ = 0;
+      expected_ = ReadFramePrefix(prefix_.data());
+      if (expected_ > max_payload_bytes_) {
+        error_ = "frame of " + std::to_string(expected_) + " bytes exceeds the limit of " +
+                 std::to_string(max_payload_bytes_) + " bytes";
+        return Error{error_};
+      }
+      in_payload_ = true;
+    }
+    if (partial_.empty() && bytes.size() >= expected_) {
+      // The whole payload is in this chunk: hand it over without copying.
+      in_payload_ = false;
+      const std::span<const uint8_t> payload = bytes.first(expected_);
+      bytes = bytes.subspan(expected_);
+      if (!on_payload(payload)) return Ok{};
+      continue;
+    }
+    const size_t take = std::min<size_t>(expected_ - partial_.size(), bytes.size());
+    partial_.insert(partial_.end(), bytes.begin(), bytes.begin() + static_cast<ptrdiff_t>(take));
+    bytes = bytes.subspan(take);
+    if (partial_.size() < expected_) break;
+    in_payload_ = false;
+    const bool go_on = on_payload(partial_);
+    partial_.clear();
+    if (partial_.capacity() > kKeptCapacity) partial_.shrink_to_fit();
+    if (!go_on) return Ok{};
+  }
+  return Ok{};
+}
+
+}  // namespace radfarm::loop

@@ -1,0 +1,55 @@
+// FrameSplitter: cuts a byte stream, in whatever chunks it arrives, into frames: a 4-byte
+// little-endian payload length, then that many payload bytes (the wire format of
+// docs/PROTOCOL.md; what the payload holds is protocol/'s business).
+//
+// Memory: the length is checked against the limit as soon as its 4 bytes are in, before anything
+// is reserved for the payload, and the buffer grows only with bytes that actually arrived, so a
+// peer cannot make us allocate more than it sends. Complete frames inside one chunk are passed
+// straight from the chunk without copying. After an error the splitter stays failed: a byte
+// stream cannot be resynchronised. Not thread-safe (one per connection).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+
+namespace radfarm::loop {
+
+inline constexpr size_t kFramePrefixBytes = 4;
+
+void WriteFramePrefix(uint32_t payload_bytes, uint8_t* out);
+uint32_t ReadFramePrefix(const uint8_t* bytes);
+
+class FrameSplitter {
+ public:
+  explicit FrameSplitter(uint32_t max_payload_bytes);
+
+  // Called for each complete payload, valid during the call only. Returning false stops the
+  // splitter at once; the rest of the chunk is dropped (the caller is closing the stream).
+  using OnPayload = std::function<bool(std::span<const uint8_t> payload)>;
+
+  // Fails (and stays failed) on a length above the limit.
+  Status Feed(std::span<const uint8_t> bytes, const OnPayload& on_payload);
+
+  // Bytes of the current partial frame held here, and the memory reserved for them.
+  size_t buffered_bytes() const { return prefix_have_ + partial_.size(); }
+  size_t buffer_capacity() const { return partial_.capacity(); }
+  bool failed() const { return !error_.empty(); }
+
+ private:
+  uint32_t max_payload_bytes_;
+  std::array<uint8_t, kFramePrefixBytes> prefix_{};
+  size_t prefix_have_ = 0;
+  bool in_payload_ = false;  // prefix complete, waiting for `expected_` payload bytes
+  uint32_t expected_ = 0;
+  std::vector<uint8_t> partial_;  // payload bytes of a frame split across chunks
+  std::string error_;
+};
+
+}  // namespace radfarm::loop
