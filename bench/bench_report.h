@@ -15,6 +15,7 @@ struct BenchReport {
   MachineInfo machine;
   bool quick = false;
   double total_seconds = 0;
+  std::string load_average_end;    // /proc/loadavg when the measurements were done
   SweepConfig sweep_config;        // shared by the scenes except for the ladder
   std::vector<SceneSweep> sweeps;  // section 1, one per scene
   RawThroughput raw;               // section 2

@@ -38,13 +38,6 @@ std::string CpuModel() {
   return "unknown";
 }
 
-std::string LoadAverage() {
-  std::ifstream in("/proc/loadavg");
-  std::string one, five, fifteen;
-  if (!(in >> one >> five >> fifteen)) return "unknown";
-  return one + " " + five + " " + fifteen;
-}
-
 // Quotes an argument when the shell would split it.
 std::string ShellWord(const std::string& arg) {
   if (!arg.empty() && arg.find_first_of(" \t'\"\\$") == std::string::npos) return arg;
@@ -60,7 +53,7 @@ MachineInfo ReadMachineInfo(int argc, char** argv) {
   info.date = UtcNow();
   info.cpus = AvailableCpus();
   info.cpu_model = CpuModel();
-  info.load_average = LoadAverage();
+  info.load_average = ReadLoadAverage();
 #if defined(__clang__)
   info.compiler = "clang " __clang_version__;
 #elif defined(__GNUC__)
@@ -71,6 +64,13 @@ MachineInfo ReadMachineInfo(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) cmd << (i ? " " : "") << ShellWord(argv[i]);
   info.command_line = cmd.str();
   return info;
+}
+
+std::string ReadLoadAverage() {
+  std::ifstream in("/proc/loadavg");
+  std::string one, five, fifteen;
+  if (!(in >> one >> five >> fifteen)) return "unknown";
+  return one + " " + five + " " + fifteen;
 }
 
 }  // namespace radfarm::bench

@@ -17,4 +17,7 @@ struct MachineInfo {
 
 MachineInfo ReadMachineInfo(int argc, char** argv);
 
+// /proc/loadavg's 1, 5 and 15 minute figures.
+std::string ReadLoadAverage();
+
 }  // namespace radfarm::bench

@@ -15,6 +15,7 @@
 #include "bench/bench_report.h"
 #include "bench/bench_scene.h"
 #include "bench/conclusions.h"
+#include "bench/machine_info.h"
 #include "bench/plot.h"
 #include "bench/raw_throughput.h"
 #include "bench/report.h"
@@ -90,6 +91,7 @@ int Run(int argc, char** argv) {
     report.plots.push_back(plot_error.empty() ? name : "");
   }
   report.total_seconds = total.Seconds();
+  report.load_average_end = ReadLoadAverage();
   const std::string path = options.out_dir + "/BENCHMARKS.md";
   if (const std::string write_error = WriteReport(report, path); !write_error.empty()) {
     std::fprintf(stderr, "solver_bench: %s\n", write_error.c_str());

@@ -55,7 +55,7 @@ void Header(std::ostringstream& md, const BenchReport& r) {
      << "| | |\n|---|---|\n"
      << "| date | " << m.date << " |\n"
      << "| machine | " << m.cpus << " CPUs (`nproc`), " << m.cpu_model << " |\n"
-     << "| load average at start | " << m.load_average
+     << "| load average at start, at end | " << m.load_average << "; " << r.load_average_end
      << " (the machine is shared: timings are medians of repeated runs, ratios are measured "
         "within one run) |\n"
      << "| build | " << m.compiler << ", Embree " << m.embree_version << " |\n"
@@ -181,15 +181,23 @@ void SeedSection(std::ostringstream& md, const BenchReport& r) {
      << F("%g", SolverSettings{}.tolerance)
      << "), with `shot_rays` halved from its automatic value until a solve takes about as long as "
         "the seed's workload (at most 10% longer), or until halving stops saving rays "
-        "(`min_shooter_rays` rays per shooter and round set a floor). Median of "
-     << s.match_repetitions << " runs each:\n\n";
-  PointTable(md, s.tried, s.match_repetitions);
+        "(`min_shooter_rays` rays per shooter and round set a floor). Each budget is timed "
+        "alternately with the seed workload, "
+     << s.match_repetitions << " runs each, medians:\n\n"
+     << "| default sampler | rays | rounds | seconds | seed workload alongside, seconds | RMS "
+        "rel. error, all | RMS rel. error, lit |\n|---|--:|--:|--:|--:|--:|--:|\n";
+  for (const EqualTimeCandidate& c : s.tried) {
+    const SweepPoint& p = c.point;
+    md << "| " << p.budget << " | " << Count(p.rays) << " | " << p.rounds << " | "
+       << F("%.3f", p.seconds) << " | " << F("%.3f", c.seed_seconds) << " | " << F("%.4f", p.error)
+       << " | " << F("%.4f", p.error_lit) << " |\n";
+  }
+  const SweepPoint& eq = s.equal_time.point;
   md << "\n| | seconds | RMS rel. error, all | RMS rel. error, lit |\n|---|--:|--:|--:|\n"
-     << "| seed method (grid 1°, 20 shots) | " << F("%.3f", s.seed.seconds) << " | "
+     << "| seed method (grid 1°, 20 shots) | " << F("%.3f", s.equal_time.seed_seconds) << " | "
      << F("%.4f", s.seed.error) << " | " << F("%.4f", s.seed.error_lit) << " |\n"
-     << "| default sampler, " << s.equal_time.budget << " | " << F("%.3f", s.equal_time.seconds)
-     << " | " << F("%.4f", s.equal_time.error) << " | " << F("%.4f", s.equal_time.error_lit)
-     << " |\n"
+     << "| default sampler, " << eq.budget << " | " << F("%.3f", eq.seconds) << " | "
+     << F("%.4f", eq.error) << " | " << F("%.4f", eq.error_lit) << " |\n"
      << "| **error ratio** (seed / default) | | **" << F("%.1f×", s.error_ratio) << "** | **"
      << F("%.1f×", s.error_ratio_lit) << "** |\n\n";
 }

@@ -4,9 +4,33 @@
 #include <cstdio>
 #include <string>
 
+#include "bench/timed_solve.h"
 #include "core/solver_settings.h"
 
 namespace radfarm::bench {
+namespace {
+
+// A solve is "about as long" as the seed workload when at most this much longer: timings of a
+// fifth of a second on a shared machine jitter by that much.
+constexpr double kTimeSlack = 1.1;
+// Halving shot_rays has reached min_shooter_rays' floor of rays per round when it saves less than
+// this share of the rays; smaller budgets then only add error.
+constexpr double kFloorRayRatio = 0.9;
+constexpr uint64_t kSmallestShotRays = 1024;
+
+EqualTimeCandidate TryBudget(const BenchScene& room, const SolverSettings& settings,
+                             std::string budget, const Reference& reference, int repetitions) {
+  const auto [seed, candidate] =
+      RunTimedPair(room.patches(), SeedSettings(), settings, repetitions);
+  EqualTimeCandidate out;
+  out.point = ScorePoint(candidate, settings, std::move(budget), reference);
+  out.seed_seconds = seed.median_seconds;
+  PrintPoint(room.name, out.point);
+  std::printf("%s:   (seed workload alongside: %.3f s)\n", room.name.c_str(), out.seed_seconds);
+  return out;
+}
+
+}  // namespace
 
 SolverSettings SeedSettings() {
   SolverSettings s;
@@ -25,51 +49,48 @@ SeedWorkload RunSeedWorkload(const BenchScene& room, const Reference& reference,
   out.repetitions = repetitions;
   out.match_repetitions = match_repetitions;
   out.patches = room.patches().patches.size();
+  SolverSettings one = SeedSettings();
+  one.threads = 1;
+  const auto [all_threads, one_thread] =
+      RunTimedPair(room.patches(), SeedSettings(), one, repetitions);
   out.seed =
-      RunPoint(room, SeedSettings(), "1°, 20 shots, 1 shooter per round", reference, repetitions);
+      ScorePoint(all_threads, SeedSettings(), "1°, 20 shots, 1 shooter per round", reference);
+  out.one_thread_seconds = one_thread.median_seconds;
   PrintPoint(room.name, out.seed);
+  std::printf("%s: seed workload on 1 thread: %.3f s (median)\n", room.name.c_str(),
+              out.one_thread_seconds);
   if (out.seed.rounds != kSeedShots) {
     std::fprintf(stderr, "solver_bench: the seed workload ran %llu rounds, not %u\n",
                  static_cast<unsigned long long>(out.seed.rounds), kSeedShots);
   }
-  SolverSettings one = SeedSettings();
-  one.threads = 1;
-  out.one_thread_seconds = RunPoint(room, one, "", reference, repetitions).seconds;
-  std::printf("%s: seed workload on 1 thread: %.3f s (median)\n", room.name.c_str(),
-              out.one_thread_seconds);
 
-  const SolverSettings defaults;
-  out.default_auto =
-      RunPoint(room, defaults, "defaults (shot_rays automatic)", reference, match_repetitions);
-  PrintPoint(room.name, out.default_auto);
   // Halve shot_rays from its automatic value (as ProgressiveSolver resolves it) until a solve takes
-  // about the seed's time (at most kTimeSlack longer: single timings of a fifth of a second jitter
-  // by more than that), or until halving stops saving rays: min_shooter_rays then sets a floor of
-  // rays per round, and smaller budgets only add error.
-  constexpr double kTimeSlack = 1.1;
-  constexpr double kFloorRayRatio = 0.9;
-  const double limit = kTimeSlack * out.seed.seconds;
-  out.tried.push_back(out.default_auto);
+  // about the seed's time, or until halving stops saving rays.
+  const SolverSettings defaults;
+  out.tried.push_back(
+      TryBudget(room, defaults, "defaults (shot_rays automatic)", reference, match_repetitions));
+  auto fits = [](const EqualTimeCandidate& c) {
+    return c.point.seconds <= kTimeSlack * c.seed_seconds;
+  };
   uint64_t shot_rays =
       std::max(kMinAutoShotRays, kAutoShotRaysPerPatch * room.patches().patches.size());
-  while (out.tried.front().seconds > limit && shot_rays / 2 >= 1024) {
+  while (!fits(out.tried.front()) && shot_rays / 2 >= kSmallestShotRays) {
     shot_rays /= 2;
     SolverSettings s = defaults;
     s.shot_rays = shot_rays;
-    const uint64_t previous_rays = out.tried.front().rays;
-    out.tried.insert(out.tried.begin(), RunPoint(room, s, "shot_rays " + std::to_string(shot_rays),
-                                                 reference, match_repetitions));
-    PrintPoint(room.name, out.tried.front());
-    if (double(out.tried.front().rays) > kFloorRayRatio * double(previous_rays)) break;
+    const uint64_t previous_rays = out.tried.front().point.rays;
+    out.tried.insert(out.tried.begin(), TryBudget(room, s, "shot_rays " + std::to_string(shot_rays),
+                                                  reference, match_repetitions));
+    if (double(out.tried.front().point.rays) > kFloorRayRatio * double(previous_rays)) break;
   }
-  // The largest budget within the time; failing that, the first one at the floor.
+  // The largest budget that fits; failing that, the smallest tried (at the floor).
   out.equal_time = out.tried.front();
-  for (const SweepPoint& p : out.tried) {
-    if (p.seconds <= limit) out.equal_time = p;
+  for (const EqualTimeCandidate& c : out.tried) {
+    if (fits(c)) out.equal_time = c;
   }
-  out.error_ratio = out.equal_time.error > 0 ? out.seed.error / out.equal_time.error : 0;
-  out.error_ratio_lit =
-      out.equal_time.error_lit > 0 ? out.seed.error_lit / out.equal_time.error_lit : 0;
+  const SweepPoint& eq = out.equal_time.point;
+  out.error_ratio = eq.error > 0 ? out.seed.error / eq.error : 0;
+  out.error_ratio_lit = eq.error_lit > 0 ? out.seed.error_lit / eq.error_lit : 0;
   return out;
 }
 

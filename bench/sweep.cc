@@ -50,9 +50,8 @@ Reference ComputeReference(const BenchScene& scene, const SweepConfig& config) {
   return ref;
 }
 
-SweepPoint RunPoint(const BenchScene& scene, const SolverSettings& settings, std::string budget,
-                    const Reference& reference, int repetitions) {
-  const TimedSolve timed = RunTimedSolve(scene.patches(), settings, repetitions);
+SweepPoint ScorePoint(const TimedSolve& timed, const SolverSettings& settings, std::string budget,
+                      const Reference& reference) {
   SweepPoint point;
   point.settings = settings;
   point.budget = std::move(budget);
@@ -67,6 +66,12 @@ SweepPoint RunPoint(const BenchScene& scene, const SolverSettings& settings, std
   point.unshot_fraction = timed.result.stats.unshot_fraction;
   point.stop_reason = timed.result.stats.stop_reason;
   return point;
+}
+
+SweepPoint RunPoint(const BenchScene& scene, const SolverSettings& settings, std::string budget,
+                    const Reference& reference, int repetitions) {
+  return ScorePoint(RunTimedSolve(scene.patches(), settings, repetitions), settings,
+                    std::move(budget), reference);
 }
 
 SceneSweep RunSweep(const BenchScene& scene, const SweepConfig& config) {

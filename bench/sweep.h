@@ -10,6 +10,7 @@
 
 #include "bench/bench_scene.h"
 #include "bench/patch_error.h"
+#include "bench/timed_solve.h"
 #include "core/rgb.h"
 #include "core/solver_settings.h"
 
@@ -73,6 +74,10 @@ struct SceneSweep {
 };
 
 Reference ComputeReference(const BenchScene& scene, const SweepConfig& config);
+
+// Scores a timed solve against `reference`.
+SweepPoint ScorePoint(const TimedSolve& timed, const SolverSettings& settings, std::string budget,
+                      const Reference& reference);
 
 // Times and scores one setting against `reference`.
 SweepPoint RunPoint(const BenchScene& scene, const SolverSettings& settings, std::string budget,

@@ -47,7 +47,7 @@ PlotPanel Panel(const SceneSweep& sweep, const SweepConfig& config, const SeedWo
                             kSeedColor,
                             kTriangle});
     panel.series.push_back({"default sampler at the seed method's time",
-                            {{seed->equal_time.seconds, seed->equal_time.*error}},
+                            {{seed->equal_time.point.seconds, seed->equal_time.point.*error}},
                             false,
                             kSobolColor,
                             kTriangle});

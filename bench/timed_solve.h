@@ -2,6 +2,7 @@
 // repetition gives the same solution; only the time varies.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "core/patch_scene.h"
@@ -12,11 +13,16 @@ namespace radfarm::bench {
 
 struct TimedSolve {
   SolveResult result;  // of the last repetition (all are identical)
-  std::vector<double>
-      seconds;  // wall time of each repetition: Solve() as called, BVH build included
+  // Wall time of each repetition: Solve() as called, BVH build included.
+  std::vector<double> seconds;
   double median_seconds = 0;
 };
 
 TimedSolve RunTimedSolve(const PatchScene& scene, const SolverSettings& settings, int repetitions);
+
+// Times two settings alternately (a, b, a, b, ...), so that both see the same machine load: for
+// comparisons of two times on a shared machine.
+std::pair<TimedSolve, TimedSolve> RunTimedPair(const PatchScene& scene, const SolverSettings& a,
+                                               const SolverSettings& b, int repetitions);
 
 }  // namespace radfarm::bench
