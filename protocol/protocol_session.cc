@@ -227,9 +227,7 @@ Result<std::vector<uint8_t>> ProtocolSession::Encode(const Message& message) {
                  (role_ == Role::kMaster ? "the master" : "an agent")};
   }
   if (Status valid = CheckMessage(message); !valid) return Error{valid.error()};
-  const uint16_t version =
-      version_ != 0 ? version_ : (role_ == Role::kAgent ? hello_.max_version : kProtocolVersion);
-  std::vector<uint8_t> frame = EncodeFrame(message, version == 0 ? kProtocolVersion : version);
+  std::vector<uint8_t> frame = EncodeFrame(message, WireVersion());
   if (role_ == Role::kAgent && state_ == State::kAuthenticated &&
       frame.size() - kLengthPrefixBytes > welcome_.max_frame_bytes) {
     return Error{"session: " + name + " frame of " + std::to_string(frame.size()) +
@@ -249,8 +247,14 @@ void ProtocolSession::Abort(std::string_view reason) {
 }
 
 std::vector<uint8_t> ProtocolSession::CloseFrame() const {
-  const uint16_t version = version_ != 0 ? version_ : kProtocolVersion;
-  return EncodeFrame(CloseMsg{failure_code_, CloseDetail(failure_reason_)}, version);
+  return EncodeFrame(CloseMsg{failure_code_, CloseDetail(failure_reason_)}, WireVersion());
+}
+
+uint16_t ProtocolSession::WireVersion() const {
+  if (version_ != 0) return version_;
+  // Before the Challenge: an agent writes in the version its Hello was written in.
+  if (role_ == Role::kAgent && hello_.max_version != 0) return hello_.max_version;
+  return kProtocolVersion;
 }
 
 Error ProtocolSession::Fail(CloseCode code, std::string reason) {

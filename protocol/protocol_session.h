@@ -109,6 +109,8 @@ class ProtocolSession {
   Result<Accepted> AcceptWelcome(const DecodedFrame& frame);
   Result<Accepted> AcceptApplication(const DecodedFrame& frame);
   Error Fail(CloseCode code, std::string reason);
+  // The version outgoing frames are written in: the negotiated one once there is one.
+  uint16_t WireVersion() const;
   // Whether the peer (the other role) may send `message` once authenticated.
   bool PeerMaySend(const Message& message) const;
 

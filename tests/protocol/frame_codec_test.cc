@@ -73,5 +73,15 @@ TEST(ProtocolCodecTest, MisalignedBufferDecodes) {
   EXPECT_TRUE(decoded->message == SampleMessages()[6]);
 }
 
+TEST(ProtocolCodecTest, LargestSceneChunkFitsTheSmallestPeerLimit) {
+  SceneChunkMsg chunk{testing::Pattern(1), uint64_t{1} << 40, 0,
+                      std::vector<uint8_t>(kMaxSceneChunkBytes, 0xab)};
+  const std::vector<uint8_t> frame = EncodeFrame(chunk);
+  EXPECT_LE(frame.size() - kLengthPrefixBytes, kMinPeerFrameBytes);
+  Result<DecodedFrame> decoded = DecodeFrame(frame, kMinPeerFrameBytes);
+  ASSERT_TRUE(decoded) << decoded.error();
+  EXPECT_TRUE(decoded->message == Message{chunk});
+}
+
 }  // namespace
 }  // namespace radfarm::protocol
