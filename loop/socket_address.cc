@@ -52,7 +52,7 @@ Result<std::vector<SocketAddress>> Resolve(const HostPort& host_port, bool passi
   addrinfo hints{};
   hints.ai_family = AF_UNSPEC;
   hints.ai_socktype = SOCK_STREAM;
-  hints.ai_flags = AI_ADDRCONFIG | (passive ? AI_PASSIVE : 0);
+  hints.ai_flags = passive ? AI_PASSIVE : 0;
   addrinfo* found = nullptr;
   const std::string port = std::to_string(host_port.port);
   if (int rc = getaddrinfo(host_port.host.c_str(), port.c_str(), &hints, &found); rc != 0) {

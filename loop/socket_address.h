@@ -32,6 +32,7 @@ class SocketAddress {
 
 // IP literals directly; names through getaddrinfo, which BLOCKS: call it at start-up or on a
 // WorkQueue, never from a loop callback. `passive`: addresses to bind rather than to connect to.
+// A name may give several addresses ("localhost": ::1 and 127.0.0.1): try them in order.
 Result<std::vector<SocketAddress>> Resolve(const HostPort& host_port, bool passive);
 
 }  // namespace radfarm::loop
