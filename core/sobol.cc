@@ -37,8 +37,7 @@ constexpr DirectionTable MakeDirections() {
   return v;
 }
 
-// Direction numbers stored bit-reversed: the XOR of reversed numbers is the reversed coordinate,
-// which is the form the Owen scramble below wants, so one reversal per coordinate is saved.
+// Direction numbers stored bit-reversed (bit k of the table is the coefficient of 2^-(k+1)).
 constexpr DirectionTable MakeReversedDirections() {
   DirectionTable v = MakeDirections();
   for (auto& dim : v) {
@@ -60,52 +59,29 @@ inline uint32_t ReverseBits(uint32_t x) {
   return ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
 }
 
-// Laine-Karras style hash that only lets lower bits affect higher ones; on bit-reversed input that
-// is a nested uniform scramble (Burley 2020, with his improved constants).
-uint32_t LaineKarrasPermutation(uint32_t x, uint32_t seed) {
-  x ^= x * 0x3d20adeau;
-  x += seed;
-  x *= (seed >> 16) | 1u;
-  x ^= x * 0x05526c56u;
-  x ^= x * 0x53a22864u;
-  return x;
-}
-
-uint32_t NestedUniformScramble(uint32_t x, uint32_t seed) {
-  return ReverseBits(LaineKarrasPermutation(ReverseBits(x), seed));
-}
-
-// Same scramble for an input given already bit-reversed.
-uint32_t NestedUniformScrambleReversed(uint32_t reversed_x, uint32_t seed) {
-  return ReverseBits(LaineKarrasPermutation(reversed_x, seed));
-}
-
 }  // namespace
 
 ScrambledSobol4::ScrambledSobol4(uint64_t seed) {
-  index_seed_ = static_cast<uint32_t>(HashWords(seed, 0x51));
   for (int d = 0; d < kDimensions; ++d) {
     dim_seeds_[d] = static_cast<uint32_t>(HashWords(seed, 0x100 + d));
   }
 }
 
 std::array<double, ScrambledSobol4::kDimensions> ScrambledSobol4::Point(uint32_t index) const {
-  // Shuffling the index with an Owen scramble keeps every power-of-two prefix stratified while
-  // decorrelating the dimensions' padding (Burley 2020, section 4).
-  const uint32_t shuffled = NestedUniformScramble(index, index_seed_);
   static_assert(kDimensions == 4);
   uint32_t x0 = 0, x1 = 0, x2 = 0, x3 = 0;  // registers, not an array: this loop is hot
-  for (uint32_t bits = shuffled; bits != 0; bits &= bits - 1) {
+  for (uint32_t bits = index; bits != 0; bits &= bits - 1) {
     const int bit = __builtin_ctz(bits);
     x0 ^= kReversedDirections[0][bit];
     x1 ^= kReversedDirections[1][bit];
     x2 ^= kReversedDirections[2][bit];
     x3 ^= kReversedDirections[3][bit];
   }
-  return {double(NestedUniformScrambleReversed(x0, dim_seeds_[0])) * 0x1.0p-32,
-          double(NestedUniformScrambleReversed(x1, dim_seeds_[1])) * 0x1.0p-32,
-          double(NestedUniformScrambleReversed(x2, dim_seeds_[2])) * 0x1.0p-32,
-          double(NestedUniformScrambleReversed(x3, dim_seeds_[3])) * 0x1.0p-32};
+  // The table is bit-reversed, so reverse back before the digital shift.
+  return {double(ReverseBits(x0) ^ dim_seeds_[0]) * 0x1.0p-32,
+          double(ReverseBits(x1) ^ dim_seeds_[1]) * 0x1.0p-32,
+          double(ReverseBits(x2) ^ dim_seeds_[2]) * 0x1.0p-32,
+          double(ReverseBits(x3) ^ dim_seeds_[3]) * 0x1.0p-32};
 }
 
 }  // namespace radfarm

@@ -10,7 +10,7 @@ namespace radfarm {
 enum class SamplerKind {
   kGrid,    // the seed paper's method: a fixed hemisphere grid from the patch centre
   kRandom,  // independent uniform origins and cosine-weighted directions
-  kSobol,   // Owen-scrambled Sobol points over origin and direction
+  kSobol,   // Sobol points over origin and direction, randomised per shot
 };
 
 std::string_view SamplerName(SamplerKind kind);
