@@ -202,14 +202,14 @@ std::vector<std::string> Conclusions(const BenchReport& report) {
              kSeedPaperSeconds / seed.one_thread_seconds) +
       Format("In about that time (%.3g s against %.3g s, timed alternately) the default "
              "sampler's error is ",
-             eq.seconds, seed.equal_time.seed_seconds) +
+             eq.seconds, seed.seed_seconds_alongside) +
       Format("%.1f× lower on the lit patches (%.3g against %.3g) ", seed.error_ratio_lit,
              eq.error_lit, seed.seed.error_lit) +
       Format("and %.1f× lower over all patches (%.3g against %.3g)", seed.error_ratio, eq.error,
              seed.seed.error) +
       " (aim: at least 10×: " + Aim(seed.error_ratio_lit >= 10, seed.error_ratio >= 10) + ")." +
-      (eq.seconds > 1.1 * seed.equal_time.seed_seconds
-           ? " Even its smallest useful budget takes longer than the seed workload: the "
+      (seed.at_floor
+           ? " No budget of the default sampler is as fast as the seed workload: the "
              "min_shooter_rays rays every shooter casts in every round set a floor on its time."
            : "") +
       " The seed method's error is mostly the light it has not yet shot: " +

@@ -98,7 +98,8 @@ void Method(std::ostringstream& md, const BenchReport& r) {
         "per shot, so its line runs the "
      << F("%g", c.grid_step_degrees) << "° grid with " << c.grid_shooters_per_round
      << " shooters per round and, as `max_rays`, the ray count of the Sobol run at the same rung "
-        "(Solve stops at the first round boundary past it, or at the tolerance).\n\n";
+        "(Solve stops at the first round boundary past it, or at the tolerance). A rung's three "
+        "samplers run alternately, so that they see the same machine load.\n\n";
 }
 
 void SweepSection(std::ostringstream& md, const BenchReport& r) {
@@ -183,7 +184,13 @@ void SeedSection(std::ostringstream& md, const BenchReport& r) {
         "the seed's workload (at most 10% longer), or until halving stops saving rays "
         "(`min_shooter_rays` rays per shooter and round set a floor). Each budget is timed "
         "alternately with the seed workload, "
-     << s.match_repetitions << " runs each, medians:\n\n"
+     << s.match_repetitions
+     << " runs each, medians; the seed's time compared with is the median of all those seed "
+        "runs, "
+     << F("%.3f", s.seed_seconds_alongside) << " s. The match is the largest budget within 10% of "
+     << (s.at_floor ? "the fastest budget's time (**none is as fast as the seed workload**)"
+                    : "the seed's time")
+     << ".\n\n"
      << "| default sampler | rays | rounds | seconds | seed workload alongside, seconds | RMS "
         "rel. error, all | RMS rel. error, lit |\n|---|--:|--:|--:|--:|--:|--:|\n";
   for (const EqualTimeCandidate& c : s.tried) {
@@ -194,7 +201,7 @@ void SeedSection(std::ostringstream& md, const BenchReport& r) {
   }
   const SweepPoint& eq = s.equal_time.point;
   md << "\n| | seconds | RMS rel. error, all | RMS rel. error, lit |\n|---|--:|--:|--:|\n"
-     << "| seed method (grid 1°, 20 shots) | " << F("%.3f", s.equal_time.seed_seconds) << " | "
+     << "| seed method (grid 1°, 20 shots) | " << F("%.3f", s.seed_seconds_alongside) << " | "
      << F("%.4f", s.seed.error) << " | " << F("%.4f", s.seed.error_lit) << " |\n"
      << "| default sampler, " << eq.budget << " | " << F("%.3f", eq.seconds) << " | "
      << F("%.4f", eq.error) << " | " << F("%.4f", eq.error_lit) << " |\n"

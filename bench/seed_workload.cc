@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <string>
+#include <vector>
 
+#include "bench/stopwatch.h"
 #include "bench/timed_solve.h"
 #include "core/solver_settings.h"
 
@@ -18,10 +20,13 @@ constexpr double kTimeSlack = 1.1;
 constexpr double kFloorRayRatio = 0.9;
 constexpr uint64_t kSmallestShotRays = 1024;
 
+// Times `settings` alternately with the seed workload; appends the seed's times to *seed_times.
 EqualTimeCandidate TryBudget(const BenchScene& room, const SolverSettings& settings,
-                             std::string budget, const Reference& reference, int repetitions) {
+                             std::string budget, const Reference& reference, int repetitions,
+                             std::vector<double>* seed_times) {
   const auto [seed, candidate] =
       RunTimedPair(room.patches(), SeedSettings(), settings, repetitions);
+  seed_times->insert(seed_times->end(), seed.seconds.begin(), seed.seconds.end());
   EqualTimeCandidate out;
   out.point = ScorePoint(candidate, settings, std::move(budget), reference);
   out.seed_seconds = seed.median_seconds;
@@ -67,26 +72,31 @@ SeedWorkload RunSeedWorkload(const BenchScene& room, const Reference& reference,
   // Halve shot_rays from its automatic value (as ProgressiveSolver resolves it) until a solve takes
   // about the seed's time, or until halving stops saving rays.
   const SolverSettings defaults;
-  out.tried.push_back(
-      TryBudget(room, defaults, "defaults (shot_rays automatic)", reference, match_repetitions));
-  auto fits = [](const EqualTimeCandidate& c) {
-    return c.point.seconds <= kTimeSlack * c.seed_seconds;
-  };
+  std::vector<double> seed_times;
+  out.tried.push_back(TryBudget(room, defaults, "defaults (shot_rays automatic)", reference,
+                                match_repetitions, &seed_times));
   uint64_t shot_rays =
       std::max(kMinAutoShotRays, kAutoShotRaysPerPatch * room.patches().patches.size());
-  while (!fits(out.tried.front()) && shot_rays / 2 >= kSmallestShotRays) {
+  while (out.tried.front().point.seconds > kTimeSlack * Median(seed_times) &&
+         shot_rays / 2 >= kSmallestShotRays) {
     shot_rays /= 2;
     SolverSettings s = defaults;
     s.shot_rays = shot_rays;
     const uint64_t previous_rays = out.tried.front().point.rays;
     out.tried.insert(out.tried.begin(), TryBudget(room, s, "shot_rays " + std::to_string(shot_rays),
-                                                  reference, match_repetitions));
+                                                  reference, match_repetitions, &seed_times));
     if (double(out.tried.front().point.rays) > kFloorRayRatio * double(previous_rays)) break;
   }
-  // The largest budget that fits; failing that, the smallest tried (at the floor).
+  // The largest budget that takes about the seed's time, or, when none is that fast, about the
+  // fastest budget's time.
+  out.seed_seconds_alongside = Median(seed_times);
+  double fastest = out.tried.front().point.seconds;
+  for (const EqualTimeCandidate& c : out.tried) fastest = std::min(fastest, c.point.seconds);
+  out.at_floor = fastest > kTimeSlack * out.seed_seconds_alongside;
+  const double limit = kTimeSlack * std::max(out.seed_seconds_alongside, fastest);
   out.equal_time = out.tried.front();
   for (const EqualTimeCandidate& c : out.tried) {
-    if (fits(c)) out.equal_time = c;
+    if (c.point.seconds <= limit) out.equal_time = c;
   }
   const SweepPoint& eq = out.equal_time.point;
   out.error_ratio = eq.error > 0 ? out.seed.error / eq.error : 0;

@@ -31,6 +31,11 @@ struct SeedWorkload {
   // The default settings as they are (automatic shot_rays), then with shot_rays halved: ascending
   // budget, so the defaults come last.
   std::vector<EqualTimeCandidate> tried;
+  // Median of every seed-workload run made alongside the candidates.
+  double seed_seconds_alongside = 0;
+  // True when no budget fits in the seed's time: min_shooter_rays sets a floor on the default's
+  // time, and the match is the largest budget as fast as the fastest.
+  bool at_floor = false;
   EqualTimeCandidate equal_time;  // the one of `tried` matched to the seed's time
   double error_ratio = 0;         // seed.error / equal_time.error
   double error_ratio_lit = 0;     // seed.error_lit / equal_time.error_lit

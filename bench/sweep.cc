@@ -88,27 +88,35 @@ SceneSweep RunSweep(const BenchScene& scene, const SweepConfig& config) {
   base.seed = config.seed;
   uint64_t top_rung_rays = 0;
   for (uint64_t shot_rays : config.shot_rays) {
-    uint64_t sobol_rays = 0;
-    for (SamplerKind kind : {SamplerKind::kSobol, SamplerKind::kRandom}) {
-      SolverSettings s = base;
-      s.sampler = kind;
-      s.shot_rays = shot_rays;
-      sweep.points.push_back(RunPoint(scene, s, "shot_rays " + FormatCount(shot_rays),
-                                      sweep.reference, config.repetitions));
-      PrintPoint(scene.name, sweep.points.back());
-      if (kind == SamplerKind::kSobol) sobol_rays = sweep.points.back().rays;
+    SolverSettings sobol = base;
+    sobol.sampler = SamplerKind::kSobol;
+    sobol.shot_rays = shot_rays;
+    SolverSettings random = sobol;
+    random.sampler = SamplerKind::kRandom;
+    SolverSettings grid = base;
+    grid.sampler = SamplerKind::kGrid;
+    grid.grid_step_degrees = config.grid_step_degrees;
+    grid.shooters_per_round = config.grid_shooters_per_round;
+    // A rung's samplers run alternately, so that they see the same load on a shared machine. The
+    // grid's budget is the Sobol run's ray count, known after its first run.
+    TimedSolve timed_sobol, timed_random, timed_grid;
+    for (int rep = 0; rep < std::max(1, config.repetitions); ++rep) {
+      AddTimedRun(scene.patches(), sobol, &timed_sobol);
+      AddTimedRun(scene.patches(), random, &timed_random);
+      grid.max_rays = timed_sobol.result.stats.rays;
+      AddTimedRun(scene.patches(), grid, &timed_grid);
     }
-    SolverSettings g = base;
-    g.sampler = SamplerKind::kGrid;
-    g.grid_step_degrees = config.grid_step_degrees;
-    g.shooters_per_round = config.grid_shooters_per_round;
-    g.max_rays = sobol_rays;
-    char budget[96];
-    std::snprintf(budget, sizeof budget, "%g°, max_rays %s", g.grid_step_degrees,
-                  FormatCount(g.max_rays).c_str());
-    sweep.points.push_back(RunPoint(scene, g, budget, sweep.reference, config.repetitions));
-    PrintPoint(scene.name, sweep.points.back());
-    top_rung_rays = std::max(top_rung_rays, sobol_rays);
+    const std::string budget = "shot_rays " + FormatCount(shot_rays);
+    char grid_budget[96];
+    std::snprintf(grid_budget, sizeof grid_budget, "%g°, max_rays %s", grid.grid_step_degrees,
+                  FormatCount(grid.max_rays).c_str());
+    for (SweepPoint point : {ScorePoint(timed_sobol, sobol, budget, sweep.reference),
+                             ScorePoint(timed_random, random, budget, sweep.reference),
+                             ScorePoint(timed_grid, grid, grid_budget, sweep.reference)}) {
+      PrintPoint(scene.name, point);
+      sweep.points.push_back(std::move(point));
+    }
+    top_rung_rays = std::max(top_rung_rays, grid.max_rays);
   }
 
   for (double step : config.grid_steps) {

@@ -5,20 +5,16 @@
 #include "bench/stopwatch.h"
 
 namespace radfarm::bench {
-namespace {
-
-void RunOnce(const PatchScene& scene, const SolverSettings& settings, TimedSolve* timed) {
+void AddTimedRun(const PatchScene& scene, const SolverSettings& settings, TimedSolve* timed) {
   const Stopwatch clock;
   timed->result = Solve(scene, settings);
   timed->seconds.push_back(clock.Seconds());
   timed->median_seconds = Median(timed->seconds);
 }
 
-}  // namespace
-
 TimedSolve RunTimedSolve(const PatchScene& scene, const SolverSettings& settings, int repetitions) {
   TimedSolve timed;
-  for (int rep = 0; rep < std::max(1, repetitions); ++rep) RunOnce(scene, settings, &timed);
+  for (int rep = 0; rep < std::max(1, repetitions); ++rep) AddTimedRun(scene, settings, &timed);
   return timed;
 }
 
@@ -26,8 +22,8 @@ std::pair<TimedSolve, TimedSolve> RunTimedPair(const PatchScene& scene, const So
                                                const SolverSettings& b, int repetitions) {
   std::pair<TimedSolve, TimedSolve> timed;
   for (int rep = 0; rep < std::max(1, repetitions); ++rep) {
-    RunOnce(scene, a, &timed.first);
-    RunOnce(scene, b, &timed.second);
+    AddTimedRun(scene, a, &timed.first);
+    AddTimedRun(scene, b, &timed.second);
   }
   return timed;
 }

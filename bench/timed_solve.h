@@ -18,6 +18,9 @@ struct TimedSolve {
   double median_seconds = 0;
 };
 
+// Runs one more repetition into `timed` and updates its median.
+void AddTimedRun(const PatchScene& scene, const SolverSettings& settings, TimedSolve* timed);
+
 TimedSolve RunTimedSolve(const PatchScene& scene, const SolverSettings& settings, int repetitions);
 
 // Times two settings alternately (a, b, a, b, ...), so that both see the same machine load: for
