@@ -169,7 +169,7 @@ struct FramedConnection::Impl : internal::HandleBlock {
       impl->CloseWith(UvErrorText("connect to " + impl->peer, status));
       return;
     }
-    if (impl->unix_socket == false) uv_tcp_nodelay(&impl->tcp, 1);
+    if (!impl->unix_socket) uv_tcp_nodelay(&impl->tcp, 1);
     impl->StartReading();
     if (impl->on_connected && impl->state() == HandleState::kOpen) {
       std::function<void()> callback = std::move(impl->on_connected);
@@ -177,10 +177,8 @@ struct FramedConnection::Impl : internal::HandleBlock {
     }
   }
 
-  static void OnShutdown(uv_shutdown_t* req, int) noexcept {
-    // Our side is flushed and sent FIN; OnRead closes when the peer answers with its own EOF.
-    (void)req;
-  }
+  // Our side is flushed and FIN sent; OnRead closes when the peer's EOF answers it.
+  static void OnShutdown(uv_shutdown_t*, int) noexcept {}
 
   union {
     uv_tcp_t tcp;

@@ -270,8 +270,10 @@ TEST(FramedConnectionTest, RefusedConnectReachesOnClose) {
         loop, *address, {}, [](auto) {}, [&](const std::string& r) { closes.push_back(r); },
         [&] { connected = true; });
     ASSERT_TRUE(client.ok()) << client.error();
+    ASSERT_TRUE((*client)->Send(Bytes("never sent")).ok());  // queued; freed when connect fails
     ASSERT_TRUE(RunUntil(loop, [&] { return !closes.empty(); }));
     EXPECT_FALSE(connected);
+    EXPECT_EQ(closes.size(), 1u);
     EXPECT_NE(closes[0].find("ECONNREFUSED"), std::string::npos) << closes[0];
     EXPECT_NE(closes[0].find(address->ToString()), std::string::npos) << closes[0];
   }
