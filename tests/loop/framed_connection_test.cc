@@ -254,6 +254,35 @@ TEST(FramedConnectionTest, ReadIdleTimeoutClosesASilentPeer) {
   ExpectClosesClean(loop);
 }
 
+// Any received byte restarts the idle clock: a peer that trickles bytes for longer than the
+// timeout stays; once it stops, it is closed. Gaps are a tenth of the timeout, so a loaded machine
+// has ample slack.
+TEST(FramedConnectionTest, ReceivedBytesRestartTheIdleTimeout) {
+  EventLoop loop;
+  {
+    ConnectionOptions options;
+    options.read_idle_timeout = std::chrono::milliseconds(1000);
+    Server server(loop, options);
+    RawClient client;
+    ASSERT_TRUE(client.ConnectTcp("127.0.0.1", server.port()));
+    ASSERT_TRUE(RunUntil(loop, [&] { return server.connections.size() == 1; }));
+    const uint64_t start = loop.NowMs();
+    uint64_t last_send = start;
+    ASSERT_TRUE(RunUntil(loop, [&] {
+      if (loop.NowMs() - last_send >= 100) {
+        EXPECT_TRUE(client.SendAll({0}));  // a byte of a frame that never completes
+        last_send = loop.NowMs();
+      }
+      return loop.NowMs() - start >= 2500 || !server.closes[0].empty();
+    }));
+    EXPECT_TRUE(server.closes[0].empty()) << server.closes[0][0];
+    ASSERT_TRUE(RunUntil(loop, [&] { return !server.closes[0].empty(); }));
+    EXPECT_EQ(server.closes[0],
+              std::vector<std::string>{"no data for 1000 ms (read idle timeout)"});
+  }
+  ExpectClosesClean(loop);
+}
+
 TEST(FramedConnectionTest, RefusedConnectReachesOnClose) {
   EventLoop loop;
   {
