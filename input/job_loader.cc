@@ -10,7 +10,7 @@
 //   rays = 0                      # ray budget, integer >= 0, 0 = none
 //   seconds = 0                   # time budget, >= 0, 0 = none
 //   shot_rays = 4194304           # rays per emitted power, integer > 0
-//   min_shooter_rays = 64         # integer >= 1
+//   min_shooter_rays = 1          # integer >= 1
 //   shooters_per_round = 0        # integer >= 0, 0 = every patch with unshot power
 //   grid_step_degrees = 1.0       # grid sampler's angular step, in (0, 90]
 //   threads = 0                   # integer in [0, 65536], 0 = all cores
