@@ -1,0 +1,325 @@
+#include "daemon/scheduler/round_scheduler.h"
+
+#include <algorithm>
+#include <limits>
+#include <string>
+#include <utility>
+
+namespace radfarm::scheduler {
+
+RoundScheduler::RoundScheduler(const SchedulerOptions& options) : options_(options) {}
+
+// --- Agents ---
+
+void RoundScheduler::AddAgent(AgentId agent) { agents_.try_emplace(agent); }
+
+void RoundScheduler::OnAgentLost(AgentId agent) {
+  const auto it = agents_.find(agent);
+  if (it == agents_.end()) return;
+  std::vector<AttemptId> live;
+  for (const auto& [id, index] : it->second.live) live.push_back(id);
+  for (AttemptId id : live) EndAttempt(id, AttemptState::kLost);
+  agents_.erase(it);
+}
+
+size_t RoundScheduler::ReturnLeases(AgentId agent, std::span<const BatchId> batches) {
+  const auto it = agents_.find(agent);
+  if (it == agents_.end() || !round_) return 0;
+  size_t returned = 0;
+  for (BatchId batch_id : batches) {
+    if (BatchRound(batch_id) != round_->plan.round) continue;
+    const auto& live = it->second.live;
+    const auto held = std::find_if(live.begin(), live.end(), [&](const auto& entry) {
+      return entry.second == BatchIndex(batch_id);
+    });
+    if (held == live.end()) continue;
+    EndAttempt(held->first, AttemptState::kReturned);
+    ++returned;
+  }
+  return returned;
+}
+
+bool RoundScheduler::IsBlocklisted(AgentId agent, TimePoint now) const {
+  const auto it = blocked_until_.find(agent);
+  return it != blocked_until_.end() && now < it->second;
+}
+
+// --- Rounds ---
+
+Status RoundScheduler::StartRound(RoundPlan plan, TimePoint /*now*/) {
+  if (round_) {
+    return Error{"round " + std::to_string(round_->plan.round) + " is still active"};
+  }
+  if (plan.batches.empty()) return Error{"round " + std::to_string(plan.round) + " has no batches"};
+  if (plan.batches.size() > std::numeric_limits<uint32_t>::max()) {
+    return Error{"round " + std::to_string(plan.round) + " has too many batches"};
+  }
+  Round& round = round_.emplace();
+  round.batches.resize(plan.batches.size());
+  uint64_t rays = 0;
+  for (uint32_t k = 0; k < plan.batches.size(); ++k) {
+    round.fresh.push_back(k);
+    round.batches[k].in_fresh_queue = true;
+    rays += plan.batches[k].ray_count;
+  }
+  round.mean_batch_rays = double(rays) / double(plan.batches.size());
+  round.plan = std::move(plan);
+  return Ok{};
+}
+
+bool RoundScheduler::RoundComplete() const {
+  return round_ && round_->done == round_->batches.size();
+}
+
+Result<CompletedRound> RoundScheduler::TakeCompletedRound() {
+  if (!round_) return Error{"no round is active"};
+  if (!RoundComplete()) {
+    return Error{"round " + std::to_string(round_->plan.round) + " has " +
+                 std::to_string(round_->batches.size() - round_->done) + " batches left"};
+  }
+  CompletedRound done;
+  done.results.reserve(round_->batches.size());
+  for (BatchSlot& slot : round_->batches) done.results.push_back(std::move(slot.result));
+  done.plan = std::move(round_->plan);
+  round_.reset();
+  return done;
+}
+
+const Batch* RoundScheduler::FindBatch(BatchId batch_id) const {
+  if (!round_ || BatchRound(batch_id) != round_->plan.round) return nullptr;
+  const uint32_t index = BatchIndex(batch_id);
+  return index < round_->plan.batches.size() ? &round_->plan.batches[index] : nullptr;
+}
+
+// --- Work ---
+
+std::optional<Assignment> RoundScheduler::NextAssignment(AgentId agent_id, TimePoint now) {
+  const auto it = agents_.find(agent_id);
+  if (!round_ || it == agents_.end() || IsBlocklisted(agent_id, now)) return std::nullopt;
+  AgentState& agent = it->second;
+  if (agent.live.size() >= LeaseCapacity(agent)) return std::nullopt;
+  if (const auto index = PopFresh()) return Issue(*index, agent_id, agent, now, false);
+  if (const auto index = PopOverdueFor(agent_id)) return Issue(*index, agent_id, agent, now, true);
+  return std::nullopt;
+}
+
+ResultVerdict RoundScheduler::OnResult(AgentId agent_id, BatchId batch_id, AttemptId attempt_id,
+                                       BatchResult result, TimePoint now) {
+  if (!round_ || BatchRound(batch_id) != round_->plan.round) {
+    return Verdict(Disposition::kDropped, DropReason::kStaleRound);
+  }
+  const auto found = round_->attempts.find(attempt_id);
+  if (found == round_->attempts.end()) {
+    return Verdict(Disposition::kDropped, DropReason::kUnknownAttempt);
+  }
+  AttemptRecord& attempt = found->second;
+  if (attempt.batch_index != BatchIndex(batch_id)) {
+    return Verdict(Disposition::kRejected, DropReason::kWrongBatch);
+  }
+  if (attempt.agent != agent_id) return Verdict(Disposition::kRejected, DropReason::kNotHolder);
+  if (IsBlocklisted(agent_id, now)) {
+    return Verdict(Disposition::kRejected, DropReason::kBlocklisted);
+  }
+
+  // The agent did the work whatever becomes of the result: measure it, free its lease.
+  const bool already_answered = attempt.state == AttemptState::kAnswered;
+  if (!already_answered) {
+    const auto agent = agents_.find(agent_id);
+    if (agent != agents_.end()) {
+      const uint32_t rays = round_->plan.batches[attempt.batch_index].ray_count;
+      agent->second.throughput.AddResult(rays, attempt.issued, now, options_.throughput_smoothing);
+      if (agent->second.live.erase(attempt_id) > 0) agent->second.live_rays -= rays;
+    }
+    attempt.state = AttemptState::kAnswered;
+  }
+
+  BatchSlot& slot = round_->batches[attempt.batch_index];
+  if (slot.state == BatchState::kDone) {
+    return Verdict(Disposition::kDropped,
+                   already_answered ? DropReason::kDuplicate : DropReason::kLate);
+  }
+  slot.state = BatchState::kDone;
+  slot.winner = attempt_id;
+  slot.result = std::move(result);
+  ++round_->done;
+  for (AttemptId other : slot.attempts) {
+    if (other != attempt_id) EndAttempt(other, AttemptState::kSuperseded);
+  }
+  if (const auto agent = agents_.find(agent_id); agent != agents_.end()) {
+    ++agent->second.results_accepted;
+  }
+  return Verdict(Disposition::kAccepted, DropReason::kNone);
+}
+
+ResultVerdict RoundScheduler::OnInvalidResult(AgentId agent_id, BatchId /*batch_id*/,
+                                              AttemptId /*attempt_id*/, TimePoint now) {
+  blocked_until_[agent_id] = now + options_.blocklist_duration;
+  if (const auto it = agents_.find(agent_id); it != agents_.end()) {
+    std::vector<AttemptId> live;
+    for (const auto& [id, index] : it->second.live) live.push_back(id);
+    for (AttemptId id : live) EndAttempt(id, AttemptState::kRevoked);
+  }
+  return Verdict(Disposition::kRejected, DropReason::kInvalid);
+}
+
+size_t RoundScheduler::Tick(TimePoint now) {
+  if (!round_) return 0;
+  size_t offered = 0;
+  for (uint32_t k = 0; k < round_->batches.size(); ++k) {
+    BatchSlot& slot = round_->batches[k];
+    if (slot.state != BatchState::kLeased || slot.in_overdue_queue) continue;
+    size_t live = 0;
+    bool all_overdue = true;
+    for (AttemptId id : slot.attempts) {
+      const AttemptRecord& attempt = round_->attempts.at(id);
+      if (attempt.state != AttemptState::kLive) continue;
+      ++live;
+      all_overdue = all_overdue && now >= attempt.deadline;
+    }
+    if (live == 0 || !all_overdue || live >= options_.max_live_attempts) continue;
+    slot.in_overdue_queue = true;
+    round_->overdue.push_back(k);
+    ++offered;
+  }
+  return offered;
+}
+
+// --- Status ---
+
+uint32_t RoundScheduler::SuggestedBatchRays() const {
+  double slowest = 0;
+  for (const auto& [id, agent] : agents_) {
+    if (!agent.throughput.measured()) continue;
+    const double rate = agent.throughput.rays_per_second();
+    if (slowest == 0 || rate < slowest) slowest = rate;
+  }
+  if (slowest == 0) return options_.default_batch_rays;
+  const double rays = slowest * options_.target_lease_seconds;
+  return static_cast<uint32_t>(
+      std::clamp(rays, double(options_.min_batch_rays), double(options_.max_batch_rays)));
+}
+
+SchedulerCounters RoundScheduler::counters(TimePoint now) const {
+  SchedulerCounters c = totals_;
+  if (round_) {
+    c.round_active = true;
+    c.round = round_->plan.round;
+    c.batches = round_->batches.size();
+    for (const BatchSlot& slot : round_->batches) {
+      switch (slot.state) {
+        case BatchState::kQueued:
+          ++c.batches_queued;
+          break;
+        case BatchState::kLeased:
+          ++c.batches_leased;
+          break;
+        case BatchState::kDone:
+          ++c.batches_done;
+          break;
+      }
+    }
+  }
+  for (const auto& [id, agent] : agents_) {
+    c.agents.push_back({id, static_cast<uint32_t>(agent.live.size()), LeaseCapacity(agent),
+                        agent.throughput.rays_per_second(), IsBlocklisted(id, now),
+                        agent.results_accepted});
+  }
+  return c;
+}
+
+// --- Private ---
+
+uint32_t RoundScheduler::LeaseCapacity(const AgentState& agent) const {
+  const double batch_rays = round_ ? round_->mean_batch_rays : options_.default_batch_rays;
+  return agent.throughput.LeaseCapacity(batch_rays, options_);
+}
+
+std::optional<uint32_t> RoundScheduler::PopFresh() {
+  while (!round_->fresh.empty()) {
+    const uint32_t index = round_->fresh.front();
+    round_->fresh.pop_front();
+    BatchSlot& slot = round_->batches[index];
+    slot.in_fresh_queue = false;
+    // A requeued batch may have been answered since by a lease that was given up.
+    if (slot.state == BatchState::kQueued) return index;
+  }
+  return std::nullopt;
+}
+
+std::optional<uint32_t> RoundScheduler::PopOverdueFor(AgentId agent) {
+  auto& queue = round_->overdue;
+  for (auto it = queue.begin(); it != queue.end();) {
+    BatchSlot& slot = round_->batches[*it];
+    // Answered, back in the fresh queue, or no room for another attempt: not an offer any more.
+    if (slot.state != BatchState::kLeased || LiveAttempts(slot) >= options_.max_live_attempts) {
+      slot.in_overdue_queue = false;
+      it = queue.erase(it);
+      continue;
+    }
+    const bool holds = std::any_of(slot.attempts.begin(), slot.attempts.end(), [&](AttemptId id) {
+      const AttemptRecord& a = round_->attempts.at(id);
+      return a.state == AttemptState::kLive && a.agent == agent;
+    });
+    if (holds) {
+      ++it;
+      continue;
+    }
+    const uint32_t index = *it;
+    slot.in_overdue_queue = false;
+    queue.erase(it);
+    return index;
+  }
+  return std::nullopt;
+}
+
+Assignment RoundScheduler::Issue(uint32_t index, AgentId agent_id, AgentState& agent, TimePoint now,
+                                 bool speculative) {
+  const AttemptId id = next_attempt_++;
+  if (next_attempt_ == 0) next_attempt_ = 1;  // 0 is never an attempt id
+  const Batch& batch = round_->plan.batches[index];
+  agent.live.emplace(id, index);
+  agent.live_rays += batch.ray_count;
+  const TimePoint deadline = agent.throughput.Deadline(agent.live_rays, now, options_);
+  round_->attempts[id] = {agent_id, index, now, deadline, AttemptState::kLive};
+  BatchSlot& slot = round_->batches[index];
+  slot.state = BatchState::kLeased;
+  slot.attempts.push_back(id);
+  ++totals_.attempts_issued;
+  if (speculative) ++totals_.speculative_attempts;
+  return {MakeBatchId(round_->plan.round, index), id, batch, deadline, speculative};
+}
+
+size_t RoundScheduler::LiveAttempts(const BatchSlot& slot) const {
+  return std::count_if(slot.attempts.begin(), slot.attempts.end(), [&](AttemptId id) {
+    return round_->attempts.at(id).state == AttemptState::kLive;
+  });
+}
+
+void RoundScheduler::EndAttempt(AttemptId id, AttemptState how) {
+  AttemptRecord& attempt = round_->attempts.at(id);
+  if (attempt.state != AttemptState::kLive) return;
+  attempt.state = how;
+  const uint32_t rays = round_->plan.batches[attempt.batch_index].ray_count;
+  if (const auto agent = agents_.find(attempt.agent); agent != agents_.end()) {
+    if (agent->second.live.erase(id) > 0) agent->second.live_rays -= rays;
+  }
+  BatchSlot& slot = round_->batches[attempt.batch_index];
+  if (slot.state == BatchState::kDone || LiveAttempts(slot) > 0) return;
+  slot.state = BatchState::kQueued;
+  ++totals_.leases_requeued;
+  if (!slot.in_fresh_queue) {
+    slot.in_fresh_queue = true;
+    round_->fresh.push_front(attempt.batch_index);  // waited longest: first again
+  }
+}
+
+ResultVerdict RoundScheduler::Verdict(Disposition disposition, DropReason reason) {
+  if (disposition == Disposition::kAccepted) {
+    ++totals_.results_accepted;
+  } else {
+    ++totals_.results_dropped[size_t(reason)];
+  }
+  return {disposition, reason, RoundComplete()};
+}
+
+}  // namespace radfarm::scheduler

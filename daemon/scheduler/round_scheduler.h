@@ -1,0 +1,186 @@
+// RoundScheduler: the master's work distribution for one job. It holds the batches of the job's
+// current round (ProgressiveSolver::PlanRound), leases them to agents as attempts, collects the
+// first valid result of each batch, and hands the round's results back in batch order so that
+// ProgressiveSolver::ApplyRound gives bit-identical radiosity (core/batch.h: a batch's result does
+// not depend on who computed it, when, or how often).
+//
+// Threading and time: single-threaded, no I/O, no clock. The daemon's event loop owns it and calls
+// it from the loop thread only; every call that depends on time takes `now`.
+//
+// Driving a job (what core/solve.cc does with a thread pool):
+//   plan = solver.PlanRound(scheduler.SuggestedBatchRays());   // empty plan: the job is done
+//   scheduler.StartRound(plan, now);
+//   loop: NextAssignment for agents with room; OnResult / OnInvalidResult (result_intake.h does
+//         both after ValidateBatchResult); OnAgentLost; ReturnLeases; Tick every ~100 ms.
+//   when a verdict says round_complete: done = TakeCompletedRound();
+//   solver.ApplyRound(done.plan, done.results); plan the next round.
+// The next round can only be planned after ApplyRound (the plan depends on the unshot radiosity),
+// so rounds do not overlap. Agents are kept busy through the round's tail instead: once the queue
+// is empty, Tick offers overdue batches to agents with room, so the stragglers of a round are
+// recomputed in parallel rather than waited for. A daemon with several jobs keeps one scheduler
+// per job and asks them in turn, so agents idle on one job's reduction work on another.
+//
+// LIFECYCLE OF A BATCH (within a round):
+//
+//      StartRound
+//          |
+//          v          NextAssignment                 OnResult (first valid)
+//       QUEUED  ------------------------>  LEASED  ------------------------->  DONE
+//          ^                               |    ^                               |
+//          |  OnAgentLost, ReturnLeases,   |    |  Tick (overdue) +             |
+//          TakeCompletedRound |  OnInvalidResult: the last    |    |  NextAssignment: another v
+//          +---- live attempt ended -------+    +- attempt, batch stays LEASED  (round handed over)
+//
+// LIFECYCLE OF AN ATTEMPT (a lease: batch_id + attempt_id, held by one agent):
+//
+//   NextAssignment                OnResult(this attempt, batch not DONE)
+//   ------------->  LIVE  ------------------------------------------------>  ANSWERED
+//                    |  \---- OnResult(another attempt) ------------------>  SUPERSEDED
+//                    |  \---- OnAgentLost ------------------------------->  LOST
+//                    |  \---- ReturnLeases ------------------------------>  RETURNED
+//                    |  \---- OnInvalidResult (agent blocklisted) ------->  REVOKED
+//                    \-- Tick past its deadline: marked overdue, stays LIVE and valid; the batch
+//                        is offered to another agent (at most max_live_attempts live at once).
+//
+// Only LIVE attempts count against an agent's leases. A result for an attempt that is no longer
+// LIVE is still correct work: from its own agent, for a batch not DONE, it is accepted (a LOST or
+// RETURNED lease that answers anyway); once the batch is DONE it is dropped as kLate (another
+// attempt won) or kDuplicate (this attempt already answered).
+#pragma once
+
+#include <deque>
+#include <map>
+#include <optional>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include "core/batch.h"
+#include "core/progressive_solver.h"
+#include "core/result.h"
+#include "daemon/scheduler/scheduler_counters.h"
+#include "daemon/scheduler/scheduler_options.h"
+#include "daemon/scheduler/scheduler_types.h"
+#include "daemon/scheduler/throughput_estimate.h"
+
+namespace radfarm::scheduler {
+
+// A lease handed to an agent: send it as a BatchAssignment (protocol/batch_convert.h) with
+// lease_ms = deadline - now.
+struct Assignment {
+  BatchId batch_id = 0;
+  AttemptId attempt_id = 0;
+  Batch batch;
+  TimePoint deadline;
+  bool speculative = false;  // a copy of an overdue lease still held elsewhere
+};
+
+// A finished round: results[k] answers plan.batches[k].
+struct CompletedRound {
+  RoundPlan plan;
+  std::vector<BatchResult> results;
+};
+
+class RoundScheduler {
+ public:
+  explicit RoundScheduler(const SchedulerOptions& options = {});
+
+  // --- Agents ---
+  // Makes an agent known (idempotent). It starts with options.initial_leases and no measurement.
+  void AddAgent(AgentId agent);
+  // The agent disconnected or missed its heartbeats: its live leases go back to the queue at once
+  // and it is forgotten (a blocklisting is kept). Unknown agents are ignored.
+  void OnAgentLost(AgentId agent);
+  // The agent handed these leases back (LeaseReturn): requeued at once. Batch ids the agent does
+  // not hold a live attempt of are ignored. Returns how many leases were returned.
+  size_t ReturnLeases(AgentId agent, std::span<const BatchId> batches);
+  bool IsBlocklisted(AgentId agent, TimePoint now) const;
+
+  // --- Rounds ---
+  // Starts a round from a non-empty plan. Fails while another round is active (not yet taken).
+  Status StartRound(RoundPlan plan, TimePoint now);
+  bool round_active() const { return round_.has_value(); }
+  bool RoundComplete() const;
+  // Ends the round and returns its results in batch order. Fails unless RoundComplete().
+  Result<CompletedRound> TakeCompletedRound();
+  // The batch a batch id names in the current round, to validate a result against; nullptr when
+  // the id is not in the current round.
+  const Batch* FindBatch(BatchId batch_id) const;
+
+  // --- Work ---
+  // The next lease for `agent`, or nothing: no round, unknown or blocklisted agent, agent at its
+  // lease capacity, or nothing to hand out. Requeued and fresh batches come first, in that order;
+  // when none are left, an overdue batch this agent does not already hold.
+  std::optional<Assignment> NextAssignment(AgentId agent, TimePoint now);
+  // A result that passed ValidateBatchResult against FindBatch(batch_id). The first valid result
+  // of a batch wins; see DropReason for the others.
+  ResultVerdict OnResult(AgentId agent, BatchId batch_id, AttemptId attempt_id, BatchResult result,
+                         TimePoint now);
+  // A result that failed ValidateBatchResult: the agent is blocklisted until now +
+  // options.blocklist_duration and all its live leases are revoked and requeued.
+  ResultVerdict OnInvalidResult(AgentId agent, BatchId batch_id, AttemptId attempt_id,
+                                TimePoint now);
+  // Marks live attempts past their deadline overdue and offers their batches to other agents.
+  // Returns how many batches were newly offered. Call it periodically (about every 100 ms).
+  size_t Tick(TimePoint now);
+
+  // --- Status ---
+  // Rays per batch so the slowest measured agent finishes one batch in target_lease_seconds,
+  // within [min_batch_rays, max_batch_rays]; default_batch_rays before any measurement.
+  uint32_t SuggestedBatchRays() const;
+  SchedulerCounters counters(TimePoint now) const;
+
+ private:
+  enum class BatchState { kQueued, kLeased, kDone };
+  enum class AttemptState { kLive, kAnswered, kSuperseded, kLost, kReturned, kRevoked };
+
+  struct AttemptRecord {
+    AgentId agent = 0;
+    uint32_t batch_index = 0;
+    TimePoint issued;
+    TimePoint deadline;
+    AttemptState state = AttemptState::kLive;
+  };
+  struct BatchSlot {
+    BatchState state = BatchState::kQueued;
+    bool in_fresh_queue = false;
+    bool in_overdue_queue = false;
+    std::vector<AttemptId> attempts;  // every attempt issued for it, oldest first
+    std::optional<AttemptId> winner;
+    BatchResult result;
+  };
+  struct Round {
+    RoundPlan plan;
+    std::vector<BatchSlot> batches;
+    std::unordered_map<AttemptId, AttemptRecord> attempts;
+    std::deque<uint32_t> fresh;    // batch indices to lease; requeued ones at the front
+    std::deque<uint32_t> overdue;  // batch indices offered again by Tick
+    double mean_batch_rays = 0;
+    size_t done = 0;
+  };
+  struct AgentState {
+    std::map<AttemptId, uint32_t> live;  // live attempts -> batch index
+    uint64_t live_rays = 0;
+    ThroughputEstimate throughput;
+    uint64_t results_accepted = 0;
+  };
+
+  uint32_t LeaseCapacity(const AgentState& agent) const;
+  std::optional<uint32_t> PopFresh();
+  std::optional<uint32_t> PopOverdueFor(AgentId agent);
+  Assignment Issue(uint32_t index, AgentId agent_id, AgentState& agent, TimePoint now,
+                   bool speculative);
+  size_t LiveAttempts(const BatchSlot& slot) const;
+  // Ends a live attempt without a result; requeues its batch if no live attempt is left.
+  void EndAttempt(AttemptId id, AttemptState how);
+  ResultVerdict Verdict(Disposition disposition, DropReason reason);
+
+  SchedulerOptions options_;
+  std::optional<Round> round_;
+  std::map<AgentId, AgentState> agents_;
+  std::unordered_map<AgentId, TimePoint> blocked_until_;
+  AttemptId next_attempt_ = 1;
+  SchedulerCounters totals_;  // the since-creation fields only
+};
+
+}  // namespace radfarm::scheduler

@@ -1,0 +1,36 @@
+// Tuning of the scheduler. Every field has a working default; times are wall-clock.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+
+#include "daemon/scheduler/scheduler_types.h"
+
+namespace radfarm::scheduler {
+
+struct SchedulerOptions {
+  // The batch time the master aims for, seen from the master: from handing out a lease to its
+  // result. An agent holds about this much work (its smoothed rays/s times this), so a fast agent
+  // holds more leases and a slow one is never flooded. Keep it within 100-500 ms.
+  double target_lease_seconds = 0.5;
+  // Leases an agent holds before its first result is measured, and the cap for anyone.
+  uint32_t initial_leases = 2;
+  uint32_t max_leases_per_agent = 64;
+  // Weight of the newest result in the smoothed throughput (exponential moving average).
+  double throughput_smoothing = 0.3;
+  // A lease is overdue after deadline_multiple times its expected time, at least deadline_floor;
+  // an agent with no measurement yet is expected to take unmeasured_expected_seconds.
+  double deadline_multiple = 4;
+  Duration deadline_floor = std::chrono::seconds(2);
+  double unmeasured_expected_seconds = 2;
+  // Live attempts of one batch at most (the original plus speculative copies).
+  uint32_t max_live_attempts = 2;
+  // How long an agent that sent an invalid result gets no work.
+  Duration blocklist_duration = std::chrono::minutes(10);
+  // SuggestedBatchRays() bounds.
+  uint32_t min_batch_rays = 256;
+  uint32_t max_batch_rays = 1 << 20;
+  uint32_t default_batch_rays = 4096;
+};
+
+}  // namespace radfarm::scheduler

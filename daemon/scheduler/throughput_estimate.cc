@@ -1,0 +1,48 @@
+#include "daemon/scheduler/throughput_estimate.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace radfarm::scheduler {
+namespace {
+
+// Results on the same fake-clock tick, or a clock of coarse resolution, still take some time.
+constexpr double kMinBusySeconds = 1e-3;
+
+}  // namespace
+
+void ThroughputEstimate::AddResult(uint64_t rays, TimePoint issued, TimePoint now,
+                                   double smoothing) {
+  const TimePoint start = last_result_ ? std::max(issued, *last_result_) : issued;
+  const double seconds =
+      std::max(kMinBusySeconds, std::chrono::duration<double>(now - start).count());
+  if (!measured()) {
+    rays_ = double(rays);
+    seconds_ = seconds;
+  } else {
+    rays_ += smoothing * (double(rays) - rays_);
+    seconds_ += smoothing * (seconds - seconds_);
+  }
+  last_result_ = std::max(now, last_result_.value_or(now));
+}
+
+double ThroughputEstimate::rays_per_second() const { return measured() ? rays_ / seconds_ : 0; }
+
+uint32_t ThroughputEstimate::LeaseCapacity(double batch_rays,
+                                           const SchedulerOptions& options) const {
+  const uint32_t cap = std::max<uint32_t>(1, options.max_leases_per_agent);
+  if (!measured()) return std::clamp<uint32_t>(options.initial_leases, 1, cap);
+  const double want = rays_per_second() * options.target_lease_seconds / std::max(1.0, batch_rays);
+  return static_cast<uint32_t>(std::clamp(std::floor(want), 1.0, double(cap)));
+}
+
+TimePoint ThroughputEstimate::Deadline(uint64_t held_rays, TimePoint now,
+                                       const SchedulerOptions& options) const {
+  const double expected =
+      measured() ? double(held_rays) / rays_per_second() : options.unmeasured_expected_seconds;
+  const auto scaled = std::chrono::duration_cast<Duration>(
+      std::chrono::duration<double>(options.deadline_multiple * expected));
+  return now + std::max(options.deadline_floor, scaled);
+}
+
+}  // namespace radfarm::scheduler

@@ -1,0 +1,43 @@
+// ThroughputEstimate: an agent's smoothed rays per second, measured from the results it returns,
+// and what follows from it: how many leases it may hold and when a lease of it is overdue.
+//
+// Each result contributes (rays, busy seconds), where busy seconds run from the later of the
+// lease's issue time and the agent's previous result: while an agent is kept busy its results
+// arrive one batch-time apart; after an idle gap only the time since the lease counts. Rays and
+// seconds are smoothed separately and divided, so a burst of results finishing together (one per
+// agent thread) does not blow the estimate up as averaging the ratios would.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "daemon/scheduler/scheduler_options.h"
+#include "daemon/scheduler/scheduler_types.h"
+
+namespace radfarm::scheduler {
+
+class ThroughputEstimate {
+ public:
+  // A result of `rays` rays for a lease issued at `issued`, received at `now`.
+  void AddResult(uint64_t rays, TimePoint issued, TimePoint now, double smoothing);
+
+  bool measured() const { return rays_ > 0; }
+  // Smoothed rays per second; 0 before the first result.
+  double rays_per_second() const;
+
+  // Leases to hold so the held work takes about options.target_lease_seconds:
+  // floor(rays/s * target / batch_rays) clamped to [1, max_leases_per_agent];
+  // options.initial_leases (capped) before the first result.
+  uint32_t LeaseCapacity(double batch_rays, const SchedulerOptions& options) const;
+
+  // When a lease issued at `now` is overdue, given the rays the agent then holds (this lease
+  // included): now + max(floor, multiple * held_rays / rays_per_second).
+  TimePoint Deadline(uint64_t held_rays, TimePoint now, const SchedulerOptions& options) const;
+
+ private:
+  double rays_ = 0;     // smoothed rays per result
+  double seconds_ = 0;  // smoothed busy seconds per result
+  std::optional<TimePoint> last_result_;
+};
+
+}  // namespace radfarm::scheduler

@@ -1,0 +1,67 @@
+// ThroughputEstimate: smoothed rays/s, lease capacity and deadlines, on a fake clock.
+#include "daemon/scheduler/throughput_estimate.h"
+
+#include <gtest/gtest.h>
+
+namespace radfarm::scheduler {
+namespace {
+
+using std::chrono::milliseconds;
+using std::chrono::seconds;
+
+const TimePoint kT0{};
+
+TEST(ThroughputEstimateTest, StartsUnmeasuredWithTheInitialLeases) {
+  SchedulerOptions options;
+  options.initial_leases = 3;
+  ThroughputEstimate t;
+  EXPECT_FALSE(t.measured());
+  EXPECT_EQ(t.rays_per_second(), 0);
+  EXPECT_EQ(t.LeaseCapacity(4096, options), 3u);
+  EXPECT_EQ(t.Deadline(4096, kT0, options), kT0 + seconds(8));  // 4 x 2 s unmeasured
+}
+
+TEST(ThroughputEstimateTest, MeasuresBusyTimeBetweenResults) {
+  ThroughputEstimate t;
+  // Two leases issued together, answered 100 ms apart: 1000 rays per 100 ms each.
+  t.AddResult(1000, kT0, kT0 + milliseconds(100), 0.5);
+  t.AddResult(1000, kT0, kT0 + milliseconds(200), 0.5);
+  EXPECT_NEAR(t.rays_per_second(), 10000, 1e-6);
+  // After an idle second only the time since the lease was issued counts.
+  t.AddResult(1000, kT0 + milliseconds(1200), kT0 + milliseconds(1300), 0.5);
+  EXPECT_NEAR(t.rays_per_second(), 10000, 1e-6);
+}
+
+TEST(ThroughputEstimateTest, BurstOfResultsDoesNotBlowUpTheEstimate) {
+  ThroughputEstimate t;
+  // Eight threads finish eight 1000-ray leases at the same instant, 1 s after issue.
+  for (int k = 0; k < 8; ++k) t.AddResult(1000, kT0, kT0 + seconds(1), 0.3);
+  EXPECT_LT(t.rays_per_second(), 1e6);  // averaging the ratios would give ~1e6 (1 ms floor)
+  EXPECT_GT(t.rays_per_second(), 1000);
+}
+
+TEST(ThroughputEstimateTest, FastAgentsHoldMoreLeasesNeverAboveTheCap) {
+  SchedulerOptions options;
+  options.target_lease_seconds = 0.5;
+  options.max_leases_per_agent = 16;
+  ThroughputEstimate slow, fast, very_fast;
+  slow.AddResult(1000, kT0, kT0 + seconds(1), 0.3);            // 1e3 rays/s
+  fast.AddResult(100000, kT0, kT0 + seconds(1), 0.3);          // 1e5 rays/s
+  very_fast.AddResult(100000000, kT0, kT0 + seconds(1), 0.3);  // 1e8 rays/s
+  EXPECT_EQ(slow.LeaseCapacity(4096, options), 1u);            // never 0
+  EXPECT_EQ(fast.LeaseCapacity(4096, options), 12u);           // 1e5 * 0.5 / 4096
+  EXPECT_EQ(very_fast.LeaseCapacity(4096, options), 16u);
+}
+
+TEST(ThroughputEstimateTest, DeadlineIsAMultipleOfTheHeldWorkWithAFloor) {
+  SchedulerOptions options;
+  options.deadline_multiple = 4;
+  options.deadline_floor = seconds(2);
+  ThroughputEstimate t;
+  t.AddResult(1000, kT0, kT0 + seconds(1), 0.3);                 // 1000 rays/s
+  EXPECT_EQ(t.Deadline(100, kT0, options), kT0 + seconds(2));    // 0.4 s: the floor
+  EXPECT_EQ(t.Deadline(5000, kT0, options), kT0 + seconds(20));  // 4 x 5 s
+}
+
+}  // namespace
+}  // namespace radfarm::scheduler
