@@ -1,0 +1,54 @@
+#include "daemon/store/job_state.h"
+
+#include <array>
+
+namespace radfarm::store {
+namespace {
+
+constexpr std::array<std::pair<JobState, std::string_view>, 6> kNames = {{
+    {JobState::kQueued, "queued"},
+    {JobState::kRunning, "running"},
+    {JobState::kPaused, "paused"},
+    {JobState::kDone, "done"},
+    {JobState::kFailed, "failed"},
+    {JobState::kCancelled, "cancelled"},
+}};
+
+}  // namespace
+
+std::string_view JobStateName(JobState state) {
+  for (const auto& [value, name] : kNames) {
+    if (value == state) return name;
+  }
+  return "unknown";
+}
+
+std::optional<JobState> ParseJobState(std::string_view name) {
+  for (const auto& [value, known] : kNames) {
+    if (known == name) return value;
+  }
+  return std::nullopt;
+}
+
+bool IsTerminal(JobState state) {
+  return state == JobState::kDone || state == JobState::kFailed || state == JobState::kCancelled;
+}
+
+bool IsAllowedTransition(JobState from, JobState to) {
+  using enum JobState;
+  switch (from) {
+    case kQueued:
+      return to == kRunning || to == kPaused || to == kCancelled;
+    case kRunning:
+      return to == kQueued || to == kPaused || to == kDone || to == kFailed || to == kCancelled;
+    case kPaused:
+      return to == kQueued || to == kCancelled;
+    case kDone:
+    case kFailed:
+    case kCancelled:
+      return false;
+  }
+  return false;
+}
+
+}  // namespace radfarm::store

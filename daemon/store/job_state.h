@@ -1,0 +1,35 @@
+// The lifecycle of a job in the store. SubmitJob() creates a job in `queued`; every later change
+// goes through JobStore::SetJobState(id, to, error), which refuses any transition not drawn here
+// (IsAllowedTransition) with an error naming both states. Edge labels are the `to` argument.
+//
+//                   +----------------- kQueued: requeue ------------------+
+//                   v   (daemon restart, no agents; resumes from          |
+//                       LoadLatestCheckpoint)                             |
+//   SubmitJob() -> queued ------------- kRunning: started ------------> running --kDone--> done
+//                   |  ^                (after NextRunnableJobs)          |  |   (converged or
+//           kPaused |  | kQueued: resume                                  |  |    budget spent)
+//                   v  |                                                  |  |
+//                  paused <------------- kPaused ------------------------+  +--kFailed, error-->
+//                                                                                        failed
+//   queued, running, paused ---------- kCancelled (reason optional) ----------------> cancelled
+//
+// done, failed and cancelled are terminal: a retry is a new SubmitJob(). kFailed requires an error
+// text, kCancelled takes an optional reason, other transitions take none.
+// Times: started_at is set on the first entry to running; finished_at on entry to a terminal state.
+#pragma once
+
+#include <optional>
+#include <string_view>
+
+namespace radfarm::store {
+
+enum class JobState { kQueued, kRunning, kPaused, kDone, kFailed, kCancelled };
+
+// The name stored in the jobs.state column: "queued", "running", ...
+std::string_view JobStateName(JobState state);
+std::optional<JobState> ParseJobState(std::string_view name);
+
+bool IsTerminal(JobState state);
+bool IsAllowedTransition(JobState from, JobState to);
+
+}  // namespace radfarm::store

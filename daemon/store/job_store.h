@@ -1,0 +1,164 @@
+// JobStore: the master daemon's durable state in one SQLite file: jobs and their states, scenes by
+// hash, one row per solver round, solver checkpoints, agents seen and an event log.
+//
+// Design. The file is opened in WAL mode with synchronous=FULL (a committed transaction survives
+// power loss: the daemon replies to a client or agent only after the commit returns), foreign keys
+// on and a busy timeout. Open() checks the file (ours, not corrupt, not newer; see schema.h) before
+// writing anything, then migrates it to the latest schema. Every write that touches more than one
+// row runs in one IMMEDIATE transaction, so a failure (SQLITE_FULL, SQLITE_IOERR, a constraint)
+// leaves nothing partial behind.
+//
+// Threads and ownership. A JobStore is NOT thread-safe. The daemon creates it and moves it to one
+// dedicated store thread (a single-thread loop::WorkQueue), which owns it for its whole life;
+// the loop thread never calls it. Results go back to the loop as the WorkQueue's `done` values:
+// copy what you need out of the returned structs, which own their data.
+//
+// Errors. Expected failures are Status/Result errors whose message names the file, the operation,
+// the SQLite code (SQLITE_BUSY, SQLITE_CORRUPT, SQLITE_NOTADB, SQLITE_FULL, SQLITE_IOERR, ...) and
+// what to do. "Not found" is not an error: lookups return std::optional.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/progressive_solver.h"
+#include "core/result.h"
+#include "core/rgb.h"
+#include "daemon/store/database.h"
+#include "daemon/store/job_state.h"
+#include "daemon/store/schema.h"
+
+namespace radfarm::store {
+
+using JobId = int64_t;
+
+struct JobStoreOptions {
+  DatabaseOptions database;
+  SchemaCheckOptions check;
+  // Milliseconds since the Unix epoch; tests inject a fake clock. Default: the system clock.
+  std::function<int64_t()> now_ms;
+  // PRAGMA max_page_count for this connection (0: SQLite's default, no practical limit). A cap for
+  // operators, and how tests simulate a full disk.
+  int64_t max_pages = 0;
+};
+
+struct JobSpec {
+  std::string name;
+  std::string scene_hash;  // must already be stored (PutScene)
+  std::string settings;    // the job's solver settings, serialized by the caller; opaque here
+  uint64_t seed = 1;
+  int64_t priority = 0;  // higher runs first
+};
+
+struct JobRecord {
+  JobId id = 0;
+  JobSpec spec;
+  JobState state = JobState::kQueued;
+  int64_t submitted_at_ms = 0;
+  std::optional<int64_t> started_at_ms;
+  std::optional<int64_t> finished_at_ms;
+  std::optional<std::string> error;
+};
+
+struct RoundRecord {
+  JobId job = 0;
+  uint32_t round = 0;
+  uint32_t shooters = 0;
+  uint64_t rays = 0;
+  double unshot_fraction = 0;
+  double unshot_power = 0;
+  double duration_seconds = 0;
+};
+
+struct Checkpoint {
+  JobId job = 0;
+  uint32_t round = 0;        // the round whose results it includes
+  uint32_t rounds_done = 0;  // ProgressiveSolver::rounds_done() at that point
+  std::vector<Rgb> radiosity;
+  std::vector<Rgb> unshot;  // same size as radiosity
+  EnergyAccount energy;
+  int64_t created_at_ms = 0;  // set by the store
+};
+
+enum class EventLevel { kInfo, kWarning, kError };
+
+struct Event {
+  int64_t id = 0;
+  std::optional<JobId> job;  // nullopt: a farm-wide event
+  int64_t time_ms = 0;
+  EventLevel level = EventLevel::kInfo;
+  std::string text;
+};
+
+struct AgentRecord {
+  std::string name;
+  std::string address;
+  uint32_t threads = 0;
+  int64_t first_seen_ms = 0;
+  int64_t last_seen_ms = 0;
+};
+
+class JobStore {
+ public:
+  // Opens or creates the store at `path` (checks, then migrates; see the design note).
+  static Result<JobStore> Open(const std::string& path, JobStoreOptions options = {});
+
+  JobStore(JobStore&&) noexcept = default;
+  JobStore& operator=(JobStore&&) noexcept = default;
+  JobStore(const JobStore&) = delete;
+  JobStore& operator=(const JobStore&) = delete;
+
+  // --- jobs (lifecycle in job_state.h) ---
+  Result<JobId> SubmitJob(const JobSpec& spec);
+  Result<std::vector<JobRecord>> ListJobs();  // by id
+  Result<std::optional<JobRecord>> GetJob(JobId id);
+  // Refuses transitions not in the diagram, an error text on any state but kFailed/kCancelled, and
+  // kFailed without one. Atomic: the state read and the update are one transaction.
+  Status SetJobState(JobId id, JobState to, std::optional<std::string> error = std::nullopt);
+  // Queued jobs, highest priority first, then earliest submission, then lowest id; at most `limit`.
+  Result<std::vector<JobRecord>> NextRunnableJobs(int limit);
+
+  // --- scenes ---
+  // Idempotent for the same bytes; an error if `hash` is stored with different bytes.
+  Status PutScene(const std::string& hash, std::span<const uint8_t> geometry);
+  Result<std::optional<std::vector<uint8_t>>> GetScene(const std::string& hash);
+
+  // --- rounds and checkpoints ---
+  // Recording a round again (after resuming from an earlier checkpoint) replaces its row.
+  Status RecordRound(const RoundRecord& round);
+  Result<std::vector<RoundRecord>> ListRounds(JobId job);
+  // Writes the round row and the checkpoint of its results in one transaction: both or neither.
+  // checkpoint.job and .round must equal round.job and .round.
+  Status SaveCheckpoint(const RoundRecord& round, const Checkpoint& checkpoint);
+  // The checkpoint with the highest round, with the same bits that were saved.
+  Result<std::optional<Checkpoint>> LoadLatestCheckpoint(JobId job);
+  // Keeps the `keep_last` checkpoints with the highest rounds and deletes the rest (0 deletes all).
+  // Freed pages are reused by later checkpoints, so the file stays near keep_last+1 checkpoints.
+  Status PruneCheckpoints(JobId job, int keep_last);
+  Result<int64_t> CountCheckpoints(JobId job);
+
+  // --- agents and events ---
+  Status RecordAgentSeen(const std::string& name, const std::string& address, uint32_t threads);
+  Result<std::vector<AgentRecord>> ListAgents();
+  Status AppendEvent(std::optional<JobId> job, EventLevel level, const std::string& text);
+  // The last `limit` events of `job` (nullopt: farm-wide ones), oldest first.
+  Result<std::vector<Event>> ListEvents(std::optional<JobId> job, int limit);
+
+  const std::string& path() const { return db_.path(); }
+
+ private:
+  JobStore(Database db, std::function<int64_t()> now_ms)
+      : db_(std::move(db)), now_ms_(std::move(now_ms)) {}
+  Status InsertRound(const RoundRecord& round, int64_t now);
+
+  Database db_;
+  std::function<int64_t()> now_ms_;
+};
+
+std::string_view EventLevelName(EventLevel level);
+
+}  // namespace radfarm::store

@@ -1,0 +1,130 @@
+// JobStore: rounds and checkpoints (the rest is in job_store.cc).
+#include <utility>
+
+#include "daemon/store/blob_codec.h"
+#include "daemon/store/job_store.h"
+#include "daemon/store/return_if_error.h"
+
+namespace radfarm::store {
+
+Status JobStore::InsertRound(const RoundRecord& round, int64_t now) {
+  Result<Statement> stmt = db_.Prepare(
+      "INSERT INTO rounds (job_id, round, shooters, rays, unshot_fraction, unshot_power,"
+      " duration_seconds, recorded_at_ms) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)"
+      " ON CONFLICT (job_id, round) DO UPDATE SET shooters = excluded.shooters,"
+      " rays = excluded.rays, unshot_fraction = excluded.unshot_fraction,"
+      " unshot_power = excluded.unshot_power, duration_seconds = excluded.duration_seconds,"
+      " recorded_at_ms = excluded.recorded_at_ms");
+  STORE_RETURN_IF_ERROR(stmt);
+  stmt->Bind(1, round.job)
+      .Bind(2, int64_t{round.round})
+      .Bind(3, int64_t{round.shooters})
+      .Bind(4, static_cast<int64_t>(round.rays))
+      .Bind(5, round.unshot_fraction)
+      .Bind(6, round.unshot_power)
+      .Bind(7, round.duration_seconds)
+      .Bind(8, now);
+  return stmt->Run();
+}
+
+Status JobStore::RecordRound(const RoundRecord& round) { return InsertRound(round, now_ms_()); }
+
+Result<std::vector<RoundRecord>> JobStore::ListRounds(JobId job) {
+  Result<Statement> stmt = db_.Prepare(
+      "SELECT job_id, round, shooters, rays, unshot_fraction, unshot_power, duration_seconds"
+      " FROM rounds WHERE job_id = ?1 ORDER BY round");
+  STORE_RETURN_IF_ERROR(stmt);
+  stmt->Bind(1, job);
+  std::vector<RoundRecord> rounds;
+  while (true) {
+    Result<bool> row = stmt->Step();
+    STORE_RETURN_IF_ERROR(row);
+    if (!*row) return rounds;
+    rounds.push_back({stmt->Int(0), static_cast<uint32_t>(stmt->Int(1)),
+                      static_cast<uint32_t>(stmt->Int(2)), static_cast<uint64_t>(stmt->Int(3)),
+                      stmt->Double(4), stmt->Double(5), stmt->Double(6)});
+  }
+}
+
+Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& checkpoint) {
+  if (checkpoint.job != round.job || checkpoint.round != round.round) {
+    return Error{"job store: checkpoint of job " + std::to_string(checkpoint.job) + " round " +
+                 std::to_string(checkpoint.round) + " saved with the row of job " +
+                 std::to_string(round.job) + " round " + std::to_string(round.round)};
+  }
+  if (checkpoint.radiosity.size() != checkpoint.unshot.size()) {
+    return Error{"job store: checkpoint of job " + std::to_string(checkpoint.job) + ": " +
+                 std::to_string(checkpoint.radiosity.size()) + " radiosity values but " +
+                 std::to_string(checkpoint.unshot.size()) + " unshot values"};
+  }
+  // Encode before taking the write lock: the transaction holds it only for the writes.
+  std::vector<uint8_t> radiosity = EncodeRgbs(checkpoint.radiosity);
+  std::vector<uint8_t> unshot = EncodeRgbs(checkpoint.unshot);
+  std::vector<uint8_t> energy = EncodeEnergy(checkpoint.energy);
+  int64_t now = now_ms_();
+
+  Result<Transaction> transaction = Transaction::Begin(db_);
+  STORE_RETURN_IF_ERROR(transaction);
+  STORE_RETURN_IF_ERROR(InsertRound(round, now));
+  Result<Statement> stmt = db_.Prepare(
+      "INSERT OR REPLACE INTO checkpoints (job_id, round, rounds_done, patches, radiosity, unshot,"
+      " energy, created_at_ms) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
+  STORE_RETURN_IF_ERROR(stmt);
+  stmt->Bind(1, checkpoint.job)
+      .Bind(2, int64_t{checkpoint.round})
+      .Bind(3, int64_t{checkpoint.rounds_done})
+      .Bind(4, static_cast<int64_t>(checkpoint.radiosity.size()))
+      .BindBlob(5, radiosity)
+      .BindBlob(6, unshot)
+      .BindBlob(7, energy)
+      .Bind(8, now);
+  STORE_RETURN_IF_ERROR(stmt->Run());
+  return transaction->Commit();
+}
+
+Result<std::optional<Checkpoint>> JobStore::LoadLatestCheckpoint(JobId job) {
+  Result<Statement> stmt = db_.Prepare(
+      "SELECT round, rounds_done, radiosity, unshot, energy, created_at_ms FROM checkpoints"
+      " WHERE job_id = ?1 ORDER BY round DESC LIMIT 1");
+  STORE_RETURN_IF_ERROR(stmt);
+  stmt->Bind(1, job);
+  Result<bool> row = stmt->Step();
+  STORE_RETURN_IF_ERROR(row);
+  if (!*row) return std::optional<Checkpoint>();
+  Checkpoint checkpoint;
+  checkpoint.job = job;
+  checkpoint.round = static_cast<uint32_t>(stmt->Int(0));
+  checkpoint.rounds_done = static_cast<uint32_t>(stmt->Int(1));
+  Result<std::vector<Rgb>> radiosity = DecodeRgbs(stmt->Blob(2));
+  STORE_RETURN_IF_ERROR(radiosity);
+  Result<std::vector<Rgb>> unshot = DecodeRgbs(stmt->Blob(3));
+  STORE_RETURN_IF_ERROR(unshot);
+  Result<EnergyAccount> energy = DecodeEnergy(stmt->Blob(4));
+  STORE_RETURN_IF_ERROR(energy);
+  checkpoint.radiosity = std::move(*radiosity);
+  checkpoint.unshot = std::move(*unshot);
+  checkpoint.energy = *energy;
+  checkpoint.created_at_ms = stmt->Int(5);
+  return std::optional<Checkpoint>(std::move(checkpoint));
+}
+
+Status JobStore::PruneCheckpoints(JobId job, int keep_last) {
+  if (keep_last < 0) return Error{"job store: PruneCheckpoints keep_last must be >= 0"};
+  Result<Statement> stmt = db_.Prepare(
+      "DELETE FROM checkpoints WHERE job_id = ?1 AND round NOT IN ("
+      "  SELECT round FROM checkpoints WHERE job_id = ?1 ORDER BY round DESC LIMIT ?2)");
+  STORE_RETURN_IF_ERROR(stmt);
+  stmt->Bind(1, job).Bind(2, int64_t{keep_last});
+  return stmt->Run();
+}
+
+Result<int64_t> JobStore::CountCheckpoints(JobId job) {
+  Result<Statement> stmt = db_.Prepare("SELECT count(*) FROM checkpoints WHERE job_id = ?1");
+  STORE_RETURN_IF_ERROR(stmt);
+  stmt->Bind(1, job);
+  Result<bool> row = stmt->Step();
+  STORE_RETURN_IF_ERROR(row);
+  return stmt->Int(0);
+}
+
+}  // namespace radfarm::store

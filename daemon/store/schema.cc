@@ -1,0 +1,162 @@
+#include "daemon/store/schema.h"
+
+#include <array>
+#include <string>
+
+namespace radfarm::store {
+namespace {
+
+// Version 1: the tables. Times are milliseconds since the Unix epoch (UTC) from the store's clock.
+constexpr std::string_view kV1 = R"sql(
+CREATE TABLE scenes (
+  hash TEXT PRIMARY KEY,
+  geometry BLOB NOT NULL,
+  size INTEGER NOT NULL CHECK (size >= 0),
+  stored_at_ms INTEGER NOT NULL
+);
+CREATE TABLE jobs (
+  id INTEGER PRIMARY KEY,
+  name TEXT NOT NULL,
+  scene_hash TEXT NOT NULL REFERENCES scenes(hash),
+  settings TEXT NOT NULL,
+  seed INTEGER NOT NULL,
+  priority INTEGER NOT NULL,
+  state TEXT NOT NULL
+    CHECK (state IN ('queued', 'running', 'paused', 'done', 'failed', 'cancelled')),
+  submitted_at_ms INTEGER NOT NULL,
+  started_at_ms INTEGER,
+  finished_at_ms INTEGER,
+  error TEXT
+);
+CREATE TABLE rounds (
+  job_id INTEGER NOT NULL REFERENCES jobs(id) ON DELETE CASCADE,
+  round INTEGER NOT NULL CHECK (round >= 0),
+  shooters INTEGER NOT NULL,
+  rays INTEGER NOT NULL,
+  unshot_fraction REAL NOT NULL,
+  unshot_power REAL NOT NULL,
+  duration_seconds REAL NOT NULL,
+  recorded_at_ms INTEGER NOT NULL,
+  PRIMARY KEY (job_id, round)
+) WITHOUT ROWID;
+CREATE TABLE checkpoints (
+  job_id INTEGER NOT NULL,
+  round INTEGER NOT NULL,
+  rounds_done INTEGER NOT NULL,
+  patches INTEGER NOT NULL,
+  radiosity BLOB NOT NULL CHECK (length(radiosity) = 24 * patches),
+  unshot BLOB NOT NULL CHECK (length(unshot) = 24 * patches),
+  energy BLOB NOT NULL CHECK (length(energy) = 32),
+  created_at_ms INTEGER NOT NULL,
+  PRIMARY KEY (job_id, round),
+  FOREIGN KEY (job_id, round) REFERENCES rounds(job_id, round) ON DELETE CASCADE
+);
+CREATE TABLE agents (
+  name TEXT PRIMARY KEY,
+  address TEXT NOT NULL,
+  threads INTEGER NOT NULL,
+  first_seen_ms INTEGER NOT NULL,
+  last_seen_ms INTEGER NOT NULL
+);
+CREATE TABLE events (
+  id INTEGER PRIMARY KEY,
+  job_id INTEGER REFERENCES jobs(id) ON DELETE CASCADE,
+  time_ms INTEGER NOT NULL,
+  level TEXT NOT NULL CHECK (level IN ('info', 'warning', 'error')),
+  text TEXT NOT NULL
+);
+)sql";
+
+// Version 2: indexes for the scheduler's query (NextRunnableJobs) and per-job event listing.
+constexpr std::string_view kV2 = R"sql(
+CREATE INDEX jobs_runnable ON jobs (state, priority DESC, submitted_at_ms, id);
+CREATE INDEX events_by_job ON events (job_id, id);
+)sql";
+
+constexpr std::array<Migration, 2> kMigrations = {{{1, kV1}, {2, kV2}}};
+
+Result<int64_t> FileBytes(Database& db) {
+  Result<int64_t> pages = db.QueryInt("PRAGMA page_count");
+  if (!pages.ok()) return pages;
+  Result<int64_t> page_size = db.QueryInt("PRAGMA page_size");
+  if (!page_size.ok()) return page_size;
+  return *pages * *page_size;
+}
+
+Status CheckIntegrity(Database& db, const SchemaCheckOptions& options) {
+  Result<int64_t> bytes = FileBytes(db);
+  if (!bytes.ok()) return Error{bytes.error()};
+  bool full = *bytes <= options.full_check_max_bytes;
+  Result<Statement> check =
+      db.Prepare(full ? "PRAGMA integrity_check(20)" : "PRAGMA quick_check(20)");
+  if (!check.ok()) return Error{check.error()};
+  std::string problems;
+  while (true) {
+    Result<bool> row = check->Step();
+    if (!row.ok()) return Error{row.error()};
+    if (!*row) break;
+    std::string line = check->Text(0);
+    if (line == "ok") continue;
+    if (!problems.empty()) problems += "; ";
+    problems += line;
+  }
+  if (problems.empty()) return Ok{};
+  return Error{"job store " + db.path() +
+               ": SQLITE_CORRUPT: " + (full ? "integrity_check" : "quick_check") +
+               " failed; the file was left untouched: restore it from a backup (" + problems + ")"};
+}
+
+}  // namespace
+
+std::span<const Migration> Migrations() { return kMigrations; }
+int LatestSchemaVersion() { return kMigrations.back().version; }
+
+Result<int> CheckDatabase(Database& db, const SchemaCheckOptions& options) {
+  // The first read of the header: garbage gives SQLITE_NOTADB here.
+  Result<int64_t> app_id = db.QueryInt("PRAGMA application_id");
+  if (!app_id.ok()) return Error{app_id.error()};
+  Result<int64_t> objects = db.QueryInt("SELECT count(*) FROM sqlite_schema");
+  if (!objects.ok()) return Error{objects.error()};
+  if (*app_id != kApplicationId && (*app_id != 0 || *objects != 0)) {
+    return Error{"job store " + db.path() +
+                 ": a SQLite database of another program (application_id " +
+                 std::to_string(*app_id) + ", radfarm uses " + std::to_string(kApplicationId) +
+                 "); refusing to touch it"};
+  }
+  Result<int64_t> version = db.QueryInt("PRAGMA user_version");
+  if (!version.ok()) return Error{version.error()};
+  if (*version > LatestSchemaVersion()) {
+    return Error{"job store " + db.path() + ": schema version " + std::to_string(*version) +
+                 " is newer than this build knows (" + std::to_string(LatestSchemaVersion()) +
+                 "); upgrade radfarm, the file was left untouched"};
+  }
+  Status integrity = CheckIntegrity(db, options);
+  if (!integrity.ok()) return Error{integrity.error()};
+  return static_cast<int>(*version);
+}
+
+Status Migrate(Database& db, int target) {
+  if (target < 0) target = LatestSchemaVersion();
+  Result<int64_t> current = db.QueryInt("PRAGMA user_version");
+  if (!current.ok()) return Error{current.error()};
+  for (const Migration& migration : kMigrations) {
+    if (migration.version <= *current || migration.version > target) continue;
+    Result<Transaction> transaction = Transaction::Begin(db);
+    if (!transaction.ok()) return Error{transaction.error()};
+    std::string what = "migration to schema version " + std::to_string(migration.version);
+    Status applied = db.Exec(migration.sql, what);
+    if (!applied.ok()) return applied;
+    // PRAGMAs take no bound parameters; both values are this build's own constants.
+    std::string pragmas = "PRAGMA user_version = " + std::to_string(migration.version) + ";";
+    if (migration.version == 1) {
+      pragmas += "PRAGMA application_id = " + std::to_string(kApplicationId) + ";";
+    }
+    Status bumped = db.Exec(pragmas, what);
+    if (!bumped.ok()) return bumped;
+    Status committed = transaction->Commit();
+    if (!committed.ok()) return committed;
+  }
+  return Ok{};
+}
+
+}  // namespace radfarm::store
