@@ -1,0 +1,191 @@
+// Opening files: migrations from every version, and refusals (corrupt, foreign, newer files).
+#include "daemon/store/schema.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "daemon/store/job_store.h"
+#include "tests/daemon/store/temp_dir.h"
+
+namespace radfarm::store {
+namespace {
+
+Database OpenRaw(const std::string& path) {
+  Result<Database> db = Database::Open(path, {});
+  EXPECT_TRUE(db.ok()) << db.error();
+  return std::move(*db);
+}
+
+// The schema as text (tables and indexes), to compare an upgraded file with a fresh one.
+std::string SchemaText(Database& db) {
+  Result<Statement> stmt =
+      db.Prepare("SELECT type, name, sql FROM sqlite_schema ORDER BY type, name");
+  EXPECT_TRUE(stmt.ok());
+  std::string text;
+  while (*stmt->Step()) text += stmt->Text(0) + " " + stmt->Text(1) + ": " + stmt->Text(2) + "\n";
+  return text;
+}
+
+int64_t UserVersion(const std::string& path) {
+  Database db = OpenRaw(path);
+  return *db.QueryInt("PRAGMA user_version");
+}
+
+void ExpectRefused(const std::string& path, const std::string& expected) {
+  std::vector<uint8_t> before = ReadBytes(path);
+  Result<JobStore> store = JobStore::Open(path);
+  ASSERT_FALSE(store.ok());
+  std::printf("refused as expected: %s\n", store.error().c_str());
+  EXPECT_NE(store.error().find(expected), std::string::npos) << store.error();
+  EXPECT_NE(store.error().find(path), std::string::npos) << store.error();
+  // Never a silent overwrite: the refused file keeps every byte.
+  EXPECT_EQ(ReadBytes(path), before);
+}
+
+TEST(SchemaTest, MigrationVersionsAreConsecutive) {
+  int expected = 1;
+  for (const Migration& migration : Migrations()) EXPECT_EQ(migration.version, expected++);
+  EXPECT_EQ(LatestSchemaVersion(), static_cast<int>(Migrations().size()));
+}
+
+TEST(SchemaTest, CreatesLatestSchemaInNewAndEmptyFiles) {
+  TempDir dir;
+  WriteBytes(dir.File("empty.db"), {});
+  for (const std::string& path : {dir.File("new.db"), dir.File("empty.db")}) {
+    Result<JobStore> store = JobStore::Open(path);
+    ASSERT_TRUE(store.ok()) << store.error();
+  }
+  Database db = OpenRaw(dir.File("new.db"));
+  EXPECT_EQ(*db.QueryInt("PRAGMA user_version"), LatestSchemaVersion());
+  EXPECT_EQ(*db.QueryInt("PRAGMA application_id"), kApplicationId);
+  EXPECT_EQ(*db.QueryText("PRAGMA journal_mode"), "wal");
+  EXPECT_EQ(UserVersion(dir.File("empty.db")), LatestSchemaVersion());
+}
+
+// Walks every version in the list: a file left at version k by an older build upgrades to the
+// latest, and ends with exactly the schema of a file created fresh.
+TEST(SchemaTest, UpgradesFromEveryEarlierVersion) {
+  TempDir dir;
+  ASSERT_TRUE(JobStore::Open(dir.File("fresh.db")).ok());
+  Database fresh = OpenRaw(dir.File("fresh.db"));
+  std::string latest_schema = SchemaText(fresh);
+  for (int k = 0; k <= LatestSchemaVersion(); ++k) {
+    SCOPED_TRACE("from version " + std::to_string(k));
+    std::string path = dir.File("v" + std::to_string(k) + ".db");
+    {
+      Database db = OpenRaw(path);
+      ASSERT_TRUE(Migrate(db, k).ok());
+      EXPECT_EQ(*db.QueryInt("PRAGMA user_version"), k);
+    }
+    Result<JobStore> store = JobStore::Open(path);
+    ASSERT_TRUE(store.ok()) << store.error();
+    Database db = OpenRaw(path);
+    EXPECT_EQ(*db.QueryInt("PRAGMA user_version"), LatestSchemaVersion());
+    EXPECT_EQ(SchemaText(db), latest_schema);
+  }
+}
+
+// A frozen file from schema version 1 (data/schema_v1.sql) keeps its data through the upgrade.
+TEST(SchemaTest, UpgradesVersion1FixtureWithItsData) {
+  TempDir dir;
+  std::string path = dir.File("v1.db");
+  {
+    std::ifstream in(std::string(RADFARM_SOURCE_DIR) + "/tests/daemon/store/data/schema_v1.sql");
+    std::stringstream sql;
+    sql << in.rdbuf();
+    Database db = OpenRaw(path);
+    ASSERT_TRUE(db.Exec(sql.str(), "load fixture").ok());
+    ASSERT_EQ(*db.QueryInt("PRAGMA user_version"), 1);
+  }
+  Result<JobStore> store = JobStore::Open(path);
+  ASSERT_TRUE(store.ok()) << store.error();
+  EXPECT_EQ(UserVersion(path), LatestSchemaVersion());
+
+  Result<std::optional<JobRecord>> job = store->GetJob(1);
+  ASSERT_TRUE(job.ok() && job->has_value());
+  EXPECT_EQ((*job)->spec.name, "cornell");
+  EXPECT_EQ((*job)->spec.seed, 42u);
+  EXPECT_EQ((*job)->state, JobState::kRunning);
+  Result<std::vector<JobRecord>> runnable = store->NextRunnableJobs(10);
+  ASSERT_TRUE(runnable.ok());
+  ASSERT_EQ(runnable->size(), 1u);
+  EXPECT_EQ(runnable->front().id, 2);
+
+  Result<std::optional<Checkpoint>> checkpoint = store->LoadLatestCheckpoint(1);
+  ASSERT_TRUE(checkpoint.ok() && checkpoint->has_value()) << checkpoint.error();
+  EXPECT_EQ((*checkpoint)->radiosity, std::vector<Rgb>{Rgb(1.0, 0.5, 0.25)});
+  EXPECT_TRUE(std::signbit((*checkpoint)->unshot[0].g));  // -0.0 survived
+  EXPECT_EQ((*checkpoint)->unshot[0].b, 1e308);
+  EXPECT_EQ((*checkpoint)->energy.emitted, 2.0);
+  Result<std::optional<std::vector<uint8_t>>> scene = store->GetScene("sha256:cornell");
+  ASSERT_TRUE(scene.ok() && scene->has_value());
+  EXPECT_EQ(**scene, (std::vector<uint8_t>{1, 2, 3, 4, 5}));
+  EXPECT_EQ(store->ListEvents(1, 10)->size(), 1u);
+  EXPECT_EQ(store->ListAgents()->size(), 1u);
+}
+
+TEST(SchemaTest, RefusesNewerSchemaVersion) {
+  TempDir dir;
+  std::string path = dir.File("newer.db");
+  ASSERT_TRUE(JobStore::Open(path).ok());
+  {
+    Database db = OpenRaw(path);
+    std::string bump = "PRAGMA user_version = " + std::to_string(LatestSchemaVersion() + 1);
+    ASSERT_TRUE(db.Exec(bump, "bump").ok());
+  }
+  ExpectRefused(path, "is newer than this build knows");
+}
+
+TEST(SchemaTest, RefusesFileThatIsNotSqlite) {
+  TempDir dir;
+  std::string path = dir.File("notes.txt");
+  std::string text;
+  for (int i = 0; i < 200; ++i) text += "radfarm render scenes/cornell-box.toml --out out/\n";
+  WriteBytes(path, std::vector<uint8_t>(text.begin(), text.end()));
+  ExpectRefused(path, "SQLITE_NOTADB");
+}
+
+TEST(SchemaTest, RefusesSqliteDatabaseOfAnotherProgram) {
+  TempDir dir;
+  std::string with_tables = dir.File("other.db");
+  std::string with_id = dir.File("other_id.db");
+  {
+    Database db = OpenRaw(with_tables);
+    ASSERT_TRUE(db.Exec("CREATE TABLE photos (id INTEGER PRIMARY KEY, jpeg BLOB)", "x").ok());
+    Database id = OpenRaw(with_id);
+    ASSERT_TRUE(id.Exec("PRAGMA application_id = 1234", "x").ok());
+  }
+  ExpectRefused(with_tables, "a SQLite database of another program");
+  ExpectRefused(with_id, "application_id 1234");
+}
+
+TEST(SchemaTest, RefusesCorruptFile) {
+  TempDir dir;
+  std::string path = dir.File("corrupt.db");
+  {
+    Result<JobStore> store = JobStore::Open(path);
+    ASSERT_TRUE(store.ok()) << store.error();
+    for (int i = 0; i < 20; ++i) {
+      std::vector<uint8_t> geometry(3000, static_cast<uint8_t>(i));
+      ASSERT_TRUE(store->PutScene("scene-" + std::to_string(i), geometry).ok());
+      ASSERT_TRUE(store->AppendEvent(std::nullopt, EventLevel::kInfo, "event").ok());
+    }
+  }
+  // Closing the last connection checkpoints the WAL into the file: all pages are in the file.
+  std::vector<uint8_t> bytes = ReadBytes(path);
+  const size_t page = 4096;
+  ASSERT_GT(bytes.size(), 8 * page);
+  uint32_t state = 12345;
+  for (size_t i = page; i < 5 * page; ++i) {  // pages 2 to 5; page 1 (the header) stays valid
+    state = state * 1103515245u + 12345u;
+    bytes[i] = static_cast<uint8_t>(state >> 16);
+  }
+  WriteBytes(path, bytes);
+  ExpectRefused(path, "SQLITE_CORRUPT");
+}
+
+}  // namespace
+}  // namespace radfarm::store
