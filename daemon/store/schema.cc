@@ -1,5 +1,6 @@
 #include "daemon/store/schema.h"
 
+#include <algorithm>
 #include <array>
 #include <string>
 
@@ -97,6 +98,7 @@ Status CheckIntegrity(Database& db, const SchemaCheckOptions& options) {
     if (!*row) break;
     std::string line = check->Text(0);
     if (line == "ok") continue;
+    std::replace(line.begin(), line.end(), '\n', ' ');  // keep the error one line
     if (!problems.empty()) problems += "; ";
     problems += line;
   }
