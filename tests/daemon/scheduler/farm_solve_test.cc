@@ -1,0 +1,128 @@
+// Whole solves driven through the scheduler by simulated agents give radiosity bit-identical to
+// core's Solve() with the same settings, whatever the agents do (core/batch.h's contract).
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "core/solve.h"
+#include "tests/core/test_scenes.h"
+#include "tests/daemon/scheduler/farm_sim.h"
+
+namespace radfarm::scheduler {
+namespace {
+
+using std::chrono::milliseconds;
+using std::chrono::seconds;
+using testing::FarmSim;
+using testing::SimAgentSpec;
+
+PatchScene LitBox() {
+  PatchScene scene = radfarm::testing::MakeClosedBox(
+      {0, 0, 0}, {1, 1, 1}, 4, radfarm::testing::Surface{{0.7, 0.5, 0.3}, {}, 0});
+  scene.patches[3 * 16 + 5].emission = {10, 10, 10};
+  return scene;
+}
+
+SolverSettings Settings() {
+  SolverSettings s;
+  s.shot_rays = 1 << 14;
+  s.tolerance = 0.02;
+  s.threads = 2;
+  return s;
+}
+
+class FarmSolveTest : public ::testing::Test {
+ protected:
+  // Solves through the farm with batches of 1000 rays (core's Solve uses 4096) and compares.
+  void ExpectSameAsSolve(FarmSim& farm) {
+    const std::vector<Rgb> farmed = farm.Solve(1000);
+    ASSERT_EQ(farmed.size(), reference_.radiosity.size());
+    EXPECT_EQ(std::memcmp(farmed.data(), reference_.radiosity.data(), farmed.size() * sizeof(Rgb)),
+              0);
+    EXPECT_EQ(farm.rounds(), reference_.stats.rounds);
+  }
+
+  const PatchScene scene_ = LitBox();
+  const SolveResult reference_ = radfarm::Solve(scene_, Settings());
+};
+
+TEST_F(FarmSolveTest, OneAgent) {
+  FarmSim farm(scene_, Settings(), {SimAgentSpec{}});
+  ExpectSameAsSolve(farm);
+  const SchedulerCounters c = farm.scheduler().counters(farm.now());
+  EXPECT_EQ(c.attempts_issued, c.results_accepted);
+  EXPECT_EQ(c.speculative_attempts, 0u);
+}
+
+TEST_F(FarmSolveTest, FiveAgentsOfDifferentSpeeds) {
+  std::vector<SimAgentSpec> agents(5);
+  double speed = 1e4;  // rays/s: 1e4, 3e4, ... 8.1e5
+  for (SimAgentSpec& agent : agents) {
+    agent.rays_per_second = speed;
+    speed *= 3;
+  }
+  FarmSim farm(scene_, Settings(), agents);
+  ExpectSameAsSolve(farm);
+  const SchedulerCounters c = farm.scheduler().counters(farm.now());
+  ASSERT_EQ(c.agents.size(), 5u);
+  for (const AgentCounters& a : c.agents) EXPECT_GT(a.results_accepted, 0u) << a.agent;
+}
+
+TEST_F(FarmSolveTest, AgentsThatDieMidRoundHaveTheirLeasesRequeued) {
+  std::vector<SimAgentSpec> agents(4);
+  agents[0].dies_at = milliseconds(15);
+  agents[1].dies_at = milliseconds(75);
+  FarmSim farm(scene_, Settings(), agents);
+  ExpectSameAsSolve(farm);
+  const SchedulerCounters c = farm.scheduler().counters(farm.now());
+  EXPECT_GT(c.leases_requeued, 0u);
+  EXPECT_EQ(c.agents.size(), 2u);  // the dead are forgotten
+}
+
+TEST_F(FarmSolveTest, DuplicatedAndLateResultsAreDropped) {
+  std::vector<SimAgentSpec> agents(3);
+  agents[0].sends_twice = true;
+  agents[1].result_delay = seconds(20);  // far past its first leases' deadline
+  FarmSim farm(scene_, Settings(), agents);
+  ExpectSameAsSolve(farm);
+  farm.Drain(seconds(30));
+  const SchedulerCounters c = farm.scheduler().counters(farm.now());
+  EXPECT_GT(c.dropped(DropReason::kDuplicate), 0u);
+  EXPECT_GT(c.speculative_attempts, 0u);
+  EXPECT_GT(c.dropped(DropReason::kLate) + c.dropped(DropReason::kStaleRound), 0u);
+}
+
+TEST_F(FarmSolveTest, StragglersAreReissuedAndBothAttemptsAnswer) {
+  std::vector<SimAgentSpec> agents(3);
+  agents[2].stalls_at = milliseconds(20);
+  FarmSim farm(scene_, Settings(), agents);
+  ExpectSameAsSolve(farm);
+  farm.Drain(seconds(600));  // the straggler finishes what it held
+  const SchedulerCounters c = farm.scheduler().counters(farm.now());
+  EXPECT_GT(c.speculative_attempts, 0u);
+  EXPECT_GT(c.dropped(DropReason::kLate) + c.dropped(DropReason::kStaleRound), 0u);
+}
+
+TEST_F(FarmSolveTest, AnAgentReturningLeases) {
+  std::vector<SimAgentSpec> agents(2);
+  agents[0].returns_leases_at = milliseconds(30);
+  FarmSim farm(scene_, Settings(), agents);
+  ExpectSameAsSolve(farm);
+  EXPECT_GT(farm.scheduler().counters(farm.now()).leases_requeued, 0u);
+}
+
+TEST_F(FarmSolveTest, ALyingAgentIsRejectedBlocklistedAndItsWorkRedone) {
+  std::vector<SimAgentSpec> agents(3);
+  agents[1].lies_on_result = 2;
+  FarmSim farm(scene_, Settings(), agents);
+  ExpectSameAsSolve(farm);
+  const SchedulerCounters c = farm.scheduler().counters(farm.now());
+  EXPECT_EQ(c.dropped(DropReason::kInvalid), 1u);
+  ASSERT_EQ(c.agents.size(), 3u);
+  EXPECT_TRUE(c.agents[1].blocklisted);
+  EXPECT_EQ(c.agents[1].leases_held, 0u);
+  EXPECT_EQ(c.agents[1].results_accepted, 2u);  // nothing after the lie
+}
+
+}  // namespace
+}  // namespace radfarm::scheduler

@@ -1,0 +1,219 @@
+// RoundScheduler on hand-made plans and a fake clock: leasing, lease sizing, results and their
+// drop reasons, deadlines and speculative re-issue, faults, blocklisting and counters.
+#include "daemon/scheduler/round_scheduler.h"
+
+#include <gtest/gtest.h>
+
+namespace radfarm::scheduler {
+namespace {
+
+using std::chrono::milliseconds;
+using std::chrono::seconds;
+
+const TimePoint kT0{};
+
+RoundPlan Plan(uint32_t round, uint32_t batches, uint32_t rays = 1000) {
+  RoundPlan plan;
+  plan.round = round;
+  for (uint32_t k = 0; k < batches; ++k) {
+    plan.batches.push_back({round, k, 0, rays});
+    plan.rays += rays;
+  }
+  return plan;
+}
+
+BatchResult ResultFor(uint32_t k) { return {{{k, 1}}, 0, 0, 0, 0}; }
+
+TEST(RoundSchedulerTest, LeasesUpToTheInitialCapacityAndCounts) {
+  SchedulerOptions options;
+  options.initial_leases = 2;
+  RoundScheduler s(options);
+  s.AddAgent(1);
+  EXPECT_FALSE(s.NextAssignment(1, kT0));  // no round yet
+  ASSERT_TRUE(s.StartRound(Plan(3, 5), kT0).ok());
+  EXPECT_FALSE(s.StartRound(Plan(4, 5), kT0).ok());  // one round at a time
+  const auto a = s.NextAssignment(1, kT0);
+  const auto b = s.NextAssignment(1, kT0);
+  ASSERT_TRUE(a && b);
+  EXPECT_FALSE(s.NextAssignment(1, kT0));  // at capacity
+  EXPECT_FALSE(s.NextAssignment(2, kT0));  // unknown agent
+  EXPECT_EQ(a->batch_id, MakeBatchId(3, 0));
+  EXPECT_EQ(b->batch_id, MakeBatchId(3, 1));
+  EXPECT_NE(a->attempt_id, b->attempt_id);
+  const SchedulerCounters c = s.counters(kT0);
+  EXPECT_EQ(c.round, 3u);
+  EXPECT_EQ(c.batches_queued, 3u);
+  EXPECT_EQ(c.batches_leased, 2u);
+  EXPECT_EQ(c.attempts_issued, 2u);
+  ASSERT_EQ(c.agents.size(), 1u);
+  EXPECT_EQ(c.agents[0].leases_held, 2u);
+}
+
+TEST(RoundSchedulerTest, FastAgentGetsMoreLeasesThanASlowOneNeverAboveTheCap) {
+  SchedulerOptions options;
+  options.initial_leases = 1;
+  options.max_leases_per_agent = 8;
+  options.target_lease_seconds = 0.5;
+  RoundScheduler s(options);
+  s.AddAgent(1);  // slow: 1000 rays in 1 s
+  s.AddAgent(2);  // fast: 1000 rays in 10 ms
+  ASSERT_TRUE(s.StartRound(Plan(0, 100), kT0).ok());
+  const auto slow = s.NextAssignment(1, kT0);
+  const auto fast = s.NextAssignment(2, kT0);
+  ASSERT_TRUE(slow && fast);
+  s.OnResult(2, fast->batch_id, fast->attempt_id, ResultFor(0), kT0 + milliseconds(10));
+  s.OnResult(1, slow->batch_id, slow->attempt_id, ResultFor(0), kT0 + seconds(1));
+  int slow_leases = 0, fast_leases = 0;
+  while (s.NextAssignment(1, kT0 + seconds(1))) ++slow_leases;
+  while (s.NextAssignment(2, kT0 + seconds(1))) ++fast_leases;
+  EXPECT_EQ(slow_leases, 1);  // 1000 rays/s * 0.5 s < one batch: still one
+  EXPECT_EQ(fast_leases, 8);  // 1e5 rays/s wants 50: capped
+  const SchedulerCounters c = s.counters(kT0 + seconds(1));
+  EXPECT_EQ(c.agents[0].lease_capacity, 1u);
+  EXPECT_EQ(c.agents[1].lease_capacity, 8u);
+  EXPECT_NEAR(c.agents[1].rays_per_second, 1e5, 1);
+}
+
+TEST(RoundSchedulerTest, FirstResultWinsOthersAreDroppedWithAReason) {
+  RoundScheduler s;
+  s.AddAgent(1);
+  s.AddAgent(2);
+  ASSERT_TRUE(s.StartRound(Plan(7, 2), kT0).ok());
+  const auto a = s.NextAssignment(1, kT0);
+  const auto b = s.NextAssignment(2, kT0);
+  ASSERT_TRUE(a && b);
+  const TimePoint t = kT0 + milliseconds(50);
+  EXPECT_EQ(s.OnResult(2, a->batch_id, a->attempt_id, ResultFor(0), t).reason,
+            DropReason::kNotHolder);
+  EXPECT_EQ(s.OnResult(1, b->batch_id, a->attempt_id, ResultFor(0), t).reason,
+            DropReason::kWrongBatch);
+  EXPECT_EQ(s.OnResult(1, a->batch_id, 999, ResultFor(0), t).reason, DropReason::kUnknownAttempt);
+  EXPECT_EQ(s.OnResult(1, MakeBatchId(6, 0), a->attempt_id, ResultFor(0), t).reason,
+            DropReason::kStaleRound);
+  const ResultVerdict first = s.OnResult(1, a->batch_id, a->attempt_id, ResultFor(0), t);
+  EXPECT_EQ(first.disposition, Disposition::kAccepted);
+  EXPECT_FALSE(first.round_complete);
+  const ResultVerdict again = s.OnResult(1, a->batch_id, a->attempt_id, ResultFor(5), t);
+  EXPECT_EQ(again.disposition, Disposition::kDropped);
+  EXPECT_EQ(again.reason, DropReason::kDuplicate);
+  EXPECT_FALSE(s.TakeCompletedRound().ok());
+  EXPECT_TRUE(s.OnResult(2, b->batch_id, b->attempt_id, ResultFor(1), t).round_complete);
+
+  Result<CompletedRound> done = s.TakeCompletedRound();
+  ASSERT_TRUE(done.ok());
+  EXPECT_EQ(done->plan.round, 7u);
+  ASSERT_EQ(done->results.size(), 2u);
+  EXPECT_EQ(done->results[0], ResultFor(0));  // the first result, not the duplicate
+  EXPECT_EQ(done->results[1], ResultFor(1));
+  EXPECT_EQ(s.OnResult(1, a->batch_id, a->attempt_id, ResultFor(0), t).reason,
+            DropReason::kStaleRound);
+
+  const SchedulerCounters c = s.counters(t);
+  EXPECT_FALSE(c.round_active);
+  EXPECT_EQ(c.results_accepted, 2u);
+  EXPECT_EQ(c.dropped(DropReason::kNotHolder), 1u);
+  EXPECT_EQ(c.dropped(DropReason::kWrongBatch), 1u);
+  EXPECT_EQ(c.dropped(DropReason::kUnknownAttempt), 1u);
+  EXPECT_EQ(c.dropped(DropReason::kStaleRound), 2u);
+  EXPECT_EQ(c.dropped(DropReason::kDuplicate), 1u);
+}
+
+TEST(RoundSchedulerTest, OverdueLeaseIsReissuedToAnotherAgentAndBothMayAnswer) {
+  SchedulerOptions options;
+  options.deadline_floor = seconds(2);
+  options.unmeasured_expected_seconds = 0.1;
+  options.max_live_attempts = 2;
+  RoundScheduler s(options);
+  s.AddAgent(1);
+  s.AddAgent(2);
+  s.AddAgent(3);
+  ASSERT_TRUE(s.StartRound(Plan(0, 1), kT0).ok());
+  const auto original = s.NextAssignment(1, kT0);
+  ASSERT_TRUE(original);
+  EXPECT_EQ(original->deadline, kT0 + seconds(2));  // 4 x 0.1 s is below the floor
+  EXPECT_EQ(s.Tick(kT0 + milliseconds(1999)), 0u);
+  EXPECT_FALSE(s.NextAssignment(2, kT0 + milliseconds(1999)));
+  EXPECT_EQ(s.Tick(kT0 + seconds(2)), 1u);
+  EXPECT_EQ(s.Tick(kT0 + seconds(2)), 0u);              // offered once
+  EXPECT_FALSE(s.NextAssignment(1, kT0 + seconds(2)));  // not to the holder
+  const auto copy = s.NextAssignment(2, kT0 + seconds(2));
+  ASSERT_TRUE(copy);
+  EXPECT_TRUE(copy->speculative);
+  EXPECT_EQ(copy->batch_id, original->batch_id);
+  EXPECT_NE(copy->attempt_id, original->attempt_id);
+  // Both overdue, but two attempts are live: no third.
+  EXPECT_EQ(s.Tick(kT0 + seconds(10)), 0u);
+  EXPECT_FALSE(s.NextAssignment(3, kT0 + seconds(10)));
+  // The original is still valid and wins; the copy is late.
+  EXPECT_EQ(s.OnResult(1, original->batch_id, original->attempt_id, ResultFor(0), kT0 + seconds(11))
+                .disposition,
+            Disposition::kAccepted);
+  EXPECT_EQ(s.OnResult(2, copy->batch_id, copy->attempt_id, ResultFor(0), kT0 + seconds(12)).reason,
+            DropReason::kLate);
+  const SchedulerCounters c = s.counters(kT0 + seconds(12));
+  EXPECT_EQ(c.speculative_attempts, 1u);
+  EXPECT_EQ(c.agents[1].leases_held, 0u);  // the copy stopped counting when the original won
+}
+
+TEST(RoundSchedulerTest, LostAndReturnedLeasesAreRequeuedFirst) {
+  RoundScheduler s;
+  s.AddAgent(1);
+  s.AddAgent(2);
+  ASSERT_TRUE(s.StartRound(Plan(0, 6), kT0).ok());
+  const auto a0 = s.NextAssignment(1, kT0);
+  const auto a1 = s.NextAssignment(1, kT0);
+  const auto b2 = s.NextAssignment(2, kT0);
+  ASSERT_TRUE(a0 && a1 && b2);
+  const BatchId returned[] = {b2->batch_id, MakeBatchId(0, 5)};  // batch 5 is not held by 2
+  EXPECT_EQ(s.ReturnLeases(2, returned), 1u);
+  EXPECT_EQ(s.NextAssignment(2, kT0)->batch_id, b2->batch_id);  // back at the front
+  s.OnAgentLost(1);
+  EXPECT_EQ(s.counters(kT0).leases_requeued, 3u);
+  EXPECT_EQ(s.NextAssignment(2, kT0)->batch_id, a1->batch_id);
+  EXPECT_FALSE(s.NextAssignment(1, kT0));  // forgotten
+  // A lost lease that answers anyway is still good work.
+  EXPECT_EQ(s.OnResult(1, a0->batch_id, a0->attempt_id, ResultFor(0), kT0).disposition,
+            Disposition::kAccepted);
+}
+
+TEST(RoundSchedulerTest, InvalidResultBlocklistsTheAgentForAWhile) {
+  SchedulerOptions options;
+  options.blocklist_duration = seconds(60);
+  RoundScheduler s(options);
+  s.AddAgent(1);
+  s.AddAgent(2);
+  ASSERT_TRUE(s.StartRound(Plan(0, 4), kT0).ok());
+  const auto a = s.NextAssignment(1, kT0);
+  const auto b = s.NextAssignment(1, kT0);
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(s.OnInvalidResult(1, a->batch_id, a->attempt_id, kT0).reason, DropReason::kInvalid);
+  EXPECT_TRUE(s.IsBlocklisted(1, kT0 + seconds(59)));
+  EXPECT_FALSE(s.NextAssignment(1, kT0 + seconds(59)));
+  EXPECT_EQ(s.OnResult(1, b->batch_id, b->attempt_id, ResultFor(1), kT0).reason,
+            DropReason::kBlocklisted);
+  const SchedulerCounters c = s.counters(kT0);
+  EXPECT_TRUE(c.agents[0].blocklisted);
+  EXPECT_EQ(c.agents[0].leases_held, 0u);
+  EXPECT_EQ(c.batches_queued, 4u);  // both its leases went back
+  EXPECT_EQ(s.NextAssignment(2, kT0)->batch_id, b->batch_id);
+  EXPECT_FALSE(s.IsBlocklisted(1, kT0 + seconds(60)));
+  EXPECT_TRUE(s.NextAssignment(1, kT0 + seconds(60)));
+}
+
+TEST(RoundSchedulerTest, EmptyPlanIsRefusedAndBatchRaysFollowTheSlowestAgent) {
+  SchedulerOptions options;
+  options.default_batch_rays = 4096;
+  options.target_lease_seconds = 0.25;
+  RoundScheduler s(options);
+  EXPECT_FALSE(s.StartRound(Plan(0, 0), kT0).ok());
+  EXPECT_EQ(s.SuggestedBatchRays(), 4096u);
+  s.AddAgent(1);
+  ASSERT_TRUE(s.StartRound(Plan(0, 1, 20000), kT0).ok());
+  const auto a = s.NextAssignment(1, kT0);
+  ASSERT_TRUE(a);
+  s.OnResult(1, a->batch_id, a->attempt_id, ResultFor(0), kT0 + seconds(1));  // 20000 rays/s
+  EXPECT_EQ(s.SuggestedBatchRays(), 5000u);
+}
+
+}  // namespace
+}  // namespace radfarm::scheduler
