@@ -94,6 +94,8 @@ class RoundScheduler {
   // The agent handed these leases back (LeaseReturn): requeued at once. Batch ids the agent does
   // not hold a live attempt of are ignored. Returns how many leases were returned.
   size_t ReturnLeases(AgentId agent, std::span<const BatchId> batches);
+  // Blocklisting is keyed by AgentId and outlives OnAgentLost: to keep a lying agent out after it
+  // reconnects, give the same agent (by name) the same AgentId again.
   bool IsBlocklisted(AgentId agent, TimePoint now) const;
 
   // --- Rounds ---
@@ -120,8 +122,10 @@ class RoundScheduler {
   // options.blocklist_duration and all its live leases are revoked and requeued.
   ResultVerdict OnInvalidResult(AgentId agent, BatchId batch_id, AttemptId attempt_id,
                                 TimePoint now);
-  // Marks live attempts past their deadline overdue and offers their batches to other agents.
-  // Returns how many batches were newly offered. Call it periodically (about every 100 ms).
+  // Offers to other agents each leased batch whose live attempts are all past their deadline,
+  // while it has fewer than max_live_attempts; returns how many were newly offered. Call it about
+  // every 100 ms. An agent that heartbeats but never answers keeps its attempt live: declare it
+  // lost (OnAgentLost) if its leases stay far overdue.
   size_t Tick(TimePoint now);
 
   // --- Status ---
