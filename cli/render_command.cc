@@ -23,7 +23,9 @@
 namespace radfarm {
 namespace {
 
-void PrintError(const std::string& message) { std::fprintf(stderr, "radfarm: %s\n", message.c_str()); }
+void PrintError(const std::string& message) {
+  std::fprintf(stderr, "radfarm: %s\n", message.c_str());
+}
 
 void PrintWarnings(const std::vector<std::string>& warnings) {
   for (const std::string& w : warnings) std::fprintf(stderr, "radfarm: %s\n", w.c_str());
@@ -122,10 +124,11 @@ int RunRender(const RenderOptions& options) {
   }
   if (!options.quiet) {
     const SolveStats& st = solution.stats;
-    std::printf("%s after %llu rounds: unshot %.4f%%, %llu rays in %.2f s (%.2f Mrays/s); wrote %s\n",
-                st.stop_reason.c_str(), static_cast<unsigned long long>(st.rounds),
-                100 * st.unshot_fraction, static_cast<unsigned long long>(st.rays), st.seconds,
-                st.rays_per_second / 1e6, options.out_dir.c_str());
+    std::printf(
+        "%s after %llu rounds: unshot %.4f%%, %llu rays in %.2f s (%.2f Mrays/s); wrote %s\n",
+        st.stop_reason.c_str(), static_cast<unsigned long long>(st.rounds),
+        100 * st.unshot_fraction, static_cast<unsigned long long>(st.rays), st.seconds,
+        st.rays_per_second / 1e6, options.out_dir.c_str());
   }
   return kExitOk;
 }

@@ -10,7 +10,7 @@
 namespace radfarm {
 
 struct RenderOptions {
-  std::string scene;       // .obj or .toml
+  std::string scene;  // .obj or .toml
   std::string out_dir;
   // Command-line overrides of the job's settings; unset means "as the job file says".
   std::optional<uint32_t> threads;

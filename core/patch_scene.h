@@ -21,8 +21,8 @@ struct Patch {
   Vec3 normal;  // unit
   Vec3 centre;  // area centroid
   double area = 0;
-  Rgb reflectance;  // diffuse reflectance, each channel in [0, 1)
-  Rgb emission;     // emitted radiance (MTL Ke units)
+  Rgb reflectance;        // diffuse reflectance, each channel in [0, 1)
+  Rgb emission;           // emitted radiance (MTL Ke units)
   uint32_t surface = 0;   // id of the smooth surface the patch belongs to (vertex averaging)
   uint32_t material = 0;  // index into PatchScene::material_names
 };

@@ -102,8 +102,8 @@ void ProgressiveSolver::ApplyRound(const RoundPlan& plan, const std::vector<Batc
     std::sort(touched.begin(), touched.end());
     const double total = double(sampler_.TotalWeight(shot.rays));
     const Rgb power = shot_power[s];
-    // Southwell update: receiver j gets flux power * F_ij; it reflects rho_j of it, which raises its
-    // radiosity and unshot radiosity by rho_j * flux / A_j (= rho_j * dB_i * F_ij * A_i / A_j).
+    // Southwell update: receiver j gets flux power * F_ij; it reflects rho_j of it, which raises
+    // its radiosity and unshot radiosity by rho_j * flux / A_j (= rho_j * dB_i * F_ij * A_i / A_j).
     for (uint32_t j : touched) {
       const Patch& receiver = scene_.patches[j];
       const Rgb flux = power * (double(hit_weight[j]) / total);

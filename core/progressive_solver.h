@@ -15,8 +15,8 @@
 
 #include "core/batch.h"
 #include "core/patch_scene.h"
-#include "core/rgb.h"
 #include "core/ray_sampler.h"
+#include "core/rgb.h"
 #include "core/solver_settings.h"
 
 namespace radfarm {
@@ -28,8 +28,8 @@ struct Shot {
 
 struct RoundPlan {
   uint32_t round = 0;
-  std::vector<Shot> shots;      // increasing patch id
-  std::vector<Batch> batches;   // every shot cut into batches, in shot order
+  std::vector<Shot> shots;     // increasing patch id
+  std::vector<Batch> batches;  // every shot cut into batches, in shot order
   uint64_t rays = 0;
 };
 

@@ -36,8 +36,9 @@ double TriangleSplit(const Patch& patch) {
 
 Vec3 SamplePatchPoint(const Patch& patch, double split, double u, double v) {
   const auto& p = patch.corners;
-  const Vec3 point = u < split ? SampleTriangle(p[0], p[1], p[2], u / split, v)
-                               : SampleTriangle(p[0], p[2], p[3], std::min((u - split) / (1 - split), 1.0), v);
+  const Vec3 point =
+      u < split ? SampleTriangle(p[0], p[1], p[2], u / split, v)
+                : SampleTriangle(p[0], p[2], p[3], std::min((u - split) / (1 - split), 1.0), v);
   // Pull the point a hair toward the centre: a ray starting within a float ulp of the patch's rim
   // could otherwise start behind a wall that meets the patch there and hit its back.
   constexpr double kRimShrink = 1e-5;

@@ -79,8 +79,8 @@ class RaySampler {
 // Share of a quad's area in its first triangle (0,1,2); 1 for a triangle.
 double TriangleSplit(const Patch& patch);
 
-// Maps two uniform numbers to a uniformly distributed point on the patch (a quad is picked as one of
-// its two triangles in proportion to their areas; `split` is TriangleSplit(patch)).
+// Maps two uniform numbers to a uniformly distributed point on the patch (a quad is picked as one
+// of its two triangles in proportion to their areas; `split` is TriangleSplit(patch)).
 Vec3 SamplePatchPoint(const Patch& patch, double split, double u, double v);
 
 // Maps two uniform numbers to a cosine-weighted direction in the frame (t, b, n), n the normal.

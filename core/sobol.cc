@@ -13,7 +13,8 @@ struct Polynomial {
   uint32_t a;
   std::array<uint32_t, 3> m;
 };
-constexpr std::array<Polynomial, 3> kPolynomials = {{{1, 0, {1, 0, 0}}, {2, 1, {1, 3, 0}}, {3, 1, {1, 3, 1}}}};
+constexpr std::array<Polynomial, 3> kPolynomials = {
+    {{1, 0, {1, 0, 0}}, {2, 1, {1, 3, 0}}, {3, 1, {1, 3, 1}}}};
 
 using DirectionTable = std::array<std::array<uint32_t, 32>, ScrambledSobol4::kDimensions>;
 

@@ -18,7 +18,7 @@ struct SolveStats {
   uint32_t threads = 0;
   uint64_t seed = 0;
   std::string sampler;
-  std::string stop_reason;  // "converged", "ray budget", "time budget"
+  std::string stop_reason;    // "converged", "ray budget", "time budget"
   double emitted_power = 0;   // sum of area * emission over patches (channel sum)
   double absorbed_power = 0;  // channel sums, so emitted = absorbed + unshot + escaped
   double escaped_power = 0;

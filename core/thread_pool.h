@@ -1,5 +1,5 @@
-// ThreadPool: a fixed set of worker threads that run index-parallel loops. The caller's thread takes
-// part too, so ParallelFor on a pool of one thread runs inline.
+// ThreadPool: a fixed set of worker threads that run index-parallel loops. The caller's thread
+// takes part too, so ParallelFor on a pool of one thread runs inline.
 #pragma once
 
 #include <condition_variable>
@@ -23,9 +23,9 @@ class ThreadPool {
 
   unsigned size() const { return size_; }
 
-  // Calls body(worker, index) for every index in [0, count), spread over the threads; `worker` is in
-  // [0, size()) and unique to the calling thread during the loop. Returns when all calls are done.
-  // Exceptions from body are rethrown here (the first one).
+  // Calls body(worker, index) for every index in [0, count), spread over the threads; `worker` is
+  // in [0, size()) and unique to the calling thread during the loop. Returns when all calls are
+  // done. Exceptions from body are rethrown here (the first one).
   void ParallelFor(size_t count, const std::function<void(unsigned worker, size_t index)>& body);
 
  private:

@@ -42,10 +42,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"index_out_of_range.obj",
                  "index_out_of_range.obj:11: vertex index 9 out of range (8 vertices)"},
         BadInput{"nan.obj", "nan.obj:3: 'v': 'nan' is not a finite number"},
-        BadInput{"kd_too_high.obj", "kd_too_high.mtl:5: material 'mirror': reflectance Kd 1 0.5 "
-                                    "0.5 outside [0, 1)"},
-        BadInput{"negative_ke.obj", "negative_ke.mtl:4: material 'sink': emission Ke 1 -1 1 is "
-                                    "negative"},
+        BadInput{"kd_too_high.obj",
+                 "kd_too_high.mtl:5: material 'mirror': reflectance Kd 1 0.5 "
+                 "0.5 outside [0, 1)"},
+        BadInput{"negative_ke.obj",
+                 "negative_ke.mtl:4: material 'sink': emission Ke 1 -1 1 is "
+                 "negative"},
         BadInput{"no_light.obj", "no_light.obj: nothing to light"},
         BadInput{"jobs/unknown_key.toml", "unknown_key.toml:"},
         BadInput{"jobs/syntax_error.toml", "syntax_error.toml:"}),
@@ -60,9 +62,11 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(RenderUsageTest, BadOptionValuesExitTwo) {
   TempDir out;
   const std::string scene = RADFARM_SOURCE_DIR "/scenes/furnace.obj";
-  for (const std::vector<std::string>& extra :
-       {std::vector<std::string>{"--sampler", "magic"}, {"--threads", "0"}, {"--tolerance", "-1"},
-        {"--rays", "many"}, {"--no-such-option"}}) {
+  for (const std::vector<std::string>& extra : {std::vector<std::string>{"--sampler", "magic"},
+                                                {"--threads", "0"},
+                                                {"--tolerance", "-1"},
+                                                {"--rays", "many"},
+                                                {"--no-such-option"}}) {
     std::vector<std::string> args = {RADFARM_CLI_PATH, "render", scene, "--out", out.path()};
     args.insert(args.end(), extra.begin(), extra.end());
     const auto r = RunCommand(args);

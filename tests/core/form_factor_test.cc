@@ -62,8 +62,8 @@ void ExpectWithinBinomial(const Case& c, uint64_t rays) {
   // Stratified sampling beats the binomial bound by a wide margin (measured: see printout).
   EXPECT_LE(std::abs(fs - c.exact), sigma) << c.name << ": sobol F=" << fs;
   std::printf("%s, %llu rays: random error %.2e, sobol error %.2e, binomial sigma %.2e\n", c.name,
-              static_cast<unsigned long long>(rays), std::abs(f - c.exact),
-              std::abs(fs - c.exact), sigma);
+              static_cast<unsigned long long>(rays), std::abs(f - c.exact), std::abs(fs - c.exact),
+              sigma);
 }
 
 TEST(FormFactorTest, ParallelCoaxialUnitSquaresAtDistanceOne) {

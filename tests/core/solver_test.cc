@@ -1,11 +1,10 @@
 // The progressive solver against closed-form radiosity solutions (shared/reference/analytic.md).
-#include "core/solve.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
+#include "core/solve.h"
 #include "tests/core/test_scenes.h"
 
 namespace radfarm {
@@ -24,8 +23,8 @@ SolverSettings FastSettings() {
 // Furnace: a closed enclosure with uniform rho and E has B = E / (1 - rho) everywhere.
 // Total rays grow as shot_rays / (1 - rho): light bounces about 1 / (1 - rho) times.
 void ExpectFurnace(double rho, int patches_per_edge, uint64_t shot_rays, double tolerance) {
-  const PatchScene scene = MakeClosedBox({0, 0, 0}, {1, 1, 1}, patches_per_edge,
-                                         Surface{{rho, rho, rho}, {1, 1, 1}, 0});
+  const PatchScene scene =
+      MakeClosedBox({0, 0, 0}, {1, 1, 1}, patches_per_edge, Surface{{rho, rho, rho}, {1, 1, 1}, 0});
   SolverSettings settings = FastSettings();
   settings.shot_rays = shot_rays;
   settings.tolerance = 1e-4;

@@ -41,9 +41,10 @@ void AddQuadGrid(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, int
     for (int j = 0; j < n; ++j) {
       const double u0 = double(i) / n, u1 = double(i + 1) / n;
       const double v0 = double(j) / n, v1 = double(j + 1) / n;
-      scene->patches.push_back(MakePatch({Bilinear(a, b, c, d, u0, v0), Bilinear(a, b, c, d, u1, v0),
-                                          Bilinear(a, b, c, d, u1, v1), Bilinear(a, b, c, d, u0, v1)},
-                                         s));
+      scene->patches.push_back(
+          MakePatch({Bilinear(a, b, c, d, u0, v0), Bilinear(a, b, c, d, u1, v0),
+                     Bilinear(a, b, c, d, u1, v1), Bilinear(a, b, c, d, u0, v1)},
+                    s));
     }
   }
 }
