@@ -64,22 +64,8 @@ void GenerateRays(const PatchScene& scene, const RayCaster& caster, const RaySam
     const Patch& shooter = scene.patches[b.shooter];
     for (uint32_t k = 0; k < b.ray_count; ++k) {
       const RaySample s = sampler.Sample(shooter, b.shooter, b.round, b.first_ray + k);
-      const Vec3 o = s.origin - caster.embree_origin() + shooter.normal * caster.origin_offset();
-      RTCRayHit& rh = work->rays[work->ray_begin[bi] + k];
-      rh.ray.org_x = static_cast<float>(o.x);
-      rh.ray.org_y = static_cast<float>(o.y);
-      rh.ray.org_z = static_cast<float>(o.z);
-      rh.ray.dir_x = static_cast<float>(s.direction.x);
-      rh.ray.dir_y = static_cast<float>(s.direction.y);
-      rh.ray.dir_z = static_cast<float>(s.direction.z);
-      rh.ray.tnear = 0.0f;
-      rh.ray.tfar = INFINITY;
-      rh.ray.time = 0.0f;
-      rh.ray.mask = 0xffffffffu;
-      rh.ray.id = 0;
-      rh.ray.flags = 0;
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+      caster.PrepareRay(s.origin, s.direction, shooter.normal,
+                        &work->rays[work->ray_begin[bi] + k]);
       work->weights[work->ray_begin[bi] + k] = s.weight;
       work->directions[work->ray_begin[bi] + k] = s.direction;
     }

@@ -87,12 +87,10 @@ RayCaster::~RayCaster() = default;
 
 RTCSceneTy* RayCaster::embree_scene() const { return embree_->scene; }
 
-RayHit RayCaster::Trace(const Vec3& origin, const Vec3& direction,
-                        const Vec3& surface_normal) const {
+void RayCaster::PrepareRay(const Vec3& origin, const Vec3& direction, const Vec3& surface_normal,
+                           RTCRayHit* ray) const {
   const Vec3 o = origin - centre_ + surface_normal * origin_offset_;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  RTCRayHit rh;
+  RTCRayHit& rh = *ray;
   rh.ray.org_x = static_cast<float>(o.x);
   rh.ray.org_y = static_cast<float>(o.y);
   rh.ray.org_z = static_cast<float>(o.z);
@@ -107,6 +105,14 @@ RayHit RayCaster::Trace(const Vec3& origin, const Vec3& direction,
   rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+}
+
+RayHit RayCaster::Trace(const Vec3& origin, const Vec3& direction,
+                        const Vec3& surface_normal) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  PrepareRay(origin, direction, surface_normal, &rh);
   rtcIntersect1(embree_->scene, &context, &rh);
   RayHit hit;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;

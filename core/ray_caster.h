@@ -16,6 +16,7 @@
 #include "core/vec3.h"
 
 struct RTCSceneTy;  // Embree's scene handle type (embree3/rtcore_scene.h)
+struct RTCRayHit;   // Embree's ray and hit record (embree3/rtcore_ray.h)
 
 namespace radfarm {
 
@@ -41,11 +42,14 @@ class RayCaster {
   // The origin offset used by Trace, in scene units (useful for tests and diagnostics).
   double origin_offset() const { return origin_offset_; }
 
-  // For benchmarks that time raw Embree calls on the same BVH: the committed scene, whose
-  // coordinates are scene coordinates minus embree_origin(); primitive k belongs to
+  // For benchmarks that time raw Embree calls on the same BVH: the committed scene (its coordinates
+  // are scene coordinates minus the scene's centre; PrepareRay converts); primitive k belongs to
   // triangle_patch()[k].
   RTCSceneTy* embree_scene() const;
-  const Vec3& embree_origin() const { return centre_; }
+  // Fills `ray` exactly as Trace() would before calling Embree (origin moved to Embree's frame and
+  // lifted off its surface, no hit yet).
+  void PrepareRay(const Vec3& origin, const Vec3& direction, const Vec3& surface_normal,
+                  RTCRayHit* ray) const;
   const std::vector<uint32_t>& triangle_patch() const { return triangle_patch_; }
 
  private:
