@@ -46,15 +46,18 @@ RoundPlan ProgressiveSolver::PlanRound(uint32_t batch_rays) const {
   for (uint32_t i = 0; i < scene_.patches.size(); ++i) {
     if (UnshotPower(i) > 0) candidates.push_back(i);
   }
-  // Most unshot power first; ties broken by patch id so the order is total.
-  std::sort(candidates.begin(), candidates.end(), [&](uint32_t a, uint32_t b) {
-    const double pa = UnshotPower(a), pb = UnshotPower(b);
-    return pa != pb ? pa > pb : a < b;
-  });
-  if (settings_.shooters_per_round > 0 && candidates.size() > settings_.shooters_per_round) {
-    candidates.resize(settings_.shooters_per_round);
+  const uint32_t limit = settings_.shooters_per_round;
+  if (limit > 0 && candidates.size() > limit) {
+    // Keep the `limit` patches with the most unshot power; ties broken by patch id so the choice
+    // is total. nth_element: no need to order the rest.
+    std::nth_element(candidates.begin(), candidates.begin() + (limit - 1), candidates.end(),
+                     [&](uint32_t a, uint32_t b) {
+                       const double pa = UnshotPower(a), pb = UnshotPower(b);
+                       return pa != pb ? pa > pb : a < b;
+                     });
+    candidates.resize(limit);
+    std::sort(candidates.begin(), candidates.end());
   }
-  std::sort(candidates.begin(), candidates.end());
 
   const uint64_t fixed = sampler_.FixedRaysPerShot();
   for (uint32_t shooter : candidates) {

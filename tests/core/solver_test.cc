@@ -154,3 +154,33 @@ TEST(SolverTest, RayBudgetStopsTheSolve) {
 
 }  // namespace
 }  // namespace radfarm
+
+namespace radfarm {
+namespace {
+
+// shooters_per_round keeps the patches with the most unshot power (ties: lower patch id), and the
+// plan lists shots in patch order.
+TEST(SolverTest, ShootersPerRoundKeepsTheStrongest) {
+  PatchScene scene =
+      testing::MakeClosedBox({0, 0, 0}, {1, 1, 1}, 1, testing::Surface{{0.5, 0.5, 0.5}, {}, 0});
+  scene.patches[1].emission = {1, 1, 1};
+  scene.patches[4].emission = {3, 3, 3};
+  scene.patches[2].emission = {3, 3, 3};
+  scene.patches[5].emission = {2, 2, 2};
+  SolverSettings settings;
+  settings.shooters_per_round = 2;
+  const ProgressiveSolver solver(scene, settings);
+  const RoundPlan plan = solver.PlanRound(1024);
+  ASSERT_EQ(plan.shots.size(), 2u);
+  EXPECT_EQ(plan.shots[0].shooter, 2u);
+  EXPECT_EQ(plan.shots[1].shooter, 4u);
+  settings.shooters_per_round = 3;
+  const RoundPlan three = ProgressiveSolver(scene, settings).PlanRound(1024);
+  ASSERT_EQ(three.shots.size(), 3u);
+  EXPECT_EQ(three.shots[2].shooter, 5u);
+  settings.shooters_per_round = 0;
+  EXPECT_EQ(ProgressiveSolver(scene, settings).PlanRound(1024).shots.size(), 4u);
+}
+
+}  // namespace
+}  // namespace radfarm
