@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <system_error>
 
@@ -113,9 +114,17 @@ int RunRender(const RenderOptions& options) {
                 static_cast<unsigned long long>(job->solver.seed));
   }
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
-  const SolveResult solution = Solve(patches, job->solver, [&](const RoundProgress& p) {
-    if (!options.quiet) reporter.OnRound(p);
-  });
+  SolveResult solution;
+  try {
+    solution = Solve(patches, job->solver, [&](const RoundProgress& p) {
+      if (!options.quiet) reporter.OnRound(p);
+    });
+  } catch (const std::exception& e) {
+    // Embree failures (out of memory, unsupported CPU) are the only exceptions the core throws.
+    reporter.Finish();
+    PrintError(std::string("solve failed: ") + e.what());
+    return kExitFailure;
+  }
   reporter.Finish();
 
   if (Status s = WriteOutputs(options.out_dir, *mesh, solution, *job); !s.ok()) {
