@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
 
 namespace radfarm {
@@ -39,27 +40,40 @@ double ProgressiveSolver::UnshotFraction() const {
   return energy_.emitted > 0 ? energy_.unshot / energy_.emitted : 0.0;
 }
 
-RoundPlan ProgressiveSolver::PlanRound(uint32_t batch_rays) const {
+namespace {
+
+// Keeps the `limit` shooters with the most unshot power (ties broken by patch id, so the choice is
+// total), in patch order.
+void KeepStrongest(size_t limit, const std::function<double(uint32_t)>& power,
+                   std::vector<uint32_t>* shooters) {
+  if (limit == 0 || shooters->size() <= limit) return;
+  std::nth_element(shooters->begin(), shooters->begin() + (limit - 1), shooters->end(),
+                   [&](uint32_t a, uint32_t b) {
+                     const double pa = power(a), pb = power(b);
+                     return pa != pb ? pa > pb : a < b;
+                   });
+  shooters->resize(limit);
+  std::sort(shooters->begin(), shooters->end());
+}
+
+}  // namespace
+
+RoundPlan ProgressiveSolver::PlanRound(uint32_t batch_rays, uint64_t ray_cap) const {
   RoundPlan plan;
   plan.round = rounds_done_;
+  const auto power = [this](uint32_t patch) { return UnshotPower(patch); };
   std::vector<uint32_t> candidates;
   for (uint32_t i = 0; i < scene_.patches.size(); ++i) {
     if (UnshotPower(i) > 0) candidates.push_back(i);
   }
-  const uint32_t limit = settings_.shooters_per_round;
-  if (limit > 0 && candidates.size() > limit) {
-    // Keep the `limit` patches with the most unshot power; ties broken by patch id so the choice
-    // is total. nth_element: no need to order the rest.
-    std::nth_element(candidates.begin(), candidates.begin() + (limit - 1), candidates.end(),
-                     [&](uint32_t a, uint32_t b) {
-                       const double pa = UnshotPower(a), pb = UnshotPower(b);
-                       return pa != pb ? pa > pb : a < b;
-                     });
-    candidates.resize(limit);
-    std::sort(candidates.begin(), candidates.end());
-  }
+  KeepStrongest(settings_.shooters_per_round, power, &candidates);
 
   const uint64_t fixed = sampler_.FixedRaysPerShot();
+  if (fixed > 0 && ray_cap > 0 && candidates.size() * fixed > ray_cap) {
+    // A fixed-size shot cannot be cut: shoot from fewer patches (at least one).
+    KeepStrongest(std::max<uint64_t>(1, ray_cap / fixed), power, &candidates);
+    plan.capped = true;
+  }
   for (uint32_t shooter : candidates) {
     uint64_t rays = fixed;
     if (rays == 0) {
@@ -72,7 +86,19 @@ RoundPlan ProgressiveSolver::PlanRound(uint32_t batch_rays) const {
     }
     plan.shots.push_back({shooter, rays});
     plan.rays += rays;
-    AppendShotBatches(plan.round, shooter, rays, batch_rays, &plan.batches);
+  }
+  if (fixed == 0 && ray_cap > 0 && plan.rays > ray_cap) {
+    // The last round of a ray budget: fewer rays for every shot, in proportion (at least one each).
+    const double scale = double(ray_cap) / double(plan.rays);
+    plan.rays = 0;
+    for (Shot& shot : plan.shots) {
+      shot.rays = std::max<uint64_t>(1, static_cast<uint64_t>(double(shot.rays) * scale));
+      plan.rays += shot.rays;
+    }
+    plan.capped = true;
+  }
+  for (const Shot& shot : plan.shots) {
+    AppendShotBatches(plan.round, shot.shooter, shot.rays, batch_rays, &plan.batches);
   }
   return plan;
 }

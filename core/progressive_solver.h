@@ -31,6 +31,7 @@ struct RoundPlan {
   std::vector<Shot> shots;     // increasing patch id
   std::vector<Batch> batches;  // every shot cut into batches, in shot order
   uint64_t rays = 0;
+  bool capped = false;  // trimmed to a ray cap: the last round of a ray budget
 };
 
 // Energy bookkeeping (channel sums). At every round boundary
@@ -48,7 +49,9 @@ class ProgressiveSolver {
   ProgressiveSolver(const PatchScene& scene, const SolverSettings& settings);
 
   // Plans the next round from the current unshot radiosity. Empty when nothing is left to shoot.
-  RoundPlan PlanRound(uint32_t batch_rays) const;
+  // With ray_cap > 0 the round casts at most about that many rays (every proportional shot keeps at
+  // least one ray; the grid drops its weakest shots, keeping at least one) and is marked capped.
+  RoundPlan PlanRound(uint32_t batch_rays, uint64_t ray_cap = 0) const;
 
   // Folds the round's results into the solution. `results[k]` is the result of plan.batches[k].
   void ApplyRound(const RoundPlan& plan, const std::vector<BatchResult>& results);

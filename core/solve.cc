@@ -34,7 +34,8 @@ SolveResult Solve(const PatchScene& scene, const SolverSettings& settings,
       stats.stop_reason = "time budget";
       break;
     }
-    const RoundPlan plan = solver.PlanRound(kLocalBatchRays);
+    const uint64_t cap = settings.max_rays > 0 ? settings.max_rays - stats.rays : 0;
+    const RoundPlan plan = solver.PlanRound(kLocalBatchRays, cap);
     if (plan.batches.empty()) break;
     std::vector<BatchResult> results(plan.batches.size());
     pool.ParallelFor(plan.batches.size(), [&](unsigned worker, size_t b) {
@@ -49,6 +50,10 @@ SolveResult Solve(const PatchScene& scene, const SolverSettings& settings,
     if (on_round) {
       on_round({solver.rounds_done(), stats.rays, elapsed(), solver.UnshotFraction(),
                 settings.tolerance, &solver.energy()});
+    }
+    if (plan.capped && solver.UnshotFraction() > settings.tolerance) {
+      stats.stop_reason = "ray budget";
+      break;
     }
   }
 

@@ -148,8 +148,29 @@ TEST(SolverTest, RayBudgetStopsTheSolve) {
   settings.max_rays = 100000;
   const SolveResult r = Solve(scene, settings);
   EXPECT_EQ(r.stats.stop_reason, "ray budget");
-  EXPECT_GE(r.stats.rays, settings.max_rays);
+  // The last round is trimmed to the budget; every shot keeps at least one ray.
+  EXPECT_LE(r.stats.rays, settings.max_rays + r.stats.patches);
+  EXPECT_GE(r.stats.rays, settings.max_rays * 9 / 10);
   EXPECT_GT(r.stats.unshot_fraction, settings.tolerance);
+}
+
+// A budget smaller than one round still stops after that (trimmed) first round.
+TEST(SolverTest, RayBudgetBelowOneRoundTrimsTheFirstRound) {
+  const PatchScene scene =
+      MakeClosedBox({0, 0, 0}, {1, 1, 1}, 2, Surface{{0.9, 0.9, 0.9}, {1, 1, 1}, 0});
+  SolverSettings settings = FastSettings();
+  settings.max_rays = 1000;
+  const SolveResult r = Solve(scene, settings);
+  EXPECT_EQ(r.stats.rounds, 1u);
+  EXPECT_LE(r.stats.rays, settings.max_rays + r.stats.patches);
+  EXPECT_EQ(r.stats.stop_reason, "ray budget");
+  // The grid cannot cut a shot: it shoots from fewer patches, at least one.
+  settings.sampler = SamplerKind::kGrid;
+  settings.grid_step_degrees = 10;  // 9 x 36 = 324 rays a shot
+  const SolveResult g = Solve(scene, settings);
+  EXPECT_EQ(g.stats.rays, 3u * 324u);
+  settings.max_rays = 10;
+  EXPECT_EQ(Solve(scene, settings).stats.rays, 324u);
 }
 
 }  // namespace
