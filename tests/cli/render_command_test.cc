@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 
 #include "cli/exit_codes.h"
@@ -148,6 +149,29 @@ TEST(RenderCommandTest, RayBudgetAndSeedAreHonoured) {
   EXPECT_EQ(JsonNumber(stats, "seed"), 5);
   EXPECT_NE(stats.find("ray budget"), std::string::npos) << stats;
   EXPECT_NE(ReadFile(a.File("patches.csv")), ReadFile(b.File("patches.csv")));
+}
+
+}  // namespace
+}  // namespace radfarm
+
+namespace radfarm {
+namespace {
+
+// Every scene and job file shipped in scenes/ renders end to end (a small ray budget keeps it
+// quick).
+TEST(RenderCommandTest, EveryShippedSceneRenders) {
+  int rendered = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kScenes)) {
+    const std::string ext = entry.path().extension().string();
+    if (ext != ".obj" && ext != ".toml") continue;
+    TempDir out;
+    const auto r = RunCommand({RADFARM_CLI_PATH, "render", entry.path().string(), "--out",
+                               out.path(), "--rays", "20000", "-q"});
+    EXPECT_EQ(r.exit_code, kExitOk) << entry.path() << ": " << r.err;
+    EXPECT_FALSE(ReadFile(out.File("patches.csv")).empty()) << entry.path();
+    ++rendered;
+  }
+  EXPECT_GE(rendered, 10);
 }
 
 }  // namespace
