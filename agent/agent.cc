@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <variant>
 
+#include "agent/master_address.h"
 #include "loop/log.h"
 #include "protocol/messages.h"
 
@@ -66,14 +67,15 @@ Status Agent::Start() {
   idle_timer_ = std::make_unique<loop::Timer>(loop_);
   stop_deadline_ = std::make_unique<loop::Timer>(loop_);
   for (auto [signum, watch] : {std::pair{SIGTERM, &sigterm_}, std::pair{SIGINT, &sigint_}}) {
-    Result<std::unique_ptr<loop::Signal>> signal = loop::Signal::Watch(loop_, signum, [this](int s) {
-      if (state_ == State::kStopping) {
-        LogLine(LogLevel::kWarning, "agent") << "second signal: stopping now";
-        StopLoop();
-        return;
-      }
-      Finish(s == SIGTERM ? "got SIGTERM" : "got SIGINT");
-    });
+    Result<std::unique_ptr<loop::Signal>> signal =
+        loop::Signal::Watch(loop_, signum, [this](int s) {
+          if (state_ == State::kStopping) {
+            LogLine(LogLevel::kWarning, "agent") << "second signal: stopping now";
+            StopLoop();
+            return;
+          }
+          Finish(s == SIGTERM ? "got SIGTERM" : "got SIGINT");
+        });
     if (!signal) return Error{signal.error()};
     *watch = std::move(signal).value();
   }
@@ -86,24 +88,29 @@ Status Agent::Start() {
 void Agent::StartAttempt() {
   state_ = State::kConnecting;
   ++attempt_;
-  LogLine(LogLevel::kDebug, "agent") << "connecting to " << master_ << " (attempt " << attempt_
-                                     << ")";
+  LogLine(LogLevel::kDebug, "agent")
+      << "connecting to " << master_ << " (attempt " << attempt_ << ")";
   if (Result<loop::SocketAddress> literal = loop::SocketAddress::FromIpLiteral(settings_.master)) {
     Connect(*literal);
     return;
   }
   // A host name: getaddrinfo blocks, so it runs on the I/O worker.
-  Status submitted = io_->Submit([master = settings_.master] { return loop::Resolve(master, false); },
-                                 [this](Result<std::vector<loop::SocketAddress>> addresses) {
-                                   if (state_ != State::kConnecting || link_) return;
-                                   if (!addresses) {
-                                     ScheduleRetry("cannot connect to", addresses.error());
-                                     return;
-                                   }
-                                   // Successive attempts go through the addresses in turn.
-                                   Connect((*addresses)[(attempt_ - 1) % addresses->size()]);
-                                 });
-  if (!submitted) ScheduleRetry("cannot connect to", submitted.error());
+  Status submitted = io_->Submit(
+      [master = settings_.master, n = attempt_ - 1] { return ResolveMaster(master, n); },
+      [this](Result<loop::SocketAddress> address) {
+        resolving_ = false;
+        if (state_ != State::kConnecting || link_) return;
+        if (!address) {
+          ScheduleRetry("cannot connect to", address.error());
+          return;
+        }
+        Connect(*address);
+      });
+  if (submitted) {
+    resolving_ = true;
+  } else {
+    ScheduleRetry("cannot connect to", submitted.error());
+  }
 }
 
 void Agent::Connect(const loop::SocketAddress& address) {
@@ -155,18 +162,17 @@ void Agent::OnMessage(const protocol::Message& message) {
   } else if (const auto* drain = std::get_if<protocol::DrainMsg>(&message)) {
     OnDrain(*drain);
   } else if (const auto* heartbeat = std::get_if<protocol::HeartbeatMsg>(&message)) {
-    LogLine(LogLevel::kDebug, "agent") << "heartbeat from " << master_ << ": it records "
-                                       << heartbeat->leases_held << " leases of ours, we hold "
-                                       << runner_->held();
+    LogLine(LogLevel::kDebug, "agent")
+        << "heartbeat from " << master_ << ": it records " << heartbeat->leases_held
+        << " leases of ours, we hold " << runner_->held();
   }
 }
 
 void Agent::OnDrain(const protocol::DrainMsg& drain) {
   const bool finish = drain.mode == protocol::DrainMode::kFinishLeases;
-  LogLine(LogLevel::kInfo, "agent") << "drain from " << master_ << ": "
-                                    << (finish ? "finishing" : "returning") << " "
-                                    << runner_->held() << " leases"
-                                    << (drain.exit_after ? ", then exiting" : "");
+  LogLine(LogLevel::kInfo, "agent")
+      << "drain from " << master_ << ": " << (finish ? "finishing" : "returning") << " "
+      << runner_->held() << " leases" << (drain.exit_after ? ", then exiting" : "");
   draining_ = true;
   exit_when_drained_ = exit_when_drained_ || drain.exit_after;
   if (!finish) runner_->ReturnAll(protocol::LeaseReturnReason::kDraining, "drain from the master");
@@ -199,9 +205,9 @@ void Agent::OnLinkClosed(const LinkClosed& closed) {
     ScheduleRetry("lost the connection to",
                   closed.reason + "; dropped " + std::to_string(dropped) + " leases");
   } else if (closed.auth_failed) {
-    ScheduleRetry("authentication with",
-                  "failed: " + closed.reason +
-                      " (do the agent and the master use the same farm secret?)");
+    ScheduleRetry(
+        "authentication with",
+        "failed: " + closed.reason + " (do the agent and the master use the same farm secret?)");
   } else {
     ScheduleRetry("cannot connect to", closed.reason);
   }

@@ -48,7 +48,7 @@ class Agent {
   // Starts the work queues, watches SIGTERM and SIGINT, and makes the first connection attempt.
   Status Start();
   // Work still running on a worker thread.
-  bool busy() const { return runner_ && runner_->busy(); }
+  bool busy() const { return resolving_ || (runner_ && runner_->busy()); }
 
  private:
   enum class State { kWaiting, kConnecting, kConnected, kStopping };
@@ -80,6 +80,7 @@ class Agent {
   uint32_t attempt_ = 0;  // attempts since the last handshake that succeeded
   bool draining_ = false;
   bool exit_when_drained_ = false;
+  bool resolving_ = false;  // a name lookup is on the I/O queue
 
   std::unique_ptr<loop::Timer> retry_timer_, heartbeat_timer_, idle_timer_, stop_deadline_;
   std::unique_ptr<loop::Signal> sigterm_, sigint_;

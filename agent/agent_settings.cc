@@ -69,7 +69,8 @@ std::optional<loop::LogLevel> ParseLogLevel(std::string_view text) {
 
 std::string SanitiseAgentName(std::string_view text) {
   std::string name(text.substr(0, protocol::kMaxAgentNameBytes));
-  std::replace_if(name.begin(), name.end(), [](char c) { return !IsNameCharacter(c); }, '-');
+  std::replace_if(
+      name.begin(), name.end(), [](char c) { return !IsNameCharacter(c); }, '-');
   return name.empty() ? "agent" : name;
 }
 

@@ -18,13 +18,13 @@ namespace radfarm::agent {
 inline constexpr unsigned kMaxThreads = 1024;
 
 struct AgentSettings {
-  loop::HostPort master;          // where radfarmd listens
-  std::string secret_file;        // hex farm secret (protocol/farm_secret.h)
-  std::string state_dir;          // empty: scenes are kept in memory only
-  unsigned threads = 1;           // batch worker threads
-  std::string name;               // the agent's name in the master's logs (IsValidAgentName)
+  loop::HostPort master;    // where radfarmd listens
+  std::string secret_file;  // hex farm secret (protocol/farm_secret.h)
+  std::string state_dir;    // empty: scenes are kept in memory only
+  unsigned threads = 1;     // batch worker threads
+  std::string name;         // the agent's name in the master's logs (IsValidAgentName)
   loop::LogLevel log_level = loop::LogLevel::kInfo;
-  double slowdown = 1;            // >= 1: results are held (slowdown - 1) x their compute time
+  double slowdown = 1;                // >= 1: results are held (slowdown - 1) x their compute time
   double exit_when_idle_seconds = 0;  // > 0: exit after this long connected with no lease; 0: never
 };
 

@@ -102,8 +102,8 @@ class KeyReader {
     }
     if (!std::isfinite(value)) return Fail("must be finite");
     if (lo_open ? !(value > lo) : !(value >= lo)) {
-      return Fail(std::string("must be ") + (lo_open ? "> " : ">= ") + FormatNumber(lo) +
-                  ", got " + FormatNumber(value));
+      return Fail(std::string("must be ") + (lo_open ? "> " : ">= ") + FormatNumber(lo) + ", got " +
+                  FormatNumber(value));
     }
     return value;
   }

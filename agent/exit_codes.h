@@ -1,4 +1,5 @@
-// Exit codes of radfarm-agent (agent/README.md). They match the radfarm command's where they overlap.
+// Exit codes of radfarm-agent (agent/README.md). They match the radfarm command's where they
+// overlap.
 #pragma once
 
 namespace radfarm::agent {

@@ -1,7 +1,7 @@
 // LeaseBook: the leases the agent holds on its current connection, each with its stage:
 //
-//   kAwaitingScene --scene ready: MarkQueued()--> kQueued --PopQueued(): a worker is free--> kRunning
-//   kRunning --computed, with --slowdown > 1--> kHolding (a loop timer holds the result)
+//   kAwaitingScene --scene ready: MarkQueued()--> kQueued --PopQueued(): a worker is free-->
+//   kRunning kRunning --computed, with --slowdown > 1--> kHolding (a loop timer holds the result)
 //   any stage --result sent, lease returned, Cancel (RemoveJob) or disconnect (RemoveAll)--> gone
 //
 // Each lease gets a local id that is never reused, so a worker's result that comes back after its
@@ -28,8 +28,8 @@ struct HeldLease {
   uint64_t id = 0;
   protocol::BatchAssignmentMsg assignment;
   LeaseStage stage = LeaseStage::kAwaitingScene;
-  std::shared_ptr<const PreparedScene> scene;  // set from kQueued on
-  std::unique_ptr<loop::Timer> hold_timer;     // kHolding
+  std::shared_ptr<const PreparedScene> scene;      // set from kQueued on
+  std::unique_ptr<loop::Timer> hold_timer;         // kHolding
   std::optional<protocol::BatchResultMsg> result;  // kHolding
 };
 

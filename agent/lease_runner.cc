@@ -106,8 +106,8 @@ void LeaseRunner::OnSceneReady(const std::shared_ptr<const PreparedScene>& scene
   Dispatch();
 }
 
-void LeaseRunner::OnSceneFailed(const protocol::SceneHash& hash,
-                                protocol::LeaseReturnReason reason, const std::string& why) {
+void LeaseRunner::OnSceneFailed(const protocol::SceneHash& hash, protocol::LeaseReturnReason reason,
+                                const std::string& why) {
   std::vector<protocol::LeaseRef> leases;
   for (uint64_t id : book_.AwaitingScene(hash)) leases.push_back(book_.Remove(id));
   if (leases.empty()) return;
@@ -120,7 +120,8 @@ void LeaseRunner::Dispatch() {
     HeldLease* lease = book_.PopQueued();
     if (lease == nullptr) return;
     const protocol::BatchAssignmentMsg& a = lease->assignment;
-    std::shared_ptr<const RaySampler> sampler = samplers_.Get(a.sampler, a.seed, a.grid_step_degrees);
+    std::shared_ptr<const RaySampler> sampler =
+        samplers_.Get(a.sampler, a.seed, a.grid_step_degrees);
     Status submitted = batches_.Submit(
         [runners = runners_, scene = lease->scene, sampler, batch = protocol::ToBatch(a)] {
           return runners->Run(scene, sampler, batch);
@@ -167,15 +168,15 @@ void LeaseRunner::SendResult(uint64_t id) {
   HeldLease* lease = book_.Find(id);
   if (lease == nullptr) return;
   if (Status sent = callbacks_.send(*lease->result); !sent) {
-    LogLine(LogLevel::kError, "agent") << "lease " << Describe(lease->assignment.lease)
-                                       << ": cannot send the result to " << master_ << ": "
-                                       << sent.error();
+    LogLine(LogLevel::kError, "agent")
+        << "lease " << Describe(lease->assignment.lease) << ": cannot send the result to "
+        << master_ << ": " << sent.error();
     ReturnOne(id, protocol::LeaseReturnReason::kFailed, sent.error());
     return;
   }
-  LogLine(LogLevel::kDebug, "agent") << "lease " << Describe(lease->assignment.lease)
-                                     << ": result sent to " << master_ << " ("
-                                     << lease->result->compute_seconds << " s)";
+  LogLine(LogLevel::kDebug, "agent")
+      << "lease " << Describe(lease->assignment.lease) << ": result sent to " << master_ << " ("
+      << lease->result->compute_seconds << " s)";
   book_.Remove(id);
   callbacks_.on_leases_changed();
 }
@@ -204,8 +205,8 @@ void LeaseRunner::ReturnOne(uint64_t id, protocol::LeaseReturnReason reason,
   callbacks_.on_leases_changed();
 }
 
-void LeaseRunner::Return(std::vector<protocol::LeaseRef> leases,
-                         protocol::LeaseReturnReason reason, const std::string& why) {
+void LeaseRunner::Return(std::vector<protocol::LeaseRef> leases, protocol::LeaseReturnReason reason,
+                         const std::string& why) {
   LogLine(LogLevel::kInfo, "agent") << "returning " << DescribeLeases(leases) << " to " << master_
                                     << " (" << ReasonName(reason) << "): " << why;
   for (size_t first = 0; first < leases.size(); first += protocol::kMaxLeaseReturnEntries) {

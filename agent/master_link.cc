@@ -83,9 +83,9 @@ void MasterLink::OnFrame(std::span<const uint8_t> payload) {
   }
   if (const auto& close = session_.peer_close(); close && accepted->deliver) {
     auth_failed_ = close->code == protocol::CloseCode::kAuthFailed;
-    close_reason_ = "the master closed the connection: " +
-                    std::string(protocol::CloseCodeName(close->code)) +
-                    (close->detail.empty() ? "" : " (" + close->detail + ")");
+    close_reason_ =
+        "the master closed the connection: " + std::string(protocol::CloseCodeName(close->code)) +
+        (close->detail.empty() ? "" : " (" + close->detail + ")");
     connection_->Close(close_reason_);
     return;
   }

@@ -30,7 +30,7 @@ namespace radfarm::agent {
 
 struct LinkClosed {
   std::string reason;
-  bool auth_failed = false;     // either side refused the other's proof
+  bool auth_failed = false;  // either side refused the other's proof
   bool was_authenticated = false;
 };
 

@@ -5,8 +5,7 @@
 namespace radfarm::agent {
 
 BatchOutcome RunnerPool::Run(const std::shared_ptr<const PreparedScene>& scene,
-                             const std::shared_ptr<const RaySampler>& sampler,
-                             const Batch& batch) {
+                             const std::shared_ptr<const RaySampler>& sampler, const Batch& batch) {
   std::unique_ptr<Slot> slot = Borrow(scene.get(), sampler.get());
   if (slot->scene != scene || slot->sampler != sampler) {
     slot->runner.reset();  // bound to the old pair: unbind before letting it go

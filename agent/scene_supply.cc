@@ -154,8 +154,8 @@ void SceneSupply::PrepareFetched(const protocol::SceneHash& hash, std::vector<ui
         prepared.scene = std::move(scene).value();
         if (store != nullptr) {
           Status saved = store->Save(hash, blob);
-          prepared.detail = saved ? "saved as " + store->PathFor(hash)
-                                  : "kept in memory only: " + saved.error();
+          prepared.detail =
+              saved ? "saved as " + store->PathFor(hash) : "kept in memory only: " + saved.error();
         }
         return prepared;
       },
