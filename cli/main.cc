@@ -1,23 +1,59 @@
 // radfarm: the command-line front end. Subcommands:
-//   render   the embedded single-machine mode (render_command.h)
+//   render                      the embedded single-machine mode (render_command.h)
+//   submit list status cancel   the master's job queue, through its control socket
+//   pause resume log fetch      (docs/CONTROL.md; farm_command.h)
+//   agents
+//   secret new                  a fresh farm secret (secret_command.h)
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "cli/agents_command.h"
+#include "cli/control_client.h"
 #include "cli/exit_codes.h"
+#include "cli/log_command.h"
+#include "cli/queue_commands.h"
 #include "cli/render_command.h"
+#include "cli/secret_command.h"
+#include "cli/status_command.h"
 
 int main(int argc, char** argv) {
   using namespace radfarm;
   CLI::App app{"radfarm: progressive-refinement radiosity on one machine or a farm"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "radfarm 0.1.0");
+  // Subcommands inherit this, so --control may also come after the command's name.
+  app.fallthrough();
+  std::string control = DefaultControlPath();
+  app.add_option("--control", control,
+                 std::string("The master's control socket (default: $RADFARM_CONTROL if set, "
+                             "else ") +
+                     kDefaultControlPath + ")");
 
   // Each subcommand with the function that runs it once the command line is parsed.
   std::vector<std::pair<CLI::App*, std::function<int()>>> commands;
   RenderOptions render;
   commands.emplace_back(AddRenderCommand(app, &render), [&] { return RunRender(render); });
+  ListOptions list;
+  commands.emplace_back(AddListCommand(app, &list), [&] { return RunList(list, control); });
+  StatusOptions status;
+  commands.emplace_back(AddStatusCommand(app, &status), [&] { return RunStatus(status, control); });
+  JobActionOptions cancel, pause, resume;
+  for (auto& [options, name, description] :
+       {std::tuple(&cancel, "cancel", "Cancel a job (it keeps its latest checkpoint)"),
+        std::tuple(&pause, "pause", "Pause a job: no new rounds until resume"),
+        std::tuple(&resume, "resume", "Queue a paused job again")}) {
+    commands.emplace_back(AddJobActionCommand(app, name, description, options),
+                          [options, &control] { return RunJobAction(*options, control); });
+  }
+  LogOptions log;
+  commands.emplace_back(AddLogCommand(app, &log), [&] { return RunLog(log, control); });
+  AgentsOptions agents;
+  commands.emplace_back(AddAgentsCommand(app, &agents), [&] { return RunAgents(agents, control); });
+  SecretOptions secret;
+  commands.emplace_back(AddSecretCommand(app, &secret), [&] { return RunSecretNew(secret); });
 
   try {
     app.parse(argc, argv);
