@@ -105,6 +105,7 @@ nlohmann::json FarmTest::Agents() const {
 }
 
 bool FarmTest::WaitForState(int64_t id, const std::string& state, std::chrono::seconds timeout) {
+  if (id < 0) return false;  // the submit failed and said so
   std::string last;
   const bool reached = WaitUntil([&] {
     const nlohmann::json job = Status(id);
