@@ -13,11 +13,13 @@
 #include "cli/agents_command.h"
 #include "cli/control_client.h"
 #include "cli/exit_codes.h"
+#include "cli/fetch_command.h"
 #include "cli/log_command.h"
 #include "cli/queue_commands.h"
 #include "cli/render_command.h"
 #include "cli/secret_command.h"
 #include "cli/status_command.h"
+#include "cli/submit_command.h"
 
 int main(int argc, char** argv) {
   using namespace radfarm;
@@ -36,6 +38,8 @@ int main(int argc, char** argv) {
   std::vector<std::pair<CLI::App*, std::function<int()>>> commands;
   RenderOptions render;
   commands.emplace_back(AddRenderCommand(app, &render), [&] { return RunRender(render); });
+  SubmitOptions submit;
+  commands.emplace_back(AddSubmitCommand(app, &submit), [&] { return RunSubmit(submit, control); });
   ListOptions list;
   commands.emplace_back(AddListCommand(app, &list), [&] { return RunList(list, control); });
   StatusOptions status;
@@ -50,6 +54,8 @@ int main(int argc, char** argv) {
   }
   LogOptions log;
   commands.emplace_back(AddLogCommand(app, &log), [&] { return RunLog(log, control); });
+  FetchOptions fetch;
+  commands.emplace_back(AddFetchCommand(app, &fetch), [&] { return RunFetch(fetch, control); });
   AgentsOptions agents;
   commands.emplace_back(AddAgentsCommand(app, &agents), [&] { return RunAgents(agents, control); });
   SecretOptions secret;
