@@ -150,15 +150,25 @@ TEST_F(FarmTest, TheMasterKilledAtRandomPointsResumesEveryJobIdentically) {
   constexpr int kKills = 20;
   for (int kill = 0; kill < kKills; ++kill) {
     if (kill % 5 == 2) short_jobs.push_back(Submit("cornell-box.toml", kShortJob));
-    // A random instant of the job's life: some time after the master is back and running it.
-    std::uniform_int_distribution<int> delay_ms(0, 1200);
+    // A random instant of the job's life: half the kills wait for the job to finish another round
+    // first (so it resumes from a later checkpoint each time), then a random delay.
+    if (std::bernoulli_distribution(0.5)(random)) {
+      const int64_t before = Round(Status(long_job));
+      std::printf("kill %d: waiting for the round after %lld\n", kill + 1,
+                  static_cast<long long>(before));
+      WaitUntil([&] {
+        const nlohmann::json job = Status(long_job);
+        return Round(job) > before || job["state"] == "done";
+      });
+    }
+    std::uniform_int_distribution<int> delay_ms(0, 600);
     const int delay = delay_ms(random);
     const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(delay);
     WaitUntil([&] { return std::chrono::steady_clock::now() >= until; },
               std::chrono::milliseconds(delay + 1000));
     master_->Signal(SIGKILL);
     ASSERT_TRUE(master_->WaitExit(std::chrono::seconds(30)).has_value());
-    std::printf("kill %d after %d ms\n", kill + 1, delay);
+    std::printf("kill %d: %d ms after the wait\n", kill + 1, delay);
     StartMaster({"--listen", listen});
     ASSERT_TRUE(master_->running());
   }
