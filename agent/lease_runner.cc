@@ -154,9 +154,12 @@ void LeaseRunner::OnBatchDone(uint64_t id, Result<BatchOutcome> outcome) {
       // Simulates a slower machine: the result goes out (F - 1) x its compute time later.
       const double hold_ms = (settings_.slowdown - 1) * outcome->compute_seconds * 1000;
       lease->stage = LeaseStage::kHolding;
+      const std::chrono::milliseconds hold(static_cast<int64_t>(std::min(std::ceil(hold_ms), 1e15)));
+      LogLine(LogLevel::kDebug, "agent") << "lease " << Describe(lease->assignment.lease)
+                                         << ": result held for " << hold.count()
+                                         << " ms (--slowdown)";
       lease->hold_timer = std::make_unique<loop::Timer>(loop_);
-      lease->hold_timer->Start(std::chrono::milliseconds(static_cast<int64_t>(std::ceil(hold_ms))),
-                               [this, id] { SendResult(id); });
+      lease->hold_timer->Start(hold, [this, id] { SendResult(id); });
     } else {
       SendResult(id);
     }
