@@ -219,7 +219,7 @@ TEST_F(AgentWorkTest, ADamagedSceneFileIsDeletedAndFetchedAgain) {
 // A scene of several chunks goes through the pipelined fetch.
 class AgentBigSceneTest : public AgentWorkTest {
  protected:
-  AgentBigSceneTest() : AgentWorkTest(45) {}
+  AgentBigSceneTest() : AgentWorkTest(kBigBox) {}
 };
 
 TEST_F(AgentBigSceneTest, ASceneOfSeveralChunksIsFetchedOnce) {

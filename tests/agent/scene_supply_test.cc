@@ -66,7 +66,7 @@ struct Harness {
 
 TEST(SceneSupplyTest, FetchesWithPipelinedRequestsSavesAndKeepsTheScene) {
   ScratchDir dir;
-  const PatchScene scene = testing::BoxScene(30);
+  const PatchScene scene = testing::BoxScene(testing::kBigBox);
   const std::vector<uint8_t> blob = codec::EncodePatchScene(scene);
   ASSERT_GT(blob.size(), 2 * protocol::kMaxSceneChunkBytes) << "the scene should take 3+ chunks";
   const protocol::SceneHash hash = protocol::HashScene(blob);
@@ -158,7 +158,7 @@ TEST(SceneSupplyTest, AnUndecodableSceneFailsAndIsNotFetchedAgain) {
 }
 
 TEST(SceneSupplyTest, ABadChunkFailsTheFetchAndItsLateAnswersAreSkipped) {
-  const std::vector<uint8_t> blob = codec::EncodePatchScene(testing::BoxScene(30));
+  const std::vector<uint8_t> blob = codec::EncodePatchScene(testing::BoxScene(testing::kBigBox));
   const protocol::SceneHash hash = protocol::HashScene(blob);
   Harness h(std::nullopt);
   ASSERT_TRUE(h.supply->Want(hash).ok());

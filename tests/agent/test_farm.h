@@ -16,6 +16,8 @@ namespace radfarm::agent::testing {
 
 // A closed box of 6 x n x n patches, one material.
 PatchScene BoxScene(int n);
+// A box whose blob takes 3 scene chunks (about 230 bytes a patch).
+inline constexpr int kBigBox = 45;
 
 // A 32-byte secret filled with `fill`, and its key file.
 protocol::FarmSecret TestSecret(uint8_t fill);
