@@ -56,8 +56,7 @@ TEST(AgentCommandLineTest, AMissingOrBadSecretFileIsNamed) {
   const CommandResult missing =
       RunAgent({"--master", "127.0.0.1:7000", "--secret-file", dir.File("nope")});
   EXPECT_EQ(missing.exit_code, 2);
-  EXPECT_NE(missing.err.find(dir.File("nope") + ": cannot read the farm secret"),
-            std::string::npos)
+  EXPECT_NE(missing.err.find(dir.File("nope") + ": cannot read the farm secret"), std::string::npos)
       << missing.err;
 
   WriteTextFile(dir.File("short"), "abcd\n");

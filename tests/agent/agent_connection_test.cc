@@ -52,8 +52,7 @@ TEST(AgentConnectionTest, AWrongSecretIsRefusedLoggedAndRetried) {
   FakeMaster master(TestSecret(0x33));
   AgentProcess agent(AgentArgs(master.address(), dir.File("key"), 1));
 
-  ASSERT_TRUE(master.WaitFor([](const Record& r) { return r.auth_failures >= 2; }))
-      << agent.Log();
+  ASSERT_TRUE(master.WaitFor([](const Record& r) { return r.auth_failures >= 2; })) << agent.Log();
   ASSERT_TRUE(agent.WaitForLog("authentication with " + master.address() + " (attempt ", 2))
       << agent.Log();
   const std::string log = agent.Log();

@@ -16,9 +16,7 @@ namespace {
 class AgentShutdownTest : public ::testing::Test {
  protected:
   AgentShutdownTest()
-      : scene_(BoxScene(3)),
-        blob_(codec::EncodePatchScene(scene_)),
-        secret_(TestSecret(0x6b)) {
+      : scene_(BoxScene(3)), blob_(codec::EncodePatchScene(scene_)), secret_(TestSecret(0x6b)) {
     WriteSecretFile(dir_.File("key"), secret_);
     StartMaster({});
   }
@@ -78,9 +76,8 @@ class AgentShutdownTest : public ::testing::Test {
       EXPECT_EQ(back.reason, expected_reason);
       refs.insert(refs.end(), back.leases.begin(), back.leases.end());
     }
-    std::sort(refs.begin(), refs.end(), [](const auto& a, const auto& b) {
-      return a.batch_id < b.batch_id;
-    });
+    std::sort(refs.begin(), refs.end(),
+              [](const auto& a, const auto& b) { return a.batch_id < b.batch_id; });
     return refs;
   }
 

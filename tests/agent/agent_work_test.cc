@@ -54,8 +54,7 @@ class AgentWorkTest : public ::testing::Test {
       }
       return found.has_value();
     });
-    EXPECT_TRUE(got) << "no result for job " << lease.job_id << " batch " << lease.batch_id
-                     << "\n"
+    EXPECT_TRUE(got) << "no result for job " << lease.job_id << " batch " << lease.batch_id << "\n"
                      << agent.Log();
     return found;
   }
@@ -75,8 +74,11 @@ TEST_F(AgentWorkTest, ResultsEqualBatchRunnerOnTheSameBatchBitForBit) {
                                      Job(3, SamplerKind::kGrid, 5, 7.5)};
   std::vector<protocol::BatchAssignmentMsg> assignments;
   for (const TestJob& job : jobs) {
-    assignments.push_back(Assign(job, 10, /*shooter=*/5, /*first_ray=*/0, 3000));
-    assignments.push_back(Assign(job, 11, /*shooter=*/17, /*first_ray=*/123456, 2000));
+    // The grid's shot is 12 x 48 = 576 rays at 7.5 degrees: its batches must lie inside it.
+    const bool grid = job.sampler == SamplerKind::kGrid;
+    assignments.push_back(Assign(job, 10, /*shooter=*/5, /*first_ray=*/0, grid ? 300 : 3000));
+    assignments.push_back(
+        Assign(job, 11, /*shooter=*/17, /*first_ray=*/grid ? 300 : 123456, grid ? 276 : 2000));
   }
   master_.Send(std::vector<protocol::Message>(assignments.begin(), assignments.end()));
   for (const auto& assignment : assignments) {
@@ -162,6 +164,22 @@ TEST_F(AgentWorkTest, APatchCountMismatchReturnsTheLeaseAsFailed) {
   EXPECT_EQ(back.reason, protocol::LeaseReturnReason::kFailed);
   EXPECT_EQ(back.leases, std::vector<protocol::LeaseRef>{wrong.lease});
   EXPECT_NE(agent->Log().find("the assignment says"), std::string::npos) << agent->Log();
+  agent->Signal(SIGTERM);
+  EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
+}
+
+TEST_F(AgentWorkTest, AGridBatchBeyondItsShotIsReturnedAsFailed) {
+  std::unique_ptr<AgentProcess> agent = StartAgent(1);
+  const auto beyond = Assign(Job(5, SamplerKind::kGrid, 1, 7.5), 1, 0, 500, 100);  // 576 a shot
+  master_.Send(beyond);
+  ASSERT_TRUE(master_.WaitFor([](const Record& r) {
+    return !r.All<protocol::LeaseReturnMsg>().empty();
+  })) << agent->Log();
+  const auto back = master_.Snapshot().All<protocol::LeaseReturnMsg>().at(0);
+  EXPECT_EQ(back.reason, protocol::LeaseReturnReason::kFailed);
+  EXPECT_EQ(back.leases, std::vector<protocol::LeaseRef>{beyond.lease});
+  EXPECT_NE(agent->Log().find("beyond the grid's 576 rays per shot"), std::string::npos)
+      << agent->Log();
   agent->Signal(SIGTERM);
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
 }

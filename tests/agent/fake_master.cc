@@ -24,7 +24,8 @@ struct FakeMaster::Loop {
     bool counted_open = false;
   };
 
-  Loop(FakeMaster* master, protocol::FarmSecret secret) : master(master), secret(std::move(secret)) {}
+  Loop(FakeMaster* master, protocol::FarmSecret secret)
+      : master(master), secret(std::move(secret)) {}
 
   void Run(std::promise<uint16_t>* ready);
   void OnAccept(std::unique_ptr<loop::FramedConnection> stream);
@@ -52,7 +53,8 @@ struct FakeMaster::Loop {
 void FakeMaster::Loop::Run(std::promise<uint16_t>* ready) {
   loop::EventLoop loop;
   event_loop = &loop;
-  Result<std::unique_ptr<loop::Async>> async = loop::Async::Create(loop, [this] { DrainCommands(); });
+  Result<std::unique_ptr<loop::Async>> async =
+      loop::Async::Create(loop, [this] { DrainCommands(); });
   Result<std::unique_ptr<loop::TcpListener>> listening = loop::TcpListener::Listen(
       loop, loop::HostPort{"127.0.0.1", 0},
       [this](std::unique_ptr<loop::FramedConnection> stream) { OnAccept(std::move(stream)); });

@@ -26,7 +26,7 @@ inline constexpr std::chrono::milliseconds kWaitTimeout{60000};  // generous: AS
 
 struct FakeMasterOptions {
   uint32_t heartbeat_interval_ms = 60000;
-  bool send_heartbeats = false;  // every interval, to each authenticated agent
+  bool send_heartbeats = false;     // every interval, to each authenticated agent
   int close_first_connections = 0;  // close this many connections right after their Welcome
   std::vector<protocol::Message> after_welcome;  // sent to every agent right after its Welcome
 };
@@ -41,13 +41,13 @@ inline FakeMasterOptions Heartbeats(uint32_t interval_ms, bool send_heartbeats) 
 
 // What the master has seen so far.
 struct Record {
-  int accepted = 0;          // TCP connections
-  int authenticated = 0;     // handshakes completed
-  int auth_failures = 0;     // agent proofs that did not match the secret
-  int open = 0;              // authenticated connections still open
+  int accepted = 0;       // TCP connections
+  int authenticated = 0;  // handshakes completed
+  int auth_failures = 0;  // agent proofs that did not match the secret
+  int open = 0;           // authenticated connections still open
   std::vector<std::string> session_errors;
-  std::vector<protocol::Message> received;   // application messages, in order, all connections
-  std::vector<std::string> agent_names;      // from each Hello
+  std::vector<protocol::Message> received;     // application messages, in order, all connections
+  std::vector<std::string> agent_names;        // from each Hello
   std::map<protocol::SceneHash, int> fetches;  // SceneRequests at offset 0, per scene
   int scene_requests = 0;
 
@@ -91,7 +91,7 @@ class FakeMaster {
   FakeMasterOptions options_;
   uint16_t port_ = 0;
   mutable std::mutex mutex_;
-  Record record_;  // guarded by mutex_
+  Record record_;                                               // guarded by mutex_
   std::map<protocol::SceneHash, std::vector<uint8_t>> scenes_;  // guarded by mutex_
   std::unique_ptr<Loop> loop_;
   std::thread thread_;

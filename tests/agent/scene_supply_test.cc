@@ -75,7 +75,7 @@ TEST(SceneSupplyTest, FetchesWithPipelinedRequestsSavesAndKeepsTheScene) {
   ASSERT_TRUE(h.supply->Want(hash).ok());
   ASSERT_TRUE(RunUntil(h.loop, [&] { return !h.requests.empty(); }));  // nothing on disk
   EXPECT_EQ(h.requests.front().offset, 0u);
-  EXPECT_EQ(h.requests.size(), 1u);  // the size is unknown until the first chunk
+  EXPECT_EQ(h.requests.size(), 1u);        // the size is unknown until the first chunk
   ASSERT_TRUE(h.supply->Want(hash).ok());  // already under way: no second fetch
   EXPECT_EQ(h.requests.size(), 1u);
   h.Serve(blob);
@@ -176,7 +176,8 @@ TEST(SceneSupplyTest, ABadChunkFailsTheFetchAndItsLateAnswersAreSkipped) {
   std::deque<protocol::SceneRequestMsg> late = std::move(h.requests);
   h.requests.clear();
   ASSERT_TRUE(h.supply->Want(hash).ok());
-  for (const auto& request : late) h.supply->OnChunk(protocol::MakeSceneChunk(blob, request).value());
+  for (const auto& request : late)
+    h.supply->OnChunk(protocol::MakeSceneChunk(blob, request).value());
   h.Serve(blob);
   ASSERT_TRUE(RunUntil(h.loop, [&] { return !h.ready.empty(); }));
   EXPECT_EQ(h.failures.size(), 1u);

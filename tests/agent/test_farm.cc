@@ -52,10 +52,9 @@ BatchResult RunLocally(const PatchScene& scene, const protocol::BatchAssignmentM
 
 std::vector<std::string> AgentArgs(const std::string& master, const std::string& secret_file,
                                    unsigned threads, std::vector<std::string> extra) {
-  std::vector<std::string> args{"--master",  master,         "--secret-file",
-                                secret_file, "--threads",    std::to_string(threads),
-                                "--name",    "test-agent",   "--log-level",
-                                "debug"};
+  std::vector<std::string> args{
+      "--master", master,       "--secret-file", secret_file, "--threads", std::to_string(threads),
+      "--name",   "test-agent", "--log-level",   "debug"};
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
 }
