@@ -217,8 +217,11 @@ void Agent::ScheduleRetry(const std::string& what, const std::string& reason) {
   state_ = State::kWaiting;
   const milliseconds delay = backoff_.Next();
   const LogLevel level = what == "authentication with" ? LogLevel::kError : LogLevel::kWarning;
-  LogLine(level, "agent") << what << " " << master_ << " (attempt " << attempt_ << "): " << reason
-                          << "; retrying in " << delay.count() << " ms";
+  // attempt_ is 0 when an established connection was lost: no attempt failed.
+  const std::string attempt =
+      attempt_ > 0 ? " (attempt " + std::to_string(attempt_) + ")" : std::string();
+  LogLine(level, "agent") << what << " " << master_ << attempt << ": " << reason << "; retrying in "
+                          << delay.count() << " ms";
   retry_timer_->Start(delay, [this] { StartAttempt(); });
 }
 
