@@ -1,5 +1,6 @@
 #include "agent/agent.h"
 
+#include <algorithm>
 #include <csignal>
 #include <cstdlib>
 #include <variant>
@@ -242,7 +243,8 @@ void Agent::UpdateIdleTimer() {
     return;
   }
   if (idle_timer_->active()) return;
-  const auto idle = milliseconds(static_cast<int64_t>(settings_.exit_when_idle_seconds * 1000));
+  const auto idle =
+      milliseconds(static_cast<int64_t>(std::min(settings_.exit_when_idle_seconds * 1000, 1e15)));
   idle_timer_->Start(idle, [this] { Finish("idle, as --exit-when-idle asked"); });
 }
 

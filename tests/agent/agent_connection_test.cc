@@ -19,7 +19,7 @@ TEST(AgentConnectionTest, HandshakesSendsHeartbeatsAndClosesOnSigterm) {
   ScratchDir dir;
   const protocol::FarmSecret secret = TestSecret(0x11);
   WriteSecretFile(dir.File("key"), secret);
-  FakeMaster master(secret, Heartbeats(100, true));
+  FakeMaster master(secret, Heartbeats(250, true));
   AgentProcess agent(AgentArgs(master.address(), dir.File("key"), 1));
 
   ASSERT_TRUE(agent.WaitForLog(Connected(master, 1))) << agent.Log();

@@ -21,14 +21,12 @@ class AgentShutdownTest : public ::testing::Test {
     StartMaster({});
   }
 
-  // A master that heartbeats every 100 ms and sends `after_welcome` to every agent that joins.
+  // A master that heartbeats every 250 ms and sends `after_welcome` to every agent that joins.
   void StartMaster(std::vector<protocol::Message> after_welcome) {
+    FakeMasterOptions options = Heartbeats(250, true);
+    options.after_welcome = std::move(after_welcome);
     master_.reset();
-    master_ = std::make_unique<FakeMaster>(secret_, FakeMasterOptions{
-                                                        .heartbeat_interval_ms = 100,
-                                                        .send_heartbeats = true,
-                                                        .after_welcome = std::move(after_welcome),
-                                                    });
+    master_ = std::make_unique<FakeMaster>(secret_, options);
     master_->AddScene(blob_);
   }
 

@@ -23,7 +23,7 @@ class AgentWorkTest : public ::testing::Test {
         blob_(codec::EncodePatchScene(scene_)),
         hash_(protocol::HashScene(blob_)),
         secret_(TestSecret(0x5a)),
-        master_(secret_, Heartbeats(100, true)) {
+        master_(secret_, Heartbeats(250, true)) {
     WriteSecretFile(dir_.File("key"), secret_);
     master_.AddScene(blob_);
   }
