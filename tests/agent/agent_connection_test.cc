@@ -64,6 +64,28 @@ TEST(AgentConnectionTest, AWrongSecretIsRefusedLoggedAndRetried) {
   EXPECT_EQ(agent.WaitExit(), 0) << agent.Log();
 }
 
+TEST(AgentConnectionTest, AMasterWhoseProofIsWrongIsRefusedLoggedAndRetried) {
+  ScratchDir dir;
+  const protocol::FarmSecret secret = TestSecret(0x23);
+  WriteSecretFile(dir.File("key"), secret);
+  FakeMasterOptions options;
+  options.forge_welcome_tag = true;  // accepts the agent, then answers with a wrong tag
+  FakeMaster master(secret, options);
+  AgentProcess agent(AgentArgs(master.address(), dir.File("key"), 1));
+  ASSERT_TRUE(agent.WaitForLog("authentication with " + master.address() + " (attempt ", 2))
+      << agent.Log();
+  const std::string log = agent.Log();
+  EXPECT_NE(log.find("the master's proof does not match the farm secret"), std::string::npos)
+      << log;
+  EXPECT_EQ(log.find("connected to"), std::string::npos) << log;
+  // The agent told the impostor why before it hung up.
+  EXPECT_GE(master.Snapshot().All<protocol::CloseMsg>().size(), 1u);
+  EXPECT_EQ(master.Snapshot().All<protocol::CloseMsg>().at(0).code,
+            protocol::CloseCode::kAuthFailed);
+  agent.Signal(SIGTERM);
+  EXPECT_EQ(agent.WaitExit(), 0) << agent.Log();
+}
+
 TEST(AgentConnectionTest, AMasterThatClosesTheConnectionGetsAReconnect) {
   ScratchDir dir;
   const protocol::FarmSecret secret = TestSecret(0x44);

@@ -14,6 +14,17 @@
 #include "protocol/scene_transfer.h"
 
 namespace radfarm::agent::testing {
+namespace {
+
+// Flips one bit of the master's tag in an encoded Welcome frame.
+void ForgeTag(std::vector<uint8_t>* frame) {
+  protocol::DecodedFrame decoded = protocol::DecodeFrame(*frame).value();
+  auto& welcome = std::get<protocol::WelcomeMsg>(decoded.message);
+  welcome.tag[0] ^= 1;
+  *frame = protocol::EncodeFrame(welcome, decoded.version);
+}
+
+}  // namespace
 
 // Everything that lives on the master's loop thread.
 struct FakeMaster::Loop {
@@ -119,7 +130,12 @@ void FakeMaster::Loop::OnFrame(Connection* c, std::span<const uint8_t> payload) 
     Refuse(c, accepted.error());
     return;
   }
-  if (!accepted->reply.empty()) (void)c->stream->SendPrefixed(std::move(accepted->reply));
+  if (!accepted->reply.empty()) {
+    if (master->options_.forge_welcome_tag && c->session.authenticated()) {
+      ForgeTag(&accepted->reply);
+    }
+    (void)c->stream->SendPrefixed(std::move(accepted->reply));
+  }
   if (!was_authenticated && c->session.authenticated()) {
     {
       std::lock_guard lock(master->mutex_);

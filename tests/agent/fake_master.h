@@ -29,6 +29,7 @@ struct FakeMasterOptions {
   bool send_heartbeats = false;     // every interval, to each authenticated agent
   int close_first_connections = 0;  // close this many connections right after their Welcome
   std::vector<protocol::Message> after_welcome;  // sent to every agent right after its Welcome
+  bool forge_welcome_tag = false;  // send Welcomes whose master tag is wrong (an impostor master)
 };
 
 // A master whose heartbeat interval is `interval_ms`, and that sends heartbeats itself or not.
