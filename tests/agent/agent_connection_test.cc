@@ -132,6 +132,18 @@ TEST(AgentConnectionTest, AMasterThatKeepsTalkingIsKept) {
   EXPECT_EQ(agent.WaitExit(), 0) << agent.Log();
 }
 
+TEST(AgentConnectionTest, AHostNameIsLookedUpAndItsAddressesTriedInTurn) {
+  ScratchDir dir;
+  const protocol::FarmSecret secret = TestSecret(0x78);
+  WriteSecretFile(dir.File("key"), secret);
+  FakeMaster master(secret);  // on 127.0.0.1 only; "localhost" may give ::1 first
+  const std::string name = "localhost:" + std::to_string(master.port());
+  AgentProcess agent(AgentArgs(name, dir.File("key"), 1));
+  ASSERT_TRUE(agent.WaitForLog("connected to " + name + " as test-agent")) << agent.Log();
+  agent.Signal(SIGTERM);
+  EXPECT_EQ(agent.WaitExit(), 0) << agent.Log();
+}
+
 TEST(AgentConnectionTest, AnUnreachableMasterIsRetriedWithBackoff) {
   ScratchDir dir;
   WriteSecretFile(dir.File("key"), TestSecret(0x77));
