@@ -1,5 +1,6 @@
 #include "agent/agent.h"
 
+#include <algorithm>
 #include <csignal>
 #include <cstdlib>
 #include <variant>
@@ -217,8 +218,11 @@ void Agent::ScheduleRetry(const std::string& what, const std::string& reason) {
   state_ = State::kWaiting;
   const milliseconds delay = backoff_.Next();
   const LogLevel level = what == "authentication with" ? LogLevel::kError : LogLevel::kWarning;
-  LogLine(level, "agent") << what << " " << master_ << " (attempt " << attempt_ << "): " << reason
-                          << "; retrying in " << delay.count() << " ms";
+  // attempt_ is 0 when an established connection was lost: no attempt failed.
+  const std::string attempt =
+      attempt_ > 0 ? " (attempt " + std::to_string(attempt_) + ")" : std::string();
+  LogLine(level, "agent") << what << " " << master_ << attempt << ": " << reason << "; retrying in "
+                          << delay.count() << " ms";
   retry_timer_->Start(delay, [this] { StartAttempt(); });
 }
 
@@ -239,7 +243,8 @@ void Agent::UpdateIdleTimer() {
     return;
   }
   if (idle_timer_->active()) return;
-  const auto idle = milliseconds(static_cast<int64_t>(settings_.exit_when_idle_seconds * 1000));
+  const auto idle =
+      milliseconds(static_cast<int64_t>(std::min(settings_.exit_when_idle_seconds * 1000, 1e15)));
   idle_timer_->Start(idle, [this] { Finish("idle, as --exit-when-idle asked"); });
 }
 

@@ -78,6 +78,10 @@ void LeaseRunner::OnAssignment(const protocol::BatchAssignmentMsg& assignment, b
     return;
   }
   HeldLease& lease = book_.Add(assignment);
+  if (Status valid = CheckRayRange(assignment); !valid) {
+    ReturnOne(lease.id, protocol::LeaseReturnReason::kFailed, valid.error());
+    return;
+  }
   LogLine(LogLevel::kDebug, "agent")
       << "lease " << Describe(assignment.lease) << " from " << master_ << ": "
       << assignment.ray_count << " rays of shooter " << assignment.shooter << " in round "
@@ -88,6 +92,19 @@ void LeaseRunner::OnAssignment(const protocol::BatchAssignmentMsg& assignment, b
     ReturnOne(lease.id, protocol::LeaseReturnReason::kFailed, wanted.error());
   }
   Dispatch();
+}
+
+Status LeaseRunner::CheckRayRange(const protocol::BatchAssignmentMsg& a) {
+  // The grid sampler has a fixed number of rays per shot and no ray beyond it (its tables end
+  // there): such a batch is a master's bug, refused rather than run.
+  const uint64_t per_shot =
+      samplers_.Get(a.sampler, a.seed, a.grid_step_degrees)->FixedRaysPerShot();
+  if (per_shot != 0 && (a.first_ray >= per_shot || a.ray_count > per_shot - a.first_ray)) {
+    return Error{"rays [" + std::to_string(a.first_ray) + ", " +
+                 std::to_string(a.first_ray + a.ray_count) + ") are beyond the grid's " +
+                 std::to_string(per_shot) + " rays per shot"};
+  }
+  return Ok{};
 }
 
 void LeaseRunner::Enqueue(HeldLease& lease, const std::shared_ptr<const PreparedScene>& scene) {
@@ -154,9 +171,13 @@ void LeaseRunner::OnBatchDone(uint64_t id, Result<BatchOutcome> outcome) {
       // Simulates a slower machine: the result goes out (F - 1) x its compute time later.
       const double hold_ms = (settings_.slowdown - 1) * outcome->compute_seconds * 1000;
       lease->stage = LeaseStage::kHolding;
+      const std::chrono::milliseconds hold(
+          static_cast<int64_t>(std::min(std::ceil(hold_ms), 1e15)));
+      LogLine(LogLevel::kDebug, "agent")
+          << "lease " << Describe(lease->assignment.lease) << ": result held for " << hold.count()
+          << " ms (--slowdown)";
       lease->hold_timer = std::make_unique<loop::Timer>(loop_);
-      lease->hold_timer->Start(std::chrono::milliseconds(static_cast<int64_t>(std::ceil(hold_ms))),
-                               [this, id] { SendResult(id); });
+      lease->hold_timer->Start(hold, [this, id] { SendResult(id); });
     } else {
       SendResult(id);
     }

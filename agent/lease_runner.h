@@ -64,6 +64,8 @@ class LeaseRunner {
   void OnSceneReady(const std::shared_ptr<const PreparedScene>& scene);
   void OnSceneFailed(const protocol::SceneHash& hash, protocol::LeaseReturnReason reason,
                      const std::string& why);
+  // A batch must lie inside its shot where the sampler fixes the shot's size (the grid).
+  Status CheckRayRange(const protocol::BatchAssignmentMsg& assignment);
   // kAwaitingScene -> kQueued once its scene is ready, after checking the patch count.
   void Enqueue(HeldLease& lease, const std::shared_ptr<const PreparedScene>& scene);
   // Starts queued leases while a worker is free.

@@ -23,7 +23,7 @@ struct PreparedScene {
 };
 
 // Decodes a verified blob (codec::DecodePatchScene) and builds its RayCaster. Slow for big scenes:
-// call it off the loop thread. Errors name the scene's hash.
+// call it off the loop thread. Errors say what is wrong; the caller names the scene.
 Result<std::shared_ptr<const PreparedScene>> PrepareScene(const protocol::SceneHash& hash,
                                                           std::span<const uint8_t> blob);
 

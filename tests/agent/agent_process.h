@@ -1,0 +1,62 @@
+// AgentProcess: the real radfarm-agent binary (RADFARM_AGENT_PATH) as a child process, with its
+// stderr (the log) captured in a file the test can read while it runs. The destructor kills the
+// child with SIGKILL if it is still running and reaps it.
+#pragma once
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tests/agent/fake_master.h"
+
+namespace radfarm::agent::testing {
+
+class AgentProcess {
+ public:
+  // Starts RADFARM_AGENT_PATH with `args` (not including the program).
+  explicit AgentProcess(const std::vector<std::string>& args);
+  ~AgentProcess();
+  AgentProcess(const AgentProcess&) = delete;
+  AgentProcess& operator=(const AgentProcess&) = delete;
+
+  // Everything the agent has logged so far.
+  std::string Log() const;
+  // Waits until the log holds `text` at least `count` times.
+  bool WaitForLog(const std::string& text, int count = 1,
+                  std::chrono::milliseconds timeout = kWaitTimeout) const;
+  int CountInLog(const std::string& text) const;
+
+  void Signal(int signum);
+  // The exit code (128 + signal if killed by one), once it exits; nullopt after `timeout`.
+  std::optional<int> WaitExit(std::chrono::milliseconds timeout = kWaitTimeout);
+  // Whether the process is still running (reaps it if it has exited).
+  bool Running() { return !WaitExit(std::chrono::milliseconds(0)).has_value(); }
+
+ private:
+  std::string dir_;
+  std::string log_path_;
+  pid_t pid_ = -1;
+  std::optional<int> exit_code_;
+};
+
+// A fresh directory under the temp dir, removed with its contents by the destructor.
+class ScratchDir {
+ public:
+  ScratchDir();
+  ~ScratchDir();
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  const std::string& path() const { return path_; }
+  std::string File(const std::string& name) const { return path_ + "/" + name; }
+
+ private:
+  std::string path_;
+};
+
+void WriteTextFile(const std::string& path, const std::string& text);
+std::string ReadTextFile(const std::string& path);
+
+}  // namespace radfarm::agent::testing

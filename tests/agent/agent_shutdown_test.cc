@@ -1,0 +1,197 @@
+// The real radfarm-agent against the fake master: SIGTERM, Drain and --exit-when-idle.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <algorithm>
+
+#include "codec/patch_scene_codec.h"
+#include "protocol/scene_transfer.h"
+#include "tests/agent/agent_process.h"
+#include "tests/agent/fake_master.h"
+#include "tests/agent/test_farm.h"
+
+namespace radfarm::agent::testing {
+namespace {
+
+class AgentShutdownTest : public ::testing::Test {
+ protected:
+  AgentShutdownTest()
+      : scene_(BoxScene(3)), blob_(codec::EncodePatchScene(scene_)), secret_(TestSecret(0x6b)) {
+    WriteSecretFile(dir_.File("key"), secret_);
+    StartMaster({});
+  }
+
+  // A master that heartbeats every 250 ms and sends `after_welcome` to every agent that joins.
+  void StartMaster(std::vector<protocol::Message> after_welcome) {
+    FakeMasterOptions options = Heartbeats(250, true);
+    options.after_welcome = std::move(after_welcome);
+    master_.reset();
+    master_ = std::make_unique<FakeMaster>(secret_, options);
+    master_->AddScene(blob_);
+  }
+
+  std::unique_ptr<AgentProcess> StartAgent(unsigned threads, std::vector<std::string> extra = {}) {
+    auto agent = std::make_unique<AgentProcess>(
+        AgentArgs(master_->address(), dir_.File("key"), threads, std::move(extra)));
+    EXPECT_TRUE(master_->WaitFor([](const Record& r) { return r.open == 1; })) << agent->Log();
+    EXPECT_TRUE(agent->WaitForLog("connected to " + master_->address())) << agent->Log();
+    return agent;
+  }
+
+  // `count` leases of job 1, `rays` rays each.
+  std::vector<protocol::BatchAssignmentMsg> Leases(int count, uint32_t rays) {
+    std::vector<protocol::BatchAssignmentMsg> leases;
+    for (int i = 1; i <= count; ++i) {
+      leases.push_back(Assignment(Job(1), blob_, scene_, static_cast<uint64_t>(i),
+                                  static_cast<uint32_t>(i), 0, rays));
+    }
+    return leases;
+  }
+
+  void Send(const std::vector<protocol::BatchAssignmentMsg>& leases) {
+    master_->Send(std::vector<protocol::Message>(leases.begin(), leases.end()));
+  }
+
+  // Waits until a heartbeat reports `held` leases.
+  bool WaitHeld(uint32_t held) {
+    return master_->WaitFor([held](const Record& r) {
+      const auto beats = r.All<protocol::HeartbeatMsg>();
+      return !beats.empty() && beats.back().leases_held == held;
+    });
+  }
+
+  static std::vector<protocol::LeaseRef> Refs(
+      const std::vector<protocol::BatchAssignmentMsg>& leases) {
+    std::vector<protocol::LeaseRef> refs;
+    for (const auto& lease : leases) refs.push_back(lease.lease);
+    return refs;
+  }
+
+  // Every lease returned so far, sorted, with the reasons seen.
+  std::vector<protocol::LeaseRef> Returned(protocol::LeaseReturnReason expected_reason) {
+    std::vector<protocol::LeaseRef> refs;
+    for (const auto& back : master_->Snapshot().All<protocol::LeaseReturnMsg>()) {
+      EXPECT_EQ(back.reason, expected_reason);
+      refs.insert(refs.end(), back.leases.begin(), back.leases.end());
+    }
+    std::sort(refs.begin(), refs.end(),
+              [](const auto& a, const auto& b) { return a.batch_id < b.batch_id; });
+    return refs;
+  }
+
+  void ExpectClosedWithShutdown() {
+    const auto closes = master_->Snapshot().All<protocol::CloseMsg>();
+    ASSERT_EQ(closes.size(), 1u);
+    EXPECT_EQ(closes[0].code, protocol::CloseCode::kShutdown);
+  }
+
+  ScratchDir dir_;
+  PatchScene scene_;
+  std::vector<uint8_t> blob_;
+  protocol::FarmSecret secret_;
+  std::unique_ptr<FakeMaster> master_;
+};
+
+TEST_F(AgentShutdownTest, SigtermReturnsEveryLeaseEvenWithABatchStillRunning) {
+  std::unique_ptr<AgentProcess> agent = StartAgent(1);
+  // A batch far too long to finish, then two queued behind it.
+  std::vector<protocol::BatchAssignmentMsg> leases = Leases(3, 1000);
+  leases[0].ray_count = 4000000000u;
+  Send(leases);
+  ASSERT_TRUE(WaitHeld(3)) << agent->Log();
+  ASSERT_TRUE(agent->WaitForLog("ready, ")) << agent->Log();  // the scene is in: the batch runs
+  agent->Signal(SIGTERM);
+  EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
+  EXPECT_EQ(Returned(protocol::LeaseReturnReason::kDraining), Refs(leases));
+  EXPECT_EQ(master_->Snapshot().All<protocol::LeaseReturnMsg>().size(), 1u);
+  EXPECT_TRUE(master_->Snapshot().All<protocol::BatchResultMsg>().empty());
+  ExpectClosedWithShutdown();
+  EXPECT_NE(agent->Log().find("exiting without waiting for running batches"), std::string::npos)
+      << agent->Log();
+}
+
+TEST_F(AgentShutdownTest, SigtermReturnsResultsHeldBySlowdown) {
+  // --slowdown holds each computed result for 1e6 x its compute time: they are still held.
+  std::unique_ptr<AgentProcess> agent = StartAgent(2, {"--slowdown", "1000000"});
+  const std::vector<protocol::BatchAssignmentMsg> leases = Leases(3, 2000);
+  Send(leases);
+  ASSERT_TRUE(agent->WaitForLog("result held for", 3)) << agent->Log();
+  agent->Signal(SIGTERM);
+  EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
+  EXPECT_EQ(Returned(protocol::LeaseReturnReason::kDraining), Refs(leases));
+  EXPECT_TRUE(master_->Snapshot().All<protocol::BatchResultMsg>().empty());
+  ExpectClosedWithShutdown();
+  // Nothing was running: the clean exit path.
+  EXPECT_NE(agent->Log().find("INFO  agent: exited"), std::string::npos) << agent->Log();
+}
+
+TEST_F(AgentShutdownTest, DrainFinishLeasesWithExitSendsEveryResultThenCloses) {
+  std::unique_ptr<AgentProcess> agent = StartAgent(2);
+  const std::vector<protocol::BatchAssignmentMsg> leases = Leases(4, 5000);
+  Send(leases);
+  master_->Send(protocol::DrainMsg{protocol::DrainMode::kFinishLeases, /*exit_after=*/true});
+  EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
+  const Record seen = master_->Snapshot();
+  EXPECT_EQ(seen.All<protocol::BatchResultMsg>().size(), 4u);
+  EXPECT_TRUE(seen.All<protocol::LeaseReturnMsg>().empty());
+  ExpectClosedWithShutdown();
+  // The Close comes after the last result.
+  EXPECT_TRUE(std::holds_alternative<protocol::CloseMsg>(seen.received.back()));
+}
+
+TEST_F(AgentShutdownTest, DrainReturnLeasesWithExitReturnsThemAndCloses) {
+  std::unique_ptr<AgentProcess> agent = StartAgent(1, {"--slowdown", "1000000"});
+  std::vector<protocol::BatchAssignmentMsg> leases = Leases(3, 1000);
+  Send(leases);
+  ASSERT_TRUE(WaitHeld(3)) << agent->Log();
+  master_->Send(protocol::DrainMsg{protocol::DrainMode::kReturnLeases, /*exit_after=*/true});
+  EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
+  EXPECT_EQ(Returned(protocol::LeaseReturnReason::kDraining), Refs(leases));
+  ExpectClosedWithShutdown();
+}
+
+TEST_F(AgentShutdownTest, DrainWithoutExitRefusesNewLeasesAndStaysConnected) {
+  std::unique_ptr<AgentProcess> agent = StartAgent(1);
+  master_->Send(protocol::DrainMsg{protocol::DrainMode::kFinishLeases, /*exit_after=*/false});
+  const std::vector<protocol::BatchAssignmentMsg> leases = Leases(2, 100);
+  Send(leases);
+  ASSERT_TRUE(master_->WaitFor([](const Record& r) {
+    size_t returned = 0;
+    for (const auto& back : r.All<protocol::LeaseReturnMsg>()) returned += back.leases.size();
+    return returned == 2;
+  })) << agent->Log();
+  EXPECT_EQ(Returned(protocol::LeaseReturnReason::kDraining), Refs(leases));
+  EXPECT_TRUE(agent->Running());
+  EXPECT_EQ(master_->Snapshot().open, 1);
+  agent->Signal(SIGTERM);
+  EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
+}
+
+TEST_F(AgentShutdownTest, ExitWhenIdleExitsOnceNothingIsHeld) {
+  std::unique_ptr<AgentProcess> agent = StartAgent(1, {"--exit-when-idle", "0.5"});
+  EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
+  ExpectClosedWithShutdown();
+  EXPECT_NE(agent->Log().find("--exit-when-idle"), std::string::npos) << agent->Log();
+}
+
+TEST_F(AgentShutdownTest, ExitWhenIdleWaitsForHeldLeases) {
+  // The lease comes with the Welcome, so the agent is never idle before it; --slowdown then holds
+  // its result, and held results count as held leases.
+  const std::vector<protocol::BatchAssignmentMsg> leases = Leases(1, 100);
+  StartMaster({leases[0]});
+  std::unique_ptr<AgentProcess> agent =
+      StartAgent(1, {"--exit-when-idle", "0.2", "--slowdown", "1000000"});
+  ASSERT_TRUE(agent->WaitForLog("result held for")) << agent->Log();
+  // Many idle periods pass, in heartbeats, while the lease is held; then Cancel frees the agent.
+  const size_t beats = master_->Snapshot().All<protocol::HeartbeatMsg>().size();
+  ASSERT_TRUE(master_->WaitFor([beats](const Record& r) {
+    return r.All<protocol::HeartbeatMsg>().size() >= beats + 10;
+  })) << agent->Log();
+  EXPECT_TRUE(agent->Running()) << agent->Log();
+  master_->Send(protocol::CancelMsg{1});
+  EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
+  ExpectClosedWithShutdown();
+}
+
+}  // namespace
+}  // namespace radfarm::agent::testing

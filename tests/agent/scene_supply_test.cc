@@ -1,0 +1,187 @@
+#include "agent/scene_supply.h"
+
+#include <gtest/gtest.h>
+
+#include <deque>
+#include <filesystem>
+
+#include "codec/patch_scene_codec.h"
+#include "protocol/scene_transfer.h"
+#include "tests/agent/agent_process.h"
+#include "tests/agent/test_farm.h"
+#include "tests/loop/loop_test_util.h"
+
+namespace radfarm::agent {
+namespace {
+
+using loop::testing::RunUntil;
+using testing::ReadTextFile;
+using testing::ScratchDir;
+using testing::WriteTextFile;
+
+// A SceneSupply on a real loop and I/O queue, whose requests the test answers as a master would.
+struct Harness {
+  explicit Harness(std::optional<SceneStore> store) {
+    io = loop::WorkQueue::Create(loop, 1, "test-io").value();
+    SceneSupply::Callbacks callbacks;
+    callbacks.on_ready = [this](const auto& scene) { ready.push_back(scene); };
+    callbacks.on_failed = [this](const auto&, auto reason, const std::string& why) {
+      failures.emplace_back(reason, why);
+    };
+    callbacks.send_request = [this](const protocol::SceneRequestMsg& request) -> Status {
+      requests.push_back(request);
+      max_in_flight = std::max(max_in_flight, requests.size());
+      return Ok{};
+    };
+    supply = std::make_unique<SceneSupply>(*io, std::move(store), "test-master", callbacks);
+  }
+  ~Harness() {
+    io.reset();
+    supply.reset();
+    loop::testing::ExpectClosesClean(loop);
+  }
+
+  // Answers the requests in order, from `blob`, until none is left.
+  void Serve(const std::vector<uint8_t>& blob) {
+    while (!requests.empty()) {
+      const protocol::SceneRequestMsg request = requests.front();
+      requests.pop_front();
+      ++served;
+      supply->OnChunk(protocol::MakeSceneChunk(blob, request).value());
+    }
+  }
+  bool RunUntilSettled() {
+    return RunUntil(loop, [this] { return !ready.empty() || !failures.empty(); });
+  }
+
+  loop::EventLoop loop;
+  std::unique_ptr<loop::WorkQueue> io;
+  std::unique_ptr<SceneSupply> supply;
+  std::deque<protocol::SceneRequestMsg> requests;
+  size_t max_in_flight = 0;
+  int served = 0;
+  std::vector<std::shared_ptr<const PreparedScene>> ready;
+  std::vector<std::pair<protocol::LeaseReturnReason, std::string>> failures;
+};
+
+TEST(SceneSupplyTest, FetchesWithPipelinedRequestsSavesAndKeepsTheScene) {
+  ScratchDir dir;
+  const PatchScene scene = testing::BoxScene(testing::kBigBox);
+  const std::vector<uint8_t> blob = codec::EncodePatchScene(scene);
+  ASSERT_GT(blob.size(), 2 * protocol::kMaxSceneChunkBytes) << "the scene should take 3+ chunks";
+  const protocol::SceneHash hash = protocol::HashScene(blob);
+  Harness h(SceneStore::Open(dir.path()).value());
+
+  ASSERT_TRUE(h.supply->Want(hash).ok());
+  ASSERT_TRUE(RunUntil(h.loop, [&] { return !h.requests.empty(); }));  // nothing on disk
+  EXPECT_EQ(h.requests.front().offset, 0u);
+  EXPECT_EQ(h.requests.size(), 1u);        // the size is unknown until the first chunk
+  ASSERT_TRUE(h.supply->Want(hash).ok());  // already under way: no second fetch
+  EXPECT_EQ(h.requests.size(), 1u);
+  h.Serve(blob);
+  EXPECT_GT(h.max_in_flight, 1u);
+  EXPECT_LE(h.max_in_flight, SceneSupply::kRequestWindow);
+  ASSERT_TRUE(h.RunUntilSettled());
+  ASSERT_TRUE(h.failures.empty()) << h.failures[0].second;
+  ASSERT_EQ(h.ready.size(), 1u);
+  EXPECT_EQ(h.ready[0]->hash, hash);
+  EXPECT_EQ(h.ready[0]->patch_count(), scene.patches.size());
+  EXPECT_EQ(h.supply->Find(hash), h.ready[0]);
+  SceneStore store = SceneStore::Open(dir.path()).value();
+  EXPECT_EQ(store.Load(hash).blob, blob);
+}
+
+TEST(SceneSupplyTest, AGoodFileIsUsedWithoutAFetch) {
+  ScratchDir dir;
+  const std::vector<uint8_t> blob = codec::EncodePatchScene(testing::BoxScene(2));
+  const protocol::SceneHash hash = protocol::HashScene(blob);
+  ASSERT_TRUE(SceneStore::Open(dir.path()).value().Save(hash, blob).ok());
+  Harness h(SceneStore::Open(dir.path()).value());
+  ASSERT_TRUE(h.supply->Want(hash).ok());
+  ASSERT_TRUE(h.RunUntilSettled());
+  EXPECT_EQ(h.ready.size(), 1u);
+  EXPECT_TRUE(h.requests.empty());
+}
+
+TEST(SceneSupplyTest, ADamagedFileIsDeletedAndTheSceneFetchedAgain) {
+  ScratchDir dir;
+  const std::vector<uint8_t> blob = codec::EncodePatchScene(testing::BoxScene(2));
+  const protocol::SceneHash hash = protocol::HashScene(blob);
+  SceneStore store = SceneStore::Open(dir.path()).value();
+  WriteTextFile(store.PathFor(hash), "garbage where the scene was");
+  Harness h(SceneStore::Open(dir.path()).value());
+  ASSERT_TRUE(h.supply->Want(hash).ok());
+  ASSERT_TRUE(RunUntil(h.loop, [&] { return !h.requests.empty(); }));
+  h.Serve(blob);
+  ASSERT_TRUE(h.RunUntilSettled());
+  EXPECT_EQ(h.ready.size(), 1u);
+  EXPECT_GE(h.served, 1);
+  EXPECT_EQ(store.Load(hash).blob, blob);  // the file now holds the real scene
+}
+
+TEST(SceneSupplyTest, WithoutAStateDirectoryTheSceneIsFetchedAndKeptInMemory) {
+  const std::vector<uint8_t> blob = codec::EncodePatchScene(testing::BoxScene(2));
+  const protocol::SceneHash hash = protocol::HashScene(blob);
+  Harness h(std::nullopt);
+  ASSERT_TRUE(h.supply->Want(hash).ok());
+  EXPECT_EQ(h.requests.size(), 1u);  // straight to the master
+  h.Serve(blob);
+  ASSERT_TRUE(h.RunUntilSettled());
+  EXPECT_NE(h.supply->Find(hash), nullptr);
+}
+
+TEST(SceneSupplyTest, SceneUnavailableFailsTheScene) {
+  const protocol::SceneHash hash = protocol::HashScene(std::vector<uint8_t>{1, 2, 3});
+  Harness h(std::nullopt);
+  ASSERT_TRUE(h.supply->Want(hash).ok());
+  h.supply->OnUnavailable({hash});
+  ASSERT_EQ(h.failures.size(), 1u);
+  EXPECT_EQ(h.failures[0].first, protocol::LeaseReturnReason::kSceneUnavailable);
+  // A later Want fetches anew: the master may have the scene by then.
+  h.requests.clear();
+  ASSERT_TRUE(h.supply->Want(hash).ok());
+  EXPECT_EQ(h.requests.size(), 1u);
+}
+
+TEST(SceneSupplyTest, AnUndecodableSceneFailsAndIsNotFetchedAgain) {
+  const std::vector<uint8_t> blob(5000, 0xab);  // verified by hash, but no PatchScene
+  const protocol::SceneHash hash = protocol::HashScene(blob);
+  Harness h(std::nullopt);
+  ASSERT_TRUE(h.supply->Want(hash).ok());
+  h.Serve(blob);
+  ASSERT_TRUE(h.RunUntilSettled());
+  ASSERT_EQ(h.failures.size(), 1u);
+  EXPECT_EQ(h.failures[0].first, protocol::LeaseReturnReason::kFailed);
+  EXPECT_NE(h.failures[0].second.find("cannot decode"), std::string::npos) << h.failures[0].second;
+  EXPECT_FALSE(h.supply->Want(hash).ok());
+  EXPECT_TRUE(h.requests.empty());
+}
+
+TEST(SceneSupplyTest, ABadChunkFailsTheFetchAndItsLateAnswersAreSkipped) {
+  const std::vector<uint8_t> blob = codec::EncodePatchScene(testing::BoxScene(testing::kBigBox));
+  const protocol::SceneHash hash = protocol::HashScene(blob);
+  Harness h(std::nullopt);
+  ASSERT_TRUE(h.supply->Want(hash).ok());
+  // The first chunk claims another total size than the real one on the second.
+  protocol::SceneRequestMsg first = h.requests.front();
+  h.requests.pop_front();
+  h.supply->OnChunk(protocol::MakeSceneChunk(blob, first).value());
+  ASSERT_GT(h.requests.size(), 1u);
+  protocol::SceneChunkMsg bad = protocol::MakeSceneChunk(blob, h.requests.front()).value();
+  h.requests.pop_front();
+  bad.total_size += 1;
+  h.supply->OnChunk(bad);
+  ASSERT_EQ(h.failures.size(), 1u);
+  // The answers still in flight belong to the dead fetch; a new one starts clean after them.
+  std::deque<protocol::SceneRequestMsg> late = std::move(h.requests);
+  h.requests.clear();
+  ASSERT_TRUE(h.supply->Want(hash).ok());
+  for (const auto& request : late)
+    h.supply->OnChunk(protocol::MakeSceneChunk(blob, request).value());
+  h.Serve(blob);
+  ASSERT_TRUE(RunUntil(h.loop, [&] { return !h.ready.empty(); }));
+  EXPECT_EQ(h.failures.size(), 1u);
+}
+
+}  // namespace
+}  // namespace radfarm::agent

@@ -1,0 +1,51 @@
+// Scenes, secrets and assignments for the agent tests, and the reference result: a batch computed
+// locally with BatchRunner, which the agent's answer must equal bit for bit.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/batch.h"
+#include "core/patch_scene.h"
+#include "core/solver_settings.h"
+#include "protocol/farm_secret.h"
+#include "protocol/messages.h"
+
+namespace radfarm::agent::testing {
+
+// A closed box of 6 x n x n patches, one material.
+PatchScene BoxScene(int n);
+// A box whose blob takes 3 scene chunks (about 230 bytes a patch).
+inline constexpr int kBigBox = 45;
+
+// A 32-byte secret filled with `fill`, and its key file.
+protocol::FarmSecret TestSecret(uint8_t fill);
+void WriteSecretFile(const std::string& path, const protocol::FarmSecret& secret);
+
+struct TestJob {
+  uint64_t job_id = 1;
+  SamplerKind sampler = SamplerKind::kSobol;
+  uint64_t seed = 7;
+  double grid_step_degrees = 10;
+};
+
+inline TestJob Job(uint64_t job_id, SamplerKind sampler = SamplerKind::kSobol, uint64_t seed = 7,
+                   double grid_step_degrees = 10) {
+  return TestJob{job_id, sampler, seed, grid_step_degrees};
+}
+
+// The assignment of rays [first_ray, first_ray + ray_count) of `shooter` in `round`.
+protocol::BatchAssignmentMsg Assignment(const TestJob& job, const std::vector<uint8_t>& blob,
+                                        const PatchScene& scene, uint64_t batch_id,
+                                        uint32_t shooter, uint64_t first_ray, uint32_t ray_count,
+                                        uint32_t round = 0);
+
+// What BatchRunner::Run gives for the assignment on this machine.
+BatchResult RunLocally(const PatchScene& scene, const protocol::BatchAssignmentMsg& assignment);
+
+// --master, --secret-file, --threads, --name and --log-level debug, then `extra`.
+std::vector<std::string> AgentArgs(const std::string& master, const std::string& secret_file,
+                                   unsigned threads, std::vector<std::string> extra = {});
+
+}  // namespace radfarm::agent::testing
