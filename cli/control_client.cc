@@ -59,11 +59,9 @@ Outcome<ControlClient> ControlClient::Connect(const std::string& socket_path) {
   UniqueFd fd(::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0));
   if (!fd.valid()) return Failure{kExitFailure, std::string("socket: ") + std::strerror(errno)};
   if (Status s = SetTimeouts(fd.get()); !s.ok()) return Failure{kExitFailure, s.error()};
-  int rc;
-  do {
-    rc = ::connect(fd.get(), reinterpret_cast<const sockaddr*>(&address), sizeof address);
-  } while (rc != 0 && errno == EINTR);
-  if (rc != 0) {
+  // No retry on EINTR: the connection would go on in the background. The CLI installs no signal
+  // handlers, so it does not happen.
+  if (::connect(fd.get(), reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
     const int error = errno;
     std::string why = std::strerror(error);
     if (error == EACCES || error == EPERM) {

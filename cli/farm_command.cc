@@ -5,6 +5,7 @@
 
 #include "cli/exit_codes.h"
 #include "cli/messages.h"
+#include "cli/option_checks.h"
 
 namespace radfarm {
 namespace {
@@ -81,7 +82,7 @@ void AddJsonFlag(CLI::App* command, bool* json) {
 void AddJobIdArgument(CLI::App* command, int64_t* id) {
   command->add_option("ID", *id, "Job id (from submit or list)")
       ->required()
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveInteger());
 }
 
 }  // namespace radfarm
