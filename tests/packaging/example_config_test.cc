@@ -1,0 +1,87 @@
+// packaging/etc/*.conf: every key is there, commented out; uncommented, each file is valid TOML
+// and the agent's [idle] table passes the idle policy's own parser.
+#include <gtest/gtest.h>
+#include <toml++/toml.h>
+
+#include <filesystem>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "idle/idle_config.h"
+#include "shell.h"
+
+namespace radfarm::packaging {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The file with "#key = value" and "#[table]" lines uncommented (prose comments stay).
+std::string Uncomment(const std::string& text) {
+  static const std::regex setting("^#(\\[[a-z_]+\\]|[a-z_]+ = .*)$");
+  std::istringstream lines(text);
+  std::string out;
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch match;
+    out += (std::regex_match(line, match, setting) ? match[1].str() : line) + "\n";
+  }
+  return out;
+}
+
+std::set<std::string> Keys(const toml::table& table) {
+  std::set<std::string> keys;
+  for (const auto& [key, node] : table) {
+    if (!node.is_table()) keys.insert(std::string(key.str()));
+  }
+  return keys;
+}
+
+toml::table ParseExample(const std::string& name) {
+  const fs::path path = fs::path(RADFARM_SOURCE_DIR) / "packaging/etc" / name;
+  const std::string text = testing::ReadFile(path);
+  EXPECT_FALSE(text.empty()) << path;
+  // Shipped as is, nothing is set.
+  EXPECT_TRUE(toml::parse(text, std::string_view(name)).empty()) << name;
+  try {
+    return toml::parse(Uncomment(text), std::string_view(name));
+  } catch (const toml::parse_error& error) {
+    ADD_FAILURE() << name << " uncommented is not TOML: " << error;
+    return {};
+  }
+}
+
+TEST(ExampleConfigTest, MasterConfigNamesEveryKey) {
+  const toml::table config = ParseExample("radfarmd.conf");
+  const std::set<std::string> keys = Keys(config);
+  for (const char* key : {"listen", "state_dir", "secret_file", "control", "heartbeat_ms",
+                          "agent_timeout_ms", "log_level", "checkpoint_keep"}) {
+    EXPECT_EQ(keys.count(key), 1u) << key;
+  }
+  EXPECT_EQ(config["listen"].value_or(std::string()), "0.0.0.0:7878");
+  EXPECT_EQ(config["secret_file"].value_or(std::string()), "/etc/radfarm/secret");
+  EXPECT_EQ(config["state_dir"].value_or(std::string()), "/var/lib/radfarm");
+}
+
+TEST(ExampleConfigTest, AgentConfigNamesEveryKeyAndItsIdleTableParses) {
+  const toml::table config = ParseExample("agent.conf");
+  EXPECT_EQ(Keys(config),
+            (std::set<std::string>{"master", "secret_file", "state_dir", "threads", "name",
+                                   "log_level", "slowdown", "exit_when_idle_seconds"}));
+  const toml::table* idle = config["idle"].as_table();
+  ASSERT_NE(idle, nullptr);
+  EXPECT_EQ(Keys(*idle), (std::set<std::string>{"enabled", "user_idle_minutes", "max_other_cpu",
+                                                "schedule", "poll_seconds"}));
+  Result<idle::IdleConfig> parsed = idle::ParseIdleConfig(*idle, "agent.conf");
+  ASSERT_TRUE(parsed.ok()) << parsed.error();
+  // The example shows the defaults (but for the schedule, which is an example).
+  const idle::IdleConfig defaults;
+  EXPECT_EQ(parsed->enabled, defaults.enabled);
+  EXPECT_EQ(parsed->user_idle_minutes, defaults.user_idle_minutes);
+  EXPECT_EQ(parsed->max_other_cpu, defaults.max_other_cpu);
+  EXPECT_EQ(parsed->poll_seconds, defaults.poll_seconds);
+  EXPECT_FALSE(parsed->schedule.empty());
+}
+
+}  // namespace
+}  // namespace radfarm::packaging
