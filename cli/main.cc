@@ -1,57 +1,74 @@
 // radfarm: the command-line front end. Subcommands:
-//   render   the embedded single-machine mode (render_command.h)
+//   render                      the embedded single-machine mode (render_command.h)
+//   submit list status cancel   the master's job queue, through its control socket
+//   pause resume log fetch      (docs/CONTROL.md; farm_command.h)
+//   agents
+//   secret new                  a fresh farm secret (secret_command.h)
 #include <CLI/CLI.hpp>
-#include <cstdio>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
 
+#include "cli/agents_command.h"
+#include "cli/control_client.h"
 #include "cli/exit_codes.h"
+#include "cli/fetch_command.h"
+#include "cli/log_command.h"
+#include "cli/queue_commands.h"
 #include "cli/render_command.h"
-
-namespace radfarm {
-namespace {
-
-void AddRenderCommand(CLI::App& app, RenderOptions* options) {
-  CLI::App* render = app.add_subcommand(
-      "render",
-      "Solve a scene on this machine and write image.png, image.exr, radiosity.ply, "
-      "patches.csv and stats.json");
-  render->add_option("SCENE", options->scene, "Wavefront .obj scene or .toml job file")->required();
-  render->add_option("--out", options->out_dir, "Output directory (created if missing)")
-      ->required();
-  render->add_option("--threads", options->threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1u, 4096u));
-  render->add_option("--seed", options->seed, "Random seed (default 1)");
-  render
-      ->add_option("--tolerance", options->tolerance,
-                   "Stop when unshot power < T x emitted power (default 0.001)")
-      ->check(CLI::Range(1e-12, 1.0));
-  render->add_option("--rays", options->rays, "Stop after N rays (default: no limit)")
-      ->check(CLI::PositiveNumber);
-  render->add_option("--seconds", options->seconds, "Stop after S seconds (default: no limit)")
-      ->check(CLI::PositiveNumber);
-  render->add_option("--sampler", options->sampler, "grid, random or sobol (default sobol)")
-      ->check(CLI::IsMember({"grid", "random", "sobol"}));
-  render
-      ->add_option("--patch-size", options->patch_size,
-                   "Largest patch edge in scene units (default: scene diagonal / 40)")
-      ->check(CLI::PositiveNumber);
-  render->add_flag("--quiet,-q", options->quiet, "No progress output");
-}
-
-}  // namespace
-}  // namespace radfarm
+#include "cli/secret_command.h"
+#include "cli/status_command.h"
+#include "cli/submit_command.h"
 
 int main(int argc, char** argv) {
+  using namespace radfarm;
   CLI::App app{"radfarm: progressive-refinement radiosity on one machine or a farm"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "radfarm 0.1.0");
-  radfarm::RenderOptions render_options;
-  radfarm::AddRenderCommand(app, &render_options);
+  // Subcommands inherit this, so --control may also come after the command's name.
+  app.fallthrough();
+  std::string control = DefaultControlPath();
+  app.add_option("--control", control,
+                 std::string("The master's control socket (default: $RADFARM_CONTROL if set, "
+                             "else ") +
+                     kDefaultControlPath + ")");
+
+  // Each subcommand with the function that runs it once the command line is parsed.
+  std::vector<std::pair<CLI::App*, std::function<int()>>> commands;
+  RenderOptions render;
+  commands.emplace_back(AddRenderCommand(app, &render), [&] { return RunRender(render); });
+  SubmitOptions submit;
+  commands.emplace_back(AddSubmitCommand(app, &submit), [&] { return RunSubmit(submit, control); });
+  ListOptions list;
+  commands.emplace_back(AddListCommand(app, &list), [&] { return RunList(list, control); });
+  StatusOptions status;
+  commands.emplace_back(AddStatusCommand(app, &status), [&] { return RunStatus(status, control); });
+  JobActionOptions cancel, pause, resume;
+  for (auto& [options, name, description] :
+       {std::tuple(&cancel, "cancel", "Cancel a job (it keeps its latest checkpoint)"),
+        std::tuple(&pause, "pause", "Pause a job: no new rounds until resume"),
+        std::tuple(&resume, "resume", "Queue a paused job again")}) {
+    commands.emplace_back(AddJobActionCommand(app, name, description, options),
+                          [options, &control] { return RunJobAction(*options, control); });
+  }
+  LogOptions log;
+  commands.emplace_back(AddLogCommand(app, &log), [&] { return RunLog(log, control); });
+  FetchOptions fetch;
+  commands.emplace_back(AddFetchCommand(app, &fetch), [&] { return RunFetch(fetch, control); });
+  AgentsOptions agents;
+  commands.emplace_back(AddAgentsCommand(app, &agents), [&] { return RunAgents(agents, control); });
+  SecretOptions secret;
+  commands.emplace_back(AddSecretCommand(app, &secret), [&] { return RunSecretNew(secret); });
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
-    return code == 0 ? radfarm::kExitOk : radfarm::kExitBadInput;
+    return code == 0 ? kExitOk : kExitBadInput;
   }
-  if (app.got_subcommand("render")) return radfarm::RunRender(render_options);
-  return radfarm::kExitBadInput;
+  for (const auto& [command, run] : commands) {
+    if (command->parsed()) return run();
+  }
+  return kExitBadInput;
 }

@@ -6,18 +6,6 @@
 
 namespace radfarm {
 
-double ConvergenceFraction(double unshot_fraction, double tolerance) {
-  if (unshot_fraction <= tolerance) return 1;
-  if (unshot_fraction >= 1 || tolerance <= 0 || tolerance >= 1) return 0;
-  return std::clamp(std::log(unshot_fraction) / std::log(tolerance), 0.0, 1.0);
-}
-
-double EstimateSecondsLeft(double unshot_fraction, double tolerance, double seconds) {
-  const double done = ConvergenceFraction(unshot_fraction, tolerance);
-  if (done <= 0 || seconds <= 0) return -1;
-  return seconds * (1 - done) / done;
-}
-
 ProgressReporter::ProgressReporter(std::FILE* out, bool interactive)
     : out_(out), interactive_(interactive) {}
 

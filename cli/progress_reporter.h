@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/solve.h"
+#include "core/solve_control.h"  // ConvergenceFraction, EstimateSecondsLeft
 
 namespace radfarm {
 
@@ -23,12 +24,5 @@ class ProgressReporter {
   double last_print_seconds_ = -1;
   bool drew_ = false;
 };
-
-// Fraction of the way to convergence: unshot power falls geometrically, so progress is measured in
-// log space from 1 (start) to the tolerance (done).
-double ConvergenceFraction(double unshot_fraction, double tolerance);
-
-// Seconds left, extrapolating the geometric decay seen so far; negative when unknown.
-double EstimateSecondsLeft(double unshot_fraction, double tolerance, double seconds);
 
 }  // namespace radfarm

@@ -3,25 +3,24 @@
 // stats.json into the output directory.
 #pragma once
 
-#include <cstdint>
-#include <optional>
 #include <string>
+
+#include "cli/job_overrides.h"
+
+namespace CLI {
+class App;
+}
 
 namespace radfarm {
 
 struct RenderOptions {
   std::string scene;  // .obj or .toml
   std::string out_dir;
-  // Command-line overrides of the job's settings; unset means "as the job file says".
-  std::optional<uint32_t> threads;
-  std::optional<uint64_t> seed;
-  std::optional<double> tolerance;
-  std::optional<uint64_t> rays;
-  std::optional<double> seconds;
-  std::optional<std::string> sampler;
-  std::optional<double> patch_size;
+  JobOverrides overrides;
   bool quiet = false;  // no progress output
 };
+
+CLI::App* AddRenderCommand(CLI::App& app, RenderOptions* options);
 
 // Runs the whole render; returns the process exit code (cli/exit_codes.h). Errors go to stderr as
 // one line each, prefixed with "radfarm: ".

@@ -5,6 +5,7 @@
 
 #include "core/batch_runner.h"
 #include "core/ray_caster.h"
+#include "core/solve_control.h"
 #include "core/thread_pool.h"
 
 namespace radfarm {
@@ -24,19 +25,15 @@ SolveResult Solve(const PatchScene& scene, const SolverSettings& settings,
   }
 
   SolveStats stats;
-  stats.stop_reason = "converged";
-  while (solver.UnshotFraction() > settings.tolerance) {
-    if (settings.max_rays > 0 && stats.rays >= settings.max_rays) {
-      stats.stop_reason = "ray budget";
+  stats.stop_reason = kStopConverged;
+  while (true) {
+    if (auto stop = StopBeforeRound(solver, settings, stats.rays, elapsed())) {
+      stats.stop_reason = *stop;
       break;
     }
-    if (settings.max_seconds > 0 && elapsed() >= settings.max_seconds) {
-      stats.stop_reason = "time budget";
-      break;
-    }
-    const uint64_t cap = settings.max_rays > 0 ? settings.max_rays - stats.rays : 0;
-    const RoundPlan plan = solver.PlanRound(kLocalBatchRays, cap);
-    if (plan.batches.empty()) break;
+    const RoundPlan plan =
+        solver.PlanRound(kLocalBatchRays, NextRoundRayCap(settings, stats.rays));
+    if (plan.batches.empty()) break;  // nothing left to shoot: converged
     std::vector<BatchResult> results(plan.batches.size());
     pool.ParallelFor(plan.batches.size(), [&](unsigned worker, size_t b) {
       results[b] = runners[worker]->Run(plan.batches[b]);
@@ -51,8 +48,8 @@ SolveResult Solve(const PatchScene& scene, const SolverSettings& settings,
       on_round({solver.rounds_done(), stats.rays, elapsed(), solver.UnshotFraction(),
                 settings.tolerance, &solver.energy()});
     }
-    if (plan.capped && solver.UnshotFraction() > settings.tolerance) {
-      stats.stop_reason = "ray budget";
+    if (auto stop = StopAfterRound(plan, solver, settings)) {
+      stats.stop_reason = *stop;
       break;
     }
   }

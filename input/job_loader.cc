@@ -34,6 +34,7 @@
 #include "input/diagnostic.h"
 #include "input/job.h"
 #include "input/text_file.h"
+#include "input/toml_file.h"
 #include "input/toml_table_reader.h"
 
 namespace radfarm {
@@ -50,24 +51,6 @@ constexpr int64_t kMaxSamplesPerPixel = 1024;
   do {                                      \
     if (Status s_ = (expr); !s_) return s_; \
   } while (0)
-
-Result<toml::table> ParseToml(const std::string& path, const std::string& text) {
-#if TOML_EXCEPTIONS
-  try {
-    return toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    const std::string what(e.description());
-    return ErrorAt(path, e.source().begin.line, what.substr(0, what.find('\n')));
-  }
-#else
-  toml::parse_result parsed = toml::parse(text, path);
-  if (!parsed) {
-    const std::string what(parsed.error().description());
-    return ErrorAt(path, parsed.error().source().begin.line, what.substr(0, what.find('\n')));
-  }
-  return std::move(parsed).table();
-#endif
-}
 
 // Applies a section's reads to the sub-table `name` of `root`, then rejects its unknown keys.
 template <typename ReadKeys>
@@ -157,9 +140,7 @@ Status ReadJob(const std::string& path, const toml::table& table, Job* job) {
 }
 
 Result<Job> LoadTomlJob(const std::string& path) {
-  Result<std::string> text = ReadTextFile(path);
-  if (!text) return Error{text.error()};
-  Result<toml::table> table = ParseToml(path, *text);
+  Result<toml::table> table = ReadTomlFile(path);
   if (!table) return Error{table.error()};
   Job job;
   if (Status s = ReadJob(path, *table, &job); !s) return Error{s.error()};

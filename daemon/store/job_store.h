@@ -72,6 +72,8 @@ struct RoundRecord {
   double unshot_fraction = 0;
   double unshot_power = 0;
   double duration_seconds = 0;
+  uint64_t escaped_rays = 0;  // rays of the round that left the scene (schema version 3)
+  uint64_t back_rays = 0;     // rays of the round that hit a patch's back
 };
 
 struct Checkpoint {

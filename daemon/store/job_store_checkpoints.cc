@@ -10,11 +10,13 @@ namespace radfarm::store {
 Status JobStore::InsertRound(const RoundRecord& round, int64_t now) {
   Result<Statement> stmt = db_.Prepare(
       "INSERT INTO rounds (job_id, round, shooters, rays, unshot_fraction, unshot_power,"
-      " duration_seconds, recorded_at_ms) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)"
+      " duration_seconds, recorded_at_ms, escaped_rays, back_rays)"
+      " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)"
       " ON CONFLICT (job_id, round) DO UPDATE SET shooters = excluded.shooters,"
       " rays = excluded.rays, unshot_fraction = excluded.unshot_fraction,"
       " unshot_power = excluded.unshot_power, duration_seconds = excluded.duration_seconds,"
-      " recorded_at_ms = excluded.recorded_at_ms");
+      " recorded_at_ms = excluded.recorded_at_ms, escaped_rays = excluded.escaped_rays,"
+      " back_rays = excluded.back_rays");
   STORE_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, round.job)
       .Bind(2, int64_t{round.round})
@@ -23,7 +25,9 @@ Status JobStore::InsertRound(const RoundRecord& round, int64_t now) {
       .Bind(5, round.unshot_fraction)
       .Bind(6, round.unshot_power)
       .Bind(7, round.duration_seconds)
-      .Bind(8, now);
+      .Bind(8, now)
+      .Bind(9, static_cast<int64_t>(round.escaped_rays))
+      .Bind(10, static_cast<int64_t>(round.back_rays));
   return stmt->Run();
 }
 
@@ -31,7 +35,8 @@ Status JobStore::RecordRound(const RoundRecord& round) { return InsertRound(roun
 
 Result<std::vector<RoundRecord>> JobStore::ListRounds(JobId job) {
   Result<Statement> stmt = db_.Prepare(
-      "SELECT job_id, round, shooters, rays, unshot_fraction, unshot_power, duration_seconds"
+      "SELECT job_id, round, shooters, rays, unshot_fraction, unshot_power, duration_seconds,"
+      " escaped_rays, back_rays"
       " FROM rounds WHERE job_id = ?1 ORDER BY round");
   STORE_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, job);
@@ -42,7 +47,8 @@ Result<std::vector<RoundRecord>> JobStore::ListRounds(JobId job) {
     if (!*row) return rounds;
     rounds.push_back({stmt->Int(0), static_cast<uint32_t>(stmt->Int(1)),
                       static_cast<uint32_t>(stmt->Int(2)), static_cast<uint64_t>(stmt->Int(3)),
-                      stmt->Double(4), stmt->Double(5), stmt->Double(6)});
+                      stmt->Double(4), stmt->Double(5), stmt->Double(6),
+                      static_cast<uint64_t>(stmt->Int(7)), static_cast<uint64_t>(stmt->Int(8))});
   }
 }
 

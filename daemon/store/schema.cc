@@ -74,7 +74,13 @@ CREATE INDEX jobs_runnable ON jobs (state, priority DESC, submitted_at_ms, id);
 CREATE INDEX events_by_job ON events (job_id, id);
 )sql";
 
-constexpr std::array<Migration, 2> kMigrations = {{{1, kV1}, {2, kV2}}};
+// Version 3: per-round ray fates, so a resumed job's statistics count every round.
+constexpr std::string_view kV3 = R"sql(
+ALTER TABLE rounds ADD COLUMN escaped_rays INTEGER NOT NULL DEFAULT 0 CHECK (escaped_rays >= 0);
+ALTER TABLE rounds ADD COLUMN back_rays INTEGER NOT NULL DEFAULT 0 CHECK (back_rays >= 0);
+)sql";
+
+constexpr std::array<Migration, 3> kMigrations = {{{1, kV1}, {2, kV2}, {3, kV3}}};
 
 Result<int64_t> FileBytes(Database& db) {
   Result<int64_t> pages = db.QueryInt("PRAGMA page_count");

@@ -15,7 +15,29 @@ extern char** environ;
 
 namespace radfarm::testing {
 
-CommandResult RunCommand(const std::vector<std::string>& args) {
+namespace {
+
+// environ with `changes` applied ("NAME=value" sets, "NAME" removes).
+std::vector<std::string> ChangedEnvironment(const std::vector<std::string>& changes) {
+  const auto name_of = [](const std::string& entry) { return entry.substr(0, entry.find('=')); };
+  std::vector<std::string> env;
+  for (char** e = environ; *e != nullptr; ++e) {
+    bool changed = false;
+    for (const std::string& c : changes) changed = changed || name_of(c) == name_of(*e);
+    if (!changed) env.push_back(*e);
+  }
+  for (const std::string& c : changes) {
+    if (c.find('=') != std::string::npos) env.push_back(c);
+  }
+  return env;
+}
+
+}  // namespace
+
+CommandResult RunCommand(const std::vector<std::string>& args) { return RunCommand(args, {}); }
+
+CommandResult RunCommand(const std::vector<std::string>& args,
+                         const std::vector<std::string>& env_changes) {
   // Output goes to temporary files rather than pipes, so a chatty child can never block on a full
   // pipe while we wait for it.
   TempDir dir;
@@ -30,8 +52,12 @@ CommandResult RunCommand(const std::vector<std::string>& args) {
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
+  std::vector<std::string> env = ChangedEnvironment(env_changes);
+  std::vector<char*> envp;
+  for (std::string& e : env) envp.push_back(e.data());
+  envp.push_back(nullptr);
   pid_t pid;
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) throw std::runtime_error("cannot start " + args[0]);
   int status = 0;

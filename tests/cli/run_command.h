@@ -14,6 +14,9 @@ struct CommandResult {
 
 // Runs `args` (args[0] is the program path) with no shell involved; waits for it to finish.
 CommandResult RunCommand(const std::vector<std::string>& args);
+// The same with the environment changed: "NAME=value" sets a variable, "NAME" removes it.
+CommandResult RunCommand(const std::vector<std::string>& args,
+                         const std::vector<std::string>& env_changes);
 
 // A fresh empty directory under the system temp dir, removed by the destructor.
 class TempDir {

@@ -81,8 +81,12 @@ TEST_F(CheckpointTest, SavesRoundRowWithCheckpointAndLoadsLatest) {
     Checkpoint checkpoint = Make(job_, round, 10);
     ASSERT_TRUE(store_->SaveCheckpoint(RoundOf(checkpoint), checkpoint).ok());
   }
-  ASSERT_TRUE(store_->RecordRound({job_, 5, 3, 100, 0.1, 1.0, 0.2}).ok());  // no checkpoint
+  ASSERT_TRUE(store_->RecordRound({job_, 5, 3, 100, 0.1, 1.0, 0.2, 7, 9}).ok());  // no checkpoint
   EXPECT_EQ(store_->ListRounds(job_)->size(), 6u);
+  const RoundRecord fifth = store_->ListRounds(job_)->back();
+  EXPECT_EQ(fifth.rays, 100u);
+  EXPECT_EQ(fifth.escaped_rays, 7u);
+  EXPECT_EQ(fifth.back_rays, 9u);
   Checkpoint latest = **store_->LoadLatestCheckpoint(job_);
   EXPECT_EQ(latest.round, 4u);
   EXPECT_EQ(latest.radiosity, Make(job_, 4, 10).radiosity);

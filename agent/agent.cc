@@ -1,0 +1,279 @@
+#include "agent/agent.h"
+
+#include <csignal>
+#include <cstdlib>
+#include <variant>
+
+#include "agent/master_address.h"
+#include "loop/log.h"
+#include "protocol/messages.h"
+
+namespace radfarm::agent {
+namespace {
+
+using loop::LogLevel;
+using loop::LogLine;
+using std::chrono::milliseconds;
+
+// How long the last frames (LeaseReturn, Close) may take to leave at shutdown, and the hard stop
+// after which the agent exits anyway: well within the one second it promises.
+constexpr milliseconds kFlushTimeout{500};
+constexpr milliseconds kStopDeadline{900};
+constexpr milliseconds kHandshakeTimeout{10000};
+
+// The 1-minute load average; 0 where the system does not say.
+double LoadAverage() {
+  double load[1] = {0};
+  return getloadavg(load, 1) == 1 && load[0] >= 0 ? load[0] : 0;
+}
+
+// A Close detail: printable ASCII, at most 256 bytes.
+std::string CloseDetail(const std::string& text) {
+  std::string detail;
+  for (char c : text.substr(0, 200)) detail += (c >= 0x20 && c < 0x7f) ? c : '?';
+  return detail;
+}
+
+}  // namespace
+
+Agent::Agent(loop::EventLoop& loop, AgentSettings settings, protocol::FarmSecret secret,
+             std::optional<SceneStore> store, uint64_t jitter_seed)
+    : loop_(loop),
+      settings_(std::move(settings)),
+      secret_(std::move(secret)),
+      store_(std::move(store)),
+      master_(settings_.master.ToString()),
+      backoff_(ReconnectBackoff::Options{}, jitter_seed) {}
+
+Agent::~Agent() = default;
+
+Status Agent::Start() {
+  Result<std::unique_ptr<loop::WorkQueue>> batches =
+      loop::WorkQueue::Create(loop_, settings_.threads, "batch");
+  if (!batches) return Error{batches.error()};
+  batches_ = std::move(batches).value();
+  Result<std::unique_ptr<loop::WorkQueue>> io = loop::WorkQueue::Create(loop_, 1, "scene-io");
+  if (!io) return Error{io.error()};
+  io_ = std::move(io).value();
+
+  LeaseRunner::Callbacks callbacks;
+  callbacks.send = [this](const protocol::Message& message) { return Send(message); };
+  callbacks.on_leases_changed = [this] { OnLeasesChanged(); };
+  runner_ = std::make_unique<LeaseRunner>(loop_, settings_, *batches_, *io_, std::move(store_),
+                                          master_, std::move(callbacks));
+
+  retry_timer_ = std::make_unique<loop::Timer>(loop_);
+  heartbeat_timer_ = std::make_unique<loop::Timer>(loop_);
+  idle_timer_ = std::make_unique<loop::Timer>(loop_);
+  stop_deadline_ = std::make_unique<loop::Timer>(loop_);
+  for (auto [signum, watch] : {std::pair{SIGTERM, &sigterm_}, std::pair{SIGINT, &sigint_}}) {
+    Result<std::unique_ptr<loop::Signal>> signal =
+        loop::Signal::Watch(loop_, signum, [this](int s) {
+          if (state_ == State::kStopping) {
+            LogLine(LogLevel::kWarning, "agent") << "second signal: stopping now";
+            StopLoop();
+            return;
+          }
+          Finish(s == SIGTERM ? "got SIGTERM" : "got SIGINT");
+        });
+    if (!signal) return Error{signal.error()};
+    *watch = std::move(signal).value();
+  }
+  LogLine(LogLevel::kInfo, "agent") << "radfarm-agent " << settings_.name << " starting: master "
+                                    << master_ << ", " << settings_.threads << " threads";
+  StartAttempt();
+  return Ok{};
+}
+
+void Agent::StartAttempt() {
+  state_ = State::kConnecting;
+  ++attempt_;
+  LogLine(LogLevel::kDebug, "agent")
+      << "connecting to " << master_ << " (attempt " << attempt_ << ")";
+  if (Result<loop::SocketAddress> literal = loop::SocketAddress::FromIpLiteral(settings_.master)) {
+    Connect(*literal);
+    return;
+  }
+  // A host name: getaddrinfo blocks, so it runs on the I/O worker.
+  Status submitted = io_->Submit(
+      [master = settings_.master, n = attempt_ - 1] { return ResolveMaster(master, n); },
+      [this](Result<loop::SocketAddress> address) {
+        resolving_ = false;
+        if (state_ != State::kConnecting || link_) return;
+        if (!address) {
+          ScheduleRetry("cannot connect to", address.error());
+          return;
+        }
+        Connect(*address);
+      });
+  if (submitted) {
+    resolving_ = true;
+  } else {
+    ScheduleRetry("cannot connect to", submitted.error());
+  }
+}
+
+void Agent::Connect(const loop::SocketAddress& address) {
+  protocol::AgentConfig config;
+  config.name = settings_.name;
+  config.threads = settings_.threads;
+  MasterLink::Timing timing;
+  timing.handshake_timeout = kHandshakeTimeout;
+  timing.flush_timeout = kFlushTimeout;
+  MasterLink::Callbacks callbacks;
+  callbacks.on_authenticated = [this](const protocol::WelcomeMsg& w) { OnAuthenticated(w); };
+  callbacks.on_message = [this](const protocol::Message& m) { OnMessage(m); };
+  callbacks.on_closed = [this](const LinkClosed& closed) { OnLinkClosed(closed); };
+  Result<std::unique_ptr<MasterLink>> link =
+      MasterLink::Connect(loop_, address, secret_, config, timing, std::move(callbacks));
+  if (!link) {
+    ScheduleRetry("cannot connect to", link.error());
+    return;
+  }
+  link_ = std::move(link).value();
+}
+
+void Agent::OnAuthenticated(const protocol::WelcomeMsg& welcome) {
+  state_ = State::kConnected;
+  attempt_ = 0;
+  backoff_.Reset();
+  draining_ = false;
+  LogLine(LogLevel::kInfo, "agent") << "connected to " << master_ << " as " << settings_.name
+                                    << " (agent id " << welcome.agent_id << ")";
+  const milliseconds interval(welcome.heartbeat_interval_ms);
+  heartbeat_timer_->Start(interval, interval, [this] { SendHeartbeat(); });
+  SendHeartbeat();
+  UpdateIdleTimer();
+}
+
+void Agent::OnMessage(const protocol::Message& message) {
+  if (state_ != State::kConnected) return;  // stopping: the work messages no longer matter
+  if (const auto* assignment = std::get_if<protocol::BatchAssignmentMsg>(&message)) {
+    runner_->OnAssignment(*assignment, !draining_);
+    UpdateIdleTimer();
+  } else if (const auto* cancel = std::get_if<protocol::CancelMsg>(&message)) {
+    const size_t dropped = runner_->Cancel(cancel->job_id);
+    LogLine(LogLevel::kInfo, "agent") << "cancel of job " << cancel->job_id << " from " << master_
+                                      << ": dropped " << dropped << " leases";
+  } else if (const auto* chunk = std::get_if<protocol::SceneChunkMsg>(&message)) {
+    runner_->scenes().OnChunk(*chunk);
+  } else if (const auto* unavailable = std::get_if<protocol::SceneUnavailableMsg>(&message)) {
+    runner_->scenes().OnUnavailable(*unavailable);
+  } else if (const auto* drain = std::get_if<protocol::DrainMsg>(&message)) {
+    OnDrain(*drain);
+  } else if (const auto* heartbeat = std::get_if<protocol::HeartbeatMsg>(&message)) {
+    LogLine(LogLevel::kDebug, "agent")
+        << "heartbeat from " << master_ << ": it records " << heartbeat->leases_held
+        << " leases of ours, we hold " << runner_->held();
+  }
+}
+
+void Agent::OnDrain(const protocol::DrainMsg& drain) {
+  const bool finish = drain.mode == protocol::DrainMode::kFinishLeases;
+  LogLine(LogLevel::kInfo, "agent")
+      << "drain from " << master_ << ": " << (finish ? "finishing" : "returning") << " "
+      << runner_->held() << " leases" << (drain.exit_after ? ", then exiting" : "");
+  draining_ = true;
+  exit_when_drained_ = exit_when_drained_ || drain.exit_after;
+  if (!finish) runner_->ReturnAll(protocol::LeaseReturnReason::kDraining, "drain from the master");
+  OnLeasesChanged();
+}
+
+void Agent::OnLeasesChanged() {
+  if (state_ == State::kConnected && draining_ && exit_when_drained_ && runner_->held() == 0) {
+    Finish("drained, as the master asked");
+    return;
+  }
+  UpdateIdleTimer();
+}
+
+void Agent::OnLinkClosed(const LinkClosed& closed) {
+  std::unique_ptr<MasterLink> dead = std::move(link_);  // allowed: on_closed is its last act
+  heartbeat_timer_->Stop();
+  idle_timer_->Stop();
+  if (state_ == State::kStopping) {
+    StopLoop();
+    return;
+  }
+  const size_t dropped = runner_->DropAll();
+  state_ = State::kWaiting;
+  if (exit_when_drained_) {  // nothing is held any more: drained
+    Finish("the connection closed while draining before exit");
+    return;
+  }
+  if (closed.was_authenticated) {
+    ScheduleRetry("lost the connection to",
+                  closed.reason + "; dropped " + std::to_string(dropped) + " leases");
+  } else if (closed.auth_failed) {
+    ScheduleRetry(
+        "authentication with",
+        "failed: " + closed.reason + " (do the agent and the master use the same farm secret?)");
+  } else {
+    ScheduleRetry("cannot connect to", closed.reason);
+  }
+}
+
+void Agent::ScheduleRetry(const std::string& what, const std::string& reason) {
+  state_ = State::kWaiting;
+  const milliseconds delay = backoff_.Next();
+  const LogLevel level = what == "authentication with" ? LogLevel::kError : LogLevel::kWarning;
+  LogLine(level, "agent") << what << " " << master_ << " (attempt " << attempt_ << "): " << reason
+                          << "; retrying in " << delay.count() << " ms";
+  retry_timer_->Start(delay, [this] { StartAttempt(); });
+}
+
+void Agent::SendHeartbeat() {
+  protocol::HeartbeatMsg heartbeat;
+  heartbeat.load = LoadAverage();
+  heartbeat.rays_per_second = runner_->RaysPerSecond();
+  heartbeat.leases_held = static_cast<uint32_t>(runner_->held());
+  if (Status sent = Send(heartbeat); !sent) {
+    LogLine(LogLevel::kDebug, "agent") << "heartbeat not sent: " << sent.error();
+  }
+}
+
+void Agent::UpdateIdleTimer() {
+  if (settings_.exit_when_idle_seconds <= 0) return;
+  if (state_ != State::kConnected || runner_->held() > 0) {
+    idle_timer_->Stop();
+    return;
+  }
+  if (idle_timer_->active()) return;
+  const auto idle = milliseconds(static_cast<int64_t>(settings_.exit_when_idle_seconds * 1000));
+  idle_timer_->Start(idle, [this] { Finish("idle, as --exit-when-idle asked"); });
+}
+
+Status Agent::Send(const protocol::Message& message) {
+  if (!link_ || !link_->authenticated()) return Error{"not connected to " + master_};
+  return link_->Send(message);
+}
+
+void Agent::Finish(const std::string& reason) {
+  if (state_ == State::kStopping) return;
+  const bool connected = state_ == State::kConnected && link_;
+  state_ = State::kStopping;
+  LogLine(LogLevel::kInfo, "agent") << "shutting down: " << reason << "; returning "
+                                    << runner_->held() << " leases to " << master_;
+  retry_timer_->Stop();
+  heartbeat_timer_->Stop();
+  idle_timer_->Stop();
+  if (!connected) {
+    runner_->DropAll();
+    link_.reset();
+    StopLoop();
+    return;
+  }
+  runner_->ReturnAll(protocol::LeaseReturnReason::kDraining, reason);
+  link_->Close(protocol::CloseCode::kShutdown, CloseDetail(reason));
+  stop_deadline_->Start(kStopDeadline, [this] { StopLoop(); });
+}
+
+void Agent::StopLoop() {
+  retry_timer_->Stop();
+  heartbeat_timer_->Stop();
+  idle_timer_->Stop();
+  stop_deadline_->Stop();
+  loop_.Stop();
+}
+
+}  // namespace radfarm::agent

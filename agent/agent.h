@@ -1,0 +1,93 @@
+// Agent: the radfarm-agent daemon on its event loop. It keeps one authenticated connection to the
+// master, reconnecting with backoff whenever it is lost, sends heartbeats, hands the master's work
+// messages to its LeaseRunner, and decides when to stop (signals, Drain, --exit-when-idle).
+//
+// Connection states:
+//
+//   kWaiting --backoff timer--> kConnecting (name lookup on the I/O queue if the host is a name;
+//             MasterLink: TCP, handshake) --Welcome--> kConnected
+//   kConnecting, kConnected --link closed (any reason)--> leases dropped, kWaiting
+//   any --Finish(): leases returned, Close(Shutdown) flushed--> kStopping --link closed or
+//             deadline--> loop stopped
+//
+// Threads: everything here runs on the loop thread. Batches run on the batch queue's --threads
+// workers, scene loading and building on the I/O queue's one worker.
+//
+// Shutdown: after Run() returns, if busy() a batch or a scene build is still running on a worker;
+// the process then exits without waiting for it (main uses _exit). Otherwise it destroys the Agent,
+// which joins the idle workers, and closes the loop cleanly.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "agent/agent_settings.h"
+#include "agent/lease_runner.h"
+#include "agent/master_link.h"
+#include "agent/reconnect_backoff.h"
+#include "agent/scene_store.h"
+#include "loop/event_loop.h"
+#include "loop/os_signal.h"
+#include "loop/socket_address.h"
+#include "loop/timer.h"
+#include "loop/work_queue.h"
+#include "protocol/farm_secret.h"
+
+namespace radfarm::agent {
+
+class Agent {
+ public:
+  Agent(loop::EventLoop& loop, AgentSettings settings, protocol::FarmSecret secret,
+        std::optional<SceneStore> store, uint64_t jitter_seed);
+  ~Agent();
+  Agent(const Agent&) = delete;
+  Agent& operator=(const Agent&) = delete;
+
+  // Starts the work queues, watches SIGTERM and SIGINT, and makes the first connection attempt.
+  Status Start();
+  // Work still running on a worker thread.
+  bool busy() const { return resolving_ || (runner_ && runner_->busy()); }
+
+ private:
+  enum class State { kWaiting, kConnecting, kConnected, kStopping };
+
+  void StartAttempt();
+  void Connect(const loop::SocketAddress& address);
+  void OnAuthenticated(const protocol::WelcomeMsg& welcome);
+  void OnMessage(const protocol::Message& message);
+  void OnLinkClosed(const LinkClosed& closed);
+  void ScheduleRetry(const std::string& what, const std::string& reason);
+
+  void OnDrain(const protocol::DrainMsg& drain);
+  void OnLeasesChanged();
+  void SendHeartbeat();
+  void UpdateIdleTimer();
+  Status Send(const protocol::Message& message);
+
+  // Returns the leases held, closes with Close(Shutdown) and stops the loop once that is written.
+  void Finish(const std::string& reason);
+  void StopLoop();
+
+  loop::EventLoop& loop_;
+  AgentSettings settings_;
+  protocol::FarmSecret secret_;
+  std::optional<SceneStore> store_;
+  std::string master_;  // HOST:PORT as given, for logs
+  ReconnectBackoff backoff_;
+  State state_ = State::kWaiting;
+  uint32_t attempt_ = 0;  // attempts since the last handshake that succeeded
+  bool draining_ = false;
+  bool exit_when_drained_ = false;
+  bool resolving_ = false;  // a name lookup is on the I/O queue
+
+  std::unique_ptr<loop::Timer> retry_timer_, heartbeat_timer_, idle_timer_, stop_deadline_;
+  std::unique_ptr<loop::Signal> sigterm_, sigint_;
+  std::unique_ptr<MasterLink> link_;
+  std::unique_ptr<LeaseRunner> runner_;
+  // Last, so they are destroyed first: their results point into this object.
+  std::unique_ptr<loop::WorkQueue> io_, batches_;
+};
+
+}  // namespace radfarm::agent

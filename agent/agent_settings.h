@@ -1,0 +1,62 @@
+// The agent's settings: what the command line and the config file set (agent/README.md lists each
+// with its default). AgentOptions holds what one source gave, each value already checked where it
+// was read (so errors can name the flag, or the file, line and key); ResolveSettings merges the
+// two sources, command line first, and fills in the defaults.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "core/result.h"
+#include "loop/host_port.h"
+#include "loop/log.h"
+
+namespace radfarm::agent {
+
+// WorkQueue's ceiling; also well inside the protocol's kMaxAgentThreads.
+inline constexpr unsigned kMaxThreads = 1024;
+
+struct AgentSettings {
+  loop::HostPort master;    // where radfarmd listens
+  std::string secret_file;  // hex farm secret (protocol/farm_secret.h)
+  std::string state_dir;    // empty: scenes are kept in memory only
+  unsigned threads = 1;     // batch worker threads
+  std::string name;         // the agent's name in the master's logs (IsValidAgentName)
+  loop::LogLevel log_level = loop::LogLevel::kInfo;
+  double slowdown = 1;                // >= 1: results are held (slowdown - 1) x their compute time
+  double exit_when_idle_seconds = 0;  // > 0: exit after this long connected with no lease; 0: never
+};
+
+// One source's settings; absent values are left to the other source or the default.
+struct AgentOptions {
+  std::optional<loop::HostPort> master;
+  std::optional<std::string> secret_file;
+  std::optional<std::string> state_dir;
+  std::optional<unsigned> threads;
+  std::optional<std::string> name;
+  std::optional<loop::LogLevel> log_level;
+  std::optional<double> slowdown;
+  std::optional<double> exit_when_idle_seconds;
+};
+
+// Command-line values win over the config file's. Errors when no source names the master or the
+// secret file.
+Result<AgentSettings> ResolveSettings(const AgentOptions& command_line, const AgentOptions& file);
+
+// The master's "HOST:PORT"; port 0 is refused (it only means something to a listener). Errors read
+// "WHAT: expected HOST:PORT, got 'TEXT' (detail)".
+Result<loop::HostPort> ParseMasterAddress(std::string_view text, std::string_view what);
+
+// "debug", "info", "warning", "error".
+std::optional<loop::LogLevel> ParseLogLevel(std::string_view text);
+
+// `text` with every character outside [A-Za-z0-9._:@-] replaced by '-', cut to 64 bytes; "agent"
+// if that leaves nothing. Used on the host name, which the user did not choose for the protocol.
+std::string SanitiseAgentName(std::string_view text);
+// The sanitised host name.
+std::string DefaultAgentName();
+// All cores, within [1, kMaxThreads].
+unsigned DefaultThreads();
+
+}  // namespace radfarm::agent

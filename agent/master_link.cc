@@ -1,0 +1,135 @@
+#include "agent/master_link.h"
+
+#include <algorithm>
+#include <variant>
+
+#include "protocol/frame_codec.h"
+#include "protocol/limits.h"
+
+namespace radfarm::agent {
+namespace {
+
+// Silence after which the master is taken as gone: 4 heartbeat intervals.
+std::chrono::milliseconds SilenceLimit(uint32_t heartbeat_interval_ms) {
+  return std::chrono::milliseconds(uint64_t{4} * heartbeat_interval_ms);
+}
+
+// The code of the Close frame the session would send: tells an authentication failure of our own
+// (the master's tag was wrong) from other errors, without parsing messages.
+protocol::CloseCode FailureCode(const protocol::ProtocolSession& session) {
+  Result<protocol::DecodedFrame> frame = protocol::DecodeFrame(session.CloseFrame());
+  if (!frame) return protocol::CloseCode::kInternalError;
+  return std::get<protocol::CloseMsg>(frame->message).code;
+}
+
+}  // namespace
+
+MasterLink::MasterLink(const protocol::FarmSecret& secret, const protocol::AgentConfig& config,
+                       Callbacks callbacks)
+    : session_(protocol::ProtocolSession::ForAgent(secret, config)),
+      callbacks_(std::move(callbacks)) {}
+
+MasterLink::~MasterLink() = default;
+
+Result<std::unique_ptr<MasterLink>> MasterLink::Connect(loop::EventLoop& loop,
+                                                        const loop::SocketAddress& address,
+                                                        const protocol::FarmSecret& secret,
+                                                        const protocol::AgentConfig& config,
+                                                        Timing timing, Callbacks callbacks) {
+  std::unique_ptr<MasterLink> link(new MasterLink(secret, config, std::move(callbacks)));
+  MasterLink* self = link.get();
+  loop::ConnectionOptions options;
+  options.max_frame_bytes = protocol::kDefaultMaxFrameBytes;
+  options.read_idle_timeout = timing.handshake_timeout;
+  options.flush_timeout = timing.flush_timeout;
+  Result<std::unique_ptr<loop::FramedConnection>> connection = loop::FramedConnection::ConnectTcp(
+      loop, address, options, [self](std::span<const uint8_t> payload) { self->OnFrame(payload); },
+      [self](const std::string& reason) { self->OnClose(reason); },
+      [self] { self->OnConnected(); });
+  if (!connection) return Error{connection.error()};
+  link->connection_ = std::move(connection).value();
+  link->peer_ = link->connection_->peer();
+  return link;
+}
+
+void MasterLink::OnConnected() {
+  Result<std::vector<uint8_t>> hello = session_.Start();
+  if (!hello) {
+    FailWith("cannot start the handshake: " + hello.error());
+    return;
+  }
+  if (Status sent = connection_->SendPrefixed(std::move(hello).value()); !sent) {
+    connection_->Close(sent.error());
+  }
+}
+
+void MasterLink::OnFrame(std::span<const uint8_t> payload) {
+  if (session_.state() == protocol::ProtocolSession::State::kClosed) return;
+  Result<protocol::DecodedFrame> frame = protocol::DecodeFrameBody(payload);
+  if (!frame) {
+    session_.Abort(frame.error());
+    FailWith("bad frame from the master: " + frame.error());
+    return;
+  }
+  const bool was_authenticated = session_.authenticated();
+  Result<protocol::ProtocolSession::Accepted> accepted = session_.Accept(*frame);
+  if (!accepted) {
+    auth_failed_ = FailureCode(session_) == protocol::CloseCode::kAuthFailed;
+    FailWith(accepted.error());
+    return;
+  }
+  if (!accepted->reply.empty()) {
+    if (Status sent = connection_->SendPrefixed(std::move(accepted->reply)); !sent) return;
+  }
+  if (const auto& close = session_.peer_close(); close && accepted->deliver) {
+    auth_failed_ = close->code == protocol::CloseCode::kAuthFailed;
+    close_reason_ =
+        "the master closed the connection: " + std::string(protocol::CloseCodeName(close->code)) +
+        (close->detail.empty() ? "" : " (" + close->detail + ")");
+    connection_->Close(close_reason_);
+    return;
+  }
+  if (!was_authenticated && session_.authenticated()) {
+    was_authenticated_ = true;
+    connection_->SetReadIdleTimeout(SilenceLimit(session_.welcome().heartbeat_interval_ms));
+    if (callbacks_.on_authenticated) callbacks_.on_authenticated(session_.welcome());
+    return;
+  }
+  if (accepted->deliver && callbacks_.on_message) callbacks_.on_message(frame->message);
+}
+
+void MasterLink::FailWith(const std::string& reason) {
+  close_reason_ = reason;
+  (void)connection_->SendPrefixed(session_.CloseFrame());
+  connection_->CloseAfterFlush(reason);
+}
+
+void MasterLink::OnClose(const std::string& reason) {
+  LinkClosed closed;
+  closed.reason = close_reason_.empty() ? reason : close_reason_;
+  closed.auth_failed = auth_failed_;
+  closed.was_authenticated = was_authenticated_;
+  std::function<void(const LinkClosed&)> on_closed = std::move(callbacks_.on_closed);
+  if (on_closed) on_closed(closed);  // last: it may destroy this link
+}
+
+Status MasterLink::Send(const protocol::Message& message) {
+  if (connection_->state() != loop::HandleState::kOpen) {
+    return Error{"connection to " + peer_ + " is closing"};
+  }
+  Result<std::vector<uint8_t>> frame = session_.Encode(message);
+  if (!frame) return Error{frame.error()};
+  return connection_->SendPrefixed(std::move(frame).value());
+}
+
+void MasterLink::Close(protocol::CloseCode code, const std::string& detail) {
+  if (connection_->state() != loop::HandleState::kOpen) return;
+  if (close_reason_.empty()) close_reason_ = "closed by the agent: " + detail;
+  if (session_.state() != protocol::ProtocolSession::State::kClosed) {
+    Result<std::vector<uint8_t>> frame = session_.Encode(protocol::CloseMsg{code, detail});
+    if (frame) (void)connection_->SendPrefixed(std::move(frame).value());
+  }
+  connection_->CloseAfterFlush(close_reason_);
+}
+
+}  // namespace radfarm::agent

@@ -1,0 +1,88 @@
+// MasterLink: one connection to the master. It connects over TCP, runs the agent's side of the
+// handshake (ProtocolSession::ForAgent), and then passes checked messages both ways. It never
+// reconnects: after on_closed the agent makes a new MasterLink.
+//
+//   connecting --TCP up: Hello sent--> handshaking --Welcome, master's tag ok: on_authenticated-->
+//   authenticated --Close(), an error, the peer's Close or EOF, silence, failed connect--> closed
+//
+// Silence: until Welcome the whole handshake must finish within `handshake_timeout`; after it, a
+// master that sends no byte for 4 heartbeat intervals is taken as gone. Any decode or session
+// error is answered with the session's Close frame before the connection is dropped, as
+// docs/PROTOCOL.md asks.
+//
+// Loop thread only. on_closed runs once, after the socket is closed; it may destroy the link.
+// Destroying the link closes it silently.
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "core/result.h"
+#include "loop/event_loop.h"
+#include "loop/framed_connection.h"
+#include "loop/socket_address.h"
+#include "protocol/farm_secret.h"
+#include "protocol/protocol_session.h"
+
+namespace radfarm::agent {
+
+struct LinkClosed {
+  std::string reason;
+  bool auth_failed = false;  // either side refused the other's proof
+  bool was_authenticated = false;
+};
+
+class MasterLink {
+ public:
+  struct Callbacks {
+    std::function<void(const protocol::WelcomeMsg&)> on_authenticated;
+    // Application messages (never the handshake, never Close: a Close ends in on_closed).
+    std::function<void(const protocol::Message&)> on_message;
+    std::function<void(const LinkClosed&)> on_closed;
+  };
+  struct Timing {
+    std::chrono::milliseconds handshake_timeout{10000};
+    std::chrono::milliseconds flush_timeout{500};  // Close(): how long the last frames may take
+  };
+
+  static Result<std::unique_ptr<MasterLink>> Connect(loop::EventLoop& loop,
+                                                     const loop::SocketAddress& address,
+                                                     const protocol::FarmSecret& secret,
+                                                     const protocol::AgentConfig& config,
+                                                     Timing timing, Callbacks callbacks);
+  ~MasterLink();
+  MasterLink(const MasterLink&) = delete;
+  MasterLink& operator=(const MasterLink&) = delete;
+
+  // Encodes and queues an application message. Fails when not authenticated, when the session
+  // refuses it (e.g. a frame above the master's limit), or when the connection is closing.
+  Status Send(const protocol::Message& message);
+  // Sends Close{code, detail}, then closes once what is queued is written (or after
+  // flush_timeout). on_closed follows.
+  void Close(protocol::CloseCode code, const std::string& detail);
+
+  bool authenticated() const { return session_.authenticated(); }
+  const protocol::WelcomeMsg& welcome() const { return session_.welcome(); }
+  const std::string& peer() const { return peer_; }
+
+ private:
+  MasterLink(const protocol::FarmSecret& secret, const protocol::AgentConfig& config,
+             Callbacks callbacks);
+  void OnConnected();
+  void OnFrame(std::span<const uint8_t> payload);
+  void OnClose(const std::string& reason);
+  // A decode or session error: the session's Close frame, then drop the connection.
+  void FailWith(const std::string& reason);
+
+  protocol::ProtocolSession session_;
+  Callbacks callbacks_;
+  std::unique_ptr<loop::FramedConnection> connection_;
+  std::string peer_;
+  std::string close_reason_;  // set when we or the peer decided to close
+  bool auth_failed_ = false;
+  bool was_authenticated_ = false;
+};
+
+}  // namespace radfarm::agent

@@ -1,0 +1,30 @@
+// PreparedScene: a scene ready for batches: the decoded PatchScene and its RayCaster (the Embree
+// BVH), built once per scene. Shared read-only by every batch of the scene on any worker thread;
+// a shared_ptr keeps it alive while a batch still runs on it after the agent let it go.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "core/patch_scene.h"
+#include "core/ray_caster.h"
+#include "core/result.h"
+#include "protocol/messages.h"
+
+namespace radfarm::agent {
+
+struct PreparedScene {
+  protocol::SceneHash hash{};
+  PatchScene scene;
+  std::unique_ptr<const RayCaster> caster;
+
+  uint32_t patch_count() const { return static_cast<uint32_t>(scene.patches.size()); }
+};
+
+// Decodes a verified blob (codec::DecodePatchScene) and builds its RayCaster. Slow for big scenes:
+// call it off the loop thread. Errors name the scene's hash.
+Result<std::shared_ptr<const PreparedScene>> PrepareScene(const protocol::SceneHash& hash,
+                                                          std::span<const uint8_t> blob);
+
+}  // namespace radfarm::agent

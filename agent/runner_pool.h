@@ -1,0 +1,48 @@
+// RunnerPool: the BatchRunners of the batch worker threads. A BatchRunner keeps a scratch array as
+// long as its scene has patches, so workers reuse runners rather than build one per batch: each
+// batch borrows a free runner, preferring one already made for its scene and sampler, and gives it
+// back when done. At most one runner exists per batch running at once, so the pool never holds
+// more runners than there are worker threads. A free runner keeps its scene and sampler alive until
+// a batch of another pair rebinds it.
+//
+// Threads: Run() from any worker thread; the pool's lock is held only to borrow and return.
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <vector>
+
+#include "agent/prepared_scene.h"
+#include "core/batch.h"
+#include "core/batch_runner.h"
+#include "core/ray_sampler.h"
+
+namespace radfarm::agent {
+
+// A computed batch and how long it took.
+struct BatchOutcome {
+  BatchResult result;
+  double compute_seconds = 0;
+};
+
+class RunnerPool {
+ public:
+  BatchOutcome Run(const std::shared_ptr<const PreparedScene>& scene,
+                   const std::shared_ptr<const RaySampler>& sampler, const Batch& batch);
+
+ private:
+  // A runner and what it is bound to (BatchRunner keeps references to both).
+  struct Slot {
+    std::shared_ptr<const PreparedScene> scene;
+    std::shared_ptr<const RaySampler> sampler;
+    std::optional<BatchRunner> runner;
+  };
+  std::unique_ptr<Slot> Borrow(const PreparedScene* scene, const RaySampler* sampler);
+  void GiveBack(std::unique_ptr<Slot> slot);
+
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<Slot>> free_;  // guarded by mutex_
+};
+
+}  // namespace radfarm::agent

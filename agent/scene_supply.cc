@@ -1,0 +1,214 @@
+#include "agent/scene_supply.h"
+
+#include "loop/log.h"
+
+namespace radfarm::agent {
+namespace {
+
+using loop::LogLevel;
+using loop::LogLine;
+
+std::string Name(const protocol::SceneHash& hash) { return "scene " + protocol::HashToHex(hash); }
+
+}  // namespace
+
+SceneSupply::SceneSupply(loop::WorkQueue& io, std::optional<SceneStore> store, std::string master,
+                         Callbacks callbacks)
+    : io_(io),
+      store_(std::move(store)),
+      master_(std::move(master)),
+      callbacks_(std::move(callbacks)) {}
+
+std::shared_ptr<const PreparedScene> SceneSupply::Find(const protocol::SceneHash& hash) {
+  return recent_.Find(hash);
+}
+
+Status SceneSupply::Want(const protocol::SceneHash& hash) {
+  if (pending_.contains(hash)) return Ok{};
+  if (undecodable_.contains(hash)) {
+    return Error{Name(hash) + " could not be decoded before; it is not fetched again"};
+  }
+  Pending& pending = pending_[hash];
+  Status started = store_ ? LoadFromDisk(hash) : StartFetch(hash, pending);
+  if (!started) pending_.erase(hash);
+  return started;
+}
+
+Status SceneSupply::LoadFromDisk(const protocol::SceneHash& hash) {
+  const SceneStore* store = &*store_;
+  Status submitted = io_.Submit(
+      [store, hash]() -> Prepared {
+        SceneStore::Loaded loaded = store->Load(hash);
+        Prepared prepared;
+        prepared.detail = loaded.detail;
+        if (loaded.outcome != SceneStore::LoadOutcome::kFound) return prepared;
+        Result<std::shared_ptr<const PreparedScene>> scene = PrepareScene(hash, loaded.blob);
+        if (!scene) {
+          prepared.kind = Prepared::Kind::kUndecodable;
+          prepared.detail = scene.error();
+          return prepared;
+        }
+        prepared.kind = Prepared::Kind::kReady;
+        prepared.scene = std::move(scene).value();
+        prepared.detail = "loaded from " + store->PathFor(hash);
+        return prepared;
+      },
+      [this, hash](Result<Prepared> prepared) {
+        --busy_;
+        OnPrepared(hash, std::move(prepared));
+      });
+  if (submitted) ++busy_;
+  return submitted;
+}
+
+Status SceneSupply::StartFetch(const protocol::SceneHash& hash, Pending& pending) {
+  pending.stage = Stage::kFetching;
+  pending.assembler = std::make_unique<protocol::SceneAssembler>(hash);
+  pending.requests_in_flight = 0;
+  pending.chunks = 0;
+  LogLine(LogLevel::kInfo, "agent") << Name(hash) << ": fetching it from " << master_;
+  return RequestMore(pending);
+}
+
+Status SceneSupply::RequestMore(Pending& pending) {
+  while (pending.requests_in_flight < kRequestWindow) {
+    std::optional<protocol::SceneRequestMsg> request = pending.assembler->NextRequest();
+    if (!request) break;
+    if (Status sent = callbacks_.send_request(*request); !sent) return sent;
+    ++pending.requests_in_flight;
+  }
+  return Ok{};
+}
+
+void SceneSupply::OnChunk(const protocol::SceneChunkMsg& chunk) {
+  const protocol::SceneHash& hash = chunk.scene_hash;
+  if (auto stale = stale_answers_.find(hash); stale != stale_answers_.end()) {
+    if (--stale->second == 0) stale_answers_.erase(stale);
+    return;
+  }
+  auto found = pending_.find(hash);
+  if (found == pending_.end() || found->second.stage != Stage::kFetching) {
+    LogLine(LogLevel::kWarning, "agent")
+        << Name(hash) << ": ignored a chunk from " << master_ << " that was not asked for";
+    return;
+  }
+  Pending& pending = found->second;
+  --pending.requests_in_flight;
+  ++pending.chunks;
+  if (Status added = pending.assembler->Add(chunk); !added) {
+    Abandon(hash, pending.requests_in_flight);
+    Fail(hash, protocol::LeaseReturnReason::kFailed,
+         "fetch from " + master_ + " failed: " + added.error());
+    return;
+  }
+  if (pending.assembler->complete()) {
+    std::vector<uint8_t> blob = pending.assembler->TakeBlob();
+    LogLine(LogLevel::kInfo, "agent") << Name(hash) << ": fetched " << blob.size() << " bytes in "
+                                      << pending.chunks << " chunks from " << master_;
+    pending.assembler.reset();
+    PrepareFetched(hash, std::move(blob));
+    return;
+  }
+  if (Status more = RequestMore(pending); !more) {
+    Abandon(hash, pending.requests_in_flight);
+    Fail(hash, protocol::LeaseReturnReason::kFailed, "fetch failed: " + more.error());
+  }
+}
+
+void SceneSupply::OnUnavailable(const protocol::SceneUnavailableMsg& message) {
+  const protocol::SceneHash& hash = message.scene_hash;
+  if (auto stale = stale_answers_.find(hash); stale != stale_answers_.end()) {
+    if (--stale->second == 0) stale_answers_.erase(stale);
+    return;
+  }
+  auto found = pending_.find(hash);
+  if (found == pending_.end() || found->second.stage != Stage::kFetching) return;
+  const uint32_t in_flight = found->second.requests_in_flight;
+  Abandon(hash, in_flight > 0 ? in_flight - 1 : 0);
+  Fail(hash, protocol::LeaseReturnReason::kSceneUnavailable, master_ + " does not have it");
+}
+
+void SceneSupply::OnDisconnected() {
+  stale_answers_.clear();
+  std::erase_if(pending_, [](const auto& entry) { return entry.second.stage == Stage::kFetching; });
+}
+
+void SceneSupply::Abandon(const protocol::SceneHash& hash, uint32_t answers_due) {
+  if (answers_due > 0) stale_answers_[hash] += answers_due;
+  pending_.erase(hash);
+}
+
+void SceneSupply::PrepareFetched(const protocol::SceneHash& hash, std::vector<uint8_t> blob) {
+  pending_[hash].stage = Stage::kPreparing;
+  const SceneStore* store = store_ ? &*store_ : nullptr;
+  Status submitted = io_.Submit(
+      [store, hash, blob = std::move(blob)]() -> Prepared {
+        Prepared prepared;
+        Result<std::shared_ptr<const PreparedScene>> scene = PrepareScene(hash, blob);
+        if (!scene) {
+          prepared.kind = Prepared::Kind::kUndecodable;
+          prepared.detail = scene.error();
+          return prepared;
+        }
+        prepared.kind = Prepared::Kind::kReady;
+        prepared.scene = std::move(scene).value();
+        if (store != nullptr) {
+          Status saved = store->Save(hash, blob);
+          prepared.detail =
+              saved ? "saved as " + store->PathFor(hash) : "kept in memory only: " + saved.error();
+        }
+        return prepared;
+      },
+      [this, hash](Result<Prepared> prepared) {
+        --busy_;
+        OnPrepared(hash, std::move(prepared));
+      });
+  if (submitted) {
+    ++busy_;
+  } else {
+    OnPrepared(hash, Error{submitted.error()});
+  }
+}
+
+void SceneSupply::OnPrepared(const protocol::SceneHash& hash, Result<Prepared> prepared) {
+  auto found = pending_.find(hash);
+  if (found == pending_.end()) return;  // cannot happen: loads and builds are never abandoned
+  if (!prepared) {
+    Fail(hash, protocol::LeaseReturnReason::kFailed, prepared.error());
+    return;
+  }
+  switch (prepared->kind) {
+    case Prepared::Kind::kReady: {
+      LogLine(LogLevel::kInfo, "agent")
+          << Name(hash) << ": ready, " << prepared->scene->patch_count() << " patches"
+          << (prepared->detail.empty() ? "" : "; " + prepared->detail);
+      pending_.erase(found);
+      recent_.Insert(prepared->scene);
+      callbacks_.on_ready(prepared->scene);
+      return;
+    }
+    case Prepared::Kind::kNotOnDisk: {
+      if (!prepared->detail.empty()) {
+        LogLine(LogLevel::kWarning, "agent") << Name(hash) << ": " << prepared->detail;
+      }
+      if (Status fetching = StartFetch(hash, found->second); !fetching) {
+        Abandon(hash, found->second.requests_in_flight);
+        Fail(hash, protocol::LeaseReturnReason::kFailed, "cannot fetch it: " + fetching.error());
+      }
+      return;
+    }
+    case Prepared::Kind::kUndecodable:
+      undecodable_.insert(hash);
+      Fail(hash, protocol::LeaseReturnReason::kFailed, prepared->detail);
+      return;
+  }
+}
+
+void SceneSupply::Fail(const protocol::SceneHash& hash, protocol::LeaseReturnReason reason,
+                       const std::string& why) {
+  pending_.erase(hash);
+  LogLine(LogLevel::kWarning, "agent") << Name(hash) << ": " << why;
+  callbacks_.on_failed(hash, reason, why);
+}
+
+}  // namespace radfarm::agent

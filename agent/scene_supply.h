@@ -1,0 +1,110 @@
+// SceneSupply: gets each scene an assignment names ready for batches (a PreparedScene), from the
+// first place that has it:
+//   1. memory: the last 2 prepared scenes (RecentScenes);
+//   2. the state directory, if any (SceneStore): the hash is checked, a damaged file is deleted;
+//   3. the master: SceneRequests through a SceneAssembler, up to kRequestWindow of them in flight
+//      (the master answers in order); the verified blob is then saved to the state directory.
+// Disk I/O, decoding and the RayCaster build run on the I/O work queue, never on the loop thread.
+//
+// One scene's way (`pending_` holds it until it ends in on_ready or on_failed):
+//
+//   Want --state dir--> kLoading --file ok: decoded, caster built--> on_ready
+//     |                    |
+//     |                    +--no file, damaged file--+
+//     +--no state dir--------------------------------+--> kFetching --last chunk--> kPreparing
+//   kFetching --SceneUnavailable, bad chunk--> on_failed
+//   kPreparing --decoded, caster built, saved--> on_ready;  --cannot decode--> on_failed
+//
+// A scene that cannot be decoded is remembered (same hash, same bytes) and refused at once later.
+// A fetch belongs to its connection: OnDisconnected abandons it; loads and builds run on.
+//
+// Loop thread only. on_ready and on_failed never run inside Want().
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+
+#include "agent/prepared_scene.h"
+#include "agent/recent_scenes.h"
+#include "agent/scene_store.h"
+#include "core/result.h"
+#include "loop/work_queue.h"
+#include "protocol/messages.h"
+#include "protocol/scene_transfer.h"
+
+namespace radfarm::agent {
+
+class SceneSupply {
+ public:
+  static constexpr uint32_t kRequestWindow = 4;  // requests in flight per fetch (4 MiB)
+
+  struct Callbacks {
+    std::function<void(const std::shared_ptr<const PreparedScene>& scene)> on_ready;
+    std::function<void(const protocol::SceneHash& hash, protocol::LeaseReturnReason reason,
+                       const std::string& why)>
+        on_failed;
+    // Sends a SceneRequest to the master; fails when there is no connection.
+    std::function<Status(const protocol::SceneRequestMsg& request)> send_request;
+  };
+
+  // `io` must outlive this object's last delivered result (destroy the queue first). `master`
+  // names the master in log lines.
+  SceneSupply(loop::WorkQueue& io, std::optional<SceneStore> store, std::string master,
+              Callbacks callbacks);
+
+  // The prepared scene if it is in memory.
+  std::shared_ptr<const PreparedScene> Find(const protocol::SceneHash& hash);
+  // Starts getting `hash` unless that is under way already. An error (a scene known to be
+  // undecodable, or a request that cannot be sent) means on_ready/on_failed will not follow.
+  Status Want(const protocol::SceneHash& hash);
+
+  void OnChunk(const protocol::SceneChunkMsg& chunk);
+  void OnUnavailable(const protocol::SceneUnavailableMsg& message);
+  // The connection is gone, and with it the answers to every request in flight.
+  void OnDisconnected();
+
+  // Work items submitted and not yet delivered.
+  size_t busy() const { return busy_; }
+
+ private:
+  enum class Stage { kLoading, kFetching, kPreparing };
+  struct Pending {
+    Stage stage = Stage::kLoading;
+    std::unique_ptr<protocol::SceneAssembler> assembler;  // kFetching
+    uint32_t requests_in_flight = 0;
+    uint32_t chunks = 0;
+  };
+  // What a work item found: a prepared scene, or why not.
+  struct Prepared {
+    enum class Kind { kReady, kNotOnDisk, kUndecodable } kind = Kind::kNotOnDisk;
+    std::shared_ptr<const PreparedScene> scene;
+    std::string detail;  // a damaged file, a failed save, the decode error
+  };
+
+  Status LoadFromDisk(const protocol::SceneHash& hash);
+  Status StartFetch(const protocol::SceneHash& hash, Pending& pending);
+  Status RequestMore(Pending& pending);
+  void PrepareFetched(const protocol::SceneHash& hash, std::vector<uint8_t> blob);
+  void OnPrepared(const protocol::SceneHash& hash, Result<Prepared> prepared);
+  // Ends a fetch before its last chunk; the answers still due are skipped when they come.
+  void Abandon(const protocol::SceneHash& hash, uint32_t answers_due);
+  void Fail(const protocol::SceneHash& hash, protocol::LeaseReturnReason reason,
+            const std::string& why);
+
+  loop::WorkQueue& io_;
+  std::optional<SceneStore> store_;
+  std::string master_;
+  Callbacks callbacks_;
+  RecentScenes recent_;
+  std::map<protocol::SceneHash, Pending> pending_;
+  std::map<protocol::SceneHash, uint32_t> stale_answers_;  // of abandoned fetches, by scene
+  std::set<protocol::SceneHash> undecodable_;
+  size_t busy_ = 0;
+};
+
+}  // namespace radfarm::agent

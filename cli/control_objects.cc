@@ -1,0 +1,65 @@
+#include "cli/control_objects.h"
+
+#include "cli/json_fields.h"
+
+namespace radfarm {
+
+bool IsTerminalState(std::string_view state) {
+  return state == "done" || state == "failed" || state == "cancelled";
+}
+
+Result<JobInfo> ParseJob(const nlohmann::json& object, const std::string& where) {
+  FieldReader r(object, where);
+  JobInfo job;
+  job.id = r.Int("id");
+  job.name = r.String("name");
+  job.state = r.OneOf("state", {"queued", "running", "paused", "done", "failed", "cancelled"});
+  job.priority = r.Int("priority");
+  job.seed = r.Count("seed");
+  job.scene_hash = r.String("scene_hash");
+  job.patches = r.Count("patches");
+  job.submitted_at_ms = r.NullableInt("submitted_at_ms");
+  job.started_at_ms = r.NullableInt("started_at_ms");
+  job.finished_at_ms = r.NullableInt("finished_at_ms");
+  job.error = r.NullableString("error");
+  job.round = r.Count("round");
+  job.rays = r.Count("rays");
+  job.unshot_fraction = r.Number("unshot_fraction");
+  job.tolerance = r.Number("tolerance");
+  job.progress = r.Number("progress");
+  job.rays_per_second = r.Number("rays_per_second");
+  job.agents = r.Count("agents");
+  job.eta_seconds = r.NullableNumber("eta_seconds");
+  job.stop_reason = r.NullableString("stop_reason");
+  if (Status s = r.status(); !s.ok()) return Error{s.error()};
+  return job;
+}
+
+Result<AgentInfo> ParseAgent(const nlohmann::json& object, const std::string& where) {
+  FieldReader r(object, where);
+  AgentInfo agent;
+  agent.id = r.Int("id");
+  agent.name = r.String("name");
+  agent.address = r.String("address");
+  agent.threads = r.Count("threads");
+  agent.rays_per_second = r.Number("rays_per_second");
+  agent.load = r.Number("load");
+  agent.leases = r.Count("leases");
+  agent.connected_ms = r.Int("connected_ms");
+  agent.last_heartbeat_ms_ago = r.Int("last_heartbeat_ms_ago");
+  agent.results = r.Count("results");
+  if (Status s = r.status(); !s.ok()) return Error{s.error()};
+  return agent;
+}
+
+Result<EventInfo> ParseEvent(const nlohmann::json& object, const std::string& where) {
+  FieldReader r(object, where);
+  EventInfo event;
+  event.time_ms = r.Int("time_ms");
+  event.level = r.OneOf("level", {"info", "warning", "error"});
+  event.text = r.String("text");
+  if (Status s = r.status(); !s.ok()) return Error{s.error()};
+  return event;
+}
+
+}  // namespace radfarm

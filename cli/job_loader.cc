@@ -1,0 +1,20 @@
+#include "cli/job_loader.h"
+
+#include <utility>
+
+namespace radfarm {
+
+Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& overrides,
+                                  std::vector<std::string>* warnings) {
+  Result<Job> job = LoadJob(path);
+  if (!job.ok()) return Error{job.error()};
+  if (Status s = ApplyOverrides(overrides, &*job); !s.ok()) return Error{s.error()};
+  Result<InputScene> scene = LoadObjScene(job->scene_path);
+  if (!scene.ok()) return Error{scene.error()};
+  warnings->insert(warnings->end(), scene->warnings.begin(), scene->warnings.end());
+  Result<PatchMesh> mesh = PatchMesh::Build(*scene, job->mesh, warnings);
+  if (!mesh.ok()) return Error{mesh.error()};
+  return LoadedJob{std::move(*job), std::move(*scene), std::move(*mesh)};
+}
+
+}  // namespace radfarm

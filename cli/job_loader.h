@@ -1,0 +1,28 @@
+// Loading a job the way `radfarm render` does, shared with `radfarm submit` so that a scene the
+// farm would refuse fails on the submitting machine with the same message: the job file, the
+// command line's overrides, the OBJ/MTL, then meshing (which catches meshing errors early).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cli/job_overrides.h"
+#include "core/result.h"
+#include "input/input_scene.h"
+#include "input/job.h"
+#include "mesh/patch_mesh.h"
+
+namespace radfarm {
+
+struct LoadedJob {
+  Job job;           // overrides applied
+  InputScene scene;  // as read, validated
+  PatchMesh mesh;    // scene meshed with job.mesh
+};
+
+// Every error is bad input (exit 2) and names the file and line, face or key. Warnings (dropped
+// geometry, ignored statements) are appended to *warnings, also when loading fails.
+Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& overrides,
+                                  std::vector<std::string>* warnings);
+
+}  // namespace radfarm

@@ -1,0 +1,40 @@
+#include "cli/job_overrides.h"
+
+#include <CLI/CLI.hpp>
+
+namespace radfarm {
+
+void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
+  command->add_option("--seed", overrides->seed, "Random seed (default 1)");
+  command
+      ->add_option("--tolerance", overrides->tolerance,
+                   "Stop when unshot power < T x emitted power (default 0.001)")
+      ->check(CLI::Range(1e-12, 1.0));
+  command->add_option("--rays", overrides->rays, "Stop after N rays (default: no limit)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--seconds", overrides->seconds, "Stop after S seconds (default: no limit)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--sampler", overrides->sampler, "grid, random or sobol (default sobol)")
+      ->check(CLI::IsMember({"grid", "random", "sobol"}));
+  command
+      ->add_option("--patch-size", overrides->patch_size,
+                   "Largest patch edge in scene units (default: scene diagonal / 40)")
+      ->check(CLI::PositiveNumber);
+}
+
+Status ApplyOverrides(const JobOverrides& overrides, Job* job) {
+  SolverSettings& s = job->solver;
+  if (overrides.threads) s.threads = *overrides.threads;
+  if (overrides.seed) s.seed = *overrides.seed;
+  if (overrides.tolerance) s.tolerance = *overrides.tolerance;
+  if (overrides.rays) s.max_rays = *overrides.rays;
+  if (overrides.seconds) s.max_seconds = *overrides.seconds;
+  if (overrides.patch_size) job->mesh.patch_size = *overrides.patch_size;
+  if (overrides.sampler && !ParseSamplerName(*overrides.sampler, &s.sampler)) {
+    return Error{"--sampler: unknown sampler '" + *overrides.sampler +
+                 "' (expected grid, random or sobol)"};
+  }
+  return Ok{};
+}
+
+}  // namespace radfarm

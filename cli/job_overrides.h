@@ -1,0 +1,35 @@
+// Command-line overrides of a job's settings, shared by `radfarm render` and `radfarm submit` so
+// both read and apply them the same way.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "core/result.h"
+#include "input/job.h"
+
+namespace CLI {
+class App;
+}
+
+namespace radfarm {
+
+// Unset means "as the job file says".
+struct JobOverrides {
+  std::optional<uint32_t> threads;  // render only: a farm job's threads are the agents' business
+  std::optional<uint64_t> seed;
+  std::optional<double> tolerance;
+  std::optional<uint64_t> rays;
+  std::optional<double> seconds;
+  std::optional<std::string> sampler;
+  std::optional<double> patch_size;
+};
+
+// Adds --seed, --tolerance, --rays, --seconds, --sampler and --patch-size (not --threads).
+void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides);
+
+// Applies the overrides on top of the job file's settings. Errors name the option.
+Status ApplyOverrides(const JobOverrides& overrides, Job* job);
+
+}  // namespace radfarm

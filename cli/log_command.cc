@@ -1,0 +1,38 @@
+#include "cli/log_command.h"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "cli/exit_codes.h"
+#include "cli/farm_command.h"
+#include "cli/farm_format.h"
+
+namespace radfarm {
+
+CLI::App* AddLogCommand(CLI::App& app, LogOptions* options) {
+  CLI::App* log = app.add_subcommand(
+      "log", "Show a job's events, or the farm-wide log without an ID (oldest first)");
+  log->add_option("ID", options->id, "Job id (default: the farm-wide log)")
+      ->check(CLI::PositiveNumber);
+  log->add_option("--limit,-n", options->limit, "Show the last N events (default 100)")
+      ->check(CLI::PositiveNumber);
+  AddJsonFlag(log, &options->json);
+  return log;
+}
+
+int RunLog(const LogOptions& options, const std::string& control_path) {
+  nlohmann::json request = {{"command", "log"}, {"limit", options.limit}};
+  if (options.id) request["id"] = *options.id;
+  Outcome<ControlReply> reply = AskMaster(control_path, request);
+  if (!reply.ok()) return ReportFailure(reply.failure());
+  Outcome<std::vector<EventInfo>> events = ReplyEvents(*reply, "log");
+  if (!events.ok()) return ReportFailure(events.failure());
+  if (options.json) {
+    PrintJson(reply->body["events"]);
+    return kExitOk;
+  }
+  for (const EventInfo& e : *events) std::printf("%s\n", FormatEvent(e).c_str());
+  return kExitOk;
+}
+
+}  // namespace radfarm

@@ -1,0 +1,12 @@
+// Errors and warnings for a person: one line each on stderr, prefixed with "radfarm: ".
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace radfarm {
+
+void PrintError(const std::string& message);
+void PrintMessages(const std::vector<std::string>& messages);
+
+}  // namespace radfarm

@@ -1,0 +1,49 @@
+#include "cli/render_outputs.h"
+
+#include <filesystem>
+#include <system_error>
+#include <vector>
+
+#include "output/exposure_meter.h"
+#include "output/exr_writer.h"
+#include "output/image.h"
+#include "output/patches_csv.h"
+#include "output/ply_writer.h"
+#include "output/png_writer.h"
+#include "output/stats_json.h"
+
+namespace radfarm {
+
+Status CreateOutputDirectory(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return Error{dir + ": cannot create the output directory: " + ec.message()};
+  return Ok{};
+}
+
+Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& solution,
+                    const Job& job) {
+  namespace fs = std::filesystem;
+  mesh.SetSolution(solution.radiosity, solution.unshot);
+  const DisplayMesh display = mesh.MakeDisplayMesh();
+  std::vector<bool> emitter_patch;
+  for (const Patch& p : mesh.patch_scene().patches) emitter_patch.push_back(p.emission.Max() > 0);
+  // One exposure, metered on the lit surfaces, for the PNG and the PLY's colours.
+  const Camera exposed = MeterExposure(display, emitter_patch, ResolveCamera(display, job.camera));
+  const Image image = RenderImage(display, exposed);
+  const auto path = [&](const char* name) { return (fs::path(dir) / name).string(); };
+  for (const Status& s :
+       {WritePng(path("image.png"), image, exposed), WriteExr(path("image.exr"), image),
+        WritePly(path("radiosity.ply"), display, exposed),
+        WritePatchesCsv(path("patches.csv"), mesh.patch_scene(), solution.radiosity),
+        WriteStatsJson(path("stats.json"), solution.stats,
+                       {{"patch_size", mesh.patch_size()},
+                        {"dropped_degenerate_faces", double(mesh.dropped_degenerate())},
+                        {"dropped_hidden_faces", double(mesh.dropped_hidden())},
+                        {"exposure_stops", exposed.exposure}})}) {
+    if (!s.ok()) return s;
+  }
+  return Ok{};
+}
+
+}  // namespace radfarm

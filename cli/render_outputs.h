@@ -1,0 +1,23 @@
+// The files of a solved job: image.png, image.exr, radiosity.ply, patches.csv and stats.json.
+// `radfarm render` and `radfarm fetch` both write them here, so for the same radiosity they are
+// byte-identical (stats.json aside: it carries the solve's timings).
+#pragma once
+
+#include <string>
+
+#include "core/result.h"
+#include "core/solve.h"
+#include "input/job.h"
+#include "mesh/patch_mesh.h"
+
+namespace radfarm {
+
+// Creates `dir` and its parents when missing.
+Status CreateOutputDirectory(const std::string& dir);
+
+// `dir` must exist. Stores the solution in `mesh` (PatchMesh::SetSolution) to shade the image and
+// the PLY; `solution` must hold one value per patch of `mesh`. Each file is written atomically.
+Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& solution,
+                    const Job& job);
+
+}  // namespace radfarm

@@ -1,0 +1,54 @@
+#include "cli/submit_command.h"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "cli/control_frames.h"
+#include "cli/exit_codes.h"
+#include "cli/farm_command.h"
+#include "cli/job_loader.h"
+#include "cli/messages.h"
+#include "codec/job_bundle.h"
+
+namespace radfarm {
+
+CLI::App* AddSubmitCommand(CLI::App& app, SubmitOptions* options) {
+  CLI::App* submit = app.add_subcommand(
+      "submit", "Check a scene as `render` would and queue it on the master; prints the job id");
+  submit->add_option("SCENE", options->scene, "Wavefront .obj scene or .toml job file")->required();
+  submit->add_option("--name", options->name, "Job name (default: job-ID)");
+  submit->add_option("--priority", options->priority, "Higher runs first (default 0)");
+  AddJobOverrideOptions(submit, &options->overrides);
+  AddJsonFlag(submit, &options->json);
+  return submit;
+}
+
+int RunSubmit(const SubmitOptions& options, const std::string& control_path) {
+  std::vector<std::string> warnings;
+  Result<LoadedJob> loaded = LoadJobForSolve(options.scene, options.overrides, &warnings);
+  PrintMessages(warnings);
+  if (!loaded.ok()) {
+    PrintError(loaded.error());
+    return kExitBadInput;
+  }
+  const std::vector<uint8_t> bundle = codec::EncodeJobBundle({loaded->job, loaded->scene});
+  if (bundle.size() > kMaxAttachmentBytes) {
+    PrintError(options.scene + ": the job bundle is " + std::to_string(bundle.size()) +
+               " bytes, over the control socket's 1 GiB limit");
+    return kExitBadInput;
+  }
+  Outcome<ControlReply> reply = AskMaster(
+      control_path, {{"command", "submit"}, {"name", options.name}, {"priority", options.priority}},
+      bundle);
+  if (!reply.ok()) return ReportFailure(reply.failure());
+  Outcome<JobInfo> job = ReplyJob(*reply, "submit");
+  if (!job.ok()) return ReportFailure(job.failure());
+  if (options.json) {
+    PrintJson(reply->body["job"]);
+  } else {
+    std::printf("%lld\n", static_cast<long long>(job->id));
+  }
+  return kExitOk;
+}
+
+}  // namespace radfarm

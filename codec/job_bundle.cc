@@ -1,0 +1,176 @@
+#include "codec/job_bundle.h"
+
+#include <flatbuffers/flatbuffers.h>
+
+#include <string>
+
+#include "codec/decode_checks.h"
+#include "job_bundle_generated.h"
+
+namespace radfarm::codec {
+namespace {
+
+constexpr std::string_view kKind = "job bundle";
+constexpr uint32_t kMaxFaces = 1u << 26;
+constexpr uint32_t kMaxFaceCorners = 1u << 16;
+
+wire::BundlePoint ToWire(const Vec3& v) { return {v.x, v.y, v.z}; }
+wire::BundleColour ToWire(const Rgb& c) { return {c.r, c.g, c.b}; }
+Vec3 FromWire(const wire::BundlePoint* p) { return p ? Vec3{p->x(), p->y(), p->z()} : Vec3{}; }
+Rgb FromWire(const wire::BundleColour* c) { return c ? Rgb{c->r(), c->g(), c->b()} : Rgb{}; }
+
+Error Bad(const std::string& field, std::string_view what) {
+  return FieldError(kKind, field, what);
+}
+
+Status DecodeSolver(const wire::BundleSolver& in, SolverSettings* out) {
+  if (in.sampler() > static_cast<uint8_t>(SamplerKind::kSobol)) {
+    return Bad("solver.sampler", "is not a known sampler");
+  }
+  out->sampler = static_cast<SamplerKind>(in.sampler());
+  out->seed = in.seed();
+  out->tolerance = in.tolerance();
+  out->max_rays = in.max_rays();
+  out->max_seconds = in.max_seconds();
+  out->shot_rays = in.shot_rays();
+  out->min_shooter_rays = in.min_shooter_rays();
+  out->shooters_per_round = in.shooters_per_round();
+  out->grid_step_degrees = in.grid_step_degrees();
+  out->threads = in.threads();
+  if (!(out->tolerance > 0 && out->tolerance < 1)) return Bad("solver.tolerance", "not in (0, 1)");
+  if (!(out->max_seconds >= 0) || !std::isfinite(out->max_seconds)) {
+    return Bad("solver.seconds", "is negative or not finite");
+  }
+  if (out->min_shooter_rays < 1) return Bad("solver.min_shooter_rays", "is below 1");
+  if (!(out->grid_step_degrees > 0 && out->grid_step_degrees <= 90)) {
+    return Bad("solver.grid_step_degrees", "not in (0, 90]");
+  }
+  return Ok{};
+}
+
+Status DecodeCamera(const wire::BundleCamera& in, Camera* out) {
+  out->automatic = in.automatic();
+  out->eye = FromWire(in.eye());
+  out->target = FromWire(in.target());
+  out->up = FromWire(in.up());
+  out->fov_degrees = in.fov_degrees();
+  out->width = in.width();
+  out->height = in.height();
+  out->exposure = in.exposure();
+  out->auto_exposure = in.auto_exposure();
+  out->samples_per_pixel = in.samples_per_pixel();
+  if (!IsFinite(out->eye) || !IsFinite(out->target) || !IsFinite(out->up)) {
+    return Bad("camera", "has a non-finite eye, target or up");
+  }
+  if (!(out->fov_degrees > 0 && out->fov_degrees < 180)) return Bad("camera.fov", "not in (0, 180)");
+  if (out->width < 1 || out->width > 16384 || out->height < 1 || out->height > 16384) {
+    return Bad("camera.width/height", "not in [1, 16384]");
+  }
+  if (!std::isfinite(out->exposure)) return Bad("camera.exposure", "is not finite");
+  if (out->samples_per_pixel < 1 || out->samples_per_pixel > 1024) {
+    return Bad("camera.samples_per_pixel", "not in [1, 1024]");
+  }
+  return Ok{};
+}
+
+Status DecodeScene(const wire::JobBundleBlob& in, InputScene* scene) {
+  for (const auto* p : *in.positions()) {
+    const Vec3 v{p->x(), p->y(), p->z()};
+    if (!IsFinite(v)) {
+      return Bad("positions[" + std::to_string(scene->positions.size()) + "]", "is not finite");
+    }
+    scene->positions.push_back(v);
+  }
+  for (const auto* m : *in.materials()) {
+    Material material{m->name()->str(), FromWire(m->diffuse()), FromWire(m->emission())};
+    const std::string field = "material '" + material.name + "'";
+    if (!IsReflectance(material.diffuse)) return Bad(field, "reflectance Kd outside [0, 1)");
+    if (!IsNonNegative(material.emission)) return Bad(field, "emission Ke negative or not finite");
+    scene->materials.push_back(std::move(material));
+  }
+  if (in.faces()->size() > kMaxFaces) return Bad("faces", "too many");
+  for (const auto* f : *in.faces()) {
+    const std::string field = "face " + std::to_string(scene->faces.size());
+    InputFace face;
+    if (f->indices()->size() < 3 || f->indices()->size() > kMaxFaceCorners) {
+      return Bad(field, "has fewer than 3 or too many corners");
+    }
+    for (uint32_t index : *f->indices()) {
+      if (index >= scene->positions.size()) return Bad(field, "index out of range");
+      face.indices.push_back(index);
+    }
+    if (f->material() >= scene->materials.size()) return Bad(field, "material out of range");
+    face.material = f->material();
+    face.line = f->line();
+    scene->faces.push_back(std::move(face));
+  }
+  return Ok{};
+}
+
+}  // namespace
+
+std::vector<uint8_t> EncodeJobBundle(const JobBundle& bundle) {
+  const Job& job = bundle.job;
+  const InputScene& scene = bundle.scene;
+  flatbuffers::FlatBufferBuilder fbb(4096 + scene.positions.size() * 24 + scene.faces.size() * 40);
+  const auto path = fbb.CreateString(job.scene_path);
+  const SolverSettings& s = job.solver;
+  const auto solver = wire::CreateBundleSolver(
+      fbb, static_cast<uint8_t>(s.sampler), s.seed, s.tolerance, s.max_rays, s.max_seconds,
+      s.shot_rays, s.min_shooter_rays, s.shooters_per_round, s.grid_step_degrees, s.threads);
+  const Camera& c = job.camera;
+  const wire::BundlePoint eye = ToWire(c.eye), target = ToWire(c.target), up = ToWire(c.up);
+  const auto camera =
+      wire::CreateBundleCamera(fbb, c.automatic, &eye, &target, &up, c.fov_degrees, c.width,
+                               c.height, c.exposure, c.auto_exposure, c.samples_per_pixel);
+  std::vector<wire::BundlePoint> points;
+  points.reserve(scene.positions.size());
+  for (const Vec3& v : scene.positions) points.push_back(ToWire(v));
+  const auto positions = fbb.CreateVectorOfStructs(points);
+  std::vector<flatbuffers::Offset<wire::BundleMaterial>> materials;
+  for (const Material& m : scene.materials) {
+    const auto name = fbb.CreateString(m.name);
+    const wire::BundleColour kd = ToWire(m.diffuse), ke = ToWire(m.emission);
+    materials.push_back(wire::CreateBundleMaterial(fbb, name, &kd, &ke));
+  }
+  const auto material_vec = fbb.CreateVector(materials);
+  std::vector<flatbuffers::Offset<wire::BundleFace>> faces;
+  faces.reserve(scene.faces.size());
+  for (const InputFace& f : scene.faces) {
+    faces.push_back(wire::CreateBundleFace(fbb, fbb.CreateVector(f.indices), f.material, f.line));
+  }
+  const auto face_vec = fbb.CreateVector(faces);
+  fbb.Finish(wire::CreateJobBundleBlob(fbb, path, job.mesh.patch_size, solver, camera, positions,
+                                       material_vec, face_vec),
+             "RDJB");
+  return {fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()};
+}
+
+Result<JobBundle> DecodeJobBundle(std::span<const uint8_t> blob) {
+  if (Status s = CheckBlobHeader(blob, kKind, "RDJB"); !s.ok()) return Error{s.error()};
+  std::vector<uint8_t> aligned;
+  if (reinterpret_cast<uintptr_t>(blob.data()) % 8 != 0) {
+    aligned.assign(blob.begin(), blob.end());
+    blob = aligned;
+  }
+  flatbuffers::Verifier::Options options;
+  options.max_tables = 2 * kMaxFaces;
+  flatbuffers::Verifier verifier(blob.data(), blob.size(), options);
+  if (!wire::VerifyJobBundleBlobBuffer(verifier)) {
+    return Error{std::string(kKind) + ": not a valid FlatBuffer (verification failed)"};
+  }
+  const wire::JobBundleBlob* root = wire::GetJobBundleBlob(blob.data());
+  JobBundle bundle;
+  bundle.job.scene_path = root->scene_path()->str();
+  bundle.scene.path = bundle.job.scene_path;
+  bundle.job.mesh.patch_size = root->patch_size();
+  if (!(bundle.job.mesh.patch_size >= 0) || !std::isfinite(bundle.job.mesh.patch_size)) {
+    return Bad("mesh.patch_size", "is negative or not finite");
+  }
+  if (Status s = DecodeSolver(*root->solver(), &bundle.job.solver); !s.ok()) return Error{s.error()};
+  if (Status s = DecodeCamera(*root->camera(), &bundle.job.camera); !s.ok()) return Error{s.error()};
+  if (Status s = DecodeScene(*root, &bundle.scene); !s.ok()) return Error{s.error()};
+  return bundle;
+}
+
+}  // namespace radfarm::codec

@@ -1,0 +1,93 @@
+#include "codec/job_solution.h"
+
+#include <flatbuffers/flatbuffers.h>
+
+#include <string>
+
+#include "codec/decode_checks.h"
+#include "job_solution_generated.h"
+
+namespace radfarm::codec {
+namespace {
+
+constexpr std::string_view kKind = "job solution";
+
+std::vector<Rgb> FromWire(const flatbuffers::Vector<const wire::SolutionColour*>& in) {
+  std::vector<Rgb> out;
+  out.reserve(in.size());
+  for (const auto* c : in) out.push_back({c->r(), c->g(), c->b()});
+  return out;
+}
+
+}  // namespace
+
+std::vector<uint8_t> EncodeJobSolution(const JobSolution& solution) {
+  flatbuffers::FlatBufferBuilder fbb(1024 + solution.bundle.size() +
+                                     solution.radiosity.size() * 48);
+  const auto bundle = fbb.CreateVector(solution.bundle);
+  std::vector<wire::SolutionColour> colours;
+  colours.reserve(solution.radiosity.size());
+  for (const Rgb& c : solution.radiosity) colours.push_back({c.r, c.g, c.b});
+  const auto radiosity = fbb.CreateVectorOfStructs(colours);
+  colours.clear();
+  for (const Rgb& c : solution.unshot) colours.push_back({c.r, c.g, c.b});
+  const auto unshot = fbb.CreateVectorOfStructs(colours);
+  const SolveStats& s = solution.stats;
+  const auto stats = wire::CreateSolutionStats(
+      fbb, s.rays, s.rounds, s.seconds, s.rays_per_second, s.patches, s.unshot_fraction,
+      s.escaped_rays, s.backface_hits, s.threads, s.seed, fbb.CreateString(s.sampler),
+      fbb.CreateString(s.stop_reason), s.emitted_power, s.absorbed_power, s.escaped_power);
+  fbb.Finish(wire::CreateJobSolutionBlob(fbb, bundle, radiosity, unshot, stats), "RDJS");
+  return {fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()};
+}
+
+Result<JobSolution> DecodeJobSolution(std::span<const uint8_t> blob) {
+  if (Status s = CheckBlobHeader(blob, kKind, "RDJS"); !s.ok()) return Error{s.error()};
+  std::vector<uint8_t> aligned;
+  if (reinterpret_cast<uintptr_t>(blob.data()) % 8 != 0) {
+    aligned.assign(blob.begin(), blob.end());
+    blob = aligned;
+  }
+  flatbuffers::Verifier::Options options;
+  flatbuffers::Verifier verifier(blob.data(), blob.size(), options);
+  if (!wire::VerifyJobSolutionBlobBuffer(verifier)) {
+    return Error{std::string(kKind) + ": not a valid FlatBuffer (verification failed)"};
+  }
+  const wire::JobSolutionBlob* root = wire::GetJobSolutionBlob(blob.data());
+  JobSolution solution;
+  solution.bundle.assign(root->bundle()->begin(), root->bundle()->end());
+  solution.radiosity = FromWire(*root->radiosity());
+  solution.unshot = FromWire(*root->unshot());
+  if (solution.radiosity.size() != solution.unshot.size()) {
+    return FieldError(kKind, "unshot", "has a different size than radiosity");
+  }
+  for (size_t i = 0; i < solution.radiosity.size(); ++i) {
+    if (!IsNonNegative(solution.radiosity[i]) || !IsNonNegative(solution.unshot[i])) {
+      return FieldError(kKind, "patch " + std::to_string(i), "radiosity is negative or not finite");
+    }
+  }
+  const auto* st = root->stats();
+  SolveStats& s = solution.stats;
+  s.rays = st->rays();
+  s.rounds = st->rounds();
+  s.seconds = st->seconds();
+  s.rays_per_second = st->rays_per_second();
+  s.patches = st->patches();
+  s.unshot_fraction = st->unshot_fraction();
+  s.escaped_rays = st->escaped_rays();
+  s.backface_hits = st->backface_hits();
+  s.threads = st->threads();
+  s.seed = st->seed();
+  s.sampler = st->sampler() ? st->sampler()->str() : "";
+  s.stop_reason = st->stop_reason() ? st->stop_reason()->str() : "";
+  s.emitted_power = st->emitted_power();
+  s.absorbed_power = st->absorbed_power();
+  s.escaped_power = st->escaped_power();
+  for (double v : {s.seconds, s.rays_per_second, s.unshot_fraction, s.emitted_power,
+                   s.absorbed_power, s.escaped_power}) {
+    if (!std::isfinite(v)) return FieldError(kKind, "stats", "has a non-finite number");
+  }
+  return solution;
+}
+
+}  // namespace radfarm::codec

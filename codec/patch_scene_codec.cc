@@ -1,0 +1,113 @@
+#include "codec/patch_scene_codec.h"
+
+#include <flatbuffers/flatbuffers.h>
+
+#include <string>
+
+#include "codec/decode_checks.h"
+#include "patch_scene_generated.h"
+
+namespace radfarm::codec {
+namespace {
+
+constexpr std::string_view kKind = "scene blob";
+constexpr uint32_t kMaxPatches = 1u << 26;
+
+wire::Point ToWire(const Vec3& v) { return {v.x, v.y, v.z}; }
+wire::Colour ToWire(const Rgb& c) { return {c.r, c.g, c.b}; }
+Vec3 FromWire(const wire::Point* p) { return p ? Vec3{p->x(), p->y(), p->z()} : Vec3{}; }
+Rgb FromWire(const wire::Colour* c) { return c ? Rgb{c->r(), c->g(), c->b()} : Rgb{}; }
+
+Result<Patch> DecodePatch(const wire::ScenePatch& in, uint32_t index, size_t material_count) {
+  const std::string field = "patch " + std::to_string(index);
+  Patch p;
+  const auto* corners = in.corners();
+  if (corners->size() < 3 || corners->size() > 4) {
+    return FieldError(kKind, field, "has " + std::to_string(corners->size()) +
+                                        " corners (expected 3 or 4)");
+  }
+  p.corner_count = static_cast<uint8_t>(corners->size());
+  for (uint32_t k = 0; k < corners->size(); ++k) p.corners[k] = FromWire(corners->Get(k));
+  p.normal = FromWire(in.normal());
+  p.centre = FromWire(in.centre());
+  p.area = in.area();
+  p.reflectance = FromWire(in.reflectance());
+  p.emission = FromWire(in.emission());
+  p.surface = in.surface();
+  p.material = in.material();
+  for (uint32_t k = 0; k < p.corner_count; ++k) {
+    if (!IsFinite(p.corners[k])) return FieldError(kKind, field, "has a non-finite corner");
+  }
+  if (!IsFinite(p.normal) || !IsFinite(p.centre)) {
+    return FieldError(kKind, field, "has a non-finite normal or centre");
+  }
+  const double n = Length(p.normal);
+  if (!(n > 0.999 && n < 1.001)) return FieldError(kKind, field, "normal is not a unit vector");
+  if (!(p.area > 0) || !std::isfinite(p.area)) {
+    return FieldError(kKind, field, "area is not a positive finite number");
+  }
+  if (!IsReflectance(p.reflectance)) {
+    return FieldError(kKind, field, "reflectance is outside [0, 1)");
+  }
+  if (!IsNonNegative(p.emission)) {
+    return FieldError(kKind, field, "emission is negative or not finite");
+  }
+  if (p.material >= material_count) {
+    return FieldError(kKind, field, "material " + std::to_string(p.material) +
+                                        " is out of range (" + std::to_string(material_count) +
+                                        " materials)");
+  }
+  return p;
+}
+
+}  // namespace
+
+std::vector<uint8_t> EncodePatchScene(const PatchScene& scene) {
+  flatbuffers::FlatBufferBuilder fbb(1024 + scene.patches.size() * 256);
+  std::vector<flatbuffers::Offset<wire::ScenePatch>> patches;
+  patches.reserve(scene.patches.size());
+  for (const Patch& p : scene.patches) {
+    std::vector<wire::Point> corners;
+    for (uint32_t k = 0; k < p.corner_count; ++k) corners.push_back(ToWire(p.corners[k]));
+    const auto corner_vec = fbb.CreateVectorOfStructs(corners);
+    const wire::Point normal = ToWire(p.normal), centre = ToWire(p.centre);
+    const wire::Colour reflectance = ToWire(p.reflectance), emission = ToWire(p.emission);
+    patches.push_back(wire::CreateScenePatch(fbb, corner_vec, &normal, &centre, p.area,
+                                             &reflectance, &emission, p.surface, p.material));
+  }
+  const auto patch_vec = fbb.CreateVector(patches);
+  const auto names = fbb.CreateVectorOfStrings(scene.material_names);
+  fbb.Finish(wire::CreatePatchSceneBlob(fbb, patch_vec, names), "RDPS");
+  return {fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()};
+}
+
+Result<PatchScene> DecodePatchScene(std::span<const uint8_t> blob) {
+  if (Status s = CheckBlobHeader(blob, kKind, "RDPS"); !s.ok()) return Error{s.error()};
+  // The Verifier needs aligned data; a std::vector's buffer is, a span into a frame may not be.
+  std::vector<uint8_t> aligned;
+  if (reinterpret_cast<uintptr_t>(blob.data()) % 8 != 0) {
+    aligned.assign(blob.begin(), blob.end());
+    blob = aligned;
+  }
+  flatbuffers::Verifier::Options options;
+  options.max_tables = 2 * kMaxPatches;
+  flatbuffers::Verifier verifier(blob.data(), blob.size(), options);
+  if (!wire::VerifyPatchSceneBlobBuffer(verifier)) {
+    return Error{std::string(kKind) + ": not a valid FlatBuffer (verification failed)"};
+  }
+  const wire::PatchSceneBlob* root = wire::GetPatchSceneBlob(blob.data());
+  PatchScene scene;
+  for (const auto* name : *root->material_names()) scene.material_names.push_back(name->str());
+  const auto* patches = root->patches();
+  if (patches->size() == 0) return Error{std::string(kKind) + ": has no patches"};
+  if (patches->size() > kMaxPatches) return Error{std::string(kKind) + ": too many patches"};
+  scene.patches.reserve(patches->size());
+  for (uint32_t i = 0; i < patches->size(); ++i) {
+    Result<Patch> p = DecodePatch(*patches->Get(i), i, scene.material_names.size());
+    if (!p.ok()) return Error{p.error()};
+    scene.patches.push_back(*p);
+  }
+  return scene;
+}
+
+}  // namespace radfarm::codec

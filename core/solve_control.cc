@@ -1,0 +1,39 @@
+#include "core/solve_control.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace radfarm {
+
+std::optional<std::string> StopBeforeRound(const ProgressiveSolver& solver,
+                                           const SolverSettings& settings, uint64_t rays,
+                                           double seconds) {
+  if (solver.UnshotFraction() <= settings.tolerance) return kStopConverged;
+  if (settings.max_rays > 0 && rays >= settings.max_rays) return kStopRayBudget;
+  if (settings.max_seconds > 0 && seconds >= settings.max_seconds) return kStopTimeBudget;
+  return std::nullopt;
+}
+
+uint64_t NextRoundRayCap(const SolverSettings& settings, uint64_t rays) {
+  return settings.max_rays > 0 ? settings.max_rays - rays : 0;
+}
+
+std::optional<std::string> StopAfterRound(const RoundPlan& plan, const ProgressiveSolver& solver,
+                                          const SolverSettings& settings) {
+  if (plan.capped && solver.UnshotFraction() > settings.tolerance) return kStopRayBudget;
+  return std::nullopt;
+}
+
+double ConvergenceFraction(double unshot_fraction, double tolerance) {
+  if (unshot_fraction <= tolerance) return 1;
+  if (unshot_fraction >= 1 || tolerance <= 0 || tolerance >= 1) return 0;
+  return std::clamp(std::log(unshot_fraction) / std::log(tolerance), 0.0, 1.0);
+}
+
+double EstimateSecondsLeft(double unshot_fraction, double tolerance, double seconds) {
+  const double done = ConvergenceFraction(unshot_fraction, tolerance);
+  if (done <= 0 || seconds <= 0) return -1;
+  return seconds * (1 - done) / done;
+}
+
+}  // namespace radfarm

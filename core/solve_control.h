@@ -1,0 +1,40 @@
+// The stopping rules of a solve, shared by Solve() and the farm master so that both stop after the
+// same round and report the same reason: converged (unshot fraction at or below the tolerance, or
+// nothing left to shoot), the ray budget (max_rays; the last round is trimmed to it) or the time
+// budget (max_seconds).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "core/progressive_solver.h"
+#include "core/solver_settings.h"
+
+namespace radfarm {
+
+inline constexpr const char* kStopConverged = "converged";
+inline constexpr const char* kStopRayBudget = "ray budget";
+inline constexpr const char* kStopTimeBudget = "time budget";
+
+// Why the solve stops before planning another round, or nullopt to plan one. `rays` and `seconds`
+// are what the solve has spent so far.
+std::optional<std::string> StopBeforeRound(const ProgressiveSolver& solver,
+                                           const SolverSettings& settings, uint64_t rays,
+                                           double seconds);
+
+// The ray cap for the next round's PlanRound (0: none).
+uint64_t NextRoundRayCap(const SolverSettings& settings, uint64_t rays);
+
+// After ApplyRound of `plan`: a capped round that left the solve unconverged spent the budget.
+std::optional<std::string> StopAfterRound(const RoundPlan& plan, const ProgressiveSolver& solver,
+                                          const SolverSettings& settings);
+
+// Fraction of the way to convergence: unshot power falls geometrically, so progress is measured in
+// log space from 1 (start) to the tolerance (done).
+double ConvergenceFraction(double unshot_fraction, double tolerance);
+
+// Seconds left, extrapolating the geometric decay seen so far; negative when unknown.
+double EstimateSecondsLeft(double unshot_fraction, double tolerance, double seconds);
+
+}  // namespace radfarm

@@ -1,0 +1,92 @@
+// AgentLink: the master's end of one agent connection. It runs the handshake (ProtocolSession),
+// enforces its deadline, checks every frame (DecodeFrameBody, then the session's state and
+// direction rules) and hands authenticated application messages to the master. Any protocol
+// error is logged with the peer's address and closes this one connection only.
+//
+// Lifecycle:  accepted --Hello..Welcome--> authenticated --Close/error/EOF/idle--> closed
+//             accepted --deadline, bad proof, malformed frame--> closed
+// on_closed runs once, after the socket is closed; it may destroy the link. Loop thread only.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "loop/event_loop.h"
+#include "loop/framed_connection.h"
+#include "loop/timer.h"
+#include "protocol/farm_secret.h"
+#include "protocol/messages.h"
+#include "protocol/protocol_session.h"
+
+namespace radfarm::master {
+
+struct AgentLinkOptions {
+  std::chrono::milliseconds handshake_timeout{5000};
+  // After the handshake: a peer silent this long is closed (the master takes its leases away
+  // much earlier, after agent_timeout; this frees the socket of a peer that never comes back).
+  std::chrono::milliseconds idle_close_timeout{30000};
+  uint32_t max_frame_bytes = protocol::kDefaultMaxFrameBytes;
+};
+
+class AgentLink {
+ public:
+  struct Callbacks {
+    std::function<void(AgentLink&)> on_authenticated;
+    std::function<void(AgentLink&, protocol::Message&)> on_message;  // application messages
+    std::function<void(AgentLink&, const std::string& reason)> on_closed;
+  };
+
+  AgentLink(loop::EventLoop& loop, std::unique_ptr<loop::FramedConnection> connection,
+            const protocol::FarmSecret& secret, const protocol::MasterConfig& session_config,
+            const AgentLinkOptions& options, Callbacks callbacks);
+  AgentLink(const AgentLink&) = delete;
+  AgentLink& operator=(const AgentLink&) = delete;
+
+  // Starts reading and the handshake deadline.
+  void Start();
+  // Encodes through the session (which refuses what the agent would reject) and queues it.
+  Status Send(const protocol::Message& message);
+  // Sends a Close with `code` and `reason`, then closes once it is flushed.
+  void Close(protocol::CloseCode code, const std::string& reason);
+
+  uint64_t id() const { return id_; }
+  bool authenticated() const { return session_.authenticated(); }
+  bool closing() const { return closing_; }
+  const std::string& address() const { return address_; }
+  // The agent's name and threads (from its Hello), once authenticated.
+  const std::string& name() const { return session_.hello().agent_name; }
+  uint32_t threads() const { return session_.hello().threads; }
+  // "name@address" once known, else the address: for logs.
+  std::string Describe() const;
+  // loop NowMs() of the last frame received.
+  uint64_t last_heard_ms() const { return last_heard_ms_; }
+  const protocol::HeartbeatMsg& last_heartbeat() const { return last_heartbeat_; }
+  void set_last_heartbeat(const protocol::HeartbeatMsg& h) { last_heartbeat_ = h; }
+  int64_t connected_unix_ms() const { return connected_unix_ms_; }
+  size_t queued_bytes() const { return connection_->queued_bytes(); }
+
+  // Master bookkeeping: the agent missed its heartbeats and its leases were taken away.
+  bool stale = false;
+
+ private:
+  void OnFrame(std::span<const uint8_t> payload);
+  void Fail(const std::string& reason);
+
+  loop::EventLoop& loop_;
+  std::unique_ptr<loop::FramedConnection> connection_;
+  protocol::ProtocolSession session_;
+  AgentLinkOptions options_;
+  Callbacks callbacks_;
+  loop::Timer handshake_deadline_;
+  uint64_t id_;
+  std::string address_;
+  uint64_t last_heard_ms_ = 0;
+  protocol::HeartbeatMsg last_heartbeat_;
+  int64_t connected_unix_ms_ = 0;
+  bool closing_ = false;
+};
+
+}  // namespace radfarm::master

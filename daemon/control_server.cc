@@ -1,0 +1,225 @@
+#include "daemon/control_server.h"
+
+#include "loop/log.h"
+
+namespace radfarm::master {
+
+ControlResponse ControlError(const std::string& code, const std::string& message) {
+  return {nlohmann::json{{"ok", false}, {"error", message}, {"code", code}}, {}};
+}
+
+struct ControlServer::Client {
+  uint64_t id = 0;
+  std::unique_ptr<loop::FramedConnection> connection;
+  // A request whose attachment frame is still to come.
+  std::optional<ControlRequest> awaiting_attachment;
+  uint64_t attachment_bytes = 0;
+  bool busy = false;  // a request is being answered
+};
+
+namespace {
+
+struct CommandName {
+  const char* name;
+  ControlCommand command;
+};
+constexpr CommandName kCommands[] = {
+    {"submit", ControlCommand::kSubmit}, {"list", ControlCommand::kList},
+    {"status", ControlCommand::kStatus}, {"cancel", ControlCommand::kCancel},
+    {"pause", ControlCommand::kPause},   {"resume", ControlCommand::kResume},
+    {"log", ControlCommand::kLog},       {"fetch", ControlCommand::kFetch},
+    {"agents", ControlCommand::kAgents},
+};
+
+Result<int64_t> IntArg(const nlohmann::json& json, const char* key) {
+  const auto it = json.find(key);
+  if (it == json.end() || !it->is_number_integer()) {
+    return Error{std::string("'") + key + "' must be an integer"};
+  }
+  return it->get<int64_t>();
+}
+
+}  // namespace
+
+Result<ControlRequest> ParseControlRequest(const nlohmann::json& json,
+                                           uint64_t* attachment_bytes) {
+  *attachment_bytes = 0;
+  if (!json.is_object()) return Error{"a request must be a JSON object"};
+  const auto command = json.find("command");
+  if (command == json.end() || !command->is_string()) {
+    return Error{"'command' must be a string"};
+  }
+  ControlRequest request;
+  bool known = false;
+  for (const CommandName& c : kCommands) {
+    if (*command == c.name) {
+      request.command = c.command;
+      known = true;
+    }
+  }
+  if (!known) return Error{"unknown command '" + command->get<std::string>() + "'"};
+  switch (request.command) {
+    case ControlCommand::kStatus:
+    case ControlCommand::kCancel:
+    case ControlCommand::kPause:
+    case ControlCommand::kResume:
+    case ControlCommand::kFetch: {
+      Result<int64_t> id = IntArg(json, "id");
+      if (!id) return Error{id.error()};
+      request.id = *id;
+      break;
+    }
+    case ControlCommand::kLog:
+      if (json.contains("id") && !json["id"].is_null()) {
+        Result<int64_t> id = IntArg(json, "id");
+        if (!id) return Error{id.error()};
+        request.id = *id;
+      }
+      if (json.contains("limit")) {
+        Result<int64_t> limit = IntArg(json, "limit");
+        if (!limit) return Error{limit.error()};
+        if (*limit < 1 || *limit > 100000) return Error{"'limit' must be in [1, 100000]"};
+        request.limit = *limit;
+      }
+      break;
+    case ControlCommand::kSubmit: {
+      if (json.contains("name")) {
+        if (!json["name"].is_string()) return Error{"'name' must be a string"};
+        request.name = json["name"].get<std::string>();
+        if (request.name.size() > 256) return Error{"'name' is longer than 256 bytes"};
+      }
+      if (json.contains("priority")) {
+        Result<int64_t> priority = IntArg(json, "priority");
+        if (!priority) return Error{priority.error()};
+        request.priority = *priority;
+      }
+      Result<int64_t> bytes = IntArg(json, "attachment_bytes");
+      if (!bytes) return Error{"submit needs the job bundle: " + bytes.error()};
+      if (*bytes < 1 || uint64_t(*bytes) > kMaxControlAttachmentBytes) {
+        return Error{"'attachment_bytes' must be in [1, " +
+                     std::to_string(kMaxControlAttachmentBytes) + "]"};
+      }
+      *attachment_bytes = uint64_t(*bytes);
+      break;
+    }
+    case ControlCommand::kList:
+    case ControlCommand::kAgents:
+      break;
+  }
+  return request;
+}
+
+Result<std::unique_ptr<ControlServer>> ControlServer::Listen(loop::EventLoop& loop,
+                                                             const std::string& path,
+                                                             Handler handler) {
+  std::unique_ptr<ControlServer> server(new ControlServer(loop, std::move(handler)));
+  ControlServer* self = server.get();
+  auto listener = loop::UnixListener::Listen(
+      loop, path, [self](std::unique_ptr<loop::FramedConnection> c) {
+        self->OnConnection(std::move(c));
+      });
+  if (!listener) return Error{listener.error()};
+  server->listener_ = std::move(*listener);
+  return server;
+}
+
+ControlServer::ControlServer(loop::EventLoop& loop, Handler handler)
+    : loop_(loop), handler_(std::move(handler)) {}
+
+ControlServer::~ControlServer() { Close(); }
+
+void ControlServer::Close() {
+  clients_.clear();
+  if (listener_) listener_->Close();
+}
+
+void ControlServer::OnConnection(std::unique_ptr<loop::FramedConnection> connection) {
+  auto client = std::make_unique<Client>();
+  client->id = next_client_++;
+  client->connection = std::move(connection);
+  Client* c = client.get();
+  const uint64_t id = client->id;
+  clients_[id] = std::move(client);
+  loop::ConnectionOptions options;
+  options.max_frame_bytes = kMaxControlAttachmentBytes;
+  options.max_queued_bytes = size_t{2} * kMaxControlAttachmentBytes;
+  c->connection->Start(
+      options, [this, c](std::span<const uint8_t> payload) { OnFrame(*c, payload); },
+      [this, id](const std::string&) { clients_.erase(id); });
+}
+
+void ControlServer::Refuse(Client& client, const std::string& code, const std::string& message) {
+  loop::LogLine(loop::LogLevel::kWarning, "control")
+      << client.connection->peer() << ": " << message << "; closing";
+  const std::string text = ControlError(code, message).body.dump();
+  (void)client.connection->Send(std::span(reinterpret_cast<const uint8_t*>(text.data()),
+                                          text.size()));
+  client.connection->CloseAfterFlush(message);
+}
+
+void ControlServer::OnFrame(Client& client, std::span<const uint8_t> payload) {
+  if (client.awaiting_attachment) {
+    if (payload.size() != client.attachment_bytes) {
+      Refuse(client, "bad_request",
+             "attachment of " + std::to_string(payload.size()) + " bytes, announced " +
+                 std::to_string(client.attachment_bytes));
+      return;
+    }
+    ControlRequest request = std::move(*client.awaiting_attachment);
+    client.awaiting_attachment.reset();
+    request.attachment.assign(payload.begin(), payload.end());
+    Dispatch(client, std::move(request));
+    return;
+  }
+  if (client.busy) {
+    Refuse(client, "bad_request", "a request arrived before the previous one was answered");
+    return;
+  }
+  if (payload.size() > kMaxControlJsonBytes) {
+    Refuse(client, "bad_request", "a JSON request over " + std::to_string(kMaxControlJsonBytes) +
+                                      " bytes");
+    return;
+  }
+  nlohmann::json json = nlohmann::json::parse(payload.begin(), payload.end(), nullptr, false);
+  if (json.is_discarded()) {
+    Refuse(client, "bad_request", "the request is not valid JSON");
+    return;
+  }
+  uint64_t attachment_bytes = 0;
+  Result<ControlRequest> request = ParseControlRequest(json, &attachment_bytes);
+  if (!request) {
+    // A well-formed frame with a bad request: answer, keep the connection.
+    Reply(client.id, ControlError("bad_request", request.error()));
+    return;
+  }
+  if (attachment_bytes > 0) {
+    client.attachment_bytes = attachment_bytes;
+    client.awaiting_attachment = std::move(*request);
+    return;
+  }
+  Dispatch(client, std::move(*request));
+}
+
+void ControlServer::Dispatch(Client& client, ControlRequest request) {
+  client.busy = true;
+  const uint64_t id = client.id;
+  handler_(std::move(request), [this, id](ControlResponse response) {
+    Reply(id, std::move(response));
+  });
+}
+
+void ControlServer::Reply(uint64_t client_id, ControlResponse response) {
+  const auto it = clients_.find(client_id);
+  if (it == clients_.end()) return;  // the client left before the answer
+  Client& client = *it->second;
+  client.busy = false;
+  if (!response.attachment.empty()) {
+    response.body["attachment_bytes"] = response.attachment.size();
+  }
+  const std::string text = response.body.dump();
+  (void)client.connection->Send(
+      std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+  if (!response.attachment.empty()) (void)client.connection->Send(std::move(response.attachment));
+}
+
+}  // namespace radfarm::master

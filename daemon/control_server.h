@@ -1,0 +1,57 @@
+// ControlServer: the master's control socket (docs/CONTROL.md): a 0600 Unix socket in the state
+// directory, frames of JSON (plus one binary attachment after a request or response that says
+// "attachment_bytes"). It parses and checks each request, hands it to the master, and writes the
+// answer. One request at a time per connection; a malformed frame or JSON gets an error response
+// and the connection is closed. Loop thread only.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "core/result.h"
+#include "daemon/control_types.h"
+#include "loop/event_loop.h"
+#include "loop/framed_connection.h"
+#include "loop/unix_listener.h"
+
+namespace radfarm::master {
+
+inline constexpr uint32_t kMaxControlJsonBytes = 1u << 20;
+inline constexpr uint32_t kMaxControlAttachmentBytes = 1u << 30;
+
+class ControlServer {
+ public:
+  using Handler = std::function<void(ControlRequest, ControlRespond)>;
+
+  static Result<std::unique_ptr<ControlServer>> Listen(loop::EventLoop& loop,
+                                                       const std::string& path, Handler handler);
+  ControlServer(const ControlServer&) = delete;
+  ControlServer& operator=(const ControlServer&) = delete;
+  ~ControlServer();
+
+  const std::string& path() const { return listener_->path(); }
+  void Close();
+
+ private:
+  struct Client;
+  ControlServer(loop::EventLoop& loop, Handler handler);
+  void OnConnection(std::unique_ptr<loop::FramedConnection> connection);
+  void OnFrame(Client& client, std::span<const uint8_t> payload);
+  void Dispatch(Client& client, ControlRequest request);
+  void Reply(uint64_t client_id, ControlResponse response);
+  void Refuse(Client& client, const std::string& code, const std::string& message);
+
+  loop::EventLoop& loop_;
+  Handler handler_;
+  std::unique_ptr<loop::UnixListener> listener_;
+  std::map<uint64_t, std::unique_ptr<Client>> clients_;
+  uint64_t next_client_ = 1;
+};
+
+// Parses one request's JSON (docs/CONTROL.md); errors say which key is wrong.
+Result<ControlRequest> ParseControlRequest(const nlohmann::json& json,
+                                           uint64_t* attachment_bytes);
+
+}  // namespace radfarm::master

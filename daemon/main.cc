@@ -1,0 +1,159 @@
+// radfarmd: the master daemon. Parses its settings (flags over --config over defaults), reads the
+// farm secret, starts the Master on one event loop and runs it until SIGTERM or SIGINT.
+// Exit codes: 0 after a clean stop, 1 when it cannot start (store, listener) or fails, 2 for bad
+// usage, configuration or secret.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <optional>
+#include <sys/stat.h>
+
+#include "daemon/master.h"
+#include "daemon/master_config.h"
+#include "input/text_file.h"
+#include "loop/event_loop.h"
+#include "loop/log.h"
+
+namespace radfarm::master {
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitFailure = 1;
+constexpr int kExitBadInput = 2;
+
+struct Flags {
+  std::optional<std::string> config, listen, state_dir, secret_file, control, log_level;
+  std::optional<uint32_t> heartbeat_ms, agent_timeout_ms, handshake_timeout_ms, checkpoint_keep,
+      max_running_jobs, max_agents;
+  std::optional<double> checkpoint_seconds, lease_seconds;
+};
+
+void AddFlags(CLI::App& app, Flags* f) {
+  app.add_option("--config", f->config, "TOML file with any of the settings below (flags win)");
+  app.add_option("--listen", f->listen,
+                 "HOST:PORT agents connect to; port 0 picks a free one, written to "
+                 "STATE/listen.addr (default 0.0.0.0:7878)");
+  app.add_option("--state-dir", f->state_dir,
+                 "Job store, control socket and listen.addr (default /var/lib/radfarm)");
+  app.add_option("--secret-file", f->secret_file,
+                 "The farm secret, hex (default /etc/radfarm/secret; make one with "
+                 "`radfarm secret new FILE`)");
+  app.add_option("--control", f->control, "Control socket path (default STATE/control.sock)");
+  app.add_option("--log-level", f->log_level, "debug, info, warning or error (default info)");
+  app.add_option("--heartbeat-ms", f->heartbeat_ms, "Heartbeat interval (default 1000)")
+      ->check(CLI::Range(10u, 86400000u));
+  app.add_option("--agent-timeout-ms", f->agent_timeout_ms,
+                 "An agent silent this long loses its leases (default 5000)")
+      ->check(CLI::Range(100u, 86400000u));
+  app.add_option("--handshake-timeout-ms", f->handshake_timeout_ms,
+                 "Close connections not authenticated within this (default 5000)")
+      ->check(CLI::Range(100u, 86400000u));
+  app.add_option("--checkpoint-keep", f->checkpoint_keep,
+                 "Full checkpoints kept per job (default 3)")
+      ->check(CLI::Range(1u, 1000000u));
+  app.add_option("--checkpoint-seconds", f->checkpoint_seconds,
+                 "Checkpoint at most this often; 0 = after every round (default 0)")
+      ->check(CLI::Range(0.0, 1e9));
+  app.add_option("--max-running-jobs", f->max_running_jobs, "Jobs solved at once (default 4)")
+      ->check(CLI::Range(1u, 1024u));
+  app.add_option("--lease-seconds", f->lease_seconds,
+                 "Time one batch should take on its agent (default 0.25)")
+      ->check(CLI::Range(0.001, 3600.0));
+  app.add_option("--max-agents", f->max_agents, "Agent connections at most (default 4096)")
+      ->check(CLI::Range(1u, 1000000u));
+}
+
+template <typename T>
+void Override(const std::optional<T>& flag, T* value) {
+  if (flag) *value = *flag;
+}
+
+Result<MasterConfig> ResolveConfig(const Flags& f) {
+  MasterConfig c;
+  if (f.config) {
+    if (Status s = ReadMasterConfigFile(*f.config, &c); !s) return Error{s.error()};
+  }
+  Override(f.listen, &c.listen);
+  Override(f.state_dir, &c.state_dir);
+  Override(f.secret_file, &c.secret_file);
+  Override(f.control, &c.control);
+  Override(f.log_level, &c.log_level);
+  Override(f.heartbeat_ms, &c.heartbeat_ms);
+  Override(f.agent_timeout_ms, &c.agent_timeout_ms);
+  Override(f.handshake_timeout_ms, &c.handshake_timeout_ms);
+  Override(f.checkpoint_keep, &c.checkpoint_keep);
+  Override(f.checkpoint_seconds, &c.checkpoint_seconds);
+  Override(f.max_running_jobs, &c.max_running_jobs);
+  Override(f.lease_seconds, &c.lease_seconds);
+  Override(f.max_agents, &c.max_agents);
+  if (Status s = CheckMasterConfig(c); !s) return Error{s.error()};
+  return c;
+}
+
+Result<protocol::FarmSecret> ReadSecret(const std::string& path) {
+  Result<std::string> text = ReadTextFile(path);
+  if (!text) return Error{"secret file " + text.error()};
+  Result<protocol::FarmSecret> secret = protocol::FarmSecret::FromHex(*text);
+  if (!secret) return Error{path + ": " + secret.error()};
+  struct stat st {};
+  if (stat(path.c_str(), &st) == 0 && (st.st_mode & 077) != 0) {
+    loop::LogLine(loop::LogLevel::kWarning, "master")
+        << path << ": the secret is readable by other users (chmod 600 it)";
+  }
+  return secret;
+}
+
+loop::LogLevel ParseLevel(const std::string& name) {
+  if (name == "debug") return loop::LogLevel::kDebug;
+  if (name == "warning") return loop::LogLevel::kWarning;
+  if (name == "error") return loop::LogLevel::kError;
+  return loop::LogLevel::kInfo;
+}
+
+int Run(const MasterConfig& config) {
+  loop::SetMinLogLevel(ParseLevel(config.log_level));
+  Result<protocol::FarmSecret> secret = ReadSecret(config.secret_file);
+  if (!secret) {
+    std::fprintf(stderr, "radfarmd: %s\n", secret.error().c_str());
+    return kExitBadInput;
+  }
+  loop::EventLoop loop;
+  Result<std::unique_ptr<Master>> master = Master::Start(loop, config, std::move(*secret));
+  if (!master) {
+    std::fprintf(stderr, "radfarmd: %s\n", master.error().c_str());
+    (void)loop.Close();
+    return kExitFailure;
+  }
+  loop.Run();
+  master->reset();
+  if (Status s = loop.Close(); !s) {
+    std::fprintf(stderr, "radfarmd: %s\n", s.error().c_str());
+    return kExitFailure;
+  }
+  loop::Log(loop::LogLevel::kInfo, "master", "stopped");
+  return kExitOk;
+}
+
+}  // namespace
+}  // namespace radfarm::master
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "radfarmd: the radfarm master daemon. Keeps the job queue (SQLite, in the state "
+      "directory), leases ray batches to radfarm-agent processes and folds their results into "
+      "each job's radiosity solution. Stop it with SIGTERM; it resumes every job on restart."};
+  app.set_version_flag("--version", "radfarmd 0.1.0");
+  radfarm::master::Flags flags;
+  radfarm::master::AddFlags(app, &flags);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? radfarm::master::kExitOk : radfarm::master::kExitBadInput;
+  }
+  radfarm::Result<radfarm::master::MasterConfig> config = radfarm::master::ResolveConfig(flags);
+  if (!config) {
+    std::fprintf(stderr, "radfarmd: %s\n", config.error().c_str());
+    return radfarm::master::kExitBadInput;
+  }
+  return radfarm::master::Run(*config);
+}

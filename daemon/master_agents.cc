@@ -1,0 +1,272 @@
+// The master's side of agent connections: handshake, heartbeats, leases, results, scene fetches.
+#include <algorithm>
+
+#include "daemon/master.h"
+#include "daemon/scheduler/result_intake.h"
+#include "loop/log.h"
+#include "protocol/batch_convert.h"
+#include "protocol/scene_transfer.h"
+
+namespace radfarm::master {
+namespace {
+
+using loop::LogLevel;
+using loop::LogLine;
+
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
+};
+
+}  // namespace
+
+void Master::OnConnection(std::unique_ptr<loop::FramedConnection> connection) {
+  if (shutting_down_) return;  // dropped: closes silently
+  if (agents_.size() >= config_.max_agents) {
+    LogLine(LogLevel::kWarning, "agents")
+        << connection->peer() << ": refused, already " << agents_.size() << " connections";
+    return;
+  }
+  const uint64_t id = next_agent_id_++;
+  protocol::MasterConfig session;
+  session.agent_id = id;
+  session.heartbeat_interval_ms = config_.heartbeat_ms;
+  AgentLinkOptions options;
+  options.handshake_timeout = std::chrono::milliseconds(config_.handshake_timeout_ms);
+  options.idle_close_timeout = std::chrono::milliseconds(6 * uint64_t{config_.agent_timeout_ms});
+  AgentLink::Callbacks callbacks{
+      [this](AgentLink& link) { OnAuthenticated(link); },
+      [this](AgentLink& link, protocol::Message& m) { OnAgentMessage(link, m); },
+      [this](AgentLink& link, const std::string& reason) { OnAgentClosed(link, reason); }};
+  auto link = std::make_unique<AgentLink>(loop_, std::move(connection), secret_, session, options,
+                                          std::move(callbacks));
+  AgentLink& ref = *link;
+  agents_[id] = std::move(link);
+  ref.Start();
+}
+
+void Master::OnAuthenticated(AgentLink& link) {
+  const auto blocked = blocklist_.find(link.name());
+  if (blocked != blocklist_.end()) {
+    if (blocked->second > Now()) {
+      LogLine(LogLevel::kWarning, "agents") << link.Describe() << ": refused, blocklisted";
+      link.Close(protocol::CloseCode::kProtocolError, "blocklisted after an invalid result");
+      return;
+    }
+    blocklist_.erase(blocked);
+  }
+  LogLine(LogLevel::kInfo, "agents")
+      << link.Describe() << " connected (" << link.threads() << " threads)";
+  const std::string name = link.name(), address = link.address();
+  const uint32_t threads = link.threads();
+  OnStore([name, address, threads](store::JobStore& s) {
+    return s.RecordAgentSeen(name, address, threads);
+  }, [](Status s) {
+    if (!s) LogLine(LogLevel::kError, "store") << s.error();
+  });
+  for (auto& [job, runner] : runners_) runner->scheduler().AddAgent(link.id());
+  Dispatch(link);
+}
+
+void Master::OnAgentClosed(AgentLink& link, const std::string& reason) {
+  const uint64_t id = link.id();
+  if (link.authenticated() || link.stale) {
+    LogLine(LogLevel::kInfo, "agents") << link.Describe() << " disconnected: " << reason;
+    for (auto& [job, runner] : runners_) runner->scheduler().OnAgentLost(id);
+  }
+  agents_.erase(id);  // destroys the link; it is not used after this
+  DispatchAll();
+}
+
+void Master::TakeLeasesAway(AgentLink& link, const char* why) {
+  size_t held = 0;
+  for (auto& [job, runner] : runners_) {
+    for (const auto& a : runner->scheduler().counters(Now()).agents) {
+      if (a.agent == link.id()) held += a.leases_held;
+    }
+    runner->scheduler().OnAgentLost(link.id());
+  }
+  LogLine(LogLevel::kWarning, "agents")
+      << link.Describe() << " " << why << ": its " << held << " leases go back to the queue";
+}
+
+void Master::OnAgentMessage(AgentLink& link, protocol::Message& message) {
+  if (link.stale) {
+    // Heard from again after missing its heartbeats: back in the pool.
+    link.stale = false;
+    LogLine(LogLevel::kInfo, "agents") << link.Describe() << " is back";
+    for (auto& [job, runner] : runners_) runner->scheduler().AddAgent(link.id());
+  }
+  std::visit(Overloaded{
+                 [&](const protocol::HeartbeatMsg& h) { link.set_last_heartbeat(h); },
+                 [&](const protocol::BatchResultMsg& r) { OnBatchResult(link, r); },
+                 [&](const protocol::LeaseReturnMsg& r) { OnLeaseReturn(link, r); },
+                 [&](const protocol::SceneRequestMsg& r) { OnSceneRequest(link, r); },
+                 [&](const auto& other) {
+                   // The session lets through only what an agent may send; anything else is a bug.
+                   LogLine(LogLevel::kError, "agents")
+                       << link.Describe() << ": unexpected " << protocol::MessageName(other);
+                 },
+             },
+             message);
+  if (!link.closing()) Dispatch(link);
+}
+
+void Master::OnBatchResult(AgentLink& link, const protocol::BatchResultMsg& result) {
+  JobRunner* runner = FindRunner(result.lease.job_id);
+  if (runner == nullptr || runner->phase() != JobRunner::Phase::kRound) {
+    LogLine(LogLevel::kDebug, "agents")
+        << link.Describe() << ": result for job " << result.lease.job_id
+        << " dropped (job not in a round)";
+    return;
+  }
+  scheduler::IntakeVerdict v = scheduler::SubmitBatchResult(
+      runner->scheduler(), link.id(), result, runner->sampler(), runner->patch_count(), Now());
+  const auto& lease = result.lease;
+  switch (v.verdict.disposition) {
+    case scheduler::Disposition::kAccepted:
+      break;
+    case scheduler::Disposition::kDropped:
+      LogLine(LogLevel::kInfo, "agents")
+          << "job " << lease.job_id << " batch " << lease.batch_id << " attempt "
+          << lease.attempt_id << " from " << link.Describe() << ": result dropped ("
+          << scheduler::DropReasonName(v.verdict.reason) << ")";
+      break;
+    case scheduler::Disposition::kRejected:
+      LogLine(LogLevel::kWarning, "agents")
+          << "job " << lease.job_id << " batch " << lease.batch_id << " attempt "
+          << lease.attempt_id << " from " << link.Describe() << ": result rejected ("
+          << scheduler::DropReasonName(v.verdict.reason) << ")"
+          << (v.detail.empty() ? "" : ": " + v.detail);
+      if (v.verdict.reason == scheduler::DropReason::kInvalid) {
+        Blocklist(link, v.detail);
+        return;
+      }
+      break;
+  }
+  if (v.verdict.round_complete) {
+    OnRoundComplete(runners_.at(runner->id()));
+  }
+}
+
+void Master::Blocklist(AgentLink& link, const std::string& why) {
+  const auto until = Now() + scheduler_options_.blocklist_duration;
+  blocklist_[link.name()] = until;
+  LogEvent(std::nullopt, store::EventLevel::kWarning,
+           "agent " + link.name() + " at " + link.address() +
+               " sent an invalid result and is blocklisted: " + why);
+  // Its leases were revoked by the scheduler that saw the invalid result; take the others too.
+  for (auto& [job, runner] : runners_) runner->scheduler().OnAgentLost(link.id());
+  link.Close(protocol::CloseCode::kProtocolError, "invalid batch result: " + why);
+}
+
+void Master::OnLeaseReturn(AgentLink& link, const protocol::LeaseReturnMsg& message) {
+  std::map<uint64_t, std::vector<scheduler::BatchId>> by_job;
+  for (const protocol::LeaseRef& lease : message.leases) by_job[lease.job_id].push_back(lease.batch_id);
+  size_t returned = 0;
+  for (auto& [job, batches] : by_job) {
+    if (JobRunner* runner = FindRunner(job)) {
+      returned += runner->scheduler().ReturnLeases(link.id(), batches);
+    }
+  }
+  LogLine(LogLevel::kInfo, "agents")
+      << link.Describe() << " returned " << returned << " of " << message.leases.size()
+      << " leases (" << static_cast<int>(message.reason) << ")";
+  if (returned > 0) DispatchAll();
+}
+
+void Master::OnSceneRequest(AgentLink& link, const protocol::SceneRequestMsg& request) {
+  for (auto& [job, runner] : runners_) {
+    if (runner->wire_info().scene_hash != request.scene_hash) continue;
+    Result<protocol::SceneChunkMsg> chunk = protocol::MakeSceneChunk(*runner->scene_blob(), request);
+    if (!chunk) {
+      LogLine(LogLevel::kWarning, "agents")
+          << link.Describe() << ": bad scene request: " << chunk.error() << "; closing";
+      link.Close(protocol::CloseCode::kProtocolError, chunk.error());
+      return;
+    }
+    if (request.offset == 0) {
+      LogLine(LogLevel::kInfo, "agents")
+          << link.Describe() << " fetches the scene of job " << job << " ("
+          << runner->scene_blob()->size() << " bytes)";
+    }
+    (void)link.Send(std::move(*chunk));
+    return;
+  }
+  (void)link.Send(protocol::SceneUnavailableMsg{request.scene_hash});
+}
+
+std::vector<JobRunner*> Master::RunnersByPriority() {
+  std::vector<JobRunner*> order;
+  for (auto& [id, runner] : runners_) {
+    if (runner->phase() == JobRunner::Phase::kRound) order.push_back(runner.get());
+  }
+  // Equal priorities take turns being first, so they share the agents.
+  if (!order.empty()) {
+    std::rotate(order.begin(), order.begin() + (dispatch_rotation_++ % order.size()),
+                order.end());
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [](JobRunner* a, JobRunner* b) { return a->priority() > b->priority(); });
+  return order;
+}
+
+void Master::Dispatch(AgentLink& link) {
+  if (!link.authenticated() || link.closing() || link.stale || shutting_down_) return;
+  // Don't queue work behind a slow socket.
+  if (link.queued_bytes() > (4u << 20)) return;
+  const auto now = Now();
+  for (JobRunner* runner : RunnersByPriority()) {
+    bool gave = false;
+    while (auto a = runner->scheduler().NextAssignment(link.id(), now)) {
+      const auto lease_ms = std::max<int64_t>(
+          1, std::chrono::duration_cast<std::chrono::milliseconds>(a->deadline - now).count());
+      protocol::BatchAssignmentMsg msg = protocol::MakeBatchAssignment(
+          runner->wire_info(), a->batch_id, a->attempt_id, a->batch, static_cast<uint32_t>(lease_ms));
+      if (Status s = link.Send(msg); !s) {
+        LogLine(LogLevel::kWarning, "agents") << link.Describe() << ": " << s.error();
+        return;
+      }
+      gave = true;
+    }
+    if (gave) return;  // lower-priority jobs get this agent once this one has no work left
+  }
+}
+
+void Master::DispatchAll() {
+  for (auto& [id, link] : agents_) Dispatch(*link);
+}
+
+void Master::OnHeartbeatTimer() {
+  const uint64_t now_ms = loop_.NowMs();
+  protocol::HeartbeatMsg beat;
+  for (auto& [job, runner] : runners_) beat.rays_per_second += runner->RaysPerSecond();
+  for (auto& [id, link] : agents_) {
+    if (!link->authenticated() || link->closing()) continue;
+    if (!link->stale && now_ms - link->last_heard_ms() > config_.agent_timeout_ms) {
+      link->stale = true;
+      TakeLeasesAway(*link, "missed its heartbeats");
+      continue;
+    }
+    uint32_t leases = 0;
+    for (auto& [job, runner] : runners_) {
+      for (const auto& a : runner->scheduler().counters(Now()).agents) {
+        if (a.agent == id) leases += a.leases_held;
+      }
+    }
+    beat.leases_held = leases;
+    (void)link->Send(beat);
+  }
+  DispatchAll();
+}
+
+void Master::OnTickTimer() {
+  const auto now = Now();
+  size_t offered = 0;
+  for (auto& [job, runner] : runners_) {
+    if (runner->phase() == JobRunner::Phase::kRound) offered += runner->scheduler().Tick(now);
+  }
+  if (offered > 0) DispatchAll();
+}
+
+}  // namespace radfarm::master

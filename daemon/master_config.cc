@@ -1,0 +1,64 @@
+#include "daemon/master_config.h"
+
+#include <filesystem>
+
+#include "input/toml_file.h"
+#include "input/toml_table_reader.h"
+#include "loop/host_port.h"
+
+namespace radfarm::master {
+
+std::string MasterConfig::ControlPath() const {
+  return control.empty() ? (std::filesystem::path(state_dir) / "control.sock").string() : control;
+}
+std::string MasterConfig::DatabasePath() const {
+  return (std::filesystem::path(state_dir) / "radfarm.db").string();
+}
+std::string MasterConfig::ListenAddrPath() const {
+  return (std::filesystem::path(state_dir) / "listen.addr").string();
+}
+
+Status ReadMasterConfigFile(const std::string& path, MasterConfig* c) {
+  Result<toml::table> table = ReadTomlFile(path);
+  if (!table) return Error{table.error()};
+  TomlTableReader r(path, *table, "");
+  constexpr int64_t kMaxMs = 24 * 3600 * 1000;
+  for (Status s : {r.String("listen", &c->listen), r.String("state_dir", &c->state_dir),
+                   r.String("secret_file", &c->secret_file), r.String("control", &c->control),
+                   r.Integer("heartbeat_ms", 10, kMaxMs, &c->heartbeat_ms),
+                   r.Integer("agent_timeout_ms", 100, kMaxMs, &c->agent_timeout_ms),
+                   r.Integer("handshake_timeout_ms", 100, kMaxMs, &c->handshake_timeout_ms),
+                   r.String("log_level", &c->log_level),
+                   r.Integer("checkpoint_keep", 1, 1000000, &c->checkpoint_keep),
+                   r.Real("checkpoint_seconds", Interval::AtLeast(0), &c->checkpoint_seconds),
+                   r.Integer("max_running_jobs", 1, 1024, &c->max_running_jobs),
+                   r.Real("lease_seconds", Interval::Open(0, 3600), &c->lease_seconds),
+                   r.Integer("max_agents", 1, 1000000, &c->max_agents)}) {
+    if (!s) return s;
+  }
+  if (Status s = r.CheckNoUnknownKeys(); !s) return s;
+  if (Result<loop::HostPort> hp = loop::ParseHostPort(c->listen, path + ": 'listen'"); !hp) {
+    return Error{hp.error()};
+  }
+  return Ok{};
+}
+
+Status CheckMasterConfig(const MasterConfig& c) {
+  if (Result<loop::HostPort> hp = loop::ParseHostPort(c.listen, "--listen"); !hp) {
+    return Error{hp.error()};
+  }
+  if (c.state_dir.empty()) return Error{"--state-dir: must not be empty"};
+  if (c.secret_file.empty()) return Error{"--secret-file: must not be empty"};
+  if (c.log_level != "debug" && c.log_level != "info" && c.log_level != "warning" &&
+      c.log_level != "error") {
+    return Error{"--log-level: expected debug, info, warning or error, got '" + c.log_level + "'"};
+  }
+  if (c.agent_timeout_ms < 2 * c.heartbeat_ms) {
+    return Error{"--agent-timeout-ms (" + std::to_string(c.agent_timeout_ms) +
+                 ") must be at least twice --heartbeat-ms (" + std::to_string(c.heartbeat_ms) +
+                 ")"};
+  }
+  return Ok{};
+}
+
+}  // namespace radfarm::master

@@ -1,0 +1,40 @@
+// The master daemon's settings: defaults, overridden by a TOML config file (--config), overridden
+// by command-line flags. Every key of the file is a flag of the same name (dashes for
+// underscores): see radfarmd --help and packaging/etc/radfarmd.conf.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/result.h"
+
+namespace radfarm::master {
+
+struct MasterConfig {
+  std::string listen = "0.0.0.0:7878";  // agents connect here; port 0 picks a free port
+  std::string state_dir = "/var/lib/radfarm";
+  std::string secret_file = "/etc/radfarm/secret";
+  std::string control;  // the control socket; empty: STATE/control.sock
+  uint32_t heartbeat_ms = 1000;
+  uint32_t agent_timeout_ms = 5000;      // silent this long: the agent's leases go back
+  uint32_t handshake_timeout_ms = 5000;  // unauthenticated this long: the connection is closed
+  std::string log_level = "info";
+  uint32_t checkpoint_keep = 3;     // full checkpoints kept per job
+  double checkpoint_seconds = 0;    // 0: checkpoint every round; else at most this often
+  uint32_t max_running_jobs = 4;    // jobs solved at once; more wait queued
+  double lease_seconds = 0.25;      // the time one batch should take on its agent
+  uint32_t max_agents = 4096;       // connections beyond this are refused
+
+  std::string ControlPath() const;
+  std::string DatabasePath() const;
+  std::string ListenAddrPath() const;
+};
+
+// Reads `path` over `config`: unknown keys, wrong types and out-of-range values are errors naming
+// the file, line and key.
+Status ReadMasterConfigFile(const std::string& path, MasterConfig* config);
+
+// The checks no single key can make (called after flags are applied).
+Status CheckMasterConfig(const MasterConfig& config);
+
+}  // namespace radfarm::master

@@ -1,0 +1,357 @@
+// The master's answers to control-socket requests (docs/CONTROL.md).
+#include <chrono>
+
+#include "codec/job_bundle.h"
+#include "codec/job_solution.h"
+#include "core/solve_control.h"
+#include "daemon/master.h"
+#include "loop/log.h"
+#include "mesh/patch_mesh.h"
+#include "protocol/scene_transfer.h"
+
+namespace radfarm::master {
+namespace {
+
+using loop::LogLevel;
+using loop::LogLine;
+using nlohmann::json;
+
+json Nullable(const std::optional<int64_t>& v) { return v ? json(*v) : json(nullptr); }
+
+// A store result that may be "no such job".
+struct Lookup {
+  std::optional<JobSummary> summary;
+  std::string invalid;  // set: the request is not allowed in the job's state
+};
+
+ControlResponse NotFound(int64_t id) {
+  return ControlError("not_found", "no job " + std::to_string(id));
+}
+
+}  // namespace
+
+void Master::HandleControl(ControlRequest request, ControlRespond respond) {
+  if (shutting_down_) {
+    respond(ControlError("internal", "the master is shutting down"));
+    return;
+  }
+  switch (request.command) {
+    case ControlCommand::kSubmit:
+      return Submit(std::move(request), std::move(respond));
+    case ControlCommand::kList:
+      return RespondWithJobs(std::nullopt, std::move(respond));
+    case ControlCommand::kStatus:
+      return RespondWithJobs(*request.id, std::move(respond));
+    case ControlCommand::kCancel:
+    case ControlCommand::kPause:
+    case ControlCommand::kResume:
+      return ChangeState(std::move(request), std::move(respond));
+    case ControlCommand::kFetch:
+      return Fetch(std::move(request), std::move(respond));
+    case ControlCommand::kLog: {
+      const std::optional<store::JobId> id = request.id;
+      const int limit = static_cast<int>(request.limit);
+      OnStore(
+          [id, limit](store::JobStore& s) -> Result<std::optional<std::vector<store::Event>>> {
+            if (id) {
+              Result<std::optional<store::JobRecord>> job = s.GetJob(*id);
+              if (!job) return Error{job.error()};
+              if (!*job) return std::optional<std::vector<store::Event>>();
+            }
+            Result<std::vector<store::Event>> events = s.ListEvents(id, limit);
+            if (!events) return Error{events.error()};
+            return std::optional(std::move(*events));
+          },
+          [id, respond](Result<std::optional<std::vector<store::Event>>> events) {
+            if (!events) return respond(ControlError("internal", events.error()));
+            if (!*events) return respond(NotFound(*id));
+            json list = json::array();
+            for (const store::Event& e : **events) {
+              list.push_back({{"time_ms", e.time_ms},
+                              {"level", std::string(store::EventLevelName(e.level))},
+                              {"text", e.text}});
+            }
+            respond({json{{"ok", true}, {"events", list}}, {}});
+          });
+      return;
+    }
+    case ControlCommand::kAgents: {
+      json list = json::array();
+      for (auto& [id, link] : agents_) {
+        if (link->authenticated()) list.push_back(AgentJson(*link));
+      }
+      respond({json{{"ok", true}, {"agents", list}}, {}});
+      return;
+    }
+  }
+}
+
+json Master::JobJson(const JobSummary& s) {
+  const store::JobRecord& r = s.record;
+  json job{{"id", r.id},
+           {"name", r.spec.name},
+           {"state", std::string(store::JobStateName(r.state))},
+           {"priority", r.spec.priority},
+           {"seed", r.spec.seed},
+           {"scene_hash", r.spec.scene_hash},
+           {"patches", s.settings.patches},
+           {"submitted_at_ms", r.submitted_at_ms},
+           {"started_at_ms", Nullable(r.started_at_ms)},
+           {"finished_at_ms", Nullable(r.finished_at_ms)},
+           {"error", r.error ? json(*r.error) : json(nullptr)},
+           {"round", s.rounds},
+           {"rays", s.rays},
+           {"unshot_fraction", s.unshot_fraction},
+           {"tolerance", s.settings.tolerance},
+           {"rays_per_second", 0.0},
+           {"agents", 0},
+           {"eta_seconds", nullptr},
+           {"stop_reason", nullptr}};
+  double unshot = s.unshot_fraction;
+  if (JobRunner* runner = FindRunner(static_cast<uint64_t>(r.id))) {
+    // The live view is ahead of the store by the rounds not yet committed.
+    const JobTotals& t = runner->totals();
+    job["round"] = t.round;
+    job["rays"] = t.rays;
+    job["unshot_fraction"] = unshot = t.unshot_fraction;
+    job["rays_per_second"] = runner->RaysPerSecond();
+    uint32_t agents = 0;
+    for (const auto& a : runner->scheduler().counters(Now()).agents) agents += a.leases_held > 0;
+    job["agents"] = agents;
+    if (auto eta = runner->EtaSeconds()) job["eta_seconds"] = *eta;
+  }
+  if (r.state == store::JobState::kDone) {
+    job["stop_reason"] = StopReasonOf(s);
+    job["eta_seconds"] = 0.0;
+  }
+  job["progress"] = r.state == store::JobState::kDone
+                        ? 1.0
+                        : ConvergenceFraction(unshot, s.settings.tolerance);
+  return job;
+}
+
+json Master::AgentJson(const AgentLink& link) const {
+  uint32_t leases = 0;
+  double rays_per_second = 0;
+  uint64_t results = 0;
+  const auto now = Now();
+  for (const auto& [job, runner] : runners_) {
+    for (const auto& a : runner->scheduler().counters(now).agents) {
+      if (a.agent != link.id()) continue;
+      leases += a.leases_held;
+      rays_per_second = std::max(rays_per_second, a.rays_per_second);
+      results += a.results_accepted;
+    }
+  }
+  return json{{"id", link.id()},
+              {"name", link.name()},
+              {"address", link.address()},
+              {"threads", link.threads()},
+              {"rays_per_second", rays_per_second},
+              {"load", link.last_heartbeat().load},
+              {"leases", leases},
+              {"connected_ms", link.connected_unix_ms()},
+              {"last_heartbeat_ms_ago", loop_.NowMs() - link.last_heard_ms()},
+              {"results", results},
+              {"stale", link.stale}};
+}
+
+void Master::RespondWithJobs(std::optional<store::JobId> id, ControlRespond respond) {
+  OnStore(
+      [id](store::JobStore& s) -> Result<std::vector<JobSummary>> {
+        std::vector<store::JobRecord> records;
+        if (id) {
+          Result<std::optional<store::JobRecord>> job = s.GetJob(*id);
+          if (!job) return Error{job.error()};
+          if (*job) records.push_back(std::move(**job));
+        } else {
+          Result<std::vector<store::JobRecord>> all = s.ListJobs();
+          if (!all) return Error{all.error()};
+          records = std::move(*all);
+        }
+        std::vector<JobSummary> summaries;
+        for (const store::JobRecord& record : records) {
+          Result<JobSummary> summary = ReadJobSummary(s, record);
+          if (!summary) return Error{summary.error()};
+          summaries.push_back(std::move(*summary));
+        }
+        return summaries;
+      },
+      [this, id, respond](Result<std::vector<JobSummary>> summaries) {
+        if (!summaries) return respond(ControlError("internal", summaries.error()));
+        if (id) {
+          if (summaries->empty()) return respond(NotFound(*id));
+          return respond({json{{"ok", true}, {"job", JobJson(summaries->front())}}, {}});
+        }
+        json jobs = json::array();
+        for (const JobSummary& s : *summaries) jobs.push_back(JobJson(s));
+        respond({json{{"ok", true}, {"jobs", jobs}}, {}});
+      });
+}
+
+void Master::Submit(ControlRequest request, ControlRespond respond) {
+  // Decode and mesh on the compute thread: a bundle the agents could not use is refused now.
+  auto blob = std::make_shared<std::vector<uint8_t>>(std::move(request.attachment));
+  Status s = compute_queue_->Submit(
+      [blob]() -> Result<std::pair<SubmittedSettings, uint64_t>> {
+        Result<codec::JobBundle> bundle = codec::DecodeJobBundle(*blob);
+        if (!bundle) return Error{bundle.error()};
+        Result<PatchMesh> mesh = PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
+        if (!mesh) return Error{mesh.error()};
+        const SolverSettings& solver = bundle->job.solver;
+        SubmittedSettings settings{solver.tolerance, solver.max_rays, solver.max_seconds,
+                                   std::string(SamplerName(solver.sampler)),
+                                   mesh->patch_scene().patches.size(), bundle->job.scene_path};
+        return std::pair(settings, solver.seed);
+      },
+      [this, blob, request = std::move(request),
+       respond](Result<std::pair<SubmittedSettings, uint64_t>> checked) {
+        if (!checked) return respond(ControlError("bad_request", checked.error()));
+        store::JobSpec spec;
+        spec.name = request.name;
+        if (spec.name.empty()) {
+          const std::string& scene = checked->first.scene;
+          const size_t slash = scene.find_last_of('/');
+          spec.name = scene.substr(slash == std::string::npos ? 0 : slash + 1);
+        }
+        spec.scene_hash = protocol::HashToHex(protocol::HashScene(*blob));
+        spec.settings = checked->first.ToJson();
+        spec.seed = checked->second;
+        spec.priority = request.priority;
+        OnStore(
+            [blob, spec](store::JobStore& s) -> Result<JobSummary> {
+              if (Status st = s.PutScene(spec.scene_hash, *blob); !st) return Error{st.error()};
+              Result<store::JobId> id = s.SubmitJob(spec);
+              if (!id) return Error{id.error()};
+              (void)s.AppendEvent(*id, store::EventLevel::kInfo, "submitted");
+              Result<std::optional<store::JobRecord>> job = s.GetJob(*id);
+              if (!job || !*job) return Error{"the new job cannot be read back"};
+              return ReadJobSummary(s, **job);
+            },
+            [this, respond](Result<JobSummary> summary) {
+              if (!summary) return respond(ControlError("internal", summary.error()));
+              LogLine(LogLevel::kInfo, "job " + std::to_string(summary->record.id))
+                  << "submitted: " << summary->record.spec.name << ", "
+                  << summary->settings.patches << " patches, priority "
+                  << summary->record.spec.priority;
+              respond({json{{"ok", true}, {"job", JobJson(*summary)}}, {}});
+              StartQueuedJobs();
+            });
+      });
+  if (!s) respond(ControlError("internal", s.error()));
+}
+
+void Master::ChangeState(ControlRequest request, ControlRespond respond) {
+  const store::JobId id = *request.id;
+  const ControlCommand command = request.command;
+  OnStore(
+      [id, command](store::JobStore& s) -> Result<Lookup> {
+        Result<std::optional<store::JobRecord>> job = s.GetJob(id);
+        if (!job) return Error{job.error()};
+        Lookup lookup;
+        if (!*job) return lookup;
+        const store::JobState from = (*job)->state;
+        const store::JobState to = command == ControlCommand::kCancel  ? store::JobState::kCancelled
+                                   : command == ControlCommand::kPause ? store::JobState::kPaused
+                                                                       : store::JobState::kQueued;
+        const bool allowed = command == ControlCommand::kResume
+                                 ? from == store::JobState::kPaused
+                                 : store::IsAllowedTransition(from, to);
+        if (!allowed) {
+          lookup.invalid = "job " + std::to_string(id) + " is " +
+                           std::string(store::JobStateName(from)) + ": it cannot be " +
+                           (command == ControlCommand::kCancel  ? "cancelled"
+                            : command == ControlCommand::kPause ? "paused"
+                                                                : "resumed");
+          return lookup;
+        }
+        std::optional<std::string> reason;
+        if (to == store::JobState::kCancelled) reason = "cancelled by the operator";
+        if (Status st = s.SetJobState(id, to, reason); !st) return Error{st.error()};
+        (void)s.AppendEvent(id, store::EventLevel::kInfo,
+                            to == store::JobState::kCancelled ? "cancelled"
+                            : to == store::JobState::kPaused  ? "paused"
+                                                              : "resumed");
+        Result<std::optional<store::JobRecord>> after = s.GetJob(id);
+        if (!after || !*after) return Error{"job " + std::to_string(id) + " cannot be read back"};
+        Result<JobSummary> summary = ReadJobSummary(s, **after);
+        if (!summary) return Error{summary.error()};
+        lookup.summary = std::move(*summary);
+        return lookup;
+      },
+      [this, id, command, respond](Result<Lookup> lookup) {
+        if (!lookup) return respond(ControlError("internal", lookup.error()));
+        if (!lookup->invalid.empty()) return respond(ControlError("invalid_state", lookup->invalid));
+        if (!lookup->summary) return respond(NotFound(id));
+        if (command == ControlCommand::kResume) {
+          StartQueuedJobs();
+        } else {
+          if (starting_.count(id)) starting_[id] = true;
+          DropRunner(id);
+          LogLine(LogLevel::kInfo, "job " + std::to_string(id))
+              << (command == ControlCommand::kCancel ? "cancelled" : "paused");
+          StartQueuedJobs();
+        }
+        respond({json{{"ok", true}, {"job", JobJson(*lookup->summary)}}, {}});
+      });
+}
+
+void Master::Fetch(ControlRequest request, ControlRespond respond) {
+  const store::JobId id = *request.id;
+  OnStore(
+      [id](store::JobStore& s) -> Result<std::pair<std::optional<JobSummary>, std::vector<uint8_t>>> {
+        using Answer = std::pair<std::optional<JobSummary>, std::vector<uint8_t>>;
+        Result<std::optional<store::JobRecord>> job = s.GetJob(id);
+        if (!job) return Error{job.error()};
+        if (!*job) return Answer{};
+        Result<JobSummary> summary = ReadJobSummary(s, **job);
+        if (!summary) return Error{summary.error()};
+        Result<std::optional<store::Checkpoint>> checkpoint = s.LoadLatestCheckpoint(id);
+        if (!checkpoint) return Error{checkpoint.error()};
+        if (!*checkpoint) return Answer{std::move(*summary), {}};
+        Result<std::optional<std::vector<uint8_t>>> bundle = s.GetScene((*job)->spec.scene_hash);
+        if (!bundle || !*bundle) return Error{"job " + std::to_string(id) + ": scene missing"};
+        Result<std::vector<store::RoundRecord>> rounds = s.ListRounds(id);
+        if (!rounds) return Error{rounds.error()};
+        const store::Checkpoint& c = **checkpoint;
+        codec::JobSolution solution;
+        solution.bundle = std::move(**bundle);
+        solution.radiosity = c.radiosity;
+        solution.unshot = c.unshot;
+        SolveStats& st = solution.stats;
+        for (const store::RoundRecord& r : *rounds) {
+          if (r.round > c.round) break;
+          st.rays += r.rays;
+          st.seconds += r.duration_seconds;
+          st.escaped_rays += r.escaped_rays;
+          st.backface_hits += r.back_rays;
+          st.unshot_fraction = r.unshot_fraction;
+        }
+        st.rounds = c.rounds_done;
+        st.rays_per_second = st.seconds > 0 ? double(st.rays) / st.seconds : 0;
+        st.patches = c.radiosity.size();
+        st.seed = (*job)->spec.seed;
+        st.sampler = summary->settings.sampler;
+        JobSummary at_checkpoint = *summary;
+        at_checkpoint.rays = st.rays;
+        at_checkpoint.unshot_fraction = st.unshot_fraction;
+        st.stop_reason = (*job)->state == store::JobState::kDone ? StopReasonOf(at_checkpoint)
+                                                                 : "checkpoint";
+        st.emitted_power = c.energy.emitted;
+        st.absorbed_power = c.energy.absorbed;
+        st.escaped_power = c.energy.escaped;
+        return Answer{std::move(*summary), codec::EncodeJobSolution(solution)};
+      },
+      [this, id, respond](
+          Result<std::pair<std::optional<JobSummary>, std::vector<uint8_t>>> answer) {
+        if (!answer) return respond(ControlError("internal", answer.error()));
+        if (!answer->first) return respond(NotFound(id));
+        if (answer->second.empty()) {
+          return respond(ControlError("invalid_state", "job " + std::to_string(id) +
+                                                           " has no checkpoint yet"));
+        }
+        respond({json{{"ok", true}, {"job", JobJson(*answer->first)}}, std::move(answer->second)});
+      });
+}
+
+}  // namespace radfarm::master

@@ -1,0 +1,268 @@
+// The master's job lifecycle: starting queued jobs, running their rounds, checkpoints, the end.
+#include <chrono>
+
+#include "daemon/master.h"
+#include "loop/log.h"
+#include "protocol/scene_transfer.h"
+
+namespace radfarm::master {
+namespace {
+
+using loop::LogLevel;
+using loop::LogLine;
+
+// What the store thread reads to start one job.
+struct JobStart {
+  store::JobRecord record;
+  std::vector<uint8_t> bundle;
+  std::optional<store::Checkpoint> checkpoint;
+  std::vector<store::RoundRecord> rounds;
+};
+
+std::string Percent(double fraction) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4f%%", 100 * fraction);
+  return text;
+}
+
+}  // namespace
+
+void Master::LogEvent(std::optional<store::JobId> job, store::EventLevel level,
+                      const std::string& text) {
+  LogLine(level == store::EventLevel::kInfo      ? LogLevel::kInfo
+          : level == store::EventLevel::kWarning ? LogLevel::kWarning
+                                                 : LogLevel::kError,
+          job ? "job " + std::to_string(*job) : std::string("farm"))
+      << text;
+  if (shutting_down_) return;
+  OnStore([job, level, text](store::JobStore& s) { return s.AppendEvent(job, level, text); },
+          [](Status s) {
+            if (!s) LogLine(LogLevel::kError, "store") << s.error();
+          });
+}
+
+JobRunner* Master::FindRunner(uint64_t job_id) {
+  const auto it = runners_.find(static_cast<store::JobId>(job_id));
+  return it == runners_.end() ? nullptr : it->second.get();
+}
+
+void Master::StartQueuedJobs() {
+  if (shutting_down_) return;
+  if (start_pending_) {
+    start_again_ = true;
+    return;
+  }
+  const size_t busy = runners_.size() + starting_.size();
+  if (busy >= config_.max_running_jobs) return;
+  start_pending_ = true;
+  const int slots = static_cast<int>(config_.max_running_jobs - busy);
+  // One transaction-sized step on the store thread: pick the jobs, mark them running, read what
+  // they need. The loop thread then prepares them on the compute thread.
+  OnStore(
+      [slots](store::JobStore& s) -> Result<std::vector<JobStart>> {
+        Result<std::vector<store::JobRecord>> next = s.NextRunnableJobs(slots);
+        if (!next) return Error{next.error()};
+        std::vector<JobStart> starts;
+        for (store::JobRecord& record : *next) {
+          if (Status st = s.SetJobState(record.id, store::JobState::kRunning); !st) {
+            return Error{st.error()};
+          }
+          JobStart start;
+          Result<std::optional<std::vector<uint8_t>>> bundle = s.GetScene(record.spec.scene_hash);
+          if (!bundle) return Error{bundle.error()};
+          if (!*bundle) return Error{"job " + std::to_string(record.id) + ": its scene is missing"};
+          start.bundle = std::move(**bundle);
+          Result<std::optional<store::Checkpoint>> checkpoint = s.LoadLatestCheckpoint(record.id);
+          if (!checkpoint) return Error{checkpoint.error()};
+          start.checkpoint = std::move(*checkpoint);
+          Result<std::vector<store::RoundRecord>> rounds = s.ListRounds(record.id);
+          if (!rounds) return Error{rounds.error()};
+          start.rounds = std::move(*rounds);
+          Result<std::optional<store::JobRecord>> fresh = s.GetJob(record.id);
+          if (!fresh || !*fresh) return Error{"job " + std::to_string(record.id) + " vanished"};
+          start.record = std::move(**fresh);
+          starts.push_back(std::move(start));
+        }
+        return starts;
+      },
+      [this](Result<std::vector<JobStart>> starts) {
+        start_pending_ = false;
+        if (shutting_down_) return;
+        if (!starts) {
+          LogLine(LogLevel::kError, "store") << "cannot start queued jobs: " << starts.error();
+          return;
+        }
+        for (JobStart& start : *starts) {
+          const store::JobId id = start.record.id;
+          starting_[id] = false;
+          LogEvent(id, store::EventLevel::kInfo,
+                   start.checkpoint ? "started, resuming after round " +
+                                          std::to_string(start.checkpoint->round)
+                                    : "started");
+          auto options = scheduler_options_;
+          auto shared = std::make_shared<JobStart>(std::move(start));
+          Status s = compute_queue_->Submit(
+              [shared, options] {
+                return JobRunner::Prepare(shared->record, shared->bundle, shared->checkpoint,
+                                          shared->rounds, options);
+              },
+              [this, id](Result<std::shared_ptr<JobRunner>> runner) {
+                OnJobPrepared(id, std::move(runner));
+              });
+          if (!s) LogLine(LogLevel::kError, "master") << s.error();
+        }
+        if (start_again_) {
+          start_again_ = false;
+          StartQueuedJobs();
+        }
+      });
+}
+
+void Master::OnJobPrepared(store::JobId id, Result<std::shared_ptr<JobRunner>> runner) {
+  if (shutting_down_) return;
+  const bool cancelled = starting_[id];
+  starting_.erase(id);
+  if (cancelled) {  // cancelled or paused while it was being prepared: the store knows already
+    StartQueuedJobs();
+    return;
+  }
+  if (!runner) {
+    FailJob(id, runner.error());
+    return;
+  }
+  std::shared_ptr<JobRunner> r = std::move(*runner);
+  runners_[id] = r;
+  if (r->phase() == JobRunner::Phase::kFinished) {
+    FinishJob(r, store::JobState::kDone, std::nullopt);
+    return;
+  }
+  LogLine(LogLevel::kInfo, "job " + std::to_string(id))
+      << r->patch_count() << " patches, scene " << protocol::HashToHex(r->wire_info().scene_hash)
+      << " (" << r->scene_blob()->size() << " bytes)";
+  for (auto& [agent_id, link] : agents_) {
+    if (link->authenticated() && !link->stale) r->scheduler().AddAgent(agent_id);
+  }
+  BeginRound(*r);
+}
+
+void Master::BeginRound(JobRunner& runner) {
+  if (Status s = runner.StartPlannedRound(Now()); !s) {
+    FailJob(runner.id(), s.error());
+    return;
+  }
+  DispatchAll();
+}
+
+void Master::OnRoundComplete(const std::shared_ptr<JobRunner>& runner) {
+  Result<scheduler::CompletedRound> round = runner->TakeRound();
+  if (!round) {
+    FailJob(runner->id(), round.error());
+    return;
+  }
+  const double seconds =
+      std::chrono::duration<double>(Now() - runner->round_started()).count();
+  const uint32_t batch_rays = runner->scheduler().SuggestedBatchRays();
+  // Checkpoint every round, or at most every checkpoint_seconds.
+  const uint64_t now_ms = loop_.NowMs();
+  bool due = config_.checkpoint_seconds <= 0;
+  auto& last = last_checkpoint_ms_[runner->id()];
+  if (!due && double(now_ms - last) >= 1000 * config_.checkpoint_seconds) due = true;
+  if (due) last = now_ms;
+  auto shared_round = std::make_shared<scheduler::CompletedRound>(std::move(*round));
+  Status s = compute_queue_->Submit(
+      [runner, shared_round, seconds, due, batch_rays] {
+        return runner->Reduce(*shared_round, seconds, due, batch_rays);
+      },
+      [this, runner](Result<RoundOutcome> outcome) {
+        if (shutting_down_) return;
+        if (!outcome) {
+          FailJob(runner->id(), outcome.error());
+          return;
+        }
+        OnRoundReduced(runner, std::move(*outcome));
+      });
+  if (!s) FailJob(runner->id(), s.error());
+}
+
+void Master::OnRoundReduced(const std::shared_ptr<JobRunner>& runner, RoundOutcome outcome) {
+  if (FindRunner(runner->id()) != runner.get()) return;  // cancelled or paused meanwhile
+  const store::JobId id = runner->id();
+  const uint32_t keep = config_.checkpoint_keep;
+  // The store thread commits the round while agents start on the next one.
+  auto record = outcome.record;
+  if (outcome.checkpoint_due) {
+    auto checkpoint = std::make_shared<store::Checkpoint>(std::move(outcome.checkpoint));
+    OnStore(
+        [record, checkpoint, keep](store::JobStore& s) -> Status {
+          if (Status st = s.SaveCheckpoint(record, *checkpoint); !st) return st;
+          return s.PruneCheckpoints(record.job, static_cast<int>(keep));
+        },
+        [this, id](Status s) {
+          if (!s) FailJob(id, "cannot save the checkpoint: " + s.error());
+        });
+  } else {
+    OnStore([record](store::JobStore& s) { return s.RecordRound(record); },
+            [this, id](Status s) {
+              if (!s) FailJob(id, "cannot record the round: " + s.error());
+            });
+  }
+  LogLine(LogLevel::kInfo, "job " + std::to_string(id))
+      << "round " << record.round << ": " << record.rays << " rays, unshot "
+      << Percent(record.unshot_fraction) << ", " << record.duration_seconds << " s";
+  if (runner->Resume(outcome)) {
+    BeginRound(*runner);
+  } else {
+    FinishJob(runner, store::JobState::kDone, std::nullopt);
+  }
+}
+
+void Master::FinishJob(const std::shared_ptr<JobRunner>& runner, store::JobState state,
+                       std::optional<std::string> error) {
+  const store::JobId id = runner->id();
+  const std::string reason = runner->stop_reason().value_or("stopped");
+  DropRunner(id);
+  OnStore(
+      [id, state, error](store::JobStore& s) { return s.SetJobState(id, state, error); },
+      [this, id, reason](Status s) {
+        if (!s) {
+          LogLine(LogLevel::kError, "store") << "job " << id << ": " << s.error();
+          return;
+        }
+        LogEvent(id, store::EventLevel::kInfo, "done: " + reason);
+        StartQueuedJobs();
+      });
+}
+
+void Master::DropRunner(store::JobId id) {
+  const auto it = runners_.find(id);
+  if (it == runners_.end()) return;
+  runners_.erase(it);
+  last_checkpoint_ms_.erase(id);
+  // Agents drop the job's queued batches; results still in flight are ignored on arrival.
+  for (auto& [agent_id, link] : agents_) {
+    if (link->authenticated() && !link->closing()) {
+      (void)link->Send(protocol::CancelMsg{static_cast<uint64_t>(id)});
+    }
+  }
+  DispatchAll();
+}
+
+void Master::FailJob(store::JobId id, const std::string& error) {
+  if (shutting_down_) return;
+  DropRunner(id);
+  starting_.erase(id);
+  OnStore(
+      [id, error](store::JobStore& s) -> Status {
+        Result<std::optional<store::JobRecord>> job = s.GetJob(id);
+        if (!job) return Error{job.error()};
+        if (!*job || store::IsTerminal((*job)->state)) return Ok{};
+        return s.SetJobState(id, store::JobState::kFailed, error);
+      },
+      [this, id, error](Status s) {
+        if (!s) LogLine(LogLevel::kError, "store") << "job " << id << ": " << s.error();
+        LogEvent(id, store::EventLevel::kError, "failed: " + error);
+        StartQueuedJobs();
+      });
+}
+
+}  // namespace radfarm::master

@@ -1,0 +1,32 @@
+#include "input/toml_file.h"
+
+#include "input/diagnostic.h"
+#include "input/text_file.h"
+
+namespace radfarm {
+
+Result<toml::table> ParseToml(const std::string& path, const std::string& text) {
+#if TOML_EXCEPTIONS
+  try {
+    return toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    const std::string what(e.description());
+    return ErrorAt(path, e.source().begin.line, what.substr(0, what.find('\n')));
+  }
+#else
+  toml::parse_result parsed = toml::parse(text, path);
+  if (!parsed) {
+    const std::string what(parsed.error().description());
+    return ErrorAt(path, parsed.error().source().begin.line, what.substr(0, what.find('\n')));
+  }
+  return std::move(parsed).table();
+#endif
+}
+
+Result<toml::table> ReadTomlFile(const std::string& path) {
+  Result<std::string> text = ReadTextFile(path);
+  if (!text) return Error{text.error()};
+  return ParseToml(path, *text);
+}
+
+}  // namespace radfarm

@@ -1,0 +1,150 @@
+// `radfarm fetch` against a fake master serving a job solution made here by the same Solve()
+// `radfarm render` runs: the five files, byte-identical to render's (stats.json aside), and the
+// ways a solution can be unusable.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "cli/exit_codes.h"
+#include "cli/job_loader.h"
+#include "codec/job_bundle.h"
+#include "codec/job_solution.h"
+#include "core/solve.h"
+#include "tests/cli/control_fixtures.h"
+#include "tests/cli/fake_control_server.h"
+
+namespace radfarm {
+namespace {
+
+using nlohmann::json;
+using testing::ControlAnswer;
+using testing::ControlRequest;
+using testing::FakeControlServer;
+using testing::JobObject;
+using testing::OkAnswer;
+using testing::ReadFile;
+using testing::RunCommand;
+using testing::RunFarm;
+using testing::TempDir;
+
+const std::string kCornell = RADFARM_SOURCE_DIR "/scenes/cornell-box.toml";
+// A short solve: few patches, loose tolerance.
+const char* const kTolerance = "0.05";
+const char* const kPatchSize = "60";
+
+class FetchCommandTest : public ::testing::Test {
+ protected:
+  // The job `render kCornell --tolerance kTolerance --patch-size kPatchSize` solves, solved on
+  // first use.
+  static const codec::JobSolution& Solution() {
+    static const codec::JobSolution solution = [] {
+      JobOverrides overrides;
+      overrides.tolerance = std::stod(kTolerance);
+      overrides.patch_size = std::stod(kPatchSize);
+      std::vector<std::string> warnings;
+      Result<LoadedJob> job = LoadJobForSolve(kCornell, overrides, &warnings);
+      if (!job.ok()) throw std::runtime_error(job.error());
+      const SolveResult solved = Solve(job->mesh.patch_scene(), job->job.solver);
+      return codec::JobSolution{codec::EncodeJobBundle({job->job, job->scene}), solved.radiosity,
+                                solved.unshot, solved.stats};
+    }();
+    return solution;
+  }
+
+  static ControlAnswer Serve(const codec::JobSolution& solution) {
+    ControlAnswer answer = OkAnswer({{"job", JobObject(5, "done", 7)}});
+    answer.attachment = codec::EncodeJobSolution(solution);
+    return answer;
+  }
+
+  // Runs fetch of job 5 against a master answering `answer`.
+  static testing::CommandResult Fetch(const ControlAnswer& answer, const std::string& out,
+                                      std::vector<std::string> extra = {}) {
+    FakeControlServer server([answer](const ControlRequest&) { return answer; });
+    std::vector<std::string> args = {"fetch", "5", "--out", out};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return RunFarm(server.socket_path(), args);
+  }
+
+  TempDir dir_;
+};
+
+TEST_F(FetchCommandTest, WritesTheFilesRenderWritesByteForByte) {
+  FakeControlServer server([](const ControlRequest&) { return Serve(Solution()); });
+  const std::string fetched = dir_.File("fetched/nested");
+  const auto r = RunFarm(server.socket_path(), {"fetch", "5", "--out", fetched});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  ASSERT_EQ(server.requests().size(), 1u);
+  EXPECT_EQ(server.requests()[0].body, json({{"command", "fetch"}, {"id", 5}}));
+  EXPECT_EQ(r.out, "job 5 (job-5, done, round 7): wrote " + fetched + "\n");
+
+  const std::string rendered = dir_.File("rendered");
+  const auto render = RunCommand({RADFARM_CLI_PATH, "render", kCornell, "--tolerance", kTolerance,
+                                  "--patch-size", kPatchSize, "--quiet", "--out", rendered});
+  ASSERT_EQ(render.exit_code, kExitOk) << render.err;
+  for (const char* file : {"patches.csv", "image.png", "image.exr", "radiosity.ply"}) {
+    const std::string mine = ReadFile(fetched + "/" + file);
+    EXPECT_FALSE(mine.empty()) << file;
+    EXPECT_TRUE(mine == ReadFile(rendered + "/" + file)) << file << " differs from render's";
+  }
+  const json stats = json::parse(ReadFile(fetched + "/stats.json"), nullptr, false);
+  ASSERT_TRUE(stats.is_object()) << ReadFile(fetched + "/stats.json");
+  EXPECT_EQ(stats["rays"], Solution().stats.rays);
+  EXPECT_EQ(stats["rounds"], Solution().stats.rounds);
+  EXPECT_EQ(stats["stop_reason"], Solution().stats.stop_reason);
+}
+
+TEST_F(FetchCommandTest, JsonPrintsTheJob) {
+  const auto r = Fetch(Serve(Solution()), dir_.File("out"), {"--json"});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_EQ(json::parse(r.out, nullptr, false), JobObject(5, "done", 7));
+  EXPECT_TRUE(std::filesystem::exists(dir_.File("out/patches.csv")));
+}
+
+TEST_F(FetchCommandTest, AnswerWithoutTheSolutionFails) {
+  const auto r = Fetch(OkAnswer({{"job", JobObject(5, "done", 7)}}), dir_.File("out"));
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  EXPECT_NE(r.err.find("missing key 'attachment_bytes'"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_.File("out")));
+}
+
+TEST_F(FetchCommandTest, UndecodableSolutionFails) {
+  ControlAnswer answer = OkAnswer({{"job", JobObject(5, "done", 7)}});
+  answer.attachment = {1, 2, 3, 4, 5, 6, 7, 8};
+  const auto r = Fetch(answer, dir_.File("out"));
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  EXPECT_NE(r.err.find("radfarm: job 5: the job solution from the master: "), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_.File("out")));
+}
+
+TEST_F(FetchCommandTest, SolutionForAnotherMeshFails) {
+  codec::JobSolution short_one = Solution();
+  short_one.radiosity.pop_back();
+  short_one.unshot.pop_back();
+  const auto r = Fetch(Serve(short_one), dir_.File("out"));
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  EXPECT_NE(r.err.find("but the scene meshes into"), std::string::npos) << r.err;
+}
+
+TEST_F(FetchCommandTest, JobWithoutCheckpointIsInvalidState) {
+  const auto r =
+      Fetch(testing::ErrorAnswer("invalid_state", "job 5 has no checkpoint yet"), dir_.File("out"));
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  EXPECT_EQ(r.err, "radfarm: job 5 has no checkpoint yet\n");
+}
+
+TEST_F(FetchCommandTest, UnwritableOutputFails) {
+  std::ofstream(dir_.File("a-file")) << "in the way";
+  const auto r = Fetch(Serve(Solution()), dir_.File("a-file/out"));
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  EXPECT_NE(r.err.find("a-file/out: cannot create the output directory"), std::string::npos)
+      << r.err;
+}
+
+}  // namespace
+}  // namespace radfarm

@@ -1,0 +1,152 @@
+// `radfarm status --watch`: polls until the job ends, one line per change when stdout is not a
+// terminal, and its exit code says how the job ended. WatchPrinter's terminal bar is checked in
+// process.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli/control_objects.h"
+#include "cli/exit_codes.h"
+#include "cli/watch_printer.h"
+#include "tests/cli/control_fixtures.h"
+#include "tests/cli/fake_control_server.h"
+
+namespace radfarm {
+namespace {
+
+using nlohmann::json;
+using testing::ControlRequest;
+using testing::FakeControlServer;
+using testing::JobObject;
+using testing::OkAnswer;
+using testing::RunFarm;
+
+// Answers status requests with `jobs` in turn, repeating the last one.
+FakeControlServer::Handler Script(std::vector<json> jobs) {
+  auto next = std::make_shared<size_t>(0);
+  return [jobs, next](const ControlRequest&) {
+    const json& job = jobs[std::min(*next, jobs.size() - 1)];
+    ++*next;
+    return OkAnswer({{"job", job}});
+  };
+}
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+TEST(StatusWatchTest, FollowsTheJobUntilDoneWithALinePerChange) {
+  FakeControlServer server(
+      Script({JobObject(3, "queued"), JobObject(3, "running", 1), JobObject(3, "running", 1),
+              JobObject(3, "running", 2), JobObject(3, "done", 3)}));
+  const auto r = RunFarm(server.socket_path(), {"status", "3", "--watch"});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  const std::vector<ControlRequest> requests = server.requests();
+  ASSERT_EQ(requests.size(), 5u);  // stopped polling at the terminal state
+  for (const ControlRequest& q : requests)
+    EXPECT_EQ(q.body, json({{"command", "status"}, {"id", 3}}));
+  EXPECT_EQ(server.connections(), 1) << "one connection for the whole watch";
+  const std::vector<std::string> lines = Lines(r.out);
+  ASSERT_EQ(lines.size(), 4u) << r.out;  // the repeated round 1 printed once
+  EXPECT_EQ(lines[0].rfind("job 3 queued: round 0", 0), 0u) << lines[0];
+  EXPECT_EQ(lines[1].rfind("job 3 running: round 1, unshot 50.0000%", 0), 0u) << lines[1];
+  EXPECT_NE(lines[1].find("2.50 Mrays/s, 2 agents, ETA 42s"), std::string::npos) << lines[1];
+  EXPECT_EQ(lines[2].rfind("job 3 running: round 2", 0), 0u) << lines[2];
+  EXPECT_EQ(lines[3].rfind("job 3 done: round 3", 0), 0u) << lines[3];
+  EXPECT_NE(lines[3].find("converged"), std::string::npos) << lines[3];
+  EXPECT_EQ(r.err, "");
+}
+
+TEST(StatusWatchTest, FailedJobEndsTheWatchWithExit1) {
+  FakeControlServer server(Script({JobObject(3, "running", 1), JobObject(3, "failed", 1)}));
+  const auto r = RunFarm(server.socket_path(), {"status", "3", "--watch"});
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  EXPECT_EQ(r.err, "radfarm: job 3 failed: agent lost the scene\n");
+  EXPECT_EQ(Lines(r.out).size(), 2u) << r.out;
+}
+
+TEST(StatusWatchTest, AlreadyCancelledJobEndsAtOnce) {
+  FakeControlServer server(Script({JobObject(3, "cancelled", 4)}));
+  const auto r = RunFarm(server.socket_path(), {"status", "3", "--watch"});
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  EXPECT_EQ(server.requests().size(), 1u);
+  EXPECT_EQ(r.err, "radfarm: job 3 cancelled\n");
+}
+
+TEST(StatusWatchTest, JsonWatchPrintsAJobObjectPerChange) {
+  FakeControlServer server(
+      Script({JobObject(3, "running", 1), JobObject(3, "running", 2), JobObject(3, "done", 2)}));
+  const auto r = RunFarm(server.socket_path(), {"status", "3", "--watch", "--json"});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  const std::vector<std::string> lines = Lines(r.out);
+  ASSERT_EQ(lines.size(), 3u) << r.out;
+  EXPECT_EQ(json::parse(lines[0], nullptr, false), JobObject(3, "running", 1));
+  EXPECT_EQ(json::parse(lines[2], nullptr, false), JobObject(3, "done", 2));
+}
+
+TEST(StatusWatchTest, MasterGoingAwayEndsTheWatchWithAnError) {
+  auto polls = std::make_shared<int>(0);
+  FakeControlServer server([polls](const ControlRequest&) {
+    if (++*polls == 1) return OkAnswer({{"job", JobObject(3, "running", 1)}});
+    return testing::ControlAnswer{nullptr, {}, std::nullopt, true};
+  });
+  const auto r = RunFarm(server.socket_path(), {"status", "3", "--watch"});
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  EXPECT_NE(r.err.find("closed the connection without answering"), std::string::npos) << r.err;
+}
+
+std::string Capture(WatchStyle style, const std::vector<json>& jobs) {
+  char* text = nullptr;
+  size_t size = 0;
+  FILE* f = open_memstream(&text, &size);
+  {
+    WatchPrinter printer(f, style);
+    for (const json& j : jobs) {
+      Result<JobInfo> job = ParseJob(j, "job");
+      EXPECT_TRUE(job.ok()) << job.error();
+      printer.Show(*job, j);
+    }
+    printer.Finish();
+  }
+  fclose(f);
+  std::string s(text, size);
+  free(text);
+  return s;
+}
+
+TEST(WatchPrinterTest, TerminalBarIsRedrawnInPlace) {
+  const std::string out =
+      Capture(WatchStyle::kBar,
+              {JobObject(3, "running", 1), JobObject(3, "running", 1), JobObject(3, "done", 10)});
+  // Three draws on one line, each from its start, clearing leftovers; one newline at the end.
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\r'), 3) << out;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+  EXPECT_EQ(out.back(), '\n');
+  EXPECT_NE(out.find("\r[###...........................] job 3 running: round 1"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("\r[##############################] job 3 done: round 10"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("\x1b[K"), std::string::npos);
+}
+
+TEST(WatchPrinterTest, LinesOnlyOnChangesOfStateRoundOrAgents) {
+  json more_agents = JobObject(3, "running", 1);
+  more_agents["agents"] = 3;
+  json faster = JobObject(3, "running", 1);
+  faster["rays_per_second"] = 9e6;  // not a change worth a line
+  const std::string out = Capture(WatchStyle::kLines, {JobObject(3, "running", 1), faster,
+                                                       more_agents, JobObject(3, "paused", 1)});
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 3) << out;
+  EXPECT_EQ(out.find('\r'), std::string::npos);
+  EXPECT_NE(out.find("3 agents"), std::string::npos) << out;
+  EXPECT_NE(out.find("job 3 paused"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace radfarm

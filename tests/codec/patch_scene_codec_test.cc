@@ -1,0 +1,121 @@
+#include "codec/patch_scene_codec.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "input/input_scene.h"
+#include "input/job.h"
+#include "mesh/patch_mesh.h"
+
+namespace radfarm::codec {
+namespace {
+
+PatchScene CornellPatches() {
+  Result<Job> job = LoadJob(RADFARM_SOURCE_DIR "/scenes/cornell-box.toml");
+  EXPECT_TRUE(job.ok()) << job.error();
+  Result<InputScene> scene = LoadObjScene(job->scene_path);
+  EXPECT_TRUE(scene.ok()) << scene.error();
+  Result<PatchMesh> mesh = PatchMesh::Build(*scene, job->mesh, nullptr);
+  EXPECT_TRUE(mesh.ok()) << mesh.error();
+  return mesh->patch_scene();
+}
+
+bool SameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool SameBits(const Vec3& a, const Vec3& b) {
+  return SameBits(a.x, b.x) && SameBits(a.y, b.y) && SameBits(a.z, b.z);
+}
+bool SameBits(const Rgb& a, const Rgb& b) {
+  return SameBits(a.r, b.r) && SameBits(a.g, b.g) && SameBits(a.b, b.b);
+}
+
+TEST(PatchSceneCodecTest, RoundTripsEveryBitAndIsDeterministic) {
+  const PatchScene scene = CornellPatches();
+  ASSERT_GT(scene.patches.size(), 100u);
+  const std::vector<uint8_t> blob = EncodePatchScene(scene);
+  EXPECT_EQ(blob, EncodePatchScene(scene));
+  Result<PatchScene> back = DecodePatchScene(blob);
+  ASSERT_TRUE(back.ok()) << back.error();
+  ASSERT_EQ(back->patches.size(), scene.patches.size());
+  EXPECT_EQ(back->material_names, scene.material_names);
+  for (size_t i = 0; i < scene.patches.size(); ++i) {
+    const Patch& a = scene.patches[i];
+    const Patch& b = back->patches[i];
+    ASSERT_EQ(a.corner_count, b.corner_count);
+    for (int k = 0; k < a.corner_count; ++k) EXPECT_TRUE(SameBits(a.corners[k], b.corners[k]));
+    EXPECT_TRUE(SameBits(a.normal, b.normal));
+    EXPECT_TRUE(SameBits(a.centre, b.centre));
+    EXPECT_TRUE(SameBits(a.area, b.area));
+    EXPECT_TRUE(SameBits(a.reflectance, b.reflectance));
+    EXPECT_TRUE(SameBits(a.emission, b.emission));
+    EXPECT_EQ(a.surface, b.surface);
+    EXPECT_EQ(a.material, b.material);
+  }
+  EXPECT_EQ(EncodePatchScene(*back), blob);
+}
+
+TEST(PatchSceneCodecTest, DecodesFromAnUnalignedBuffer) {
+  const std::vector<uint8_t> blob = EncodePatchScene(CornellPatches());
+  std::vector<uint8_t> shifted(blob.size() + 1);
+  std::memcpy(shifted.data() + 1, blob.data(), blob.size());
+  EXPECT_TRUE(DecodePatchScene(std::span(shifted).subspan(1)).ok());
+}
+
+TEST(PatchSceneCodecTest, RejectsTruncatedAndCorruptBlobsWithoutCrashing) {
+  const std::vector<uint8_t> blob = EncodePatchScene(CornellPatches());
+  EXPECT_FALSE(DecodePatchScene({}).ok());
+  for (size_t n : {size_t{4}, size_t{8}, blob.size() / 2, blob.size() - 1}) {
+    EXPECT_FALSE(DecodePatchScene(std::span(blob).first(n)).ok()) << n;
+  }
+  std::vector<uint8_t> wrong_id = blob;
+  wrong_id[4] = 'X';
+  Result<PatchScene> r = DecodePatchScene(wrong_id);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().find("identifier"), std::string::npos) << r.error();
+  // Flip every bit of the first 4 KiB once: decoding either fails cleanly or yields a scene
+  // whose every value passed the checks.
+  for (size_t byte = 0; byte < std::min<size_t>(blob.size(), 4096); ++byte) {
+    std::vector<uint8_t> flipped = blob;
+    flipped[byte] ^= uint8_t(1u << (byte % 8));
+    Result<PatchScene> d = DecodePatchScene(flipped);
+    if (d.ok()) {
+      for (const Patch& p : d->patches) ASSERT_TRUE(p.area > 0 && std::isfinite(p.area));
+    }
+  }
+}
+
+TEST(PatchSceneCodecTest, RejectsValuesOutOfRangeNamingThePatch) {
+  const PatchScene good = CornellPatches();
+  const auto expect_error = [](const PatchScene& scene, const char* words) {
+    Result<PatchScene> r = DecodePatchScene(EncodePatchScene(scene));
+    ASSERT_FALSE(r.ok()) << words;
+    EXPECT_NE(r.error().find("patch 3"), std::string::npos) << r.error();
+    EXPECT_NE(r.error().find(words), std::string::npos) << r.error();
+  };
+  PatchScene s = good;
+  s.patches[3].corners[1].y = std::numeric_limits<double>::quiet_NaN();
+  expect_error(s, "non-finite corner");
+  s = good;
+  s.patches[3].reflectance.g = 1.0;
+  expect_error(s, "reflectance");
+  s = good;
+  s.patches[3].emission.b = -1;
+  expect_error(s, "emission");
+  s = good;
+  s.patches[3].area = 0;
+  expect_error(s, "area");
+  s = good;
+  s.patches[3].material = 999;
+  expect_error(s, "material 999");
+  s = good;
+  s.patches[3].normal = {0, 0, 2};
+  expect_error(s, "unit vector");
+  s = good;
+  s.patches.clear();
+  EXPECT_FALSE(DecodePatchScene(EncodePatchScene(s)).ok());
+}
+
+}  // namespace
+}  // namespace radfarm::codec

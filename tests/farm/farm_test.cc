@@ -1,0 +1,178 @@
+// The farm end to end: real radfarmd, radfarm-agent and radfarm processes on loopback. Every job's
+// patches.csv must equal `radfarm render`'s for the same job, byte for byte, whatever the number
+// of agents and whatever faults happened on the way.
+#include <signal.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "tests/farm/farm_fixture.h"
+
+namespace radfarm::testing {
+namespace {
+
+// A shorter job than the default Cornell box: a ray budget of a few rounds.
+const std::vector<std::string> kShortJob = {"--rays", "3000000"};
+
+int64_t Round(const nlohmann::json& job) {
+  return job.is_object() && job["round"].is_number() ? job["round"].get<int64_t>() : -1;
+}
+
+int64_t AgentLeases(const nlohmann::json& agents, const std::string& name) {
+  if (!agents.is_array()) return -1;
+  for (const auto& a : agents) {
+    if (a["name"] == name) return a["leases"].get<int64_t>();
+  }
+  return -1;
+}
+
+int64_t AgentResults(const nlohmann::json& agents, const std::string& name) {
+  if (!agents.is_array()) return -1;
+  for (const auto& a : agents) {
+    if (a["name"] == name) return a["results"].get<int64_t>();
+  }
+  return -1;
+}
+
+TEST_F(FarmTest, ThreeAgentsRenderTheCornellBoxLikeRadfarmRender) {
+  StartMaster();
+  for (const char* name : {"a1", "a2", "a3"}) StartAgent(name);
+  const int64_t id = Submit("cornell-box.toml");
+  ASSERT_TRUE(WaitForState(id, "done"));
+  const nlohmann::json job = Status(id);
+  EXPECT_EQ(job["stop_reason"], "converged");
+  EXPECT_EQ(job["progress"], 1.0);
+  const std::string patches = FetchPatches(id);
+  ASSERT_FALSE(patches.empty());
+  EXPECT_TRUE(patches == ReferencePatches("cornell-box.toml")) << "farm and render differ";
+  // Every agent took part.
+  const std::string log = MasterLog();
+  for (const char* name : {"a1@", "a2@", "a3@"}) {
+    EXPECT_GE(CountLines(log, std::string(name)), 1u) << name;
+  }
+  for (const char* f : {"image.png", "image.exr", "radiosity.ply", "stats.json"}) {
+    EXPECT_TRUE(std::filesystem::exists(Path("fetch-" + std::to_string(id)) + "/" + f)) << f;
+  }
+}
+
+TEST_F(FarmTest, AnAgentKilledMidRoundChangesNothing) {
+  StartMaster();
+  StartAgent("steady");
+  ChildProcess& victim = StartAgent("victim", {"--slowdown", "3"});
+  const int64_t id = Submit("cornell-box.toml", kShortJob);
+  ASSERT_TRUE(WaitUntil([&] { return AgentLeases(Agents(), "victim") > 0; })) << MasterLog();
+  victim.Signal(SIGKILL);
+  ASSERT_TRUE(WaitForState(id, "done"));
+  EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml", kShortJob));
+  EXPECT_GE(CountLines(MasterLog(), "victim@"), 1u);
+}
+
+TEST_F(FarmTest, AFrozenAgentLosesItsLeasesAndItsLateWorkIsNotCounted) {
+  StartMaster();
+  StartAgent("steady");
+  ChildProcess& frozen = StartAgent("frozen", {"--slowdown", "2"});
+  const int64_t id = Submit("cornell-box.toml", kShortJob);
+  ASSERT_TRUE(WaitUntil([&] { return AgentLeases(Agents(), "frozen") > 0; })) << MasterLog();
+  const int64_t round_at_freeze = Round(Status(id));
+  frozen.Signal(SIGSTOP);
+  // Past the 2 s timeout its leases go back to the queue and others finish its round.
+  ASSERT_TRUE(WaitUntil([&] {
+    return CountLines(MasterLog(), "frozen@") > 0 &&
+           CountLines(MasterLog(), "missed its heartbeats") > 0;
+  })) << MasterLog();
+  ASSERT_TRUE(WaitUntil([&] {
+    const nlohmann::json job = Status(id);
+    return Round(job) > round_at_freeze || job["state"] == "done";
+  })) << MasterLog();
+  frozen.Signal(SIGCONT);
+  ASSERT_TRUE(WaitForState(id, "done"));
+  EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml", kShortJob));
+}
+
+TEST_F(FarmTest, AnAgentWithAWrongSecretIsRefusedAndTheJobGoesOn) {
+  StartMaster();
+  const std::string wrong = Path("wrong-secret");
+  {
+    std::ofstream(wrong) << std::string(64, 'a') << "\n";
+  }
+  std::filesystem::permissions(wrong, std::filesystem::perms::owner_read);
+  StartAgent("intruder", {}, wrong);
+  StartAgent("good");
+  const int64_t id = Submit("cornell-box.toml", kShortJob);
+  ASSERT_TRUE(WaitUntil([&] { return CountLines(MasterLog(), ": refused: ") > 0; }))
+      << MasterLog();
+  ASSERT_TRUE(WaitForState(id, "done"));
+  EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml", kShortJob));
+  const nlohmann::json agents = Agents();
+  EXPECT_EQ(AgentLeases(agents, "intruder"), -1) << agents.dump();  // never listed
+  EXPECT_EQ(CountLines(MasterLog(), "intruder@"), 0u);
+}
+
+TEST_F(FarmTest, AnAgentJoiningMidJobGetsWork) {
+  StartMaster();
+  StartAgent("first", {"--slowdown", "3"});
+  const int64_t id = Submit("cornell-box.toml", kShortJob);
+  ASSERT_TRUE(WaitUntil([&] { return Round(Status(id)) >= 1; })) << MasterLog();
+  StartAgent("latecomer");
+  ASSERT_TRUE(WaitUntil([&] {
+    return AgentResults(Agents(), "latecomer") > 0 || Status(id)["state"] == "done";
+  })) << MasterLog();
+  EXPECT_GT(CountLines(MasterLog(), "latecomer@"), 0u);
+  ASSERT_TRUE(WaitForState(id, "done"));
+  EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml", kShortJob));
+}
+
+TEST_F(FarmTest, FiftyAgentsConnectAtOnce) {
+  StartMaster();
+  for (int i = 0; i < 50; ++i) StartAgent("swarm-" + std::to_string(i));
+  ASSERT_TRUE(WaitUntil([&] {
+    const nlohmann::json agents = Agents();
+    return agents.is_array() && agents.size() == 50;
+  })) << MasterLog();
+  const int64_t id = Submit("cornell-box.toml", kShortJob);
+  ASSERT_TRUE(WaitForState(id, "done"));
+  EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml", kShortJob));
+}
+
+// The job store's promise: SIGKILL the master at any instant, restart it, and every job ends as
+// if nothing happened; nothing submitted is lost.
+TEST_F(FarmTest, TheMasterKilledAtRandomPointsResumesEveryJobIdentically) {
+  const unsigned seed = std::random_device{}();
+  std::printf("kill points seed %u\n", seed);
+  std::mt19937 random(seed);
+  StartMaster();
+  const std::string listen = "127.0.0.1:" + master_address_.substr(master_address_.rfind(':') + 1);
+  StartAgent("k1");
+  StartAgent("k2");
+  const int64_t long_job = Submit("cornell-box.toml");
+  std::vector<int64_t> short_jobs;
+  constexpr int kKills = 20;
+  for (int kill = 0; kill < kKills; ++kill) {
+    if (kill % 5 == 2) short_jobs.push_back(Submit("cornell-box.toml", kShortJob));
+    // A random instant of the job's life: some time after the master is back and running it.
+    std::uniform_int_distribution<int> delay_ms(0, 1200);
+    const int delay = delay_ms(random);
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(delay);
+    WaitUntil([&] { return std::chrono::steady_clock::now() >= until; },
+              std::chrono::milliseconds(delay + 1000));
+    master_->Signal(SIGKILL);
+    ASSERT_TRUE(master_->WaitExit(std::chrono::seconds(30)).has_value());
+    StartMaster({"--listen", listen});
+    ASSERT_TRUE(master_->running());
+  }
+  ASSERT_TRUE(WaitForState(long_job, "done"));
+  EXPECT_TRUE(FetchPatches(long_job) == ReferencePatches("cornell-box.toml"))
+      << "seed " << seed;
+  for (int64_t id : short_jobs) {
+    ASSERT_TRUE(WaitForState(id, "done"));
+    EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml", kShortJob))
+        << "job " << id << " seed " << seed;
+  }
+  const CommandResult list = Cli({"list", "--json"});
+  ASSERT_EQ(list.exit_code, 0);
+  EXPECT_EQ(nlohmann::json::parse(list.out).size(), 1 + short_jobs.size());
+}
+
+}  // namespace
+}  // namespace radfarm::testing
