@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -11,6 +12,13 @@
 
 #include "idle/idle_config.h"
 #include "shell.h"
+
+#ifdef RADFARM_HAVE_MASTER_CONFIG
+#include "daemon/master_config.h"
+#endif
+#ifdef RADFARM_HAVE_AGENT_CONFIG
+#include "agent/config_file.h"
+#endif
 
 namespace radfarm::packaging {
 namespace {
@@ -37,10 +45,20 @@ std::set<std::string> Keys(const toml::table& table) {
   return keys;
 }
 
+std::string ReadExample(const std::string& name) {
+  return testing::ReadFile(fs::path(RADFARM_SOURCE_DIR) / "packaging/etc" / name);
+}
+
+// `text` written to `dir`/`name`; returns the path.
+std::string WriteFile(const fs::path& dir, const std::string& name, const std::string& text) {
+  const fs::path path = dir / name;
+  std::ofstream(path, std::ios::binary) << text;
+  return path.string();
+}
+
 toml::table ParseExample(const std::string& name) {
-  const fs::path path = fs::path(RADFARM_SOURCE_DIR) / "packaging/etc" / name;
-  const std::string text = testing::ReadFile(path);
-  EXPECT_FALSE(text.empty()) << path;
+  const std::string text = ReadExample(name);
+  EXPECT_FALSE(text.empty()) << name;
   // Shipped as is, nothing is set.
   EXPECT_TRUE(toml::parse(text, std::string_view(name)).empty()) << name;
   try {
@@ -82,6 +100,52 @@ TEST(ExampleConfigTest, AgentConfigNamesEveryKeyAndItsIdleTableParses) {
   EXPECT_EQ(parsed->poll_seconds, defaults.poll_seconds);
   EXPECT_FALSE(parsed->schedule.empty());
 }
+
+#ifdef RADFARM_HAVE_MASTER_CONFIG
+// The example shows radfarmd's defaults: uncommented, it changes nothing.
+TEST(ExampleConfigTest, RadfarmdReadsItsExampleAndItHoldsTheDefaults) {
+  testing::TempDir dir;
+  const std::string path =
+      WriteFile(dir.path(), "radfarmd.conf", Uncomment(ReadExample("radfarmd.conf")));
+  master::MasterConfig config;
+  const Status read = master::ReadMasterConfigFile(path, &config);
+  ASSERT_TRUE(read.ok()) << read.error();
+  EXPECT_TRUE(master::CheckMasterConfig(config).ok());
+  const master::MasterConfig defaults;
+  EXPECT_EQ(config.listen, defaults.listen);
+  EXPECT_EQ(config.state_dir, defaults.state_dir);
+  EXPECT_EQ(config.secret_file, defaults.secret_file);
+  EXPECT_EQ(config.control, defaults.control);
+  EXPECT_EQ(config.heartbeat_ms, defaults.heartbeat_ms);
+  EXPECT_EQ(config.agent_timeout_ms, defaults.agent_timeout_ms);
+  EXPECT_EQ(config.handshake_timeout_ms, defaults.handshake_timeout_ms);
+  EXPECT_EQ(config.log_level, defaults.log_level);
+  EXPECT_EQ(config.checkpoint_keep, defaults.checkpoint_keep);
+  EXPECT_EQ(config.checkpoint_seconds, defaults.checkpoint_seconds);
+  EXPECT_EQ(config.max_running_jobs, defaults.max_running_jobs);
+  EXPECT_EQ(config.lease_seconds, defaults.lease_seconds);
+  EXPECT_EQ(config.max_agents, defaults.max_agents);
+}
+#endif
+
+#ifdef RADFARM_HAVE_AGENT_CONFIG
+// The agent's reader takes every top-level key of the example. (The [idle] table is read by
+// idle::ParseIdleConfig, tested above; it is cut here.)
+TEST(ExampleConfigTest, RadfarmAgentReadsItsExample) {
+  std::string text = Uncomment(ReadExample("agent.conf"));
+  text = text.substr(0, text.find("\n[idle]"));
+  testing::TempDir dir;
+  const std::string path = WriteFile(dir.path(), "agent.conf", text);
+  Result<agent::AgentOptions> options = agent::LoadConfigFile(path);
+  ASSERT_TRUE(options.ok()) << options.error();
+  ASSERT_TRUE(options->master.has_value());
+  EXPECT_EQ(options->secret_file, "/etc/radfarm/secret");
+  EXPECT_EQ(options->state_dir, "/var/lib/radfarm-agent");
+  EXPECT_EQ(options->log_level, loop::LogLevel::kInfo);
+  EXPECT_EQ(options->slowdown, 1.0);
+  EXPECT_EQ(options->exit_when_idle_seconds, 300.0);
+}
+#endif
 
 }  // namespace
 }  // namespace radfarm::packaging
