@@ -158,10 +158,14 @@ TEST_F(FarmTest, TheMasterKilledAtRandomPointsResumesEveryJobIdentically) {
               std::chrono::milliseconds(delay + 1000));
     master_->Signal(SIGKILL);
     ASSERT_TRUE(master_->WaitExit(std::chrono::seconds(30)).has_value());
+    std::printf("kill %d after %d ms\n", kill + 1, delay);
     StartMaster({"--listen", listen});
     ASSERT_TRUE(master_->running());
   }
   ASSERT_TRUE(WaitForState(long_job, "done"));
+  // The kills landed at different stages: some after checkpoints (the job resumed from one).
+  EXPECT_GE(CountLines(MasterLog(), "resuming after round"), 1u) << MasterLog();
+  EXPECT_EQ(CountLines(MasterLog(), "listening for agents"), size_t(kKills + 1));
   EXPECT_TRUE(FetchPatches(long_job) == ReferencePatches("cornell-box.toml"))
       << "seed " << seed;
   for (int64_t id : short_jobs) {
