@@ -130,5 +130,32 @@ TEST(IdleMonitorTest, OtherProcessesLoadStopsWork) {
   ExpectClosesClean(loop);
 }
 
+// The real sources (logind or "unknown", /proc/stat, the local clock) behind the monitor: it
+// answers, and the answer is consistent with what it says.
+TEST(IdleMonitorTest, SystemSourcesGiveAnAnswer) {
+  IdleConfig config;
+  config.user_idle_minutes = 0;
+  config.max_other_cpu = 1.0;  // this machine's load is whatever other tests make it
+  Result<IdlePolicy> policy = IdlePolicy::Create(config);
+  ASSERT_TRUE(policy.ok()) << policy.error();
+  std::vector<IdleDecision> changes;
+  EventLoop loop;
+  {
+    IdleMonitor monitor(
+        loop, std::move(policy).value(), SystemIdleSources(),
+        [&](const IdleDecision& decision) { changes.push_back(decision); },
+        IdleMonitorTiming{milliseconds(5), milliseconds(20)});
+    monitor.Start();
+    ASSERT_TRUE(RunUntil(loop, [&] { return !changes.empty(); }));
+    const IdleDecision& first = changes[0];
+    if (first.may_work) {
+      EXPECT_EQ(first.reason.rfind("idle: ", 0), 0u) << first.reason;
+    } else {
+      EXPECT_EQ(first.reason, "user active");  // logind says someone is at this machine
+    }
+  }
+  ExpectClosesClean(loop);
+}
+
 }  // namespace
 }  // namespace radfarm::idle
