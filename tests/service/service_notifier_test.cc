@@ -5,10 +5,12 @@
 
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "fake_notify_socket.h"
 #include "loop/log.h"
+#include "loop/timer.h"
 #include "loop_test_util.h"
 
 namespace radfarm::service {
@@ -73,6 +75,32 @@ TEST(ServiceNotifierTest, WatchdogIsFedFromTheLoopAtHalfTheInterval) {
   }
   EXPECT_EQ(systemd.Count("READY=1"), 1u);
   EXPECT_EQ(systemd.Lines().back(), "STOPPING=1");
+  ExpectClosesClean(loop);
+}
+
+// A hung loop must starve the watchdog: that is how systemd learns of the hang. The hang is
+// simulated by a callback that holds the loop thread for 20 feed intervals; the sleep is the thing
+// under test, not a way to synchronise.
+TEST(ServiceNotifierTest, AHungLoopStopsFeedingTheWatchdogAndARecoveredOneResumes) {
+  FakeNotifySocket systemd(microseconds(2000));  // fed every millisecond
+  ASSERT_TRUE(systemd.ok());
+  EventLoop loop;
+  {
+    ServiceNotifier notifier(loop);
+    ASSERT_TRUE(RunUntil(loop, [&] { return systemd.Count("WATCHDOG=1") >= 1; }));
+    size_t before_hang = 0, after_hang = 0;
+    bool hung = false;
+    loop::Timer hang(loop);
+    hang.Start(std::chrono::milliseconds(0), [&] {
+      before_hang = systemd.Count("WATCHDOG=1");
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      after_hang = systemd.Count("WATCHDOG=1");
+      hung = true;
+    });
+    ASSERT_TRUE(RunUntil(loop, [&] { return hung; }));
+    EXPECT_EQ(after_hang, before_hang);
+    EXPECT_TRUE(RunUntil(loop, [&] { return systemd.Count("WATCHDOG=1") > after_hang; }));
+  }
   ExpectClosesClean(loop);
 }
 
