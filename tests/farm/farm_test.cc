@@ -2,6 +2,9 @@
 // patches.csv must equal `radfarm render`'s for the same job, byte for byte, whatever the number
 // of agents and whatever faults happened on the way.
 #include <signal.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -186,6 +189,60 @@ TEST_F(FarmTest, TheMasterKilledAtRandomPointsResumesEveryJobIdentically) {
   const CommandResult list = Cli({"list", "--json"});
   ASSERT_EQ(list.exit_code, 0);
   EXPECT_EQ(nlohmann::json::parse(list.out).size(), 1 + short_jobs.size());
+}
+
+}  // namespace
+}  // namespace radfarm::testing
+
+namespace radfarm::testing {
+namespace {
+
+// Datagrams from sd_notify, read from a socket the test binds as NOTIFY_SOCKET.
+class NotifySocket {
+ public:
+  explicit NotifySocket(const std::string& path) : path_(path) {
+    fd_ = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    std::snprintf(address.sun_path, sizeof address.sun_path, "%s", path.c_str());
+    bound_ = ::bind(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0;
+  }
+  ~NotifySocket() { ::close(fd_); }
+  bool bound() const { return bound_; }
+  // Everything received so far, datagrams separated by newlines.
+  const std::string& Read() {
+    char buffer[4096];
+    while (true) {
+      const ssize_t n = ::recv(fd_, buffer, sizeof buffer, MSG_DONTWAIT);
+      if (n <= 0) break;
+      received_.append(buffer, size_t(n));
+      received_ += '\n';
+    }
+    return received_;
+  }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  bool bound_ = false;
+  std::string received_;
+};
+
+TEST_F(FarmTest, TheMasterTellsSystemdWhenItIsReadyAndWhenItStops) {
+  NotifySocket notify(Path("notify.sock"));
+  ASSERT_TRUE(notify.bound());
+  ::setenv("NOTIFY_SOCKET", Path("notify.sock").c_str(), 1);
+  StartMaster();
+  ::unsetenv("NOTIFY_SOCKET");
+  StartAgent("a1");
+  ASSERT_TRUE(WaitUntil([&] {
+    const std::string& text = notify.Read();
+    return text.find("READY=1") != std::string::npos &&
+           text.find("; 1 agents") != std::string::npos;
+  })) << notify.Read();
+  master_->Signal(SIGTERM);
+  EXPECT_EQ(master_->WaitExit(std::chrono::seconds(30)), 0) << MasterLog();
+  EXPECT_NE(notify.Read().find("STOPPING=1"), std::string::npos) << notify.Read();
 }
 
 }  // namespace
