@@ -166,3 +166,26 @@ TEST_F(FarmTest, AMalformedControlRequestCostsOnlyItsConnection) {
 
 }  // namespace
 }  // namespace radfarm::testing
+
+namespace radfarm::testing {
+namespace {
+
+TEST_F(FarmTest, AHigherPriorityJobGetsTheAgentsFirst) {
+  StartMaster();
+  StartAgent("only", {"--slowdown", "2"});
+  const int64_t low = Submit("cornell-box.toml", {"--rays", "3000000", "--name", "low"});
+  ASSERT_TRUE(WaitUntil([&] { return Status(low)["state"] == "running"; }));
+  const int64_t high =
+      Submit("cornell-box.toml", {"--rays", "3000000", "--name", "high", "--priority", "9"});
+  ASSERT_TRUE(WaitForState(high, "done"));
+  ASSERT_TRUE(WaitForState(low, "done"));
+  const nlohmann::json h = Status(high), l = Status(low);
+  EXPECT_LT(h["finished_at_ms"].get<int64_t>(), l["finished_at_ms"].get<int64_t>())
+      << h.dump() << "\n" << l.dump();
+  // Both still match render, whatever the interleaving.
+  EXPECT_TRUE(FetchPatches(high) == ReferencePatches("cornell-box.toml", {"--rays", "3000000"}));
+  EXPECT_TRUE(FetchPatches(low) == ReferencePatches("cornell-box.toml", {"--rays", "3000000"}));
+}
+
+}  // namespace
+}  // namespace radfarm::testing
