@@ -257,8 +257,13 @@ void Agent::Finish(const std::string& reason) {
   if (state_ == State::kStopping) return;
   const bool connected = state_ == State::kConnected && link_;
   state_ = State::kStopping;
-  LogLine(LogLevel::kInfo, "agent") << "shutting down: " << reason << "; returning "
-                                    << runner_->held() << " leases to " << master_;
+  if (connected) {
+    LogLine(LogLevel::kInfo, "agent") << "shutting down: " << reason << "; returning "
+                                      << runner_->held() << " leases to " << master_;
+  } else {
+    LogLine(LogLevel::kInfo, "agent")
+        << "shutting down: " << reason << "; not connected to " << master_;
+  }
   retry_timer_->Stop();
   heartbeat_timer_->Stop();
   idle_timer_->Stop();
