@@ -22,10 +22,6 @@ Failure Unreachable(const std::string& path, const std::string& why) {
                                        "--control PATH or RADFARM_CONTROL)"};
 }
 
-Failure Malformed(const std::string& command, const std::string& why) {
-  return Failure{kExitFailure, "malformed response from the master to '" + command + "': " + why};
-}
-
 Status SetTimeouts(int fd) {
   const timeval timeout{kControlTimeoutSeconds, 0};
   for (int option : {SO_RCVTIMEO, SO_SNDTIMEO}) {
@@ -41,6 +37,10 @@ Status SetTimeouts(int fd) {
 std::string DefaultControlPath() {
   const char* env = std::getenv("RADFARM_CONTROL");
   return env != nullptr && *env != '\0' ? env : kDefaultControlPath;
+}
+
+Failure MalformedResponse(const std::string& command, const std::string& why) {
+  return Failure{kExitFailure, "malformed response from the master to '" + command + "': " + why};
 }
 
 int ExitCodeForErrorCode(std::string_view code) {
@@ -59,11 +59,9 @@ Outcome<ControlClient> ControlClient::Connect(const std::string& socket_path) {
   UniqueFd fd(::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0));
   if (!fd.valid()) return Failure{kExitFailure, std::string("socket: ") + std::strerror(errno)};
   if (Status s = SetTimeouts(fd.get()); !s.ok()) return Failure{kExitFailure, s.error()};
-  int rc;
-  do {
-    rc = ::connect(fd.get(), reinterpret_cast<const sockaddr*>(&address), sizeof address);
-  } while (rc != 0 && errno == EINTR);
-  if (rc != 0) {
+  // No retry on EINTR: the connection would go on in the background. The CLI installs no signal
+  // handlers, so it does not happen.
+  if (::connect(fd.get(), reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
     const int error = errno;
     std::string why = std::strerror(error);
     if (error == EACCES || error == EPERM) {
@@ -115,17 +113,18 @@ Outcome<ControlReply> ControlClient::ReadReply(const std::string& command) {
   try {
     reply.body = json::parse(frame->begin(), frame->end());
   } catch (const json::parse_error& e) {
-    return Malformed(command, std::string("not JSON: ") + e.what());
+    return MalformedResponse(command, std::string("not JSON: ") + e.what());
   }
   const json& body = reply.body;
-  if (!body.is_object()) return Malformed(command, "not a JSON object");
-  if (!body.contains("ok")) return Malformed(command, "missing key 'ok'");
-  if (!body["ok"].is_boolean()) return Malformed(command, "'ok' is not a boolean");
+  if (!body.is_object()) return MalformedResponse(command, "not a JSON object");
+  if (!body.contains("ok")) return MalformedResponse(command, "missing key 'ok'");
+  if (!body["ok"].is_boolean()) return MalformedResponse(command, "'ok' is not a boolean");
   if (!body["ok"].get<bool>()) {
     for (const char* key : {"error", "code"}) {
-      if (!body.contains(key)) return Malformed(command, std::string("missing key '") + key + "'");
+      if (!body.contains(key))
+        return MalformedResponse(command, std::string("missing key '") + key + "'");
       if (!body[key].is_string()) {
-        return Malformed(command, std::string("'") + key + "' is not a string");
+        return MalformedResponse(command, std::string("'") + key + "' is not a string");
       }
     }
     return Failure{ExitCodeForErrorCode(body["code"].get<std::string>()),
@@ -134,8 +133,8 @@ Outcome<ControlReply> ControlClient::ReadReply(const std::string& command) {
   if (body.contains("attachment_bytes")) {
     const json& n = body["attachment_bytes"];
     if (!n.is_number_integer() || n.get<int64_t>() < 1 || n.get<int64_t>() > kMaxAttachmentBytes) {
-      return Malformed(command, "'attachment_bytes' is not an integer in 1.." +
-                                    std::to_string(kMaxAttachmentBytes));
+      return MalformedResponse(command, "'attachment_bytes' is not an integer in 1.." +
+                                            std::to_string(kMaxAttachmentBytes));
     }
     Result<std::vector<uint8_t>> data = ReadFrame(fd_.get(), n.get<uint32_t>());
     if (!data.ok()) {
@@ -144,8 +143,9 @@ Outcome<ControlReply> ControlClient::ReadReply(const std::string& command) {
                                        "': " + data.error()};
     }
     if (data->size() != n.get<uint64_t>()) {
-      return Malformed(command, "'attachment_bytes' is " + n.dump() + " but the attachment has " +
-                                    std::to_string(data->size()) + " bytes");
+      return MalformedResponse(command, "'attachment_bytes' is " + n.dump() +
+                                            " but the attachment has " +
+                                            std::to_string(data->size()) + " bytes");
     }
     reply.attachment = std::move(*data);
   }

@@ -30,6 +30,10 @@ std::string DefaultControlPath();
 // not know -> kExitFailure.
 int ExitCodeForErrorCode(std::string_view code);
 
+// A response that breaks docs/CONTROL.md: exit 1, "malformed response from the master to
+// 'COMMAND': WHY".
+Failure MalformedResponse(const std::string& command, const std::string& why);
+
 struct ControlReply {
   nlohmann::json body;              // the response object; body["ok"] is true
   std::vector<uint8_t> attachment;  // the frame that followed it, when it had attachment_bytes

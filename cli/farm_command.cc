@@ -5,30 +5,28 @@
 
 #include "cli/exit_codes.h"
 #include "cli/messages.h"
+#include "cli/option_checks.h"
 
 namespace radfarm {
 namespace {
 
 using nlohmann::json;
 
-Failure Malformed(const std::string& command, const std::string& why) {
-  return Failure{kExitFailure, "malformed response from the master to '" + command + "': " + why};
-}
-
 template <typename T>
 Outcome<std::vector<T>> ReplyArray(const ControlReply& reply, const std::string& command,
                                    const char* key,
                                    Result<T> (*parse)(const json&, const std::string&)) {
   const auto it = reply.body.find(key);
-  if (it == reply.body.end()) return Malformed(command, std::string("missing key '") + key + "'");
+  if (it == reply.body.end())
+    return MalformedResponse(command, std::string("missing key '") + key + "'");
   if (!it->is_array()) {
-    return Malformed(command,
-                     std::string("'") + key + "' is " + it->type_name() + ", expected an array");
+    return MalformedResponse(
+        command, std::string("'") + key + "' is " + it->type_name() + ", expected an array");
   }
   std::vector<T> items;
   for (size_t i = 0; i < it->size(); ++i) {
     Result<T> item = parse((*it)[i], std::string(key) + "[" + std::to_string(i) + "]");
-    if (!item.ok()) return Malformed(command, item.error());
+    if (!item.ok()) return MalformedResponse(command, item.error());
     items.push_back(std::move(*item));
   }
   return items;
@@ -50,9 +48,9 @@ Outcome<ControlReply> AskMaster(const std::string& socket_path, json request,
 
 Outcome<JobInfo> ReplyJob(const ControlReply& reply, const std::string& command) {
   const auto it = reply.body.find("job");
-  if (it == reply.body.end()) return Malformed(command, "missing key 'job'");
+  if (it == reply.body.end()) return MalformedResponse(command, "missing key 'job'");
   Result<JobInfo> job = ParseJob(*it, "job");
-  if (!job.ok()) return Malformed(command, job.error());
+  if (!job.ok()) return MalformedResponse(command, job.error());
   return *job;
 }
 
@@ -81,7 +79,7 @@ void AddJsonFlag(CLI::App* command, bool* json) {
 void AddJobIdArgument(CLI::App* command, int64_t* id) {
   command->add_option("ID", *id, "Job id (from submit or list)")
       ->required()
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveInteger());
 }
 
 }  // namespace radfarm

@@ -55,9 +55,8 @@ int RunFetch(const FetchOptions& options, const std::string& control_path) {
   Outcome<JobInfo> job = ReplyJob(*reply, "fetch");
   if (!job.ok()) return ReportFailure(job.failure());
   if (reply->attachment.empty()) {
-    return ReportFailure({kExitFailure,
-                          "malformed response from the master to 'fetch': missing key "
-                          "'attachment_bytes' (the job solution)"});
+    return ReportFailure(
+        MalformedResponse("fetch", "missing key 'attachment_bytes' (the job solution)"));
   }
   if (Status s = WriteSolution(reply->attachment, options.out_dir); !s.ok()) {
     return ReportFailure({kExitFailure, "job " + std::to_string(options.id) + ": " + s.error()});

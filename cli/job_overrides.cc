@@ -2,6 +2,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/option_checks.h"
+
 namespace radfarm {
 
 void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
@@ -9,17 +11,17 @@ void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
   command
       ->add_option("--tolerance", overrides->tolerance,
                    "Stop when unshot power < T x emitted power (default 0.001)")
-      ->check(CLI::Range(1e-12, 1.0));
+      ->check(RealInRange(1e-12, 1.0));
   command->add_option("--rays", overrides->rays, "Stop after N rays (default: no limit)")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveInteger());
   command->add_option("--seconds", overrides->seconds, "Stop after S seconds (default: no limit)")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveReal());
   command->add_option("--sampler", overrides->sampler, "grid, random or sobol (default sobol)")
       ->check(CLI::IsMember({"grid", "random", "sobol"}));
   command
       ->add_option("--patch-size", overrides->patch_size,
                    "Largest patch edge in scene units (default: scene diagonal / 40)")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveReal());
 }
 
 Status ApplyOverrides(const JobOverrides& overrides, Job* job) {

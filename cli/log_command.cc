@@ -6,6 +6,7 @@
 #include "cli/exit_codes.h"
 #include "cli/farm_command.h"
 #include "cli/farm_format.h"
+#include "cli/option_checks.h"
 
 namespace radfarm {
 
@@ -13,9 +14,9 @@ CLI::App* AddLogCommand(CLI::App& app, LogOptions* options) {
   CLI::App* log = app.add_subcommand(
       "log", "Show a job's events, or the farm-wide log without an ID (oldest first)");
   log->add_option("ID", options->id, "Job id (default: the farm-wide log)")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveInteger());
   log->add_option("--limit,-n", options->limit, "Show the last N events (default 100)")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveInteger());
   AddJsonFlag(log, &options->json);
   return log;
 }

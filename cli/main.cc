@@ -26,6 +26,10 @@ int main(int argc, char** argv) {
   CLI::App app{"radfarm: progressive-refinement radiosity on one machine or a farm"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "radfarm 0.1.0");
+  // Usage errors look like every other error: one "radfarm: " line on stderr.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "radfarm: " + std::string(e.what()) + " (see --help)\n";
+  });
   // Subcommands inherit this, so --control may also come after the command's name.
   app.fallthrough();
   std::string control = DefaultControlPath();

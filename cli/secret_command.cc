@@ -19,7 +19,7 @@
 namespace radfarm {
 namespace {
 
-// A temporary file beside the target, removed unless Release()d.
+// A temporary file beside the target, removed when destroyed unless Forget() is called.
 class TempFile {
  public:
   explicit TempFile(const std::string& target) {
@@ -27,6 +27,7 @@ class TempFile {
     path_ = (p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path()) /
             ("." + p.filename().string() + ".XXXXXX");
     fd_ = UniqueFd(mkstemp(path_.data()));  // mode 0600 whatever the umask
+    if (!fd_.valid()) path_.clear();
   }
   TempFile(const TempFile&) = delete;
   TempFile& operator=(const TempFile&) = delete;
@@ -36,6 +37,8 @@ class TempFile {
   int fd() const { return fd_.get(); }
   const std::string& path() const { return path_; }
   void CloseFd() { fd_.Reset(); }
+  // The file now has another name (renamed): nothing to remove.
+  void Forget() { path_.clear(); }
 
  private:
   std::string path_;
@@ -60,10 +63,11 @@ int WriteSecretFile(const std::string& file, const std::string& text, bool force
   }
   temp.CloseFd();
   // rename replaces the file; link refuses an existing one, atomically.
-  if (force ? ::rename(temp.path().c_str(), file.c_str()) == 0
-            : ::link(temp.path().c_str(), file.c_str()) == 0) {
+  if (force && ::rename(temp.path().c_str(), file.c_str()) == 0) {
+    temp.Forget();
     return kExitOk;
   }
+  if (!force && ::link(temp.path().c_str(), file.c_str()) == 0) return kExitOk;
   if (!force && errno == EEXIST) {
     PrintError(file + ": already exists; pass --force to replace it");
     return kExitBadInput;

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <optional>
+#include <signal.h>
 #include <sys/stat.h>
 
 #include "daemon/master.h"
@@ -111,6 +112,9 @@ loop::LogLevel ParseLevel(const std::string& name) {
 
 int Run(const MasterConfig& config) {
   loop::SetMinLogLevel(ParseLevel(config.log_level));
+  // A peer that closes its socket while we write to it must cost that connection only: without
+  // this, the write raises SIGPIPE and the default action ends the daemon.
+  ::signal(SIGPIPE, SIG_IGN);
   Result<protocol::FarmSecret> secret = ReadSecret(config.secret_file);
   if (!secret) {
     std::fprintf(stderr, "radfarmd: %s\n", secret.error().c_str());

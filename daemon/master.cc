@@ -91,6 +91,9 @@ Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const Maste
     (signum == SIGTERM ? master->sigterm_ : master->sigint_) = std::move(*watch);
   }
 
+  master->notifier_ = std::make_unique<service::ServiceNotifier>(loop);
+  master->notifier_->Ready();  // the store is open and both listeners are bound
+  master->ReportStatus();
   loop::LogLine(loop::LogLevel::kInfo, "master")
       << "listening for agents on " << master->listen_address_ << "; control socket "
       << master->control_->path() << "; state " << config.state_dir;
@@ -102,6 +105,7 @@ void Master::Shutdown(const std::string& why) {
   if (shutting_down_) return;
   shutting_down_ = true;
   loop::LogLine(loop::LogLevel::kInfo, "master") << why << ": shutting down";
+  notifier_->Stopping();
   // Agents keep their state; they reconnect to the next master by themselves.
   for (auto& [id, link] : agents_) {
     if (link->authenticated()) link->Close(protocol::CloseCode::kShutdown, "master shutting down");
@@ -119,6 +123,14 @@ void Master::Shutdown(const std::string& why) {
     runners_.clear();
     loop_.Stop();
   });
+}
+
+void Master::ReportStatus() {
+  size_t agents = 0;
+  for (const auto& [id, link] : agents_) agents += link->authenticated() && !link->stale;
+  notifier_->Status(std::to_string(runners_.size()) + " jobs running, " +
+                    std::to_string(starting_.size()) + " starting; " + std::to_string(agents) +
+                    " agents");
 }
 
 }  // namespace radfarm::master

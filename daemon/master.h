@@ -37,6 +37,7 @@
 #include "loop/timer.h"
 #include "loop/work_queue.h"
 #include "protocol/farm_secret.h"
+#include "service/service_notifier.h"
 
 namespace radfarm::master {
 
@@ -79,6 +80,8 @@ class Master {
   void DispatchAll();
   void OnHeartbeatTimer();
   void OnTickTimer();
+  // "2 jobs running, 1 queued; 5 agents" for systemd's STATUS= and the log.
+  void ReportStatus();
   void Blocklist(AgentLink& link, const std::string& why);
 
   // --- jobs (master_jobs.cc) ---
@@ -121,6 +124,7 @@ class Master {
   std::unique_ptr<loop::Timer> tick_timer_;
   std::unique_ptr<loop::Signal> sigterm_;
   std::unique_ptr<loop::Signal> sigint_;
+  std::unique_ptr<service::ServiceNotifier> notifier_;  // systemd: READY, STATUS, watchdog
   std::string listen_address_;
 
   std::map<uint64_t, std::unique_ptr<AgentLink>> agents_;

@@ -238,6 +238,7 @@ void Master::DispatchAll() {
 }
 
 void Master::OnHeartbeatTimer() {
+  ReportStatus();
   const uint64_t now_ms = loop_.NowMs();
   protocol::HeartbeatMsg beat;
   for (auto& [job, runner] : runners_) beat.rays_per_second += runner->RaysPerSecond();

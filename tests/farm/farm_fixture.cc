@@ -1,5 +1,6 @@
 #include "tests/farm/farm_fixture.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -33,14 +34,17 @@ ChildProcess& FarmTest::StartMaster(const std::vector<std::string>& extra) {
   const std::string addr_file = state_dir_ + "/listen.addr";
   std::error_code ec;
   std::filesystem::remove(addr_file, ec);
-  std::vector<std::string> args = {RADFARMD_PATH,       "--listen",
-                                   "127.0.0.1:0",       "--state-dir",
+  std::vector<std::string> args = {RADFARMD_PATH,       "--state-dir",
                                    state_dir_,          "--secret-file",
                                    secret_file_,        "--heartbeat-ms",
                                    "200",               "--agent-timeout-ms",
                                    "2000",              "--handshake-timeout-ms",
                                    "2000",              "--log-level",
                                    "debug"};
+  // An ephemeral port unless the test names one (a restarted master keeps its port).
+  if (std::find(extra.begin(), extra.end(), "--listen") == extra.end()) {
+    args.insert(args.end(), {"--listen", "127.0.0.1:0"});
+  }
   args.insert(args.end(), extra.begin(), extra.end());
   master_ = std::make_unique<ChildProcess>(args, dir_.File("master.log"));
   ++master_starts_;

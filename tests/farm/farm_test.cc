@@ -2,6 +2,9 @@
 // patches.csv must equal `radfarm render`'s for the same job, byte for byte, whatever the number
 // of agents and whatever faults happened on the way.
 #include <signal.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -150,18 +153,32 @@ TEST_F(FarmTest, TheMasterKilledAtRandomPointsResumesEveryJobIdentically) {
   constexpr int kKills = 20;
   for (int kill = 0; kill < kKills; ++kill) {
     if (kill % 5 == 2) short_jobs.push_back(Submit("cornell-box.toml", kShortJob));
-    // A random instant of the job's life: some time after the master is back and running it.
-    std::uniform_int_distribution<int> delay_ms(0, 1200);
+    // A random instant of the job's life: half the kills wait for the job to finish another round
+    // first (so it resumes from a later checkpoint each time), then a random delay.
+    if (std::bernoulli_distribution(0.5)(random)) {
+      const int64_t before = Round(Status(long_job));
+      std::printf("kill %d: waiting for the round after %lld\n", kill + 1,
+                  static_cast<long long>(before));
+      WaitUntil([&] {
+        const nlohmann::json job = Status(long_job);
+        return Round(job) > before || job["state"] == "done";
+      });
+    }
+    std::uniform_int_distribution<int> delay_ms(0, 600);
     const int delay = delay_ms(random);
     const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(delay);
     WaitUntil([&] { return std::chrono::steady_clock::now() >= until; },
               std::chrono::milliseconds(delay + 1000));
     master_->Signal(SIGKILL);
     ASSERT_TRUE(master_->WaitExit(std::chrono::seconds(30)).has_value());
+    std::printf("kill %d: %d ms after the wait\n", kill + 1, delay);
     StartMaster({"--listen", listen});
     ASSERT_TRUE(master_->running());
   }
   ASSERT_TRUE(WaitForState(long_job, "done"));
+  // The kills landed at different stages: some after checkpoints (the job resumed from one).
+  EXPECT_GE(CountLines(MasterLog(), "resuming after round"), 1u) << MasterLog();
+  EXPECT_EQ(CountLines(MasterLog(), "listening for agents"), size_t(kKills + 1));
   EXPECT_TRUE(FetchPatches(long_job) == ReferencePatches("cornell-box.toml"))
       << "seed " << seed;
   for (int64_t id : short_jobs) {
@@ -172,6 +189,60 @@ TEST_F(FarmTest, TheMasterKilledAtRandomPointsResumesEveryJobIdentically) {
   const CommandResult list = Cli({"list", "--json"});
   ASSERT_EQ(list.exit_code, 0);
   EXPECT_EQ(nlohmann::json::parse(list.out).size(), 1 + short_jobs.size());
+}
+
+}  // namespace
+}  // namespace radfarm::testing
+
+namespace radfarm::testing {
+namespace {
+
+// Datagrams from sd_notify, read from a socket the test binds as NOTIFY_SOCKET.
+class NotifySocket {
+ public:
+  explicit NotifySocket(const std::string& path) : path_(path) {
+    fd_ = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    std::snprintf(address.sun_path, sizeof address.sun_path, "%s", path.c_str());
+    bound_ = ::bind(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0;
+  }
+  ~NotifySocket() { ::close(fd_); }
+  bool bound() const { return bound_; }
+  // Everything received so far, datagrams separated by newlines.
+  const std::string& Read() {
+    char buffer[4096];
+    while (true) {
+      const ssize_t n = ::recv(fd_, buffer, sizeof buffer, MSG_DONTWAIT);
+      if (n <= 0) break;
+      received_.append(buffer, size_t(n));
+      received_ += '\n';
+    }
+    return received_;
+  }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  bool bound_ = false;
+  std::string received_;
+};
+
+TEST_F(FarmTest, TheMasterTellsSystemdWhenItIsReadyAndWhenItStops) {
+  NotifySocket notify(Path("notify.sock"));
+  ASSERT_TRUE(notify.bound());
+  ::setenv("NOTIFY_SOCKET", Path("notify.sock").c_str(), 1);
+  StartMaster();
+  ::unsetenv("NOTIFY_SOCKET");
+  StartAgent("a1");
+  ASSERT_TRUE(WaitUntil([&] {
+    const std::string& text = notify.Read();
+    return text.find("READY=1") != std::string::npos &&
+           text.find("; 1 agents") != std::string::npos;
+  })) << notify.Read();
+  master_->Signal(SIGTERM);
+  EXPECT_EQ(master_->WaitExit(std::chrono::seconds(30)), 0) << MasterLog();
+  EXPECT_NE(notify.Read().find("STOPPING=1"), std::string::npos) << notify.Read();
 }
 
 }  // namespace

@@ -1,0 +1,16 @@
+// Checks of numeric command-line values with messages a person can read (CLI11's own range checks
+// print the whole range of a double: "not in range 0.000000 to 1797693134862315...").
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace radfarm {
+
+// An integer >= 1 that fits in int64 (job ids, counts).
+const CLI::Validator& PositiveInteger();
+// A finite number > 0 (seconds, lengths).
+const CLI::Validator& PositiveReal();
+// A number in [low, high].
+CLI::Validator RealInRange(double low, double high);
+
+}  // namespace radfarm
