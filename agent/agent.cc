@@ -305,12 +305,13 @@ void Agent::Pause(const std::string& reason) {
       state_ = State::kPaused;
       heartbeat_timer_->Stop();
       idle_timer_->Stop();
-      // Every lease, queued or running, goes back now: the master requeues them at once. The
-      // Close that follows keeps the master from leasing us more while we are paused; what it
-      // sends before reading it is requeued when the connection ends.
+      // Every lease, queued or running, goes back now: the master requeues them at once. Then
+      // the connection ends, so the master leases us nothing while we are paused. It ends
+      // without a Close message: radfarmd requeues at once the leases of a lost connection, such
+      // as those it leases us on reading the LeaseReturn, but not those of an agent that said
+      // Close (they would wait for their deadline).
       runner_->ReturnAll(protocol::LeaseReturnReason::kOverloaded, "paused: " + reason);
-      link_->Close(protocol::CloseCode::kNormal,
-                   CloseDetail("paused by the idle policy: " + reason));
+      link_->Disconnect("paused by the idle policy: " + reason);
       break;
     }
   }
@@ -325,7 +326,9 @@ void Agent::Resume(const std::string& reason) {
     LogLine(LogLevel::kDebug, "agent") << "idle again before the connection closed";
     return;
   }
-  LogLine(LogLevel::kInfo, "agent") << "resuming: " << reason << "; connecting to " << master_;
+  LogLine(LogLevel::kInfo, "agent")
+      << (ever_worked_ ? "resuming: " : "may work: ") << reason << "; connecting to " << master_;
+  ever_worked_ = true;
   waiting_reason_.clear();
   backoff_.Reset();
   attempt_ = 0;

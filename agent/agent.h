@@ -10,7 +10,7 @@
 //   any --Finish(): leases returned, Close(Shutdown) flushed--> kStopping --link closed or
 //             deadline--> loop stopped
 //   kWaiting, kConnecting, kConnected --idle policy: busy (leases returned, reason Overloaded;
-//             Close(Normal))--> kPaused --idle policy: idle again--> kConnecting
+//             connection closed)--> kPaused --idle policy: idle again--> kConnecting
 //
 // The idle policy ([idle] in the config file; idle/idle_monitor.h): with it the agent starts in
 // kPaused and connects once the policy first says the machine is idle. When the policy says busy,
@@ -109,6 +109,7 @@ class Agent {
   bool exit_when_drained_ = false;
   size_t resolving_ = 0;        // name lookups on the I/O queue
   bool may_work_ = true;        // the idle policy's latest answer (always true without one)
+  bool ever_worked_ = false;    // the idle policy has said "idle" before (then "resuming")
   std::string waiting_reason_;  // why the agent is in kWaiting or kPaused, for STATUS=
   service::ServiceNotifier* systemd_;
 
