@@ -232,7 +232,7 @@ void Agent::OnLinkClosed(const LinkClosed& closed) {
     return;
   }
   if (state_ == State::kPaused || !may_work_) {
-    // Our own Close after a pause, or the master went away while we were pausing.
+    // Our own disconnect after a pause, or the master went away while we were pausing.
     state_ = State::kPaused;
     LogLine(LogLevel::kDebug, "agent") << "disconnected from " << master_ << " while paused";
     if (may_work_) Resume("idle again while disconnecting");
@@ -281,7 +281,7 @@ void Agent::Pause(const std::string& reason) {
     case State::kStopping:
       return;
     case State::kPaused:
-      // Still paused (the first answer, or a pause while our Close is being flushed).
+      // Still paused (the first answer, or busy again while our disconnect is flushing).
       LogLine(LogLevel::kInfo, "agent") << "waiting: " << reason;
       ReportStatus();
       return;
@@ -322,7 +322,7 @@ void Agent::Pause(const std::string& reason) {
 void Agent::Resume(const std::string& reason) {
   if (state_ != State::kPaused) return;
   if (link_) {
-    // Our Close is still being flushed: OnLinkClosed resumes.
+    // Our disconnect is still flushing: OnLinkClosed resumes.
     LogLine(LogLevel::kDebug, "agent") << "idle again before the connection closed";
     return;
   }
