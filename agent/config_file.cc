@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "idle/idle_config.h"
+#include "input/toml_file.h"
 #include "protocol/message_checks.h"
 
 namespace radfarm::agent {
@@ -19,24 +20,6 @@ namespace {
 
 Error ErrorAt(const std::string& path, uint32_t line, const std::string& what) {
   return Error{path + ":" + std::to_string(line) + ": " + what};
-}
-
-Result<toml::table> ParseToml(const std::string& path, const std::string& text) {
-#if TOML_EXCEPTIONS
-  try {
-    return toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    const std::string what(e.description());
-    return ErrorAt(path, e.source().begin.line, what.substr(0, what.find('\n')));
-  }
-#else
-  toml::parse_result parsed = toml::parse(text, path);
-  if (!parsed) {
-    const std::string what(parsed.error().description());
-    return ErrorAt(path, parsed.error().source().begin.line, what.substr(0, what.find('\n')));
-  }
-  return std::move(parsed).table();
-#endif
 }
 
 std::string TypeName(const toml::node& node) {

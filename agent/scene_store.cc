@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <random>
 
-#include "agent/unique_fd.h"
+#include "loop/unique_fd.h"
 #include "protocol/limits.h"
 #include "protocol/scene_transfer.h"
 

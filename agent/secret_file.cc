@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <vector>
 
-#include "agent/unique_fd.h"
+#include "loop/unique_fd.h"
 
 namespace radfarm::agent {
 namespace {

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "cli/command_outcome.h"
-#include "cli/unique_fd.h"
+#include "loop/unique_fd.h"
 
 namespace radfarm {
 

@@ -9,8 +9,7 @@ constexpr int kCheckpointsKept = 2;
 
 }  // namespace
 
-Result<RenderState> RenderState::Open(const std::string& db_path,
-                                      const codec::JobBundle& bundle) {
+Result<RenderState> RenderState::Open(const std::string& db_path, const codec::JobBundle& bundle) {
   codec::JobBundle identity = bundle;
   identity.job.solver.threads = 0;
   const std::vector<uint8_t> blob = codec::EncodeJobBundle(identity);
@@ -67,7 +66,8 @@ Result<RenderState> RenderState::Open(const std::string& db_path,
 }
 
 Status RenderState::SaveRound(const SolveCheckpoint& now) {
-  const double unshot_fraction = now.energy.emitted > 0 ? now.energy.unshot / now.energy.emitted : 0;
+  const double unshot_fraction =
+      now.energy.emitted > 0 ? now.energy.unshot / now.energy.emitted : 0;
   const store::RoundRecord round{job_,
                                  now.round,
                                  now.shooters,
@@ -77,8 +77,8 @@ Status RenderState::SaveRound(const SolveCheckpoint& now) {
                                  now.seconds - last_.seconds,
                                  now.escaped_rays - last_.escaped_rays,
                                  now.backface_hits - last_.backface_hits};
-  const store::Checkpoint checkpoint{job_,         now.round, now.rounds_done, now.radiosity,
-                                     now.unshot,   now.energy, 0};
+  const store::Checkpoint checkpoint{
+      job_, now.round, now.rounds_done, now.radiosity, now.unshot, now.energy, 0};
   if (Status s = store_.SaveCheckpoint(round, checkpoint); !s) return Error{"--db: " + s.error()};
   if (Status s = store_.PruneCheckpoints(job_, kCheckpointsKept); !s) {
     return Error{"--db: " + s.error()};

@@ -13,7 +13,7 @@
 
 #include "cli/exit_codes.h"
 #include "cli/messages.h"
-#include "cli/unique_fd.h"
+#include "loop/unique_fd.h"
 #include "protocol/farm_secret.h"
 
 namespace radfarm {

@@ -62,7 +62,8 @@ Status DecodeCamera(const wire::BundleCamera& in, Camera* out) {
   if (!IsFinite(out->eye) || !IsFinite(out->target) || !IsFinite(out->up)) {
     return Bad("camera", "has a non-finite eye, target or up");
   }
-  if (!(out->fov_degrees > 0 && out->fov_degrees < 180)) return Bad("camera.fov", "not in (0, 180)");
+  if (!(out->fov_degrees > 0 && out->fov_degrees < 180))
+    return Bad("camera.fov", "not in (0, 180)");
   if (out->width < 1 || out->width > 16384 || out->height < 1 || out->height > 16384) {
     return Bad("camera.width/height", "not in [1, 16384]");
   }
@@ -167,8 +168,10 @@ Result<JobBundle> DecodeJobBundle(std::span<const uint8_t> blob) {
   if (!(bundle.job.mesh.patch_size >= 0) || !std::isfinite(bundle.job.mesh.patch_size)) {
     return Bad("mesh.patch_size", "is negative or not finite");
   }
-  if (Status s = DecodeSolver(*root->solver(), &bundle.job.solver); !s.ok()) return Error{s.error()};
-  if (Status s = DecodeCamera(*root->camera(), &bundle.job.camera); !s.ok()) return Error{s.error()};
+  if (Status s = DecodeSolver(*root->solver(), &bundle.job.solver); !s.ok())
+    return Error{s.error()};
+  if (Status s = DecodeCamera(*root->camera(), &bundle.job.camera); !s.ok())
+    return Error{s.error()};
   if (Status s = DecodeScene(*root, &bundle.scene); !s.ok()) return Error{s.error()};
   return bundle;
 }

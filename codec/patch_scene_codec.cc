@@ -23,8 +23,8 @@ Result<Patch> DecodePatch(const wire::ScenePatch& in, uint32_t index, size_t mat
   Patch p;
   const auto* corners = in.corners();
   if (corners->size() < 3 || corners->size() > 4) {
-    return FieldError(kKind, field, "has " + std::to_string(corners->size()) +
-                                        " corners (expected 3 or 4)");
+    return FieldError(kKind, field,
+                      "has " + std::to_string(corners->size()) + " corners (expected 3 or 4)");
   }
   p.corner_count = static_cast<uint8_t>(corners->size());
   for (uint32_t k = 0; k < corners->size(); ++k) p.corners[k] = FromWire(corners->Get(k));
@@ -53,9 +53,9 @@ Result<Patch> DecodePatch(const wire::ScenePatch& in, uint32_t index, size_t mat
     return FieldError(kKind, field, "emission is negative or not finite");
   }
   if (p.material >= material_count) {
-    return FieldError(kKind, field, "material " + std::to_string(p.material) +
-                                        " is out of range (" + std::to_string(material_count) +
-                                        " materials)");
+    return FieldError(kKind, field,
+                      "material " + std::to_string(p.material) + " is out of range (" +
+                          std::to_string(material_count) + " materials)");
   }
   return p;
 }

@@ -40,8 +40,7 @@ SolveResult Solve(const PatchScene& scene, const SolverSettings& settings,
       stats.stop_reason = *stop;
       break;
     }
-    const RoundPlan plan =
-        solver.PlanRound(kLocalBatchRays, NextRoundRayCap(settings, stats.rays));
+    const RoundPlan plan = solver.PlanRound(kLocalBatchRays, NextRoundRayCap(settings, stats.rays));
     if (plan.batches.empty()) break;  // nothing left to shoot: converged
     std::vector<BatchResult> results(plan.batches.size());
     pool.ParallelFor(plan.batches.size(), [&](unsigned worker, size_t b) {

@@ -41,8 +41,7 @@ Result<int64_t> IntArg(const nlohmann::json& json, const char* key) {
 
 }  // namespace
 
-Result<ControlRequest> ParseControlRequest(const nlohmann::json& json,
-                                           uint64_t* attachment_bytes) {
+Result<ControlRequest> ParseControlRequest(const nlohmann::json& json, uint64_t* attachment_bytes) {
   *attachment_bytes = 0;
   if (!json.is_object()) return Error{"a request must be a JSON object"};
   const auto command = json.find("command");
@@ -115,9 +114,8 @@ Result<std::unique_ptr<ControlServer>> ControlServer::Listen(loop::EventLoop& lo
   std::unique_ptr<ControlServer> server(new ControlServer(loop, std::move(handler)));
   ControlServer* self = server.get();
   auto listener = loop::UnixListener::Listen(
-      loop, path, [self](std::unique_ptr<loop::FramedConnection> c) {
-        self->OnConnection(std::move(c));
-      });
+      loop, path,
+      [self](std::unique_ptr<loop::FramedConnection> c) { self->OnConnection(std::move(c)); });
   if (!listener) return Error{listener.error()};
   server->listener_ = std::move(*listener);
   return server;
@@ -152,8 +150,8 @@ void ControlServer::Refuse(Client& client, const std::string& code, const std::s
   loop::LogLine(loop::LogLevel::kWarning, "control")
       << client.connection->peer() << ": " << message << "; closing";
   const std::string text = ControlError(code, message).body.dump();
-  (void)client.connection->Send(std::span(reinterpret_cast<const uint8_t*>(text.data()),
-                                          text.size()));
+  (void)client.connection->Send(
+      std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
   client.connection->CloseAfterFlush(message);
 }
 
@@ -176,8 +174,8 @@ void ControlServer::OnFrame(Client& client, std::span<const uint8_t> payload) {
     return;
   }
   if (payload.size() > kMaxControlJsonBytes) {
-    Refuse(client, "bad_request", "a JSON request over " + std::to_string(kMaxControlJsonBytes) +
-                                      " bytes");
+    Refuse(client, "bad_request",
+           "a JSON request over " + std::to_string(kMaxControlJsonBytes) + " bytes");
     return;
   }
   nlohmann::json json = nlohmann::json::parse(payload.begin(), payload.end(), nullptr, false);
@@ -203,9 +201,8 @@ void ControlServer::OnFrame(Client& client, std::span<const uint8_t> payload) {
 void ControlServer::Dispatch(Client& client, ControlRequest request) {
   client.busy = true;
   const uint64_t id = client.id;
-  handler_(std::move(request), [this, id](ControlResponse response) {
-    Reply(id, std::move(response));
-  });
+  handler_(std::move(request),
+           [this, id](ControlResponse response) { Reply(id, std::move(response)); });
 }
 
 void ControlServer::Reply(uint64_t client_id, ControlResponse response) {

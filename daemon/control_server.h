@@ -51,7 +51,6 @@ class ControlServer {
 };
 
 // Parses one request's JSON (docs/CONTROL.md); errors say which key is wrong.
-Result<ControlRequest> ParseControlRequest(const nlohmann::json& json,
-                                           uint64_t* attachment_bytes);
+Result<ControlRequest> ParseControlRequest(const nlohmann::json& json, uint64_t* attachment_bytes);
 
 }  // namespace radfarm::master

@@ -12,14 +12,24 @@
 
 namespace radfarm::master {
 
-enum class ControlCommand { kSubmit, kList, kStatus, kCancel, kPause, kResume, kLog, kFetch, kAgents };
+enum class ControlCommand {
+  kSubmit,
+  kList,
+  kStatus,
+  kCancel,
+  kPause,
+  kResume,
+  kLog,
+  kFetch,
+  kAgents
+};
 
 struct ControlRequest {
   ControlCommand command = ControlCommand::kList;
-  std::optional<int64_t> id;  // status, cancel, pause, resume, fetch: required; log: optional
-  std::string name;           // submit
-  int64_t priority = 0;       // submit
-  int64_t limit = 100;        // log
+  std::optional<int64_t> id;        // status, cancel, pause, resume, fetch: required; log: optional
+  std::string name;                 // submit
+  int64_t priority = 0;             // submit
+  int64_t limit = 100;              // log
   std::vector<uint8_t> attachment;  // submit: the job bundle
 };
 

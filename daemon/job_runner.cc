@@ -31,8 +31,8 @@ Result<std::shared_ptr<JobRunner>> JobRunner::Prepare(
   runner->scene_ = std::make_unique<PatchScene>(mesh->patch_scene());
   runner->solver_ = std::make_unique<ProgressiveSolver>(*runner->scene_, runner->settings_);
   auto blob = std::make_shared<std::vector<uint8_t>>(codec::EncodePatchScene(*runner->scene_));
-  runner->wire_ = {static_cast<uint64_t>(record.id), runner->settings_,
-                   protocol::HashScene(*blob), runner->patch_count()};
+  runner->wire_ = {static_cast<uint64_t>(record.id), runner->settings_, protocol::HashScene(*blob),
+                   runner->patch_count()};
   runner->scene_blob_ = std::move(blob);
   runner->scheduler_ = scheduler::RoundScheduler(options);
 

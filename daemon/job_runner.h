@@ -43,10 +43,10 @@ struct JobTotals {
 // The result of reducing one round, for the loop thread and the store thread.
 struct RoundOutcome {
   store::RoundRecord record;
-  store::Checkpoint checkpoint;       // filled when `checkpoint_due`
+  store::Checkpoint checkpoint;  // filled when `checkpoint_due`
   bool checkpoint_due = false;
-  std::optional<std::string> stop;    // the stop reason: the job is done
-  std::optional<RoundPlan> next;      // the next round, unless stopping
+  std::optional<std::string> stop;  // the stop reason: the job is done
+  std::optional<RoundPlan> next;    // the next round, unless stopping
 };
 
 class JobRunner {

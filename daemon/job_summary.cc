@@ -7,9 +7,9 @@
 namespace radfarm::master {
 
 std::string SubmittedSettings::ToJson() const {
-  return nlohmann::json{{"tolerance", tolerance}, {"max_rays", max_rays},
+  return nlohmann::json{{"tolerance", tolerance},     {"max_rays", max_rays},
                         {"max_seconds", max_seconds}, {"sampler", sampler},
-                        {"patches", patches}, {"scene", scene}}
+                        {"patches", patches},         {"scene", scene}}
       .dump();
 }
 

@@ -2,11 +2,12 @@
 // farm secret, starts the Master on one event loop and runs it until SIGTERM or SIGINT.
 // Exit codes: 0 after a clean stop, 1 when it cannot start (store, listener) or fails, 2 for bad
 // usage, configuration or secret.
+#include <signal.h>
+#include <sys/stat.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <optional>
-#include <signal.h>
-#include <sys/stat.h>
 
 #include "daemon/master.h"
 #include "daemon/master_config.h"

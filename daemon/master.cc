@@ -42,7 +42,8 @@ Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const Maste
   if (!jobs) return Error{jobs.error()};
   for (const store::JobRecord& job : *jobs) {
     if (job.state != store::JobState::kRunning) continue;
-    if (Status s = store->SetJobState(job.id, store::JobState::kQueued); !s) return Error{s.error()};
+    if (Status s = store->SetJobState(job.id, store::JobState::kQueued); !s)
+      return Error{s.error()};
     (void)store->AppendEvent(job.id, store::EventLevel::kInfo,
                              "master restarted: the job resumes from its latest checkpoint");
   }
@@ -63,16 +64,14 @@ Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const Maste
   if (!listener) return Error{listener.error()};
   master->listener_ = std::move(*listener);
   master->listen_address_ = master->listener_->address();
-  if (Status s = WriteFileAtomically(config.ListenAddrPath(), master->listen_address_ + "\n");
-      !s) {
+  if (Status s = WriteFileAtomically(config.ListenAddrPath(), master->listen_address_ + "\n"); !s) {
     return Error{s.error()};
   }
 
-  auto control = ControlServer::Listen(loop, config.ControlPath(),
-                                       [self](ControlRequest request, ControlRespond respond) {
-                                         self->HandleControl(std::move(request),
-                                                             std::move(respond));
-                                       });
+  auto control = ControlServer::Listen(
+      loop, config.ControlPath(), [self](ControlRequest request, ControlRespond respond) {
+        self->HandleControl(std::move(request), std::move(respond));
+      });
   if (!control) return Error{control.error()};
   master->control_ = std::move(*control);
 
@@ -84,9 +83,8 @@ Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const Maste
   master->tick_timer_->Start(std::chrono::milliseconds(100), std::chrono::milliseconds(100),
                              [self] { self->OnTickTimer(); });
   for (int signum : {SIGTERM, SIGINT}) {
-    auto watch = loop::Signal::Watch(loop, signum, [self](int s) {
-      self->Shutdown(s == SIGTERM ? "SIGTERM" : "SIGINT");
-    });
+    auto watch = loop::Signal::Watch(
+        loop, signum, [self](int s) { self->Shutdown(s == SIGTERM ? "SIGTERM" : "SIGINT"); });
     if (!watch) return Error{watch.error()};
     (signum == SIGTERM ? master->sigterm_ : master->sigint_) = std::move(*watch);
   }

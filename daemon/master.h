@@ -142,9 +142,10 @@ class Master {
 template <typename Work, typename Done>
 void Master::OnStore(Work work, Done done) {
   StoreRef store = store_;
-  Status s = store_queue_->Submit([store, work = std::move(work)]() mutable { return work(*store); },
-                                  std::move(done));
-  if (!s) loop::Log(loop::LogLevel::kError, "store", "cannot queue a store operation: " + s.error());
+  Status s = store_queue_->Submit(
+      [store, work = std::move(work)]() mutable { return work(*store); }, std::move(done));
+  if (!s)
+    loop::Log(loop::LogLevel::kError, "store", "cannot queue a store operation: " + s.error());
 }
 
 }  // namespace radfarm::master

@@ -59,11 +59,11 @@ void Master::OnAuthenticated(AgentLink& link) {
       << link.Describe() << " connected (" << link.threads() << " threads)";
   const std::string name = link.name(), address = link.address();
   const uint32_t threads = link.threads();
-  OnStore([name, address, threads](store::JobStore& s) {
-    return s.RecordAgentSeen(name, address, threads);
-  }, [](Status s) {
-    if (!s) LogLine(LogLevel::kError, "store") << s.error();
-  });
+  OnStore([name, address,
+           threads](store::JobStore& s) { return s.RecordAgentSeen(name, address, threads); },
+          [](Status s) {
+            if (!s) LogLine(LogLevel::kError, "store") << s.error();
+          });
   for (auto& [job, runner] : runners_) runner->scheduler().AddAgent(link.id());
   Dispatch(link);
 }
@@ -113,9 +113,8 @@ void Master::OnAgentMessage(AgentLink& link, protocol::Message& message) {
 void Master::OnBatchResult(AgentLink& link, const protocol::BatchResultMsg& result) {
   JobRunner* runner = FindRunner(result.lease.job_id);
   if (runner == nullptr || runner->phase() != JobRunner::Phase::kRound) {
-    LogLine(LogLevel::kDebug, "agents")
-        << link.Describe() << ": result for job " << result.lease.job_id
-        << " dropped (job not in a round)";
+    LogLine(LogLevel::kDebug, "agents") << link.Describe() << ": result for job "
+                                        << result.lease.job_id << " dropped (job not in a round)";
     return;
   }
   scheduler::IntakeVerdict v = scheduler::SubmitBatchResult(
@@ -160,7 +159,8 @@ void Master::Blocklist(AgentLink& link, const std::string& why) {
 
 void Master::OnLeaseReturn(AgentLink& link, const protocol::LeaseReturnMsg& message) {
   std::map<uint64_t, std::vector<scheduler::BatchId>> by_job;
-  for (const protocol::LeaseRef& lease : message.leases) by_job[lease.job_id].push_back(lease.batch_id);
+  for (const protocol::LeaseRef& lease : message.leases)
+    by_job[lease.job_id].push_back(lease.batch_id);
   size_t returned = 0;
   for (auto& [job, batches] : by_job) {
     if (JobRunner* runner = FindRunner(job)) {
@@ -176,7 +176,8 @@ void Master::OnLeaseReturn(AgentLink& link, const protocol::LeaseReturnMsg& mess
 void Master::OnSceneRequest(AgentLink& link, const protocol::SceneRequestMsg& request) {
   for (auto& [job, runner] : runners_) {
     if (runner->wire_info().scene_hash != request.scene_hash) continue;
-    Result<protocol::SceneChunkMsg> chunk = protocol::MakeSceneChunk(*runner->scene_blob(), request);
+    Result<protocol::SceneChunkMsg> chunk =
+        protocol::MakeSceneChunk(*runner->scene_blob(), request);
     if (!chunk) {
       LogLine(LogLevel::kWarning, "agents")
           << link.Describe() << ": bad scene request: " << chunk.error() << "; closing";
@@ -184,9 +185,8 @@ void Master::OnSceneRequest(AgentLink& link, const protocol::SceneRequestMsg& re
       return;
     }
     if (request.offset == 0) {
-      LogLine(LogLevel::kInfo, "agents")
-          << link.Describe() << " fetches the scene of job " << job << " ("
-          << runner->scene_blob()->size() << " bytes)";
+      LogLine(LogLevel::kInfo, "agents") << link.Describe() << " fetches the scene of job " << job
+                                         << " (" << runner->scene_blob()->size() << " bytes)";
     }
     (void)link.Send(std::move(*chunk));
     return;
@@ -201,8 +201,7 @@ std::vector<JobRunner*> Master::RunnersByPriority() {
   }
   // Equal priorities take turns being first, so they share the agents.
   if (!order.empty()) {
-    std::rotate(order.begin(), order.begin() + (dispatch_rotation_++ % order.size()),
-                order.end());
+    std::rotate(order.begin(), order.begin() + (dispatch_rotation_++ % order.size()), order.end());
   }
   std::stable_sort(order.begin(), order.end(),
                    [](JobRunner* a, JobRunner* b) { return a->priority() > b->priority(); });

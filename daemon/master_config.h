@@ -19,11 +19,11 @@ struct MasterConfig {
   uint32_t agent_timeout_ms = 5000;      // silent this long: the agent's leases go back
   uint32_t handshake_timeout_ms = 5000;  // unauthenticated this long: the connection is closed
   std::string log_level = "info";
-  uint32_t checkpoint_keep = 3;     // full checkpoints kept per job
-  double checkpoint_seconds = 0;    // 0: checkpoint every round; else at most this often
-  uint32_t max_running_jobs = 4;    // jobs solved at once; more wait queued
-  double lease_seconds = 0.25;      // the time one batch should take on its agent
-  uint32_t max_agents = 4096;       // connections beyond this are refused
+  uint32_t checkpoint_keep = 3;   // full checkpoints kept per job
+  double checkpoint_seconds = 0;  // 0: checkpoint every round; else at most this often
+  uint32_t max_running_jobs = 4;  // jobs solved at once; more wait queued
+  double lease_seconds = 0.25;    // the time one batch should take on its agent
+  uint32_t max_agents = 4096;     // connections beyond this are refused
 
   std::string ControlPath() const;
   std::string DatabasePath() const;

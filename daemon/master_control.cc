@@ -124,9 +124,8 @@ json Master::JobJson(const JobSummary& s) {
     job["stop_reason"] = StopReasonOf(s);
     job["eta_seconds"] = 0.0;
   }
-  job["progress"] = r.state == store::JobState::kDone
-                        ? 1.0
-                        : ConvergenceFraction(unshot, s.settings.tolerance);
+  job["progress"] =
+      r.state == store::JobState::kDone ? 1.0 : ConvergenceFraction(unshot, s.settings.tolerance);
   return job;
 }
 
@@ -199,9 +198,12 @@ void Master::Submit(ControlRequest request, ControlRespond respond) {
         Result<PatchMesh> mesh = PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
         if (!mesh) return Error{mesh.error()};
         const SolverSettings& solver = bundle->job.solver;
-        SubmittedSettings settings{solver.tolerance, solver.max_rays, solver.max_seconds,
+        SubmittedSettings settings{solver.tolerance,
+                                   solver.max_rays,
+                                   solver.max_seconds,
                                    std::string(SamplerName(solver.sampler)),
-                                   mesh->patch_scene().patches.size(), bundle->job.scene_path};
+                                   mesh->patch_scene().patches.size(),
+                                   bundle->job.scene_path};
         return std::pair(settings, solver.seed);
       },
       [this, blob, request = std::move(request),
@@ -231,9 +233,8 @@ void Master::Submit(ControlRequest request, ControlRespond respond) {
             [this, respond](Result<JobSummary> summary) {
               if (!summary) return respond(ControlError("internal", summary.error()));
               LogLine(LogLevel::kInfo, "job " + std::to_string(summary->record.id))
-                  << "submitted: " << summary->record.spec.name << ", "
-                  << summary->settings.patches << " patches, priority "
-                  << summary->record.spec.priority;
+                  << "submitted: " << summary->record.spec.name << ", " << summary->settings.patches
+                  << " patches, priority " << summary->record.spec.priority;
               respond({json{{"ok", true}, {"job", JobJson(*summary)}}, {}});
               StartQueuedJobs();
             });
@@ -281,7 +282,8 @@ void Master::ChangeState(ControlRequest request, ControlRespond respond) {
       },
       [this, id, command, respond](Result<Lookup> lookup) {
         if (!lookup) return respond(ControlError("internal", lookup.error()));
-        if (!lookup->invalid.empty()) return respond(ControlError("invalid_state", lookup->invalid));
+        if (!lookup->invalid.empty())
+          return respond(ControlError("invalid_state", lookup->invalid));
         if (!lookup->summary) return respond(NotFound(id));
         if (command == ControlCommand::kResume) {
           StartQueuedJobs();
@@ -299,7 +301,8 @@ void Master::ChangeState(ControlRequest request, ControlRespond respond) {
 void Master::Fetch(ControlRequest request, ControlRespond respond) {
   const store::JobId id = *request.id;
   OnStore(
-      [id](store::JobStore& s) -> Result<std::pair<std::optional<JobSummary>, std::vector<uint8_t>>> {
+      [id](store::JobStore& s)
+          -> Result<std::pair<std::optional<JobSummary>, std::vector<uint8_t>>> {
         using Answer = std::pair<std::optional<JobSummary>, std::vector<uint8_t>>;
         Result<std::optional<store::JobRecord>> job = s.GetJob(id);
         if (!job) return Error{job.error()};
@@ -335,20 +338,20 @@ void Master::Fetch(ControlRequest request, ControlRespond respond) {
         JobSummary at_checkpoint = *summary;
         at_checkpoint.rays = st.rays;
         at_checkpoint.unshot_fraction = st.unshot_fraction;
-        st.stop_reason = (*job)->state == store::JobState::kDone ? StopReasonOf(at_checkpoint)
-                                                                 : "checkpoint";
+        st.stop_reason =
+            (*job)->state == store::JobState::kDone ? StopReasonOf(at_checkpoint) : "checkpoint";
         st.emitted_power = c.energy.emitted;
         st.absorbed_power = c.energy.absorbed;
         st.escaped_power = c.energy.escaped;
         return Answer{std::move(*summary), codec::EncodeJobSolution(solution)};
       },
-      [this, id, respond](
-          Result<std::pair<std::optional<JobSummary>, std::vector<uint8_t>>> answer) {
+      [this, id,
+       respond](Result<std::pair<std::optional<JobSummary>, std::vector<uint8_t>>> answer) {
         if (!answer) return respond(ControlError("internal", answer.error()));
         if (!answer->first) return respond(NotFound(id));
         if (answer->second.empty()) {
-          return respond(ControlError("invalid_state", "job " + std::to_string(id) +
-                                                           " has no checkpoint yet"));
+          return respond(ControlError("invalid_state",
+                                      "job " + std::to_string(id) + " has no checkpoint yet"));
         }
         respond({json{{"ok", true}, {"job", JobJson(*answer->first)}}, std::move(answer->second)});
       });

@@ -96,9 +96,9 @@ void Master::StartQueuedJobs() {
           const store::JobId id = start.record.id;
           starting_[id] = false;
           LogEvent(id, store::EventLevel::kInfo,
-                   start.checkpoint ? "started, resuming after round " +
-                                          std::to_string(start.checkpoint->round)
-                                    : "started");
+                   start.checkpoint
+                       ? "started, resuming after round " + std::to_string(start.checkpoint->round)
+                       : "started");
           auto options = scheduler_options_;
           auto shared = std::make_shared<JobStart>(std::move(start));
           Status s = compute_queue_->Submit(
@@ -159,8 +159,7 @@ void Master::OnRoundComplete(const std::shared_ptr<JobRunner>& runner) {
     FailJob(runner->id(), round.error());
     return;
   }
-  const double seconds =
-      std::chrono::duration<double>(Now() - runner->round_started()).count();
+  const double seconds = std::chrono::duration<double>(Now() - runner->round_started()).count();
   const uint32_t batch_rays = runner->scheduler().SuggestedBatchRays();
   // Checkpoint every round, or at most every checkpoint_seconds.
   const uint64_t now_ms = loop_.NowMs();
@@ -221,16 +220,15 @@ void Master::FinishJob(const std::shared_ptr<JobRunner>& runner, store::JobState
   const store::JobId id = runner->id();
   const std::string reason = runner->stop_reason().value_or("stopped");
   DropRunner(id);
-  OnStore(
-      [id, state, error](store::JobStore& s) { return s.SetJobState(id, state, error); },
-      [this, id, reason](Status s) {
-        if (!s) {
-          LogLine(LogLevel::kError, "store") << "job " << id << ": " << s.error();
-          return;
-        }
-        LogEvent(id, store::EventLevel::kInfo, "done: " + reason);
-        StartQueuedJobs();
-      });
+  OnStore([id, state, error](store::JobStore& s) { return s.SetJobState(id, state, error); },
+          [this, id, reason](Status s) {
+            if (!s) {
+              LogLine(LogLevel::kError, "store") << "job " << id << ": " << s.error();
+              return;
+            }
+            LogEvent(id, store::EventLevel::kInfo, "done: " + reason);
+            StartQueuedJobs();
+          });
 }
 
 void Master::DropRunner(store::JobId id) {

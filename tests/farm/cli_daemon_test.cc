@@ -22,18 +22,34 @@ nlohmann::json Json(const CommandResult& r) {
 }
 
 void ExpectJobKeys(const nlohmann::json& job) {
-  for (const char* key :
-       {"id", "name", "state", "priority", "seed", "scene_hash", "patches", "submitted_at_ms",
-        "started_at_ms", "finished_at_ms", "error", "round", "rays", "unshot_fraction",
-        "tolerance", "progress", "rays_per_second", "agents", "eta_seconds", "stop_reason"}) {
+  for (const char* key : {"id",
+                          "name",
+                          "state",
+                          "priority",
+                          "seed",
+                          "scene_hash",
+                          "patches",
+                          "submitted_at_ms",
+                          "started_at_ms",
+                          "finished_at_ms",
+                          "error",
+                          "round",
+                          "rays",
+                          "unshot_fraction",
+                          "tolerance",
+                          "progress",
+                          "rays_per_second",
+                          "agents",
+                          "eta_seconds",
+                          "stop_reason"}) {
     EXPECT_TRUE(job.contains(key)) << key << " missing from " << job.dump();
   }
 }
 
 TEST_F(FarmTest, EveryQueueCommandAgainstARunningMaster) {
   StartMaster({"--max-running-jobs", "1"});
-  const int64_t alpha = Submit("cornell-box.toml", {"--name", "alpha", "--priority", "5",
-                                                    "--rays", "3000000"});
+  const int64_t alpha =
+      Submit("cornell-box.toml", {"--name", "alpha", "--priority", "5", "--rays", "3000000"});
   const int64_t beta = Submit("cornell-box.toml", {"--name", "beta"});
   ASSERT_GT(alpha, 0);
   ASSERT_GT(beta, alpha);
@@ -181,7 +197,8 @@ TEST_F(FarmTest, AHigherPriorityJobGetsTheAgentsFirst) {
   ASSERT_TRUE(WaitForState(low, "done"));
   const nlohmann::json h = Status(high), l = Status(low);
   EXPECT_LT(h["finished_at_ms"].get<int64_t>(), l["finished_at_ms"].get<int64_t>())
-      << h.dump() << "\n" << l.dump();
+      << h.dump() << "\n"
+      << l.dump();
   // Both still match render, whatever the interleaving.
   EXPECT_TRUE(FetchPatches(high) == ReferencePatches("cornell-box.toml", {"--rays", "3000000"}));
   EXPECT_TRUE(FetchPatches(low) == ReferencePatches("cornell-box.toml", {"--rays", "3000000"}));

@@ -26,20 +26,20 @@ void FarmTest::SetUp() {
   Result<protocol::FarmSecret> secret = protocol::FarmSecret::Generate();
   ASSERT_TRUE(secret.ok());
   std::ofstream(secret_file_) << secret->ToHex() << "\n";
-  std::filesystem::permissions(secret_file_, std::filesystem::perms::owner_read |
-                                                 std::filesystem::perms::owner_write);
+  std::filesystem::permissions(
+      secret_file_, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
 }
 
 ChildProcess& FarmTest::StartMaster(const std::vector<std::string>& extra) {
   const std::string addr_file = state_dir_ + "/listen.addr";
   std::error_code ec;
   std::filesystem::remove(addr_file, ec);
-  std::vector<std::string> args = {RADFARMD_PATH,       "--state-dir",
-                                   state_dir_,          "--secret-file",
-                                   secret_file_,        "--heartbeat-ms",
-                                   "200",               "--agent-timeout-ms",
-                                   "2000",              "--handshake-timeout-ms",
-                                   "2000",              "--log-level",
+  std::vector<std::string> args = {RADFARMD_PATH, "--state-dir",
+                                   state_dir_,    "--secret-file",
+                                   secret_file_,  "--heartbeat-ms",
+                                   "200",         "--agent-timeout-ms",
+                                   "2000",        "--handshake-timeout-ms",
+                                   "2000",        "--log-level",
                                    "debug"};
   // An ephemeral port unless the test names one (a restarted master keeps its port).
   if (std::find(extra.begin(), extra.end(), "--listen") == extra.end()) {
@@ -48,10 +48,12 @@ ChildProcess& FarmTest::StartMaster(const std::vector<std::string>& extra) {
   args.insert(args.end(), extra.begin(), extra.end());
   master_ = std::make_unique<ChildProcess>(args, dir_.File("master.log"));
   ++master_starts_;
-  const bool up = WaitUntil([&] {
-    return std::filesystem::exists(addr_file) ||
-           master_->WaitExit(std::chrono::milliseconds(0)).has_value();
-  }, std::chrono::seconds(60));
+  const bool up = WaitUntil(
+      [&] {
+        return std::filesystem::exists(addr_file) ||
+               master_->WaitExit(std::chrono::milliseconds(0)).has_value();
+      },
+      std::chrono::seconds(60));
   EXPECT_TRUE(up && master_->running()) << master_->Log();
   master_address_ = Trim(ReadFile(addr_file));
   return *master_;
@@ -111,11 +113,13 @@ nlohmann::json FarmTest::Agents() const {
 bool FarmTest::WaitForState(int64_t id, const std::string& state, std::chrono::seconds timeout) {
   if (id < 0) return false;  // the submit failed and said so
   std::string last;
-  const bool reached = WaitUntil([&] {
-    const nlohmann::json job = Status(id);
-    if (job.is_object() && job.contains("state")) last = job["state"].get<std::string>();
-    return last == state;
-  }, timeout);
+  const bool reached = WaitUntil(
+      [&] {
+        const nlohmann::json job = Status(id);
+        if (job.is_object() && job.contains("state")) last = job["state"].get<std::string>();
+        return last == state;
+      },
+      timeout);
   EXPECT_TRUE(reached) << "job " << id << " is '" << last << "', not '" << state << "'\n"
                        << MasterLog();
   return reached;
@@ -137,9 +141,9 @@ std::string FarmTest::ReferencePatches(const std::string& scene,
   std::lock_guard lock(mutex);
   if (auto it = cache.find(key); it != cache.end()) return it->second;
   TempDir out;
-  std::vector<std::string> args = {RADFARM_CLI_PATH, "render",
-                                   std::string(RADFARM_SOURCE_DIR "/scenes/") + scene, "--out",
-                                   out.path(), "-q"};
+  std::vector<std::string> args = {
+      RADFARM_CLI_PATH, "render",   std::string(RADFARM_SOURCE_DIR "/scenes/") + scene,
+      "--out",          out.path(), "-q"};
   args.insert(args.end(), flags.begin(), flags.end());
   const CommandResult r = RunCommand(args);
   EXPECT_EQ(r.exit_code, 0) << r.err;

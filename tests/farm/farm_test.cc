@@ -96,15 +96,12 @@ TEST_F(FarmTest, AFrozenAgentLosesItsLeasesAndItsLateWorkIsNotCounted) {
 TEST_F(FarmTest, AnAgentWithAWrongSecretIsRefusedAndTheJobGoesOn) {
   StartMaster();
   const std::string wrong = Path("wrong-secret");
-  {
-    std::ofstream(wrong) << std::string(64, 'a') << "\n";
-  }
+  { std::ofstream(wrong) << std::string(64, 'a') << "\n"; }
   std::filesystem::permissions(wrong, std::filesystem::perms::owner_read);
   StartAgent("intruder", {}, wrong);
   StartAgent("good");
   const int64_t id = Submit("cornell-box.toml", kShortJob);
-  ASSERT_TRUE(WaitUntil([&] { return CountLines(MasterLog(), ": refused: ") > 0; }))
-      << MasterLog();
+  ASSERT_TRUE(WaitUntil([&] { return CountLines(MasterLog(), ": refused: ") > 0; })) << MasterLog();
   ASSERT_TRUE(WaitForState(id, "done"));
   EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml", kShortJob));
   const nlohmann::json agents = Agents();
@@ -179,8 +176,7 @@ TEST_F(FarmTest, TheMasterKilledAtRandomPointsResumesEveryJobIdentically) {
   // The kills landed at different stages: some after checkpoints (the job resumed from one).
   EXPECT_GE(CountLines(MasterLog(), "resuming after round"), 1u) << MasterLog();
   EXPECT_EQ(CountLines(MasterLog(), "listening for agents"), size_t(kKills + 1));
-  EXPECT_TRUE(FetchPatches(long_job) == ReferencePatches("cornell-box.toml"))
-      << "seed " << seed;
+  EXPECT_TRUE(FetchPatches(long_job) == ReferencePatches("cornell-box.toml")) << "seed " << seed;
   for (int64_t id : short_jobs) {
     ASSERT_TRUE(WaitForState(id, "done"));
     EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml", kShortJob))

@@ -110,8 +110,7 @@ TEST_F(FarmTest, AnAgentSendingAnInvalidResultIsDisconnectedAndBlocklisted) {
   lie.hits = {{assignment.patch_count + 7, assignment.ray_count}};
   ASSERT_TRUE(liar.Send(lie));
   // The master closes the connection.
-  while ((message = liar.NextMessage()) &&
-         !std::holds_alternative<protocol::CloseMsg>(*message)) {
+  while ((message = liar.NextMessage()) && !std::holds_alternative<protocol::CloseMsg>(*message)) {
   }
   ASSERT_TRUE(WaitUntil([&] { return CountLines(MasterLog(), "result rejected (invalid)") > 0; }))
       << MasterLog();

@@ -46,9 +46,7 @@ TEST_F(FarmTest, AKilledEmbeddedRenderContinuesFromItsDatabase) {
 
 TEST_F(FarmTest, RenderRefusesADatabaseThatIsNotAJobStore) {
   const std::string db = Path("not-a-store.db");
-  {
-    std::ofstream(db) << "this is not SQLite";
-  }
+  { std::ofstream(db) << "this is not SQLite"; }
   const CommandResult r = RunCommand({RADFARM_CLI_PATH, "render",
                                       std::string(RADFARM_SOURCE_DIR) + "/scenes/furnace.obj",
                                       "--out", Path("out"), "--db", db, "-q"});

@@ -56,7 +56,7 @@ TEST(RoundSchedulerTest, LeasesHeldForOtherJobsCountAgainstTheCapacity) {
   s.AddAgent(1);
   ASSERT_TRUE(s.StartRound(Plan(0, 10), kT0).ok());
   EXPECT_EQ(s.LeaseCapacityOf(1), 3u);
-  EXPECT_EQ(s.LeaseCapacityOf(9), 0u);  // unknown
+  EXPECT_EQ(s.LeaseCapacityOf(9), 0u);        // unknown
   EXPECT_FALSE(s.NextAssignment(1, kT0, 3));  // full with another job's leases
   ASSERT_TRUE(s.NextAssignment(1, kT0, 2));   // one slot left
   EXPECT_EQ(s.LeasesHeld(1), 1u);

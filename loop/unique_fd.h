@@ -1,4 +1,5 @@
-// UniqueFd: owns one file descriptor and closes it when destroyed. Move-only.
+// UniqueFd: owns one POSIX file descriptor and closes it when destroyed. Move-only. Header-only,
+// for the daemons and the CLI alike (the CLI's blocking control client does not link loop/).
 #pragma once
 
 #include <unistd.h>
@@ -26,9 +27,10 @@ class UniqueFd {
   int get() const { return fd_; }
   bool valid() const { return fd_ >= 0; }
   void Reset() {
-    if (fd_ >= 0) ::close(fd_);
-    fd_ = -1;
+    if (fd_ >= 0) ::close(std::exchange(fd_, -1));
   }
+  // Closes now and returns close(2)'s result, for writes whose failure must be seen.
+  int Close() { return ::close(std::exchange(fd_, -1)); }
 
  private:
   int fd_ = -1;
