@@ -1,0 +1,35 @@
+#include "bench/farm/farm_bench_options.h"
+
+#include <string_view>
+
+namespace radfarm::bench {
+
+bool ParseFarmBenchOptions(int argc, char** argv, FarmBenchOptions* options, std::string* error) {
+  options->out_dir = RADFARM_SOURCE_DIR "/docs";
+  options->scenes_dir = RADFARM_SOURCE_DIR "/scenes";
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg == "--quick") {
+      options->quick = true;
+    } else if ((arg == "--out-dir" || arg == "--scenes") && i + 1 < argc) {
+      (arg == "--out-dir" ? options->out_dir : options->scenes_dir) = argv[++i];
+    } else if (arg == "--only" && i + 1 < argc) {
+      const std::string_view part = argv[++i];
+      if (part != "real" && part != "sim") {
+        *error = "--only takes 'real' or 'sim', not '" + std::string(part) + "'";
+        return false;
+      }
+      options->real = part == "real";
+      options->simulated = part == "sim";
+    } else if (arg == "-h" || arg == "--help") {
+      error->clear();
+      return false;
+    } else {
+      *error = "unknown or incomplete argument '" + std::string(arg) + "'";
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace radfarm::bench
