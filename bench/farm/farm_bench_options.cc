@@ -21,6 +21,14 @@ bool ParseFarmBenchOptions(int argc, char** argv, FarmBenchOptions* options, std
       }
       options->real = part == "real";
       options->simulated = part == "sim";
+    } else if (arg == "--agents" && i + 1 < argc) {
+      const std::string text = argv[++i];
+      if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos ||
+          text.size() > 6 || std::stoul(text) == 0) {
+        *error = "--agents takes a positive number, not '" + text + "'";
+        return false;
+      }
+      options->agents = std::stoul(text);
     } else if (arg == "-h" || arg == "--help") {
       error->clear();
       return false;

@@ -191,7 +191,10 @@ void ScalingMethod(std::ostringstream& md, const FarmBenchReport& r) {
         "compute the N agents could have done. **Utilisation** = an agent's simulated busy "
         "seconds / wall, mean and minimum over agents; it also counts batches computed twice "
         "(a lease re-issued past its deadline), which **re-issued** gives as computed rays / "
-        "job rays - 1.\n"
+        "job rays - 1. **Idle between rounds** (from a round's last result to the next round's "
+        "first lease: the reduction, planning, the lease's way out) and **idle within rounds** "
+        "(waiting for a lease mid-round, round tails) split the agents' idle time, as fractions "
+        "of N x wall.\n"
      << "- **batches/s**: results the agents sent per second of wall. **bytes/ray**: every byte "
         "of every frame both ways on all N connections (handshake, heartbeats, scene fetch, "
         "assignments, results, prefixes included) over the job's rays; **B/batch** the same "
@@ -204,9 +207,11 @@ void ScalingMethod(std::ostringstream& md, const FarmBenchReport& r) {
 
 void ScalingTable(std::ostringstream& md, const FarmBenchReport& r, const std::string& group) {
   md << "| N | latency | rounds | wall s | batches | batches/s | bytes/ray | B/batch | "
-        "utilisation mean | utilisation min | efficiency | re-issued | master CPU s | master "
+        "utilisation mean | utilisation min | efficiency | idle between rounds | idle within "
+        "rounds "
+        "| re-issued | master CPU s | master "
         "CPU µs/batch | sim CPU s | sim lateness ms |\n"
-     << "|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+     << "|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const ScalingRow& row : r.scaling) {
     if (row.group != group || row.samples.empty()) continue;
     const auto m = [&](const SampleValue& v) { return MedianOf(row, v); };
@@ -219,8 +224,9 @@ void ScalingTable(std::ostringstream& md, const FarmBenchReport& r, const std::s
        << F("%.0f", m([](auto& s) { return s.bytes_per_batch(); })) << " | "
        << Percent(m([](auto& s) { return s.utilisation_mean; })) << " | "
        << Percent(m([](auto& s) { return s.utilisation_min; })) << " | " << Percent(m(Efficiency))
-       << " | " << Percent(m(Reissued)) << " | "
-       << F("%.2f", m([](auto& s) { return s.master_cpu_seconds; })) << " | "
+       << " | " << Percent(m([](auto& s) { return s.idle_between_rounds; })) << " | "
+       << Percent(m([](auto& s) { return s.idle_within_rounds; })) << " | " << Percent(m(Reissued))
+       << " | " << F("%.2f", m([](auto& s) { return s.master_cpu_seconds; })) << " | "
        << F("%.0f", m(MasterMicrosPerBatch)) << " | "
        << F("%.2f", m([](auto& s) { return s.swarm_cpu_seconds; })) << " | "
        << F("%.2f", 1e3 * m([](auto& s) { return s.mean_lateness; })) << " |\n";

@@ -71,6 +71,10 @@ int Run(int argc, char** argv) {
   }
   if (options.simulated) {
     SuitePlan plan = MakeSuitePlan(options.quick);
+    if (options.agents > 0) {
+      std::erase_if(plan.rows,
+                    [&](const ScalingRow& row) { return row.config.agents != options.agents; });
+    }
     std::printf("simulated agents: %zu cases, %d repetitions\n", plan.rows.size(),
                 plan.repetitions);
     RunSuite(plan, programs, options.scenes_dir, scratch.path());

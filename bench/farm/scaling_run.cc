@@ -89,6 +89,17 @@ ScalingSample RunScalingCase(const FarmPrograms& programs, const std::string& sc
     busy += u;
     s.utilisation_min = std::min(s.utilisation_min, u);
   }
+  double span_sum = 0, span_busy = 0;
+  for (const auto& [number, span] : report.rounds) {
+    if (span.first_assignment < 0 || span.last_result < 0) continue;
+    span_sum += span.last_result - span.first_assignment;
+    span_busy += span.busy_seconds;
+  }
+  if (s.wall_seconds > 0) {
+    s.idle_between_rounds = std::max(0.0, s.wall_seconds - span_sum) / s.wall_seconds;
+    s.idle_within_rounds =
+        (double(c.agents) * span_sum - span_busy) / (double(c.agents) * s.wall_seconds);
+  }
   s.utilisation_mean = report.agents.empty() ? 0 : busy / double(report.agents.size());
   s.efficiency = s.wall_seconds > 0 ? (double(s.job_rays) / c.rays_per_second) /
                                           (double(c.agents) * s.wall_seconds)

@@ -37,6 +37,11 @@ struct ScalingSample {
   double swarm_cpu_seconds = 0;                // the simulator's
   double mean_lateness = 0, max_lateness = 0;  // the simulator's timers
   double connect_seconds = 0;
+  // Where the agents' idle time went, as fractions of N x wall: between rounds (from a round's
+  // last result to the next round's first lease: reduction, planning, the lease's way out) and
+  // within rounds (from a round's first lease to its last result: waiting for leases, round
+  // tails).
+  double idle_between_rounds = 0, idle_within_rounds = 0;
   size_t agent_errors = 0;  // agents that closed during the job
   std::string first_error;
 

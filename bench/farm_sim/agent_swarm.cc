@@ -160,6 +160,15 @@ void AgentSwarm::Run() {
   for (const auto& agent : agents) {
     const SimAgentStats& s = agent->stats();
     report.agents.push_back(s);
+    for (const auto& [number, span] : s.rounds) {
+      RoundSpan& merged = report.rounds[number];
+      if (merged.first_assignment < 0 || span.first_assignment < merged.first_assignment) {
+        merged.first_assignment = span.first_assignment;
+      }
+      merged.last_result = std::max(merged.last_result, span.last_result);
+      merged.busy_seconds += span.busy_seconds;
+      merged.batches += span.batches;
+    }
     if (s.first_assignment >= 0 &&
         (report.job_start < 0 || s.first_assignment < report.job_start)) {
       report.job_start = s.first_assignment;

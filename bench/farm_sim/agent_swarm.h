@@ -11,6 +11,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -32,6 +33,8 @@ struct SwarmConfig {
 
 struct SwarmReport {
   std::vector<SimAgentStats> agents;
+  // Every agent's rounds merged: earliest assignment, latest result, summed busy time.
+  std::map<uint32_t, RoundSpan> rounds;
   double connect_seconds = 0;  // from the first connect to the last Welcome
   double job_start = -1;       // earliest first assignment (SteadySeconds)
   double job_end = -1;         // earliest Cancel arrival: the master finished the job

@@ -57,14 +57,6 @@ void SimAgent::OnFrame(std::span<const uint8_t> payload) {
     Process(copy);
     return;
   }
-  // Cancel's arrival marks the job's end on the master's side: note it before the latency.
-  Result<protocol::DecodedFrame> frame = protocol::DecodeFrameBody(copy);
-  if (frame && std::holds_alternative<protocol::CancelMsg>(frame->message)) {
-    hooks_.OnCancel(std::get<protocol::CancelMsg>(frame->message).job_id, now);
-  } else if (frame && std::holds_alternative<protocol::BatchAssignmentMsg>(frame->message) &&
-             stats_.first_assignment < 0) {
-    stats_.first_assignment = now;
-  }
   delays_.At(now + settings_.latency_seconds, [this, copy = std::move(copy)] { Process(copy); });
 }
 
@@ -108,7 +100,10 @@ void SimAgent::OnMessage(const protocol::Message& message) {
 
 void SimAgent::OnAssignment(const protocol::BatchAssignmentMsg& batch) {
   const double now = SteadySeconds();
-  if (stats_.first_assignment < 0) stats_.first_assignment = now;
+  const double at_socket = now - settings_.latency_seconds;
+  if (stats_.first_assignment < 0) stats_.first_assignment = at_socket;
+  RoundSpan& round = stats_.rounds[batch.round];
+  if (round.first_assignment < 0) round.first_assignment = at_socket;
   Queued item{batch, now};
   if (scenes_.count(batch.scene_hash) > 0) {
     queue_.push_back(std::move(item));
@@ -155,7 +150,8 @@ void SimAgent::OnSceneChunk(const protocol::SceneChunkMsg& chunk) {
 }
 
 void SimAgent::OnCancel(uint64_t job_id) {
-  if (settings_.latency_seconds <= 0) hooks_.OnCancel(job_id, SteadySeconds());
+  // Its arrival at the socket marks the job's end on the master's side.
+  hooks_.OnCancel(job_id, SteadySeconds() - settings_.latency_seconds);
   const auto of_job = [job_id](const Queued& q) { return q.batch.lease.job_id == job_id; };
   std::erase_if(queue_, of_job);
   std::erase_if(parked_, of_job);
@@ -193,6 +189,10 @@ void SimAgent::Finish(uint64_t generation) {
   stats_.busy_seconds += seconds;
   Send(*result);
   stats_.last_result = SteadySeconds() + settings_.latency_seconds;
+  RoundSpan& round = stats_.rounds[current_.batch.round];
+  round.last_result = stats_.last_result;
+  round.busy_seconds += seconds;
+  ++round.batches;
   StartNext();
 }
 

@@ -35,15 +35,25 @@ struct SimAgentSettings {
   uint32_t spread = 4;           // patches a result's rays are spread over
 };
 
+// One round as one agent saw it. Times are SteadySeconds() at the sockets (the added latency
+// taken out); -1 when it never happened.
+struct RoundSpan {
+  double first_assignment = -1;  // the round's first lease arrived
+  double last_result = -1;       // its last result reached the master
+  double busy_seconds = 0;       // simulated compute of its results
+  uint64_t batches = 0;
+};
+
 // What an agent measured. Times are SteadySeconds(); -1 when it never happened.
 struct SimAgentStats {
   uint64_t bytes_sent = 0, bytes_received = 0;  // frames with their 4-byte prefixes
   uint64_t frames_sent = 0, frames_received = 0;
-  uint64_t scene_bytes_received = 0;  // of bytes_received: SceneChunk frames
-  uint64_t batches = 0, rays = 0;     // results sent
-  double busy_seconds = 0;            // simulated compute of the results sent
-  double first_assignment = -1;       // arrival on the socket (before the added latency)
-  double last_result = -1;            // when the last result went to the socket
+  uint64_t scene_bytes_received = 0;     // of bytes_received: SceneChunk frames
+  uint64_t batches = 0, rays = 0;        // results sent
+  double busy_seconds = 0;               // simulated compute of the results sent
+  double first_assignment = -1;          // arrival on the socket (before the added latency)
+  double last_result = -1;               // when the last result went to the socket
+  std::map<uint32_t, RoundSpan> rounds;  // by round number
 };
 
 class SwarmHooks {
