@@ -20,6 +20,7 @@ struct ScalingRow {
 struct FarmBenchReport {
   MachineInfo machine;
   bool quick = false;
+  std::string radfarmd;  // the master binary measured
   bool has_real = false;
   RealComputeResult real;
   std::vector<ScalingRow> scaling;

@@ -101,6 +101,7 @@ void Header(std::ostringstream& md, const FarmBenchReport& r) {
      << (r.quick ? "**quick** (smoke check: small jobs, 1 repetition; do not quote these numbers)"
                  : "full")
      << " |\n"
+     << "| master measured | `" << r.radfarmd << "` |\n"
      << "| open-file limit | " << r.open_file_limit << " |\n"
      << "| total run time | " << F("%.0f", r.total_seconds) << " s |\n\n";
 }

@@ -47,10 +47,11 @@ int Run(int argc, char** argv) {
     return 2;
   }
   const Stopwatch total;
-  const FarmPrograms programs{RADFARMD_PATH, RADFARM_AGENT_PATH, RADFARM_CLI_PATH};
+  const FarmPrograms programs{options.radfarmd, RADFARM_AGENT_PATH, RADFARM_CLI_PATH};
   FarmBenchReport report;
   report.machine = ReadMachineInfo(argc, argv);
   report.quick = options.quick;
+  report.radfarmd = options.radfarmd;
   report.open_file_limit = RaiseOpenFileLimit();
   std::printf("farm_bench%s: %u CPUs, %s, load %s, open files %llu\n",
               options.quick ? " --quick" : "", report.machine.cpus,
@@ -63,7 +64,7 @@ int Run(int argc, char** argv) {
     config.programs = programs;
     config.job_file = options.scenes_dir + "/cornell-box.toml";
     if (options.quick) config.overrides = {"--tolerance", "0.01"};
-    config.repetitions = options.quick ? 1 : 5;
+    config.repetitions = options.repetitions > 0 ? options.repetitions : options.quick ? 1 : 5;
     config.work_dir = scratch.path();
     std::printf("real compute: %s, %d repetitions\n", config.job_file.c_str(), config.repetitions);
     report.real = RunRealCompute(config);
@@ -71,6 +72,7 @@ int Run(int argc, char** argv) {
   }
   if (options.simulated) {
     SuitePlan plan = MakeSuitePlan(options.quick);
+    if (options.repetitions > 0) plan.repetitions = options.repetitions;
     if (options.agents > 0) {
       std::erase_if(plan.rows,
                     [&](const ScalingRow& row) { return row.config.agents != options.agents; });
