@@ -81,9 +81,7 @@ void Master::OnAgentClosed(AgentLink& link, const std::string& reason) {
 void Master::TakeLeasesAway(AgentLink& link, const char* why) {
   size_t held = 0;
   for (auto& [job, runner] : runners_) {
-    for (const auto& a : runner->scheduler().counters(Now()).agents) {
-      if (a.agent == link.id()) held += a.leases_held;
-    }
+    if (const auto a = runner->scheduler().agent_counters(link.id(), Now())) held += a->leases_held;
     runner->scheduler().OnAgentLost(link.id());
   }
   LogLine(LogLevel::kWarning, "agents")
@@ -249,11 +247,11 @@ void Master::OnHeartbeatTimer() {
       TakeLeasesAway(*link, "missed its heartbeats");
       continue;
     }
+    // One lookup per agent and job: counters() costs O(batches + agents) and, called per agent,
+    // took most of the loop thread's time with 1000 agents (farm_bench, docs/BENCHMARKS-farm.md).
     uint32_t leases = 0;
     for (auto& [job, runner] : runners_) {
-      for (const auto& a : runner->scheduler().counters(Now()).agents) {
-        if (a.agent == id) leases += a.leases_held;
-      }
+      if (const auto a = runner->scheduler().agent_counters(id, Now())) leases += a->leases_held;
     }
     beat.leases_held = leases;
     (void)link->Send(beat);
