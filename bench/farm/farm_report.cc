@@ -207,12 +207,13 @@ void ScalingMethod(std::ostringstream& md, const FarmBenchReport& r) {
 }
 
 void ScalingTable(std::ostringstream& md, const FarmBenchReport& r, const std::string& group) {
-  md << "| N | latency | rounds | wall s | batches | batches/s | bytes/ray | B/batch | "
+  md << "| N | latency | rounds | wall s | batches | rays/batch | batches/s | bytes/ray | B/batch "
+        "| "
         "utilisation mean | utilisation min | efficiency | idle between rounds | idle within "
         "rounds "
         "| re-issued | master CPU s | master "
         "CPU µs/batch | sim CPU s | sim lateness ms |\n"
-     << "|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+     << "|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const ScalingRow& row : r.scaling) {
     if (row.group != group || row.samples.empty()) continue;
     const auto m = [&](const SampleValue& v) { return MedianOf(row, v); };
@@ -220,7 +221,9 @@ void ScalingTable(std::ostringstream& md, const FarmBenchReport& r, const std::s
        << F("%.0f", m([](auto& s) { return s.rounds; })) << " | "
        << F("%.2f", m([](auto& s) { return s.wall_seconds; })) << " | "
        << F("%.0f", m([](auto& s) { return double(s.batches); })) << " | "
-       << F("%.0f", m([](auto& s) { return s.batches_per_second(); })) << " | "
+       << F("%.0f",
+            m([](auto& s) { return s.batches ? double(s.computed_rays) / double(s.batches) : 0; }))
+       << " | " << F("%.0f", m([](auto& s) { return s.batches_per_second(); })) << " | "
        << F("%.4f", m([](auto& s) { return s.bytes_per_ray(); })) << " | "
        << F("%.0f", m([](auto& s) { return s.bytes_per_batch(); })) << " | "
        << Percent(m([](auto& s) { return s.utilisation_mean; })) << " | "
