@@ -210,13 +210,15 @@ void ScalingTable(std::ostringstream& md, const FarmBenchReport& r, const std::s
   md << "| N | latency | rounds | wall s | batches | rays/batch | batches/s | bytes/ray | B/batch "
         "| "
         "utilisation mean | utilisation min | efficiency | idle between rounds | idle within "
-        "rounds "
-        "| re-issued | master CPU s | master "
-        "CPU µs/batch | sim CPU s | sim lateness ms |\n"
+        "rounds | re-issued | master CPU s | master CPU µs/batch | sim CPU s | sim lateness ms "
+        "|\n"
      << "|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+  // Agents that answer at once are never busy: their utilisation says nothing.
+  const bool timed = group != "capacity";
   for (const ScalingRow& row : r.scaling) {
     if (row.group != group || row.samples.empty()) continue;
     const auto m = [&](const SampleValue& v) { return MedianOf(row, v); };
+    const auto share = [&](const SampleValue& v) { return timed ? Percent(m(v)) : "–"; };
     md << "| " << row.config.agents << " | " << F("%.0f ms", row.config.latency_ms) << " | "
        << F("%.0f", m([](auto& s) { return s.rounds; })) << " | "
        << F("%.2f", m([](auto& s) { return s.wall_seconds; })) << " | "
@@ -226,10 +228,10 @@ void ScalingTable(std::ostringstream& md, const FarmBenchReport& r, const std::s
        << " | " << F("%.0f", m([](auto& s) { return s.batches_per_second(); })) << " | "
        << F("%.4f", m([](auto& s) { return s.bytes_per_ray(); })) << " | "
        << F("%.0f", m([](auto& s) { return s.bytes_per_batch(); })) << " | "
-       << Percent(m([](auto& s) { return s.utilisation_mean; })) << " | "
-       << Percent(m([](auto& s) { return s.utilisation_min; })) << " | " << Percent(m(Efficiency))
-       << " | " << Percent(m([](auto& s) { return s.idle_between_rounds; })) << " | "
-       << Percent(m([](auto& s) { return s.idle_within_rounds; })) << " | " << Percent(m(Reissued))
+       << share([](auto& s) { return s.utilisation_mean; }) << " | "
+       << share([](auto& s) { return s.utilisation_min; }) << " | " << share(Efficiency) << " | "
+       << share([](auto& s) { return s.idle_between_rounds; }) << " | "
+       << share([](auto& s) { return s.idle_within_rounds; }) << " | " << Percent(m(Reissued))
        << " | " << F("%.2f", m([](auto& s) { return s.master_cpu_seconds; })) << " | "
        << F("%.0f", m(MasterMicrosPerBatch)) << " | "
        << F("%.2f", m([](auto& s) { return s.swarm_cpu_seconds; })) << " | "
@@ -253,7 +255,27 @@ void ScalingSection(std::ostringstream& md, const FarmBenchReport& r) {
 }
 
 void NotesSection(std::ostringstream& md, const FarmBenchReport& r) {
-  md << "## Notes\n\n";
+  md << "## Notes: what limits efficiency\n\n"
+     << "- **Round tails** (most of *idle within rounds*): an agent holds about lease_seconds of "
+        "queued work plus one spare lease. When a round's queue runs dry, agents that drew their "
+        "last leases late still have them to compute while the others idle, and the next round "
+        "cannot be planned before the last result (the plan depends on the unshot power). The "
+        "scheduler re-issues a lease to an idle agent only once it is overdue (after "
+        "`--agent-timeout-ms`, 5 s), so unstarted leases queued on a busy agent are not taken "
+        "back at a round's end. Rounds of "
+     << F("%.2f", r.round_seconds)
+     << " s of work per agent make this a few per cent; shorter rounds pay more.\n"
+     << "- **Latency**: each round boundary costs at least a round trip (the last result in, "
+        "the first lease of the next round out) plus the reduction on the master; inside a round "
+        "the spare lease hides the round trip.\n"
+     << "- **Batch size follows the slowest measured agent** (`SuggestedBatchRays`): a measured "
+        "speed includes any wait for the master, so one agent measured slow shrinks everyone's "
+        "next batches (*rays/batch* above against 4096 in round 1), which means more batches "
+        "for the same rays and more work for the master.\n"
+     << "- **This machine**: the master, the simulator and other engineers' builds share 2 CPUs "
+        "(load averages in the header). *sim lateness* is how late the simulator ran its own "
+        "timers; results it sends late count here as the master's delay, so the efficiencies "
+        "are lower bounds for a master on its own machine.\n";
   for (const ScalingRow& row : r.scaling) {
     if (row.group != "capacity" || row.samples.empty()) continue;
     const double us = MedianOf(row, MasterMicrosPerBatch);
