@@ -135,11 +135,10 @@ json Master::AgentJson(const AgentLink& link) const {
   uint64_t results = 0;
   const auto now = Now();
   for (const auto& [job, runner] : runners_) {
-    for (const auto& a : runner->scheduler().counters(now).agents) {
-      if (a.agent != link.id()) continue;
-      leases += a.leases_held;
-      rays_per_second = std::max(rays_per_second, a.rays_per_second);
-      results += a.results_accepted;
+    if (const auto a = runner->scheduler().agent_counters(link.id(), now)) {
+      leases += a->leases_held;
+      rays_per_second = std::max(rays_per_second, a->rays_per_second);
+      results += a->results_accepted;
     }
   }
   return json{{"id", link.id()},

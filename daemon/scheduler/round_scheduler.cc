@@ -233,12 +233,14 @@ SchedulerCounters RoundScheduler::counters(TimePoint now) const {
       }
     }
   }
-  for (const auto& [id, agent] : agents_) {
-    c.agents.push_back({id, static_cast<uint32_t>(agent.live.size()), LeaseCapacity(agent),
-                        agent.throughput.rays_per_second(), IsBlocklisted(id, now),
-                        agent.results_accepted});
-  }
+  for (const auto& [id, agent] : agents_) c.agents.push_back(CountersOf(id, agent, now));
   return c;
+}
+
+std::optional<AgentCounters> RoundScheduler::agent_counters(AgentId agent, TimePoint now) const {
+  const auto it = agents_.find(agent);
+  if (it == agents_.end()) return std::nullopt;
+  return CountersOf(agent, it->second, now);
 }
 
 // --- Private ---
@@ -246,6 +248,15 @@ SchedulerCounters RoundScheduler::counters(TimePoint now) const {
 uint32_t RoundScheduler::LeaseCapacity(const AgentState& agent) const {
   const double batch_rays = round_ ? round_->mean_batch_rays : options_.default_batch_rays;
   return agent.throughput.LeaseCapacity(batch_rays, options_);
+}
+
+AgentCounters RoundScheduler::CountersOf(AgentId id, const AgentState& agent, TimePoint now) const {
+  return {id,
+          static_cast<uint32_t>(agent.live.size()),
+          LeaseCapacity(agent),
+          agent.throughput.rays_per_second(),
+          IsBlocklisted(id, now),
+          agent.results_accepted};
 }
 
 std::optional<uint32_t> RoundScheduler::PopFresh() {

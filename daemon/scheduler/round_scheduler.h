@@ -144,6 +144,9 @@ class RoundScheduler {
   // within [min_batch_rays, max_batch_rays]; default_batch_rays before any measurement.
   uint32_t SuggestedBatchRays() const;
   SchedulerCounters counters(TimePoint now) const;
+  // One agent's entry of counters().agents, in O(log agents) rather than O(batches + agents):
+  // for loops over every agent (heartbeats, the agent list). nullopt for an unknown agent.
+  std::optional<AgentCounters> agent_counters(AgentId agent, TimePoint now) const;
 
  private:
   enum class BatchState { kQueued, kLeased, kDone };
@@ -181,6 +184,7 @@ class RoundScheduler {
   };
 
   uint32_t LeaseCapacity(const AgentState& agent) const;
+  AgentCounters CountersOf(AgentId id, const AgentState& agent, TimePoint now) const;
   std::optional<uint32_t> PopFresh();
   std::optional<uint32_t> PopOverdueFor(AgentId agent);
   Assignment Issue(uint32_t index, AgentId agent_id, AgentState& agent, TimePoint now,

@@ -16,6 +16,10 @@ struct SchedulerOptions {
   // Leases an agent holds before its first result is measured, and the cap for anyone.
   uint32_t initial_leases = 2;
   uint32_t max_leases_per_agent = 64;
+  // Leases a measured agent holds beyond those that fill target_lease_seconds, so that its next
+  // batch is already there when one finishes and it never idles for the round trip to the master
+  // (result out, next lease back). radfarmd uses 1 (daemon/master.cc).
+  uint32_t spare_leases = 0;
   // Weight of the newest result in the smoothed throughput (exponential moving average).
   double throughput_smoothing = 0.3;
   // A lease is overdue after deadline_multiple times its expected time, at least deadline_floor;

@@ -26,7 +26,7 @@ class ThroughputEstimate {
   double rays_per_second() const;
 
   // Leases to hold so the held work takes about options.target_lease_seconds:
-  // floor(rays/s * target / batch_rays) clamped to [1, max_leases_per_agent];
+  // max(1, floor(rays/s * target / batch_rays)) + spare_leases, at most max_leases_per_agent;
   // options.initial_leases (capped) before the first result.
   uint32_t LeaseCapacity(double batch_rays, const SchedulerOptions& options) const;
 

@@ -234,5 +234,35 @@ TEST(RoundSchedulerTest, EmptyPlanIsRefusedAndBatchRaysFollowTheSlowestAgent) {
   EXPECT_EQ(s.SuggestedBatchRays(), 5000u);
 }
 
+// The heartbeat loop asks every agent's counters one agent at a time; they must be the entries of
+// counters().agents (which costs O(batches + agents) per call: with 1000 agents, asking it once
+// per agent took most of the master's loop thread, as farm_bench measured).
+TEST(RoundSchedulerTest, OneAgentsCountersAreItsEntryOfAllCounters) {
+  RoundScheduler s;
+  s.AddAgent(1);
+  s.AddAgent(2);
+  ASSERT_TRUE(s.StartRound(Plan(0, 10), kT0).ok());
+  const auto a = s.NextAssignment(1, kT0);
+  ASSERT_TRUE(a && s.NextAssignment(1, kT0) && s.NextAssignment(2, kT0));
+  ASSERT_EQ(s.OnResult(1, a->batch_id, a->attempt_id, ResultFor(0), kT0 + seconds(1)).disposition,
+            Disposition::kAccepted);
+  const SchedulerCounters all = s.counters(kT0 + seconds(1));
+  ASSERT_EQ(all.agents.size(), 2u);
+  for (const AgentCounters& expected : all.agents) {
+    const auto one = s.agent_counters(expected.agent, kT0 + seconds(1));
+    ASSERT_TRUE(one);
+    EXPECT_EQ(one->leases_held, expected.leases_held);
+    EXPECT_EQ(one->lease_capacity, expected.lease_capacity);
+    EXPECT_EQ(one->rays_per_second, expected.rays_per_second);
+    EXPECT_EQ(one->blocklisted, expected.blocklisted);
+    EXPECT_EQ(one->results_accepted, expected.results_accepted);
+  }
+  EXPECT_EQ(s.agent_counters(1, kT0 + seconds(1))->leases_held, 1u);
+  EXPECT_EQ(s.agent_counters(1, kT0 + seconds(1))->results_accepted, 1u);
+  EXPECT_FALSE(s.agent_counters(3, kT0));  // unknown
+  s.OnAgentLost(2);
+  EXPECT_FALSE(s.agent_counters(2, kT0));  // forgotten
+}
+
 }  // namespace
 }  // namespace radfarm::scheduler

@@ -53,6 +53,22 @@ TEST(ThroughputEstimateTest, FastAgentsHoldMoreLeasesNeverAboveTheCap) {
   EXPECT_EQ(very_fast.LeaseCapacity(4096, options), 16u);
 }
 
+TEST(ThroughputEstimateTest, SpareLeasesComeOnTopOfTheTargetOnceMeasured) {
+  SchedulerOptions options;
+  options.target_lease_seconds = 0.5;
+  options.initial_leases = 3;
+  options.max_leases_per_agent = 16;
+  options.spare_leases = 1;
+  ThroughputEstimate unmeasured, slow, fast, very_fast;
+  slow.AddResult(1000, kT0, kT0 + seconds(1), 0.3);            // 1e3 rays/s
+  fast.AddResult(100000, kT0, kT0 + seconds(1), 0.3);          // 1e5 rays/s
+  very_fast.AddResult(100000000, kT0, kT0 + seconds(1), 0.3);  // 1e8 rays/s
+  EXPECT_EQ(unmeasured.LeaseCapacity(4096, options), 3u);      // initial_leases only
+  EXPECT_EQ(slow.LeaseCapacity(4096, options), 2u);            // the one it runs + a spare
+  EXPECT_EQ(fast.LeaseCapacity(4096, options), 13u);           // 12 + 1
+  EXPECT_EQ(very_fast.LeaseCapacity(4096, options), 16u);      // the cap holds
+}
+
 TEST(ThroughputEstimateTest, DeadlineIsAMultipleOfTheHeldWorkWithAFloor) {
   SchedulerOptions options;
   options.deadline_multiple = 4;

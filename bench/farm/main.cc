@@ -1,0 +1,116 @@
+// farm_bench: the farm's scaling benchmark. Part 1 solves the Cornell box with `radfarm render`
+// and with radfarmd plus real radfarm-agent processes on loopback; part 2 runs radfarmd with 10,
+// 100 and 1000 simulated agents (bench/farm_sim/). Prints the figures and writes
+// BENCHMARKS-farm.md (bench/farm/farm_report.h says what it holds). See farm_bench_options.h.
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <string>
+
+#include "bench/farm/farm_bench_options.h"
+#include "bench/farm/farm_report.h"
+#include "bench/farm/scaling_suite.h"
+#include "bench/stopwatch.h"
+
+namespace radfarm::bench {
+namespace {
+
+// A scratch directory under the system temp dir, removed at the end.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "farm_bench-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot make a temp dir");
+    path_ = pattern;
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+int Run(int argc, char** argv) {
+  FarmBenchOptions options;
+  std::string error;
+  if (!ParseFarmBenchOptions(argc, argv, &options, &error)) {
+    if (error.empty()) {
+      std::fputs(kFarmBenchUsage, stdout);
+      return 0;
+    }
+    std::fprintf(stderr, "farm_bench: %s\n%s", error.c_str(), kFarmBenchUsage);
+    return 2;
+  }
+  const Stopwatch total;
+  const FarmPrograms programs{options.radfarmd, RADFARM_AGENT_PATH, RADFARM_CLI_PATH};
+  FarmBenchReport report;
+  report.machine = ReadMachineInfo(argc, argv);
+  report.quick = options.quick;
+  report.radfarmd = options.radfarmd;
+  report.open_file_limit = RaiseOpenFileLimit();
+  std::printf("farm_bench%s: %u CPUs, %s, load %s, open files %llu\n",
+              options.quick ? " --quick" : "", report.machine.cpus,
+              report.machine.cpu_model.c_str(), report.machine.load_average.c_str(),
+              static_cast<unsigned long long>(report.open_file_limit));
+  ScratchDir scratch;
+
+  if (options.real) {
+    RealComputeConfig config;
+    config.programs = programs;
+    config.job_file = options.scenes_dir + "/cornell-box.toml";
+    if (options.quick) config.overrides = {"--tolerance", "0.01"};
+    config.repetitions = options.repetitions > 0 ? options.repetitions : options.quick ? 1 : 5;
+    config.work_dir = scratch.path();
+    std::printf("real compute: %s, %d repetitions\n", config.job_file.c_str(), config.repetitions);
+    report.real = RunRealCompute(config);
+    report.has_real = true;
+  }
+  if (options.simulated) {
+    SuitePlan plan = MakeSuitePlan(options.quick);
+    if (options.repetitions > 0) plan.repetitions = options.repetitions;
+    if (options.agents > 0) {
+      std::erase_if(plan.rows,
+                    [&](const ScalingRow& row) { return row.config.agents != options.agents; });
+    }
+    std::printf("simulated agents: %zu cases, %d repetitions\n", plan.rows.size(),
+                plan.repetitions);
+    RunSuite(plan, programs, options.scenes_dir, scratch.path());
+    report.scaling = std::move(plan.rows);
+    report.repetitions = plan.repetitions;
+    report.round_seconds = plan.round_seconds;
+  }
+
+  report.total_seconds = total.Seconds();
+  report.load_average_end = ReadLoadAverage();
+  std::printf("\n%s\n", RenderFarmSummary(report).c_str());
+  std::filesystem::create_directories(options.out_dir);
+  const std::string path = options.out_dir + "/BENCHMARKS-farm.md";
+  if (const std::string write_error = WriteFarmReport(report, path); !write_error.empty()) {
+    std::fprintf(stderr, "farm_bench: %s\n", write_error.c_str());
+    return 1;
+  }
+  if (const std::string link_error = LinkFromBenchmarks(options.out_dir + "/BENCHMARKS.md");
+      !link_error.empty()) {
+    std::fprintf(stderr, "farm_bench: %s\n", link_error.c_str());
+    return 1;
+  }
+  std::printf("wrote %s in %.0f s\n", path.c_str(), report.total_seconds);
+  return 0;
+}
+
+}  // namespace
+}  // namespace radfarm::bench
+
+int main(int argc, char** argv) {
+  try {
+    return radfarm::bench::Run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "farm_bench: %s\n", e.what());
+    return 1;
+  }
+}

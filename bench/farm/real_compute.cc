@@ -1,0 +1,103 @@
+#include "bench/farm/real_compute.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "bench/stopwatch.h"
+
+namespace radfarm::bench {
+namespace {
+
+nlohmann::json ReadStats(const std::string& dir) {
+  nlohmann::json stats = nlohmann::json::parse(ReadFile(dir + "/stats.json"), nullptr, false);
+  if (!stats.is_object()) throw std::runtime_error("no stats.json in " + dir);
+  return stats;
+}
+
+void AddSample(RealComputeSetup& setup, const nlohmann::json& stats, double wall) {
+  const double seconds = stats.at("seconds").get<double>();
+  setup.rays = stats.at("rays").get<uint64_t>();
+  setup.rounds = stats.at("rounds").get<uint32_t>();
+  setup.solve_seconds.push_back(seconds);
+  setup.rays_per_second.push_back(seconds > 0 ? double(setup.rays) / seconds : 0);
+  setup.wall_seconds.push_back(wall);
+}
+
+// `radfarm render JOB --out DIR --threads 2 -q`; returns patches.csv.
+std::string RunEmbedded(const RealComputeConfig& config, const std::string& out,
+                        RealComputeSetup& setup) {
+  std::vector<std::string> args = {
+      config.programs.cli, "render", config.job_file, "--out", out, "--threads", "2", "-q"};
+  args.insert(args.end(), config.overrides.begin(), config.overrides.end());
+  const Stopwatch wall;
+  const CommandOutput r = RunCommand(args, config.work_dir);
+  const double seconds = wall.Seconds();
+  if (r.exit_code != 0) throw std::runtime_error("radfarm render failed: " + r.err);
+  AddSample(setup, ReadStats(out), seconds);
+  return ReadFile(out + "/patches.csv");
+}
+
+// A fresh farm of `agents` agents with `threads` threads each; submits, waits, fetches.
+void RunFarm(const RealComputeConfig& config, const std::string& dir, int agents, unsigned threads,
+             const std::string& reference_patches, RealComputeSetup& setup) {
+  std::filesystem::create_directories(dir);
+  LocalFarm farm(config.programs, dir);
+  farm.StartMaster();
+  for (int a = 0; a < agents; ++a) farm.StartAgent("agent" + std::to_string(a), threads);
+  farm.WaitForAgents(agents);
+  // submit takes render's overrides, so both solve the same job.
+  const int64_t id = farm.Submit(config.job_file, config.overrides);
+  const nlohmann::json job = farm.WaitDone(id, std::chrono::seconds(900));
+  const std::string out = dir + "/fetched";
+  farm.Fetch(id, out);
+  const double wall = 1e-3 * double(job.at("finished_at_ms").get<int64_t>() -
+                                    job.at("started_at_ms").get<int64_t>());
+  AddSample(setup, ReadStats(out), wall);
+  setup.patches_identical =
+      setup.patches_identical && ReadFile(out + "/patches.csv") == reference_patches;
+}
+
+}  // namespace
+
+RealComputeResult RunRealCompute(const RealComputeConfig& config) {
+  RealComputeResult result;
+  result.job = std::filesystem::path(config.job_file).filename().string();
+  for (const std::string& o : config.overrides) result.job += " " + o;
+  result.setups = {
+      {"embedded", "`radfarm render --threads 2`", {}, {}, {}, 0, 0, true},
+      {"farm 1 agent x 2 threads",
+       "radfarmd + 1 `radfarm-agent --threads 2`",
+       {},
+       {},
+       {},
+       0,
+       0,
+       true},
+      {"farm 2 agents x 1 thread",
+       "radfarmd + 2 `radfarm-agent --threads 1`",
+       {},
+       {},
+       {},
+       0,
+       0,
+       true},
+  };
+  for (int rep = 0; rep < config.repetitions; ++rep) {
+    const std::string base = config.work_dir + "/real-" + std::to_string(rep);
+    std::filesystem::create_directories(base);
+    const std::string reference = RunEmbedded(config, base + "/render", result.setups[0]);
+    std::printf("  rep %d: embedded %.2f Mrays/s", rep + 1,
+                result.setups[0].rays_per_second.back() / 1e6);
+    RunFarm(config, base + "/farm-1x2", 1, 2, reference, result.setups[1]);
+    std::printf(", farm 1x2 %.2f", result.setups[1].rays_per_second.back() / 1e6);
+    RunFarm(config, base + "/farm-2x1", 2, 1, reference, result.setups[2]);
+    std::printf(", farm 2x1 %.2f Mrays/s\n", result.setups[2].rays_per_second.back() / 1e6);
+    std::fflush(stdout);
+    std::filesystem::remove_all(base);
+  }
+  return result;
+}
+
+}  // namespace radfarm::bench
