@@ -12,6 +12,7 @@
 #include "cli/progress_reporter.h"
 #include "cli/render_outputs.h"
 #include "core/solve.h"
+#include "mesh/refining_solve.h"
 
 namespace radfarm {
 
@@ -39,25 +40,25 @@ int RunRender(const RenderOptions& options) {
     return kExitBadInput;
   }
   const Job& job = loaded->job;
-  PatchMesh& mesh = loaded->mesh;
   if (Status s = CreateOutputDirectory(options.out_dir); !s.ok()) {
     PrintError(s.error());
     return kExitFailure;
   }
 
-  const PatchScene& patches = mesh.patch_scene();
   if (!options.quiet) {
-    std::printf("%s: %zu patches (target size %g), sampler %s, seed %llu\n", job.scene_path.c_str(),
-                patches.patches.size(), mesh.patch_size(),
+    std::printf("%s: %zu patches (target size %g%s), sampler %s, seed %llu\n",
+                job.scene_path.c_str(), loaded->mesh.patch_scene().patches.size(),
+                loaded->mesh.patch_size(), job.refine.enabled ? ", adaptive" : "",
                 std::string(SamplerName(job.solver.sampler)).c_str(),
                 static_cast<unsigned long long>(job.solver.seed));
   }
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
-  SolveResult solution;
+  Result<RefiningSolveResult> solved = Error{"not solved"};
   try {
-    solution = Solve(patches, job.solver, [&](const RoundProgress& p) {
-      if (!options.quiet) reporter.OnRound(p);
-    });
+    solved =
+        SolveRefining(std::move(loaded->mesh), job.solver, job.refine, [&](const RoundProgress& p) {
+          if (!options.quiet) reporter.OnRound(p);
+        });
   } catch (const std::exception& e) {
     // Embree failures (out of memory, unsupported CPU) are the only exceptions the core throws.
     reporter.Finish();
@@ -65,8 +66,14 @@ int RunRender(const RenderOptions& options) {
     return kExitFailure;
   }
   reporter.Finish();
-
-  if (Status s = WriteOutputs(options.out_dir, mesh, solution, job); !s.ok()) {
+  if (!solved.ok()) {
+    PrintError(options.scene + ": " + solved.error());
+    return kExitBadInput;
+  }
+  PatchMesh& mesh = *solved->mesh;
+  const SolveResult& solution = solved->solution;
+  const uint64_t patches_before = job.refine.enabled ? solved->patches_before : 0;
+  if (Status s = WriteOutputs(options.out_dir, mesh, solution, job, patches_before); !s.ok()) {
     PrintError(s.error());
     return kExitFailure;
   }
