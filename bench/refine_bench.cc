@@ -106,7 +106,7 @@ Row Measure(const std::string& method, const std::string& setting, const InputSc
       "err %.4f  of mean %.4f\n",
       method.c_str(), setting.c_str(), (unsigned long long)row.patches_before,
       (unsigned long long)row.patches, (unsigned long long)row.rays, row.seconds, row.patch_error,
-      row.image_error);
+      row.image_error, row.mean_error);
   std::fflush(stdout);
   return row;
 }
