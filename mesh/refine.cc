@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 #include <numeric>
 #include <sstream>
 
@@ -91,6 +92,44 @@ Result<ResolvedRefineSettings> ResolveRefineSettings(const RefineSettings& setti
   }
   out.max_elements = settings.max_elements > 0 ? settings.max_elements
                                                : kElementBudgetFactor * uint64_t(initial_patches);
+  return out;
+}
+
+const RefinePoint* PassedRefinePoint(double unshot_fraction, size_t* next) {
+  const RefinePoint* passed = nullptr;
+  while (*next < std::size(kRefinePoints) &&
+         unshot_fraction < kRefinePoints[*next].unshot_fraction) {
+    passed = &kRefinePoints[(*next)++];
+  }
+  return passed;
+}
+
+double RayPower(double emitted, uint64_t shot_rays, size_t patches) {
+  const uint64_t rays = shot_rays > 0
+                            ? shot_rays
+                            : std::max(kMinAutoShotRays, kAutoShotRaysPerPatch * uint64_t(patches));
+  return emitted / double(rays);
+}
+
+CarriedState CarryOver(RefinedMesh& refined, const EnergyAccount& energy, bool restart) {
+  CarriedState out;
+  const PatchScene& scene = refined.mesh.patch_scene();
+  out.energy = energy;
+  if (restart) {
+    out.energy = EnergyAccount{};
+    out.energy.emitted = energy.emitted;
+    for (const Patch& p : scene.patches) {
+      out.radiosity.push_back(p.emission);
+      out.unshot.push_back(p.emission);
+    }
+  } else {
+    out.radiosity = std::move(refined.radiosity);
+    out.unshot = std::move(refined.unshot);
+  }
+  out.energy.unshot = 0;
+  for (size_t i = 0; i < scene.patches.size(); ++i) {
+    out.energy.unshot += scene.patches[i].area * out.unshot[i].Sum();
+  }
   return out;
 }
 

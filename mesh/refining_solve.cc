@@ -34,16 +34,6 @@ class Stage {
   std::vector<std::unique_ptr<BatchRunner>> runners_;
 };
 
-// The power one ray carries in the current solver: emitted / shot_rays (as ProgressiveSolver
-// resolves an automatic shot_rays).
-double RayPower(const ProgressiveSolver& solver, const SolverSettings& settings, size_t patches) {
-  const uint64_t shot_rays =
-      settings.shot_rays > 0
-          ? settings.shot_rays
-          : std::max(kMinAutoShotRays, kAutoShotRaysPerPatch * uint64_t(patches));
-  return solver.energy().emitted / double(shot_rays);
-}
-
 }  // namespace
 
 Result<RefiningSolveResult> SolveRefining(
@@ -66,27 +56,22 @@ Result<RefiningSolveResult> SolveRefining(
   };
   ThreadPool pool(settings.threads);
   auto stage = std::make_unique<Stage>(out.mesh->patch_scene(), settings, pool.size());
-  auto refine_step = [&](double ray_power) {
+  auto refine_step = [&](double ray_power, bool restart) {
     ProgressiveSolver& solver = stage->solver();
     RefinedMesh refined = Refine(*out.mesh, solver.radiosity(), solver.unshot(), ray_power,
                                  *resolved, stage->caster(), pool);
     if (refined.split == 0) return;
     const uint32_t rounds = solver.rounds_done();
-    EnergyAccount energy = solver.energy();
+    CarriedState carried = CarryOver(refined, solver.energy(), restart);
     stage.reset();  // it refers to the old mesh's scene
     *out.mesh = std::move(refined.mesh);
-    energy.unshot = 0;
-    const PatchScene& scene = out.mesh->patch_scene();
-    for (size_t i = 0; i < scene.patches.size(); ++i) {
-      energy.unshot += scene.patches[i].area * refined.unshot[i].Sum();
-    }
-    stage = std::make_unique<Stage>(scene, settings, pool.size());
-    stage->solver().Restore(rounds, std::move(refined.radiosity), std::move(refined.unshot),
-                            energy);
+    stage = std::make_unique<Stage>(out.mesh->patch_scene(), settings, pool.size());
+    stage->solver().Restore(rounds, std::move(carried.radiosity), std::move(carried.unshot),
+                            carried.energy);
     ++out.refinements;
   };
 
-  refine_step(0);
+  refine_step(0, false);
   size_t next_point = 0;
   SolveStats& stats = out.solution.stats;
   stats.stop_reason = kStopConverged;
@@ -116,14 +101,11 @@ Result<RefiningSolveResult> SolveRefining(
       stats.stop_reason = *stop;
       break;
     }
-    bool crossed = false;
-    while (next_point < std::size(kRefineAtUnshotFraction) &&
-           solver.UnshotFraction() < kRefineAtUnshotFraction[next_point]) {
-      ++next_point;
-      crossed = true;
-    }
-    if (crossed && solver.UnshotFraction() > settings.tolerance) {
-      refine_step(RayPower(solver, settings, out.mesh->patch_scene().patches.size()));
+    const RefinePoint* point = PassedRefinePoint(solver.UnshotFraction(), &next_point);
+    if (point != nullptr) {
+      refine_step(RayPower(solver.energy().emitted, settings.shot_rays,
+                           out.mesh->patch_scene().patches.size()),
+                  point->restart);
     }
   }
 

@@ -1,9 +1,9 @@
 // SolveRefining: Solve() (core/solve.h) with adaptive refinement (refine.h) at fixed points: before
 // the first round, and after the first round that leaves the unshot fraction below each of
-// kRefineAtUnshotFraction (unless that round ends the solve). Between those points the rounds are
-// Solve()'s, planned, cast and applied by the same ProgressiveSolver steps; at a refinement the
-// solver is rebuilt on the new mesh and Restore()d with the carried-over solution, the round count
-// and the energy account (its unshot power summed again over the new elements). Rays remain a pure
+// kRefinePoints (unless that round ends the solve; the first point restarts the solution). Between
+// those points the rounds are Solve()'s, planned, cast and applied by the same ProgressiveSolver
+// steps; at a refinement the solver is rebuilt on the new mesh and Restore()d with the carried-over
+// solution, the round count and the energy account (CarryOver, refine.h). Rays remain a pure
 // function of (seed, round, shooter, k), so the result depends on the scene, settings and seed
 // only, never on the thread count.
 //
