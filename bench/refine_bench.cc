@@ -184,6 +184,29 @@ int Run(int argc, char** argv) {
                                  *scene, start_size, defaults, on, camera, ref));
     }
   }
+  // The same rays for every mesh (shot_rays fixed instead of 1024 per patch): what the mesh costs
+  // when noise is not the limit.
+  std::vector<Row> fixed_rays;
+  SolverSettings fixed = defaults;
+  fixed.shot_rays = quick ? (1u << 20) : (1u << 22);
+  if (!quick) {
+    for (double size : {50.0, 25.0, 16.7}) {
+      fixed_rays.push_back(Measure("uniform, fixed rays", "patch size " + Fmt(size, "%g"), *scene,
+                                   size, fixed, off, camera, ref));
+    }
+    for (double start_size : {100.0, 50.0}) {
+      for (double tol : {0.5, 0.25}) {
+        RefineSettings on;
+        on.enabled = true;
+        on.tolerance = tol;
+        on.min_element_size = ref_size;
+        fixed_rays.push_back(
+            Measure("adaptive, fixed rays",
+                    "start " + Fmt(start_size, "%g") + ", tolerance " + Fmt(tol, "%g"), *scene,
+                    start_size, fixed, on, camera, ref));
+      }
+    }
+  }
   {
     SolverSettings random = defaults;
     random.sampler = SamplerKind::kRandom;
@@ -247,8 +270,9 @@ int Run(int argc, char** argv) {
      << "- Scene: `cornell-box.obj` (camera of `cornell-box.toml`, 256 x 256). Every solve: "
         "sampler "
         "sobol unless named, tolerance 0.001, automatic `shot_rays` (1024 per patch, at least "
-        "65536: a refined mesh gets the rays of its final element count from its last "
-        "refinement on), all cores of this machine, **one run each** (the machine is shared: "
+        "65536: a refined mesh gets the rays of its element count from each refinement on; "
+        "the *fixed rays* rows instead give every mesh shot_rays = 2^22), all cores of this "
+        "machine, **one run each** (the machine is shared: "
         "compare within the table, not with other days).\n"
      << "- **Reference**: uniform patch size " << ref_size << " (" << ref.scene.patches.size()
      << " patches), shot_rays " << (quick ? "2^21" : "2^24")
@@ -266,7 +290,7 @@ int Run(int argc, char** argv) {
      << "- **Time**: `SolveRefining` wall time (meshing excluded, refinement included).\n\n"
      << "| method | setting | patches before | patches after | rays | seconds | patch error | "
         "error of mean | image error |\n|---|---|--:|--:|--:|--:|--:|--:|--:|\n";
-  for (const auto* rows : {&uniform, &adaptive, &samplers}) {
+  for (const auto* rows : {&uniform, &adaptive, &fixed_rays, &samplers}) {
     for (const Row& r : *rows) {
       md << "| " << r.method << " | " << r.setting << " | " << r.patches_before << " | "
          << r.patches << " | " << r.rays << " | " << Fmt(r.seconds, "%.2f") << " | "

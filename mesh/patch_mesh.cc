@@ -131,6 +131,20 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   return pm;
 }
 
+std::vector<PatchMesh::Piece> PatchMesh::PiecesOf(const PatchScene& scene) {
+  std::vector<Piece> pieces;
+  pieces.reserve(scene.patches.size());
+  for (const Patch& p : scene.patches) {
+    Piece piece;
+    piece.corners.corners = p.corners;
+    piece.corners.count = p.corner_count;
+    piece.surface = p.surface;
+    piece.material = p.material;
+    pieces.push_back(piece);
+  }
+  return pieces;
+}
+
 PatchMesh PatchMesh::Rebuilt(const std::vector<Piece>& pieces) const {
   PatchMesh pm;
   pm.patch_size_ = patch_size_;

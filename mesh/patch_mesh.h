@@ -52,6 +52,9 @@ class PatchMesh {
     uint32_t material = 0;
   };
   PatchMesh Rebuilt(const std::vector<Piece>& pieces) const;
+  // The pieces that rebuild a mesh with these patches: with Rebuilt, on the mesh Build made, this
+  // recovers a refined mesh from its PatchScene alone (a farm checkpoint's scene blob).
+  static std::vector<Piece> PiecesOf(const PatchScene& scene);
   // Welding distance of this mesh (1e-6 of the scene's diagonal).
   double weld_tolerance() const { return tol_; }
 

@@ -54,7 +54,7 @@ inline constexpr RefinePoint kRefinePoints[] = {{0.6, true}, {0.1, false}};
 // the fraction has fallen below and returns the last of them, or null when it passed none.
 const RefinePoint* PassedRefinePoint(double unshot_fraction, size_t* next);
 // Defaults of RefineSettings' automatic values.
-inline constexpr double kMinElementDivisions = 8;    // min_element_size = patch_size / 8
+inline constexpr double kMinElementDivisions = 4;    // min_element_size = patch_size / 4
 inline constexpr uint64_t kElementBudgetFactor = 8;  // max_elements = 8 x initial patches
 
 // RefineSettings with its automatic values resolved for a mesh of `initial_patches` patches of

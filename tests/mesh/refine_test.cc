@@ -195,6 +195,29 @@ TEST(RefineTest, RefinedDisplayMeshHasNoCracks) {
   EXPECT_GT(t_vertices, 0);
 }
 
+// A farm checkpoint keeps the refined PatchScene; the mesh for the outputs is rebuilt from it.
+TEST(RefineTest, RefinedMeshRebuildsFromItsPatchScene) {
+  Result<PatchMesh> mesh = PatchMesh::Build(OccluderScene(), {0.5}, nullptr);
+  ASSERT_TRUE(mesh.ok());
+  RefinedMesh refined = RefineBeforeShooting(*mesh, Settings(0.1, 0.0625, 100000));
+  const PatchScene& a = refined.mesh.patch_scene();
+  PatchMesh again = mesh->Rebuilt(PatchMesh::PiecesOf(a));
+  const PatchScene& b = again.patch_scene();
+  ASSERT_EQ(a.patches.size(), b.patches.size());
+  for (size_t i = 0; i < a.patches.size(); ++i) {
+    EXPECT_EQ(a.patches[i].corners, b.patches[i].corners);
+    EXPECT_EQ(a.patches[i].area, b.patches[i].area);
+    EXPECT_EQ(a.patches[i].surface, b.patches[i].surface);
+  }
+  std::vector<Rgb> values;
+  for (size_t i = 0; i < a.patches.size(); ++i) values.push_back({double(i), 1, 2});
+  refined.mesh.SetSolution(values, values);
+  again.SetSolution(values, values);
+  const DisplayMesh da = refined.mesh.MakeDisplayMesh(), db = again.MakeDisplayMesh();
+  EXPECT_EQ(da.triangles, db.triangles);
+  EXPECT_EQ(da.radiance, db.radiance);
+}
+
 // An open 2 x 2 x 2 box lit by its whole ceiling: smooth light everywhere.
 InputScene SmoothRoom() {
   SceneBuilder s;
@@ -306,7 +329,7 @@ TEST(RefineTest, SettingsOutOfRangeNameTheKey) {
   RefineSettings automatic;
   Result<ResolvedRefineSettings> a = ResolveRefineSettings(automatic, 0.5, 100, 1e-6);
   ASSERT_TRUE(a.ok());
-  EXPECT_EQ(a->min_element_size, 0.5 / 8);
+  EXPECT_EQ(a->min_element_size, 0.5 / 4);
   EXPECT_EQ(a->max_elements, 800u);
 }
 
