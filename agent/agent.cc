@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdlib>
+#include <sstream>
 #include <variant>
 
+#include "agent/file_user_idle.h"
 #include "agent/master_address.h"
 #include "loop/log.h"
 #include "protocol/messages.h"
@@ -38,13 +40,15 @@ std::string CloseDetail(const std::string& text) {
 }  // namespace
 
 Agent::Agent(loop::EventLoop& loop, AgentSettings settings, protocol::FarmSecret secret,
-             std::optional<SceneStore> store, uint64_t jitter_seed)
+             std::optional<SceneStore> store, uint64_t jitter_seed,
+             service::ServiceNotifier* systemd)
     : loop_(loop),
       settings_(std::move(settings)),
       secret_(std::move(secret)),
       store_(std::move(store)),
       master_(settings_.master.ToString()),
-      backoff_(ReconnectBackoff::Options{}, jitter_seed) {}
+      backoff_(ReconnectBackoff::Options{}, jitter_seed),
+      systemd_(systemd) {}
 
 Agent::~Agent() = default;
 
@@ -81,8 +85,31 @@ Status Agent::Start() {
     *watch = std::move(signal).value();
   }
   LogLine(LogLevel::kInfo, "agent") << "radfarm-agent " << settings_.name << " starting: master "
-                                    << master_ << ", " << settings_.threads << " threads";
-  StartAttempt();
+                                    << master_ << ", " << settings_.threads << " threads"
+                                    << (settings_.idle_policy_enabled() ? ", idle policy on" : "");
+  if (settings_.idle_policy_enabled()) {
+    // The config file's table was checked when it was read; Create checks it again.
+    Result<idle::IdlePolicy> policy = idle::IdlePolicy::Create(*settings_.idle);
+    if (!policy) return Error{policy.error()};
+    idle::IdleSources sources = idle::SystemIdleSources();
+    if (!settings_.idle_source.empty()) {
+      LogLine(LogLevel::kInfo, "agent")
+          << "reading the user's activity from " << settings_.idle_source << " (--idle-source)";
+      sources.user = std::make_unique<FileUserIdle>(settings_.idle_source);
+    }
+    idle_monitor_ = std::make_unique<idle::IdleMonitor>(
+        loop_, std::move(policy).value(), std::move(sources),
+        [this](const idle::IdleDecision& decision) { OnIdleChange(decision); });
+    // Nothing is taken before the policy's first answer, about a second from now.
+    may_work_ = false;
+    state_ = State::kPaused;
+    waiting_reason_ = idle_monitor_->decision().reason;
+    idle_monitor_->Start();
+  } else {
+    StartAttempt();
+  }
+  if (systemd_ != nullptr) systemd_->Ready();
+  ReportStatus();
   return Ok{};
 }
 
@@ -91,6 +118,7 @@ void Agent::StartAttempt() {
   ++attempt_;
   LogLine(LogLevel::kDebug, "agent")
       << "connecting to " << master_ << " (attempt " << attempt_ << ")";
+  ReportStatus();
   if (Result<loop::SocketAddress> literal = loop::SocketAddress::FromIpLiteral(settings_.master)) {
     Connect(*literal);
     return;
@@ -99,7 +127,7 @@ void Agent::StartAttempt() {
   Status submitted = io_->Submit(
       [master = settings_.master, n = attempt_ - 1] { return ResolveMaster(master, n); },
       [this](Result<loop::SocketAddress> address) {
-        resolving_ = false;
+        --resolving_;
         if (state_ != State::kConnecting || link_) return;
         if (!address) {
           ScheduleRetry("cannot connect to", address.error());
@@ -108,7 +136,7 @@ void Agent::StartAttempt() {
         Connect(*address);
       });
   if (submitted) {
-    resolving_ = true;
+    ++resolving_;
   } else {
     ScheduleRetry("cannot connect to", submitted.error());
   }
@@ -145,6 +173,7 @@ void Agent::OnAuthenticated(const protocol::WelcomeMsg& welcome) {
   heartbeat_timer_->Start(interval, interval, [this] { SendHeartbeat(); });
   SendHeartbeat();
   UpdateIdleTimer();
+  ReportStatus();
 }
 
 void Agent::OnMessage(const protocol::Message& message) {
@@ -197,11 +226,20 @@ void Agent::OnLinkClosed(const LinkClosed& closed) {
     return;
   }
   const size_t dropped = runner_->DropAll();
-  state_ = State::kWaiting;
   if (exit_when_drained_) {  // nothing is held any more: drained
+    state_ = State::kWaiting;
     Finish("the connection closed while draining before exit");
     return;
   }
+  if (state_ == State::kPaused || !may_work_) {
+    // Our own disconnect after a pause, or the master went away while we were pausing.
+    state_ = State::kPaused;
+    LogLine(LogLevel::kDebug, "agent") << "disconnected from " << master_ << " while paused";
+    if (may_work_) Resume("idle again while disconnecting");
+    ReportStatus();
+    return;
+  }
+  state_ = State::kWaiting;
   if (closed.was_authenticated) {
     ScheduleRetry("lost the connection to",
                   closed.reason + "; dropped " + std::to_string(dropped) + " leases");
@@ -223,7 +261,102 @@ void Agent::ScheduleRetry(const std::string& what, const std::string& reason) {
       attempt_ > 0 ? " (attempt " + std::to_string(attempt_) + ")" : std::string();
   LogLine(level, "agent") << what << " " << master_ << attempt << ": " << reason << "; retrying in "
                           << delay.count() << " ms";
+  waiting_reason_ = what + " " + master_ + ": " + reason;
   retry_timer_->Start(delay, [this] { StartAttempt(); });
+  ReportStatus();
+}
+
+void Agent::OnIdleChange(const idle::IdleDecision& decision) {
+  may_work_ = decision.may_work;
+  if (decision.may_work) {
+    Resume(decision.reason);
+  } else {
+    Pause(decision.reason);
+  }
+}
+
+void Agent::Pause(const std::string& reason) {
+  waiting_reason_ = reason;
+  switch (state_) {
+    case State::kStopping:
+      return;
+    case State::kPaused:
+      // Still paused (the first answer, or busy again while our disconnect is flushing).
+      LogLine(LogLevel::kInfo, "agent") << "waiting: " << reason;
+      ReportStatus();
+      return;
+    case State::kWaiting:
+      retry_timer_->Stop();
+      LogLine(LogLevel::kInfo, "agent")
+          << "pausing: " << reason << "; not connecting to " << master_ << " until idle again";
+      break;
+    case State::kConnecting:
+      // A name lookup still running finds state_ changed and drops its answer; a handshake in
+      // progress is abandoned (destroying the link closes it silently).
+      link_.reset();
+      LogLine(LogLevel::kInfo, "agent")
+          << "pausing: " << reason << "; gave up connecting to " << master_ << " until idle again";
+      break;
+    case State::kConnected: {
+      const size_t held = runner_->held();
+      LogLine(LogLevel::kInfo, "agent")
+          << "pausing: " << reason << "; returning " << held << " leases to " << master_
+          << " and disconnecting until idle again";
+      state_ = State::kPaused;
+      heartbeat_timer_->Stop();
+      idle_timer_->Stop();
+      // Every lease, queued or running, goes back now: the master requeues them at once. Then
+      // the connection ends, so the master leases us nothing while we are paused. It ends
+      // without a Close message: radfarmd requeues at once the leases of a lost connection, such
+      // as those it leases us on reading the LeaseReturn, but not those of an agent that said
+      // Close (they would wait for their deadline).
+      runner_->ReturnAll(protocol::LeaseReturnReason::kOverloaded, "paused: " + reason);
+      link_->Disconnect("paused by the idle policy: " + reason);
+      break;
+    }
+  }
+  state_ = State::kPaused;
+  ReportStatus();
+}
+
+void Agent::Resume(const std::string& reason) {
+  if (state_ != State::kPaused) return;
+  if (link_) {
+    // Our disconnect is still flushing: OnLinkClosed resumes.
+    LogLine(LogLevel::kDebug, "agent") << "idle again before the connection closed";
+    return;
+  }
+  LogLine(LogLevel::kInfo, "agent")
+      << (ever_worked_ ? "resuming: " : "may work: ") << reason << "; connecting to " << master_;
+  ever_worked_ = true;
+  waiting_reason_.clear();
+  backoff_.Reset();
+  attempt_ = 0;
+  StartAttempt();
+}
+
+void Agent::ReportStatus() {
+  if (systemd_ == nullptr) return;
+  std::ostringstream text;
+  switch (state_) {
+    case State::kConnected:
+      text << "connected to " << master_ << ", " << runner_->held() << " leases, "
+           << static_cast<uint64_t>(runner_->RaysPerSecond()) << " rays/s";
+      break;
+    case State::kConnecting:
+      text << "connecting to " << master_ << " (attempt " << attempt_ << ")";
+      break;
+    case State::kWaiting:
+      text << "waiting: " << waiting_reason_;
+      break;
+    case State::kPaused:
+      text << "waiting: " << waiting_reason_;
+      break;
+    case State::kStopping:
+      text << "stopping";
+      break;
+  }
+  systemd_->Status(text.str());
 }
 
 void Agent::SendHeartbeat() {
@@ -234,6 +367,7 @@ void Agent::SendHeartbeat() {
   if (Status sent = Send(heartbeat); !sent) {
     LogLine(LogLevel::kDebug, "agent") << "heartbeat not sent: " << sent.error();
   }
+  ReportStatus();
 }
 
 void Agent::UpdateIdleTimer() {
@@ -257,12 +391,23 @@ void Agent::Finish(const std::string& reason) {
   if (state_ == State::kStopping) return;
   const bool connected = state_ == State::kConnected && link_;
   state_ = State::kStopping;
-  LogLine(LogLevel::kInfo, "agent") << "shutting down: " << reason << "; returning "
-                                    << runner_->held() << " leases to " << master_;
+  if (idle_monitor_) idle_monitor_->Stop();
+  if (systemd_ != nullptr) {
+    systemd_->Status("stopping: " + reason);
+    systemd_->Stopping();
+  }
+  if (connected) {
+    LogLine(LogLevel::kInfo, "agent") << "shutting down: " << reason << "; returning "
+                                      << runner_->held() << " leases to " << master_;
+  } else {
+    LogLine(LogLevel::kInfo, "agent")
+        << "shutting down: " << reason << "; not connected to " << master_;
+  }
   retry_timer_->Stop();
   heartbeat_timer_->Stop();
   idle_timer_->Stop();
   if (!connected) {
+    // Paused, waiting or connecting (or a pause's Close still being flushed).
     runner_->DropAll();
     link_.reset();
     StopLoop();

@@ -47,6 +47,13 @@ Result<AgentSettings> ResolveSettings(const AgentOptions& command_line, const Ag
   settings.slowdown = Pick(command_line.slowdown, file.slowdown, 1.0);
   settings.exit_when_idle_seconds =
       Pick(command_line.exit_when_idle_seconds, file.exit_when_idle_seconds, 0.0);
+  settings.idle = command_line.idle ? command_line.idle : file.idle;
+  settings.idle_source = Pick(command_line.idle_source, file.idle_source, std::string());
+  if (!settings.idle_source.empty() && !settings.idle_policy_enabled()) {
+    return Error{
+        "--idle-source (idle_source) needs the idle policy: an [idle] table in the "
+        "--config file, with enabled = true"};
+  }
   return settings;
 }
 

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "core/result.h"
+#include "idle/idle_config.h"
 #include "loop/host_port.h"
 #include "loop/log.h"
 
@@ -26,6 +27,13 @@ struct AgentSettings {
   loop::LogLevel log_level = loop::LogLevel::kInfo;
   double slowdown = 1;                // >= 1: results are held (slowdown - 1) x their compute time
   double exit_when_idle_seconds = 0;  // > 0: exit after this long connected with no lease; 0: never
+  // The config file's [idle] table. Absent, or enabled = false: work whenever the master has work.
+  std::optional<idle::IdleConfig> idle;
+  // Non-empty: the idle policy reads the user's activity from this file ("idle" or "busy", see
+  // FileUserIdle) instead of logind. A testing and operations aid.
+  std::string idle_source;
+
+  bool idle_policy_enabled() const { return idle && idle->enabled; }
 };
 
 // One source's settings; absent values are left to the other source or the default.
@@ -38,10 +46,12 @@ struct AgentOptions {
   std::optional<loop::LogLevel> log_level;
   std::optional<double> slowdown;
   std::optional<double> exit_when_idle_seconds;
+  std::optional<idle::IdleConfig> idle;  // the config file only
+  std::optional<std::string> idle_source;
 };
 
 // Command-line values win over the config file's. Errors when no source names the master or the
-// secret file.
+// secret file, or when an idle source is given without an enabled idle policy.
 Result<AgentSettings> ResolveSettings(const AgentOptions& command_line, const AgentOptions& file);
 
 // The master's "HOST:PORT"; port 0 is refused (it only means something to a listener). Errors read

@@ -13,7 +13,7 @@ namespace {
 
 // The raw flag values; an option's count() says whether it was given.
 struct Flags {
-  std::string master, secret_file, state_dir, name, config, log_level;
+  std::string master, secret_file, state_dir, name, config, log_level, idle_source;
   unsigned threads = 0;
   double slowdown = 1, exit_when_idle = 0;
 };
@@ -36,6 +36,9 @@ void AddFlags(CLI::App& app, Flags* f) {
   app.add_option("--exit-when-idle", f->exit_when_idle,
                  "Exit 0 after SECONDS connected with no lease held")
       ->check(CLI::PositiveNumber);
+  app.add_option("--idle-source", f->idle_source,
+                 "For tests and operations: read the user's activity from FILE ('idle' or 'busy') "
+                 "instead of logind; needs the config file's [idle] policy");
 }
 
 // The flags the user gave, checked.
@@ -60,6 +63,10 @@ Result<AgentOptions> OptionsFromFlags(const CLI::App& app, const Flags& f) {
   if (given("--log-level")) options.log_level = ParseLogLevel(f.log_level);
   if (given("--slowdown")) options.slowdown = f.slowdown;
   if (given("--exit-when-idle")) options.exit_when_idle_seconds = f.exit_when_idle;
+  if (given("--idle-source")) {
+    if (f.idle_source.empty()) return Error{"--idle-source: must not be empty"};
+    options.idle_source = f.idle_source;
+  }
   return options;
 }
 

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <vector>
 
+#include "idle/idle_config.h"
 #include "protocol/message_checks.h"
 
 namespace radfarm::agent {
@@ -158,6 +159,10 @@ Status ReadKey(const KeyReader& reader, const std::string& key, AgentOptions* op
     Result<double> slowdown = reader.Real(1, /*lo_open=*/false);
     if (!slowdown) return Error{slowdown.error()};
     options->slowdown = *slowdown;
+  } else if (key == "idle_source") {
+    Result<std::string> path = reader.Path();
+    if (!path) return Error{path.error()};
+    options->idle_source = *path;
   } else if (key == "exit_when_idle_seconds") {
     Result<double> seconds = reader.Real(0, /*lo_open=*/true);
     if (!seconds) return Error{seconds.error()};
@@ -188,6 +193,18 @@ Result<AgentOptions> LoadConfigFile(const std::string& path) {
   AgentOptions options;
   for (const auto& [key, node] : keys) {
     const std::string name(key->str());
+    if (name == "idle") {
+      // The idle policy's table: idle/idle_config.h reads it, naming "idle.KEY" in its errors.
+      const toml::table* idle_table = node->as_table();
+      if (idle_table == nullptr) {
+        return KeyReader(path, name, *node)
+            .Fail("must be a table ([idle]), not " + TypeName(*node));
+      }
+      Result<idle::IdleConfig> idle = idle::ParseIdleConfig(*idle_table, path);
+      if (!idle) return Error{idle.error()};
+      options.idle = *idle;
+      continue;
+    }
     if (Status read = ReadKey(KeyReader(path, name, *node), name, &options); !read) {
       return Error{read.error()};
     }

@@ -8,6 +8,10 @@
 //   log_level = "info"                  # debug | info | warning | error
 //   slowdown = 1.0                      # >= 1
 //   exit_when_idle_seconds = 600        # > 0
+//   idle_source = "/run/user-idle"      # a file saying "idle" or "busy" instead of logind (tests)
+//
+//   [idle]                              # the idle policy: idle/idle_config.h has its keys
+//   user_idle_minutes = 10
 //
 // Every key is optional; any other key is an error. Errors are one line naming the file, the line
 // and the key: "agent.toml:4: 'threads' must be in [1, 1024], got 0".

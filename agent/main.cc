@@ -13,6 +13,7 @@
 #include "agent/secret_file.h"
 #include "loop/event_loop.h"
 #include "loop/log.h"
+#include "service/service_notifier.h"
 
 namespace radfarm::agent {
 namespace {
@@ -41,10 +42,13 @@ int Run(AgentSettings settings) {
   std::signal(SIGPIPE, SIG_IGN);
 
   loop::EventLoop loop;
+  // READY=1 once Start() succeeded, STATUS= lines, STOPPING=1; no-ops without NOTIFY_SOCKET.
+  auto systemd = std::make_unique<service::ServiceNotifier>(loop);
   auto agent = std::make_unique<Agent>(loop, std::move(settings), std::move(secret).value(),
-                                       std::move(store), JitterSeed());
+                                       std::move(store), JitterSeed(), systemd.get());
   if (Status started = agent->Start(); !started) {
     agent.reset();
+    systemd.reset();
     (void)loop.Close();
     return Fail(kExitFailure, started.error());
   }
@@ -56,6 +60,7 @@ int Run(AgentSettings settings) {
     _exit(kExitOk);
   }
   agent.reset();
+  systemd.reset();
   if (Status closed = loop.Close(); !closed) return Fail(kExitFailure, closed.error());
   loop::Log(loop::LogLevel::kInfo, "agent", "exited");
   return kExitOk;

@@ -132,4 +132,10 @@ void MasterLink::Close(protocol::CloseCode code, const std::string& detail) {
   connection_->CloseAfterFlush(close_reason_);
 }
 
+void MasterLink::Disconnect(const std::string& reason) {
+  if (connection_->state() != loop::HandleState::kOpen) return;
+  if (close_reason_.empty()) close_reason_ = reason;
+  connection_->CloseAfterFlush(close_reason_);
+}
+
 }  // namespace radfarm::agent

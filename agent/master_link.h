@@ -62,6 +62,11 @@ class MasterLink {
   // Sends Close{code, detail}, then closes once what is queued is written (or after
   // flush_timeout). on_closed follows.
   void Close(protocol::CloseCode code, const std::string& detail);
+  // Writes what is queued (or gives up after flush_timeout), then closes the TCP connection
+  // without a Close message, so the master takes it as a lost connection. on_closed follows.
+  // The idle pause uses it: radfarmd requeues the leases of an agent whose connection is lost,
+  // but not (yet) those of one that said Close (agent/README.md, "Idle policy").
+  void Disconnect(const std::string& reason);
 
   bool authenticated() const { return session_.authenticated(); }
   const protocol::WelcomeMsg& welcome() const { return session_.welcome(); }

@@ -87,7 +87,8 @@ void SceneSupply::OnChunk(const protocol::SceneChunkMsg& chunk) {
     return;
   }
   auto found = pending_.find(hash);
-  if (found == pending_.end() || found->second.stage != Stage::kFetching) {
+  if (found == pending_.end() || found->second.stage != Stage::kFetching ||
+      found->second.requests_in_flight == 0) {
     LogLine(LogLevel::kWarning, "agent")
         << Name(hash) << ": ignored a chunk from " << master_ << " that was not asked for";
     return;

@@ -337,17 +337,20 @@ int Run(int argc, char** argv) {
     }
     return nullptr;
   };
-  int better = 0;  // adaptive rows with a lower error of mean than every uniform mesh as large
+  // Adaptive rows with a lower error of mean than the smallest uniform mesh with at least as many
+  // patches.
+  int better = 0;
   for (const Row& a : adaptive) {
-    bool beats = true;
+    const Row* next = nullptr;
     for (const Row& u : uniform) {
-      if (u.patches <= a.patches && u.mean_error <= a.mean_error) beats = false;
+      if (u.patches >= a.patches && (!next || u.patches < next->patches)) next = &u;
     }
-    better += beats ? 1 : 0;
+    if (next != nullptr && a.mean_error < next->mean_error) ++better;
   }
   md << "\n## Defaults\n\n- `refine = false` stays the default: " << better << " of "
      << adaptive.size()
-     << " adaptive rows have a lower error of mean than every uniform mesh with no more patches. "
+     << " adaptive rows have a lower error of mean than the smallest uniform mesh with at least as "
+        "many patches. "
         "Refinement does put its elements where the light changes (tests/mesh/refine_test.cc), "
         "but at these ray counts most of the remaining error is ray noise and smooth indirect "
         "light, which a uniform mesh of the same size resolves as well; the fixed-ray rows, "

@@ -5,12 +5,14 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <optional>
 
 #include "cli/exit_codes.h"
 #include "cli/job_loader.h"
 #include "cli/messages.h"
 #include "cli/progress_reporter.h"
 #include "cli/render_outputs.h"
+#include "cli/render_state.h"
 #include "core/solve.h"
 #include "mesh/refining_solve.h"
 
@@ -28,6 +30,9 @@ CLI::App* AddRenderCommand(CLI::App& app, RenderOptions* options) {
       ->check(CLI::Range(1u, 4096u));
   AddJobOverrideOptions(render, &options->overrides);
   render->add_flag("--quiet,-q", options->quiet, "No progress output");
+  render->add_option("--db", options->db,
+                     "Keep the rounds in this SQLite file; run the same command again to continue "
+                     "an interrupted render where it stopped (same result)");
   return render;
 }
 
@@ -52,13 +57,52 @@ int RunRender(const RenderOptions& options) {
                 std::string(SamplerName(job.solver.sampler)).c_str(),
                 static_cast<unsigned long long>(job.solver.seed));
   }
+  std::optional<RenderState> state;
+  SolveHooks hooks;
+  Status save_status = Ok{};
+  if (!options.db.empty() && job.refine.enabled) {
+    // The job store's checkpoints hold radiosity per patch of the mesh the job file makes; a
+    // refined mesh is not part of them yet (docs/ARCHITECTURE.md, farm mode).
+    PrintError(options.scene + ": --db does not support mesh.refine = true yet");
+    return kExitBadInput;
+  }
+  if (!options.db.empty()) {
+    Result<RenderState> opened = RenderState::Open(options.db, {job, loaded->scene});
+    if (!opened.ok()) {
+      PrintError(opened.error());
+      return kExitFailure;
+    }
+    state.emplace(std::move(*opened));
+    hooks.resume = state->resume();
+    if (hooks.resume && !options.quiet) {
+      std::printf("%s: continuing job %lld after round %u (%llu rays done)\n", options.db.c_str(),
+                  static_cast<long long>(state->job_id()), hooks.resume->round,
+                  static_cast<unsigned long long>(hooks.resume->rays));
+    }
+    hooks.after_round = [&](const SolveCheckpoint& c) {
+      if (save_status.ok()) save_status = state->SaveRound(c);
+    };
+  }
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
   Result<RefiningSolveResult> solved = Error{"not solved"};
   try {
-    solved =
-        SolveRefining(std::move(loaded->mesh), job.solver, job.refine, [&](const RoundProgress& p) {
-          if (!options.quiet) reporter.OnRound(p);
-        });
+    if (job.refine.enabled) {
+      solved = SolveRefining(std::move(loaded->mesh), job.solver, job.refine,
+                             [&](const RoundProgress& p) {
+                               if (!options.quiet) reporter.OnRound(p);
+                             });
+    } else {
+      RefiningSolveResult plain;
+      plain.patches_before = loaded->mesh.patch_scene().patches.size();
+      plain.solution = Solve(
+          loaded->mesh.patch_scene(), job.solver,
+          [&](const RoundProgress& p) {
+            if (!options.quiet) reporter.OnRound(p);
+          },
+          hooks);
+      plain.mesh = std::make_unique<PatchMesh>(std::move(loaded->mesh));
+      solved = std::move(plain);
+    }
   } catch (const std::exception& e) {
     // Embree failures (out of memory, unsupported CPU) are the only exceptions the core throws.
     reporter.Finish();
@@ -70,6 +114,14 @@ int RunRender(const RenderOptions& options) {
     PrintError(options.scene + ": " + solved.error());
     return kExitBadInput;
   }
+  if (state) {
+    if (save_status.ok()) save_status = state->Finish();
+    if (!save_status.ok()) {
+      PrintError(save_status.error());
+      return kExitFailure;
+    }
+  }
+
   PatchMesh& mesh = *solved->mesh;
   const SolveResult& solution = solved->solution;
   const uint64_t patches_before = job.refine.enabled ? solved->patches_before : 0;

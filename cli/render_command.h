@@ -18,6 +18,7 @@ struct RenderOptions {
   std::string out_dir;
   JobOverrides overrides;
   bool quiet = false;  // no progress output
+  std::string db;      // --db FILE: keep the rounds in a job store and resume from it
 };
 
 CLI::App* AddRenderCommand(CLI::App& app, RenderOptions* options);

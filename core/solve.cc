@@ -11,10 +11,13 @@
 namespace radfarm {
 
 SolveResult Solve(const PatchScene& scene, const SolverSettings& settings,
-                  const std::function<void(const RoundProgress&)>& on_round) {
+                  const std::function<void(const RoundProgress&)>& on_round,
+                  const SolveHooks& hooks) {
   const auto start = std::chrono::steady_clock::now();
+  const double seconds_before = hooks.resume ? hooks.resume->seconds : 0;
   auto elapsed = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return seconds_before +
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   ThreadPool pool(settings.threads);
   const RayCaster caster(scene);
@@ -26,6 +29,12 @@ SolveResult Solve(const PatchScene& scene, const SolverSettings& settings,
 
   SolveStats stats;
   stats.stop_reason = kStopConverged;
+  if (const SolveCheckpoint* c = hooks.resume) {
+    solver.Restore(c->rounds_done, c->radiosity, c->unshot, c->energy);
+    stats.rays = c->rays;
+    stats.escaped_rays = c->escaped_rays;
+    stats.backface_hits = c->backface_hits;
+  }
   while (true) {
     if (auto stop = StopBeforeRound(solver, settings, stats.rays, elapsed())) {
       stats.stop_reason = *stop;
@@ -44,6 +53,11 @@ SolveResult Solve(const PatchScene& scene, const SolverSettings& settings,
     }
     solver.ApplyRound(plan, results);
     stats.rays += plan.rays;
+    if (hooks.after_round) {
+      hooks.after_round({plan.round, solver.rounds_done(), solver.radiosity(), solver.unshot(),
+                         solver.energy(), stats.rays, stats.escaped_rays, stats.backface_hits,
+                         elapsed(), static_cast<uint32_t>(plan.shots.size())});
+    }
     if (on_round) {
       on_round({solver.rounds_done(), stats.rays, elapsed(), solver.UnshotFraction(),
                 settings.tolerance, &solver.energy()});

@@ -31,9 +31,33 @@ struct SolveResult {
 // batches long enough to amortise scheduling and short enough to balance threads.
 inline constexpr uint32_t kLocalBatchRays = 4096;
 
+// Where an interrupted solve stands: the solver's state after a round and what it had spent, so
+// that Solve continues exactly where it stopped (same later rounds, same bits).
+struct SolveCheckpoint {
+  uint32_t round = 0;        // the plan's round number of the last round applied
+  uint32_t rounds_done = 0;  // ProgressiveSolver::rounds_done()
+  std::vector<Rgb> radiosity;
+  std::vector<Rgb> unshot;
+  EnergyAccount energy;
+  uint64_t rays = 0;  // spent up to and including that round
+  uint64_t escaped_rays = 0;
+  uint64_t backface_hits = 0;
+  double seconds = 0;
+  uint32_t shooters = 0;  // of that round
+};
+
+// Optional hooks around the rounds, for solves that keep their state in a store.
+struct SolveHooks {
+  // Start from here instead of from scratch; sizes must match the scene.
+  const SolveCheckpoint* resume = nullptr;
+  // After every round, on the calling thread: the state at that round boundary.
+  std::function<void(const SolveCheckpoint&)> after_round;
+};
+
 // Runs rounds until the unshot fraction drops below settings.tolerance or a ray or time budget is
 // spent. `on_round` (optional) is called after every round on the calling thread.
 SolveResult Solve(const PatchScene& scene, const SolverSettings& settings,
-                  const std::function<void(const RoundProgress&)>& on_round = {});
+                  const std::function<void(const RoundProgress&)>& on_round = {},
+                  const SolveHooks& hooks = {});
 
 }  // namespace radfarm

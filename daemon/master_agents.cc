@@ -81,9 +81,7 @@ void Master::OnAgentClosed(AgentLink& link, const std::string& reason) {
 void Master::TakeLeasesAway(AgentLink& link, const char* why) {
   size_t held = 0;
   for (auto& [job, runner] : runners_) {
-    for (const auto& a : runner->scheduler().counters(Now()).agents) {
-      if (a.agent == link.id()) held += a.leases_held;
-    }
+    held += runner->scheduler().LeasesHeld(link.id());
     runner->scheduler().OnAgentLost(link.id());
   }
   LogLine(LogLevel::kWarning, "agents")
@@ -216,20 +214,31 @@ void Master::Dispatch(AgentLink& link) {
   // Don't queue work behind a slow socket.
   if (link.queued_bytes() > (4u << 20)) return;
   const auto now = Now();
-  for (JobRunner* runner : RunnersByPriority()) {
-    bool gave = false;
-    while (auto a = runner->scheduler().NextAssignment(link.id(), now)) {
+  const std::vector<JobRunner*> order = RunnersByPriority();
+  uint32_t held = 0, capacity = 0;
+  for (JobRunner* runner : order) {
+    held += runner->scheduler().LeasesHeld(link.id());
+    capacity = std::max(capacity, runner->scheduler().LeaseCapacityOf(link.id()));
+  }
+  // The highest-priority job with work fills the agent first; a lower one gets what is left of
+  // its capacity (the tail of a round, a job between rounds).
+  for (JobRunner* runner : order) {
+    scheduler::RoundScheduler& s = runner->scheduler();
+    while (true) {
+      const uint32_t here = s.LeasesHeld(link.id());
+      auto a = s.NextAssignment(link.id(), now, held - here, capacity);
+      if (!a) break;
+      ++held;
       const auto lease_ms = std::max<int64_t>(
           1, std::chrono::duration_cast<std::chrono::milliseconds>(a->deadline - now).count());
-      protocol::BatchAssignmentMsg msg = protocol::MakeBatchAssignment(
-          runner->wire_info(), a->batch_id, a->attempt_id, a->batch, static_cast<uint32_t>(lease_ms));
-      if (Status s = link.Send(msg); !s) {
-        LogLine(LogLevel::kWarning, "agents") << link.Describe() << ": " << s.error();
+      protocol::BatchAssignmentMsg msg =
+          protocol::MakeBatchAssignment(runner->wire_info(), a->batch_id, a->attempt_id, a->batch,
+                                        static_cast<uint32_t>(lease_ms));
+      if (Status st = link.Send(msg); !st) {
+        LogLine(LogLevel::kWarning, "agents") << link.Describe() << ": " << st.error();
         return;
       }
-      gave = true;
     }
-    if (gave) return;  // lower-priority jobs get this agent once this one has no work left
   }
 }
 
@@ -250,11 +259,7 @@ void Master::OnHeartbeatTimer() {
       continue;
     }
     uint32_t leases = 0;
-    for (auto& [job, runner] : runners_) {
-      for (const auto& a : runner->scheduler().counters(Now()).agents) {
-        if (a.agent == id) leases += a.leases_held;
-      }
-    }
+    for (auto& [job, runner] : runners_) leases += runner->scheduler().LeasesHeld(id);
     beat.leases_held = leases;
     (void)link->Send(beat);
   }

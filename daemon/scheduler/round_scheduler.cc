@@ -93,11 +93,25 @@ const Batch* RoundScheduler::FindBatch(BatchId batch_id) const {
 
 // --- Work ---
 
-std::optional<Assignment> RoundScheduler::NextAssignment(AgentId agent_id, TimePoint now) {
+uint32_t RoundScheduler::LeasesHeld(AgentId agent) const {
+  const auto it = agents_.find(agent);
+  return it == agents_.end() ? 0 : static_cast<uint32_t>(it->second.live.size());
+}
+
+uint32_t RoundScheduler::LeaseCapacityOf(AgentId agent) const {
+  const auto it = agents_.find(agent);
+  return it == agents_.end() ? 0 : LeaseCapacity(it->second);
+}
+
+std::optional<Assignment> RoundScheduler::NextAssignment(AgentId agent_id, TimePoint now,
+                                                         uint32_t leases_elsewhere,
+                                                         std::optional<uint32_t> capacity) {
   const auto it = agents_.find(agent_id);
   if (!round_ || it == agents_.end() || IsBlocklisted(agent_id, now)) return std::nullopt;
   AgentState& agent = it->second;
-  if (agent.live.size() >= LeaseCapacity(agent)) return std::nullopt;
+  if (agent.live.size() + leases_elsewhere >= capacity.value_or(LeaseCapacity(agent))) {
+    return std::nullopt;
+  }
   if (const auto index = PopFresh()) return Issue(*index, agent_id, agent, now, false);
   if (const auto index = PopOverdueFor(agent_id)) return Issue(*index, agent_id, agent, now, true);
   return std::nullopt;

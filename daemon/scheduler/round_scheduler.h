@@ -113,7 +113,18 @@ class RoundScheduler {
   // The next lease for `agent`, or nothing: no round, unknown or blocklisted agent, agent at its
   // lease capacity, or nothing to hand out. Requeued and fresh batches come first, in that order;
   // when none are left, an overdue batch this agent does not already hold.
-  std::optional<Assignment> NextAssignment(AgentId agent, TimePoint now);
+  // `leases_elsewhere`: leases the agent holds for other jobs (their schedulers'); they count
+  // against its capacity here too, so an agent shared by several jobs is never over-leased.
+  // `capacity`, when given, replaces this scheduler's own estimate (a daemon running several jobs
+  // knows the agent's throughput from all of them; a job the agent has not worked for yet would
+  // otherwise allow it only initial_leases).
+  std::optional<Assignment> NextAssignment(AgentId agent, TimePoint now,
+                                           uint32_t leases_elsewhere = 0,
+                                           std::optional<uint32_t> capacity = std::nullopt);
+  // Live leases `agent` holds in this scheduler (0 for an unknown agent). Cheap.
+  uint32_t LeasesHeld(AgentId agent) const;
+  // How many leases this scheduler would let `agent` hold now (0 for an unknown agent).
+  uint32_t LeaseCapacityOf(AgentId agent) const;
   // A result that passed ValidateBatchResult against FindBatch(batch_id). The first valid result
   // of a batch wins; see DropReason for the others.
   ResultVerdict OnResult(AgentId agent, BatchId batch_id, AttemptId attempt_id, BatchResult result,

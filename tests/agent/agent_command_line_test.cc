@@ -19,8 +19,9 @@ CommandResult RunAgent(std::vector<std::string> args) {
 TEST(AgentCommandLineTest, HelpListsEveryFlagAndExitsZero) {
   const CommandResult help = RunAgent({"--help"});
   EXPECT_EQ(help.exit_code, 0);
-  for (const char* flag : {"--master", "--secret-file", "--state-dir", "--threads", "--name",
-                           "--config", "--log-level", "--slowdown", "--exit-when-idle"}) {
+  for (const char* flag :
+       {"--master", "--secret-file", "--state-dir", "--threads", "--name", "--config",
+        "--log-level", "--slowdown", "--exit-when-idle", "--idle-source"}) {
     EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
   }
 }
@@ -43,6 +44,8 @@ TEST(AgentCommandLineTest, UsageErrorsExitTwo) {
       {{"--master", "h:1", "--secret-file", key, "--exit-when-idle", "-1"}, "--exit-when-idle"},
       {{"--master", "h:1", "--secret-file", key, "--log-level", "loud"}, "--log-level"},
       {{"--master", "h:1", "--secret-file", key, "--bogus"}, "--bogus"},
+      {{"--master", "h:1", "--secret-file", key, "--idle-source", dir.File("user")},
+       "--idle-source (idle_source) needs the idle policy"},
   };
   for (const Case& c : cases) {
     const CommandResult result = RunAgent(c.args);

@@ -133,6 +133,29 @@ TEST_F(AgentWorkTest, CancelDropsTheJobsQueuedAndRunningWork) {
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
 }
 
+TEST_F(AgentWorkTest, ALostConnectionDropsEveryLeaseAndDiscardsTheirResults) {
+  std::unique_ptr<AgentProcess> agent = StartAgent(1);
+  // One batch long enough to be still running when the connection goes, one queued behind it.
+  const auto running = Assign(Job(1), 1, 2, 0, 5000000);
+  const auto queued = Assign(Job(1), 2, 3, 0, 1000);
+  master_.Send({running, queued});
+  ASSERT_TRUE(agent->WaitForLog("ready, ")) << agent->Log();
+  master_.Drop();
+  ASSERT_TRUE(agent->WaitForLog("lost the connection to " + master_.address())) << agent->Log();
+  EXPECT_NE(agent->Log().find("dropped 2 leases"), std::string::npos) << agent->Log();
+  ASSERT_TRUE(master_.WaitFor([](const Record& r) { return r.authenticated == 2 && r.open == 1; }))
+      << agent->Log();
+  // The running batch ends on the new connection's watch: its result is not sent there.
+  ASSERT_TRUE(agent->WaitForLog("discarded the result of a lease no longer held")) << agent->Log();
+  ASSERT_TRUE(master_.WaitFor([](const Record& r) {
+    const auto beats = r.All<protocol::HeartbeatMsg>();
+    return !beats.empty() && beats.back().leases_held == 0;
+  }));
+  EXPECT_TRUE(master_.Snapshot().All<protocol::BatchResultMsg>().empty()) << agent->Log();
+  agent->Signal(SIGTERM);
+  EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
+}
+
 TEST_F(AgentWorkTest, AnUnknownSceneReturnsItsLeasesAsSceneUnavailable) {
   std::unique_ptr<AgentProcess> agent = StartAgent(1);
   const std::vector<uint8_t> other = codec::EncodePatchScene(BoxScene(2));  // not on the master

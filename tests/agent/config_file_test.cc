@@ -95,6 +95,75 @@ TEST(ConfigFileTest, AMissingFileIsNamed) {
       << options.error();
 }
 
+TEST(ConfigFileTest, TheIdleTableIsTheIdlePolicy) {
+  ScratchDir dir;
+  const std::string path = dir.File("agent.toml");
+  WriteTextFile(path,
+                "threads = 2\n"
+                "idle_source = \"user-state\"\n"
+                "[idle]\n"
+                "user_idle_minutes = 3\n"
+                "max_other_cpu = 0.25\n"
+                "schedule = \"Mon-Fri 18:00-08:00\"\n"
+                "poll_seconds = 2\n");
+  Result<AgentOptions> options = LoadConfigFile(path);
+  ASSERT_TRUE(options.ok()) << options.error();
+  ASSERT_TRUE(options->idle.has_value());
+  EXPECT_TRUE(options->idle->enabled);
+  EXPECT_EQ(options->idle->user_idle_minutes, 3);
+  EXPECT_EQ(options->idle->max_other_cpu, 0.25);
+  EXPECT_EQ(options->idle->schedule, "Mon-Fri 18:00-08:00");
+  EXPECT_EQ(options->idle->poll_seconds, 2);
+  EXPECT_EQ(*options->idle_source, dir.File("user-state"));  // relative to the config file
+
+  // An empty table is the policy with its defaults; no table, no policy.
+  WriteTextFile(path, "[idle]\n");
+  options = LoadConfigFile(path);
+  ASSERT_TRUE(options.ok()) << options.error();
+  ASSERT_TRUE(options->idle.has_value());
+  EXPECT_EQ(options->idle->user_idle_minutes, idle::IdleConfig{}.user_idle_minutes);
+  WriteTextFile(path, "threads = 2\n");
+  options = LoadConfigFile(path);
+  ASSERT_TRUE(options.ok()) << options.error();
+  EXPECT_FALSE(options->idle.has_value());
+}
+
+TEST(ConfigFileTest, IdleErrorsNameTheFileLineAndDottedKey) {
+  ScratchDir dir;
+  const std::string at = dir.File("agent.toml") + ":";
+  const std::string cpu =
+      ErrorOf(dir, "threads = 2\n[idle]\nenabled = true\nmax_other_cpu = 1.5\n");
+  EXPECT_EQ(cpu.rfind(at + "4: 'idle.max_other_cpu' must be in (0, 1]", 0), 0u) << cpu;
+  const std::string unknown = ErrorOf(dir, "[idle]\nidle_minutes = 5\n");
+  EXPECT_EQ(unknown.rfind(at + "2: 'idle.idle_minutes' is not a key", 0), 0u) << unknown;
+  const std::string schedule = ErrorOf(dir, "[idle]\n\nschedule = \"weekends\"\n");
+  EXPECT_EQ(schedule.rfind(at + "3: 'idle.schedule' is not a schedule", 0), 0u) << schedule;
+  EXPECT_EQ(ErrorOf(dir, "threads = 1\nidle = 5\n"),
+            at + "2: 'idle' must be a table ([idle]), not an integer");
+  EXPECT_EQ(ErrorOf(dir, "idle_source = \"\"\n"), at + "1: 'idle_source' must not be empty");
+}
+
+TEST(AgentSettingsTest, AnIdleSourceNeedsAnEnabledIdlePolicy) {
+  AgentOptions flags;
+  flags.master = loop::HostPort{"h", 1};
+  flags.secret_file = "/k";
+  flags.idle_source = "/run/user-state";
+  AgentOptions file;
+  Result<AgentSettings> without = ResolveSettings(flags, file);
+  ASSERT_FALSE(without.ok());
+  EXPECT_NE(without.error().find("--idle-source (idle_source) needs the idle policy"),
+            std::string::npos)
+      << without.error();
+  file.idle = idle::IdleConfig{};
+  file.idle->enabled = false;
+  EXPECT_FALSE(ResolveSettings(flags, file).ok());
+  file.idle->enabled = true;
+  Result<AgentSettings> with = ResolveSettings(flags, file);
+  ASSERT_TRUE(with.ok()) << with.error();
+  EXPECT_TRUE(with->idle_policy_enabled());
+  EXPECT_EQ(with->idle_source, "/run/user-state");
+}
+
 TEST(AgentSettingsTest, CommandLineWinsOverTheFileAndDefaultsFillTheRest) {
   AgentOptions file;
   file.master = loop::HostPort{"file-host", 1};
@@ -114,6 +183,7 @@ TEST(AgentSettingsTest, CommandLineWinsOverTheFileAndDefaultsFillTheRest) {
   EXPECT_EQ(settings->state_dir, "");
   EXPECT_EQ(settings->exit_when_idle_seconds, 0);
   EXPECT_EQ(settings->log_level, loop::LogLevel::kInfo);
+  EXPECT_FALSE(settings->idle_policy_enabled());  // no [idle] table: work always
 }
 
 TEST(AgentSettingsTest, MasterAndSecretFileAreRequired) {

@@ -183,5 +183,19 @@ TEST(SceneSupplyTest, ABadChunkFailsTheFetchAndItsLateAnswersAreSkipped) {
   EXPECT_EQ(h.failures.size(), 1u);
 }
 
+TEST(SceneSupplyTest, AChunkNobodyAskedForIsIgnored) {
+  const std::vector<uint8_t> blob = codec::EncodePatchScene(testing::BoxScene(2));
+  const protocol::SceneHash hash = protocol::HashScene(blob);
+  Harness h(std::nullopt);
+  const protocol::SceneRequestMsg request{hash, 0, protocol::kMaxSceneChunkBytes};
+  h.supply->OnChunk(protocol::MakeSceneChunk(blob, request).value());  // no fetch at all
+  ASSERT_TRUE(h.supply->Want(hash).ok());
+  h.Serve(blob);
+  h.supply->OnChunk(protocol::MakeSceneChunk(blob, request).value());  // one answer too many
+  ASSERT_TRUE(h.RunUntilSettled());
+  EXPECT_EQ(h.ready.size(), 1u);
+  EXPECT_TRUE(h.failures.empty());
+}
+
 }  // namespace
 }  // namespace radfarm::agent

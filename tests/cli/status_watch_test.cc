@@ -1,7 +1,13 @@
 // `radfarm status --watch`: polls until the job ends, one line per change when stdout is not a
 // terminal, and its exit code says how the job ended. WatchPrinter's terminal bar is checked in
 // process.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <poll.h>
+#include <pty.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -12,6 +18,8 @@
 #include "cli/watch_printer.h"
 #include "tests/cli/control_fixtures.h"
 #include "tests/cli/fake_control_server.h"
+
+extern char** environ;
 
 namespace radfarm {
 namespace {
@@ -98,6 +106,51 @@ TEST(StatusWatchTest, MasterGoingAwayEndsTheWatchWithAnError) {
   const auto r = RunFarm(server.socket_path(), {"status", "3", "--watch"});
   EXPECT_EQ(r.exit_code, kExitFailure);
   EXPECT_NE(r.err.find("closed the connection without answering"), std::string::npos) << r.err;
+}
+
+// Runs radfarm with stdout on a pseudo-terminal and returns what it wrote there.
+std::string RunOnTerminal(const std::vector<std::string>& args, int* exit_code) {
+  int terminal = -1, child_side = -1;
+  if (openpty(&terminal, &child_side, nullptr, nullptr, nullptr) != 0) return "openpty failed";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, child_side, STDOUT_FILENO);
+  posix_spawn_file_actions_addclose(&actions, terminal);
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(child_side);
+  std::string out;
+  // Read until the child's side closes (EIO on Linux) so it never blocks on a full terminal.
+  for (char buffer[4096]; rc == 0;) {
+    const ssize_t n = read(terminal, buffer, sizeof buffer);
+    if (n > 0) {
+      out.append(buffer, size_t(n));
+    } else if (n == 0 || errno != EINTR) {
+      break;
+    }
+  }
+  close(terminal);
+  int status = 0;
+  if (rc == 0) waitpid(pid, &status, 0);
+  *exit_code = rc == 0 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return out;
+}
+
+TEST(StatusWatchTest, OnATerminalRedrawsOneBar) {
+  FakeControlServer server(Script({JobObject(3, "running", 1), JobObject(3, "done", 2)}));
+  int exit_code = -1;
+  const std::string out = RunOnTerminal(
+      {RADFARM_CLI_PATH, "--control", server.socket_path(), "status", "3", "--watch"}, &exit_code);
+  EXPECT_EQ(exit_code, kExitOk) << out;
+  EXPECT_NE(out.find("\r[##"), std::string::npos) << out;
+  EXPECT_NE(out.find("\x1b[K"), std::string::npos) << out;
+  EXPECT_NE(out.find("job 3 done: round 2"), std::string::npos) << out;
+  // The terminal turns "\n" into "\r\n": one line break, after the last draw.
+  EXPECT_EQ(out.find("\n"), out.size() - 1) << out;
 }
 
 std::string Capture(WatchStyle style, const std::vector<json>& jobs) {

@@ -49,6 +49,25 @@ TEST(RoundSchedulerTest, LeasesUpToTheInitialCapacityAndCounts) {
   EXPECT_EQ(c.agents[0].leases_held, 2u);
 }
 
+TEST(RoundSchedulerTest, LeasesHeldForOtherJobsCountAgainstTheCapacity) {
+  SchedulerOptions options;
+  options.initial_leases = 3;
+  RoundScheduler s(options);
+  s.AddAgent(1);
+  ASSERT_TRUE(s.StartRound(Plan(0, 10), kT0).ok());
+  EXPECT_EQ(s.LeaseCapacityOf(1), 3u);
+  EXPECT_EQ(s.LeaseCapacityOf(9), 0u);  // unknown
+  EXPECT_FALSE(s.NextAssignment(1, kT0, 3));  // full with another job's leases
+  ASSERT_TRUE(s.NextAssignment(1, kT0, 2));   // one slot left
+  EXPECT_EQ(s.LeasesHeld(1), 1u);
+  EXPECT_FALSE(s.NextAssignment(1, kT0, 2));
+  // The daemon's capacity for the agent (measured on another job) replaces the initial one.
+  ASSERT_TRUE(s.NextAssignment(1, kT0, 2, 5u));
+  ASSERT_TRUE(s.NextAssignment(1, kT0, 2, 5u));
+  EXPECT_FALSE(s.NextAssignment(1, kT0, 2, 5u));
+  EXPECT_EQ(s.LeasesHeld(1), 3u);
+}
+
 TEST(RoundSchedulerTest, FastAgentGetsMoreLeasesThanASlowOneNeverAboveTheCap) {
   SchedulerOptions options;
   options.initial_leases = 1;

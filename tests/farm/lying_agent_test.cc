@@ -1,0 +1,132 @@
+// An agent that sends an invalid batch result (a patch id out of range) is disconnected and
+// blocklisted, and the job still ends with render's bytes: a faulty or hostile agent cannot
+// change a result. The liar is a hand-driven protocol client in this test.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <fstream>
+
+#include "protocol/farm_secret.h"
+#include "protocol/frame_decoder.h"
+#include "protocol/protocol_session.h"
+#include "tests/farm/farm_fixture.h"
+
+namespace radfarm::testing {
+namespace {
+
+const std::vector<std::string> kShortJob = {"--rays", "3000000"};
+
+// A blocking agent speaking the protocol by hand.
+class HandAgent {
+ public:
+  HandAgent(const std::string& address, const protocol::FarmSecret& secret, std::string name)
+      : session_(protocol::ProtocolSession::ForAgent(secret, {std::move(name), 1})) {
+    const size_t colon = address.rfind(':');
+    sockaddr_in sa{};
+    sa.sin_family = AF_INET;
+    sa.sin_port = htons(static_cast<uint16_t>(std::stoi(address.substr(colon + 1))));
+    inet_pton(AF_INET, address.substr(0, colon).c_str(), &sa.sin_addr);
+    fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    timeval timeout{60, 0};
+    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    connected_ = ::connect(fd_, reinterpret_cast<sockaddr*>(&sa), sizeof sa) == 0;
+  }
+  ~HandAgent() { ::close(fd_); }
+
+  bool Handshake() {
+    if (!connected_) return false;
+    Result<std::vector<uint8_t>> hello = session_.Start();
+    if (!hello || !Write(*hello)) return false;
+    while (!session_.authenticated()) {
+      std::optional<protocol::DecodedFrame> frame = Read();
+      if (!frame) return false;
+      Result<protocol::ProtocolSession::Accepted> a = session_.Accept(*frame);
+      if (!a) return false;
+      if (!a->reply.empty() && !Write(a->reply)) return false;
+    }
+    return true;
+  }
+  // The next application message, skipping heartbeats; nullopt once the master closed.
+  std::optional<protocol::Message> NextMessage() {
+    while (true) {
+      std::optional<protocol::DecodedFrame> frame = Read();
+      if (!frame) return std::nullopt;
+      Result<protocol::ProtocolSession::Accepted> a = session_.Accept(*frame);
+      if (!a) return std::nullopt;
+      if (std::holds_alternative<protocol::HeartbeatMsg>(frame->message)) continue;
+      if (std::holds_alternative<protocol::CloseMsg>(frame->message)) return frame->message;
+      return frame->message;
+    }
+  }
+  bool Send(const protocol::Message& message) {
+    Result<std::vector<uint8_t>> frame = session_.Encode(message);
+    return frame && Write(*frame);
+  }
+
+ private:
+  bool Write(const std::vector<uint8_t>& bytes) {
+    return ::write(fd_, bytes.data(), bytes.size()) == static_cast<ssize_t>(bytes.size());
+  }
+  std::optional<protocol::DecodedFrame> Read() {
+    while (true) {
+      Result<std::optional<protocol::DecodedFrame>> next = decoder_.Next();
+      if (!next) return std::nullopt;
+      if (*next) return std::move(**next);
+      uint8_t buffer[65536];
+      const ssize_t n = ::read(fd_, buffer, sizeof buffer);
+      if (n <= 0) return std::nullopt;
+      if (!decoder_.Feed(std::span(buffer, size_t(n)))) return std::nullopt;
+    }
+  }
+
+  protocol::ProtocolSession session_;
+  protocol::FrameDecoder decoder_;
+  int fd_ = -1;
+  bool connected_ = false;
+};
+
+TEST_F(FarmTest, AnAgentSendingAnInvalidResultIsDisconnectedAndBlocklisted) {
+  StartMaster();
+  std::ifstream in(secret_file_);
+  std::string hex;
+  in >> hex;
+  Result<protocol::FarmSecret> secret = protocol::FarmSecret::FromHex(hex);
+  ASSERT_TRUE(secret.ok());
+  const int64_t id = Submit("cornell-box.toml", kShortJob);
+
+  HandAgent liar(master_address_, *secret, "liar");
+  ASSERT_TRUE(liar.Handshake()) << MasterLog();
+  std::optional<protocol::Message> message;
+  while ((message = liar.NextMessage()) &&
+         !std::holds_alternative<protocol::BatchAssignmentMsg>(*message)) {
+  }
+  ASSERT_TRUE(message.has_value()) << MasterLog();
+  const auto& assignment = std::get<protocol::BatchAssignmentMsg>(*message);
+  // Every ray "hits" a patch that does not exist.
+  protocol::BatchResultMsg lie;
+  lie.lease = assignment.lease;
+  lie.hits = {{assignment.patch_count + 7, assignment.ray_count}};
+  ASSERT_TRUE(liar.Send(lie));
+  // The master closes the connection.
+  while ((message = liar.NextMessage()) &&
+         !std::holds_alternative<protocol::CloseMsg>(*message)) {
+  }
+  ASSERT_TRUE(WaitUntil([&] { return CountLines(MasterLog(), "result rejected (invalid)") > 0; }))
+      << MasterLog();
+
+  // Coming back under the same name does not help.
+  HandAgent again(master_address_, *secret, "liar");
+  ASSERT_TRUE(again.Handshake());
+  ASSERT_TRUE(WaitUntil([&] { return CountLines(MasterLog(), "refused, blocklisted") > 0; }))
+      << MasterLog();
+
+  // An honest agent finishes the job with render's bytes.
+  StartAgent("honest");
+  ASSERT_TRUE(WaitForState(id, "done"));
+  EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml", kShortJob));
+}
+
+}  // namespace
+}  // namespace radfarm::testing

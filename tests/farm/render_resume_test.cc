@@ -1,0 +1,62 @@
+// `radfarm render --db FILE`: an embedded render killed midway continues where it stopped when the
+// same command runs again, and ends with the bytes of an uninterrupted render.
+#include <signal.h>
+
+#include <fstream>
+
+#include "daemon/store/job_store.h"
+#include "tests/farm/farm_fixture.h"
+
+namespace radfarm::testing {
+namespace {
+
+int64_t Checkpoints(const std::string& db) {
+  Result<store::JobStore> s = store::JobStore::Open(db);
+  if (!s) return 0;
+  Result<int64_t> n = s->CountCheckpoints(1);
+  return n ? *n : 0;
+}
+
+TEST_F(FarmTest, AKilledEmbeddedRenderContinuesFromItsDatabase) {
+  const std::string scene = std::string(RADFARM_SOURCE_DIR) + "/scenes/cornell-box.toml";
+  const std::string db = Path("render.db");
+  ChildProcess first({RADFARM_CLI_PATH, "render", scene, "--out", Path("first"), "--db", db,
+                      "--threads", "1", "-q"},
+                     Path("first.log"));
+  // Kill it once a couple of rounds are safely in the database.
+  ASSERT_TRUE(WaitUntil([&] {
+    return Checkpoints(db) >= 2 || first.WaitExit(std::chrono::milliseconds(0)).has_value();
+  })) << first.Log();
+  ASSERT_TRUE(first.running()) << "the render finished before it could be killed";
+  first.Signal(SIGKILL);
+  first.WaitExit(std::chrono::seconds(30));
+
+  const CommandResult again =
+      RunCommand({RADFARM_CLI_PATH, "render", scene, "--out", Path("again"), "--db", db});
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.out.find("continuing job 1 after round"), std::string::npos) << again.out;
+  EXPECT_TRUE(ReadFile(Path("again") + "/patches.csv") == ReferencePatches("cornell-box.toml"));
+
+  // Done: a third run writes the outputs again from the last checkpoint.
+  const CommandResult third =
+      RunCommand({RADFARM_CLI_PATH, "render", scene, "--out", Path("third"), "--db", db});
+  ASSERT_EQ(third.exit_code, 0) << third.err;
+  EXPECT_TRUE(ReadFile(Path("third") + "/patches.csv") == ReferencePatches("cornell-box.toml"));
+}
+
+TEST_F(FarmTest, RenderRefusesADatabaseThatIsNotAJobStore) {
+  const std::string db = Path("not-a-store.db");
+  {
+    std::ofstream(db) << "this is not SQLite";
+  }
+  const CommandResult r = RunCommand({RADFARM_CLI_PATH, "render",
+                                      std::string(RADFARM_SOURCE_DIR) + "/scenes/furnace.obj",
+                                      "--out", Path("out"), "--db", db, "-q"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("--db"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(db), std::string::npos) << r.err;
+  EXPECT_EQ(ReadFile(db), "this is not SQLite");  // never overwritten
+}
+
+}  // namespace
+}  // namespace radfarm::testing
