@@ -123,6 +123,16 @@ TEST(RenderCommandTest, AdaptiveRefinementIsReportedAndDeterministic) {
   EXPECT_EQ(JsonNumber(stats, "patches_after_refinement"), JsonNumber(stats, "patches"));
 }
 
+// The job store's checkpoints cannot hold a refined mesh yet: refused before anything is solved.
+TEST(RenderCommandTest, AdaptiveRefinementWithDbIsRefused) {
+  TempDir out;
+  const auto r =
+      Render("cornell-box-adaptive.toml", out.path(), {"--db", out.File("render.db"), "-q"});
+  EXPECT_EQ(r.exit_code, kExitBadInput);
+  EXPECT_NE(r.err.find("--db does not support mesh.refine = true yet"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out.File("render.db")));
+}
+
 // A closed furnace with Ke 1 and Kd 0.9 reads 10 on every patch: B = E / (1 - rho).
 TEST(RenderCommandTest, FurnaceReadsTen) {
   TempDir out;
