@@ -133,7 +133,8 @@ TEST(LoadJobTest, RefineKeysAreReadAndOffByDefault) {
 TEST(LoadJobTest, RefineKeyErrorsNameLineAndKey) {
   const std::string not_bool =
       WriteScratchFile("refine_bool.toml", "scene = \"x.obj\"\n[mesh]\nrefine = 1\n");
-  EXPECT_EQ(JobError(not_bool), not_bool + ":3: 'mesh.refine' must be true or false, not an integer");
+  EXPECT_EQ(JobError(not_bool),
+            not_bool + ":3: 'mesh.refine' must be true or false, not an integer");
   const std::string zero =
       WriteScratchFile("refine_tol.toml", "scene = \"x.obj\"\n[mesh]\nrefine_tolerance = 0\n");
   EXPECT_EQ(JobError(zero).rfind(zero + ":3: 'mesh.refine_tolerance' must be", 0), 0u)
