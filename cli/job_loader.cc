@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "mesh/refine.h"
+
 namespace radfarm {
 
 Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& overrides,
@@ -14,6 +16,13 @@ Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& o
   warnings->insert(warnings->end(), scene->warnings.begin(), scene->warnings.end());
   Result<PatchMesh> mesh = PatchMesh::Build(*scene, job->mesh, warnings);
   if (!mesh.ok()) return Error{mesh.error()};
+  if (job->refine.enabled) {
+    // The checks that need the mesh (the smallest element against the welding distance).
+    Result<ResolvedRefineSettings> refine =
+        ResolveRefineSettings(job->refine, mesh->patch_size(), mesh->patch_scene().patches.size(),
+                              mesh->weld_tolerance());
+    if (!refine.ok()) return Error{path + ": " + refine.error()};
+  }
   return LoadedJob{std::move(*job), std::move(*scene), std::move(*mesh)};
 }
 

@@ -14,6 +14,7 @@
 #include "cli/render_outputs.h"
 #include "cli/render_state.h"
 #include "core/solve.h"
+#include "mesh/refining_solve.h"
 
 namespace radfarm {
 
@@ -44,22 +45,27 @@ int RunRender(const RenderOptions& options) {
     return kExitBadInput;
   }
   const Job& job = loaded->job;
-  PatchMesh& mesh = loaded->mesh;
   if (Status s = CreateOutputDirectory(options.out_dir); !s.ok()) {
     PrintError(s.error());
     return kExitFailure;
   }
 
-  const PatchScene& patches = mesh.patch_scene();
   if (!options.quiet) {
-    std::printf("%s: %zu patches (target size %g), sampler %s, seed %llu\n", job.scene_path.c_str(),
-                patches.patches.size(), mesh.patch_size(),
+    std::printf("%s: %zu patches (target size %g%s), sampler %s, seed %llu\n",
+                job.scene_path.c_str(), loaded->mesh.patch_scene().patches.size(),
+                loaded->mesh.patch_size(), job.refine.enabled ? ", adaptive" : "",
                 std::string(SamplerName(job.solver.sampler)).c_str(),
                 static_cast<unsigned long long>(job.solver.seed));
   }
   std::optional<RenderState> state;
   SolveHooks hooks;
   Status save_status = Ok{};
+  if (!options.db.empty() && job.refine.enabled) {
+    // The job store's checkpoints hold radiosity per patch of the mesh the job file makes; a
+    // refined mesh is not part of them yet (docs/ARCHITECTURE.md, farm mode).
+    PrintError(options.scene + ": --db does not support mesh.refine = true yet");
+    return kExitBadInput;
+  }
   if (!options.db.empty()) {
     Result<RenderState> opened = RenderState::Open(options.db, {job, loaded->scene});
     if (!opened.ok()) {
@@ -78,14 +84,25 @@ int RunRender(const RenderOptions& options) {
     };
   }
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
-  SolveResult solution;
+  Result<RefiningSolveResult> solved = Error{"not solved"};
   try {
-    solution = Solve(
-        patches, job.solver,
-        [&](const RoundProgress& p) {
-          if (!options.quiet) reporter.OnRound(p);
-        },
-        hooks);
+    if (job.refine.enabled) {
+      solved = SolveRefining(std::move(loaded->mesh), job.solver, job.refine,
+                             [&](const RoundProgress& p) {
+                               if (!options.quiet) reporter.OnRound(p);
+                             });
+    } else {
+      RefiningSolveResult plain;
+      plain.patches_before = loaded->mesh.patch_scene().patches.size();
+      plain.solution = Solve(
+          loaded->mesh.patch_scene(), job.solver,
+          [&](const RoundProgress& p) {
+            if (!options.quiet) reporter.OnRound(p);
+          },
+          hooks);
+      plain.mesh = std::make_unique<PatchMesh>(std::move(loaded->mesh));
+      solved = std::move(plain);
+    }
   } catch (const std::exception& e) {
     // Embree failures (out of memory, unsupported CPU) are the only exceptions the core throws.
     reporter.Finish();
@@ -93,6 +110,10 @@ int RunRender(const RenderOptions& options) {
     return kExitFailure;
   }
   reporter.Finish();
+  if (!solved.ok()) {
+    PrintError(options.scene + ": " + solved.error());
+    return kExitBadInput;
+  }
   if (state) {
     if (save_status.ok()) save_status = state->Finish();
     if (!save_status.ok()) {
@@ -101,7 +122,10 @@ int RunRender(const RenderOptions& options) {
     }
   }
 
-  if (Status s = WriteOutputs(options.out_dir, mesh, solution, job); !s.ok()) {
+  PatchMesh& mesh = *solved->mesh;
+  const SolveResult& solution = solved->solution;
+  const uint64_t patches_before = job.refine.enabled ? solved->patches_before : 0;
+  if (Status s = WriteOutputs(options.out_dir, mesh, solution, job, patches_before); !s.ok()) {
     PrintError(s.error());
     return kExitFailure;
   }

@@ -22,7 +22,10 @@ Status CreateOutputDirectory(const std::string& dir) {
 }
 
 Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& solution,
-                    const Job& job) {
+                    const Job& job, uint64_t patches_before_refinement) {
+  const double patches_after = double(mesh.patch_scene().patches.size());
+  const double patches_before =
+      patches_before_refinement > 0 ? double(patches_before_refinement) : patches_after;
   namespace fs = std::filesystem;
   mesh.SetSolution(solution.radiosity, solution.unshot);
   const DisplayMesh display = mesh.MakeDisplayMesh();
@@ -40,6 +43,8 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
                        {{"patch_size", mesh.patch_size()},
                         {"dropped_degenerate_faces", double(mesh.dropped_degenerate())},
                         {"dropped_hidden_faces", double(mesh.dropped_hidden())},
+                        {"patches_before_refinement", patches_before},
+                        {"patches_after_refinement", patches_after},
                         {"exposure_stops", exposed.exposure}})}) {
     if (!s.ok()) return s;
   }

@@ -3,6 +3,7 @@
 // byte-identical (stats.json aside: it carries the solve's timings).
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "core/result.h"
@@ -17,7 +18,9 @@ Status CreateOutputDirectory(const std::string& dir);
 
 // `dir` must exist. Stores the solution in `mesh` (PatchMesh::SetSolution) to shade the image and
 // the PLY; `solution` must hold one value per patch of `mesh`. Each file is written atomically.
+// stats.json reports `patches_before_refinement` (0: the mesh was not refined, so the same as
+// `patches_after_refinement`, which is the patch count of `mesh`).
 Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& solution,
-                    const Job& job);
+                    const Job& job, uint64_t patches_before_refinement = 0);
 
 }  // namespace radfarm

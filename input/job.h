@@ -7,6 +7,7 @@
 #include "core/result.h"
 #include "core/solver_settings.h"
 #include "mesh/mesh_settings.h"
+#include "mesh/refine_settings.h"
 #include "output/camera.h"
 
 namespace radfarm {
@@ -14,6 +15,7 @@ namespace radfarm {
 struct Job {
   std::string scene_path;  // the OBJ; relative paths in a job file are relative to the job file
   MeshSettings mesh;
+  RefineSettings refine;  // the [mesh] refine* keys
   SolverSettings solver;
   Camera camera;
 };

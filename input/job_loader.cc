@@ -3,6 +3,10 @@
 //   scene = "cornell-box.obj"     # the OBJ; a relative path is relative to this file's directory
 //   [mesh]
 //   patch_size = 30.0             # largest patch edge in scene units, > 0 (absent: automatic)
+//   refine = false                # adaptive refinement of receivers during the solve
+//   refine_tolerance = 0.25       # relative radiance variation that splits an element, > 0
+//   min_element_size = 3.0        # smallest element edge, > 0 (absent: patch size / 4)
+//   max_elements = 20000          # element budget, integer >= 1 (absent: 8 x initial patches)
 //   [solver]
 //   sampler = "sobol"             # grid | random | sobol
 //   seed = 1                      # integer >= 0
@@ -64,8 +68,12 @@ Status ReadSection(const std::string& path, TomlTableReader* root, std::string_v
   return reader.CheckNoUnknownKeys();
 }
 
-Status ReadMesh(TomlTableReader* r, MeshSettings* mesh) {
-  return r->Real("patch_size", Interval::Above(0), &mesh->patch_size);
+Status ReadMesh(TomlTableReader* r, MeshSettings* mesh, RefineSettings* refine) {
+  RADFARM_TRY(r->Real("patch_size", Interval::Above(0), &mesh->patch_size));
+  RADFARM_TRY(r->Bool("refine", &refine->enabled));
+  RADFARM_TRY(r->Real("refine_tolerance", Interval::Above(0), &refine->tolerance));
+  RADFARM_TRY(r->Real("min_element_size", Interval::Above(0), &refine->min_element_size));
+  return r->Integer("max_elements", 1, kMaxInt64, &refine->max_elements);
 }
 
 Status ReadSolver(TomlTableReader* r, SolverSettings* solver) {
@@ -130,8 +138,9 @@ Status ReadJob(const std::string& path, const toml::table& table, Job* job) {
   if (!has_scene) return ErrorAt(path, 0, "missing key 'scene'");
   if (scene.empty()) return root.ErrorFor("scene", "must not be empty");
   job->scene_path = (std::filesystem::path(path).parent_path() / scene).string();
-  RADFARM_TRY(ReadSection(path, &root, "mesh",
-                          [&](TomlTableReader* r) { return ReadMesh(r, &job->mesh); }));
+  RADFARM_TRY(ReadSection(path, &root, "mesh", [&](TomlTableReader* r) {
+    return ReadMesh(r, &job->mesh, &job->refine);
+  }));
   RADFARM_TRY(ReadSection(path, &root, "solver",
                           [&](TomlTableReader* r) { return ReadSolver(r, &job->solver); }));
   RADFARM_TRY(ReadSection(path, &root, "camera",

@@ -108,6 +108,15 @@ Status TomlTableReader::String(std::string_view key, std::string* out, bool* pre
   return Ok{};
 }
 
+Status TomlTableReader::Bool(std::string_view key, bool* out) {
+  const toml::node* node = Find(key);
+  if (node == nullptr) return Ok{};
+  const auto* value = node->as_boolean();
+  if (value == nullptr) return ErrorFor(key, "must be true or false, not " + TypeName(*node));
+  *out = value->get();
+  return Ok{};
+}
+
 Status TomlTableReader::Vector(std::string_view key, Vec3* out, bool* present) {
   const toml::node* node = Find(key);
   if (present != nullptr) *present = node != nullptr;

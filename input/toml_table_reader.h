@@ -54,6 +54,7 @@ class TomlTableReader {
     return s;
   }
   Status String(std::string_view key, std::string* out, bool* present = nullptr);
+  Status Bool(std::string_view key, bool* out);
   Status Vector(std::string_view key, Vec3* out, bool* present = nullptr);
   // The sub-table at `key`, or null when absent.
   Result<const toml::table*> Table(std::string_view key);

@@ -115,7 +115,10 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
     return Error{out.str()};
   }
 
-  PatchAssembler assembler(tol, min_area, scene.materials);
+  pm.materials_ = scene.materials;
+  pm.tol_ = tol;
+  pm.min_area_ = min_area;
+  PatchAssembler assembler(tol, min_area, pm.materials_);
   std::vector<PieceCorners> pieces;
   for (size_t f = 0; f < faces.size(); ++f) {
     pieces.clear();
@@ -124,6 +127,35 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
       assembler.Add(piece, surfaces.surface[f], faces[f].material);
     }
   }
+  pm.data_ = std::move(assembler).Finish();
+  return pm;
+}
+
+std::vector<PatchMesh::Piece> PatchMesh::PiecesOf(const PatchScene& scene) {
+  std::vector<Piece> pieces;
+  pieces.reserve(scene.patches.size());
+  for (const Patch& p : scene.patches) {
+    Piece piece;
+    piece.corners.corners = p.corners;
+    piece.corners.count = p.corner_count;
+    piece.surface = p.surface;
+    piece.material = p.material;
+    pieces.push_back(piece);
+  }
+  return pieces;
+}
+
+PatchMesh PatchMesh::Rebuilt(const std::vector<Piece>& pieces) const {
+  PatchMesh pm;
+  pm.patch_size_ = patch_size_;
+  pm.dropped_degenerate_ = dropped_degenerate_;
+  pm.dropped_hidden_ = dropped_hidden_;
+  pm.surface_count_ = surface_count_;
+  pm.materials_ = materials_;
+  pm.tol_ = tol_;
+  pm.min_area_ = min_area_;
+  PatchAssembler assembler(tol_, min_area_, pm.materials_);
+  for (const Piece& piece : pieces) assembler.Add(piece.corners, piece.surface, piece.material);
   pm.data_ = std::move(assembler).Finish();
   return pm;
 }

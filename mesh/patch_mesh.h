@@ -43,6 +43,21 @@ class PatchMesh {
   static Result<PatchMesh> Build(const InputScene& scene, const MeshSettings& settings,
                                  std::vector<std::string>* warnings);
 
+  // A mesh of the same scene made of these pieces instead (adaptive refinement, refine.h): same
+  // materials, tolerances and patch size; welding and T-vertices found as by Build. Piece k becomes
+  // patch k unless welding left it degenerate (then it is dropped: callers compare the counts).
+  struct Piece {
+    PieceCorners corners;
+    uint32_t surface = 0;
+    uint32_t material = 0;
+  };
+  PatchMesh Rebuilt(const std::vector<Piece>& pieces) const;
+  // The pieces that rebuild a mesh with these patches: with Rebuilt, on the mesh Build made, this
+  // recovers a refined mesh from its PatchScene alone (a farm checkpoint's scene blob).
+  static std::vector<Piece> PiecesOf(const PatchScene& scene);
+  // Welding distance of this mesh (1e-6 of the scene's diagonal).
+  double weld_tolerance() const { return tol_; }
+
   // Flat copy the solver uses; patch i == OpenMesh face i.
   const PatchScene& patch_scene() const { return data_.scene; }
   // Target size actually used (automatic when settings.patch_size == 0).
@@ -74,6 +89,9 @@ class PatchMesh {
   size_t dropped_degenerate_ = 0;
   size_t dropped_hidden_ = 0;
   size_t surface_count_ = 0;
+  std::vector<Material> materials_;
+  double tol_ = 0;
+  double min_area_ = 0;
 };
 
 }  // namespace radfarm

@@ -92,6 +92,47 @@ TEST(RenderCommandTest, ThreadCountGivesByteIdenticalPatches) {
   }
 }
 
+// Adaptive refinement end to end: stats.json reports the patch counts before and after, the
+// refined mesh is what patches.csv lists, and the thread count changes no byte of it.
+TEST(RenderCommandTest, AdaptiveRefinementIsReportedAndDeterministic) {
+  std::string reference;
+  for (const char* threads : {"1", "2"}) {
+    TempDir out;
+    const auto r = Render("cornell-box-adaptive.toml", out.path(),
+                          {"--threads", threads, "--tolerance", "0.2", "-q"});
+    ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+    const std::string stats = ReadFile(out.File("stats.json"));
+    const std::string csv = ReadFile(out.File("patches.csv"));
+    const double before = JsonNumber(stats, "patches_before_refinement");
+    const double after = JsonNumber(stats, "patches_after_refinement");
+    EXPECT_EQ(before, 1281) << stats;  // cornell-box.obj at patch size 50
+    EXPECT_GT(after, before) << stats;
+    EXPECT_EQ(JsonNumber(stats, "patches"), after) << stats;
+    EXPECT_EQ(double(ReadCsv(out.File("patches.csv")).size() - 1), after);
+    if (reference.empty()) {
+      reference = csv;
+    } else {
+      EXPECT_TRUE(csv == reference) << "--threads " << threads << " differs";
+    }
+  }
+  TempDir plain;
+  const auto r = Render("cornell-box.obj", plain.path(), {"--rays", "20000", "-q"});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  const std::string stats = ReadFile(plain.File("stats.json"));
+  EXPECT_EQ(JsonNumber(stats, "patches_before_refinement"), JsonNumber(stats, "patches"));
+  EXPECT_EQ(JsonNumber(stats, "patches_after_refinement"), JsonNumber(stats, "patches"));
+}
+
+// The job store's checkpoints cannot hold a refined mesh yet: refused before anything is solved.
+TEST(RenderCommandTest, AdaptiveRefinementWithDbIsRefused) {
+  TempDir out;
+  const auto r =
+      Render("cornell-box-adaptive.toml", out.path(), {"--db", out.File("render.db"), "-q"});
+  EXPECT_EQ(r.exit_code, kExitBadInput);
+  EXPECT_NE(r.err.find("--db does not support mesh.refine = true yet"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out.File("render.db")));
+}
+
 // A closed furnace with Ke 1 and Kd 0.9 reads 10 on every patch: B = E / (1 - rho).
 TEST(RenderCommandTest, FurnaceReadsTen) {
   TempDir out;

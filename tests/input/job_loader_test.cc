@@ -115,6 +115,36 @@ TEST(LoadJobTest, UnknownKeyNamesLineAndDottedKey) {
   EXPECT_EQ(JobError(path), path + ":7: unknown key 'solver.sampel'");
 }
 
+TEST(LoadJobTest, RefineKeysAreReadAndOffByDefault) {
+  const Job defaults;
+  EXPECT_FALSE(defaults.refine.enabled);
+  const std::string path =
+      WriteScratchFile("refine.toml",
+                       "scene = \"x.obj\"\n[mesh]\nrefine = true\nrefine_tolerance = 0.2\n"
+                       "min_element_size = 3\nmax_elements = 5000\n");
+  Result<Job> job = LoadJob(path);
+  ASSERT_TRUE(job.ok()) << job.error();
+  EXPECT_TRUE(job->refine.enabled);
+  EXPECT_EQ(job->refine.tolerance, 0.2);
+  EXPECT_EQ(job->refine.min_element_size, 3.0);
+  EXPECT_EQ(job->refine.max_elements, 5000u);
+}
+
+TEST(LoadJobTest, RefineKeyErrorsNameLineAndKey) {
+  const std::string not_bool =
+      WriteScratchFile("refine_bool.toml", "scene = \"x.obj\"\n[mesh]\nrefine = 1\n");
+  EXPECT_EQ(JobError(not_bool),
+            not_bool + ":3: 'mesh.refine' must be true or false, not an integer");
+  const std::string zero =
+      WriteScratchFile("refine_tol.toml", "scene = \"x.obj\"\n[mesh]\nrefine_tolerance = 0\n");
+  EXPECT_EQ(JobError(zero).rfind(zero + ":3: 'mesh.refine_tolerance' must be", 0), 0u)
+      << JobError(zero);
+  const std::string budget =
+      WriteScratchFile("refine_max.toml", "scene = \"x.obj\"\n[mesh]\nmax_elements = 0\n");
+  EXPECT_EQ(JobError(budget).rfind(budget + ":3: 'mesh.max_elements' must be", 0), 0u)
+      << JobError(budget);
+}
+
 TEST(LoadJobTest, SyntaxErrorGivesTomlsDescriptionAndLine) {
   const std::string path = DataPath("jobs/syntax_error.toml");
   const std::string error = JobError(path);
