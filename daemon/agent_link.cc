@@ -30,7 +30,7 @@ AgentLink::AgentLink(loop::EventLoop& loop, std::unique_ptr<loop::FramedConnecti
       address_(connection_->peer()) {}
 
 std::string AgentLink::Describe() const {
-  if (!authenticated()) return address_;
+  if (!was_authenticated_) return address_;
   return name() + "@" + address_ + " (agent " + std::to_string(id_) + ")";
 }
 
@@ -100,6 +100,7 @@ void AgentLink::OnFrame(std::span<const uint8_t> payload) {
   if (!accepted->reply.empty()) (void)connection_->SendPrefixed(std::move(accepted->reply));
   if (!was_authenticated && session_.authenticated()) {
     handshake_deadline_.Stop();
+    was_authenticated_ = true;
     connected_unix_ms_ = UnixMs();
     connection_->SetReadIdleTimeout(options_.idle_close_timeout);
     callbacks_.on_authenticated(*this);

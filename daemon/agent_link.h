@@ -54,6 +54,8 @@ class AgentLink {
 
   uint64_t id() const { return id_; }
   bool authenticated() const { return session_.authenticated(); }
+  // Whether the handshake ever succeeded (still true after a Close ended the session).
+  bool was_authenticated() const { return was_authenticated_; }
   bool closing() const { return closing_; }
   const std::string& address() const { return address_; }
   // The agent's name and threads (from its Hello), once authenticated.
@@ -70,6 +72,9 @@ class AgentLink {
 
   // Master bookkeeping: the agent missed its heartbeats and its leases were taken away.
   bool stale = false;
+  // It handed leases back because it is stopping (Draining) or its machine is busy (Overloaded):
+  // it gets no new work on this connection.
+  bool declining = false;
 
  private:
   void OnFrame(std::span<const uint8_t> payload);
@@ -87,6 +92,7 @@ class AgentLink {
   protocol::HeartbeatMsg last_heartbeat_;
   int64_t connected_unix_ms_ = 0;
   bool closing_ = false;
+  bool was_authenticated_ = false;
 };
 
 }  // namespace radfarm::master

@@ -70,7 +70,7 @@ void Master::OnAuthenticated(AgentLink& link) {
 
 void Master::OnAgentClosed(AgentLink& link, const std::string& reason) {
   const uint64_t id = link.id();
-  if (link.authenticated() || link.stale) {
+  if (link.was_authenticated()) {
     LogLine(LogLevel::kInfo, "agents") << link.Describe() << " disconnected: " << reason;
     for (auto& [job, runner] : runners_) runner->scheduler().OnAgentLost(id);
   }
@@ -167,9 +167,18 @@ void Master::OnLeaseReturn(AgentLink& link, const protocol::LeaseReturnMsg& mess
       returned += runner->scheduler().ReturnLeases(link.id(), batches);
     }
   }
-  LogLine(LogLevel::kInfo, "agents")
-      << link.Describe() << " returned " << returned << " of " << message.leases.size()
-      << " leases (" << static_cast<int>(message.reason) << ")";
+  const char* why = message.reason == protocol::LeaseReturnReason::kDraining     ? "draining"
+                    : message.reason == protocol::LeaseReturnReason::kOverloaded ? "overloaded"
+                    : message.reason == protocol::LeaseReturnReason::kSceneUnavailable
+                        ? "scene unavailable"
+                        : "failed";
+  // A stopping or busy agent must not get the batches straight back.
+  if (message.reason == protocol::LeaseReturnReason::kDraining ||
+      message.reason == protocol::LeaseReturnReason::kOverloaded) {
+    link.declining = true;
+  }
+  LogLine(LogLevel::kInfo, "agents") << link.Describe() << " returned " << returned << " of "
+                                     << message.leases.size() << " leases (" << why << ")";
   if (returned > 0) DispatchAll();
 }
 
@@ -209,7 +218,9 @@ std::vector<JobRunner*> Master::RunnersByPriority() {
 }
 
 void Master::Dispatch(AgentLink& link) {
-  if (!link.authenticated() || link.closing() || link.stale || shutting_down_) return;
+  if (!link.authenticated() || link.closing() || link.stale || link.declining || shutting_down_) {
+    return;
+  }
   // Don't queue work behind a slow socket.
   if (link.queued_bytes() > (4u << 20)) return;
   const auto now = Now();
