@@ -7,15 +7,46 @@
 namespace radfarm {
 namespace {
 
-constexpr double kCornerPull = 0.1;  // corners sampled this far toward the centre
+constexpr double kCornerPull = 0.1;  // points sampled this far toward the centre
 
-// The sample points of an element: its centre, then its corners pulled inward.
-int SamplePoints(const Patch& e, std::array<Vec3, 5>* points) {
-  (*points)[0] = e.centre;
-  for (int i = 0; i < e.corner_count; ++i) {
-    (*points)[i + 1] = e.corners[i] + (e.centre - e.corners[i]) * kCornerPull;
+Vec3 Pulled(const Patch& e, const Vec3& p) { return p + (e.centre - p) * kCornerPull; }
+
+// The centres of four equal parts of a patch: the quarters of a parallelogram-like quad by its
+// bilinear midlines, the corner triangles of a triangle cut at its edge midpoints.
+std::array<Vec3, kSourceSamples> SourceSamples(const Patch& p) {
+  const auto& c = p.corners;
+  if (p.corner_count == 4) {
+    auto at = [&](double u, double v) {
+      return c[0] * ((1 - u) * (1 - v)) + c[1] * (u * (1 - v)) + c[2] * (u * v) +
+             c[3] * ((1 - u) * v);
+    };
+    return {at(0.25, 0.25), at(0.75, 0.25), at(0.75, 0.75), at(0.25, 0.75)};
   }
-  return e.corner_count + 1;
+  const Vec3 m01 = (c[0] + c[1]) * 0.5, m12 = (c[1] + c[2]) * 0.5, m20 = (c[2] + c[0]) * 0.5;
+  auto centroid = [](const Vec3& a, const Vec3& b, const Vec3& d) { return (a + b + d) / 3.0; };
+  return {centroid(c[0], m01, m20), centroid(m01, c[1], m12), centroid(m20, m12, c[2]),
+          centroid(m01, m12, m20)};
+}
+
+// The reflected gain the sources will bring to `point` of `element` (channel sum).
+double Gain(const Patch& element, const Vec3& point, const std::vector<LightSource>& sources,
+            const std::vector<uint32_t>& surface_of, const RayCaster& caster) {
+  Rgb gain;
+  for (const LightSource& s : sources) {
+    if (s.surface == element.surface) continue;  // a surface does not light itself
+    for (const Vec3& sample : s.samples) {
+      const Vec3 to = sample - point;
+      const double r2 = Dot(to, to);
+      if (!(r2 > 0)) continue;
+      const Vec3 dir = to / std::sqrt(r2);
+      const double cos_e = Dot(dir, element.normal), cos_s = -Dot(dir, s.normal);
+      if (cos_e <= 0 || cos_s <= 0) continue;
+      const RayHit hit = caster.Trace(point, dir, element.normal);
+      if (hit.patch == RayHit::kMiss || !hit.front || surface_of[hit.patch] != s.surface) continue;
+      gain += s.unshot * (s.sample_area * cos_e * cos_s / (std::numbers::pi * r2 + s.sample_area));
+    }
+  }
+  return (element.reflectance * gain).Sum();
 }
 
 }  // namespace
@@ -39,7 +70,7 @@ std::vector<LightSource> StrongestSources(const PatchScene& scene, const std::ve
   std::vector<LightSource> out;
   for (uint32_t i : ids) {
     const Patch& p = scene.patches[i];
-    out.push_back({p.centre, p.normal, p.area, unshot[i], p.surface});
+    out.push_back({SourceSamples(p), p.normal, p.area / kSourceSamples, unshot[i], p.surface});
   }
   return out;
 }
@@ -48,31 +79,44 @@ double LightScore(const Patch& element, const Rgb& radiosity,
                   const std::vector<LightSource>& sources, const std::vector<uint32_t>& surface_of,
                   const RayCaster& caster, double tolerance) {
   if (sources.empty()) return 0;
-  std::array<Vec3, 5> points;
-  const int n = SamplePoints(element, &points);
-  double lo = INFINITY, hi = -INFINITY, sum = 0;
-  for (int k = 0; k < n; ++k) {
-    Rgb gain;
-    for (const LightSource& s : sources) {
-      if (s.surface == element.surface) continue;  // a surface does not light itself
-      const Vec3 to = s.centre - points[k];
-      const double r2 = Dot(to, to);
-      if (!(r2 > 0)) continue;
-      const Vec3 dir = to / std::sqrt(r2);
-      const double cos_e = Dot(dir, element.normal), cos_s = -Dot(dir, s.normal);
-      if (cos_e <= 0 || cos_s <= 0) continue;
-      const RayHit hit = caster.Trace(points[k], dir, element.normal);
-      if (hit.patch == RayHit::kMiss || !hit.front || surface_of[hit.patch] != s.surface) continue;
-      const double form_factor = s.area * cos_e * cos_s / (std::numbers::pi * r2 + s.area);
-      gain += s.unshot * form_factor;
-    }
-    const double g = (element.reflectance * gain).Sum();
-    lo = std::min(lo, g);
-    hi = std::max(hi, g);
-    sum += g;
+  // A lattice of kLattice + 1 points per edge over the element; the image interpolates the corner
+  // values (bilinearly over a quad, barycentrically over a triangle), so every other lattice point
+  // checks that interpolation. Three sections per edge catch a penumbra narrower than the element
+  // wherever it crosses.
+  constexpr int kLattice = 3;
+  const auto& c = element.corners;
+  const bool quad = element.corner_count == 4;
+  std::array<double, 4> corner{};
+  for (int k = 0; k < element.corner_count; ++k) {
+    corner[k] = Gain(element, Pulled(element, c[k]), sources, surface_of, caster);
   }
-  const double reference = radiosity.Sum() + sum / n;
-  return reference > 0 ? (hi - lo) / (tolerance * reference) : 0;
+  double worst = 0, sum = 0;
+  int points = 0;
+  for (int i = 0; i <= kLattice; ++i) {
+    for (int j = 0; j <= (quad ? kLattice : kLattice - i); ++j) {
+      const double u = double(i) / kLattice, v = double(j) / kLattice;
+      const bool is_corner = quad ? (i == 0 || i == kLattice) && (j == 0 || j == kLattice)
+                                  : (i == kLattice || j == kLattice || i + j == 0);
+      double interpolated;
+      Vec3 at;
+      if (quad) {
+        const double w[4] = {(1 - u) * (1 - v), u * (1 - v), u * v, (1 - u) * v};
+        at = c[0] * w[0] + c[1] * w[1] + c[2] * w[2] + c[3] * w[3];
+        interpolated = corner[0] * w[0] + corner[1] * w[1] + corner[2] * w[2] + corner[3] * w[3];
+      } else {
+        const double w[3] = {1 - u - v, u, v};
+        at = c[0] * w[0] + c[1] * w[1] + c[2] * w[2];
+        interpolated = corner[0] * w[0] + corner[1] * w[1] + corner[2] * w[2];
+      }
+      const double g = is_corner ? interpolated
+                                 : Gain(element, Pulled(element, at), sources, surface_of, caster);
+      worst = std::max(worst, std::abs(g - interpolated));
+      sum += g;
+      ++points;
+    }
+  }
+  const double reference = radiosity.Sum() + sum / points;
+  return reference > 0 ? worst / (tolerance * reference) : 0;
 }
 
 double RayNoise(const Patch& patch, const Rgb& radiosity, double ray_power) {
@@ -90,9 +134,11 @@ double RayNoise(const Patch& patch, const Rgb& radiosity, double ray_power) {
 
 double GradientScore(const Patch& element, const Rgb& radiosity,
                      const std::vector<Rgb>& vertex_radiance, double ray_power, double tolerance) {
-  if (!(ray_power > 0) || !(radiosity.Sum() > 0)) return 0;
-  double diff = 0;
-  for (const Rgb& v : vertex_radiance) diff = std::max(diff, std::abs(v.Sum() - radiosity.Sum()));
+  if (!(ray_power > 0) || !(radiosity.Sum() > 0) || vertex_radiance.empty()) return 0;
+  double mean = 0;
+  for (const Rgb& v : vertex_radiance) mean += v.Sum();
+  mean /= double(vertex_radiance.size());
+  const double diff = std::abs(mean - radiosity.Sum());
   if (diff <= kNoiseSigmas * RayNoise(element, radiosity, ray_power)) return 0;
   return diff / (tolerance * radiosity.Sum());
 }

@@ -1,22 +1,26 @@
-// The two tests that decide whether an element splits (refine.h applies them). Both return a
-// score: the variation found across the element over the variation the tolerance allows, so a
-// score above 1 asks for a split and larger scores are split first when the element budget is
-// short.
+// The two tests that decide whether an element splits (refine.h applies them). Both estimate the
+// error of the Gouraud image over the element (vertex radiance interpolated linearly), over the
+// error the tolerance allows, so a score above 1 asks for a split and larger scores are split first
+// when the element budget is short. A linear variation, which the image reproduces exactly, scores
+// zero however steep: elements are spent where the light bends or breaks (shadow edges, penumbrae,
+// contact shadows), not on smooth fall-off.
 //
 //  - LightScore: the light still to arrive. The K strongest unshot patches (the lights, before the
-//    first round) are point sources at their centres; at the element's centre and at its corners
-//    (pulled 10% inward) the gain they will bring, rho * sum dB_s A_s cos cos / (pi r^2 + A_s),
-//    is summed over the sources each point sees (one shadow ray per point and source). The score is
-//    (max - min) over the points / (tolerance * (B + mean gain)). A shadow edge or penumbra across
-//    the element makes its points disagree about visibility and scores high; so does the fall-off
-//    near a light. It needs no solution, so it refines before anything is shot.
-//  - GradientScore: the solution so far. The largest difference between the element's radiance
-//    and that of its vertices (the averages over its neighbours, PatchMesh::SetSolution), over
-//    tolerance * B, but zero unless that difference also exceeds kNoiseSigmas times the element's
-//    ray noise: a patch that received n rays of power P_emitted / shot_rays has a relative
-//    standard deviation of about 1 / sqrt(n), so noise never causes refinement.
+//    first round) are sampled at kSourceSamples points each. On a lattice over the element (four
+//    points per edge, pulled 10% inward) the gain they will bring,
+//    rho * sum dB_s a cos cos / (pi r^2 + a) over the source samples each point sees (one shadow
+//    ray per point and sample, a = the sample's share of the source area), is compared with its
+//    linear interpolation from the corners. The score is the largest difference over
+//    tolerance * (B + mean gain). It needs no solution, so it refines before anything is shot.
+//  - GradientScore: the solution so far. The element's radiance against the mean of its vertices'
+//    (the averages over its neighbours, PatchMesh::SetSolution): for a linear variation they agree,
+//    a bend or an edge sets them apart. Over tolerance * B, but zero unless the difference also
+//    exceeds kNoiseSigmas times the element's ray noise: a patch that received n rays of power
+//    P_emitted / shot_rays has a relative standard deviation of about 1 / sqrt(n), so noise never
+//    causes refinement.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -27,13 +31,14 @@
 namespace radfarm {
 
 inline constexpr uint32_t kLightSources = 16;
+inline constexpr int kSourceSamples = 4;
 inline constexpr double kNoiseSigmas = 3;
 
 struct LightSource {
-  Vec3 centre;
+  std::array<Vec3, kSourceSamples> samples;  // the centres of four equal parts of the patch
   Vec3 normal;
-  double area = 0;
-  Rgb unshot;  // radiance still to shoot
+  double sample_area = 0;  // area / kSourceSamples
+  Rgb unshot;              // radiance still to shoot
   uint32_t surface = 0;
 };
 
