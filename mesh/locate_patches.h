@@ -13,6 +13,14 @@ namespace radfarm {
 
 inline constexpr uint32_t kNoPatch = 0xffffffffu;
 
+struct SurfacePoint {
+  Vec3 position;
+  Vec3 normal;  // unit, the side the point faces
+};
+
+// For each point, the patch of `mesh` under it.
+std::vector<uint32_t> LocatePoints(const PatchScene& mesh, const std::vector<SurfacePoint>& points);
+
 // For each patch of `points`, the patch of `mesh` under its centre.
 std::vector<uint32_t> LocatePatchCentres(const PatchScene& mesh, const PatchScene& points);
 

@@ -1,14 +1,16 @@
 // Adaptive refinement: one deterministic step from (mesh, solution, settings) to a finer mesh and
 // the solution carried over to it. The solve (refining_solve.h) calls it at fixed points, before
-// the first round and after the rounds where the unshot fraction first falls below each of
-// kRefineAtUnshotFraction; the farm master can call it at the same points and get the same mesh.
+// the first round and after the round where the unshot fraction first falls below each of
+// kRefinePoints; the farm master calls it at the same points and gets the same mesh.
 //
-// What splits (refine_criteria.h scores each element; a score above 1 splits it):
-//   - elements across which the light still to arrive varies (shadow edges, penumbrae, fall-off
-//     near a light), judged with shadow rays toward the strongest unshot patches; children are
+// What splits (refine_criteria.h scores each element; a score above 1 splits it): elements where
+// the Gouraud image would miss the light by more than the tolerance, i.e. where the light bends or
+// breaks rather than varies linearly:
+//   - the light still to arrive (shadow edges, penumbrae, contact shadows), judged with shadow
+//     rays from a lattice over the element toward the strongest unshot patches; children are
 //     judged again at once, down to the minimum size, since this needs no solution;
-//   - once rounds have been applied, elements whose radiance differs from their vertices' by more
-//     than the tolerance and more than the ray noise (one level per step).
+//   - once rounds have been applied, the element's radiance against its vertices' mean, when that
+//     difference is above the tolerance and the ray noise (one level per step).
 // Emitters never split (shooters stay coarse). Splitting halves every edge (element_split.h), so no
 // edge falls below min_element_size; elements are split in decreasing score until the element
 // budget would be exceeded.
@@ -46,9 +48,11 @@ struct RefinePoint {
   double unshot_fraction;  // refine after the first round that leaves less than this unshot
   bool restart;            // restart the solution on the refined mesh (see above)
 };
-// The first point follows the first round of most rooms (the lights shoot their power at once, a
-// room with reflectance below 0.6 keeps less than 60% of it).
-inline constexpr RefinePoint kRefinePoints[] = {{0.6, true}, {0.1, false}};
+// The point follows the first round of most rooms (the lights shoot their power at once, a room
+// with reflectance below 0.6 keeps less than 60% of it). There is no later point: a split without a
+// restart leaves the children the parent's average of the light already shot, a blocky image that
+// more elements do not improve (measured: docs/BENCHMARKS-adaptive.md's history).
+inline constexpr RefinePoint kRefinePoints[] = {{0.6, true}};
 
 // The refinement point a round that left `unshot_fraction` reaches: advances *next past every point
 // the fraction has fallen below and returns the last of them, or null when it passed none.

@@ -1,0 +1,181 @@
+#include "bench/refine/adaptive_report.h"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "bench/plot.h"
+
+namespace radfarm::bench {
+namespace {
+
+std::string Fmt(double v, const char* f = "%.4f") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::vector<const Row*> Group(const StudyResult& s, const std::string& group) {
+  std::vector<const Row*> out;
+  for (const Row& r : s.rows) {
+    if (r.group == group) out.push_back(&r);
+  }
+  return out;
+}
+
+void WritePlots(const ReportRun& run, const StudyResult& s) {
+  const std::vector<const Row*> uniform = Group(s, "uniform");
+  const std::vector<const Row*> adaptive = Group(s, "adaptive");
+  for (bool by_time : {true, false}) {
+    PlotSpec spec;
+    spec.png_path = run.out_dir + "/benchmarks-adaptive-" + s.scene.name +
+                    (by_time ? "-time.png" : "-patches.png");
+    spec.title = s.scene.name + ": adaptive refinement against uniform meshes";
+    spec.x_label = by_time ? "seconds (all cores)" : "patches";
+    for (bool image : {false, true}) {
+      PlotPanel panel{image ? "image error" : "net RMS relative patch error (lit)",
+                      image ? "mean |I - Iref| / mean Iref" : "RMS relative error",
+                      {}};
+      auto point = [&](const Row& r) {
+        return std::pair<double, double>{by_time ? r.seconds : double(r.patches),
+                                         image ? r.image_error : r.patch_error.net};
+      };
+      PlotSeries u{"uniform", {}, true, 0, 0};
+      for (const Row* r : uniform) u.points.push_back(point(*r));
+      panel.series.push_back(u);
+      for (double start : s.scene.adaptive_starts) {
+        PlotSeries a{"adaptive from " + Fmt(start, "%g"), {}, true, 0, 0};
+        const std::string prefix = "start " + Fmt(start, "%g") + ",";
+        for (const Row* r : adaptive) {
+          if (r->setting.rfind(prefix, 0) == 0) a.points.push_back(point(*r));
+        }
+        panel.series.push_back(a);
+      }
+      for (const std::string group : {"sampler", "solver", "budget"}) {
+        for (const Row* r : Group(s, group)) {
+          panel.series.push_back({r->method, {point(*r)}, false, 0, 0});
+        }
+      }
+      spec.panels.push_back(panel);
+    }
+    if (std::string err = WritePlot(spec); !err.empty()) std::fprintf(stderr, "%s\n", err.c_str());
+  }
+}
+
+void WriteTable(const StudyResult& s, std::ostringstream& md) {
+  md << "| method | setting | patches before | patches after | rays | seconds | patch error | "
+        "reference noise | net patch error | image error |\n"
+        "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+  for (const Row& r : s.rows) {
+    md << "| " << r.method << " | " << r.setting << " | " << r.patches_before << " | " << r.patches
+       << " | " << r.rays << " | " << Fmt(r.seconds, "%.2f") << " | " << Fmt(r.patch_error.measured)
+       << " | " << Fmt(r.patch_error.reference_noise) << " | " << Fmt(r.patch_error.net) << " | "
+       << Fmt(r.image_error) << " |\n";
+  }
+}
+
+// The meshing aim, on the image error: the best uniform mesh against the adaptive row that
+// reaches its error with the fewest patches.
+bool WriteMeshingAim(const StudyResult& s, std::ostringstream& md) {
+  const std::vector<const Row*> uniform = Group(s, "uniform");
+  const Row* best = nullptr;
+  for (const Row* r : uniform) {
+    if (best == nullptr || r->image_error < best->image_error) best = r;
+  }
+  if (best == nullptr) return false;
+  const Row* match = nullptr;
+  for (const Row* r : Group(s, "adaptive")) {
+    if (r->image_error <= best->image_error && (!match || r->patches < match->patches)) match = r;
+  }
+  md << "- **" << s.scene.name << "**: best uniform mesh " << best->setting << ", image error "
+     << Fmt(best->image_error) << " with " << best->patches << " patches in "
+     << Fmt(best->seconds, "%.2f") << " s. ";
+  if (match == nullptr) {
+    md << "No adaptive row reaches it: **not met**.\n";
+    return false;
+  }
+  const double ratio = double(best->patches) / double(match->patches);
+  const bool met = ratio >= 2 && match->seconds < best->seconds;
+  md << "Adaptive " << match->setting << " reaches " << Fmt(match->image_error) << " with "
+     << match->patches << " elements (" << Fmt(ratio, "%.1f") << "x fewer) in "
+     << Fmt(match->seconds, "%.2f") << " s (" << Fmt(best->seconds / match->seconds, "%.1f")
+     << "x less time): " << (met ? "**met**" : "**not met**") << ".\n";
+  return met;
+}
+
+void WriteOnePercentAim(const StudyResult& s, std::ostringstream& md) {
+  md << "- Default settings of `" << s.scene.name << ".toml` (uniform patch size "
+     << Fmt(s.scene.default_size, "%g") << ", Sobol, automatic rays) and the same mesh with more "
+     << "rays:";
+  const Row* fastest = nullptr;
+  for (const Row& r : s.rows) {
+    const bool default_mesh =
+        r.setting.rfind("patch size " + Fmt(s.scene.default_size, "%g"), 0) == 0;
+    if (!default_mesh || (r.group != "uniform" && r.group != "budget")) continue;
+    md << " " << r.method << ": " << Fmt(100 * r.patch_error.net, "%.2f") << "% in "
+       << Fmt(r.seconds, "%.2f") << " s;";
+    if (r.patch_error.net <= 0.01 && (!fastest || r.seconds < fastest->seconds)) fastest = &r;
+  }
+  md << " 1% net RMS patch error in under 2 s: ";
+  if (fastest == nullptr) {
+    md << "**not met** by any of these rows.\n";
+  } else {
+    md << (fastest->seconds < 2 ? "**met**" : "**not met**") << " (first reached by "
+       << fastest->method << " in " << Fmt(fastest->seconds, "%.2f") << " s).\n";
+  }
+}
+
+}  // namespace
+
+void WriteAdaptiveReport(const ReportRun& run, const std::vector<StudyResult>& studies) {
+  std::ostringstream md;
+  md << "# Adaptive refinement: speed against error\n\n"
+     << "Generated by `refine_bench` (bench/refine_bench.cc, bench/refine/); do not edit by hand: "
+        "rerun it.\n\n"
+     << "Machine: " << run.machine << ". " << (run.quick ? "**Quick run** (smoke sizes). " : "")
+     << "Every row is **one run** on all cores of a shared machine: compare within a table, not "
+        "with other days.\n\n"
+     << "## Method\n\n"
+     << "- Every solve: sampler Sobol unless named, tolerance 0.001, seed 1, automatic "
+        "`shot_rays` (1024 per element, at least 65536; a refined mesh gets the rays of its "
+        "element count from each refinement on).\n"
+     << "- **Reference**: a uniform mesh at the adaptive runs' minimum element size, solved twice "
+        "(seeds 1000003 and 2000003, tolerance 1e-4); their mean is the reference, half their "
+        "difference its noise.\n"
+     << "- **Patch error**: for each element, the reference's average over it (16 points spread "
+        "evenly over the element) against the element's radiosity: RMS of (B - Bref) / Bref over "
+        "the lit elements (Bref >= 1% of the median), weighted by area. The **reference noise** "
+        "is the same measure of the reference's half difference on those elements; the **net** "
+        "error subtracts it in quadrature. It measures how well each element's value is "
+        "computed, not the detail a coarse element cannot show.\n"
+     << "- **Image error**: mean over pixels of |I - Iref| (linear, channel sum, Gouraud-shaded "
+        "from vertex radiance, 256 x 256, 4 samples per pixel) over the mean of Iref, the "
+        "reference rendered the same way: smeared shadows, Mach bands, leaks and blotches "
+        "count. This is the measure meshes are compared by.\n"
+     << "- **Time**: `SolveRefining` wall time (meshing excluded, refinement included).\n\n";
+  for (const StudyResult& s : studies) {
+    WritePlots(run, s);
+    md << "## " << s.scene.name << "\n\n"
+       << "`scenes/" << s.scene.name << ".toml`'s scene and camera. Reference: patch size "
+       << Fmt(s.scene.reference_size, "%g") << " (" << s.reference_patches
+       << " patches), shot_rays " << s.scene.reference_shot_rays << " per solve, "
+       << s.reference_rays << " rays in " << Fmt(s.reference_seconds, "%.1f") << " s.\n\n";
+    WriteTable(s, md);
+    md << "\n![" << s.scene.name << ": error against time](benchmarks-adaptive-" << s.scene.name
+       << "-time.png)\n\n![" << s.scene.name << ": error against patch count](benchmarks-adaptive-"
+       << s.scene.name << "-patches.png)\n\n";
+  }
+  md << "## Aims\n\nAdaptive meshing reaches the image error of the best uniform mesh with at "
+        "least 2x fewer patches and less time:\n\n";
+  for (const StudyResult& s : studies) WriteMeshingAim(s, md);
+  md << "\nThe default settings reach 1% RMS patch error on the Cornell box in under 2 "
+        "seconds:\n\n";
+  for (const StudyResult& s : studies) {
+    if (s.scene.name == "cornell-box") WriteOnePercentAim(s, md);
+  }
+  md << "\nTotal run time " << Fmt(run.total_seconds, "%.0f") << " s.\n";
+  std::ofstream(run.out_dir + "/BENCHMARKS-adaptive.md") << md.str();
+  std::printf("wrote %s/BENCHMARKS-adaptive.md\n", run.out_dir.c_str());
+}
+
+}  // namespace radfarm::bench

@@ -1,0 +1,33 @@
+// The reference every row of the adaptive report is measured against: a uniform mesh as fine as
+// the adaptive runs' smallest elements, solved twice with many rays and different seeds. Their
+// mean is the reference; half their difference estimates its own noise, so a row's error can be
+// told apart from the reference's.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/patch_scene.h"
+#include "core/rgb.h"
+#include "input/input_scene.h"
+#include "output/camera.h"
+#include "output/image.h"
+
+namespace radfarm::bench {
+
+struct ReferenceSolution {
+  double patch_size = 0;
+  PatchScene scene;
+  std::vector<double> mean;  // per reference patch: the two solves' mean radiosity (channel sum)
+  std::vector<double> half_diff;  // per reference patch: half their difference
+  Image image;                    // rendered from the mean solution
+  double image_mean = 0;          // mean pixel value (channel sum)
+  uint64_t shot_rays = 0;         // of each solve
+  uint64_t rays = 0;              // both solves
+  double seconds = 0;             // both solves
+};
+
+ReferenceSolution SolveReference(const InputScene& scene, double patch_size, uint64_t shot_rays,
+                                 const Camera& camera);
+
+}  // namespace radfarm::bench

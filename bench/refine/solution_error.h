@@ -1,0 +1,40 @@
+// The two error measures of the adaptive report.
+//
+// Patch error: how well a run computes the radiosity of its own elements. For each element, the
+// reference's average over it (16 points spread evenly over the element, each looked up in the
+// reference mesh) is compared with the element's radiosity: (B - Bref) / Bref, RMS over the
+// elements, weighted by area so that meshes of any element sizes are judged over the same
+// surfaces. Elements that touch a dark reference patch (below kLitFraction of the median: behind a
+// light, under a block) are left out: there two meshes cut a near-discontinuity differently, and
+// the difference is one of geometry, not of the solve (the image error still sees those places).
+// The same average of the reference's half difference gives the reference's own noise on that
+// element; it is reported, and subtracted in quadrature for the net error. A coarse element is not
+// blamed for the detail inside it: that is what the image error sees.
+//
+// Image error: mean over pixels of |I - Iref| (linear, channel sum, Gouraud-shaded from vertex
+// radiance) over the mean of Iref: smeared shadows, Mach bands, leaks and blotches all count.
+#pragma once
+
+#include <vector>
+
+#include "bench/refine/reference_solution.h"
+#include "core/patch_scene.h"
+#include "core/rgb.h"
+#include "output/image.h"
+
+namespace radfarm::bench {
+
+inline constexpr double kLitFraction = 0.01;
+
+struct PatchError {
+  double measured = 0;         // RMS relative error against the reference
+  double reference_noise = 0;  // the reference's own, on the same elements
+  double net = 0;              // sqrt(max(0, measured^2 - reference_noise^2))
+};
+
+PatchError MeasurePatchError(const PatchScene& run, const std::vector<Rgb>& radiosity,
+                             const ReferenceSolution& ref);
+
+double MeasureImageError(const Image& image, const ReferenceSolution& ref);
+
+}  // namespace radfarm::bench

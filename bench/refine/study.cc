@@ -1,0 +1,193 @@
+#include "bench/refine/study.h"
+
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+#include <utility>
+
+#include "input/job.h"
+#include "mesh/patch_mesh.h"
+#include "mesh/refining_solve.h"
+#include "output/png_writer.h"
+#include "output/tone_map.h"
+
+namespace radfarm::bench {
+namespace {
+
+std::string Fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+class Study {
+ public:
+  Study(const StudyScene& scene, bool quick, std::string images_dir)
+      : quick_(quick), images_dir_(std::move(images_dir)) {
+    const std::string path = std::string(RADFARM_SOURCE_DIR) + "/scenes/" + scene.name + ".toml";
+    Result<Job> job = LoadJob(path);
+    if (!job.ok()) throw std::runtime_error(job.error());
+    job_ = std::move(*job);
+    Result<InputScene> input = LoadObjScene(job_.scene_path);
+    if (!input.ok()) throw std::runtime_error(input.error());
+    input_ = std::move(*input);
+    camera_ = job_.camera;
+    camera_.width = camera_.height = 256;
+    result_.scene = scene;
+  }
+
+  StudyResult Run() {
+    const StudyScene& s = result_.scene;
+    ref_ = SolveReference(input_, s.reference_size, s.reference_shot_rays, camera_);
+    result_.reference_patches = ref_.scene.patches.size();
+    result_.reference_rays = ref_.rays;
+    result_.reference_seconds = ref_.seconds;
+    std::printf("%s reference: %zu patches, %llu rays, %.1f s\n", s.name.c_str(),
+                ref_.scene.patches.size(), (unsigned long long)ref_.rays, ref_.seconds);
+
+    const SolverSettings defaults;  // sobol, tolerance 1e-3, automatic shot_rays, seed 1
+    const RefineSettings off;
+    for (double size : s.uniform_sizes) {
+      Measure("uniform", "uniform", "patch size " + Fmt(size), size, defaults, off);
+    }
+    for (double start : s.adaptive_starts) {
+      for (double tolerance : s.tolerances) {
+        RefineSettings on;
+        on.enabled = true;
+        on.tolerance = tolerance;
+        on.min_element_size = s.reference_size;
+        Measure("adaptive", "adaptive", "start " + Fmt(start) + ", tolerance " + Fmt(tolerance),
+                start, defaults, on);
+      }
+    }
+    const Row* sobol = Find("uniform", "patch size " + Fmt(s.default_size));
+    const uint64_t sobol_rays = sobol != nullptr ? sobol->rays : 0;
+    SolverSettings random = defaults;
+    random.sampler = SamplerKind::kRandom;
+    Measure("sampler", "random", "patch size " + Fmt(s.default_size), s.default_size, random, off);
+    SolverSettings grid = defaults;
+    grid.sampler = SamplerKind::kGrid;
+    grid.grid_step_degrees = 4;
+    grid.shooters_per_round = 16;
+    grid.max_rays = 4 * sobol_rays;  // the grid converges slowly: stop it at 4x Sobol's rays
+    Measure("sampler", "grid 4°, 16 shooters per round",
+            "patch size " + Fmt(s.default_size) + ", at most 4x the Sobol rays", s.default_size,
+            grid, off);
+    SolverSettings seed = defaults;
+    seed.sampler = SamplerKind::kGrid;
+    seed.grid_step_degrees = 1;
+    seed.shooters_per_round = 1;
+    seed.max_rays = 20 * 90 * 360;
+    Measure("sampler", "seed method (baseline)",
+            "grid 1°, 20 shots, patch size " + Fmt(s.default_size), s.default_size, seed, off);
+    // The default settings with more rays per patch.
+    for (uint64_t factor : quick_ ? std::vector<uint64_t>{} : std::vector<uint64_t>{4}) {
+      SolverSettings more = defaults;
+      more.shot_rays = factor * kAutoShotRaysPerPatch * (sobol ? sobol->patches : 1);
+      Measure("budget", "default, " + Fmt(double(factor)) + "x rays",
+              "patch size " + Fmt(s.default_size) + ", shot_rays " + std::to_string(more.shot_rays),
+              s.default_size, more, off);
+    }
+    return std::move(result_);
+  }
+
+ private:
+  const Row* Find(const std::string& group, const std::string& setting) const {
+    for (const Row& r : result_.rows) {
+      if (r.group == group && r.setting == setting) return &r;
+    }
+    return nullptr;
+  }
+
+  void Measure(const std::string& group, const std::string& method, const std::string& setting,
+               double patch_size, const SolverSettings& solver, const RefineSettings& refine) {
+    Result<PatchMesh> mesh = PatchMesh::Build(input_, {patch_size}, nullptr);
+    if (!mesh.ok()) throw std::runtime_error(mesh.error());
+    const auto start = std::chrono::steady_clock::now();
+    Result<RefiningSolveResult> solved = SolveRefining(std::move(*mesh), solver, refine);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!solved.ok()) throw std::runtime_error(solved.error());
+    Row row;
+    row.group = group;
+    row.method = method;
+    row.setting = setting;
+    row.patches_before = solved->patches_before;
+    row.patches = solved->mesh->patch_scene().patches.size();
+    row.rays = solved->solution.stats.rays;
+    row.seconds = seconds;
+    row.patch_error =
+        MeasurePatchError(solved->mesh->patch_scene(), solved->solution.radiosity, ref_);
+    solved->mesh->SetSolution(solved->solution.radiosity, solved->solution.unshot);
+    const DisplayMesh display = solved->mesh->MakeDisplayMesh();
+    const Camera camera = ResolveCamera(display, camera_);
+    const Image image = RenderImage(display, camera);
+    row.image_error = MeasureImageError(image, ref_);
+    if (!images_dir_.empty()) {
+      // Debugging aid: the row's image and its difference from the reference, 8x brightened.
+      const std::string stem =
+          images_dir_ + "/" + result_.scene.name + "-" + std::to_string(result_.rows.size());
+      Camera fixed = camera;
+      fixed.auto_exposure = false;
+      fixed.exposure = AutoExposureStops(ref_.image);
+      (void)WritePng(stem + ".png", image, fixed);
+      Image diff = image;
+      for (size_t i = 0; i < diff.pixels.size(); ++i) {
+        const double d = image.pixels[i].Sum() - ref_.image.pixels[i].Sum();
+        diff.pixels[i] = d > 0 ? Rgb{8 * d, 0, 0} : Rgb{0, 0, -8 * d};
+      }
+      (void)WritePng(stem + "-diff.png", diff, fixed);
+    }
+    std::printf(
+        "%-14s %-26s %-36s %6llu -> %6llu patches %10llu rays %7.2f s  patch %.4f (ref "
+        "%.4f, net %.4f)  image %.4f\n",
+        result_.scene.name.c_str(), method.c_str(), setting.c_str(),
+        (unsigned long long)row.patches_before, (unsigned long long)row.patches,
+        (unsigned long long)row.rays, row.seconds, row.patch_error.measured,
+        row.patch_error.reference_noise, row.patch_error.net, row.image_error);
+    std::fflush(stdout);
+    result_.rows.push_back(std::move(row));
+  }
+
+  bool quick_;
+  std::string images_dir_;
+  Job job_;
+  InputScene input_;
+  Camera camera_;
+  ReferenceSolution ref_;
+  StudyResult result_;
+};
+
+}  // namespace
+
+std::vector<StudyScene> StudyScenes(bool quick) {
+  if (quick) {
+    return {{"cornell-box", 25, 25, 1u << 20, {100, 50, 25}, {100}, {0.1}},
+            {"hard-shadow", 0.25, 0.125, 1u << 20, {0.5, 0.25}, {0.5}, {0.1}}};
+  }
+  // Uniform meshes down to about 1.3x the reference's size (the reference's own mesh would match
+  // it too well); adaptive runs start at the default size and twice it, down to the reference's.
+  return {
+      {"cornell-box",
+       25,
+       12.5,
+       1u << 26,
+       {100, 50, 33.3, 25, 16.7},
+       {50, 25},
+       {0.2, 0.1, 0.05, 0.02}},
+      {"seed-room", 0.5, 0.125, 1u << 25, {1, 0.5, 0.25, 0.1667}, {1, 0.5}, {0.2, 0.1, 0.05, 0.02}},
+      {"hard-shadow",
+       0.25,
+       0.0625,
+       1u << 25,
+       {0.5, 0.25, 0.125, 0.0833},
+       {0.25, 0.125},
+       {0.2, 0.1, 0.05, 0.02}},
+  };
+}
+
+StudyResult RunStudy(const StudyScene& scene, bool quick, const std::string& images_dir) {
+  return Study(scene, quick, images_dir).Run();
+}
+
+}  // namespace radfarm::bench

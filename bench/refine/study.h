@@ -1,0 +1,52 @@
+// One scene's part of the adaptive report: its reference, then every row (uniform meshes, adaptive
+// refinement at several tolerances, each sampler, the seed paper's method, the default settings at
+// growing ray budgets), each measured by solution_error.h.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "bench/refine/reference_solution.h"
+#include "bench/refine/solution_error.h"
+
+namespace radfarm::bench {
+
+struct StudyScene {
+  std::string name;       // file stem under scenes/: NAME.toml is the job
+  double default_size;    // the job file's patch size
+  double reference_size;  // also the adaptive runs' minimum element size
+  uint64_t reference_shot_rays;
+  std::vector<double> uniform_sizes;
+  std::vector<double> adaptive_starts;
+  std::vector<double> tolerances;
+};
+
+struct Row {
+  std::string group;  // "uniform", "adaptive", "sampler", "solver", "budget"
+  std::string method;
+  std::string setting;
+  uint64_t patches_before = 0;
+  uint64_t patches = 0;
+  uint64_t rays = 0;
+  double seconds = 0;
+  PatchError patch_error;
+  double image_error = 0;
+};
+
+struct StudyResult {
+  StudyScene scene;
+  uint64_t reference_patches = 0;
+  uint64_t reference_rays = 0;
+  double reference_seconds = 0;
+  std::vector<Row> rows;
+};
+
+// The scenes of the report; `quick` keeps the smallest meshes and budgets (a smoke run).
+std::vector<StudyScene> StudyScenes(bool quick);
+
+// With `images_dir` set, each row's image and its difference from the reference (8x brightened,
+// red where brighter, blue where darker) are written there as SCENE-ROW.png and SCENE-ROW-diff.png.
+StudyResult RunStudy(const StudyScene& scene, bool quick, const std::string& images_dir);
+
+}  // namespace radfarm::bench
