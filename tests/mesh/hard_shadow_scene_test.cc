@@ -46,7 +46,7 @@ TEST(HardShadowSceneTest, RefinementFollowsTheSlabsShadowEdge) {
   for (const Patch& p : refined.mesh.patch_scene().patches) {
     if (!(p.normal.y > 0.99 && std::abs(p.centre.y) < 1e-9)) continue;  // the floor
     const double d = DistanceToPenumbra(p.centre.x, p.centre.z);
-    if (d < 0.05) {
+    if (d < 0.1) {
       near_area += p.area;
       ++near_count;
     } else if (d > 0.5) {
