@@ -2,7 +2,8 @@
 // Cornell box, the seed paper's room and a hard-shadow scene, each against a fine reference
 // (bench/refine/). It writes docs/BENCHMARKS-adaptive.md and docs/benchmarks-adaptive-*.png.
 //
-// Usage: refine_bench [--quick] [--scene NAME] [--out DIR] [--images DIR]. Every figure is from one
+// Usage: refine_bench [--quick] [--scene NAME] [--out DIR] [--images DIR]
+// [--reference-cache DIR]. Every figure is from one
 // run (timings on a shared machine: read ratios, not absolute seconds).
 #include <chrono>
 #include <cstdio>
@@ -20,26 +21,29 @@ namespace {
 
 constexpr char kUsage[] =
     "usage: refine_bench [--quick] [--scene NAME] [--out DIR] [--images DIR]\n"
+    "                    [--reference-cache DIR]\n"
     "  --quick       smallest meshes and budgets (a smoke run of a minute or two)\n"
     "  --scene NAME  only this scene (cornell-box, seed-room, hard-shadow)\n"
     "  --out DIR     where the report and plots go (default: the source tree's docs/)\n"
-    "  --images DIR  also write every row's image and its difference from the reference\n";
+    "  --images DIR  also write every row's image and its difference from the reference\n"
+    "  --reference-cache DIR  keep the reference solves there and reuse them in later runs\n";
 
 int Run(int argc, char** argv) {
-  bool quick = false;
   std::string only;
-  std::string images_dir;
+  StudyOptions options;
   ReportRun run;
   run.out_dir = std::string(RADFARM_SOURCE_DIR) + "/docs";
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--quick") == 0) {
-      quick = true;
+      options.quick = true;
     } else if (std::strcmp(argv[i], "--scene") == 0 && i + 1 < argc) {
       only = argv[++i];
     } else if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) {
       run.out_dir = argv[++i];
     } else if (std::strcmp(argv[i], "--images") == 0 && i + 1 < argc) {
-      images_dir = argv[++i];
+      options.images_dir = argv[++i];
+    } else if (std::strcmp(argv[i], "--reference-cache") == 0 && i + 1 < argc) {
+      options.reference_cache = argv[++i];
     } else if (std::strcmp(argv[i], "--help") == 0) {
       std::fputs(kUsage, stdout);
       return 0;
@@ -51,15 +55,15 @@ int Run(int argc, char** argv) {
   const auto start = std::chrono::steady_clock::now();
   const MachineInfo machine = ReadMachineInfo(argc, argv);
   std::vector<StudyResult> studies;
-  for (const StudyScene& scene : StudyScenes(quick)) {
+  for (const StudyScene& scene : StudyScenes(options.quick)) {
     if (!only.empty() && scene.name != only) continue;
-    studies.push_back(RunStudy(scene, quick, images_dir));
+    studies.push_back(RunStudy(scene, options));
   }
   if (studies.empty()) {
     std::fprintf(stderr, "refine_bench: no scene named %s\n", only.c_str());
     return 2;
   }
-  run.quick = quick;
+  run.quick = options.quick;
   run.machine = machine.date + ", " + std::to_string(machine.cpus) + " CPUs (" + machine.cpu_model +
                 "), load " + machine.load_average + " at start, " + ReadLoadAverage() +
                 " at end, " + machine.compiler;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/patch_scene.h"
@@ -27,7 +28,10 @@ struct ReferenceSolution {
   double seconds = 0;             // both solves
 };
 
-ReferenceSolution SolveReference(const InputScene& scene, double patch_size, uint64_t shot_rays,
-                                 const Camera& camera);
+// With `cache_dir` set, the solves' results are kept there (keyed by scene name, patch size, ray
+// count and camera size) and read back by the next run instead of solving again.
+ReferenceSolution SolveReference(const InputScene& scene, const std::string& name,
+                                 double patch_size, uint64_t shot_rays, const Camera& camera,
+                                 const std::string& cache_dir);
 
 }  // namespace radfarm::bench

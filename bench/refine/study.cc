@@ -22,8 +22,7 @@ std::string Fmt(double v) {
 
 class Study {
  public:
-  Study(const StudyScene& scene, bool quick, std::string images_dir)
-      : quick_(quick), images_dir_(std::move(images_dir)) {
+  Study(const StudyScene& scene, const StudyOptions& options) : options_(options) {
     const std::string path = std::string(RADFARM_SOURCE_DIR) + "/scenes/" + scene.name + ".toml";
     Result<Job> job = LoadJob(path);
     if (!job.ok()) throw std::runtime_error(job.error());
@@ -38,7 +37,8 @@ class Study {
 
   StudyResult Run() {
     const StudyScene& s = result_.scene;
-    ref_ = SolveReference(input_, s.reference_size, s.reference_shot_rays, camera_);
+    ref_ = SolveReference(input_, s.name, s.reference_size, s.reference_shot_rays, camera_,
+                          options_.reference_cache);
     result_.reference_patches = ref_.scene.patches.size();
     result_.reference_rays = ref_.rays;
     result_.reference_seconds = ref_.seconds;
@@ -55,7 +55,9 @@ class Study {
         RefineSettings on;
         on.enabled = true;
         on.tolerance = tolerance;
-        on.min_element_size = s.reference_size;
+        // A little under the reference's size: a start of twice that size has patches a little
+        // smaller than twice it, and an element splits only if its children keep the minimum.
+        on.min_element_size = 0.9 * s.reference_size;
         Measure("adaptive", "adaptive", "start " + Fmt(start) + ", tolerance " + Fmt(tolerance),
                 start, defaults, on);
       }
@@ -81,7 +83,7 @@ class Study {
     Measure("sampler", "seed method (baseline)",
             "grid 1°, 20 shots, patch size " + Fmt(s.default_size), s.default_size, seed, off);
     // The default settings with more rays per patch.
-    for (uint64_t factor : quick_ ? std::vector<uint64_t>{} : std::vector<uint64_t>{4}) {
+    for (uint64_t factor : options_.quick ? std::vector<uint64_t>{} : std::vector<uint64_t>{4}) {
       SolverSettings more = defaults;
       more.shot_rays = factor * kAutoShotRaysPerPatch * (sobol ? sobol->patches : 1);
       Measure("budget", "default, " + Fmt(double(factor)) + "x rays",
@@ -123,10 +125,10 @@ class Study {
     const Camera camera = ResolveCamera(display, camera_);
     const Image image = RenderImage(display, camera);
     row.image_error = MeasureImageError(image, ref_);
-    if (!images_dir_.empty()) {
+    if (!options_.images_dir.empty()) {
       // Debugging aid: the row's image and its difference from the reference, 8x brightened.
-      const std::string stem =
-          images_dir_ + "/" + result_.scene.name + "-" + std::to_string(result_.rows.size());
+      const std::string stem = options_.images_dir + "/" + result_.scene.name + "-" +
+                               std::to_string(result_.rows.size());
       Camera fixed = camera;
       fixed.auto_exposure = false;
       fixed.exposure = AutoExposureStops(ref_.image);
@@ -149,8 +151,7 @@ class Study {
     result_.rows.push_back(std::move(row));
   }
 
-  bool quick_;
-  std::string images_dir_;
+  StudyOptions options_;
   Job job_;
   InputScene input_;
   Camera camera_;
@@ -174,20 +175,20 @@ std::vector<StudyScene> StudyScenes(bool quick) {
        1u << 26,
        {100, 50, 33.3, 25, 16.7},
        {50, 25},
-       {0.2, 0.1, 0.05, 0.02}},
-      {"seed-room", 0.5, 0.125, 1u << 25, {1, 0.5, 0.25, 0.1667}, {1, 0.5}, {0.2, 0.1, 0.05, 0.02}},
+       {0.1, 0.05, 0.02, 0.01}},
+      {"seed-room", 0.5, 0.125, 1u << 25, {1, 0.5, 0.25, 0.1667}, {1, 0.5}, {0.1, 0.05, 0.02, 0.01}},
       {"hard-shadow",
        0.25,
        0.0625,
        1u << 25,
        {0.5, 0.25, 0.125, 0.0833},
        {0.25, 0.125},
-       {0.2, 0.1, 0.05, 0.02}},
+       {0.1, 0.05, 0.02, 0.01}},
   };
 }
 
-StudyResult RunStudy(const StudyScene& scene, bool quick, const std::string& images_dir) {
-  return Study(scene, quick, images_dir).Run();
+StudyResult RunStudy(const StudyScene& scene, const StudyOptions& options) {
+  return Study(scene, options).Run();
 }
 
 }  // namespace radfarm::bench

@@ -45,8 +45,14 @@ struct StudyResult {
 // The scenes of the report; `quick` keeps the smallest meshes and budgets (a smoke run).
 std::vector<StudyScene> StudyScenes(bool quick);
 
-// With `images_dir` set, each row's image and its difference from the reference (8x brightened,
-// red where brighter, blue where darker) are written there as SCENE-ROW.png and SCENE-ROW-diff.png.
-StudyResult RunStudy(const StudyScene& scene, bool quick, const std::string& images_dir);
+struct StudyOptions {
+  bool quick = false;  // smoke sizes (StudyScenes(true))
+  // With it set, each row's image and its difference from the reference (8x brightened, red where
+  // brighter, blue where darker) are written there as SCENE-ROW.png and SCENE-ROW-diff.png.
+  std::string images_dir;
+  std::string reference_cache;  // see SolveReference
+};
+
+StudyResult RunStudy(const StudyScene& scene, const StudyOptions& options);
 
 }  // namespace radfarm::bench
