@@ -33,7 +33,21 @@ ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettin
 }
 
 double ProgressiveSolver::UnshotPower(uint32_t patch) const {
-  return scene_.patches[patch].area * unshot_[patch].Sum();
+  return scene_.patches[patch].area * unshot_[patch].AbsSum();
+}
+
+double ProgressiveSolver::TotalUnshotPower() const {
+  double unshot = 0;
+  for (uint32_t i = 0; i < scene_.patches.size(); ++i) unshot += UnshotPower(i);
+  return unshot;
+}
+
+double ProgressiveSolver::SignedUnshotPower() const {
+  double unshot = 0;
+  for (uint32_t i = 0; i < scene_.patches.size(); ++i) {
+    unshot += scene_.patches[i].area * unshot_[i].Sum();
+  }
+  return unshot;
 }
 
 double ProgressiveSolver::UnshotFraction() const {
@@ -77,9 +91,9 @@ RoundPlan ProgressiveSolver::PlanRound(uint32_t batch_rays, uint64_t ray_cap) co
   for (uint32_t shooter : candidates) {
     uint64_t rays = fixed;
     if (rays == 0) {
-      // Rays in proportion to the power shot, so every unit of power is carried by the same
-      // number of rays whichever round it is shot in.
-      const double share = UnshotPower(shooter) / energy_.emitted;
+      // Rays in proportion to the power shot (omega times the unshot), so every unit of power is
+      // carried by the same number of rays whichever round it is shot in and whatever omega.
+      const double share = settings_.overrelaxation * UnshotPower(shooter) / energy_.emitted;
       const double wanted = std::ceil(double(settings_.shot_rays) * share);
       rays = std::clamp<uint64_t>(static_cast<uint64_t>(std::min(wanted, 1e18)),
                                   settings_.min_shooter_rays, kMaxRaysPerShot);
@@ -108,11 +122,13 @@ void ProgressiveSolver::ApplyRound(const RoundPlan& plan, const std::vector<Batc
   std::vector<uint64_t> hit_weight(scene_.patches.size());
   std::vector<Rgb> shot_power(plan.shots.size());
   // Take every shooter's unshot radiosity first: shots of one round all start from the state at
-  // the start of the round (a shooter may also receive light in its own round).
+  // the start of the round (a shooter may also receive light in its own round). Relaxing by omega
+  // shoots omega times the unshot and leaves (1 - omega) times it: exactly all and none for 1.
+  const double omega = settings_.overrelaxation;
   for (size_t s = 0; s < plan.shots.size(); ++s) {
     const uint32_t i = plan.shots[s].shooter;
-    shot_power[s] = unshot_[i] * scene_.patches[i].area;
-    unshot_[i] = Rgb{};
+    shot_power[s] = unshot_[i] * scene_.patches[i].area * omega;
+    unshot_[i] = omega == 1 ? Rgb{} : unshot_[i] * (1 - omega);
   }
   size_t b = 0;
   for (size_t s = 0; s < plan.shots.size(); ++s) {
@@ -146,9 +162,7 @@ void ProgressiveSolver::ApplyRound(const RoundPlan& plan, const std::vector<Batc
     energy_.escaped += power.Sum() * (double(escaped) / total);
     energy_.absorbed += power.Sum() * (double(back) / total);
   }
-  double unshot = 0;
-  for (uint32_t i = 0; i < scene_.patches.size(); ++i) unshot += UnshotPower(i);
-  energy_.unshot = unshot;
+  energy_.unshot = TotalUnshotPower();
   rounds_done_ = plan.round + 1;
 }
 
@@ -158,6 +172,7 @@ void ProgressiveSolver::Restore(uint32_t rounds_done, std::vector<Rgb> radiosity
   radiosity_ = std::move(radiosity);
   unshot_ = std::move(unshot);
   energy_ = energy;
+  energy_.unshot = TotalUnshotPower();
 }
 
 }  // namespace radfarm

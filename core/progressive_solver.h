@@ -7,6 +7,13 @@
 // equation is linear, so the factor pi cancels everywhere and the CSV can print B directly.
 // "Power" of patch i is A_i times a radiance, summed over the three channels.
 //
+// Over-relaxation (settings.overrelaxation = omega; Gortler, Cohen & Slusallek 1993; Feda &
+// Purgathofer 1992): a shooter with unshot radiosity r shoots omega * r and keeps (1 - omega) * r,
+// so its displayed radiosity (which includes its unshot) is unchanged and receivers gain omega
+// times the plain Southwell amount. Above 1 the kept unshot is negative and is later shot as
+// negative light, so shooters are ranked, given rays and counted for convergence by the magnitude
+// of their unshot power, A_i * (|r| + |g| + |b|). omega = 1 is plain Southwell, to the bit.
+//
 // Round lifecycle:  PlanRound() -> [batches computed anywhere, any order] -> ApplyRound().
 #pragma once
 
@@ -35,13 +42,16 @@ struct RoundPlan {
 };
 
 // Energy bookkeeping (channel sums). At every round boundary
-//   emitted == absorbed + unshot + escaped   (to rounding)
-// because each shot's power is divided exactly among its rays' fates.
+//   emitted == absorbed + signed unshot + escaped   (to rounding)
+// because each shot's power is divided exactly among its rays' fates and taken exactly from its
+// shooter's unshot (ProgressiveSolver::SignedUnshotPower()). `unshot` is the sum of the
+// magnitudes instead, the convergence measure; the two differ only when over-relaxation has left
+// some unshot negative.
 struct EnergyAccount {
   double emitted = 0;
   double absorbed = 0;
   double escaped = 0;
-  double unshot = 0;
+  double unshot = 0;  // sum over patches of A_i * (|r| + |g| + |b|) of the unshot radiosity
 };
 
 class ProgressiveSolver {
@@ -59,17 +69,23 @@ class ProgressiveSolver {
   const std::vector<Rgb>& radiosity() const { return radiosity_; }
   const std::vector<Rgb>& unshot() const { return unshot_; }
   const EnergyAccount& energy() const { return energy_; }
-  // Unshot power over emitted power: the convergence measure.
+  // Unshot power (magnitudes) over emitted power: the convergence measure.
   double UnshotFraction() const;
+  // Sum over patches of A_i times the unshot radiosity's channel sum, with its sign: the term of
+  // the energy account. Computed from the state on each call.
+  double SignedUnshotPower() const;
   uint32_t rounds_done() const { return rounds_done_; }
   const RaySampler& sampler() const { return sampler_; }
 
   // Replaces the state, e.g. when resuming from a checkpoint; sizes must match the scene.
+  // energy.unshot is not taken but recomputed from `unshot`, as ApplyRound computes it.
   void Restore(uint32_t rounds_done, std::vector<Rgb> radiosity, std::vector<Rgb> unshot,
                const EnergyAccount& energy);
 
  private:
+  // A_i * (|r| + |g| + |b|) of the unshot radiosity.
   double UnshotPower(uint32_t patch) const;
+  double TotalUnshotPower() const;
 
   const PatchScene& scene_;
   SolverSettings settings_;  // shot_rays resolved (never 0)

@@ -26,6 +26,9 @@ struct Rgb {
 
   // Sum of the channels: the scalar "power" used to rank shooters and measure convergence.
   constexpr double Sum() const { return r + g + b; }
+  // Sum of the channels' magnitudes: the size of an unshot radiosity that may be negative
+  // (over-relaxation). Equals Sum() when no channel is negative.
+  constexpr double AbsSum() const { return (r < 0 ? -r : r) + (g < 0 ? -g : g) + (b < 0 ? -b : b); }
   constexpr double Max() const { return r > g ? (r > b ? r : b) : (g > b ? g : b); }
   constexpr double Min() const { return r < g ? (r < b ? r : b) : (g < b ? g : b); }
   bool IsFinite() const { return std::isfinite(r) && std::isfinite(g) && std::isfinite(b); }

@@ -20,6 +20,15 @@ bool ParseSamplerName(std::string_view name, SamplerKind* kind);
 inline constexpr uint64_t kAutoShotRaysPerPatch = 1024;
 inline constexpr uint64_t kMinAutoShotRays = 1 << 16;
 
+// SolverSettings::overrelaxation lies in [kMinOverrelaxation, kMaxOverrelaxation): below 1 is
+// under-relaxation (never faster), and from 2 on the iteration no longer converges.
+inline constexpr double kMinOverrelaxation = 1;
+inline constexpr double kMaxOverrelaxation = 2;
+// False for NaN.
+constexpr bool IsValidOverrelaxation(double omega) {
+  return omega >= kMinOverrelaxation && omega < kMaxOverrelaxation;
+}
+
 struct SolverSettings {
   SamplerKind sampler = SamplerKind::kSobol;
   uint64_t seed = 1;
@@ -39,6 +48,10 @@ struct SolverSettings {
   uint32_t min_shooter_rays = 1;
   // Upper bound on shooters per round (0: every patch with unshot power).
   uint32_t shooters_per_round = 0;
+  // Over-relaxation factor omega of Southwell's method, in [1, 2): a shooter shoots omega times
+  // its unshot radiosity and keeps (1 - omega) times it, negative above 1 ("overshooting"; shot
+  // later as negative light). 1 is plain progressive refinement.
+  double overrelaxation = 1.0;
   // Grid sampler: angular step of the hemisphere grid in degrees.
   double grid_step_degrees = 1.0;
   // Worker threads (0: all cores). Never changes the result.
