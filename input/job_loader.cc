@@ -4,7 +4,7 @@
 //   [mesh]
 //   patch_size = 30.0             # largest patch edge in scene units, > 0 (absent: automatic)
 //   refine = false                # adaptive refinement of receivers during the solve
-//   refine_tolerance = 0.25       # relative radiance variation that splits an element, > 0
+//   refine_tolerance = 0.1        # relative image error that splits an element, > 0
 //   min_element_size = 3.0        # smallest element edge, > 0 (absent: patch size / 4)
 //   max_elements = 20000          # element budget, integer >= 1 (absent: 8 x initial patches)
 //   [solver]

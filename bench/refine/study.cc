@@ -82,6 +82,13 @@ class Study {
     seed.max_rays = 20 * 90 * 360;
     Measure("sampler", "seed method (baseline)",
             "grid 1°, 20 shots, patch size " + Fmt(s.default_size), s.default_size, seed, off);
+    // Progressive refinement with over-relaxation (plain Southwell is the uniform row above).
+    for (double omega : options_.quick ? std::vector<double>{1.5} : std::vector<double>{1.2, 1.5}) {
+      SolverSettings over = defaults;
+      over.overrelaxation = omega;
+      Measure("solver", "over-relaxation " + Fmt(omega), "patch size " + Fmt(s.default_size),
+              s.default_size, over, off);
+    }
     // The default settings with more rays per patch.
     for (uint64_t factor : options_.quick ? std::vector<uint64_t>{} : std::vector<uint64_t>{4}) {
       SolverSettings more = defaults;
@@ -176,7 +183,13 @@ std::vector<StudyScene> StudyScenes(bool quick) {
        {100, 50, 33.3, 25, 16.7},
        {50, 25},
        {0.1, 0.05, 0.02, 0.01}},
-      {"seed-room", 0.5, 0.125, 1u << 25, {1, 0.5, 0.25, 0.1667}, {1, 0.5}, {0.1, 0.05, 0.02, 0.01}},
+      {"seed-room",
+       0.5,
+       0.125,
+       1u << 25,
+       {1, 0.5, 0.25, 0.1667},
+       {1, 0.5},
+       {0.1, 0.05, 0.02, 0.01}},
       {"hard-shadow",
        0.25,
        0.0625,
