@@ -37,6 +37,7 @@ Status DecodeSolver(const wire::BundleSolver& in, SolverSettings* out) {
   out->shooters_per_round = in.shooters_per_round();
   out->grid_step_degrees = in.grid_step_degrees();
   out->threads = in.threads();
+  out->overrelaxation = in.overrelaxation();
   if (!(out->tolerance > 0 && out->tolerance < 1)) return Bad("solver.tolerance", "not in (0, 1)");
   if (!(out->max_seconds >= 0) || !std::isfinite(out->max_seconds)) {
     return Bad("solver.seconds", "is negative or not finite");
@@ -44,6 +45,9 @@ Status DecodeSolver(const wire::BundleSolver& in, SolverSettings* out) {
   if (out->min_shooter_rays < 1) return Bad("solver.min_shooter_rays", "is below 1");
   if (!(out->grid_step_degrees > 0 && out->grid_step_degrees <= 90)) {
     return Bad("solver.grid_step_degrees", "not in (0, 90]");
+  }
+  if (!IsValidOverrelaxation(out->overrelaxation)) {
+    return Bad("solver.overrelaxation", "not in [1, 2)");
   }
   return Ok{};
 }
@@ -116,9 +120,10 @@ std::vector<uint8_t> EncodeJobBundle(const JobBundle& bundle) {
   flatbuffers::FlatBufferBuilder fbb(4096 + scene.positions.size() * 24 + scene.faces.size() * 40);
   const auto path = fbb.CreateString(job.scene_path);
   const SolverSettings& s = job.solver;
-  const auto solver = wire::CreateBundleSolver(
-      fbb, static_cast<uint8_t>(s.sampler), s.seed, s.tolerance, s.max_rays, s.max_seconds,
-      s.shot_rays, s.min_shooter_rays, s.shooters_per_round, s.grid_step_degrees, s.threads);
+  const auto solver = wire::CreateBundleSolver(fbb, static_cast<uint8_t>(s.sampler), s.seed,
+                                               s.tolerance, s.max_rays, s.max_seconds, s.shot_rays,
+                                               s.min_shooter_rays, s.shooters_per_round,
+                                               s.grid_step_degrees, s.threads, s.overrelaxation);
   const Camera& c = job.camera;
   const wire::BundlePoint eye = ToWire(c.eye), target = ToWire(c.target), up = ToWire(c.up);
   const auto camera =

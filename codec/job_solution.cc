@@ -61,9 +61,12 @@ Result<JobSolution> DecodeJobSolution(std::span<const uint8_t> blob) {
   if (solution.radiosity.size() != solution.unshot.size()) {
     return FieldError(kKind, "unshot", "has a different size than radiosity");
   }
+  // Finite, but either sign: with over-relaxation (SolverSettings::overrelaxation > 1) unshot
+  // radiosity goes negative, and so may a patch's radiosity estimate where negative light's
+  // Monte Carlo noise outweighs the light it received (docs/ARCHITECTURE.md, "Over-relaxation").
   for (size_t i = 0; i < solution.radiosity.size(); ++i) {
-    if (!IsNonNegative(solution.radiosity[i]) || !IsNonNegative(solution.unshot[i])) {
-      return FieldError(kKind, "patch " + std::to_string(i), "radiosity is negative or not finite");
+    if (!IsFinite(solution.radiosity[i]) || !IsFinite(solution.unshot[i])) {
+      return FieldError(kKind, "patch " + std::to_string(i), "radiosity is not finite");
     }
   }
   const auto* st = root->stats();

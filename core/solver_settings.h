@@ -21,7 +21,7 @@ inline constexpr uint64_t kAutoShotRaysPerPatch = 1024;
 inline constexpr uint64_t kMinAutoShotRays = 1 << 16;
 
 // SolverSettings::overrelaxation lies in [kMinOverrelaxation, kMaxOverrelaxation): below 1 is
-// under-relaxation (never faster), and from 2 on the iteration no longer converges.
+// under-relaxation, from 2 on nothing converges (rounds of many shooters diverge well before).
 inline constexpr double kMinOverrelaxation = 1;
 inline constexpr double kMaxOverrelaxation = 2;
 // False for NaN.
@@ -37,8 +37,8 @@ struct SolverSettings {
   // Stop after this many rays (0: no limit) or this many seconds (0: no limit).
   uint64_t max_rays = 0;
   double max_seconds = 0;
-  // Rays spent on shooting power equal to the scene's total emitted power: a shooter with unshot
-  // power P gets shot_rays * P / emitted rays (at least min_shooter_rays). 0 picks
+  // Rays spent on shooting power equal to the scene's total emitted power: a shooter shooting
+  // power P (omega |unshot|) gets shot_rays * P / emitted rays (at least min_shooter_rays). 0 picks
   // kAutoShotRaysPerPatch rays per patch (at least kMinAutoShotRays): accuracy per patch then
   // stays about the same whatever the mesh size.
   uint64_t shot_rays = 0;
@@ -49,8 +49,8 @@ struct SolverSettings {
   // Upper bound on shooters per round (0: every patch with unshot power).
   uint32_t shooters_per_round = 0;
   // Over-relaxation factor omega of Southwell's method, in [1, 2): a shooter shoots omega times
-  // its unshot radiosity and keeps (1 - omega) times it, negative above 1 ("overshooting"; shot
-  // later as negative light). 1 is plain progressive refinement.
+  // its unshot radiosity and keeps (1 - omega) times it, negative above 1 (shot later as negative
+  // light). 1: plain progressive refinement, the measured best (docs/ARCHITECTURE.md).
   double overrelaxation = 1.0;
   // Grid sampler: angular step of the hemisphere grid in degrees.
   double grid_step_degrees = 1.0;

@@ -16,6 +16,7 @@
 //   shot_rays = 4194304           # rays per emitted power, integer > 0
 //   min_shooter_rays = 1          # integer >= 1
 //   shooters_per_round = 0        # integer >= 0, 0 = every patch with unshot power
+//   overrelaxation = 1.0          # Southwell over-relaxation factor, in [1, 2), 1 = none
 //   grid_step_degrees = 1.0       # grid sampler's angular step, in (0, 90]
 //   threads = 0                   # integer in [0, 65536], 0 = all cores
 //   [camera]
@@ -91,6 +92,9 @@ Status ReadSolver(TomlTableReader* r, SolverSettings* solver) {
   RADFARM_TRY(r->Integer("shot_rays", 1, kMaxInt64, &solver->shot_rays));
   RADFARM_TRY(r->Integer("min_shooter_rays", 1, kMaxUint32, &solver->min_shooter_rays));
   RADFARM_TRY(r->Integer("shooters_per_round", 0, kMaxUint32, &solver->shooters_per_round));
+  RADFARM_TRY(r->Real("overrelaxation",
+                      Interval::ClosedOpen(kMinOverrelaxation, kMaxOverrelaxation),
+                      &solver->overrelaxation));
   RADFARM_TRY(
       r->Real("grid_step_degrees", Interval::OpenClosed(0, 90), &solver->grid_step_degrees));
   return r->Integer("threads", 0, kMaxThreads, &solver->threads);

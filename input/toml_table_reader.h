@@ -28,6 +28,7 @@ struct Interval {
   static Interval AtLeast(double lo) { return {lo, Interval().hi, false, false}; }
   static Interval Open(double lo, double hi) { return {lo, hi, true, true}; }
   static Interval OpenClosed(double lo, double hi) { return {lo, hi, true, false}; }
+  static Interval ClosedOpen(double lo, double hi) { return {lo, hi, false, true}; }
 
   bool Contains(double x) const;
   std::string Describe() const;  // "in (0, 1)", "in (0, 90]", "> 0", ">= 0"

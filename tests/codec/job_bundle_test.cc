@@ -80,6 +80,29 @@ TEST(JobBundleTest, RejectsCorruptBlobsAndBadValues) {
   b = good;
   b.job.camera.width = 0;
   expect_error(b, "camera.width");
+  for (double omega : {0.5, 2.0, std::numeric_limits<double>::infinity(),
+                       std::numeric_limits<double>::quiet_NaN()}) {
+    b = good;
+    b.job.solver.overrelaxation = omega;
+    expect_error(b, "solver.overrelaxation");
+  }
+}
+
+// The master plans rounds from the bundle's settings, so over-relaxation must travel with it. At
+// its default of 1 the field is not written: bundles stay as they were before it existed.
+TEST(JobBundleTest, CarriesOverrelaxation) {
+  JobBundle bundle = LoadBundle(RADFARM_SOURCE_DIR "/scenes/cornell-box.toml");
+  ASSERT_EQ(bundle.job.solver.overrelaxation, 1.0);
+  const std::vector<uint8_t> plain = EncodeJobBundle(bundle);
+  bundle.job.solver.overrelaxation = 1.25;
+  const std::vector<uint8_t> relaxed = EncodeJobBundle(bundle);
+  EXPECT_GT(relaxed.size(), plain.size());
+  Result<JobBundle> back = DecodeJobBundle(relaxed);
+  ASSERT_TRUE(back.ok()) << back.error();
+  EXPECT_EQ(back->job.solver.overrelaxation, 1.25);
+  Result<JobBundle> back_plain = DecodeJobBundle(plain);
+  ASSERT_TRUE(back_plain.ok()) << back_plain.error();
+  EXPECT_EQ(back_plain->job.solver.overrelaxation, 1.0);
 }
 
 }  // namespace

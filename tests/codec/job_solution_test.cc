@@ -48,5 +48,19 @@ TEST(JobSolutionTest, RejectsMismatchedSizesAndNonFiniteValues) {
   EXPECT_FALSE(DecodeJobSolution(std::span(blob).first(blob.size() / 2)).ok());
 }
 
+// Over-relaxation leaves negative unshot radiosity (and, through noise, may leave a slightly
+// negative radiosity estimate): finite values of either sign are a valid solution.
+TEST(JobSolutionTest, AcceptsNegativeFiniteValues) {
+  JobSolution s = Sample();
+  s.unshot[1] = {-1e-5, 2e-5, -3e-5};
+  s.radiosity[0].b = -1e-9;
+  Result<JobSolution> back = DecodeJobSolution(EncodeJobSolution(s));
+  ASSERT_TRUE(back.ok()) << back.error();
+  EXPECT_EQ(back->unshot[1], s.unshot[1]);
+  EXPECT_EQ(back->radiosity[0], s.radiosity[0]);
+  s.unshot[1].g = -std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(DecodeJobSolution(EncodeJobSolution(s)).ok());
+}
+
 }  // namespace
 }  // namespace radfarm::codec

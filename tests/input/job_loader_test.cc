@@ -28,6 +28,7 @@ void ExpectDefaults(const Job& job) {
   EXPECT_EQ(job.solver.tolerance, defaults.solver.tolerance);
   EXPECT_EQ(job.solver.max_rays, defaults.solver.max_rays);
   EXPECT_EQ(job.solver.shot_rays, defaults.solver.shot_rays);
+  EXPECT_EQ(job.solver.overrelaxation, 1.0);
   EXPECT_TRUE(job.camera.automatic);
   EXPECT_TRUE(job.camera.auto_exposure);
   EXPECT_EQ(job.camera.width, defaults.camera.width);
@@ -87,6 +88,7 @@ TEST(LoadJobTest, ReadsEveryKey) {
   EXPECT_EQ(s.shot_rays, 1000u);
   EXPECT_EQ(s.min_shooter_rays, 16u);
   EXPECT_EQ(s.shooters_per_round, 8u);
+  EXPECT_EQ(s.overrelaxation, 1.5);
   EXPECT_EQ(s.grid_step_degrees, 2.0);
   EXPECT_EQ(s.threads, 3u);
   const Camera& c = job->camera;
@@ -208,6 +210,14 @@ INSTANTIATE_TEST_SUITE_P(
                "3: 'solver.min_shooter_rays' must be in [1, 4294967295], got 0"},
         BadJob{"ShootersPerRoundTooBig", "[solver]\nshooters_per_round = 4294967296\n",
                "3: 'solver.shooters_per_round' must be in [0, 4294967295], got 4294967296"},
+        BadJob{"OverrelaxationTwo", "[solver]\noverrelaxation = 2\n",
+               "3: 'solver.overrelaxation' must be in [1, 2), got 2"},
+        BadJob{"OverrelaxationBelowOne", "[solver]\noverrelaxation = 0.9\n",
+               "3: 'solver.overrelaxation' must be in [1, 2), got 0.9"},
+        BadJob{"OverrelaxationNan", "[solver]\noverrelaxation = nan\n",
+               "3: 'solver.overrelaxation' must be finite"},
+        BadJob{"OverrelaxationString", "[solver]\noverrelaxation = \"1.2\"\n",
+               "3: 'solver.overrelaxation' must be a number, not a string"},
         BadJob{"GridStepTooBig", "[solver]\ngrid_step_degrees = 91\n",
                "3: 'solver.grid_step_degrees' must be in (0, 90], got 91"},
         BadJob{"TooManyThreads", "[solver]\nthreads = 100000\n",
