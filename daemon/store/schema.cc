@@ -80,7 +80,16 @@ ALTER TABLE rounds ADD COLUMN escaped_rays INTEGER NOT NULL DEFAULT 0 CHECK (esc
 ALTER TABLE rounds ADD COLUMN back_rays INTEGER NOT NULL DEFAULT 0 CHECK (back_rays >= 0);
 )sql";
 
-constexpr std::array<Migration, 3> kMigrations = {{{1, kV1}, {2, kV2}, {3, kV3}}};
+// Version 4: a checkpoint of a job with adaptive refinement belongs to a refined mesh: the hash of
+// its scene blob (stored in scenes; NULL: the mesh the job's bundle makes) and the refinement
+// points already passed, so a resumed job neither loses the mesh nor refines twice.
+constexpr std::string_view kV4 = R"sql(
+ALTER TABLE checkpoints ADD COLUMN scene_hash TEXT REFERENCES scenes(hash);
+ALTER TABLE checkpoints ADD COLUMN refine_points INTEGER NOT NULL DEFAULT 0
+  CHECK (refine_points >= 0);
+)sql";
+
+constexpr std::array<Migration, 4> kMigrations = {{{1, kV1}, {2, kV2}, {3, kV3}, {4, kV4}}};
 
 Result<int64_t> FileBytes(Database& db) {
   Result<int64_t> pages = db.QueryInt("PRAGMA page_count");
