@@ -123,14 +123,33 @@ TEST(RenderCommandTest, AdaptiveRefinementIsReportedAndDeterministic) {
   EXPECT_EQ(JsonNumber(stats, "patches_after_refinement"), JsonNumber(stats, "patches"));
 }
 
-// The job store's checkpoints cannot hold a refined mesh yet: refused before anything is solved.
-TEST(RenderCommandTest, AdaptiveRefinementWithDbIsRefused) {
+// --db keeps a refining render's rounds (with its refined mesh) and gives the files a render
+// without --db gives; run again on the finished job, it writes them again from the checkpoint.
+// (tests/farm/render_resume_test.cc kills one midway.)
+TEST(RenderCommandTest, AdaptiveRefinementWithDbMatchesPlainRender) {
+  const std::vector<std::string> settings = {"--tolerance", "0.05", "--rays", "3000000", "-q"};
+  TempDir plain;
+  const auto r = Render("cornell-box-adaptive.toml", plain.path(), settings);
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  const std::string reference = ReadFile(plain.File("patches.csv"));
+  const std::string reference_stats = ReadFile(plain.File("stats.json"));
   TempDir out;
-  const auto r =
-      Render("cornell-box-adaptive.toml", out.path(), {"--db", out.File("render.db"), "-q"});
-  EXPECT_EQ(r.exit_code, kExitBadInput);
-  EXPECT_NE(r.err.find("--db does not support mesh.refine = true yet"), std::string::npos) << r.err;
-  EXPECT_FALSE(std::filesystem::exists(out.File("render.db")));
+  std::vector<std::string> with_db = settings;
+  with_db.insert(with_db.end(), {"--db", out.File("render.db")});
+  for (const char* run : {"first", "again"}) {
+    SCOPED_TRACE(run);
+    TempDir dir;
+    const auto d = Render("cornell-box-adaptive.toml", dir.path(), with_db);
+    ASSERT_EQ(d.exit_code, kExitOk) << d.err;
+    EXPECT_TRUE(ReadFile(dir.File("patches.csv")) == reference);
+    const std::string stats = ReadFile(dir.File("stats.json"));
+    for (const char* key : {"patches_before_refinement", "patches_after_refinement", "rays",
+                            "rounds", "unshot_fraction"}) {
+      EXPECT_EQ(JsonNumber(stats, key), JsonNumber(reference_stats, key)) << key;
+    }
+  }
+  EXPECT_GT(JsonNumber(reference_stats, "patches_after_refinement"),
+            JsonNumber(reference_stats, "patches_before_refinement"));
 }
 
 // A closed furnace with Ke 1 and Kd 0.9 reads 10 on every patch: B = E / (1 - rho).

@@ -44,6 +44,40 @@ TEST_F(FarmTest, AKilledEmbeddedRenderContinuesFromItsDatabase) {
   EXPECT_TRUE(ReadFile(Path("third") + "/patches.csv") == ReferencePatches("cornell-box.toml"));
 }
 
+// With adaptive refinement the checkpoints hold the refined mesh: a render killed after a
+// refinement point continues on that mesh and ends with the bytes of an uninterrupted render.
+TEST_F(FarmTest, AKilledAdaptiveRenderContinuesOnItsRefinedMesh) {
+  const std::string scene = std::string(RADFARM_SOURCE_DIR) + "/scenes/cornell-box-adaptive.toml";
+  const std::vector<std::string> flags = {"--tolerance", "0.05"};
+  const std::string db = Path("adaptive.db");
+  auto refined_checkpoint = [&] {
+    Result<store::JobStore> s = store::JobStore::Open(db);
+    if (!s) return false;
+    Result<std::optional<store::Checkpoint>> c = s->LoadLatestCheckpoint(1);
+    // Past the first point after round 0 (its mesh restarts the solution) and a round beyond it.
+    return c && *c && (*c)->scene_hash && (*c)->refine_points >= 1 && (*c)->round >= 1;
+  };
+  std::vector<std::string> args = {RADFARM_CLI_PATH, "render", scene,       "--out", Path("first"),
+                                   "--db",           db,       "--threads", "1",     "-q",
+                                   flags[0],         flags[1]};
+  ChildProcess first(args, Path("first.log"));
+  ASSERT_TRUE(WaitUntil([&] {
+    return refined_checkpoint() || first.WaitExit(std::chrono::milliseconds(0)).has_value();
+  })) << first.Log();
+  ASSERT_TRUE(first.running()) << "the render finished before it could be killed";
+  first.Signal(SIGKILL);
+  first.WaitExit(std::chrono::seconds(30));
+
+  const std::string reference = ReferencePatches("cornell-box-adaptive.toml", flags);
+  for (const char* run : {"again", "third"}) {  // the third finds the job done
+    const CommandResult r = RunCommand(
+        {RADFARM_CLI_PATH, "render", scene, "--out", Path(run), "--db", db, flags[0], flags[1]});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("continuing job 1 after round"), std::string::npos) << r.out;
+    EXPECT_TRUE(ReadFile(Path(run) + "/patches.csv") == reference) << run;
+  }
+}
+
 TEST_F(FarmTest, RenderRefusesADatabaseThatIsNotAJobStore) {
   const std::string db = Path("not-a-store.db");
   { std::ofstream(db) << "this is not SQLite"; }
