@@ -127,8 +127,9 @@ TEST(RenderCommandTest, AdaptiveRefinementIsReportedAndDeterministic) {
 // without --db gives; run again on the finished job, it writes them again from the checkpoint.
 // (tests/farm/render_resume_test.cc kills one midway.)
 TEST(RenderCommandTest, AdaptiveRefinementWithDbMatchesPlainRender) {
-  // Converges past the first refinement point (a restart on the refined mesh). No ray budget: a
-  // finished render stopped by one is not yet rerun exactly (see docs/ARCHITECTURE.md).
+  // Converges past the first refinement point (a restart on the refined mesh). No ray budget: rerun
+  // on its finished job, a render stopped by a capped round that fell short of max_rays plans
+  // another round (with or without refinement; see the --db notes in docs/ARCHITECTURE.md).
   const std::vector<std::string> settings = {"--tolerance", "0.2", "-q"};
   TempDir plain;
   const auto r = Render("cornell-box-adaptive.toml", plain.path(), settings);
