@@ -160,6 +160,11 @@ Status Migrate(Database& db, int target) {
     if (migration.version <= *current || migration.version > target) continue;
     Result<Transaction> transaction = Transaction::Begin(db);
     if (!transaction.ok()) return Error{transaction.error()};
+    // Read again under the write lock: another process opening the same new file (`radfarm
+    // render --db` and a reader of its store) may have migrated it since the read above.
+    Result<int64_t> locked = db.QueryInt("PRAGMA user_version");
+    if (!locked.ok()) return Error{locked.error()};
+    if (*locked >= migration.version) continue;  // the transaction rolls back: nothing written
     std::string what = "migration to schema version " + std::to_string(migration.version);
     Status applied = db.Exec(migration.sql, what);
     if (!applied.ok()) return applied;

@@ -10,8 +10,15 @@
 namespace radfarm::testing {
 namespace {
 
+// Opens the render's store without creating it: the render creates it.
+Result<store::JobStore> OpenExisting(const std::string& db) {
+  store::JobStoreOptions options;
+  options.database.create = false;
+  return store::JobStore::Open(db, options);
+}
+
 int64_t Checkpoints(const std::string& db) {
-  Result<store::JobStore> s = store::JobStore::Open(db);
+  Result<store::JobStore> s = OpenExisting(db);
   if (!s) return 0;
   Result<int64_t> n = s->CountCheckpoints(1);
   return n ? *n : 0;
@@ -27,7 +34,7 @@ TEST_F(FarmTest, AKilledEmbeddedRenderContinuesFromItsDatabase) {
   ASSERT_TRUE(WaitUntil([&] {
     return Checkpoints(db) >= 2 || first.WaitExit(std::chrono::milliseconds(0)).has_value();
   })) << first.Log();
-  ASSERT_TRUE(first.running()) << "the render finished before it could be killed";
+  ASSERT_TRUE(first.running()) << "the render finished before it could be killed:\n" << first.Log();
   first.Signal(SIGKILL);
   first.WaitExit(std::chrono::seconds(30));
 
@@ -51,7 +58,7 @@ TEST_F(FarmTest, AKilledAdaptiveRenderContinuesOnItsRefinedMesh) {
   const std::vector<std::string> flags = {"--tolerance", "0.05"};
   const std::string db = Path("adaptive.db");
   auto refined_checkpoint = [&] {
-    Result<store::JobStore> s = store::JobStore::Open(db);
+    Result<store::JobStore> s = OpenExisting(db);
     if (!s) return false;
     Result<std::optional<store::Checkpoint>> c = s->LoadLatestCheckpoint(1);
     // Past the first point after round 0 (its mesh restarts the solution) and a round beyond it.
@@ -64,7 +71,7 @@ TEST_F(FarmTest, AKilledAdaptiveRenderContinuesOnItsRefinedMesh) {
   ASSERT_TRUE(WaitUntil([&] {
     return refined_checkpoint() || first.WaitExit(std::chrono::milliseconds(0)).has_value();
   })) << first.Log();
-  ASSERT_TRUE(first.running()) << "the render finished before it could be killed";
+  ASSERT_TRUE(first.running()) << "the render finished before it could be killed:\n" << first.Log();
   first.Signal(SIGKILL);
   first.WaitExit(std::chrono::seconds(30));
 
