@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "daemon/store/job_store.h"
 #include "tests/daemon/store/temp_dir.h"
@@ -179,6 +180,23 @@ TEST(SchemaTest, UpgradesVersion3CheckpointsToVersion4) {
   EXPECT_EQ((*now)->scene_hash, std::optional<std::string>("refined"));
   EXPECT_EQ((*now)->refine_points, 2u);
   EXPECT_EQ((*now)->radiosity, (*old)->radiosity);
+}
+
+// `radfarm render --db` creating its store while a reader opens it: whoever migrates second finds
+// the work done (the version is read again under the write lock) instead of failing on it.
+TEST(SchemaTest, TwoConnectionsMigratingOneNewFileBothSucceed) {
+  TempDir dir;
+  for (int i = 0; i < 40; ++i) {
+    const std::string path = dir.File("race-" + std::to_string(i) + ".db");
+    Database a = OpenRaw(path), b = OpenRaw(path);
+    Status migrated_b = Ok{};
+    std::thread other([&] { migrated_b = Migrate(b); });
+    const Status migrated_a = Migrate(a);
+    other.join();
+    ASSERT_TRUE(migrated_a.ok()) << migrated_a.error();
+    ASSERT_TRUE(migrated_b.ok()) << migrated_b.error();
+    EXPECT_EQ(*a.QueryInt("PRAGMA user_version"), LatestSchemaVersion());
+  }
 }
 
 TEST(SchemaTest, RefusesNewerSchemaVersion) {
