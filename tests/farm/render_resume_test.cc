@@ -2,6 +2,7 @@
 // same command runs again, and ends with the bytes of an uninterrupted render.
 #include <signal.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "daemon/store/job_store.h"
@@ -10,8 +11,11 @@
 namespace radfarm::testing {
 namespace {
 
-// Opens the render's store without creating it: the render creates it.
+// Opens the render's store once the render has made it (created, in WAL mode: its -wal file
+// exists), never creating it: switching a new file to WAL fails with SQLITE_BUSY, without waiting,
+// while another connection holds it.
 Result<store::JobStore> OpenExisting(const std::string& db) {
+  if (!std::filesystem::exists(db + "-wal")) return Error{"not made yet"};
   store::JobStoreOptions options;
   options.database.create = false;
   return store::JobStore::Open(db, options);
