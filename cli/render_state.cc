@@ -63,6 +63,7 @@ Result<RenderState> RenderState::Open(const std::string& db_path, const codec::J
     state.scene_hash_ = c.scene_hash;
   }
   state.resume_points_ = c.refine_points;
+  state.resume_stopped_ = c.stop_reason;
   SolveCheckpoint resume{c.round, c.rounds_done, c.radiosity, c.unshot, c.energy, 0, 0, 0, 0};
   for (const store::RoundRecord& r : *rounds) {
     if (r.round > c.round) break;
@@ -78,7 +79,8 @@ Result<RenderState> RenderState::Open(const std::string& db_path, const codec::J
 
 std::optional<RefiningResume> RenderState::resume() const {
   if (!resume_) return std::nullopt;
-  return RefiningResume{&*resume_, resume_scene_ ? &*resume_scene_ : nullptr, resume_points_};
+  return RefiningResume{&*resume_, resume_scene_ ? &*resume_scene_ : nullptr, resume_points_,
+                        resume_stopped_};
 }
 
 Status RenderState::SaveRound(const RefiningCheckpoint& state) {
@@ -104,8 +106,8 @@ Status RenderState::SaveRound(const RefiningCheckpoint& state) {
                                  now.escaped_rays - last_.escaped_rays,
                                  now.backface_hits - last_.backface_hits};
   const store::Checkpoint checkpoint{
-      job_,       now.round, now.rounds_done, now.radiosity,   now.unshot,
-      now.energy, 0,         scene_hash_,     state.next_point};
+      job_,       now.round, now.rounds_done, now.radiosity,    now.unshot,
+      now.energy, 0,         scene_hash_,     state.next_point, state.stop};
   if (Status s = store_.SaveCheckpoint(round, checkpoint); !s) return Error{"--db: " + s.error()};
   if (Status s = store_.PruneCheckpoints(job_, kCheckpointsKept); !s) {
     return Error{"--db: " + s.error()};

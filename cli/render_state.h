@@ -42,7 +42,8 @@ class RenderState {
   std::optional<SolveCheckpoint> resume_;
   std::optional<PatchScene> resume_scene_;  // the refined mesh the checkpoint belongs to
   uint32_t resume_points_ = 0;
-  SolveCheckpoint last_;  // the totals at the previous round boundary
+  std::optional<std::string> resume_stopped_;  // the checkpoint ends the solve, and why
+  SolveCheckpoint last_;                       // the totals at the previous round boundary
   // The refined scene stored last: its hash and the RefiningCheckpoint::refinements it was for.
   std::optional<std::string> scene_hash_;
   uint32_t scene_refinements_ = 0;

@@ -92,6 +92,11 @@ Result<std::shared_ptr<JobRunner>> JobRunner::Prepare(
   runner->totals_.unshot_fraction = runner->solver_->UnshotFraction();
 
   const JobTotals& t = runner->totals_;
+  if (checkpoint && checkpoint->stop_reason) {  // the job's last round: nothing left to run
+    runner->stop_reason_ = checkpoint->stop_reason;
+    runner->phase_ = Phase::kFinished;
+    return runner;
+  }
   if (auto stop = StopBeforeRound(*runner->solver_, runner->settings_, t.rays, t.seconds)) {
     runner->stop_reason_ = stop;
     runner->phase_ = Phase::kFinished;
@@ -190,6 +195,7 @@ RoundOutcome JobRunner::Reduce(const scheduler::CompletedRound& round, double ro
       refined_unsaved_ = false;
     }
     if (schedule_) out.checkpoint.refine_points = static_cast<uint32_t>(schedule_->next_point());
+    out.checkpoint.stop_reason = out.stop;
   }
   return out;
 }

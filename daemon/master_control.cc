@@ -353,8 +353,9 @@ void Master::Fetch(ControlRequest request, ControlRespond respond) {
         JobSummary at_checkpoint = *summary;
         at_checkpoint.rays = st.rays;
         at_checkpoint.unshot_fraction = st.unshot_fraction;
-        st.stop_reason =
-            (*job)->state == store::JobState::kDone ? StopReasonOf(at_checkpoint) : "checkpoint";
+        st.stop_reason = c.stop_reason                             ? *c.stop_reason
+                         : (*job)->state == store::JobState::kDone ? StopReasonOf(at_checkpoint)
+                                                                   : "checkpoint";
         st.emitted_power = c.energy.emitted;
         st.absorbed_power = c.energy.absorbed;
         st.escaped_power = c.energy.escaped;

@@ -47,21 +47,16 @@ Result<RefiningSolveResult> SolveRefining(PatchMesh mesh, const SolverSettings& 
   out.patches_before = mesh.patch_scene().patches.size();
   out.mesh = std::make_unique<PatchMesh>(std::move(mesh));
   const RefiningResume* resume = hooks.resume ? &*hooks.resume : nullptr;
-  if (!refine.enabled) {
-    if (resume != nullptr && resume->refined_scene != nullptr) {
-      return Error{"cannot resume an unrefined solve on a refined mesh"};
-    }
-    SolveHooks plain;
-    plain.resume = resume != nullptr ? resume->solve : nullptr;
-    if (hooks.after_round) {
-      plain.after_round = [&](const SolveCheckpoint& c) { hooks.after_round({c, nullptr, 0, 0}); };
-    }
-    out.solution = Solve(out.mesh->patch_scene(), settings, on_round, plain);
-    return out;
+  // Without refinement the loop below is Solve()'s, step for step: no schedule, no step.
+  std::optional<RefinementSchedule> schedule;
+  if (refine.enabled) {
+    Result<RefinementSchedule> created = RefinementSchedule::Create(
+        refine, *out.mesh, settings.shot_rays, resume != nullptr ? resume->next_point : 0);
+    if (!created.ok()) return Error{created.error()};
+    schedule.emplace(std::move(*created));
+  } else if (resume != nullptr && resume->refined_scene != nullptr) {
+    return Error{"cannot resume an unrefined solve on a refined mesh"};
   }
-  Result<RefinementSchedule> schedule = RefinementSchedule::Create(
-      refine, *out.mesh, settings.shot_rays, resume != nullptr ? resume->next_point : 0);
-  if (!schedule.ok()) return Error{schedule.error()};
   bool refined = false;  // the mesh is no longer the one given
   if (resume != nullptr && resume->refined_scene != nullptr) {
     PatchMesh rebuilt = out.mesh->Rebuilt(PatchMesh::PiecesOf(*resume->refined_scene));
@@ -107,10 +102,13 @@ Result<RefiningSolveResult> SolveRefining(PatchMesh mesh, const SolverSettings& 
     stats.rays = c.rays;
     stats.escaped_rays = c.escaped_rays;
     stats.backface_hits = c.backface_hits;
-  } else {
+    if (resume->stopped) stats.stop_reason = *resume->stopped;
+  } else if (schedule) {
     apply(schedule->BeforeFirstRound(*out.mesh, stage->solver(), stage->caster(), pool));
   }
-  while (true) {
+  // A resume from the round the solve stopped after runs no round: a round capped by the ray
+  // budget may have left a few rays of it, which StopBeforeRound alone would spend.
+  while (resume == nullptr || !resume->stopped) {
     ProgressiveSolver& solver = stage->solver();
     if (auto stop = StopBeforeRound(solver, settings, stats.rays, elapsed())) {
       stats.stop_reason = *stop;
@@ -133,7 +131,7 @@ Result<RefiningSolveResult> SolveRefining(PatchMesh mesh, const SolverSettings& 
                 settings.tolerance, &solver.energy()});
     }
     std::optional<std::string> stop = StopAfterRound(plan, solver, settings);
-    if (!stop) apply(schedule->AfterRound(*out.mesh, solver, stage->caster(), pool));
+    if (!stop && schedule) apply(schedule->AfterRound(*out.mesh, solver, stage->caster(), pool));
     if (hooks.after_round) {
       const ProgressiveSolver& now = stage->solver();  // rebuilt if the round refined
       hooks.after_round({{plan.round, now.rounds_done(), now.radiosity(), now.unshot(),
@@ -141,7 +139,8 @@ Result<RefiningSolveResult> SolveRefining(PatchMesh mesh, const SolverSettings& 
                           elapsed(), static_cast<uint32_t>(plan.shots.size())},
                          refined ? &out.mesh->patch_scene() : nullptr,
                          out.refinements,
-                         static_cast<uint32_t>(schedule->next_point())});
+                         schedule ? static_cast<uint32_t>(schedule->next_point()) : 0u,
+                         stop});
     }
     if (stop) {
       stats.stop_reason = *stop;

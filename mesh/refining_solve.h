@@ -19,6 +19,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "core/result.h"
 #include "core/solve.h"
@@ -43,12 +44,16 @@ struct RefiningCheckpoint {
   // to encode it again only when this changes.
   uint32_t refinements = 0;
   uint32_t next_point = 0;  // refinement points passed (RefinementSchedule::next_point)
+  // Set when the solve stops after this round (StopAfterRound: a capped round), with the reason.
+  std::optional<std::string> stop;
 };
 
 struct RefiningResume {
   const SolveCheckpoint* solve = nullptr;     // sizes: the elements of the mesh below
   const PatchScene* refined_scene = nullptr;  // null: the mesh given
   uint32_t next_point = 0;
+  // The saved RefiningCheckpoint::stop: the solve ended there, no round is run.
+  std::optional<std::string> stopped;
 };
 
 struct RefiningHooks {

@@ -88,6 +88,9 @@ struct Checkpoint {
   // belong to, which must be stored (PutScene) first; nullopt: the mesh the job's bundle makes.
   std::optional<std::string> scene_hash;
   uint32_t refine_points = 0;  // refinement points passed (mesh/refinement_schedule.h)
+  // Set on the checkpoint of the round the solve stopped after (schema version 4): why it stopped
+  // (core/solve_control.h). A resume from it runs no further round.
+  std::optional<std::string> stop_reason;
 };
 
 enum class EventLevel { kInfo, kWarning, kError };

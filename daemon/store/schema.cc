@@ -82,11 +82,14 @@ ALTER TABLE rounds ADD COLUMN back_rays INTEGER NOT NULL DEFAULT 0 CHECK (back_r
 
 // Version 4: a checkpoint of a job with adaptive refinement belongs to a refined mesh: the hash of
 // its scene blob (stored in scenes; NULL: the mesh the job's bundle makes) and the refinement
-// points already passed, so a resumed job neither loses the mesh nor refines twice.
+// points already passed, so a resumed job neither loses the mesh nor refines twice. And the last
+// checkpoint of a solve says why it stopped: a round capped by the ray budget may leave a few rays
+// of it unspent, and a solve resumed from it must not plan another round.
 constexpr std::string_view kV4 = R"sql(
 ALTER TABLE checkpoints ADD COLUMN scene_hash TEXT REFERENCES scenes(hash);
 ALTER TABLE checkpoints ADD COLUMN refine_points INTEGER NOT NULL DEFAULT 0
   CHECK (refine_points >= 0);
+ALTER TABLE checkpoints ADD COLUMN stop_reason TEXT;
 )sql";
 
 constexpr std::array<Migration, 4> kMigrations = {{{1, kV1}, {2, kV2}, {3, kV3}, {4, kV4}}};

@@ -88,6 +88,23 @@ TEST(JobRunnerRefineTest, ACheckpointOnARefinedMeshResumesOnIt) {
   EXPECT_EQ((*runner)->phase(), JobRunner::Phase::kRound);
 }
 
+// The checkpoint of the round a job stopped after (a capped round may leave rays of the budget):
+// a master restarted before it marked the job done finishes it without another round.
+TEST(JobRunnerRefineTest, TheLastCheckpointOfAJobRunsNoFurtherRound) {
+  const codec::JobBundle bundle = AdaptiveBundle();
+  const std::vector<uint8_t> blob = LocallyRefinedBlob(bundle);
+  store::Checkpoint last = CheckpointOn(blob);
+  last.stop_reason = "ray budget";
+  Result<std::shared_ptr<JobRunner>> runner = Prepare(bundle, last, blob);
+  ASSERT_TRUE(runner.ok()) << runner.error();
+  EXPECT_EQ((*runner)->phase(), JobRunner::Phase::kFinished);
+  EXPECT_EQ((*runner)->stop_reason(), std::optional<std::string>("ray budget"));
+  // Without the mark the same state goes on (unshot above the tolerance, no ray budget).
+  Result<std::shared_ptr<JobRunner>> going_on = Prepare(bundle, CheckpointOn(blob), blob);
+  ASSERT_TRUE(going_on.ok()) << going_on.error();
+  EXPECT_EQ((*going_on)->phase(), JobRunner::Phase::kRound);
+}
+
 TEST(JobRunnerRefineTest, AWrongRefinedMeshFailsTheJob) {
   const codec::JobBundle bundle = AdaptiveBundle();
   const std::vector<uint8_t> blob = LocallyRefinedBlob(bundle);

@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/solve_control.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/refinement_schedule.h"
 #include "mesh/refining_solve.h"
@@ -85,7 +86,7 @@ TEST(RefiningResumeTest, ResumingFromAnyRoundGivesTheUninterruptedBits) {
     SCOPED_TRACE("resumed after round " + std::to_string(saved[i].solve.round));
     RefiningHooks resume;
     resume.resume = RefiningResume{&saved[i].solve, saved[i].scene ? &*saved[i].scene : nullptr,
-                                   saved[i].next_point};
+                                   saved[i].next_point, std::nullopt};
     Result<RefiningSolveResult> rest = SolveRefining(Mesh(), Solver(), Refining(), {}, resume);
     ASSERT_TRUE(rest.ok()) << rest.error();
     EXPECT_EQ(rest->mesh->patch_scene().patches.size(), whole->mesh->patch_scene().patches.size());
@@ -96,19 +97,85 @@ TEST(RefiningResumeTest, ResumingFromAnyRoundGivesTheUninterruptedBits) {
   }
 }
 
+// A solve stopped by a capped round that left rays of the budget: its last state says so, and a
+// resume from it runs no round (StopBeforeRound alone would spend the rays left).
+TEST(RefiningResumeTest, AResumeFromTheLastRoundOfABudgetStopRunsNoRound) {
+  for (const bool refining : {true, false}) {
+    SCOPED_TRACE(refining ? "refining" : "not refining");
+    const RefineSettings refine = refining ? Refining() : RefineSettings{};
+    SolverSettings settings = Solver();
+    settings.tolerance = 1e-4;         // enough rounds
+    std::vector<uint64_t> rays_after;  // of each round, without a budget
+    Result<RefiningSolveResult> unlimited = SolveRefining(
+        Mesh(), settings, refine, [&](const RoundProgress& p) { rays_after.push_back(p.rays); });
+    ASSERT_TRUE(unlimited.ok()) << unlimited.error();
+    ASSERT_GE(rays_after.size(), 3u);
+    // Budgets that cut the second round short: many shooters, and unconverged after it.
+    settings.max_rays = rays_after[0] + (rays_after[1] - rays_after[0]) / 2;
+    std::vector<Saved> saved;
+    std::vector<std::optional<std::string>> stops;
+    RefiningHooks hooks;
+    hooks.after_round = [&](const RefiningCheckpoint& c) {
+      saved.push_back({c.solve, c.refined_scene ? std::optional(*c.refined_scene) : std::nullopt,
+                       c.next_point});
+      stops.push_back(c.stop);
+    };
+    // A budget the capped round does not spend to the ray (the case that needs the mark): each
+    // shot's rays are scaled down and rounded down, so most budgets leave a few rays.
+    Result<RefiningSolveResult> whole = Error{"no budget left rays unspent"};
+    for (uint64_t budget = settings.max_rays; budget < settings.max_rays + 2000; budget += 37) {
+      SolverSettings capped = settings;
+      capped.max_rays = budget;
+      saved.clear();
+      stops.clear();
+      whole = SolveRefining(Mesh(), capped, refine, {}, hooks);
+      ASSERT_TRUE(whole.ok()) << whole.error();
+      if (whole->solution.stats.rays < budget) {
+        settings = capped;
+        break;
+      }
+    }
+    ASSERT_LT(whole->solution.stats.rays, settings.max_rays);
+    ASSERT_EQ(whole->solution.stats.stop_reason, kStopRayBudget);
+    ASSERT_GE(stops.size(), 1u);
+    for (size_t i = 0; i + 1 < stops.size(); ++i) EXPECT_FALSE(stops[i].has_value()) << i;
+    ASSERT_EQ(stops.back(), std::optional<std::string>(kStopRayBudget));
+
+    const Saved& last = saved.back();
+    RefiningHooks resume;
+    resume.resume = RefiningResume{&last.solve, last.scene ? &*last.scene : nullptr,
+                                   last.next_point, stops.back()};
+    bool ran = false;
+    resume.after_round = [&](const RefiningCheckpoint&) { ran = true; };
+    Result<RefiningSolveResult> again = SolveRefining(Mesh(), settings, refine, {}, resume);
+    ASSERT_TRUE(again.ok()) << again.error();
+    EXPECT_FALSE(ran);
+    EXPECT_EQ(again->solution.radiosity, whole->solution.radiosity);
+    EXPECT_EQ(again->solution.stats.rays, whole->solution.stats.rays);
+    EXPECT_EQ(again->solution.stats.rounds, whole->solution.stats.rounds);
+    EXPECT_EQ(again->solution.stats.stop_reason, kStopRayBudget);
+
+    resume.resume->stopped.reset();  // without the mark: one more round, other bits
+    Result<RefiningSolveResult> unmarked = SolveRefining(Mesh(), settings, refine, {}, resume);
+    ASSERT_TRUE(unmarked.ok()) << unmarked.error();
+    EXPECT_TRUE(ran);
+    EXPECT_GT(unmarked->solution.stats.rounds, whole->solution.stats.rounds);
+  }
+}
+
 TEST(RefiningResumeTest, AStateThatDoesNotFitTheMeshIsAnError) {
   SolveCheckpoint state;
   state.rounds_done = 1;
   state.radiosity.resize(3);
   state.unshot.resize(3);
   RefiningHooks hooks;
-  hooks.resume = RefiningResume{&state, nullptr, 1};
+  hooks.resume = RefiningResume{&state, nullptr, 1, std::nullopt};
   Result<RefiningSolveResult> r = SolveRefining(Mesh(), Solver(), Refining(), {}, hooks);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().find("holds 3 elements"), std::string::npos) << r.error();
 
   PatchScene refined = Mesh().patch_scene();
-  hooks.resume = RefiningResume{&state, &refined, 1};
+  hooks.resume = RefiningResume{&state, &refined, 1, std::nullopt};
   r = SolveRefining(Mesh(), Solver(), {}, {}, hooks);  // refinement off
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().find("unrefined"), std::string::npos) << r.error();

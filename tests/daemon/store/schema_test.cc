@@ -161,12 +161,14 @@ TEST(SchemaTest, UpgradesVersion3CheckpointsToVersion4) {
   ASSERT_EQ((*old)->radiosity.size(), 1u);
   EXPECT_FALSE((*old)->scene_hash.has_value());
   EXPECT_EQ((*old)->refine_points, 0u);
+  EXPECT_FALSE((*old)->stop_reason.has_value());
   EXPECT_EQ(store->ListRounds(1)->at(0).back_rays, 12u);
 
   Checkpoint refined = **old;
   refined.round = 5;
   refined.scene_hash = "refined";
   refined.refine_points = 2;
+  refined.stop_reason = "ray budget";
   const RoundRecord round{1, 5, 3, 1000, 0.05, 0.1, 0.25, 0, 0};
   Status missing = store->SaveCheckpoint(round, refined);
   ASSERT_FALSE(missing.ok());  // the refined scene is not stored: nothing is written
@@ -179,6 +181,7 @@ TEST(SchemaTest, UpgradesVersion3CheckpointsToVersion4) {
   EXPECT_EQ((*now)->round, 5u);
   EXPECT_EQ((*now)->scene_hash, std::optional<std::string>("refined"));
   EXPECT_EQ((*now)->refine_points, 2u);
+  EXPECT_EQ((*now)->stop_reason, std::optional<std::string>("ray budget"));
   EXPECT_EQ((*now)->radiosity, (*old)->radiosity);
 }
 
