@@ -129,7 +129,8 @@ TEST(RenderCommandTest, AdaptiveRefinementIsReportedAndDeterministic) {
 TEST(RenderCommandTest, AdaptiveRefinementWithDbMatchesPlainRender) {
   // Past the first refinement point (a restart on the refined mesh), then a ray budget that the
   // capped last round does not spend to the ray: run again, the finished job runs no more rounds.
-  const std::vector<std::string> settings = {"--tolerance", "0.05", "--rays", "3000000", "-q"};
+  const std::vector<std::string> settings = {"--tolerance",  "0.05", "--rays", "3000000",
+                                             "--patch-size", "50",   "-q"};
   TempDir plain;
   const auto r = Render("cornell-box-adaptive.toml", plain.path(), settings);
   ASSERT_EQ(r.exit_code, kExitOk) << r.err;

@@ -59,7 +59,7 @@ TEST_F(FarmTest, AKilledEmbeddedRenderContinuesFromItsDatabase) {
 // refinement point continues on that mesh and ends with the bytes of an uninterrupted render.
 TEST_F(FarmTest, AKilledAdaptiveRenderContinuesOnItsRefinedMesh) {
   const std::string scene = std::string(RADFARM_SOURCE_DIR) + "/scenes/cornell-box-adaptive.toml";
-  const std::vector<std::string> flags = {"--tolerance", "0.05"};
+  const std::vector<std::string> flags = {"--tolerance", "0.05", "--patch-size", "50"};
   const std::string db = Path("adaptive.db");
   auto refined_checkpoint = [&] {
     Result<store::JobStore> s = OpenExisting(db);
@@ -69,8 +69,8 @@ TEST_F(FarmTest, AKilledAdaptiveRenderContinuesOnItsRefinedMesh) {
     return c && *c && (*c)->scene_hash && (*c)->refine_points >= 1 && (*c)->round >= 1;
   };
   std::vector<std::string> args = {RADFARM_CLI_PATH, "render", scene,       "--out", Path("first"),
-                                   "--db",           db,       "--threads", "1",     "-q",
-                                   flags[0],         flags[1]};
+                                   "--db",           db,       "--threads", "1",     "-q"};
+  args.insert(args.end(), flags.begin(), flags.end());
   ChildProcess first(args, Path("first.log"));
   ASSERT_TRUE(WaitUntil([&] {
     return refined_checkpoint() || first.WaitExit(std::chrono::milliseconds(0)).has_value();
@@ -81,8 +81,10 @@ TEST_F(FarmTest, AKilledAdaptiveRenderContinuesOnItsRefinedMesh) {
 
   const std::string reference = ReferencePatches("cornell-box-adaptive.toml", flags);
   for (const char* run : {"again", "third"}) {  // the third finds the job done
-    const CommandResult r = RunCommand(
-        {RADFARM_CLI_PATH, "render", scene, "--out", Path(run), "--db", db, flags[0], flags[1]});
+    std::vector<std::string> again = {RADFARM_CLI_PATH, "render", scene, "--out",
+                                      Path(run),        "--db",   db};
+    again.insert(again.end(), flags.begin(), flags.end());
+    const CommandResult r = RunCommand(again);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("continuing job 1 after round"), std::string::npos) << r.out;
     EXPECT_TRUE(ReadFile(Path(run) + "/patches.csv") == reference) << run;
