@@ -13,7 +13,6 @@
 #include "cli/progress_reporter.h"
 #include "cli/render_outputs.h"
 #include "cli/render_state.h"
-#include "core/solve.h"
 #include "mesh/refining_solve.h"
 
 namespace radfarm {
@@ -58,14 +57,8 @@ int RunRender(const RenderOptions& options) {
                 static_cast<unsigned long long>(job.solver.seed));
   }
   std::optional<RenderState> state;
-  SolveHooks hooks;
+  RefiningHooks hooks;
   Status save_status = Ok{};
-  if (!options.db.empty() && job.refine.enabled) {
-    // The job store's checkpoints hold radiosity per patch of the mesh the job file makes; a
-    // refined mesh is not part of them yet (docs/ARCHITECTURE.md, farm mode).
-    PrintError(options.scene + ": --db does not support mesh.refine = true yet");
-    return kExitBadInput;
-  }
   if (!options.db.empty()) {
     Result<RenderState> opened = RenderState::Open(options.db, {job, loaded->scene});
     if (!opened.ok()) {
@@ -76,33 +69,23 @@ int RunRender(const RenderOptions& options) {
     hooks.resume = state->resume();
     if (hooks.resume && !options.quiet) {
       std::printf("%s: continuing job %lld after round %u (%llu rays done)\n", options.db.c_str(),
-                  static_cast<long long>(state->job_id()), hooks.resume->round,
-                  static_cast<unsigned long long>(hooks.resume->rays));
+                  static_cast<long long>(state->job_id()), hooks.resume->solve->round,
+                  static_cast<unsigned long long>(hooks.resume->solve->rays));
     }
-    hooks.after_round = [&](const SolveCheckpoint& c) {
+    hooks.after_round = [&](const RefiningCheckpoint& c) {
       if (save_status.ok()) save_status = state->SaveRound(c);
     };
   }
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
   Result<RefiningSolveResult> solved = Error{"not solved"};
   try {
-    if (job.refine.enabled) {
-      solved = SolveRefining(std::move(loaded->mesh), job.solver, job.refine,
-                             [&](const RoundProgress& p) {
-                               if (!options.quiet) reporter.OnRound(p);
-                             });
-    } else {
-      RefiningSolveResult plain;
-      plain.patches_before = loaded->mesh.patch_scene().patches.size();
-      plain.solution = Solve(
-          loaded->mesh.patch_scene(), job.solver,
-          [&](const RoundProgress& p) {
-            if (!options.quiet) reporter.OnRound(p);
-          },
-          hooks);
-      plain.mesh = std::make_unique<PatchMesh>(std::move(loaded->mesh));
-      solved = std::move(plain);
-    }
+    // Without refinement this is Solve() on the mesh, bit for bit.
+    solved = SolveRefining(
+        std::move(loaded->mesh), job.solver, job.refine,
+        [&](const RoundProgress& p) {
+          if (!options.quiet) reporter.OnRound(p);
+        },
+        hooks);
   } catch (const std::exception& e) {
     // Embree failures (out of memory, unsupported CPU) are the only exceptions the core throws.
     reporter.Finish();

@@ -1,5 +1,6 @@
 #include "cli/render_state.h"
 
+#include "codec/patch_scene_codec.h"
 #include "protocol/scene_transfer.h"
 
 namespace radfarm {
@@ -52,6 +53,17 @@ Result<RenderState> RenderState::Open(const std::string& db_path, const codec::J
   Result<std::vector<store::RoundRecord>> rounds = s.ListRounds(found->id);
   if (!rounds) return Error{"--db: " + rounds.error()};
   const store::Checkpoint& c = **checkpoint;
+  if (c.scene_hash) {
+    Result<std::optional<std::vector<uint8_t>>> blob = s.GetScene(*c.scene_hash);
+    if (!blob) return Error{"--db: " + blob.error()};
+    if (!*blob) return Error{"--db: the refined scene " + *c.scene_hash + " is missing"};
+    Result<PatchScene> scene = codec::DecodePatchScene(**blob);
+    if (!scene) return Error{"--db: the refined scene " + *c.scene_hash + ": " + scene.error()};
+    state.resume_scene_ = std::move(*scene);
+    state.scene_hash_ = c.scene_hash;
+  }
+  state.resume_points_ = c.refine_points;
+  state.resume_stopped_ = c.stop_reason;
   SolveCheckpoint resume{c.round, c.rounds_done, c.radiosity, c.unshot, c.energy, 0, 0, 0, 0};
   for (const store::RoundRecord& r : *rounds) {
     if (r.round > c.round) break;
@@ -65,7 +77,23 @@ Result<RenderState> RenderState::Open(const std::string& db_path, const codec::J
   return state;
 }
 
-Status RenderState::SaveRound(const SolveCheckpoint& now) {
+std::optional<RefiningResume> RenderState::resume() const {
+  if (!resume_) return std::nullopt;
+  return RefiningResume{&*resume_, resume_scene_ ? &*resume_scene_ : nullptr, resume_points_,
+                        resume_stopped_};
+}
+
+Status RenderState::SaveRound(const RefiningCheckpoint& state) {
+  const SolveCheckpoint& now = state.solve;
+  if (state.refined_scene == nullptr) {
+    scene_hash_.reset();
+  } else if (!scene_hash_ || state.refinements != scene_refinements_) {
+    const std::vector<uint8_t> blob = codec::EncodePatchScene(*state.refined_scene);
+    const std::string hash = protocol::HashToHex(protocol::HashScene(blob));
+    if (Status s = store_.PutScene(hash, blob); !s) return Error{"--db: " + s.error()};
+    scene_hash_ = hash;
+    scene_refinements_ = state.refinements;
+  }
   const double unshot_fraction =
       now.energy.emitted > 0 ? now.energy.unshot / now.energy.emitted : 0;
   const store::RoundRecord round{job_,
@@ -78,7 +106,8 @@ Status RenderState::SaveRound(const SolveCheckpoint& now) {
                                  now.escaped_rays - last_.escaped_rays,
                                  now.backface_hits - last_.backface_hits};
   const store::Checkpoint checkpoint{
-      job_, now.round, now.rounds_done, now.radiosity, now.unshot, now.energy, 0};
+      job_,       now.round, now.rounds_done, now.radiosity,    now.unshot,
+      now.energy, 0,         scene_hash_,     state.next_point, state.stop};
   if (Status s = store_.SaveCheckpoint(round, checkpoint); !s) return Error{"--db: " + s.error()};
   if (Status s = store_.PruneCheckpoints(job_, kCheckpointsKept); !s) {
     return Error{"--db: " + s.error()};

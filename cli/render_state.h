@@ -5,15 +5,19 @@
 // The job is recognised by the SHA-256 of its bundle (scene and settings, with the thread count
 // left out: it never changes the result). A job that is found resumes from its latest checkpoint;
 // one that already finished resumes from its last one, so its outputs are written again at no cost.
+// With adaptive refinement a checkpoint also names the refined mesh (its scene blob, stored by
+// hash as the master stores it) and the refinement points passed (mesh/refining_solve.h).
 #pragma once
 
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "codec/job_bundle.h"
 #include "core/result.h"
 #include "core/solve.h"
 #include "daemon/store/job_store.h"
+#include "mesh/refining_solve.h"
 
 namespace radfarm {
 
@@ -21,12 +25,13 @@ class RenderState {
  public:
   static Result<RenderState> Open(const std::string& db_path, const codec::JobBundle& bundle);
 
-  // Where to start: the latest checkpoint, or nullptr for a fresh job.
-  const SolveCheckpoint* resume() const { return resume_ ? &*resume_ : nullptr; }
+  // Where to start: the latest checkpoint (pointing into this object), or nullopt for a fresh job.
+  std::optional<RefiningResume> resume() const;
   store::JobId job_id() const { return job_; }
 
-  // Commits one round and its checkpoint (one transaction), keeping the last two checkpoints.
-  Status SaveRound(const SolveCheckpoint& state);
+  // Commits one round and its checkpoint (one transaction), keeping the last two checkpoints; a
+  // refined mesh's scene is stored first (once per mesh).
+  Status SaveRound(const RefiningCheckpoint& state);
   Status Finish();
 
  private:
@@ -35,7 +40,13 @@ class RenderState {
   store::JobStore store_;
   store::JobId job_ = 0;
   std::optional<SolveCheckpoint> resume_;
-  SolveCheckpoint last_;  // the totals at the previous round boundary
+  std::optional<PatchScene> resume_scene_;  // the refined mesh the checkpoint belongs to
+  uint32_t resume_points_ = 0;
+  std::optional<std::string> resume_stopped_;  // the checkpoint ends the solve, and why
+  SolveCheckpoint last_;                       // the totals at the previous round boundary
+  // The refined scene stored last: its hash and the RefiningCheckpoint::refinements it was for.
+  std::optional<std::string> scene_hash_;
+  uint32_t scene_refinements_ = 0;
 };
 
 }  // namespace radfarm

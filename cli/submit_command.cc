@@ -31,14 +31,6 @@ int RunSubmit(const SubmitOptions& options, const std::string& control_path) {
     PrintError(loaded.error());
     return kExitBadInput;
   }
-  if (loaded->job.refine.enabled) {
-    // The job bundle does not carry the refine keys and the master does not refine yet
-    // (docs/ARCHITECTURE.md, farm mode): refuse rather than solve another job than asked.
-    PrintError(options.scene +
-               ": the farm does not support mesh.refine = true yet; use radfarm "
-               "render");
-    return kExitBadInput;
-  }
   const std::vector<uint8_t> bundle = codec::EncodeJobBundle({loaded->job, loaded->scene});
   if (bundle.size() > kMaxAttachmentBytes) {
     PrintError(options.scene + ": the job bundle is " + std::to_string(bundle.size()) +

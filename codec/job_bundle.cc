@@ -2,6 +2,7 @@
 
 #include <flatbuffers/flatbuffers.h>
 
+#include <limits>
 #include <string>
 
 #include "codec/decode_checks.h"
@@ -48,6 +49,26 @@ Status DecodeSolver(const wire::BundleSolver& in, SolverSettings* out) {
   }
   if (!IsValidOverrelaxation(out->overrelaxation)) {
     return Bad("solver.overrelaxation", "not in [1, 2)");
+  }
+  return Ok{};
+}
+
+// The loader's ranges (input/job_loader.cc); ResolveRefineSettings checks the rest against the
+// mesh.
+Status DecodeRefine(const wire::BundleRefine* in, RefineSettings* out) {
+  if (in == nullptr) return Ok{};  // refinement off: the defaults
+  out->enabled = in->enabled();
+  out->tolerance = in->tolerance();
+  out->min_element_size = in->min_element_size();
+  out->max_elements = in->max_elements();
+  if (!(out->tolerance > 0) || !std::isfinite(out->tolerance)) {
+    return Bad("mesh.refine_tolerance", "is not a finite number above 0");
+  }
+  if (!(out->min_element_size >= 0) || !std::isfinite(out->min_element_size)) {
+    return Bad("mesh.min_element_size", "is negative or not finite");
+  }
+  if (out->max_elements > uint64_t{std::numeric_limits<int64_t>::max()}) {
+    return Bad("mesh.max_elements", "is above 2^63 - 1");
   }
   return Ok{};
 }
@@ -146,8 +167,13 @@ std::vector<uint8_t> EncodeJobBundle(const JobBundle& bundle) {
     faces.push_back(wire::CreateBundleFace(fbb, fbb.CreateVector(f.indices), f.material, f.line));
   }
   const auto face_vec = fbb.CreateVector(faces);
+  flatbuffers::Offset<wire::BundleRefine> refine = 0;
+  if (job.refine.enabled) {
+    refine = wire::CreateBundleRefine(fbb, true, job.refine.tolerance, job.refine.min_element_size,
+                                      job.refine.max_elements);
+  }
   fbb.Finish(wire::CreateJobBundleBlob(fbb, path, job.mesh.patch_size, solver, camera, positions,
-                                       material_vec, face_vec),
+                                       material_vec, face_vec, refine),
              "RDJB");
   return {fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()};
 }
@@ -177,6 +203,7 @@ Result<JobBundle> DecodeJobBundle(std::span<const uint8_t> blob) {
     return Error{s.error()};
   if (Status s = DecodeCamera(*root->camera(), &bundle.job.camera); !s.ok())
     return Error{s.error()};
+  if (Status s = DecodeRefine(root->refine(), &bundle.job.refine); !s.ok()) return Error{s.error()};
   if (Status s = DecodeScene(*root, &bundle.scene); !s.ok()) return Error{s.error()};
   return bundle;
 }

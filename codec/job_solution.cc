@@ -22,7 +22,7 @@ std::vector<Rgb> FromWire(const flatbuffers::Vector<const wire::SolutionColour*>
 }  // namespace
 
 std::vector<uint8_t> EncodeJobSolution(const JobSolution& solution) {
-  flatbuffers::FlatBufferBuilder fbb(1024 + solution.bundle.size() +
+  flatbuffers::FlatBufferBuilder fbb(1024 + solution.bundle.size() + solution.scene.size() +
                                      solution.radiosity.size() * 48);
   const auto bundle = fbb.CreateVector(solution.bundle);
   std::vector<wire::SolutionColour> colours;
@@ -37,7 +37,9 @@ std::vector<uint8_t> EncodeJobSolution(const JobSolution& solution) {
       fbb, s.rays, s.rounds, s.seconds, s.rays_per_second, s.patches, s.unshot_fraction,
       s.escaped_rays, s.backface_hits, s.threads, s.seed, fbb.CreateString(s.sampler),
       fbb.CreateString(s.stop_reason), s.emitted_power, s.absorbed_power, s.escaped_power);
-  fbb.Finish(wire::CreateJobSolutionBlob(fbb, bundle, radiosity, unshot, stats), "RDJS");
+  flatbuffers::Offset<flatbuffers::Vector<uint8_t>> scene = 0;
+  if (!solution.scene.empty()) scene = fbb.CreateVector(solution.scene);
+  fbb.Finish(wire::CreateJobSolutionBlob(fbb, bundle, radiosity, unshot, stats, scene), "RDJS");
   return {fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()};
 }
 
@@ -56,6 +58,7 @@ Result<JobSolution> DecodeJobSolution(std::span<const uint8_t> blob) {
   const wire::JobSolutionBlob* root = wire::GetJobSolutionBlob(blob.data());
   JobSolution solution;
   solution.bundle.assign(root->bundle()->begin(), root->bundle()->end());
+  if (root->scene()) solution.scene.assign(root->scene()->begin(), root->scene()->end());
   solution.radiosity = FromWire(*root->radiosity());
   solution.unshot = FromWire(*root->unshot());
   if (solution.radiosity.size() != solution.unshot.size()) {

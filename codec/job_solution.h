@@ -1,7 +1,7 @@
 // A job solution: what `radfarm fetch` receives. The job bundle it was solved from, radiosity and
 // unshot radiosity per patch (exact bits, from the job's latest checkpoint) and the solve's
-// statistics; with them the CLI meshes the bundle again and writes the same files as `radfarm
-// render` (cli/render_outputs.h).
+// statistics, and the refined mesh's scene when the job refined; with them the CLI meshes the
+// bundle again and writes the same files as `radfarm render` (cli/render_outputs.h).
 #pragma once
 
 #include <cstdint>
@@ -19,6 +19,9 @@ struct JobSolution {
   std::vector<Rgb> radiosity;   // per patch, MTL Ke units
   std::vector<Rgb> unshot;      // same size
   SolveStats stats;
+  // Adaptive refinement: the EncodePatchScene bytes of the refined mesh the values belong to (the
+  // CLI rebuilds it with PatchMesh::Rebuilt); empty: the mesh the bundle makes.
+  std::vector<uint8_t> scene;
 };
 
 std::vector<uint8_t> EncodeJobSolution(const JobSolution& solution);

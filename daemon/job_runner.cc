@@ -3,7 +3,9 @@
 #include <cmath>
 
 #include "codec/patch_scene_codec.h"
+#include "core/ray_caster.h"
 #include "core/solve_control.h"
+#include "core/thread_pool.h"
 #include "mesh/patch_mesh.h"
 #include "protocol/scene_transfer.h"
 
@@ -19,7 +21,9 @@ double UnshotPower(const ProgressiveSolver& solver) { return solver.energy().uns
 Result<std::shared_ptr<JobRunner>> JobRunner::Prepare(
     const store::JobRecord& record, const std::vector<uint8_t>& bundle_blob,
     const std::optional<store::Checkpoint>& checkpoint,
+    const std::optional<std::vector<uint8_t>>& checkpoint_scene,
     const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options) {
+  const std::string job = "job " + std::to_string(record.id);
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(bundle_blob);
   if (!bundle) return Error{bundle.error()};
   Result<PatchMesh> mesh = PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
@@ -28,20 +32,50 @@ Result<std::shared_ptr<JobRunner>> JobRunner::Prepare(
   std::shared_ptr<JobRunner> runner(new JobRunner());
   runner->record_ = record;
   runner->settings_ = bundle->job.solver;
-  runner->scene_ = std::make_unique<PatchScene>(mesh->patch_scene());
-  runner->solver_ = std::make_unique<ProgressiveSolver>(*runner->scene_, runner->settings_);
-  auto blob = std::make_shared<std::vector<uint8_t>>(codec::EncodePatchScene(*runner->scene_));
+  if (bundle->job.refine.enabled) {
+    Result<RefinementSchedule> schedule =
+        RefinementSchedule::Create(bundle->job.refine, *mesh, runner->settings_.shot_rays,
+                                   checkpoint ? checkpoint->refine_points : 0);
+    if (!schedule) return Error{job + ": " + schedule.error()};
+    runner->schedule_.emplace(std::move(*schedule));
+  }
+  const bool refined_checkpoint = checkpoint && checkpoint->scene_hash;
+  if (refined_checkpoint) {
+    if (!runner->schedule_) {
+      return Error{job + ": its checkpoint names a refined mesh, but refinement is off"};
+    }
+    if (!checkpoint_scene) {
+      return Error{job + ": the refined scene " + *checkpoint->scene_hash + " is missing"};
+    }
+    if (Status s = runner->RestoreRefinedMesh(*mesh, *checkpoint, *checkpoint_scene); !s) {
+      return Error{job + ": " + s.error()};
+    }
+  } else {
+    runner->mesh_ = std::make_unique<PatchMesh>(std::move(*mesh));
+    runner->solver_ =
+        std::make_unique<ProgressiveSolver>(runner->mesh_->patch_scene(), runner->settings_);
+  }
+  if (runner->schedule_ && !checkpoint) {
+    // The step SolveRefining takes before round 0. A pool of one runs inline, on this thread.
+    const RayCaster caster(runner->mesh_->patch_scene());
+    ThreadPool pool(1);
+    std::optional<RefinementStep> step =
+        runner->schedule_->BeforeFirstRound(*runner->mesh_, *runner->solver_, caster, pool);
+    if (step) runner->Install(std::move(*step));
+  }
+  auto blob = runner->refined_blob_ ? runner->refined_blob_
+                                    : std::make_shared<const std::vector<uint8_t>>(
+                                          codec::EncodePatchScene(runner->mesh_->patch_scene()));
   runner->wire_ = {static_cast<uint64_t>(record.id), runner->settings_, protocol::HashScene(*blob),
-                   runner->patch_count()};
+                   static_cast<uint32_t>(runner->mesh_->patch_scene().patches.size())};
   runner->scene_blob_ = std::move(blob);
   runner->scheduler_ = scheduler::RoundScheduler(options);
 
   if (checkpoint) {
-    if (checkpoint->radiosity.size() != runner->scene_->patches.size()) {
-      return Error{"job " + std::to_string(record.id) + ": checkpoint of round " +
-                   std::to_string(checkpoint->round) + " has " +
+    if (checkpoint->radiosity.size() != runner->patch_count()) {
+      return Error{job + ": checkpoint of round " + std::to_string(checkpoint->round) + " has " +
                    std::to_string(checkpoint->radiosity.size()) + " patches, the scene " +
-                   std::to_string(runner->scene_->patches.size())};
+                   std::to_string(runner->patch_count())};
     }
     runner->solver_->Restore(checkpoint->rounds_done, checkpoint->radiosity, checkpoint->unshot,
                              checkpoint->energy);
@@ -58,6 +92,11 @@ Result<std::shared_ptr<JobRunner>> JobRunner::Prepare(
   runner->totals_.unshot_fraction = runner->solver_->UnshotFraction();
 
   const JobTotals& t = runner->totals_;
+  if (checkpoint && checkpoint->stop_reason) {  // the job's last round: nothing left to run
+    runner->stop_reason_ = checkpoint->stop_reason;
+    runner->phase_ = Phase::kFinished;
+    return runner;
+  }
   if (auto stop = StopBeforeRound(*runner->solver_, runner->settings_, t.rays, t.seconds)) {
     runner->stop_reason_ = stop;
     runner->phase_ = Phase::kFinished;
@@ -120,6 +159,19 @@ RoundOutcome JobRunner::Reduce(const scheduler::CompletedRound& round, double ro
                 escaped,
                 back};
   out.stop = StopAfterRound(round.plan, *solver_, settings_);
+  // Refinement between the rounds, as SolveRefining: only when the job goes on.
+  if (!out.stop && schedule_ && schedule_->PointPassed(*solver_)) {
+    const RayCaster caster(mesh_->patch_scene());
+    ThreadPool pool(1);
+    std::optional<RefinementStep> step = schedule_->AfterRound(*mesh_, *solver_, caster, pool);
+    if (step) {
+      Install(std::move(*step));
+      out.new_scene = refined_blob_;
+      out.new_scene_hash = protocol::HashScene(*refined_blob_);
+      out.new_patch_count = static_cast<uint32_t>(mesh_->patch_scene().patches.size());
+      t.unshot_fraction = solver_->UnshotFraction();
+    }
+  }
   if (!out.stop) out.stop = StopBeforeRound(*solver_, settings_, t.rays, t.seconds);
   if (!out.stop) {
     RoundPlan next = solver_->PlanRound(batch_rays, NextRoundRayCap(settings_, t.rays));
@@ -137,11 +189,59 @@ RoundOutcome JobRunner::Reduce(const scheduler::CompletedRound& round, double ro
     out.checkpoint.radiosity = solver_->radiosity();
     out.checkpoint.unshot = solver_->unshot();
     out.checkpoint.energy = solver_->energy();
+    if (refined_blob_) {
+      out.checkpoint.scene_hash = refined_hash_;
+      if (refined_unsaved_) out.checkpoint_scene = refined_blob_;
+      refined_unsaved_ = false;
+    }
+    if (schedule_) out.checkpoint.refine_points = static_cast<uint32_t>(schedule_->next_point());
+    out.checkpoint.stop_reason = out.stop;
   }
   return out;
 }
 
+void JobRunner::Install(RefinementStep step) {
+  solver_.reset();  // it refers to the old mesh's scene
+  mesh_ = std::make_unique<PatchMesh>(std::move(step.mesh));
+  solver_ = std::make_unique<ProgressiveSolver>(mesh_->patch_scene(), settings_);
+  solver_->Restore(step.rounds_done, std::move(step.state.radiosity), std::move(step.state.unshot),
+                   step.state.energy);
+  refined_blob_ =
+      std::make_shared<const std::vector<uint8_t>>(codec::EncodePatchScene(mesh_->patch_scene()));
+  refined_hash_ = protocol::HashToHex(protocol::HashScene(*refined_blob_));
+  refined_unsaved_ = true;
+}
+
+// The refined mesh of a checkpoint, rebuilt from its scene blob on the bundle's mesh. It must
+// encode to the very bytes stored: agents trace the blob, the solver the rebuilt mesh.
+Status JobRunner::RestoreRefinedMesh(const PatchMesh& initial, const store::Checkpoint& checkpoint,
+                                     const std::vector<uint8_t>& blob) {
+  const std::string& hash = *checkpoint.scene_hash;
+  if (protocol::HashToHex(protocol::HashScene(blob)) != hash) {
+    return Error{"the refined scene stored under " + hash + " has another hash"};
+  }
+  Result<PatchScene> scene = codec::DecodePatchScene(blob);
+  if (!scene) return Error{"the refined scene " + hash + ": " + scene.error()};
+  mesh_ = std::make_unique<PatchMesh>(initial.Rebuilt(PatchMesh::PiecesOf(*scene)));
+  auto encoded =
+      std::make_shared<const std::vector<uint8_t>>(codec::EncodePatchScene(mesh_->patch_scene()));
+  if (*encoded != blob) {
+    return Error{"the refined scene " + hash + " does not rebuild into the same elements (" +
+                 std::to_string(scene->patches.size()) + " stored, " +
+                 std::to_string(mesh_->patch_scene().patches.size()) + " rebuilt)"};
+  }
+  solver_ = std::make_unique<ProgressiveSolver>(mesh_->patch_scene(), settings_);
+  refined_blob_ = std::move(encoded);
+  refined_hash_ = hash;
+  return Ok{};
+}
+
 bool JobRunner::Resume(RoundOutcome& outcome) {
+  if (outcome.new_scene) {
+    scene_blob_ = std::move(outcome.new_scene);
+    wire_.scene_hash = outcome.new_scene_hash;
+    wire_.patch_count = outcome.new_patch_count;
+  }
   if (outcome.stop) {
     stop_reason_ = outcome.stop;
     phase_ = Phase::kFinished;

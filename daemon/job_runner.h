@@ -3,13 +3,22 @@
 // place of threads, so the result is bit-identical to `radfarm render` of the same job:
 //
 //   Prepare (worker thread): decode the bundle, mesh it, encode the scene blob agents fetch,
-//     restore the latest checkpoint, plan the first round.
+//     restore the latest checkpoint (on the refined mesh it names, if any) or refine before round
+//     0, plan the first round.
 //   loop thread: the scheduler leases the round's batches and collects their results.
-//   Reduce (worker thread): ApplyRound, the stopping rules (core/solve_control.h), plan the next
-//     round, and copy the state for the checkpoint the store thread writes meanwhile.
+//   Reduce (worker thread): ApplyRound, the stopping rules (core/solve_control.h), a refinement
+//     step when the round passed a refinement point, plan the next round, and copy the state for
+//     the checkpoint the store thread writes meanwhile.
+//
+// Adaptive refinement (mesh/refinement_schedule.h) happens at the rounds and with the arguments
+// of SolveRefining, so the mesh is the one `radfarm render` makes. A step that splits gives a new
+// mesh, scene blob (new hash) and solver; Resume installs the blob on the loop thread before the
+// next round's batches are leased, and a round's batch ids carry its round, so a result is always
+// validated against the scene of its own round.
 //
 // Threads: the loop thread owns the runner; Reduce runs on a worker while phase() is kReducing,
-// and the loop thread leaves the solver alone until its result comes back.
+// and the loop thread leaves the mesh and solver alone until its result comes back. What the loop
+// thread reads in any phase (the scene blob, the wire info) changes only in Resume.
 #pragma once
 
 #include <chrono>
@@ -25,8 +34,11 @@
 #include "core/result.h"
 #include "daemon/scheduler/round_scheduler.h"
 #include "daemon/store/job_store.h"
+#include "mesh/patch_mesh.h"
+#include "mesh/refinement_schedule.h"
 #include "protocol/batch_convert.h"
 #include "protocol/messages.h"
+#include "protocol/scene_transfer.h"
 
 namespace radfarm::master {
 
@@ -47,17 +59,27 @@ struct RoundOutcome {
   bool checkpoint_due = false;
   std::optional<std::string> stop;  // the stop reason: the job is done
   std::optional<RoundPlan> next;    // the next round, unless stopping
+  // The refined scene's blob, to store (PutScene under checkpoint.scene_hash) before the
+  // checkpoint: set on the first checkpoint after a refinement.
+  std::shared_ptr<const std::vector<uint8_t>> checkpoint_scene;
+  // Set when the round's refinement step split something: the blob agents must trace from the next
+  // round on, its hash and its element count.
+  std::shared_ptr<const std::vector<uint8_t>> new_scene;
+  protocol::SceneHash new_scene_hash{};
+  uint32_t new_patch_count = 0;
 };
 
 class JobRunner {
  public:
   enum class Phase { kRound, kReducing, kFinished };
 
-  // Heavy (meshing, planning): call on a worker thread. `checkpoint` and `rounds` come from the
-  // store: the job resumes after the checkpoint's round, with the totals of the rounds up to it.
+  // Heavy (meshing, refining, planning): call on a worker thread. `checkpoint` and `rounds` come
+  // from the store: the job resumes after the checkpoint's round, with the totals of the rounds up
+  // to it; `checkpoint_scene` is the blob of the refined scene the checkpoint names (scene_hash).
   static Result<std::shared_ptr<JobRunner>> Prepare(
       const store::JobRecord& record, const std::vector<uint8_t>& bundle_blob,
       const std::optional<store::Checkpoint>& checkpoint,
+      const std::optional<std::vector<uint8_t>>& checkpoint_scene,
       const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options);
 
   store::JobId id() const { return record_.id; }
@@ -66,7 +88,7 @@ class JobRunner {
   const SolverSettings& settings() const { return settings_; }
   const protocol::JobWireInfo& wire_info() const { return wire_; }
   const std::shared_ptr<const std::vector<uint8_t>>& scene_blob() const { return scene_blob_; }
-  uint32_t patch_count() const { return static_cast<uint32_t>(scene_->patches.size()); }
+  uint32_t patch_count() const { return wire_.patch_count; }
   const RaySampler& sampler() const { return solver_->sampler(); }
   const JobTotals& totals() const { return totals_; }
   Phase phase() const { return phase_; }
@@ -86,8 +108,8 @@ class JobRunner {
   // thread before: the scheduler is not thread-safe).
   RoundOutcome Reduce(const scheduler::CompletedRound& round, double round_seconds,
                       bool checkpoint_due, uint32_t batch_rays);
-  // Loop thread: takes Reduce's outcome back. Returns true when the job goes on (a round is
-  // planned), false when it is finished.
+  // Loop thread: takes Reduce's outcome back (and installs a refined scene). Returns true when the
+  // job goes on (a round is planned), false when it is finished.
   bool Resume(RoundOutcome& outcome);
 
   // Recent throughput for status: rays/s over the last rounds (0 before the first).
@@ -98,11 +120,23 @@ class JobRunner {
 
  private:
   JobRunner() = default;
+  // Worker thread: the mesh, the solver and the refined scene's blob after a step that split.
+  void Install(RefinementStep step);
+  Status RestoreRefinedMesh(const PatchMesh& initial, const store::Checkpoint& checkpoint,
+                            const std::vector<uint8_t>& blob);
 
   store::JobRecord record_;
   SolverSettings settings_;
-  std::unique_ptr<PatchScene> scene_;  // stable address: the solver refers to it
+  // Worker side (Prepare, Reduce): the mesh (stable address: the solver refers to its scene), the
+  // solver, the refinement schedule (refinement on) and the refined scene's blob and hash (null
+  // while the mesh is the bundle's).
+  std::unique_ptr<PatchMesh> mesh_;
   std::unique_ptr<ProgressiveSolver> solver_;
+  std::optional<RefinementSchedule> schedule_;
+  std::shared_ptr<const std::vector<uint8_t>> refined_blob_;
+  std::string refined_hash_;      // hex, the store's key
+  bool refined_unsaved_ = false;  // no checkpoint has stored refined_blob_ yet
+  // Loop side: what agents are sent and fetch.
   std::shared_ptr<const std::vector<uint8_t>> scene_blob_;
   protocol::JobWireInfo wire_;
   scheduler::RoundScheduler scheduler_;

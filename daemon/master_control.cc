@@ -7,6 +7,7 @@
 #include "daemon/master.h"
 #include "loop/log.h"
 #include "mesh/patch_mesh.h"
+#include "mesh/refine.h"
 #include "protocol/scene_transfer.h"
 
 namespace radfarm::master {
@@ -196,6 +197,13 @@ void Master::Submit(ControlRequest request, ControlRespond respond) {
         if (!bundle) return Error{bundle.error()};
         Result<PatchMesh> mesh = PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
         if (!mesh) return Error{mesh.error()};
+        if (bundle->job.refine.enabled) {
+          // The checks that need the mesh, as LoadJobForSolve makes them before a local render.
+          Result<ResolvedRefineSettings> refine =
+              ResolveRefineSettings(bundle->job.refine, mesh->patch_size(),
+                                    mesh->patch_scene().patches.size(), mesh->weld_tolerance());
+          if (!refine) return Error{bundle->job.scene_path + ": " + refine.error()};
+        }
         const SolverSettings& solver = bundle->job.solver;
         SubmittedSettings settings{solver.tolerance,
                                    solver.max_rays,
@@ -318,6 +326,14 @@ void Master::Fetch(ControlRequest request, ControlRespond respond) {
         const store::Checkpoint& c = **checkpoint;
         codec::JobSolution solution;
         solution.bundle = std::move(**bundle);
+        if (c.scene_hash) {  // a refined mesh: fetch rebuilds it from its scene
+          Result<std::optional<std::vector<uint8_t>>> scene = s.GetScene(*c.scene_hash);
+          if (!scene || !*scene) {
+            return Error{"job " + std::to_string(id) + ": refined scene " + *c.scene_hash +
+                         " missing"};
+          }
+          solution.scene = std::move(**scene);
+        }
         solution.radiosity = c.radiosity;
         solution.unshot = c.unshot;
         SolveStats& st = solution.stats;
@@ -337,8 +353,9 @@ void Master::Fetch(ControlRequest request, ControlRespond respond) {
         JobSummary at_checkpoint = *summary;
         at_checkpoint.rays = st.rays;
         at_checkpoint.unshot_fraction = st.unshot_fraction;
-        st.stop_reason =
-            (*job)->state == store::JobState::kDone ? StopReasonOf(at_checkpoint) : "checkpoint";
+        st.stop_reason = c.stop_reason                             ? *c.stop_reason
+                         : (*job)->state == store::JobState::kDone ? StopReasonOf(at_checkpoint)
+                                                                   : "checkpoint";
         st.emitted_power = c.energy.emitted;
         st.absorbed_power = c.energy.absorbed;
         st.escaped_power = c.energy.escaped;

@@ -16,6 +16,7 @@ struct JobStart {
   store::JobRecord record;
   std::vector<uint8_t> bundle;
   std::optional<store::Checkpoint> checkpoint;
+  std::optional<std::vector<uint8_t>> checkpoint_scene;  // the refined scene it names, if any
   std::vector<store::RoundRecord> rounds;
 };
 
@@ -75,6 +76,12 @@ void Master::StartQueuedJobs() {
           Result<std::optional<store::Checkpoint>> checkpoint = s.LoadLatestCheckpoint(record.id);
           if (!checkpoint) return Error{checkpoint.error()};
           start.checkpoint = std::move(*checkpoint);
+          if (start.checkpoint && start.checkpoint->scene_hash) {
+            Result<std::optional<std::vector<uint8_t>>> scene =
+                s.GetScene(*start.checkpoint->scene_hash);
+            if (!scene) return Error{scene.error()};
+            start.checkpoint_scene = std::move(*scene);  // Prepare fails the job if missing
+          }
           Result<std::vector<store::RoundRecord>> rounds = s.ListRounds(record.id);
           if (!rounds) return Error{rounds.error()};
           start.rounds = std::move(*rounds);
@@ -104,7 +111,7 @@ void Master::StartQueuedJobs() {
           Status s = compute_queue_->Submit(
               [shared, options] {
                 return JobRunner::Prepare(shared->record, shared->bundle, shared->checkpoint,
-                                          shared->rounds, options);
+                                          shared->checkpoint_scene, shared->rounds, options);
               },
               [this, id](Result<std::shared_ptr<JobRunner>> runner) {
                 OnJobPrepared(id, std::move(runner));
@@ -192,7 +199,12 @@ void Master::OnRoundReduced(const std::shared_ptr<JobRunner>& runner, RoundOutco
   if (outcome.checkpoint_due) {
     auto checkpoint = std::make_shared<store::Checkpoint>(std::move(outcome.checkpoint));
     OnStore(
-        [record, checkpoint, keep](store::JobStore& s) -> Status {
+        [record, checkpoint, keep, scene = outcome.checkpoint_scene](store::JobStore& s) -> Status {
+          // The refined scene first: the checkpoint refers to it. A scene left behind by a crash
+          // between the two is harmless (scenes are kept by hash).
+          if (scene) {
+            if (Status st = s.PutScene(*checkpoint->scene_hash, *scene); !st) return st;
+          }
           if (Status st = s.SaveCheckpoint(record, *checkpoint); !st) return st;
           return s.PruneCheckpoints(record.job, static_cast<int>(keep));
         },
@@ -208,6 +220,12 @@ void Master::OnRoundReduced(const std::shared_ptr<JobRunner>& runner, RoundOutco
   LogLine(LogLevel::kInfo, "job " + std::to_string(id))
       << "round " << record.round << ": " << record.rays << " rays, unshot "
       << Percent(record.unshot_fraction) << ", " << record.duration_seconds << " s";
+  if (outcome.new_scene) {
+    LogEvent(id, store::EventLevel::kInfo,
+             "refined after round " + std::to_string(record.round) + ": " +
+                 std::to_string(outcome.new_patch_count) + " elements, scene " +
+                 protocol::HashToHex(outcome.new_scene_hash));
+  }
   if (runner->Resume(outcome)) {
     BeginRound(*runner);
   } else {

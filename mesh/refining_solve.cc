@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <iterator>
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -11,6 +13,7 @@
 #include "core/solve_control.h"
 #include "core/thread_pool.h"
 #include "mesh/refine.h"
+#include "mesh/refinement_schedule.h"
 
 namespace radfarm {
 namespace {
@@ -36,46 +39,76 @@ class Stage {
 
 }  // namespace
 
-Result<RefiningSolveResult> SolveRefining(
-    PatchMesh mesh, const SolverSettings& settings, const RefineSettings& refine,
-    const std::function<void(const RoundProgress&)>& on_round) {
+Result<RefiningSolveResult> SolveRefining(PatchMesh mesh, const SolverSettings& settings,
+                                          const RefineSettings& refine,
+                                          const std::function<void(const RoundProgress&)>& on_round,
+                                          const RefiningHooks& hooks) {
   RefiningSolveResult out;
   out.patches_before = mesh.patch_scene().patches.size();
   out.mesh = std::make_unique<PatchMesh>(std::move(mesh));
-  if (!refine.enabled) {
-    out.solution = Solve(out.mesh->patch_scene(), settings, on_round);
-    return out;
+  const RefiningResume* resume = hooks.resume ? &*hooks.resume : nullptr;
+  // Without refinement the loop below is Solve()'s, step for step: no schedule, no step.
+  std::optional<RefinementSchedule> schedule;
+  if (refine.enabled) {
+    Result<RefinementSchedule> created = RefinementSchedule::Create(
+        refine, *out.mesh, settings.shot_rays, resume != nullptr ? resume->next_point : 0);
+    if (!created.ok()) return Error{created.error()};
+    schedule.emplace(std::move(*created));
+  } else if (resume != nullptr && resume->refined_scene != nullptr) {
+    return Error{"cannot resume an unrefined solve on a refined mesh"};
   }
-  Result<ResolvedRefineSettings> resolved = ResolveRefineSettings(
-      refine, out.mesh->patch_size(), out.patches_before, out.mesh->weld_tolerance());
-  if (!resolved.ok()) return Error{resolved.error()};
+  bool refined = false;  // the mesh is no longer the one given
+  if (resume != nullptr && resume->refined_scene != nullptr) {
+    PatchMesh rebuilt = out.mesh->Rebuilt(PatchMesh::PiecesOf(*resume->refined_scene));
+    if (rebuilt.patch_scene().patches.size() != resume->refined_scene->patches.size()) {
+      return Error{"the refined mesh to resume on has " +
+                   std::to_string(resume->refined_scene->patches.size()) +
+                   " elements, rebuilt it has " +
+                   std::to_string(rebuilt.patch_scene().patches.size())};
+    }
+    *out.mesh = std::move(rebuilt);
+    refined = true;
+  }
+  if (resume != nullptr &&
+      resume->solve->radiosity.size() != out.mesh->patch_scene().patches.size()) {
+    return Error{"the state to resume holds " + std::to_string(resume->solve->radiosity.size()) +
+                 " elements, the mesh " + std::to_string(out.mesh->patch_scene().patches.size())};
+  }
 
   const auto start = std::chrono::steady_clock::now();
+  const double seconds_before = resume != nullptr ? resume->solve->seconds : 0;
   auto elapsed = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return seconds_before +
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   ThreadPool pool(settings.threads);
   auto stage = std::make_unique<Stage>(out.mesh->patch_scene(), settings, pool.size());
-  auto refine_step = [&](double ray_power, bool restart) {
-    ProgressiveSolver& solver = stage->solver();
-    RefinedMesh refined = Refine(*out.mesh, solver.radiosity(), solver.unshot(), ray_power,
-                                 *resolved, stage->caster(), pool);
-    if (refined.split == 0) return;
-    const uint32_t rounds = solver.rounds_done();
-    CarriedState carried = CarryOver(refined, solver.energy(), restart);
+  auto apply = [&](std::optional<RefinementStep> step) {
+    if (!step) return;
     stage.reset();  // it refers to the old mesh's scene
-    *out.mesh = std::move(refined.mesh);
+    *out.mesh = std::move(step->mesh);
     stage = std::make_unique<Stage>(out.mesh->patch_scene(), settings, pool.size());
-    stage->solver().Restore(rounds, std::move(carried.radiosity), std::move(carried.unshot),
-                            carried.energy);
+    stage->solver().Restore(step->rounds_done, std::move(step->state.radiosity),
+                            std::move(step->state.unshot), step->state.energy);
+    refined = true;
     ++out.refinements;
   };
 
-  refine_step(0, false);
-  size_t next_point = 0;
   SolveStats& stats = out.solution.stats;
   stats.stop_reason = kStopConverged;
-  while (true) {
+  if (resume != nullptr) {
+    const SolveCheckpoint& c = *resume->solve;
+    stage->solver().Restore(c.rounds_done, c.radiosity, c.unshot, c.energy);
+    stats.rays = c.rays;
+    stats.escaped_rays = c.escaped_rays;
+    stats.backface_hits = c.backface_hits;
+    if (resume->stopped) stats.stop_reason = *resume->stopped;
+  } else if (schedule) {
+    apply(schedule->BeforeFirstRound(*out.mesh, stage->solver(), stage->caster(), pool));
+  }
+  // A resume from the round the solve stopped after runs no round: a round capped by the ray
+  // budget may have left a few rays of it, which StopBeforeRound alone would spend.
+  while (resume == nullptr || !resume->stopped) {
     ProgressiveSolver& solver = stage->solver();
     if (auto stop = StopBeforeRound(solver, settings, stats.rays, elapsed())) {
       stats.stop_reason = *stop;
@@ -97,15 +130,21 @@ Result<RefiningSolveResult> SolveRefining(
       on_round({solver.rounds_done(), stats.rays, elapsed(), solver.UnshotFraction(),
                 settings.tolerance, &solver.energy()});
     }
-    if (auto stop = StopAfterRound(plan, solver, settings)) {
+    std::optional<std::string> stop = StopAfterRound(plan, solver, settings);
+    if (!stop && schedule) apply(schedule->AfterRound(*out.mesh, solver, stage->caster(), pool));
+    if (hooks.after_round) {
+      const ProgressiveSolver& now = stage->solver();  // rebuilt if the round refined
+      hooks.after_round({{plan.round, now.rounds_done(), now.radiosity(), now.unshot(),
+                          now.energy(), stats.rays, stats.escaped_rays, stats.backface_hits,
+                          elapsed(), static_cast<uint32_t>(plan.shots.size())},
+                         refined ? &out.mesh->patch_scene() : nullptr,
+                         out.refinements,
+                         schedule ? static_cast<uint32_t>(schedule->next_point()) : 0u,
+                         stop});
+    }
+    if (stop) {
       stats.stop_reason = *stop;
       break;
-    }
-    const RefinePoint* point = PassedRefinePoint(solver.UnshotFraction(), &next_point);
-    if (point != nullptr) {
-      refine_step(RayPower(solver.energy().emitted, settings.shot_rays,
-                           out.mesh->patch_scene().patches.size()),
-                  point->restart);
     }
   }
 

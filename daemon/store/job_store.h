@@ -84,6 +84,13 @@ struct Checkpoint {
   std::vector<Rgb> unshot;  // same size as radiosity
   EnergyAccount energy;
   int64_t created_at_ms = 0;  // set by the store
+  // Adaptive refinement (schema version 4): the hash of the refined mesh's scene blob the values
+  // belong to, which must be stored (PutScene) first; nullopt: the mesh the job's bundle makes.
+  std::optional<std::string> scene_hash;
+  uint32_t refine_points = 0;  // refinement points passed (mesh/refinement_schedule.h)
+  // Set on the checkpoint of the round the solve stopped after (schema version 4): why it stopped
+  // (core/solve_control.h). A resume from it runs no further round.
+  std::optional<std::string> stop_reason;
 };
 
 enum class EventLevel { kInfo, kWarning, kError };
@@ -134,7 +141,8 @@ class JobStore {
   Status RecordRound(const RoundRecord& round);
   Result<std::vector<RoundRecord>> ListRounds(JobId job);
   // Writes the round row and the checkpoint of its results in one transaction: both or neither.
-  // checkpoint.job and .round must equal round.job and .round.
+  // checkpoint.job and .round must equal round.job and .round; checkpoint.scene_hash, when set,
+  // must be stored.
   Status SaveCheckpoint(const RoundRecord& round, const Checkpoint& checkpoint);
   // The checkpoint with the highest round, with the same bits that were saved.
   Result<std::optional<Checkpoint>> LoadLatestCheckpoint(JobId job);

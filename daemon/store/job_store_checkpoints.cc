@@ -74,7 +74,8 @@ Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& chec
   STORE_RETURN_IF_ERROR(InsertRound(round, now));
   Result<Statement> stmt = db_.Prepare(
       "INSERT OR REPLACE INTO checkpoints (job_id, round, rounds_done, patches, radiosity, unshot,"
-      " energy, created_at_ms) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
+      " energy, created_at_ms, scene_hash, refine_points, stop_reason)"
+      " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)");
   STORE_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, checkpoint.job)
       .Bind(2, int64_t{checkpoint.round})
@@ -83,14 +84,24 @@ Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& chec
       .BindBlob(5, radiosity)
       .BindBlob(6, unshot)
       .BindBlob(7, energy)
-      .Bind(8, now);
+      .Bind(8, now)
+      .Bind(10, int64_t{checkpoint.refine_points});
+  for (const auto& [index, text] :
+       {std::pair(9, &checkpoint.scene_hash), std::pair(11, &checkpoint.stop_reason)}) {
+    if (*text) {
+      stmt->Bind(index, **text);
+    } else {
+      stmt->BindNull(index);
+    }
+  }
   STORE_RETURN_IF_ERROR(stmt->Run());
   return transaction->Commit();
 }
 
 Result<std::optional<Checkpoint>> JobStore::LoadLatestCheckpoint(JobId job) {
   Result<Statement> stmt = db_.Prepare(
-      "SELECT round, rounds_done, radiosity, unshot, energy, created_at_ms FROM checkpoints"
+      "SELECT round, rounds_done, radiosity, unshot, energy, created_at_ms, scene_hash,"
+      " refine_points, stop_reason FROM checkpoints"
       " WHERE job_id = ?1 ORDER BY round DESC LIMIT 1");
   STORE_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, job);
@@ -111,6 +122,9 @@ Result<std::optional<Checkpoint>> JobStore::LoadLatestCheckpoint(JobId job) {
   checkpoint.unshot = std::move(*unshot);
   checkpoint.energy = *energy;
   checkpoint.created_at_ms = stmt->Int(5);
+  if (!stmt->IsNull(6)) checkpoint.scene_hash = stmt->Text(6);
+  checkpoint.refine_points = static_cast<uint32_t>(stmt->Int(7));
+  if (!stmt->IsNull(8)) checkpoint.stop_reason = stmt->Text(8);
   return std::optional<Checkpoint>(std::move(checkpoint));
 }
 

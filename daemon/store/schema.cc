@@ -80,7 +80,19 @@ ALTER TABLE rounds ADD COLUMN escaped_rays INTEGER NOT NULL DEFAULT 0 CHECK (esc
 ALTER TABLE rounds ADD COLUMN back_rays INTEGER NOT NULL DEFAULT 0 CHECK (back_rays >= 0);
 )sql";
 
-constexpr std::array<Migration, 3> kMigrations = {{{1, kV1}, {2, kV2}, {3, kV3}}};
+// Version 4: a checkpoint of a job with adaptive refinement belongs to a refined mesh: the hash of
+// its scene blob (stored in scenes; NULL: the mesh the job's bundle makes) and the refinement
+// points already passed, so a resumed job neither loses the mesh nor refines twice. And the last
+// checkpoint of a solve says why it stopped: a round capped by the ray budget may leave a few rays
+// of it unspent, and a solve resumed from it must not plan another round.
+constexpr std::string_view kV4 = R"sql(
+ALTER TABLE checkpoints ADD COLUMN scene_hash TEXT REFERENCES scenes(hash);
+ALTER TABLE checkpoints ADD COLUMN refine_points INTEGER NOT NULL DEFAULT 0
+  CHECK (refine_points >= 0);
+ALTER TABLE checkpoints ADD COLUMN stop_reason TEXT;
+)sql";
+
+constexpr std::array<Migration, 4> kMigrations = {{{1, kV1}, {2, kV2}, {3, kV3}, {4, kV4}}};
 
 Result<int64_t> FileBytes(Database& db) {
   Result<int64_t> pages = db.QueryInt("PRAGMA page_count");
@@ -151,6 +163,11 @@ Status Migrate(Database& db, int target) {
     if (migration.version <= *current || migration.version > target) continue;
     Result<Transaction> transaction = Transaction::Begin(db);
     if (!transaction.ok()) return Error{transaction.error()};
+    // Read again under the write lock: another process opening the same new file (`radfarm
+    // render --db` and a reader of its store) may have migrated it since the read above.
+    Result<int64_t> locked = db.QueryInt("PRAGMA user_version");
+    if (!locked.ok()) return Error{locked.error()};
+    if (*locked >= migration.version) continue;  // the transaction rolls back: nothing written
     std::string what = "migration to schema version " + std::to_string(migration.version);
     Status applied = db.Exec(migration.sql, what);
     if (!applied.ok()) return applied;

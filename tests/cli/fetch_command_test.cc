@@ -13,7 +13,9 @@
 #include "cli/job_loader.h"
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
+#include "codec/patch_scene_codec.h"
 #include "core/solve.h"
+#include "mesh/patch_mesh.h"
 #include "tests/cli/control_fixtures.h"
 #include "tests/cli/fake_control_server.h"
 
@@ -49,8 +51,11 @@ class FetchCommandTest : public ::testing::Test {
       Result<LoadedJob> job = LoadJobForSolve(kCornell, overrides, &warnings);
       if (!job.ok()) throw std::runtime_error(job.error());
       const SolveResult solved = Solve(job->mesh.patch_scene(), job->job.solver);
-      return codec::JobSolution{codec::EncodeJobBundle({job->job, job->scene}), solved.radiosity,
-                                solved.unshot, solved.stats};
+      return codec::JobSolution{codec::EncodeJobBundle({job->job, job->scene}),
+                                solved.radiosity,
+                                solved.unshot,
+                                solved.stats,
+                                {}};
     }();
     return solution;
   }
@@ -129,6 +134,49 @@ TEST_F(FetchCommandTest, SolutionForAnotherMeshFails) {
   const auto r = Fetch(Serve(short_one), dir_.File("out"));
   EXPECT_EQ(r.exit_code, kExitFailure);
   EXPECT_NE(r.err.find("but the scene meshes into"), std::string::npos) << r.err;
+}
+
+// The job's bundle with refinement on, and the solution's values on the scene `scene` names.
+codec::JobSolution Refining(const codec::JobSolution& plain, std::vector<uint8_t> scene) {
+  Result<codec::JobBundle> bundle = codec::DecodeJobBundle(plain.bundle);
+  EXPECT_TRUE(bundle.ok());
+  bundle->job.refine.enabled = true;
+  codec::JobSolution refining = plain;
+  refining.bundle = codec::EncodeJobBundle(*bundle);
+  refining.scene = std::move(scene);
+  return refining;
+}
+
+std::vector<uint8_t> MeshBlob(const codec::JobSolution& solution) {
+  Result<codec::JobBundle> bundle = codec::DecodeJobBundle(solution.bundle);
+  EXPECT_TRUE(bundle.ok());
+  Result<PatchMesh> mesh = PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
+  EXPECT_TRUE(mesh.ok());
+  return codec::EncodePatchScene(mesh->patch_scene());
+}
+
+// A refining job's values belong to the mesh the solution's scene rebuilds (here one that no step
+// split, so the patches are the bundle's), and stats.json counts the patches before and after.
+TEST_F(FetchCommandTest, RefinedSolutionsRebuildTheirMesh) {
+  const auto r = Fetch(Serve(Refining(Solution(), MeshBlob(Solution()))), dir_.File("out"));
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  const json stats = json::parse(ReadFile(dir_.File("out/stats.json")), nullptr, false);
+  ASSERT_TRUE(stats.is_object());
+  EXPECT_EQ(stats["patches_before_refinement"], double(Solution().radiosity.size()));
+  EXPECT_EQ(stats["patches_after_refinement"], double(Solution().radiosity.size()));
+}
+
+TEST_F(FetchCommandTest, BadRefinedScenesFail) {
+  codec::JobSolution unrefined_job = Solution();
+  unrefined_job.scene = MeshBlob(Solution());
+  auto r = Fetch(Serve(unrefined_job), dir_.File("out"));
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  EXPECT_NE(r.err.find("holds a refined mesh, but the job does not refine"), std::string::npos)
+      << r.err;
+  r = Fetch(Serve(Refining(Solution(), {1, 2, 3, 4, 5, 6, 7, 8})), dir_.File("out"));
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  EXPECT_NE(r.err.find("the refined scene in the solution: "), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_.File("out")));
 }
 
 TEST_F(FetchCommandTest, JobWithoutCheckpointIsInvalidState) {

@@ -123,14 +123,61 @@ TEST(RenderCommandTest, AdaptiveRefinementIsReportedAndDeterministic) {
   EXPECT_EQ(JsonNumber(stats, "patches_after_refinement"), JsonNumber(stats, "patches"));
 }
 
-// The job store's checkpoints cannot hold a refined mesh yet: refused before anything is solved.
-TEST(RenderCommandTest, AdaptiveRefinementWithDbIsRefused) {
+// --db keeps a refining render's rounds (with its refined mesh) and gives the files a render
+// without --db gives; run again on the finished job, it writes them again from the checkpoint.
+// (tests/farm/render_resume_test.cc kills one midway.)
+TEST(RenderCommandTest, AdaptiveRefinementWithDbMatchesPlainRender) {
+  // Past the first refinement point (a restart on the refined mesh), then a ray budget that the
+  // capped last round does not spend to the ray: run again, the finished job runs no more rounds.
+  const std::vector<std::string> settings = {"--tolerance",  "0.05", "--rays", "3000000",
+                                             "--patch-size", "50",   "-q"};
+  TempDir plain;
+  const auto r = Render("cornell-box-adaptive.toml", plain.path(), settings);
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  const std::string reference = ReadFile(plain.File("patches.csv"));
+  const std::string reference_stats = ReadFile(plain.File("stats.json"));
   TempDir out;
-  const auto r =
-      Render("cornell-box-adaptive.toml", out.path(), {"--db", out.File("render.db"), "-q"});
-  EXPECT_EQ(r.exit_code, kExitBadInput);
-  EXPECT_NE(r.err.find("--db does not support mesh.refine = true yet"), std::string::npos) << r.err;
-  EXPECT_FALSE(std::filesystem::exists(out.File("render.db")));
+  std::vector<std::string> with_db = settings;
+  with_db.insert(with_db.end(), {"--db", out.File("render.db")});
+  for (const char* run : {"first", "again"}) {
+    SCOPED_TRACE(run);
+    TempDir dir;
+    const auto d = Render("cornell-box-adaptive.toml", dir.path(), with_db);
+    ASSERT_EQ(d.exit_code, kExitOk) << d.err;
+    EXPECT_TRUE(ReadFile(dir.File("patches.csv")) == reference);
+    const std::string stats = ReadFile(dir.File("stats.json"));
+    for (const char* key : {"patches_before_refinement", "patches_after_refinement", "rays",
+                            "rounds", "unshot_fraction"}) {
+      EXPECT_EQ(JsonNumber(stats, key), JsonNumber(reference_stats, key)) << key;
+    }
+  }
+  EXPECT_GT(JsonNumber(reference_stats, "patches_after_refinement"),
+            JsonNumber(reference_stats, "patches_before_refinement"));
+}
+
+// A render stopped by a capped round that left a few rays of the budget unspent: run again on its
+// finished job, it runs no further round and writes the same files (it used to plan one more).
+TEST(RenderCommandTest, BudgetStoppedDbRenderRerunsIdentically) {
+  const std::vector<std::string> settings = {"--rays", "2900001", "-q"};
+  TempDir plain;
+  ASSERT_EQ(Render("cornell-box.toml", plain.path(), settings).exit_code, kExitOk);
+  const std::string reference = ReadFile(plain.File("patches.csv"));
+  const std::string reference_stats = ReadFile(plain.File("stats.json"));
+  ASSERT_LT(JsonNumber(reference_stats, "rays"), 2900001);
+  TempDir out;
+  std::vector<std::string> with_db = settings;
+  with_db.insert(with_db.end(), {"--db", out.File("render.db")});
+  for (const char* run : {"first", "again"}) {
+    SCOPED_TRACE(run);
+    TempDir dir;
+    const auto d = Render("cornell-box.toml", dir.path(), with_db);
+    ASSERT_EQ(d.exit_code, kExitOk) << d.err;
+    EXPECT_TRUE(ReadFile(dir.File("patches.csv")) == reference);
+    const std::string stats = ReadFile(dir.File("stats.json"));
+    EXPECT_EQ(JsonNumber(stats, "rays"), JsonNumber(reference_stats, "rays"));
+    EXPECT_EQ(JsonNumber(stats, "rounds"), JsonNumber(reference_stats, "rounds"));
+    EXPECT_NE(stats.find("\"stop_reason\": \"ray budget\""), std::string::npos) << stats;
+  }
 }
 
 // A closed furnace with Ke 1 and Kd 0.9 reads 10 on every patch: B = E / (1 - rho).

@@ -105,5 +105,63 @@ TEST(JobBundleTest, CarriesOverrelaxation) {
   EXPECT_EQ(back_plain->job.solver.overrelaxation, 1.0);
 }
 
+TEST(JobBundleTest, CarriesTheRefineKeys) {
+  const JobBundle adaptive = LoadBundle(RADFARM_SOURCE_DIR "/scenes/cornell-box-adaptive.toml");
+  ASSERT_TRUE(adaptive.job.refine.enabled);
+  JobBundle b = adaptive;
+  b.job.refine.tolerance = 0.125;
+  b.job.refine.min_element_size = 7.5;
+  b.job.refine.max_elements = 12345;
+  const std::vector<uint8_t> blob = EncodeJobBundle(b);
+  Result<JobBundle> back = DecodeJobBundle(blob);
+  ASSERT_TRUE(back.ok()) << back.error();
+  EXPECT_TRUE(back->job.refine.enabled);
+  EXPECT_EQ(back->job.refine.tolerance, 0.125);
+  EXPECT_EQ(back->job.refine.min_element_size, 7.5);
+  EXPECT_EQ(back->job.refine.max_elements, 12345u);
+  EXPECT_EQ(EncodeJobBundle(*back), blob);
+
+  // Refinement off: the bundle is the one written before the refine table existed (same bytes,
+  // same hash, so a --db store made then still finds its job), and decodes to the defaults.
+  JobBundle off = adaptive;
+  off.job.refine = RefineSettings{};
+  JobBundle off_but_tuned = off;
+  off_but_tuned.job.refine.tolerance = 0.5;
+  EXPECT_EQ(EncodeJobBundle(off_but_tuned), EncodeJobBundle(off));
+  EXPECT_NE(EncodeJobBundle(off), blob);
+  Result<JobBundle> plain = DecodeJobBundle(EncodeJobBundle(off));
+  ASSERT_TRUE(plain.ok()) << plain.error();
+  EXPECT_FALSE(plain->job.refine.enabled);
+  EXPECT_EQ(plain->job.refine.tolerance, RefineSettings{}.tolerance);
+}
+
+TEST(JobBundleTest, RejectsBadRefineValues) {
+  const JobBundle good = LoadBundle(RADFARM_SOURCE_DIR "/scenes/cornell-box-adaptive.toml");
+  const auto expect_error = [](const JobBundle& b, const char* words) {
+    Result<JobBundle> r = DecodeJobBundle(EncodeJobBundle(b));
+    ASSERT_FALSE(r.ok()) << words;
+    EXPECT_NE(r.error().find(words), std::string::npos) << r.error();
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (double bad : {0.0, -0.25, nan, inf}) {
+    SCOPED_TRACE(bad);
+    JobBundle b = good;
+    b.job.refine.tolerance = bad;
+    expect_error(b, "mesh.refine_tolerance");
+  }
+  for (double bad : {-1.0, nan, inf}) {
+    SCOPED_TRACE(bad);
+    JobBundle b = good;
+    b.job.refine.min_element_size = bad;
+    expect_error(b, "mesh.min_element_size");
+  }
+  JobBundle b = good;
+  b.job.refine.max_elements = uint64_t{1} << 63;
+  expect_error(b, "mesh.max_elements");
+  b.job.refine.max_elements = (uint64_t{1} << 63) - 1;
+  EXPECT_TRUE(DecodeJobBundle(EncodeJobBundle(b)).ok());
+}
+
 }  // namespace
 }  // namespace radfarm::codec

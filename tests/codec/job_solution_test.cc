@@ -32,6 +32,19 @@ TEST(JobSolutionTest, RoundTripsExactly) {
   EXPECT_EQ(back->unshot[1].b, 3e-5);
   EXPECT_EQ(back->stats.rays, s.stats.rays);
   EXPECT_EQ(back->stats.stop_reason, "converged");
+  EXPECT_TRUE(back->scene.empty());  // not refined
+  EXPECT_EQ(EncodeJobSolution(*back), blob);
+}
+
+TEST(JobSolutionTest, CarriesTheRefinedScene) {
+  JobSolution s = Sample();
+  s.scene = {9, 8, 7, 6};
+  const std::vector<uint8_t> blob = EncodeJobSolution(s);
+  EXPECT_NE(blob, EncodeJobSolution(Sample()));
+  Result<JobSolution> back = DecodeJobSolution(blob);
+  ASSERT_TRUE(back.ok()) << back.error();
+  EXPECT_EQ(back->scene, s.scene);
+  EXPECT_EQ(back->radiosity.size(), 2u);
   EXPECT_EQ(EncodeJobSolution(*back), blob);
 }
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "daemon/store/job_store.h"
 #include "tests/daemon/store/temp_dir.h"
@@ -120,11 +121,85 @@ TEST(SchemaTest, UpgradesVersion1FixtureWithItsData) {
   EXPECT_TRUE(std::signbit((*checkpoint)->unshot[0].g));  // -0.0 survived
   EXPECT_EQ((*checkpoint)->unshot[0].b, 1e308);
   EXPECT_EQ((*checkpoint)->energy.emitted, 2.0);
+  EXPECT_FALSE((*checkpoint)->scene_hash.has_value());  // version 4: the bundle's mesh
+  EXPECT_EQ((*checkpoint)->refine_points, 0u);
   Result<std::optional<std::vector<uint8_t>>> scene = store->GetScene("sha256:cornell");
   ASSERT_TRUE(scene.ok() && scene->has_value());
   EXPECT_EQ(**scene, (std::vector<uint8_t>{1, 2, 3, 4, 5}));
   EXPECT_EQ(store->ListEvents(1, 10)->size(), 1u);
   EXPECT_EQ(store->ListAgents()->size(), 1u);
+}
+
+// Version 3 -> 4: checkpoints written before adaptive refinement reached the farm keep their
+// values and read as checkpoints of the bundle's mesh with no refinement point passed; after the
+// upgrade a checkpoint names its refined scene, which must be stored.
+TEST(SchemaTest, UpgradesVersion3CheckpointsToVersion4) {
+  TempDir dir;
+  std::string path = dir.File("v3.db");
+  {
+    Database db = OpenRaw(path);
+    ASSERT_TRUE(Migrate(db, 3).ok());
+    // What a version 3 build wrote: one job, its round 4 and the checkpoint of it (one patch).
+    std::string blob24 = "x'" + std::string(48, '1') + "'";
+    std::string blob32 = "x'" + std::string(64, '2') + "'";
+    ASSERT_TRUE(db.Exec("INSERT INTO scenes VALUES ('bundle', x'0102', 2, 1);"
+                        "INSERT INTO jobs (name, scene_hash, settings, seed, priority, state,"
+                        " submitted_at_ms) VALUES ('j', 'bundle', '{}', 7, 0, 'running', 1);"
+                        "INSERT INTO rounds VALUES (1, 4, 3, 1000, 0.5, 1.0, 0.25, 2, 11, 12);"
+                        "INSERT INTO checkpoints VALUES (1, 4, 5, 1, " +
+                            blob24 + ", " + blob24 + ", " + blob32 + ", 3);",
+                        "version 3 data")
+                    .ok());
+  }
+  Result<JobStore> store = JobStore::Open(path);
+  ASSERT_TRUE(store.ok()) << store.error();
+  EXPECT_EQ(UserVersion(path), 4);
+  Result<std::optional<Checkpoint>> old = store->LoadLatestCheckpoint(1);
+  ASSERT_TRUE(old.ok() && old->has_value()) << old.error();
+  EXPECT_EQ((*old)->round, 4u);
+  EXPECT_EQ((*old)->rounds_done, 5u);
+  ASSERT_EQ((*old)->radiosity.size(), 1u);
+  EXPECT_FALSE((*old)->scene_hash.has_value());
+  EXPECT_EQ((*old)->refine_points, 0u);
+  EXPECT_FALSE((*old)->stop_reason.has_value());
+  EXPECT_EQ(store->ListRounds(1)->at(0).back_rays, 12u);
+
+  Checkpoint refined = **old;
+  refined.round = 5;
+  refined.scene_hash = "refined";
+  refined.refine_points = 2;
+  refined.stop_reason = "ray budget";
+  const RoundRecord round{1, 5, 3, 1000, 0.05, 0.1, 0.25, 0, 0};
+  Status missing = store->SaveCheckpoint(round, refined);
+  ASSERT_FALSE(missing.ok());  // the refined scene is not stored: nothing is written
+  EXPECT_NE(missing.error().find("SQLITE_CONSTRAINT"), std::string::npos) << missing.error();
+  EXPECT_EQ(store->ListRounds(1)->size(), 1u);
+  ASSERT_TRUE(store->PutScene("refined", std::vector<uint8_t>{9, 9}).ok());
+  ASSERT_TRUE(store->SaveCheckpoint(round, refined).ok());
+  Result<std::optional<Checkpoint>> now = store->LoadLatestCheckpoint(1);
+  ASSERT_TRUE(now.ok() && now->has_value()) << now.error();
+  EXPECT_EQ((*now)->round, 5u);
+  EXPECT_EQ((*now)->scene_hash, std::optional<std::string>("refined"));
+  EXPECT_EQ((*now)->refine_points, 2u);
+  EXPECT_EQ((*now)->stop_reason, std::optional<std::string>("ray budget"));
+  EXPECT_EQ((*now)->radiosity, (*old)->radiosity);
+}
+
+// `radfarm render --db` creating its store while a reader opens it: whoever migrates second finds
+// the work done (the version is read again under the write lock) instead of failing on it.
+TEST(SchemaTest, TwoConnectionsMigratingOneNewFileBothSucceed) {
+  TempDir dir;
+  for (int i = 0; i < 40; ++i) {
+    const std::string path = dir.File("race-" + std::to_string(i) + ".db");
+    Database a = OpenRaw(path), b = OpenRaw(path);
+    Status migrated_b = Ok{};
+    std::thread other([&] { migrated_b = Migrate(b); });
+    const Status migrated_a = Migrate(a);
+    other.join();
+    ASSERT_TRUE(migrated_a.ok()) << migrated_a.error();
+    ASSERT_TRUE(migrated_b.ok()) << migrated_b.error();
+    EXPECT_EQ(*a.QueryInt("PRAGMA user_version"), LatestSchemaVersion());
+  }
 }
 
 TEST(SchemaTest, RefusesNewerSchemaVersion) {

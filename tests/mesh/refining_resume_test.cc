@@ -1,0 +1,200 @@
+// SolveRefining's hooks (`radfarm render --db`) and RefinementSchedule: a refining solve resumed
+// from any round's state, its refined mesh rebuilt from the scene alone, ends with the bits of the
+// uninterrupted solve; bad resume states and refinement points are errors.
+#include <gtest/gtest.h>
+
+#include <optional>
+#include <vector>
+
+#include "core/solve_control.h"
+#include "mesh/patch_mesh.h"
+#include "mesh/refinement_schedule.h"
+#include "mesh/refining_solve.h"
+#include "test_scenes.h"
+
+namespace radfarm {
+namespace {
+
+using testing::SceneBuilder;
+
+// A floor under an occluder and a small light (refine_test.cc's OccluderScene): a shadow to refine.
+InputScene ShadowScene() {
+  SceneBuilder s;
+  s.AddMaterial("white", {0.5, 0.5, 0.5});
+  s.AddMaterial("light", {0, 0, 0}, {10, 10, 10});
+  s.AddFace({{0, 0, 0}, {0, 0, 4}, {4, 0, 4}, {4, 0, 0}}, 0);
+  s.AddFace({{1.6, 1, 1.6}, {2.4, 1, 1.6}, {2.4, 1, 2.4}, {1.6, 1, 2.4}}, 0);
+  s.AddFace({{1.9, 2, 1.9}, {2.1, 2, 1.9}, {2.1, 2, 2.1}, {1.9, 2, 2.1}}, 1);
+  return s.scene();
+}
+
+PatchMesh Mesh() {
+  Result<PatchMesh> mesh = PatchMesh::Build(ShadowScene(), {0.5}, nullptr);
+  EXPECT_TRUE(mesh.ok()) << mesh.error();
+  return std::move(*mesh);
+}
+
+SolverSettings Solver() {
+  SolverSettings s;
+  s.shot_rays = 1 << 14;
+  s.tolerance = 0.02;
+  s.threads = 2;
+  return s;
+}
+
+RefineSettings Refining() {
+  RefineSettings r;
+  r.enabled = true;
+  r.tolerance = 0.1;
+  r.min_element_size = 0.125;
+  return r;
+}
+
+// A round's state as a store keeps it: copies, the refined scene included.
+struct Saved {
+  SolveCheckpoint solve;
+  std::optional<PatchScene> scene;
+  uint32_t next_point = 0;
+};
+
+TEST(RefiningResumeTest, ResumingFromAnyRoundGivesTheUninterruptedBits) {
+  std::vector<Saved> saved;
+  RefiningHooks hooks;
+  hooks.after_round = [&](const RefiningCheckpoint& c) {
+    saved.push_back(
+        {c.solve, c.refined_scene ? std::optional(*c.refined_scene) : std::nullopt, c.next_point});
+  };
+  Result<RefiningSolveResult> whole = SolveRefining(Mesh(), Solver(), Refining(), {}, hooks);
+  ASSERT_TRUE(whole.ok()) << whole.error();
+  ASSERT_EQ(saved.size(), whole->solution.stats.rounds);
+  // The states straddle both refinement points, each on a refined mesh.
+  ASSERT_EQ(saved.back().next_point, 2u);
+  ASSERT_TRUE(saved.back().scene.has_value());
+  EXPECT_EQ(saved.back().scene->patches.size(), whole->mesh->patch_scene().patches.size());
+  EXPECT_GT(whole->mesh->patch_scene().patches.size(), whole->patches_before);
+  std::vector<size_t> picks;
+  for (uint32_t point : {0u, 1u, 2u}) {
+    for (size_t i = 0; i < saved.size(); ++i) {
+      if (saved[i].next_point == point) {
+        picks.push_back(i);  // the first state past each point
+        break;
+      }
+    }
+  }
+  ASSERT_GE(picks.size(), 2u);
+  for (size_t i : picks) {
+    SCOPED_TRACE("resumed after round " + std::to_string(saved[i].solve.round));
+    RefiningHooks resume;
+    resume.resume = RefiningResume{&saved[i].solve, saved[i].scene ? &*saved[i].scene : nullptr,
+                                   saved[i].next_point, std::nullopt};
+    Result<RefiningSolveResult> rest = SolveRefining(Mesh(), Solver(), Refining(), {}, resume);
+    ASSERT_TRUE(rest.ok()) << rest.error();
+    EXPECT_EQ(rest->mesh->patch_scene().patches.size(), whole->mesh->patch_scene().patches.size());
+    EXPECT_EQ(rest->solution.radiosity, whole->solution.radiosity);
+    EXPECT_EQ(rest->solution.unshot, whole->solution.unshot);
+    EXPECT_EQ(rest->solution.stats.rays, whole->solution.stats.rays);
+    EXPECT_EQ(rest->solution.stats.rounds, whole->solution.stats.rounds);
+  }
+}
+
+// A solve stopped by a capped round that left rays of the budget: its last state says so, and a
+// resume from it runs no round (StopBeforeRound alone would spend the rays left).
+TEST(RefiningResumeTest, AResumeFromTheLastRoundOfABudgetStopRunsNoRound) {
+  for (const bool refining : {true, false}) {
+    SCOPED_TRACE(refining ? "refining" : "not refining");
+    const RefineSettings refine = refining ? Refining() : RefineSettings{};
+    SolverSettings settings = Solver();
+    settings.tolerance = 1e-4;         // enough rounds
+    std::vector<uint64_t> rays_after;  // of each round, without a budget
+    Result<RefiningSolveResult> unlimited = SolveRefining(
+        Mesh(), settings, refine, [&](const RoundProgress& p) { rays_after.push_back(p.rays); });
+    ASSERT_TRUE(unlimited.ok()) << unlimited.error();
+    ASSERT_GE(rays_after.size(), 3u);
+    // Budgets that cut the second round short: many shooters, and unconverged after it.
+    settings.max_rays = rays_after[0] + (rays_after[1] - rays_after[0]) / 2;
+    std::vector<Saved> saved;
+    std::vector<std::optional<std::string>> stops;
+    RefiningHooks hooks;
+    hooks.after_round = [&](const RefiningCheckpoint& c) {
+      saved.push_back({c.solve, c.refined_scene ? std::optional(*c.refined_scene) : std::nullopt,
+                       c.next_point});
+      stops.push_back(c.stop);
+    };
+    // A budget the capped round does not spend to the ray (the case that needs the mark): each
+    // shot's rays are scaled down and rounded down, so most budgets leave a few rays.
+    Result<RefiningSolveResult> whole = Error{"no budget left rays unspent"};
+    for (uint64_t budget = settings.max_rays; budget < settings.max_rays + 2000; budget += 37) {
+      SolverSettings capped = settings;
+      capped.max_rays = budget;
+      saved.clear();
+      stops.clear();
+      whole = SolveRefining(Mesh(), capped, refine, {}, hooks);
+      ASSERT_TRUE(whole.ok()) << whole.error();
+      if (whole->solution.stats.rays < budget) {
+        settings = capped;
+        break;
+      }
+    }
+    ASSERT_LT(whole->solution.stats.rays, settings.max_rays);
+    ASSERT_EQ(whole->solution.stats.stop_reason, kStopRayBudget);
+    ASSERT_GE(stops.size(), 1u);
+    for (size_t i = 0; i + 1 < stops.size(); ++i) EXPECT_FALSE(stops[i].has_value()) << i;
+    ASSERT_EQ(stops.back(), std::optional<std::string>(kStopRayBudget));
+
+    const Saved& last = saved.back();
+    RefiningHooks resume;
+    resume.resume = RefiningResume{&last.solve, last.scene ? &*last.scene : nullptr,
+                                   last.next_point, stops.back()};
+    bool ran = false;
+    resume.after_round = [&](const RefiningCheckpoint&) { ran = true; };
+    Result<RefiningSolveResult> again = SolveRefining(Mesh(), settings, refine, {}, resume);
+    ASSERT_TRUE(again.ok()) << again.error();
+    EXPECT_FALSE(ran);
+    EXPECT_EQ(again->solution.radiosity, whole->solution.radiosity);
+    EXPECT_EQ(again->solution.stats.rays, whole->solution.stats.rays);
+    EXPECT_EQ(again->solution.stats.rounds, whole->solution.stats.rounds);
+    EXPECT_EQ(again->solution.stats.stop_reason, kStopRayBudget);
+
+    resume.resume->stopped.reset();  // without the mark: one more round, other bits
+    Result<RefiningSolveResult> unmarked = SolveRefining(Mesh(), settings, refine, {}, resume);
+    ASSERT_TRUE(unmarked.ok()) << unmarked.error();
+    EXPECT_TRUE(ran);
+    EXPECT_GT(unmarked->solution.stats.rounds, whole->solution.stats.rounds);
+  }
+}
+
+TEST(RefiningResumeTest, AStateThatDoesNotFitTheMeshIsAnError) {
+  SolveCheckpoint state;
+  state.rounds_done = 1;
+  state.radiosity.resize(3);
+  state.unshot.resize(3);
+  RefiningHooks hooks;
+  hooks.resume = RefiningResume{&state, nullptr, 1, std::nullopt};
+  Result<RefiningSolveResult> r = SolveRefining(Mesh(), Solver(), Refining(), {}, hooks);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().find("holds 3 elements"), std::string::npos) << r.error();
+
+  PatchScene refined = Mesh().patch_scene();
+  hooks.resume = RefiningResume{&state, &refined, 1, std::nullopt};
+  r = SolveRefining(Mesh(), Solver(), {}, {}, hooks);  // refinement off
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().find("unrefined"), std::string::npos) << r.error();
+}
+
+TEST(RefiningResumeTest, ScheduleRefusesPointsBeyondTheLast) {
+  const PatchMesh mesh = Mesh();
+  EXPECT_TRUE(RefinementSchedule::Create(Refining(), mesh, 0, std::size(kRefinePoints)).ok());
+  Result<RefinementSchedule> bad =
+      RefinementSchedule::Create(Refining(), mesh, 0, std::size(kRefinePoints) + 1);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().find("refinement point 3 out of range"), std::string::npos) << bad.error();
+  RefineSettings tiny = Refining();
+  tiny.min_element_size = 1e-12;
+  Result<RefinementSchedule> unresolved = RefinementSchedule::Create(tiny, mesh, 0);
+  ASSERT_FALSE(unresolved.ok());
+  EXPECT_NE(unresolved.error().find("mesh.min_element_size"), std::string::npos)
+      << unresolved.error();
+}
+
+}  // namespace
+}  // namespace radfarm
