@@ -16,8 +16,8 @@ namespace radfarm::testing {
 namespace {
 
 const std::string kAdaptive = "cornell-box-adaptive.toml";
-// A tolerance below both refinement points (0.6 and 0.1 unshot): the job refines before round 0,
-// restarts on the mesh refined after its first round, and may refine again later. The patch size
+// A tolerance below the refinement point (0.6 unshot): the job refines before round 0 and
+// restarts on the mesh refined after its first round (kRefinePoints). The patch size
 // is pinned to keep the job short whatever the shipped job file says.
 const std::vector<std::string> kFlags = {"--tolerance", "0.05", "--patch-size", "50"};
 
