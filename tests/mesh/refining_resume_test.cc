@@ -3,6 +3,7 @@
 // uninterrupted solve; bad resume states and refinement points are errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <optional>
 #include <vector>
 
@@ -67,19 +68,24 @@ TEST(RefiningResumeTest, ResumingFromAnyRoundGivesTheUninterruptedBits) {
   Result<RefiningSolveResult> whole = SolveRefining(Mesh(), Solver(), Refining(), {}, hooks);
   ASSERT_TRUE(whole.ok()) << whole.error();
   ASSERT_EQ(saved.size(), whole->solution.stats.rounds);
-  // The states straddle both refinement points, each on a refined mesh.
-  ASSERT_EQ(saved.back().next_point, 2u);
+  // The states straddle every refinement point, the later ones on a refined mesh.
+  ASSERT_EQ(saved.back().next_point, std::size(kRefinePoints));
   ASSERT_TRUE(saved.back().scene.has_value());
   EXPECT_EQ(saved.back().scene->patches.size(), whole->mesh->patch_scene().patches.size());
   EXPECT_GT(whole->mesh->patch_scene().patches.size(), whole->patches_before);
+  // The first state past each point, and states later on.
   std::vector<size_t> picks;
-  for (uint32_t point : {0u, 1u, 2u}) {
+  for (uint32_t point = 0; point <= std::size(kRefinePoints); ++point) {
     for (size_t i = 0; i < saved.size(); ++i) {
       if (saved[i].next_point == point) {
-        picks.push_back(i);  // the first state past each point
+        picks.push_back(i);
         break;
       }
     }
+  }
+  ASSERT_GE(saved.size(), 3u);
+  for (size_t i : {saved.size() / 2, saved.size() - 2}) {
+    if (std::find(picks.begin(), picks.end(), i) == picks.end()) picks.push_back(i);
   }
   ASSERT_GE(picks.size(), 2u);
   for (size_t i : picks) {
@@ -109,9 +115,10 @@ TEST(RefiningResumeTest, AResumeFromTheLastRoundOfABudgetStopRunsNoRound) {
     Result<RefiningSolveResult> unlimited = SolveRefining(
         Mesh(), settings, refine, [&](const RoundProgress& p) { rays_after.push_back(p.rays); });
     ASSERT_TRUE(unlimited.ok()) << unlimited.error();
-    ASSERT_GE(rays_after.size(), 3u);
-    // Budgets that cut the second round short: many shooters, and unconverged after it.
-    settings.max_rays = rays_after[0] + (rays_after[1] - rays_after[0]) / 2;
+    ASSERT_GE(rays_after.size(), 4u);
+    // Budgets that cut the third round short: past the refinement point, many shooters, and
+    // unconverged after it.
+    settings.max_rays = rays_after[1] + (rays_after[2] - rays_after[1]) / 2;
     std::vector<Saved> saved;
     std::vector<std::optional<std::string>> stops;
     RefiningHooks hooks;
@@ -187,7 +194,9 @@ TEST(RefiningResumeTest, ScheduleRefusesPointsBeyondTheLast) {
   Result<RefinementSchedule> bad =
       RefinementSchedule::Create(Refining(), mesh, 0, std::size(kRefinePoints) + 1);
   ASSERT_FALSE(bad.ok());
-  EXPECT_NE(bad.error().find("refinement point 3 out of range"), std::string::npos) << bad.error();
+  const std::string beyond =
+      "refinement point " + std::to_string(std::size(kRefinePoints) + 1) + " out of range";
+  EXPECT_NE(bad.error().find(beyond), std::string::npos) << bad.error();
   RefineSettings tiny = Refining();
   tiny.min_element_size = 1e-12;
   Result<RefinementSchedule> unresolved = RefinementSchedule::Create(tiny, mesh, 0);
