@@ -64,6 +64,7 @@ int Run(int argc, char** argv) {
     return 2;
   }
   run.quick = options.quick;
+  run.reference_cache = !options.reference_cache.empty();
   run.machine = machine.date + ", " + std::to_string(machine.cpus) + " CPUs (" + machine.cpu_model +
                 "), load " + machine.load_average + " at start, " + ReadLoadAverage() +
                 " at end, " + machine.compiler;

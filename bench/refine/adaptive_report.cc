@@ -292,7 +292,11 @@ void WriteAdaptiveReport(const ReportRun& run, const std::vector<StudyResult>& s
     if (s.scene.name == "cornell-box") WriteOnePercentAim(s, md);
   }
   WriteDefaults(studies, md);
-  md << "\nTotal run time " << Fmt(run.total_seconds, "%.0f") << " s.\n";
+  md << "\nTotal run time " << Fmt(run.total_seconds, "%.0f") << " s"
+     << (run.reference_cache ? " (references read from `--reference-cache` where solved before: "
+                               "their rays and seconds are those of the run that solved them)"
+                             : "")
+     << ".\n";
   std::ofstream(run.out_dir + "/BENCHMARKS-adaptive.md") << md.str();
   std::printf("wrote %s/BENCHMARKS-adaptive.md\n", run.out_dir.c_str());
 }

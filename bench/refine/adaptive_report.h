@@ -13,7 +13,8 @@ struct ReportRun {
   std::string out_dir;
   bool quick = false;
   double total_seconds = 0;
-  std::string machine;  // one line: CPUs, load
+  std::string machine;           // one line: CPUs, load
+  bool reference_cache = false;  // references read back from --reference-cache when there
 };
 
 void WriteAdaptiveReport(const ReportRun& run, const std::vector<StudyResult>& studies);
