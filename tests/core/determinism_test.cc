@@ -2,8 +2,6 @@
 // the batch size, or how often a batch is recomputed.
 #include <gtest/gtest.h>
 
-#include <cstring>
-
 #include "core/batch_runner.h"
 #include "core/progressive_solver.h"
 #include "core/solve.h"
@@ -12,16 +10,8 @@
 namespace radfarm {
 namespace {
 
-PatchScene LitBox() {
-  PatchScene scene =
-      testing::MakeClosedBox({0, 0, 0}, {1, 1, 1}, 4, testing::Surface{{0.7, 0.5, 0.3}, {}, 0});
-  scene.patches[3 * 16 + 5].emission = {10, 10, 10};
-  return scene;
-}
-
-bool BitIdentical(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Rgb)) == 0;
-}
+using testing::BitIdentical;
+using testing::LitBox;
 
 TEST(DeterminismTest, ThreadCountNeverChangesTheResult) {
   const PatchScene scene = LitBox();

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <vector>
 
 #include "core/batch_runner.h"
@@ -17,16 +16,8 @@
 namespace radfarm {
 namespace {
 
-PatchScene LitBox() {
-  PatchScene scene =
-      testing::MakeClosedBox({0, 0, 0}, {1, 1, 1}, 4, testing::Surface{{0.7, 0.5, 0.3}, {}, 0});
-  scene.patches[3 * 16 + 5].emission = {10, 10, 10};
-  return scene;
-}
-
-bool BitIdentical(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Rgb)) == 0;
-}
+using testing::BitIdentical;
+using testing::LitBox;
 
 // FNV-1a over the bits of a solve's state.
 class BitHash {

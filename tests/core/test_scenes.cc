@@ -1,6 +1,7 @@
 #include "tests/core/test_scenes.h"
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <utility>
 
@@ -81,6 +82,16 @@ PatchScene MakeClosedBox(const Vec3& lo, const Vec3& hi, int n, const Surface& s
     AddQuadGrid(q[0], q[1], q[2], q[3], n, fs, &scene);
   }
   return scene;
+}
+
+PatchScene LitBox() {
+  PatchScene scene = MakeClosedBox({0, 0, 0}, {1, 1, 1}, 4, Surface{{0.7, 0.5, 0.3}, {}, 0});
+  scene.patches[3 * 16 + 5].emission = {10, 10, 10};
+  return scene;
+}
+
+bool BitIdentical(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Rgb)) == 0;
 }
 
 }  // namespace radfarm::testing

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "core/patch_scene.h"
 
@@ -25,6 +26,13 @@ void AddDisc(const Vec3& centre, const Vec3& normal, double radius, int segments
 // A closed axis-aligned box [lo, hi] with faces facing inward, each split n x n; all faces get s
 // (surface ids 0..5 in the order -x, +x, -y, +y, -z, +z).
 PatchScene MakeClosedBox(const Vec3& lo, const Vec3& hi, int n, const Surface& s);
+
+// MakeClosedBox of the unit cube, 4 x 4 patches a face, reflectance (0.7, 0.5, 0.3), one patch of
+// the +y face (the ceiling) emitting 10.
+PatchScene LitBox();
+
+// Whether two solutions are the same to the bit.
+bool BitIdentical(const std::vector<Rgb>& a, const std::vector<Rgb>& b);
 
 // Patch index range helper: patches [first, last) of a scene.
 struct PatchRange {

@@ -19,21 +19,8 @@
 namespace radfarm {
 namespace {
 
+using testing::OccluderScene;
 using testing::SceneBuilder;
-
-// A 4 x 4 floor at y = 0 facing up, a 0.8 x 0.8 occluder at y = 1 facing down, centred over the
-// floor, and a 0.2 x 0.2 light at y = 2 facing down. From the light's edges through the occluder's
-// edges, the penumbra on the floor is the band 0.7 <= |x - 2| <= 0.9 (for |z - 2| <= 0.9), and the
-// same with x and z swapped: the umbra inside it, full light outside.
-InputScene OccluderScene() {
-  SceneBuilder s;
-  s.AddMaterial("white", {0.5, 0.5, 0.5});
-  s.AddMaterial("light", {0, 0, 0}, {10, 10, 10});
-  s.AddFace({{0, 0, 0}, {0, 0, 4}, {4, 0, 4}, {4, 0, 0}}, 0);
-  s.AddFace({{1.6, 1, 1.6}, {2.4, 1, 1.6}, {2.4, 1, 2.4}, {1.6, 1, 2.4}}, 0);
-  s.AddFace({{1.9, 2, 1.9}, {2.1, 2, 1.9}, {2.1, 2, 2.1}, {1.9, 2, 2.1}}, 1);
-  return s.scene();
-}
 
 // Distance in x-z from the penumbra band of OccluderScene (0 inside it).
 double DistanceToPenumbra(const Vec3& p) {

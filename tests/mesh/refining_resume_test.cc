@@ -16,21 +16,8 @@
 namespace radfarm {
 namespace {
 
-using testing::SceneBuilder;
-
-// A floor under an occluder and a small light (refine_test.cc's OccluderScene): a shadow to refine.
-InputScene ShadowScene() {
-  SceneBuilder s;
-  s.AddMaterial("white", {0.5, 0.5, 0.5});
-  s.AddMaterial("light", {0, 0, 0}, {10, 10, 10});
-  s.AddFace({{0, 0, 0}, {0, 0, 4}, {4, 0, 4}, {4, 0, 0}}, 0);
-  s.AddFace({{1.6, 1, 1.6}, {2.4, 1, 1.6}, {2.4, 1, 2.4}, {1.6, 1, 2.4}}, 0);
-  s.AddFace({{1.9, 2, 1.9}, {2.1, 2, 1.9}, {2.1, 2, 2.1}, {1.9, 2, 2.1}}, 1);
-  return s.scene();
-}
-
 PatchMesh Mesh() {
-  Result<PatchMesh> mesh = PatchMesh::Build(ShadowScene(), {0.5}, nullptr);
+  Result<PatchMesh> mesh = PatchMesh::Build(testing::OccluderScene(), {0.5}, nullptr);
   EXPECT_TRUE(mesh.ok()) << mesh.error();
   return std::move(*mesh);
 }

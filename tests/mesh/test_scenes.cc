@@ -91,6 +91,16 @@ InputScene CornellBox(bool with_block_bottoms) {
   return b.scene();
 }
 
+InputScene OccluderScene() {
+  SceneBuilder s;
+  s.AddMaterial("white", {0.5, 0.5, 0.5});
+  s.AddMaterial("light", {0, 0, 0}, {10, 10, 10});
+  s.AddFace({{0, 0, 0}, {0, 0, 4}, {4, 0, 4}, {4, 0, 0}}, 0);
+  s.AddFace({{1.6, 1, 1.6}, {2.4, 1, 1.6}, {2.4, 1, 2.4}, {1.6, 1, 2.4}}, 0);
+  s.AddFace({{1.9, 2, 1.9}, {2.1, 2, 1.9}, {2.1, 2, 2.1}, {1.9, 2, 2.1}}, 1);
+  return s.scene();
+}
+
 double TotalArea(const PatchScene& scene) {
   double sum = 0;
   for (const Patch& p : scene.patches) sum += p.area;

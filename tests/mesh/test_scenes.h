@@ -39,6 +39,12 @@ InputScene SceneOf(const std::vector<std::vector<Vec3>>& faces);
 // red wall as its published non-planar quad. Materials: white, red, green, light.
 InputScene CornellBox(bool with_block_bottoms = false);
 
+// A 4 x 4 floor at y = 0 facing up, a 0.8 x 0.8 occluder at y = 1 facing down, centred over the
+// floor, and a 0.2 x 0.2 light at y = 2 facing down. From the light's edges through the occluder's
+// edges, the penumbra on the floor is the band 0.7 <= |x - 2| <= 0.9 (for |z - 2| <= 0.9), and the
+// same with x and z swapped: the umbra inside it, full light outside.
+InputScene OccluderScene();
+
 double TotalArea(const PatchScene& scene);
 double LongestEdge(const Patch& patch);
 // Value at p of the Gouraud-shaded display triangle t (barycentric interpolation in its plane).

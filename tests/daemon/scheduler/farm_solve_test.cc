@@ -16,12 +16,7 @@ using std::chrono::seconds;
 using testing::FarmSim;
 using testing::SimAgentSpec;
 
-PatchScene LitBox() {
-  PatchScene scene = radfarm::testing::MakeClosedBox(
-      {0, 0, 0}, {1, 1, 1}, 4, radfarm::testing::Surface{{0.7, 0.5, 0.3}, {}, 0});
-  scene.patches[3 * 16 + 5].emission = {10, 10, 10};
-  return scene;
-}
+using radfarm::testing::LitBox;
 
 SolverSettings Settings() {
   SolverSettings s;
