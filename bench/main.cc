@@ -19,6 +19,7 @@
 #include "bench/plot.h"
 #include "bench/raw_throughput.h"
 #include "bench/report.h"
+#include "bench/run_benchmark.h"
 #include "bench/seed_workload.h"
 #include "bench/stopwatch.h"
 #include "bench/sweep.h"
@@ -107,10 +108,5 @@ int Run(int argc, char** argv) {
 }  // namespace radfarm::bench
 
 int main(int argc, char** argv) {
-  try {
-    return radfarm::bench::Run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "solver_bench: %s\n", e.what());
-    return 1;
-  }
+  return radfarm::bench::RunBenchmark("solver_bench", radfarm::bench::Run, argc, argv);
 }

@@ -15,6 +15,7 @@
 #include "bench/machine_info.h"
 #include "bench/refine/adaptive_report.h"
 #include "bench/refine/study.h"
+#include "bench/run_benchmark.h"
 
 namespace radfarm::bench {
 namespace {
@@ -78,10 +79,5 @@ int Run(int argc, char** argv) {
 }  // namespace radfarm::bench
 
 int main(int argc, char** argv) {
-  try {
-    return radfarm::bench::Run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "refine_bench: %s\n", e.what());
-    return 1;
-  }
+  return radfarm::bench::RunBenchmark("refine_bench", radfarm::bench::Run, argc, argv);
 }

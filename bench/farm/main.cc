@@ -10,6 +10,7 @@
 #include "bench/farm/farm_bench_options.h"
 #include "bench/farm/farm_report.h"
 #include "bench/farm/scaling_suite.h"
+#include "bench/run_benchmark.h"
 #include "bench/stopwatch.h"
 
 namespace radfarm::bench {
@@ -107,10 +108,5 @@ int Run(int argc, char** argv) {
 }  // namespace radfarm::bench
 
 int main(int argc, char** argv) {
-  try {
-    return radfarm::bench::Run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "farm_bench: %s\n", e.what());
-    return 1;
-  }
+  return radfarm::bench::RunBenchmark("farm_bench", radfarm::bench::Run, argc, argv);
 }

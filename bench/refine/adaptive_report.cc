@@ -47,9 +47,8 @@ void WritePlots(const ReportRun& run, const StudyResult& s) {
       panel.series.push_back(u);
       for (double start : s.scene.adaptive_starts) {
         PlotSeries a{"adaptive from " + Fmt(start, "%g"), {}, true, 0, 0};
-        const std::string prefix = "start " + Fmt(start, "%g") + ",";
         for (const Row* r : adaptive) {
-          if (r->setting.rfind(prefix, 0) == 0) a.points.push_back(point(*r));
+          if (r->start_size == start) a.points.push_back(point(*r));
         }
         panel.series.push_back(a);
       }
@@ -111,8 +110,7 @@ void WriteOnePercentAim(const StudyResult& s, std::ostringstream& md) {
      << "rays:";
   const Row* fastest = nullptr;
   for (const Row& r : s.rows) {
-    const bool default_mesh =
-        r.setting.rfind("patch size " + Fmt(s.scene.default_size, "%g"), 0) == 0;
+    const bool default_mesh = r.start_size == s.scene.default_size && r.refine_tolerance == 0;
     if (!default_mesh || (r.group != "uniform" && r.group != "budget")) continue;
     md << " " << r.method << ": " << Fmt(100 * r.patch_error.net, "%.2f") << "% in "
        << Fmt(r.seconds, "%.2f") << " s;";
@@ -142,6 +140,13 @@ double UniformImageErrorAt(const StudyResult& s, double patches) {
                     t * (std::log(b.image_error) - std::log(a.image_error)));
   }
   return NAN;
+}
+
+const Row* UniformAt(const StudyResult& s, double size) {
+  for (const Row* r : Group(s, "uniform")) {
+    if (r->start_size == size) return r;
+  }
+  return nullptr;
 }
 
 const Row* FindRow(const StudyResult& s, const std::string& group, const std::string& prefix) {
@@ -188,11 +193,11 @@ void WriteDefaults(const std::vector<StudyResult>& studies, std::ostringstream& 
         "over the element as a fraction of its radiance, so a tolerance far below the ray noise "
         "(about 3% per element with the automatic rays) buys elements the noise then hides.";
   for (const StudyResult& s : studies) {
-    const std::string start = "start " + Fmt(s.scene.default_size, "%g") + ", tolerance ";
     const Row *a = nullptr, *b = nullptr;
     for (const Row* r : Group(s, "adaptive")) {
-      if (r->setting == start + "0.1") a = r;
-      if (r->setting == start + "0.01") b = r;
+      if (r->start_size != s.scene.default_size) continue;
+      if (r->refine_tolerance == 0.1) a = r;
+      if (r->refine_tolerance == 0.01) b = r;
     }
     if (a && b) {
       md << " " << s.scene.name << " from " << Fmt(s.scene.default_size, "%g") << ": 0.1 -> 0.01 "
@@ -205,10 +210,7 @@ void WriteDefaults(const std::vector<StudyResult>& studies, std::ostringstream& 
         "not be judged).\n";
   md << "- **Sampler**: Sobol stays the default.";
   for (const StudyResult& s : studies) {
-    const Row* sobol = nullptr;
-    for (const Row* r : Group(s, "uniform")) {
-      if (r->setting == "patch size " + Fmt(s.scene.default_size, "%g")) sobol = r;
-    }
+    const Row* sobol = UniformAt(s, s.scene.default_size);
     const Row* random = FindRow(s, "sampler", "random");
     const Row* grid = FindRow(s, "sampler", "grid 4");
     if (sobol && random && grid) {
@@ -221,10 +223,7 @@ void WriteDefaults(const std::vector<StudyResult>& studies, std::ostringstream& 
   md << " the seed's method (1° grid, 20 shots) is far from converged at any mesh.\n";
   md << "- **Over-relaxation** (`overrelaxation`, default 1 = plain Southwell):";
   for (const StudyResult& s : studies) {
-    const Row* plain = nullptr;
-    for (const Row* r : Group(s, "uniform")) {
-      if (r->setting == "patch size " + Fmt(s.scene.default_size, "%g")) plain = r;
-    }
+    const Row* plain = UniformAt(s, s.scene.default_size);
     if (!plain) continue;
     md << " " << s.scene.name << ": plain " << plain->rays << " rays, net patch error "
        << Fmt(plain->patch_error.net);

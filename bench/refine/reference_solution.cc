@@ -1,5 +1,6 @@
 #include "bench/refine/reference_solution.h"
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <stdexcept>
@@ -15,6 +16,14 @@ namespace {
 constexpr uint64_t kSeeds[2] = {1000003, 2000003};
 
 ReferenceSolution Finish(const PatchMesh& mesh, const Camera& camera, ReferenceSolution ref) {
+  std::vector<double> positive;
+  for (double b : ref.mean) {
+    if (b > 0) positive.push_back(b);
+  }
+  if (!positive.empty()) {
+    std::nth_element(positive.begin(), positive.begin() + positive.size() / 2, positive.end());
+    ref.dark_threshold = kLitFraction * positive[positive.size() / 2];
+  }
   const DisplayMesh display = mesh.MakeDisplayMesh();
   ref.image = RenderImage(display, ResolveCamera(display, camera));
   for (const Rgb& p : ref.image.pixels) ref.image_mean += p.Sum();

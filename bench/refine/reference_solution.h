@@ -16,16 +16,21 @@
 
 namespace radfarm::bench {
 
+inline constexpr double kLitFraction = 0.01;
+
 struct ReferenceSolution {
   double patch_size = 0;
   PatchScene scene;
   std::vector<double> mean;  // per reference patch: the two solves' mean radiosity (channel sum)
   std::vector<double> half_diff;  // per reference patch: half their difference
-  Image image;                    // rendered from the mean solution
-  double image_mean = 0;          // mean pixel value (channel sum)
-  uint64_t shot_rays = 0;         // of each solve
-  uint64_t rays = 0;              // both solves
-  double seconds = 0;             // both solves
+  // kLitFraction of the median positive `mean`: patches below it are dark (behind a light, under
+  // a block).
+  double dark_threshold = 0;
+  Image image;             // rendered from the mean solution
+  double image_mean = 0;   // mean pixel value (channel sum)
+  uint64_t shot_rays = 0;  // of each solve
+  uint64_t rays = 0;       // both solves
+  double seconds = 0;      // both solves
 };
 
 // With `cache_dir` set, the solves' results are kept there (keyed by scene name, patch size, ray

@@ -45,15 +45,8 @@ PatchError MeasurePatchError(const PatchScene& run, const std::vector<Rgb>& radi
   points.reserve(run.patches.size() * kPointsPerElement);
   for (const Patch& p : run.patches) AppendElementPoints(p, &points);
   const std::vector<uint32_t> under = LocatePoints(ref.scene, points);
-  // Dark: below kLitFraction of the median reference patch (behind a light, under a block).
-  std::vector<double> positive;
-  for (double b : ref.mean) {
-    if (b > 0) positive.push_back(b);
-  }
   PatchError out;
-  if (positive.empty()) return out;
-  std::nth_element(positive.begin(), positive.begin() + positive.size() / 2, positive.end());
-  const double threshold = kLitFraction * positive[positive.size() / 2];
+  const double threshold = ref.dark_threshold;
   const size_t n = run.patches.size();
   std::vector<double> bref(n, 0), noise(n, 0);
   std::vector<bool> counted(n, true);

@@ -4,7 +4,7 @@
 // reference's average over it (16 points spread evenly over the element, each looked up in the
 // reference mesh) is compared with the element's radiosity: (B - Bref) / Bref, RMS over the
 // elements, weighted by area so that meshes of any element sizes are judged over the same
-// surfaces. Elements that touch a dark reference patch (below kLitFraction of the median: behind a
+// surfaces. Elements that touch a dark reference patch (ReferenceSolution::dark_threshold: behind a
 // light, under a block) are left out: there two meshes cut a near-discontinuity differently, and
 // the difference is one of geometry, not of the solve (the image error still sees those places).
 // The same average of the reference's half difference gives the reference's own noise on that
@@ -23,8 +23,6 @@
 #include "output/image.h"
 
 namespace radfarm::bench {
-
-inline constexpr double kLitFraction = 0.01;
 
 struct PatchError {
   double measured = 0;         // RMS relative error against the reference

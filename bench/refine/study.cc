@@ -63,7 +63,7 @@ class Study {
       }
     }
     // Copies: Measure() appends rows, which may move them.
-    const Row* sobol = Find("uniform", "patch size " + Fmt(s.default_size));
+    const Row* sobol = UniformAt(s.default_size);
     if (sobol == nullptr) throw std::runtime_error(s.name + ": no uniform row at the default size");
     const uint64_t sobol_rays = sobol->rays;
     const uint64_t default_patches = sobol->patches;
@@ -107,9 +107,9 @@ class Study {
   }
 
  private:
-  const Row* Find(const std::string& group, const std::string& setting) const {
+  const Row* UniformAt(double size) const {
     for (const Row& r : result_.rows) {
-      if (r.group == group && r.setting == setting) return &r;
+      if (r.group == "uniform" && r.start_size == size) return &r;
     }
     return nullptr;
   }
@@ -127,6 +127,8 @@ class Study {
     row.group = group;
     row.method = method;
     row.setting = setting;
+    row.start_size = patch_size;
+    row.refine_tolerance = refine.enabled ? refine.tolerance : 0;
     row.patches_before = solved->patches_before;
     row.patches = solved->mesh->patch_scene().patches.size();
     row.rays = solved->solution.stats.rays;

@@ -26,6 +26,8 @@ struct Row {
   std::string group;  // "uniform", "adaptive", "sampler", "solver", "budget"
   std::string method;
   std::string setting;
+  double start_size = 0;        // the patch size the mesh was built with
+  double refine_tolerance = 0;  // 0: refinement off
   uint64_t patches_before = 0;
   uint64_t patches = 0;
   uint64_t rays = 0;
