@@ -33,6 +33,24 @@ double JsonNumber(const std::string& json, const std::string& key) {
   return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
 }
 
+// The files of two renders sharing one --db store: the first solves, the second finds its job.
+struct RenderFiles {
+  std::string patches_csv;
+  std::string stats_json;
+};
+void RenderTwiceWithDb(const std::string& scene, std::vector<std::string> settings,
+                       std::vector<RenderFiles>* runs) {
+  TempDir store;
+  settings.insert(settings.end(), {"--db", store.File("render.db")});
+  for (const char* run : {"first", "again"}) {
+    SCOPED_TRACE(run);
+    TempDir dir;
+    const auto d = Render(scene, dir.path(), settings);
+    ASSERT_EQ(d.exit_code, kExitOk) << d.err;
+    runs->push_back({ReadFile(dir.File("patches.csv")), ReadFile(dir.File("stats.json"))});
+  }
+}
+
 std::vector<std::vector<std::string>> ReadCsv(const std::string& path) {
   std::vector<std::vector<std::string>> rows;
   std::istringstream in(ReadFile(path));
@@ -136,16 +154,12 @@ TEST(RenderCommandTest, AdaptiveRefinementWithDbMatchesPlainRender) {
   ASSERT_EQ(r.exit_code, kExitOk) << r.err;
   const std::string reference = ReadFile(plain.File("patches.csv"));
   const std::string reference_stats = ReadFile(plain.File("stats.json"));
-  TempDir out;
-  std::vector<std::string> with_db = settings;
-  with_db.insert(with_db.end(), {"--db", out.File("render.db")});
-  for (const char* run : {"first", "again"}) {
-    SCOPED_TRACE(run);
-    TempDir dir;
-    const auto d = Render("cornell-box-adaptive.toml", dir.path(), with_db);
-    ASSERT_EQ(d.exit_code, kExitOk) << d.err;
-    EXPECT_TRUE(ReadFile(dir.File("patches.csv")) == reference);
-    const std::string stats = ReadFile(dir.File("stats.json"));
+  std::vector<RenderFiles> runs;
+  ASSERT_NO_FATAL_FAILURE(RenderTwiceWithDb("cornell-box-adaptive.toml", settings, &runs));
+  for (size_t run = 0; run < runs.size(); ++run) {
+    SCOPED_TRACE(run == 0 ? "first" : "again");
+    EXPECT_TRUE(runs[run].patches_csv == reference);
+    const std::string& stats = runs[run].stats_json;
     for (const char* key : {"patches_before_refinement", "patches_after_refinement", "rays",
                             "rounds", "unshot_fraction"}) {
       EXPECT_EQ(JsonNumber(stats, key), JsonNumber(reference_stats, key)) << key;
@@ -164,16 +178,12 @@ TEST(RenderCommandTest, BudgetStoppedDbRenderRerunsIdentically) {
   const std::string reference = ReadFile(plain.File("patches.csv"));
   const std::string reference_stats = ReadFile(plain.File("stats.json"));
   ASSERT_LT(JsonNumber(reference_stats, "rays"), 2900001);
-  TempDir out;
-  std::vector<std::string> with_db = settings;
-  with_db.insert(with_db.end(), {"--db", out.File("render.db")});
-  for (const char* run : {"first", "again"}) {
-    SCOPED_TRACE(run);
-    TempDir dir;
-    const auto d = Render("cornell-box.toml", dir.path(), with_db);
-    ASSERT_EQ(d.exit_code, kExitOk) << d.err;
-    EXPECT_TRUE(ReadFile(dir.File("patches.csv")) == reference);
-    const std::string stats = ReadFile(dir.File("stats.json"));
+  std::vector<RenderFiles> runs;
+  ASSERT_NO_FATAL_FAILURE(RenderTwiceWithDb("cornell-box.toml", settings, &runs));
+  for (size_t run = 0; run < runs.size(); ++run) {
+    SCOPED_TRACE(run == 0 ? "first" : "again");
+    EXPECT_TRUE(runs[run].patches_csv == reference);
+    const std::string& stats = runs[run].stats_json;
     EXPECT_EQ(JsonNumber(stats, "rays"), JsonNumber(reference_stats, "rays"));
     EXPECT_EQ(JsonNumber(stats, "rounds"), JsonNumber(reference_stats, "rounds"));
     EXPECT_NE(stats.find("\"stop_reason\": \"ray budget\""), std::string::npos) << stats;
