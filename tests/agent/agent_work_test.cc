@@ -29,9 +29,10 @@ class AgentWorkTest : public ::testing::Test {
   }
 
   std::unique_ptr<AgentProcess> StartAgent(unsigned threads, std::vector<std::string> extra = {}) {
+    // Counted before the agent starts: it may authenticate before a later snapshot.
+    const int connections = master_.Snapshot().authenticated + 1;
     auto agent = std::make_unique<AgentProcess>(
         AgentArgs(master_.address(), dir_.File("key"), threads, std::move(extra)));
-    const int connections = master_.Snapshot().authenticated + 1;
     EXPECT_TRUE(master_.WaitFor([&](const Record& r) {
       return r.authenticated >= connections && r.open == 1;
     })) << agent->Log();
