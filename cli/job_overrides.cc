@@ -19,8 +19,10 @@ void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
   command->add_option("--sampler", overrides->sampler, "grid, random or sobol (default sobol)")
       ->check(CLI::IsMember({"grid", "random", "sobol"}));
   command
-      ->add_option("--patch-size", overrides->patch_size,
-                   "Largest patch edge in scene units (default: scene diagonal / 40)")
+      ->add_option(
+          "--patch-size", overrides->patch_size,
+          "Largest patch edge in scene units; triangles up to sqrt(2) times it (default: scene "
+          "diagonal / 40)")
       ->check(PositiveReal());
 }
 

@@ -2,7 +2,8 @@
 //
 //   scene = "cornell-box.obj"     # the OBJ; a relative path is relative to this file's directory
 //   [mesh]
-//   patch_size = 30.0             # largest patch edge in scene units, > 0 (absent: automatic)
+//   patch_size = 30.0             # largest patch edge in scene units, > 0 (absent: automatic);
+//                                 # a triangle's longest edge may be sqrt(2) times it
 //   refine = false                # adaptive refinement of receivers during the solve
 //   refine_tolerance = 0.1        # relative image error that splits an element, > 0
 //   min_element_size = 3.0        # smallest element edge, > 0 (absent: patch size / 4)

@@ -3,7 +3,8 @@
 namespace radfarm {
 
 struct MeshSettings {
-  // Largest patch edge, in scene units. 0 picks one automatically from the scene's size.
+  // Largest quad patch edge, in scene units; a triangle's longest edge may be sqrt(2) times it,
+  // a grid cell's diagonal (mesh/polygon_split.h). 0 picks one automatically from the scene's size.
   double patch_size = 0;
 };
 

@@ -87,7 +87,7 @@ SplitPlan PlanSplit(const std::vector<Vec3>& corners, const Vec3& unit_normal, d
   }
   double longest = 0;
   for (const auto& t : plan.triangles) longest = std::max(longest, LongestEdge(t));
-  plan.k = Divisions(longest, patch_size);
+  plan.k = Divisions(longest, kTriangleEdgeFactor * patch_size);
   return plan;
 }
 

@@ -43,12 +43,27 @@ TEST(PolygonSplitTest, GridCountsFollowTheLongerOppositeEdge) {
 }
 
 TEST(PolygonSplitTest, TriangleSplitsIntoKSquaredSimilarTriangles) {
-  const auto pieces = Split({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, 0.5);  // longest edge sqrt(2)
+  // Longest edge sqrt(2), allowed piece edge 0.4 sqrt(2): k = 3.
+  const auto pieces = Split({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, 0.4);
   ASSERT_EQ(pieces.size(), 9u);
   for (const PieceCorners& p : pieces) {
     EXPECT_EQ(p.count, 3);
     const std::vector<Vec3> c(p.corners.begin(), p.corners.begin() + 3);
     EXPECT_NEAR(VectorArea(c).z, 0.5 / 9, 1e-15);  // same area, same orientation
+  }
+}
+
+// A triangle piece is as large as half a grid cell: the half of a unit square cut along its
+// diagonal becomes 4 pieces at patch size 0.5, two per 0.5 x 0.5 cell of the square's 2 x 2 grid
+// (bounding the hypotenuse by the patch size would give 9).
+TEST(PolygonSplitTest, TrianglePiecesAreHalfGridCells) {
+  const auto square = Split({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, 0.5);
+  const auto half = Split({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, 0.5);
+  ASSERT_EQ(square.size(), 4u);
+  ASSERT_EQ(half.size(), 4u);
+  for (const PieceCorners& p : half) {
+    const std::vector<Vec3> c(p.corners.begin(), p.corners.begin() + 3);
+    EXPECT_NEAR(VectorArea(c).z, 0.5 * 0.5 / 2, 1e-15);
   }
 }
 
@@ -106,7 +121,9 @@ TEST(PolygonSplitTest, AreaIsPreservedAndEdgesRespectThePatchSize) {
     EXPECT_NEAR(TotalArea(mesh->patch_scene()), area, 1e-9 * area);
     EXPECT_GT(mesh->patch_scene().patches.size(), 4u);
     for (const Patch& p : mesh->patch_scene().patches) {
-      EXPECT_LE(LongestEdge(p), c.patch_size * (1 + 1e-9));
+      const double allowed =
+          p.corner_count == 3 ? kTriangleEdgeFactor * c.patch_size : c.patch_size;
+      EXPECT_LE(LongestEdge(p), allowed * (1 + 1e-9));
     }
   }
 }
