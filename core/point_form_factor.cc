@@ -1,0 +1,44 @@
+#include "core/point_form_factor.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+namespace radfarm {
+namespace {
+
+// A clipped quad gains at most one corner per clipping plane.
+constexpr int kMaxCorners = 5;
+
+}  // namespace
+
+double PointToPatchFormFactor(const Vec3& x, const Vec3& n, const Patch& patch) {
+  // Only the front of the patch emits.
+  if (Dot(x - patch.corners[0], patch.normal) <= 0) return 0;
+  // Corners relative to x, clipped to the receiver's upper half-space (Sutherland-Hodgman).
+  std::array<Vec3, kMaxCorners> clipped;
+  int count = 0;
+  for (int i = 0; i < patch.corner_count; ++i) {
+    const Vec3 a = patch.corners[i] - x;
+    const Vec3 b = patch.corners[(i + 1) % patch.corner_count] - x;
+    const double da = Dot(a, n), db = Dot(b, n);
+    if (da >= 0) clipped[count++] = a;
+    if ((da >= 0) != (db >= 0)) clipped[count++] = a + (b - a) * (da / (da - db));
+  }
+  if (count < 3) return 0;
+  double sum = 0;
+  for (int i = 0; i < count; ++i) {
+    const Vec3 a = Normalize(clipped[i]);
+    const Vec3 b = Normalize(clipped[(i + 1) % count]);
+    const Vec3 c = Cross(a, b);
+    const double s = Length(c);
+    if (s == 0) continue;  // an edge through or pointing at x subtends no angle
+    const double angle = std::atan2(s, Dot(a, b));
+    sum += angle * Dot(c / s, n);
+  }
+  // The sign of the sum follows the corners' winding as seen from x; every edge shares it.
+  return std::abs(sum) / (2 * std::numbers::pi);
+}
+
+}  // namespace radfarm

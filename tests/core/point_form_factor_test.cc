@@ -1,0 +1,76 @@
+#include "core/point_form_factor.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace radfarm {
+namespace {
+
+// A quad with corners counter-clockwise about `normal` (as patches are).
+Patch Quad(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  Patch p;
+  p.corners = {a, b, c, d};
+  p.corner_count = 4;
+  p.normal = Normalize(Cross(b - a, c - a));
+  p.centre = (a + b + c + d) / 4;
+  p.area = Length(Cross(c - a, d - b)) / 2;
+  return p;
+}
+
+// The unit square 1 above the origin, facing down.
+Patch SquareAbove() { return Quad({-0.5, -0.5, 1}, {-0.5, 0.5, 1}, {0.5, 0.5, 1}, {0.5, -0.5, 1}); }
+
+TEST(PointFormFactorTest, MatchesTheClosedFormForACentredSquare) {
+  // Parallel unit square centred 1 above the point: 0.2394564705 (e.g. Howell's catalogue, C-11).
+  EXPECT_NEAR(PointToPatchFormFactor({0, 0, 0}, {0, 0, 1}, SquareAbove()), 0.2394564705, 1e-9);
+}
+
+TEST(PointFormFactorTest, MatchesTheClosedFormForACornerOfARectangle) {
+  // Point below a corner of an a x b rectangle at height c (Howell C-11):
+  // F = 1/(2 pi) [A/sqrt(1+A^2) atan(B/sqrt(1+A^2)) + B/sqrt(1+B^2) atan(A/sqrt(1+B^2))],
+  // A = a/c, B = b/c.
+  const double a = 2, b = 0.5, c = 1.5, A = a / c, B = b / c;
+  const double expected = (A / std::sqrt(1 + A * A) * std::atan(B / std::sqrt(1 + A * A)) +
+                           B / std::sqrt(1 + B * B) * std::atan(A / std::sqrt(1 + B * B))) /
+                          (2 * std::numbers::pi);
+  const Patch rect = Quad({0, 0, c}, {0, b, c}, {a, b, c}, {a, 0, c});
+  EXPECT_NEAR(PointToPatchFormFactor({0, 0, 0}, {0, 0, 1}, rect), expected, 1e-12);
+}
+
+TEST(PointFormFactorTest, TheBackOfAPatchSendsNothing) {
+  const Patch up = Quad({-0.5, -0.5, 1}, {0.5, -0.5, 1}, {0.5, 0.5, 1}, {-0.5, 0.5, 1});
+  EXPECT_EQ(PointToPatchFormFactor({0, 0, 0}, {0, 0, 1}, up), 0);
+}
+
+TEST(PointFormFactorTest, OnlyThePartAboveTheTangentPlaneCounts) {
+  // A vertical wall in front of the point, reaching as far below its plane as above: half of a
+  // wall of twice the height above the plane.
+  const Patch wall = Quad({1, -1, -1}, {1, -1, 1}, {1, 1, 1}, {1, 1, -1});
+  const Patch upper = Quad({1, -1, 0}, {1, -1, 1}, {1, 1, 1}, {1, 1, 0});
+  EXPECT_GT(PointToPatchFormFactor({0, 0, 0}, {0, 0, 1}, upper), 0.05);
+  EXPECT_NEAR(PointToPatchFormFactor({0, 0, 0}, {0, 0, 1}, wall),
+              PointToPatchFormFactor({0, 0, 0}, {0, 0, 1}, upper), 1e-12);
+  // Entirely below: nothing.
+  const Patch lower = Quad({1, -1, -1}, {1, -1, -0.1}, {1, 1, -0.1}, {1, 1, -1});
+  EXPECT_EQ(PointToPatchFormFactor({0, 0, 0}, {0, 0, 1}, lower), 0);
+}
+
+TEST(PointFormFactorTest, AHemisphereOfPatchesSumsToOne) {
+  // The five faces of a cube's upper half around the point see its whole hemisphere.
+  const double h = 1;
+  const Patch faces[] = {
+      Quad({-h, -h, h}, {-h, h, h}, {h, h, h}, {h, -h, h}),    // top, facing down
+      Quad({h, -h, 0}, {h, -h, h}, {h, h, h}, {h, h, 0}),      // +x wall, facing -x
+      Quad({-h, -h, 0}, {-h, h, 0}, {-h, h, h}, {-h, -h, h}),  // -x wall
+      Quad({-h, h, 0}, {h, h, 0}, {h, h, h}, {-h, h, h}),      // +y wall
+      Quad({-h, -h, 0}, {-h, -h, h}, {h, -h, h}, {h, -h, 0}),  // -y wall
+  };
+  double sum = 0;
+  for (const Patch& f : faces) sum += PointToPatchFormFactor({0, 0, 0}, {0, 0, 1}, f);
+  EXPECT_NEAR(sum, 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace radfarm
