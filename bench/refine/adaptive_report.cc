@@ -266,9 +266,15 @@ void WriteAdaptiveReport(const ReportRun& run, const std::vector<StudyResult>& s
         "error subtracts it in quadrature. It measures how well each element's value is "
         "computed, not the detail a coarse element cannot show.\n"
      << "- **Image error**: mean over pixels of |I - Iref| (linear, channel sum, Gouraud-shaded "
-        "from vertex radiance, 256 x 256, 4 samples per pixel) over the mean of Iref, the "
-        "reference rendered the same way: smeared shadows, Mach bands, leaks and blotches "
-        "count. This is the measure meshes are compared by.\n"
+        "from vertex radiance, 256 x 256, 4 samples per pixel) over the mean of Iref: smeared "
+        "shadows, Mach bands, leaks and blotches count. This is the measure meshes are compared "
+        "by. **Iref** is not the reference mesh's own Gouraud image (a uniform mesh would then be "
+        "judged by how much it looks like another uniform mesh): at every subpixel sample the "
+        "light straight from the emitters is computed at the sample's surface point (the "
+        "closed-form form factor of each light element times the share of 64 shadow rays to it "
+        "that arrive), and only the rest of the reference radiosity (emission and light that "
+        "bounced, which is smooth) is Gouraud-shaded from the reference mesh "
+        "(bench/refine/reference_image.h).\n"
      << "- **Time**: `SolveRefining` wall time (meshing excluded, refinement included).\n\n";
   for (const StudyResult& s : studies) {
     WritePlots(run, s);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bench/refine/reference_image.h"
 #include "core/solve.h"
 #include "mesh/patch_mesh.h"
 
@@ -15,7 +16,9 @@ namespace {
 // Seeds no row uses (rows run seed 1): a shared seed would share their first rays.
 constexpr uint64_t kSeeds[2] = {1000003, 2000003};
 
-ReferenceSolution Finish(const PatchMesh& mesh, const Camera& camera, ReferenceSolution ref) {
+ReferenceSolution Finish(PatchMesh& mesh, const std::vector<Rgb>& mean,
+                         const std::vector<Rgb>& unshot, const Camera& camera,
+                         ReferenceSolution ref) {
   std::vector<double> positive;
   for (double b : ref.mean) {
     if (b > 0) positive.push_back(b);
@@ -25,7 +28,7 @@ ReferenceSolution Finish(const PatchMesh& mesh, const Camera& camera, ReferenceS
     ref.dark_threshold = kLitFraction * positive[positive.size() / 2];
   }
   const DisplayMesh display = mesh.MakeDisplayMesh();
-  ref.image = RenderImage(display, ResolveCamera(display, camera));
+  ref.image = RenderReferenceImage(mesh, mean, unshot, ResolveCamera(display, camera));
   for (const Rgb& p : ref.image.pixels) ref.image_mean += p.Sum();
   ref.image_mean /= double(ref.image.pixels.size());
   return ref;
@@ -94,7 +97,7 @@ ReferenceSolution SolveReference(const InputScene& scene, const std::string& nam
                                       std::to_string(camera.width) + ".ref";
   if (!cache.empty() && ReadCache(cache, n, &ref, &mean, &mean_unshot)) {
     mesh->SetSolution(mean, mean_unshot);
-    return Finish(*mesh, camera, std::move(ref));
+    return Finish(*mesh, mean, mean_unshot, camera, std::move(ref));
   }
   for (int k = 0; k < 2; ++k) {
     SolverSettings s;
@@ -115,7 +118,7 @@ ReferenceSolution SolveReference(const InputScene& scene, const std::string& nam
   }
   if (!cache.empty()) WriteCache(cache, ref, mean, mean_unshot);
   mesh->SetSolution(mean, mean_unshot);
-  return Finish(*mesh, camera, std::move(ref));
+  return Finish(*mesh, mean, mean_unshot, camera, std::move(ref));
 }
 
 }  // namespace radfarm::bench

@@ -26,7 +26,7 @@ struct ReferenceSolution {
   // kLitFraction of the median positive `mean`: patches below it are dark (behind a light, under
   // a block).
   double dark_threshold = 0;
-  Image image;             // rendered from the mean solution
+  Image image;             // RenderReferenceImage of the mean solution
   double image_mean = 0;   // mean pixel value (channel sum)
   uint64_t shot_rays = 0;  // of each solve
   uint64_t rays = 0;       // both solves

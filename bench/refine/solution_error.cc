@@ -3,41 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bench/refine/element_points.h"
 #include "mesh/locate_patches.h"
 
 namespace radfarm::bench {
-namespace {
-
-constexpr int kSections = 4;  // points per element: kSections^2
-constexpr int kPointsPerElement = kSections * kSections;
-
-// kSections^2 points of equal share over a patch: the centres of a kSections x kSections grid of
-// a quad (bilinear), the centroids of the kSections^2 triangles of a triangle cut into sections.
-void AppendElementPoints(const Patch& p, std::vector<SurfacePoint>* out) {
-  const auto& c = p.corners;
-  if (p.corner_count == 4) {
-    for (int i = 0; i < kSections; ++i) {
-      for (int j = 0; j < kSections; ++j) {
-        const double u = (i + 0.5) / kSections, v = (j + 0.5) / kSections;
-        out->push_back({c[0] * ((1 - u) * (1 - v)) + c[1] * (u * (1 - v)) + c[2] * (u * v) +
-                            c[3] * ((1 - u) * v),
-                        p.normal});
-      }
-    }
-    return;
-  }
-  auto at = [&](double u, double v) { return c[0] * (1 - u - v) + c[1] * u + c[2] * v; };
-  for (int i = 0; i < kSections; ++i) {
-    for (int j = 0; i + j < kSections; ++j) {
-      out->push_back({at((i + 1.0 / 3) / kSections, (j + 1.0 / 3) / kSections), p.normal});
-      if (i + j < kSections - 1) {
-        out->push_back({at((i + 2.0 / 3) / kSections, (j + 2.0 / 3) / kSections), p.normal});
-      }
-    }
-  }
-}
-
-}  // namespace
 
 PatchError MeasurePatchError(const PatchScene& run, const std::vector<Rgb>& radiosity,
                              const ReferenceSolution& ref) {

@@ -13,6 +13,7 @@
 //
 // Image error: mean over pixels of |I - Iref| (linear, channel sum, Gouraud-shaded from vertex
 // radiance) over the mean of Iref: smeared shadows, Mach bands, leaks and blotches all count.
+// Iref has the direct light computed per sample (reference_image.h).
 #pragma once
 
 #include <vector>

@@ -1,0 +1,54 @@
+#include "bench/refine/direct_light.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/counter_rng.h"
+#include "core/point_form_factor.h"
+#include "core/ray_sampler.h"
+
+namespace radfarm::bench {
+
+DirectLight::DirectLight(const PatchScene& scene, const RayCaster& caster, uint32_t rays_per_point)
+    : scene_(scene), caster_(caster) {
+  for (uint32_t i = 0; i < scene.patches.size(); ++i) {
+    if (scene.patches[i].emission.Max() > 0) {
+      emitters_.push_back(i);
+      splits_.push_back(TriangleSplit(scene.patches[i]));
+    }
+  }
+  const double per_emitter = double(rays_per_point) / double(std::max<size_t>(1, emitters_.size()));
+  grid_ = std::max(1u, static_cast<uint32_t>(std::ceil(std::sqrt(per_emitter))));
+}
+
+bool DirectLight::Reaches(const Vec3& x, const Vec3& n, const Vec3& target,
+                          uint32_t emitter) const {
+  const RayHit hit = caster_.Trace(x, Normalize(target - x), n);
+  if (hit.patch == RayHit::kMiss || !hit.front) return false;
+  // A ray aimed at one element of a light may land on its neighbour by rounding: still the light.
+  const Patch& p = scene_.patches[hit.patch];
+  return hit.patch == emitter ||
+         (p.emission.Max() > 0 && p.surface == scene_.patches[emitter].surface);
+}
+
+Rgb DirectLight::Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const {
+  Rgb e;
+  for (size_t k = 0; k < emitters_.size(); ++k) {
+    const Patch& p = scene_.patches[emitters_[k]];
+    const double f = PointToPatchFormFactor(x, n, p);
+    if (f <= 0) continue;
+    // Shadow rays to the centres of a grid_ x grid_ jittered stratification of the patch.
+    uint32_t seen = 0;
+    for (uint32_t i = 0; i < grid_; ++i) {
+      for (uint32_t j = 0; j < grid_; ++j) {
+        const CounterRng rng(HashWords(key, emitters_[k], i * grid_ + j));
+        const double u = (i + rng.Uniform(0)) / grid_, v = (j + rng.Uniform(1)) / grid_;
+        if (Reaches(x, n, SamplePatchPoint(p, splits_[k], u, v), emitters_[k])) ++seen;
+      }
+    }
+    e += p.emission * (f * double(seen) / double(grid_ * grid_));
+  }
+  return e;
+}
+
+}  // namespace radfarm::bench

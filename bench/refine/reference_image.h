@@ -1,0 +1,24 @@
+// The report's reference image: what the reference solution's light looks like without the
+// reference mesh's own artefacts in its sharpest part. Every subpixel sample (the rasteriser's, so
+// antialiasing matches the rows' images) gets the light arriving straight from the emitters at
+// its surface point, computed there (direct_light.h), plus the rest of the reference radiosity
+// (emission and light that bounced at least once, which is smooth), Gouraud-shaded from the
+// reference mesh. Shadow edges, penumbrae and the fall-off of the direct light then count at their
+// true place, not as the reference mesh would have drawn them.
+#pragma once
+
+#include <vector>
+
+#include "core/rgb.h"
+#include "mesh/patch_mesh.h"
+#include "output/camera.h"
+#include "output/image.h"
+
+namespace radfarm::bench {
+
+// `mesh` is the reference mesh and `radiosity` its solution (one value per patch); `camera` is
+// resolved (not automatic).
+Image RenderReferenceImage(PatchMesh& mesh, const std::vector<Rgb>& radiosity,
+                           const std::vector<Rgb>& unshot, const Camera& camera);
+
+}  // namespace radfarm::bench
