@@ -69,7 +69,8 @@ class PatchMesh {
   // Stores the solution (one value per patch, in the solver's units: those of the emission) in the
   // face properties B and dB, and sets each vertex's radiance to the area-weighted average of B
   // over the patches of its surface that touch it: as a corner, or with the vertex on an edge (a
-  // T-vertex). Values never mix across surfaces, so creases stay sharp.
+  // T-vertex). Values never mix across surfaces, so creases stay sharp. Vertices on a surface's
+  // border are then extrapolated from the inside (mesh/border_extrapolation.h).
   void SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot);
 
   // Triangles with per-vertex radiance for the image and the PLY: one vertex per surface and
@@ -83,6 +84,8 @@ class PatchMesh {
 
  private:
   PatchMesh() = default;
+  // Per patch, its display vertices in order: corners and the T-vertices on its edges.
+  std::vector<std::vector<uint32_t>> FaceRings() const;
 
   PatchMeshData data_;
   double patch_size_ = 0;

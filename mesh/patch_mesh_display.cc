@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "mesh/border_extrapolation.h"
 #include "mesh/ear_clip.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/polygon.h"
@@ -32,10 +33,32 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
     for (OmMesh::VertexHandle vh : mesh.fv_range(fh)) accumulate(mesh.property(p.group, vh), f);
   }
   for (const EdgePoint& e : data_.edge_points) accumulate(e.group, e.face);
+  std::vector<Rgb> value(sum.size());
+  for (size_t g = 0; g < sum.size(); ++g) value[g] = weight[g] > 0 ? sum[g] / weight[g] : Rgb();
+  ExtrapolateBorders(FaceRings(), &value);
   for (OmMesh::VertexHandle vh : mesh.vertices()) {
-    const uint32_t g = mesh.property(p.group, vh);
-    mesh.property(p.radiance, vh) = weight[g] > 0 ? sum[g] / weight[g] : Rgb();
+    mesh.property(p.radiance, vh) = value[mesh.property(p.group, vh)];
   }
+}
+
+std::vector<std::vector<uint32_t>> PatchMesh::FaceRings() const {
+  const OmMesh& mesh = *data_.mesh;
+  const PatchProperties& p = data_.props;
+  std::vector<std::vector<uint32_t>> rings(data_.scene.patches.size());
+  auto edge_point = data_.edge_points.begin();
+  for (uint32_t f = 0; f < rings.size(); ++f) {
+    std::array<OmMesh::VertexHandle, 4> corners;
+    const int n = FaceCorners(mesh, mesh.face_handle(f), &corners);
+    for (int j = 0; j < n; ++j) {
+      rings[f].push_back(mesh.property(p.group, corners[j]));
+      for (; edge_point != data_.edge_points.end() && edge_point->face == f &&
+             edge_point->edge == static_cast<uint32_t>(j);
+           ++edge_point) {
+        rings[f].push_back(edge_point->group);
+      }
+    }
+  }
+  return rings;
 }
 
 DisplayMesh PatchMesh::MakeDisplayMesh() const {
@@ -46,21 +69,11 @@ DisplayMesh PatchMesh::MakeDisplayMesh() const {
     out.positions.push_back(FromOm(mesh.point(vh)));
     out.radiance.push_back(mesh.property(p.radiance, vh));
   }
-  auto edge_point = data_.edge_points.begin();
-  std::vector<uint32_t> ring;
+  const std::vector<std::vector<uint32_t>> rings = FaceRings();
   std::vector<Vec3> ring_positions;
   for (uint32_t f = 0; f < data_.scene.patches.size(); ++f) {
-    std::array<OmMesh::VertexHandle, 4> corners;
-    const int n = FaceCorners(mesh, mesh.face_handle(f), &corners);
-    ring.clear();
-    for (int j = 0; j < n; ++j) {
-      ring.push_back(mesh.property(p.group, corners[j]));
-      for (; edge_point != data_.edge_points.end() && edge_point->face == f &&
-             edge_point->edge == static_cast<uint32_t>(j);
-           ++edge_point) {
-        ring.push_back(edge_point->group);
-      }
-    }
+    const std::vector<uint32_t>& ring = rings[f];
+    const int n = data_.scene.patches[f].corner_count;
     if (static_cast<int>(ring.size()) == n) {
       // The split the Patch contract names for quads: (0, 1, 2) and (0, 2, 3).
       for (int j = 1; j + 1 < n; ++j) {

@@ -1,11 +1,12 @@
-// Vertex radiance: area-weighted averages within a surface, sharp creases, and continuous shading
-// across T-vertices.
+// Vertex radiance: area-weighted averages within a surface, extrapolated at its border, sharp
+// creases, and continuous shading across T-vertices.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <map>
 #include <tuple>
 
+#include "mesh/border_extrapolation.h"
 #include "mesh/patch_mesh.h"
 #include "test_scenes.h"
 
@@ -152,8 +153,8 @@ TEST(VertexRadianceTest, ShadingIsContinuousAcrossAnInputTJunction) {
 
 TEST_F(TVertexTest, LinearFieldIsReproducedClosely) {
   // Exact where a vertex is surrounded symmetrically (the centre of the left quad), close inside
-  // the shared edge, where each side contributes patches of different shapes. (On the outline an
-  // average of patches on one side is off by up to half a patch; that is what averaging does.)
+  // the shared edge, where each side contributes patches of different shapes. (The outline is
+  // extrapolated: BorderVerticesContinueALinearField.)
   for (size_t v = 0; v < display_.positions.size(); ++v) {
     const Vec3& p = display_.positions[v];
     const Rgb want = Field(p);
@@ -165,6 +166,56 @@ TEST_F(TVertexTest, LinearFieldIsReproducedClosely) {
       EXPECT_NEAR(display_.radiance[v].g, want.g, 0.1) << p.y;
     }
   }
+}
+
+// On a grid, a border vertex's average is the field half a patch inside; extrapolated from its
+// neighbour inside the surface it is the field at the border itself. Grid corners have no
+// neighbour inside and keep the corner patch's value.
+TEST(VertexRadianceTest, BorderVerticesContinueALinearField) {
+  SceneBuilder s;
+  s.AddMaterial("white", {0.5, 0.5, 0.5}, {1, 1, 1});
+  s.AddFace({{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}});
+  const std::unique_ptr<PatchMesh> mesh = WithLinearField(s.scene(), 0.5);
+  ASSERT_NE(mesh, nullptr);
+  ASSERT_EQ(mesh->patch_scene().patches.size(), 16u);
+  const DisplayMesh display = mesh->MakeDisplayMesh();
+  int borders = 0, corners = 0;
+  for (size_t v = 0; v < display.positions.size(); ++v) {
+    const Vec3& p = display.positions[v];
+    const bool on_x = p.x < 1e-12 || p.x > 2 - 1e-12, on_y = p.y < 1e-12 || p.y > 2 - 1e-12;
+    SCOPED_TRACE(::testing::Message() << p.x << ", " << p.y);
+    if (on_x && on_y) {
+      ++corners;
+      const Rgb patch = Field({p.x < 1 ? 0.25 : 1.75, p.y < 1 ? 0.25 : 1.75, 0});
+      EXPECT_NEAR(display.radiance[v].r, patch.r, 1e-12);
+      continue;
+    }
+    const Rgb want = Field(p);  // inside, and on the border by extrapolation
+    borders += on_x || on_y;
+    EXPECT_NEAR(display.radiance[v].r, want.r, 1e-12);
+    EXPECT_NEAR(display.radiance[v].g, want.g, 1e-12);
+    EXPECT_NEAR(display.radiance[v].b, want.b, 1e-12);
+  }
+  EXPECT_EQ(corners, 4);
+  EXPECT_EQ(borders, 12);
+}
+
+// A 3 x 3 grid of faces (vertices 4 x 4, numbered row by row): a border vertex far darker than the
+// inside would extrapolate below zero and is clamped; vertices inside are never changed.
+TEST(VertexRadianceTest, ExtrapolationIsClampedAtZero) {
+  std::vector<std::vector<uint32_t>> rings;
+  for (uint32_t y = 0; y < 3; ++y) {
+    for (uint32_t x = 0; x < 3; ++x) {
+      const uint32_t v = 4 * y + x;
+      rings.push_back({v, v + 1, v + 5, v + 4});
+    }
+  }
+  std::vector<Rgb> values(16, Rgb(3, 3, 3));
+  values[1] = {1, 2, 4};  // on the bottom border; its neighbour inside is vertex 5
+  ExtrapolateBorders(rings, &values);
+  EXPECT_EQ(values[1], Rgb(0, 1, 5));
+  EXPECT_EQ(values[5], Rgb(3, 3, 3));
+  EXPECT_EQ(values[0], Rgb(3, 3, 3));  // a corner: no neighbour inside
 }
 
 TEST_F(TVertexTest, PatchesWithTVerticesAreTriangulatedThroughThem) {
