@@ -182,13 +182,15 @@ void WriteDefaults(const std::vector<StudyResult>& studies, std::ostringstream& 
     md << ";";
   }
   md << " rows outside the uniform range are not judged. Refinement pays where the light has "
-        "edges sharper than the mesh (the hard-shadow scene's small light); in rooms lit by one "
-        "area light most of the image error left is smooth (the fall-off and the darkening "
-        "toward the room's corners, which vertex averaging flattens at every surface's border) "
-        "and ray noise, which a finer uniform mesh spends its patches on as well. So `refine` "
-        "stays **off** by default, to be turned on for scenes with small lights or sharp "
-        "shadows, starting from the patch size one would use without it (the rows from twice "
-        "that size lose: their coarse elements miss the smooth light).\n";
+        "edges sharper than the mesh (the hard-shadow scene's small light). In rooms lit by one "
+        "large area light the image error left is spread over every surface: the Gouraud "
+        "image's error on smooth light (fall-off, the darkening toward corners), which a finer "
+        "uniform mesh lowers everywhere and refinement only where an element's score passes "
+        "the tolerance (the lowest tolerances refine nearly everywhere, as a uniform mesh "
+        "would), and ray noise. So `refine` stays **off** by default, to be turned on for "
+        "scenes with small lights or sharp shadows, starting from the patch size one would use "
+        "without it (the rows from twice that size lose: their coarse elements miss the smooth "
+        "light).\n";
   md << "- **`refine_tolerance` = 0.1** (the default): the score is the Gouraud image's error "
         "over the element as a fraction of its radiance, so a tolerance far below the ray noise "
         "(about 3% per element with the automatic rays) buys elements the noise then hides.";
@@ -236,10 +238,25 @@ void WriteDefaults(const std::vector<StudyResult>& studies, std::ostringstream& 
         "over-relaxation saves rounds and rays only where the unshot power converges slowly (high "
         "reflectance, see tests/core/overrelaxation_test.cc); it stays off by default unless "
         "these rows show it saving rays at equal error.\n";
-  md << "- **Rays** (automatic `shot_rays`, 1024 per element): the *4x rays* rows cut the net "
-        "patch error by about half, as ray noise would: the patch error of these meshes is "
-        "noise, not discretisation, and 1% on the Cornell box would take about 10x the "
-        "automatic rays.\n";
+  md << "- **Rays** (automatic `shot_rays`, 1024 per element): if the net patch error squared is "
+        "a floor that rays do not lower plus ray noise falling as 1 / rays, the rows with more "
+        "rays split the default mesh's error into the two:";
+  for (const StudyResult& s : studies) {
+    const Row* plain = UniformAt(s, s.scene.default_size);
+    const Row* more = FindRow(s, "budget", "default, ");
+    if (!plain || !more || !(more->rays > plain->rays)) continue;
+    const double k = double(more->rays) / double(plain->rays);
+    const double m1 = plain->patch_error.net, mk = more->patch_error.net;
+    const double floor2 = std::max(0.0, (k * mk * mk - m1 * m1) / (k - 1));
+    md << " " << s.scene.name << ": floor " << Fmt(100 * std::sqrt(floor2), "%.2f") << "%, noise "
+       << Fmt(100 * std::sqrt(std::max(0.0, m1 * m1 - floor2)), "%.2f")
+       << "% at the automatic rays;";
+  }
+  md << " the floor is discretisation: an element's light is computed from shooters taken as "
+        "uniform over their area, which fails where light changes within an element (the "
+        "blocks' contacts with the floor, the corners). Where it is near or above 1%, 1% RMS "
+        "patch error is out of reach of more rays on that mesh; below it, the noise falls as "
+        "1 / sqrt(rays).\n";
 }
 
 }  // namespace
