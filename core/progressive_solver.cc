@@ -109,6 +109,14 @@ RoundPlan ProgressiveSolver::PlanRound(uint32_t batch_rays, uint64_t ray_cap) co
       shot.rays = std::max<uint64_t>(1, static_cast<uint64_t>(double(shot.rays) * scale));
       plan.rays += shot.rays;
     }
+    // Rounding down left less than one ray per shot unspent: one more each, in shot order, until
+    // the budget is spent exactly (a job with a ray budget then casts exactly that many rays).
+    for (size_t s = 0; s < plan.shots.size() && plan.rays < ray_cap; ++s) {
+      if (plan.shots[s].rays < kMaxRaysPerShot) {
+        ++plan.shots[s].rays;
+        ++plan.rays;
+      }
+    }
     plan.capped = true;
   }
   for (const Shot& shot : plan.shots) {
