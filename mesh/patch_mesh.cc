@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "mesh/clean_faces.h"
+#include "mesh/contact_cut.h"
 #include "mesh/hidden_faces.h"
 #include "mesh/polygon_split.h"
 #include "mesh/surfaces.h"
@@ -96,6 +97,7 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   if (faces.empty()) return Error{scene.path + ": no faces left to mesh"};
 
   const SurfaceGroups surfaces = GroupSurfaces(faces, tol);
+  const std::vector<std::vector<Footprint>> footprints = FindFootprints(faces, tol);
   pm.surface_count_ = surfaces.count;
 
   std::vector<SplitPlan> plans;
@@ -123,6 +125,9 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   for (size_t f = 0; f < faces.size(); ++f) {
     pieces.clear();
     EmitPieces(plans[f], &pieces);
+    if (!footprints[f].empty()) {
+      CutFootprints(footprints[f], faces[f].normal, tol, min_area, &pieces);
+    }
     for (const PieceCorners& piece : pieces) {
       assembler.Add(piece, surfaces.surface[f], faces[f].material);
     }

@@ -7,6 +7,7 @@
 //   2. hidden_faces.h    faces hidden inside a coplanar overlap dropped
 //   3. surfaces.h        faces grouped into smooth surfaces (the units of vertex averaging)
 //   4. polygon_split.h   each face split into patches no longer than the patch size on any edge
+//      contact_cut.h     patches cut along the footprints of solids standing on the face
 //   5. patch_assembler.h patches welded into the mesh; T-vertices between differently split faces
 //                        of one surface found
 // Tolerances scale with the bounding-box diagonal D of the faces: lengths 1e-6 D, areas 1e-12 D².

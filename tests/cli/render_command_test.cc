@@ -123,7 +123,7 @@ TEST(RenderCommandTest, AdaptiveRefinementIsReportedAndDeterministic) {
     const std::string csv = ReadFile(out.File("patches.csv"));
     const double before = JsonNumber(stats, "patches_before_refinement");
     const double after = JsonNumber(stats, "patches_after_refinement");
-    EXPECT_EQ(before, 3844) << stats;  // cornell-box.obj at patch size 25
+    EXPECT_EQ(before, 3825) << stats;  // cornell-box.obj at patch size 25
     EXPECT_GT(after, before) << stats;
     EXPECT_EQ(JsonNumber(stats, "patches"), after) << stats;
     EXPECT_EQ(double(ReadCsv(out.File("patches.csv")).size() - 1), after);

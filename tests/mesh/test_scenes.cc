@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "mesh/polygon.h"
 
@@ -143,6 +144,34 @@ bool Contains(const DisplayMesh& mesh, size_t t, const Vec3& p, double tol) {
   double w[3], height;
   Barycentric(mesh, t, p, w, &height);
   return height <= tol && w[0] >= -tol && w[1] >= -tol && w[2] >= -tol;
+}
+
+std::vector<std::string> FindCracks(const DisplayMesh& mesh, const PatchScene& scene) {
+  std::vector<uint32_t> vertex_surface(mesh.positions.size(), 0xffffffffu);
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (uint32_t v : mesh.triangles[t]) {
+      vertex_surface[v] = scene.patches[mesh.triangle_patch[t]].surface;
+    }
+  }
+  std::vector<std::string> cracks;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const uint32_t surface = scene.patches[mesh.triangle_patch[t]].surface;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 a = mesh.positions[mesh.triangles[t][k]];
+      const Vec3 c = mesh.positions[mesh.triangles[t][(k + 1) % 3]];
+      for (uint32_t v = 0; v < mesh.positions.size(); ++v) {
+        if (vertex_surface[v] != surface) continue;
+        const Vec3 p = mesh.positions[v];
+        const double along = Dot(p - a, c - a) / Dot(c - a, c - a);
+        if (along <= 1e-9 || along >= 1 - 1e-9) continue;
+        if (Length(p - (a + (c - a) * along)) <= 1e-9) {
+          cracks.push_back("vertex " + std::to_string(v) + " lies inside an edge of triangle " +
+                           std::to_string(t));
+        }
+      }
+    }
+  }
+  return cracks;
 }
 
 }  // namespace radfarm::testing

@@ -51,5 +51,9 @@ double LongestEdge(const Patch& patch);
 Rgb Interpolate(const DisplayMesh& mesh, size_t t, const Vec3& p);
 // Whether p lies in display triangle t (within tol of its plane and of its outline).
 bool Contains(const DisplayMesh& mesh, size_t t, const Vec3& p, double tol);
+// Cracks of a display mesh made from `scene`: a display vertex strictly inside an edge of a display
+// triangle of the same surface (that triangle's shading does not pass through the vertex's value).
+// One line per crack.
+std::vector<std::string> FindCracks(const DisplayMesh& mesh, const PatchScene& scene);
 
 }  // namespace radfarm::testing

@@ -1,0 +1,216 @@
+#include "mesh/contact_cut.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "mesh/polygon.h"
+
+namespace radfarm {
+namespace {
+
+struct Segment {
+  Vec3 a, b;
+};
+
+// True when p lies inside the polygon (counter-clockwise about n) or within tol of it.
+bool InsideOrOn(const std::vector<Vec3>& polygon, const Vec3& n, const Vec3& p, double tol) {
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    if (DistanceToSegment(p, polygon[i], polygon[(i + 1) % polygon.size()]) <= tol) return true;
+  }
+  // Crossing number in the plane.
+  const std::vector<Point2> q = ProjectToPlane(polygon, polygon[0], n);
+  const Point2 x = ProjectToPlane({p}, polygon[0], n)[0];
+  bool inside = false;
+  for (size_t i = 0, j = q.size() - 1; i < q.size(); j = i++) {
+    if ((q[i].y > x.y) != (q[j].y > x.y) &&
+        x.x < q[j].x + (x.y - q[j].y) * (q[i].x - q[j].x) / (q[i].y - q[j].y)) {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
+
+// True when segment ab runs along one edge of the polygon's outline.
+bool AlongOutline(const std::vector<Vec3>& polygon, const Vec3& a, const Vec3& b, double tol) {
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Vec3& p = polygon[i];
+    const Vec3& q = polygon[(i + 1) % polygon.size()];
+    if (DistanceToSegment(a, p, q) <= tol && DistanceToSegment(b, p, q) <= tol) return true;
+  }
+  return false;
+}
+
+// The edge of `g` that lies in the plane (p0, n), when g rises in front of the plane from it.
+bool StandingEdge(const CleanFace& g, const Vec3& p0, const Vec3& n, double tol, Segment* edge) {
+  const size_t k = g.corners.size();
+  int on = 0;
+  size_t first = 0;
+  for (size_t i = 0; i < k; ++i) {
+    const double d = Dot(g.corners[i] - p0, n);
+    if (std::fabs(d) <= tol) {
+      if (on++ == 0) first = i;
+    } else if (d < 0) {
+      return false;  // reaches behind the plane
+    }
+  }
+  if (on != 2) return false;
+  // The two corners on the plane must be neighbours.
+  if (std::fabs(Dot(g.corners[(first + 1) % k] - p0, n)) <= tol) {
+    *edge = {g.corners[first], g.corners[(first + 1) % k]};
+    return true;
+  }
+  if (first == 0 && std::fabs(Dot(g.corners[k - 1] - p0, n)) <= tol) {
+    *edge = {g.corners[k - 1], g.corners[0]};
+    return true;
+  }
+  return false;
+}
+
+// Closed loops of segments joined end to end (within tol); open chains are dropped.
+std::vector<std::vector<Vec3>> Loops(std::vector<Segment> segments, double tol) {
+  std::vector<std::vector<Vec3>> loops;
+  std::vector<bool> used(segments.size(), false);
+  for (size_t s = 0; s < segments.size(); ++s) {
+    if (used[s]) continue;
+    used[s] = true;
+    std::vector<Vec3> loop = {segments[s].a};
+    Vec3 end = segments[s].b;
+    bool closed = false;
+    for (size_t steps = 0; steps < segments.size(); ++steps) {
+      if (Length(end - loop[0]) <= tol) {
+        closed = true;
+        break;
+      }
+      bool found = false;
+      for (size_t t = 0; t < segments.size() && !found; ++t) {
+        if (used[t]) continue;
+        if (Length(segments[t].a - end) <= tol) {
+          loop.push_back(segments[t].a);
+          end = segments[t].b;
+          found = used[t] = true;
+        } else if (Length(segments[t].b - end) <= tol) {
+          loop.push_back(segments[t].b);
+          end = segments[t].a;
+          found = used[t] = true;
+        }
+      }
+      if (!found) break;
+    }
+    if (closed && loop.size() >= 3) loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+// The part of a convex polygon where Dot(m, x - c) * side >= 0 (Sutherland-Hodgman).
+std::vector<Vec3> ClipHalfSpace(const std::vector<Vec3>& polygon, const Vec3& m, const Vec3& c,
+                                double side) {
+  std::vector<Vec3> out;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Vec3& a = polygon[i];
+    const Vec3& b = polygon[(i + 1) % polygon.size()];
+    const double da = side * Dot(m, a - c), db = side * Dot(m, b - c);
+    if (da >= 0) out.push_back(a);
+    if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
+  }
+  return out;
+}
+
+double Area(const std::vector<Vec3>& polygon, const Vec3& n) {
+  return polygon.size() < 3 ? 0.0 : Dot(VectorArea(polygon), n);
+}
+
+void Emit(std::vector<Vec3> part, const Vec3& n, double tol, double min_area,
+          std::vector<PieceCorners>* out) {
+  RemoveRedundantCorners(tol, &part);
+  if (part.size() < 3 || Area(part, n) < min_area) return;
+  if (part.size() <= 4) {
+    PieceCorners piece;
+    std::copy(part.begin(), part.end(), piece.corners.begin());
+    piece.count = static_cast<uint8_t>(part.size());
+    out->push_back(piece);
+    return;
+  }
+  for (size_t i = 1; i + 1 < part.size(); ++i) {  // convex: a fan
+    out->push_back({{part[0], part[i], part[i + 1], {}}, 3});
+  }
+}
+
+}  // namespace
+
+std::vector<std::vector<Footprint>> FindFootprints(const std::vector<CleanFace>& faces,
+                                                   double tol) {
+  std::vector<std::vector<Footprint>> out(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const CleanFace& face = faces[f];
+    const Vec3 p0 = face.corners[0];
+    std::vector<Segment> segments;
+    for (size_t g = 0; g < faces.size(); ++g) {
+      Segment edge;
+      if (g == f || !StandingEdge(faces[g], p0, face.normal, tol, &edge)) continue;
+      if (AlongOutline(face.corners, edge.a, edge.b, tol)) continue;
+      if (!InsideOrOn(face.corners, face.normal, edge.a, tol) ||
+          !InsideOrOn(face.corners, face.normal, edge.b, tol)) {
+        continue;
+      }
+      segments.push_back(edge);
+    }
+    for (std::vector<Vec3>& loop : Loops(std::move(segments), tol)) {
+      if (Area(loop, face.normal) < 0) std::reverse(loop.begin(), loop.end());
+      RemoveRedundantCorners(tol, &loop);
+      if (loop.size() >= 3 && IsStrictlyConvex(loop, face.normal)) out[f].push_back(loop);
+    }
+  }
+  return out;
+}
+
+double CutFootprints(const std::vector<Footprint>& footprints, const Vec3& normal, double tol,
+                     double min_area, std::vector<PieceCorners>* pieces) {
+  double dropped = 0;
+  for (const Footprint& c : footprints) {
+    const size_t k = c.size();
+    std::vector<Vec3> inward(k);  // unit normals of the footprint's edges, pointing inside
+    for (size_t i = 0; i < k; ++i) inward[i] = Normalize(Cross(normal, c[(i + 1) % k] - c[i]));
+    std::vector<PieceCorners> kept;
+    for (const PieceCorners& piece : *pieces) {
+      const std::vector<Vec3> p(piece.corners.begin(), piece.corners.begin() + piece.count);
+      bool outside = false, inside = true;
+      for (size_t i = 0; i < k && !outside; ++i) {
+        bool all_out = true;
+        for (const Vec3& x : p) {
+          const double s = Dot(inward[i], x - c[i]);
+          all_out = all_out && s <= tol;
+          inside = inside && s >= -tol;
+        }
+        outside = all_out;
+      }
+      // The piece's own edges may separate it too.
+      for (size_t j = 0; j < p.size() && !outside; ++j) {
+        const Vec3 m = Cross(normal, p[(j + 1) % p.size()] - p[j]);
+        bool all_out = true;
+        for (const Vec3& x : c) all_out = all_out && Dot(m, x - p[j]) <= tol * Length(m);
+        outside = all_out;
+      }
+      if (outside) {
+        kept.push_back(piece);
+        continue;
+      }
+      if (inside) {
+        dropped += Area(p, normal);
+        continue;
+      }
+      // Split: the part outside edge 0, then of the rest the part outside edge 1, and so on; what
+      // is left at the end lies under the footprint.
+      std::vector<Vec3> rest = p;
+      for (size_t i = 0; i < k && rest.size() >= 3; ++i) {
+        Emit(ClipHalfSpace(rest, inward[i], c[i], -1), normal, tol, min_area, &kept);
+        rest = ClipHalfSpace(rest, inward[i], c[i], +1);
+      }
+      dropped += std::max(0.0, Area(rest, normal));
+    }
+    *pieces = std::move(kept);
+  }
+  return dropped;
+}
+
+}  // namespace radfarm

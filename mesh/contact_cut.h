@@ -1,0 +1,36 @@
+// Contact lines: where a solid stands on a face (a block on the floor), the face's patches are cut
+// along the solid's footprint and the pieces under it dropped. Without the cut a patch straddling
+// the footprint spreads the light it receives on its visible part over its whole area, the part
+// under the block included: the visible part is drawn too dark (a shadow leak along the block's
+// base) and its light too weak. Measured on the Cornell box (docs/BENCHMARKS-adaptive.md): such
+// patches carried most of the floor's discretisation error.
+//
+// A footprint on face F is a closed loop of edges of other faces lying in F's plane, inside F's
+// outline and not along it (the walls of a room stand on its floor along the floor's outline:
+// that is a crease, not a contact), each belonging to a face that rises in front of F. Only convex
+// loops are cut (a box standing on the floor; a concave base, or one whose loop is broken because
+// a side was dropped as hidden, is left uncut).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "core/vec3.h"
+#include "mesh/clean_faces.h"
+#include "mesh/polygon_split.h"
+
+namespace radfarm {
+
+using Footprint = std::vector<Vec3>;  // convex, counter-clockwise about the face's normal
+
+// For each face, the footprints of what stands on it.
+std::vector<std::vector<Footprint>> FindFootprints(const std::vector<CleanFace>& faces, double tol);
+
+// Cuts `pieces` (convex, in a face with unit normal `normal`) along `footprints`: pieces outside
+// stay as they are, pieces inside are dropped, pieces across a footprint's edge become the convex
+// parts outside it (triangles, or quads where a part has four corners). Parts under `min_area`
+// are dropped. Returns the area dropped under the footprints.
+double CutFootprints(const std::vector<Footprint>& footprints, const Vec3& normal, double tol,
+                     double min_area, std::vector<PieceCorners>* pieces);
+
+}  // namespace radfarm

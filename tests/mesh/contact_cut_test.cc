@@ -1,0 +1,121 @@
+// Contact lines: the floor's patches are cut along the footprint of a block standing on it.
+#include "mesh/contact_cut.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "mesh/patch_mesh.h"
+#include "mesh/polygon.h"
+#include "test_scenes.h"
+
+namespace radfarm {
+namespace {
+
+using testing::SceneBuilder;
+
+// A 4 x 4 floor at y = 0 facing up, and a 1 x 1 x 1 block turned 30 degrees about y standing on it
+// (four sides and a top, no bottom: as the Cornell box's blocks are modelled).
+struct BlockOnFloor {
+  InputScene scene;
+  std::vector<Vec3> base;  // the block's footprint, counter-clockwise seen from above
+};
+
+BlockOnFloor MakeBlockOnFloor() {
+  SceneBuilder s;
+  const uint32_t m = s.AddMaterial("white", {0.5, 0.5, 0.5}, {1, 1, 1});
+  s.AddFace({{0, 0, 0}, {0, 0, 4}, {4, 0, 4}, {4, 0, 0}}, m);  // floor, up
+  BlockOnFloor out;
+  const double a = std::numbers::pi / 6;
+  for (int k = 0; k < 4; ++k) {
+    const double t = a + k * std::numbers::pi / 2 + std::numbers::pi / 4;
+    out.base.push_back({1.7 + std::sqrt(0.5) * std::cos(t), 0, 2.1 + std::sqrt(0.5) * std::sin(t)});
+  }
+  if (Dot(VectorArea(out.base), {0, 1, 0}) < 0) std::reverse(out.base.begin(), out.base.end());
+  std::vector<Vec3> top;
+  for (const Vec3& b : out.base) top.push_back(b + Vec3{0, 1, 0});
+  s.AddFace(top, m);  // up
+  for (int k = 0; k < 4; ++k) {
+    const Vec3 p = out.base[k], q = out.base[(k + 1) % 4];
+    s.AddFace({p, q, q + Vec3{0, 1, 0}, p + Vec3{0, 1, 0}}, m);  // facing out
+  }
+  out.scene = s.scene();
+  return out;
+}
+
+bool StrictlyInside(const std::vector<Vec3>& convex, const Vec3& p, double margin) {
+  for (size_t i = 0; i < convex.size(); ++i) {
+    const Vec3 e = convex[(i + 1) % convex.size()] - convex[i];
+    if (Dot(Cross({0, 1, 0}, e) / Length(e), p - convex[i]) <= margin) return false;
+  }
+  return true;
+}
+
+TEST(ContactCutTest, TheBlockSidesMakeOneFootprintOnTheFloor) {
+  const BlockOnFloor b = MakeBlockOnFloor();
+  ASSERT_GT(Dot(VectorArea(b.base), {0, 1, 0}), 0);  // the base really is counter-clockwise
+  std::vector<CleanFace> faces;
+  for (const auto& f : b.scene.faces) {
+    CleanFace c;
+    for (uint32_t v : f.indices) c.corners.push_back(b.scene.positions[v]);
+    c.normal = Normalize(VectorArea(c.corners));
+    faces.push_back(c);
+  }
+  const auto footprints = FindFootprints(faces, 1e-9);
+  ASSERT_EQ(footprints[0].size(), 1u);
+  EXPECT_NEAR(Dot(VectorArea(footprints[0][0]), {0, 1, 0}), 1.0, 1e-12);
+  for (size_t f = 1; f < faces.size(); ++f) EXPECT_TRUE(footprints[f].empty()) << f;
+}
+
+TEST(ContactCutTest, FloorPatchesStopAtTheFootprint) {
+  const BlockOnFloor b = MakeBlockOnFloor();
+  Result<PatchMesh> mesh = PatchMesh::Build(b.scene, {0.5}, nullptr);
+  ASSERT_TRUE(mesh.ok()) << mesh.error();
+  double floor_area = 0;
+  int cut = 0;
+  for (const Patch& p : mesh->patch_scene().patches) {
+    if (p.normal.y < 0.5 || p.centre.y > 1e-9) continue;  // the floor only
+    floor_area += p.area;
+    EXPECT_GT(p.area, 0);
+    for (int k = 0; k < p.corner_count; ++k) {
+      EXPECT_FALSE(StrictlyInside(b.base, p.corners[k], 1e-9)) << p.centre.x << " " << p.centre.z;
+    }
+    EXPECT_FALSE(StrictlyInside(b.base, p.centre, 0));
+    cut += p.corner_count == 3;  // the grid's quads are whole; cut parts include triangles
+  }
+  EXPECT_NEAR(floor_area, 16.0 - 1.0, 1e-9);
+  EXPECT_GT(cut, 0);
+  // Cut parts meet their whole neighbours without cracks.
+  std::vector<Rgb> values(mesh->patch_scene().patches.size(), Rgb(1, 1, 1));
+  mesh->SetSolution(values, values);
+  EXPECT_EQ(testing::FindCracks(mesh->MakeDisplayMesh(), mesh->patch_scene()),
+            std::vector<std::string>{});
+}
+
+TEST(ContactCutTest, RoomWallsStandingOnTheFloorsOutlineAreNoFootprint) {
+  SceneBuilder s;
+  const uint32_t m = s.AddMaterial("white", {0.5, 0.5, 0.5}, {1, 1, 1});
+  s.AddBox({0, 0, 0}, {4, 3, 4}, m, /*normals_in=*/true);
+  Result<PatchMesh> mesh = PatchMesh::Build(s.scene(), {1}, nullptr);
+  ASSERT_TRUE(mesh.ok());
+  EXPECT_NEAR(testing::TotalArea(mesh->patch_scene()), 2 * 16 + 4 * 12, 1e-9);
+  EXPECT_EQ(mesh->patch_scene().patches.size(), 2u * 16 + 4 * 12);
+}
+
+TEST(ContactCutTest, PiecesAcrossTheFootprintBecomeTheirOutsideParts) {
+  // One unit square piece; a footprint covering its right half and more: the left half stays.
+  std::vector<PieceCorners> pieces = {{{Vec3{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, 4}};
+  const std::vector<Footprint> footprints = {{{0.5, -1, 0}, {2, -1, 0}, {2, 2, 0}, {0.5, 2, 0}}};
+  const double dropped = CutFootprints(footprints, {0, 0, 1}, 1e-12, 1e-12, &pieces);
+  EXPECT_NEAR(dropped, 0.5, 1e-12);
+  ASSERT_EQ(pieces.size(), 1u);
+  ASSERT_EQ(pieces[0].count, 4);
+  const std::vector<Vec3> left(pieces[0].corners.begin(), pieces[0].corners.end());
+  EXPECT_NEAR(VectorArea(left).z, 0.5, 1e-12);  // counter-clockwise like the piece
+  for (const Vec3& c : left) EXPECT_LE(c.x, 0.5 + 1e-12);
+}
+
+}  // namespace
+}  // namespace radfarm
