@@ -169,10 +169,12 @@ TEST(RenderCommandTest, AdaptiveRefinementWithDbMatchesPlainRender) {
             JsonNumber(reference_stats, "patches_before_refinement"));
 }
 
-// A render stopped by a capped round that left a few rays of the budget unspent: run again on its
-// finished job, it runs no further round and writes the same files (it used to plan one more).
+// A render stopped by a capped round that left some of the budget unspent (the grid's shots cannot
+// be cut, so its capped round drops whole shots; proportional shots spend a budget exactly): run
+// again on its finished job, it runs no further round and writes the same files (it used to plan
+// one more).
 TEST(RenderCommandTest, BudgetStoppedDbRenderRerunsIdentically) {
-  const std::vector<std::string> settings = {"--rays", "2900001", "-q"};
+  const std::vector<std::string> settings = {"--rays", "2900001", "--sampler", "grid", "-q"};
   TempDir plain;
   ASSERT_EQ(Render("cornell-box.toml", plain.path(), settings).exit_code, kExitOk);
   const std::string reference = ReadFile(plain.File("patches.csv"));
