@@ -1,5 +1,6 @@
 #include "bench/refine/study.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
@@ -13,6 +14,9 @@
 
 namespace radfarm::bench {
 namespace {
+
+// Runs per row whose median time is reported.
+constexpr int kTimedRuns = 3;
 
 std::string Fmt(double v) {
   char buf[32];
@@ -116,13 +120,22 @@ class Study {
 
   void Measure(const std::string& group, const std::string& method, const std::string& setting,
                double patch_size, const SolverSettings& solver, const RefineSettings& refine) {
-    Result<PatchMesh> mesh = PatchMesh::Build(input_, {patch_size}, nullptr);
-    if (!mesh.ok()) throw std::runtime_error(mesh.error());
-    const auto start = std::chrono::steady_clock::now();
-    Result<RefiningSolveResult> solved = SolveRefining(std::move(*mesh), solver, refine);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!solved.ok()) throw std::runtime_error(solved.error());
+    // The median of a few runs' times (a shared machine's load comes and goes); the runs are
+    // bit-identical, so the last one's solution stands for all.
+    const int repeats = options_.quick ? 1 : kTimedRuns;
+    std::vector<double> times;
+    Result<RefiningSolveResult> solved = Error{"not run"};
+    for (int run = 0; run < repeats; ++run) {
+      Result<PatchMesh> mesh = PatchMesh::Build(input_, {patch_size}, nullptr);
+      if (!mesh.ok()) throw std::runtime_error(mesh.error());
+      const auto start = std::chrono::steady_clock::now();
+      solved = SolveRefining(std::move(*mesh), solver, refine);
+      times.push_back(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      if (!solved.ok()) throw std::runtime_error(solved.error());
+    }
+    std::sort(times.begin(), times.end());
+    const double seconds = times[times.size() / 2];
     Row row;
     row.group = group;
     row.method = method;
