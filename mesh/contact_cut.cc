@@ -11,6 +11,7 @@ namespace {
 
 struct Segment {
   Vec3 a, b;
+  Vec3 normal;  // of the face standing on the segment
 };
 
 // True when p lies inside the polygon (counter-clockwise about n) or within tol of it.
@@ -57,24 +58,30 @@ bool StandingEdge(const CleanFace& g, const Vec3& p0, const Vec3& n, double tol,
   if (on != 2) return false;
   // The two corners on the plane must be neighbours.
   if (std::fabs(Dot(g.corners[(first + 1) % k] - p0, n)) <= tol) {
-    *edge = {g.corners[first], g.corners[(first + 1) % k]};
+    *edge = {g.corners[first], g.corners[(first + 1) % k], g.normal};
     return true;
   }
   if (first == 0 && std::fabs(Dot(g.corners[k - 1] - p0, n)) <= tol) {
-    *edge = {g.corners[k - 1], g.corners[0]};
+    *edge = {g.corners[k - 1], g.corners[0], g.normal};
     return true;
   }
   return false;
 }
 
+struct Loop {
+  std::vector<Vec3> corners;
+  std::vector<size_t> segments;  // indices of the segments it was joined from
+};
+
 // Closed loops of segments joined end to end (within tol); open chains are dropped.
-std::vector<std::vector<Vec3>> Loops(std::vector<Segment> segments, double tol) {
-  std::vector<std::vector<Vec3>> loops;
+std::vector<Loop> Loops(const std::vector<Segment>& segments, double tol) {
+  std::vector<Loop> loops;
   std::vector<bool> used(segments.size(), false);
   for (size_t s = 0; s < segments.size(); ++s) {
     if (used[s]) continue;
     used[s] = true;
     std::vector<Vec3> loop = {segments[s].a};
+    std::vector<size_t> members = {s};
     Vec3 end = segments[s].b;
     bool closed = false;
     for (size_t steps = 0; steps < segments.size(); ++steps) {
@@ -94,10 +101,11 @@ std::vector<std::vector<Vec3>> Loops(std::vector<Segment> segments, double tol) 
           end = segments[t].a;
           found = used[t] = true;
         }
+        if (found) members.push_back(t);
       }
       if (!found) break;
     }
-    if (closed && loop.size() >= 3) loops.push_back(std::move(loop));
+    if (closed && loop.size() >= 3) loops.push_back({std::move(loop), std::move(members)});
   }
   return loops;
 }
@@ -155,10 +163,19 @@ std::vector<std::vector<Footprint>> FindFootprints(const std::vector<CleanFace>&
       }
       segments.push_back(edge);
     }
-    for (std::vector<Vec3>& loop : Loops(std::move(segments), tol)) {
-      if (Area(loop, face.normal) < 0) std::reverse(loop.begin(), loop.end());
-      RemoveRedundantCorners(tol, &loop);
-      if (loop.size() >= 3 && IsStrictlyConvex(loop, face.normal)) out[f].push_back(loop);
+    for (Loop& loop : Loops(segments, tol)) {
+      std::vector<Vec3>& c = loop.corners;
+      if (Area(c, face.normal) < 0) std::reverse(c.begin(), c.end());
+      RemoveRedundantCorners(tol, &c);
+      if (c.size() < 3 || !IsStrictlyConvex(c, face.normal)) continue;
+      // A solid's sides face away from its footprint; a room's walls, standing on a larger floor
+      // in a closed ring, face into it: the floor inside is the room's, not covered.
+      const Vec3 centre = AreaCentroid(c);
+      bool outward = true;
+      for (size_t s : loop.segments) {
+        outward = outward && Dot(segments[s].normal, centre - segments[s].a) < 0;
+      }
+      if (outward) out[f].push_back(std::move(c));
     }
   }
   return out;

@@ -7,9 +7,11 @@
 //
 // A footprint on face F is a closed loop of edges of other faces lying in F's plane, inside F's
 // outline and not along it (the walls of a room stand on its floor along the floor's outline:
-// that is a crease, not a contact), each belonging to a face that rises in front of F. Only convex
-// loops are cut (a box standing on the floor; a concave base, or one whose loop is broken because
-// a side was dropped as hidden, is left uncut).
+// that is a crease, not a contact), each belonging to a face that rises in front of F and faces
+// away from the loop's inside (a room's walls standing in a ring on a larger ground face into the
+// ring: the ground inside is the room's floor, not covered). Only convex loops are cut (a box
+// standing on the floor; a concave base, or one whose loop is broken because a side was dropped as
+// hidden, is left uncut).
 #pragma once
 
 #include <cstddef>

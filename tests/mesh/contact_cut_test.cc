@@ -104,6 +104,30 @@ TEST(ContactCutTest, RoomWallsStandingOnTheFloorsOutlineAreNoFootprint) {
   EXPECT_EQ(mesh->patch_scene().patches.size(), 2u * 16 + 4 * 12);
 }
 
+// Four walls facing inward, standing in a ring on a larger ground: a room, not a solid; the ground
+// inside it is the room's floor and stays.
+TEST(ContactCutTest, ARoomStandingOnALargerGroundIsNoFootprint) {
+  SceneBuilder s;
+  const uint32_t m = s.AddMaterial("white", {0.5, 0.5, 0.5}, {1, 1, 1});
+  s.AddFace({{0, 0, 0}, {0, 0, 8}, {8, 0, 8}, {8, 0, 0}}, m);  // ground, up
+  const Vec3 up{0, 3, 0};
+  const std::vector<Vec3> ring = {{2, 0, 2}, {6, 0, 2}, {6, 0, 6}, {2, 0, 6}};
+  for (int k = 0; k < 4; ++k) {
+    const Vec3 p = ring[k], q = ring[(k + 1) % 4];
+    s.AddFace({p, q, q + up, p + up}, m);  // facing into the ring
+  }
+  Result<PatchMesh> mesh = PatchMesh::Build(s.scene(), {1}, nullptr);
+  ASSERT_TRUE(mesh.ok()) << mesh.error();
+  double ground = 0;
+  for (const Patch& p : mesh->patch_scene().patches) {
+    if (p.normal.y > 0.5) ground += p.area;
+    if (p.normal.y < 0.5) {  // the walls face the ring's centre
+      EXPECT_GT(Dot(p.normal, Vec3{4, p.centre.y, 4} - p.centre), 0);
+    }
+  }
+  EXPECT_NEAR(ground, 64.0, 1e-9);
+}
+
 TEST(ContactCutTest, PiecesAcrossTheFootprintBecomeTheirOutsideParts) {
   // One unit square piece; a footprint covering its right half and more: the left half stays.
   std::vector<PieceCorners> pieces = {{{Vec3{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, 4}};
