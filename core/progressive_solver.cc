@@ -19,10 +19,7 @@ ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettin
       sampler_(settings.sampler, settings.seed, settings.grid_step_degrees),
       radiosity_(scene.patches.size()),
       unshot_(scene.patches.size()) {
-  if (settings_.shot_rays == 0) {
-    settings_.shot_rays =
-        std::max(kMinAutoShotRays, kAutoShotRaysPerPatch * uint64_t(scene.patches.size()));
-  }
+  settings_.shot_rays = ResolvedShotRays(settings_, scene.patches.size());
   for (size_t i = 0; i < scene.patches.size(); ++i) {
     const Patch& p = scene.patches[i];
     radiosity_[i] = p.emission;

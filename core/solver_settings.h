@@ -58,4 +58,11 @@ struct SolverSettings {
   uint32_t threads = 0;
 };
 
+// settings.shot_rays, or the automatic count for a scene of `patches` patches when it is 0.
+constexpr uint64_t ResolvedShotRays(const SolverSettings& settings, uint64_t patches) {
+  if (settings.shot_rays > 0) return settings.shot_rays;
+  const uint64_t automatic = kAutoShotRaysPerPatch * patches;
+  return automatic > kMinAutoShotRays ? automatic : kMinAutoShotRays;
+}
+
 }  // namespace radfarm

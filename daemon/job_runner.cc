@@ -53,7 +53,7 @@ Result<std::shared_ptr<JobRunner>> JobRunner::Prepare(
   } else {
     runner->mesh_ = std::make_unique<PatchMesh>(std::move(*mesh));
     runner->solver_ =
-        std::make_unique<ProgressiveSolver>(runner->mesh_->patch_scene(), runner->settings_);
+        std::make_unique<ProgressiveSolver>(runner->mesh_->patch_scene(), runner->PhaseSettings());
   }
   if (runner->schedule_ && !checkpoint) {
     // The step SolveRefining takes before round 0. A pool of one runs inline, on this thread.
@@ -200,10 +200,15 @@ RoundOutcome JobRunner::Reduce(const scheduler::CompletedRound& round, double ro
   return out;
 }
 
+SolverSettings JobRunner::PhaseSettings() const {
+  return schedule_ ? schedule_->SolverSettingsNow(settings_, mesh_->patch_scene().patches.size())
+                   : settings_;
+}
+
 void JobRunner::Install(RefinementStep step) {
   solver_.reset();  // it refers to the old mesh's scene
   mesh_ = std::make_unique<PatchMesh>(std::move(step.mesh));
-  solver_ = std::make_unique<ProgressiveSolver>(mesh_->patch_scene(), settings_);
+  solver_ = std::make_unique<ProgressiveSolver>(mesh_->patch_scene(), PhaseSettings());
   solver_->Restore(step.rounds_done, std::move(step.state.radiosity), std::move(step.state.unshot),
                    step.state.energy);
   refined_blob_ =
@@ -230,7 +235,7 @@ Status JobRunner::RestoreRefinedMesh(const PatchMesh& initial, const store::Chec
                  std::to_string(scene->patches.size()) + " stored, " +
                  std::to_string(mesh_->patch_scene().patches.size()) + " rebuilt)"};
   }
-  solver_ = std::make_unique<ProgressiveSolver>(mesh_->patch_scene(), settings_);
+  solver_ = std::make_unique<ProgressiveSolver>(mesh_->patch_scene(), PhaseSettings());
   refined_blob_ = std::move(encoded);
   refined_hash_ = hash;
   return Ok{};

@@ -122,6 +122,8 @@ class JobRunner {
   JobRunner() = default;
   // Worker thread: the mesh, the solver and the refined scene's blob after a step that split.
   void Install(RefinementStep step);
+  // The solver settings for mesh_ in the schedule's current phase (RefinementSchedule).
+  SolverSettings PhaseSettings() const;
   Status RestoreRefinedMesh(const PatchMesh& initial, const store::Checkpoint& checkpoint,
                             const std::vector<uint8_t>& blob);
 

@@ -104,13 +104,6 @@ const RefinePoint* PassedRefinePoint(double unshot_fraction, size_t* next) {
   return passed;
 }
 
-double RayPower(double emitted, uint64_t shot_rays, size_t patches) {
-  const uint64_t rays = shot_rays > 0
-                            ? shot_rays
-                            : std::max(kMinAutoShotRays, kAutoShotRaysPerPatch * uint64_t(patches));
-  return emitted / double(rays);
-}
-
 CarriedState CarryOver(RefinedMesh& refined, const EnergyAccount& energy, bool restart) {
   CarriedState out;
   const PatchScene& scene = refined.mesh.patch_scene();

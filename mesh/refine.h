@@ -80,10 +80,6 @@ struct RefinedMesh {
   uint64_t split = 0;            // splits made (each adds three elements)
 };
 
-// The power one ray carries: emitted / shot_rays, with an automatic shot_rays (0) resolved as
-// ProgressiveSolver does for `patches` patches.
-double RayPower(double emitted, uint64_t shot_rays, size_t patches);
-
 // One refinement step. `mesh` receives the solution (SetSolution) for its vertex radiance.
 // `ray_power` is emitted power / shot_rays of the rounds so far (0 before the first round).
 // `caster` is a RayCaster of `mesh`'s scene. Evaluations run on `pool`; the

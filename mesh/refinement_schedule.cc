@@ -1,5 +1,6 @@
 #include "mesh/refinement_schedule.h"
 
+#include <algorithm>
 #include <iterator>
 #include <string>
 #include <utility>
@@ -27,6 +28,23 @@ std::optional<RefinementStep> RefinementSchedule::BeforeFirstRound(PatchMesh& me
   return Step(mesh, solver, 0, false, caster, pool);
 }
 
+bool RefinementSchedule::BeforeRestart() const {
+  for (size_t p = next_point_; p < std::size(kRefinePoints); ++p) {
+    if (kRefinePoints[p].restart) return true;
+  }
+  return false;
+}
+
+SolverSettings RefinementSchedule::SolverSettingsNow(const SolverSettings& settings,
+                                                     size_t patches) const {
+  SolverSettings now = settings;
+  if (BeforeRestart()) {
+    now.shot_rays =
+        std::max<uint64_t>(1, ResolvedShotRays(settings, patches) / kPreRestartRayDivisor);
+  }
+  return now;
+}
+
 bool RefinementSchedule::PointPassed(const ProgressiveSolver& solver) const {
   size_t next = next_point_;
   return PassedRefinePoint(solver.UnshotFraction(), &next) != nullptr;
@@ -36,10 +54,14 @@ std::optional<RefinementStep> RefinementSchedule::AfterRound(PatchMesh& mesh,
                                                              const ProgressiveSolver& solver,
                                                              const RayCaster& caster,
                                                              ThreadPool& pool) {
+  // The power each ray of the rounds so far carried, before the point passed changes the phase.
+  SolverSettings used;
+  used.shot_rays = shot_rays_;
+  used = SolverSettingsNow(used, mesh.patch_scene().patches.size());
+  const double ray_power =
+      solver.energy().emitted / double(ResolvedShotRays(used, mesh.patch_scene().patches.size()));
   const RefinePoint* point = PassedRefinePoint(solver.UnshotFraction(), &next_point_);
   if (point == nullptr) return std::nullopt;
-  const double ray_power =
-      RayPower(solver.energy().emitted, shot_rays_, mesh.patch_scene().patches.size());
   return Step(mesh, solver, ray_power, point->restart, caster, pool);
 }
 
@@ -50,7 +72,8 @@ std::optional<RefinementStep> RefinementSchedule::Step(PatchMesh& mesh,
                                                        ThreadPool& pool) const {
   RefinedMesh refined =
       Refine(mesh, solver.radiosity(), solver.unshot(), ray_power, settings_, caster, pool);
-  if (refined.split == 0) return std::nullopt;
+  // A restart point restarts even when nothing split: the rounds before it had fewer rays.
+  if (refined.split == 0 && !restart) return std::nullopt;
   CarriedState carried = CarryOver(refined, solver.energy(), restart);
   return RefinementStep{std::move(refined.mesh), std::move(carried), solver.rounds_done()};
 }

@@ -20,6 +20,7 @@
 #include "core/progressive_solver.h"
 #include "core/ray_caster.h"
 #include "core/result.h"
+#include "core/solver_settings.h"
 #include "core/thread_pool.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/refine.h"
@@ -27,7 +28,11 @@
 
 namespace radfarm {
 
-// The outcome of a refinement step that split at least one element.
+// Rounds before a restart point cast this fraction of the rays.
+inline constexpr uint64_t kPreRestartRayDivisor = 4;
+
+// The outcome of a refinement step that split at least one element, or of a restart point (which
+// restarts the solution on the same mesh when nothing split).
 struct RefinementStep {
   PatchMesh mesh;            // the refined mesh
   CarriedState state;        // to Restore() on a solver of mesh.patch_scene()
@@ -56,10 +61,19 @@ class RefinementSchedule {
   std::optional<RefinementStep> AfterRound(PatchMesh& mesh, const ProgressiveSolver& solver,
                                            const RayCaster& caster, ThreadPool& pool);
 
+  // The settings of the solver for the rounds up to the next refinement point, on a mesh of
+  // `patches` elements: before a restart point the shot rays are divided by
+  // kPreRestartRayDivisor, since the restart discards those rounds' light and they only have to
+  // show where the light bends (the Gradient score's noise gate allows for their fewer rays).
+  // Every solver of a refining solve (SolveRefining, the farm master, a resume) is built with
+  // these.
+  SolverSettings SolverSettingsNow(const SolverSettings& settings, size_t patches) const;
+
   size_t next_point() const { return next_point_; }
   const ResolvedRefineSettings& settings() const { return settings_; }
 
  private:
+  bool BeforeRestart() const;
   RefinementSchedule(const ResolvedRefineSettings& settings, uint64_t shot_rays, size_t next_point)
       : settings_(settings), shot_rays_(shot_rays), next_point_(next_point) {}
   std::optional<RefinementStep> Step(PatchMesh& mesh, const ProgressiveSolver& solver,

@@ -82,12 +82,17 @@ Result<RefiningSolveResult> SolveRefining(PatchMesh mesh, const SolverSettings& 
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   ThreadPool pool(settings.threads);
-  auto stage = std::make_unique<Stage>(out.mesh->patch_scene(), settings, pool.size());
+  // The solver's settings for the current phase of the schedule (fewer rays before a restart).
+  auto phase_settings = [&] {
+    return schedule ? schedule->SolverSettingsNow(settings, out.mesh->patch_scene().patches.size())
+                    : settings;
+  };
+  auto stage = std::make_unique<Stage>(out.mesh->patch_scene(), phase_settings(), pool.size());
   auto apply = [&](std::optional<RefinementStep> step) {
     if (!step) return;
     stage.reset();  // it refers to the old mesh's scene
     *out.mesh = std::move(step->mesh);
-    stage = std::make_unique<Stage>(out.mesh->patch_scene(), settings, pool.size());
+    stage = std::make_unique<Stage>(out.mesh->patch_scene(), phase_settings(), pool.size());
     stage->solver().Restore(step->rounds_done, std::move(step->state.radiosity),
                             std::move(step->state.unshot), step->state.energy);
     refined = true;
