@@ -75,8 +75,7 @@ SeedWorkload RunSeedWorkload(const BenchScene& room, const Reference& reference,
   std::vector<double> seed_times;
   out.tried.push_back(TryBudget(room, defaults, "defaults (shot_rays automatic)", reference,
                                 match_repetitions, &seed_times));
-  uint64_t shot_rays =
-      std::max(kMinAutoShotRays, kAutoShotRaysPerPatch * room.patches().patches.size());
+  uint64_t shot_rays = ResolvedShotRays(defaults, room.patches().patches.size());
   while (out.tried.front().point.seconds > kTimeSlack * Median(seed_times) &&
          shot_rays / 2 >= kSmallestShotRays) {
     shot_rays /= 2;

@@ -149,13 +149,26 @@ void Emit(std::vector<Vec3> part, const Vec3& n, double tol, double min_area,
 std::vector<std::vector<Footprint>> FindFootprints(const std::vector<CleanFace>& faces,
                                                    double tol) {
   std::vector<std::vector<Footprint>> out(faces.size());
+  // Bounding boxes grown by tol: a face stands on another only where their boxes meet, a cheap
+  // test before the per-corner one. Every pair is still visited: quadratic in the face count.
+  std::vector<Bounds3> boxes(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    for (const Vec3& c : faces[f].corners) boxes[f].Extend(c);
+    boxes[f].lo = boxes[f].lo - Vec3{tol, tol, tol};
+    boxes[f].hi = boxes[f].hi + Vec3{tol, tol, tol};
+  }
+  auto meet = [&](size_t a, size_t b) {
+    const Bounds3 &x = boxes[a], &y = boxes[b];
+    return x.lo.x <= y.hi.x && y.lo.x <= x.hi.x && x.lo.y <= y.hi.y && y.lo.y <= x.hi.y &&
+           x.lo.z <= y.hi.z && y.lo.z <= x.hi.z;
+  };
   for (size_t f = 0; f < faces.size(); ++f) {
     const CleanFace& face = faces[f];
     const Vec3 p0 = face.corners[0];
     std::vector<Segment> segments;
     for (size_t g = 0; g < faces.size(); ++g) {
       Segment edge;
-      if (g == f || !StandingEdge(faces[g], p0, face.normal, tol, &edge)) continue;
+      if (g == f || !meet(f, g) || !StandingEdge(faces[g], p0, face.normal, tol, &edge)) continue;
       if (AlongOutline(face.corners, edge.a, edge.b, tol)) continue;
       if (!InsideOrOn(face.corners, face.normal, edge.a, tol) ||
           !InsideOrOn(face.corners, face.normal, edge.b, tol)) {
