@@ -39,6 +39,7 @@ Status DecodeSolver(const wire::BundleSolver& in, SolverSettings* out) {
   out->grid_step_degrees = in.grid_step_degrees();
   out->threads = in.threads();
   out->overrelaxation = in.overrelaxation();
+  out->gather_rays = in.gather_rays();
   if (!(out->tolerance > 0 && out->tolerance < 1)) return Bad("solver.tolerance", "not in (0, 1)");
   if (!(out->max_seconds >= 0) || !std::isfinite(out->max_seconds)) {
     return Bad("solver.seconds", "is negative or not finite");
@@ -50,6 +51,7 @@ Status DecodeSolver(const wire::BundleSolver& in, SolverSettings* out) {
   if (!IsValidOverrelaxation(out->overrelaxation)) {
     return Bad("solver.overrelaxation", "not in [1, 2)");
   }
+  if (out->gather_rays > kMaxGatherRays) return Bad("solver.gather_rays", "is above 2^20");
   return Ok{};
 }
 
@@ -141,10 +143,10 @@ std::vector<uint8_t> EncodeJobBundle(const JobBundle& bundle) {
   flatbuffers::FlatBufferBuilder fbb(4096 + scene.positions.size() * 24 + scene.faces.size() * 40);
   const auto path = fbb.CreateString(job.scene_path);
   const SolverSettings& s = job.solver;
-  const auto solver = wire::CreateBundleSolver(fbb, static_cast<uint8_t>(s.sampler), s.seed,
-                                               s.tolerance, s.max_rays, s.max_seconds, s.shot_rays,
-                                               s.min_shooter_rays, s.shooters_per_round,
-                                               s.grid_step_degrees, s.threads, s.overrelaxation);
+  const auto solver = wire::CreateBundleSolver(
+      fbb, static_cast<uint8_t>(s.sampler), s.seed, s.tolerance, s.max_rays, s.max_seconds,
+      s.shot_rays, s.min_shooter_rays, s.shooters_per_round, s.grid_step_degrees, s.threads,
+      s.overrelaxation, s.gather_rays);
   const Camera& c = job.camera;
   const wire::BundlePoint eye = ToWire(c.eye), target = ToWire(c.target), up = ToWire(c.up);
   const auto camera =

@@ -5,6 +5,8 @@
 #include <functional>
 #include <numeric>
 
+#include "core/direct_light.h"
+
 namespace radfarm {
 namespace {
 
@@ -27,6 +29,30 @@ ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettin
     energy_.emitted += p.area * p.emission.Sum();
   }
   energy_.unshot = energy_.emitted;
+  if (!GatherOn(settings_)) return;
+  // Start from the direct light: it is delivered (absorbed or reflected), the reflected part is
+  // unshot, and what the emitters emitted beyond it left the scene or met a back face.
+  direct_ = PatchDirectLight(scene, settings.seed, settings.threads);
+  double delivered = 0;
+  energy_.absorbed = 0;
+  for (size_t i = 0; i < scene.patches.size(); ++i) {
+    const Patch& p = scene.patches[i];
+    const Rgb reflected = p.reflectance * direct_[i];
+    radiosity_[i] = p.emission + reflected;
+    unshot_[i] = reflected;
+    delivered += p.area * direct_[i].Sum();
+    energy_.absorbed += p.area * (direct_[i] - reflected).Sum();
+  }
+  energy_.escaped = energy_.emitted - delivered;
+  energy_.unshot = TotalUnshotPower();
+}
+
+bool ProgressiveSolver::GatherPending() const {
+  if (direct_.empty()) return false;
+  for (const Rgb& u : unshot_) {
+    if (!(u == Rgb{})) return true;
+  }
+  return false;
 }
 
 double ProgressiveSolver::UnshotPower(uint32_t patch) const {
@@ -69,7 +95,35 @@ void KeepStrongest(size_t limit, const std::function<double(uint32_t)>& power,
 
 }  // namespace
 
+RoundPlan ProgressiveSolver::PlanGather(uint32_t batch_rays, uint64_t ray_cap) const {
+  RoundPlan plan;
+  plan.round = rounds_done_;
+  plan.gather = true;
+  for (uint32_t i = 0; i < scene_.patches.size(); ++i) {
+    if (scene_.patches[i].reflectance.Max() <= 0) continue;  // a black patch shows only E
+    plan.shots.push_back({i, settings_.gather_rays});
+    plan.rays += settings_.gather_rays;
+  }
+  if (ray_cap > 0 && plan.rays > ray_cap) {
+    // The last round of a ray budget: the budget's rays spread evenly over the gathering patches
+    // (the first ones one more), unless it cannot give each one ray.
+    const uint64_t patches = plan.shots.size();
+    if (ray_cap < patches) return RoundPlan{};
+    for (size_t s = 0; s < patches; ++s)
+      plan.shots[s].rays = ray_cap / patches + (s < ray_cap % patches);
+    plan.rays = ray_cap;
+    plan.capped = true;
+  }
+  for (const Shot& shot : plan.shots) {
+    AppendShotBatches(plan.round, shot.shooter, shot.rays, batch_rays, &plan.batches);
+  }
+  return plan;
+}
+
 RoundPlan ProgressiveSolver::PlanRound(uint32_t batch_rays, uint64_t ray_cap) const {
+  if (UnshotFraction() <= settings_.tolerance && GatherPending()) {
+    return PlanGather(batch_rays, ray_cap);
+  }
   RoundPlan plan;
   plan.round = rounds_done_;
   const auto power = [this](uint32_t patch) { return UnshotPower(patch); };
@@ -122,7 +176,47 @@ RoundPlan ProgressiveSolver::PlanRound(uint32_t batch_rays, uint64_t ray_cap) co
   return plan;
 }
 
+void ProgressiveSolver::ApplyGather(const RoundPlan& plan,
+                                    const std::vector<BatchResult>& results) {
+  // Each gathering patch's radiosity from the state at the start of the round (all patches read
+  // the same B), so the order of patches does not matter; hits summed in increasing patch order.
+  std::vector<Rgb> gathered(scene_.patches.size());
+  std::vector<uint64_t> hit_weight(scene_.patches.size());
+  size_t b = 0;
+  for (const Shot& shot : plan.shots) {
+    std::vector<uint32_t> touched;
+    for (; b < plan.batches.size() && plan.batches[b].shooter == shot.shooter; ++b) {
+      for (const PatchHits& h : results[b].hits) {
+        if (hit_weight[h.patch] == 0) touched.push_back(h.patch);
+        hit_weight[h.patch] += h.weight;
+      }
+    }
+    std::sort(touched.begin(), touched.end());
+    const double total = double(sampler_.TotalWeight(shot.rays));
+    Rgb bounced;
+    for (uint32_t j : touched) {
+      bounced += (radiosity_[j] - scene_.patches[j].emission) * (double(hit_weight[j]) / total);
+      hit_weight[j] = 0;
+    }
+    gathered[shot.shooter] = bounced;
+  }
+  for (const Shot& shot : plan.shots) {
+    const Patch& p = scene_.patches[shot.shooter];
+    radiosity_[shot.shooter] =
+        p.emission + p.reflectance * (direct_[shot.shooter] + gathered[shot.shooter]);
+  }
+  // The unshot left (below the tolerance) is taken as absorbed: the account still balances.
+  energy_.absorbed += SignedUnshotPower();
+  std::fill(unshot_.begin(), unshot_.end(), Rgb{});
+  energy_.unshot = 0;
+  rounds_done_ = plan.round + 1;
+}
+
 void ProgressiveSolver::ApplyRound(const RoundPlan& plan, const std::vector<BatchResult>& results) {
+  if (plan.gather) {
+    ApplyGather(plan, results);
+    return;
+  }
   // Sum each shot's batches (integers: exact in any order).
   std::vector<uint64_t> hit_weight(scene_.patches.size());
   std::vector<Rgb> shot_power(plan.shots.size());

@@ -14,6 +14,19 @@
 // negative light, so shooters are ranked, given rays and counted for convergence by the magnitude
 // of their unshot power, A_i * (|r| + |g| + |b|). omega = 1 is plain Southwell, to the bit.
 //
+// Final gather (settings.gather_rays > 0, GatherOn): the solver starts from the direct light of
+// every patch, computed from the patch (PatchDirectLight: exact where no shadow falls), so the
+// emitters never shoot; their light is delivered, its reflected part is the first unshot. When
+// the unshot fraction is at or below the tolerance, PlanRound plans one gather round instead of a
+// shooting round: every reflecting patch casts gather_rays rays (ordinary batches, so the farm
+// runs them like any other), and ApplyRound reads each patch's hit weights the other way round:
+// the mean radiosity, less emission, of what its rays hit is the light that bounced onto it. Its
+// radiosity becomes E + rho * (direct + that), and every unshot is zero: the solve is done (the
+// unshot left was below the tolerance; the gather carries it one more bounce). Shooting noise on
+// a patch is that of the hits it received, so small patches are noisy; gathering noise is that of
+// its own gather rays, the same for every patch, and averages the shooting noise of the patches it
+// sees. A resumed solve needs no flag: a gather is pending exactly while some unshot is not zero.
+//
 // Round lifecycle:  PlanRound() -> [batches computed anywhere, any order] -> ApplyRound().
 #pragma once
 
@@ -39,6 +52,7 @@ struct RoundPlan {
   std::vector<Batch> batches;  // every shot cut into batches, in shot order
   uint64_t rays = 0;
   bool capped = false;  // trimmed to a ray cap: the last round of a ray budget
+  bool gather = false;  // the final gather round: shooters are gathering patches, no power moves
 };
 
 // Energy bookkeeping (channel sums). At every round boundary
@@ -58,7 +72,13 @@ class ProgressiveSolver {
  public:
   ProgressiveSolver(const PatchScene& scene, const SolverSettings& settings);
 
-  // Plans the next round from the current unshot radiosity. Empty when nothing is left to shoot.
+  // With the final gather on (GatherOn(settings)), computes the direct light first (ray casting
+  // on `settings.threads` threads: this is the one place the solver casts rays itself).
+  //
+  // Plans the next round from the current unshot radiosity: the gather round when a gather is
+  // pending and the unshot fraction is at or below the tolerance (cut to `ray_cap` if set and
+  // smaller, and marked capped; empty if that is less than a ray per patch: the solve then ends
+  // ungathered). Empty when nothing is left to shoot.
   // With ray_cap > 0 the round casts at most about that many rays (every proportional shot keeps at
   // least one ray; the grid drops its weakest shots, keeping at least one) and is marked capped.
   RoundPlan PlanRound(uint32_t batch_rays, uint64_t ray_cap = 0) const;
@@ -69,6 +89,10 @@ class ProgressiveSolver {
   const std::vector<Rgb>& radiosity() const { return radiosity_; }
   const std::vector<Rgb>& unshot() const { return unshot_; }
   const EnergyAccount& energy() const { return energy_; }
+  // True while the final gather is on and has not run: some unshot radiosity is not zero.
+  bool GatherPending() const;
+  // The direct light of every patch the solve started from (empty when the gather is off).
+  const std::vector<Rgb>& direct_light() const { return direct_; }
   // Unshot power (magnitudes) over emitted power: the convergence measure.
   double UnshotFraction() const;
   // Sum over patches of A_i times the unshot radiosity's channel sum, with its sign: the term of
@@ -86,12 +110,15 @@ class ProgressiveSolver {
   // A_i * (|r| + |g| + |b|) of the unshot radiosity.
   double UnshotPower(uint32_t patch) const;
   double TotalUnshotPower() const;
+  RoundPlan PlanGather(uint32_t batch_rays, uint64_t ray_cap) const;
+  void ApplyGather(const RoundPlan& plan, const std::vector<BatchResult>& results);
 
   const PatchScene& scene_;
   SolverSettings settings_;  // shot_rays resolved (never 0)
   RaySampler sampler_;
   std::vector<Rgb> radiosity_;
   std::vector<Rgb> unshot_;
+  std::vector<Rgb> direct_;  // per patch, Ke units; empty when the gather is off
   EnergyAccount energy_;
   uint32_t rounds_done_ = 0;
 };

@@ -8,7 +8,9 @@ namespace radfarm {
 std::optional<std::string> StopBeforeRound(const ProgressiveSolver& solver,
                                            const SolverSettings& settings, uint64_t rays,
                                            double seconds) {
-  if (solver.UnshotFraction() <= settings.tolerance) return kStopConverged;
+  if (solver.UnshotFraction() <= settings.tolerance && !solver.GatherPending()) {
+    return kStopConverged;
+  }
   if (settings.max_rays > 0 && rays >= settings.max_rays) return kStopRayBudget;
   if (settings.max_seconds > 0 && seconds >= settings.max_seconds) return kStopTimeBudget;
   return std::nullopt;
@@ -20,7 +22,10 @@ uint64_t NextRoundRayCap(const SolverSettings& settings, uint64_t rays) {
 
 std::optional<std::string> StopAfterRound(const RoundPlan& plan, const ProgressiveSolver& solver,
                                           const SolverSettings& settings) {
-  if (plan.capped && solver.UnshotFraction() > settings.tolerance) return kStopRayBudget;
+  // A capped gather has converged but gathered with fewer rays than asked: the budget stopped it.
+  if (plan.capped && (plan.gather || solver.UnshotFraction() > settings.tolerance)) {
+    return kStopRayBudget;
+  }
   return std::nullopt;
 }
 

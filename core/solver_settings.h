@@ -18,6 +18,13 @@ std::string_view SamplerName(SamplerKind kind);
 bool ParseSamplerName(std::string_view name, SamplerKind* kind);
 
 inline constexpr uint64_t kAutoShotRaysPerPatch = 1024;
+// With the final gather on, the shooting only has to get the light that bounced roughly right: the
+// gather averages its noise over every patch a gathering patch sees (docs/BENCHMARKS-adaptive.md).
+inline constexpr uint64_t kAutoShotRaysPerPatchBeforeGather = 256;
+// Gather rays per patch of a job that does not say (`gather_rays`; input/job.h). The solver's own
+// default is 0, plain progressive refinement, which the core tests pin down.
+inline constexpr uint32_t kDefaultGatherRays = 2048;
+inline constexpr uint32_t kMaxGatherRays = 1u << 20;
 inline constexpr uint64_t kMinAutoShotRays = 1 << 16;
 
 // SolverSettings::overrelaxation lies in [kMinOverrelaxation, kMaxOverrelaxation): below 1 is
@@ -54,14 +61,27 @@ struct SolverSettings {
   double overrelaxation = 1.0;
   // Grid sampler: angular step of the hemisphere grid in degrees.
   double grid_step_degrees = 1.0;
+  // Final gather (0: off). When on, the solve starts from the direct light computed at each patch
+  // (core/direct_light.h) instead of shooting the emitters' light, and once the unshot power is
+  // below the tolerance one last round casts this many rays from every reflecting patch and sets
+  // B = E + rho * (direct + the mean over those rays of the hit patch's radiosity less its
+  // emission). Ignored by the grid sampler (whose shot size is fixed) and by refining solves.
+  uint32_t gather_rays = 0;
   // Worker threads (0: all cores). Never changes the result.
   uint32_t threads = 0;
 };
 
+// Whether the solve gathers: gather_rays > 0 and a sampler whose shots can be any size.
+constexpr bool GatherOn(const SolverSettings& settings) {
+  return settings.gather_rays > 0 && settings.sampler != SamplerKind::kGrid;
+}
+
 // settings.shot_rays, or the automatic count for a scene of `patches` patches when it is 0.
 constexpr uint64_t ResolvedShotRays(const SolverSettings& settings, uint64_t patches) {
   if (settings.shot_rays > 0) return settings.shot_rays;
-  const uint64_t automatic = kAutoShotRaysPerPatch * patches;
+  const uint64_t per_patch =
+      GatherOn(settings) ? kAutoShotRaysPerPatchBeforeGather : kAutoShotRaysPerPatch;
+  const uint64_t automatic = per_patch * patches;
   return automatic > kMinAutoShotRays ? automatic : kMinAutoShotRays;
 }
 

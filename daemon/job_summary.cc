@@ -44,10 +44,16 @@ Result<JobSummary> ReadJobSummary(store::JobStore& store, const store::JobRecord
   }
   summary.rounds = static_cast<uint32_t>(rounds->size());
   if (!rounds->empty()) summary.unshot_fraction = rounds->back().unshot_fraction;
+  if (record.state == store::JobState::kDone) {
+    Result<std::optional<std::string>> reason = store.LoadLatestStopReason(record.id);
+    if (!reason) return Error{reason.error()};
+    summary.stop_reason = *reason;
+  }
   return summary;
 }
 
 std::string StopReasonOf(const JobSummary& s) {
+  if (s.stop_reason) return *s.stop_reason;
   if (s.unshot_fraction <= s.settings.tolerance) return kStopConverged;
   if (s.settings.max_rays > 0 && s.rays >= s.settings.max_rays) return kStopRayBudget;
   return kStopTimeBudget;

@@ -32,12 +32,16 @@ struct JobSummary {
   uint64_t rays = 0;
   double seconds = 0;
   double unshot_fraction = 1;  // after the last recorded round
+  // Why a finished job stopped, as its last checkpoint recorded it (jobs stored before schema 4
+  // have none: StopReasonOf infers it then).
+  std::optional<std::string> stop_reason;
 };
 
 // Store thread.
 Result<JobSummary> ReadJobSummary(store::JobStore& store, const store::JobRecord& record);
 
-// "converged", "ray budget" or "time budget" for a finished job, from its totals.
+// "converged", "ray budget" or "time budget" for a finished job: the recorded reason, else
+// inferred from its totals.
 std::string StopReasonOf(const JobSummary& summary);
 
 }  // namespace radfarm::master

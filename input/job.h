@@ -16,7 +16,8 @@ struct Job {
   std::string scene_path;  // the OBJ; relative paths in a job file are relative to the job file
   MeshSettings mesh;
   RefineSettings refine;  // the [mesh] refine* keys
-  SolverSettings solver;
+  // A job gathers unless its file says otherwise (the report's measured default).
+  SolverSettings solver{.gather_rays = kDefaultGatherRays};
   Camera camera;
 };
 

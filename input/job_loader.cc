@@ -18,6 +18,7 @@
 //   min_shooter_rays = 1          # integer >= 1
 //   shooters_per_round = 0        # integer >= 0, 0 = every patch with unshot power
 //   overrelaxation = 1.0          # Southwell over-relaxation factor, in [1, 2), 1 = none
+//   gather_rays = 2048            # final gather rays per patch, integer in [0, 2^20], 0 = off
 //   grid_step_degrees = 1.0       # grid sampler's angular step, in (0, 90]
 //   threads = 0                   # integer in [0, 65536], 0 = all cores
 //   [camera]
@@ -98,6 +99,7 @@ Status ReadSolver(TomlTableReader* r, SolverSettings* solver) {
                       &solver->overrelaxation));
   RADFARM_TRY(
       r->Real("grid_step_degrees", Interval::OpenClosed(0, 90), &solver->grid_step_degrees));
+  RADFARM_TRY(r->Integer("gather_rays", 0, kMaxGatherRays, &solver->gather_rays));
   return r->Integer("threads", 0, kMaxThreads, &solver->threads);
 }
 

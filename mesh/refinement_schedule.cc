@@ -38,6 +38,9 @@ bool RefinementSchedule::BeforeRestart() const {
 SolverSettings RefinementSchedule::SolverSettingsNow(const SolverSettings& settings,
                                                      size_t patches) const {
   SolverSettings now = settings;
+  // Refinement finds shadows from the light the emitters shoot (StrongestSources), which the
+  // final gather's direct-light start does not shoot: a refining solve shoots it and gathers not.
+  now.gather_rays = 0;
   if (BeforeRestart()) {
     now.shot_rays =
         std::max<uint64_t>(1, ResolvedShotRays(settings, patches) / kPreRestartRayDivisor);

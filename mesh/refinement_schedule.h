@@ -66,7 +66,8 @@ class RefinementSchedule {
   // kPreRestartRayDivisor, since the restart discards those rounds' light and they only have to
   // show where the light bends (the Gradient score's noise gate allows for their fewer rays).
   // Every solver of a refining solve (SolveRefining, the farm master, a resume) is built with
-  // these.
+  // these. The final gather is off in all of them (gather_rays = 0): refinement finds shadows from
+  // the light the emitters shoot, which the gather's direct-light start does not shoot.
   SolverSettings SolverSettingsNow(const SolverSettings& settings, size_t patches) const;
 
   size_t next_point() const { return next_point_; }

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <thread>
 
-#include "bench/refine/direct_light.h"
 #include "bench/refine/element_points.h"
 #include "core/counter_rng.h"
+#include "core/direct_light.h"
 #include "core/ray_caster.h"
 #include "core/thread_pool.h"
 

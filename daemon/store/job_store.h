@@ -146,6 +146,9 @@ class JobStore {
   Status SaveCheckpoint(const RoundRecord& round, const Checkpoint& checkpoint);
   // The checkpoint with the highest round, with the same bits that were saved.
   Result<std::optional<Checkpoint>> LoadLatestCheckpoint(JobId job);
+  // The stop_reason of the checkpoint with the highest round (none: no checkpoint, or the job
+  // had not stopped there), without reading its arrays.
+  Result<std::optional<std::string>> LoadLatestStopReason(JobId job);
   // Keeps the `keep_last` checkpoints with the highest rounds and deletes the rest (0 deletes all).
   // Freed pages are reused by later checkpoints, so the file stays near keep_last+1 checkpoints.
   Status PruneCheckpoints(JobId job, int keep_last);

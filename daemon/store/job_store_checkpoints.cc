@@ -128,6 +128,17 @@ Result<std::optional<Checkpoint>> JobStore::LoadLatestCheckpoint(JobId job) {
   return std::optional<Checkpoint>(std::move(checkpoint));
 }
 
+Result<std::optional<std::string>> JobStore::LoadLatestStopReason(JobId job) {
+  Result<Statement> stmt = db_.Prepare(
+      "SELECT stop_reason FROM checkpoints WHERE job_id = ?1 ORDER BY round DESC LIMIT 1");
+  STORE_RETURN_IF_ERROR(stmt);
+  stmt->Bind(1, job);
+  Result<bool> row = stmt->Step();
+  STORE_RETURN_IF_ERROR(row);
+  if (!*row || stmt->IsNull(0)) return std::optional<std::string>();
+  return std::optional<std::string>(stmt->Text(0));
+}
+
 Status JobStore::PruneCheckpoints(JobId job, int keep_last) {
   if (keep_last < 0) return Error{"job store: PruneCheckpoints keep_last must be >= 0"};
   Result<Statement> stmt = db_.Prepare(

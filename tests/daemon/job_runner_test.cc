@@ -33,7 +33,9 @@ std::vector<uint8_t> LocallyRefinedBlob(const codec::JobBundle& bundle) {
   Result<RefinementSchedule> schedule =
       RefinementSchedule::Create(bundle.job.refine, *mesh, bundle.job.solver.shot_rays);
   EXPECT_TRUE(schedule.ok());
-  const ProgressiveSolver solver(mesh->patch_scene(), bundle.job.solver);
+  const ProgressiveSolver solver(
+      mesh->patch_scene(),
+      schedule->SolverSettingsNow(bundle.job.solver, mesh->patch_scene().patches.size()));
   const RayCaster caster(mesh->patch_scene());
   ThreadPool pool(2);
   std::optional<RefinementStep> step = schedule->BeforeFirstRound(*mesh, solver, caster, pool);

@@ -1,4 +1,4 @@
-#include "bench/refine/direct_light.h"
+#include "core/direct_light.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,9 @@
 #include "core/counter_rng.h"
 #include "core/point_form_factor.h"
 #include "core/ray_sampler.h"
+#include "core/thread_pool.h"
 
-namespace radfarm::bench {
+namespace radfarm {
 
 DirectLight::DirectLight(const PatchScene& scene, const RayCaster& caster, uint32_t rays_per_point)
     : scene_(scene), caster_(caster) {
@@ -51,4 +52,32 @@ Rgb DirectLight::Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const {
   return e;
 }
 
-}  // namespace radfarm::bench
+std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint64_t seed, unsigned threads) {
+  std::vector<Rgb> out(scene.patches.size());
+  bool any_emitter = false;
+  for (const Patch& p : scene.patches) any_emitter = any_emitter || p.emission.Max() > 0;
+  if (!any_emitter) return out;
+  const RayCaster caster(scene);
+  const DirectLight direct(scene, caster, 1);
+  ThreadPool pool(threads);
+  constexpr uint32_t m = kDirectPointSections;
+  // Stream constant: keeps these keys apart from every other use of the seed.
+  const uint64_t stream = HashWords(seed, 0x6469726563746cull);
+  pool.ParallelFor(scene.patches.size(), [&](unsigned, size_t i) {
+    const Patch& p = scene.patches[i];
+    const double split = TriangleSplit(p);
+    Rgb sum;
+    for (uint32_t a = 0; a < m; ++a) {
+      for (uint32_t b = 0; b < m; ++b) {
+        const CounterRng rng(HashWords(stream, i, a * m + b));
+        const Vec3 x =
+            SamplePatchPoint(p, split, (a + rng.Uniform(0)) / m, (b + rng.Uniform(1)) / m);
+        sum += direct.Irradiance(x, p.normal, HashWords(stream, i, a * m + b, 1));
+      }
+    }
+    out[i] = sum / double(m * m);
+  });
+  return out;
+}
+
+}  // namespace radfarm

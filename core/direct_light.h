@@ -1,0 +1,48 @@
+// The light arriving straight from the emitters, computed from the receiving point rather than
+// counted from rays the emitters shoot (next-event estimation). The solver starts from it when the
+// final gather is on (ProgressiveSolver), and the report's reference image uses it per sample.
+//
+// At a point, per channel, in MTL Ke units, E(x) = sum over emitter patches p of Le_p F(x -> p)
+// V_p(x), with F the unoccluded form factor in closed form (core/point_form_factor.h) and V_p the
+// share of shadow rays from x to stratified points on p that reach p. Away from shadows it is
+// exact; in a penumbra its noise is that of the shadow rays, not of a mesh.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/patch_scene.h"
+#include "core/ray_caster.h"
+#include "core/rgb.h"
+#include "core/vec3.h"
+
+namespace radfarm {
+
+class DirectLight {
+ public:
+  // About `rays_per_point` shadow rays per point in all (at least one per emitter patch). `scene`
+  // and `caster` (built from it) must outlive this.
+  DirectLight(const PatchScene& scene, const RayCaster& caster, uint32_t rays_per_point);
+
+  // Irradiance at x (unit normal n) in Ke units; `key` picks the shadow rays' points, so a call is
+  // a pure function of its arguments.
+  Rgb Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const;
+
+ private:
+  bool Reaches(const Vec3& x, const Vec3& n, const Vec3& target, uint32_t emitter) const;
+
+  const PatchScene& scene_;
+  const RayCaster& caster_;
+  std::vector<uint32_t> emitters_;  // patch ids with emission
+  std::vector<double> splits_;      // TriangleSplit of each emitter
+  uint32_t grid_ = 1;               // grid_ x grid_ stratified shadow rays per emitter patch
+};
+
+// Per patch, the direct irradiance averaged over the patch (Ke units): DirectLight at
+// kDirectPointSections^2 jittered points of each patch (one stratum each), one shadow ray per
+// emitter patch per point. A pure function of the scene and `seed`, whatever `threads` (0: all
+// cores). Patches face away from every emitter get zero without a ray.
+inline constexpr uint32_t kDirectPointSections = 4;
+std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint64_t seed, unsigned threads);
+
+}  // namespace radfarm
