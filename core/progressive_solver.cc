@@ -29,7 +29,16 @@ ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettin
     energy_.emitted += p.area * p.emission.Sum();
   }
   energy_.unshot = energy_.emitted;
-  if (!GatherOn(settings_)) return;
+  gather_ = GatherOn(settings_);
+  uint64_t emitters = 0;
+  for (const Patch& p : scene.patches) emitters += p.emission.Max() > 0;
+  // The direct light costs kDirectPointSections^2 shadow rays per patch and emitter patch: worth
+  // it while that is no more than the gather's rays. Beyond (a furnace, a sky of emitters) the
+  // emitters shoot as usual and the gather sees their light like any other.
+  if (!gather_ || emitters == 0 ||
+      emitters * kDirectPointSections * kDirectPointSections > settings_.gather_rays) {
+    return;
+  }
   // Start from the direct light: it is delivered (absorbed or reflected), the reflected part is
   // unshot, and what the emitters emitted beyond it left the scene or met a back face.
   direct_ = PatchDirectLight(scene, settings.seed, settings.threads);
@@ -48,7 +57,7 @@ ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettin
 }
 
 bool ProgressiveSolver::GatherPending() const {
-  if (direct_.empty()) return false;
+  if (!gather_) return false;
   for (const Rgb& u : unshot_) {
     if (!(u == Rgb{})) return true;
   }
@@ -195,7 +204,9 @@ void ProgressiveSolver::ApplyGather(const RoundPlan& plan,
     const double total = double(sampler_.TotalWeight(shot.rays));
     Rgb bounced;
     for (uint32_t j : touched) {
-      bounced += (radiosity_[j] - scene_.patches[j].emission) * (double(hit_weight[j]) / total);
+      // With the direct light known, only light that bounced is gathered; else all of it.
+      const Rgb seen = direct_.empty() ? radiosity_[j] : radiosity_[j] - scene_.patches[j].emission;
+      bounced += seen * (double(hit_weight[j]) / total);
       hit_weight[j] = 0;
     }
     gathered[shot.shooter] = bounced;

@@ -16,7 +16,9 @@
 //
 // Final gather (settings.gather_rays > 0, GatherOn): the solver starts from the direct light of
 // every patch, computed from the patch (PatchDirectLight: exact where no shadow falls), so the
-// emitters never shoot; their light is delivered, its reflected part is the first unshot. When
+// emitters never shoot; their light is delivered, its reflected part is the first unshot. (Unless
+// the scene has so many emitter patches that this would cost more shadow rays than the gather
+// casts: then the emitters shoot, and the gather takes their light with the rest.) When
 // the unshot fraction is at or below the tolerance, PlanRound plans one gather round instead of a
 // shooting round: every reflecting patch casts gather_rays rays (ordinary batches, so the farm
 // runs them like any other), and ApplyRound reads each patch's hit weights the other way round:
@@ -91,7 +93,8 @@ class ProgressiveSolver {
   const EnergyAccount& energy() const { return energy_; }
   // True while the final gather is on and has not run: some unshot radiosity is not zero.
   bool GatherPending() const;
-  // The direct light of every patch the solve started from (empty when the gather is off).
+  // The direct light of every patch the solve started from (empty when the gather is off, or the
+  // scene has more emitter patches than it pays to compute it for: then they shoot as usual).
   const std::vector<Rgb>& direct_light() const { return direct_; }
   // Unshot power (magnitudes) over emitted power: the convergence measure.
   double UnshotFraction() const;
@@ -118,7 +121,8 @@ class ProgressiveSolver {
   RaySampler sampler_;
   std::vector<Rgb> radiosity_;
   std::vector<Rgb> unshot_;
-  std::vector<Rgb> direct_;  // per patch, Ke units; empty when the gather is off
+  bool gather_ = false;      // GatherOn(settings)
+  std::vector<Rgb> direct_;  // per patch, Ke units; empty unless the solve started from it
   EnergyAccount energy_;
   uint32_t rounds_done_ = 0;
 };
