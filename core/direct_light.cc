@@ -52,7 +52,8 @@ Rgb DirectLight::Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const {
   return e;
 }
 
-std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint64_t seed, unsigned threads) {
+std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, uint64_t seed,
+                                  unsigned threads) {
   std::vector<Rgb> out(scene.patches.size());
   bool any_emitter = false;
   for (const Patch& p : scene.patches) any_emitter = any_emitter || p.emission.Max() > 0;
@@ -60,7 +61,7 @@ std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint64_t seed, unsign
   const RayCaster caster(scene);
   const DirectLight direct(scene, caster, 1);
   ThreadPool pool(threads);
-  constexpr uint32_t m = kDirectPointSections;
+  const uint32_t m = std::max(1u, sections);
   // Stream constant: keeps these keys apart from every other use of the seed.
   const uint64_t stream = HashWords(seed, 0x6469726563746cull);
   pool.ParallelFor(scene.patches.size(), [&](unsigned, size_t i) {

@@ -39,10 +39,10 @@ class DirectLight {
 };
 
 // Per patch, the direct irradiance averaged over the patch (Ke units): DirectLight at
-// kDirectPointSections^2 jittered points of each patch (one stratum each), one shadow ray per
-// emitter patch per point. A pure function of the scene and `seed`, whatever `threads` (0: all
-// cores). Patches face away from every emitter get zero without a ray.
-inline constexpr uint32_t kDirectPointSections = 4;
-std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint64_t seed, unsigned threads);
+// sections^2 jittered points of each patch (one per stratum), one shadow ray per emitter patch per
+// point. A pure function of the scene, `sections` and `seed`, whatever `threads` (0: all cores).
+// Patches facing away from every emitter get zero without a ray.
+std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, uint64_t seed,
+                                  unsigned threads);
 
 }  // namespace radfarm

@@ -32,16 +32,17 @@ ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettin
   gather_ = GatherOn(settings_);
   uint64_t emitters = 0;
   for (const Patch& p : scene.patches) emitters += p.emission.Max() > 0;
-  // The direct light costs kDirectPointSections^2 shadow rays per patch and emitter patch: worth
-  // it while that is no more than the gather's rays. Beyond (a furnace, a sky of emitters) the
-  // emitters shoot as usual and the gather sees their light like any other.
-  if (!gather_ || emitters == 0 ||
-      emitters * kDirectPointSections * kDirectPointSections > settings_.gather_rays) {
-    return;
-  }
+  // The direct light costs a shadow ray per point and emitter patch: at least 4 x 4 points per
+  // patch, and it is worth it while that is no more than the gather's rays. Beyond (a furnace, a
+  // sky of emitters) the emitters shoot as usual and the gather sees their light like any other.
+  // Within, up to a quarter of the gather's rays go to more points (big patches near a light need
+  // them: the form factor changes across the patch), at most 16 x 16.
+  if (!gather_ || emitters == 0 || emitters * 16 > settings_.gather_rays) return;
+  const auto sections = static_cast<uint32_t>(std::clamp(
+      std::floor(std::sqrt(settings_.gather_rays / (4.0 * double(emitters)))), 4.0, 16.0));
   // Start from the direct light: it is delivered (absorbed or reflected), the reflected part is
   // unshot, and what the emitters emitted beyond it left the scene or met a back face.
-  direct_ = PatchDirectLight(scene, settings.seed, settings.threads);
+  direct_ = PatchDirectLight(scene, sections, settings.seed, settings.threads);
   double delivered = 0;
   energy_.absorbed = 0;
   for (size_t i = 0; i < scene.patches.size(); ++i) {
@@ -103,6 +104,12 @@ void KeepStrongest(size_t limit, const std::function<double(uint32_t)>& power,
 }
 
 }  // namespace
+
+uint64_t ProgressiveSolver::GatheringPatches() const {
+  uint64_t n = 0;
+  for (const Patch& p : scene_.patches) n += p.reflectance.Max() > 0;
+  return n;
+}
 
 RoundPlan ProgressiveSolver::PlanGather(uint32_t batch_rays, uint64_t ray_cap) const {
   RoundPlan plan;
@@ -213,8 +220,8 @@ void ProgressiveSolver::ApplyGather(const RoundPlan& plan,
   }
   for (const Shot& shot : plan.shots) {
     const Patch& p = scene_.patches[shot.shooter];
-    radiosity_[shot.shooter] =
-        p.emission + p.reflectance * (direct_[shot.shooter] + gathered[shot.shooter]);
+    const Rgb direct = direct_.empty() ? Rgb{} : direct_[shot.shooter];
+    radiosity_[shot.shooter] = p.emission + p.reflectance * (direct + gathered[shot.shooter]);
   }
   // The unshot left (below the tolerance) is taken as absorbed: the account still balances.
   energy_.absorbed += SignedUnshotPower();

@@ -93,6 +93,8 @@ class ProgressiveSolver {
   const EnergyAccount& energy() const { return energy_; }
   // True while the final gather is on and has not run: some unshot radiosity is not zero.
   bool GatherPending() const;
+  // Patches a gather round gathers for: those that reflect.
+  uint64_t GatheringPatches() const;
   // The direct light of every patch the solve started from (empty when the gather is off, or the
   // scene has more emitter patches than it pays to compute it for: then they shoot as usual).
   const std::vector<Rgb>& direct_light() const { return direct_; }

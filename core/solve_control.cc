@@ -8,8 +8,13 @@ namespace radfarm {
 std::optional<std::string> StopBeforeRound(const ProgressiveSolver& solver,
                                            const SolverSettings& settings, uint64_t rays,
                                            double seconds) {
-  if (solver.UnshotFraction() <= settings.tolerance && !solver.GatherPending()) {
-    return kStopConverged;
+  if (solver.UnshotFraction() <= settings.tolerance) {
+    if (!solver.GatherPending()) return kStopConverged;
+    // A gather needs a ray per gathering patch at least (PlanRound).
+    if (settings.max_rays > 0 &&
+        settings.max_rays - std::min(rays, settings.max_rays) < solver.GatheringPatches()) {
+      return kStopRayBudget;
+    }
   }
   if (settings.max_rays > 0 && rays >= settings.max_rays) return kStopRayBudget;
   if (settings.max_seconds > 0 && seconds >= settings.max_seconds) return kStopTimeBudget;

@@ -106,12 +106,13 @@ bool WriteMeshingAim(const StudyResult& s, std::ostringstream& md) {
 
 void WriteOnePercentAim(const StudyResult& s, std::ostringstream& md) {
   md << "- Default settings of `" << s.scene.name << ".toml` (uniform patch size "
-     << Fmt(s.scene.default_size, "%g") << ", Sobol, automatic rays) and the same mesh with more "
-     << "rays:";
+     << Fmt(s.scene.default_size, "%g") << ", Sobol, automatic rays, final gather), the same "
+     << "mesh with more rays, and without the gather:";
   const Row* fastest = nullptr;
   for (const Row& r : s.rows) {
     const bool default_mesh = r.start_size == s.scene.default_size && r.refine_tolerance == 0;
-    if (!default_mesh || (r.group != "uniform" && r.group != "budget")) continue;
+    const bool shooting_only = r.method == "no final gather";
+    if (!default_mesh || (r.group != "uniform" && r.group != "budget" && !shooting_only)) continue;
     md << " " << r.method << ": " << Fmt(100 * r.patch_error.net, "%.2f") << "% in "
        << Fmt(r.seconds, "%.2f") << " s;";
     if (r.patch_error.net <= 0.01 && (!fastest || r.seconds < fastest->seconds)) fastest = &r;
@@ -238,7 +239,24 @@ void WriteDefaults(const std::vector<StudyResult>& studies, std::ostringstream& 
         "over-relaxation saves rounds and rays only where the unshot power converges slowly (high "
         "reflectance, see tests/core/overrelaxation_test.cc); it stays off by default unless "
         "these rows show it saving rays at equal error.\n";
-  md << "- **Rays** (automatic `shot_rays`, 1024 per element): if the net patch error squared is "
+  md << "- **Final gather** (`gather_rays`, default 2048):";
+  for (const StudyResult& s : studies) {
+    const Row* gathered = UniformAt(s, s.scene.default_size);
+    const Row* shooting = FindRow(s, "solver", "no final gather");
+    if (!gathered || !shooting) continue;
+    md << " " << s.scene.name << ": without it " << Fmt(100 * shooting->patch_error.net, "%.2f")
+       << "% net patch error in " << Fmt(shooting->seconds, "%.2f") << " s, with it "
+       << Fmt(100 * gathered->patch_error.net, "%.2f") << "% in " << Fmt(gathered->seconds, "%.2f")
+       << " s (image error " << Fmt(shooting->image_error) << " -> " << Fmt(gathered->image_error)
+       << ");";
+  }
+  md << " a shot's noise on an element is that of the hits it receives, so small elements are "
+        "noisy; a gather's is that of the element's own rays, the same for every element, and it "
+        "averages the shooting noise of everything the element sees. The direct light, computed "
+        "at the element, has no ray noise outside penumbrae. So the gather is on by default; it "
+        "is off in refining solves (refinement finds shadows from the light the emitters shoot).\n";
+  md << "- **Rays** (automatic `shot_rays`, 256 per element, and 2048 gather rays per element): if "
+        "the net patch error squared is "
         "a floor that rays do not lower plus ray noise falling as 1 / rays, the rows with more "
         "rays split the default mesh's error into the two:";
   for (const StudyResult& s : studies) {
@@ -271,9 +289,13 @@ void WriteAdaptiveReport(const ReportRun& run, const std::vector<StudyResult>& s
      << "** (bit-identical solves) on all cores of a shared machine: compare within a table, "
         "not with other days.\n\n"
      << "## Method\n\n"
-     << "- Every solve: sampler Sobol unless named, tolerance 0.001, seed 1, automatic "
-        "`shot_rays` (1024 per element, at least 65536; a refined mesh gets the rays of its "
-        "element count from each refinement on).\n"
+     << "- Every solve: a job's defaults unless named: sampler Sobol, tolerance 0.001, seed 1, "
+        "the **final gather** (`gather_rays` 2048: the solve starts from the direct light "
+        "computed at each element, shoots the bounced light with automatic `shot_rays` of 256 "
+        "per element, at least 65536, then every element gathers with 2048 rays; "
+        "core/progressive_solver.h). Refining rows, the grid rows and the seed's method do not "
+        "gather: they shoot everything with 1024 rays per element (a refined mesh gets the rays "
+        "of its element count from each refinement on).\n"
      << "- **Reference**: a uniform mesh at the adaptive runs' minimum element size, solved twice "
         "(seeds 1000003 and 2000003, tolerance 1e-4); their mean is the reference, half their "
         "difference its noise.\n"

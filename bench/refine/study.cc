@@ -49,7 +49,9 @@ class Study {
     std::printf("%s reference: %zu patches, %llu rays, %.1f s\n", s.name.c_str(),
                 ref_.scene.patches.size(), (unsigned long long)ref_.rays, ref_.seconds);
 
-    const SolverSettings defaults;  // sobol, tolerance 1e-3, automatic shot_rays, seed 1
+    // A job's defaults: sobol, tolerance 1e-3, automatic shot_rays, seed 1, final gather of
+    // kDefaultGatherRays (refining rows shoot without it: RefinementSchedule::SolverSettingsNow).
+    const SolverSettings defaults = Job{}.solver;
     const RefineSettings off;
     for (double size : s.uniform_sizes) {
       Measure("uniform", "uniform", "patch size " + Fmt(size), size, defaults, off);
@@ -99,12 +101,20 @@ class Study {
               "patch size " + Fmt(s.default_size) + ", at most 4x the plain rays", s.default_size,
               over, off);
     }
-    // The default settings with more rays per patch.
+    // Plain progressive refinement: no final gather, the automatic rays of a shooting solve.
+    SolverSettings shooting = defaults;
+    shooting.gather_rays = 0;
+    Measure("solver", "no final gather", "patch size " + Fmt(s.default_size), s.default_size,
+            shooting, off);
+    // The default settings with more rays per patch, shooting and gathering.
     for (uint64_t factor : options_.quick ? std::vector<uint64_t>{} : std::vector<uint64_t>{4}) {
       SolverSettings more = defaults;
-      more.shot_rays = factor * kAutoShotRaysPerPatch * default_patches;
+      more.shot_rays = factor * ResolvedShotRays(defaults, default_patches);
+      more.gather_rays = static_cast<uint32_t>(factor * defaults.gather_rays);
       Measure("budget", "default, " + Fmt(double(factor)) + "x rays",
-              "patch size " + Fmt(s.default_size) + ", shot_rays " + std::to_string(more.shot_rays),
+              "patch size " + Fmt(s.default_size) + ", shot_rays " +
+                  std::to_string(more.shot_rays) + ", gather_rays " +
+                  std::to_string(more.gather_rays),
               s.default_size, more, off);
     }
     return std::move(result_);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "core/solve_control.h"
 #include "daemon/scheduler/result_intake.h"
 #include "protocol/batch_convert.h"
 
@@ -27,7 +28,8 @@ FarmSim::FarmSim(const PatchScene& scene, const SolverSettings& settings,
 }
 
 std::vector<Rgb> FarmSim::Solve(uint32_t batch_rays, Duration max_round_time) {
-  while (solver_.UnshotFraction() > settings_.tolerance) {
+  // The master's stopping rules (no budgets here): until converged, the final gather included.
+  while (!StopBeforeRound(solver_, settings_, 0, 0)) {
     const RoundPlan plan = solver_.PlanRound(batch_rays);
     if (plan.batches.empty()) break;
     EXPECT_TRUE(scheduler_.StartRound(plan, now_).ok());

@@ -119,5 +119,23 @@ TEST_F(FarmSolveTest, ALyingAgentIsRejectedBlocklistedAndItsWorkRedone) {
   EXPECT_EQ(c.agents[1].results_accepted, 2u);  // nothing after the lie
 }
 
+// The final gather's round is ordinary batches: agents that die mid-gather have those requeued,
+// and the gathered radiosity is Solve()'s to the bit.
+TEST(FarmGatherTest, AGatheredSolveWithAgentsDyingIsBitIdenticalToSolve) {
+  const PatchScene scene = LitBox();
+  SolverSettings settings = Settings();
+  settings.gather_rays = 256;
+  const SolveResult reference = radfarm::Solve(scene, settings);
+  ASSERT_EQ(reference.unshot, std::vector<Rgb>(scene.patches.size())) << "gathered";
+  std::vector<SimAgentSpec> agents(3);
+  agents[0].dies_at = milliseconds(40);
+  FarmSim farm(scene, settings, agents);
+  const std::vector<Rgb> farmed = farm.Solve(1000);
+  ASSERT_EQ(farmed.size(), reference.radiosity.size());
+  EXPECT_EQ(std::memcmp(farmed.data(), reference.radiosity.data(), farmed.size() * sizeof(Rgb)), 0);
+  EXPECT_EQ(farm.rounds(), reference.stats.rounds);
+  EXPECT_GT(farm.scheduler().counters(farm.now()).leases_requeued, 0u);
+}
+
 }  // namespace
 }  // namespace radfarm::scheduler

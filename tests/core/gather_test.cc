@@ -1,0 +1,162 @@
+// The final gather (SolverSettings::gather_rays): against closed forms, the shooting solve it
+// replaces, and the determinism and resume contracts of core/batch.h.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+
+#include "core/solve.h"
+#include "core/solve_control.h"
+#include "tests/core/test_scenes.h"
+
+namespace radfarm {
+namespace {
+
+using testing::BitIdentical;
+using testing::LitBox;
+using testing::MakeClosedBox;
+using testing::Surface;
+
+SolverSettings Gathering(uint32_t gather_rays = 1024) {
+  SolverSettings s;
+  s.shot_rays = 1 << 16;
+  s.gather_rays = gather_rays;
+  s.threads = 2;
+  return s;
+}
+
+// Furnace: B = E / (1 - rho) on every patch. With six emitter faces the solve starts from the
+// direct light (96 shadow rays per patch, under the gather's 1024); with 64 gather rays it may
+// not, so the emitters shoot and the gather takes all the light.
+TEST(GatherTest, FurnaceWithAndWithoutTheDirectLightStart) {
+  const double rho = 0.5, exact = 1 / (1 - rho);
+  const PatchScene scene =
+      MakeClosedBox({0, 0, 0}, {1, 1, 1}, 1, Surface{{rho, rho, rho}, {1, 1, 1}, 0});
+  for (uint32_t gather_rays : {1024u, 64u}) {
+    SolverSettings settings = Gathering(gather_rays);
+    settings.tolerance = 1e-4;
+    const ProgressiveSolver probe(scene, settings);
+    EXPECT_EQ(probe.direct_light().empty(), gather_rays == 64) << gather_rays;
+    const SolveResult r = Solve(scene, settings);
+    for (const Rgb& b : r.radiosity) {
+      EXPECT_NEAR(b.g, exact, 0.01 * exact) << gather_rays;
+    }
+    EXPECT_EQ(r.unshot, std::vector<Rgb>(scene.patches.size())) << "a gathered solve has no unshot";
+    EXPECT_EQ(r.stats.stop_reason, kStopConverged);
+  }
+}
+
+// Two facing unit squares at distance 1 in open space, E1 = 1, rho = 0.5 (the shooting test's
+// closed form): B1 = 1.010083, B2 = 0.100920. The direct light on B2 is computed, not counted.
+TEST(GatherTest, TwoFacingSquaresInOpenSpace) {
+  PatchScene scene;
+  testing::AddQuadGrid({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, 1,
+                       Surface{{0.5, 0.5, 0.5}, {1, 1, 1}, 0}, &scene);
+  testing::AddQuadGrid({0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, 1,
+                       Surface{{0.5, 0.5, 0.5}, {}, 1}, &scene);
+  SolverSettings settings = Gathering(1 << 16);
+  settings.tolerance = 1e-6;
+  const SolveResult r = Solve(scene, settings);
+  EXPECT_NEAR(r.radiosity[0].g, 1.010083, 1e-3);
+  EXPECT_NEAR(r.radiosity[1].g, 0.100920, 1e-3);
+  std::printf("facing squares: B1 %.6f B2 %.6f\n", r.radiosity[0].g, r.radiosity[1].g);
+}
+
+// On a box of 96 patches the gathered solve is closer to a converged shooting solve than a
+// shooting solve casting at least as many rays is.
+TEST(GatherTest, BeatsShootingAtEqualRaysOnALitBox) {
+  const PatchScene scene = LitBox();
+  SolverSettings fine;
+  fine.shot_rays = 1 << 24;
+  fine.tolerance = 1e-4;
+  fine.threads = 2;
+  const SolveResult reference = Solve(scene, fine);
+  const SolveResult gathered = Solve(scene, Gathering());
+  SolverSettings shooting = fine;
+  shooting.tolerance = 1e-3;
+  shooting.shot_rays = gathered.stats.rays / 2;  // a shot's light bounces: about 2x the rays
+  const SolveResult shot = Solve(scene, shooting);
+  const auto rms = [&](const std::vector<Rgb>& b) {
+    double sum = 0;
+    for (size_t i = 0; i < b.size(); ++i) {
+      const double rel = (b[i].Sum() - reference.radiosity[i].Sum()) / reference.radiosity[i].Sum();
+      sum += rel * rel;
+    }
+    return std::sqrt(sum / double(b.size()));
+  };
+  const double gather_error = rms(gathered.radiosity), shoot_error = rms(shot.radiosity);
+  std::printf("lit box: gathered %.4f, shooting %.4f RMS relative error (%llu, %llu rays)\n",
+              gather_error, shoot_error, static_cast<unsigned long long>(gathered.stats.rays),
+              static_cast<unsigned long long>(shot.stats.rays));
+  EXPECT_GE(shot.stats.rays, gathered.stats.rays);
+  EXPECT_LT(gather_error, shoot_error);
+}
+
+TEST(GatherTest, SameBitsWithAnyThreadCount) {
+  const PatchScene scene = LitBox();
+  SolverSettings settings = Gathering();
+  settings.threads = 1;
+  const SolveResult one = Solve(scene, settings);
+  for (uint32_t threads : {2u, 7u}) {
+    settings.threads = threads;
+    EXPECT_TRUE(BitIdentical(Solve(scene, settings).radiosity, one.radiosity)) << threads;
+  }
+}
+
+// Resuming from the checkpoint just before the gather round, or from the gathered state, gives
+// the same bits; the gathered state runs no more rounds.
+TEST(GatherTest, ResumesBeforeAndAfterTheGatherRound) {
+  const PatchScene scene = LitBox();
+  const SolverSettings settings = Gathering();
+  std::vector<SolveCheckpoint> checkpoints;
+  SolveHooks record;
+  record.after_round = [&](const SolveCheckpoint& c) { checkpoints.push_back(c); };
+  const SolveResult whole = Solve(scene, settings, {}, record);
+  ASSERT_GE(checkpoints.size(), 2u);
+  for (size_t k : {checkpoints.size() - 2, checkpoints.size() - 1}) {
+    SolveHooks resume;
+    resume.resume = &checkpoints[k];
+    const SolveResult resumed = Solve(scene, settings, {}, resume);
+    EXPECT_TRUE(BitIdentical(resumed.radiosity, whole.radiosity)) << k;
+    EXPECT_EQ(resumed.stats.rays, whole.stats.rays) << k;
+    EXPECT_EQ(resumed.stats.rounds, whole.stats.rounds) << k;
+  }
+}
+
+// A ray budget that runs out at the gather cuts it to the budget exactly and says so; one too
+// small for a ray per patch skips it.
+TEST(GatherTest, RayBudgetCutsTheGatherRound) {
+  const PatchScene scene = LitBox();
+  SolverSettings settings = Gathering();
+  const SolveResult unlimited = Solve(scene, settings);
+  const uint64_t gather_rays = uint64_t{settings.gather_rays} * scene.patches.size();
+  const uint64_t shooting_rays = unlimited.stats.rays - gather_rays;
+  settings.max_rays = shooting_rays + gather_rays / 3;
+  const SolveResult cut = Solve(scene, settings);
+  EXPECT_EQ(cut.stats.rays, settings.max_rays);
+  EXPECT_EQ(cut.stats.stop_reason, kStopRayBudget);
+  EXPECT_EQ(cut.unshot, std::vector<Rgb>(scene.patches.size()));
+  settings.max_rays = shooting_rays + 5;
+  const SolveResult skipped = Solve(scene, settings);
+  EXPECT_EQ(skipped.stats.rays, shooting_rays);
+  EXPECT_EQ(skipped.stats.stop_reason, kStopRayBudget);
+  EXPECT_FALSE(skipped.unshot == std::vector<Rgb>(scene.patches.size()));
+}
+
+// The energy account balances after every round, the gather round included.
+TEST(GatherTest, EnergyBalancesEveryRound) {
+  PatchScene scene = MakeClosedBox({0, 0, 0}, {1, 1, 1}, 3, Surface{{0.7, 0.4, 0.2}, {}, 0});
+  scene.patches.resize(scene.patches.size() - 9);  // open: light escapes
+  scene.patches[3 * 9 + 4].emission = {5, 5, 5};
+  int rounds = 0;
+  Solve(scene, Gathering(), [&](const RoundProgress& p) {
+    const EnergyAccount& e = *p.energy;
+    EXPECT_NEAR(e.emitted, e.absorbed + e.unshot + e.escaped, 1e-12 * e.emitted);
+    EXPECT_GT(e.escaped, 0);
+    ++rounds;
+  });
+  EXPECT_GT(rounds, 2);
+}
+
+}  // namespace
+}  // namespace radfarm
