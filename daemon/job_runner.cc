@@ -209,8 +209,7 @@ void JobRunner::Install(RefinementStep step) {
   solver_.reset();  // it refers to the old mesh's scene
   mesh_ = std::make_unique<PatchMesh>(std::move(step.mesh));
   solver_ = std::make_unique<ProgressiveSolver>(mesh_->patch_scene(), PhaseSettings());
-  solver_->Restore(step.rounds_done, std::move(step.state.radiosity), std::move(step.state.unshot),
-                   step.state.energy);
+  RestoreStep(step, *solver_);
   refined_blob_ =
       std::make_shared<const std::vector<uint8_t>>(codec::EncodePatchScene(mesh_->patch_scene()));
   refined_hash_ = protocol::HashToHex(protocol::HashScene(*refined_blob_));

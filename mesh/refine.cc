@@ -108,6 +108,7 @@ CarriedState CarryOver(RefinedMesh& refined, const EnergyAccount& energy, bool r
   CarriedState out;
   const PatchScene& scene = refined.mesh.patch_scene();
   out.energy = energy;
+  out.restart = restart;
   if (restart) {
     out.energy = EnergyAccount{};
     out.energy.emitted = energy.emitted;

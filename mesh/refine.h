@@ -96,6 +96,7 @@ struct CarriedState {
   std::vector<Rgb> radiosity;
   std::vector<Rgb> unshot;
   EnergyAccount energy;
+  bool restart = false;  // the state is a fresh start: emission only
 };
 CarriedState CarryOver(RefinedMesh& refined, const EnergyAccount& energy, bool restart);
 

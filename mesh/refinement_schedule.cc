@@ -7,6 +7,15 @@
 
 namespace radfarm {
 
+void RestoreStep(RefinementStep& step, ProgressiveSolver& solver) {
+  if (step.state.restart && !solver.direct_light().empty()) {
+    solver.Restore(step.rounds_done, solver.radiosity(), solver.unshot(), solver.energy());
+    return;
+  }
+  solver.Restore(step.rounds_done, std::move(step.state.radiosity), std::move(step.state.unshot),
+                 step.state.energy);
+}
+
 Result<RefinementSchedule> RefinementSchedule::Create(const RefineSettings& settings,
                                                       const PatchMesh& initial, uint64_t shot_rays,
                                                       size_t next_point) {
@@ -38,10 +47,10 @@ bool RefinementSchedule::BeforeRestart() const {
 SolverSettings RefinementSchedule::SolverSettingsNow(const SolverSettings& settings,
                                                      size_t patches) const {
   SolverSettings now = settings;
-  // Refinement finds shadows from the light the emitters shoot (StrongestSources), which the
-  // final gather's direct-light start does not shoot: a refining solve shoots it and gathers not.
-  now.gather_rays = 0;
   if (BeforeRestart()) {
+    // Refinement finds shadows from the light the emitters shoot (StrongestSources), which the
+    // final gather's direct-light start does not shoot.
+    now.gather_rays = 0;
     now.shot_rays =
         std::max<uint64_t>(1, ResolvedShotRays(settings, patches) / kPreRestartRayDivisor);
   }

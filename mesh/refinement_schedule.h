@@ -39,6 +39,11 @@ struct RefinementStep {
   uint32_t rounds_done = 0;  // ... with this round count (the old solver's)
 };
 
+// Puts a step's carried state into `solver`, built for step.mesh with SolverSettingsNow. A restart
+// keeps the fresh start the solver was built with when that is the direct light (the final
+// gather), with the step's round count; any other state is Restore()d as carried.
+void RestoreStep(RefinementStep& step, ProgressiveSolver& solver);
+
 class RefinementSchedule {
  public:
   // Resolves `settings` for `initial`, the mesh PatchMesh::Build made (errors name the job file's
@@ -66,8 +71,9 @@ class RefinementSchedule {
   // kPreRestartRayDivisor, since the restart discards those rounds' light and they only have to
   // show where the light bends (the Gradient score's noise gate allows for their fewer rays).
   // Every solver of a refining solve (SolveRefining, the farm master, a resume) is built with
-  // these. The final gather is off in all of them (gather_rays = 0): refinement finds shadows from
-  // the light the emitters shoot, which the gather's direct-light start does not shoot.
+  // these. Before the restart point the final gather is off (gather_rays = 0): refinement finds
+  // shadows from the light the emitters shoot, which the gather's direct-light start does not
+  // shoot. From the restart on (the last point) the solve gathers as the settings say.
   SolverSettings SolverSettingsNow(const SolverSettings& settings, size_t patches) const;
 
   size_t next_point() const { return next_point_; }

@@ -93,8 +93,7 @@ Result<RefiningSolveResult> SolveRefining(PatchMesh mesh, const SolverSettings& 
     stage.reset();  // it refers to the old mesh's scene
     *out.mesh = std::move(step->mesh);
     stage = std::make_unique<Stage>(out.mesh->patch_scene(), phase_settings(), pool.size());
-    stage->solver().Restore(step->rounds_done, std::move(step->state.radiosity),
-                            std::move(step->state.unshot), step->state.energy);
+    RestoreStep(*step, stage->solver());
     refined = true;
     ++out.refinements;
   };
