@@ -45,16 +45,19 @@ struct Saved {
   uint32_t next_point = 0;
 };
 
-TEST(RefiningResumeTest, ResumingFromAnyRoundGivesTheUninterruptedBits) {
+void ExpectResumesFromAnyRound(const SolverSettings& settings) {
   std::vector<Saved> saved;
   RefiningHooks hooks;
   hooks.after_round = [&](const RefiningCheckpoint& c) {
     saved.push_back(
         {c.solve, c.refined_scene ? std::optional(*c.refined_scene) : std::nullopt, c.next_point});
   };
-  Result<RefiningSolveResult> whole = SolveRefining(Mesh(), Solver(), Refining(), {}, hooks);
+  Result<RefiningSolveResult> whole = SolveRefining(Mesh(), settings, Refining(), {}, hooks);
   ASSERT_TRUE(whole.ok()) << whole.error();
   ASSERT_EQ(saved.size(), whole->solution.stats.rounds);
+  // With the final gather on, the refined mesh's solve gathered: no unshot is left.
+  const bool gathered = whole->solution.unshot == std::vector<Rgb>(whole->solution.unshot.size());
+  EXPECT_EQ(gathered, settings.gather_rays > 0);
   // The states straddle every refinement point, the later ones on a refined mesh.
   ASSERT_EQ(saved.back().next_point, std::size(kRefinePoints));
   ASSERT_TRUE(saved.back().scene.has_value());
@@ -80,7 +83,7 @@ TEST(RefiningResumeTest, ResumingFromAnyRoundGivesTheUninterruptedBits) {
     RefiningHooks resume;
     resume.resume = RefiningResume{&saved[i].solve, saved[i].scene ? &*saved[i].scene : nullptr,
                                    saved[i].next_point, std::nullopt};
-    Result<RefiningSolveResult> rest = SolveRefining(Mesh(), Solver(), Refining(), {}, resume);
+    Result<RefiningSolveResult> rest = SolveRefining(Mesh(), settings, Refining(), {}, resume);
     ASSERT_TRUE(rest.ok()) << rest.error();
     EXPECT_EQ(rest->mesh->patch_scene().patches.size(), whole->mesh->patch_scene().patches.size());
     EXPECT_EQ(rest->solution.radiosity, whole->solution.radiosity);
@@ -88,6 +91,21 @@ TEST(RefiningResumeTest, ResumingFromAnyRoundGivesTheUninterruptedBits) {
     EXPECT_EQ(rest->solution.stats.rays, whole->solution.stats.rays);
     EXPECT_EQ(rest->solution.stats.rounds, whole->solution.stats.rounds);
   }
+}
+
+TEST(RefiningResumeTest, ResumingFromAnyRoundGivesTheUninterruptedBits) {
+  ExpectResumesFromAnyRound(Solver());
+}
+
+// From the restart point on, a refining solve gathers: the refined solver starts from the direct
+// light (RestoreStep), and resumes on either side of the restart and of the gather end the same.
+TEST(RefiningResumeTest, AGatheringRefiningSolveResumesFromAnyRound) {
+  SolverSettings settings = Solver();
+  settings.gather_rays = 256;
+  const PatchScene scene = Mesh().patch_scene();
+  ASSERT_FALSE(ProgressiveSolver(scene, settings).direct_light().empty())
+      << "the light is few enough patches for the direct-light start";
+  ExpectResumesFromAnyRound(settings);
 }
 
 // A solve stopped by a capped round that left rays of the budget: its last state says so, and a
