@@ -8,8 +8,10 @@
 namespace radfarm {
 namespace {
 
-// A clipped quad gains at most one corner per clipping plane.
-constexpr int kMaxCorners = 5;
+// Each edge adds at most its start corner and one crossing. A convex quad clipped by a plane gains
+// at most one corner, but when its corners lie on the plane to rounding their signs can alternate
+// (+ - + -), and then every edge crosses: 8 for a quad.
+constexpr int kMaxCorners = 2 * 4;
 
 }  // namespace
 

@@ -50,9 +50,9 @@ SolverSettings RefinementSchedule::SolverSettingsNow(const SolverSettings& setti
   if (BeforeRestart()) {
     // Refinement finds shadows from the light the emitters shoot (StrongestSources), which the
     // final gather's direct-light start does not shoot.
+    // The divisor applies to a shooting solve's rays (`now`, gather off), not a gathering one's.
     now.gather_rays = 0;
-    now.shot_rays =
-        std::max<uint64_t>(1, ResolvedShotRays(settings, patches) / kPreRestartRayDivisor);
+    now.shot_rays = std::max<uint64_t>(1, ResolvedShotRays(now, patches) / kPreRestartRayDivisor);
   }
   return now;
 }

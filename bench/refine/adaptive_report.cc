@@ -52,7 +52,7 @@ void WritePlots(const ReportRun& run, const StudyResult& s) {
         }
         panel.series.push_back(a);
       }
-      for (const std::string group : {"sampler", "solver", "budget"}) {
+      for (const std::string group : {"sampler", "solver", "gather", "budget"}) {
         for (const Row* r : Group(s, group)) {
           panel.series.push_back({r->method, {point(*r)}, false, 0, 0});
         }
@@ -242,7 +242,7 @@ void WriteDefaults(const std::vector<StudyResult>& studies, std::ostringstream& 
   md << "- **Final gather** (`gather_rays`, default 2048):";
   for (const StudyResult& s : studies) {
     const Row* gathered = UniformAt(s, s.scene.default_size);
-    const Row* shooting = FindRow(s, "solver", "no final gather");
+    const Row* shooting = FindRow(s, "gather", "no final gather");
     if (!gathered || !shooting) continue;
     md << " " << s.scene.name << ": without it " << Fmt(100 * shooting->patch_error.net, "%.2f")
        << "% net patch error in " << Fmt(shooting->seconds, "%.2f") << " s, with it "
@@ -253,9 +253,10 @@ void WriteDefaults(const std::vector<StudyResult>& studies, std::ostringstream& 
   md << " a shot's noise on an element is that of the hits it receives, so small elements are "
         "noisy; a gather's is that of the element's own rays, the same for every element, and it "
         "averages the shooting noise of everything the element sees. The direct light, computed "
-        "at the element, has no ray noise outside penumbrae. So the gather is on by default; it "
-        "is off in refining solves (refinement finds shadows from the light the emitters shoot).\n";
-  md << "- **Rays** (automatic `shot_rays`, 256 per element, and 2048 gather rays per element): if "
+        "at the element, has no ray noise outside penumbrae. So the gather is on by default; a "
+        "refining solve gathers from its restart point on (before it, refinement finds shadows "
+        "from the light the emitters shoot).\n";
+  md << "- **Rays** (automatic `shot_rays`, 384 per element, and 2048 gather rays per element): if "
         "the net patch error squared is "
         "a floor that rays do not lower plus ray noise falling as 1 / rays, the rows with more "
         "rays split the default mesh's error into the two:";
@@ -291,16 +292,21 @@ void WriteAdaptiveReport(const ReportRun& run, const std::vector<StudyResult>& s
      << "## Method\n\n"
      << "- Every solve: a job's defaults unless named: sampler Sobol, tolerance 0.001, seed 1, "
         "the **final gather** (`gather_rays` 2048: the solve starts from the direct light "
-        "computed at each element, shoots the bounced light with automatic `shot_rays` of 256 "
+        "computed at each element, shoots the bounced light with automatic `shot_rays` of 384 "
         "per element, at least 65536, then every element gathers with 2048 rays; "
-        "core/progressive_solver.h). Refining rows, the grid rows and the seed's method do not "
-        "gather: they shoot everything with 1024 rays per element (a refined mesh gets the rays "
-        "of its element count from each refinement on).\n"
+        "core/progressive_solver.h). The grid rows and the seed's method do not gather: they "
+        "shoot everything with 1024 rays per element. Refining rows shoot the rounds before "
+        "their restart point with a quarter of that and gather after it, on the refined mesh "
+        "(a refined mesh gets the rays of its element count).\n"
      << "- **Reference**: a uniform mesh at the adaptive runs' minimum element size, solved twice "
         "(seeds 1000003 and 2000003, tolerance 1e-4); their mean is the reference, half their "
         "difference its noise.\n"
-     << "- **Patch error**: for each element, the reference's average over it (16 points spread "
-        "evenly over the element) against the element's radiosity: RMS of (B - Bref) / Bref over "
+     << "- **Patch error**: for each element, the reference over it (its bounced light, the "
+        "reference radiosity less rho times the direct light, averaged at 16 points spread evenly "
+        "over the element; plus rho times the direct light averaged over 6 x 6 jittered points "
+        "of the element itself, so a penumbra counts where it falls and not where the "
+        "reference mesh's 12.5 mm patches put it) against the element's radiosity: RMS of (B - "
+        "Bref) / Bref over "
         "the lit elements (Bref >= 1% of the median), weighted by area. The **reference noise** "
         "is the same measure of the reference's half difference on those elements; the **net** "
         "error subtracts it in quadrature. It measures how well each element's value is "

@@ -12,9 +12,6 @@
 namespace radfarm::bench {
 namespace {
 
-// Shadow rays per point: enough that a penumbra's noise stays well under the rows' errors there.
-constexpr uint32_t kShadowRaysPerPoint = 64;
-
 // A copy of the display mesh with unshared vertices, each triangle's three carrying one value:
 // rendered, it tells for every sample which patch it sees (value patch + 1; 0 where nothing) and
 // where (the vertex positions, interpolated perspective-correctly).
@@ -32,15 +29,10 @@ DisplayMesh Unshared(const DisplayMesh& display) {
 
 }  // namespace
 
-Image RenderReferenceImage(PatchMesh& mesh, const std::vector<Rgb>& radiosity,
-                           const std::vector<Rgb>& unshot, const Camera& camera) {
-  const PatchScene& scene = mesh.patch_scene();
+std::vector<Rgb> BouncedRadiosity(const PatchScene& scene, const std::vector<Rgb>& radiosity) {
   const RayCaster caster(scene);
   const DirectLight direct(scene, caster, kShadowRaysPerPoint);
   ThreadPool pool(std::max(1u, std::thread::hardware_concurrency()));
-
-  // The reference radiosity less its direct part (rho times the direct light averaged over each
-  // patch), Gouraud-shaded.
   std::vector<Rgb> rest(radiosity);
   pool.ParallelFor(scene.patches.size(), [&](unsigned, size_t i) {
     const Patch& p = scene.patches[i];
@@ -52,6 +44,18 @@ Image RenderReferenceImage(PatchMesh& mesh, const std::vector<Rgb>& radiosity,
     }
     rest[i] = rest[i] - p.reflectance * (sum / double(points.size()));
   });
+  return rest;
+}
+
+Image RenderReferenceImage(PatchMesh& mesh, const std::vector<Rgb>& radiosity,
+                           const std::vector<Rgb>& rest, const std::vector<Rgb>& unshot,
+                           const Camera& camera) {
+  const PatchScene& scene = mesh.patch_scene();
+  const RayCaster caster(scene);
+  const DirectLight direct(scene, caster, kShadowRaysPerPoint);
+  ThreadPool pool(std::max(1u, std::thread::hardware_concurrency()));
+
+  // The bounced part, Gouraud-shaded.
   mesh.SetSolution(rest, unshot);
   const DisplayMesh display = mesh.MakeDisplayMesh();
   mesh.SetSolution(radiosity, unshot);

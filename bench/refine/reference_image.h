@@ -16,9 +16,19 @@
 
 namespace radfarm::bench {
 
-// `mesh` is the reference mesh and `radiosity` its solution (one value per patch); `camera` is
-// resolved (not automatic).
+// Shadow rays per point of the reference's direct light: enough that a penumbra's noise stays well
+// under the rows' errors there.
+inline constexpr uint32_t kShadowRaysPerPoint = 64;
+
+// Per patch of the reference, its radiosity less its direct part: rho times the direct light
+// (DirectLight) averaged over the patch's element points. What is left (emission and light that
+// bounced) is smooth: the reference image Gouraud-shades it and the patch error looks it up.
+std::vector<Rgb> BouncedRadiosity(const PatchScene& scene, const std::vector<Rgb>& radiosity);
+
+// `mesh` is the reference mesh, `radiosity` its solution (one value per patch) and `bounced`
+// BouncedRadiosity of it; `camera` is resolved (not automatic).
 Image RenderReferenceImage(PatchMesh& mesh, const std::vector<Rgb>& radiosity,
-                           const std::vector<Rgb>& unshot, const Camera& camera);
+                           const std::vector<Rgb>& bounced, const std::vector<Rgb>& unshot,
+                           const Camera& camera);
 
 }  // namespace radfarm::bench

@@ -23,6 +23,8 @@ struct ReferenceSolution {
   PatchScene scene;
   std::vector<double> mean;  // per reference patch: the two solves' mean radiosity (channel sum)
   std::vector<double> half_diff;  // per reference patch: half their difference
+  // per reference patch: `mean` less rho times its direct light (BouncedRadiosity), channel sum
+  std::vector<double> bounced;
   // kLitFraction of the median positive `mean`: patches below it are dark (behind a light, under
   // a block).
   double dark_threshold = 0;

@@ -2,11 +2,24 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include "bench/refine/element_points.h"
+#include "bench/refine/reference_image.h"
+#include "core/counter_rng.h"
+#include "core/direct_light.h"
+#include "core/ray_caster.h"
+#include "core/ray_sampler.h"
+#include "core/thread_pool.h"
 #include "mesh/locate_patches.h"
 
 namespace radfarm::bench {
+namespace {
+
+// Jittered points per element edge at which the reference's direct light is averaged.
+constexpr uint32_t kDirectSections = 6;
+
+}  // namespace
 
 PatchError MeasurePatchError(const PatchScene& run, const std::vector<Rgb>& radiosity,
                              const ReferenceSolution& ref) {
@@ -18,18 +31,35 @@ PatchError MeasurePatchError(const PatchScene& run, const std::vector<Rgb>& radi
   const double threshold = ref.dark_threshold;
   const size_t n = run.patches.size();
   std::vector<double> bref(n, 0), noise(n, 0);
-  std::vector<bool> counted(n, true);
-  for (size_t e = 0; e < n; ++e) {
+  std::vector<char> counted(n, 1);  // not vector<bool>: written from several threads
+  const RayCaster caster(ref.scene);
+  const DirectLight direct(ref.scene, caster, kShadowRaysPerPoint);
+  ThreadPool pool(std::max(1u, std::thread::hardware_concurrency()));
+  pool.ParallelFor(n, [&](unsigned, size_t e) {
     for (int k = 0; k < kPointsPerElement; ++k) {
       const uint32_t r = under[e * kPointsPerElement + k];
       if (r == kNoPatch || !(ref.mean[r] >= threshold)) {
         counted[e] = false;
-        break;
+        return;
       }
-      bref[e] += ref.mean[r] / kPointsPerElement;
+      bref[e] += ref.bounced[r] / kPointsPerElement;
       noise[e] += ref.half_diff[r] / kPointsPerElement;
     }
-  }
+    // The direct light over the element itself, not as the reference mesh drew it.
+    const Patch& p = run.patches[e];
+    const double split = TriangleSplit(p);
+    constexpr uint32_t m = kDirectSections;
+    Rgb sum;
+    for (uint32_t a = 0; a < m; ++a) {
+      for (uint32_t b = 0; b < m; ++b) {
+        const CounterRng rng(HashWords(3, e, a * m + b));
+        const Vec3 x =
+            SamplePatchPoint(p, split, (a + rng.Uniform(0)) / m, (b + rng.Uniform(1)) / m);
+        sum += direct.Irradiance(x, p.normal, HashWords(4, e, a * m + b));
+      }
+    }
+    bref[e] += (p.reflectance * sum).Sum() / double(m * m);
+  });
   double area = 0, sq = 0, sq_noise = 0;
   for (size_t e = 0; e < n; ++e) {
     if (!counted[e]) continue;

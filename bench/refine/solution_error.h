@@ -1,15 +1,19 @@
 // The two error measures of the adaptive report.
 //
 // Patch error: how well a run computes the radiosity of its own elements. For each element, the
-// reference's average over it (16 points spread evenly over the element, each looked up in the
-// reference mesh) is compared with the element's radiosity: (B - Bref) / Bref, RMS over the
-// elements, weighted by area so that meshes of any element sizes are judged over the same
-// surfaces. Elements that touch a dark reference patch (ReferenceSolution::dark_threshold: behind a
-// light, under a block) are left out: there two meshes cut a near-discontinuity differently, and
-// the difference is one of geometry, not of the solve (the image error still sees those places).
-// The same average of the reference's half difference gives the reference's own noise on that
-// element; it is reported, and subtracted in quadrature for the net error. A coarse element is not
-// blamed for the detail inside it: that is what the image error sees.
+// reference over it is the reference's bounced light (ReferenceSolution::bounced) averaged over
+// 16 points spread evenly over the element, each looked up in the reference mesh, plus rho times
+// the direct light averaged over 6 x 6 jittered points of the element itself (DirectLight with 64
+// shadow rays per point): a penumbra crossing the element counts where it falls, not where the
+// reference mesh's patches would put it. That is compared with the element's radiosity: (B - Bref)
+// / Bref, RMS over the elements, weighted by area so that meshes of any element sizes are judged
+// over the same surfaces. Elements that touch a dark reference patch
+// (ReferenceSolution::dark_threshold: behind a light, under a block) are left out: there two meshes
+// cut a near-discontinuity differently, and the difference is one of geometry, not of the solve
+// (the image error still sees those places). The same average of the reference's half difference
+// gives the reference's own noise on that element; it is reported, and subtracted in quadrature for
+// the net error. A coarse element is not blamed for the detail inside it: that is what the image
+// error sees.
 //
 // Image error: mean over pixels of |I - Iref| (linear, channel sum, Gouraud-shaded from vertex
 // radiance) over the mean of Iref: smeared shadows, Mach bands, leaks and blotches all count.

@@ -104,7 +104,7 @@ class Study {
     // Plain progressive refinement: no final gather, the automatic rays of a shooting solve.
     SolverSettings shooting = defaults;
     shooting.gather_rays = 0;
-    Measure("solver", "no final gather", "patch size " + Fmt(s.default_size), s.default_size,
+    Measure("gather", "no final gather", "patch size " + Fmt(s.default_size), s.default_size,
             shooting, off);
     // The default settings with more rays per patch, shooting and gathering.
     for (uint64_t factor : options_.quick ? std::vector<uint64_t>{} : std::vector<uint64_t>{4}) {
