@@ -44,6 +44,18 @@ TEST(PointFormFactorTest, TheBackOfAPatchSendsNothing) {
   EXPECT_EQ(PointToPatchFormFactor({0, 0, 0}, {0, 0, 1}, up), 0);
 }
 
+// A quad lying in the receiver's tangent plane to rounding, its corners alternately a hair above
+// and below: every edge crosses the clipping plane, so clipping makes 6 corners (more than a
+// convex quad can gain). Nothing overflows (ASan would say) and the quad sends nothing.
+TEST(PointFormFactorTest, AQuadOnTheTangentPlaneToRoundingSendsNothing) {
+  const double e = 1e-300;
+  Patch flat = Quad({1, 1, e}, {-1, 1, -e}, {-1, -1, e}, {1, -1, -e});
+  flat.normal = {0, 0, -1};
+  const double f = PointToPatchFormFactor({5, 0, 0}, {0, 0, 1}, flat);
+  EXPECT_TRUE(std::isfinite(f));
+  EXPECT_NEAR(f, 0, 1e-12);
+}
+
 TEST(PointFormFactorTest, OnlyThePartAboveTheTangentPlaneCounts) {
   // A vertical wall in front of the point, reaching as far below its plane as above: half of a
   // wall of twice the height above the plane.
