@@ -13,7 +13,11 @@ void ProgressReporter::OnRound(const RoundProgress& p) {
   const double rate = p.seconds > 0 ? double(p.rays) / p.seconds : 0;
   const double eta = EstimateSecondsLeft(p.unshot_fraction, p.tolerance, p.seconds);
   const std::string eta_text = eta < 0 ? "?" : std::to_string(int(std::ceil(eta))) + "s";
-  if (interactive_) {
+  if (p.gather) {
+    std::fprintf(out_, "%sfinal gather: %llu rays in all, %.2f Mrays/s\n", drew_ ? "\n" : "",
+                 static_cast<unsigned long long>(p.rays), rate / 1e6);
+    drew_ = false;
+  } else if (interactive_) {
     constexpr int kWidth = 30;
     const int filled = int(ConvergenceFraction(p.unshot_fraction, p.tolerance) * kWidth);
     std::fprintf(out_, "\r[%s%s] round %u  unshot %.3f%%  %.2f Mrays/s  ETA %s   ",

@@ -19,6 +19,7 @@ struct RoundProgress {
   double unshot_fraction = 0;
   double tolerance = 0;
   const EnergyAccount* energy = nullptr;
+  bool gather = false;  // the round was the final gather
 };
 
 struct SolveResult {

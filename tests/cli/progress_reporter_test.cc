@@ -46,5 +46,25 @@ TEST(ProgressTest, PipeGetsLogLines) {
   EXPECT_NE(s.find("round 2: unshot 25.0000% of emitted"), std::string::npos) << s;
 }
 
+// The final gather gets its own line, after the bar's or the log's last round.
+TEST(ProgressTest, TheFinalGatherIsNamed) {
+  for (bool interactive : {true, false}) {
+    char* text = nullptr;
+    size_t size = 0;
+    FILE* f = open_memstream(&text, &size);
+    ProgressReporter reporter(f, interactive);
+    EnergyAccount energy;
+    reporter.OnRound({1, 1000, 1.0, 1e-4, 1e-3, &energy});
+    reporter.OnRound({2, 5000, 2.0, 0, 1e-3, &energy, true});
+    reporter.Finish();
+    fclose(f);
+    const std::string s(text, size);
+    free(text);
+    EXPECT_NE(s.find("\nfinal gather: 5000 rays in all"), std::string::npos) << s;
+    EXPECT_EQ(s.back(), '\n') << s;
+    EXPECT_EQ(s.find("\n\n"), std::string::npos) << s;
+  }
+}
+
 }  // namespace
 }  // namespace radfarm
