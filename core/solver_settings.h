@@ -65,7 +65,8 @@ struct SolverSettings {
   // (core/direct_light.h) instead of shooting the emitters' light, and once the unshot power is
   // below the tolerance one last round casts this many rays from every reflecting patch and sets
   // B = E + rho * (direct + the mean over those rays of the hit patch's radiosity less its
-  // emission). Ignored by the grid sampler (whose shot size is fixed) and by refining solves.
+  // emission). Ignored by the grid sampler (whose shot size is fixed) and by a refining solve
+  // before its restart point (RefinementSchedule::SolverSettingsNow).
   uint32_t gather_rays = 0;
   // Worker threads (0: all cores). Never changes the result.
   uint32_t threads = 0;
