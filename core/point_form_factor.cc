@@ -31,8 +31,12 @@ double PointToPatchFormFactor(const Vec3& x, const Vec3& n, const Patch& patch) 
   if (count < 3) return 0;
   double sum = 0;
   for (int i = 0; i < count; ++i) {
-    const Vec3 a = Normalize(clipped[i]);
-    const Vec3 b = Normalize(clipped[(i + 1) % count]);
+    const Vec3& ra = clipped[i];
+    const Vec3& rb = clipped[(i + 1) % count];
+    // A corner at x itself (x on the patch's corner, in its plane to rounding) has no direction.
+    if (Length(ra) == 0 || Length(rb) == 0) continue;
+    const Vec3 a = Normalize(ra);
+    const Vec3 b = Normalize(rb);
     const Vec3 c = Cross(a, b);
     const double s = Length(c);
     if (s == 0) continue;  // an edge through or pointing at x subtends no angle

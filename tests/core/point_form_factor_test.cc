@@ -56,6 +56,18 @@ TEST(PointFormFactorTest, AQuadOnTheTangentPlaneToRoundingSendsNothing) {
   EXPECT_NEAR(f, 0, 1e-12);
 }
 
+// A point at a patch's corner, in front of it by less than a double can square (a display
+// vertex on a light's edge): the corner has no direction from it and is skipped, no NaN. The rest
+// of the outline gives the limit of the corner-of-a-rectangle closed form as the height goes to
+// 0: a quarter.
+TEST(PointFormFactorTest, APointAtACornerOfThePatchIsFinite) {
+  const double e = 1e-200;
+  const Patch floor = Quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0});
+  const double f = PointToPatchFormFactor({0, 0, e}, {0, 0, -1}, floor);
+  EXPECT_TRUE(std::isfinite(f));
+  EXPECT_NEAR(f, 0.25, 1e-12);
+}
+
 TEST(PointFormFactorTest, OnlyThePartAboveTheTangentPlaneCounts) {
   // A vertical wall in front of the point, reaching as far below its plane as above: half of a
   // wall of twice the height above the plane.
