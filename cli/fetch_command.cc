@@ -52,7 +52,7 @@ Status WriteSolution(const std::vector<uint8_t>& blob, const std::string& out_di
   }
   if (Status s = CreateOutputDirectory(out_dir); !s.ok()) return s;
   const SolveResult result{std::move(solution->radiosity), std::move(solution->unshot),
-                           std::move(solution->stats)};
+                           std::move(solution->stats), {}};
   // As `radfarm render`: stats.json names the initial patch count of a refining job.
   return WriteOutputs(out_dir, *mesh, result, bundle->job,
                       bundle->job.refine.enabled ? initial_patches : 0);

@@ -81,4 +81,39 @@ std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, ui
   return out;
 }
 
+uint32_t DirectLightSections(const PatchScene& scene, const SolverSettings& settings) {
+  if (!GatherOn(settings)) return 0;
+  uint64_t emitters = 0;
+  for (const Patch& p : scene.patches) emitters += p.emission.Max() > 0;
+  // A shadow ray per point and emitter patch: at least 4 x 4 points per patch, worth it while that
+  // is no more than the gather's rays. Big patches near a light need more points (the form factor
+  // changes across the patch).
+  if (emitters == 0 || emitters * 16 > settings.gather_rays) return 0;
+  return static_cast<uint32_t>(std::clamp(
+      std::floor(std::sqrt(settings.gather_rays / (2.0 * double(emitters)))), 4.0, 16.0));
+}
+
+std::vector<Rgb> StartingDirectLight(const PatchScene& scene, const SolverSettings& settings) {
+  const uint32_t sections = DirectLightSections(scene, settings);
+  if (sections == 0) return {};
+  return PatchDirectLight(scene, sections, settings.seed, settings.threads);
+}
+
+std::vector<Rgb> PointsDirectLight(const PatchScene& scene,
+                                   const std::vector<ReceiverPoint>& points, uint64_t seed,
+                                   unsigned threads) {
+  std::vector<Rgb> out(points.size());
+  if (points.empty()) return out;
+  const RayCaster caster(scene);
+  const DirectLight direct(scene, caster, kPointShadowRays);
+  ThreadPool pool(threads);
+  // Stream constant: keeps these keys apart from PatchDirectLight's and every other use of the
+  // seed.
+  const uint64_t stream = HashWords(seed, 0x706f696e74646cull);
+  pool.ParallelFor(points.size(), [&](unsigned, size_t i) {
+    out[i] = direct.Irradiance(points[i].position, points[i].normal, HashWords(stream, i));
+  });
+  return out;
+}
+
 }  // namespace radfarm

@@ -14,6 +14,7 @@
 #include "core/patch_scene.h"
 #include "core/ray_caster.h"
 #include "core/rgb.h"
+#include "core/solver_settings.h"
 #include "core/vec3.h"
 
 namespace radfarm {
@@ -44,5 +45,29 @@ class DirectLight {
 // Patches facing away from every emitter get zero without a ray.
 std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, uint64_t seed,
                                   unsigned threads);
+
+// The points per side of each patch at which a solve with these settings computes the direct
+// light it starts from (ProgressiveSolver), or 0 where it does not start from it: the gather off
+// (GatherOn), no emitter, or more than gather_rays / 16 emitter patches (a furnace: the emitters
+// shoot). Within, up to half the gather's rays per patch go to points, 4 x 4 to 16 x 16.
+uint32_t DirectLightSections(const PatchScene& scene, const SolverSettings& settings);
+
+// The direct light a solve with these settings starts from: PatchDirectLight at
+// DirectLightSections, or empty where that is 0.
+std::vector<Rgb> StartingDirectLight(const PatchScene& scene, const SolverSettings& settings);
+
+// Shadow rays per point (about) for PointsDirectLight.
+inline constexpr uint32_t kPointShadowRays = 64;
+
+struct ReceiverPoint {
+  Vec3 position;
+  Vec3 normal;  // unit
+};
+
+// DirectLight::Irradiance at each point with about kPointShadowRays shadow rays: a pure function
+// of the scene, the points and `seed`, whatever `threads` (0: all cores).
+std::vector<Rgb> PointsDirectLight(const PatchScene& scene,
+                                   const std::vector<ReceiverPoint>& points, uint64_t seed,
+                                   unsigned threads);
 
 }  // namespace radfarm

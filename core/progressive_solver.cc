@@ -30,19 +30,12 @@ ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettin
   }
   energy_.unshot = energy_.emitted;
   gather_ = GatherOn(settings_);
-  uint64_t emitters = 0;
-  for (const Patch& p : scene.patches) emitters += p.emission.Max() > 0;
-  // The direct light costs a shadow ray per point and emitter patch: at least 4 x 4 points per
-  // patch, and it is worth it while that is no more than the gather's rays. Beyond (a furnace, a
+  // Start from the direct light where DirectLightSections says it pays. Elsewhere (a furnace, a
   // sky of emitters) the emitters shoot as usual and the gather sees their light like any other.
-  // Within, up to half the gather's rays go to more points (big patches near a light need
-  // them: the form factor changes across the patch), at most 16 x 16.
-  if (!gather_ || emitters == 0 || emitters * 16 > settings_.gather_rays) return;
-  const auto sections = static_cast<uint32_t>(std::clamp(
-      std::floor(std::sqrt(settings_.gather_rays / (2.0 * double(emitters)))), 4.0, 16.0));
-  // Start from the direct light: it is delivered (absorbed or reflected), the reflected part is
-  // unshot, and what the emitters emitted beyond it left the scene or met a back face.
-  direct_ = PatchDirectLight(scene, sections, settings.seed, settings.threads);
+  // The direct light is delivered (absorbed or reflected), the reflected part is unshot, and what
+  // the emitters emitted beyond it left the scene or met a back face.
+  direct_ = StartingDirectLight(scene, settings_);
+  if (direct_.empty()) return;
   double delivered = 0;
   energy_.absorbed = 0;
   for (size_t i = 0; i < scene.patches.size(); ++i) {

@@ -78,7 +78,7 @@ SolveResult Solve(const PatchScene& scene, const SolverSettings& settings,
   stats.emitted_power = solver.energy().emitted;
   stats.absorbed_power = solver.energy().absorbed;
   stats.escaped_power = solver.energy().escaped;
-  return {solver.radiosity(), solver.unshot(), stats};
+  return {solver.radiosity(), solver.unshot(), stats, solver.direct_light()};
 }
 
 }  // namespace radfarm

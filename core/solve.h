@@ -26,6 +26,9 @@ struct SolveResult {
   std::vector<Rgb> radiosity;  // per patch, MTL Ke units
   std::vector<Rgb> unshot;
   SolveStats stats;
+  // The direct light per patch the solve started from (ProgressiveSolver::direct_light()); empty
+  // where it did not. The display uses it (PatchMesh::SetSolution).
+  std::vector<Rgb> direct_light;
 };
 
 // Rays per batch in local solves. Any value gives the same result (see batch.h); this one keeps

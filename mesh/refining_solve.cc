@@ -166,6 +166,7 @@ Result<RefiningSolveResult> SolveRefining(PatchMesh mesh, const SolverSettings& 
   stats.escaped_power = solver.energy().escaped;
   out.solution.radiosity = solver.radiosity();
   out.solution.unshot = solver.unshot();
+  out.solution.direct_light = solver.direct_light();
   return out;
 }
 
