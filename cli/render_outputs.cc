@@ -4,6 +4,7 @@
 #include <system_error>
 #include <vector>
 
+#include "core/direct_light.h"
 #include "output/exposure_meter.h"
 #include "output/exr_writer.h"
 #include "output/image.h"
@@ -27,7 +28,17 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
   const double patches_before =
       patches_before_refinement > 0 ? double(patches_before_refinement) : patches_after;
   namespace fs = std::filesystem;
-  mesh.SetSolution(solution.radiosity, solution.unshot);
+  // The direct light the solve started from, or, where it had not started from it yet (a refining
+  // solve stopped before its restart point, or `radfarm fetch`, which has only the values), the
+  // same pure function of the scene and the job's settings.
+  std::vector<Rgb> direct = solution.direct_light;
+  if (direct.empty()) direct = StartingDirectLight(mesh.patch_scene(), job.solver);
+  if (direct.empty()) {
+    mesh.SetSolution(solution.radiosity, solution.unshot);
+  } else {
+    mesh.SetSolution(solution.radiosity, solution.unshot,
+                     {direct, job.solver.seed, job.solver.threads});
+  }
   const DisplayMesh display = mesh.MakeDisplayMesh();
   std::vector<bool> emitter_patch;
   for (const Patch& p : mesh.patch_scene().patches) emitter_patch.push_back(p.emission.Max() > 0);

@@ -17,7 +17,9 @@ namespace radfarm {
 Status CreateOutputDirectory(const std::string& dir);
 
 // `dir` must exist. Stores the solution in `mesh` (PatchMesh::SetSolution) to shade the image and
-// the PLY; `solution` must hold one value per patch of `mesh`. Each file is written atomically.
+// the PLY; `solution` must hold one value per patch of `mesh`. Where the job's solve starts from
+// the direct light (core/direct_light.h: the final gather on), the vertices show the direct light
+// computed at each vertex. Each file is written atomically.
 // stats.json reports `patches_before_refinement` (0: the mesh was not refined, so the same as
 // `patches_after_refinement`, which is the patch count of `mesh`).
 Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& solution,

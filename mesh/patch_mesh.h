@@ -34,6 +34,9 @@ namespace radfarm {
 inline constexpr double kAutoPatchDivisions = 40;
 // Build refuses scenes that would need more patches than this (a patch size far too small).
 inline constexpr uint64_t kMaxPatches = uint64_t{1} << 23;
+// How far toward the centres of its patches a vertex's direct light is computed, as a share of
+// the distance: far enough off a crease for its shadow rays, near enough to be the vertex's value.
+inline constexpr double kVertexInset = 1e-4;
 
 // Move-only: a copy of a large mesh is never wanted by accident.
 class PatchMesh {
@@ -74,6 +77,23 @@ class PatchMesh {
   // border are then extrapolated from the inside (mesh/border_extrapolation.h).
   void SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot);
 
+  // The direct light a solve started from (SolveResult::direct_light, one value per patch), and
+  // the keys and threads for the vertices' own shadow rays.
+  struct VertexDirectLight {
+    const std::vector<Rgb>& patch_direct;
+    uint64_t seed = 0;
+    unsigned threads = 0;  // 0: all cores
+  };
+  // As above, but a vertex shows the direct light computed at the vertex itself, rho times
+  // DirectLight at the vertex (core/direct_light.h), plus the average of the rest (radiosity less
+  // rho times the patch's direct light: emission and bounced light) over its patches. The average
+  // puts a vertex at the mean of the patches around it: where the direct light bends (the fall-off
+  // near a light, a penumbra) that is not its value there, and the Gouraud image shows every
+  // patch's outline. The direct light at the vertex is exact outside shadows, so only the smooth
+  // bounced light is averaged. Costs a point of shadow rays (kPointShadowRays) per vertex.
+  void SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot,
+                   const VertexDirectLight& direct);
+
   // Triangles with per-vertex radiance for the image and the PLY: one vertex per surface and
   // position, patches with T-vertices on their edges triangulated through them, so Gouraud shading
   // is continuous within a surface. Radiance is zero before SetSolution.
@@ -87,6 +107,14 @@ class PatchMesh {
   PatchMesh() = default;
   // Per patch, its display vertices in order: corners and the T-vertices on its edges.
   std::vector<std::vector<uint32_t>> FaceRings() const;
+  // The solution into the face properties B and dB (aborts on a size mismatch).
+  void StoreSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot);
+  // visit(display vertex, patch) for every patch touching a display vertex (corner or T-vertex).
+  template <typename Visit>
+  void ForEachVertexPatch(Visit&& visit) const;
+  // Per display vertex, the area-weighted average of a per-patch value over its patches.
+  std::vector<Rgb> VertexAverages(const std::vector<Rgb>& per_patch) const;
+  void SetVertexRadiance(const std::vector<Rgb>& value);
 
   PatchMeshData data_;
   double patch_size_ = 0;

@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/direct_light.h"
 #include "mesh/border_extrapolation.h"
 #include "mesh/ear_clip.h"
 #include "mesh/patch_mesh.h"
@@ -9,7 +10,7 @@
 
 namespace radfarm {
 
-void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot) {
+void PatchMesh::StoreSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot) {
   OmMesh& mesh = *data_.mesh;
   const PatchProperties& p = data_.props;
   const size_t faces = data_.scene.patches.size();
@@ -19,26 +20,96 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
                  radiosity.size(), unshot.size(), faces);
     std::abort();
   }
-  std::vector<Rgb> sum(data_.group_vertex.size());
-  std::vector<double> weight(data_.group_vertex.size(), 0.0);
-  auto accumulate = [&](uint32_t group, uint32_t face) {
-    const double area = data_.scene.patches[face].area;
-    sum[group] += radiosity[face] * area;
-    weight[group] += area;
-  };
   for (uint32_t f = 0; f < faces; ++f) {
     const OmMesh::FaceHandle fh = mesh.face_handle(f);
     mesh.property(p.radiosity, fh) = radiosity[f];
     mesh.property(p.unshot, fh) = unshot[f];
-    for (OmMesh::VertexHandle vh : mesh.fv_range(fh)) accumulate(mesh.property(p.group, vh), f);
   }
-  for (const EdgePoint& e : data_.edge_points) accumulate(e.group, e.face);
-  std::vector<Rgb> value(sum.size());
-  for (size_t g = 0; g < sum.size(); ++g) value[g] = weight[g] > 0 ? sum[g] / weight[g] : Rgb();
-  ExtrapolateBorders(FaceRings(), &value);
+}
+
+template <typename Visit>
+void PatchMesh::ForEachVertexPatch(Visit&& visit) const {
+  const OmMesh& mesh = *data_.mesh;
+  for (uint32_t f = 0; f < data_.scene.patches.size(); ++f) {
+    for (OmMesh::VertexHandle vh : mesh.fv_range(mesh.face_handle(f))) {
+      visit(mesh.property(data_.props.group, vh), f);
+    }
+  }
+  for (const EdgePoint& e : data_.edge_points) visit(e.group, e.face);
+}
+
+std::vector<Rgb> PatchMesh::VertexAverages(const std::vector<Rgb>& per_patch) const {
+  std::vector<Rgb> sum(data_.group_vertex.size());
+  std::vector<double> weight(data_.group_vertex.size(), 0.0);
+  ForEachVertexPatch([&](uint32_t group, uint32_t face) {
+    const double area = data_.scene.patches[face].area;
+    sum[group] += per_patch[face] * area;
+    weight[group] += area;
+  });
+  for (size_t g = 0; g < sum.size(); ++g) sum[g] = weight[g] > 0 ? sum[g] / weight[g] : Rgb();
+  return sum;
+}
+
+void PatchMesh::SetVertexRadiance(const std::vector<Rgb>& value) {
+  OmMesh& mesh = *data_.mesh;
   for (OmMesh::VertexHandle vh : mesh.vertices()) {
-    mesh.property(p.radiance, vh) = value[mesh.property(p.group, vh)];
+    mesh.property(data_.props.radiance, vh) = value[mesh.property(data_.props.group, vh)];
   }
+}
+
+void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot) {
+  StoreSolution(radiosity, unshot);
+  std::vector<Rgb> value = VertexAverages(radiosity);
+  ExtrapolateBorders(FaceRings(), &value);
+  SetVertexRadiance(value);
+}
+
+void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot,
+                            const VertexDirectLight& direct) {
+  StoreSolution(radiosity, unshot);
+  const std::vector<Patch>& patches = data_.scene.patches;
+  if (direct.patch_direct.size() != patches.size()) {
+    std::fprintf(stderr, "PatchMesh::SetSolution: %zu direct light values, %zu patches\n",
+                 direct.patch_direct.size(), patches.size());
+    std::abort();
+  }
+  // What the patch averages hold besides the direct light: emission and bounced light, smooth.
+  std::vector<Rgb> rest(patches.size()), reflectance(patches.size());
+  for (size_t f = 0; f < patches.size(); ++f) {
+    rest[f] = radiosity[f] - patches[f].reflectance * direct.patch_direct[f];
+    reflectance[f] = patches[f].reflectance;
+  }
+  std::vector<Rgb> value = VertexAverages(rest);
+  ExtrapolateBorders(FaceRings(), &value);
+  const std::vector<Rgb> rho = VertexAverages(reflectance);
+
+  // Each vertex's point: a hair inside the patches around it (toward their centres), so a vertex
+  // on a crease or at the foot of a wall sees the light as the surface beside it does.
+  const size_t groups = data_.group_vertex.size();
+  std::vector<Vec3> centre_sum(groups), normal_sum(groups);
+  std::vector<uint32_t> count(groups, 0);
+  ForEachVertexPatch([&](uint32_t group, uint32_t face) {
+    centre_sum[group] = centre_sum[group] + patches[face].centre;
+    normal_sum[group] = normal_sum[group] + patches[face].normal * patches[face].area;
+    ++count[group];
+  });
+  std::vector<ReceiverPoint> points;
+  std::vector<uint32_t> point_group;
+  for (uint32_t g = 0; g < groups; ++g) {
+    const double length = Length(normal_sum[g]);
+    if (count[g] == 0 || !(length > 0)) continue;
+    const Vec3 at = FromOm(data_.mesh->point(data_.group_vertex[g]));
+    const Vec3 inward = centre_sum[g] / double(count[g]) - at;
+    points.push_back({at + inward * kVertexInset, normal_sum[g] / length});
+    point_group.push_back(g);
+  }
+  const std::vector<Rgb> irradiance =
+      PointsDirectLight(data_.scene, points, direct.seed, direct.threads);
+  for (size_t k = 0; k < points.size(); ++k) {
+    const uint32_t g = point_group[k];
+    value[g] += rho[g] * irradiance[k];
+  }
+  SetVertexRadiance(value);
 }
 
 std::vector<std::vector<uint32_t>> PatchMesh::FaceRings() const {

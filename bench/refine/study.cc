@@ -158,7 +158,13 @@ class Study {
     row.seconds = seconds;
     row.patch_error =
         MeasurePatchError(solved->mesh->patch_scene(), solved->solution.radiosity, ref_);
-    solved->mesh->SetSolution(solved->solution.radiosity, solved->solution.unshot);
+    // As `radfarm render` shades it (cli/render_outputs.cc).
+    if (solved->solution.direct_light.empty()) {
+      solved->mesh->SetSolution(solved->solution.radiosity, solved->solution.unshot);
+    } else {
+      solved->mesh->SetSolution(solved->solution.radiosity, solved->solution.unshot,
+                                {solved->solution.direct_light, solver.seed, solver.threads});
+    }
     const DisplayMesh display = solved->mesh->MakeDisplayMesh();
     const Camera camera = ResolveCamera(display, camera_);
     const Image image = RenderImage(display, camera);

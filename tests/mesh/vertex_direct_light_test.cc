@@ -1,0 +1,125 @@
+// Vertex radiance with the direct light computed at each vertex (PatchMesh::SetSolution with
+// VertexDirectLight), against the closed form of a point under a parallel square light.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include "core/solve.h"
+#include "mesh/patch_mesh.h"
+#include "test_scenes.h"
+
+namespace radfarm {
+namespace {
+
+constexpr double kRho = 0.5;
+
+// A 4 x 4 floor (y = 0, up, rho 0.5); a 1 x 1 light at y = 1 over its centre, facing down,
+// emitting 1 and reflecting nothing; a black wall along the floor's edge x = 0 (a crease). No
+// light bounces back to the floor, so its radiosity is rho times the direct light alone.
+InputScene FloorUnderASquareLight() {
+  testing::SceneBuilder s;
+  const uint32_t white = s.AddMaterial("white", {kRho, kRho, kRho});
+  const uint32_t light = s.AddMaterial("light", {0, 0, 0}, {1, 1, 1});
+  const uint32_t black = s.AddMaterial("black", {0, 0, 0});
+  s.AddFace({{0, 0, 0}, {0, 0, 4}, {4, 0, 4}, {4, 0, 0}}, white);
+  s.AddFace({{1.5, 1, 1.5}, {2.5, 1, 1.5}, {2.5, 1, 2.5}, {1.5, 1, 2.5}}, light);
+  s.AddFace({{0, 0, 0}, {0, 2, 0}, {0, 2, 4}, {0, 0, 4}}, black);
+  return s.scene();
+}
+
+// Form factor from a point to a parallel rectangle at height 1 with a corner straight above it,
+// sides a and b (signed: the superposition below adds and subtracts such rectangles).
+double CornerRectangle(double a, double b) {
+  const double fa = std::abs(a), fb = std::abs(b);
+  const double f = (fa / std::sqrt(1 + fa * fa) * std::atan(fb / std::sqrt(1 + fa * fa)) +
+                    fb / std::sqrt(1 + fb * fb) * std::atan(fa / std::sqrt(1 + fb * fb))) /
+                   (2 * std::numbers::pi);
+  return (a < 0) != (b < 0) ? -f : f;
+}
+
+// The light's form factor from floor point (x, 0, z).
+double LightFormFactor(double x, double z) {
+  return CornerRectangle(2.5 - x, 2.5 - z) - CornerRectangle(1.5 - x, 2.5 - z) -
+         CornerRectangle(2.5 - x, 1.5 - z) + CornerRectangle(1.5 - x, 1.5 - z);
+}
+
+// The largest relative difference of the floor's display vertices from rho times the closed form.
+double WorstFloorVertex(const DisplayMesh& display, const PatchScene& scene) {
+  std::vector<bool> floor(display.positions.size(), false);
+  for (size_t t = 0; t < display.triangles.size(); ++t) {
+    if (scene.patches[display.triangle_patch[t]].normal.y > 0.5) {
+      for (uint32_t v : display.triangles[t]) floor[v] = true;
+    }
+  }
+  double worst = 0;
+  size_t seen = 0;
+  for (size_t v = 0; v < display.positions.size(); ++v) {
+    if (!floor[v]) continue;
+    ++seen;
+    const Vec3& p = display.positions[v];
+    const double expected = kRho * LightFormFactor(p.x, p.z);
+    worst = std::max(worst, std::abs(display.radiance[v].g - expected) / expected);
+  }
+  EXPECT_EQ(seen, 81u) << "a 9 x 9 lattice of floor vertices";
+  return worst;
+}
+
+class VertexDirectLightTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    Result<PatchMesh> built = PatchMesh::Build(FloorUnderASquareLight(), {0.5}, nullptr);
+    ASSERT_TRUE(built.ok()) << built.error();
+    mesh_.emplace(std::move(*built));
+    SolverSettings settings;
+    settings.gather_rays = 1024;
+    settings.threads = 2;
+    solution_ = Solve(mesh_->patch_scene(), settings);
+    ASSERT_FALSE(solution_.direct_light.empty()) << "the solve starts from the direct light";
+  }
+
+  std::optional<PatchMesh> mesh_;
+  SolveResult solution_;
+};
+
+// Every floor vertex, the crease at the wall and the floor's outer border included, shows the
+// closed form (the vertex's point sits 1e-4 of the way toward its patches' centres). The plain
+// average of the patches around a vertex misses the peak under the light and the fall-off.
+TEST_F(VertexDirectLightTest, FloorVerticesShowTheClosedForm) {
+  mesh_->SetSolution(solution_.radiosity, solution_.unshot, {solution_.direct_light, 1, 2});
+  EXPECT_LT(WorstFloorVertex(mesh_->MakeDisplayMesh(), mesh_->patch_scene()), 1e-3);
+
+  mesh_->SetSolution(solution_.radiosity, solution_.unshot);
+  EXPECT_GT(WorstFloorVertex(mesh_->MakeDisplayMesh(), mesh_->patch_scene()), 0.02)
+      << "averaged vertices would pass too: the test would not tell the two apart";
+}
+
+TEST_F(VertexDirectLightTest, SameBitsWithAnyThreadCount) {
+  mesh_->SetSolution(solution_.radiosity, solution_.unshot, {solution_.direct_light, 1, 1});
+  const DisplayMesh one = mesh_->MakeDisplayMesh();
+  mesh_->SetSolution(solution_.radiosity, solution_.unshot, {solution_.direct_light, 1, 3});
+  const DisplayMesh three = mesh_->MakeDisplayMesh();
+  ASSERT_EQ(one.radiance.size(), three.radiance.size());
+  for (size_t v = 0; v < one.radiance.size(); ++v) EXPECT_EQ(one.radiance[v], three.radiance[v]);
+}
+
+// The light's own vertices show its emission: it receives nothing and reflects nothing.
+TEST_F(VertexDirectLightTest, EmittersShowTheirEmission) {
+  mesh_->SetSolution(solution_.radiosity, solution_.unshot, {solution_.direct_light, 1, 2});
+  const DisplayMesh d = mesh_->MakeDisplayMesh();
+  const PatchScene& scene = mesh_->patch_scene();
+  size_t lit = 0;
+  for (size_t t = 0; t < d.triangles.size(); ++t) {
+    if (scene.patches[d.triangle_patch[t]].emission.Max() == 0) continue;
+    for (uint32_t v : d.triangles[t]) {
+      EXPECT_EQ(d.radiance[v], Rgb(1, 1, 1));
+      ++lit;
+    }
+  }
+  EXPECT_GT(lit, 0u);
+}
+
+}  // namespace
+}  // namespace radfarm
