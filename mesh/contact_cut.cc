@@ -68,6 +68,32 @@ bool StandingEdge(const CleanFace& g, const Vec3& p0, const Vec3& n, double tol,
   return false;
 }
 
+double Area(const std::vector<Vec3>& polygon, const Vec3& n) {
+  return polygon.size() < 3 ? 0.0 : Dot(VectorArea(polygon), n);
+}
+
+// The outline of `g` projected onto the plane (p0, n), when g is a sheet over that plane: parallel
+// to it, facing the same way (its back toward the plane), in front of it by more than tol and at
+// most kSheetGap of its own size, its projection inside `outline`.
+bool CoveringSheet(const CleanFace& g, const std::vector<Vec3>& outline, const Vec3& p0,
+                   const Vec3& n, double tol, Footprint* footprint) {
+  if (Dot(g.normal, n) < 1 - 1e-9) return false;
+  const double gap = Dot(g.corners[0] - p0, n);
+  if (gap <= tol || gap > kSheetGap * std::sqrt(g.area)) return false;
+  Footprint c;
+  for (const Vec3& x : g.corners) {
+    const double h = Dot(x - p0, n);
+    if (std::fabs(h - gap) > tol) return false;  // not parallel
+    c.push_back(x - n * h);
+    if (!InsideOrOn(outline, n, c.back(), tol)) return false;
+  }
+  if (Area(c, n) < 0) std::reverse(c.begin(), c.end());
+  RemoveRedundantCorners(tol, &c);
+  if (c.size() < 3 || !IsStrictlyConvex(c, n)) return false;
+  *footprint = std::move(c);
+  return true;
+}
+
 struct Loop {
   std::vector<Vec3> corners;
   std::vector<size_t> segments;  // indices of the segments it was joined from
@@ -122,10 +148,6 @@ std::vector<Vec3> ClipHalfSpace(const std::vector<Vec3>& polygon, const Vec3& m,
     if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
   }
   return out;
-}
-
-double Area(const std::vector<Vec3>& polygon, const Vec3& n) {
-  return polygon.size() < 3 ? 0.0 : Dot(VectorArea(polygon), n);
 }
 
 void Emit(std::vector<Vec3> part, const Vec3& n, double tol, double min_area,
@@ -189,6 +211,12 @@ std::vector<std::vector<Footprint>> FindFootprints(const std::vector<CleanFace>&
         outward = outward && Dot(segments[s].normal, centre - segments[s].a) < 0;
       }
       if (outward) out[f].push_back(std::move(c));
+    }
+    for (size_t g = 0; g < faces.size(); ++g) {
+      Footprint sheet;
+      if (g != f && CoveringSheet(faces[g], face.corners, p0, face.normal, tol, &sheet)) {
+        out[f].push_back(std::move(sheet));
+      }
     }
   }
   return out;

@@ -12,6 +12,14 @@
 // ring: the ground inside is the room's floor, not covered). Only convex loops are cut (a box
 // standing on the floor; a concave base, or one whose loop is broken because a side was dropped as
 // hidden, is left uncut).
+//
+// A sheet over a face covers it too: a face parallel to F and facing the same way (its back toward
+// F), in front of F by at most kSheetGap of its size (the square root of its area), its outline
+// inside F's. The Cornell box's light hangs 0.8 mm under the ceiling, the seed room's 1 mm: the
+// ceiling above it sees only the light's back through a slit, so it is dark, and a patch across
+// the light's outline would smear that step into the lit ceiling around it (a dark ring in the
+// image). Its projection on F is a footprint like a solid's. A sheet facing F (a light shining on
+// it) covers nothing.
 #pragma once
 
 #include <cstddef>
@@ -24,6 +32,9 @@
 namespace radfarm {
 
 using Footprint = std::vector<Vec3>;  // convex, counter-clockwise about the face's normal
+
+// The largest gap under a covering sheet, as a share of the square root of its area.
+inline constexpr double kSheetGap = 0.02;
 
 // For each face, the footprints of what stands on it.
 std::vector<std::vector<Footprint>> FindFootprints(const std::vector<CleanFace>& faces, double tol);

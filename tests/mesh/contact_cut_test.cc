@@ -94,6 +94,58 @@ TEST(ContactCutTest, FloorPatchesStopAtTheFootprint) {
             std::vector<std::string>{});
 }
 
+// A 4 x 4 ceiling at y = 3 facing down and a 1 x 1 light under it at `gap`, its square's corner
+// at (x, z); `facing_down`: the light shines away from the ceiling (its back toward it).
+InputScene LightUnderCeiling(double gap, double x, double z, bool facing_down) {
+  SceneBuilder s;
+  const uint32_t white = s.AddMaterial("white", {0.5, 0.5, 0.5});
+  const uint32_t light = s.AddMaterial("light", {0.5, 0.5, 0.5}, {1, 1, 1});
+  s.AddFace({{0, 3, 0}, {4, 3, 0}, {4, 3, 4}, {0, 3, 4}}, white);  // ceiling, down
+  const double y = 3 - gap;
+  std::vector<Vec3> sheet = {{x, y, z}, {x + 1, y, z}, {x + 1, y, z + 1}, {x, y, z + 1}};
+  if (!facing_down) std::reverse(sheet.begin(), sheet.end());
+  s.AddFace(sheet, light);
+  return s.scene();
+}
+
+double CeilingArea(const PatchMesh& mesh) {
+  double area = 0;
+  for (const Patch& p : mesh.patch_scene().patches) {
+    if (p.emission.Max() == 0) area += p.area;
+  }
+  return area;
+}
+
+// The ceiling above a light hanging just under it sees only the light's back: it is cut out along
+// the light's outline, which need not follow the patch grid, without cracks.
+TEST(ContactCutTest, ALightHangingJustUnderTheCeilingCoversIt) {
+  Result<PatchMesh> mesh =
+      PatchMesh::Build(LightUnderCeiling(0.01, 1.25, 1.6, true), {0.5}, nullptr);
+  ASSERT_TRUE(mesh.ok()) << mesh.error();
+  EXPECT_NEAR(CeilingArea(*mesh), 16.0 - 1.0, 1e-9);
+  for (const Patch& p : mesh->patch_scene().patches) {
+    if (p.emission.Max() > 0) continue;
+    EXPECT_FALSE(p.centre.x > 1.25 && p.centre.x < 2.25 && p.centre.z > 1.6 && p.centre.z < 2.6)
+        << p.centre.x << " " << p.centre.z;
+  }
+  std::vector<Rgb> values(mesh->patch_scene().patches.size(), Rgb(1, 1, 1));
+  mesh->SetSolution(values, values);
+  EXPECT_EQ(testing::FindCracks(mesh->MakeDisplayMesh(), mesh->patch_scene()),
+            std::vector<std::string>{});
+}
+
+// Not covered: a sheet further off than kSheetGap of its size (the ceiling above it is lit from
+// the side), one shining onto the ceiling, and one reaching past the ceiling's outline.
+TEST(ContactCutTest, ASheetFarOffFacingOrOverhangingCoversNothing) {
+  for (const InputScene& scene :
+       {LightUnderCeiling(0.05, 1.25, 1.6, true), LightUnderCeiling(0.01, 1.25, 1.6, false),
+        LightUnderCeiling(0.01, 3.5, 1.6, true)}) {
+    Result<PatchMesh> mesh = PatchMesh::Build(scene, {0.5}, nullptr);
+    ASSERT_TRUE(mesh.ok()) << mesh.error();
+    EXPECT_NEAR(CeilingArea(*mesh), 16.0, 1e-9);
+  }
+}
+
 TEST(ContactCutTest, RoomWallsStandingOnTheFloorsOutlineAreNoFootprint) {
   SceneBuilder s;
   const uint32_t m = s.AddMaterial("white", {0.5, 0.5, 0.5}, {1, 1, 1});
