@@ -157,6 +157,22 @@ const Row* FindRow(const StudyResult& s, const std::string& group, const std::st
   return nullptr;
 }
 
+// The display's cost against the solve's, over the rows whose solve took at least 0.5 s (shorter
+// ones are timer noise).
+std::string DisplayShare(const std::vector<StudyResult>& studies) {
+  std::vector<double> shares;
+  for (const StudyResult& s : studies) {
+    for (const Row& r : s.rows) {
+      if (r.seconds >= 0.5) shares.push_back(r.display_seconds / r.seconds);
+    }
+  }
+  if (shares.empty()) return "no row took 0.5 s or more";
+  std::sort(shares.begin(), shares.end());
+  return "over the rows that took 0.5 s or more, the display took a median " +
+         Fmt(100 * shares[shares.size() / 2], "%.1f") + "% and at most " +
+         Fmt(100 * shares.back(), "%.1f") + "% of the solve's time (one run each)";
+}
+
 void WriteDefaults(const std::vector<StudyResult>& studies, std::ostringstream& md) {
   md << "\n## Defaults\n\n";
   md << "- **Refinement** (`refine`): an adaptive row *beats uniform* when its image error is "
@@ -312,7 +328,10 @@ void WriteAdaptiveReport(const ReportRun& run, const std::vector<StudyResult>& s
         "error subtracts it in quadrature. It measures how well each element's value is "
         "computed, not the detail a coarse element cannot show.\n"
      << "- **Image error**: mean over pixels of |I - Iref| (linear, channel sum, Gouraud-shaded "
-        "from vertex radiance, 256 x 256, 4 samples per pixel) over the mean of Iref: smeared "
+        "from vertex radiance as `radfarm render` shades it: where the solve started from the "
+        "direct light, each vertex shows the direct light computed at the vertex plus the rest "
+        "averaged over its elements, `PatchMesh::SetSolution`; 256 x 256, 4 samples per pixel) "
+        "over the mean of Iref: smeared "
         "shadows, Mach bands, leaks and blotches count. This is the measure meshes are compared "
         "by. **Iref** is not the reference mesh's own Gouraud image (a uniform mesh would then be "
         "judged by how much it looks like another uniform mesh): at every subpixel sample the "
@@ -322,7 +341,8 @@ void WriteAdaptiveReport(const ReportRun& run, const std::vector<StudyResult>& s
         "bounced, which is smooth) is Gouraud-shaded from the reference mesh "
         "(bench/refine/reference_image.h).\n"
      << "- **Time**: `SolveRefining` wall time (meshing excluded, refinement included), the "
-        "median of the row's runs.\n\n";
+        "median of the row's runs. The vertex radiance and display mesh are not included: "
+     << DisplayShare(studies) << ".\n\n";
   for (const StudyResult& s : studies) {
     WritePlots(run, s);
     md << "## " << s.scene.name << "\n\n"

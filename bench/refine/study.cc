@@ -159,6 +159,7 @@ class Study {
     row.patch_error =
         MeasurePatchError(solved->mesh->patch_scene(), solved->solution.radiosity, ref_);
     // As `radfarm render` shades it (cli/render_outputs.cc).
+    const auto display_start = std::chrono::steady_clock::now();
     if (solved->solution.direct_light.empty()) {
       solved->mesh->SetSolution(solved->solution.radiosity, solved->solution.unshot);
     } else {
@@ -166,6 +167,8 @@ class Study {
                                 {solved->solution.direct_light, solver.seed, solver.threads});
     }
     const DisplayMesh display = solved->mesh->MakeDisplayMesh();
+    row.display_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - display_start).count();
     const Camera camera = ResolveCamera(display, camera_);
     const Image image = RenderImage(display, camera);
     row.image_error = MeasureImageError(image, ref_);
