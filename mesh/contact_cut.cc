@@ -212,9 +212,18 @@ std::vector<std::vector<Footprint>> FindFootprints(const std::vector<CleanFace>&
       }
       if (outward) out[f].push_back(std::move(c));
     }
+  }
+  return out;
+}
+
+std::vector<std::vector<Footprint>> FindCoveringSheets(const std::vector<CleanFace>& faces,
+                                                       double tol) {
+  std::vector<std::vector<Footprint>> out(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
     for (size_t g = 0; g < faces.size(); ++g) {
       Footprint sheet;
-      if (g != f && CoveringSheet(faces[g], face.corners, p0, face.normal, tol, &sheet)) {
+      if (g != f && CoveringSheet(faces[g], faces[f].corners, faces[f].corners[0], faces[f].normal,
+                                  tol, &sheet)) {
         out[f].push_back(std::move(sheet));
       }
     }
@@ -223,7 +232,8 @@ std::vector<std::vector<Footprint>> FindFootprints(const std::vector<CleanFace>&
 }
 
 double CutFootprints(const std::vector<Footprint>& footprints, const Vec3& normal, double tol,
-                     double min_area, std::vector<PieceCorners>* pieces) {
+                     double min_area, std::vector<PieceCorners>* pieces,
+                     std::vector<PieceCorners>* covered) {
   double dropped = 0;
   for (const Footprint& c : footprints) {
     const size_t k = c.size();
@@ -255,6 +265,7 @@ double CutFootprints(const std::vector<Footprint>& footprints, const Vec3& norma
       }
       if (inside) {
         dropped += Area(p, normal);
+        if (covered) covered->push_back(piece);
         continue;
       }
       // Split: the part outside edge 0, then of the rest the part outside edge 1, and so on; what
@@ -265,6 +276,7 @@ double CutFootprints(const std::vector<Footprint>& footprints, const Vec3& norma
         rest = ClipHalfSpace(rest, inward[i], c[i], +1);
       }
       dropped += std::max(0.0, Area(rest, normal));
+      if (covered) Emit(rest, normal, tol, min_area, covered);
     }
     *pieces = std::move(kept);
   }

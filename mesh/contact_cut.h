@@ -16,10 +16,12 @@
 // A sheet over a face covers it too: a face parallel to F and facing the same way (its back toward
 // F), in front of F by at most kSheetGap of its size (the square root of its area), its outline
 // inside F's. The Cornell box's light hangs 0.8 mm under the ceiling, the seed room's 1 mm: the
-// ceiling above it sees only the light's back through a slit, so it is dark, and a patch across
-// the light's outline would smear that step into the lit ceiling around it (a dark ring in the
-// image). Its projection on F is a footprint like a solid's. A sheet facing F (a light shining on
-// it) covers nothing.
+// ceiling above it sees only the light's back through a slit, so it is dark, and patches across
+// the light's outline, or vertices averaged across it, smear that step into the lit ceiling
+// around it (a dark ring in the image). F is cut along the sheet's outline, but the part under it
+// is kept, as a surface of its own (PatchMesh::Build): rays through the slit must still meet the
+// ceiling, and its own surface keeps its darkness out of the vertices around. A sheet facing F (a
+// light shining on it) covers nothing.
 #pragma once
 
 #include <cstddef>
@@ -39,11 +41,17 @@ inline constexpr double kSheetGap = 0.02;
 // For each face, the footprints of what stands on it.
 std::vector<std::vector<Footprint>> FindFootprints(const std::vector<CleanFace>& faces, double tol);
 
+// For each face, the outlines of the sheets covering it, projected onto it.
+std::vector<std::vector<Footprint>> FindCoveringSheets(const std::vector<CleanFace>& faces,
+                                                       double tol);
+
 // Cuts `pieces` (convex, in a face with unit normal `normal`) along `footprints`: pieces outside
 // stay as they are, pieces inside are dropped, pieces across a footprint's edge become the convex
 // parts outside it (triangles, or quads where a part has four corners). Parts under `min_area`
-// are dropped. Returns the area dropped under the footprints.
+// are dropped. Returns the area under the footprints, which is dropped, or with `covered` moved
+// there (as convex pieces) instead.
 double CutFootprints(const std::vector<Footprint>& footprints, const Vec3& normal, double tol,
-                     double min_area, std::vector<PieceCorners>* pieces);
+                     double min_area, std::vector<PieceCorners>* pieces,
+                     std::vector<PieceCorners>* covered = nullptr);
 
 }  // namespace radfarm

@@ -98,6 +98,7 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
 
   const SurfaceGroups surfaces = GroupSurfaces(faces, tol);
   const std::vector<std::vector<Footprint>> footprints = FindFootprints(faces, tol);
+  const std::vector<std::vector<Footprint>> sheets = FindCoveringSheets(faces, tol);
   pm.surface_count_ = surfaces.count;
 
   std::vector<SplitPlan> plans;
@@ -127,6 +128,13 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
     EmitPieces(plans[f], &pieces);
     if (!footprints[f].empty()) {
       CutFootprints(footprints[f], faces[f].normal, tol, min_area, &pieces);
+    }
+    for (const Footprint& sheet : sheets[f]) {
+      // The part under a sheet becomes a surface of its own (contact_cut.h).
+      std::vector<PieceCorners> covered;
+      CutFootprints({sheet}, faces[f].normal, tol, min_area, &pieces, &covered);
+      const auto surface = static_cast<uint32_t>(pm.surface_count_++);
+      for (const PieceCorners& piece : covered) assembler.Add(piece, surface, faces[f].material);
     }
     for (const PieceCorners& piece : pieces) {
       assembler.Add(piece, surfaces.surface[f], faces[f].material);
