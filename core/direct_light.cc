@@ -1,7 +1,10 @@
 #include "core/direct_light.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include "core/counter_rng.h"
 #include "core/point_form_factor.h"
@@ -12,42 +15,68 @@ namespace radfarm {
 
 DirectLight::DirectLight(const PatchScene& scene, const RayCaster& caster, uint32_t rays_per_point)
     : scene_(scene), caster_(caster) {
+  std::map<std::pair<uint32_t, std::array<double, 3>>, size_t> light_of;  // (surface, Ke) -> light
   for (uint32_t i = 0; i < scene.patches.size(); ++i) {
-    if (scene.patches[i].emission.Max() > 0) {
-      emitters_.push_back(i);
-      splits_.push_back(TriangleSplit(scene.patches[i]));
-    }
+    const Patch& p = scene.patches[i];
+    if (p.emission.Max() <= 0) continue;
+    const auto [it, added] = light_of.try_emplace(
+        {p.surface, {p.emission.r, p.emission.g, p.emission.b}}, lights_.size());
+    if (added) lights_.emplace_back();
+    lights_[it->second].members.push_back(static_cast<uint32_t>(emitters_.size()));
+    emitters_.push_back(i);
+    splits_.push_back(TriangleSplit(p));
+  }
+  const double tol = 0.1 * caster.origin_offset();  // 1e-7 of the scene's diagonal
+  for (Light& light : lights_) {
+    if (light.members.size() < 2) continue;
+    std::vector<const Patch*> patches;
+    for (uint32_t k : light.members) patches.push_back(&scene.patches[emitters_[k]]);
+    light.outline = OutlineOf(patches, tol);
   }
   const double per_emitter = double(rays_per_point) / double(std::max<size_t>(1, emitters_.size()));
   grid_ = std::max(1u, static_cast<uint32_t>(std::ceil(std::sqrt(per_emitter))));
 }
 
-bool DirectLight::Reaches(const Vec3& x, const Vec3& n, const Vec3& target,
-                          uint32_t emitter) const {
-  const RayHit hit = caster_.Trace(x, Normalize(target - x), n);
-  if (hit.patch == RayHit::kMiss || !hit.front) return false;
-  // A ray aimed at one element of a light may land on its neighbour by rounding: still the light.
-  const Patch& p = scene_.patches[hit.patch];
-  return hit.patch == emitter ||
-         (p.emission.Max() > 0 && p.surface == scene_.patches[emitter].surface);
+double DirectLight::Visible(const Vec3& x, const Vec3& n, uint32_t k, uint64_t key) const {
+  const Patch& p = scene_.patches[emitters_[k]];
+  // Shadow rays to the centres of a grid_ x grid_ jittered stratification of the patch.
+  uint32_t seen = 0;
+  for (uint32_t i = 0; i < grid_; ++i) {
+    for (uint32_t j = 0; j < grid_; ++j) {
+      const CounterRng rng(HashWords(key, emitters_[k], i * grid_ + j));
+      const double u = (i + rng.Uniform(0)) / grid_, v = (j + rng.Uniform(1)) / grid_;
+      if (caster_.Unoccluded(x, SamplePatchPoint(p, splits_[k], u, v), n)) ++seen;
+    }
+  }
+  return double(seen) / double(grid_ * grid_);
 }
 
 Rgb DirectLight::Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const {
   Rgb e;
-  for (size_t k = 0; k < emitters_.size(); ++k) {
-    const Patch& p = scene_.patches[emitters_[k]];
-    const double f = PointToPatchFormFactor(x, n, p);
-    if (f <= 0) continue;
-    // Shadow rays to the centres of a grid_ x grid_ jittered stratification of the patch.
-    uint32_t seen = 0;
-    for (uint32_t i = 0; i < grid_; ++i) {
-      for (uint32_t j = 0; j < grid_; ++j) {
-        const CounterRng rng(HashWords(key, emitters_[k], i * grid_ + j));
-        const double u = (i + rng.Uniform(0)) / grid_, v = (j + rng.Uniform(1)) / grid_;
-        if (Reaches(x, n, SamplePatchPoint(p, splits_[k], u, v), emitters_[k])) ++seen;
+  for (const Light& light : lights_) {
+    const double whole = PointToOutlineFormFactor(x, n, light.outline);
+    if (whole < 0) {  // patch by patch
+      for (uint32_t k : light.members) {
+        const Patch& p = scene_.patches[emitters_[k]];
+        const double f = PointToPatchFormFactor(x, n, p);
+        if (f > 0) e += p.emission * (f * Visible(x, n, k, key));
       }
+      continue;
     }
-    e += p.emission * (f * double(seen) / double(grid_ * grid_));
+    if (whole == 0) continue;
+    double weight = 0, visible = 0;
+    for (uint32_t k : light.members) {
+      const Patch& p = scene_.patches[emitters_[k]];
+      const Vec3 d = p.centre - x;
+      const double r2 = Dot(d, d);
+      const double w =
+          p.area * std::max(0.0, Dot(n, d)) * std::max(0.0, -Dot(p.normal, d)) / (r2 * r2);
+      if (w <= 0) continue;
+      weight += w;
+      visible += w * Visible(x, n, k, key);
+    }
+    if (weight > 0)
+      e += scene_.patches[emitters_[light.members[0]]].emission * (whole * visible / weight);
   }
   return e;
 }

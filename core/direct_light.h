@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/patch_scene.h"
+#include "core/point_form_factor.h"
 #include "core/ray_caster.h"
 #include "core/rgb.h"
 #include "core/solver_settings.h"
@@ -30,13 +31,24 @@ class DirectLight {
   Rgb Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const;
 
  private:
-  bool Reaches(const Vec3& x, const Vec3& n, const Vec3& target, uint32_t emitter) const;
+  // The emitter patches of one light: one surface, one emission. Where it is planar, the form
+  // factor of the whole light comes from its outline (one contour integral instead of one per
+  // patch) and the patches' shadow rays are weighted by each patch's small-patch kernel
+  // (area cos cos / r^2): with nothing in the way that is the exact form factor, and in a penumbra
+  // a close estimate of the visible share.
+  struct Light {
+    std::vector<uint32_t> members;  // indices into emitters_
+    PlanarOutline outline;          // no edges: not planar, every patch on its own
+  };
+  // Shares of patch k's shadow rays that arrive.
+  double Visible(const Vec3& x, const Vec3& n, uint32_t k, uint64_t key) const;
 
   const PatchScene& scene_;
   const RayCaster& caster_;
   std::vector<uint32_t> emitters_;  // patch ids with emission
   std::vector<double> splits_;      // TriangleSplit of each emitter
-  uint32_t grid_ = 1;               // grid_ x grid_ stratified shadow rays per emitter patch
+  std::vector<Light> lights_;
+  uint32_t grid_ = 1;  // grid_ x grid_ stratified shadow rays per emitter patch
 };
 
 // Per patch, the direct irradiance averaged over the patch (Ke units): DirectLight at

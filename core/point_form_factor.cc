@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <numbers>
 
 namespace radfarm {
@@ -44,6 +45,48 @@ double PointToPatchFormFactor(const Vec3& x, const Vec3& n, const Patch& patch) 
     sum += angle * Dot(c / s, n);
   }
   // The sign of the sum follows the corners' winding as seen from x; every edge shares it.
+  return std::abs(sum) / (2 * std::numbers::pi);
+}
+
+PlanarOutline OutlineOf(const std::vector<const Patch*>& patches, double tol) {
+  PlanarOutline out;
+  if (patches.empty()) return out;
+  out.normal = patches[0]->normal;
+  out.point = patches[0]->corners[0];
+  using Key = std::array<double, 6>;
+  std::map<Key, int> count;  // directed edge -> times seen
+  for (const Patch* p : patches) {
+    if (Dot(p->normal, out.normal) < 1 - 1e-12) return {};
+    for (int i = 0; i < p->corner_count; ++i) {
+      const Vec3& a = p->corners[i];
+      const Vec3& b = p->corners[(i + 1) % p->corner_count];
+      if (std::fabs(Dot(a - out.point, out.normal)) > tol) return {};
+      ++count[{a.x, a.y, a.z, b.x, b.y, b.z}];
+    }
+  }
+  for (const auto& [k, n] : count) {
+    // An edge run both ways by two patches cancels: keep only the surplus of one direction.
+    const auto back = count.find({k[3], k[4], k[5], k[0], k[1], k[2]});
+    const int surplus = n - (back == count.end() ? 0 : back->second);
+    for (int i = 0; i < surplus; ++i) out.edges.push_back({{k[0], k[1], k[2]}, {k[3], k[4], k[5]}});
+  }
+  return out;
+}
+
+double PointToOutlineFormFactor(const Vec3& x, const Vec3& n, const PlanarOutline& outline) {
+  if (outline.edges.empty() || Dot(x - outline.point, outline.normal) <= 0) return -1;
+  for (const auto& e : outline.edges) {
+    if (Dot(e.first - x, n) <= 0) return -1;  // would need clipping
+  }
+  double sum = 0;
+  for (const auto& [from, to] : outline.edges) {
+    const Vec3 a = Normalize(from - x);
+    const Vec3 b = Normalize(to - x);
+    const Vec3 c = Cross(a, b);
+    const double s = Length(c);
+    if (s == 0) continue;
+    sum += std::atan2(s, Dot(a, b)) * Dot(c / s, n);
+  }
   return std::abs(sum) / (2 * std::numbers::pi);
 }
 

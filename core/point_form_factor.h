@@ -6,6 +6,9 @@
 // multiply by a visibility estimate.
 #pragma once
 
+#include <utility>
+#include <vector>
+
 #include "core/patch_scene.h"
 #include "core/vec3.h"
 
@@ -13,5 +16,23 @@ namespace radfarm {
 
 // Unoccluded form factor from the point `x` with unit normal `n` to `patch` (a triangle or quad).
 double PointToPatchFormFactor(const Vec3& x, const Vec3& n, const Patch& patch);
+
+// A planar light made of patches, as the edges of its outline: the contour integral over the
+// patches' edges, where the edges two patches share run both ways and cancel, so only these are
+// summed (a T-vertex leaves collinear pieces that do not pair up; they still sum correctly).
+struct PlanarOutline {
+  std::vector<std::pair<Vec3, Vec3>> edges;  // directed as the patches wind about `normal`
+  Vec3 normal;                               // unit, the patches' common normal
+  Vec3 point;                                // any point of the plane
+};
+
+// The outline of these coplanar patches (same unit normal), or none (no edges) when they are
+// not: their normals differ, or a corner is off the first patch's plane by more than `tol`.
+PlanarOutline OutlineOf(const std::vector<const Patch*>& patches, double tol);
+
+// Unoccluded form factor from x (unit normal n) to the whole outlined light, where no clipping is
+// needed: x in front of its plane and every outline corner strictly above x's tangent plane.
+// Elsewhere returns a negative value: the caller sums PointToPatchFormFactor over the patches.
+double PointToOutlineFormFactor(const Vec3& x, const Vec3& n, const PlanarOutline& outline);
 
 }  // namespace radfarm

@@ -121,4 +121,20 @@ RayHit RayCaster::Trace(const Vec3& origin, const Vec3& direction,
   return hit;
 }
 
+bool RayCaster::Unoccluded(const Vec3& origin, const Vec3& target,
+                           const Vec3& surface_normal) const {
+  const Vec3 lifted = origin + surface_normal * origin_offset_;
+  const double distance = Length(target - lifted);
+  if (!(distance > 0)) return true;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  PrepareRay(origin, (target - lifted) / distance, surface_normal, &rh);
+  RTCRay& ray = rh.ray;
+  ray.tfar = static_cast<float>(distance * (1 - kShadowRayMargin));
+  rtcOccluded1(embree_->scene, &context, &ray);
+  // Embree sets tfar to -inf when something is in the way.
+  return ray.tfar >= 0;
+}
+
 }  // namespace radfarm

@@ -39,6 +39,12 @@ class RayCaster {
   // not hit the surface it starts on.
   RayHit Trace(const Vec3& origin, const Vec3& direction, const Vec3& surface_normal) const;
 
+  // Whether nothing lies between origin (lifted as by Trace) and `target`: a shadow ray. It stops
+  // kShadowRayMargin of the way short of the target, so the surface the target lies on does not
+  // count as an occluder. Cheaper than Trace: any hit ends the search.
+  bool Unoccluded(const Vec3& origin, const Vec3& target, const Vec3& surface_normal) const;
+  static constexpr double kShadowRayMargin = 1e-4;
+
   // The origin offset used by Trace, in scene units (useful for tests and diagnostics).
   double origin_offset() const { return origin_offset_; }
 

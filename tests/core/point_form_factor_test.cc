@@ -96,5 +96,59 @@ TEST(PointFormFactorTest, AHemisphereOfPatchesSumsToOne) {
   EXPECT_NEAR(sum, 1.0, 1e-12);
 }
 
+// The unit square 1 above the origin, facing down, as a 2 x 2 grid of quads, and one of those
+// quarters split again into two halves (a T-vertex at its neighbours' edges).
+std::vector<Patch> SplitSquareAbove() {
+  std::vector<Patch> out;
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      const double x = -0.5 + 0.5 * i, y = -0.5 + 0.5 * j;
+      if (i == 1 && j == 1) {
+        out.push_back(Quad({x, y, 1}, {x, y + 0.5, 1}, {x + 0.25, y + 0.5, 1}, {x + 0.25, y, 1}));
+        out.push_back(
+            Quad({x + 0.25, y, 1}, {x + 0.25, y + 0.5, 1}, {x + 0.5, y + 0.5, 1}, {x + 0.5, y, 1}));
+        continue;
+      }
+      out.push_back(Quad({x, y, 1}, {x, y + 0.5, 1}, {x + 0.5, y + 0.5, 1}, {x + 0.5, y, 1}));
+    }
+  }
+  return out;
+}
+
+TEST(PointFormFactorTest, AnOutlineIsItsPatchesSum) {
+  const std::vector<Patch> patches = SplitSquareAbove();
+  std::vector<const Patch*> pointers;
+  for (const Patch& p : patches) pointers.push_back(&p);
+  const PlanarOutline outline = OutlineOf(pointers, 1e-12);
+  // The square's sides in nine pieces (three along the split quarter), plus the split quarter's two
+  // halves' edges at the T-vertex and the whole edge they run against, which do not pair up.
+  EXPECT_EQ(outline.edges.size(), 9u + 3u);
+  for (const Vec3& x : {Vec3{0, 0, 0}, Vec3{0.3, -0.2, 0.4}, Vec3{2, 1, -3}}) {
+    for (const Vec3& n : {Vec3{0, 0, 1}, Normalize(Vec3{0.1, -0.2, 1})}) {
+      double sum = 0;
+      for (const Patch& p : patches) sum += PointToPatchFormFactor(x, n, p);
+      EXPECT_NEAR(PointToOutlineFormFactor(x, n, outline), sum, 1e-12) << x.x << " " << n.x;
+    }
+  }
+  EXPECT_NEAR(PointToOutlineFormFactor({0, 0, 0}, {0, 0, 1}, outline), 0.2394564705, 1e-9);
+}
+
+TEST(PointFormFactorTest, AnOutlineNeedingClippingOrBehindDefersToThePatches) {
+  const std::vector<Patch> patches = SplitSquareAbove();
+  std::vector<const Patch*> pointers;
+  for (const Patch& p : patches) pointers.push_back(&p);
+  const PlanarOutline outline = OutlineOf(pointers, 1e-12);
+  // Tilted so part of the light is below the tangent plane: clipping needed.
+  EXPECT_LT(PointToOutlineFormFactor({0, 0, 0}, Normalize(Vec3{1, 0, 0.3}), outline), 0);
+  // Above the light, at its back.
+  EXPECT_LT(PointToOutlineFormFactor({0, 0, 2}, {0, 0, -1}, outline), 0);
+  // Not coplanar: no outline.
+  std::vector<Patch> bent = patches;
+  for (Vec3& c : bent[0].corners) c.z += 0.01;
+  std::vector<const Patch*> bent_pointers;
+  for (const Patch& p : bent) bent_pointers.push_back(&p);
+  EXPECT_TRUE(OutlineOf(bent_pointers, 1e-6).edges.empty());
+}
+
 }  // namespace
 }  // namespace radfarm
