@@ -14,18 +14,28 @@ namespace {
 // (+ - + -), and then every edge crosses: 8 for a quad.
 constexpr int kMaxCorners = 2 * 4;
 
+// Corners less than this angle (radians) above a plane count as below it. A polygon in the
+// receiver's tangent plane (a light's own neighbour, seen from a point on the light) sends nothing,
+// but to rounding its corners lie a hair above or below: clipped at exactly 0, the contour
+// integral of the unclipped ones is the angle they subtend, up to a quarter for a point at a
+// corner.
+constexpr double kHorizon = 1e-9;
+
+// How far above the plane through x with unit normal n the point x + a is, less the tolerance.
+double AboveHorizon(const Vec3& a, const Vec3& n) { return Dot(a, n) - kHorizon * Length(a); }
+
 }  // namespace
 
 double PointToPatchFormFactor(const Vec3& x, const Vec3& n, const Patch& patch) {
   // Only the front of the patch emits.
-  if (Dot(x - patch.corners[0], patch.normal) <= 0) return 0;
+  if (AboveHorizon(x - patch.corners[0], patch.normal) <= 0) return 0;
   // Corners relative to x, clipped to the receiver's upper half-space (Sutherland-Hodgman).
   std::array<Vec3, kMaxCorners> clipped;
   int count = 0;
   for (int i = 0; i < patch.corner_count; ++i) {
     const Vec3 a = patch.corners[i] - x;
     const Vec3 b = patch.corners[(i + 1) % patch.corner_count] - x;
-    const double da = Dot(a, n), db = Dot(b, n);
+    const double da = AboveHorizon(a, n), db = AboveHorizon(b, n);
     if (da >= 0) clipped[count++] = a;
     if ((da >= 0) != (db >= 0)) clipped[count++] = a + (b - a) * (da / (da - db));
   }
@@ -74,9 +84,9 @@ PlanarOutline OutlineOf(const std::vector<const Patch*>& patches, double tol) {
 }
 
 double PointToOutlineFormFactor(const Vec3& x, const Vec3& n, const PlanarOutline& outline) {
-  if (outline.edges.empty() || Dot(x - outline.point, outline.normal) <= 0) return -1;
+  if (outline.edges.empty() || AboveHorizon(x - outline.point, outline.normal) <= 0) return -1;
   for (const auto& e : outline.edges) {
-    if (Dot(e.first - x, n) <= 0) return -1;  // would need clipping
+    if (AboveHorizon(e.first - x, n) <= 0) return -1;  // would need clipping
   }
   double sum = 0;
   for (const auto& [from, to] : outline.edges) {

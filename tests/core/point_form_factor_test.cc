@@ -57,15 +57,35 @@ TEST(PointFormFactorTest, AQuadOnTheTangentPlaneToRoundingSendsNothing) {
 }
 
 // A point at a patch's corner, in front of it by less than a double can square (a display
-// vertex on a light's edge): the corner has no direction from it and is skipped, no NaN. The rest
-// of the outline gives the limit of the corner-of-a-rectangle closed form as the height goes to
-// 0: a quarter.
+// vertex on a light's edge): the corner has no direction from it, no NaN. The patch lies on the
+// point's horizon to 1e-9 radians, so it sends nothing.
 TEST(PointFormFactorTest, APointAtACornerOfThePatchIsFinite) {
   const double e = 1e-200;
   const Patch floor = Quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0});
   const double f = PointToPatchFormFactor({0, 0, e}, {0, 0, -1}, floor);
   EXPECT_TRUE(std::isfinite(f));
-  EXPECT_NEAR(f, 0.25, 1e-12);
+  EXPECT_EQ(f, 0);
+}
+
+// A point on a light, in the plane of the light's other patches to rounding, facing as they do:
+// they lie in its tangent plane and send nothing, whichever side of it rounding puts their
+// corners (the light's display vertices: PatchMesh::SetSolution with the direct light).
+TEST(PointFormFactorTest, APatchInTheTangentPlaneToRoundingSendsNothing) {
+  // A tilted light: its plane is not axis-aligned, so points made in it round off it.
+  const Vec3 o{0.3, 1.7, -0.2}, u = Normalize(Vec3{1, 0.3, 0.2}),
+                                v = Normalize(Cross(Vec3{0.1, 0.2, 1}, u));
+  int tested = 0;
+  for (int k = 0; k < 200; ++k) {
+    const double s = 0.1 + 0.013 * k, t = 0.7 - 0.011 * k;
+    const Patch light = Quad(o, o + v * s, o + u * t + v * s, o + u * t);
+    // Points in the light's plane: a corner of it, beside it, on the far side of an edge.
+    for (const Vec3& x :
+         {light.corners[2], o + u * (1.3 * t) + v * (0.5 * s), o - u * (0.1 * t) - v * (0.2 * s)}) {
+      EXPECT_EQ(PointToPatchFormFactor(x, light.normal, light), 0) << k;
+      ++tested;
+    }
+  }
+  EXPECT_EQ(tested, 600);
 }
 
 TEST(PointFormFactorTest, OnlyThePartAboveTheTangentPlaneCounts) {
