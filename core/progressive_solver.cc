@@ -13,6 +13,32 @@ namespace {
 // Sobol indices are 32-bit; a single shot never needs more rays than this.
 constexpr uint64_t kMaxRaysPerShot = uint64_t{1} << 31;
 
+// One shot's batches summed: hit weights per patch (integers: exact in any order), and the patches
+// hit in increasing order, the order their light is then applied in.
+struct ShotHits {
+  std::vector<uint32_t> touched;
+  uint64_t escaped = 0, back = 0;
+};
+
+// Sums the batches of `shooter`, which start at plan.batches[*b], into `hit_weight` (zero where
+// not touched) and moves *b past them.
+ShotHits SumShotHits(const RoundPlan& plan, const std::vector<BatchResult>& results,
+                     uint32_t shooter, size_t* b, std::vector<uint64_t>* hit_weight) {
+  ShotHits out;
+  std::vector<uint64_t>& weight = *hit_weight;
+  for (; *b < plan.batches.size() && plan.batches[*b].shooter == shooter; ++*b) {
+    const BatchResult& r = results[*b];
+    out.escaped += r.escaped_weight;
+    out.back += r.back_weight;
+    for (const PatchHits& h : r.hits) {
+      if (weight[h.patch] == 0) out.touched.push_back(h.patch);
+      weight[h.patch] += h.weight;
+    }
+  }
+  std::sort(out.touched.begin(), out.touched.end());
+  return out;
+}
+
 }  // namespace
 
 ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettings& settings)
@@ -104,6 +130,10 @@ uint64_t ProgressiveSolver::GatheringPatches() const {
   return n;
 }
 
+uint64_t ProgressiveSolver::PendingGatherRays() const {
+  return GatherPending() ? GatheringPatches() * settings_.gather_rays : 0;
+}
+
 RoundPlan ProgressiveSolver::PlanGather(uint32_t batch_rays, uint64_t ray_cap) const {
   RoundPlan plan;
   plan.round = rounds_done_;
@@ -193,17 +223,10 @@ void ProgressiveSolver::ApplyGather(const RoundPlan& plan,
   std::vector<uint64_t> hit_weight(scene_.patches.size());
   size_t b = 0;
   for (const Shot& shot : plan.shots) {
-    std::vector<uint32_t> touched;
-    for (; b < plan.batches.size() && plan.batches[b].shooter == shot.shooter; ++b) {
-      for (const PatchHits& h : results[b].hits) {
-        if (hit_weight[h.patch] == 0) touched.push_back(h.patch);
-        hit_weight[h.patch] += h.weight;
-      }
-    }
-    std::sort(touched.begin(), touched.end());
+    const ShotHits hits = SumShotHits(plan, results, shot.shooter, &b, &hit_weight);
     const double total = double(sampler_.TotalWeight(shot.rays));
     Rgb bounced;
-    for (uint32_t j : touched) {
+    for (uint32_t j : hits.touched) {
       // With the direct light known, only light that bounced is gathered; else all of it.
       const Rgb seen = direct_.empty() ? radiosity_[j] : radiosity_[j] - scene_.patches[j].emission;
       bounced += seen * (double(hit_weight[j]) / total);
@@ -243,23 +266,12 @@ void ProgressiveSolver::ApplyRound(const RoundPlan& plan, const std::vector<Batc
   size_t b = 0;
   for (size_t s = 0; s < plan.shots.size(); ++s) {
     const Shot& shot = plan.shots[s];
-    uint64_t escaped = 0, back = 0;
-    std::vector<uint32_t> touched;
-    for (; b < plan.batches.size() && plan.batches[b].shooter == shot.shooter; ++b) {
-      const BatchResult& r = results[b];
-      escaped += r.escaped_weight;
-      back += r.back_weight;
-      for (const PatchHits& h : r.hits) {
-        if (hit_weight[h.patch] == 0) touched.push_back(h.patch);
-        hit_weight[h.patch] += h.weight;
-      }
-    }
-    std::sort(touched.begin(), touched.end());
+    const ShotHits hits = SumShotHits(plan, results, shot.shooter, &b, &hit_weight);
     const double total = double(sampler_.TotalWeight(shot.rays));
     const Rgb power = shot_power[s];
     // Southwell update: receiver j gets flux power * F_ij; it reflects rho_j of it, which raises
     // its radiosity and unshot radiosity by rho_j * flux / A_j (= rho_j * dB_i * F_ij * A_i / A_j).
-    for (uint32_t j : touched) {
+    for (uint32_t j : hits.touched) {
       const Patch& receiver = scene_.patches[j];
       const Rgb flux = power * (double(hit_weight[j]) / total);
       const Rgb reflected = receiver.reflectance * flux;
@@ -269,8 +281,8 @@ void ProgressiveSolver::ApplyRound(const RoundPlan& plan, const std::vector<Batc
       energy_.absorbed += (flux - reflected).Sum();
       hit_weight[j] = 0;
     }
-    energy_.escaped += power.Sum() * (double(escaped) / total);
-    energy_.absorbed += power.Sum() * (double(back) / total);
+    energy_.escaped += power.Sum() * (double(hits.escaped) / total);
+    energy_.absorbed += power.Sum() * (double(hits.back) / total);
   }
   energy_.unshot = TotalUnshotPower();
   rounds_done_ = plan.round + 1;
