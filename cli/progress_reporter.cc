@@ -11,7 +11,8 @@ ProgressReporter::ProgressReporter(std::FILE* out, bool interactive)
 
 void ProgressReporter::OnRound(const RoundProgress& p) {
   const double rate = p.seconds > 0 ? double(p.rays) / p.seconds : 0;
-  const double eta = EstimateSecondsLeft(p.unshot_fraction, p.tolerance, p.seconds);
+  const double eta =
+      EstimateSecondsLeft(p.unshot_fraction, p.tolerance, p.seconds, p.rays, p.gather_rays_left);
   const std::string eta_text = eta < 0 ? "?" : std::to_string(int(std::ceil(eta))) + "s";
   if (p.gather) {
     std::fprintf(out_, "%sfinal gather: %llu rays in all, %.2f Mrays/s\n", drew_ ? "\n" : "",

@@ -95,6 +95,8 @@ class ProgressiveSolver {
   bool GatherPending() const;
   // Patches a gather round gathers for: those that reflect.
   uint64_t GatheringPatches() const;
+  // The rays the final gather will cast (before any ray budget cuts it): 0 when none is pending.
+  uint64_t PendingGatherRays() const;
   // The direct light of every patch the solve started from (empty when the gather is off, or the
   // scene has more emitter patches than it pays to compute it for: then they shoot as usual).
   const std::vector<Rgb>& direct_light() const { return direct_; }

@@ -59,7 +59,7 @@ SolveResult Solve(const PatchScene& scene, const SolverSettings& settings,
     }
     if (on_round) {
       on_round({solver.rounds_done(), stats.rays, elapsed(), solver.UnshotFraction(),
-                settings.tolerance, &solver.energy(), plan.gather});
+                settings.tolerance, &solver.energy(), plan.gather, solver.PendingGatherRays()});
     }
     if (auto stop = StopAfterRound(plan, solver, settings)) {
       stats.stop_reason = *stop;

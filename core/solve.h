@@ -19,7 +19,8 @@ struct RoundProgress {
   double unshot_fraction = 0;
   double tolerance = 0;
   const EnergyAccount* energy = nullptr;
-  bool gather = false;  // the round was the final gather
+  bool gather = false;            // the round was the final gather
+  uint64_t gather_rays_left = 0;  // ProgressiveSolver::PendingGatherRays after the round
 };
 
 struct SolveResult {

@@ -90,6 +90,7 @@ Result<std::shared_ptr<JobRunner>> JobRunner::Prepare(
     }
   }
   runner->totals_.unshot_fraction = runner->solver_->UnshotFraction();
+  runner->totals_.gather_rays_left = runner->solver_->PendingGatherRays();
 
   const JobTotals& t = runner->totals_;
   if (checkpoint && checkpoint->stop_reason) {  // the job's last round: nothing left to run
@@ -146,6 +147,7 @@ RoundOutcome JobRunner::Reduce(const scheduler::CompletedRound& round, double ro
   t.back_rays += back;
   t.seconds += round_seconds;
   t.unshot_fraction = solver_->UnshotFraction();
+  t.gather_rays_left = solver_->PendingGatherRays();
   recent_.push_back({round.plan.rays, round_seconds});
   if (recent_.size() > kRecentRounds) recent_.erase(recent_.begin());
 
@@ -170,6 +172,7 @@ RoundOutcome JobRunner::Reduce(const scheduler::CompletedRound& round, double ro
       out.new_scene_hash = protocol::HashScene(*refined_blob_);
       out.new_patch_count = static_cast<uint32_t>(mesh_->patch_scene().patches.size());
       t.unshot_fraction = solver_->UnshotFraction();
+      t.gather_rays_left = solver_->PendingGatherRays();
     }
   }
   if (!out.stop) out.stop = StopBeforeRound(*solver_, settings_, t.rays, t.seconds);
@@ -268,8 +271,8 @@ double JobRunner::RaysPerSecond() const {
 
 std::optional<double> JobRunner::EtaSeconds() const {
   if (phase_ == Phase::kFinished) return 0.0;
-  const double left =
-      EstimateSecondsLeft(totals_.unshot_fraction, settings_.tolerance, totals_.seconds);
+  const double left = EstimateSecondsLeft(totals_.unshot_fraction, settings_.tolerance,
+                                          totals_.seconds, totals_.rays, totals_.gather_rays_left);
   if (left < 0 || !std::isfinite(left)) return std::nullopt;
   return left;
 }

@@ -50,6 +50,7 @@ struct JobTotals {
   uint64_t back_rays = 0;
   double seconds = 0;  // summed round durations
   double unshot_fraction = 1;
+  uint64_t gather_rays_left = 0;  // ProgressiveSolver::PendingGatherRays
 };
 
 // The result of reducing one round, for the loop thread and the store thread.

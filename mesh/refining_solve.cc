@@ -132,7 +132,7 @@ Result<RefiningSolveResult> SolveRefining(PatchMesh mesh, const SolverSettings& 
     stats.rays += plan.rays;
     if (on_round) {
       on_round({solver.rounds_done(), stats.rays, elapsed(), solver.UnshotFraction(),
-                settings.tolerance, &solver.energy(), plan.gather});
+                settings.tolerance, &solver.energy(), plan.gather, solver.PendingGatherRays()});
     }
     std::optional<std::string> stop = StopAfterRound(plan, solver, settings);
     if (!stop && schedule) apply(schedule->AfterRound(*out.mesh, solver, stage->caster(), pool));

@@ -12,8 +12,16 @@ TEST(ProgressTest, ConvergenceFractionIsLogarithmic) {
   EXPECT_DOUBLE_EQ(ConvergenceFraction(1.0, 1e-3), 0.0);
   EXPECT_NEAR(ConvergenceFraction(0.1, 1e-3), 1.0 / 3, 1e-12);
   EXPECT_DOUBLE_EQ(ConvergenceFraction(1e-4, 1e-3), 1.0);
-  EXPECT_LT(EstimateSecondsLeft(1.0, 1e-3, 5), 0);  // unknown before any progress
-  EXPECT_NEAR(EstimateSecondsLeft(0.1, 1e-3, 2), 4, 1e-9);
+  EXPECT_LT(EstimateSecondsLeft(1.0, 1e-3, 5, 100, 0), 0);  // unknown before any progress
+  EXPECT_NEAR(EstimateSecondsLeft(0.1, 1e-3, 2, 100, 0), 4, 1e-9);
+}
+
+// The final gather still to come adds its rays at the rate seen so far, also once the shooting
+// has converged (it used to read 0 s there, while the gather took most of the time).
+TEST(ProgressTest, EtaCountsTheGatherStillToCome) {
+  EXPECT_NEAR(EstimateSecondsLeft(0.1, 1e-3, 2, 1000, 500), 4 + 1, 1e-9);
+  EXPECT_NEAR(EstimateSecondsLeft(1e-4, 1e-3, 2, 1000, 3000), 6, 1e-9);
+  EXPECT_DOUBLE_EQ(EstimateSecondsLeft(1e-4, 1e-3, 2, 1000, 0), 0);
 }
 
 std::string Capture(bool interactive, int rounds) {

@@ -48,6 +48,28 @@ TEST(GatherTest, FurnaceWithAndWithoutTheDirectLightStart) {
 
 // Two facing unit squares at distance 1 in open space, E1 = 1, rho = 0.5 (the shooting test's
 // closed form): B1 = 1.010083, B2 = 0.100920. The direct light on B2 is computed, not counted.
+// The ETA's view of the gather: every reflecting patch's rays after each shooting round, none
+// after the gather round.
+TEST(GatherTest, PendingGatherRaysUntilTheGatherRuns) {
+  const PatchScene scene = LitBox();
+  SolverSettings settings = Gathering(256);
+  const uint64_t all = uint64_t{256} * scene.patches.size();  // every patch of the lit box reflects
+  EXPECT_EQ(ProgressiveSolver(scene, settings).PendingGatherRays(), all);
+  std::vector<std::pair<bool, uint64_t>> rounds;  // (gather round, gather rays left)
+  Solve(scene, settings, [&](const RoundProgress& p) {
+    rounds.push_back({p.gather, p.gather_rays_left});
+  });
+  ASSERT_GE(rounds.size(), 2u);
+  for (size_t r = 0; r + 1 < rounds.size(); ++r) {
+    EXPECT_FALSE(rounds[r].first) << r;
+    EXPECT_EQ(rounds[r].second, all) << r;
+  }
+  EXPECT_TRUE(rounds.back().first);
+  EXPECT_EQ(rounds.back().second, 0u);
+  settings.gather_rays = 0;
+  EXPECT_EQ(ProgressiveSolver(scene, settings).PendingGatherRays(), 0u);
+}
+
 TEST(GatherTest, TwoFacingSquaresInOpenSpace) {
   PatchScene scene;
   testing::AddQuadGrid({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, 1,

@@ -32,9 +32,13 @@ double JsonNumber(const std::string& json, const std::string& key) {
   return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
 }
 
-// stats.json of `radfarm render` of the adaptive job (ReferencePatches renders the patches).
-const std::string& ReferenceStats() {
-  static const std::string stats = [] {
+// stats.json and image.exr of `radfarm render` of the adaptive job (ReferencePatches renders the
+// patches).
+struct RenderFiles {
+  std::string stats, image;
+};
+const RenderFiles& ReferenceFiles() {
+  static const RenderFiles files = [] {
     TempDir out;
     std::vector<std::string> args = {
         RADFARM_CLI_PATH, "render",   std::string(RADFARM_SOURCE_DIR "/scenes/") + kAdaptive,
@@ -42,9 +46,9 @@ const std::string& ReferenceStats() {
     args.insert(args.end(), kFlags.begin(), kFlags.end());
     const CommandResult r = RunCommand(args);
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    return ReadFile(out.File("stats.json"));
+    return RenderFiles{ReadFile(out.File("stats.json")), ReadFile(out.File("image.exr"))};
   }();
-  return stats;
+  return files;
 }
 
 class FarmRefineTest : public FarmTest {
@@ -58,7 +62,11 @@ void FarmRefineTest::ExpectLikeRender(int64_t id) {
   ASSERT_FALSE(patches.empty());
   EXPECT_TRUE(patches == ReferencePatches(kAdaptive, kFlags)) << "farm and render differ";
   const std::string stats = ReadFile(Path("fetch-" + std::to_string(id)) + "/stats.json");
-  const std::string& reference = ReferenceStats();
+  const std::string& reference = ReferenceFiles().stats;
+  // The image too: its vertices' direct light is recomputed from the refined mesh by fetch.
+  const std::string image = ReadFile(Path("fetch-" + std::to_string(id)) + "/image.exr");
+  EXPECT_FALSE(image.empty());
+  EXPECT_TRUE(image == ReferenceFiles().image) << "farm and render images differ";
   for (const char* key : {"patches_before_refinement", "patches_after_refinement", "patches",
                           "rays", "rounds", "unshot_fraction"}) {
     EXPECT_EQ(JsonNumber(stats, key), JsonNumber(reference, key)) << key << "\n" << stats;
