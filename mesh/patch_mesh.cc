@@ -134,6 +134,7 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
       std::vector<PieceCorners> covered;
       CutFootprints({sheet}, faces[f].normal, tol, min_area, &pieces, &covered);
       const auto surface = static_cast<uint32_t>(pm.surface_count_++);
+      pm.covered_surfaces_.push_back(surface);
       for (const PieceCorners& piece : covered) assembler.Add(piece, surface, faces[f].material);
     }
     for (const PieceCorners& piece : pieces) {
@@ -164,6 +165,7 @@ PatchMesh PatchMesh::Rebuilt(const std::vector<Piece>& pieces) const {
   pm.dropped_degenerate_ = dropped_degenerate_;
   pm.dropped_hidden_ = dropped_hidden_;
   pm.surface_count_ = surface_count_;
+  pm.covered_surfaces_ = covered_surfaces_;
   pm.materials_ = materials_;
   pm.tol_ = tol_;
   pm.min_area_ = min_area_;

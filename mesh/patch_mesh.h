@@ -69,6 +69,8 @@ class PatchMesh {
   size_t dropped_degenerate() const { return dropped_degenerate_; }
   size_t dropped_hidden() const { return dropped_hidden_; }
   size_t surface_count() const { return surface_count_; }
+  // The surfaces under covering sheets (contact_cut.h): seen only through the slit under a sheet.
+  const std::vector<uint32_t>& covered_surfaces() const { return covered_surfaces_; }
 
   // Stores the solution (one value per patch, in the solver's units: those of the emission) in the
   // face properties B and dB, and sets each vertex's radiance to the area-weighted average of B
@@ -121,6 +123,7 @@ class PatchMesh {
   size_t dropped_degenerate_ = 0;
   size_t dropped_hidden_ = 0;
   size_t surface_count_ = 0;
+  std::vector<uint32_t> covered_surfaces_;
   std::vector<Material> materials_;
   double tol_ = 0;
   double min_area_ = 0;

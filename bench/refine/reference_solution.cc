@@ -87,6 +87,7 @@ ReferenceSolution SolveReference(const InputScene& scene, const std::string& nam
   ReferenceSolution ref;
   ref.patch_size = patch_size;
   ref.scene = mesh->patch_scene();
+  ref.covered_surfaces = mesh->covered_surfaces();
   ref.shot_rays = shot_rays;
   const size_t n = ref.scene.patches.size();
   std::vector<Rgb> mean(n), mean_unshot(n);

@@ -21,6 +21,8 @@ inline constexpr double kLitFraction = 0.01;
 struct ReferenceSolution {
   double patch_size = 0;
   PatchScene scene;
+  // PatchMesh::covered_surfaces: the same ids in every mesh of the scene.
+  std::vector<uint32_t> covered_surfaces;
   std::vector<double> mean;  // per reference patch: the two solves' mean radiosity (channel sum)
   std::vector<double> half_diff;  // per reference patch: half their difference
   // per reference patch: `mean` less rho times its direct light (BouncedRadiosity), channel sum

@@ -36,6 +36,11 @@ PatchError MeasurePatchError(const PatchScene& run, const std::vector<Rgb>& radi
   const DirectLight direct(ref.scene, caster, kShadowRaysPerPoint);
   ThreadPool pool(std::max(1u, std::thread::hardware_concurrency()));
   pool.ParallelFor(n, [&](unsigned, size_t e) {
+    const std::vector<uint32_t>& covered = ref.covered_surfaces;
+    if (std::find(covered.begin(), covered.end(), run.patches[e].surface) != covered.end()) {
+      counted[e] = false;  // under a covering sheet: out of every view
+      return;
+    }
     for (int k = 0; k < kPointsPerElement; ++k) {
       const uint32_t r = under[e * kPointsPerElement + k];
       if (r == kNoPatch || !(ref.mean[r] >= threshold)) {

@@ -7,7 +7,9 @@
 // shadow rays per point): a penumbra crossing the element counts where it falls, not where the
 // reference mesh's patches would put it. That is compared with the element's radiosity: (B - Bref)
 // / Bref, RMS over the elements, weighted by area so that meshes of any element sizes are judged
-// over the same surfaces. Elements that touch a dark reference patch
+// over the same surfaces. Elements under a covering sheet (the ceiling above the Cornell box's
+// light: PatchMesh::covered_surfaces; out of every view, lit only through the slit) and elements
+// that touch a dark reference patch
 // (ReferenceSolution::dark_threshold: behind a light, under a block) are left out: there two meshes
 // cut a near-discontinuity differently, and the difference is one of geometry, not of the solve
 // (the image error still sees those places). The same average of the reference's half difference

@@ -130,6 +130,7 @@ TEST(ContactCutTest, ALightHangingJustUnderTheCeilingCoversIt) {
   const uint32_t ceiling = areas.begin()->first, covered = areas.rbegin()->first;
   EXPECT_NEAR(areas.at(ceiling), 16.0 - 1.0, 1e-9);
   EXPECT_NEAR(areas.at(covered), 1.0, 1e-9);
+  EXPECT_EQ(mesh->covered_surfaces(), std::vector<uint32_t>{covered});
   for (const Patch& p : mesh->patch_scene().patches) {
     if (p.emission.Max() > 0) continue;
     const bool under =
@@ -152,6 +153,7 @@ TEST(ContactCutTest, ASheetFarOffFacingOrOverhangingCoversNothing) {
     ASSERT_TRUE(mesh.ok()) << mesh.error();
     const std::map<uint32_t, double> areas = CeilingAreas(*mesh);
     ASSERT_EQ(areas.size(), 1u);
+    EXPECT_TRUE(mesh->covered_surfaces().empty());
     EXPECT_NEAR(areas.begin()->second, 16.0, 1e-9);
   }
 }
