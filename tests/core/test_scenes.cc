@@ -91,7 +91,9 @@ PatchScene LitBox() {
 }
 
 bool BitIdentical(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Rgb)) == 0;
+  // memcmp of two empty vectors' null data pointers is undefined, even for 0 bytes.
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Rgb)) == 0);
 }
 
 }  // namespace radfarm::testing
