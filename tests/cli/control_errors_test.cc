@@ -13,6 +13,7 @@ namespace radfarm {
 namespace {
 
 using nlohmann::json;
+using testing::Always;
 using testing::ControlAnswer;
 using testing::ControlRequest;
 using testing::ErrorAnswer;
@@ -24,10 +25,6 @@ using testing::RunCommand;
 using testing::RunFarm;
 using testing::TempDir;
 using testing::UnixListener;
-
-FakeControlServer::Handler Always(ControlAnswer answer) {
-  return [answer](const ControlRequest&) { return answer; };
-}
 
 bool Contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;

@@ -33,6 +33,10 @@ ControlAnswer ErrorAnswer(const std::string& code, const std::string& message) {
       {{"ok", false}, {"error", message}, {"code", code}}, {}, std::nullopt, false};
 }
 
+FakeControlServer::Handler Always(ControlAnswer answer) {
+  return [answer](const ControlRequest&) { return answer; };
+}
+
 std::string Frame(const std::string& payload) {
   const uint32_t n = uint32_t(payload.size());
   std::string frame = {char(n & 0xff), char(n >> 8 & 0xff), char(n >> 16 & 0xff),

@@ -91,4 +91,7 @@ class FakeControlServer {
   std::thread thread_;
 };
 
+// A handler that gives every request the same answer.
+FakeControlServer::Handler Always(ControlAnswer answer);
+
 }  // namespace radfarm::testing

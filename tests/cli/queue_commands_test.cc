@@ -13,6 +13,7 @@ namespace {
 
 using nlohmann::json;
 using testing::AgentObject;
+using testing::Always;
 using testing::ControlAnswer;
 using testing::ControlRequest;
 using testing::EventObject;
@@ -20,10 +21,6 @@ using testing::FakeControlServer;
 using testing::JobObject;
 using testing::OkAnswer;
 using testing::RunFarm;
-
-FakeControlServer::Handler Always(ControlAnswer answer) {
-  return [answer](const ControlRequest&) { return answer; };
-}
 
 void ExpectKeys(const json& object, const std::vector<std::string>& keys) {
   ASSERT_TRUE(object.is_object()) << object;

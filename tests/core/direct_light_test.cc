@@ -15,14 +15,8 @@ namespace radfarm {
 namespace {
 
 using testing::BitIdentical;
+using testing::Gathering;
 using testing::LitBox;
-
-SolverSettings Gathering(uint32_t gather_rays) {
-  SolverSettings s;
-  s.gather_rays = gather_rays;
-  s.threads = 2;
-  return s;
-}
 
 TEST(DirectLightTest, SectionsFollowTheGatherRays) {
   const PatchScene scene = LitBox();  // one emitter patch

@@ -13,17 +13,13 @@ namespace radfarm {
 namespace {
 
 using testing::BitIdentical;
+using testing::Gathering;
 using testing::LitBox;
 using testing::MakeClosedBox;
 using testing::Surface;
 
-SolverSettings Gathering(uint32_t gather_rays = 1024) {
-  SolverSettings s;
-  s.shot_rays = 1 << 16;
-  s.gather_rays = gather_rays;
-  s.threads = 2;
-  return s;
-}
+// Few shot rays, so that the gather does most of the work.
+constexpr uint64_t kShotRays = 1 << 16;
 
 // Furnace: B = E / (1 - rho) on every patch. With six emitter faces the solve starts from the
 // direct light (96 shadow rays per patch, under the gather's 1024); with 64 gather rays it may
@@ -33,7 +29,7 @@ TEST(GatherTest, FurnaceWithAndWithoutTheDirectLightStart) {
   const PatchScene scene =
       MakeClosedBox({0, 0, 0}, {1, 1, 1}, 1, Surface{{rho, rho, rho}, {1, 1, 1}, 0});
   for (uint32_t gather_rays : {1024u, 64u}) {
-    SolverSettings settings = Gathering(gather_rays);
+    SolverSettings settings = Gathering(gather_rays, kShotRays);
     settings.tolerance = 1e-4;
     const ProgressiveSolver probe(scene, settings);
     EXPECT_EQ(probe.direct_light().empty(), gather_rays == 64) << gather_rays;
@@ -52,7 +48,7 @@ TEST(GatherTest, FurnaceWithAndWithoutTheDirectLightStart) {
 // after the gather round.
 TEST(GatherTest, PendingGatherRaysUntilTheGatherRuns) {
   const PatchScene scene = LitBox();
-  SolverSettings settings = Gathering(256);
+  SolverSettings settings = Gathering(256, kShotRays);
   const uint64_t all = uint64_t{256} * scene.patches.size();  // every patch of the lit box reflects
   EXPECT_EQ(ProgressiveSolver(scene, settings).PendingGatherRays(), all);
   std::vector<std::pair<bool, uint64_t>> rounds;  // (gather round, gather rays left)
@@ -76,7 +72,7 @@ TEST(GatherTest, TwoFacingSquaresInOpenSpace) {
                        Surface{{0.5, 0.5, 0.5}, {1, 1, 1}, 0}, &scene);
   testing::AddQuadGrid({0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, 1,
                        Surface{{0.5, 0.5, 0.5}, {}, 1}, &scene);
-  SolverSettings settings = Gathering(1 << 16);
+  SolverSettings settings = Gathering(1 << 16, kShotRays);
   settings.tolerance = 1e-6;
   const SolveResult r = Solve(scene, settings);
   EXPECT_NEAR(r.radiosity[0].g, 1.010083, 1e-3);
@@ -93,7 +89,7 @@ TEST(GatherTest, BeatsShootingAtEqualRaysOnALitBox) {
   fine.tolerance = 1e-4;
   fine.threads = 2;
   const SolveResult reference = Solve(scene, fine);
-  const SolveResult gathered = Solve(scene, Gathering());
+  const SolveResult gathered = Solve(scene, Gathering(1024, kShotRays));
   SolverSettings shooting = fine;
   shooting.tolerance = 1e-3;
   shooting.shot_rays = gathered.stats.rays / 2;  // a shot's light bounces: about 2x the rays
@@ -116,7 +112,7 @@ TEST(GatherTest, BeatsShootingAtEqualRaysOnALitBox) {
 
 TEST(GatherTest, SameBitsWithAnyThreadCount) {
   const PatchScene scene = LitBox();
-  SolverSettings settings = Gathering();
+  SolverSettings settings = Gathering(1024, kShotRays);
   settings.threads = 1;
   const SolveResult one = Solve(scene, settings);
   for (uint32_t threads : {2u, 7u}) {
@@ -129,7 +125,7 @@ TEST(GatherTest, SameBitsWithAnyThreadCount) {
 // the same bits; the gathered state runs no more rounds.
 TEST(GatherTest, ResumesBeforeAndAfterTheGatherRound) {
   const PatchScene scene = LitBox();
-  const SolverSettings settings = Gathering();
+  const SolverSettings settings = Gathering(1024, kShotRays);
   std::vector<SolveCheckpoint> checkpoints;
   SolveHooks record;
   record.after_round = [&](const SolveCheckpoint& c) { checkpoints.push_back(c); };
@@ -149,7 +145,7 @@ TEST(GatherTest, ResumesBeforeAndAfterTheGatherRound) {
 // small for a ray per patch skips it.
 TEST(GatherTest, RayBudgetCutsTheGatherRound) {
   const PatchScene scene = LitBox();
-  SolverSettings settings = Gathering();
+  SolverSettings settings = Gathering(1024, kShotRays);
   const SolveResult unlimited = Solve(scene, settings);
   const uint64_t gather_rays = uint64_t{settings.gather_rays} * scene.patches.size();
   const uint64_t shooting_rays = unlimited.stats.rays - gather_rays;
@@ -171,7 +167,7 @@ TEST(GatherTest, EnergyBalancesEveryRound) {
   scene.patches.resize(scene.patches.size() - 9);  // open: light escapes
   scene.patches[3 * 9 + 4].emission = {5, 5, 5};
   int rounds = 0;
-  Solve(scene, Gathering(), [&](const RoundProgress& p) {
+  Solve(scene, Gathering(1024, kShotRays), [&](const RoundProgress& p) {
     const EnergyAccount& e = *p.energy;
     EXPECT_NEAR(e.emitted, e.absorbed + e.unshot + e.escaped, 1e-12 * e.emitted);
     EXPECT_GT(e.escaped, 0);

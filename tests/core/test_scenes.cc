@@ -96,4 +96,12 @@ bool BitIdentical(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
          (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Rgb)) == 0);
 }
 
+SolverSettings Gathering(uint32_t gather_rays, uint64_t shot_rays) {
+  SolverSettings s;
+  s.shot_rays = shot_rays;
+  s.gather_rays = gather_rays;
+  s.threads = 2;
+  return s;
+}
+
 }  // namespace radfarm::testing

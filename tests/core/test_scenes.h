@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/patch_scene.h"
+#include "core/solver_settings.h"
 
 namespace radfarm::testing {
 
@@ -38,5 +39,9 @@ bool BitIdentical(const std::vector<Rgb>& a, const std::vector<Rgb>& b);
 struct PatchRange {
   uint32_t first = 0, last = 0;
 };
+
+// Settings of a solve with the final gather: `gather_rays` per patch, `shot_rays` (0: automatic),
+// 2 threads.
+SolverSettings Gathering(uint32_t gather_rays, uint64_t shot_rays = 0);
 
 }  // namespace radfarm::testing

@@ -13,8 +13,6 @@
 namespace radfarm::testing {
 namespace {
 
-const std::vector<std::string> kShortJob = {"--rays", "3000000"};
-
 nlohmann::json Json(const CommandResult& r) {
   nlohmann::json json = nlohmann::json::parse(r.out, nullptr, false);
   EXPECT_FALSE(json.is_discarded()) << r.out << r.err;

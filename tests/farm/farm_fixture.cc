@@ -157,4 +157,16 @@ size_t FarmTest::CountLines(const std::string& log, const std::string& text) {
   return count;
 }
 
+int64_t JobRound(const nlohmann::json& job) {
+  return job.is_object() && job["round"].is_number() ? job["round"].get<int64_t>() : -1;
+}
+
+int64_t AgentLeases(const nlohmann::json& agents, const std::string& name) {
+  if (!agents.is_array()) return -1;
+  for (const auto& agent : agents) {
+    if (agent["name"] == name) return agent["leases"].get<int64_t>();
+  }
+  return -1;
+}
+
 }  // namespace radfarm::testing

@@ -18,6 +18,14 @@ namespace radfarm::testing {
 
 inline constexpr auto kJobTimeout = std::chrono::seconds(240);
 
+// A job shorter than the default Cornell box: a ray budget of a few rounds.
+inline const std::vector<std::string> kShortJob = {"--rays", "3000000"};
+
+// The round of a `Status` job object, or -1 when it has none.
+int64_t JobRound(const nlohmann::json& job);
+// The leases the agent called `name` holds in an `Agents` array, or -1 when it is not listed.
+int64_t AgentLeases(const nlohmann::json& agents, const std::string& name);
+
 class FarmTest : public ::testing::Test {
  protected:
   void SetUp() override;

@@ -21,10 +21,6 @@ const std::string kAdaptive = "cornell-box-adaptive.toml";
 // is pinned to keep the job short whatever the shipped job file says.
 const std::vector<std::string> kFlags = {"--tolerance", "0.05", "--patch-size", "50"};
 
-int64_t Round(const nlohmann::json& job) {
-  return job.is_object() && job["round"].is_number() ? job["round"].get<int64_t>() : -1;
-}
-
 // The number after "key": in a flat JSON object (stats.json).
 double JsonNumber(const std::string& json, const std::string& key) {
   const size_t at = json.find("\"" + key + "\":");
@@ -97,7 +93,9 @@ TEST_F(FarmRefineTest, TheMasterKilledAfterARefinementPointResumesTheAdaptiveJob
   // The first refinement point is passed after round 0; once a later round is in (and with it a
   // checkpoint of the refined mesh: the master checkpoints every round), kill the master.
   ASSERT_TRUE(WaitUntil(
-      [&] { return CountLines(MasterLog(), "refined after round") >= 1 && Round(Status(id)) >= 2; },
+      [&] {
+        return CountLines(MasterLog(), "refined after round") >= 1 && JobRound(Status(id)) >= 2;
+      },
       kJobTimeout))
       << MasterLog();
   ASSERT_NE(Status(id)["state"], "done") << "the job ended before the master could be killed";

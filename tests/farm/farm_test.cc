@@ -15,21 +15,6 @@
 namespace radfarm::testing {
 namespace {
 
-// A shorter job than the default Cornell box: a ray budget of a few rounds.
-const std::vector<std::string> kShortJob = {"--rays", "3000000"};
-
-int64_t Round(const nlohmann::json& job) {
-  return job.is_object() && job["round"].is_number() ? job["round"].get<int64_t>() : -1;
-}
-
-int64_t AgentLeases(const nlohmann::json& agents, const std::string& name) {
-  if (!agents.is_array()) return -1;
-  for (const auto& a : agents) {
-    if (a["name"] == name) return a["leases"].get<int64_t>();
-  }
-  return -1;
-}
-
 int64_t AgentResults(const nlohmann::json& agents, const std::string& name) {
   if (!agents.is_array()) return -1;
   for (const auto& a : agents) {
@@ -77,7 +62,7 @@ TEST_F(FarmTest, AFrozenAgentLosesItsLeasesAndItsLateWorkIsNotCounted) {
   ChildProcess& frozen = StartAgent("frozen", {"--slowdown", "2"});
   const int64_t id = Submit("cornell-box.toml", kShortJob);
   ASSERT_TRUE(WaitUntil([&] { return AgentLeases(Agents(), "frozen") > 0; })) << MasterLog();
-  const int64_t round_at_freeze = Round(Status(id));
+  const int64_t round_at_freeze = JobRound(Status(id));
   frozen.Signal(SIGSTOP);
   // Past the 2 s timeout its leases go back to the queue and others finish its round.
   ASSERT_TRUE(WaitUntil([&] {
@@ -86,7 +71,7 @@ TEST_F(FarmTest, AFrozenAgentLosesItsLeasesAndItsLateWorkIsNotCounted) {
   })) << MasterLog();
   ASSERT_TRUE(WaitUntil([&] {
     const nlohmann::json job = Status(id);
-    return Round(job) > round_at_freeze || job["state"] == "done";
+    return JobRound(job) > round_at_freeze || job["state"] == "done";
   })) << MasterLog();
   frozen.Signal(SIGCONT);
   ASSERT_TRUE(WaitForState(id, "done"));
@@ -113,7 +98,7 @@ TEST_F(FarmTest, AnAgentJoiningMidJobGetsWork) {
   StartMaster();
   StartAgent("first", {"--slowdown", "3"});
   const int64_t id = Submit("cornell-box.toml", kShortJob);
-  ASSERT_TRUE(WaitUntil([&] { return Round(Status(id)) >= 1; })) << MasterLog();
+  ASSERT_TRUE(WaitUntil([&] { return JobRound(Status(id)) >= 1; })) << MasterLog();
   StartAgent("latecomer");
   ASSERT_TRUE(WaitUntil([&] {
     return AgentResults(Agents(), "latecomer") > 0 || Status(id)["state"] == "done";
@@ -153,12 +138,12 @@ TEST_F(FarmTest, TheMasterKilledAtRandomPointsResumesEveryJobIdentically) {
     // A random instant of the job's life: half the kills wait for the job to finish another round
     // first (so it resumes from a later checkpoint each time), then a random delay.
     if (std::bernoulli_distribution(0.5)(random)) {
-      const int64_t before = Round(Status(long_job));
+      const int64_t before = JobRound(Status(long_job));
       std::printf("kill %d: waiting for the round after %lld\n", kill + 1,
                   static_cast<long long>(before));
       WaitUntil([&] {
         const nlohmann::json job = Status(long_job);
-        return Round(job) > before || job["state"] == "done";
+        return JobRound(job) > before || job["state"] == "done";
       });
     }
     std::uniform_int_distribution<int> delay_ms(0, 600);

@@ -16,14 +16,6 @@ namespace {
 // A few rounds, so the user can come back while the desk agent holds leases.
 const std::vector<std::string> kJob = {"--rays", "20000000"};
 
-int64_t AgentLeases(const nlohmann::json& agents, const std::string& name) {
-  if (!agents.is_array()) return -1;
-  for (const auto& a : agents) {
-    if (a["name"] == name) return a["leases"].get<int64_t>();
-  }
-  return -1;
-}
-
 size_t CountMatches(const std::string& text, const std::regex& pattern) {
   return static_cast<size_t>(std::distance(std::sregex_iterator(text.begin(), text.end(), pattern),
                                            std::sregex_iterator()));

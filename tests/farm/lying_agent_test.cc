@@ -16,8 +16,6 @@
 namespace radfarm::testing {
 namespace {
 
-const std::vector<std::string> kShortJob = {"--rays", "3000000"};
-
 // A blocking agent speaking the protocol by hand.
 class HandAgent {
  public:

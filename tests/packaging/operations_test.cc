@@ -12,21 +12,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A short job: a ray budget of a few rounds.
-const std::vector<std::string> kShortJob = {"--rays", "3000000"};
-
-int64_t Leases(const nlohmann::json& agents, const std::string& name) {
-  if (!agents.is_array()) return -1;
-  for (const auto& agent : agents) {
-    if (agent["name"] == name) return agent["leases"].get<int64_t>();
-  }
-  return -1;
-}
-
-int64_t Round(const nlohmann::json& job) {
-  return job.is_object() && job["round"].is_number() ? job["round"].get<int64_t>() : -1;
-}
-
 // The sqlite3 shell's path, or "" when it is not installed.
 std::string Sqlite3() {
   const CommandResult found = RunCommand({"/bin/sh", "-c", "command -v sqlite3"});
@@ -42,7 +27,7 @@ TEST_F(OperationsTest, AnAgentRestartedForAnUpgradeMidJobChangesNothing) {
   StartMaster();
   ChildProcess& old_agent = StartAgent("render-07", {"--slowdown", "3"});
   const int64_t id = Submit("cornell-box.toml", kShortJob);
-  ASSERT_TRUE(WaitUntil([&] { return Leases(Agents(), "render-07") > 0; })) << MasterLog();
+  ASSERT_TRUE(WaitUntil([&] { return AgentLeases(Agents(), "render-07") > 0; })) << MasterLog();
 
   old_agent.Signal(SIGTERM);
   const std::optional<int> exit_code = old_agent.WaitExit(std::chrono::seconds(60));
@@ -70,7 +55,7 @@ TEST_F(OperationsTest, AnOnlineBackupRestoresAndTheJobResumesToTheSameResult) {
   const CommandResult paused = Cli({"pause", std::to_string(id)});
   ASSERT_EQ(paused.exit_code, 0) << paused.err;
   ASSERT_TRUE(WaitForState(id, "paused"));
-  const int64_t round_at_backup = Round(Status(id));
+  const int64_t round_at_backup = JobRound(Status(id));
 
   const std::string db = state_dir_ + "/radfarm.db";
   const std::string backup = Path("backup.db");
@@ -96,7 +81,7 @@ TEST_F(OperationsTest, AnOnlineBackupRestoresAndTheJobResumesToTheSameResult) {
   const nlohmann::json restored = Status(id);
   ASSERT_TRUE(restored.is_object()) << MasterLog();
   EXPECT_EQ(restored["state"], "paused");
-  EXPECT_EQ(Round(restored), round_at_backup);
+  EXPECT_EQ(JobRound(restored), round_at_backup);
   ASSERT_EQ(Cli({"resume", std::to_string(id)}).exit_code, 0);
   StartAgent("render-08");
   ASSERT_TRUE(WaitForState(id, "done"));

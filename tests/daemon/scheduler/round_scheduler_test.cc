@@ -4,13 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/daemon/scheduler/fake_clock.h"
+
 namespace radfarm::scheduler {
 namespace {
 
 using std::chrono::milliseconds;
 using std::chrono::seconds;
-
-const TimePoint kT0{};
 
 RoundPlan Plan(uint32_t round, uint32_t batches, uint32_t rays = 1000) {
   RoundPlan plan;

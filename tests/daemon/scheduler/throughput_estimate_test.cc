@@ -3,13 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/daemon/scheduler/fake_clock.h"
+
 namespace radfarm::scheduler {
 namespace {
 
 using std::chrono::milliseconds;
 using std::chrono::seconds;
-
-const TimePoint kT0{};
 
 TEST(ThroughputEstimateTest, StartsUnmeasuredWithTheInitialLeases) {
   SchedulerOptions options;
