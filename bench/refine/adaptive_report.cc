@@ -65,13 +65,15 @@ void WritePlots(const ReportRun& run, const StudyResult& s) {
 
 void WriteTable(const StudyResult& s, std::ostringstream& md) {
   md << "| method | setting | patches before | patches after | rays | seconds | patch error | "
-        "reference noise | net patch error | image error |\n"
-        "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+        "reference noise | net patch error | image error | direct part | bounced part |\n"
+        "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+  auto part = [](double e) { return e < 0 ? std::string("-") : Fmt(e); };
   for (const Row& r : s.rows) {
     md << "| " << r.method << " | " << r.setting << " | " << r.patches_before << " | " << r.patches
        << " | " << r.rays << " | " << Fmt(r.seconds, "%.2f") << " | " << Fmt(r.patch_error.measured)
        << " | " << Fmt(r.patch_error.reference_noise) << " | " << Fmt(r.patch_error.net) << " | "
-       << Fmt(r.image_error) << " |\n";
+       << Fmt(r.image_error) << " | " << part(r.direct_image_error) << " | "
+       << part(r.bounced_image_error) << " |\n";
   }
 }
 
@@ -341,6 +343,13 @@ void WriteAdaptiveReport(const ReportRun& run, const std::vector<StudyResult>& s
         "that arrive), and only the rest of the reference radiosity (emission and light that "
         "bounced, which is smooth) is Gouraud-shaded from the reference mesh "
         "(bench/refine/reference_image.h).\n"
+     << "- **Direct part, bounced part**: where the solve started from the direct light, the "
+        "image error of each of the display's two parts shaded alone (the direct light computed "
+        "at the vertices, against Iref's direct light per sample; the rest averaged over "
+        "elements, against Iref's Gouraud-shaded rest), over the mean of the whole Iref "
+        "(`MeasureImagePartErrors`). Refinement can only act on what an element's interpolation "
+        "gets wrong where the light bends; a part whose error is spread evenly over every "
+        "surface is lowered only by finer elements everywhere.\n"
      << "- **Time**: `SolveRefining` wall time (meshing excluded, refinement included), the "
         "median of the row's runs. The vertex radiance and display mesh are not included: "
      << DisplayShare(studies) << ".\n\n";

@@ -49,7 +49,7 @@ std::vector<Rgb> BouncedRadiosity(const PatchScene& scene, const std::vector<Rgb
 
 Image RenderReferenceImage(PatchMesh& mesh, const std::vector<Rgb>& radiosity,
                            const std::vector<Rgb>& rest, const std::vector<Rgb>& unshot,
-                           const Camera& camera) {
+                           const Camera& camera, Image* bounced_image) {
   const PatchScene& scene = mesh.patch_scene();
   const RayCaster caster(scene);
   const DirectLight direct(scene, caster, kShadowRaysPerPoint);
@@ -98,6 +98,7 @@ Image RenderReferenceImage(PatchMesh& mesh, const std::vector<Rgb>& radiosity,
     }
   }
   for (Rgb& p : image.pixels) p = p / double(n * n);
+  *bounced_image = RenderImage(display, camera);
   return image;
 }
 

@@ -30,7 +30,8 @@ ReferenceSolution Finish(PatchMesh& mesh, const std::vector<Rgb>& mean,
   const std::vector<Rgb> bounced = BouncedRadiosity(mesh.patch_scene(), mean);
   for (const Rgb& b : bounced) ref.bounced.push_back(b.Sum());
   const DisplayMesh display = mesh.MakeDisplayMesh();
-  ref.image = RenderReferenceImage(mesh, mean, bounced, unshot, ResolveCamera(display, camera));
+  ref.image = RenderReferenceImage(mesh, mean, bounced, unshot, ResolveCamera(display, camera),
+                                   &ref.bounced_image);
   for (const Rgb& p : ref.image.pixels) ref.image_mean += p.Sum();
   ref.image_mean /= double(ref.image.pixels.size());
   return ref;

@@ -31,6 +31,7 @@ struct ReferenceSolution {
   // a block).
   double dark_threshold = 0;
   Image image;             // RenderReferenceImage of the mean solution
+  Image bounced_image;     // its Gouraud-shaded part: `image` less it is the direct light
   double image_mean = 0;   // mean pixel value (channel sum)
   uint64_t shot_rays = 0;  // of each solve
   uint64_t rays = 0;       // both solves

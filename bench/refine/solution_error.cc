@@ -90,4 +90,31 @@ double MeasureImageError(const Image& image, const ReferenceSolution& ref) {
   return sum / double(image.pixels.size()) / ref.image_mean;
 }
 
+ImagePartErrors MeasureImagePartErrors(PatchMesh& mesh, const SolveResult& solution,
+                                       const SolverSettings& solver, const Camera& camera,
+                                       const ReferenceSolution& ref) {
+  const std::vector<Patch>& patches = mesh.patch_scene().patches;
+  std::vector<Rgb> direct(patches.size()), rest(patches.size());
+  for (size_t f = 0; f < patches.size(); ++f) {
+    direct[f] = patches[f].reflectance * solution.direct_light[f];
+    rest[f] = solution.radiosity[f] - direct[f];
+  }
+  // The rest alone: averaged over patches and extrapolated at borders, as SetSolution does.
+  mesh.SetSolution(rest, solution.unshot);
+  const Image bounced = RenderImage(mesh.MakeDisplayMesh(), camera);
+  // The direct light alone: a radiosity of rho times the patch's direct light leaves no rest.
+  mesh.SetSolution(direct, solution.unshot, {solution.direct_light, solver.seed, solver.threads});
+  const Image lit = RenderImage(mesh.MakeDisplayMesh(), camera);
+  ImagePartErrors out;
+  for (size_t i = 0; i < lit.pixels.size(); ++i) {
+    const double ref_bounced = ref.bounced_image.pixels[i].Sum();
+    out.bounced += std::abs(bounced.pixels[i].Sum() - ref_bounced);
+    out.direct += std::abs(lit.pixels[i].Sum() - (ref.image.pixels[i].Sum() - ref_bounced));
+  }
+  const double norm = double(lit.pixels.size()) * ref.image_mean;
+  out.direct /= norm;
+  out.bounced /= norm;
+  return out;
+}
+
 }  // namespace radfarm::bench

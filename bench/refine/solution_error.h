@@ -27,6 +27,9 @@
 #include "bench/refine/reference_solution.h"
 #include "core/patch_scene.h"
 #include "core/rgb.h"
+#include "core/solve.h"
+#include "mesh/patch_mesh.h"
+#include "output/camera.h"
 #include "output/image.h"
 
 namespace radfarm::bench {
@@ -41,5 +44,19 @@ PatchError MeasurePatchError(const PatchScene& run, const std::vector<Rgb>& radi
                              const ReferenceSolution& ref);
 
 double MeasureImageError(const Image& image, const ReferenceSolution& ref);
+
+// The image error split into the display's two parts, for a solve that started from the direct
+// light (SolveResult::direct_light set): each part is shaded alone as PatchMesh::SetSolution shades
+// it (the direct light computed at the vertices; the rest, radiosity less rho times the patch's
+// direct light, averaged over patches) and compared with the same part of Iref. Both are over the
+// mean of the whole Iref, so they compare with the image error (which is at most their sum). The
+// mesh keeps the last part's vertex radiance: the caller sets its solution again.
+struct ImagePartErrors {
+  double direct = 0;
+  double bounced = 0;
+};
+ImagePartErrors MeasureImagePartErrors(PatchMesh& mesh, const SolveResult& solution,
+                                       const SolverSettings& solver, const Camera& camera,
+                                       const ReferenceSolution& ref);
 
 }  // namespace radfarm::bench

@@ -172,6 +172,15 @@ class Study {
     const Camera camera = ResolveCamera(display, camera_);
     const Image image = RenderImage(display, camera);
     row.image_error = MeasureImageError(image, ref_);
+    if (!solved->solution.direct_light.empty()) {
+      const ImagePartErrors parts =
+          MeasureImagePartErrors(*solved->mesh, solved->solution, solver, camera, ref_);
+      row.direct_image_error = parts.direct;
+      row.bounced_image_error = parts.bounced;
+      // Back to the row's own display (SetSolution above) for the images written below.
+      solved->mesh->SetSolution(solved->solution.radiosity, solved->solution.unshot,
+                                {solved->solution.direct_light, solver.seed, solver.threads});
+    }
     if (!options_.images_dir.empty()) {
       // Debugging aid: the row's image and its difference from the reference, 8x brightened.
       const std::string stem = options_.images_dir + "/" + result_.scene.name + "-" +

@@ -37,6 +37,12 @@ struct Row {
   double display_seconds = 0;
   PatchError patch_error;
   double image_error = 0;
+  // Where the solve started from the direct light: the image error of each part alone, the
+  // direct light (rho times DirectLight at the vertices, interpolated) against the reference's
+  // direct light per sample, and the rest (emission and bounced light averaged over patches)
+  // against the reference's Gouraud-shaded rest (ImagePartErrors). Negative where not measured.
+  double direct_image_error = -1;
+  double bounced_image_error = -1;
 };
 
 struct StudyResult {
