@@ -46,7 +46,7 @@ double LightFormFactor(double x, double z) {
          CornerRectangle(2.5 - x, 1.5 - z) + CornerRectangle(1.5 - x, 1.5 - z);
 }
 
-// The largest relative difference of the floor's display vertices from rho times the closed form.
+// The floor's display vertices: their largest relative difference from rho times the closed form.
 double WorstFloorVertex(const DisplayMesh& display, const PatchScene& scene) {
   std::vector<bool> floor(display.positions.size(), false);
   for (size_t t = 0; t < display.triangles.size(); ++t) {
@@ -55,22 +55,52 @@ double WorstFloorVertex(const DisplayMesh& display, const PatchScene& scene) {
     }
   }
   double worst = 0;
-  size_t seen = 0;
   for (size_t v = 0; v < display.positions.size(); ++v) {
     if (!floor[v]) continue;
-    ++seen;
     const Vec3& p = display.positions[v];
     const double expected = kRho * LightFormFactor(p.x, p.z);
     worst = std::max(worst, std::abs(display.radiance[v].g - expected) / expected);
   }
-  EXPECT_EQ(seen, 81u) << "a 9 x 9 lattice of floor vertices";
   return worst;
+}
+
+// The Gouraud image of the floor against rho times the closed form: the mean relative difference
+// over 21 barycentric samples of every floor triangle. With `closed_form_vertices`, the display's
+// vertices are first set to the closed form itself (exact point values, interpolated linearly).
+double FloorImageError(DisplayMesh display, const PatchScene& scene, bool closed_form_vertices) {
+  auto exact = [](const Vec3& p) { return kRho * LightFormFactor(p.x, p.z); };
+  if (closed_form_vertices) {
+    for (size_t v = 0; v < display.positions.size(); ++v) {
+      display.radiance[v] = Rgb(1, 1, 1) * exact(display.positions[v]);
+    }
+  }
+  double error = 0, sum = 0;
+  size_t triangles = 0;
+  for (size_t t = 0; t < display.triangles.size(); ++t) {
+    if (scene.patches[display.triangle_patch[t]].normal.y < 0.5) continue;
+    ++triangles;
+    const auto& v = display.triangles[t];
+    constexpr int kSteps = 5;
+    for (int i = 0; i <= kSteps; ++i) {
+      for (int j = 0; i + j <= kSteps; ++j) {
+        const double a = double(i) / kSteps, b = double(j) / kSteps, c = 1 - a - b;
+        const Vec3 p =
+            display.positions[v[0]] * a + display.positions[v[1]] * b + display.positions[v[2]] * c;
+        const double shown = display.radiance[v[0]].g * a + display.radiance[v[1]].g * b +
+                             display.radiance[v[2]].g * c;
+        error += std::abs(shown - exact(p));
+        sum += exact(p);
+      }
+    }
+  }
+  EXPECT_EQ(triangles, 2 * 256u) << "a 16 x 16 grid of floor quads";
+  return error / sum;
 }
 
 class VertexDirectLightTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    Result<PatchMesh> built = PatchMesh::Build(FloorUnderASquareLight(), {0.5}, nullptr);
+    Result<PatchMesh> built = PatchMesh::Build(FloorUnderASquareLight(), {0.25}, nullptr);
     ASSERT_TRUE(built.ok()) << built.error();
     mesh_.emplace(std::move(*built));
     SolverSettings settings;
@@ -84,16 +114,23 @@ class VertexDirectLightTest : public ::testing::Test {
   SolveResult solution_;
 };
 
-// Every floor vertex, the crease at the wall and the floor's outer border included, shows the
-// closed form (the vertex's point sits 1e-4 of the way toward its patches' centres). The plain
-// average of the patches around a vertex misses the peak under the light and the fall-off.
-TEST_F(VertexDirectLightTest, FloorVerticesShowTheClosedForm) {
+// The floor's image against the closed form. Exact point values at the vertices, interpolated
+// linearly, run below the concave peak under the light and above the convex fall-off around it;
+// moving each vertex by its patches' shortfall against their mean light lowers that error by a
+// fifth at least (1.14% -> 0.86% when written). The plain average of the patches around each
+// vertex, which flattens the peak, is worse than both. Vertices stay within 3% of the closed form
+// (an average misses by more).
+TEST_F(VertexDirectLightTest, TheFloorsImageIsCloserToTheClosedFormThanExactVertexValues) {
   mesh_->SetSolution(solution_.radiosity, solution_.unshot, {solution_.direct_light, 1, 2});
-  EXPECT_LT(WorstFloorVertex(mesh_->MakeDisplayMesh(), mesh_->patch_scene()), 1e-3);
-
+  const DisplayMesh shown = mesh_->MakeDisplayMesh();
+  const double corrected = FloorImageError(shown, mesh_->patch_scene(), false);
+  const double point_values = FloorImageError(shown, mesh_->patch_scene(), true);
+  const double worst_vertex = WorstFloorVertex(shown, mesh_->patch_scene());
   mesh_->SetSolution(solution_.radiosity, solution_.unshot);
-  EXPECT_GT(WorstFloorVertex(mesh_->MakeDisplayMesh(), mesh_->patch_scene()), 0.02)
-      << "averaged vertices would pass too: the test would not tell the two apart";
+  const double averaged = FloorImageError(mesh_->MakeDisplayMesh(), mesh_->patch_scene(), false);
+  EXPECT_LT(corrected, 0.8 * point_values) << corrected << " against " << point_values;
+  EXPECT_LT(point_values, averaged);
+  EXPECT_LT(worst_vertex, 0.03);
 }
 
 TEST_F(VertexDirectLightTest, SameBitsWithAnyThreadCount) {
