@@ -46,11 +46,12 @@ PatchError MeasurePatchError(const PatchScene& run, const std::vector<Rgb>& radi
 double MeasureImageError(const Image& image, const ReferenceSolution& ref);
 
 // The image error split into the display's two parts, for a solve that started from the direct
-// light (SolveResult::direct_light set): each part is shaded alone as PatchMesh::SetSolution shades
-// it (the direct light computed at the vertices; the rest, radiosity less rho times the patch's
-// direct light, averaged over patches) and compared with the same part of Iref. Both are over the
-// mean of the whole Iref, so they compare with the image error (which is at most their sum). The
-// mesh keeps the last part's vertex radiance: the caller sets its solution again.
+// light (SolveResult::direct_light set), each shaded alone and compared with the same part of
+// Iref: the direct light as PatchMesh::SetSolution shades it (computed at the vertices, moved to
+// the elements' mean direct light), and the rest (radiosity less rho times the patch's direct
+// light) averaged over patches without that move. Both are over the mean of the whole Iref, so
+// they compare with the image error. The mesh keeps the last part's vertex radiance: the caller
+// sets its solution again.
 struct ImagePartErrors {
   double direct = 0;
   double bounced = 0;
