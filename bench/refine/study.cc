@@ -176,10 +176,7 @@ class Study {
       const ImagePartErrors parts =
           MeasureImagePartErrors(*solved->mesh, solved->solution, solver, camera, ref_);
       row.direct_image_error = parts.direct;
-      row.bounced_image_error = parts.bounced;
-      // Back to the row's own display (SetSolution above) for the images written below.
-      solved->mesh->SetSolution(solved->solution.radiosity, solved->solution.unshot,
-                                {solved->solution.direct_light, solver.seed, solver.threads});
+      row.bounced_image_error = parts.bounced;  // the mesh's display is the parts' now: unused
     }
     if (!options_.images_dir.empty()) {
       // Debugging aid: the row's image and its difference from the reference, 8x brightened.
