@@ -1,15 +1,24 @@
 #include "mesh/gouraud_means.h"
 
+#include <array>
+#include <cstdint>
+
 namespace radfarm {
+namespace {
+
+double TwiceArea(const DisplayMesh& display, const std::array<uint32_t, 3>& v) {
+  const Vec3& a = display.positions[v[0]];
+  return Length(Cross(display.positions[v[1]] - a, display.positions[v[2]] - a));
+}
+
+}  // namespace
 
 std::vector<Rgb> GouraudPatchMeans(const DisplayMesh& display, size_t patches) {
   std::vector<Rgb> sum(patches);
   std::vector<double> area(patches, 0.0);
   for (size_t t = 0; t < display.triangles.size(); ++t) {
     const auto& v = display.triangles[t];
-    const Vec3& a = display.positions[v[0]];
-    const double twice_area =
-        Length(Cross(display.positions[v[1]] - a, display.positions[v[2]] - a));
+    const double twice_area = TwiceArea(display, v);
     const uint32_t f = display.triangle_patch[t];
     // A linear function's mean over a triangle is the mean of its corner values.
     sum[f] += (display.radiance[v[0]] + display.radiance[v[1]] + display.radiance[v[2]]) *
@@ -18,6 +27,26 @@ std::vector<Rgb> GouraudPatchMeans(const DisplayMesh& display, size_t patches) {
   }
   for (size_t f = 0; f < patches; ++f) sum[f] = area[f] > 0 ? sum[f] / area[f] : Rgb();
   return sum;
+}
+
+void StepTowardPatchMeans(DisplayMesh* display, const std::vector<Rgb>& target,
+                          const std::vector<bool>& moves) {
+  const std::vector<Rgb> shown = GouraudPatchMeans(*display, target.size());
+  std::vector<Rgb> sum(display->positions.size());
+  std::vector<double> weight(display->positions.size(), 0.0);
+  for (size_t t = 0; t < display->triangles.size(); ++t) {
+    const auto& v = display->triangles[t];
+    const uint32_t f = display->triangle_patch[t];
+    const double twice_area = TwiceArea(*display, v);
+    const Rgb shortfall = moves[f] ? (target[f] - shown[f]) * twice_area : Rgb();
+    for (uint32_t n : v) {
+      sum[n] += shortfall;
+      weight[n] += twice_area;
+    }
+  }
+  for (size_t n = 0; n < sum.size(); ++n) {
+    if (weight[n] > 0) display->radiance[n] += sum[n] / weight[n];
+  }
 }
 
 }  // namespace radfarm

@@ -1,6 +1,6 @@
 // What the Gouraud image shows of each patch on average: the area-weighted mean of the radiance
-// interpolated linearly over the patch's display triangles (PatchMesh::SetSolution moves vertices
-// so that it matches the patch's mean light).
+// interpolated linearly over the patch's display triangles; and the step PatchMesh::SetSolution
+// takes so that it matches the patch's mean light.
 #pragma once
 
 #include <cstddef>
@@ -14,5 +14,12 @@ namespace radfarm {
 // Per patch (0 .. patches - 1), the mean over its triangles of display.radiance interpolated
 // linearly; zero for a patch with no triangle of positive area.
 std::vector<Rgb> GouraudPatchMeans(const DisplayMesh& display, size_t patches);
+
+// One step toward target: every vertex moves by the average of (target - GouraudPatchMeans) over
+// the triangles that use it, weighted by their area. Patches with moves[f] false count as short
+// by nothing (an emitter shows its emission). One step only: it removes most of the bias of
+// linear interpolation, and further steps chase the noise in the targets.
+void StepTowardPatchMeans(DisplayMesh* display, const std::vector<Rgb>& target,
+                          const std::vector<bool>& moves);
 
 }  // namespace radfarm

@@ -16,6 +16,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -86,24 +87,26 @@ class PatchMesh {
     uint64_t seed = 0;
     unsigned threads = 0;  // 0: all cores
   };
-  // As above, but a vertex shows the direct light computed at the vertex itself, rho times
-  // DirectLight at the vertex (core/direct_light.h), plus the average of the rest (radiosity less
-  // rho times the patch's direct light: emission and bounced light) over its patches. The average
-  // puts a vertex at the mean of the patches around it: where the direct light bends (the fall-off
-  // near a light, a penumbra) that is not its value there, and the Gouraud image shows every
-  // patch's outline. The direct light at the vertex is exact outside shadows, so only the smooth
-  // bounced light is averaged. Costs a point of shadow rays (kPointShadowRays) per vertex and one
-  // per patch centre: then every vertex moves by the average over its patches of the patch's mean
-  // light (its rest plus rho times the direct light's mean, from its corners and centre by the
-  // rule exact for quadratics) less its Gouraud mean (GouraudPatchMeans). Point values
-  // interpolated linearly run below a concave light between vertices (h^2 f'' / 12 on every
-  // patch); the step removes most of that bias.
+  // As above, but the display is finer than the solution and shows the direct light where it is
+  // computed. Every display triangle is cut into four at its edge midpoints (midpoint_split.h), and
+  // every display point, vertex or midpoint, shows rho times DirectLight at the point itself
+  // (core/direct_light.h) plus the rest of the solution (radiosity less rho times the patch's
+  // direct light: emission and bounced light, which is smooth) averaged over the patches around
+  // it, linearly between a midpoint's two ends. Averages put a vertex at the mean of its patches:
+  // where the direct light bends (the fall-off near a light, a penumbra) that is not its value
+  // there, and the Gouraud image would show every patch's outline; the direct light at the point
+  // is exact outside shadows. Then one step (StepTowardPatchMeans) moves every point by its
+  // patches' shortfall of Gouraud mean against mean light (the rest as solved plus rho times the
+  // direct light's mean over the patch by the midpoint rule, exact for quadratics): point values
+  // interpolated linearly run below a concave light between points (h^2 f'' / 12 on every
+  // triangle). Costs a point of shadow rays (kPointShadowRays) per display vertex and midpoint.
   void SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot,
                    const VertexDirectLight& direct);
 
   // Triangles with per-vertex radiance for the image and the PLY: one vertex per surface and
   // position, patches with T-vertices on their edges triangulated through them, so Gouraud shading
-  // is continuous within a surface. Radiance is zero before SetSolution.
+  // is continuous within a surface; after SetSolution with VertexDirectLight, those triangles cut
+  // at their midpoints. Radiance is zero before SetSolution.
   DisplayMesh MakeDisplayMesh() const;
 
   // The OpenMesh mesh and its property handles, for inspection and tests.
@@ -122,8 +125,12 @@ class PatchMesh {
   // Per display vertex, the area-weighted average of a per-patch value over its patches.
   std::vector<Rgb> VertexAverages(const std::vector<Rgb>& per_patch) const;
   void SetVertexRadiance(const std::vector<Rgb>& value);
+  // The display triangles of the patches, at the vertices' radiance.
+  DisplayMesh PatchDisplayMesh() const;
 
   PatchMeshData data_;
+  // The display cut at its midpoints by SetSolution with VertexDirectLight; empty otherwise.
+  std::optional<DisplayMesh> split_display_;
   double patch_size_ = 0;
   size_t dropped_degenerate_ = 0;
   size_t dropped_hidden_ = 0;

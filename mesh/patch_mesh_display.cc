@@ -7,6 +7,7 @@
 #include "mesh/border_extrapolation.h"
 #include "mesh/ear_clip.h"
 #include "mesh/gouraud_means.h"
+#include "mesh/midpoint_split.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/polygon.h"
 
@@ -60,6 +61,7 @@ void PatchMesh::SetVertexRadiance(const std::vector<Rgb>& value) {
 }
 
 void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot) {
+  split_display_.reset();
   StoreSolution(radiosity, unshot);
   std::vector<Rgb> value = VertexAverages(radiosity);
   ExtrapolateBorders(FaceRings(), &value);
@@ -68,6 +70,7 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
 
 void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot,
                             const VertexDirectLight& direct) {
+  split_display_.reset();
   StoreSolution(radiosity, unshot);
   const std::vector<Patch>& patches = data_.scene.patches;
   if (direct.patch_direct.size() != patches.size()) {
@@ -81,9 +84,9 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
     rest[f] = radiosity[f] - patches[f].reflectance * direct.patch_direct[f];
     reflectance[f] = patches[f].reflectance;
   }
-  std::vector<Rgb> value = VertexAverages(rest);
-  ExtrapolateBorders(FaceRings(), &value);
-  const std::vector<Rgb> rho = VertexAverages(reflectance);
+  std::vector<Rgb> vertex_rest = VertexAverages(rest);
+  ExtrapolateBorders(FaceRings(), &vertex_rest);
+  const std::vector<Rgb> vertex_rho = VertexAverages(reflectance);
 
   // Each vertex's point: a hair inside the patches around it (toward their centres), so a vertex
   // on a crease or at the foot of a wall sees the light as the surface beside it does.
@@ -95,58 +98,87 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
     normal_sum[group] = normal_sum[group] + patches[face].normal * patches[face].area;
     ++count[group];
   });
+  constexpr uint32_t kNoPoint = ~uint32_t{0};
   std::vector<ReceiverPoint> points;
-  std::vector<uint32_t> point_group;
+  std::vector<uint32_t> point_of(groups, kNoPoint);  // per display vertex
   for (uint32_t g = 0; g < groups; ++g) {
     const double length = Length(normal_sum[g]);
     if (count[g] == 0 || !(length > 0)) continue;
     const Vec3 at = FromOm(data_.mesh->point(data_.group_vertex[g]));
     const Vec3 inward = centre_sum[g] / double(count[g]) - at;
+    point_of[g] = static_cast<uint32_t>(points.size());
     points.push_back({at + inward * kVertexInset, normal_sum[g] / length});
-    point_group.push_back(g);
   }
-  // Then each patch's centre (after the vertices, so their shadow rays keep their keys).
-  const size_t vertex_points = points.size();
-  for (const Patch& p : patches) points.push_back({p.centre, p.normal});
+
+  // The display cut at its midpoints; the rest there is the mean of its edge's ends.
+  SetVertexRadiance(vertex_rest);
+  MidpointSplit split = SplitAtMidpoints(PatchDisplayMesh());
+  DisplayMesh& fine = split.mesh;
+  const size_t midpoints = split.edge_ends.size();
+  // Each midpoint's point: a hair toward the centroids of the triangles beside its edge, facing as
+  // their patches do on average; and its reflectance, their patches' on average.
+  std::vector<Vec3> mid_centroids(midpoints), mid_normals(midpoints);
+  std::vector<Rgb> mid_rho(midpoints);
+  std::vector<double> mid_weight(midpoints, 0.0);
+  std::vector<uint32_t> mid_triangles(midpoints, 0);
+  for (size_t t = 0; t < split.triangle_midpoints.size(); ++t) {
+    const std::array<uint32_t, 3>& v = fine.triangles[4 * t + 3];  // the middle triangle
+    const Vec3 centroid =
+        (fine.positions[v[0]] + fine.positions[v[1]] + fine.positions[v[2]]) / 3.0;
+    const Patch& p = patches[fine.triangle_patch[4 * t]];
+    for (uint32_t m : split.triangle_midpoints[t]) {
+      const uint32_t k = m - split.coarse_vertices;
+      mid_centroids[k] = mid_centroids[k] + centroid;
+      mid_normals[k] = mid_normals[k] + p.normal * p.area;
+      mid_rho[k] += p.reflectance * p.area;
+      mid_weight[k] += p.area;
+      ++mid_triangles[k];
+    }
+  }
+  std::vector<Rgb> rho = vertex_rho;
+  rho.resize(groups + midpoints);
+  point_of.resize(groups + midpoints, kNoPoint);
+  for (size_t k = 0; k < midpoints; ++k) {
+    const double length = Length(mid_normals[k]);
+    if (!(length > 0) || !(mid_weight[k] > 0)) continue;
+    const Vec3& at = fine.positions[groups + k];
+    const Vec3 inward = mid_centroids[k] / double(mid_triangles[k]) - at;
+    rho[groups + k] = mid_rho[k] / mid_weight[k];
+    point_of[groups + k] = static_cast<uint32_t>(points.size());
+    points.push_back({at + inward * kVertexInset, mid_normals[k] / length});
+  }
   const std::vector<Rgb> irradiance =
       PointsDirectLight(data_.scene, points, direct.seed, direct.threads);
-  std::vector<Rgb> vertex_irradiance(groups);
-  for (size_t k = 0; k < vertex_points; ++k) {
-    const uint32_t g = point_group[k];
-    vertex_irradiance[g] = irradiance[k];
-    value[g] += rho[g] * irradiance[k];
+  std::vector<Rgb> point_irradiance(groups + midpoints);
+  for (size_t n = 0; n < point_irradiance.size(); ++n) {
+    if (point_of[n] != kNoPoint) point_irradiance[n] = irradiance[point_of[n]];
+    fine.radiance[n] += rho[n] * point_irradiance[n];
   }
-  SetVertexRadiance(value);
 
-  // Point values interpolated linearly run below the light wherever it is concave (the peak under
-  // a lamp, the fall-off down a wall) and above it where it is convex: on every patch, by about
-  // h^2 f'' / 12. So each vertex then moves by the average over its patches of what the patch's
-  // Gouraud mean misses of the patch's mean light: the rest as solved plus rho times the direct
-  // light's mean from its corners and centre, by the rule exact for quadratics (a parallelogram:
-  // (corner mean + 2 centre) / 3; a triangle: (corner mean + 3 centre) / 4).
-  const OmMesh& om = *data_.mesh;
+  // Each patch's mean light: the rest as solved plus rho times the direct light's mean over its
+  // triangles, each by the midpoint rule (the mean of its edge midpoints' values, exact for
+  // quadratics).
+  std::vector<Rgb> direct_sum(patches.size());
+  std::vector<double> area(patches.size(), 0.0);
+  for (size_t t = 0; t < split.triangle_midpoints.size(); ++t) {
+    const std::array<uint32_t, 3>& m = split.triangle_midpoints[t];
+    const std::array<uint32_t, 3>& v = fine.triangles[4 * t + 3];  // a quarter of the triangle
+    const Vec3& a = fine.positions[v[0]];
+    const double twice_area = Length(Cross(fine.positions[v[1]] - a, fine.positions[v[2]] - a));
+    const uint32_t f = fine.triangle_patch[4 * t];
+    direct_sum[f] +=
+        (point_irradiance[m[0]] + point_irradiance[m[1]] + point_irradiance[m[2]]) * twice_area;
+    area[f] += twice_area;
+  }
   std::vector<Rgb> target(patches.size());
-  for (uint32_t f = 0; f < patches.size(); ++f) {
-    std::array<OmMesh::VertexHandle, 4> corners;
-    const int n = FaceCorners(om, om.face_handle(static_cast<int>(f)), &corners);
-    Rgb corner_mean;
-    for (int k = 0; k < n; ++k) {
-      corner_mean += vertex_irradiance[om.property(data_.props.group, corners[k])];
-    }
-    corner_mean = corner_mean / double(n);
-    const Rgb& centre = irradiance[vertex_points + f];
-    const Rgb mean = n == 4 ? (corner_mean + centre * 2) / 3 : (corner_mean + centre * 3) / 4;
-    target[f] = rest[f] + patches[f].reflectance * mean;
-  }
-  // One step only: more steps match the means closer, yet the unit scene's image error grew.
-  const std::vector<Rgb> shown = GouraudPatchMeans(MakeDisplayMesh(), patches.size());
-  std::vector<Rgb> shortfall(patches.size());
+  std::vector<bool> moves(patches.size());
   for (size_t f = 0; f < patches.size(); ++f) {
-    if (patches[f].emission.Max() == 0) shortfall[f] = target[f] - shown[f];
+    moves[f] = patches[f].emission.Max() == 0 && area[f] > 0;  // an emitter shows its emission
+    if (moves[f]) target[f] = rest[f] + patches[f].reflectance * (direct_sum[f] / (3 * area[f]));
   }
-  const std::vector<Rgb> correction = VertexAverages(shortfall);
-  for (size_t g = 0; g < value.size(); ++g) value[g] += correction[g];
-  SetVertexRadiance(value);
+  StepTowardPatchMeans(&fine, target, moves);
+  SetVertexRadiance(std::vector<Rgb>(fine.radiance.begin(), fine.radiance.begin() + groups));
+  split_display_ = std::move(fine);
 }
 
 std::vector<std::vector<uint32_t>> PatchMesh::FaceRings() const {
@@ -170,6 +202,10 @@ std::vector<std::vector<uint32_t>> PatchMesh::FaceRings() const {
 }
 
 DisplayMesh PatchMesh::MakeDisplayMesh() const {
+  return split_display_ ? *split_display_ : PatchDisplayMesh();
+}
+
+DisplayMesh PatchMesh::PatchDisplayMesh() const {
   const OmMesh& mesh = *data_.mesh;
   const PatchProperties& p = data_.props;
   DisplayMesh out;

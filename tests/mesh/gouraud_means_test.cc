@@ -63,5 +63,50 @@ TEST(GouraudPatchMeansTest, TrianglesCountByArea) {
   EXPECT_NEAR(means[0].r, 0.5 / 2.0, 1e-12);
 }
 
+// Two unit squares side by side, patches 0 and 1, each as two triangles; all radiance 1.
+DisplayMesh TwoSquares() {
+  DisplayMesh d;
+  d.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}};
+  d.radiance.assign(6, Rgb{1, 1, 1});
+  d.triangles = {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}};
+  d.triangle_patch = {0, 0, 1, 1};
+  return d;
+}
+
+// Targets the display already shows: nothing moves.
+TEST(StepTowardPatchMeansTest, MeansAlreadyShownMoveNothing) {
+  DisplayMesh d = TwoSquares();
+  StepTowardPatchMeans(&d, {{1, 1, 1}, {1, 1, 1}}, {true, true});
+  for (const Rgb& r : d.radiance) EXPECT_EQ(r, (Rgb{1, 1, 1}));
+}
+
+// Patch 1 should show 2: its own vertices move by the whole shortfall, the shared ones by the
+// area-weighted share of it (half their triangles' area is patch 1's), and the step brings both
+// patches' means closer to their targets.
+TEST(StepTowardPatchMeansTest, VerticesMoveByTheirTrianglesShortfall) {
+  DisplayMesh d = TwoSquares();
+  StepTowardPatchMeans(&d, {{1, 1, 1}, {2, 2, 2}}, {true, true});
+  EXPECT_EQ(d.radiance[0], (Rgb{1, 1, 1}));
+  EXPECT_EQ(d.radiance[2], (Rgb{2, 2, 2}));
+  EXPECT_EQ(d.radiance[5], (Rgb{2, 2, 2}));
+  // Vertex 1: triangles (0 1 4) and (1 2 5), (1 5 4): areas 0.5 each, two of three in patch 1.
+  EXPECT_NEAR(d.radiance[1].r, 1 + 2.0 / 3, 1e-12);
+  // Vertex 4: (0 1 4), (0 4 3) of patch 0, (1 5 4) of patch 1.
+  EXPECT_NEAR(d.radiance[4].r, 1 + 1.0 / 3, 1e-12);
+  const std::vector<Rgb> means = GouraudPatchMeans(d, 2);
+  EXPECT_GT(means[1].r, 1.5);
+  EXPECT_LT(means[0].r, 1.5);
+}
+
+// A patch that does not move (an emitter) counts as short by nothing: the vertices only it uses
+// stay, the shared ones move by the other patch's share alone.
+TEST(StepTowardPatchMeansTest, AHeldPatchCountsAsShortByNothing) {
+  DisplayMesh d = TwoSquares();
+  StepTowardPatchMeans(&d, {{5, 5, 5}, {2, 2, 2}}, {false, true});
+  EXPECT_EQ(d.radiance[0], (Rgb{1, 1, 1}));
+  EXPECT_EQ(d.radiance[3], (Rgb{1, 1, 1}));
+  EXPECT_NEAR(d.radiance[1].r, 1 + 2.0 / 3, 1e-12);
+}
+
 }  // namespace
 }  // namespace radfarm
