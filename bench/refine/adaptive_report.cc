@@ -52,7 +52,7 @@ void WritePlots(const ReportRun& run, const StudyResult& s) {
         }
         panel.series.push_back(a);
       }
-      for (const std::string group : {"sampler", "solver", "gather", "budget"}) {
+      for (const std::string group : {"floor", "sampler", "solver", "gather", "budget"}) {
         for (const Row* r : Group(s, group)) {
           panel.series.push_back({r->method, {point(*r)}, false, 0, 0});
         }
@@ -92,7 +92,13 @@ bool WriteMeshingAim(const StudyResult& s, std::ostringstream& md) {
   }
   md << "- **" << s.scene.name << "**: best uniform mesh " << best->setting << ", image error "
      << Fmt(best->image_error) << " with " << best->patches << " patches in "
-     << Fmt(best->seconds, "%.2f") << " s. ";
+     << Fmt(best->seconds, "%.2f") << " s";
+  if (const std::vector<const Row*> floor = Group(s, "floor"); !floor.empty()) {
+    // How far below the best uniform mesh any mesh can go at these rays.
+    md << " (the reference's own mesh, " << floor[0]->patches
+       << " patches: " << Fmt(floor[0]->image_error) << ")";
+  }
+  md << ". ";
   if (match == nullptr) {
     md << "No adaptive row reaches it: **not met**.\n";
     return false;
@@ -318,7 +324,10 @@ void WriteAdaptiveReport(const ReportRun& run, const std::vector<StudyResult>& s
         "(a refined mesh gets the rays of its element count).\n"
      << "- **Reference**: a uniform mesh at the adaptive runs' minimum element size, solved twice "
         "(seeds 1000003 and 2000003, tolerance 1e-4); their mean is the reference, half their "
-        "difference its noise.\n"
+        "difference its noise. The row *the reference's mesh* solves that mesh like the others "
+        "(a job's defaults, seed 1): it shares the reference's discretisation, so its error is "
+        "the noise of both, the floor under every row at these rays, and it is not a uniform "
+        "row the aims compare with.\n"
      << "- **Patch error**: for each element, the reference over it (its bounced light, the "
         "reference radiosity less rho times the direct light, averaged at 16 points spread evenly "
         "over the element; plus rho times the direct light averaged over 6 x 6 jittered points "

@@ -56,6 +56,10 @@ class Study {
     for (double size : s.uniform_sizes) {
       Measure("uniform", "uniform", "patch size " + Fmt(size), size, defaults, off);
     }
+    // The reference's own patches, solved like every other row: the least error a mesh can show
+    // at these rays, since the reference shares its discretisation and only the noise is left.
+    Measure("floor", "the reference's mesh", "patch size " + Fmt(s.reference_size),
+            s.reference_size, defaults, off);
     for (double start : s.adaptive_starts) {
       for (double tolerance : s.tolerances) {
         RefineSettings on;

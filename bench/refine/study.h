@@ -23,7 +23,8 @@ struct StudyScene {
 };
 
 struct Row {
-  std::string group;  // "uniform", "adaptive", "sampler", "solver", "budget"
+  // "uniform", "floor" (the reference's own mesh), "adaptive", "sampler", "solver", "budget"
+  std::string group;
   std::string method;
   std::string setting;
   double start_size = 0;        // the patch size the mesh was built with
