@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "mesh/point_grid.h"
 #include "mesh/polygon.h"
 
 namespace radfarm {
@@ -94,6 +95,61 @@ bool CoveringSheet(const CleanFace& g, const std::vector<Vec3>& outline, const V
   return true;
 }
 
+// The faces' corners in a spatial hash: the faces that can stand on or cover a face all have their
+// corners near it, so each face's tests visit those instead of every other face (a scene of many
+// small faces would be quadratic).
+class CornerIndex {
+ public:
+  explicit CornerIndex(const std::vector<CleanFace>& faces) : grid_(CellSize(faces)) {
+    for (uint32_t f = 0; f < faces.size(); ++f) {
+      for (const Vec3& c : faces[f].corners) {
+        grid_.Add(c);
+        owner_.push_back(f);
+      }
+    }
+  }
+
+  // The faces other than `self` with a corner within `reach` of `face`'s box grown by how far
+  // its corners stray from the plane (p0, its normal), ascending.
+  std::vector<uint32_t> Near(const CleanFace& face, const Vec3& p0, double reach,
+                             uint32_t self) const {
+    Bounds3 box;
+    double off_plane = 0;
+    for (const Vec3& c : face.corners) {
+      box.Extend(c);
+      off_plane = std::max(off_plane, std::fabs(Dot(c - p0, face.normal)));
+    }
+    const double grow = reach + off_plane;
+    box.lo = box.lo - Vec3{grow, grow, grow};
+    box.hi = box.hi + Vec3{grow, grow, grow};
+    std::vector<uint32_t> out;
+    // Corner ids run face by face, so their owners come ascending too.
+    for (uint32_t id : grid_.InBox(box)) {
+      if (owner_[id] != self && (out.empty() || out.back() != owner_[id])) {
+        out.push_back(owner_[id]);
+      }
+    }
+    return out;
+  }
+
+ private:
+  // The median face's box diagonal: a face's query then visits a few cells per face it meets.
+  static double CellSize(const std::vector<CleanFace>& faces) {
+    std::vector<double> sizes;
+    for (const CleanFace& f : faces) {
+      Bounds3 b;
+      for (const Vec3& c : f.corners) b.Extend(c);
+      sizes.push_back(b.Diagonal());
+    }
+    if (sizes.empty()) return 1;
+    std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+    return sizes[sizes.size() / 2];
+  }
+
+  PointGrid grid_;
+  std::vector<uint32_t> owner_;  // per corner id, its face
+};
+
 struct Loop {
   std::vector<Vec3> corners;
   std::vector<size_t> segments;  // indices of the segments it was joined from
@@ -171,26 +227,15 @@ void Emit(std::vector<Vec3> part, const Vec3& n, double tol, double min_area,
 std::vector<std::vector<Footprint>> FindFootprints(const std::vector<CleanFace>& faces,
                                                    double tol) {
   std::vector<std::vector<Footprint>> out(faces.size());
-  // Bounding boxes grown by tol: a face stands on another only where their boxes meet, a cheap
-  // test before the per-corner one. Every pair is still visited: quadratic in the face count.
-  std::vector<Bounds3> boxes(faces.size());
-  for (size_t f = 0; f < faces.size(); ++f) {
-    for (const Vec3& c : faces[f].corners) boxes[f].Extend(c);
-    boxes[f].lo = boxes[f].lo - Vec3{tol, tol, tol};
-    boxes[f].hi = boxes[f].hi + Vec3{tol, tol, tol};
-  }
-  auto meet = [&](size_t a, size_t b) {
-    const Bounds3 &x = boxes[a], &y = boxes[b];
-    return x.lo.x <= y.hi.x && y.lo.x <= x.hi.x && x.lo.y <= y.hi.y && y.lo.y <= x.hi.y &&
-           x.lo.z <= y.hi.z && y.lo.z <= x.hi.z;
-  };
+  const CornerIndex index(faces);
   for (size_t f = 0; f < faces.size(); ++f) {
     const CleanFace& face = faces[f];
     const Vec3 p0 = face.corners[0];
+    // A standing edge's ends lie within tol of the face, its plane and its outline.
     std::vector<Segment> segments;
-    for (size_t g = 0; g < faces.size(); ++g) {
+    for (uint32_t g : index.Near(face, p0, tol, static_cast<uint32_t>(f))) {
       Segment edge;
-      if (g == f || !meet(f, g) || !StandingEdge(faces[g], p0, face.normal, tol, &edge)) continue;
+      if (!StandingEdge(faces[g], p0, face.normal, tol, &edge)) continue;
       if (AlongOutline(face.corners, edge.a, edge.b, tol)) continue;
       if (!InsideOrOn(face.corners, face.normal, edge.a, tol) ||
           !InsideOrOn(face.corners, face.normal, edge.b, tol)) {
@@ -219,11 +264,21 @@ std::vector<std::vector<Footprint>> FindFootprints(const std::vector<CleanFace>&
 std::vector<std::vector<Footprint>> FindCoveringSheets(const std::vector<CleanFace>& faces,
                                                        double tol) {
   std::vector<std::vector<Footprint>> out(faces.size());
+  const CornerIndex index(faces);
   for (size_t f = 0; f < faces.size(); ++f) {
-    for (size_t g = 0; g < faces.size(); ++g) {
+    const CleanFace& face = faces[f];
+    // A sheet's outline projects within tol of the face's, so its area is at most the face's
+    // grown by tol all round, and its gap at most kSheetGap of that area's square root.
+    double perimeter = 0;
+    for (size_t i = 0; i < face.corners.size(); ++i) {
+      perimeter += Length(face.corners[(i + 1) % face.corners.size()] - face.corners[i]);
+    }
+    const double largest_gap =
+        kSheetGap * std::sqrt(1.001 * (face.area + perimeter * tol + 4 * tol * tol));
+    for (uint32_t g :
+         index.Near(face, face.corners[0], tol + largest_gap, static_cast<uint32_t>(f))) {
       Footprint sheet;
-      if (g != f && CoveringSheet(faces[g], faces[f].corners, faces[f].corners[0], faces[f].normal,
-                                  tol, &sheet)) {
+      if (CoveringSheet(faces[g], face.corners, face.corners[0], face.normal, tol, &sheet)) {
         out[f].push_back(std::move(sheet));
       }
     }

@@ -77,6 +77,36 @@ std::vector<uint32_t> PointGrid::NearSegment(const Vec3& a, const Vec3& b, doubl
   return ids;
 }
 
+std::vector<uint32_t> PointGrid::InBox(const Bounds3& box) const {
+  std::vector<uint32_t> ids;
+  auto take = [&](const std::vector<uint32_t>& cell) {
+    for (uint32_t id : cell) {
+      const Vec3& p = points_[id];
+      if (p.x >= box.lo.x && p.x <= box.hi.x && p.y >= box.lo.y && p.y <= box.hi.y &&
+          p.z >= box.lo.z && p.z <= box.hi.z) {
+        ids.push_back(id);
+      }
+    }
+  };
+  const Cell lo = CellOf(box.lo), hi = CellOf(box.hi);
+  if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z) return ids;  // an empty box
+  // In doubles: the cell count of a huge box overflows any integer.
+  const double overlapped =
+      (double(hi.x - lo.x) + 1) * (double(hi.y - lo.y) + 1) * (double(hi.z - lo.z) + 1);
+  if (overlapped > double(cells_.size())) {
+    for (const auto& [cell, members] : cells_) take(members);
+  } else {
+    for (int64_t x = lo.x; x <= hi.x; ++x)
+      for (int64_t y = lo.y; y <= hi.y; ++y)
+        for (int64_t z = lo.z; z <= hi.z; ++z) {
+          const auto it = cells_.find({x, y, z});
+          if (it != cells_.end()) take(it->second);
+        }
+  }
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
 PointWelder::PointWelder(double tol) : tol_(tol), grid_(4 * tol) {}
 
 uint32_t PointWelder::Weld(const Vec3& p) {

@@ -1,6 +1,7 @@
 // PointGrid: a spatial hash of points answering "which points lie within tol of this point or
-// segment". PointWelder builds on it to merge points closer than a tolerance. Both are
-// deterministic: answers come sorted by id, and ids are handed out in insertion order.
+// segment" and "which points lie in this box". PointWelder builds on it to merge points closer than
+// a tolerance. Both are deterministic: answers come sorted by id, and ids are handed out in
+// insertion order.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +26,9 @@ class PointGrid {
 
   // Ids of the points within tol of segment ab (a == b asks about a point), ascending.
   std::vector<uint32_t> NearSegment(const Vec3& a, const Vec3& b, double tol) const;
+  // Ids of the points inside the box (bounds included), ascending. Visits the cells the box
+  // overlaps, or every occupied cell where those are fewer (a box as large as the scene).
+  std::vector<uint32_t> InBox(const Bounds3& box) const;
 
  private:
   struct Cell {

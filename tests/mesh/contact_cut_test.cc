@@ -70,6 +70,61 @@ TEST(ContactCutTest, TheBlockSidesMakeOneFootprintOnTheFloor) {
   for (size_t f = 1; f < faces.size(); ++f) EXPECT_TRUE(footprints[f].empty()) << f;
 }
 
+// CleanFaces as PatchMesh::Build makes them: corners, Newell normal and area.
+CleanFace MakeCleanFace(std::vector<Vec3> corners) {
+  CleanFace c;
+  c.corners = std::move(corners);
+  const Vec3 area = VectorArea(c.corners);
+  c.area = Length(area);
+  c.normal = area / c.area;
+  return c;
+}
+
+// A floor of 40 x 40 unit faces (facing up), a 0.5 box standing inside one of them and a 0.4 sheet
+// hanging 5 mm over another, all shifted by `offset`: the searches, which visit only the faces
+// near each face, find the one footprint and the one sheet on the right faces and nothing on the
+// 1598 others, far from the origin too.
+class ManyFacesTest : public ::testing::TestWithParam<double> {};
+
+TEST_P(ManyFacesTest, TheFootprintAndTheSheetAreFoundOnTheirFacesOnly) {
+  const Vec3 o{GetParam(), GetParam() / 2, -GetParam()};
+  std::vector<CleanFace> faces;
+  for (int i = 0; i < 40; ++i) {
+    for (int j = 0; j < 40; ++j) {
+      const Vec3 c = o + Vec3{double(i), 0, double(j)};
+      faces.push_back(MakeCleanFace({c, c + Vec3{0, 0, 1}, c + Vec3{1, 0, 1}, c + Vec3{1, 0, 0}}));
+    }
+  }
+  const size_t block_floor = 10 * 40 + 5, sheet_floor = 20 * 40 + 20;
+  const Vec3 b = o + Vec3{10.25, 0, 5.25};
+  const std::vector<Vec3> base = {b, b + Vec3{0.5, 0, 0}, b + Vec3{0.5, 0, 0.5},
+                                  b + Vec3{0, 0, 0.5}};
+  for (int k = 0; k < 4; ++k) {
+    const Vec3 p = base[(k + 1) % 4], q = base[k];  // facing out of the box
+    faces.push_back(MakeCleanFace({p, q, q + Vec3{0, 0.5, 0}, p + Vec3{0, 0.5, 0}}));
+  }
+  const Vec3 h = o + Vec3{20.3, 0.005, 20.3};
+  faces.push_back(
+      MakeCleanFace({h, h + Vec3{0, 0, 0.4}, h + Vec3{0.4, 0, 0.4}, h + Vec3{0.4, 0, 0}}));
+  ASSERT_GT(faces.back().normal.y, 0.99) << "the sheet faces up, its back to the floor";
+  ASSERT_GT(faces[block_floor].normal.y, 0.99);
+  const double tol = 1e-6 * 60;  // 1e-6 of the scene's diagonal
+  const auto footprints = FindFootprints(faces, tol);
+  const auto sheets = FindCoveringSheets(faces, tol);
+  ASSERT_EQ(footprints.size(), faces.size());
+  ASSERT_EQ(sheets.size(), faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    EXPECT_EQ(footprints[f].size(), f == block_floor ? 1u : 0u) << "face " << f;
+    EXPECT_EQ(sheets[f].size(), f == sheet_floor ? 1u : 0u) << "face " << f;
+  }
+  ASSERT_EQ(footprints[block_floor].size(), 1u);
+  EXPECT_NEAR(Dot(VectorArea(footprints[block_floor][0]), {0, 1, 0}), 0.25, 1e-6);
+  ASSERT_EQ(sheets[sheet_floor].size(), 1u);
+  EXPECT_NEAR(Dot(VectorArea(sheets[sheet_floor][0]), {0, 1, 0}), 0.16, 1e-6);
+}
+
+INSTANTIATE_TEST_SUITE_P(NearAndFarFromTheOrigin, ManyFacesTest, ::testing::Values(0.0, 1e5));
+
 TEST(ContactCutTest, FloorPatchesStopAtTheFootprint) {
   const BlockOnFloor b = MakeBlockOnFloor();
   Result<PatchMesh> mesh = PatchMesh::Build(b.scene, {0.5}, nullptr);

@@ -62,6 +62,22 @@ TEST(PolygonTest, ProjectionKeepsCounterClockwise) {
   EXPECT_GT(Orient2(q[0], q[1], q[2]), 0);
 }
 
+// InBox: the points inside, bounds included, ascending; a box larger than the grid's cells visits
+// the occupied cells instead, with the same answer; an empty box finds nothing.
+TEST(PointGridTest, FindsThePointsInABox) {
+  PointGrid grid(0.5);
+  for (int i = 0; i < 10; ++i) grid.Add({double(i), 0.5 * i, -double(i)});
+  Bounds3 box;
+  box.Extend({2, 1, -6});
+  box.Extend({6, 3, -2});
+  EXPECT_EQ(grid.InBox(box), (std::vector<uint32_t>{2, 3, 4, 5, 6}));
+  Bounds3 huge;
+  huge.Extend({-1e30, -1e30, -1e30});
+  huge.Extend({1e30, 1e30, 1e30});
+  EXPECT_EQ(grid.InBox(huge).size(), 10u);
+  EXPECT_TRUE(grid.InBox(Bounds3{}).empty());
+}
+
 TEST(PointGridTest, FindsPointsNearLongSegmentsAcrossManyCells) {
   PointGrid grid(0.1);
   grid.Add({0.5, 0.5, 0.5});   // 0: on the segment
