@@ -141,7 +141,8 @@ ResultVerdict RoundScheduler::OnResult(AgentId agent_id, BatchId batch_id, Attem
     const auto agent = agents_.find(agent_id);
     if (agent != agents_.end()) {
       const uint32_t rays = round_->plan.batches[attempt.batch_index].ray_count;
-      agent->second.throughput.AddResult(rays, attempt.issued, now, options_.throughput_smoothing);
+      agent->second.throughput.AddResult(rays, attempt.issued, now, options_.throughput_smoothing,
+                                         options_.min_batch_rays);
       if (agent->second.live.erase(attempt_id) > 0) agent->second.live_rays -= rays;
     }
     attempt.state = AttemptState::kAnswered;

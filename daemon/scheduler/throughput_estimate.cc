@@ -11,18 +11,19 @@ constexpr double kMinBusySeconds = 1e-3;
 
 }  // namespace
 
-void ThroughputEstimate::AddResult(uint64_t rays, TimePoint issued, TimePoint now,
-                                   double smoothing) {
+void ThroughputEstimate::AddResult(uint64_t rays, TimePoint issued, TimePoint now, double smoothing,
+                                   uint64_t min_rays) {
   const TimePoint start = last_result_ ? std::max(issued, *last_result_) : issued;
   const double seconds =
       std::max(kMinBusySeconds, std::chrono::duration<double>(now - start).count());
   if (!measured()) {
     rays_ = double(rays);
     seconds_ = seconds;
-  } else {
+  } else if (rays >= min_rays) {
     rays_ += smoothing * (double(rays) - rays_);
     seconds_ += smoothing * (seconds - seconds_);
   }
+  // A result too small to count still ends the agent's busy time so far.
   last_result_ = std::max(now, last_result_.value_or(now));
 }
 

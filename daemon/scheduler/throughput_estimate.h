@@ -18,8 +18,13 @@ namespace radfarm::scheduler {
 
 class ThroughputEstimate {
  public:
-  // A result of `rays` rays for a lease issued at `issued`, received at `now`.
-  void AddResult(uint64_t rays, TimePoint issued, TimePoint now, double smoothing);
+  // A result of `rays` rays for a lease issued at `issued`, received at `now`. Once measured, a
+  // result of fewer than `min_rays` rays only marks the time: its busy time is mostly the fixed
+  // cost of a batch (the round trip, the 1 ms floor), so the shots of a round's last few rays
+  // (one or two per shooter) would otherwise measure a fast agent at a few thousand rays/s and
+  // shrink every later batch to the minimum.
+  void AddResult(uint64_t rays, TimePoint issued, TimePoint now, double smoothing,
+                 uint64_t min_rays = 0);
 
   bool measured() const { return rays_ > 0; }
   // Smoothed rays per second; 0 before the first result.

@@ -40,6 +40,37 @@ TEST(ThroughputEstimateTest, BurstOfResultsDoesNotBlowUpTheEstimate) {
   EXPECT_GT(t.rays_per_second(), 1000);
 }
 
+// A round's last shots are a ray or two per shooter: measured at the 1 ms floor each, they
+// would read an agent of 1e6 rays/s as 1e3. Once measured, results under min_rays only mark the
+// time; an unmeasured agent still takes its first result, however small.
+TEST(ThroughputEstimateTest, TinyResultsDoNotShrinkTheEstimate) {
+  ThroughputEstimate t;
+  TimePoint now = kT0;
+  for (int k = 0; k < 10; ++k) {
+    const TimePoint issued = now;
+    now += milliseconds(4);
+    t.AddResult(4096, issued, now, 0.3, 256);  // 1.024e6 rays/s
+  }
+  ASSERT_NEAR(t.rays_per_second(), 1.024e6, 1);
+  for (int k = 0; k < 1000; ++k) {
+    const TimePoint issued = now;
+    now += milliseconds(1);
+    t.AddResult(2, issued, now, 0.3, 256);
+  }
+  EXPECT_NEAR(t.rays_per_second(), 1.024e6, 1);
+  // The busy time of the next real result starts at the last tiny one, not at its issue.
+  t.AddResult(4096, kT0, now + milliseconds(4), 0.3, 256);
+  EXPECT_NEAR(t.rays_per_second(), 1.024e6, 1);
+  // Without the threshold the same results drag it down to about 2000 rays/s.
+  ThroughputEstimate plain;
+  plain.AddResult(4096, kT0, kT0 + milliseconds(4), 0.3);
+  for (int k = 0; k < 100; ++k) plain.AddResult(2, kT0, kT0 + milliseconds(5 + k), 0.3);
+  EXPECT_LT(plain.rays_per_second(), 1e4);
+  ThroughputEstimate first_tiny;
+  first_tiny.AddResult(2, kT0, kT0 + milliseconds(1), 0.3, 256);
+  EXPECT_TRUE(first_tiny.measured());
+}
+
 TEST(ThroughputEstimateTest, FastAgentsHoldMoreLeasesNeverAboveTheCap) {
   SchedulerOptions options;
   options.target_lease_seconds = 0.5;
