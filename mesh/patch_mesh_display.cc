@@ -141,7 +141,7 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   for (size_t k = 0; k < midpoints; ++k) {
     const double length = Length(mid_normals[k]);
     if (!(length > 0) || !(mid_weight[k] > 0)) continue;
-    const Vec3& at = fine.positions[groups + k];
+    const Vec3& at = fine.positions[split.coarse_vertices + k];
     const Vec3 inward = mid_centroids[k] / double(mid_triangles[k]) - at;
     rho[groups + k] = mid_rho[k] / mid_weight[k];
     point_of[groups + k] = static_cast<uint32_t>(points.size());
