@@ -65,15 +65,16 @@ void WritePlots(const ReportRun& run, const StudyResult& s) {
 
 void WriteTable(const StudyResult& s, std::ostringstream& md) {
   md << "| method | setting | patches before | patches after | rays | seconds | patch error | "
-        "reference noise | net patch error | image error | direct part | bounced part |\n"
-        "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+        "reference noise | net patch error | image error | direct part | bounced part | "
+        "display error |\n"
+        "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   auto part = [](double e) { return e < 0 ? std::string("-") : Fmt(e); };
   for (const Row& r : s.rows) {
     md << "| " << r.method << " | " << r.setting << " | " << r.patches_before << " | " << r.patches
        << " | " << r.rays << " | " << Fmt(r.seconds, "%.2f") << " | " << Fmt(r.patch_error.measured)
        << " | " << Fmt(r.patch_error.reference_noise) << " | " << Fmt(r.patch_error.net) << " | "
        << Fmt(r.image_error) << " | " << part(r.direct_image_error) << " | "
-       << part(r.bounced_image_error) << " |\n";
+       << part(r.bounced_image_error) << " | " << part(r.display_image_error) << " |\n";
   }
 }
 
@@ -363,6 +364,13 @@ void WriteAdaptiveReport(const ReportRun& run, const std::vector<StudyResult>& s
         "(`MeasureImagePartErrors`). Refinement can only act on what an element's interpolation "
         "gets wrong where the light bends; a part whose error is spread evenly over every "
         "surface is lowered only by finer elements everywhere.\n"
+     << "- **Display error**: where the solve started from the direct light, the image error "
+        "when every element holds the reference's bounced light over it (at the 16 points the "
+        "patch error uses) beside its own direct light, shaded as the row's solution is "
+        "(`MeasureDisplayError`): the solve's noise and its element values' errors are gone, "
+        "what is left is what the display's reconstruction costs against Iref's (itself a "
+        "Gouraud image of the reference mesh's bounced light) and the reference's noise. On the "
+        "reference's own mesh it shows how finely the image error can tell meshes apart.\n"
      << "- **Time**: `SolveRefining` wall time (meshing excluded, refinement included), the "
         "median of the row's runs. The vertex radiance and display mesh are not included: "
      << DisplayShare(studies) << ".\n\n";

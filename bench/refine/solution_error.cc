@@ -117,4 +117,34 @@ ImagePartErrors MeasureImagePartErrors(PatchMesh& mesh, const SolveResult& solut
   return out;
 }
 
+double MeasureDisplayError(PatchMesh& mesh, const SolveResult& solution,
+                           const SolverSettings& solver, const Camera& camera,
+                           const ReferenceSolution& ref) {
+  const std::vector<Patch>& patches = mesh.patch_scene().patches;
+  std::vector<SurfacePoint> points;
+  points.reserve(patches.size() * kPointsPerElement);
+  for (const Patch& p : patches) AppendElementPoints(p, &points);
+  const std::vector<uint32_t> under = LocatePoints(ref.scene, points);
+  std::vector<Rgb> radiosity(patches.size());
+  for (size_t e = 0; e < patches.size(); ++e) {
+    const Rgb direct = patches[e].reflectance * solution.direct_light[e];
+    const Rgb rest = solution.radiosity[e] - direct;
+    double sum = 0;
+    int found = 0;
+    for (int k = 0; k < kPointsPerElement; ++k) {
+      const uint32_t r = under[e * kPointsPerElement + k];
+      if (r == kNoPatch) continue;
+      sum += ref.bounced[r];
+      ++found;
+    }
+    // The reference keeps channel sums: its bounced light takes the element's own colour.
+    const double own = rest.Sum();
+    radiosity[e] =
+        found > 0 && own > 0 ? direct + rest * (sum / found / own) : solution.radiosity[e];
+  }
+  mesh.SetSolution(radiosity, solution.unshot,
+                   {solution.direct_light, solver.seed, solver.threads});
+  return MeasureImageError(RenderImage(mesh.MakeDisplayMesh(), camera), ref);
+}
+
 }  // namespace radfarm::bench

@@ -60,4 +60,15 @@ ImagePartErrors MeasureImagePartErrors(PatchMesh& mesh, const SolveResult& solut
                                        const SolverSettings& solver, const Camera& camera,
                                        const ReferenceSolution& ref);
 
+// What the display alone costs, for a solve that started from the direct light: the image error
+// when every element holds the reference's bounced light over it (ReferenceSolution::bounced at the
+// element's 16 points, as the patch error takes it, in the element's own colour) besides its own
+// direct light, and the display shades that as it shades a solution. The solve's noise and its
+// element values' errors are gone; what is left is the display's reconstruction against Iref's,
+// and the reference's noise. The mesh keeps that vertex radiance: the caller sets its solution
+// again.
+double MeasureDisplayError(PatchMesh& mesh, const SolveResult& solution,
+                           const SolverSettings& solver, const Camera& camera,
+                           const ReferenceSolution& ref);
+
 }  // namespace radfarm::bench

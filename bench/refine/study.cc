@@ -180,7 +180,10 @@ class Study {
       const ImagePartErrors parts =
           MeasureImagePartErrors(*solved->mesh, solved->solution, solver, camera, ref_);
       row.direct_image_error = parts.direct;
-      row.bounced_image_error = parts.bounced;  // the mesh's display is the parts' now: unused
+      row.bounced_image_error = parts.bounced;
+      // The mesh's display is the measures' now: unused after this.
+      row.display_image_error =
+          MeasureDisplayError(*solved->mesh, solved->solution, solver, camera, ref_);
     }
     if (!options_.images_dir.empty()) {
       // Debugging aid: the row's image and its difference from the reference, 8x brightened.

@@ -44,6 +44,8 @@ struct Row {
   // against the reference's Gouraud-shaded rest (ImagePartErrors). Negative where not measured.
   double direct_image_error = -1;
   double bounced_image_error = -1;
+  // Where the solve started from the direct light: MeasureDisplayError. Negative elsewhere.
+  double display_image_error = -1;
 };
 
 struct StudyResult {
