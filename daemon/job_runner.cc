@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "codec/patch_scene_codec.h"
+#include "core/batch_runner.h"
 #include "core/ray_caster.h"
 #include "core/solve_control.h"
 #include "core/thread_pool.h"
@@ -125,6 +126,24 @@ Status JobRunner::StartPlannedRound(scheduler::TimePoint now) {
   return s;
 }
 
+Result<RoundPlan> JobRunner::TakePlannedRound() {
+  if (!planned_) return Error{"job " + std::to_string(id()) + ": no round planned"};
+  RoundPlan plan = std::move(*planned_);
+  planned_.reset();
+  phase_ = Phase::kReducing;
+  return plan;
+}
+
+scheduler::CompletedRound JobRunner::RunLocally(RoundPlan plan) {
+  if (!local_caster_) local_caster_ = std::make_unique<RayCaster>(mesh_->patch_scene());
+  BatchRunner runner(mesh_->patch_scene(), *local_caster_, solver_->sampler());
+  scheduler::CompletedRound round;
+  round.results.reserve(plan.batches.size());
+  for (const Batch& b : plan.batches) round.results.push_back(runner.Run(b));
+  round.plan = std::move(plan);
+  return round;
+}
+
 Result<scheduler::CompletedRound> JobRunner::TakeRound() {
   Result<scheduler::CompletedRound> done = scheduler_.TakeCompletedRound();
   if (done.ok()) phase_ = Phase::kReducing;
@@ -209,6 +228,7 @@ SolverSettings JobRunner::PhaseSettings() const {
 }
 
 void JobRunner::Install(RefinementStep step) {
+  local_caster_.reset();
   solver_.reset();  // it refers to the old mesh's scene
   mesh_ = std::make_unique<PatchMesh>(std::move(step.mesh));
   solver_ = std::make_unique<ProgressiveSolver>(mesh_->patch_scene(), PhaseSettings());
@@ -229,6 +249,7 @@ Status JobRunner::RestoreRefinedMesh(const PatchMesh& initial, const store::Chec
   }
   Result<PatchScene> scene = codec::DecodePatchScene(blob);
   if (!scene) return Error{"the refined scene " + hash + ": " + scene.error()};
+  local_caster_.reset();
   mesh_ = std::make_unique<PatchMesh>(initial.Rebuilt(PatchMesh::PiecesOf(*scene)));
   auto encoded =
       std::make_shared<const std::vector<uint8_t>>(codec::EncodePatchScene(mesh_->patch_scene()));

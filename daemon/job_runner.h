@@ -31,6 +31,7 @@
 #include "codec/job_bundle.h"
 #include "core/patch_scene.h"
 #include "core/progressive_solver.h"
+#include "core/ray_caster.h"
 #include "core/result.h"
 #include "daemon/scheduler/round_scheduler.h"
 #include "daemon/store/job_store.h"
@@ -100,6 +101,15 @@ class JobRunner {
 
   // Loop thread: starts the planned round. Fails if there is none.
   Status StartPlannedRound(scheduler::TimePoint now);
+  // Loop thread: the rays of the planned round (0 when none is planned).
+  uint64_t planned_rays() const { return planned_ ? planned_->rays : 0; }
+  // Loop thread: takes the planned round to compute here instead of on agents (RunLocally);
+  // phase() becomes kReducing. Fails if none is planned.
+  Result<RoundPlan> TakePlannedRound();
+  // Worker thread, while kReducing: every batch of `plan` on this thread, as an agent would run
+  // it (core/batch.h: the same results wherever a batch runs), for Reduce. A round of a few rays
+  // per shooter costs the farm a round trip per batch; here it costs the rays.
+  scheduler::CompletedRound RunLocally(RoundPlan plan);
   // Loop thread: the round is complete; hands its results over. phase() becomes kReducing.
   Result<scheduler::CompletedRound> TakeRound();
 
@@ -137,6 +147,8 @@ class JobRunner {
   std::unique_ptr<ProgressiveSolver> solver_;
   std::optional<RefinementSchedule> schedule_;
   std::shared_ptr<const std::vector<uint8_t>> refined_blob_;
+  // RunLocally's ray caster, for mesh_'s scene: built on first use, dropped when the mesh changes.
+  std::unique_ptr<RayCaster> local_caster_;
   std::string refined_hash_;      // hex, the store's key
   bool refined_unsaved_ = false;  // no checkpoint has stored refined_blob_ yet
   // Loop side: what agents are sent and fetch.

@@ -27,6 +27,7 @@ struct Flags {
   std::optional<uint32_t> heartbeat_ms, agent_timeout_ms, handshake_timeout_ms, checkpoint_keep,
       max_running_jobs, max_agents;
   std::optional<double> checkpoint_seconds, lease_seconds;
+  std::optional<uint64_t> local_round_rays;
 };
 
 void AddFlags(CLI::App& app, Flags* f) {
@@ -62,6 +63,10 @@ void AddFlags(CLI::App& app, Flags* f) {
       ->check(CLI::Range(0.001, 3600.0));
   app.add_option("--max-agents", f->max_agents, "Agent connections at most (default 4096)")
       ->check(CLI::Range(1u, 1000000u));
+  app.add_option("--local-round-rays", f->local_round_rays,
+                 "Rounds of at most this many rays are computed by the master, not leased to "
+                 "agents; 0 = never (default 262144)")
+      ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 40));
 }
 
 template <typename T>
@@ -87,6 +92,7 @@ Result<MasterConfig> ResolveConfig(const Flags& f) {
   Override(f.max_running_jobs, &c.max_running_jobs);
   Override(f.lease_seconds, &c.lease_seconds);
   Override(f.max_agents, &c.max_agents);
+  Override(f.local_round_rays, &c.local_round_rays);
   if (Status s = CheckMasterConfig(c); !s) return Error{s.error()};
   return c;
 }

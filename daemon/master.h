@@ -15,6 +15,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -87,8 +88,16 @@ class Master {
   // --- jobs (master_jobs.cc) ---
   void StartQueuedJobs();
   void OnJobPrepared(store::JobId id, Result<std::shared_ptr<JobRunner>> runner);
-  void BeginRound(JobRunner& runner);
+  // Starts the planned round on the agents, or computes it here when it is small
+  // (MasterConfig::local_round_rays).
+  void BeginRound(const std::shared_ptr<JobRunner>& runner);
+  void RunRoundHere(const std::shared_ptr<JobRunner>& runner);
   void OnRoundComplete(const std::shared_ptr<JobRunner>& runner);
+  // `work` (Reduce, perhaps after RunLocally) on the compute thread, then OnRoundReduced.
+  void ReduceOnComputeThread(const std::shared_ptr<JobRunner>& runner,
+                             std::function<RoundOutcome()> work);
+  // Whether the round about to be reduced checkpoints (every round, or every checkpoint_seconds).
+  bool CheckpointDue(store::JobId id);
   void OnRoundReduced(const std::shared_ptr<JobRunner>& runner, RoundOutcome outcome);
   void FinishJob(const std::shared_ptr<JobRunner>& runner, store::JobState state,
                  std::optional<std::string> error);

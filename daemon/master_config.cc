@@ -23,6 +23,7 @@ Status ReadMasterConfigFile(const std::string& path, MasterConfig* c) {
   if (!table) return Error{table.error()};
   TomlTableReader r(path, *table, "");
   constexpr int64_t kMaxMs = 24 * 3600 * 1000;
+  constexpr int64_t kMaxLocalRoundRays = int64_t{1} << 40;
   for (Status s : {r.String("listen", &c->listen), r.String("state_dir", &c->state_dir),
                    r.String("secret_file", &c->secret_file), r.String("control", &c->control),
                    r.Integer("heartbeat_ms", 10, kMaxMs, &c->heartbeat_ms),
@@ -33,7 +34,8 @@ Status ReadMasterConfigFile(const std::string& path, MasterConfig* c) {
                    r.Real("checkpoint_seconds", Interval::AtLeast(0), &c->checkpoint_seconds),
                    r.Integer("max_running_jobs", 1, 1024, &c->max_running_jobs),
                    r.Real("lease_seconds", Interval::Open(0, 3600), &c->lease_seconds),
-                   r.Integer("max_agents", 1, 1000000, &c->max_agents)}) {
+                   r.Integer("max_agents", 1, 1000000, &c->max_agents),
+                   r.Integer("local_round_rays", 0, kMaxLocalRoundRays, &c->local_round_rays)}) {
     if (!s) return s;
   }
   if (Status s = r.CheckNoUnknownKeys(); !s) return s;

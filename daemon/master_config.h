@@ -23,7 +23,10 @@ struct MasterConfig {
   double checkpoint_seconds = 0;  // 0: checkpoint every round; else at most this often
   uint32_t max_running_jobs = 4;  // jobs solved at once; more wait queued
   double lease_seconds = 0.25;    // the time one batch should take on its agent
-  uint32_t max_agents = 4096;     // connections beyond this are refused
+  // Rounds of at most this many rays are computed by the master itself (0: never): the last
+  // rounds of a solve are a few rays per patch, which cost agents a round trip per batch.
+  uint64_t local_round_rays = 262144;
+  uint32_t max_agents = 4096;  // connections beyond this are refused
 
   std::string ControlPath() const;
   std::string DatabasePath() const;

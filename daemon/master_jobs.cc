@@ -149,15 +149,41 @@ void Master::OnJobPrepared(store::JobId id, Result<std::shared_ptr<JobRunner>> r
   for (auto& [agent_id, link] : agents_) {
     if (link->authenticated() && !link->stale) r->scheduler().AddAgent(agent_id);
   }
-  BeginRound(*r);
+  BeginRound(r);
 }
 
-void Master::BeginRound(JobRunner& runner) {
-  if (Status s = runner.StartPlannedRound(Now()); !s) {
-    FailJob(runner.id(), s.error());
+void Master::BeginRound(const std::shared_ptr<JobRunner>& runner) {
+  const uint64_t rays = runner->planned_rays();
+  if (rays > 0 && rays <= config_.local_round_rays) {
+    RunRoundHere(runner);
+    return;
+  }
+  if (Status s = runner->StartPlannedRound(Now()); !s) {
+    FailJob(runner->id(), s.error());
     return;
   }
   DispatchAll();
+}
+
+// A round of a few rays per shooter (the tail of a solve: every patch still shoots, a handful of
+// rays each) costs agents a round trip per batch and the rays next to nothing. Its batches give
+// the same results here (core/batch.h), so the job's result does not change.
+void Master::RunRoundHere(const std::shared_ptr<JobRunner>& runner) {
+  Result<RoundPlan> plan = runner->TakePlannedRound();
+  if (!plan) {
+    FailJob(runner->id(), plan.error());
+    return;
+  }
+  const bool due = CheckpointDue(runner->id());
+  const uint32_t batch_rays = runner->scheduler().SuggestedBatchRays();
+  auto shared_plan = std::make_shared<RoundPlan>(std::move(*plan));
+  ReduceOnComputeThread(runner, [runner, shared_plan, due, batch_rays] {
+    const auto start = std::chrono::steady_clock::now();
+    const scheduler::CompletedRound round = runner->RunLocally(std::move(*shared_plan));
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return runner->Reduce(round, seconds, due, batch_rays);
+  });
 }
 
 void Master::OnRoundComplete(const std::shared_ptr<JobRunner>& runner) {
@@ -168,25 +194,32 @@ void Master::OnRoundComplete(const std::shared_ptr<JobRunner>& runner) {
   }
   const double seconds = std::chrono::duration<double>(Now() - runner->round_started()).count();
   const uint32_t batch_rays = runner->scheduler().SuggestedBatchRays();
-  // Checkpoint every round, or at most every checkpoint_seconds.
+  const bool due = CheckpointDue(runner->id());
+  auto shared_round = std::make_shared<scheduler::CompletedRound>(std::move(*round));
+  ReduceOnComputeThread(runner, [runner, shared_round, seconds, due, batch_rays] {
+    return runner->Reduce(*shared_round, seconds, due, batch_rays);
+  });
+}
+
+bool Master::CheckpointDue(store::JobId id) {
   const uint64_t now_ms = loop_.NowMs();
   bool due = config_.checkpoint_seconds <= 0;
-  auto& last = last_checkpoint_ms_[runner->id()];
+  auto& last = last_checkpoint_ms_[id];
   if (!due && double(now_ms - last) >= 1000 * config_.checkpoint_seconds) due = true;
   if (due) last = now_ms;
-  auto shared_round = std::make_shared<scheduler::CompletedRound>(std::move(*round));
-  Status s = compute_queue_->Submit(
-      [runner, shared_round, seconds, due, batch_rays] {
-        return runner->Reduce(*shared_round, seconds, due, batch_rays);
-      },
-      [this, runner](Result<RoundOutcome> outcome) {
-        if (shutting_down_) return;
-        if (!outcome) {
-          FailJob(runner->id(), outcome.error());
-          return;
-        }
-        OnRoundReduced(runner, std::move(*outcome));
-      });
+  return due;
+}
+
+void Master::ReduceOnComputeThread(const std::shared_ptr<JobRunner>& runner,
+                                   std::function<RoundOutcome()> work) {
+  Status s = compute_queue_->Submit(std::move(work), [this, runner](Result<RoundOutcome> outcome) {
+    if (shutting_down_) return;
+    if (!outcome) {
+      FailJob(runner->id(), outcome.error());
+      return;
+    }
+    OnRoundReduced(runner, std::move(*outcome));
+  });
   if (!s) FailJob(runner->id(), s.error());
 }
 
@@ -227,7 +260,7 @@ void Master::OnRoundReduced(const std::shared_ptr<JobRunner>& runner, RoundOutco
                  protocol::HashToHex(outcome.new_scene_hash));
   }
   if (runner->Resume(outcome)) {
-    BeginRound(*runner);
+    BeginRound(runner);
   } else {
     FinishJob(runner, store::JobState::kDone, std::nullopt);
   }

@@ -44,6 +44,15 @@ TEST_F(FarmTest, ThreeAgentsRenderTheCornellBoxLikeRadfarmRender) {
   }
 }
 
+// Rounds of at most --local-round-rays rays are computed by the master itself: with the limit
+// above every round of the job, it is solved with no agent at all, and gives render's patches.
+TEST_F(FarmTest, RoundsUnderTheLocalLimitAreSolvedByTheMasterAlone) {
+  StartMaster({"--local-round-rays", "100000000"});
+  const int64_t id = Submit("cornell-box.toml", kShortJob);
+  ASSERT_TRUE(WaitForState(id, "done"));
+  EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml", kShortJob));
+}
+
 TEST_F(FarmTest, AnAgentKilledMidRoundChangesNothing) {
   StartMaster();
   StartAgent("steady");

@@ -125,6 +125,7 @@ TEST(ExampleConfigTest, RadfarmdReadsItsExampleAndItHoldsTheDefaults) {
   EXPECT_EQ(config.max_running_jobs, defaults.max_running_jobs);
   EXPECT_EQ(config.lease_seconds, defaults.lease_seconds);
   EXPECT_EQ(config.max_agents, defaults.max_agents);
+  EXPECT_EQ(config.local_round_rays, defaults.local_round_rays);
 }
 #endif
 
