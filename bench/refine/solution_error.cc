@@ -19,14 +19,20 @@ namespace {
 // Jittered points per element edge at which the reference's direct light is averaged.
 constexpr uint32_t kDirectSections = 6;
 
+// The reference patch under each of the kPointsPerElement points of every element of `run`
+// (kNoPatch where none): element e's are entries e * kPointsPerElement onwards.
+std::vector<uint32_t> ReferencePatchesUnder(const PatchScene& run, const ReferenceSolution& ref) {
+  std::vector<SurfacePoint> points;
+  points.reserve(run.patches.size() * kPointsPerElement);
+  for (const Patch& p : run.patches) AppendElementPoints(p, &points);
+  return LocatePoints(ref.scene, points);
+}
+
 }  // namespace
 
 PatchError MeasurePatchError(const PatchScene& run, const std::vector<Rgb>& radiosity,
                              const ReferenceSolution& ref) {
-  std::vector<SurfacePoint> points;
-  points.reserve(run.patches.size() * kPointsPerElement);
-  for (const Patch& p : run.patches) AppendElementPoints(p, &points);
-  const std::vector<uint32_t> under = LocatePoints(ref.scene, points);
+  const std::vector<uint32_t> under = ReferencePatchesUnder(run, ref);
   PatchError out;
   const double threshold = ref.dark_threshold;
   const size_t n = run.patches.size();
@@ -121,10 +127,7 @@ double MeasureDisplayError(PatchMesh& mesh, const SolveResult& solution,
                            const SolverSettings& solver, const Camera& camera,
                            const ReferenceSolution& ref) {
   const std::vector<Patch>& patches = mesh.patch_scene().patches;
-  std::vector<SurfacePoint> points;
-  points.reserve(patches.size() * kPointsPerElement);
-  for (const Patch& p : patches) AppendElementPoints(p, &points);
-  const std::vector<uint32_t> under = LocatePoints(ref.scene, points);
+  const std::vector<uint32_t> under = ReferencePatchesUnder(mesh.patch_scene(), ref);
   std::vector<Rgb> radiosity(patches.size());
   for (size_t e = 0; e < patches.size(); ++e) {
     const Rgb direct = patches[e].reflectance * solution.direct_light[e];
