@@ -13,7 +13,7 @@
 #include "core/batch_runner.h"
 #include "core/progressive_solver.h"
 #include "core/ray_caster.h"
-#include "core/solve.h"
+#include "solve/local_solve.h"
 #include "core/thread_pool.h"
 
 namespace radfarm::bench {

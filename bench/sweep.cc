@@ -7,7 +7,7 @@
 #include "bench/patch_error.h"
 #include "bench/stopwatch.h"
 #include "bench/timed_solve.h"
-#include "core/solve.h"
+#include "solve/local_solve.h"
 
 namespace radfarm::bench {
 namespace {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/patch_scene.h"
-#include "core/solve.h"
+#include "solve/local_solve.h"
 #include "core/solver_settings.h"
 
 namespace radfarm::bench {

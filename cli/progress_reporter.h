@@ -4,7 +4,7 @@
 
 #include <cstdio>
 
-#include "core/solve.h"
+#include "solve/solve_state.h"
 #include "core/solve_control.h"  // ConvergenceFraction, EstimateSecondsLeft
 
 namespace radfarm {

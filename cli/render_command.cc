@@ -13,7 +13,7 @@
 #include "cli/progress_reporter.h"
 #include "cli/render_outputs.h"
 #include "cli/render_state.h"
-#include "mesh/refining_solve.h"
+#include "solve/local_solve.h"
 
 namespace radfarm {
 
@@ -69,17 +69,16 @@ int RunRender(const RenderOptions& options) {
     hooks.resume = state->resume();
     if (hooks.resume && !options.quiet) {
       std::printf("%s: continuing job %lld after round %u (%llu rays done)\n", options.db.c_str(),
-                  static_cast<long long>(state->job_id()), hooks.resume->solve->round,
-                  static_cast<unsigned long long>(hooks.resume->solve->rays));
+                  static_cast<long long>(state->job_id()), hooks.resume->round,
+                  static_cast<unsigned long long>(hooks.resume->totals.rays));
     }
-    hooks.after_round = [&](const RefiningCheckpoint& c) {
+    hooks.after_round = [&](const SolveState& c) {
       if (save_status.ok()) save_status = state->SaveRound(c);
     };
   }
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
   Result<RefiningSolveResult> solved = Error{"not solved"};
   try {
-    // Without refinement this is Solve() on the mesh, bit for bit.
     solved = SolveRefining(
         std::move(loaded->mesh), job.solver, job.refine,
         [&](const RoundProgress& p) {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/result.h"
-#include "core/solve.h"
+#include "solve/solve_state.h"
 #include "input/job.h"
 #include "mesh/patch_mesh.h"
 

@@ -59,60 +59,59 @@ Result<RenderState> RenderState::Open(const std::string& db_path, const codec::J
     if (!*blob) return Error{"--db: the refined scene " + *c.scene_hash + " is missing"};
     Result<PatchScene> scene = codec::DecodePatchScene(**blob);
     if (!scene) return Error{"--db: the refined scene " + *c.scene_hash + ": " + scene.error()};
-    state.resume_scene_ = std::move(*scene);
+    state.resume_scene_ = std::make_unique<PatchScene>(std::move(*scene));
     state.scene_hash_ = c.scene_hash;
   }
-  state.resume_points_ = c.refine_points;
-  state.resume_stopped_ = c.stop_reason;
-  SolveCheckpoint resume{c.round, c.rounds_done, c.radiosity, c.unshot, c.energy, 0, 0, 0, 0};
+  auto resume = std::make_unique<SolveState>();
+  resume->round = c.round;
+  resume->rounds_done = c.rounds_done;
+  resume->radiosity = c.radiosity;
+  resume->unshot = c.unshot;
+  resume->energy = c.energy;
+  resume->refined_scene = state.resume_scene_.get();
+  resume->next_point = c.refine_points;
+  resume->stop = c.stop_reason;
   for (const store::RoundRecord& r : *rounds) {
     if (r.round > c.round) break;
-    resume.rays += r.rays;
-    resume.escaped_rays += r.escaped_rays;
-    resume.backface_hits += r.back_rays;
-    resume.seconds += r.duration_seconds;
+    resume->totals.rays += r.rays;
+    resume->totals.escaped_rays += r.escaped_rays;
+    resume->totals.backface_hits += r.back_rays;
+    resume->totals.seconds += r.duration_seconds;
   }
-  state.last_ = resume;
+  state.last_ = resume->totals;
   state.resume_ = std::move(resume);
   return state;
 }
 
-std::optional<RefiningResume> RenderState::resume() const {
-  if (!resume_) return std::nullopt;
-  return RefiningResume{&*resume_, resume_scene_ ? &*resume_scene_ : nullptr, resume_points_,
-                        resume_stopped_};
-}
-
-Status RenderState::SaveRound(const RefiningCheckpoint& state) {
-  const SolveCheckpoint& now = state.solve;
-  if (state.refined_scene == nullptr) {
+Status RenderState::SaveRound(const SolveState& now) {
+  if (now.refined_scene == nullptr) {
     scene_hash_.reset();
-  } else if (!scene_hash_ || state.refinements != scene_refinements_) {
-    const std::vector<uint8_t> blob = codec::EncodePatchScene(*state.refined_scene);
+  } else if (!scene_hash_ || now.refinements != scene_refinements_) {
+    const std::vector<uint8_t> blob = codec::EncodePatchScene(*now.refined_scene);
     const std::string hash = protocol::HashToHex(protocol::HashScene(blob));
     if (Status s = store_.PutScene(hash, blob); !s) return Error{"--db: " + s.error()};
     scene_hash_ = hash;
-    scene_refinements_ = state.refinements;
+    scene_refinements_ = now.refinements;
   }
   const double unshot_fraction =
       now.energy.emitted > 0 ? now.energy.unshot / now.energy.emitted : 0;
   const store::RoundRecord round{job_,
                                  now.round,
                                  now.shooters,
-                                 now.rays - last_.rays,
+                                 now.totals.rays - last_.rays,
                                  unshot_fraction,
                                  now.energy.unshot,
-                                 now.seconds - last_.seconds,
-                                 now.escaped_rays - last_.escaped_rays,
-                                 now.backface_hits - last_.backface_hits};
+                                 now.totals.seconds - last_.seconds,
+                                 now.totals.escaped_rays - last_.escaped_rays,
+                                 now.totals.backface_hits - last_.backface_hits};
   const store::Checkpoint checkpoint{
-      job_,       now.round, now.rounds_done, now.radiosity,    now.unshot,
-      now.energy, 0,         scene_hash_,     state.next_point, state.stop};
+      job_,       now.round, now.rounds_done, now.radiosity,  now.unshot,
+      now.energy, 0,         scene_hash_,     now.next_point, now.stop};
   if (Status s = store_.SaveCheckpoint(round, checkpoint); !s) return Error{"--db: " + s.error()};
   if (Status s = store_.PruneCheckpoints(job_, kCheckpointsKept); !s) {
     return Error{"--db: " + s.error()};
   }
-  last_ = now;
+  last_ = now.totals;
   return Ok{};
 }
 

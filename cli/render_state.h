@@ -6,18 +6,18 @@
 // left out: it never changes the result). A job that is found resumes from its latest checkpoint;
 // one that already finished resumes from its last one, so its outputs are written again at no cost.
 // With adaptive refinement a checkpoint also names the refined mesh (its scene blob, stored by
-// hash as the master stores it) and the refinement points passed (mesh/refining_solve.h).
+// hash as the master stores it) and the refinement points passed (solve/solve_state.h).
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
 
 #include "codec/job_bundle.h"
 #include "core/result.h"
-#include "core/solve.h"
 #include "daemon/store/job_store.h"
-#include "mesh/refining_solve.h"
+#include "solve/solve_state.h"
 
 namespace radfarm {
 
@@ -25,13 +25,13 @@ class RenderState {
  public:
   static Result<RenderState> Open(const std::string& db_path, const codec::JobBundle& bundle);
 
-  // Where to start: the latest checkpoint (pointing into this object), or nullopt for a fresh job.
-  std::optional<RefiningResume> resume() const;
+  // Where to start: the latest checkpoint (owned by this object), or null for a fresh job.
+  const SolveState* resume() const { return resume_.get(); }
   store::JobId job_id() const { return job_; }
 
   // Commits one round and its checkpoint (one transaction), keeping the last two checkpoints; a
   // refined mesh's scene is stored first (once per mesh).
-  Status SaveRound(const RefiningCheckpoint& state);
+  Status SaveRound(const SolveState& state);
   Status Finish();
 
  private:
@@ -39,12 +39,11 @@ class RenderState {
 
   store::JobStore store_;
   store::JobId job_ = 0;
-  std::optional<SolveCheckpoint> resume_;
-  std::optional<PatchScene> resume_scene_;  // the refined mesh the checkpoint belongs to
-  uint32_t resume_points_ = 0;
-  std::optional<std::string> resume_stopped_;  // the checkpoint ends the solve, and why
-  SolveCheckpoint last_;                       // the totals at the previous round boundary
-  // The refined scene stored last: its hash and the RefiningCheckpoint::refinements it was for.
+  // On the heap, so that resume_->refined_scene stays valid when the object moves.
+  std::unique_ptr<SolveState> resume_;
+  std::unique_ptr<PatchScene> resume_scene_;  // the refined mesh the checkpoint belongs to
+  SolveTotals last_;                          // the totals at the previous round boundary
+  // The refined scene stored last: its hash and the SolveState::refinements it was for.
   std::optional<std::string> scene_hash_;
   uint32_t scene_refinements_ = 0;
 };

@@ -1,7 +1,8 @@
 // ProgressiveSolver: the state of a progressive-refinement (Southwell) radiosity solution and the
 // two deterministic steps of a round. It does no ray casting itself: PlanRound() says which rays to
 // cast (as batches), and ApplyRound() folds their integer hit counts into the solution. Local
-// solves (solve.h) and the farm's master both drive it, so they produce bit-identical results.
+// solves and the farm's master both drive it through RoundDriver (solve/round_driver.h), so they
+// produce bit-identical results.
 //
 // Units: radiosity is kept in the units of emitted radiance (MTL Ke), i.e. B/pi. The radiosity
 // equation is linear, so the factor pi cancels everywhere and the CSV can print B directly.

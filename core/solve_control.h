@@ -1,5 +1,5 @@
-// The stopping rules of a solve, shared by Solve() and the farm master so that both stop after the
-// same round and report the same reason: converged (unshot fraction at or below the tolerance, or
+// The stopping rules of a solve, applied by RoundDriver (solve/round_driver.h) for render and the
+// farm master alike, so that both stop after the same round and report the same reason: converged (unshot fraction at or below the tolerance, or
 // nothing left to shoot), the ray budget (max_rays; the last round is trimmed to it) or the time
 // budget (max_seconds).
 #pragma once

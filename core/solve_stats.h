@@ -1,10 +1,21 @@
-// Figures of a finished (or stopped) solve, written to stats.json.
+// Figures of a finished (or stopped) solve, written to stats.json, and the running totals they
+// are made from.
 #pragma once
 
 #include <cstdint>
 #include <string>
 
+#include "core/progressive_solver.h"
+
 namespace radfarm {
+
+// What a solve has spent: summed over its rounds (a resumed solve starts from a checkpoint's).
+struct SolveTotals {
+  uint64_t rays = 0;
+  uint64_t escaped_rays = 0;   // rays that left the scene without a hit
+  uint64_t backface_hits = 0;  // rays that hit the back of a patch (absorbed)
+  double seconds = 0;
+};
 
 struct SolveStats {
   uint64_t rays = 0;
@@ -23,5 +34,9 @@ struct SolveStats {
   double absorbed_power = 0;  // channel sums, so emitted = absorbed + unshot + escaped
   double escaped_power = 0;
 };
+
+// The figures that follow from the totals and the energy account: rays, seconds, escaped and
+// back-face counts, rays per second and the three powers. The caller fills in the rest.
+SolveStats StatsOf(const SolveTotals& totals, const EnergyAccount& energy);
 
 }  // namespace radfarm

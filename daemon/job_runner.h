@@ -1,20 +1,19 @@
-// JobRunner: one job the master is solving. It owns the job's patches, its ProgressiveSolver and
-// its RoundScheduler, and runs the job's rounds as core/solve.cc does locally, with agents in
-// place of threads, so the result is bit-identical to `radfarm render` of the same job:
+// JobRunner: one job the master is solving. It owns the job's RoundDriver (solve/round_driver.h:
+// the mesh, the solver, the refinement schedule) and its RoundScheduler, and runs the driver's
+// rounds with agents in place of `radfarm render`'s threads, so the result is bit-identical to
+// `radfarm render` of the same job:
 //
-//   Prepare (worker thread): decode the bundle, mesh it, encode the scene blob agents fetch,
-//     restore the latest checkpoint (on the refined mesh it names, if any) or refine before round
-//     0, plan the first round.
+//   Prepare (worker thread): decode the bundle, mesh it, start the driver (from the latest
+//     checkpoint, on the refined mesh it names, if any), encode the scene blob agents fetch, plan
+//     the first round.
 //   loop thread: the scheduler leases the round's batches and collects their results.
-//   Reduce (worker thread): ApplyRound, the stopping rules (core/solve_control.h), a refinement
-//     step when the round passed a refinement point, plan the next round, and copy the state for
-//     the checkpoint the store thread writes meanwhile.
+//   Reduce (worker thread): the driver applies the round (and refines when it passed a
+//     refinement point), plans the next one, and the state is copied for the checkpoint the store
+//     thread writes meanwhile.
 //
-// Adaptive refinement (mesh/refinement_schedule.h) happens at the rounds and with the arguments
-// of SolveRefining, so the mesh is the one `radfarm render` makes. A step that splits gives a new
-// mesh, scene blob (new hash) and solver; Resume installs the blob on the loop thread before the
-// next round's batches are leased, and a round's batch ids carry its round, so a result is always
-// validated against the scene of its own round.
+// A refinement step gives a new mesh, scene blob (new hash) and solver; Resume installs the blob
+// on the loop thread before the next round's batches are leased, and a round's batch ids carry its
+// round, so a result is always validated against the scene of its own round.
 //
 // Threads: the loop thread owns the runner; Reduce runs on a worker while phase() is kReducing,
 // and the loop thread leaves the mesh and solver alone until its result comes back. What the loop
@@ -31,15 +30,14 @@
 #include "codec/job_bundle.h"
 #include "core/patch_scene.h"
 #include "core/progressive_solver.h"
-#include "core/ray_caster.h"
 #include "core/result.h"
+#include "core/thread_pool.h"
 #include "daemon/scheduler/round_scheduler.h"
 #include "daemon/store/job_store.h"
-#include "mesh/patch_mesh.h"
-#include "mesh/refinement_schedule.h"
 #include "protocol/batch_convert.h"
 #include "protocol/messages.h"
 #include "protocol/scene_transfer.h"
+#include "solve/round_driver.h"
 
 namespace radfarm::master {
 
@@ -91,7 +89,7 @@ class JobRunner {
   const protocol::JobWireInfo& wire_info() const { return wire_; }
   const std::shared_ptr<const std::vector<uint8_t>>& scene_blob() const { return scene_blob_; }
   uint32_t patch_count() const { return wire_.patch_count; }
-  const RaySampler& sampler() const { return solver_->sampler(); }
+  const RaySampler& sampler() const { return driver_->solver().sampler(); }
   const JobTotals& totals() const { return totals_; }
   Phase phase() const { return phase_; }
   // Set when Prepare found nothing left to do (the checkpoint already met a stopping rule).
@@ -131,24 +129,19 @@ class JobRunner {
 
  private:
   JobRunner() = default;
-  // Worker thread: the mesh, the solver and the refined scene's blob after a step that split.
-  void Install(RefinementStep step);
-  // The solver settings for mesh_ in the schedule's current phase (RefinementSchedule).
-  SolverSettings PhaseSettings() const;
-  Status RestoreRefinedMesh(const PatchMesh& initial, const store::Checkpoint& checkpoint,
-                            const std::vector<uint8_t>& blob);
+  // Worker thread: encodes the driver's refined scene after a step that split.
+  void EncodeRefinedScene();
+  // The totals and progress figures of the driver's state, for status.
+  void UpdateTotals();
 
   store::JobRecord record_;
   SolverSettings settings_;
-  // Worker side (Prepare, Reduce): the mesh (stable address: the solver refers to its scene), the
-  // solver, the refinement schedule (refinement on) and the refined scene's blob and hash (null
-  // while the mesh is the bundle's).
-  std::unique_ptr<PatchMesh> mesh_;
-  std::unique_ptr<ProgressiveSolver> solver_;
-  std::optional<RefinementSchedule> schedule_;
+  // Worker side (Prepare, Reduce, RunLocally): the one round loop, a pool of one thread for its
+  // refinement steps and local rounds (it runs inline), and the refined scene's blob and hash
+  // (null while the mesh is the bundle's).
+  std::unique_ptr<ThreadPool> pool_;
+  std::unique_ptr<RoundDriver> driver_;
   std::shared_ptr<const std::vector<uint8_t>> refined_blob_;
-  // RunLocally's ray caster, for mesh_'s scene: built on first use, dropped when the mesh changes.
-  std::unique_ptr<RayCaster> local_caster_;
   std::string refined_hash_;      // hex, the store's key
   bool refined_unsaved_ = false;  // no checkpoint has stored refined_blob_ yet
   // Loop side: what agents are sent and fetch.

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "bench/refine/reference_image.h"
-#include "core/solve.h"
+#include "solve/local_solve.h"
 #include "mesh/patch_mesh.h"
 
 namespace radfarm::bench {

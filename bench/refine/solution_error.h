@@ -27,7 +27,7 @@
 #include "bench/refine/reference_solution.h"
 #include "core/patch_scene.h"
 #include "core/rgb.h"
-#include "core/solve.h"
+#include "solve/local_solve.h"
 #include "mesh/patch_mesh.h"
 #include "output/camera.h"
 #include "output/image.h"

@@ -8,7 +8,7 @@
 
 #include "input/job.h"
 #include "mesh/patch_mesh.h"
-#include "mesh/refining_solve.h"
+#include "solve/local_solve.h"
 #include "output/png_writer.h"
 #include "output/tone_map.h"
 

@@ -14,7 +14,7 @@
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
 #include "codec/patch_scene_codec.h"
-#include "core/solve.h"
+#include "solve/local_solve.h"
 #include "mesh/patch_mesh.h"
 #include "tests/cli/control_fixtures.h"
 #include "tests/cli/fake_control_server.h"

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <optional>
 
-#include "core/solve.h"
 #include "core/solve_control.h"
+#include "solve/local_solve.h"
 #include "tests/core/test_scenes.h"
 
 namespace radfarm {
@@ -126,15 +126,12 @@ TEST(GatherTest, SameBitsWithAnyThreadCount) {
 TEST(GatherTest, ResumesBeforeAndAfterTheGatherRound) {
   const PatchScene scene = LitBox();
   const SolverSettings settings = Gathering(1024, kShotRays);
-  std::vector<SolveCheckpoint> checkpoints;
-  SolveHooks record;
-  record.after_round = [&](const SolveCheckpoint& c) { checkpoints.push_back(c); };
-  const SolveResult whole = Solve(scene, settings, {}, record);
+  std::vector<SolveState> checkpoints;
+  const SolveResult whole =
+      Solve(scene, settings, {}, nullptr, [&](const SolveState& c) { checkpoints.push_back(c); });
   ASSERT_GE(checkpoints.size(), 2u);
   for (size_t k : {checkpoints.size() - 2, checkpoints.size() - 1}) {
-    SolveHooks resume;
-    resume.resume = &checkpoints[k];
-    const SolveResult resumed = Solve(scene, settings, {}, resume);
+    const SolveResult resumed = Solve(scene, settings, {}, &checkpoints[k]);
     EXPECT_TRUE(BitIdentical(resumed.radiosity, whole.radiosity)) << k;
     EXPECT_EQ(resumed.stats.rays, whole.stats.rays) << k;
     EXPECT_EQ(resumed.stats.rounds, whole.stats.rounds) << k;

@@ -10,7 +10,7 @@
 #include "core/batch_runner.h"
 #include "core/progressive_solver.h"
 #include "core/ray_caster.h"
-#include "core/solve.h"
+#include "solve/local_solve.h"
 #include "tests/core/test_scenes.h"
 
 namespace radfarm {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/solve.h"
+#include "solve/local_solve.h"
 #include "tests/core/test_scenes.h"
 
 namespace radfarm {

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "codec/job_bundle.h"
-#include "core/solve.h"
+#include "solve/local_solve.h"
 #include "daemon/job_runner.h"
 #include "input/input_scene.h"
 #include "input/job.h"

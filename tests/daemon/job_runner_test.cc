@@ -147,7 +147,7 @@ TEST(JobRunnerRefineTest, AWrongRefinedMeshFailsTheJob) {
   store::Checkpoint sizes = checkpoint;
   sizes.radiosity.pop_back();
   sizes.unshot.pop_back();
-  expect_error(Prepare(bundle, sizes, blob), "patches, the scene");
+  expect_error(Prepare(bundle, sizes, blob), "elements, the mesh");
 
   store::Checkpoint points = checkpoint;
   points.refine_points = 3;

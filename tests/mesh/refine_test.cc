@@ -9,11 +9,10 @@
 #include <cmath>
 
 #include "core/ray_caster.h"
-#include "core/solve.h"
+#include "solve/local_solve.h"
 #include "core/thread_pool.h"
 #include "mesh/locate_patches.h"
 #include "mesh/patch_mesh.h"
-#include "mesh/refining_solve.h"
 #include "test_scenes.h"
 
 namespace radfarm {

@@ -10,7 +10,7 @@
 #include "core/solve_control.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/refinement_schedule.h"
-#include "mesh/refining_solve.h"
+#include "solve/local_solve.h"
 #include "test_scenes.h"
 
 namespace radfarm {
@@ -40,18 +40,26 @@ RefineSettings Refining() {
 
 // A round's state as a store keeps it: copies, the refined scene included.
 struct Saved {
-  SolveCheckpoint solve;
+  SolveState solve;
   std::optional<PatchScene> scene;
   uint32_t next_point = 0;
+  // The state to resume from: `solve` pointing at the saved scene, its stop mark as given.
+  SolveState Resume(std::optional<std::string> stop) const {
+    SolveState state = solve;
+    state.refined_scene = scene ? &*scene : nullptr;
+    state.stop = std::move(stop);
+    return state;
+  }
 };
+
+Saved Save(const SolveState& c) {
+  return {c, c.refined_scene ? std::optional(*c.refined_scene) : std::nullopt, c.next_point};
+}
 
 void ExpectResumesFromAnyRound(const SolverSettings& settings) {
   std::vector<Saved> saved;
   RefiningHooks hooks;
-  hooks.after_round = [&](const RefiningCheckpoint& c) {
-    saved.push_back(
-        {c.solve, c.refined_scene ? std::optional(*c.refined_scene) : std::nullopt, c.next_point});
-  };
+  hooks.after_round = [&](const SolveState& c) { saved.push_back(Save(c)); };
   Result<RefiningSolveResult> whole = SolveRefining(Mesh(), settings, Refining(), {}, hooks);
   ASSERT_TRUE(whole.ok()) << whole.error();
   ASSERT_EQ(saved.size(), whole->solution.stats.rounds);
@@ -80,9 +88,9 @@ void ExpectResumesFromAnyRound(const SolverSettings& settings) {
   ASSERT_GE(picks.size(), 2u);
   for (size_t i : picks) {
     SCOPED_TRACE("resumed after round " + std::to_string(saved[i].solve.round));
+    const SolveState state = saved[i].Resume(std::nullopt);
     RefiningHooks resume;
-    resume.resume = RefiningResume{&saved[i].solve, saved[i].scene ? &*saved[i].scene : nullptr,
-                                   saved[i].next_point, std::nullopt};
+    resume.resume = &state;
     Result<RefiningSolveResult> rest = SolveRefining(Mesh(), settings, Refining(), {}, resume);
     ASSERT_TRUE(rest.ok()) << rest.error();
     EXPECT_EQ(rest->mesh->patch_scene().patches.size(), whole->mesh->patch_scene().patches.size());
@@ -131,9 +139,8 @@ TEST(RefiningResumeTest, AResumeFromTheLastRoundOfABudgetStopRunsNoRound) {
     std::vector<Saved> saved;
     std::vector<std::optional<std::string>> stops;
     RefiningHooks hooks;
-    hooks.after_round = [&](const RefiningCheckpoint& c) {
-      saved.push_back({c.solve, c.refined_scene ? std::optional(*c.refined_scene) : std::nullopt,
-                       c.next_point});
+    hooks.after_round = [&](const SolveState& c) {
+      saved.push_back(Save(c));
       stops.push_back(c.stop);
     };
     // A budget the capped round does not spend to the ray (the case that needs the mark).
@@ -157,11 +164,11 @@ TEST(RefiningResumeTest, AResumeFromTheLastRoundOfABudgetStopRunsNoRound) {
     ASSERT_EQ(stops.back(), std::optional<std::string>(kStopRayBudget));
 
     const Saved& last = saved.back();
+    SolveState state = last.Resume(stops.back());
     RefiningHooks resume;
-    resume.resume = RefiningResume{&last.solve, last.scene ? &*last.scene : nullptr,
-                                   last.next_point, stops.back()};
+    resume.resume = &state;
     bool ran = false;
-    resume.after_round = [&](const RefiningCheckpoint&) { ran = true; };
+    resume.after_round = [&](const SolveState&) { ran = true; };
     Result<RefiningSolveResult> again = SolveRefining(Mesh(), settings, refine, {}, resume);
     ASSERT_TRUE(again.ok()) << again.error();
     EXPECT_FALSE(ran);
@@ -170,7 +177,7 @@ TEST(RefiningResumeTest, AResumeFromTheLastRoundOfABudgetStopRunsNoRound) {
     EXPECT_EQ(again->solution.stats.rounds, whole->solution.stats.rounds);
     EXPECT_EQ(again->solution.stats.stop_reason, kStopRayBudget);
 
-    resume.resume->stopped.reset();  // without the mark: one more round, other bits
+    state.stop.reset();  // without the mark: one more round, other bits
     Result<RefiningSolveResult> unmarked = SolveRefining(Mesh(), settings, refine, {}, resume);
     ASSERT_TRUE(unmarked.ok()) << unmarked.error();
     EXPECT_TRUE(ran);
@@ -179,18 +186,19 @@ TEST(RefiningResumeTest, AResumeFromTheLastRoundOfABudgetStopRunsNoRound) {
 }
 
 TEST(RefiningResumeTest, AStateThatDoesNotFitTheMeshIsAnError) {
-  SolveCheckpoint state;
+  SolveState state;
   state.rounds_done = 1;
   state.radiosity.resize(3);
   state.unshot.resize(3);
+  state.next_point = 1;
   RefiningHooks hooks;
-  hooks.resume = RefiningResume{&state, nullptr, 1, std::nullopt};
+  hooks.resume = &state;
   Result<RefiningSolveResult> r = SolveRefining(Mesh(), Solver(), Refining(), {}, hooks);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().find("holds 3 elements"), std::string::npos) << r.error();
 
   PatchScene refined = Mesh().patch_scene();
-  hooks.resume = RefiningResume{&state, &refined, 1, std::nullopt};
+  state.refined_scene = &refined;
   r = SolveRefining(Mesh(), Solver(), {}, {}, hooks);  // refinement off
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().find("unrefined"), std::string::npos) << r.error();

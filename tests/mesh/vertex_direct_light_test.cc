@@ -7,7 +7,7 @@
 #include <numbers>
 #include <optional>
 
-#include "core/solve.h"
+#include "solve/local_solve.h"
 #include "mesh/patch_mesh.h"
 #include "test_scenes.h"
 

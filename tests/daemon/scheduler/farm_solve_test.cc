@@ -4,7 +4,7 @@
 
 #include <cstring>
 
-#include "core/solve.h"
+#include "solve/local_solve.h"
 #include "tests/core/test_scenes.h"
 #include "tests/daemon/scheduler/farm_sim.h"
 

@@ -1,0 +1,79 @@
+#include "solve/local_solve.h"
+
+#include <chrono>
+#include <utility>
+
+namespace radfarm {
+namespace {
+
+// Runs the driver's rounds on `pool` until it stops; returns the seconds spent in all.
+double RunRounds(RoundDriver& driver, ThreadPool& pool,
+                 const std::function<void(const RoundProgress&)>& on_round,
+                 const std::function<void(const SolveState&)>& after_round, double seconds_before,
+                 std::chrono::steady_clock::time_point start) {
+  auto elapsed = [&] {
+    return seconds_before +
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  LocalBatches batches(pool);
+  while (std::optional<RoundPlan> plan = driver.PlanNext(kLocalBatchRays, elapsed())) {
+    const std::vector<BatchResult> results = batches.Run(driver, *plan);
+    const AppliedRound applied = driver.Apply(*plan, results, elapsed());
+    if (on_round) on_round(driver.Progress(*plan, applied));
+    if (after_round) after_round(driver.State());
+  }
+  return elapsed();
+}
+
+}  // namespace
+
+std::vector<BatchResult> LocalBatches::Run(RoundDriver& driver, const RoundPlan& plan) {
+  if (driver_ != &driver || generation_ != driver.mesh_generation() || runners_.empty()) {
+    runners_.clear();
+    for (unsigned w = 0; w < pool_.size(); ++w) {
+      runners_.push_back(std::make_unique<BatchRunner>(driver.scene(), driver.caster(),
+                                                       driver.solver().sampler()));
+    }
+    driver_ = &driver;
+    generation_ = driver.mesh_generation();
+  }
+  std::vector<BatchResult> results(plan.batches.size());
+  pool_.ParallelFor(plan.batches.size(), [&](unsigned worker, size_t b) {
+    results[b] = runners_[worker]->Run(plan.batches[b]);
+  });
+  return results;
+}
+
+Result<RefiningSolveResult> SolveRefining(PatchMesh mesh, const SolverSettings& settings,
+                                          const RefineSettings& refine,
+                                          const std::function<void(const RoundProgress&)>& on_round,
+                                          const RefiningHooks& hooks) {
+  const auto start = std::chrono::steady_clock::now();
+  const double seconds_before = hooks.resume != nullptr ? hooks.resume->totals.seconds : 0;
+  RefiningSolveResult out;
+  out.patches_before = mesh.patch_scene().patches.size();
+  ThreadPool pool(settings.threads);
+  Result<std::unique_ptr<RoundDriver>> driver =
+      RoundDriver::Start(std::move(mesh), settings, refine, hooks.resume, pool);
+  if (!driver) return Error{driver.error()};
+  const double seconds =
+      RunRounds(**driver, pool, on_round, hooks.after_round, seconds_before, start);
+  out.solution = (*driver)->Finish(seconds, pool.size());
+  out.refinements = (*driver)->refinements();
+  out.mesh = (*driver)->TakeMesh();
+  return out;
+}
+
+SolveResult Solve(const PatchScene& scene, const SolverSettings& settings,
+                  const std::function<void(const RoundProgress&)>& on_round,
+                  const SolveState* resume,
+                  const std::function<void(const SolveState&)>& after_round) {
+  const auto start = std::chrono::steady_clock::now();
+  const double seconds_before = resume != nullptr ? resume->totals.seconds : 0;
+  ThreadPool pool(settings.threads);
+  std::unique_ptr<RoundDriver> driver = RoundDriver::Start(scene, settings, resume);
+  const double seconds = RunRounds(*driver, pool, on_round, after_round, seconds_before, start);
+  return driver->Finish(seconds, pool.size());
+}
+
+}  // namespace radfarm

@@ -1,0 +1,72 @@
+// Local solves: RoundDriver's rounds (round_driver.h) with the batches computed on this machine's
+// threads. `radfarm render` runs SolveRefining; tests and benchmarks of the solver alone run Solve
+// on a bare scene. The farm master computes small rounds with LocalBatches too.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "core/batch.h"
+#include "core/batch_runner.h"
+#include "core/patch_scene.h"
+#include "core/result.h"
+#include "core/solver_settings.h"
+#include "core/thread_pool.h"
+#include "mesh/patch_mesh.h"
+#include "mesh/refine_settings.h"
+#include "solve/round_driver.h"
+#include "solve/solve_state.h"
+
+namespace radfarm {
+
+// Rays per batch in local solves. Any value gives the same result (see batch.h); this one keeps
+// batches long enough to amortise scheduling and short enough to balance threads.
+inline constexpr uint32_t kLocalBatchRays = 4096;
+
+// Computes a round's batches on a thread pool, a BatchRunner per worker, for a driver's current
+// scene (rebuilt when a refinement step replaces it).
+class LocalBatches {
+ public:
+  explicit LocalBatches(ThreadPool& pool) : pool_(pool) {}
+  std::vector<BatchResult> Run(RoundDriver& driver, const RoundPlan& plan);
+
+ private:
+  ThreadPool& pool_;
+  const RoundDriver* driver_ = nullptr;
+  uint32_t generation_ = 0;
+  std::vector<std::unique_ptr<BatchRunner>> runners_;
+};
+
+struct RefiningSolveResult {
+  std::unique_ptr<PatchMesh> mesh;  // the mesh the solution belongs to
+  SolveResult solution;
+  uint64_t patches_before = 0;  // patches of the mesh given
+  uint32_t refinements = 0;     // refinement steps that split at least one element
+};
+
+struct RefiningHooks {
+  // Start from this state (`radfarm render --db`); its refined scene, if any, on `mesh`.
+  const SolveState* resume = nullptr;
+  // After every round, on the calling thread: the state at that boundary, taken after the
+  // refinement step the round triggered.
+  std::function<void(const SolveState&)> after_round;
+};
+
+// Solves `mesh` with adaptive refinement as `refine` says (off: the mesh as given) until a
+// stopping rule holds. `on_round` (optional) after every round, on the calling thread.
+// Errors: refinement settings out of range (the message names the job file key); a resume state
+// that does not fit the mesh.
+Result<RefiningSolveResult> SolveRefining(
+    PatchMesh mesh, const SolverSettings& settings, const RefineSettings& refine,
+    const std::function<void(const RoundProgress&)>& on_round = {},
+    const RefiningHooks& hooks = {});
+
+// Solves a bare scene (no refinement), from `resume` if given (its sizes must fit the scene).
+SolveResult Solve(const PatchScene& scene, const SolverSettings& settings,
+                  const std::function<void(const RoundProgress&)>& on_round = {},
+                  const SolveState* resume = nullptr,
+                  const std::function<void(const SolveState&)>& after_round = {});
+
+}  // namespace radfarm

@@ -1,0 +1,187 @@
+#include "solve/round_driver.h"
+
+#include <stdexcept>
+#include <utility>
+
+#include "core/solve_control.h"
+
+namespace radfarm {
+
+RoundDriver::RoundDriver(const SolverSettings& settings, ThreadPool* pool)
+    : settings_(settings), pool_(pool) {}
+
+RoundDriver::~RoundDriver() {
+  // The caster and the solver refer to the scene: let them go first.
+  caster_.reset();
+  solver_.reset();
+}
+
+Result<std::unique_ptr<RoundDriver>> RoundDriver::Start(PatchMesh mesh,
+                                                        const SolverSettings& settings,
+                                                        const RefineSettings& refine,
+                                                        const SolveState* resume,
+                                                        ThreadPool& pool) {
+  std::unique_ptr<RoundDriver> driver(new RoundDriver(settings, &pool));
+  driver->mesh_ = std::make_unique<PatchMesh>(std::move(mesh));
+  if (refine.enabled) {
+    Result<RefinementSchedule> schedule = RefinementSchedule::Create(
+        refine, *driver->mesh_, settings.shot_rays, resume != nullptr ? resume->next_point : 0);
+    if (!schedule) return Error{schedule.error()};
+    driver->schedule_.emplace(std::move(*schedule));
+  } else if (resume != nullptr && resume->refined_scene != nullptr) {
+    return Error{"cannot resume an unrefined solve on a refined mesh"};
+  }
+  if (resume != nullptr && resume->refined_scene != nullptr) {
+    const PatchScene& stored = *resume->refined_scene;
+    PatchMesh rebuilt = driver->mesh_->Rebuilt(PatchMesh::PiecesOf(stored));
+    if (rebuilt.patch_scene().patches.size() != stored.patches.size()) {
+      return Error{"the refined mesh to resume on has " + std::to_string(stored.patches.size()) +
+                   " elements, rebuilt it has " +
+                   std::to_string(rebuilt.patch_scene().patches.size())};
+    }
+    *driver->mesh_ = std::move(rebuilt);
+    driver->refined_ = true;
+  }
+  driver->scene_ = &driver->mesh_->patch_scene();
+  driver->RebuildSolver();
+  if (resume != nullptr) {
+    if (Status s = driver->Resume(*resume); !s) return Error{s.error()};
+  } else if (driver->schedule_) {
+    std::optional<RefinementStep> step = driver->schedule_->BeforeFirstRound(
+        *driver->mesh_, *driver->solver_, driver->caster(), pool);
+    if (step) driver->Install(std::move(*step));
+  }
+  return driver;
+}
+
+std::unique_ptr<RoundDriver> RoundDriver::Start(const PatchScene& scene,
+                                                const SolverSettings& settings,
+                                                const SolveState* resume) {
+  std::unique_ptr<RoundDriver> driver(new RoundDriver(settings, nullptr));
+  driver->scene_ = &scene;
+  driver->RebuildSolver();
+  if (resume != nullptr) {
+    // A bare scene's caller holds its own states: one that does not fit is its bug.
+    if (Status s = driver->Resume(*resume); !s) throw std::invalid_argument(s.error());
+  }
+  return driver;
+}
+
+Status RoundDriver::Resume(const SolveState& state) {
+  if (state.radiosity.size() != scene_->patches.size()) {
+    return Error{"the state to resume holds " + std::to_string(state.radiosity.size()) +
+                 " elements, the mesh " + std::to_string(scene_->patches.size())};
+  }
+  solver_->Restore(state.rounds_done, state.radiosity, state.unshot, state.energy);
+  totals_ = state.totals;
+  last_round_ = state.round;
+  last_shooters_ = state.shooters;
+  stop_ = state.stop;
+  return Ok{};
+}
+
+std::optional<RoundPlan> RoundDriver::PlanNext(uint32_t batch_rays, double seconds) {
+  if (stop_) return std::nullopt;
+  stop_ = StopBeforeRound(*solver_, settings_, totals_.rays, seconds);
+  if (stop_) return std::nullopt;
+  RoundPlan plan = solver_->PlanRound(batch_rays, NextRoundRayCap(settings_, totals_.rays));
+  if (plan.batches.empty()) {  // nothing left to shoot
+    stop_ = kStopConverged;
+    return std::nullopt;
+  }
+  return plan;
+}
+
+AppliedRound RoundDriver::Apply(const RoundPlan& plan, const std::vector<BatchResult>& results,
+                                double seconds) {
+  AppliedRound applied;
+  for (const BatchResult& r : results) {
+    applied.escaped_rays += r.escaped_rays;
+    applied.back_rays += r.back_rays;
+  }
+  solver_->ApplyRound(plan, results);
+  totals_.rays += plan.rays;
+  totals_.escaped_rays += applied.escaped_rays;
+  totals_.backface_hits += applied.back_rays;
+  totals_.seconds = seconds;
+  last_round_ = plan.round;
+  last_shooters_ = static_cast<uint32_t>(plan.shots.size());
+  applied.unshot_fraction = solver_->UnshotFraction();
+  applied.unshot_power = solver_->energy().unshot;
+  applied.gather_rays_left = solver_->PendingGatherRays();
+  stop_ = StopAfterRound(plan, *solver_, settings_);
+  // Refinement between rounds: only when the solve goes on.
+  if (!stop_ && schedule_ && schedule_->PointPassed(*solver_)) {
+    std::optional<RefinementStep> step = schedule_->AfterRound(*mesh_, *solver_, caster(), *pool_);
+    if (step) {
+      Install(std::move(*step));
+      applied.refined = true;
+    }
+  }
+  return applied;
+}
+
+SolveState RoundDriver::State() const {
+  SolveState state;
+  state.round = last_round_;
+  state.rounds_done = solver_->rounds_done();
+  state.radiosity = solver_->radiosity();
+  state.unshot = solver_->unshot();
+  state.energy = solver_->energy();
+  state.totals = totals_;
+  state.shooters = last_shooters_;
+  state.refined_scene = refined_ ? scene_ : nullptr;
+  state.refinements = refinements_;
+  state.next_point = schedule_ ? static_cast<uint32_t>(schedule_->next_point()) : 0u;
+  state.stop = stop_;
+  return state;
+}
+
+SolveResult RoundDriver::Finish(double seconds, uint32_t threads) const {
+  SolveTotals totals = totals_;
+  totals.seconds = seconds;
+  SolveResult out;
+  out.stats = StatsOf(totals, solver_->energy());
+  out.stats.rounds = solver_->rounds_done();
+  out.stats.patches = scene_->patches.size();
+  out.stats.unshot_fraction = solver_->UnshotFraction();
+  out.stats.threads = threads;
+  out.stats.seed = settings_.seed;
+  out.stats.sampler = std::string(SamplerName(settings_.sampler));
+  out.stats.stop_reason = stop_.value_or(kStopConverged);
+  out.radiosity = solver_->radiosity();
+  out.unshot = solver_->unshot();
+  out.direct_light = solver_->direct_light();
+  return out;
+}
+
+RoundProgress RoundDriver::Progress(const RoundPlan& plan, const AppliedRound& applied) const {
+  return {solver_->rounds_done(), totals_.rays,       totals_.seconds, applied.unshot_fraction,
+          settings_.tolerance,    &solver_->energy(), plan.gather,     applied.gather_rays_left};
+}
+
+const RayCaster& RoundDriver::caster() {
+  if (!caster_) caster_ = std::make_unique<RayCaster>(*scene_);
+  return *caster_;
+}
+
+void RoundDriver::Install(RefinementStep step) {
+  caster_.reset();
+  solver_.reset();  // they refer to the old mesh's scene
+  *mesh_ = std::move(step.mesh);
+  scene_ = &mesh_->patch_scene();
+  RebuildSolver();
+  RestoreStep(step, *solver_);
+  refined_ = true;
+  ++refinements_;
+}
+
+SolverSettings RoundDriver::PhaseSettings() const {
+  return schedule_ ? schedule_->SolverSettingsNow(settings_, scene_->patches.size()) : settings_;
+}
+
+void RoundDriver::RebuildSolver() {
+  solver_ = std::make_unique<ProgressiveSolver>(*scene_, PhaseSettings());
+}
+
+}  // namespace radfarm

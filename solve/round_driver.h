@@ -1,0 +1,121 @@
+// RoundDriver: the one loop of a radiosity solve, as a state machine that does not cast rays
+// itself. `radfarm render` runs it on its thread pool (local_solve.h); the farm master runs it
+// through its scheduler, with agents computing the batches (daemon/job_runner.h). Both therefore
+// plan, apply, stop and refine at the same rounds with the same inputs, and get the same bits.
+//
+//   Start       build the solver on the mesh (the direct light of a gathering solve), or rebuild a
+//               checkpoint's state on it; refine before round 0 when refinement is on
+//   PlanNext    the stopping rules (core/solve_control.h), then the next round's plan, or nullopt
+//               once the solve stops (stop_reason() says why)
+//   [the plan's batches computed anywhere, in any order: core/batch.h]
+//   Apply       the round's results folded in; the stop a capped round makes; a refinement step
+//               (mesh/refinement_schedule.h) when the round passed a refinement point and the
+//               solve goes on: the mesh, scene and solver are then new (mesh_generation() moves)
+//   State       the state at this boundary, for a checkpoint (solve_state.h)
+//   Finish      the solution and its stats
+//
+// The driver owns the mesh, the solver and the schedule. It builds a ray caster only when asked
+// (caster()) or when a refinement step needs one, and keeps it until the mesh changes.
+// Threads: one caller at a time; the thread pool given to Start is used for refinement steps.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/batch.h"
+#include "core/patch_scene.h"
+#include "core/progressive_solver.h"
+#include "core/ray_caster.h"
+#include "core/result.h"
+#include "core/solver_settings.h"
+#include "core/thread_pool.h"
+#include "mesh/patch_mesh.h"
+#include "mesh/refine_settings.h"
+#include "mesh/refinement_schedule.h"
+#include "solve/solve_state.h"
+
+namespace radfarm {
+
+// What Apply did: the round's own figures, taken before any refinement step it triggered.
+struct AppliedRound {
+  uint64_t escaped_rays = 0;
+  uint64_t back_rays = 0;
+  double unshot_fraction = 0;
+  double unshot_power = 0;  // EnergyAccount::unshot
+  uint64_t gather_rays_left = 0;
+  bool refined = false;  // a refinement step replaced the mesh, scene and solver
+};
+
+class RoundDriver {
+ public:
+  // A solve of `mesh` (refined as `refine` says), resumed from `resume` if given (its radiosity
+  // per element of the refined scene it names, or of `mesh`). `pool` serves refinement steps and
+  // must outlive the driver. Errors: refinement settings out of range (naming the job file key); a
+  // resume state that does not fit the mesh.
+  static Result<std::unique_ptr<RoundDriver>> Start(PatchMesh mesh, const SolverSettings& settings,
+                                                    const RefineSettings& refine,
+                                                    const SolveState* resume, ThreadPool& pool);
+  // A solve of a bare scene, never refined; `scene` must outlive the driver.
+  static std::unique_ptr<RoundDriver> Start(const PatchScene& scene, const SolverSettings& settings,
+                                            const SolveState* resume);
+  ~RoundDriver();
+  RoundDriver(const RoundDriver&) = delete;
+  RoundDriver& operator=(const RoundDriver&) = delete;
+
+  // The next round, its batches of at most `batch_rays` rays, after `seconds` spent in all; or
+  // nullopt when the solve stops before it.
+  std::optional<RoundPlan> PlanNext(uint32_t batch_rays, double seconds);
+  // Folds in `plan`'s results (`results[k]` of plan.batches[k]), `seconds` spent in all by now.
+  AppliedRound Apply(const RoundPlan& plan, const std::vector<BatchResult>& results,
+                     double seconds);
+
+  // Set once the solve has stopped (by PlanNext or a capped round in Apply), with the reason.
+  const std::optional<std::string>& stop_reason() const { return stop_; }
+  // The state at the current round boundary (its vectors copied).
+  SolveState State() const;
+  // After the last round: the solution and its stats (threads: what computed the batches).
+  SolveResult Finish(double seconds, uint32_t threads) const;
+  // After Apply of `plan`: how far the solve has come, for progress displays.
+  RoundProgress Progress(const RoundPlan& plan, const AppliedRound& applied) const;
+
+  const PatchScene& scene() const { return *scene_; }
+  // The mesh (null for a bare scene); a refinement step replaces it.
+  const PatchMesh* mesh() const { return mesh_.get(); }
+  std::unique_ptr<PatchMesh> TakeMesh() { return std::move(mesh_); }
+  // Moves whenever the mesh, scene and solver are replaced by a refinement step.
+  uint32_t mesh_generation() const { return refinements_; }
+  // Steps that split (or restarted) since Start.
+  uint32_t refinements() const { return refinements_; }
+  bool refined() const { return refined_; }
+  const ProgressiveSolver& solver() const { return *solver_; }
+  const SolveTotals& totals() const { return totals_; }
+  // The ray caster of the current scene, built on first use.
+  const RayCaster& caster();
+
+ private:
+  RoundDriver(const SolverSettings& settings, ThreadPool* pool);
+  Status Resume(const SolveState& state);
+  void Install(RefinementStep step);
+  // The solver's settings for the current phase of the schedule (fewer rays before a restart).
+  SolverSettings PhaseSettings() const;
+  void RebuildSolver();
+
+  SolverSettings settings_;
+  ThreadPool* pool_ = nullptr;                  // null for a bare scene
+  std::unique_ptr<PatchMesh> mesh_;             // stable address: the solver refers to its scene
+  const PatchScene* scene_ = nullptr;           // mesh_'s, or the bare scene
+  std::optional<RefinementSchedule> schedule_;  // refinement on
+  std::unique_ptr<ProgressiveSolver> solver_;
+  std::unique_ptr<RayCaster> caster_;  // for scene_, built on demand
+  SolveTotals totals_;
+  std::optional<std::string> stop_;
+  uint32_t last_round_ = 0;  // the plan's round number of the last round applied
+  uint32_t last_shooters_ = 0;
+  uint32_t refinements_ = 0;
+  bool refined_ = false;  // the mesh is no longer the one given
+};
+
+}  // namespace radfarm

@@ -1,0 +1,60 @@
+// What a solve has done and where it stands at a round boundary: the state a checkpoint stores
+// (`radfarm render --db`, the farm master's store) and a solve resumes from. One type for every
+// driver of rounds (round_driver.h), so a state saved by one resumes in another.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/patch_scene.h"
+#include "core/progressive_solver.h"
+#include "core/rgb.h"
+#include "core/solve_stats.h"
+
+namespace radfarm {
+
+struct SolveState {
+  uint32_t round = 0;          // the plan's round number of the last round applied
+  uint32_t rounds_done = 0;    // ProgressiveSolver::rounds_done()
+  std::vector<Rgb> radiosity;  // per element of the mesh the state belongs to
+  std::vector<Rgb> unshot;
+  EnergyAccount energy;
+  SolveTotals totals;     // spent up to and including that round
+  uint32_t shooters = 0;  // of that round
+  // The scene of the refined mesh, or null while the mesh is still the one the solve was given.
+  // Borrowed: valid while the solve (or, on resume, the caller) keeps it.
+  const PatchScene* refined_scene = nullptr;
+  // Refinement steps that split, counted from the start of this solve (not of a resumed one): a
+  // caller that stores the refined scene needs to encode it again only when this changes.
+  uint32_t refinements = 0;
+  uint32_t next_point = 0;  // refinement points passed (RefinementSchedule::next_point)
+  // Set when the solve ends at this boundary, with the reason: a solve resumed from here runs no
+  // round (a round capped by the ray budget may have left a few rays, which StopBeforeRound alone
+  // would spend).
+  std::optional<std::string> stop;
+};
+
+// After each round of a local solve, for progress displays.
+struct RoundProgress {
+  uint32_t round = 0;
+  uint64_t rays = 0;  // total so far
+  double seconds = 0;
+  double unshot_fraction = 0;
+  double tolerance = 0;
+  const EnergyAccount* energy = nullptr;
+  bool gather = false;            // the round was the final gather
+  uint64_t gather_rays_left = 0;  // ProgressiveSolver::PendingGatherRays after the round
+};
+
+struct SolveResult {
+  std::vector<Rgb> radiosity;  // per patch, MTL Ke units
+  std::vector<Rgb> unshot;
+  SolveStats stats;
+  // The direct light per patch the solve started from (ProgressiveSolver::direct_light()); empty
+  // where it did not. The display uses it (PatchMesh::SetSolution).
+  std::vector<Rgb> direct_light;
+};
+
+}  // namespace radfarm

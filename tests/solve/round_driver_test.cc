@@ -1,0 +1,106 @@
+// RoundDriver: the one round loop. Driven by hand, with batches computed in any order, it gives
+// Solve's bits; its state resumes anywhere; it stops for the reasons the stopping rules give.
+#include "solve/round_driver.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+#include "core/batch_runner.h"
+#include "core/solve_control.h"
+#include "solve/local_solve.h"
+#include "tests/core/test_scenes.h"
+
+namespace radfarm {
+namespace {
+
+using testing::MakeClosedBox;
+using testing::Surface;
+
+PatchScene LitBox() {
+  PatchScene scene = MakeClosedBox({0, 0, 0}, {1, 1, 1}, 3, Surface{{0.6, 0.5, 0.4}, {}, 0});
+  scene.patches[4].emission = {3, 3, 3};
+  return scene;
+}
+
+SolverSettings Settings() {
+  SolverSettings s;
+  s.shot_rays = 1 << 12;
+  s.tolerance = 0.01;
+  s.threads = 1;
+  return s;
+}
+
+// Runs the driver's rounds one batch at a time, last batch first, with small batches.
+SolveResult DriveBackwards(RoundDriver& driver, std::vector<SolveState>* states = nullptr) {
+  BatchRunner runner(driver.scene(), driver.caster(), driver.solver().sampler());
+  while (std::optional<RoundPlan> plan = driver.PlanNext(97, 0)) {
+    std::vector<BatchResult> results(plan->batches.size());
+    for (size_t b = plan->batches.size(); b-- > 0;) results[b] = runner.Run(plan->batches[b]);
+    driver.Apply(*plan, results, 0);
+    if (states != nullptr) states->push_back(driver.State());
+  }
+  return driver.Finish(0, 1);
+}
+
+TEST(RoundDriverTest, BatchesInAnyOrderAndSizeGiveSolvesBits) {
+  const PatchScene scene = LitBox();
+  const SolveResult solved = Solve(scene, Settings());
+  std::unique_ptr<RoundDriver> driver = RoundDriver::Start(scene, Settings(), nullptr);
+  const SolveResult driven = DriveBackwards(*driver);
+  EXPECT_EQ(driven.radiosity, solved.radiosity);
+  EXPECT_EQ(driven.unshot, solved.unshot);
+  EXPECT_EQ(driven.stats.rays, solved.stats.rays);
+  EXPECT_EQ(driven.stats.rounds, solved.stats.rounds);
+  EXPECT_EQ(driven.stats.stop_reason, kStopConverged);
+  // Stopped: no further plan, the same reason.
+  EXPECT_FALSE(driver->PlanNext(97, 0).has_value());
+  EXPECT_EQ(driver->stop_reason(), std::optional<std::string>(kStopConverged));
+}
+
+TEST(RoundDriverTest, ResumesFromEveryRoundBoundary) {
+  const PatchScene scene = LitBox();
+  std::vector<SolveState> states;
+  std::unique_ptr<RoundDriver> whole = RoundDriver::Start(scene, Settings(), nullptr);
+  const SolveResult all = DriveBackwards(*whole, &states);
+  ASSERT_GE(states.size(), 3u);
+  for (const SolveState& state : states) {
+    SCOPED_TRACE("round " + std::to_string(state.round));
+    std::unique_ptr<RoundDriver> resumed = RoundDriver::Start(scene, Settings(), &state);
+    EXPECT_EQ(resumed->totals().rays, state.totals.rays);
+    const SolveResult rest = DriveBackwards(*resumed);
+    EXPECT_EQ(rest.radiosity, all.radiosity);
+    EXPECT_EQ(rest.stats.rays, all.stats.rays);
+    EXPECT_EQ(rest.stats.rounds, all.stats.rounds);
+  }
+}
+
+TEST(RoundDriverTest, TheBudgetsStopIt) {
+  const PatchScene scene = LitBox();
+  SolverSettings settings = Settings();
+  settings.tolerance = 1e-6;
+  settings.max_rays = 5000;
+  std::unique_ptr<RoundDriver> driver = RoundDriver::Start(scene, settings, nullptr);
+  const SolveResult r = DriveBackwards(*driver);
+  EXPECT_EQ(r.stats.stop_reason, kStopRayBudget);
+  EXPECT_LE(r.stats.rays, settings.max_rays);
+
+  settings.max_rays = 0;
+  settings.max_seconds = 1;
+  driver = RoundDriver::Start(scene, settings, nullptr);
+  EXPECT_FALSE(driver->PlanNext(97, 1.5).has_value());  // the seconds are the caller's
+  EXPECT_EQ(driver->stop_reason(), std::optional<std::string>(kStopTimeBudget));
+}
+
+TEST(RoundDriverTest, AStateOfAnotherSizeIsRefused) {
+  const PatchScene scene = LitBox();
+  SolveState state;
+  state.radiosity.resize(2);
+  state.unshot.resize(2);
+  EXPECT_THROW(RoundDriver::Start(scene, Settings(), &state), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace radfarm
