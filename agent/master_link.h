@@ -64,8 +64,8 @@ class MasterLink {
   void Close(protocol::CloseCode code, const std::string& detail);
   // Writes what is queued (or gives up after flush_timeout), then closes the TCP connection
   // without a Close message, so the master takes it as a lost connection. on_closed follows.
-  // The idle pause uses it: radfarmd requeues the leases of an agent whose connection is lost,
-  // but not (yet) those of one that said Close (agent/README.md, "Idle policy").
+  // The idle pause uses it. radfarmd requeues at once the leases of a connection that ends,
+  // whether lost or closed with Close (Master::OnAgentClosed; agent/README.md, "Idle policy").
   void Disconnect(const std::string& reason);
 
   bool authenticated() const { return session_.authenticated(); }
