@@ -66,7 +66,7 @@ Result<JobSolution> DecodeJobSolution(std::span<const uint8_t> blob) {
   }
   // Finite, but either sign: with over-relaxation (SolverSettings::overrelaxation > 1) unshot
   // radiosity goes negative, and so may a patch's radiosity estimate where negative light's
-  // Monte Carlo noise outweighs the light it received (docs/ARCHITECTURE.md, "Over-relaxation").
+  // Monte Carlo noise outweighs the light it received (docs/SOLVER.md, "Over-relaxation").
   for (size_t i = 0; i < solution.radiosity.size(); ++i) {
     if (!IsFinite(solution.radiosity[i]) || !IsFinite(solution.unshot[i])) {
       return FieldError(kKind, "patch " + std::to_string(i), "radiosity is not finite");

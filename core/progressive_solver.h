@@ -1,8 +1,8 @@
 // ProgressiveSolver: the state of a progressive-refinement (Southwell) radiosity solution and the
 // two deterministic steps of a round. It does no ray casting itself: PlanRound() says which rays to
-// cast (as batches), and ApplyRound() folds their integer hit counts into the solution. Local
-// solves and the farm's master both drive it through RoundDriver (solve/round_driver.h), so they
-// produce bit-identical results.
+// cast (as batches), and ApplyRound() folds their integer hit counts into the solution. The round
+// driver (solve/round_driver.h) drives it for `radfarm render` and the farm's master alike, so
+// they produce bit-identical results.
 //
 // Units: radiosity is kept in the units of emitted radiance (MTL Ke), i.e. B/pi. The radiosity
 // equation is linear, so the factor pi cancels everywhere and the CSV can print B directly.

@@ -1,7 +1,7 @@
-// The stopping rules of a solve, applied by RoundDriver (solve/round_driver.h) for render and the
-// farm master alike, so that both stop after the same round and report the same reason: converged (unshot fraction at or below the tolerance, or
-// nothing left to shoot), the ray budget (max_rays; the last round is trimmed to it) or the time
-// budget (max_seconds).
+// The stopping rules of a solve, applied by the round driver (solve/round_driver.h) for `radfarm
+// render` and the farm master alike, so that both stop after the same round and report the same
+// reason: converged (unshot fraction at or below the tolerance, or nothing left to shoot), the ray
+// budget (max_rays; the last round is trimmed to it) or the time budget (max_seconds).
 #pragma once
 
 #include <cstdint>

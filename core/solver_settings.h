@@ -57,7 +57,8 @@ struct SolverSettings {
   uint32_t shooters_per_round = 0;
   // Over-relaxation factor omega of Southwell's method, in [1, 2): a shooter shoots omega times
   // its unshot radiosity and keeps (1 - omega) times it, negative above 1 (shot later as negative
-  // light). 1: plain progressive refinement, the measured best (docs/ARCHITECTURE.md).
+  // light). 1: plain progressive refinement, the best measured (docs/SOLVER.md; the rows are in
+  // docs/BENCHMARKS-adaptive.md).
   double overrelaxation = 1.0;
   // Grid sampler: angular step of the hemisphere grid in degrees.
   double grid_step_degrees = 1.0;

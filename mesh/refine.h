@@ -1,7 +1,7 @@
 // Adaptive refinement: one deterministic step from (mesh, solution, settings) to a finer mesh and
-// the solution carried over to it. The solve (refining_solve.h) calls it at fixed points, before
-// the first round and after the round where the unshot fraction first falls below each of
-// kRefinePoints; the farm master calls it at the same points and gets the same mesh.
+// the solution carried over to it. The round driver (solve/round_driver.h) calls it at fixed
+// points, before the first round and after the round where the unshot fraction first falls below
+// each of kRefinePoints, for `radfarm render` and the farm master alike: both get the same mesh.
 //
 // What splits (refine_criteria.h scores each element; a score above 1 splits it): elements where
 // the Gouraud image would miss the light by more than the tolerance, i.e. where the light bends or

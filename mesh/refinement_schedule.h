@@ -1,6 +1,6 @@
-// RefinementSchedule: when a refining solve refines its mesh and with which arguments. RoundDriver
-// (solve/round_driver.h) follows it for render and the farm master alike, so that both call Refine
-// (refine.h) at the same rounds with the same inputs and so get the same mesh, bit for bit.
+// RefinementSchedule: when a refining solve refines its mesh and with which arguments. The round
+// driver (solve/round_driver.h) follows it for `radfarm render` and the farm master alike, so both
+// call Refine (refine.h) at the same rounds with the same inputs and get the same mesh to the bit.
 //
 // A solve drives it between its rounds:
 //   BeforeFirstRound    once, before planning round 0 (light criterion only, ray power 0);

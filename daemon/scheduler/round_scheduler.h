@@ -7,7 +7,8 @@
 // Threading and time: single-threaded, no I/O, no clock. The daemon's event loop owns it and calls
 // it from the loop thread only; every call that depends on time takes `now`.
 //
-// Driving a job (what core/solve.cc does with a thread pool):
+// Driving a job (the round driver, solve/round_driver.h, runs the solver's side; render runs the
+// batches on a thread pool instead):
 //   plan = solver.PlanRound(scheduler.SuggestedBatchRays());   // empty plan: the job is done
 //   scheduler.StartRound(plan, now);
 //   loop: NextAssignment for agents with room; OnResult / OnInvalidResult (result_intake.h does

@@ -164,7 +164,7 @@ TEST(OverrelaxationTest, LitBoxMatchesPlainSouthwell) {
   const PatchScene scene = LitBox();
   SolverSettings s;
   s.shot_rays = 1 << 19;
-  // Well above the noise floor of |unshot| with omega = 1.5 (docs/ARCHITECTURE.md), about 3e-4.
+  // Well above the noise floor of |unshot| with omega = 1.5 (docs/SOLVER.md), about 3e-4.
   s.tolerance = 2e-3;
   s.threads = 2;
   const std::vector<Rgb> plain = FacePower(scene, Solve(scene, s).radiosity);

@@ -37,8 +37,9 @@ class FarmSim {
   FarmSim(const PatchScene& scene, const SolverSettings& settings,
           const std::vector<SimAgentSpec>& agents, const SchedulerOptions& options = {});
 
-  // Runs rounds like core's Solve() until converged (settings without ray or time budgets) and
-  // returns the radiosity. Fails the test if a round does not finish within `max_round_time`.
+  // Runs rounds like the round driver (solve/round_driver.h) until converged (settings without
+  // ray or time budgets) and returns the radiosity. Fails the test if a round does not finish
+  // within `max_round_time`.
   std::vector<Rgb> Solve(uint32_t batch_rays, Duration max_round_time = std::chrono::seconds(3600));
   // Keeps agents delivering (nothing new is leased) for `duration`, so stragglers answer.
   void Drain(Duration duration);

@@ -1,5 +1,6 @@
 // Whole solves driven through the scheduler by simulated agents give radiosity bit-identical to
-// core's Solve() with the same settings, whatever the agents do (core/batch.h's contract).
+// Solve() (the round driver on a thread pool) with the same settings, whatever the agents do
+// (core/batch.h's contract).
 #include <gtest/gtest.h>
 
 #include <cstring>
