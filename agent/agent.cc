@@ -8,6 +8,7 @@
 
 #include "agent/file_user_idle.h"
 #include "agent/master_address.h"
+#include "base/result.h"
 #include "loop/log.h"
 #include "protocol/messages.h"
 
@@ -55,10 +56,10 @@ Agent::~Agent() = default;
 Status Agent::Start() {
   Result<std::unique_ptr<loop::WorkQueue>> batches =
       loop::WorkQueue::Create(loop_, settings_.threads, "batch");
-  if (!batches) return Error{batches.error()};
+  RADFARM_RETURN_IF_ERROR(batches);
   batches_ = std::move(batches).value();
   Result<std::unique_ptr<loop::WorkQueue>> io = loop::WorkQueue::Create(loop_, 1, "scene-io");
-  if (!io) return Error{io.error()};
+  RADFARM_RETURN_IF_ERROR(io);
   io_ = std::move(io).value();
 
   LeaseRunner::Callbacks callbacks;
@@ -81,7 +82,7 @@ Status Agent::Start() {
           }
           Finish(s == SIGTERM ? "got SIGTERM" : "got SIGINT");
         });
-    if (!signal) return Error{signal.error()};
+    RADFARM_RETURN_IF_ERROR(signal);
     *watch = std::move(signal).value();
   }
   LogLine(LogLevel::kInfo, "agent") << "radfarm-agent " << settings_.name << " starting: master "
@@ -90,7 +91,7 @@ Status Agent::Start() {
   if (settings_.idle_policy_enabled()) {
     // The config file's table was checked when it was read; Create checks it again.
     Result<idle::IdlePolicy> policy = idle::IdlePolicy::Create(*settings_.idle);
-    if (!policy) return Error{policy.error()};
+    RADFARM_RETURN_IF_ERROR(policy);
     idle::IdleSources sources = idle::SystemIdleSources();
     if (!settings_.idle_source.empty()) {
       LogLine(LogLevel::kInfo, "agent")

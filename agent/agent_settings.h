@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "idle/idle_config.h"
 #include "loop/host_port.h"
 #include "loop/log.h"

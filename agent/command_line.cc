@@ -6,6 +6,7 @@
 
 #include "agent/config_file.h"
 #include "agent/exit_codes.h"
+#include "base/result.h"
 #include "protocol/message_checks.h"
 
 namespace radfarm::agent {
@@ -47,7 +48,7 @@ Result<AgentOptions> OptionsFromFlags(const CLI::App& app, const Flags& f) {
   auto given = [&app](const char* flag) { return app.get_option(flag)->count() > 0; };
   if (given("--master")) {
     Result<loop::HostPort> master = ParseMasterAddress(f.master, "--master");
-    if (!master) return Error{master.error()};
+    RADFARM_RETURN_IF_ERROR(master);
     options.master = *master;
   }
   if (given("--secret-file")) options.secret_file = f.secret_file;

@@ -11,8 +11,9 @@
 #include <sstream>
 #include <vector>
 
+#include "base/result.h"
+#include "base/toml_file.h"
 #include "idle/idle_config.h"
-#include "input/toml_file.h"
 #include "protocol/message_checks.h"
 
 namespace radfarm::agent {
@@ -112,21 +113,21 @@ class KeyReader {
 Status ReadKey(const KeyReader& reader, const std::string& key, AgentOptions* options) {
   if (key == "master") {
     Result<std::string> text = reader.String();
-    if (!text) return Error{text.error()};
+    RADFARM_RETURN_IF_ERROR(text);
     Result<loop::HostPort> master = ParseMasterAddress(*text, "'master'");
     if (!master) return reader.At(master.error());
     options->master = *master;
   } else if (key == "secret_file" || key == "state_dir") {
     Result<std::string> path = reader.Path();
-    if (!path) return Error{path.error()};
+    RADFARM_RETURN_IF_ERROR(path);
     (key == "secret_file" ? options->secret_file : options->state_dir) = *path;
   } else if (key == "threads") {
     Result<int64_t> threads = reader.Integer(1, kMaxThreads);
-    if (!threads) return Error{threads.error()};
+    RADFARM_RETURN_IF_ERROR(threads);
     options->threads = static_cast<unsigned>(*threads);
   } else if (key == "name") {
     Result<std::string> name = reader.String();
-    if (!name) return Error{name.error()};
+    RADFARM_RETURN_IF_ERROR(name);
     if (!protocol::IsValidAgentName(*name)) {
       return reader.Fail("must be 1 to 64 characters of A-Z a-z 0-9 . _ : @ -, got '" + *name +
                          "'");
@@ -134,21 +135,21 @@ Status ReadKey(const KeyReader& reader, const std::string& key, AgentOptions* op
     options->name = *name;
   } else if (key == "log_level") {
     Result<std::string> text = reader.String();
-    if (!text) return Error{text.error()};
+    RADFARM_RETURN_IF_ERROR(text);
     std::optional<loop::LogLevel> level = ParseLogLevel(*text);
     if (!level) return reader.Fail("must be debug, info, warning or error, got '" + *text + "'");
     options->log_level = *level;
   } else if (key == "slowdown") {
     Result<double> slowdown = reader.Real(1, /*lo_open=*/false);
-    if (!slowdown) return Error{slowdown.error()};
+    RADFARM_RETURN_IF_ERROR(slowdown);
     options->slowdown = *slowdown;
   } else if (key == "idle_source") {
     Result<std::string> path = reader.Path();
-    if (!path) return Error{path.error()};
+    RADFARM_RETURN_IF_ERROR(path);
     options->idle_source = *path;
   } else if (key == "exit_when_idle_seconds") {
     Result<double> seconds = reader.Real(0, /*lo_open=*/true);
-    if (!seconds) return Error{seconds.error()};
+    RADFARM_RETURN_IF_ERROR(seconds);
     options->exit_when_idle_seconds = *seconds;
   } else {
     return reader.Fail("is not a setting (unknown key)");
@@ -165,7 +166,7 @@ Result<AgentOptions> LoadConfigFile(const std::string& path) {
   text << in.rdbuf();
   if (in.bad()) return Error{path + ": cannot read the config file"};
   Result<toml::table> table = ParseToml(path, text.str());
-  if (!table) return Error{table.error()};
+  RADFARM_RETURN_IF_ERROR(table);
 
   // Keys in file order, so the first bad line is the one reported.
   std::vector<std::pair<const toml::key*, const toml::node*>> keys;
@@ -184,13 +185,11 @@ Result<AgentOptions> LoadConfigFile(const std::string& path) {
             .Fail("must be a table ([idle]), not " + TypeName(*node));
       }
       Result<idle::IdleConfig> idle = idle::ParseIdleConfig(*idle_table, path);
-      if (!idle) return Error{idle.error()};
+      RADFARM_RETURN_IF_ERROR(idle);
       options.idle = *idle;
       continue;
     }
-    if (Status read = ReadKey(KeyReader(path, name, *node), name, &options); !read) {
-      return Error{read.error()};
-    }
+    RADFARM_RETURN_IF_ERROR(ReadKey(KeyReader(path, name, *node), name, &options));
   }
   return options;
 }

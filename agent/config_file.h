@@ -20,7 +20,7 @@
 #include <string>
 
 #include "agent/agent_settings.h"
-#include "core/result.h"
+#include "base/result.h"
 
 namespace radfarm::agent {
 

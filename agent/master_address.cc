@@ -2,11 +2,13 @@
 
 #include <vector>
 
+#include "base/result.h"
+
 namespace radfarm::agent {
 
 Result<loop::SocketAddress> ResolveMaster(const loop::HostPort& master, uint32_t attempt) {
   Result<std::vector<loop::SocketAddress>> addresses = loop::Resolve(master, /*passive=*/false);
-  if (!addresses) return Error{addresses.error()};
+  RADFARM_RETURN_IF_ERROR(addresses);
   return (*addresses)[attempt % addresses->size()];
 }
 

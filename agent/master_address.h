@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "loop/host_port.h"
 #include "loop/socket_address.h"
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <variant>
 
+#include "base/result.h"
 #include "protocol/frame_codec.h"
 #include "protocol/limits.h"
 
@@ -46,7 +47,7 @@ Result<std::unique_ptr<MasterLink>> MasterLink::Connect(loop::EventLoop& loop,
       loop, address, options, [self](std::span<const uint8_t> payload) { self->OnFrame(payload); },
       [self](const std::string& reason) { self->OnClose(reason); },
       [self] { self->OnConnected(); });
-  if (!connection) return Error{connection.error()};
+  RADFARM_RETURN_IF_ERROR(connection);
   link->connection_ = std::move(connection).value();
   link->peer_ = link->connection_->peer();
   return link;
@@ -118,7 +119,7 @@ Status MasterLink::Send(const protocol::Message& message) {
     return Error{"connection to " + peer_ + " is closing"};
   }
   Result<std::vector<uint8_t>> frame = session_.Encode(message);
-  if (!frame) return Error{frame.error()};
+  RADFARM_RETURN_IF_ERROR(frame);
   return connection_->SendPrefixed(std::move(frame).value());
 }
 

@@ -19,7 +19,7 @@
 #include <memory>
 #include <string>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "loop/event_loop.h"
 #include "loop/framed_connection.h"
 #include "loop/socket_address.h"

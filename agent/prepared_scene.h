@@ -7,9 +7,9 @@
 #include <memory>
 #include <span>
 
+#include "base/result.h"
 #include "core/patch_scene.h"
 #include "core/ray_caster.h"
-#include "core/result.h"
 #include "protocol/messages.h"
 
 namespace radfarm::agent {

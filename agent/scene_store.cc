@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <random>
 
-#include "loop/unique_fd.h"
+#include "base/unique_fd.h"
 #include "protocol/limits.h"
 #include "protocol/scene_transfer.h"
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "protocol/messages.h"
 
 namespace radfarm::agent {

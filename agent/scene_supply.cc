@@ -1,5 +1,6 @@
 #include "agent/scene_supply.h"
 
+#include "base/result.h"
 #include "loop/log.h"
 
 namespace radfarm::agent {
@@ -74,7 +75,7 @@ Status SceneSupply::RequestMore(Pending& pending) {
   while (pending.requests_in_flight < kRequestWindow) {
     std::optional<protocol::SceneRequestMsg> request = pending.assembler->NextRequest();
     if (!request) break;
-    if (Status sent = callbacks_.send_request(*request); !sent) return sent;
+    RADFARM_RETURN_IF_ERROR(callbacks_.send_request(*request));
     ++pending.requests_in_flight;
   }
   return Ok{};

@@ -32,7 +32,7 @@
 #include "agent/prepared_scene.h"
 #include "agent/recent_scenes.h"
 #include "agent/scene_store.h"
-#include "core/result.h"
+#include "base/result.h"
 #include "loop/work_queue.h"
 #include "protocol/messages.h"
 #include "protocol/scene_transfer.h"

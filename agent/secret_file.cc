@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <vector>
 
-#include "loop/unique_fd.h"
+#include "base/unique_fd.h"
 
 namespace radfarm::agent {
 namespace {

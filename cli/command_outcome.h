@@ -1,5 +1,5 @@
 // Outcome<T>: a value, or a failure that carries the exit code it ends the command with. The farm
-// commands need more than Result<T> (core/result.h) gives: "the master is unreachable" (3), "no
+// commands need more than Result<T> (base/result.h) gives: "the master is unreachable" (3), "no
 // such job" (2) and "the master sent garbage" (1) all end a command, with different codes.
 #pragma once
 

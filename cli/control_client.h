@@ -15,8 +15,8 @@
 #include <string_view>
 #include <vector>
 
+#include "base/unique_fd.h"
 #include "cli/command_outcome.h"
-#include "loop/unique_fd.h"
 
 namespace radfarm {
 

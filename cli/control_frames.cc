@@ -6,6 +6,8 @@
 #include <cstring>
 #include <string>
 
+#include "base/result.h"
+
 namespace radfarm {
 namespace {
 
@@ -51,7 +53,7 @@ Status WriteFrame(int fd, std::span<const uint8_t> payload) {
   }
   const uint32_t n = uint32_t(payload.size());
   const uint8_t prefix[4] = {uint8_t(n), uint8_t(n >> 8), uint8_t(n >> 16), uint8_t(n >> 24)};
-  if (Status s = SendAll(fd, prefix, sizeof prefix); !s.ok()) return s;
+  RADFARM_RETURN_IF_ERROR(SendAll(fd, prefix, sizeof prefix));
   return SendAll(fd, payload.data(), payload.size());
 }
 
@@ -64,8 +66,7 @@ Result<std::vector<uint8_t>> ReadFrame(int fd, uint32_t max_bytes) {
     if (got == 0) return Error{"the master closed the connection without answering"};
     if (errno != EINTR) return Error{"receive: " + SocketErrorText(errno)};
   }
-  if (Status s = ReceiveAll(fd, prefix + 1, 3, "a frame's length"); !s.ok())
-    return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(ReceiveAll(fd, prefix + 1, 3, "a frame's length"));
   const uint32_t n = uint32_t(prefix[0]) | uint32_t(prefix[1]) << 8 | uint32_t(prefix[2]) << 16 |
                      uint32_t(prefix[3]) << 24;
   if (n > max_bytes) {
@@ -73,7 +74,7 @@ Result<std::vector<uint8_t>> ReadFrame(int fd, uint32_t max_bytes) {
                  std::to_string(max_bytes) + "-byte limit"};
   }
   std::vector<uint8_t> payload(n);
-  if (Status s = ReceiveAll(fd, payload.data(), n, "a frame"); !s.ok()) return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(ReceiveAll(fd, payload.data(), n, "a frame"));
   return payload;
 }
 

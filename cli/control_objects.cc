@@ -1,5 +1,6 @@
 #include "cli/control_objects.h"
 
+#include "base/result.h"
 #include "cli/json_fields.h"
 
 namespace radfarm {
@@ -31,7 +32,7 @@ Result<JobInfo> ParseJob(const nlohmann::json& object, const std::string& where)
   job.agents = r.Count("agents");
   job.eta_seconds = r.NullableNumber("eta_seconds");
   job.stop_reason = r.NullableString("stop_reason");
-  if (Status s = r.status(); !s.ok()) return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(r.status());
   return job;
 }
 
@@ -48,7 +49,7 @@ Result<AgentInfo> ParseAgent(const nlohmann::json& object, const std::string& wh
   agent.connected_ms = r.Int("connected_ms");
   agent.last_heartbeat_ms_ago = r.Int("last_heartbeat_ms_ago");
   agent.results = r.Count("results");
-  if (Status s = r.status(); !s.ok()) return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(r.status());
   return agent;
 }
 
@@ -58,7 +59,7 @@ Result<EventInfo> ParseEvent(const nlohmann::json& object, const std::string& wh
   event.time_ms = r.Int("time_ms");
   event.level = r.OneOf("level", {"info", "warning", "error"});
   event.text = r.String("text");
-  if (Status s = r.status(); !s.ok()) return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(r.status());
   return event;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "base/result.h"
 #include "cli/exit_codes.h"
 #include "cli/farm_command.h"
 #include "cli/render_outputs.h"
@@ -50,9 +51,9 @@ Status WriteSolution(const std::vector<uint8_t>& blob, const std::string& out_di
                  " unshot values, but the scene meshes into " + std::to_string(patches) +
                  " patches"};
   }
-  if (Status s = CreateOutputDirectory(out_dir); !s.ok()) return s;
-  const SolveResult result{std::move(solution->radiosity), std::move(solution->unshot),
-                           std::move(solution->stats), {}};
+  RADFARM_RETURN_IF_ERROR(CreateOutputDirectory(out_dir));
+  const SolveResult result{
+      std::move(solution->radiosity), std::move(solution->unshot), std::move(solution->stats), {}};
   // As `radfarm render`: stats.json names the initial patch count of a refining job.
   return WriteOutputs(out_dir, *mesh, result, bundle->job,
                       bundle->job.refine.enabled ? initial_patches : 0);

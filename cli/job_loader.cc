@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "base/result.h"
 #include "mesh/refine.h"
 
 namespace radfarm {
@@ -9,13 +10,13 @@ namespace radfarm {
 Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& overrides,
                                   std::vector<std::string>* warnings) {
   Result<Job> job = LoadJob(path);
-  if (!job.ok()) return Error{job.error()};
-  if (Status s = ApplyOverrides(overrides, &*job); !s.ok()) return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(job);
+  RADFARM_RETURN_IF_ERROR(ApplyOverrides(overrides, &*job));
   Result<InputScene> scene = LoadObjScene(job->scene_path);
-  if (!scene.ok()) return Error{scene.error()};
+  RADFARM_RETURN_IF_ERROR(scene);
   warnings->insert(warnings->end(), scene->warnings.begin(), scene->warnings.end());
   Result<PatchMesh> mesh = PatchMesh::Build(*scene, job->mesh, warnings);
-  if (!mesh.ok()) return Error{mesh.error()};
+  RADFARM_RETURN_IF_ERROR(mesh);
   if (job->refine.enabled) {
     // The checks that need the mesh (the smallest element against the welding distance).
     Result<ResolvedRefineSettings> refine =

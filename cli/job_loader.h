@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "base/result.h"
 #include "cli/job_overrides.h"
-#include "core/result.h"
 #include "input/input_scene.h"
 #include "input/job.h"
 #include "mesh/patch_mesh.h"

@@ -57,7 +57,7 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
                         {"patches_before_refinement", patches_before},
                         {"patches_after_refinement", patches_after},
                         {"exposure_stops", exposed.exposure}})}) {
-    if (!s.ok()) return s;
+    RADFARM_RETURN_IF_ERROR(s);
   }
   return Ok{};
 }

@@ -6,10 +6,10 @@
 #include <cstdint>
 #include <string>
 
-#include "core/result.h"
-#include "solve/solve_state.h"
+#include "base/result.h"
 #include "input/job.h"
 #include "mesh/patch_mesh.h"
+#include "solve/solve_state.h"
 
 namespace radfarm {
 

@@ -14,8 +14,8 @@
 #include <string>
 #include <utility>
 
+#include "base/result.h"
 #include "codec/job_bundle.h"
-#include "core/result.h"
 #include "daemon/store/job_store.h"
 #include "solve/solve_state.h"
 

@@ -11,9 +11,9 @@
 #include <filesystem>
 #include <string>
 
+#include "base/unique_fd.h"
 #include "cli/exit_codes.h"
 #include "cli/messages.h"
-#include "loop/unique_fd.h"
 #include "protocol/farm_secret.h"
 
 namespace radfarm {

@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "base/result.h"
 #include "codec/decode_checks.h"
 #include "job_bundle_generated.h"
 
@@ -181,7 +182,7 @@ std::vector<uint8_t> EncodeJobBundle(const JobBundle& bundle) {
 }
 
 Result<JobBundle> DecodeJobBundle(std::span<const uint8_t> blob) {
-  if (Status s = CheckBlobHeader(blob, kKind, "RDJB"); !s.ok()) return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(CheckBlobHeader(blob, kKind, "RDJB"));
   std::vector<uint8_t> aligned;
   if (reinterpret_cast<uintptr_t>(blob.data()) % 8 != 0) {
     aligned.assign(blob.begin(), blob.end());
@@ -201,12 +202,10 @@ Result<JobBundle> DecodeJobBundle(std::span<const uint8_t> blob) {
   if (!(bundle.job.mesh.patch_size >= 0) || !std::isfinite(bundle.job.mesh.patch_size)) {
     return Bad("mesh.patch_size", "is negative or not finite");
   }
-  if (Status s = DecodeSolver(*root->solver(), &bundle.job.solver); !s.ok())
-    return Error{s.error()};
-  if (Status s = DecodeCamera(*root->camera(), &bundle.job.camera); !s.ok())
-    return Error{s.error()};
-  if (Status s = DecodeRefine(root->refine(), &bundle.job.refine); !s.ok()) return Error{s.error()};
-  if (Status s = DecodeScene(*root, &bundle.scene); !s.ok()) return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(DecodeSolver(*root->solver(), &bundle.job.solver));
+  RADFARM_RETURN_IF_ERROR(DecodeCamera(*root->camera(), &bundle.job.camera));
+  RADFARM_RETURN_IF_ERROR(DecodeRefine(root->refine(), &bundle.job.refine));
+  RADFARM_RETURN_IF_ERROR(DecodeScene(*root, &bundle.scene));
   return bundle;
 }
 

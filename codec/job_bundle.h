@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "input/input_scene.h"
 #include "input/job.h"
 

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "base/result.h"
 #include "codec/decode_checks.h"
 #include "job_solution_generated.h"
 
@@ -44,7 +45,7 @@ std::vector<uint8_t> EncodeJobSolution(const JobSolution& solution) {
 }
 
 Result<JobSolution> DecodeJobSolution(std::span<const uint8_t> blob) {
-  if (Status s = CheckBlobHeader(blob, kKind, "RDJS"); !s.ok()) return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(CheckBlobHeader(blob, kKind, "RDJS"));
   std::vector<uint8_t> aligned;
   if (reinterpret_cast<uintptr_t>(blob.data()) % 8 != 0) {
     aligned.assign(blob.begin(), blob.end());

@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "core/rgb.h"
 #include "core/solve_stats.h"
 

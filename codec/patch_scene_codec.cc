@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "base/result.h"
 #include "codec/decode_checks.h"
 #include "patch_scene_generated.h"
 
@@ -82,7 +83,7 @@ std::vector<uint8_t> EncodePatchScene(const PatchScene& scene) {
 }
 
 Result<PatchScene> DecodePatchScene(std::span<const uint8_t> blob) {
-  if (Status s = CheckBlobHeader(blob, kKind, "RDPS"); !s.ok()) return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(CheckBlobHeader(blob, kKind, "RDPS"));
   // The Verifier needs aligned data; a std::vector's buffer is, a span into a frame may not be.
   std::vector<uint8_t> aligned;
   if (reinterpret_cast<uintptr_t>(blob.data()) % 8 != 0) {
@@ -104,7 +105,7 @@ Result<PatchScene> DecodePatchScene(std::span<const uint8_t> blob) {
   scene.patches.reserve(patches->size());
   for (uint32_t i = 0; i < patches->size(); ++i) {
     Result<Patch> p = DecodePatch(*patches->Get(i), i, scene.material_names.size());
-    if (!p.ok()) return Error{p.error()};
+    RADFARM_RETURN_IF_ERROR(p);
     scene.patches.push_back(*p);
   }
   return scene;

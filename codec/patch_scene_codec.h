@@ -8,8 +8,8 @@
 #include <span>
 #include <vector>
 
+#include "base/result.h"
 #include "core/patch_scene.h"
-#include "core/result.h"
 
 namespace radfarm::codec {
 

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "base/result.h"
 #include "loop/log.h"
 #include "protocol/frame_codec.h"
 
@@ -57,7 +58,7 @@ void AgentLink::Start() {
 Status AgentLink::Send(const protocol::Message& message) {
   if (closing_) return Error{"connection to " + Describe() + " is closing"};
   Result<std::vector<uint8_t>> frame = session_.Encode(message);
-  if (!frame) return Error{frame.error()};
+  RADFARM_RETURN_IF_ERROR(frame);
   return connection_->SendPrefixed(std::move(*frame));
 }
 

@@ -1,5 +1,6 @@
 #include "daemon/control_server.h"
 
+#include "base/result.h"
 #include "loop/log.h"
 
 namespace radfarm::master {
@@ -64,19 +65,19 @@ Result<ControlRequest> ParseControlRequest(const nlohmann::json& json, uint64_t*
     case ControlCommand::kResume:
     case ControlCommand::kFetch: {
       Result<int64_t> id = IntArg(json, "id");
-      if (!id) return Error{id.error()};
+      RADFARM_RETURN_IF_ERROR(id);
       request.id = *id;
       break;
     }
     case ControlCommand::kLog:
       if (json.contains("id") && !json["id"].is_null()) {
         Result<int64_t> id = IntArg(json, "id");
-        if (!id) return Error{id.error()};
+        RADFARM_RETURN_IF_ERROR(id);
         request.id = *id;
       }
       if (json.contains("limit")) {
         Result<int64_t> limit = IntArg(json, "limit");
-        if (!limit) return Error{limit.error()};
+        RADFARM_RETURN_IF_ERROR(limit);
         if (*limit < 1 || *limit > 100000) return Error{"'limit' must be in [1, 100000]"};
         request.limit = *limit;
       }
@@ -89,7 +90,7 @@ Result<ControlRequest> ParseControlRequest(const nlohmann::json& json, uint64_t*
       }
       if (json.contains("priority")) {
         Result<int64_t> priority = IntArg(json, "priority");
-        if (!priority) return Error{priority.error()};
+        RADFARM_RETURN_IF_ERROR(priority);
         request.priority = *priority;
       }
       Result<int64_t> bytes = IntArg(json, "attachment_bytes");
@@ -116,7 +117,7 @@ Result<std::unique_ptr<ControlServer>> ControlServer::Listen(loop::EventLoop& lo
   auto listener = loop::UnixListener::Listen(
       loop, path,
       [self](std::unique_ptr<loop::FramedConnection> c) { self->OnConnection(std::move(c)); });
-  if (!listener) return Error{listener.error()};
+  RADFARM_RETURN_IF_ERROR(listener);
   server->listener_ = std::move(*listener);
   return server;
 }

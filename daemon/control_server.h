@@ -10,7 +10,7 @@
 #include <memory>
 #include <string>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "daemon/control_types.h"
 #include "loop/event_loop.h"
 #include "loop/framed_connection.h"

@@ -27,10 +27,10 @@
 #include <string>
 #include <vector>
 
+#include "base/result.h"
 #include "codec/job_bundle.h"
 #include "core/patch_scene.h"
 #include "core/progressive_solver.h"
-#include "core/result.h"
 #include "core/thread_pool.h"
 #include "daemon/scheduler/round_scheduler.h"
 #include "daemon/store/job_store.h"

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "base/result.h"
 #include "core/solve_control.h"
 
 namespace radfarm::master {
@@ -37,7 +38,7 @@ Result<JobSummary> ReadJobSummary(store::JobStore& store, const store::JobRecord
   if (!settings) return Error{"job " + std::to_string(record.id) + ": " + settings.error()};
   summary.settings = *settings;
   Result<std::vector<store::RoundRecord>> rounds = store.ListRounds(record.id);
-  if (!rounds) return Error{rounds.error()};
+  RADFARM_RETURN_IF_ERROR(rounds);
   for (const store::RoundRecord& r : *rounds) {
     summary.rays += r.rays;
     summary.seconds += r.duration_seconds;
@@ -46,7 +47,7 @@ Result<JobSummary> ReadJobSummary(store::JobStore& store, const store::JobRecord
   if (!rounds->empty()) summary.unshot_fraction = rounds->back().unshot_fraction;
   if (record.state == store::JobState::kDone) {
     Result<std::optional<std::string>> reason = store.LoadLatestStopReason(record.id);
-    if (!reason) return Error{reason.error()};
+    RADFARM_RETURN_IF_ERROR(reason);
     summary.stop_reason = *reason;
   }
   return summary;

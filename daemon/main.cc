@@ -9,9 +9,10 @@
 #include <cstdio>
 #include <optional>
 
+#include "base/result.h"
+#include "base/text_file.h"
 #include "daemon/master.h"
 #include "daemon/master_config.h"
-#include "input/text_file.h"
 #include "loop/event_loop.h"
 #include "loop/log.h"
 
@@ -77,7 +78,7 @@ void Override(const std::optional<T>& flag, T* value) {
 Result<MasterConfig> ResolveConfig(const Flags& f) {
   MasterConfig c;
   if (f.config) {
-    if (Status s = ReadMasterConfigFile(*f.config, &c); !s) return Error{s.error()};
+    RADFARM_RETURN_IF_ERROR(ReadMasterConfigFile(*f.config, &c));
   }
   Override(f.listen, &c.listen);
   Override(f.state_dir, &c.state_dir);
@@ -93,7 +94,7 @@ Result<MasterConfig> ResolveConfig(const Flags& f) {
   Override(f.lease_seconds, &c.lease_seconds);
   Override(f.max_agents, &c.max_agents);
   Override(f.local_round_rays, &c.local_round_rays);
-  if (Status s = CheckMasterConfig(c); !s) return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(CheckMasterConfig(c));
   return c;
 }
 

@@ -5,8 +5,9 @@
 #include <filesystem>
 #include <system_error>
 
+#include "base/atomic_file.h"
+#include "base/result.h"
 #include "loop/log.h"
-#include "output/atomic_file.h"
 
 namespace radfarm::master {
 
@@ -39,44 +40,42 @@ Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const Maste
   Master* self = master.get();
 
   Result<store::JobStore> store = store::JobStore::Open(config.DatabasePath());
-  if (!store) return Error{store.error()};
+  RADFARM_RETURN_IF_ERROR(store);
   // Jobs that were running when the last master stopped go back to the queue; they resume from
   // their latest checkpoints when they start again.
   Result<std::vector<store::JobRecord>> jobs = store->ListJobs();
-  if (!jobs) return Error{jobs.error()};
+  RADFARM_RETURN_IF_ERROR(jobs);
   for (const store::JobRecord& job : *jobs) {
     if (job.state != store::JobState::kRunning) continue;
-    if (Status s = store->SetJobState(job.id, store::JobState::kQueued); !s)
-      return Error{s.error()};
+    RADFARM_RETURN_IF_ERROR(store->SetJobState(job.id, store::JobState::kQueued));
     (void)store->AppendEvent(job.id, store::EventLevel::kInfo,
                              "master restarted: the job resumes from its latest checkpoint");
   }
   master->store_ = std::make_shared<store::JobStore>(std::move(*store));
 
   auto store_queue = loop::WorkQueue::Create(loop, 1, "store");
-  if (!store_queue) return Error{store_queue.error()};
+  RADFARM_RETURN_IF_ERROR(store_queue);
   master->store_queue_ = std::move(*store_queue);
   auto compute_queue = loop::WorkQueue::Create(loop, 1, "compute");
-  if (!compute_queue) return Error{compute_queue.error()};
+  RADFARM_RETURN_IF_ERROR(compute_queue);
   master->compute_queue_ = std::move(*compute_queue);
 
   Result<loop::HostPort> listen = loop::ParseHostPort(config.listen, "--listen");
-  if (!listen) return Error{listen.error()};
+  RADFARM_RETURN_IF_ERROR(listen);
   auto listener = loop::TcpListener::Listen(
       loop, *listen,
       [self](std::unique_ptr<loop::FramedConnection> c) { self->OnConnection(std::move(c)); });
-  if (!listener) return Error{listener.error()};
+  RADFARM_RETURN_IF_ERROR(listener);
   master->listener_ = std::move(*listener);
   master->listen_address_ = master->listener_->address();
-  if (Status s = WriteFileAtomically(config.ListenAddrPath(), master->listen_address_ + "\n"); !s) {
-    return Error{s.error()};
-  }
+  RADFARM_RETURN_IF_ERROR(
+      WriteFileAtomically(config.ListenAddrPath(), master->listen_address_ + "\n"));
 
   auto control = ControlServer::Listen(
       loop, config.ControlPath(), [self](ControlRequest request, ControlRespond respond) {
         self->HandleControl(std::move(request), std::move(respond));
       });
-  if (!control) return Error{control.error()};
+  RADFARM_RETURN_IF_ERROR(control);
   master->control_ = std::move(*control);
 
   master->heartbeat_timer_ = std::make_unique<loop::Timer>(loop);
@@ -89,7 +88,7 @@ Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const Maste
   for (int signum : {SIGTERM, SIGINT}) {
     auto watch = loop::Signal::Watch(
         loop, signum, [self](int s) { self->Shutdown(s == SIGTERM ? "SIGTERM" : "SIGINT"); });
-    if (!watch) return Error{watch.error()};
+    RADFARM_RETURN_IF_ERROR(watch);
     (signum == SIGTERM ? master->sigterm_ : master->sigint_) = std::move(*watch);
   }
 

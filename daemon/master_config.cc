@@ -2,8 +2,9 @@
 
 #include <filesystem>
 
-#include "input/toml_file.h"
-#include "input/toml_table_reader.h"
+#include "base/result.h"
+#include "base/toml_file.h"
+#include "base/toml_table_reader.h"
 #include "loop/host_port.h"
 
 namespace radfarm::master {
@@ -20,7 +21,7 @@ std::string MasterConfig::ListenAddrPath() const {
 
 Status ReadMasterConfigFile(const std::string& path, MasterConfig* c) {
   Result<toml::table> table = ReadTomlFile(path);
-  if (!table) return Error{table.error()};
+  RADFARM_RETURN_IF_ERROR(table);
   TomlTableReader r(path, *table, "");
   constexpr int64_t kMaxMs = 24 * 3600 * 1000;
   constexpr int64_t kMaxLocalRoundRays = int64_t{1} << 40;
@@ -36,19 +37,15 @@ Status ReadMasterConfigFile(const std::string& path, MasterConfig* c) {
                    r.Real("lease_seconds", Interval::Open(0, 3600), &c->lease_seconds),
                    r.Integer("max_agents", 1, 1000000, &c->max_agents),
                    r.Integer("local_round_rays", 0, kMaxLocalRoundRays, &c->local_round_rays)}) {
-    if (!s) return s;
+    RADFARM_RETURN_IF_ERROR(s);
   }
-  if (Status s = r.CheckNoUnknownKeys(); !s) return s;
-  if (Result<loop::HostPort> hp = loop::ParseHostPort(c->listen, path + ": 'listen'"); !hp) {
-    return Error{hp.error()};
-  }
+  RADFARM_RETURN_IF_ERROR(r.CheckNoUnknownKeys());
+  RADFARM_RETURN_IF_ERROR(loop::ParseHostPort(c->listen, path + ": 'listen'"));
   return Ok{};
 }
 
 Status CheckMasterConfig(const MasterConfig& c) {
-  if (Result<loop::HostPort> hp = loop::ParseHostPort(c.listen, "--listen"); !hp) {
-    return Error{hp.error()};
-  }
+  RADFARM_RETURN_IF_ERROR(loop::ParseHostPort(c.listen, "--listen"));
   if (c.state_dir.empty()) return Error{"--state-dir: must not be empty"};
   if (c.secret_file.empty()) return Error{"--secret-file: must not be empty"};
   if (c.log_level != "debug" && c.log_level != "info" && c.log_level != "warning" &&

@@ -1,6 +1,7 @@
 // The master's answers to control-socket requests (docs/CONTROL.md).
 #include <chrono>
 
+#include "base/result.h"
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
 #include "core/solve_control.h"
@@ -56,11 +57,11 @@ void Master::HandleControl(ControlRequest request, ControlRespond respond) {
           [id, limit](store::JobStore& s) -> Result<std::optional<std::vector<store::Event>>> {
             if (id) {
               Result<std::optional<store::JobRecord>> job = s.GetJob(*id);
-              if (!job) return Error{job.error()};
+              RADFARM_RETURN_IF_ERROR(job);
               if (!*job) return std::optional<std::vector<store::Event>>();
             }
             Result<std::vector<store::Event>> events = s.ListEvents(id, limit);
-            if (!events) return Error{events.error()};
+            RADFARM_RETURN_IF_ERROR(events);
             return std::optional(std::move(*events));
           },
           [id, respond](Result<std::optional<std::vector<store::Event>>> events) {
@@ -161,17 +162,17 @@ void Master::RespondWithJobs(std::optional<store::JobId> id, ControlRespond resp
         std::vector<store::JobRecord> records;
         if (id) {
           Result<std::optional<store::JobRecord>> job = s.GetJob(*id);
-          if (!job) return Error{job.error()};
+          RADFARM_RETURN_IF_ERROR(job);
           if (*job) records.push_back(std::move(**job));
         } else {
           Result<std::vector<store::JobRecord>> all = s.ListJobs();
-          if (!all) return Error{all.error()};
+          RADFARM_RETURN_IF_ERROR(all);
           records = std::move(*all);
         }
         std::vector<JobSummary> summaries;
         for (const store::JobRecord& record : records) {
           Result<JobSummary> summary = ReadJobSummary(s, record);
-          if (!summary) return Error{summary.error()};
+          RADFARM_RETURN_IF_ERROR(summary);
           summaries.push_back(std::move(*summary));
         }
         return summaries;
@@ -194,9 +195,9 @@ void Master::Submit(ControlRequest request, ControlRespond respond) {
   Status s = compute_queue_->Submit(
       [blob]() -> Result<std::pair<SubmittedSettings, uint64_t>> {
         Result<codec::JobBundle> bundle = codec::DecodeJobBundle(*blob);
-        if (!bundle) return Error{bundle.error()};
+        RADFARM_RETURN_IF_ERROR(bundle);
         Result<PatchMesh> mesh = PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
-        if (!mesh) return Error{mesh.error()};
+        RADFARM_RETURN_IF_ERROR(mesh);
         if (bundle->job.refine.enabled) {
           // The checks that need the mesh, as LoadJobForSolve makes them before a local render.
           Result<ResolvedRefineSettings> refine =
@@ -229,9 +230,9 @@ void Master::Submit(ControlRequest request, ControlRespond respond) {
         spec.priority = request.priority;
         OnStore(
             [blob, spec](store::JobStore& s) -> Result<JobSummary> {
-              if (Status st = s.PutScene(spec.scene_hash, *blob); !st) return Error{st.error()};
+              RADFARM_RETURN_IF_ERROR(s.PutScene(spec.scene_hash, *blob));
               Result<store::JobId> id = s.SubmitJob(spec);
-              if (!id) return Error{id.error()};
+              RADFARM_RETURN_IF_ERROR(id);
               (void)s.AppendEvent(*id, store::EventLevel::kInfo, "submitted");
               Result<std::optional<store::JobRecord>> job = s.GetJob(*id);
               if (!job || !*job) return Error{"the new job cannot be read back"};
@@ -255,7 +256,7 @@ void Master::ChangeState(ControlRequest request, ControlRespond respond) {
   OnStore(
       [id, command](store::JobStore& s) -> Result<Lookup> {
         Result<std::optional<store::JobRecord>> job = s.GetJob(id);
-        if (!job) return Error{job.error()};
+        RADFARM_RETURN_IF_ERROR(job);
         Lookup lookup;
         if (!*job) return lookup;
         const store::JobState from = (*job)->state;
@@ -275,7 +276,7 @@ void Master::ChangeState(ControlRequest request, ControlRespond respond) {
         }
         std::optional<std::string> reason;
         if (to == store::JobState::kCancelled) reason = "cancelled by the operator";
-        if (Status st = s.SetJobState(id, to, reason); !st) return Error{st.error()};
+        RADFARM_RETURN_IF_ERROR(s.SetJobState(id, to, reason));
         (void)s.AppendEvent(id, store::EventLevel::kInfo,
                             to == store::JobState::kCancelled ? "cancelled"
                             : to == store::JobState::kPaused  ? "paused"
@@ -283,7 +284,7 @@ void Master::ChangeState(ControlRequest request, ControlRespond respond) {
         Result<std::optional<store::JobRecord>> after = s.GetJob(id);
         if (!after || !*after) return Error{"job " + std::to_string(id) + " cannot be read back"};
         Result<JobSummary> summary = ReadJobSummary(s, **after);
-        if (!summary) return Error{summary.error()};
+        RADFARM_RETURN_IF_ERROR(summary);
         lookup.summary = std::move(*summary);
         return lookup;
       },
@@ -312,17 +313,17 @@ void Master::Fetch(ControlRequest request, ControlRespond respond) {
           -> Result<std::pair<std::optional<JobSummary>, std::vector<uint8_t>>> {
         using Answer = std::pair<std::optional<JobSummary>, std::vector<uint8_t>>;
         Result<std::optional<store::JobRecord>> job = s.GetJob(id);
-        if (!job) return Error{job.error()};
+        RADFARM_RETURN_IF_ERROR(job);
         if (!*job) return Answer{};
         Result<JobSummary> summary = ReadJobSummary(s, **job);
-        if (!summary) return Error{summary.error()};
+        RADFARM_RETURN_IF_ERROR(summary);
         Result<std::optional<store::Checkpoint>> checkpoint = s.LoadLatestCheckpoint(id);
-        if (!checkpoint) return Error{checkpoint.error()};
+        RADFARM_RETURN_IF_ERROR(checkpoint);
         if (!*checkpoint) return Answer{std::move(*summary), {}};
         Result<std::optional<std::vector<uint8_t>>> bundle = s.GetScene((*job)->spec.scene_hash);
         if (!bundle || !*bundle) return Error{"job " + std::to_string(id) + ": scene missing"};
         Result<std::vector<store::RoundRecord>> rounds = s.ListRounds(id);
-        if (!rounds) return Error{rounds.error()};
+        RADFARM_RETURN_IF_ERROR(rounds);
         const store::Checkpoint& c = **checkpoint;
         codec::JobSolution solution;
         solution.bundle = std::move(**bundle);

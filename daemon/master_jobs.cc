@@ -1,6 +1,7 @@
 // The master's job lifecycle: starting queued jobs, running their rounds, checkpoints, the end.
 #include <chrono>
 
+#include "base/result.h"
 #include "daemon/master.h"
 #include "loop/log.h"
 #include "protocol/scene_transfer.h"
@@ -62,28 +63,26 @@ void Master::StartQueuedJobs() {
   OnStore(
       [slots](store::JobStore& s) -> Result<std::vector<JobStart>> {
         Result<std::vector<store::JobRecord>> next = s.NextRunnableJobs(slots);
-        if (!next) return Error{next.error()};
+        RADFARM_RETURN_IF_ERROR(next);
         std::vector<JobStart> starts;
         for (store::JobRecord& record : *next) {
-          if (Status st = s.SetJobState(record.id, store::JobState::kRunning); !st) {
-            return Error{st.error()};
-          }
+          RADFARM_RETURN_IF_ERROR(s.SetJobState(record.id, store::JobState::kRunning));
           JobStart start;
           Result<std::optional<std::vector<uint8_t>>> bundle = s.GetScene(record.spec.scene_hash);
-          if (!bundle) return Error{bundle.error()};
+          RADFARM_RETURN_IF_ERROR(bundle);
           if (!*bundle) return Error{"job " + std::to_string(record.id) + ": its scene is missing"};
           start.bundle = std::move(**bundle);
           Result<std::optional<store::Checkpoint>> checkpoint = s.LoadLatestCheckpoint(record.id);
-          if (!checkpoint) return Error{checkpoint.error()};
+          RADFARM_RETURN_IF_ERROR(checkpoint);
           start.checkpoint = std::move(*checkpoint);
           if (start.checkpoint && start.checkpoint->scene_hash) {
             Result<std::optional<std::vector<uint8_t>>> scene =
                 s.GetScene(*start.checkpoint->scene_hash);
-            if (!scene) return Error{scene.error()};
+            RADFARM_RETURN_IF_ERROR(scene);
             start.checkpoint_scene = std::move(*scene);  // Prepare fails the job if missing
           }
           Result<std::vector<store::RoundRecord>> rounds = s.ListRounds(record.id);
-          if (!rounds) return Error{rounds.error()};
+          RADFARM_RETURN_IF_ERROR(rounds);
           start.rounds = std::move(*rounds);
           Result<std::optional<store::JobRecord>> fresh = s.GetJob(record.id);
           if (!fresh || !*fresh) return Error{"job " + std::to_string(record.id) + " vanished"};
@@ -236,9 +235,9 @@ void Master::OnRoundReduced(const std::shared_ptr<JobRunner>& runner, RoundOutco
           // The refined scene first: the checkpoint refers to it. A scene left behind by a crash
           // between the two is harmless (scenes are kept by hash).
           if (scene) {
-            if (Status st = s.PutScene(*checkpoint->scene_hash, *scene); !st) return st;
+            RADFARM_RETURN_IF_ERROR(s.PutScene(*checkpoint->scene_hash, *scene));
           }
-          if (Status st = s.SaveCheckpoint(record, *checkpoint); !st) return st;
+          RADFARM_RETURN_IF_ERROR(s.SaveCheckpoint(record, *checkpoint));
           return s.PruneCheckpoints(record.job, static_cast<int>(keep));
         },
         [this, id](Status s) {
@@ -303,7 +302,7 @@ void Master::FailJob(store::JobId id, const std::string& error) {
   OnStore(
       [id, error](store::JobStore& s) -> Status {
         Result<std::optional<store::JobRecord>> job = s.GetJob(id);
-        if (!job) return Error{job.error()};
+        RADFARM_RETURN_IF_ERROR(job);
         if (!*job || store::IsTerminal((*job)->state)) return Ok{};
         return s.SetJobState(id, store::JobState::kFailed, error);
       },

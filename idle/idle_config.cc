@@ -3,6 +3,7 @@
 #include <optional>
 #include <sstream>
 
+#include "base/result.h"
 #include "idle/schedule.h"
 
 namespace radfarm::idle {
@@ -139,42 +140,26 @@ Result<IdleConfig> ParseIdleConfig(const toml::table& table, std::string_view fi
 
   IdleConfig config;
   bool present = false;
-  if (Status s = reader.Bool("enabled", &config.enabled); !s) return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(reader.Bool("enabled", &config.enabled));
 
   int64_t minutes = config.user_idle_minutes;
-  if (Status s = reader.Integer("user_idle_minutes", &minutes, &present); !s) {
-    return Error{s.error()};
-  }
-  if (Status s =
-          reader.Check("user_idle_minutes", present ? CheckUserIdleMinutes(minutes) : std::nullopt);
-      !s) {
-    return Error{s.error()};
-  }
+  RADFARM_RETURN_IF_ERROR(reader.Integer("user_idle_minutes", &minutes, &present));
+  RADFARM_RETURN_IF_ERROR(
+      reader.Check("user_idle_minutes", present ? CheckUserIdleMinutes(minutes) : std::nullopt));
   config.user_idle_minutes = static_cast<int>(minutes);
 
-  if (Status s = reader.Real("max_other_cpu", &config.max_other_cpu, &present); !s) {
-    return Error{s.error()};
-  }
-  if (Status s = reader.Check("max_other_cpu",
-                              present ? CheckMaxOtherCpu(config.max_other_cpu) : std::nullopt);
-      !s) {
-    return Error{s.error()};
-  }
+  RADFARM_RETURN_IF_ERROR(reader.Real("max_other_cpu", &config.max_other_cpu, &present));
+  RADFARM_RETURN_IF_ERROR(reader.Check(
+      "max_other_cpu", present ? CheckMaxOtherCpu(config.max_other_cpu) : std::nullopt));
 
-  if (Status s = reader.String("schedule", &config.schedule, &present); !s) {
-    return Error{s.error()};
-  }
-  if (Status s = reader.Check("schedule", present ? CheckSchedule(config.schedule) : std::nullopt);
-      !s) {
-    return Error{s.error()};
-  }
+  RADFARM_RETURN_IF_ERROR(reader.String("schedule", &config.schedule, &present));
+  RADFARM_RETURN_IF_ERROR(
+      reader.Check("schedule", present ? CheckSchedule(config.schedule) : std::nullopt));
 
   int64_t poll = config.poll_seconds;
-  if (Status s = reader.Integer("poll_seconds", &poll, &present); !s) return Error{s.error()};
-  if (Status s = reader.Check("poll_seconds", present ? CheckPollSeconds(poll) : std::nullopt);
-      !s) {
-    return Error{s.error()};
-  }
+  RADFARM_RETURN_IF_ERROR(reader.Integer("poll_seconds", &poll, &present));
+  RADFARM_RETURN_IF_ERROR(
+      reader.Check("poll_seconds", present ? CheckPollSeconds(poll) : std::nullopt));
   config.poll_seconds = static_cast<int>(poll);
   return config;
 }

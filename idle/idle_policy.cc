@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "base/result.h"
 #include "loop/log.h"
 
 namespace radfarm::idle {
@@ -23,7 +24,7 @@ std::string Duration(std::chrono::seconds duration) {
 }  // namespace
 
 Result<IdlePolicy> IdlePolicy::Create(const IdleConfig& config, HysteresisSettings hysteresis) {
-  if (Status valid = Validate(config); !valid) return Error{valid.error()};
+  RADFARM_RETURN_IF_ERROR(Validate(config));
   Result<Schedule> schedule = Schedule::Parse(config.schedule);
   if (!schedule) return Error{"'idle.schedule' " + schedule.error()};
   const std::chrono::milliseconds hold =

@@ -21,7 +21,7 @@
 #include <optional>
 #include <string>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "idle/idle_config.h"
 #include "idle/local_time.h"
 #include "idle/schedule.h"

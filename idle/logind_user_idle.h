@@ -11,7 +11,7 @@
 #include <functional>
 #include <memory>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "idle/user_idle.h"
 
 typedef struct sd_bus sd_bus;

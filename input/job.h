@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "core/solver_settings.h"
 #include "mesh/mesh_settings.h"
 #include "mesh/refine_settings.h"

@@ -38,11 +38,12 @@
 #include <filesystem>
 #include <limits>
 
-#include "input/diagnostic.h"
+#include "base/diagnostic.h"
+#include "base/result.h"
+#include "base/text_file.h"
+#include "base/toml_file.h"
+#include "base/toml_table_reader.h"
 #include "input/job.h"
-#include "input/text_file.h"
-#include "input/toml_file.h"
-#include "input/toml_table_reader.h"
 
 namespace radfarm {
 namespace {
@@ -53,53 +54,49 @@ constexpr int64_t kMaxThreads = 65536;
 constexpr int64_t kMaxImageSide = 16384;
 constexpr int64_t kMaxSamplesPerPixel = 1024;
 
-// Runs each read in turn and returns the first failure.
-#define RADFARM_TRY(expr)                   \
-  do {                                      \
-    if (Status s_ = (expr); !s_) return s_; \
-  } while (0)
-
 // Applies a section's reads to the sub-table `name` of `root`, then rejects its unknown keys.
 template <typename ReadKeys>
 Status ReadSection(const std::string& path, TomlTableReader* root, std::string_view name,
                    ReadKeys read) {
   Result<const toml::table*> table = root->Table(name);
-  if (!table) return Error{table.error()};
+  RADFARM_RETURN_IF_ERROR(table);
   if (*table == nullptr) return Ok{};
   TomlTableReader reader(path, **table, std::string(name) + ".");
-  RADFARM_TRY(read(&reader));
+  RADFARM_RETURN_IF_ERROR(read(&reader));
   return reader.CheckNoUnknownKeys();
 }
 
 Status ReadMesh(TomlTableReader* r, MeshSettings* mesh, RefineSettings* refine) {
-  RADFARM_TRY(r->Real("patch_size", Interval::Above(0), &mesh->patch_size));
-  RADFARM_TRY(r->Bool("refine", &refine->enabled));
-  RADFARM_TRY(r->Real("refine_tolerance", Interval::Above(0), &refine->tolerance));
-  RADFARM_TRY(r->Real("min_element_size", Interval::Above(0), &refine->min_element_size));
+  RADFARM_RETURN_IF_ERROR(r->Real("patch_size", Interval::Above(0), &mesh->patch_size));
+  RADFARM_RETURN_IF_ERROR(r->Bool("refine", &refine->enabled));
+  RADFARM_RETURN_IF_ERROR(r->Real("refine_tolerance", Interval::Above(0), &refine->tolerance));
+  RADFARM_RETURN_IF_ERROR(
+      r->Real("min_element_size", Interval::Above(0), &refine->min_element_size));
   return r->Integer("max_elements", 1, kMaxInt64, &refine->max_elements);
 }
 
 Status ReadSolver(TomlTableReader* r, SolverSettings* solver) {
   std::string sampler;
   bool has_sampler = false;
-  RADFARM_TRY(r->String("sampler", &sampler, &has_sampler));
+  RADFARM_RETURN_IF_ERROR(r->String("sampler", &sampler, &has_sampler));
   if (has_sampler && !ParseSamplerName(sampler, &solver->sampler)) {
     return r->ErrorFor("sampler",
                        "must be \"grid\", \"random\" or \"sobol\", got \"" + sampler + "\"");
   }
-  RADFARM_TRY(r->Integer("seed", 0, kMaxInt64, &solver->seed));
-  RADFARM_TRY(r->Real("tolerance", Interval::Open(0, 1), &solver->tolerance));
-  RADFARM_TRY(r->Integer("rays", 0, kMaxInt64, &solver->max_rays));
-  RADFARM_TRY(r->Real("seconds", Interval::AtLeast(0), &solver->max_seconds));
-  RADFARM_TRY(r->Integer("shot_rays", 1, kMaxInt64, &solver->shot_rays));
-  RADFARM_TRY(r->Integer("min_shooter_rays", 1, kMaxUint32, &solver->min_shooter_rays));
-  RADFARM_TRY(r->Integer("shooters_per_round", 0, kMaxUint32, &solver->shooters_per_round));
-  RADFARM_TRY(r->Real("overrelaxation",
-                      Interval::ClosedOpen(kMinOverrelaxation, kMaxOverrelaxation),
-                      &solver->overrelaxation));
-  RADFARM_TRY(
+  RADFARM_RETURN_IF_ERROR(r->Integer("seed", 0, kMaxInt64, &solver->seed));
+  RADFARM_RETURN_IF_ERROR(r->Real("tolerance", Interval::Open(0, 1), &solver->tolerance));
+  RADFARM_RETURN_IF_ERROR(r->Integer("rays", 0, kMaxInt64, &solver->max_rays));
+  RADFARM_RETURN_IF_ERROR(r->Real("seconds", Interval::AtLeast(0), &solver->max_seconds));
+  RADFARM_RETURN_IF_ERROR(r->Integer("shot_rays", 1, kMaxInt64, &solver->shot_rays));
+  RADFARM_RETURN_IF_ERROR(r->Integer("min_shooter_rays", 1, kMaxUint32, &solver->min_shooter_rays));
+  RADFARM_RETURN_IF_ERROR(
+      r->Integer("shooters_per_round", 0, kMaxUint32, &solver->shooters_per_round));
+  RADFARM_RETURN_IF_ERROR(r->Real("overrelaxation",
+                                  Interval::ClosedOpen(kMinOverrelaxation, kMaxOverrelaxation),
+                                  &solver->overrelaxation));
+  RADFARM_RETURN_IF_ERROR(
       r->Real("grid_step_degrees", Interval::OpenClosed(0, 90), &solver->grid_step_degrees));
-  RADFARM_TRY(r->Integer("gather_rays", 0, kMaxGatherRays, &solver->gather_rays));
+  RADFARM_RETURN_IF_ERROR(r->Integer("gather_rays", 0, kMaxGatherRays, &solver->gather_rays));
   return r->Integer("threads", 0, kMaxThreads, &solver->threads);
 }
 
@@ -121,17 +118,18 @@ Status CheckExplicitCamera(TomlTableReader* r, bool has_eye, bool has_target,
 
 Status ReadCamera(TomlTableReader* r, Camera* camera) {
   bool has_eye = false, has_target = false, has_exposure = false;
-  RADFARM_TRY(r->Vector("eye", &camera->eye, &has_eye));
-  RADFARM_TRY(r->Vector("target", &camera->target, &has_target));
-  RADFARM_TRY(r->Vector("up", &camera->up));
-  RADFARM_TRY(r->Real("fov", Interval::Open(0, 180), &camera->fov_degrees));
-  RADFARM_TRY(r->Integer("width", 1, kMaxImageSide, &camera->width));
-  RADFARM_TRY(r->Integer("height", 1, kMaxImageSide, &camera->height));
-  RADFARM_TRY(r->Real("exposure", Interval::Any(), &camera->exposure, &has_exposure));
-  RADFARM_TRY(r->Integer("samples_per_pixel", 1, kMaxSamplesPerPixel, &camera->samples_per_pixel));
+  RADFARM_RETURN_IF_ERROR(r->Vector("eye", &camera->eye, &has_eye));
+  RADFARM_RETURN_IF_ERROR(r->Vector("target", &camera->target, &has_target));
+  RADFARM_RETURN_IF_ERROR(r->Vector("up", &camera->up));
+  RADFARM_RETURN_IF_ERROR(r->Real("fov", Interval::Open(0, 180), &camera->fov_degrees));
+  RADFARM_RETURN_IF_ERROR(r->Integer("width", 1, kMaxImageSide, &camera->width));
+  RADFARM_RETURN_IF_ERROR(r->Integer("height", 1, kMaxImageSide, &camera->height));
+  RADFARM_RETURN_IF_ERROR(r->Real("exposure", Interval::Any(), &camera->exposure, &has_exposure));
+  RADFARM_RETURN_IF_ERROR(
+      r->Integer("samples_per_pixel", 1, kMaxSamplesPerPixel, &camera->samples_per_pixel));
   if (has_exposure) camera->auto_exposure = false;
   if (has_eye || has_target) {
-    RADFARM_TRY(CheckExplicitCamera(r, has_eye, has_target, *camera));
+    RADFARM_RETURN_IF_ERROR(CheckExplicitCamera(r, has_eye, has_target, *camera));
     camera->automatic = false;
   }
   return Ok{};
@@ -141,29 +139,27 @@ Status ReadJob(const std::string& path, const toml::table& table, Job* job) {
   TomlTableReader root(path, table, "");
   std::string scene;
   bool has_scene = false;
-  RADFARM_TRY(root.String("scene", &scene, &has_scene));
+  RADFARM_RETURN_IF_ERROR(root.String("scene", &scene, &has_scene));
   if (!has_scene) return ErrorAt(path, 0, "missing key 'scene'");
   if (scene.empty()) return root.ErrorFor("scene", "must not be empty");
   job->scene_path = (std::filesystem::path(path).parent_path() / scene).string();
-  RADFARM_TRY(ReadSection(path, &root, "mesh", [&](TomlTableReader* r) {
+  RADFARM_RETURN_IF_ERROR(ReadSection(path, &root, "mesh", [&](TomlTableReader* r) {
     return ReadMesh(r, &job->mesh, &job->refine);
   }));
-  RADFARM_TRY(ReadSection(path, &root, "solver",
-                          [&](TomlTableReader* r) { return ReadSolver(r, &job->solver); }));
-  RADFARM_TRY(ReadSection(path, &root, "camera",
-                          [&](TomlTableReader* r) { return ReadCamera(r, &job->camera); }));
+  RADFARM_RETURN_IF_ERROR(ReadSection(
+      path, &root, "solver", [&](TomlTableReader* r) { return ReadSolver(r, &job->solver); }));
+  RADFARM_RETURN_IF_ERROR(ReadSection(
+      path, &root, "camera", [&](TomlTableReader* r) { return ReadCamera(r, &job->camera); }));
   return root.CheckNoUnknownKeys();
 }
 
 Result<Job> LoadTomlJob(const std::string& path) {
   Result<toml::table> table = ReadTomlFile(path);
-  if (!table) return Error{table.error()};
+  RADFARM_RETURN_IF_ERROR(table);
   Job job;
-  if (Status s = ReadJob(path, *table, &job); !s) return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(ReadJob(path, *table, &job));
   return job;
 }
-
-#undef RADFARM_TRY
 
 std::string LowercaseExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();

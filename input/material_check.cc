@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "input/diagnostic.h"
+#include "base/diagnostic.h"
 
 namespace radfarm {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "input/input_scene.h"
 #include "input/mtl_line_index.h"
 

@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "input/text_file.h"
+#include "base/text_file.h"
 
 namespace radfarm {
 namespace {

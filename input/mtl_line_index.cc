@@ -1,7 +1,8 @@
 #include "input/mtl_line_index.h"
 
-#include "input/diagnostic.h"
-#include "input/text_file.h"
+#include "base/diagnostic.h"
+#include "base/result.h"
+#include "base/text_file.h"
 
 namespace radfarm {
 
@@ -27,7 +28,7 @@ Result<MtlLineIndex> IndexMtlLines(const std::string& path, std::string_view tex
       }
       current = added ? &it->second : nullptr;
     } else if (words[0] == "Kd" || words[0] == "Ke") {
-      if (Status s = CheckNumberWords(path, line, words, 3, 3); !s) return Error{s.error()};
+      RADFARM_RETURN_IF_ERROR(CheckNumberWords(path, line, words, 3, 3));
       if (current != nullptr) (words[0] == "Kd" ? current->kd : current->ke) = line;
     }
   }

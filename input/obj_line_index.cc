@@ -4,8 +4,9 @@
 #include <iterator>
 #include <set>
 
-#include "input/diagnostic.h"
-#include "input/text_file.h"
+#include "base/diagnostic.h"
+#include "base/result.h"
+#include "base/text_file.h"
 
 namespace radfarm {
 namespace {
@@ -83,7 +84,7 @@ Status ObjIndexer::Statement(uint32_t line, const std::vector<std::string_view>&
     if (keyword == "l" || keyword == "p") {
       long long vertex = 0;
       for (size_t i = 1; i < words.size(); ++i) {
-        if (Status s = Corner(line, words[i], &vertex); !s) return s;
+        RADFARM_RETURN_IF_ERROR(Corner(line, words[i], &vertex));
       }
     }
     return Ok{};
@@ -103,7 +104,7 @@ Status ObjIndexer::Face(uint32_t line, const std::vector<std::string_view>& word
   long long largest = 0;
   for (size_t i = 1; i < words.size(); ++i) {
     long long vertex = 0;
-    if (Status s = Corner(line, words[i], &vertex); !s) return s;
+    RADFARM_RETURN_IF_ERROR(Corner(line, words[i], &vertex));
     if (vertex < 0 && -vertex > static_cast<long long>(index_.vertex_count)) {
       return Fail(line, "vertex index " + std::to_string(vertex) + " out of range (" +
                             std::to_string(index_.vertex_count) + " vertices before this line)");
@@ -160,11 +161,9 @@ Result<ObjLineIndex> IndexObjLines(const std::string& path, std::string_view tex
   for (size_t i = 0; i < lines.size(); ++i) {
     const std::vector<std::string_view> words = SplitWords(lines[i]);
     if (words.empty()) continue;
-    if (Status s = indexer.Statement(static_cast<uint32_t>(i + 1), words); !s) {
-      return Error{s.error()};
-    }
+    RADFARM_RETURN_IF_ERROR(indexer.Statement(static_cast<uint32_t>(i + 1), words));
   }
-  if (Status s = indexer.CheckForwardIndices(); !s) return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(indexer.CheckForwardIndices());
   return indexer.Take();
 }
 

@@ -8,12 +8,13 @@
 #include <set>
 #include <sstream>
 
-#include "input/diagnostic.h"
+#include "base/diagnostic.h"
+#include "base/result.h"
+#include "base/text_file.h"
 #include "input/input_scene.h"
 #include "input/material_check.h"
 #include "input/mtl_library_reader.h"
 #include "input/obj_line_index.h"
-#include "input/text_file.h"
 
 namespace radfarm {
 namespace {
@@ -44,9 +45,7 @@ class MaterialTable {
     } else {
       used_.push_back(FromTinyObj(materials_[id]));
       const MaterialOrigin& origin = origins_[id];
-      if (Status s = CheckMaterial(used_.back(), origin.mtl_path, origin.lines); !s) {
-        return Error{s.error()};
-      }
+      RADFARM_RETURN_IF_ERROR(CheckMaterial(used_.back(), origin.mtl_path, origin.lines));
     }
     return it->second;
   }
@@ -80,7 +79,7 @@ Status CollectFaces(const std::string& path, const std::vector<tinyobj::shape_t>
         face.indices.push_back(static_cast<uint32_t>(mesh.indices[corner++].vertex_index));
       }
       Result<uint32_t> material = materials->Index(mesh.material_ids[f]);
-      if (!material) return Error{material.error()};
+      RADFARM_RETURN_IF_ERROR(material);
       face.material = *material;
       scene->faces.push_back(std::move(face));
     }
@@ -143,10 +142,10 @@ Status CheckSomethingEmits(const std::string& path, const MtlLibraryReader& read
 
 Result<InputScene> LoadObjScene(const std::string& path) {
   Result<std::string> text = ReadTextFile(path);
-  if (!text) return Error{text.error()};
+  RADFARM_RETURN_IF_ERROR(text);
   BlankComments(&*text);
   Result<ObjLineIndex> index = IndexObjLines(path, *text);
-  if (!index) return Error{index.error()};
+  RADFARM_RETURN_IF_ERROR(index);
 
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
@@ -171,10 +170,10 @@ Result<InputScene> LoadObjScene(const std::string& path) {
     return ErrorAt(path, 0, "internal error: tinyobjloader's vertex count does not match");
   }
   MaterialTable table(materials, reader.origins());
-  if (Status s = CollectFaces(path, shapes, *index, &table, &scene); !s) return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(CollectFaces(path, shapes, *index, &table, &scene));
   scene.materials = table.Take();
   WarnAboutGrey(path, *index, reader, materials, &scene);
-  if (Status s = CheckSomethingEmits(path, reader, scene); !s) return Error{s.error()};
+  RADFARM_RETURN_IF_ERROR(CheckSomethingEmits(path, reader, scene));
   return scene;
 }
 

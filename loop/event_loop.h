@@ -19,7 +19,7 @@
 #include <thread>
 #include <vector>
 
-#include "core/result.h"
+#include "base/result.h"
 
 namespace radfarm::loop {
 

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "core/result.h"
+#include "base/result.h"
 
 namespace radfarm::loop {
 

@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "loop/event_loop.h"
 #include "loop/handle_block.h"
 #include "loop/socket_address.h"

@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "loop/framed_connection.h"
 #include "loop/handle_block.h"
 

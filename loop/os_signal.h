@@ -7,7 +7,7 @@
 #include <functional>
 #include <memory>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "loop/event_loop.h"
 #include "loop/handle_block.h"
 

@@ -1,5 +1,6 @@
 #include "loop/tcp_listener.h"
 
+#include "base/result.h"
 #include "loop/listen_block.h"
 #include "loop/socket_address.h"
 #include "loop/uv_error.h"
@@ -20,7 +21,7 @@ Result<std::unique_ptr<TcpListener>> TcpListener::Listen(EventLoop& loop, const 
   if (int rc = uv_tcp_bind(&block->tcp, bind_address.get(), 0); rc < 0) {
     return UvError("listen on " + block->name, rc);
   }
-  if (Status status = block->Listen(); !status.ok()) return Error{status.error()};
+  RADFARM_RETURN_IF_ERROR(block->Listen());
 
   sockaddr_storage bound{};
   int length = sizeof bound;

@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "loop/event_loop.h"
 #include "loop/framed_connection.h"
 #include "loop/handle_block.h"

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "base/result.h"
 #include "loop/listen_block.h"
 #include "loop/log.h"
 #include "loop/uv_error.h"
@@ -64,7 +65,7 @@ Result<std::unique_ptr<UnixListener>> UnixListener::Listen(EventLoop& loop, cons
   block->name = path;
   int rc = uv_pipe_bind(&block->pipe, path.c_str());
   if (rc == UV_EADDRINUSE) {
-    if (Status removed = RemoveStaleSocket(path); !removed.ok()) return Error{removed.error()};
+    RADFARM_RETURN_IF_ERROR(RemoveStaleSocket(path));
     rc = uv_pipe_bind(&block->pipe, path.c_str());
   }
   if (rc < 0) return UvError("listen on unix:" + path, rc);
@@ -91,7 +92,7 @@ Result<std::unique_ptr<UnixListener>> UnixListener::Listen(EventLoop& loop, cons
     return Error{"listen on unix:" + path +
                  ": the socket file changed under us (is its directory writable by others?)"};
   }
-  if (Status status = block->Listen(); !status.ok()) return Error{status.error()};
+  RADFARM_RETURN_IF_ERROR(block->Listen());
   return listener;
 }
 

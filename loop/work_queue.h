@@ -31,7 +31,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "loop/async.h"
 #include "loop/event_loop.h"
 

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <utility>
 
+#include "base/result.h"
 #include "mesh/clean_faces.h"
 #include "mesh/contact_cut.h"
 #include "mesh/hidden_faces.h"
@@ -78,7 +79,7 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   if (!std::isfinite(settings.patch_size) || settings.patch_size < 0) {
     return Error{scene.path + ": patch size must be a finite number >= 0"};
   }
-  if (Status status = CheckScene(scene); !status.ok()) return Error{status.error()};
+  RADFARM_RETURN_IF_ERROR(CheckScene(scene));
   const double diagonal = FaceBounds(scene).Diagonal();
   const double tol = kLengthTolerance * diagonal;
   const double min_area = kAreaTolerance * diagonal * diagonal;

@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
+#include "base/result.h"
 #include "core/patch_scene.h"
-#include "core/result.h"
 #include "core/rgb.h"
 #include "input/input_scene.h"
 #include "mesh/display_mesh.h"

@@ -34,9 +34,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "base/result.h"
 #include "core/progressive_solver.h"
 #include "core/ray_caster.h"
-#include "core/result.h"
 #include "core/rgb.h"
 #include "core/thread_pool.h"
 #include "mesh/patch_mesh.h"

@@ -5,6 +5,8 @@
 #include <string>
 #include <utility>
 
+#include "base/result.h"
+
 namespace radfarm {
 
 void RestoreStep(RefinementStep& step, ProgressiveSolver& solver) {
@@ -26,7 +28,7 @@ Result<RefinementSchedule> RefinementSchedule::Create(const RefineSettings& sett
   Result<ResolvedRefineSettings> resolved =
       ResolveRefineSettings(settings, initial.patch_size(), initial.patch_scene().patches.size(),
                             initial.weld_tolerance());
-  if (!resolved.ok()) return Error{resolved.error()};
+  RADFARM_RETURN_IF_ERROR(resolved);
   return RefinementSchedule(*resolved, shot_rays, next_point);
 }
 

@@ -17,9 +17,9 @@
 #include <cstdint>
 #include <optional>
 
+#include "base/result.h"
 #include "core/progressive_solver.h"
 #include "core/ray_caster.h"
-#include "core/result.h"
 #include "core/solver_settings.h"
 #include "core/thread_pool.h"
 #include "mesh/patch_mesh.h"

@@ -10,7 +10,7 @@
 #include <limits>
 #include <vector>
 
-#include "output/atomic_file.h"
+#include "base/atomic_file.h"
 
 namespace radfarm {
 namespace {

@@ -4,12 +4,12 @@
 
 #include <string>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "output/image.h"
 
 namespace radfarm {
 
-// Written atomically (output/atomic_file.h); errors (including OpenEXR's exceptions) come back as
+// Written atomically (base/atomic_file.h); errors (including OpenEXR's exceptions) come back as
 // a Status naming `path`.
 Status WriteExr(const std::string& path, const Image& linear);
 

@@ -1,6 +1,6 @@
 #include "output/patches_csv.h"
 
-#include "output/atomic_file.h"
+#include "base/atomic_file.h"
 #include "output/number_format.h"
 
 namespace radfarm {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "base/result.h"
 #include "core/patch_scene.h"
-#include "core/result.h"
 #include "core/rgb.h"
 
 namespace radfarm {

@@ -8,7 +8,8 @@
 #include <string>
 #include <utility>
 
-#include "output/atomic_file.h"
+#include "base/atomic_file.h"
+#include "base/result.h"
 #include "output/image.h"
 #include "output/tone_map.h"
 
@@ -73,7 +74,7 @@ Status Validate(const std::string& path, const DisplayMesh& mesh) {
 }  // namespace
 
 Status WritePly(const std::string& path, const DisplayMesh& mesh, const Camera& camera) {
-  if (Status valid = Validate(path, mesh); !valid.ok()) return valid;
+  RADFARM_RETURN_IF_ERROR(Validate(path, mesh));
   // Metering renders the image the PNG would show, so the two agree exactly.
   const double stops = camera.auto_exposure ? ExposureStops(RenderImage(mesh, camera), camera)
                                             : ExposureStops(Image{}, camera);

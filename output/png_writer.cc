@@ -7,7 +7,7 @@
 #include <limits>
 #include <vector>
 
-#include "output/atomic_file.h"
+#include "base/atomic_file.h"
 #include "output/tone_map.h"
 
 namespace radfarm {

@@ -3,13 +3,13 @@
 
 #include <string>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "output/camera.h"
 #include "output/image.h"
 
 namespace radfarm {
 
-// Written atomically (output/atomic_file.h); errors name `path`.
+// Written atomically (base/atomic_file.h); errors name `path`.
 Status WritePng(const std::string& path, const Image& linear, const Camera& camera);
 
 }  // namespace radfarm

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <set>
 
-#include "output/atomic_file.h"
+#include "base/atomic_file.h"
 #include "output/number_format.h"
 
 namespace radfarm {

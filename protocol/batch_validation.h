@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <optional>
 
+#include "base/result.h"
 #include "core/ray_sampler.h"
-#include "core/result.h"
 #include "protocol/messages.h"
 
 namespace radfarm::protocol {

@@ -2,6 +2,7 @@
 
 #include <sodium.h>
 
+#include "base/result.h"
 #include "protocol/handshake_auth.h"
 #include "protocol/limits.h"
 
@@ -38,7 +39,7 @@ Result<FarmSecret> FarmSecret::FromHex(std::string_view hex) {
 }
 
 Result<FarmSecret> FarmSecret::Generate() {
-  if (Status ready = InitSodium(); !ready) return Error{ready.error()};
+  RADFARM_RETURN_IF_ERROR(InitSodium());
   std::vector<uint8_t> key(kMinSecretBytes);
   randombytes_buf(key.data(), key.size());
   return FarmSecret(std::move(key));

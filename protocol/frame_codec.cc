@@ -3,6 +3,7 @@
 #include <cstring>
 #include <string>
 
+#include "base/result.h"
 #include "protocol/message_checks.h"
 #include "protocol/wire_convert.h"
 
@@ -29,8 +30,8 @@ Result<DecodedFrame> DecodeAligned(const uint8_t* data, size_t size) {
   const wire::Frame* frame = wire::GetFrame(data);
   if (frame->version() < 1) return Error{"frame: protocol version 0"};
   Result<Message> message = ReadPayload(*frame);
-  if (!message) return Error{message.error()};
-  if (Status valid = CheckMessage(*message); !valid) return Error{valid.error()};
+  RADFARM_RETURN_IF_ERROR(message);
+  RADFARM_RETURN_IF_ERROR(CheckMessage(*message));
   return DecodedFrame{frame->version(), std::move(message).value()};
 }
 
@@ -79,7 +80,7 @@ Result<DecodedFrame> DecodeFrameBody(std::span<const uint8_t> body) {
 Result<DecodedFrame> DecodeFrame(std::span<const uint8_t> frame, uint32_t max_frame_bytes) {
   if (frame.size() < kLengthPrefixBytes) return Error{"frame: truncated length prefix"};
   const uint32_t length = ReadLengthPrefix(frame.data());
-  if (Status ok = CheckFrameLength(length, max_frame_bytes); !ok) return Error{ok.error()};
+  RADFARM_RETURN_IF_ERROR(CheckFrameLength(length, max_frame_bytes));
   if (frame.size() - kLengthPrefixBytes != length) {
     return Error{"frame: length prefix says " + std::to_string(length) + " bytes but " +
                  std::to_string(frame.size() - kLengthPrefixBytes) + " follow"};

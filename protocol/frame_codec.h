@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "protocol/limits.h"
 #include "protocol/messages.h"
 

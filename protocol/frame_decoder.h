@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "protocol/limits.h"
 #include "protocol/messages.h"
 

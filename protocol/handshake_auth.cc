@@ -4,6 +4,8 @@
 
 #include <cstring>
 
+#include "base/result.h"
+
 namespace radfarm::protocol {
 namespace {
 
@@ -64,7 +66,7 @@ Status InitSodium() {
 }
 
 Result<Nonce> FreshNonce() {
-  if (Status ready = InitSodium(); !ready) return Error{ready.error()};
+  RADFARM_RETURN_IF_ERROR(InitSodium());
   Nonce nonce;
   randombytes_buf(nonce.data(), nonce.size());
   return nonce;

@@ -12,7 +12,7 @@
 // Challenge stops a man in the middle from changing the name or forcing an older version.
 #pragma once
 
-#include "core/result.h"
+#include "base/result.h"
 #include "protocol/farm_secret.h"
 #include "protocol/messages.h"
 

@@ -4,7 +4,7 @@
 // batch_validation.h.
 #pragma once
 
-#include "core/result.h"
+#include "base/result.h"
 #include "protocol/messages.h"
 
 namespace radfarm::protocol {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "base/result.h"
 #include "protocol/frame_codec.h"
 #include "protocol/handshake_auth.h"
 #include "protocol/message_checks.h"
@@ -226,7 +227,7 @@ Result<std::vector<uint8_t>> ProtocolSession::Encode(const Message& message) {
     return Error{"session: " + name + " may not be sent by " +
                  (role_ == Role::kMaster ? "the master" : "an agent")};
   }
-  if (Status valid = CheckMessage(message); !valid) return Error{valid.error()};
+  RADFARM_RETURN_IF_ERROR(CheckMessage(message));
   std::vector<uint8_t> frame = EncodeFrame(message, WireVersion());
   if (role_ == Role::kAgent && state_ == State::kAuthenticated &&
       frame.size() - kLengthPrefixBytes > welcome_.max_frame_bytes) {

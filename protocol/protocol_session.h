@@ -30,7 +30,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "protocol/farm_secret.h"
 #include "protocol/messages.h"
 

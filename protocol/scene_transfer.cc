@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "base/result.h"
 #include "protocol/message_checks.h"
 
 namespace radfarm::protocol {
@@ -42,7 +43,7 @@ Result<SceneHash> HashFromHex(std::string_view hex) {
 
 Result<SceneChunkMsg> MakeSceneChunk(std::span<const uint8_t> blob,
                                      const SceneRequestMsg& request) {
-  if (Status ok = CheckMessage(request); !ok) return Error{ok.error()};
+  RADFARM_RETURN_IF_ERROR(CheckMessage(request));
   if (request.offset >= blob.size()) {
     return Error{"SceneRequest: offset " + Str(request.offset) + " at or past the scene's " +
                  Str(blob.size()) + " bytes"};

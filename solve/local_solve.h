@@ -8,10 +8,10 @@
 #include <memory>
 #include <vector>
 
+#include "base/result.h"
 #include "core/batch.h"
 #include "core/batch_runner.h"
 #include "core/patch_scene.h"
-#include "core/result.h"
 #include "core/solver_settings.h"
 #include "core/thread_pool.h"
 #include "mesh/patch_mesh.h"

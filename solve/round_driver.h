@@ -25,11 +25,11 @@
 #include <string>
 #include <vector>
 
+#include "base/result.h"
 #include "core/batch.h"
 #include "core/patch_scene.h"
 #include "core/progressive_solver.h"
 #include "core/ray_caster.h"
-#include "core/result.h"
 #include "core/solver_settings.h"
 #include "core/thread_pool.h"
 #include "mesh/patch_mesh.h"

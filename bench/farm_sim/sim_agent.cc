@@ -2,6 +2,7 @@
 
 #include <variant>
 
+#include "base/result.h"
 #include "bench/farm_sim/simulated_result.h"
 #include "protocol/frame_codec.h"
 #include "protocol/limits.h"
@@ -43,7 +44,7 @@ Status SimAgent::Connect() {
         }
         SendFrame(std::move(hello).value());
       });
-  if (!connection) return Error{connection.error()};
+  RADFARM_RETURN_IF_ERROR(connection);
   connection_ = std::move(connection).value();
   return Ok{};
 }

@@ -12,7 +12,7 @@
 
 #include <cstdint>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "protocol/messages.h"
 
 namespace radfarm::sim {

@@ -56,9 +56,9 @@
 #include <unordered_map>
 #include <vector>
 
+#include "base/result.h"
 #include "core/batch.h"
 #include "core/progressive_solver.h"
-#include "core/result.h"
 #include "daemon/scheduler/scheduler_counters.h"
 #include "daemon/scheduler/scheduler_options.h"
 #include "daemon/scheduler/scheduler_types.h"

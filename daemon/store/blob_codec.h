@@ -15,8 +15,8 @@
 #include <span>
 #include <vector>
 
+#include "base/result.h"
 #include "core/progressive_solver.h"
-#include "core/result.h"
 #include "core/rgb.h"
 
 namespace radfarm::store {

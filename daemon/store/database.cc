@@ -4,6 +4,7 @@
 
 #include <utility>
 
+#include "base/result.h"
 #include "daemon/store/sqlite_error.h"
 
 namespace radfarm::store {
@@ -67,18 +68,18 @@ Result<Statement> Database::Prepare(std::string_view sql) {
 
 Result<int64_t> Database::QueryInt(std::string_view sql) {
   Result<Statement> stmt = Prepare(sql);
-  if (!stmt.ok()) return Error{stmt.error()};
+  RADFARM_RETURN_IF_ERROR(stmt);
   Result<bool> row = stmt->Step();
-  if (!row.ok()) return Error{row.error()};
+  RADFARM_RETURN_IF_ERROR(row);
   if (!*row) return ErrorFor(sql, SQLITE_MISMATCH);
   return stmt->Int(0);
 }
 
 Result<std::string> Database::QueryText(std::string_view sql) {
   Result<Statement> stmt = Prepare(sql);
-  if (!stmt.ok()) return Error{stmt.error()};
+  RADFARM_RETURN_IF_ERROR(stmt);
   Result<bool> row = stmt->Step();
-  if (!row.ok()) return Error{row.error()};
+  RADFARM_RETURN_IF_ERROR(row);
   if (!*row) return ErrorFor(sql, SQLITE_MISMATCH);
   return stmt->Text(0);
 }
@@ -146,12 +147,12 @@ Result<bool> Statement::Step() {
 
 Status Statement::Run() {
   Result<bool> row = Step();
-  if (!row.ok()) return Error{row.error()};
+  RADFARM_RETURN_IF_ERROR(row);
   if (*row) {
     // Drain the rest (e.g. a PRAGMA that reports its value).
     while (true) {
       Result<bool> more = Step();
-      if (!more.ok()) return Error{more.error()};
+      RADFARM_RETURN_IF_ERROR(more);
       if (!*more) break;
     }
   }
@@ -184,7 +185,7 @@ std::vector<uint8_t> Statement::Blob(int column) const {
 
 Result<Transaction> Transaction::Begin(Database& db) {
   Status begun = db.Exec("BEGIN IMMEDIATE", "begin transaction");
-  if (!begun.ok()) return Error{begun.error()};
+  RADFARM_RETURN_IF_ERROR(begun);
   return Transaction(&db);
 }
 

@@ -19,7 +19,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/result.h"
+#include "base/result.h"
 
 struct sqlite3;
 struct sqlite3_stmt;

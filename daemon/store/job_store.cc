@@ -3,7 +3,7 @@
 #include <chrono>
 #include <utility>
 
-#include "daemon/store/return_if_error.h"
+#include "base/result.h"
 
 namespace radfarm::store {
 namespace {
@@ -46,10 +46,10 @@ Result<std::vector<JobRecord>> ReadJobs(Statement& stmt) {
   std::vector<JobRecord> jobs;
   while (true) {
     Result<bool> row = stmt.Step();
-    STORE_RETURN_IF_ERROR(row);
+    RADFARM_RETURN_IF_ERROR(row);
     if (!*row) return jobs;
     Result<JobRecord> job = ReadJob(stmt);
-    STORE_RETURN_IF_ERROR(job);
+    RADFARM_RETURN_IF_ERROR(job);
     jobs.push_back(std::move(*job));
   }
 }
@@ -77,26 +77,26 @@ std::string_view EventLevelName(EventLevel level) {
 
 Result<JobStore> JobStore::Open(const std::string& path, JobStoreOptions options) {
   Result<Database> db = Database::Open(path, options.database);
-  STORE_RETURN_IF_ERROR(db);
+  RADFARM_RETURN_IF_ERROR(db);
   // Everything up to here only read the file; refuse before the first write.
-  STORE_RETURN_IF_ERROR(CheckDatabase(*db, options.check));
+  RADFARM_RETURN_IF_ERROR(CheckDatabase(*db, options.check));
   // foreign_keys is per connection and cannot change inside a transaction.
-  STORE_RETURN_IF_ERROR(db->Exec("PRAGMA foreign_keys = ON", "enable foreign keys"));
+  RADFARM_RETURN_IF_ERROR(db->Exec("PRAGMA foreign_keys = ON", "enable foreign keys"));
   Result<std::string> mode = db->QueryText("PRAGMA journal_mode = WAL");
-  STORE_RETURN_IF_ERROR(mode);
+  RADFARM_RETURN_IF_ERROR(mode);
   if (*mode != "wal") {
     return Error{"job store " + path + ": cannot switch to WAL mode (journal_mode is " + *mode +
                  ")"};
   }
   // FULL: in WAL mode a commit is durable only after the WAL is synced; the daemon replies to its
   // peers after commits, so a reply must not outlive a power cut.
-  STORE_RETURN_IF_ERROR(db->Exec("PRAGMA synchronous = FULL", "set synchronous"));
+  RADFARM_RETURN_IF_ERROR(db->Exec("PRAGMA synchronous = FULL", "set synchronous"));
   if (options.max_pages > 0) {
     // The value is an integer from our options, not text; PRAGMAs cannot be bound.
-    STORE_RETURN_IF_ERROR(
+    RADFARM_RETURN_IF_ERROR(
         db->QueryInt("PRAGMA max_page_count = " + std::to_string(options.max_pages)));
   }
-  STORE_RETURN_IF_ERROR(Migrate(*db));
+  RADFARM_RETURN_IF_ERROR(Migrate(*db));
   if (!options.now_ms) options.now_ms = SystemNowMs;
   return JobStore(std::move(*db), std::move(options.now_ms));
 }
@@ -105,13 +105,13 @@ Result<JobStore> JobStore::Open(const std::string& path, JobStoreOptions options
 
 Result<JobId> JobStore::SubmitJob(const JobSpec& spec) {
   Result<Transaction> transaction = Transaction::Begin(db_);
-  STORE_RETURN_IF_ERROR(transaction);
+  RADFARM_RETURN_IF_ERROR(transaction);
   // Checked here for a clearer message than the foreign key's "FOREIGN KEY constraint failed".
   Result<Statement> scene = db_.Prepare("SELECT 1 FROM scenes WHERE hash = ?1");
-  STORE_RETURN_IF_ERROR(scene);
+  RADFARM_RETURN_IF_ERROR(scene);
   scene->Bind(1, spec.scene_hash);
   Result<bool> found = scene->Step();
-  STORE_RETURN_IF_ERROR(found);
+  RADFARM_RETURN_IF_ERROR(found);
   if (!*found) {
     return Error{"job store " + path() + ": submit job '" + spec.name + "': scene " +
                  spec.scene_hash + " is not stored (PutScene first)"};
@@ -119,33 +119,33 @@ Result<JobId> JobStore::SubmitJob(const JobSpec& spec) {
   Result<Statement> insert = db_.Prepare(
       "INSERT INTO jobs (name, scene_hash, settings, seed, priority, state, submitted_at_ms) "
       "VALUES (?1, ?2, ?3, ?4, ?5, 'queued', ?6)");
-  STORE_RETURN_IF_ERROR(insert);
+  RADFARM_RETURN_IF_ERROR(insert);
   insert->Bind(1, spec.name)
       .Bind(2, spec.scene_hash)
       .Bind(3, spec.settings)
       .Bind(4, static_cast<int64_t>(spec.seed))
       .Bind(5, spec.priority)
       .Bind(6, now_ms_());
-  STORE_RETURN_IF_ERROR(insert->Run());
+  RADFARM_RETURN_IF_ERROR(insert->Run());
   JobId id = db_.LastInsertRowid();
-  STORE_RETURN_IF_ERROR(transaction->Commit());
+  RADFARM_RETURN_IF_ERROR(transaction->Commit());
   return id;
 }
 
 Result<std::vector<JobRecord>> JobStore::ListJobs() {
   Result<Statement> stmt =
       db_.Prepare("SELECT " + std::string(kJobColumns) + " FROM jobs ORDER BY id");
-  STORE_RETURN_IF_ERROR(stmt);
+  RADFARM_RETURN_IF_ERROR(stmt);
   return ReadJobs(*stmt);
 }
 
 Result<std::optional<JobRecord>> JobStore::GetJob(JobId id) {
   Result<Statement> stmt =
       db_.Prepare("SELECT " + std::string(kJobColumns) + " FROM jobs WHERE id = ?1");
-  STORE_RETURN_IF_ERROR(stmt);
+  RADFARM_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, id);
   Result<std::vector<JobRecord>> jobs = ReadJobs(*stmt);
-  STORE_RETURN_IF_ERROR(jobs);
+  RADFARM_RETURN_IF_ERROR(jobs);
   if (jobs->empty()) return std::optional<JobRecord>();
   return std::optional<JobRecord>(std::move(jobs->front()));
 }
@@ -159,9 +159,9 @@ Status JobStore::SetJobState(JobId id, JobState to, std::optional<std::string> e
     return Error{"job store: " + job_name + ": an error text only goes with failed or cancelled"};
   }
   Result<Transaction> transaction = Transaction::Begin(db_);
-  STORE_RETURN_IF_ERROR(transaction);
+  RADFARM_RETURN_IF_ERROR(transaction);
   Result<std::optional<JobRecord>> job = GetJob(id);
-  STORE_RETURN_IF_ERROR(job);
+  RADFARM_RETURN_IF_ERROR(job);
   if (!job->has_value()) return Error{"job store: " + job_name + " does not exist"};
   JobState from = (*job)->state;
   if (!IsAllowedTransition(from, to)) {
@@ -175,14 +175,14 @@ Status JobStore::SetJobState(JobId id, JobState to, std::optional<std::string> e
       "                 ELSE started_at_ms END,"
       " finished_at_ms = CASE WHEN ?5 THEN ?4 ELSE finished_at_ms END"
       " WHERE id = ?1");
-  STORE_RETURN_IF_ERROR(update);
+  RADFARM_RETURN_IF_ERROR(update);
   update->Bind(1, id).Bind(2, JobStateName(to)).Bind(4, now).Bind(5, int64_t{IsTerminal(to)});
   if (error) {
     update->Bind(3, *error);
   } else {
     update->BindNull(3);
   }
-  STORE_RETURN_IF_ERROR(update->Run());
+  RADFARM_RETURN_IF_ERROR(update->Run());
   return transaction->Commit();
 }
 
@@ -190,7 +190,7 @@ Result<std::vector<JobRecord>> JobStore::NextRunnableJobs(int limit) {
   Result<Statement> stmt = db_.Prepare("SELECT " + std::string(kJobColumns) +
                                        " FROM jobs WHERE state = 'queued'"
                                        " ORDER BY priority DESC, submitted_at_ms, id LIMIT ?1");
-  STORE_RETURN_IF_ERROR(stmt);
+  RADFARM_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, int64_t{limit});
   return ReadJobs(*stmt);
 }
@@ -199,19 +199,19 @@ Result<std::vector<JobRecord>> JobStore::NextRunnableJobs(int limit) {
 
 Status JobStore::PutScene(const std::string& hash, std::span<const uint8_t> geometry) {
   Result<Transaction> transaction = Transaction::Begin(db_);
-  STORE_RETURN_IF_ERROR(transaction);
+  RADFARM_RETURN_IF_ERROR(transaction);
   Result<Statement> insert = db_.Prepare(
       "INSERT INTO scenes (hash, geometry, size, stored_at_ms) VALUES (?1, ?2, ?3, ?4)"
       " ON CONFLICT (hash) DO NOTHING");
-  STORE_RETURN_IF_ERROR(insert);
+  RADFARM_RETURN_IF_ERROR(insert);
   insert->Bind(1, hash)
       .BindBlob(2, geometry)
       .Bind(3, static_cast<int64_t>(geometry.size()))
       .Bind(4, now_ms_());
-  STORE_RETURN_IF_ERROR(insert->Run());
+  RADFARM_RETURN_IF_ERROR(insert->Run());
   if (db_.Changes() == 0) {
     Result<std::optional<std::vector<uint8_t>>> stored = GetScene(hash);
-    STORE_RETURN_IF_ERROR(stored);
+    RADFARM_RETURN_IF_ERROR(stored);
     if (!stored->has_value() ||
         !std::equal((*stored)->begin(), (*stored)->end(), geometry.begin(), geometry.end())) {
       return Error{"job store: scene " + hash + " is already stored with different bytes"};
@@ -222,10 +222,10 @@ Status JobStore::PutScene(const std::string& hash, std::span<const uint8_t> geom
 
 Result<std::optional<std::vector<uint8_t>>> JobStore::GetScene(const std::string& hash) {
   Result<Statement> stmt = db_.Prepare("SELECT geometry FROM scenes WHERE hash = ?1");
-  STORE_RETURN_IF_ERROR(stmt);
+  RADFARM_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, hash);
   Result<bool> row = stmt->Step();
-  STORE_RETURN_IF_ERROR(row);
+  RADFARM_RETURN_IF_ERROR(row);
   if (!*row) return std::optional<std::vector<uint8_t>>();
   return std::optional<std::vector<uint8_t>>(stmt->Blob(0));
 }
@@ -239,7 +239,7 @@ Status JobStore::RecordAgentSeen(const std::string& name, const std::string& add
       " VALUES (?1, ?2, ?3, ?4, ?4)"
       " ON CONFLICT (name) DO UPDATE SET address = excluded.address,"
       " threads = excluded.threads, last_seen_ms = excluded.last_seen_ms");
-  STORE_RETURN_IF_ERROR(stmt);
+  RADFARM_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, name).Bind(2, address).Bind(3, int64_t{threads}).Bind(4, now_ms_());
   return stmt->Run();
 }
@@ -247,11 +247,11 @@ Status JobStore::RecordAgentSeen(const std::string& name, const std::string& add
 Result<std::vector<AgentRecord>> JobStore::ListAgents() {
   Result<Statement> stmt = db_.Prepare(
       "SELECT name, address, threads, first_seen_ms, last_seen_ms FROM agents ORDER BY name");
-  STORE_RETURN_IF_ERROR(stmt);
+  RADFARM_RETURN_IF_ERROR(stmt);
   std::vector<AgentRecord> agents;
   while (true) {
     Result<bool> row = stmt->Step();
-    STORE_RETURN_IF_ERROR(row);
+    RADFARM_RETURN_IF_ERROR(row);
     if (!*row) return agents;
     agents.push_back({stmt->Text(0), stmt->Text(1), static_cast<uint32_t>(stmt->Int(2)),
                       stmt->Int(3), stmt->Int(4)});
@@ -261,7 +261,7 @@ Result<std::vector<AgentRecord>> JobStore::ListAgents() {
 Status JobStore::AppendEvent(std::optional<JobId> job, EventLevel level, const std::string& text) {
   Result<Statement> stmt =
       db_.Prepare("INSERT INTO events (job_id, time_ms, level, text) VALUES (?1, ?2, ?3, ?4)");
-  STORE_RETURN_IF_ERROR(stmt);
+  RADFARM_RETURN_IF_ERROR(stmt);
   if (job) {
     stmt->Bind(1, *job);
   } else {
@@ -277,7 +277,7 @@ Result<std::vector<Event>> JobStore::ListEvents(std::optional<JobId> job, int li
       "SELECT id, job_id, time_ms, level, text FROM ("
       "  SELECT * FROM events WHERE job_id IS ?1 ORDER BY id DESC LIMIT ?2"
       ") ORDER BY id");
-  STORE_RETURN_IF_ERROR(stmt);
+  RADFARM_RETURN_IF_ERROR(stmt);
   if (job) {
     stmt->Bind(1, *job);
   } else {
@@ -287,7 +287,7 @@ Result<std::vector<Event>> JobStore::ListEvents(std::optional<JobId> job, int li
   std::vector<Event> events;
   while (true) {
     Result<bool> row = stmt->Step();
-    STORE_RETURN_IF_ERROR(row);
+    RADFARM_RETURN_IF_ERROR(row);
     if (!*row) return events;
     Event event;
     event.id = stmt->Int(0);

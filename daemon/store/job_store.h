@@ -25,8 +25,8 @@
 #include <string>
 #include <vector>
 
+#include "base/result.h"
 #include "core/progressive_solver.h"
-#include "core/result.h"
 #include "core/rgb.h"
 #include "daemon/store/database.h"
 #include "daemon/store/job_state.h"

@@ -1,9 +1,9 @@
 // JobStore: rounds and checkpoints (the rest is in job_store.cc).
 #include <utility>
 
+#include "base/result.h"
 #include "daemon/store/blob_codec.h"
 #include "daemon/store/job_store.h"
-#include "daemon/store/return_if_error.h"
 
 namespace radfarm::store {
 
@@ -17,7 +17,7 @@ Status JobStore::InsertRound(const RoundRecord& round, int64_t now) {
       " unshot_power = excluded.unshot_power, duration_seconds = excluded.duration_seconds,"
       " recorded_at_ms = excluded.recorded_at_ms, escaped_rays = excluded.escaped_rays,"
       " back_rays = excluded.back_rays");
-  STORE_RETURN_IF_ERROR(stmt);
+  RADFARM_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, round.job)
       .Bind(2, int64_t{round.round})
       .Bind(3, int64_t{round.shooters})
@@ -38,12 +38,12 @@ Result<std::vector<RoundRecord>> JobStore::ListRounds(JobId job) {
       "SELECT job_id, round, shooters, rays, unshot_fraction, unshot_power, duration_seconds,"
       " escaped_rays, back_rays"
       " FROM rounds WHERE job_id = ?1 ORDER BY round");
-  STORE_RETURN_IF_ERROR(stmt);
+  RADFARM_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, job);
   std::vector<RoundRecord> rounds;
   while (true) {
     Result<bool> row = stmt->Step();
-    STORE_RETURN_IF_ERROR(row);
+    RADFARM_RETURN_IF_ERROR(row);
     if (!*row) return rounds;
     rounds.push_back({stmt->Int(0), static_cast<uint32_t>(stmt->Int(1)),
                       static_cast<uint32_t>(stmt->Int(2)), static_cast<uint64_t>(stmt->Int(3)),
@@ -70,13 +70,13 @@ Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& chec
   int64_t now = now_ms_();
 
   Result<Transaction> transaction = Transaction::Begin(db_);
-  STORE_RETURN_IF_ERROR(transaction);
-  STORE_RETURN_IF_ERROR(InsertRound(round, now));
+  RADFARM_RETURN_IF_ERROR(transaction);
+  RADFARM_RETURN_IF_ERROR(InsertRound(round, now));
   Result<Statement> stmt = db_.Prepare(
       "INSERT OR REPLACE INTO checkpoints (job_id, round, rounds_done, patches, radiosity, unshot,"
       " energy, created_at_ms, scene_hash, refine_points, stop_reason)"
       " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)");
-  STORE_RETURN_IF_ERROR(stmt);
+  RADFARM_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, checkpoint.job)
       .Bind(2, int64_t{checkpoint.round})
       .Bind(3, int64_t{checkpoint.rounds_done})
@@ -94,7 +94,7 @@ Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& chec
       stmt->BindNull(index);
     }
   }
-  STORE_RETURN_IF_ERROR(stmt->Run());
+  RADFARM_RETURN_IF_ERROR(stmt->Run());
   return transaction->Commit();
 }
 
@@ -103,21 +103,21 @@ Result<std::optional<Checkpoint>> JobStore::LoadLatestCheckpoint(JobId job) {
       "SELECT round, rounds_done, radiosity, unshot, energy, created_at_ms, scene_hash,"
       " refine_points, stop_reason FROM checkpoints"
       " WHERE job_id = ?1 ORDER BY round DESC LIMIT 1");
-  STORE_RETURN_IF_ERROR(stmt);
+  RADFARM_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, job);
   Result<bool> row = stmt->Step();
-  STORE_RETURN_IF_ERROR(row);
+  RADFARM_RETURN_IF_ERROR(row);
   if (!*row) return std::optional<Checkpoint>();
   Checkpoint checkpoint;
   checkpoint.job = job;
   checkpoint.round = static_cast<uint32_t>(stmt->Int(0));
   checkpoint.rounds_done = static_cast<uint32_t>(stmt->Int(1));
   Result<std::vector<Rgb>> radiosity = DecodeRgbs(stmt->Blob(2));
-  STORE_RETURN_IF_ERROR(radiosity);
+  RADFARM_RETURN_IF_ERROR(radiosity);
   Result<std::vector<Rgb>> unshot = DecodeRgbs(stmt->Blob(3));
-  STORE_RETURN_IF_ERROR(unshot);
+  RADFARM_RETURN_IF_ERROR(unshot);
   Result<EnergyAccount> energy = DecodeEnergy(stmt->Blob(4));
-  STORE_RETURN_IF_ERROR(energy);
+  RADFARM_RETURN_IF_ERROR(energy);
   checkpoint.radiosity = std::move(*radiosity);
   checkpoint.unshot = std::move(*unshot);
   checkpoint.energy = *energy;
@@ -131,10 +131,10 @@ Result<std::optional<Checkpoint>> JobStore::LoadLatestCheckpoint(JobId job) {
 Result<std::optional<std::string>> JobStore::LoadLatestStopReason(JobId job) {
   Result<Statement> stmt = db_.Prepare(
       "SELECT stop_reason FROM checkpoints WHERE job_id = ?1 ORDER BY round DESC LIMIT 1");
-  STORE_RETURN_IF_ERROR(stmt);
+  RADFARM_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, job);
   Result<bool> row = stmt->Step();
-  STORE_RETURN_IF_ERROR(row);
+  RADFARM_RETURN_IF_ERROR(row);
   if (!*row || stmt->IsNull(0)) return std::optional<std::string>();
   return std::optional<std::string>(stmt->Text(0));
 }
@@ -144,17 +144,17 @@ Status JobStore::PruneCheckpoints(JobId job, int keep_last) {
   Result<Statement> stmt = db_.Prepare(
       "DELETE FROM checkpoints WHERE job_id = ?1 AND round NOT IN ("
       "  SELECT round FROM checkpoints WHERE job_id = ?1 ORDER BY round DESC LIMIT ?2)");
-  STORE_RETURN_IF_ERROR(stmt);
+  RADFARM_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, job).Bind(2, int64_t{keep_last});
   return stmt->Run();
 }
 
 Result<int64_t> JobStore::CountCheckpoints(JobId job) {
   Result<Statement> stmt = db_.Prepare("SELECT count(*) FROM checkpoints WHERE job_id = ?1");
-  STORE_RETURN_IF_ERROR(stmt);
+  RADFARM_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, job);
   Result<bool> row = stmt->Step();
-  STORE_RETURN_IF_ERROR(row);
+  RADFARM_RETURN_IF_ERROR(row);
   return stmt->Int(0);
 }
 

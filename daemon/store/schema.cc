@@ -4,6 +4,8 @@
 #include <array>
 #include <string>
 
+#include "base/result.h"
+
 namespace radfarm::store {
 namespace {
 
@@ -96,23 +98,23 @@ constexpr std::array<Migration, 4> kMigrations = {{{1, kV1}, {2, kV2}, {3, kV3},
 
 Result<int64_t> FileBytes(Database& db) {
   Result<int64_t> pages = db.QueryInt("PRAGMA page_count");
-  if (!pages.ok()) return pages;
+  RADFARM_RETURN_IF_ERROR(pages);
   Result<int64_t> page_size = db.QueryInt("PRAGMA page_size");
-  if (!page_size.ok()) return page_size;
+  RADFARM_RETURN_IF_ERROR(page_size);
   return *pages * *page_size;
 }
 
 Status CheckIntegrity(Database& db, const SchemaCheckOptions& options) {
   Result<int64_t> bytes = FileBytes(db);
-  if (!bytes.ok()) return Error{bytes.error()};
+  RADFARM_RETURN_IF_ERROR(bytes);
   bool full = *bytes <= options.full_check_max_bytes;
   Result<Statement> check =
       db.Prepare(full ? "PRAGMA integrity_check(20)" : "PRAGMA quick_check(20)");
-  if (!check.ok()) return Error{check.error()};
+  RADFARM_RETURN_IF_ERROR(check);
   std::string problems;
   while (true) {
     Result<bool> row = check->Step();
-    if (!row.ok()) return Error{row.error()};
+    RADFARM_RETURN_IF_ERROR(row);
     if (!*row) break;
     std::string line = check->Text(0);
     if (line == "ok") continue;
@@ -134,9 +136,9 @@ int LatestSchemaVersion() { return kMigrations.back().version; }
 Result<int> CheckDatabase(Database& db, const SchemaCheckOptions& options) {
   // The first read of the header: garbage gives SQLITE_NOTADB here.
   Result<int64_t> app_id = db.QueryInt("PRAGMA application_id");
-  if (!app_id.ok()) return Error{app_id.error()};
+  RADFARM_RETURN_IF_ERROR(app_id);
   Result<int64_t> objects = db.QueryInt("SELECT count(*) FROM sqlite_schema");
-  if (!objects.ok()) return Error{objects.error()};
+  RADFARM_RETURN_IF_ERROR(objects);
   if (*app_id != kApplicationId && (*app_id != 0 || *objects != 0)) {
     return Error{"job store " + db.path() +
                  ": a SQLite database of another program (application_id " +
@@ -144,42 +146,42 @@ Result<int> CheckDatabase(Database& db, const SchemaCheckOptions& options) {
                  "); refusing to touch it"};
   }
   Result<int64_t> version = db.QueryInt("PRAGMA user_version");
-  if (!version.ok()) return Error{version.error()};
+  RADFARM_RETURN_IF_ERROR(version);
   if (*version > LatestSchemaVersion()) {
     return Error{"job store " + db.path() + ": schema version " + std::to_string(*version) +
                  " is newer than this build knows (" + std::to_string(LatestSchemaVersion()) +
                  "); upgrade radfarm, the file was left untouched"};
   }
   Status integrity = CheckIntegrity(db, options);
-  if (!integrity.ok()) return Error{integrity.error()};
+  RADFARM_RETURN_IF_ERROR(integrity);
   return static_cast<int>(*version);
 }
 
 Status Migrate(Database& db, int target) {
   if (target < 0) target = LatestSchemaVersion();
   Result<int64_t> current = db.QueryInt("PRAGMA user_version");
-  if (!current.ok()) return Error{current.error()};
+  RADFARM_RETURN_IF_ERROR(current);
   for (const Migration& migration : kMigrations) {
     if (migration.version <= *current || migration.version > target) continue;
     Result<Transaction> transaction = Transaction::Begin(db);
-    if (!transaction.ok()) return Error{transaction.error()};
+    RADFARM_RETURN_IF_ERROR(transaction);
     // Read again under the write lock: another process opening the same new file (`radfarm
     // render --db` and a reader of its store) may have migrated it since the read above.
     Result<int64_t> locked = db.QueryInt("PRAGMA user_version");
-    if (!locked.ok()) return Error{locked.error()};
+    RADFARM_RETURN_IF_ERROR(locked);
     if (*locked >= migration.version) continue;  // the transaction rolls back: nothing written
     std::string what = "migration to schema version " + std::to_string(migration.version);
     Status applied = db.Exec(migration.sql, what);
-    if (!applied.ok()) return applied;
+    RADFARM_RETURN_IF_ERROR(applied);
     // PRAGMAs take no bound parameters; both values are this build's own constants.
     std::string pragmas = "PRAGMA user_version = " + std::to_string(migration.version) + ";";
     if (migration.version == 1) {
       pragmas += "PRAGMA application_id = " + std::to_string(kApplicationId) + ";";
     }
     Status bumped = db.Exec(pragmas, what);
-    if (!bumped.ok()) return bumped;
+    RADFARM_RETURN_IF_ERROR(bumped);
     Status committed = transaction->Commit();
-    if (!committed.ok()) return committed;
+    RADFARM_RETURN_IF_ERROR(committed);
   }
   return Ok{};
 }

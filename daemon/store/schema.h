@@ -18,7 +18,7 @@
 #include <span>
 #include <string_view>
 
-#include "core/result.h"
+#include "base/result.h"
 #include "daemon/store/database.h"
 
 namespace radfarm::store {

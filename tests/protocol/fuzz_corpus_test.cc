@@ -8,6 +8,7 @@
 #include <iterator>
 #include <set>
 
+#include "base/result.h"
 #include "protocol/frame_codec.h"
 #include "protocol/frame_decoder.h"
 
@@ -27,10 +28,10 @@ Result<std::vector<Message>> DecodeBytewise(const std::vector<uint8_t>& bytes) {
   FrameDecoder decoder;
   std::vector<Message> out;
   for (uint8_t b : bytes) {
-    if (Status s = decoder.Feed(std::span(&b, 1)); !s) return Error{s.error()};
+    RADFARM_RETURN_IF_ERROR(decoder.Feed(std::span(&b, 1)));
     for (;;) {
       Result<std::optional<DecodedFrame>> next = decoder.Next();
-      if (!next) return Error{next.error()};
+      RADFARM_RETURN_IF_ERROR(next);
       if (!*next) break;
       out.push_back(std::move((*next)->message));
     }

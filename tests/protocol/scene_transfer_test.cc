@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "base/result.h"
 #include "protocol/frame_codec.h"
 
 namespace radfarm::protocol {
@@ -25,10 +26,10 @@ Status Fetch(const std::vector<uint8_t>& blob, SceneAssembler* assembler, int wi
     if (in_flight.empty()) return Error{"stalled"};
     Result<SceneChunkMsg> chunk = MakeSceneChunk(blob, in_flight.front());
     in_flight.erase(in_flight.begin());
-    if (!chunk) return Error{chunk.error()};
+    RADFARM_RETURN_IF_ERROR(chunk);
     Result<DecodedFrame> wire = DecodeFrame(EncodeFrame(*chunk));
-    if (!wire) return Error{wire.error()};
-    if (Status s = assembler->Add(std::get<SceneChunkMsg>(wire->message)); !s) return s;
+    RADFARM_RETURN_IF_ERROR(wire);
+    RADFARM_RETURN_IF_ERROR(assembler->Add(std::get<SceneChunkMsg>(wire->message)));
   }
   return Ok{};
 }

@@ -6,12 +6,16 @@
 #include <string>
 #include <string_view>
 
-#include "core/result.h"
+#include "base/result.h"
 
 namespace radfarm {
 
 // Writes `contents` to `path` atomically. Errors name `path` and the failing step; on error no
 // temporary file is left behind and an existing file at `path` is untouched.
 Status WriteFileAtomically(const std::string& path, std::string_view contents);
+
+// Whether a file name (without its directory) is one of WriteFileAtomically's temporaries
+// ("NAME.tmp.PID.N"), e.g. left behind by a writer that crashed, for cleanups at start-up.
+bool IsAtomicFileTemporary(std::string_view name);
 
 }  // namespace radfarm

@@ -1,4 +1,4 @@
-#include "output/atomic_file.h"
+#include "base/atomic_file.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -15,11 +15,14 @@ Error Fail(const std::string& path, const char* step, int error_number) {
   return Error{path + ": " + step + ": " + std::strerror(error_number)};
 }
 
+constexpr std::string_view kTemporaryMarker = ".tmp.";
+
 // Unique within the process via the counter and across processes via the pid; O_EXCL below makes a
 // collision with a stale file an error instead of a silent overwrite.
 std::string TemporaryName(const std::string& path) {
   static std::atomic<unsigned long> counter{0};
-  return path + ".tmp." + std::to_string(getpid()) + "." + std::to_string(counter++);
+  return path + std::string(kTemporaryMarker) + std::to_string(getpid()) + "." +
+         std::to_string(counter++);
 }
 
 Status WriteAll(int fd, std::string_view contents) {
@@ -76,6 +79,19 @@ Status WriteFileAtomically(const std::string& path, std::string_view contents) {
   }
   SyncDirectory(path);
   return Ok{};
+}
+
+bool IsAtomicFileTemporary(std::string_view name) {
+  const size_t marker = name.rfind(kTemporaryMarker);
+  if (marker == std::string_view::npos || marker == 0) return false;
+  // ".tmp." then the pid, a dot and the counter: digits and exactly one dot.
+  const std::string_view tail = name.substr(marker + kTemporaryMarker.size());
+  const size_t dot = tail.find('.');
+  if (dot == 0 || dot == std::string_view::npos || dot + 1 == tail.size()) return false;
+  for (size_t i = 0; i < tail.size(); ++i) {
+    if (i != dot && (tail[i] < '0' || tail[i] > '9')) return false;
+  }
+  return true;
 }
 
 }  // namespace radfarm

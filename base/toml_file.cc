@@ -1,7 +1,7 @@
-#include "input/toml_file.h"
+#include "base/toml_file.h"
 
-#include "input/diagnostic.h"
-#include "input/text_file.h"
+#include "base/diagnostic.h"
+#include "base/text_file.h"
 
 namespace radfarm {
 

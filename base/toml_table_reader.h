@@ -1,18 +1,19 @@
-// Typed, range-checked reads of one TOML table's keys, for the job file. The reader remembers which
-// keys it read, so that every key it was never asked for can be reported as unknown. Messages name
-// the file, the line and the dotted key: "job.toml:7: 'solver.tolerance' must be in (0, 1), got 2".
+// Typed, range-checked reads of one TOML table's keys, for the job file and the daemons' config
+// files. The reader remembers which keys it read, so that every key it was never asked for can be
+// reported as unknown. Messages name the file, the line and the dotted key:
+// "job.toml:7: 'solver.tolerance' must be in (0, 1), got 2".
 #pragma once
 
 #include <toml++/toml.h>
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <set>
 #include <string>
 #include <string_view>
 
-#include "core/result.h"
-#include "core/vec3.h"
+#include "base/result.h"
 
 namespace radfarm {
 
@@ -56,7 +57,17 @@ class TomlTableReader {
   }
   Status String(std::string_view key, std::string* out, bool* present = nullptr);
   Status Bool(std::string_view key, bool* out);
-  Status Vector(std::string_view key, Vec3* out, bool* present = nullptr);
+  Status Triple(std::string_view key, std::array<double, 3>* out, bool* present = nullptr);
+  // A Triple into any type made from three doubles (e.g. Vec3).
+  template <typename V>
+  Status Vector(std::string_view key, V* out, bool* present = nullptr) {
+    std::array<double, 3> xyz{};
+    bool found = false;
+    Status s = Triple(key, &xyz, &found);
+    if (present != nullptr) *present = found;
+    if (s && found) *out = V(xyz[0], xyz[1], xyz[2]);
+    return s;
+  }
   // The sub-table at `key`, or null when absent.
   Result<const toml::table*> Table(std::string_view key);
 
@@ -76,5 +87,8 @@ class TomlTableReader {
   std::string prefix_;
   std::set<std::string, std::less<>> read_;
 };
+
+// "a string", "an integer", "a real number", ...: what a node is, for "must be X, not Y".
+std::string TomlTypeName(const toml::node& node);
 
 }  // namespace radfarm

@@ -1,31 +1,12 @@
-#include "input/toml_table_reader.h"
+#include "base/toml_table_reader.h"
 
 #include <cmath>
 #include <sstream>
 
-#include "input/diagnostic.h"
+#include "base/diagnostic.h"
 
 namespace radfarm {
 namespace {
-
-std::string TypeName(const toml::node& node) {
-  switch (node.type()) {
-    case toml::node_type::table:
-      return "a table";
-    case toml::node_type::array:
-      return "an array";
-    case toml::node_type::string:
-      return "a string";
-    case toml::node_type::integer:
-      return "an integer";
-    case toml::node_type::floating_point:
-      return "a real number";
-    case toml::node_type::boolean:
-      return "a boolean";
-    default:
-      return "a date or time";
-  }
-}
 
 std::string FormatNumber(double x) {
   std::ostringstream text;
@@ -43,6 +24,25 @@ std::optional<double> AsReal(const toml::node& node) {
 }
 
 }  // namespace
+
+std::string TomlTypeName(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a real number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    default:
+      return "a date or time";
+  }
+}
 
 bool Interval::Contains(double x) const {
   const bool above = lo_open ? x > lo : x >= lo;
@@ -72,7 +72,7 @@ Status TomlTableReader::Real(std::string_view key, Interval range, double* out, 
   if (present != nullptr) *present = node != nullptr;
   if (node == nullptr) return Ok{};
   std::optional<double> value = AsReal(*node);
-  if (!value) return ErrorFor(key, "must be a number, not " + TypeName(*node));
+  if (!value) return ErrorFor(key, "must be a number, not " + TomlTypeName(*node));
   if (!std::isfinite(*value)) return ErrorFor(key, "must be finite");
   if (!range.Contains(*value)) {
     return ErrorFor(key, "must be " + range.Describe() + ", got " + FormatNumber(*value));
@@ -87,7 +87,7 @@ Status TomlTableReader::Integer(std::string_view key, int64_t lo, int64_t hi, in
   if (present != nullptr) *present = node != nullptr;
   if (node == nullptr) return Ok{};
   const auto* value = node->as_integer();
-  if (value == nullptr) return ErrorFor(key, "must be an integer, not " + TypeName(*node));
+  if (value == nullptr) return ErrorFor(key, "must be an integer, not " + TomlTypeName(*node));
   if (value->get() < lo || value->get() > hi) {
     const std::string range = hi == std::numeric_limits<int64_t>::max()
                                   ? ">= " + std::to_string(lo)
@@ -103,7 +103,7 @@ Status TomlTableReader::String(std::string_view key, std::string* out, bool* pre
   if (present != nullptr) *present = node != nullptr;
   if (node == nullptr) return Ok{};
   const auto* value = node->as_string();
-  if (value == nullptr) return ErrorFor(key, "must be a string, not " + TypeName(*node));
+  if (value == nullptr) return ErrorFor(key, "must be a string, not " + TomlTypeName(*node));
   *out = value->get();
   return Ok{};
 }
@@ -112,17 +112,17 @@ Status TomlTableReader::Bool(std::string_view key, bool* out) {
   const toml::node* node = Find(key);
   if (node == nullptr) return Ok{};
   const auto* value = node->as_boolean();
-  if (value == nullptr) return ErrorFor(key, "must be true or false, not " + TypeName(*node));
+  if (value == nullptr) return ErrorFor(key, "must be true or false, not " + TomlTypeName(*node));
   *out = value->get();
   return Ok{};
 }
 
-Status TomlTableReader::Vector(std::string_view key, Vec3* out, bool* present) {
+Status TomlTableReader::Triple(std::string_view key, std::array<double, 3>* out, bool* present) {
   const toml::node* node = Find(key);
   if (present != nullptr) *present = node != nullptr;
   if (node == nullptr) return Ok{};
   const toml::array* array = node->as_array();
-  double xyz[3] = {0, 0, 0};
+  std::array<double, 3> xyz{};
   bool ok = array != nullptr && array->size() == 3;
   for (size_t i = 0; ok && i < 3; ++i) {
     std::optional<double> value = AsReal(*array->get(i));
@@ -130,14 +130,14 @@ Status TomlTableReader::Vector(std::string_view key, Vec3* out, bool* present) {
     if (ok) xyz[i] = *value;
   }
   if (!ok) return ErrorFor(key, "must be an array of 3 finite numbers, e.g. [0, 1, 0]");
-  *out = Vec3(xyz[0], xyz[1], xyz[2]);
+  *out = xyz;
   return Ok{};
 }
 
 Result<const toml::table*> TomlTableReader::Table(std::string_view key) {
   const toml::node* node = Find(key);
   if (node == nullptr) return static_cast<const toml::table*>(nullptr);
-  if (!node->is_table()) return ErrorFor(key, "must be a table, not " + TypeName(*node));
+  if (!node->is_table()) return ErrorFor(key, "must be a table, not " + TomlTypeName(*node));
   return node->as_table();
 }
 

@@ -1,4 +1,4 @@
-#include "output/atomic_file.h"
+#include "base/atomic_file.h"
 
 #include <gtest/gtest.h>
 
@@ -39,6 +39,16 @@ TEST(AtomicFileTest, RenameFailureLeavesNoTemporary) {
   ASSERT_FALSE(status.ok());
   EXPECT_NE(status.error().find(sub), std::string::npos) << status.error();
   EXPECT_EQ(dir.Entries(), std::vector<std::string>{"sub"});
+}
+
+TEST(AtomicFileTest, KnowsItsTemporaryNames) {
+  EXPECT_TRUE(IsAtomicFileTemporary("abc.scene.tmp.123.4"));
+  EXPECT_TRUE(IsAtomicFileTemporary("image.png.tmp.9.0"));
+  EXPECT_FALSE(IsAtomicFileTemporary("abc.scene"));
+  EXPECT_FALSE(IsAtomicFileTemporary(".tmp.1.2"));
+  EXPECT_FALSE(IsAtomicFileTemporary("a.tmp.12"));
+  EXPECT_FALSE(IsAtomicFileTemporary("a.tmp.1.2x"));
+  EXPECT_FALSE(IsAtomicFileTemporary("a.tmp.1."));
 }
 
 TEST(AtomicFileTest, EmptyPathIsAnError) { EXPECT_FALSE(WriteFileAtomically("", "x").ok()); }

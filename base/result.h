@@ -1,5 +1,17 @@
 // Result<T>: a value or an error message, for expected failures (bad input, unreadable files).
 // Messages carry their own location ("scene.obj:12: ..."), so callers print them as they are.
+//
+// A function passes a callee's failure up unchanged with RADFARM_RETURN_IF_ERROR:
+//
+//   Result<Scene> Load(const std::string& path) {
+//     Result<std::string> text = ReadTextFile(path);
+//     RADFARM_RETURN_IF_ERROR(text);           // returns Error{text.error()} on failure
+//     RADFARM_RETURN_IF_ERROR(Check(*text));   // any expression giving a Status or Result<U>
+//     ...
+//   }
+//
+// It is the one early-return helper: an error that gains words on the way up ("job 3: " + ...) is
+// written out as `if (!x) return Error{"job 3: " + x.error()};`.
 #pragma once
 
 #include <optional>
@@ -39,3 +51,12 @@ struct Ok {};
 using Status = Result<Ok>;
 
 }  // namespace radfarm
+
+// If `expr` (a Status or Result<T>, evaluated once) holds an error, returns Error{its message} from
+// the enclosing function, whose return type is then any Result<U> or Status.
+#define RADFARM_RETURN_IF_ERROR(expr)                                  \
+  do {                                                                 \
+    if (const auto& radfarm_status_ = (expr); !radfarm_status_.ok()) { \
+      return ::radfarm::Error{radfarm_status_.error()};                \
+    }                                                                  \
+  } while (false)

@@ -1,4 +1,4 @@
-#include "input/text_file.h"
+#include "base/text_file.h"
 
 #include <cerrno>
 #include <charconv>
@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "input/diagnostic.h"
+#include "base/diagnostic.h"
 
 namespace radfarm {
 

@@ -1,4 +1,4 @@
-#include "input/diagnostic.h"
+#include "base/diagnostic.h"
 
 namespace radfarm {
 
