@@ -7,8 +7,9 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <random>
+#include <string_view>
 
+#include "base/atomic_file.h"
 #include "base/unique_fd.h"
 #include "protocol/limits.h"
 #include "protocol/scene_transfer.h"
@@ -19,19 +20,9 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kSuffix = ".scene";
-constexpr const char* kTempMarker = ".tmp-";
+constexpr const char* kOldTempMarker = ".tmp-";
 
 std::string Errno(const std::string& what) { return what + ": " + std::strerror(errno); }
-
-Status WriteAll(int fd, std::span<const uint8_t> bytes, const std::string& path) {
-  while (!bytes.empty()) {
-    const ssize_t n = write(fd, bytes.data(), bytes.size());
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return Error{Errno("write " + path)};
-    bytes = bytes.subspan(static_cast<size_t>(n));
-  }
-  return Ok{};
-}
 
 Result<std::vector<uint8_t>> ReadAll(int fd, const std::string& path) {
   struct stat info {};
@@ -52,9 +43,9 @@ Result<std::vector<uint8_t>> ReadAll(int fd, const std::string& path) {
   return blob;
 }
 
-std::string TempSuffix() {
-  std::random_device random;
-  return std::string(kTempMarker) + std::to_string(getpid()) + "-" + std::to_string(random());
+// A crashed writer's temporary: WriteFileAtomically's, or one of older agents (".tmp-PID-N").
+bool IsTemporary(const std::string& name) {
+  return IsAtomicFileTemporary(name) || name.find(kOldTempMarker) != std::string::npos;
 }
 
 }  // namespace
@@ -68,7 +59,7 @@ Result<SceneStore> SceneStore::Open(const std::string& state_dir) {
     return Error{Errno("state directory " + scenes.string())};
   }
   for (const fs::directory_entry& entry : fs::directory_iterator(scenes, error)) {
-    if (entry.path().filename().string().find(kTempMarker) != std::string::npos) {
+    if (IsTemporary(entry.path().filename().string())) {
       fs::remove(entry.path(), error);  // a crashed writer's; a live one would still be renaming
     }
   }
@@ -108,24 +99,8 @@ SceneStore::Loaded SceneStore::Load(const protocol::SceneHash& hash) const {
 }
 
 Status SceneStore::Save(const protocol::SceneHash& hash, std::span<const uint8_t> blob) const {
-  const std::string path = PathFor(hash);
-  const std::string temp = path + TempSuffix();
-  UniqueFd fd(open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644));
-  if (!fd.valid()) return Error{Errno("create " + temp)};
-  Status written = WriteAll(fd.get(), blob, temp);
-  if (written && fsync(fd.get()) != 0) written = Error{Errno("fsync " + temp)};
-  if (written && fd.Close() != 0) written = Error{Errno("close " + temp)};
-  if (written && rename(temp.c_str(), path.c_str()) != 0) {
-    written = Error{Errno("rename " + temp + " to " + path)};
-  }
-  if (!written) {
-    unlink(temp.c_str());
-    return written;
-  }
-  // The rename is durable once the directory is synced.
-  UniqueFd dir(open(scenes_dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
-  if (dir.valid()) fsync(dir.get());
-  return Ok{};
+  return WriteFileAtomically(
+      PathFor(hash), std::string_view(reinterpret_cast<const char*>(blob.data()), blob.size()));
 }
 
 }  // namespace radfarm::agent

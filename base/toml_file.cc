@@ -25,7 +25,7 @@ Result<toml::table> ParseToml(const std::string& path, const std::string& text) 
 
 Result<toml::table> ReadTomlFile(const std::string& path) {
   Result<std::string> text = ReadTextFile(path);
-  if (!text) return Error{text.error()};
+  RADFARM_RETURN_IF_ERROR(text);
   return ParseToml(path, *text);
 }
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
+#include "base/atomic_file.h"
 #include "bench/benchmarks_link.h"
 #include "bench/conclusions.h"
 #include "bench/patch_error.h"
@@ -228,16 +228,8 @@ std::string RenderReport(const BenchReport& r) {
 }
 
 std::string WriteReport(const BenchReport& report, const std::string& path) {
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << RenderReport(report);
-    if (!out.flush()) return "cannot write " + temporary;
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) return "cannot rename " + temporary + " to " + path + ": " + ec.message();
-  return "";
+  Status written = WriteFileAtomically(path, RenderReport(report));
+  return written ? "" : written.error();
 }
 
 }  // namespace radfarm::bench

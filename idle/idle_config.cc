@@ -1,9 +1,11 @@
 #include "idle/idle_config.h"
 
+#include <limits>
 #include <optional>
 #include <sstream>
 
 #include "base/result.h"
+#include "base/toml_table_reader.h"
 #include "idle/schedule.h"
 
 namespace radfarm::idle {
@@ -41,73 +43,6 @@ std::optional<std::string> CheckSchedule(const std::string& value) {
   return "is not a schedule: " + schedule.error();
 }
 
-// Reads the keys of one table, remembering where each was, for located messages.
-class KeyReader {
- public:
-  KeyReader(const toml::table& table, std::string_view file, std::string_view prefix)
-      : table_(table), file_(file), prefix_(prefix) {}
-
-  Error At(const toml::node& node, std::string_view key, const std::string& what) const {
-    std::string location(file_);
-    if (node.source().begin.line > 0) {
-      location += ":" + std::to_string(node.source().begin.line);
-    }
-    return Error{location + ": '" + prefix_ + std::string(key) + "' " + what};
-  }
-
-  // Type errors name the expected type; absent keys leave *out alone.
-  Status Bool(std::string_view key, bool* out) const {
-    const toml::node* node = table_.get(key);
-    if (!node) return Ok{};
-    if (!node->is_boolean()) return At(*node, key, "must be true or false");
-    *out = node->as_boolean()->get();
-    return Ok{};
-  }
-
-  Status Integer(std::string_view key, int64_t* out, bool* present) const {
-    const toml::node* node = table_.get(key);
-    *present = node != nullptr;
-    if (!node) return Ok{};
-    if (!node->is_integer()) return At(*node, key, "must be an integer");
-    *out = node->as_integer()->get();
-    return Ok{};
-  }
-
-  Status Real(std::string_view key, double* out, bool* present) const {
-    const toml::node* node = table_.get(key);
-    *present = node != nullptr;
-    if (!node) return Ok{};
-    if (node->is_integer()) {
-      *out = static_cast<double>(node->as_integer()->get());
-    } else if (node->is_floating_point()) {
-      *out = node->as_floating_point()->get();
-    } else {
-      return At(*node, key, "must be a number");
-    }
-    return Ok{};
-  }
-
-  Status String(std::string_view key, std::string* out, bool* present) const {
-    const toml::node* node = table_.get(key);
-    *present = node != nullptr;
-    if (!node) return Ok{};
-    if (!node->is_string()) return At(*node, key, "must be a string");
-    *out = node->as_string()->get();
-    return Ok{};
-  }
-
-  // The value's range check, located at its key.
-  Status Check(std::string_view key, const std::optional<std::string>& problem) const {
-    if (!problem) return Ok{};
-    return At(*table_.get(key), key, *problem);
-  }
-
- private:
-  const toml::table& table_;
-  std::string_view file_;
-  std::string prefix_;
-};
-
 }  // namespace
 
 Status Validate(const IdleConfig& config, std::string_view prefix) {
@@ -127,39 +62,45 @@ Status Validate(const IdleConfig& config, std::string_view prefix) {
 
 Result<IdleConfig> ParseIdleConfig(const toml::table& table, std::string_view file,
                                    std::string_view prefix) {
-  const KeyReader reader(table, file, prefix);
+  const std::string path(file);
+  TomlTableReader reader(path, table, std::string(prefix));
   for (const auto& [key, node] : table) {
     const std::string_view name = key.str();
     if (name != "enabled" && name != "user_idle_minutes" && name != "max_other_cpu" &&
         name != "schedule" && name != "poll_seconds") {
-      return reader.At(node, name,
-                       "is not a key of this table (enabled, user_idle_minutes, "
-                       "max_other_cpu, schedule, poll_seconds)");
+      return reader.ErrorFor(name,
+                             "is not a key of this table (enabled, user_idle_minutes, "
+                             "max_other_cpu, schedule, poll_seconds)");
     }
   }
+  // The range checks, located at their keys when present.
+  const auto check = [&](std::string_view key, bool present,
+                         const std::optional<std::string>& problem) -> Status {
+    if (!present || !problem) return Ok{};
+    return reader.ErrorFor(key, *problem);
+  };
 
   IdleConfig config;
   bool present = false;
   RADFARM_RETURN_IF_ERROR(reader.Bool("enabled", &config.enabled));
 
   int64_t minutes = config.user_idle_minutes;
-  RADFARM_RETURN_IF_ERROR(reader.Integer("user_idle_minutes", &minutes, &present));
-  RADFARM_RETURN_IF_ERROR(
-      reader.Check("user_idle_minutes", present ? CheckUserIdleMinutes(minutes) : std::nullopt));
+  RADFARM_RETURN_IF_ERROR(reader.Integer("user_idle_minutes", std::numeric_limits<int64_t>::min(),
+                                         std::numeric_limits<int64_t>::max(), &minutes, &present));
+  RADFARM_RETURN_IF_ERROR(check("user_idle_minutes", present, CheckUserIdleMinutes(minutes)));
   config.user_idle_minutes = static_cast<int>(minutes);
 
-  RADFARM_RETURN_IF_ERROR(reader.Real("max_other_cpu", &config.max_other_cpu, &present));
-  RADFARM_RETURN_IF_ERROR(reader.Check(
-      "max_other_cpu", present ? CheckMaxOtherCpu(config.max_other_cpu) : std::nullopt));
+  RADFARM_RETURN_IF_ERROR(
+      reader.Real("max_other_cpu", Interval::Any(), &config.max_other_cpu, &present));
+  RADFARM_RETURN_IF_ERROR(check("max_other_cpu", present, CheckMaxOtherCpu(config.max_other_cpu)));
 
   RADFARM_RETURN_IF_ERROR(reader.String("schedule", &config.schedule, &present));
-  RADFARM_RETURN_IF_ERROR(
-      reader.Check("schedule", present ? CheckSchedule(config.schedule) : std::nullopt));
+  RADFARM_RETURN_IF_ERROR(check("schedule", present, CheckSchedule(config.schedule)));
 
   int64_t poll = config.poll_seconds;
-  RADFARM_RETURN_IF_ERROR(reader.Integer("poll_seconds", &poll, &present));
-  RADFARM_RETURN_IF_ERROR(
-      reader.Check("poll_seconds", present ? CheckPollSeconds(poll) : std::nullopt));
+  RADFARM_RETURN_IF_ERROR(reader.Integer("poll_seconds", std::numeric_limits<int64_t>::min(),
+                                         std::numeric_limits<int64_t>::max(), &poll, &present));
+  RADFARM_RETURN_IF_ERROR(check("poll_seconds", present, CheckPollSeconds(poll)));
   config.poll_seconds = static_cast<int>(poll);
   return config;
 }

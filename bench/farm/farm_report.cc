@@ -6,6 +6,7 @@
 #include <functional>
 #include <sstream>
 
+#include "base/atomic_file.h"
 #include "bench/benchmarks_link.h"
 #include "bench/farm/scaling_suite.h"
 #include "bench/stopwatch.h"
@@ -333,15 +334,8 @@ std::string RenderFarmReport(const FarmBenchReport& r) {
 }
 
 std::string WriteFarmReport(const FarmBenchReport& report, const std::string& path) {
-  const std::string temp = path + ".tmp";
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    out << RenderFarmReport(report);
-    if (!out) return "cannot write " + temp;
-  }
-  std::error_code ec;
-  std::filesystem::rename(temp, path, ec);
-  return ec ? "cannot rename " + temp + " to " + path + ": " + ec.message() : "";
+  Status written = WriteFileAtomically(path, RenderFarmReport(report));
+  return written ? "" : written.error();
 }
 
 std::string LinkFromBenchmarks(const std::string& benchmarks_md) {
@@ -360,15 +354,8 @@ std::string LinkFromBenchmarks(const std::string& benchmarks_md) {
   } else {
     text.insert(end + 2, line);
   }
-  const std::string temp = benchmarks_md + ".tmp";
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    out << text;
-    if (!out) return "cannot write " + temp;
-  }
-  std::error_code ec;
-  std::filesystem::rename(temp, benchmarks_md, ec);
-  return ec ? "cannot rename " + temp + ": " + ec.message() : "";
+  Status written = WriteFileAtomically(benchmarks_md, text);
+  return written ? "" : written.error();
 }
 
 }  // namespace radfarm::bench

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
+#include "base/atomic_file.h"
 #include "bench/plot.h"
 
 namespace radfarm::bench {
@@ -400,8 +400,12 @@ void WriteAdaptiveReport(const ReportRun& run, const std::vector<StudyResult>& s
                                "their rays and seconds are those of the run that solved them)"
                              : "")
      << ".\n";
-  std::ofstream(run.out_dir + "/BENCHMARKS-adaptive.md") << md.str();
-  std::printf("wrote %s/BENCHMARKS-adaptive.md\n", run.out_dir.c_str());
+  const std::string path = run.out_dir + "/BENCHMARKS-adaptive.md";
+  if (Status written = WriteFileAtomically(path, md.str()); !written) {
+    std::fprintf(stderr, "%s\n", written.error().c_str());
+    return;
+  }
+  std::printf("wrote %s\n", path.c_str());
 }
 
 }  // namespace radfarm::bench

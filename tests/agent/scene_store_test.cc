@@ -58,12 +58,15 @@ TEST(SceneStoreTest, AFileWhoseHashIsNotItsNameIsDeleted) {
 TEST(SceneStoreTest, OpenRemovesTemporaryFilesOfACrashedWriter) {
   ScratchDir dir;
   ASSERT_TRUE(SceneStore::Open(dir.path()).ok());
-  const std::string stale = dir.File("scenes/abc.scene.tmp-123-456");
+  const std::string stale = dir.File("scenes/abc.scene.tmp.123.4");    // WriteFileAtomically's
+  const std::string older = dir.File("scenes/abc.scene.tmp-123-456");  // older agents' temporaries
   const std::string kept = dir.File("scenes/notes.txt");
   WriteTextFile(stale, "half a scene");
+  WriteTextFile(older, "half a scene");
   WriteTextFile(kept, "not ours");
   ASSERT_TRUE(SceneStore::Open(dir.path()).ok());
   EXPECT_FALSE(std::filesystem::exists(stale));
+  EXPECT_FALSE(std::filesystem::exists(older));
   EXPECT_TRUE(std::filesystem::exists(kept));
 }
 

@@ -57,19 +57,20 @@ TEST(IdleConfigTest, ErrorsNameFileLineAndKey) {
             "agent.conf:2: 'idle.max_other_cpu' must be in (0, 1] (a fraction of all cores), "
             "got 0");
   EXPECT_EQ(ErrorOf("[idle]\nenabled = \"yes\"\n"),
-            "agent.conf:2: 'idle.enabled' must be true or false");
+            "agent.conf:2: 'idle.enabled' must be true or false, not a string");
   EXPECT_EQ(ErrorOf("[idle]\nuser_idle_minutes = -1\n"),
             "agent.conf:2: 'idle.user_idle_minutes' must be in [0, 10080], got -1");
   EXPECT_EQ(ErrorOf("[idle]\nuser_idle_minutes = 2.5\n"),
-            "agent.conf:2: 'idle.user_idle_minutes' must be an integer");
+            "agent.conf:2: 'idle.user_idle_minutes' must be an integer, not a real number");
   EXPECT_EQ(ErrorOf("[idle]\npoll_seconds = 0\n"),
             "agent.conf:2: 'idle.poll_seconds' must be in [1, 3600], got 0");
   EXPECT_EQ(ErrorOf("[idle]\nmax_other_cpu = \"half\"\n"),
-            "agent.conf:2: 'idle.max_other_cpu' must be a number");
+            "agent.conf:2: 'idle.max_other_cpu' must be a number, not a string");
   EXPECT_EQ(ErrorOf("[idle]\nschedule = \"Mon-Fri 18:00\"\n"),
             "agent.conf:2: 'idle.schedule' is not a schedule: entry 1 'Mon-Fri 18:00': expected "
             "[DAYS ]HH:MM-HH:MM, e.g. 'Mon-Fri 18:00-08:00'");
-  EXPECT_EQ(ErrorOf("[idle]\nschedule = 18\n"), "agent.conf:2: 'idle.schedule' must be a string");
+  EXPECT_EQ(ErrorOf("[idle]\nschedule = 18\n"),
+            "agent.conf:2: 'idle.schedule' must be a string, not an integer");
   EXPECT_EQ(ErrorOf("[idle]\nenabled = true\nidle_minutes = 5\n"),
             "agent.conf:3: 'idle.idle_minutes' is not a key of this table (enabled, "
             "user_idle_minutes, max_other_cpu, schedule, poll_seconds)");
