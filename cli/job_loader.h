@@ -9,7 +9,7 @@
 #include "base/result.h"
 #include "cli/job_overrides.h"
 #include "input/input_scene.h"
-#include "input/job.h"
+#include "job/job.h"
 #include "mesh/patch_mesh.h"
 
 namespace radfarm {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "base/result.h"
-#include "input/job.h"
+#include "job/job.h"
 
 namespace CLI {
 class App;

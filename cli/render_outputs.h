@@ -7,7 +7,7 @@
 #include <string>
 
 #include "base/result.h"
-#include "input/job.h"
+#include "job/job.h"
 #include "mesh/patch_mesh.h"
 #include "solve/solve_state.h"
 

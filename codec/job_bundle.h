@@ -10,7 +10,7 @@
 
 #include "base/result.h"
 #include "input/input_scene.h"
-#include "input/job.h"
+#include "job/job.h"
 
 namespace radfarm::codec {
 

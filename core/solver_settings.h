@@ -21,7 +21,7 @@ inline constexpr uint64_t kAutoShotRaysPerPatch = 1024;
 // With the final gather on, the shooting only has to get the light that bounced roughly right: the
 // gather averages its noise over every patch a gathering patch sees (docs/BENCHMARKS-adaptive.md).
 inline constexpr uint64_t kAutoShotRaysPerPatchBeforeGather = 384;
-// Gather rays per patch of a job that does not say (`gather_rays`; input/job.h). The solver's own
+// Gather rays per patch of a job that does not say (`gather_rays`; job/job.h). The solver's own
 // default is 0, plain progressive refinement, which the core tests pin down.
 inline constexpr uint32_t kDefaultGatherRays = 2048;
 inline constexpr uint32_t kMaxGatherRays = 1u << 20;

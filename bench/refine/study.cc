@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "input/job.h"
+#include "job/job.h"
 #include "mesh/patch_mesh.h"
 #include "solve/local_solve.h"
 #include "output/png_writer.h"

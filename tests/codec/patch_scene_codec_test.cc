@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "input/input_scene.h"
-#include "input/job.h"
+#include "job/job.h"
 #include "mesh/patch_mesh.h"
 
 namespace radfarm::codec {

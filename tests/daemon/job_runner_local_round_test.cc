@@ -7,7 +7,7 @@
 #include "solve/local_solve.h"
 #include "daemon/job_runner.h"
 #include "input/input_scene.h"
-#include "input/job.h"
+#include "job/job.h"
 #include "mesh/patch_mesh.h"
 
 namespace radfarm::master {

@@ -10,7 +10,7 @@
 #include "core/ray_caster.h"
 #include "core/thread_pool.h"
 #include "input/input_scene.h"
-#include "input/job.h"
+#include "job/job.h"
 #include "mesh/refinement_schedule.h"
 #include "protocol/scene_transfer.h"
 

@@ -9,7 +9,7 @@
 #include "cli/farm_command.h"
 #include "codec/job_bundle.h"
 #include "input/input_scene.h"
-#include "input/job.h"
+#include "job/job.h"
 #include "tests/farm/farm_fixture.h"
 
 namespace radfarm::testing {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "input/input_scene.h"
-#include "input/job.h"
+#include "job/job.h"
 #include "tests/input/test_files.h"
 
 namespace radfarm {

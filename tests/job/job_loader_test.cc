@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <string>
 
-#include "input/job.h"
+#include "job/job.h"
 #include "tests/input/test_files.h"
 
 namespace radfarm {

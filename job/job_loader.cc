@@ -40,10 +40,9 @@
 
 #include "base/diagnostic.h"
 #include "base/result.h"
-#include "base/text_file.h"
 #include "base/toml_file.h"
 #include "base/toml_table_reader.h"
-#include "input/job.h"
+#include "job/job.h"
 
 namespace radfarm {
 namespace {
