@@ -56,7 +56,7 @@ Status DecodeSolver(const wire::BundleSolver& in, SolverSettings* out) {
   return Ok{};
 }
 
-// The loader's ranges (input/job_loader.cc); ResolveRefineSettings checks the rest against the
+// The loader's ranges (job/job_loader.cc); ResolveRefineSettings checks the rest against the
 // mesh.
 Status DecodeRefine(const wire::BundleRefine* in, RefineSettings* out) {
   if (in == nullptr) return Ok{};  // refinement off: the defaults
