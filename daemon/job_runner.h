@@ -33,11 +33,11 @@
 #include "core/result.h"
 #include "core/thread_pool.h"
 #include "daemon/scheduler/round_scheduler.h"
-#include "daemon/store/job_store.h"
 #include "protocol/batch_convert.h"
 #include "protocol/messages.h"
 #include "protocol/scene_transfer.h"
 #include "solve/round_driver.h"
+#include "store/job_store.h"
 
 namespace radfarm::master {
 

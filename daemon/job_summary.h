@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/result.h"
-#include "daemon/store/job_store.h"
+#include "store/job_store.h"
 
 namespace radfarm::master {
 

@@ -30,7 +30,6 @@
 #include "daemon/job_summary.h"
 #include "daemon/master_config.h"
 #include "daemon/scheduler/round_scheduler.h"
-#include "daemon/store/job_store.h"
 #include "loop/event_loop.h"
 #include "loop/log.h"
 #include "loop/os_signal.h"
@@ -39,6 +38,7 @@
 #include "loop/work_queue.h"
 #include "protocol/farm_secret.h"
 #include "service/service_notifier.h"
+#include "store/job_store.h"
 
 namespace radfarm::master {
 

@@ -1,4 +1,4 @@
-#include "daemon/store/job_state.h"
+#include "store/job_state.h"
 
 #include <array>
 

@@ -1,10 +1,10 @@
-#include "daemon/store/database.h"
+#include "store/database.h"
 
 #include <sqlite3.h>
 
 #include <utility>
 
-#include "daemon/store/sqlite_error.h"
+#include "store/sqlite_error.h"
 
 namespace radfarm::store {
 

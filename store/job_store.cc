@@ -1,9 +1,9 @@
-#include "daemon/store/job_store.h"
+#include "store/job_store.h"
 
 #include <chrono>
 #include <utility>
 
-#include "daemon/store/return_if_error.h"
+#include "store/return_if_error.h"
 
 namespace radfarm::store {
 namespace {

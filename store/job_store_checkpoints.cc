@@ -1,9 +1,9 @@
 // JobStore: rounds and checkpoints (the rest is in job_store.cc).
 #include <utility>
 
-#include "daemon/store/blob_codec.h"
-#include "daemon/store/job_store.h"
-#include "daemon/store/return_if_error.h"
+#include "store/blob_codec.h"
+#include "store/job_store.h"
+#include "store/return_if_error.h"
 
 namespace radfarm::store {
 
