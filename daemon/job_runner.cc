@@ -7,6 +7,7 @@
 #include "mesh/patch_mesh.h"
 #include "protocol/scene_transfer.h"
 #include "solve/local_solve.h"
+#include "store/round_totals.h"
 
 namespace radfarm::master {
 namespace {
@@ -58,13 +59,7 @@ Result<std::shared_ptr<JobRunner>> JobRunner::Prepare(
     resume->refined_scene = refined_scene ? &*refined_scene : nullptr;
     resume->next_point = c.refine_points;
     resume->stop = c.stop_reason;
-    for (const store::RoundRecord& r : rounds) {
-      if (r.round > c.round) break;
-      resume->totals.rays += r.rays;
-      resume->totals.escaped_rays += r.escaped_rays;
-      resume->totals.backface_hits += r.back_rays;
-      resume->totals.seconds += r.duration_seconds;
-    }
+    resume->totals = store::TotalsUpToRound(rounds, c.round).solve_totals();
   }
   runner->pool_ = std::make_unique<ThreadPool>(1);
   Result<std::unique_ptr<RoundDriver>> driver =

@@ -7,6 +7,7 @@
 
 #include "loop/log.h"
 #include "output/atomic_file.h"
+#include "store/job_transactions.h"
 
 namespace radfarm::master {
 
@@ -42,14 +43,8 @@ Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const Maste
   if (!store) return Error{store.error()};
   // Jobs that were running when the last master stopped go back to the queue; they resume from
   // their latest checkpoints when they start again.
-  Result<std::vector<store::JobRecord>> jobs = store->ListJobs();
-  if (!jobs) return Error{jobs.error()};
-  for (const store::JobRecord& job : *jobs) {
-    if (job.state != store::JobState::kRunning) continue;
-    if (Status s = store->SetJobState(job.id, store::JobState::kQueued); !s)
-      return Error{s.error()};
-    (void)store->AppendEvent(job.id, store::EventLevel::kInfo,
-                             "master restarted: the job resumes from its latest checkpoint");
+  if (Result<int> requeued = store::RequeueRunningJobs(*store); !requeued) {
+    return Error{requeued.error()};
   }
   master->store_ = std::make_shared<store::JobStore>(std::move(*store));
 

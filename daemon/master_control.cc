@@ -9,6 +9,7 @@
 #include "mesh/patch_mesh.h"
 #include "mesh/refine.h"
 #include "protocol/scene_transfer.h"
+#include "store/job_transactions.h"
 
 namespace radfarm::master {
 namespace {
@@ -27,6 +28,37 @@ struct Lookup {
 
 ControlResponse NotFound(int64_t id) {
   return ControlError("not_found", "no job " + std::to_string(id));
+}
+
+// The solution `fetch` sends: the checkpoint's values and the job's statistics up to it.
+codec::JobSolution SolutionOf(store::StoredSolution stored, const JobSummary& summary) {
+  const store::Checkpoint& c = stored.checkpoint;
+  codec::JobSolution solution;
+  solution.bundle = std::move(stored.bundle);
+  if (stored.refined_scene) solution.scene = std::move(*stored.refined_scene);
+  solution.radiosity = c.radiosity;
+  solution.unshot = c.unshot;
+  SolveStats& st = solution.stats;
+  st.rays = stored.totals.rays;
+  st.seconds = stored.totals.seconds;
+  st.escaped_rays = stored.totals.escaped_rays;
+  st.backface_hits = stored.totals.back_rays;
+  if (stored.totals.unshot_fraction) st.unshot_fraction = *stored.totals.unshot_fraction;
+  st.rounds = c.rounds_done;
+  st.rays_per_second = st.seconds > 0 ? double(st.rays) / st.seconds : 0;
+  st.patches = c.radiosity.size();
+  st.seed = stored.job.spec.seed;
+  st.sampler = summary.settings.sampler;
+  JobSummary at_checkpoint = summary;
+  at_checkpoint.rays = st.rays;
+  at_checkpoint.unshot_fraction = st.unshot_fraction;
+  st.stop_reason = c.stop_reason                                ? *c.stop_reason
+                   : stored.job.state == store::JobState::kDone ? StopReasonOf(at_checkpoint)
+                                                                : "checkpoint";
+  st.emitted_power = c.energy.emitted;
+  st.absorbed_power = c.energy.absorbed;
+  st.escaped_power = c.energy.escaped;
+  return solution;
 }
 
 }  // namespace
@@ -252,37 +284,18 @@ void Master::Submit(ControlRequest request, ControlRespond respond) {
 void Master::ChangeState(ControlRequest request, ControlRespond respond) {
   const store::JobId id = *request.id;
   const ControlCommand command = request.command;
+  const store::JobCommand job_command =
+      command == ControlCommand::kCancel  ? store::JobCommand::kCancel
+      : command == ControlCommand::kPause ? store::JobCommand::kPause
+                                          : store::JobCommand::kResume;
   OnStore(
-      [id, command](store::JobStore& s) -> Result<Lookup> {
-        Result<std::optional<store::JobRecord>> job = s.GetJob(id);
-        if (!job) return Error{job.error()};
+      [id, job_command](store::JobStore& s) -> Result<Lookup> {
+        Result<store::StateChange> change = store::ChangeJobState(s, id, job_command);
+        if (!change) return Error{change.error()};
         Lookup lookup;
-        if (!*job) return lookup;
-        const store::JobState from = (*job)->state;
-        const store::JobState to = command == ControlCommand::kCancel  ? store::JobState::kCancelled
-                                   : command == ControlCommand::kPause ? store::JobState::kPaused
-                                                                       : store::JobState::kQueued;
-        const bool allowed = command == ControlCommand::kResume
-                                 ? from == store::JobState::kPaused
-                                 : store::IsAllowedTransition(from, to);
-        if (!allowed) {
-          lookup.invalid = "job " + std::to_string(id) + " is " +
-                           std::string(store::JobStateName(from)) + ": it cannot be " +
-                           (command == ControlCommand::kCancel  ? "cancelled"
-                            : command == ControlCommand::kPause ? "paused"
-                                                                : "resumed");
-          return lookup;
-        }
-        std::optional<std::string> reason;
-        if (to == store::JobState::kCancelled) reason = "cancelled by the operator";
-        if (Status st = s.SetJobState(id, to, reason); !st) return Error{st.error()};
-        (void)s.AppendEvent(id, store::EventLevel::kInfo,
-                            to == store::JobState::kCancelled ? "cancelled"
-                            : to == store::JobState::kPaused  ? "paused"
-                                                              : "resumed");
-        Result<std::optional<store::JobRecord>> after = s.GetJob(id);
-        if (!after || !*after) return Error{"job " + std::to_string(id) + " cannot be read back"};
-        Result<JobSummary> summary = ReadJobSummary(s, **after);
+        lookup.invalid = std::move(change->refused);
+        if (!change->job || !lookup.invalid.empty()) return lookup;
+        Result<JobSummary> summary = ReadJobSummary(s, *change->job);
         if (!summary) return Error{summary.error()};
         lookup.summary = std::move(*summary);
         return lookup;
@@ -307,62 +320,22 @@ void Master::ChangeState(ControlRequest request, ControlRespond respond) {
 
 void Master::Fetch(ControlRequest request, ControlRespond respond) {
   const store::JobId id = *request.id;
+  using Answer = std::pair<std::optional<JobSummary>, std::vector<uint8_t>>;
   OnStore(
-      [id](store::JobStore& s)
-          -> Result<std::pair<std::optional<JobSummary>, std::vector<uint8_t>>> {
-        using Answer = std::pair<std::optional<JobSummary>, std::vector<uint8_t>>;
+      [id](store::JobStore& s) -> Result<Answer> {
         Result<std::optional<store::JobRecord>> job = s.GetJob(id);
         if (!job) return Error{job.error()};
         if (!*job) return Answer{};
         Result<JobSummary> summary = ReadJobSummary(s, **job);
         if (!summary) return Error{summary.error()};
-        Result<std::optional<store::Checkpoint>> checkpoint = s.LoadLatestCheckpoint(id);
-        if (!checkpoint) return Error{checkpoint.error()};
-        if (!*checkpoint) return Answer{std::move(*summary), {}};
-        Result<std::optional<std::vector<uint8_t>>> bundle = s.GetScene((*job)->spec.scene_hash);
-        if (!bundle || !*bundle) return Error{"job " + std::to_string(id) + ": scene missing"};
-        Result<std::vector<store::RoundRecord>> rounds = s.ListRounds(id);
-        if (!rounds) return Error{rounds.error()};
-        const store::Checkpoint& c = **checkpoint;
-        codec::JobSolution solution;
-        solution.bundle = std::move(**bundle);
-        if (c.scene_hash) {  // a refined mesh: fetch rebuilds it from its scene
-          Result<std::optional<std::vector<uint8_t>>> scene = s.GetScene(*c.scene_hash);
-          if (!scene || !*scene) {
-            return Error{"job " + std::to_string(id) + ": refined scene " + *c.scene_hash +
-                         " missing"};
-          }
-          solution.scene = std::move(**scene);
-        }
-        solution.radiosity = c.radiosity;
-        solution.unshot = c.unshot;
-        SolveStats& st = solution.stats;
-        for (const store::RoundRecord& r : *rounds) {
-          if (r.round > c.round) break;
-          st.rays += r.rays;
-          st.seconds += r.duration_seconds;
-          st.escaped_rays += r.escaped_rays;
-          st.backface_hits += r.back_rays;
-          st.unshot_fraction = r.unshot_fraction;
-        }
-        st.rounds = c.rounds_done;
-        st.rays_per_second = st.seconds > 0 ? double(st.rays) / st.seconds : 0;
-        st.patches = c.radiosity.size();
-        st.seed = (*job)->spec.seed;
-        st.sampler = summary->settings.sampler;
-        JobSummary at_checkpoint = *summary;
-        at_checkpoint.rays = st.rays;
-        at_checkpoint.unshot_fraction = st.unshot_fraction;
-        st.stop_reason = c.stop_reason                             ? *c.stop_reason
-                         : (*job)->state == store::JobState::kDone ? StopReasonOf(at_checkpoint)
-                                                                   : "checkpoint";
-        st.emitted_power = c.energy.emitted;
-        st.absorbed_power = c.energy.absorbed;
-        st.escaped_power = c.energy.escaped;
-        return Answer{std::move(*summary), codec::EncodeJobSolution(solution)};
+        Result<std::optional<store::StoredSolution>> stored = store::LoadSolution(s, id);
+        if (!stored) return Error{stored.error()};
+        if (!*stored) return Answer{std::move(*summary), {}};
+        std::vector<uint8_t> blob =
+            codec::EncodeJobSolution(SolutionOf(std::move(**stored), *summary));
+        return Answer{std::move(*summary), std::move(blob)};
       },
-      [this, id,
-       respond](Result<std::pair<std::optional<JobSummary>, std::vector<uint8_t>>> answer) {
+      [this, id, respond](Result<Answer> answer) {
         if (!answer) return respond(ControlError("internal", answer.error()));
         if (!answer->first) return respond(NotFound(id));
         if (answer->second.empty()) {

@@ -4,21 +4,13 @@
 #include "daemon/master.h"
 #include "loop/log.h"
 #include "protocol/scene_transfer.h"
+#include "store/job_transactions.h"
 
 namespace radfarm::master {
 namespace {
 
 using loop::LogLevel;
 using loop::LogLine;
-
-// What the store thread reads to start one job.
-struct JobStart {
-  store::JobRecord record;
-  std::vector<uint8_t> bundle;
-  std::optional<store::Checkpoint> checkpoint;
-  std::optional<std::vector<uint8_t>> checkpoint_scene;  // the refined scene it names, if any
-  std::vector<store::RoundRecord> rounds;
-};
 
 std::string Percent(double fraction) {
   char text[32];
@@ -59,70 +51,38 @@ void Master::StartQueuedJobs() {
   const int slots = static_cast<int>(config_.max_running_jobs - busy);
   // One transaction-sized step on the store thread: pick the jobs, mark them running, read what
   // they need. The loop thread then prepares them on the compute thread.
-  OnStore(
-      [slots](store::JobStore& s) -> Result<std::vector<JobStart>> {
-        Result<std::vector<store::JobRecord>> next = s.NextRunnableJobs(slots);
-        if (!next) return Error{next.error()};
-        std::vector<JobStart> starts;
-        for (store::JobRecord& record : *next) {
-          if (Status st = s.SetJobState(record.id, store::JobState::kRunning); !st) {
-            return Error{st.error()};
-          }
-          JobStart start;
-          Result<std::optional<std::vector<uint8_t>>> bundle = s.GetScene(record.spec.scene_hash);
-          if (!bundle) return Error{bundle.error()};
-          if (!*bundle) return Error{"job " + std::to_string(record.id) + ": its scene is missing"};
-          start.bundle = std::move(**bundle);
-          Result<std::optional<store::Checkpoint>> checkpoint = s.LoadLatestCheckpoint(record.id);
-          if (!checkpoint) return Error{checkpoint.error()};
-          start.checkpoint = std::move(*checkpoint);
-          if (start.checkpoint && start.checkpoint->scene_hash) {
-            Result<std::optional<std::vector<uint8_t>>> scene =
-                s.GetScene(*start.checkpoint->scene_hash);
-            if (!scene) return Error{scene.error()};
-            start.checkpoint_scene = std::move(*scene);  // Prepare fails the job if missing
-          }
-          Result<std::vector<store::RoundRecord>> rounds = s.ListRounds(record.id);
-          if (!rounds) return Error{rounds.error()};
-          start.rounds = std::move(*rounds);
-          Result<std::optional<store::JobRecord>> fresh = s.GetJob(record.id);
-          if (!fresh || !*fresh) return Error{"job " + std::to_string(record.id) + " vanished"};
-          start.record = std::move(**fresh);
-          starts.push_back(std::move(start));
-        }
-        return starts;
-      },
-      [this](Result<std::vector<JobStart>> starts) {
-        start_pending_ = false;
-        if (shutting_down_) return;
-        if (!starts) {
-          LogLine(LogLevel::kError, "store") << "cannot start queued jobs: " << starts.error();
-          return;
-        }
-        for (JobStart& start : *starts) {
-          const store::JobId id = start.record.id;
-          starting_[id] = false;
-          LogEvent(id, store::EventLevel::kInfo,
-                   start.checkpoint
-                       ? "started, resuming after round " + std::to_string(start.checkpoint->round)
-                       : "started");
-          auto options = scheduler_options_;
-          auto shared = std::make_shared<JobStart>(std::move(start));
-          Status s = compute_queue_->Submit(
-              [shared, options] {
-                return JobRunner::Prepare(shared->record, shared->bundle, shared->checkpoint,
-                                          shared->checkpoint_scene, shared->rounds, options);
-              },
-              [this, id](Result<std::shared_ptr<JobRunner>> runner) {
-                OnJobPrepared(id, std::move(runner));
-              });
-          if (!s) LogLine(LogLevel::kError, "master") << s.error();
-        }
-        if (start_again_) {
-          start_again_ = false;
-          StartQueuedJobs();
-        }
-      });
+  OnStore([slots](store::JobStore& s) { return store::StartQueuedJobs(s, slots); },
+          [this](Result<std::vector<store::JobStart>> starts) {
+            start_pending_ = false;
+            if (shutting_down_) return;
+            if (!starts) {
+              LogLine(LogLevel::kError, "store") << "cannot start queued jobs: " << starts.error();
+              return;
+            }
+            for (store::JobStart& start : *starts) {
+              const store::JobId id = start.record.id;
+              starting_[id] = false;
+              LogEvent(id, store::EventLevel::kInfo,
+                       start.checkpoint ? "started, resuming after round " +
+                                              std::to_string(start.checkpoint->round)
+                                        : "started");
+              auto options = scheduler_options_;
+              auto shared = std::make_shared<store::JobStart>(std::move(start));
+              Status s = compute_queue_->Submit(
+                  [shared, options] {
+                    return JobRunner::Prepare(shared->record, shared->bundle, shared->checkpoint,
+                                              shared->checkpoint_scene, shared->rounds, options);
+                  },
+                  [this, id](Result<std::shared_ptr<JobRunner>> runner) {
+                    OnJobPrepared(id, std::move(runner));
+                  });
+              if (!s) LogLine(LogLevel::kError, "master") << s.error();
+            }
+            if (start_again_) {
+              start_again_ = false;
+              StartQueuedJobs();
+            }
+          });
 }
 
 void Master::OnJobPrepared(store::JobId id, Result<std::shared_ptr<JobRunner>> runner) {
@@ -300,18 +260,12 @@ void Master::FailJob(store::JobId id, const std::string& error) {
   if (shutting_down_) return;
   DropRunner(id);
   starting_.erase(id);
-  OnStore(
-      [id, error](store::JobStore& s) -> Status {
-        Result<std::optional<store::JobRecord>> job = s.GetJob(id);
-        if (!job) return Error{job.error()};
-        if (!*job || store::IsTerminal((*job)->state)) return Ok{};
-        return s.SetJobState(id, store::JobState::kFailed, error);
-      },
-      [this, id, error](Status s) {
-        if (!s) LogLine(LogLevel::kError, "store") << "job " << id << ": " << s.error();
-        LogEvent(id, store::EventLevel::kError, "failed: " + error);
-        StartQueuedJobs();
-      });
+  OnStore([id, error](store::JobStore& s) { return store::FailJob(s, id, error); },
+          [this, id, error](Result<bool> s) {
+            if (!s) LogLine(LogLevel::kError, "store") << "job " << id << ": " << s.error();
+            LogEvent(id, store::EventLevel::kError, "failed: " + error);
+            StartQueuedJobs();
+          });
 }
 
 }  // namespace radfarm::master
