@@ -5,7 +5,7 @@
 #include "loop/log.h"
 #include "protocol/frame_codec.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 namespace {
 
 int64_t UnixMs() {
@@ -118,4 +118,4 @@ void AgentLink::OnFrame(std::span<const uint8_t> payload) {
   callbacks_.on_message(*this, frame->message);
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -21,7 +21,7 @@
 #include "protocol/messages.h"
 #include "protocol/protocol_session.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 struct AgentLinkOptions {
   std::chrono::milliseconds handshake_timeout{5000};
@@ -95,4 +95,4 @@ class AgentLink {
   bool was_authenticated_ = false;
 };
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -9,7 +9,7 @@
 #include "solve/local_solve.h"
 #include "store/round_totals.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 namespace {
 
 constexpr size_t kRecentRounds = 8;
@@ -235,4 +235,4 @@ std::optional<double> JobRunner::EtaSeconds() const {
   return left;
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -39,7 +39,7 @@
 #include "solve/round_driver.h"
 #include "store/job_store.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 // What a job has spent so far (restored from its rounds after a restart).
 struct JobTotals {
@@ -157,4 +157,4 @@ class JobRunner {
   std::vector<std::pair<uint64_t, double>> recent_;
 };
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -4,7 +4,7 @@
 
 #include "core/solve_control.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 std::string SubmittedSettings::ToJson() const {
   return nlohmann::json{{"tolerance", tolerance},     {"max_rays", max_rays},
@@ -59,4 +59,4 @@ std::string StopReasonOf(const JobSummary& s) {
   return kStopTimeBudget;
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

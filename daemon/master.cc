@@ -9,7 +9,7 @@
 #include "output/atomic_file.h"
 #include "store/job_transactions.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 Master::Master(loop::EventLoop& loop, const MasterConfig& config, protocol::FarmSecret secret)
     : loop_(loop), config_(config), secret_(std::move(secret)) {
@@ -130,4 +130,4 @@ void Master::ReportStatus() {
                     " agents");
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -40,7 +40,7 @@
 #include "service/service_notifier.h"
 #include "store/job_store.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 class Master {
  public:
@@ -157,4 +157,4 @@ void Master::OnStore(Work work, Done done) {
     loop::Log(loop::LogLevel::kError, "store", "cannot queue a store operation: " + s.error());
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

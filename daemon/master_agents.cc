@@ -7,7 +7,7 @@
 #include "protocol/batch_convert.h"
 #include "protocol/scene_transfer.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 namespace {
 
 using loop::LogLevel;
@@ -287,4 +287,4 @@ void Master::OnTickTimer() {
   if (offered > 0) DispatchAll();
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -6,7 +6,7 @@
 #include "input/toml_table_reader.h"
 #include "loop/host_port.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 std::string MasterConfig::ControlPath() const {
   return control.empty() ? (std::filesystem::path(state_dir) / "control.sock").string() : control;
@@ -63,4 +63,4 @@ Status CheckMasterConfig(const MasterConfig& c) {
   return Ok{};
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -11,7 +11,7 @@
 #include "protocol/scene_transfer.h"
 #include "store/job_transactions.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 namespace {
 
 using loop::LogLevel;
@@ -346,4 +346,4 @@ void Master::Fetch(ControlRequest request, ControlRespond respond) {
       });
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -6,7 +6,7 @@
 #include "protocol/scene_transfer.h"
 #include "store/job_transactions.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 namespace {
 
 using loop::LogLevel;
@@ -268,4 +268,4 @@ void Master::FailJob(store::JobId id, const std::string& error) {
           });
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon
