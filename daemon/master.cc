@@ -124,7 +124,7 @@ void Master::Shutdown(const std::string& why) {
 
 void Master::ReportStatus() {
   size_t agents = 0;
-  for (const auto& [id, link] : agents_) agents += link->authenticated() && !link->stale;
+  for (const auto& [id, link] : agents_) agents += link->authenticated() && !link->stale();
   notifier_->Status(std::to_string(runners_.size()) + " jobs running, " +
                     std::to_string(starting_.size()) + " starting; " + std::to_string(agents) +
                     " agents");

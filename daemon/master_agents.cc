@@ -89,9 +89,8 @@ void Master::TakeLeasesAway(AgentLink& link, const char* why) {
 }
 
 void Master::OnAgentMessage(AgentLink& link, protocol::Message& message) {
-  if (link.stale) {
+  if (link.Revive()) {
     // Heard from again after missing its heartbeats: back in the pool.
-    link.stale = false;
     LogLine(LogLevel::kInfo, "agents") << link.Describe() << " is back";
     for (auto& [job, runner] : runners_) runner->scheduler().AddAgent(link.id());
   }
@@ -175,7 +174,7 @@ void Master::OnLeaseReturn(AgentLink& link, const protocol::LeaseReturnMsg& mess
   // A stopping or busy agent must not get the batches straight back.
   if (message.reason == protocol::LeaseReturnReason::kDraining ||
       message.reason == protocol::LeaseReturnReason::kOverloaded) {
-    link.declining = true;
+    link.Decline();
   }
   LogLine(LogLevel::kInfo, "agents") << link.Describe() << " returned " << returned << " of "
                                      << message.leases.size() << " leases (" << why << ")";
@@ -218,9 +217,7 @@ std::vector<JobRunner*> Master::RunnersByPriority() {
 }
 
 void Master::Dispatch(AgentLink& link) {
-  if (!link.authenticated() || link.closing() || link.stale || link.declining || shutting_down_) {
-    return;
-  }
+  if (!link.TakesWork() || shutting_down_) return;
   // Don't queue work behind a slow socket.
   if (link.queued_bytes() > (4u << 20)) return;
   const auto now = Now();
@@ -263,8 +260,8 @@ void Master::OnHeartbeatTimer() {
   for (auto& [job, runner] : runners_) beat.rays_per_second += runner->RaysPerSecond();
   for (auto& [id, link] : agents_) {
     if (!link->authenticated() || link->closing()) continue;
-    if (!link->stale && now_ms - link->last_heard_ms() > config_.agent_timeout_ms) {
-      link->stale = true;
+    if (!link->stale() && now_ms - link->last_heard_ms() > config_.agent_timeout_ms) {
+      link->MarkStale();
       TakeLeasesAway(*link, "missed its heartbeats");
       continue;
     }

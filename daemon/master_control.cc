@@ -184,7 +184,7 @@ json Master::AgentJson(const AgentLink& link) const {
               {"connected_ms", link.connected_unix_ms()},
               {"last_heartbeat_ms_ago", loop_.NowMs() - link.last_heard_ms()},
               {"results", results},
-              {"stale", link.stale}};
+              {"stale", link.stale()}};
 }
 
 void Master::RespondWithJobs(std::optional<store::JobId> id, ControlRespond respond) {

@@ -107,7 +107,7 @@ void Master::OnJobPrepared(store::JobId id, Result<std::shared_ptr<JobRunner>> r
       << r->patch_count() << " patches, scene " << protocol::HashToHex(r->wire_info().scene_hash)
       << " (" << r->scene_blob()->size() << " bytes)";
   for (auto& [agent_id, link] : agents_) {
-    if (link->authenticated() && !link->stale) r->scheduler().AddAgent(agent_id);
+    if (link->authenticated() && !link->stale()) r->scheduler().AddAgent(agent_id);
   }
   BeginRound(r);
 }
