@@ -1,10 +1,10 @@
-// The master's answers to control-socket requests (docs/CONTROL.md).
+#include "daemon/control_requests.h"
+
 #include <chrono>
 
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
 #include "core/solve_control.h"
-#include "daemon/master.h"
 #include "loop/log.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/refine.h"
@@ -63,8 +63,13 @@ codec::JobSolution SolutionOf(store::StoredSolution stored, const JobSummary& su
 
 }  // namespace
 
-void Master::HandleControl(ControlRequest request, ControlRespond respond) {
-  if (shutting_down_) {
+ControlRequests::ControlRequests(loop::EventLoop& loop, StoreThread& store,
+                                 loop::WorkQueue& compute, JobRounds& jobs,
+                                 const AgentConnections& agents)
+    : loop_(loop), store_(store), compute_(compute), jobs_(jobs), agents_(agents) {}
+
+void ControlRequests::Handle(ControlRequest request, ControlRespond respond) {
+  if (stopping_) {
     respond(ControlError("internal", "the master is shutting down"));
     return;
   }
@@ -81,45 +86,45 @@ void Master::HandleControl(ControlRequest request, ControlRespond respond) {
       return ChangeState(std::move(request), std::move(respond));
     case ControlCommand::kFetch:
       return Fetch(std::move(request), std::move(respond));
-    case ControlCommand::kLog: {
-      const std::optional<store::JobId> id = request.id;
-      const int limit = static_cast<int>(request.limit);
-      OnStore(
-          [id, limit](store::JobStore& s) -> Result<std::optional<std::vector<store::Event>>> {
-            if (id) {
-              Result<std::optional<store::JobRecord>> job = s.GetJob(*id);
-              if (!job) return Error{job.error()};
-              if (!*job) return std::optional<std::vector<store::Event>>();
-            }
-            Result<std::vector<store::Event>> events = s.ListEvents(id, limit);
-            if (!events) return Error{events.error()};
-            return std::optional(std::move(*events));
-          },
-          [id, respond](Result<std::optional<std::vector<store::Event>>> events) {
-            if (!events) return respond(ControlError("internal", events.error()));
-            if (!*events) return respond(NotFound(*id));
-            json list = json::array();
-            for (const store::Event& e : **events) {
-              list.push_back({{"time_ms", e.time_ms},
-                              {"level", std::string(store::EventLevelName(e.level))},
-                              {"text", e.text}});
-            }
-            respond({json{{"ok", true}, {"events", list}}, {}});
-          });
-      return;
-    }
+    case ControlCommand::kLog:
+      return Log(std::move(request), std::move(respond));
     case ControlCommand::kAgents: {
       json list = json::array();
-      for (auto& [id, link] : agents_) {
-        if (link->authenticated()) list.push_back(AgentJson(*link));
-      }
+      for (const AgentLink* link : agents_.Authenticated()) list.push_back(AgentJson(*link));
       respond({json{{"ok", true}, {"agents", list}}, {}});
       return;
     }
   }
 }
 
-json Master::JobJson(const JobSummary& s) {
+void ControlRequests::Log(ControlRequest request, ControlRespond respond) {
+  const std::optional<store::JobId> id = request.id;
+  const int limit = static_cast<int>(request.limit);
+  store_.Run(
+      [id, limit](store::JobStore& s) -> Result<std::optional<std::vector<store::Event>>> {
+        if (id) {
+          Result<std::optional<store::JobRecord>> job = s.GetJob(*id);
+          if (!job) return Error{job.error()};
+          if (!*job) return std::optional<std::vector<store::Event>>();
+        }
+        Result<std::vector<store::Event>> events = s.ListEvents(id, limit);
+        if (!events) return Error{events.error()};
+        return std::optional(std::move(*events));
+      },
+      [id, respond](Result<std::optional<std::vector<store::Event>>> events) {
+        if (!events) return respond(ControlError("internal", events.error()));
+        if (!*events) return respond(NotFound(*id));
+        json list = json::array();
+        for (const store::Event& e : **events) {
+          list.push_back({{"time_ms", e.time_ms},
+                          {"level", std::string(store::EventLevelName(e.level))},
+                          {"text", e.text}});
+        }
+        respond({json{{"ok", true}, {"events", list}}, {}});
+      });
+}
+
+json ControlRequests::JobJson(const JobSummary& s) {
   const store::JobRecord& r = s.record;
   json job{{"id", r.id},
            {"name", r.spec.name},
@@ -141,7 +146,7 @@ json Master::JobJson(const JobSummary& s) {
            {"eta_seconds", nullptr},
            {"stop_reason", nullptr}};
   double unshot = s.unshot_fraction;
-  if (JobRunner* runner = FindRunner(static_cast<uint64_t>(r.id))) {
+  if (JobRunner* runner = jobs_.FindRunner(static_cast<uint64_t>(r.id))) {
     // The live view is ahead of the store by the rounds not yet committed.
     const JobTotals& t = runner->totals();
     job["round"] = t.round;
@@ -149,7 +154,8 @@ json Master::JobJson(const JobSummary& s) {
     job["unshot_fraction"] = unshot = t.unshot_fraction;
     job["rays_per_second"] = runner->RaysPerSecond();
     uint32_t agents = 0;
-    for (const auto& a : runner->scheduler().counters(Now()).agents) agents += a.leases_held > 0;
+    for (const auto& a : runner->scheduler().counters(LoopNow(loop_)).agents)
+      agents += a.leases_held > 0;
     job["agents"] = agents;
     if (auto eta = runner->EtaSeconds()) job["eta_seconds"] = *eta;
   }
@@ -162,12 +168,12 @@ json Master::JobJson(const JobSummary& s) {
   return job;
 }
 
-json Master::AgentJson(const AgentLink& link) const {
+json ControlRequests::AgentJson(const AgentLink& link) const {
   uint32_t leases = 0;
   double rays_per_second = 0;
   uint64_t results = 0;
-  const auto now = Now();
-  for (const auto& [job, runner] : runners_) {
+  const auto now = LoopNow(loop_);
+  for (const auto& [job, runner] : jobs_.runners()) {
     if (const auto a = runner->scheduler().agent_counters(link.id(), now)) {
       leases += a->leases_held;
       rays_per_second = std::max(rays_per_second, a->rays_per_second);
@@ -187,8 +193,8 @@ json Master::AgentJson(const AgentLink& link) const {
               {"stale", link.stale()}};
 }
 
-void Master::RespondWithJobs(std::optional<store::JobId> id, ControlRespond respond) {
-  OnStore(
+void ControlRequests::RespondWithJobs(std::optional<store::JobId> id, ControlRespond respond) {
+  store_.Run(
       [id](store::JobStore& s) -> Result<std::vector<JobSummary>> {
         std::vector<store::JobRecord> records;
         if (id) {
@@ -220,10 +226,10 @@ void Master::RespondWithJobs(std::optional<store::JobId> id, ControlRespond resp
       });
 }
 
-void Master::Submit(ControlRequest request, ControlRespond respond) {
+void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
   // Decode and mesh on the compute thread: a bundle the agents could not use is refused now.
   auto blob = std::make_shared<std::vector<uint8_t>>(std::move(request.attachment));
-  Status s = compute_queue_->Submit(
+  Status s = compute_.Submit(
       [blob]() -> Result<std::pair<SubmittedSettings, uint64_t>> {
         Result<codec::JobBundle> bundle = codec::DecodeJobBundle(*blob);
         if (!bundle) return Error{bundle.error()};
@@ -259,7 +265,7 @@ void Master::Submit(ControlRequest request, ControlRespond respond) {
         spec.settings = checked->first.ToJson();
         spec.seed = checked->second;
         spec.priority = request.priority;
-        OnStore(
+        store_.Run(
             [blob, spec](store::JobStore& s) -> Result<JobSummary> {
               if (Status st = s.PutScene(spec.scene_hash, *blob); !st) return Error{st.error()};
               Result<store::JobId> id = s.SubmitJob(spec);
@@ -275,20 +281,20 @@ void Master::Submit(ControlRequest request, ControlRespond respond) {
                   << "submitted: " << summary->record.spec.name << ", " << summary->settings.patches
                   << " patches, priority " << summary->record.spec.priority;
               respond({json{{"ok", true}, {"job", JobJson(*summary)}}, {}});
-              StartQueuedJobs();
+              jobs_.StartQueuedJobs();
             });
       });
   if (!s) respond(ControlError("internal", s.error()));
 }
 
-void Master::ChangeState(ControlRequest request, ControlRespond respond) {
+void ControlRequests::ChangeState(ControlRequest request, ControlRespond respond) {
   const store::JobId id = *request.id;
   const ControlCommand command = request.command;
   const store::JobCommand job_command =
       command == ControlCommand::kCancel  ? store::JobCommand::kCancel
       : command == ControlCommand::kPause ? store::JobCommand::kPause
                                           : store::JobCommand::kResume;
-  OnStore(
+  store_.Run(
       [id, job_command](store::JobStore& s) -> Result<Lookup> {
         Result<store::StateChange> change = store::ChangeJobState(s, id, job_command);
         if (!change) return Error{change.error()};
@@ -306,22 +312,21 @@ void Master::ChangeState(ControlRequest request, ControlRespond respond) {
           return respond(ControlError("invalid_state", lookup->invalid));
         if (!lookup->summary) return respond(NotFound(id));
         if (command == ControlCommand::kResume) {
-          StartQueuedJobs();
+          jobs_.StartQueuedJobs();
         } else {
-          if (starting_.count(id)) starting_[id] = true;
-          DropRunner(id);
+          jobs_.DropJob(id);
           LogLine(LogLevel::kInfo, "job " + std::to_string(id))
               << (command == ControlCommand::kCancel ? "cancelled" : "paused");
-          StartQueuedJobs();
+          jobs_.StartQueuedJobs();
         }
         respond({json{{"ok", true}, {"job", JobJson(*lookup->summary)}}, {}});
       });
 }
 
-void Master::Fetch(ControlRequest request, ControlRespond respond) {
+void ControlRequests::Fetch(ControlRequest request, ControlRespond respond) {
   const store::JobId id = *request.id;
   using Answer = std::pair<std::optional<JobSummary>, std::vector<uint8_t>>;
-  OnStore(
+  store_.Run(
       [id](store::JobStore& s) -> Result<Answer> {
         Result<std::optional<store::JobRecord>> job = s.GetJob(id);
         if (!job) return Error{job.error()};
