@@ -105,6 +105,11 @@ TEST(RoundTotalsTest, SumsRowsUpToTheRoundAndStopsAtTheFirstLater) {
   EXPECT_EQ(up_to_1.seconds, 0.75);
   EXPECT_EQ(up_to_1.unshot_fraction, 0.25);
   EXPECT_EQ(TotalsUpToRound(rounds, 9).rays, 700u);
+  const SolveTotals spent = up_to_1.solve_totals();
+  EXPECT_EQ(spent.rays, 300u);
+  EXPECT_EQ(spent.escaped_rays, 30u);
+  EXPECT_EQ(spent.backface_hits, 3u);
+  EXPECT_EQ(spent.seconds, 0.75);
 }
 
 TEST(RoundTotalsTest, NoRowsGiveZeroTotalsAndNoUnshotFraction) {
