@@ -309,8 +309,8 @@ void Agent::Pause(const std::string& reason) {
       // Every lease, queued or running, goes back now: the master requeues them at once. Then
       // the connection ends, so the master leases us nothing while we are paused. It ends
       // without a Close message; either way radfarmd requeues at once what the connection still
-      // held when it ended (Master::OnAgentClosed), such as leases sent before it read the
-      // LeaseReturn.
+      // held when it ended (AgentConnections::OnAgentClosed), such as leases sent before it read
+      // the LeaseReturn.
       runner_->ReturnAll(protocol::LeaseReturnReason::kOverloaded, "paused: " + reason);
       link_->Disconnect("paused by the idle policy: " + reason);
       break;

@@ -65,7 +65,8 @@ class MasterLink {
   // Writes what is queued (or gives up after flush_timeout), then closes the TCP connection
   // without a Close message, so the master takes it as a lost connection. on_closed follows.
   // The idle pause uses it. radfarmd requeues at once the leases of a connection that ends,
-  // whether lost or closed with Close (Master::OnAgentClosed; agent/README.md, "Idle policy").
+  // whether lost or closed with Close (AgentConnections::OnAgentClosed; agent/README.md, "Idle
+  // policy").
   void Disconnect(const std::string& reason);
 
   bool authenticated() const { return session_.authenticated(); }

@@ -2,6 +2,7 @@
 
 #include "codec/patch_scene_codec.h"
 #include "protocol/scene_transfer.h"
+#include "store/round_totals.h"
 
 namespace radfarm {
 namespace {
@@ -71,13 +72,7 @@ Result<RenderState> RenderState::Open(const std::string& db_path, const codec::J
   resume->refined_scene = state.resume_scene_.get();
   resume->next_point = c.refine_points;
   resume->stop = c.stop_reason;
-  for (const store::RoundRecord& r : *rounds) {
-    if (r.round > c.round) break;
-    resume->totals.rays += r.rays;
-    resume->totals.escaped_rays += r.escaped_rays;
-    resume->totals.backface_hits += r.back_rays;
-    resume->totals.seconds += r.duration_seconds;
-  }
+  resume->totals = store::TotalsUpToRound(*rounds, c.round).solve_totals();
   state.last_ = resume->totals;
   state.resume_ = std::move(resume);
   return state;

@@ -1,5 +1,5 @@
 // RenderState: `radfarm render --db FILE`, an embedded render that keeps its rounds in a job store
-// (the master's SQLite format, daemon/store/) so that a render killed midway continues where it
+// (the master's SQLite format, store/) so that a render killed midway continues where it
 // stopped when the same command runs again, and ends with the same bits as an uninterrupted one.
 //
 // The job is recognised by the SHA-256 of its bundle (scene and settings, with the thread count
@@ -16,8 +16,10 @@
 
 #include "base/result.h"
 #include "codec/job_bundle.h"
-#include "daemon/store/job_store.h"
+#include "base/result.h"
+#include "store/job_store.h"
 #include "solve/solve_state.h"
+#include "store/job_store.h"
 
 namespace radfarm {
 

@@ -6,7 +6,7 @@
 #include "loop/log.h"
 #include "protocol/frame_codec.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 namespace {
 
 int64_t UnixMs() {
@@ -119,4 +119,4 @@ void AgentLink::OnFrame(std::span<const uint8_t> payload) {
   callbacks_.on_message(*this, frame->message);
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "loop/event_loop.h"
 #include "loop/framed_connection.h"
@@ -21,7 +22,7 @@
 #include "protocol/messages.h"
 #include "protocol/protocol_session.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 struct AgentLinkOptions {
   std::chrono::milliseconds handshake_timeout{5000};
@@ -70,11 +71,18 @@ class AgentLink {
   int64_t connected_unix_ms() const { return connected_unix_ms_; }
   size_t queued_bytes() const { return connection_->queued_bytes(); }
 
-  // Master bookkeeping: the agent missed its heartbeats and its leases were taken away.
-  bool stale = false;
-  // It handed leases back because it is stopping (Draining) or its machine is busy (Overloaded):
-  // it gets no new work on this connection.
-  bool declining = false;
+  // The master's bookkeeping (AgentConnections). Stale: the agent missed its heartbeats and its
+  // leases were taken away; it gets no work until it speaks again (Revive).
+  bool stale() const { return stale_; }
+  void MarkStale() { stale_ = true; }
+  // Heard from again: no longer stale. Returns whether it was.
+  bool Revive() { return std::exchange(stale_, false); }
+  // Declining: it handed leases back because it is stopping (Draining) or its machine is busy
+  // (Overloaded); it gets no new work on this connection.
+  bool declining() const { return declining_; }
+  void Decline() { declining_ = true; }
+  // Whether new leases may go to it: authenticated, not closing, not stale, not declining.
+  bool TakesWork() const { return authenticated() && !closing_ && !stale_ && !declining_; }
 
  private:
   void OnFrame(std::span<const uint8_t> payload);
@@ -93,6 +101,8 @@ class AgentLink {
   int64_t connected_unix_ms_ = 0;
   bool closing_ = false;
   bool was_authenticated_ = false;
+  bool stale_ = false;
+  bool declining_ = false;
 };
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -3,7 +3,7 @@
 #include "base/result.h"
 #include "loop/log.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 ControlResponse ControlError(const std::string& code, const std::string& message) {
   return {nlohmann::json{{"ok", false}, {"error", message}, {"code", code}}, {}};
@@ -220,4 +220,4 @@ void ControlServer::Reply(uint64_t client_id, ControlResponse response) {
   if (!response.attachment.empty()) (void)client.connection->Send(std::move(response.attachment));
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

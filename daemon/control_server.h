@@ -16,7 +16,7 @@
 #include "loop/framed_connection.h"
 #include "loop/unix_listener.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 inline constexpr uint32_t kMaxControlJsonBytes = 1u << 20;
 inline constexpr uint32_t kMaxControlAttachmentBytes = 1u << 30;
@@ -53,4 +53,4 @@ class ControlServer {
 // Parses one request's JSON (docs/CONTROL.md); errors say which key is wrong.
 Result<ControlRequest> ParseControlRequest(const nlohmann::json& json, uint64_t* attachment_bytes);
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

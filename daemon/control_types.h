@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 enum class ControlCommand {
   kSubmit,
@@ -44,4 +44,4 @@ using ControlRespond = std::function<void(ControlResponse)>;
 // internal.
 ControlResponse ControlError(const std::string& code, const std::string& message);
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -1,4 +1,5 @@
 #include "daemon/job_runner.h"
+#include "base/result.h"
 
 #include <cmath>
 
@@ -7,8 +8,9 @@
 #include "mesh/patch_mesh.h"
 #include "protocol/scene_transfer.h"
 #include "solve/local_solve.h"
+#include "store/round_totals.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 namespace {
 
 constexpr size_t kRecentRounds = 8;
@@ -22,9 +24,9 @@ Result<std::shared_ptr<JobRunner>> JobRunner::Prepare(
     const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options) {
   const std::string job = "job " + std::to_string(record.id);
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(bundle_blob);
-  if (!bundle) return Error{bundle.error()};
+  RADFARM_RETURN_IF_ERROR(bundle);
   Result<PatchMesh> mesh = PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
-  if (!mesh) return Error{mesh.error()};
+  RADFARM_RETURN_IF_ERROR(mesh);
 
   std::shared_ptr<JobRunner> runner(new JobRunner());
   runner->record_ = record;
@@ -58,13 +60,7 @@ Result<std::shared_ptr<JobRunner>> JobRunner::Prepare(
     resume->refined_scene = refined_scene ? &*refined_scene : nullptr;
     resume->next_point = c.refine_points;
     resume->stop = c.stop_reason;
-    for (const store::RoundRecord& r : rounds) {
-      if (r.round > c.round) break;
-      resume->totals.rays += r.rays;
-      resume->totals.escaped_rays += r.escaped_rays;
-      resume->totals.backface_hits += r.back_rays;
-      resume->totals.seconds += r.duration_seconds;
-    }
+    resume->totals = store::TotalsUpToRound(rounds, c.round).solve_totals();
   }
   runner->pool_ = std::make_unique<ThreadPool>(1);
   Result<std::unique_ptr<RoundDriver>> driver =
@@ -240,4 +236,4 @@ std::optional<double> JobRunner::EtaSeconds() const {
   return left;
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -33,13 +33,13 @@
 #include "core/progressive_solver.h"
 #include "core/thread_pool.h"
 #include "daemon/scheduler/round_scheduler.h"
-#include "daemon/store/job_store.h"
 #include "protocol/batch_convert.h"
 #include "protocol/messages.h"
 #include "protocol/scene_transfer.h"
 #include "solve/round_driver.h"
+#include "store/job_store.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 // What a job has spent so far (restored from its rounds after a restart).
 struct JobTotals {
@@ -157,4 +157,4 @@ class JobRunner {
   std::vector<std::pair<uint64_t, double>> recent_;
 };
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -5,7 +5,7 @@
 #include "base/result.h"
 #include "core/solve_control.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 std::string SubmittedSettings::ToJson() const {
   return nlohmann::json{{"tolerance", tolerance},     {"max_rays", max_rays},
@@ -60,4 +60,4 @@ std::string StopReasonOf(const JobSummary& s) {
   return kStopTimeBudget;
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -8,9 +8,9 @@
 #include <string>
 
 #include "base/result.h"
-#include "daemon/store/job_store.h"
+#include "store/job_store.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 // The job's settings as the master keeps them in the jobs.settings column (JSON).
 struct SubmittedSettings {
@@ -44,4 +44,4 @@ Result<JobSummary> ReadJobSummary(store::JobStore& store, const store::JobRecord
 // inferred from its totals.
 std::string StopReasonOf(const JobSummary& summary);
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -16,7 +16,7 @@
 #include "loop/event_loop.h"
 #include "loop/log.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 namespace {
 
 constexpr int kExitOk = 0;
@@ -146,7 +146,7 @@ int Run(const MasterConfig& config) {
 }
 
 }  // namespace
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -154,18 +154,18 @@ int main(int argc, char** argv) {
       "directory), leases ray batches to radfarm-agent processes and folds their results into "
       "each job's radiosity solution. Stop it with SIGTERM; it resumes every job on restart."};
   app.set_version_flag("--version", "radfarmd 0.1.0");
-  radfarm::master::Flags flags;
-  radfarm::master::AddFlags(app, &flags);
+  radfarm::daemon::Flags flags;
+  radfarm::daemon::AddFlags(app, &flags);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
-    return code == 0 ? radfarm::master::kExitOk : radfarm::master::kExitBadInput;
+    return code == 0 ? radfarm::daemon::kExitOk : radfarm::daemon::kExitBadInput;
   }
-  radfarm::Result<radfarm::master::MasterConfig> config = radfarm::master::ResolveConfig(flags);
+  radfarm::Result<radfarm::daemon::MasterConfig> config = radfarm::daemon::ResolveConfig(flags);
   if (!config) {
     std::fprintf(stderr, "radfarmd: %s\n", config.error().c_str());
-    return radfarm::master::kExitBadInput;
+    return radfarm::daemon::kExitBadInput;
   }
-  return radfarm::master::Run(*config);
+  return radfarm::daemon::Run(*config);
 }

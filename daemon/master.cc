@@ -1,15 +1,16 @@
 #include "daemon/master.h"
+#include "base/result.h"
 
 #include <signal.h>
 
 #include <filesystem>
 #include <system_error>
 
-#include "base/atomic_file.h"
-#include "base/result.h"
 #include "loop/log.h"
+#include "base/atomic_file.h"
+#include "store/job_transactions.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 Master::Master(loop::EventLoop& loop, const MasterConfig& config, protocol::FarmSecret secret)
     : loop_(loop), config_(config), secret_(std::move(secret)) {
@@ -25,10 +26,6 @@ Master::Master(loop::EventLoop& loop, const MasterConfig& config, protocol::Farm
 
 Master::~Master() = default;
 
-scheduler::TimePoint Master::Now() const {
-  return scheduler::TimePoint(std::chrono::milliseconds(loop_.NowMs()));
-}
-
 Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const MasterConfig& config,
                                               protocol::FarmSecret secret) {
   std::error_code ec;
@@ -37,69 +34,78 @@ Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const Maste
     return Error{"state directory " + config.state_dir + ": cannot create it: " + ec.message()};
   }
   std::unique_ptr<Master> master(new Master(loop, config, std::move(secret)));
-  Master* self = master.get();
 
   Result<store::JobStore> store = store::JobStore::Open(config.DatabasePath());
   RADFARM_RETURN_IF_ERROR(store);
   // Jobs that were running when the last master stopped go back to the queue; they resume from
   // their latest checkpoints when they start again.
-  Result<std::vector<store::JobRecord>> jobs = store->ListJobs();
-  RADFARM_RETURN_IF_ERROR(jobs);
-  for (const store::JobRecord& job : *jobs) {
-    if (job.state != store::JobState::kRunning) continue;
-    RADFARM_RETURN_IF_ERROR(store->SetJobState(job.id, store::JobState::kQueued));
-    (void)store->AppendEvent(job.id, store::EventLevel::kInfo,
-                             "master restarted: the job resumes from its latest checkpoint");
+  if (Result<int> requeued = store::RequeueRunningJobs(*store); !requeued) {
+    return Error{requeued.error()};
   }
-  master->store_ = std::make_shared<store::JobStore>(std::move(*store));
-
-  auto store_queue = loop::WorkQueue::Create(loop, 1, "store");
-  RADFARM_RETURN_IF_ERROR(store_queue);
-  master->store_queue_ = std::move(*store_queue);
-  auto compute_queue = loop::WorkQueue::Create(loop, 1, "compute");
-  RADFARM_RETURN_IF_ERROR(compute_queue);
-  master->compute_queue_ = std::move(*compute_queue);
-
-  Result<loop::HostPort> listen = loop::ParseHostPort(config.listen, "--listen");
-  RADFARM_RETURN_IF_ERROR(listen);
-  auto listener = loop::TcpListener::Listen(
-      loop, *listen,
-      [self](std::unique_ptr<loop::FramedConnection> c) { self->OnConnection(std::move(c)); });
-  RADFARM_RETURN_IF_ERROR(listener);
-  master->listener_ = std::move(*listener);
-  master->listen_address_ = master->listener_->address();
-  RADFARM_RETURN_IF_ERROR(
-      WriteFileAtomically(config.ListenAddrPath(), master->listen_address_ + "\n"));
-
-  auto control = ControlServer::Listen(
-      loop, config.ControlPath(), [self](ControlRequest request, ControlRespond respond) {
-        self->HandleControl(std::move(request), std::move(respond));
-      });
-  RADFARM_RETURN_IF_ERROR(control);
-  master->control_ = std::move(*control);
-
-  master->heartbeat_timer_ = std::make_unique<loop::Timer>(loop);
-  master->heartbeat_timer_->Start(std::chrono::milliseconds(config.heartbeat_ms),
-                                  std::chrono::milliseconds(config.heartbeat_ms),
-                                  [self] { self->OnHeartbeatTimer(); });
-  master->tick_timer_ = std::make_unique<loop::Timer>(loop);
-  master->tick_timer_->Start(std::chrono::milliseconds(100), std::chrono::milliseconds(100),
-                             [self] { self->OnTickTimer(); });
-  for (int signum : {SIGTERM, SIGINT}) {
-    auto watch = loop::Signal::Watch(
-        loop, signum, [self](int s) { self->Shutdown(s == SIGTERM ? "SIGTERM" : "SIGINT"); });
-    RADFARM_RETURN_IF_ERROR(watch);
-    (signum == SIGTERM ? master->sigterm_ : master->sigint_) = std::move(*watch);
-  }
+  auto store_thread = StoreThread::Start(loop, std::move(*store));
+  RADFARM_RETURN_IF_ERROR(store_thread);
+  master->store_ = std::move(*store_thread);
+  auto compute = loop::WorkQueue::Create(loop, 1, "compute");
+  RADFARM_RETURN_IF_ERROR(compute);
+  master->compute_ = std::move(*compute);
+  if (Status s = master->Wire(); !s) return Error{s.error()};
 
   master->notifier_ = std::make_unique<service::ServiceNotifier>(loop);
   master->notifier_->Ready();  // the store is open and both listeners are bound
   master->ReportStatus();
   loop::LogLine(loop::LogLevel::kInfo, "master")
       << "listening for agents on " << master->listen_address_ << "; control socket "
-      << master->control_->path() << "; state " << config.state_dir;
-  master->StartQueuedJobs();
+      << master->control_server_->path() << "; state " << config.state_dir;
+  master->jobs_->StartQueuedJobs();
   return master;
+}
+
+Status Master::Wire() {
+  // JobRounds reaches the agents only through these hooks (agents_ is made right after it).
+  AgentHooks hooks{[this] { agents_->DispatchAll(); },
+                   [this](store::JobId id) { agents_->CancelJob(id); },
+                   [this] { return agents_->Available(); }};
+  jobs_ = std::make_unique<JobRounds>(loop_, config_, scheduler_options_, *store_, *compute_,
+                                      std::move(hooks));
+  agents_ = std::make_unique<AgentConnections>(loop_, config_, secret_, scheduler_options_, *store_,
+                                               *jobs_);
+  control_ = std::make_unique<ControlRequests>(loop_, *store_, *compute_, *jobs_, *agents_);
+
+  Result<loop::HostPort> listen = loop::ParseHostPort(config_.listen, "--listen");
+  RADFARM_RETURN_IF_ERROR(listen);
+  AgentConnections* agents = agents_.get();
+  auto listener = loop::TcpListener::Listen(
+      loop_, *listen,
+      [agents](std::unique_ptr<loop::FramedConnection> c) { agents->OnConnection(std::move(c)); });
+  RADFARM_RETURN_IF_ERROR(listener);
+  listener_ = std::move(*listener);
+  listen_address_ = listener_->address();
+  if (Status s = WriteFileAtomically(config_.ListenAddrPath(), listen_address_ + "\n"); !s) {
+    return Error{s.error()};
+  }
+
+  ControlRequests* control = control_.get();
+  auto control_server = ControlServer::Listen(
+      loop_, config_.ControlPath(), [control](ControlRequest request, ControlRespond respond) {
+        control->Handle(std::move(request), std::move(respond));
+      });
+  RADFARM_RETURN_IF_ERROR(control_server);
+  control_server_ = std::move(*control_server);
+
+  heartbeat_timer_ = std::make_unique<loop::Timer>(loop_);
+  heartbeat_timer_->Start(std::chrono::milliseconds(config_.heartbeat_ms),
+                          std::chrono::milliseconds(config_.heartbeat_ms),
+                          [this] { OnHeartbeatTimer(); });
+  tick_timer_ = std::make_unique<loop::Timer>(loop_);
+  tick_timer_->Start(std::chrono::milliseconds(100), std::chrono::milliseconds(100),
+                     [this] { OnTickTimer(); });
+  for (int signum : {SIGTERM, SIGINT}) {
+    auto watch = loop::Signal::Watch(
+        loop_, signum, [this](int s) { Shutdown(s == SIGTERM ? "SIGTERM" : "SIGINT"); });
+    RADFARM_RETURN_IF_ERROR(watch);
+    (signum == SIGTERM ? sigterm_ : sigint_) = std::move(*watch);
+  }
+  return Ok{};
 }
 
 void Master::Shutdown(const std::string& why) {
@@ -107,31 +113,37 @@ void Master::Shutdown(const std::string& why) {
   shutting_down_ = true;
   loop::LogLine(loop::LogLevel::kInfo, "master") << why << ": shutting down";
   notifier_->Stopping();
-  // Agents keep their state; they reconnect to the next master by themselves.
-  for (auto& [id, link] : agents_) {
-    if (link->authenticated()) link->Close(protocol::CloseCode::kShutdown, "master shutting down");
-  }
+  agents_->Stop();  // agents keep their state and reconnect to the next master by themselves
+  jobs_->Stop();
+  control_->Stop();
   listener_->Close();
-  control_->Close();
+  control_server_->Close();
   heartbeat_timer_->Close();
   tick_timer_->Close();
   sigterm_->Close();
   sigint_->Close();
-  compute_queue_->Shutdown(loop::WorkQueue::ShutdownMode::kCancel, [] {});
+  compute_->Shutdown(loop::WorkQueue::ShutdownMode::kCancel, [] {});
   // Let committed-to writes finish: a checkpoint in flight is either written whole or not at all.
-  store_queue_->Shutdown(loop::WorkQueue::ShutdownMode::kDrain, [this] {
-    agents_.clear();
-    runners_.clear();
+  store_->Drain([this] {
+    agents_->Clear();
+    jobs_->Clear();
     loop_.Stop();
   });
 }
 
-void Master::ReportStatus() {
-  size_t agents = 0;
-  for (const auto& [id, link] : agents_) agents += link->authenticated() && !link->stale;
-  notifier_->Status(std::to_string(runners_.size()) + " jobs running, " +
-                    std::to_string(starting_.size()) + " starting; " + std::to_string(agents) +
-                    " agents");
+void Master::OnHeartbeatTimer() {
+  ReportStatus();
+  agents_->Heartbeat();
 }
 
-}  // namespace radfarm::master
+void Master::OnTickTimer() {
+  if (jobs_->Tick(LoopNow(loop_)) > 0) agents_->DispatchAll();
+}
+
+void Master::ReportStatus() {
+  notifier_->Status(std::to_string(jobs_->runners().size()) + " jobs running, " +
+                    std::to_string(jobs_->starting()) + " starting; " +
+                    std::to_string(agents_->active()) + " agents");
+}
+
+}  // namespace radfarm::daemon

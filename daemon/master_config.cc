@@ -7,7 +7,7 @@
 #include "base/toml_table_reader.h"
 #include "loop/host_port.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 std::string MasterConfig::ControlPath() const {
   return control.empty() ? (std::filesystem::path(state_dir) / "control.sock").string() : control;
@@ -60,4 +60,4 @@ Status CheckMasterConfig(const MasterConfig& c) {
   return Ok{};
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

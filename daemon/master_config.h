@@ -8,7 +8,7 @@
 
 #include "base/result.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 
 struct MasterConfig {
   std::string listen = "0.0.0.0:7878";  // agents connect here; port 0 picks a free port
@@ -40,4 +40,4 @@ Status ReadMasterConfigFile(const std::string& path, MasterConfig* config);
 // The checks no single key can make (called after flags are applied).
 Status CheckMasterConfig(const MasterConfig& config);
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

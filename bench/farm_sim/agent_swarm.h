@@ -1,7 +1,7 @@
 // AgentSwarm: N simulated agents (SimAgent) on one event loop in one thread, all connected to one
 // real radfarmd. Start() returns once every agent is authenticated; the swarm then works on
 // whatever the master leases until the job ends, which the master announces by sending every
-// agent a Cancel for it (Master::DropRunner); Finish() waits for that and returns the agents'
+// agent a Cancel for it (JobRounds::DropRunner); Finish() waits for that and returns the agents'
 // measurements.
 //
 // Threads: Start() and Finish() are called by one thread (the bench's); the agents, their timers

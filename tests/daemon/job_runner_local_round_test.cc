@@ -10,7 +10,7 @@
 #include "job/job.h"
 #include "mesh/patch_mesh.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 namespace {
 
 TEST(JobRunnerLocalRoundTest, RoundsRunHereGiveTheLocalSolveBitForBit) {
@@ -54,4 +54,4 @@ TEST(JobRunnerLocalRoundTest, RoundsRunHereGiveTheLocalSolveBitForBit) {
 }
 
 }  // namespace
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

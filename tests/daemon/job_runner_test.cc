@@ -14,7 +14,7 @@
 #include "mesh/refinement_schedule.h"
 #include "protocol/scene_transfer.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 namespace {
 
 codec::JobBundle AdaptiveBundle() {
@@ -155,4 +155,4 @@ TEST(JobRunnerRefineTest, AWrongRefinedMeshFailsTheJob) {
 }
 
 }  // namespace
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "daemon/store/job_store.h"
+#include "store/job_store.h"
 #include "tests/farm/farm_fixture.h"
 
 namespace radfarm::testing {

@@ -107,11 +107,11 @@ TEST(ExampleConfigTest, RadfarmdReadsItsExampleAndItHoldsTheDefaults) {
   testing::TempDir dir;
   const std::string path =
       WriteFile(dir.path(), "radfarmd.conf", Uncomment(ReadExample("radfarmd.conf")));
-  master::MasterConfig config;
-  const Status read = master::ReadMasterConfigFile(path, &config);
+  daemon::MasterConfig config;
+  const Status read = daemon::ReadMasterConfigFile(path, &config);
   ASSERT_TRUE(read.ok()) << read.error();
-  EXPECT_TRUE(master::CheckMasterConfig(config).ok());
-  const master::MasterConfig defaults;
+  EXPECT_TRUE(daemon::CheckMasterConfig(config).ok());
+  const daemon::MasterConfig defaults;
   EXPECT_EQ(config.listen, defaults.listen);
   EXPECT_EQ(config.state_dir, defaults.state_dir);
   EXPECT_EQ(config.secret_file, defaults.secret_file);

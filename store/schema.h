@@ -19,7 +19,7 @@
 #include <string_view>
 
 #include "base/result.h"
-#include "daemon/store/database.h"
+#include "store/database.h"
 
 namespace radfarm::store {
 

@@ -1,5 +1,5 @@
 // Opening files: migrations from every version, and refusals (corrupt, foreign, newer files).
-#include "daemon/store/schema.h"
+#include "store/schema.h"
 
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 #include <sstream>
 #include <thread>
 
-#include "daemon/store/job_store.h"
-#include "tests/daemon/store/temp_dir.h"
+#include "store/job_store.h"
+#include "tests/store/temp_dir.h"
 
 namespace radfarm::store {
 namespace {
@@ -94,7 +94,7 @@ TEST(SchemaTest, UpgradesVersion1FixtureWithItsData) {
   TempDir dir;
   std::string path = dir.File("v1.db");
   {
-    std::ifstream in(std::string(RADFARM_SOURCE_DIR) + "/tests/daemon/store/data/schema_v1.sql");
+    std::ifstream in(std::string(RADFARM_SOURCE_DIR) + "/tests/store/data/schema_v1.sql");
     std::stringstream sql;
     sql << in.rdbuf();
     Database db = OpenRaw(path);

@@ -28,9 +28,9 @@
 #include "base/result.h"
 #include "core/progressive_solver.h"
 #include "core/rgb.h"
-#include "daemon/store/database.h"
-#include "daemon/store/job_state.h"
-#include "daemon/store/schema.h"
+#include "store/database.h"
+#include "store/job_state.h"
+#include "store/schema.h"
 
 namespace radfarm::store {
 

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <limits>
 
-#include "daemon/store/job_store.h"
-#include "tests/daemon/store/temp_dir.h"
+#include "store/job_store.h"
+#include "tests/store/temp_dir.h"
 
 namespace radfarm::store {
 namespace {

@@ -1,4 +1,4 @@
-#include "daemon/store/schema.h"
+#include "store/schema.h"
 
 #include <algorithm>
 #include <array>

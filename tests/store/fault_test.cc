@@ -5,10 +5,10 @@
 
 #include <cstdio>
 
-#include "daemon/store/database.h"
-#include "daemon/store/job_store.h"
-#include "tests/daemon/store/faulty_vfs.h"
-#include "tests/daemon/store/temp_dir.h"
+#include "store/database.h"
+#include "store/job_store.h"
+#include "tests/store/faulty_vfs.h"
+#include "tests/store/temp_dir.h"
 
 namespace radfarm::store {
 namespace {

@@ -1,13 +1,13 @@
-// The master's side of agent connections: handshake, heartbeats, leases, results, scene fetches.
+#include "daemon/agent_connections.h"
+
 #include <algorithm>
 
-#include "daemon/master.h"
 #include "daemon/scheduler/result_intake.h"
 #include "loop/log.h"
 #include "protocol/batch_convert.h"
 #include "protocol/scene_transfer.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 namespace {
 
 using loop::LogLevel;
@@ -20,11 +20,22 @@ struct Overloaded : Ts... {
 
 }  // namespace
 
-void Master::OnConnection(std::unique_ptr<loop::FramedConnection> connection) {
-  if (shutting_down_) return;  // dropped: closes silently
-  if (agents_.size() >= config_.max_agents) {
+AgentConnections::AgentConnections(loop::EventLoop& loop, const MasterConfig& config,
+                                   const protocol::FarmSecret& secret,
+                                   const scheduler::SchedulerOptions& options, StoreThread& store,
+                                   JobRounds& jobs)
+    : loop_(loop),
+      config_(config),
+      secret_(secret),
+      options_(options),
+      store_(store),
+      jobs_(jobs) {}
+
+void AgentConnections::OnConnection(std::unique_ptr<loop::FramedConnection> connection) {
+  if (stopping_) return;  // dropped: closes silently
+  if (links_.size() >= config_.max_agents) {
     LogLine(LogLevel::kWarning, "agents")
-        << connection->peer() << ": refused, already " << agents_.size() << " connections";
+        << connection->peer() << ": refused, already " << links_.size() << " connections";
     return;
   }
   const uint64_t id = next_agent_id_++;
@@ -41,14 +52,14 @@ void Master::OnConnection(std::unique_ptr<loop::FramedConnection> connection) {
   auto link = std::make_unique<AgentLink>(loop_, std::move(connection), secret_, session, options,
                                           std::move(callbacks));
   AgentLink& ref = *link;
-  agents_[id] = std::move(link);
+  links_[id] = std::move(link);
   ref.Start();
 }
 
-void Master::OnAuthenticated(AgentLink& link) {
+void AgentConnections::OnAuthenticated(AgentLink& link) {
   const auto blocked = blocklist_.find(link.name());
   if (blocked != blocklist_.end()) {
-    if (blocked->second > Now()) {
+    if (blocked->second > LoopNow(loop_)) {
       LogLine(LogLevel::kWarning, "agents") << link.Describe() << ": refused, blocklisted";
       link.Close(protocol::CloseCode::kProtocolError, "blocklisted after an invalid result");
       return;
@@ -59,28 +70,28 @@ void Master::OnAuthenticated(AgentLink& link) {
       << link.Describe() << " connected (" << link.threads() << " threads)";
   const std::string name = link.name(), address = link.address();
   const uint32_t threads = link.threads();
-  OnStore([name, address,
-           threads](store::JobStore& s) { return s.RecordAgentSeen(name, address, threads); },
-          [](Status s) {
-            if (!s) LogLine(LogLevel::kError, "store") << s.error();
-          });
-  for (auto& [job, runner] : runners_) runner->scheduler().AddAgent(link.id());
+  store_.Run([name, address,
+              threads](store::JobStore& s) { return s.RecordAgentSeen(name, address, threads); },
+             [](Status s) {
+               if (!s) LogLine(LogLevel::kError, "store") << s.error();
+             });
+  for (auto& [job, runner] : jobs_.runners()) runner->scheduler().AddAgent(link.id());
   Dispatch(link);
 }
 
-void Master::OnAgentClosed(AgentLink& link, const std::string& reason) {
+void AgentConnections::OnAgentClosed(AgentLink& link, const std::string& reason) {
   const uint64_t id = link.id();
   if (link.was_authenticated()) {
     LogLine(LogLevel::kInfo, "agents") << link.Describe() << " disconnected: " << reason;
-    for (auto& [job, runner] : runners_) runner->scheduler().OnAgentLost(id);
+    for (auto& [job, runner] : jobs_.runners()) runner->scheduler().OnAgentLost(id);
   }
-  agents_.erase(id);  // destroys the link; it is not used after this
+  links_.erase(id);  // destroys the link; it is not used after this
   DispatchAll();
 }
 
-void Master::TakeLeasesAway(AgentLink& link, const char* why) {
+void AgentConnections::TakeLeasesAway(AgentLink& link, const char* why) {
   size_t held = 0;
-  for (auto& [job, runner] : runners_) {
+  for (auto& [job, runner] : jobs_.runners()) {
     held += runner->scheduler().LeasesHeld(link.id());
     runner->scheduler().OnAgentLost(link.id());
   }
@@ -88,12 +99,11 @@ void Master::TakeLeasesAway(AgentLink& link, const char* why) {
       << link.Describe() << " " << why << ": its " << held << " leases go back to the queue";
 }
 
-void Master::OnAgentMessage(AgentLink& link, protocol::Message& message) {
-  if (link.stale) {
+void AgentConnections::OnAgentMessage(AgentLink& link, protocol::Message& message) {
+  if (link.Revive()) {
     // Heard from again after missing its heartbeats: back in the pool.
-    link.stale = false;
     LogLine(LogLevel::kInfo, "agents") << link.Describe() << " is back";
-    for (auto& [job, runner] : runners_) runner->scheduler().AddAgent(link.id());
+    for (auto& [job, runner] : jobs_.runners()) runner->scheduler().AddAgent(link.id());
   }
   std::visit(Overloaded{
                  [&](const protocol::HeartbeatMsg& h) { link.set_last_heartbeat(h); },
@@ -110,15 +120,16 @@ void Master::OnAgentMessage(AgentLink& link, protocol::Message& message) {
   if (!link.closing()) Dispatch(link);
 }
 
-void Master::OnBatchResult(AgentLink& link, const protocol::BatchResultMsg& result) {
-  JobRunner* runner = FindRunner(result.lease.job_id);
+void AgentConnections::OnBatchResult(AgentLink& link, const protocol::BatchResultMsg& result) {
+  JobRunner* runner = jobs_.FindRunner(result.lease.job_id);
   if (runner == nullptr || runner->phase() != JobRunner::Phase::kRound) {
     LogLine(LogLevel::kDebug, "agents") << link.Describe() << ": result for job "
                                         << result.lease.job_id << " dropped (job not in a round)";
     return;
   }
-  scheduler::IntakeVerdict v = scheduler::SubmitBatchResult(
-      runner->scheduler(), link.id(), result, runner->sampler(), runner->patch_count(), Now());
+  scheduler::IntakeVerdict v =
+      scheduler::SubmitBatchResult(runner->scheduler(), link.id(), result, runner->sampler(),
+                                   runner->patch_count(), LoopNow(loop_));
   const auto& lease = result.lease;
   switch (v.verdict.disposition) {
     case scheduler::Disposition::kAccepted:
@@ -141,29 +152,26 @@ void Master::OnBatchResult(AgentLink& link, const protocol::BatchResultMsg& resu
       }
       break;
   }
-  if (v.verdict.round_complete) {
-    OnRoundComplete(runners_.at(runner->id()));
-  }
+  if (v.verdict.round_complete) jobs_.OnRoundComplete(runner->id());
 }
 
-void Master::Blocklist(AgentLink& link, const std::string& why) {
-  const auto until = Now() + scheduler_options_.blocklist_duration;
-  blocklist_[link.name()] = until;
-  LogEvent(std::nullopt, store::EventLevel::kWarning,
-           "agent " + link.name() + " at " + link.address() +
-               " sent an invalid result and is blocklisted: " + why);
+void AgentConnections::Blocklist(AgentLink& link, const std::string& why) {
+  blocklist_[link.name()] = LoopNow(loop_) + options_.blocklist_duration;
+  store_.LogEvent(std::nullopt, store::EventLevel::kWarning,
+                  "agent " + link.name() + " at " + link.address() +
+                      " sent an invalid result and is blocklisted: " + why);
   // Its leases were revoked by the scheduler that saw the invalid result; take the others too.
-  for (auto& [job, runner] : runners_) runner->scheduler().OnAgentLost(link.id());
+  for (auto& [job, runner] : jobs_.runners()) runner->scheduler().OnAgentLost(link.id());
   link.Close(protocol::CloseCode::kProtocolError, "invalid batch result: " + why);
 }
 
-void Master::OnLeaseReturn(AgentLink& link, const protocol::LeaseReturnMsg& message) {
+void AgentConnections::OnLeaseReturn(AgentLink& link, const protocol::LeaseReturnMsg& message) {
   std::map<uint64_t, std::vector<scheduler::BatchId>> by_job;
   for (const protocol::LeaseRef& lease : message.leases)
     by_job[lease.job_id].push_back(lease.batch_id);
   size_t returned = 0;
   for (auto& [job, batches] : by_job) {
-    if (JobRunner* runner = FindRunner(job)) {
+    if (JobRunner* runner = jobs_.FindRunner(job)) {
       returned += runner->scheduler().ReturnLeases(link.id(), batches);
     }
   }
@@ -175,15 +183,15 @@ void Master::OnLeaseReturn(AgentLink& link, const protocol::LeaseReturnMsg& mess
   // A stopping or busy agent must not get the batches straight back.
   if (message.reason == protocol::LeaseReturnReason::kDraining ||
       message.reason == protocol::LeaseReturnReason::kOverloaded) {
-    link.declining = true;
+    link.Decline();
   }
   LogLine(LogLevel::kInfo, "agents") << link.Describe() << " returned " << returned << " of "
                                      << message.leases.size() << " leases (" << why << ")";
   if (returned > 0) DispatchAll();
 }
 
-void Master::OnSceneRequest(AgentLink& link, const protocol::SceneRequestMsg& request) {
-  for (auto& [job, runner] : runners_) {
+void AgentConnections::OnSceneRequest(AgentLink& link, const protocol::SceneRequestMsg& request) {
+  for (auto& [job, runner] : jobs_.runners()) {
     if (runner->wire_info().scene_hash != request.scene_hash) continue;
     Result<protocol::SceneChunkMsg> chunk =
         protocol::MakeSceneChunk(*runner->scene_blob(), request);
@@ -203,28 +211,12 @@ void Master::OnSceneRequest(AgentLink& link, const protocol::SceneRequestMsg& re
   (void)link.Send(protocol::SceneUnavailableMsg{request.scene_hash});
 }
 
-std::vector<JobRunner*> Master::RunnersByPriority() {
-  std::vector<JobRunner*> order;
-  for (auto& [id, runner] : runners_) {
-    if (runner->phase() == JobRunner::Phase::kRound) order.push_back(runner.get());
-  }
-  // Equal priorities take turns being first, so they share the agents.
-  if (!order.empty()) {
-    std::rotate(order.begin(), order.begin() + (dispatch_rotation_++ % order.size()), order.end());
-  }
-  std::stable_sort(order.begin(), order.end(),
-                   [](JobRunner* a, JobRunner* b) { return a->priority() > b->priority(); });
-  return order;
-}
-
-void Master::Dispatch(AgentLink& link) {
-  if (!link.authenticated() || link.closing() || link.stale || link.declining || shutting_down_) {
-    return;
-  }
+void AgentConnections::Dispatch(AgentLink& link) {
+  if (!link.TakesWork() || stopping_) return;
   // Don't queue work behind a slow socket.
   if (link.queued_bytes() > (4u << 20)) return;
-  const auto now = Now();
-  const std::vector<JobRunner*> order = RunnersByPriority();
+  const auto now = LoopNow(loop_);
+  const std::vector<JobRunner*> order = jobs_.RunnersByPriority();
   uint32_t held = 0, capacity = 0;
   for (JobRunner* runner : order) {
     held += runner->scheduler().LeasesHeld(link.id());
@@ -252,39 +244,67 @@ void Master::Dispatch(AgentLink& link) {
   }
 }
 
-void Master::DispatchAll() {
-  for (auto& [id, link] : agents_) Dispatch(*link);
+void AgentConnections::DispatchAll() {
+  for (auto& [id, link] : links_) Dispatch(*link);
 }
 
-void Master::OnHeartbeatTimer() {
-  ReportStatus();
+void AgentConnections::CancelJob(store::JobId id) {
+  for (auto& [agent_id, link] : links_) {
+    if (link->authenticated() && !link->closing()) {
+      (void)link->Send(protocol::CancelMsg{static_cast<uint64_t>(id)});
+    }
+  }
+}
+
+std::vector<uint64_t> AgentConnections::Available() const {
+  std::vector<uint64_t> ids;
+  for (const auto& [id, link] : links_) {
+    if (link->authenticated() && !link->stale()) ids.push_back(id);
+  }
+  return ids;
+}
+
+std::vector<const AgentLink*> AgentConnections::Authenticated() const {
+  std::vector<const AgentLink*> links;
+  for (const auto& [id, link] : links_) {
+    if (link->authenticated()) links.push_back(link.get());
+  }
+  return links;
+}
+
+size_t AgentConnections::active() const {
+  size_t agents = 0;
+  for (const auto& [id, link] : links_) agents += link->authenticated() && !link->stale();
+  return agents;
+}
+
+void AgentConnections::Heartbeat() {
   const uint64_t now_ms = loop_.NowMs();
   protocol::HeartbeatMsg beat;
-  for (auto& [job, runner] : runners_) beat.rays_per_second += runner->RaysPerSecond();
-  for (auto& [id, link] : agents_) {
+  for (auto& [job, runner] : jobs_.runners()) beat.rays_per_second += runner->RaysPerSecond();
+  for (auto& [id, link] : links_) {
     if (!link->authenticated() || link->closing()) continue;
-    if (!link->stale && now_ms - link->last_heard_ms() > config_.agent_timeout_ms) {
-      link->stale = true;
+    if (!link->stale() && now_ms - link->last_heard_ms() > config_.agent_timeout_ms) {
+      link->MarkStale();
       TakeLeasesAway(*link, "missed its heartbeats");
       continue;
     }
     // One lookup per agent and job: counters() costs O(batches + agents) and, called per agent,
     // took most of the loop thread's time with 1000 agents (farm_bench, docs/BENCHMARKS-farm.md).
     uint32_t leases = 0;
-    for (auto& [job, runner] : runners_) leases += runner->scheduler().LeasesHeld(id);
+    for (auto& [job, runner] : jobs_.runners()) leases += runner->scheduler().LeasesHeld(id);
     beat.leases_held = leases;
     (void)link->Send(beat);
   }
   DispatchAll();
 }
 
-void Master::OnTickTimer() {
-  const auto now = Now();
-  size_t offered = 0;
-  for (auto& [job, runner] : runners_) {
-    if (runner->phase() == JobRunner::Phase::kRound) offered += runner->scheduler().Tick(now);
+void AgentConnections::Stop() {
+  stopping_ = true;
+  // Agents keep their state; they reconnect to the next master by themselves.
+  for (auto& [id, link] : links_) {
+    if (link->authenticated()) link->Close(protocol::CloseCode::kShutdown, "master shutting down");
   }
-  if (offered > 0) DispatchAll();
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

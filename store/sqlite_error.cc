@@ -1,4 +1,4 @@
-#include "daemon/store/sqlite_error.h"
+#include "store/sqlite_error.h"
 
 #include <sqlite3.h>
 

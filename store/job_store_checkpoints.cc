@@ -2,8 +2,8 @@
 #include <utility>
 
 #include "base/result.h"
-#include "daemon/store/blob_codec.h"
-#include "daemon/store/job_store.h"
+#include "store/blob_codec.h"
+#include "store/job_store.h"
 
 namespace radfarm::store {
 

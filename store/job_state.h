@@ -16,6 +16,11 @@
 // done, failed and cancelled are terminal: a retry is a new SubmitJob(). kFailed requires an error
 // text, kCancelled takes an optional reason, other transitions take none.
 // Times: started_at is set on the first entry to running; finished_at on entry to a terminal state.
+//
+// An operator's command (`radfarm cancel|pause|resume`, ChangeJobState in job_transactions.h)
+// takes these edges, and fewer: cancel -> kCancelled and pause -> kPaused wherever the diagram
+// allows them; resume -> kQueued from paused only (a running job goes back to the queue only when
+// the master restarts).
 #pragma once
 
 #include <optional>
@@ -31,5 +36,15 @@ std::optional<JobState> ParseJobState(std::string_view name);
 
 bool IsTerminal(JobState state);
 bool IsAllowedTransition(JobState from, JobState to);
+
+// What an operator asks of a job.
+enum class JobCommand { kCancel, kPause, kResume };
+
+// "cancel", "pause", "resume"; and the past participle, for messages: "cancelled", ...
+std::string_view JobCommandName(JobCommand command);
+std::string_view JobCommandDone(JobCommand command);
+// The state the command moves a job to, and whether it may from `from` (the rules above).
+JobState CommandTarget(JobCommand command);
+bool IsAllowedCommand(JobState from, JobCommand command);
 
 }  // namespace radfarm::store

@@ -1,17 +1,18 @@
-// The master's answers to control-socket requests (docs/CONTROL.md).
+#include "daemon/control_requests.h"
+#include "base/result.h"
+
 #include <chrono>
 
-#include "base/result.h"
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
 #include "core/solve_control.h"
-#include "daemon/master.h"
 #include "loop/log.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/refine.h"
 #include "protocol/scene_transfer.h"
+#include "store/job_transactions.h"
 
-namespace radfarm::master {
+namespace radfarm::daemon {
 namespace {
 
 using loop::LogLevel;
@@ -30,10 +31,46 @@ ControlResponse NotFound(int64_t id) {
   return ControlError("not_found", "no job " + std::to_string(id));
 }
 
+// The solution `fetch` sends: the checkpoint's values and the job's statistics up to it.
+codec::JobSolution SolutionOf(store::StoredSolution stored, const JobSummary& summary) {
+  const store::Checkpoint& c = stored.checkpoint;
+  codec::JobSolution solution;
+  solution.bundle = std::move(stored.bundle);
+  if (stored.refined_scene) solution.scene = std::move(*stored.refined_scene);
+  solution.radiosity = c.radiosity;
+  solution.unshot = c.unshot;
+  SolveStats& st = solution.stats;
+  st.rays = stored.totals.rays;
+  st.seconds = stored.totals.seconds;
+  st.escaped_rays = stored.totals.escaped_rays;
+  st.backface_hits = stored.totals.back_rays;
+  if (stored.totals.unshot_fraction) st.unshot_fraction = *stored.totals.unshot_fraction;
+  st.rounds = c.rounds_done;
+  st.rays_per_second = st.seconds > 0 ? double(st.rays) / st.seconds : 0;
+  st.patches = c.radiosity.size();
+  st.seed = stored.job.spec.seed;
+  st.sampler = summary.settings.sampler;
+  JobSummary at_checkpoint = summary;
+  at_checkpoint.rays = st.rays;
+  at_checkpoint.unshot_fraction = st.unshot_fraction;
+  st.stop_reason = c.stop_reason                                ? *c.stop_reason
+                   : stored.job.state == store::JobState::kDone ? StopReasonOf(at_checkpoint)
+                                                                : "checkpoint";
+  st.emitted_power = c.energy.emitted;
+  st.absorbed_power = c.energy.absorbed;
+  st.escaped_power = c.energy.escaped;
+  return solution;
+}
+
 }  // namespace
 
-void Master::HandleControl(ControlRequest request, ControlRespond respond) {
-  if (shutting_down_) {
+ControlRequests::ControlRequests(loop::EventLoop& loop, StoreThread& store,
+                                 loop::WorkQueue& compute, JobRounds& jobs,
+                                 const AgentConnections& agents)
+    : loop_(loop), store_(store), compute_(compute), jobs_(jobs), agents_(agents) {}
+
+void ControlRequests::Handle(ControlRequest request, ControlRespond respond) {
+  if (stopping_) {
     respond(ControlError("internal", "the master is shutting down"));
     return;
   }
@@ -50,45 +87,45 @@ void Master::HandleControl(ControlRequest request, ControlRespond respond) {
       return ChangeState(std::move(request), std::move(respond));
     case ControlCommand::kFetch:
       return Fetch(std::move(request), std::move(respond));
-    case ControlCommand::kLog: {
-      const std::optional<store::JobId> id = request.id;
-      const int limit = static_cast<int>(request.limit);
-      OnStore(
-          [id, limit](store::JobStore& s) -> Result<std::optional<std::vector<store::Event>>> {
-            if (id) {
-              Result<std::optional<store::JobRecord>> job = s.GetJob(*id);
-              RADFARM_RETURN_IF_ERROR(job);
-              if (!*job) return std::optional<std::vector<store::Event>>();
-            }
-            Result<std::vector<store::Event>> events = s.ListEvents(id, limit);
-            RADFARM_RETURN_IF_ERROR(events);
-            return std::optional(std::move(*events));
-          },
-          [id, respond](Result<std::optional<std::vector<store::Event>>> events) {
-            if (!events) return respond(ControlError("internal", events.error()));
-            if (!*events) return respond(NotFound(*id));
-            json list = json::array();
-            for (const store::Event& e : **events) {
-              list.push_back({{"time_ms", e.time_ms},
-                              {"level", std::string(store::EventLevelName(e.level))},
-                              {"text", e.text}});
-            }
-            respond({json{{"ok", true}, {"events", list}}, {}});
-          });
-      return;
-    }
+    case ControlCommand::kLog:
+      return Log(std::move(request), std::move(respond));
     case ControlCommand::kAgents: {
       json list = json::array();
-      for (auto& [id, link] : agents_) {
-        if (link->authenticated()) list.push_back(AgentJson(*link));
-      }
+      for (const AgentLink* link : agents_.Authenticated()) list.push_back(AgentJson(*link));
       respond({json{{"ok", true}, {"agents", list}}, {}});
       return;
     }
   }
 }
 
-json Master::JobJson(const JobSummary& s) {
+void ControlRequests::Log(ControlRequest request, ControlRespond respond) {
+  const std::optional<store::JobId> id = request.id;
+  const int limit = static_cast<int>(request.limit);
+  store_.Run(
+      [id, limit](store::JobStore& s) -> Result<std::optional<std::vector<store::Event>>> {
+        if (id) {
+          Result<std::optional<store::JobRecord>> job = s.GetJob(*id);
+          RADFARM_RETURN_IF_ERROR(job);
+          if (!*job) return std::optional<std::vector<store::Event>>();
+        }
+        Result<std::vector<store::Event>> events = s.ListEvents(id, limit);
+        RADFARM_RETURN_IF_ERROR(events);
+        return std::optional(std::move(*events));
+      },
+      [id, respond](Result<std::optional<std::vector<store::Event>>> events) {
+        if (!events) return respond(ControlError("internal", events.error()));
+        if (!*events) return respond(NotFound(*id));
+        json list = json::array();
+        for (const store::Event& e : **events) {
+          list.push_back({{"time_ms", e.time_ms},
+                          {"level", std::string(store::EventLevelName(e.level))},
+                          {"text", e.text}});
+        }
+        respond({json{{"ok", true}, {"events", list}}, {}});
+      });
+}
+
+json ControlRequests::JobJson(const JobSummary& s) {
   const store::JobRecord& r = s.record;
   json job{{"id", r.id},
            {"name", r.spec.name},
@@ -110,7 +147,7 @@ json Master::JobJson(const JobSummary& s) {
            {"eta_seconds", nullptr},
            {"stop_reason", nullptr}};
   double unshot = s.unshot_fraction;
-  if (JobRunner* runner = FindRunner(static_cast<uint64_t>(r.id))) {
+  if (JobRunner* runner = jobs_.FindRunner(static_cast<uint64_t>(r.id))) {
     // The live view is ahead of the store by the rounds not yet committed.
     const JobTotals& t = runner->totals();
     job["round"] = t.round;
@@ -118,7 +155,8 @@ json Master::JobJson(const JobSummary& s) {
     job["unshot_fraction"] = unshot = t.unshot_fraction;
     job["rays_per_second"] = runner->RaysPerSecond();
     uint32_t agents = 0;
-    for (const auto& a : runner->scheduler().counters(Now()).agents) agents += a.leases_held > 0;
+    for (const auto& a : runner->scheduler().counters(LoopNow(loop_)).agents)
+      agents += a.leases_held > 0;
     job["agents"] = agents;
     if (auto eta = runner->EtaSeconds()) job["eta_seconds"] = *eta;
   }
@@ -131,12 +169,12 @@ json Master::JobJson(const JobSummary& s) {
   return job;
 }
 
-json Master::AgentJson(const AgentLink& link) const {
+json ControlRequests::AgentJson(const AgentLink& link) const {
   uint32_t leases = 0;
   double rays_per_second = 0;
   uint64_t results = 0;
-  const auto now = Now();
-  for (const auto& [job, runner] : runners_) {
+  const auto now = LoopNow(loop_);
+  for (const auto& [job, runner] : jobs_.runners()) {
     if (const auto a = runner->scheduler().agent_counters(link.id(), now)) {
       leases += a->leases_held;
       rays_per_second = std::max(rays_per_second, a->rays_per_second);
@@ -153,11 +191,11 @@ json Master::AgentJson(const AgentLink& link) const {
               {"connected_ms", link.connected_unix_ms()},
               {"last_heartbeat_ms_ago", loop_.NowMs() - link.last_heard_ms()},
               {"results", results},
-              {"stale", link.stale}};
+              {"stale", link.stale()}};
 }
 
-void Master::RespondWithJobs(std::optional<store::JobId> id, ControlRespond respond) {
-  OnStore(
+void ControlRequests::RespondWithJobs(std::optional<store::JobId> id, ControlRespond respond) {
+  store_.Run(
       [id](store::JobStore& s) -> Result<std::vector<JobSummary>> {
         std::vector<store::JobRecord> records;
         if (id) {
@@ -189,10 +227,10 @@ void Master::RespondWithJobs(std::optional<store::JobId> id, ControlRespond resp
       });
 }
 
-void Master::Submit(ControlRequest request, ControlRespond respond) {
+void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
   // Decode and mesh on the compute thread: a bundle the agents could not use is refused now.
   auto blob = std::make_shared<std::vector<uint8_t>>(std::move(request.attachment));
-  Status s = compute_queue_->Submit(
+  Status s = compute_.Submit(
       [blob]() -> Result<std::pair<SubmittedSettings, uint64_t>> {
         Result<codec::JobBundle> bundle = codec::DecodeJobBundle(*blob);
         RADFARM_RETURN_IF_ERROR(bundle);
@@ -228,9 +266,9 @@ void Master::Submit(ControlRequest request, ControlRespond respond) {
         spec.settings = checked->first.ToJson();
         spec.seed = checked->second;
         spec.priority = request.priority;
-        OnStore(
+        store_.Run(
             [blob, spec](store::JobStore& s) -> Result<JobSummary> {
-              RADFARM_RETURN_IF_ERROR(s.PutScene(spec.scene_hash, *blob));
+              if (Status st = s.PutScene(spec.scene_hash, *blob); !st) return Error{st.error()};
               Result<store::JobId> id = s.SubmitJob(spec);
               RADFARM_RETURN_IF_ERROR(id);
               (void)s.AppendEvent(*id, store::EventLevel::kInfo, "submitted");
@@ -244,46 +282,27 @@ void Master::Submit(ControlRequest request, ControlRespond respond) {
                   << "submitted: " << summary->record.spec.name << ", " << summary->settings.patches
                   << " patches, priority " << summary->record.spec.priority;
               respond({json{{"ok", true}, {"job", JobJson(*summary)}}, {}});
-              StartQueuedJobs();
+              jobs_.StartQueuedJobs();
             });
       });
   if (!s) respond(ControlError("internal", s.error()));
 }
 
-void Master::ChangeState(ControlRequest request, ControlRespond respond) {
+void ControlRequests::ChangeState(ControlRequest request, ControlRespond respond) {
   const store::JobId id = *request.id;
   const ControlCommand command = request.command;
-  OnStore(
-      [id, command](store::JobStore& s) -> Result<Lookup> {
-        Result<std::optional<store::JobRecord>> job = s.GetJob(id);
-        RADFARM_RETURN_IF_ERROR(job);
+  const store::JobCommand job_command =
+      command == ControlCommand::kCancel  ? store::JobCommand::kCancel
+      : command == ControlCommand::kPause ? store::JobCommand::kPause
+                                          : store::JobCommand::kResume;
+  store_.Run(
+      [id, job_command](store::JobStore& s) -> Result<Lookup> {
+        Result<store::StateChange> change = store::ChangeJobState(s, id, job_command);
+        RADFARM_RETURN_IF_ERROR(change);
         Lookup lookup;
-        if (!*job) return lookup;
-        const store::JobState from = (*job)->state;
-        const store::JobState to = command == ControlCommand::kCancel  ? store::JobState::kCancelled
-                                   : command == ControlCommand::kPause ? store::JobState::kPaused
-                                                                       : store::JobState::kQueued;
-        const bool allowed = command == ControlCommand::kResume
-                                 ? from == store::JobState::kPaused
-                                 : store::IsAllowedTransition(from, to);
-        if (!allowed) {
-          lookup.invalid = "job " + std::to_string(id) + " is " +
-                           std::string(store::JobStateName(from)) + ": it cannot be " +
-                           (command == ControlCommand::kCancel  ? "cancelled"
-                            : command == ControlCommand::kPause ? "paused"
-                                                                : "resumed");
-          return lookup;
-        }
-        std::optional<std::string> reason;
-        if (to == store::JobState::kCancelled) reason = "cancelled by the operator";
-        RADFARM_RETURN_IF_ERROR(s.SetJobState(id, to, reason));
-        (void)s.AppendEvent(id, store::EventLevel::kInfo,
-                            to == store::JobState::kCancelled ? "cancelled"
-                            : to == store::JobState::kPaused  ? "paused"
-                                                              : "resumed");
-        Result<std::optional<store::JobRecord>> after = s.GetJob(id);
-        if (!after || !*after) return Error{"job " + std::to_string(id) + " cannot be read back"};
-        Result<JobSummary> summary = ReadJobSummary(s, **after);
+        lookup.invalid = std::move(change->refused);
+        if (!change->job || !lookup.invalid.empty()) return lookup;
+        Result<JobSummary> summary = ReadJobSummary(s, *change->job);
         RADFARM_RETURN_IF_ERROR(summary);
         lookup.summary = std::move(*summary);
         return lookup;
@@ -294,76 +313,35 @@ void Master::ChangeState(ControlRequest request, ControlRespond respond) {
           return respond(ControlError("invalid_state", lookup->invalid));
         if (!lookup->summary) return respond(NotFound(id));
         if (command == ControlCommand::kResume) {
-          StartQueuedJobs();
+          jobs_.StartQueuedJobs();
         } else {
-          if (starting_.count(id)) starting_[id] = true;
-          DropRunner(id);
+          jobs_.DropJob(id);
           LogLine(LogLevel::kInfo, "job " + std::to_string(id))
               << (command == ControlCommand::kCancel ? "cancelled" : "paused");
-          StartQueuedJobs();
+          jobs_.StartQueuedJobs();
         }
         respond({json{{"ok", true}, {"job", JobJson(*lookup->summary)}}, {}});
       });
 }
 
-void Master::Fetch(ControlRequest request, ControlRespond respond) {
+void ControlRequests::Fetch(ControlRequest request, ControlRespond respond) {
   const store::JobId id = *request.id;
-  OnStore(
-      [id](store::JobStore& s)
-          -> Result<std::pair<std::optional<JobSummary>, std::vector<uint8_t>>> {
-        using Answer = std::pair<std::optional<JobSummary>, std::vector<uint8_t>>;
+  using Answer = std::pair<std::optional<JobSummary>, std::vector<uint8_t>>;
+  store_.Run(
+      [id](store::JobStore& s) -> Result<Answer> {
         Result<std::optional<store::JobRecord>> job = s.GetJob(id);
         RADFARM_RETURN_IF_ERROR(job);
         if (!*job) return Answer{};
         Result<JobSummary> summary = ReadJobSummary(s, **job);
         RADFARM_RETURN_IF_ERROR(summary);
-        Result<std::optional<store::Checkpoint>> checkpoint = s.LoadLatestCheckpoint(id);
-        RADFARM_RETURN_IF_ERROR(checkpoint);
-        if (!*checkpoint) return Answer{std::move(*summary), {}};
-        Result<std::optional<std::vector<uint8_t>>> bundle = s.GetScene((*job)->spec.scene_hash);
-        if (!bundle || !*bundle) return Error{"job " + std::to_string(id) + ": scene missing"};
-        Result<std::vector<store::RoundRecord>> rounds = s.ListRounds(id);
-        RADFARM_RETURN_IF_ERROR(rounds);
-        const store::Checkpoint& c = **checkpoint;
-        codec::JobSolution solution;
-        solution.bundle = std::move(**bundle);
-        if (c.scene_hash) {  // a refined mesh: fetch rebuilds it from its scene
-          Result<std::optional<std::vector<uint8_t>>> scene = s.GetScene(*c.scene_hash);
-          if (!scene || !*scene) {
-            return Error{"job " + std::to_string(id) + ": refined scene " + *c.scene_hash +
-                         " missing"};
-          }
-          solution.scene = std::move(**scene);
-        }
-        solution.radiosity = c.radiosity;
-        solution.unshot = c.unshot;
-        SolveStats& st = solution.stats;
-        for (const store::RoundRecord& r : *rounds) {
-          if (r.round > c.round) break;
-          st.rays += r.rays;
-          st.seconds += r.duration_seconds;
-          st.escaped_rays += r.escaped_rays;
-          st.backface_hits += r.back_rays;
-          st.unshot_fraction = r.unshot_fraction;
-        }
-        st.rounds = c.rounds_done;
-        st.rays_per_second = st.seconds > 0 ? double(st.rays) / st.seconds : 0;
-        st.patches = c.radiosity.size();
-        st.seed = (*job)->spec.seed;
-        st.sampler = summary->settings.sampler;
-        JobSummary at_checkpoint = *summary;
-        at_checkpoint.rays = st.rays;
-        at_checkpoint.unshot_fraction = st.unshot_fraction;
-        st.stop_reason = c.stop_reason                             ? *c.stop_reason
-                         : (*job)->state == store::JobState::kDone ? StopReasonOf(at_checkpoint)
-                                                                   : "checkpoint";
-        st.emitted_power = c.energy.emitted;
-        st.absorbed_power = c.energy.absorbed;
-        st.escaped_power = c.energy.escaped;
-        return Answer{std::move(*summary), codec::EncodeJobSolution(solution)};
+        Result<std::optional<store::StoredSolution>> stored = store::LoadSolution(s, id);
+        RADFARM_RETURN_IF_ERROR(stored);
+        if (!*stored) return Answer{std::move(*summary), {}};
+        std::vector<uint8_t> blob =
+            codec::EncodeJobSolution(SolutionOf(std::move(**stored), *summary));
+        return Answer{std::move(*summary), std::move(blob)};
       },
-      [this, id,
-       respond](Result<std::pair<std::optional<JobSummary>, std::vector<uint8_t>>> answer) {
+      [this, id, respond](Result<Answer> answer) {
         if (!answer) return respond(ControlError("internal", answer.error()));
         if (!answer->first) return respond(NotFound(id));
         if (answer->second.empty()) {
@@ -374,4 +352,4 @@ void Master::Fetch(ControlRequest request, ControlRespond respond) {
       });
 }
 
-}  // namespace radfarm::master
+}  // namespace radfarm::daemon

@@ -1,4 +1,4 @@
-#include "daemon/store/job_store.h"
+#include "store/job_store.h"
 
 #include <chrono>
 #include <utility>

@@ -1,4 +1,4 @@
-#include "daemon/store/blob_codec.h"
+#include "store/blob_codec.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "daemon/store/job_state.h"
+#include "store/job_state.h"
 
 #include <array>
 
@@ -49,6 +49,47 @@ bool IsAllowedTransition(JobState from, JobState to) {
       return false;
   }
   return false;
+}
+
+std::string_view JobCommandName(JobCommand command) {
+  switch (command) {
+    case JobCommand::kCancel:
+      return "cancel";
+    case JobCommand::kPause:
+      return "pause";
+    case JobCommand::kResume:
+      return "resume";
+  }
+  return "unknown";
+}
+
+std::string_view JobCommandDone(JobCommand command) {
+  switch (command) {
+    case JobCommand::kCancel:
+      return "cancelled";
+    case JobCommand::kPause:
+      return "paused";
+    case JobCommand::kResume:
+      return "resumed";
+  }
+  return "unknown";
+}
+
+JobState CommandTarget(JobCommand command) {
+  switch (command) {
+    case JobCommand::kCancel:
+      return JobState::kCancelled;
+    case JobCommand::kPause:
+      return JobState::kPaused;
+    case JobCommand::kResume:
+      return JobState::kQueued;
+  }
+  return JobState::kQueued;
+}
+
+bool IsAllowedCommand(JobState from, JobCommand command) {
+  if (command == JobCommand::kResume) return from == JobState::kPaused;
+  return IsAllowedTransition(from, CommandTarget(command));
 }
 
 }  // namespace radfarm::store

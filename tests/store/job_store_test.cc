@@ -1,9 +1,9 @@
 // Jobs, their states and order, scenes, agents and events.
-#include "daemon/store/job_store.h"
+#include "store/job_store.h"
 
 #include <gtest/gtest.h>
 
-#include "tests/daemon/store/temp_dir.h"
+#include "tests/store/temp_dir.h"
 
 namespace radfarm::store {
 namespace {

@@ -1,4 +1,4 @@
-#include "tests/daemon/store/faulty_vfs.h"
+#include "tests/store/faulty_vfs.h"
 
 #include <sqlite3.h>
 

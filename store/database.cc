@@ -1,11 +1,11 @@
-#include "daemon/store/database.h"
+#include "store/database.h"
 
 #include <sqlite3.h>
 
 #include <utility>
 
 #include "base/result.h"
-#include "daemon/store/sqlite_error.h"
+#include "store/sqlite_error.h"
 
 namespace radfarm::store {
 

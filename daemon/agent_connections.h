@@ -1,0 +1,87 @@
+// AgentConnections: the master's side of its agent connections. It accepts connections (one
+// AgentLink each, up to max_agents), refuses blocklisted agents after the handshake, hands leases
+// of the running jobs' rounds to agents with room (Dispatch), takes their results, lease returns
+// and scene requests, sends heartbeats, and takes the leases of an agent that disconnects or
+// misses its heartbeats away (the job's scheduler requeues them).
+//
+// Agent bookkeeping: an agent that missed its heartbeats is stale (no work until it speaks
+// again); one that handed leases back as draining or overloaded declines work on this connection;
+// one that sent an invalid result is closed and its name blocklisted for a while
+// (SchedulerOptions::blocklist_duration).
+//
+// Loop thread only. It reads and drives the jobs' schedulers through JobRounds.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "daemon/agent_link.h"
+#include "daemon/job_rounds.h"
+#include "daemon/master_config.h"
+#include "daemon/store_thread.h"
+#include "loop/event_loop.h"
+#include "loop/framed_connection.h"
+#include "protocol/farm_secret.h"
+
+namespace radfarm::daemon {
+
+class AgentConnections {
+ public:
+  AgentConnections(loop::EventLoop& loop, const MasterConfig& config,
+                   const protocol::FarmSecret& secret, const scheduler::SchedulerOptions& options,
+                   StoreThread& store, JobRounds& jobs);
+  AgentConnections(const AgentConnections&) = delete;
+  AgentConnections& operator=(const AgentConnections&) = delete;
+
+  // The listener's callback: a new connection, still to authenticate.
+  void OnConnection(std::unique_ptr<loop::FramedConnection> connection);
+  // Hands leases to every agent with room.
+  void DispatchAll();
+  // Tells every agent to drop the batches of job `id`.
+  void CancelJob(store::JobId id);
+  // Agents that get work when a job starts: authenticated and not stale, by id.
+  std::vector<uint64_t> Available() const;
+  // The heartbeat: marks agents silent past agent_timeout_ms stale (their leases go back),
+  // sends the others a heartbeat, then dispatches.
+  void Heartbeat();
+
+  // Authenticated agents (what `radfarm agents` lists), by id.
+  std::vector<const AgentLink*> Authenticated() const;
+  // Authenticated and not stale: the agents working for the farm.
+  size_t active() const;
+
+  // Shutdown: tells every agent and refuses new connections and dispatches.
+  void Stop();
+  // After the store thread drained: the links go.
+  void Clear() { links_.clear(); }
+
+ private:
+  void OnAuthenticated(AgentLink& link);
+  void OnAgentMessage(AgentLink& link, protocol::Message& message);
+  void OnAgentClosed(AgentLink& link, const std::string& reason);
+  void OnBatchResult(AgentLink& link, const protocol::BatchResultMsg& result);
+  void OnLeaseReturn(AgentLink& link, const protocol::LeaseReturnMsg& message);
+  void OnSceneRequest(AgentLink& link, const protocol::SceneRequestMsg& request);
+  void TakeLeasesAway(AgentLink& link, const char* why);
+  void Blocklist(AgentLink& link, const std::string& why);
+  // Hands leases to one agent.
+  void Dispatch(AgentLink& link);
+
+  loop::EventLoop& loop_;
+  const MasterConfig& config_;
+  const protocol::FarmSecret& secret_;
+  const scheduler::SchedulerOptions& options_;
+  StoreThread& store_;
+  JobRounds& jobs_;
+
+  std::map<uint64_t, std::unique_ptr<AgentLink>> links_;
+  uint64_t next_agent_id_ = 1;
+  std::unordered_map<std::string, scheduler::TimePoint> blocklist_;  // agent name -> until
+  bool stopping_ = false;
+};
+
+}  // namespace radfarm::daemon

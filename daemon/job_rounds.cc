@@ -1,0 +1,297 @@
+#include "daemon/job_rounds.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "loop/log.h"
+#include "protocol/scene_transfer.h"
+#include "store/job_transactions.h"
+
+namespace radfarm::daemon {
+namespace {
+
+using loop::LogLevel;
+using loop::LogLine;
+
+std::string Percent(double fraction) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4f%%", 100 * fraction);
+  return text;
+}
+
+}  // namespace
+
+scheduler::TimePoint LoopNow(const loop::EventLoop& loop) {
+  return scheduler::TimePoint(std::chrono::milliseconds(loop.NowMs()));
+}
+
+JobRounds::JobRounds(loop::EventLoop& loop, const MasterConfig& config,
+                     const scheduler::SchedulerOptions& options, StoreThread& store,
+                     loop::WorkQueue& compute, AgentHooks agents)
+    : loop_(loop),
+      config_(config),
+      options_(options),
+      store_(store),
+      compute_(compute),
+      agents_(std::move(agents)) {}
+
+JobRunner* JobRounds::FindRunner(uint64_t job_id) {
+  const auto it = runners_.find(static_cast<store::JobId>(job_id));
+  return it == runners_.end() ? nullptr : it->second.get();
+}
+
+void JobRounds::StartQueuedJobs() {
+  if (stopping_) return;
+  if (start_pending_) {
+    start_again_ = true;
+    return;
+  }
+  const size_t busy = runners_.size() + starting_.size();
+  if (busy >= config_.max_running_jobs) return;
+  start_pending_ = true;
+  const int slots = static_cast<int>(config_.max_running_jobs - busy);
+  // One step on the store thread: pick the jobs, mark them running, read what they need. The loop
+  // thread then prepares them on the compute thread.
+  store_.Run([slots](store::JobStore& s) { return store::StartQueuedJobs(s, slots); },
+             [this](Result<std::vector<store::JobStart>> starts) {
+               start_pending_ = false;
+               if (stopping_) return;
+               if (!starts) {
+                 LogLine(LogLevel::kError, "store")
+                     << "cannot start queued jobs: " << starts.error();
+                 return;
+               }
+               for (store::JobStart& start : *starts) {
+                 const store::JobId id = start.record.id;
+                 starting_[id] = false;
+                 store_.LogEvent(id, store::EventLevel::kInfo,
+                                 start.checkpoint ? "started, resuming after round " +
+                                                        std::to_string(start.checkpoint->round)
+                                                  : "started");
+                 auto options = options_;
+                 auto shared = std::make_shared<store::JobStart>(std::move(start));
+                 Status s = compute_.Submit(
+                     [shared, options] {
+                       return JobRunner::Prepare(shared->record, shared->bundle, shared->checkpoint,
+                                                 shared->checkpoint_scene, shared->rounds, options);
+                     },
+                     [this, id](Result<std::shared_ptr<JobRunner>> runner) {
+                       OnJobPrepared(id, std::move(runner));
+                     });
+                 if (!s) LogLine(LogLevel::kError, "master") << s.error();
+               }
+               if (start_again_) {
+                 start_again_ = false;
+                 StartQueuedJobs();
+               }
+             });
+}
+
+void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<JobRunner>> runner) {
+  if (stopping_) return;
+  const bool cancelled = starting_[id];
+  starting_.erase(id);
+  if (cancelled) {  // cancelled or paused while it was being prepared: the store knows already
+    StartQueuedJobs();
+    return;
+  }
+  if (!runner) {
+    FailJob(id, runner.error());
+    return;
+  }
+  std::shared_ptr<JobRunner> r = std::move(*runner);
+  runners_[id] = r;
+  if (r->phase() == JobRunner::Phase::kFinished) {
+    FinishJob(r);
+    return;
+  }
+  LogLine(LogLevel::kInfo, "job " + std::to_string(id))
+      << r->patch_count() << " patches, scene " << protocol::HashToHex(r->wire_info().scene_hash)
+      << " (" << r->scene_blob()->size() << " bytes)";
+  for (uint64_t agent : agents_.available_agents()) r->scheduler().AddAgent(agent);
+  BeginRound(r);
+}
+
+void JobRounds::BeginRound(const std::shared_ptr<JobRunner>& runner) {
+  const uint64_t rays = runner->planned_rays();
+  if (rays > 0 && rays <= config_.local_round_rays) {
+    RunRoundHere(runner);
+    return;
+  }
+  if (Status s = runner->StartPlannedRound(LoopNow(loop_)); !s) {
+    FailJob(runner->id(), s.error());
+    return;
+  }
+  agents_.dispatch_all();
+}
+
+// A round of a few rays per shooter (the tail of a solve: every patch still shoots, a handful of
+// rays each) costs agents a round trip per batch and the rays next to nothing. Its batches give
+// the same results here (core/batch.h), so the job's result does not change.
+void JobRounds::RunRoundHere(const std::shared_ptr<JobRunner>& runner) {
+  Result<RoundPlan> plan = runner->TakePlannedRound();
+  if (!plan) {
+    FailJob(runner->id(), plan.error());
+    return;
+  }
+  const bool due = CheckpointDue(runner->id());
+  const uint32_t batch_rays = runner->scheduler().SuggestedBatchRays();
+  auto shared_plan = std::make_shared<RoundPlan>(std::move(*plan));
+  ReduceOnComputeThread(runner, [runner, shared_plan, due, batch_rays] {
+    const auto start = std::chrono::steady_clock::now();
+    const scheduler::CompletedRound round = runner->RunLocally(std::move(*shared_plan));
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return runner->Reduce(round, seconds, due, batch_rays);
+  });
+}
+
+void JobRounds::OnRoundComplete(store::JobId id) {
+  const std::shared_ptr<JobRunner> runner = runners_.at(id);
+  Result<scheduler::CompletedRound> round = runner->TakeRound();
+  if (!round) {
+    FailJob(runner->id(), round.error());
+    return;
+  }
+  const double seconds =
+      std::chrono::duration<double>(LoopNow(loop_) - runner->round_started()).count();
+  const uint32_t batch_rays = runner->scheduler().SuggestedBatchRays();
+  const bool due = CheckpointDue(runner->id());
+  auto shared_round = std::make_shared<scheduler::CompletedRound>(std::move(*round));
+  ReduceOnComputeThread(runner, [runner, shared_round, seconds, due, batch_rays] {
+    return runner->Reduce(*shared_round, seconds, due, batch_rays);
+  });
+}
+
+bool JobRounds::CheckpointDue(store::JobId id) {
+  const uint64_t now_ms = loop_.NowMs();
+  bool due = config_.checkpoint_seconds <= 0;
+  auto& last = last_checkpoint_ms_[id];
+  if (!due && double(now_ms - last) >= 1000 * config_.checkpoint_seconds) due = true;
+  if (due) last = now_ms;
+  return due;
+}
+
+void JobRounds::ReduceOnComputeThread(const std::shared_ptr<JobRunner>& runner,
+                                      std::function<RoundOutcome()> work) {
+  Status s = compute_.Submit(std::move(work), [this, runner](Result<RoundOutcome> outcome) {
+    if (stopping_) return;
+    if (!outcome) {
+      FailJob(runner->id(), outcome.error());
+      return;
+    }
+    OnRoundReduced(runner, std::move(*outcome));
+  });
+  if (!s) FailJob(runner->id(), s.error());
+}
+
+void JobRounds::OnRoundReduced(const std::shared_ptr<JobRunner>& runner, RoundOutcome outcome) {
+  if (FindRunner(runner->id()) != runner.get()) return;  // cancelled or paused meanwhile
+  const store::JobId id = runner->id();
+  const uint32_t keep = config_.checkpoint_keep;
+  // The store thread commits the round while agents start on the next one.
+  auto record = outcome.record;
+  if (outcome.checkpoint_due) {
+    auto checkpoint = std::make_shared<store::Checkpoint>(std::move(outcome.checkpoint));
+    store_.Run(
+        [record, checkpoint, keep, scene = outcome.checkpoint_scene](store::JobStore& s) -> Status {
+          // The refined scene first: the checkpoint refers to it. A scene left behind by a crash
+          // between the two is harmless (scenes are kept by hash).
+          if (scene) {
+            if (Status st = s.PutScene(*checkpoint->scene_hash, *scene); !st) return st;
+          }
+          if (Status st = s.SaveCheckpoint(record, *checkpoint); !st) return st;
+          return s.PruneCheckpoints(record.job, static_cast<int>(keep));
+        },
+        [this, id](Status s) {
+          if (!s) FailJob(id, "cannot save the checkpoint: " + s.error());
+        });
+  } else {
+    store_.Run([record](store::JobStore& s) { return s.RecordRound(record); },
+               [this, id](Status s) {
+                 if (!s) FailJob(id, "cannot record the round: " + s.error());
+               });
+  }
+  LogLine(LogLevel::kInfo, "job " + std::to_string(id))
+      << "round " << record.round << ": " << record.rays << " rays, unshot "
+      << Percent(record.unshot_fraction) << ", " << record.duration_seconds << " s";
+  if (outcome.new_scene) {
+    store_.LogEvent(id, store::EventLevel::kInfo,
+                    "refined after round " + std::to_string(record.round) + ": " +
+                        std::to_string(outcome.new_patch_count) + " elements, scene " +
+                        protocol::HashToHex(outcome.new_scene_hash));
+  }
+  if (runner->Resume(outcome)) {
+    BeginRound(runner);
+  } else {
+    FinishJob(runner);
+  }
+}
+
+void JobRounds::FinishJob(const std::shared_ptr<JobRunner>& runner) {
+  const store::JobId id = runner->id();
+  const std::string reason = runner->stop_reason().value_or("stopped");
+  DropRunner(id);
+  store_.Run(
+      [id](store::JobStore& s) { return s.SetJobState(id, store::JobState::kDone, std::nullopt); },
+      [this, id, reason](Status s) {
+        if (!s) {
+          LogLine(LogLevel::kError, "store") << "job " << id << ": " << s.error();
+          return;
+        }
+        store_.LogEvent(id, store::EventLevel::kInfo, "done: " + reason);
+        StartQueuedJobs();
+      });
+}
+
+void JobRounds::DropJob(store::JobId id) {
+  if (starting_.count(id)) starting_[id] = true;
+  DropRunner(id);
+}
+
+void JobRounds::DropRunner(store::JobId id) {
+  const auto it = runners_.find(id);
+  if (it == runners_.end()) return;
+  runners_.erase(it);
+  last_checkpoint_ms_.erase(id);
+  // Agents drop the job's queued batches; results still in flight are ignored on arrival.
+  agents_.cancel_job(id);
+  agents_.dispatch_all();
+}
+
+void JobRounds::FailJob(store::JobId id, const std::string& error) {
+  if (stopping_) return;
+  DropRunner(id);
+  starting_.erase(id);
+  store_.Run([id, error](store::JobStore& s) { return store::FailJob(s, id, error); },
+             [this, id, error](Result<bool> s) {
+               if (!s) LogLine(LogLevel::kError, "store") << "job " << id << ": " << s.error();
+               store_.LogEvent(id, store::EventLevel::kError, "failed: " + error);
+               StartQueuedJobs();
+             });
+}
+
+std::vector<JobRunner*> JobRounds::RunnersByPriority() {
+  std::vector<JobRunner*> order;
+  for (auto& [id, runner] : runners_) {
+    if (runner->phase() == JobRunner::Phase::kRound) order.push_back(runner.get());
+  }
+  // Equal priorities take turns being first, so they share the agents.
+  if (!order.empty()) {
+    std::rotate(order.begin(), order.begin() + (dispatch_rotation_++ % order.size()), order.end());
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [](JobRunner* a, JobRunner* b) { return a->priority() > b->priority(); });
+  return order;
+}
+
+size_t JobRounds::Tick(scheduler::TimePoint now) {
+  size_t offered = 0;
+  for (auto& [job, runner] : runners_) {
+    if (runner->phase() == JobRunner::Phase::kRound) offered += runner->scheduler().Tick(now);
+  }
+  return offered;
+}
+
+}  // namespace radfarm::daemon

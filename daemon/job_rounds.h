@@ -1,0 +1,109 @@
+// JobRounds: the master's running jobs. It starts queued jobs (up to max_running_jobs, by
+// priority, then age), prepares each on the compute thread, runs its rounds (leased to agents
+// through its JobRunner's RoundScheduler, or computed here when small: local_round_rays), reduces
+// each round on the compute thread and commits the round and its checkpoint on the store thread
+// while the next round already runs; then it finishes or fails the job.
+//
+// Job lifecycle here (store/job_state.h has the store's side):
+//   queued --StartQueuedJobs--> starting --OnJobPrepared--> rounds: BeginRound --OnRoundComplete
+//     (or RunRoundHere)--> reducing --OnRoundReduced--> BeginRound ... --> FinishJob / FailJob
+//   DropJob (cancel, pause) forgets a running job at any point; a job still starting is dropped
+//   when its preparation ends.
+//
+// It knows nothing of connections: what it needs of the agents comes through AgentHooks.
+// Loop thread only (the compute and store threads hand their results back to it).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "daemon/job_runner.h"
+#include "daemon/master_config.h"
+#include "daemon/scheduler/round_scheduler.h"
+#include "daemon/store_thread.h"
+#include "loop/event_loop.h"
+#include "loop/work_queue.h"
+#include "store/job_store.h"
+
+namespace radfarm::daemon {
+
+// The loop's clock as the schedulers read it.
+scheduler::TimePoint LoopNow(const loop::EventLoop& loop);
+
+// What JobRounds asks of the agent side.
+struct AgentHooks {
+  std::function<void()> dispatch_all;            // hand leases to every agent with room
+  std::function<void(store::JobId)> cancel_job;  // tell every agent to drop the job's batches
+  std::function<std::vector<uint64_t>()> available_agents;  // authenticated and not stale
+};
+
+class JobRounds {
+ public:
+  using Runners = std::map<store::JobId, std::shared_ptr<JobRunner>>;
+
+  JobRounds(loop::EventLoop& loop, const MasterConfig& config,
+            const scheduler::SchedulerOptions& options, StoreThread& store,
+            loop::WorkQueue& compute, AgentHooks agents);
+  JobRounds(const JobRounds&) = delete;
+  JobRounds& operator=(const JobRounds&) = delete;
+
+  // Starts queued jobs while there are free slots (after a submit, a resume, a job's end).
+  void StartQueuedJobs();
+  // The last batch of the job's round is in: reduce it.
+  void OnRoundComplete(store::JobId id);
+  // Forgets a job the operator cancelled or paused (the store knows already).
+  void DropJob(store::JobId id);
+  void FailJob(store::JobId id, const std::string& error);
+
+  // The running jobs (not those being prepared), by id.
+  const Runners& runners() const { return runners_; }
+  JobRunner* FindRunner(uint64_t job_id);
+  // The jobs in a round, highest priority first; equal priorities take turns being first.
+  std::vector<JobRunner*> RunnersByPriority();
+  size_t starting() const { return starting_.size(); }
+  // Offers overdue leases again (RoundScheduler::Tick); returns how many.
+  size_t Tick(scheduler::TimePoint now);
+
+  // Shutdown: no new work starts, results coming back are dropped.
+  void Stop() { stopping_ = true; }
+  // After the store thread drained: the runners go.
+  void Clear() { runners_.clear(); }
+
+ private:
+  void OnJobPrepared(store::JobId id, Result<std::shared_ptr<JobRunner>> runner);
+  // Starts the planned round on the agents, or computes it here when it is small
+  // (MasterConfig::local_round_rays).
+  void BeginRound(const std::shared_ptr<JobRunner>& runner);
+  void RunRoundHere(const std::shared_ptr<JobRunner>& runner);
+  // `work` (Reduce, perhaps after RunLocally) on the compute thread, then OnRoundReduced.
+  void ReduceOnComputeThread(const std::shared_ptr<JobRunner>& runner,
+                             std::function<RoundOutcome()> work);
+  // Whether the round about to be reduced checkpoints (every round, or every checkpoint_seconds).
+  bool CheckpointDue(store::JobId id);
+  void OnRoundReduced(const std::shared_ptr<JobRunner>& runner, RoundOutcome outcome);
+  void FinishJob(const std::shared_ptr<JobRunner>& runner);
+  // Stops a job's work on every agent (Cancel) and forgets its runner.
+  void DropRunner(store::JobId id);
+
+  loop::EventLoop& loop_;
+  const MasterConfig& config_;
+  const scheduler::SchedulerOptions& options_;
+  StoreThread& store_;
+  loop::WorkQueue& compute_;
+  AgentHooks agents_;
+
+  Runners runners_;
+  std::map<store::JobId, uint64_t> last_checkpoint_ms_;  // loop NowMs() of each job's last one
+  std::map<store::JobId, bool> starting_;  // being prepared; true once cancelled meanwhile
+  bool start_pending_ = false;             // a StartQueuedJobs query is in flight
+  bool start_again_ = false;               // ... and another was asked for meanwhile
+  size_t dispatch_rotation_ = 0;
+  bool stopping_ = false;
+};
+
+}  // namespace radfarm::daemon

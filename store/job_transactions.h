@@ -1,0 +1,78 @@
+// The job store's named transactions: the reads and writes of several JobStore calls that the
+// master makes as one step on its store thread, as functions a test calls on a temporary store.
+//
+// Threads: like JobStore itself, call them on the thread that owns the store (the master's store
+// thread, daemon/README.md); the results own their data and go back to the loop thread.
+// Atomicity: each JobStore write is one SQLite transaction (job_store.h); a function here that
+// writes more than once says what an error halfway leaves behind.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "base/result.h"
+#include "store/job_state.h"
+#include "store/job_store.h"
+#include "store/round_totals.h"
+
+namespace radfarm::store {
+
+// What a job needs to start or resume: its record, bundle, latest checkpoint (if any) with the
+// refined scene it names, and its rounds (for the totals up to the checkpoint).
+struct JobStart {
+  JobRecord record;  // read after the job was marked running (started_at_ms is set)
+  std::vector<uint8_t> bundle;
+  std::optional<Checkpoint> checkpoint;
+  // The scene blob checkpoint->scene_hash names; nullopt when there is none or it is missing (the
+  // caller fails the job then: a resumed refined job cannot go on without its mesh).
+  std::optional<std::vector<uint8_t>> checkpoint_scene;
+  std::vector<RoundRecord> rounds;
+};
+
+// Marks up to `slots` queued jobs running, in NextRunnableJobs' order (priority, then age), and
+// reads what each needs to start. Errors: a job's bundle missing ("job N: its scene is missing"),
+// any store error. An error after the first job leaves the jobs before it marked running; the
+// master treats them as it treats running jobs after a crash (RequeueRunningJobs on restart).
+Result<std::vector<JobStart>> StartQueuedJobs(JobStore& store, int slots);
+
+// Puts every running job back in the queue with an event saying it resumes (the master's start:
+// the previous master stopped while they ran). Returns how many.
+Result<int> RequeueRunningJobs(JobStore& store);
+
+// The result of an operator's command.
+struct StateChange {
+  // The job after the change, or as it was when refused; nullopt: there is no such job.
+  std::optional<JobRecord> job;
+  // Set when the command is not allowed in the job's state: "job 3 is done: it cannot be paused".
+  std::string refused;
+};
+
+// Applies `command` (job_state.h: cancel, pause, resume) to job `id` by the transition rules,
+// with an event ("cancelled", "paused", "resumed"); a cancel records "cancelled by the operator"
+// as the job's error text. A missing job or a refused command is not an error (StateChange says
+// which); store errors are.
+Result<StateChange> ChangeJobState(JobStore& store, JobId id, JobCommand command);
+
+// Marks job `id` failed with `error`, unless it is already in a terminal state (cancelled while
+// its round was reduced, say) or gone: returns whether it changed.
+Result<bool> FailJob(JobStore& store, JobId id, const std::string& error);
+
+// A job's latest checkpoint and what turning it into a solution needs.
+struct StoredSolution {
+  JobRecord job;
+  Checkpoint checkpoint;        // the latest
+  std::vector<uint8_t> bundle;  // the job's bundle (job.spec.scene_hash)
+  // The refined mesh's scene blob the checkpoint's values belong to (checkpoint.scene_hash), or
+  // nullopt when they belong to the bundle's mesh.
+  std::optional<std::vector<uint8_t>> refined_scene;
+  RoundTotals totals;  // the rounds up to the checkpoint's
+};
+
+// Loads job `id`'s latest checkpoint with its bundle, refined scene and totals; nullopt when the
+// job has no checkpoint yet. Errors: no job `id` ("no job N"), its bundle or its refined scene
+// missing ("job N: scene missing", "job N: refined scene H missing"), any store error.
+Result<std::optional<StoredSolution>> LoadSolution(JobStore& store, JobId id);
+
+}  // namespace radfarm::store
