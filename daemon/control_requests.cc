@@ -1,8 +1,8 @@
 #include "daemon/control_requests.h"
-#include "base/result.h"
 
 #include <chrono>
 
+#include "base/result.h"
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
 #include "core/solve_control.h"
@@ -40,13 +40,9 @@ codec::JobSolution SolutionOf(store::StoredSolution stored, const JobSummary& su
   solution.radiosity = c.radiosity;
   solution.unshot = c.unshot;
   SolveStats& st = solution.stats;
-  st.rays = stored.totals.rays;
-  st.seconds = stored.totals.seconds;
-  st.escaped_rays = stored.totals.escaped_rays;
-  st.backface_hits = stored.totals.back_rays;
+  st = StatsOf(stored.totals.solve_totals(), c.energy);
   if (stored.totals.unshot_fraction) st.unshot_fraction = *stored.totals.unshot_fraction;
   st.rounds = c.rounds_done;
-  st.rays_per_second = st.seconds > 0 ? double(st.rays) / st.seconds : 0;
   st.patches = c.radiosity.size();
   st.seed = stored.job.spec.seed;
   st.sampler = summary.settings.sampler;
@@ -56,9 +52,6 @@ codec::JobSolution SolutionOf(store::StoredSolution stored, const JobSummary& su
   st.stop_reason = c.stop_reason                                ? *c.stop_reason
                    : stored.job.state == store::JobState::kDone ? StopReasonOf(at_checkpoint)
                                                                 : "checkpoint";
-  st.emitted_power = c.energy.emitted;
-  st.absorbed_power = c.energy.absorbed;
-  st.escaped_power = c.energy.escaped;
   return solution;
 }
 

@@ -1,8 +1,8 @@
 #include "daemon/job_runner.h"
-#include "base/result.h"
 
 #include <cmath>
 
+#include "base/result.h"
 #include "codec/patch_scene_codec.h"
 #include "core/solve_control.h"
 #include "mesh/patch_mesh.h"

@@ -1,13 +1,13 @@
 #include "daemon/master.h"
-#include "base/result.h"
 
 #include <signal.h>
 
 #include <filesystem>
 #include <system_error>
 
-#include "loop/log.h"
 #include "base/atomic_file.h"
+#include "base/result.h"
+#include "loop/log.h"
 #include "store/job_transactions.h"
 
 namespace radfarm::daemon {

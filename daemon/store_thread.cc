@@ -1,5 +1,4 @@
 #include "daemon/store_thread.h"
-#include "base/result.h"
 
 namespace radfarm::daemon {
 

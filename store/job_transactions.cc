@@ -1,8 +1,6 @@
 #include "store/job_transactions.h"
-#include "base/result.h"
 
 #include <utility>
-
 
 namespace radfarm::store {
 namespace {
