@@ -2,7 +2,7 @@
 
 #include "codec/patch_scene_codec.h"
 #include "protocol/scene_transfer.h"
-#include "store/round_totals.h"
+#include "store/solve_checkpoint.h"
 
 namespace radfarm {
 namespace {
@@ -63,16 +63,8 @@ Result<RenderState> RenderState::Open(const std::string& db_path, const codec::J
     state.resume_scene_ = std::make_unique<PatchScene>(std::move(*scene));
     state.scene_hash_ = c.scene_hash;
   }
-  auto resume = std::make_unique<SolveState>();
-  resume->round = c.round;
-  resume->rounds_done = c.rounds_done;
-  resume->radiosity = c.radiosity;
-  resume->unshot = c.unshot;
-  resume->energy = c.energy;
-  resume->refined_scene = state.resume_scene_.get();
-  resume->next_point = c.refine_points;
-  resume->stop = c.stop_reason;
-  resume->totals = store::TotalsUpToRound(*rounds, c.round).solve_totals();
+  auto resume =
+      std::make_unique<SolveState>(store::ResumeStateOf(c, *rounds, state.resume_scene_.get()));
   state.last_ = resume->totals;
   state.resume_ = std::move(resume);
   return state;
@@ -99,9 +91,7 @@ Status RenderState::SaveRound(const SolveState& now) {
                                  now.totals.seconds - last_.seconds,
                                  now.totals.escaped_rays - last_.escaped_rays,
                                  now.totals.backface_hits - last_.backface_hits};
-  const store::Checkpoint checkpoint{
-      job_,       now.round, now.rounds_done, now.radiosity,  now.unshot,
-      now.energy, 0,         scene_hash_,     now.next_point, now.stop};
+  const store::Checkpoint checkpoint = store::CheckpointOf(job_, now, scene_hash_);
   if (Status s = store_.SaveCheckpoint(round, checkpoint); !s) return Error{"--db: " + s.error()};
   if (Status s = store_.PruneCheckpoints(job_, kCheckpointsKept); !s) {
     return Error{"--db: " + s.error()};

@@ -8,12 +8,26 @@
 #include "mesh/patch_mesh.h"
 #include "protocol/scene_transfer.h"
 #include "solve/local_solve.h"
-#include "store/round_totals.h"
+#include "store/solve_checkpoint.h"
 
 namespace radfarm::daemon {
 namespace {
 
 constexpr size_t kRecentRounds = 8;
+
+// The refined scene `checkpoint` names: its stored blob, checked against the hash, decoded.
+Result<PatchScene> RefinedSceneOf(const store::Checkpoint& checkpoint, const RefineSettings& refine,
+                                  const std::optional<std::vector<uint8_t>>& blob) {
+  const std::string& hash = *checkpoint.scene_hash;
+  if (!refine.enabled) return Error{"its checkpoint names a refined mesh, but refinement is off"};
+  if (!blob) return Error{"the refined scene " + hash + " is missing"};
+  if (protocol::HashToHex(protocol::HashScene(*blob)) != hash) {
+    return Error{"the refined scene stored under " + hash + " has another hash"};
+  }
+  Result<PatchScene> scene = codec::DecodePatchScene(*blob);
+  if (!scene) return Error{"the refined scene " + hash + ": " + scene.error()};
+  return scene;
+}
 
 }  // namespace
 
@@ -37,30 +51,11 @@ Result<std::shared_ptr<JobRunner>> JobRunner::Prepare(
   if (checkpoint) {
     const store::Checkpoint& c = *checkpoint;
     if (c.scene_hash) {
-      if (!bundle->job.refine.enabled) {
-        return Error{job + ": its checkpoint names a refined mesh, but refinement is off"};
-      }
-      if (!checkpoint_scene) {
-        return Error{job + ": the refined scene " + *c.scene_hash + " is missing"};
-      }
-      if (protocol::HashToHex(protocol::HashScene(*checkpoint_scene)) != *c.scene_hash) {
-        return Error{job + ": the refined scene stored under " + *c.scene_hash +
-                     " has another hash"};
-      }
-      Result<PatchScene> scene = codec::DecodePatchScene(*checkpoint_scene);
-      if (!scene) return Error{job + ": the refined scene " + *c.scene_hash + ": " + scene.error()};
+      Result<PatchScene> scene = RefinedSceneOf(c, bundle->job.refine, checkpoint_scene);
+      if (!scene) return Error{job + ": " + scene.error()};
       refined_scene = std::move(*scene);
     }
-    resume.emplace();
-    resume->round = c.round;
-    resume->rounds_done = c.rounds_done;
-    resume->radiosity = c.radiosity;
-    resume->unshot = c.unshot;
-    resume->energy = c.energy;
-    resume->refined_scene = refined_scene ? &*refined_scene : nullptr;
-    resume->next_point = c.refine_points;
-    resume->stop = c.stop_reason;
-    resume->totals = store::TotalsUpToRound(rounds, c.round).solve_totals();
+    resume = store::ResumeStateOf(c, rounds, refined_scene ? &*refined_scene : nullptr);
   }
   runner->pool_ = std::make_unique<ThreadPool>(1);
   Result<std::unique_ptr<RoundDriver>> driver =
@@ -165,20 +160,13 @@ RoundOutcome JobRunner::Reduce(const scheduler::CompletedRound& round, double ro
   }
   out.checkpoint_due = checkpoint_due || out.stop.has_value();
   if (out.checkpoint_due) {
-    SolveState state = driver_->State();
-    out.checkpoint.job = id();
-    out.checkpoint.round = state.round;
-    out.checkpoint.rounds_done = state.rounds_done;
-    out.checkpoint.radiosity = std::move(state.radiosity);
-    out.checkpoint.unshot = std::move(state.unshot);
-    out.checkpoint.energy = state.energy;
+    std::optional<std::string> scene_hash;
     if (refined_blob_) {
-      out.checkpoint.scene_hash = refined_hash_;
+      scene_hash = refined_hash_;
       if (refined_unsaved_) out.checkpoint_scene = refined_blob_;
       refined_unsaved_ = false;
     }
-    out.checkpoint.refine_points = state.next_point;
-    out.checkpoint.stop_reason = out.stop;
+    out.checkpoint = store::CheckpointOf(id(), driver_->State(), std::move(scene_hash));
   }
   return out;
 }
