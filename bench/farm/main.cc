@@ -12,29 +12,10 @@
 #include "bench/farm/scaling_suite.h"
 #include "bench/run_benchmark.h"
 #include "bench/stopwatch.h"
+#include "testing/temp_dir.h"
 
 namespace radfarm::bench {
 namespace {
-
-// A scratch directory under the system temp dir, removed at the end.
-class ScratchDir {
- public:
-  ScratchDir() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "farm_bench-XXXXXX").string();
-    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot make a temp dir");
-    path_ = pattern;
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
 
 int Run(int argc, char** argv) {
   FarmBenchOptions options;
@@ -58,7 +39,7 @@ int Run(int argc, char** argv) {
               options.quick ? " --quick" : "", report.machine.cpus,
               report.machine.cpu_model.c_str(), report.machine.load_average.c_str(),
               static_cast<unsigned long long>(report.open_file_limit));
-  ScratchDir scratch;
+  const testing::TempDir scratch("farm_bench");
 
   if (options.real) {
     RealComputeConfig config;
