@@ -7,15 +7,14 @@ namespace radfarm::bench {
 
 struct BenchOptions {
   bool quick = false;      // smoke check: fewer budgets, one repetition, under a minute
-  std::string out_dir;     // where BENCHMARKS.md and the PNGs go
+  std::string json_path;   // where the raw figures go
   std::string scenes_dir;  // where cornell-box.obj and seed-room.obj are
 };
 
 inline constexpr char kUsage[] =
-    "usage: solver_bench [--quick] [--out-dir DIR] [--scenes DIR]\n"
+    "usage: solver_bench [--quick] [--json PATH] [--scenes DIR]\n"
     "  --quick         smoke check: fewer budgets, 1 repetition (under a minute)\n"
-    "  --out-dir DIR   write BENCHMARKS.md and benchmarks-*.png there (default: the source\n"
-    "                  tree's docs/)\n"
+    "  --json PATH     write the figures there (default: bench/results/solver_bench.json)\n"
     "  --scenes DIR    read the scenes from there (default: the source tree's scenes/)\n";
 
 // Returns false (with a message in *error, empty for --help) when the program should stop.

@@ -1,4 +1,4 @@
-// Everything one benchmark run measured: what report.cc writes and conclusions.cc judges.
+// Everything one solver_bench run measured, written out by solver_json.h.
 #pragma once
 
 #include <string>
@@ -17,10 +17,9 @@ struct BenchReport {
   double total_seconds = 0;
   std::string load_average_end;    // /proc/loadavg when the measurements were done
   SweepConfig sweep_config;        // shared by the scenes except for the ladder
-  std::vector<SceneSweep> sweeps;  // section 1, one per scene
-  RawThroughput raw;               // section 2
-  SeedWorkload seed;               // sections 3 and 4
-  std::vector<std::string> plots;  // PNG file names, relative to the report, one per sweep
+  std::vector<SceneSweep> sweeps;  // speed against error, one per scene
+  RawThroughput raw;               // the solver's ray loop against raw Embree
+  SeedWorkload seed;               // the seed paper's workload and equal time on its room
 };
 
 }  // namespace radfarm::bench

@@ -1,7 +1,7 @@
 // solver_bench: measures the radiosity solver's speed against its error for every sampler, the
 // solver's ray loop against raw Embree, and the seed paper's workload; prints the figures and
-// writes BENCHMARKS.md with one error-against-time plot per scene. See bench_options.h for the
-// flags.
+// writes them as JSON (bench/results/solver_bench.json; scripts/bench-report makes
+// docs/BENCHMARKS.md of it). See bench_options.h for the flags.
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
@@ -11,19 +11,17 @@
 #include <thread>
 #include <vector>
 
+#include "bench/bench_json.h"
 #include "bench/bench_options.h"
 #include "bench/bench_report.h"
 #include "bench/bench_scene.h"
-#include "bench/conclusions.h"
 #include "bench/machine_info.h"
-#include "bench/plot.h"
 #include "bench/raw_throughput.h"
-#include "bench/report.h"
 #include "bench/run_benchmark.h"
 #include "bench/seed_workload.h"
+#include "bench/solver_json.h"
 #include "bench/stopwatch.h"
 #include "bench/sweep.h"
-#include "bench/sweep_plot.h"
 
 namespace radfarm::bench {
 namespace {
@@ -82,25 +80,10 @@ int Run(int argc, char** argv) {
   report.seed =
       RunSeedWorkload(room, report.sweeps[1].reference, options.quick ? 1 : 5, config.repetitions);
 
-  std::filesystem::create_directories(options.out_dir);
-  for (size_t i = 0; i < report.sweeps.size(); ++i) {
-    const SceneSweep& sweep = report.sweeps[i];
-    const std::string name = "benchmarks-" + sweep.scene + ".png";
-    const std::string plot_error = WritePlot(MakeSweepPlot(
-        sweep, config, i == 1 ? &report.seed : nullptr, options.out_dir + "/" + name));
-    if (!plot_error.empty()) std::fprintf(stderr, "solver_bench: %s\n", plot_error.c_str());
-    report.plots.push_back(plot_error.empty() ? name : "");
-  }
   report.total_seconds = total.Seconds();
   report.load_average_end = ReadLoadAverage();
-  const std::string path = options.out_dir + "/BENCHMARKS.md";
-  if (const std::string write_error = WriteReport(report, path); !write_error.empty()) {
-    std::fprintf(stderr, "solver_bench: %s\n", write_error.c_str());
-    return 1;
-  }
-  std::printf("\n");
-  for (const std::string& paragraph : Conclusions(report)) std::printf("%s\n\n", paragraph.c_str());
-  std::printf("wrote %s in %.0f s\n", path.c_str(), report.total_seconds);
+  WriteJson(options.json_path, SolverBenchJson(report));
+  std::printf("wrote %s in %.0f s\n", options.json_path.c_str(), report.total_seconds);
   return 0;
 }
 

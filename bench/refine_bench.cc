@@ -1,10 +1,8 @@
 // refine_bench: adaptive refinement against uniform meshes, samplers and solver settings on the
 // Cornell box, the seed paper's room and a hard-shadow scene, each against a fine reference
-// (bench/refine/). It writes docs/BENCHMARKS-adaptive.md and docs/benchmarks-adaptive-*.png.
-//
-// Usage: refine_bench [--quick] [--scene NAME] [--out DIR] [--images DIR]
-// [--reference-cache DIR]. Every figure is from one
-// run (timings on a shared machine: read ratios, not absolute seconds).
+// (bench/refine/). It prints a line per row and writes the figures as JSON
+// (bench/results/refine_bench.json; scripts/bench-report makes docs/BENCHMARKS-adaptive.md of it).
+// Every figure is from one run (timings on a shared machine: read ratios, not absolute seconds).
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -12,8 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_json.h"
 #include "bench/machine_info.h"
-#include "bench/refine/adaptive_report.h"
+#include "bench/refine/refine_json.h"
 #include "bench/refine/study.h"
 #include "bench/run_benchmark.h"
 
@@ -21,26 +20,25 @@ namespace radfarm::bench {
 namespace {
 
 constexpr char kUsage[] =
-    "usage: refine_bench [--quick] [--scene NAME] [--out DIR] [--images DIR]\n"
+    "usage: refine_bench [--quick] [--scene NAME] [--json PATH] [--images DIR]\n"
     "                    [--reference-cache DIR]\n"
     "  --quick       smallest meshes and budgets (a smoke run of a minute or two)\n"
     "  --scene NAME  only this scene (cornell-box, seed-room, hard-shadow)\n"
-    "  --out DIR     where the report and plots go (default: the source tree's docs/)\n"
+    "  --json PATH   write the figures there (default: bench/results/refine_bench.json)\n"
     "  --images DIR  also write every row's image and its difference from the reference\n"
     "  --reference-cache DIR  keep the reference solves there and reuse them in later runs\n";
 
 int Run(int argc, char** argv) {
   std::string only;
   StudyOptions options;
-  ReportRun run;
-  run.out_dir = std::string(RADFARM_SOURCE_DIR) + "/docs";
+  std::string json_path = DefaultJsonPath("refine_bench");
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--quick") == 0) {
       options.quick = true;
     } else if (std::strcmp(argv[i], "--scene") == 0 && i + 1 < argc) {
       only = argv[++i];
-    } else if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) {
-      run.out_dir = argv[++i];
+    } else if (std::strcmp(argv[i], "--json") == 0 && i + 1 < argc) {
+      json_path = argv[++i];
     } else if (std::strcmp(argv[i], "--images") == 0 && i + 1 < argc) {
       options.images_dir = argv[++i];
     } else if (std::strcmp(argv[i], "--reference-cache") == 0 && i + 1 < argc) {
@@ -54,7 +52,8 @@ int Run(int argc, char** argv) {
     }
   }
   const auto start = std::chrono::steady_clock::now();
-  const MachineInfo machine = ReadMachineInfo(argc, argv);
+  RefineRun run;
+  run.machine = ReadMachineInfo(argc, argv);
   std::vector<StudyResult> studies;
   for (const StudyScene& scene : StudyScenes(options.quick)) {
     if (!only.empty() && scene.name != only) continue;
@@ -65,13 +64,13 @@ int Run(int argc, char** argv) {
     return 2;
   }
   run.quick = options.quick;
+  run.timed_runs = TimedRuns(options);
   run.reference_cache = !options.reference_cache.empty();
-  run.machine = machine.date + ", " + std::to_string(machine.cpus) + " CPUs (" + machine.cpu_model +
-                "), load " + machine.load_average + " at start, " + ReadLoadAverage() +
-                " at end, " + machine.compiler;
+  run.load_average_end = ReadLoadAverage();
   run.total_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  WriteAdaptiveReport(run, studies);
+  WriteJson(json_path, RefineBenchJson(run, studies));
+  std::printf("wrote %s in %.0f s\n", json_path.c_str(), run.total_seconds);
   return 0;
 }
 

@@ -2,18 +2,20 @@
 
 #include <string_view>
 
+#include "bench/bench_json.h"
+
 namespace radfarm::bench {
 
 bool ParseFarmBenchOptions(int argc, char** argv, FarmBenchOptions* options, std::string* error) {
-  options->out_dir = RADFARM_SOURCE_DIR "/docs";
+  options->json_path = DefaultJsonPath("farm_bench");
   options->scenes_dir = RADFARM_SOURCE_DIR "/scenes";
   options->radfarmd = RADFARMD_PATH;
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
     if (arg == "--quick") {
       options->quick = true;
-    } else if ((arg == "--out-dir" || arg == "--scenes") && i + 1 < argc) {
-      (arg == "--out-dir" ? options->out_dir : options->scenes_dir) = argv[++i];
+    } else if ((arg == "--json" || arg == "--scenes") && i + 1 < argc) {
+      (arg == "--json" ? options->json_path : options->scenes_dir) = argv[++i];
     } else if (arg == "--radfarmd" && i + 1 < argc) {
       options->radfarmd = argv[++i];
     } else if (arg == "--only" && i + 1 < argc) {

@@ -12,25 +12,24 @@ struct FarmBenchOptions {
   bool simulated = true;   // part 2: simulated agents
   int repetitions = 0;     // 0: 5 real / 3 simulated (full), 1 (quick)
   size_t agents = 0;       // run only the simulated cases with this many agents (0: all)
-  std::string out_dir;     // where BENCHMARKS-farm.md goes
+  std::string json_path;   // where the figures go
   std::string scenes_dir;  // where cornell-box.toml and furnace.obj are
   std::string radfarmd;    // the master under test (default: the one built with farm_bench)
 };
 
 inline constexpr char kFarmBenchUsage[] =
     "usage: farm_bench [--quick] [--only real|sim] [--agents N] [--repetitions N]\n"
-    "                  [--radfarmd PATH] [--out-dir DIR] [--scenes DIR]\n"
+    "                  [--radfarmd PATH] [--json PATH] [--scenes DIR]\n"
     "  Measures the farm: the Cornell box solved by `radfarm render` against radfarmd with 1 and\n"
     "  2 real agents on loopback, then radfarmd with 10, 100 and 1000 simulated agents (with and\n"
-    "  without added latency). Prints the figures and writes BENCHMARKS-farm.md.\n"
+    "  without added latency). Prints the figures and writes them as JSON.\n"
     "  --quick         smoke check: small jobs, fewer cases, 1 repetition (under a minute)\n"
     "  --only PART     run only `real` (real agents) or `sim` (simulated agents)\n"
     "  --agents N      run only the simulated cases with N agents (for profiling the master)\n"
     "  --repetitions N runs per case (default: 5 real, 3 simulated; --quick: 1)\n"
     "  --radfarmd PATH the master to measure (default: the radfarmd built with farm_bench), e.g.\n"
     "                  a copy of an older build, to compare two versions\n"
-    "  --out-dir DIR   write BENCHMARKS-farm.md there and link it from BENCHMARKS.md (default:\n"
-    "                  the source tree's docs/)\n"
+    "  --json PATH     write the figures there (default: bench/results/farm_bench.json)\n"
     "  --scenes DIR    read the scenes from there (default: the source tree's scenes/)\n";
 
 // Returns false (with a message in *error, empty for --help) when the program should stop.

@@ -1,40 +1,42 @@
 // farm_bench: the farm's scaling benchmark. Part 1 solves the Cornell box with `radfarm render`
 // and with radfarmd plus real radfarm-agent processes on loopback; part 2 runs radfarmd with 10,
-// 100 and 1000 simulated agents (bench/farm_sim/). Prints the figures and writes
-// BENCHMARKS-farm.md (bench/farm/farm_report.h says what it holds). See farm_bench_options.h.
+// 100 and 1000 simulated agents (bench/farm_sim/). Prints the figures and writes them as JSON
+// (bench/results/farm_bench.json; scripts/bench-report makes docs/BENCHMARKS-farm.md of it). See
+// farm_bench_options.h.
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <string>
 
+#include "bench/bench_json.h"
 #include "bench/farm/farm_bench_options.h"
-#include "bench/farm/farm_report.h"
+#include "bench/farm/farm_json.h"
 #include "bench/farm/scaling_suite.h"
 #include "bench/run_benchmark.h"
 #include "bench/stopwatch.h"
+#include "testing/temp_dir.h"
 
 namespace radfarm::bench {
 namespace {
 
-// A scratch directory under the system temp dir, removed at the end.
-class ScratchDir {
- public:
-  ScratchDir() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "farm_bench-XXXXXX").string();
-    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot make a temp dir");
-    path_ = pattern;
+// The real setups' medians, one line each: Mrays/s, the median of the per-repetition ratios to
+// embedded, and whether every run's patches.csv matched render's.
+void PrintRealSummary(const FarmBenchReport& report) {
+  if (!report.has_real) return;
+  const RealComputeSetup& embedded = report.real.setups[0];
+  std::printf("\n%-28s %8s %8s %s\n", "setup", "Mrays/s", "ratio", "patches.csv");
+  for (const RealComputeSetup& s : report.real.setups) {
+    std::vector<double> ratios;
+    for (size_t i = 0; i < s.rays_per_second.size() && i < embedded.rays_per_second.size(); ++i) {
+      ratios.push_back(s.rays_per_second[i] / embedded.rays_per_second[i]);
+    }
+    std::printf("%-28s %8.2f %7.1f%% %s\n", s.name.c_str(), Median(s.rays_per_second) / 1e6,
+                ratios.empty() ? 0 : 100 * Median(ratios),
+                &s == &embedded       ? "reference"
+                : s.patches_identical ? "identical"
+                                      : "DIFFERENT");
   }
-  ~ScratchDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
+}
 
 int Run(int argc, char** argv) {
   FarmBenchOptions options;
@@ -58,7 +60,7 @@ int Run(int argc, char** argv) {
               options.quick ? " --quick" : "", report.machine.cpus,
               report.machine.cpu_model.c_str(), report.machine.load_average.c_str(),
               static_cast<unsigned long long>(report.open_file_limit));
-  ScratchDir scratch;
+  const testing::TempDir scratch("farm_bench");
 
   if (options.real) {
     RealComputeConfig config;
@@ -88,19 +90,9 @@ int Run(int argc, char** argv) {
 
   report.total_seconds = total.Seconds();
   report.load_average_end = ReadLoadAverage();
-  std::printf("\n%s\n", RenderFarmSummary(report).c_str());
-  std::filesystem::create_directories(options.out_dir);
-  const std::string path = options.out_dir + "/BENCHMARKS-farm.md";
-  if (const std::string write_error = WriteFarmReport(report, path); !write_error.empty()) {
-    std::fprintf(stderr, "farm_bench: %s\n", write_error.c_str());
-    return 1;
-  }
-  if (const std::string link_error = LinkFromBenchmarks(options.out_dir + "/BENCHMARKS.md");
-      !link_error.empty()) {
-    std::fprintf(stderr, "farm_bench: %s\n", link_error.c_str());
-    return 1;
-  }
-  std::printf("wrote %s in %.0f s\n", path.c_str(), report.total_seconds);
+  PrintRealSummary(report);
+  WriteJson(options.json_path, FarmBenchJson(report));
+  std::printf("wrote %s in %.0f s\n", options.json_path.c_str(), report.total_seconds);
   return 0;
 }
 

@@ -6,9 +6,13 @@
 #include <stdexcept>
 
 #include "bench/stopwatch.h"
+#include "testing/child_process.h"
+#include "testing/temp_dir.h"
 
 namespace radfarm::bench {
 namespace {
+
+using testing::ReadFile;
 
 nlohmann::json ReadStats(const std::string& dir) {
   nlohmann::json stats = nlohmann::json::parse(ReadFile(dir + "/stats.json"), nullptr, false);
@@ -32,7 +36,7 @@ std::string RunEmbedded(const RealComputeConfig& config, const std::string& out,
       config.programs.cli, "render", config.job_file, "--out", out, "--threads", "2", "-q"};
   args.insert(args.end(), config.overrides.begin(), config.overrides.end());
   const Stopwatch wall;
-  const CommandOutput r = RunCommand(args, config.work_dir);
+  const testing::CommandResult r = testing::RunCommand(args);
   const double seconds = wall.Seconds();
   if (r.exit_code != 0) throw std::runtime_error("radfarm render failed: " + r.err);
   AddSample(setup, ReadStats(out), seconds);
@@ -43,15 +47,15 @@ std::string RunEmbedded(const RealComputeConfig& config, const std::string& out,
 void RunFarm(const RealComputeConfig& config, const std::string& dir, int agents, unsigned threads,
              const std::string& reference_patches, RealComputeSetup& setup) {
   std::filesystem::create_directories(dir);
-  LocalFarm farm(config.programs, dir);
-  farm.StartMaster();
+  LoopbackFarm farm(config.programs, dir);
+  StartMaster(farm);
   for (int a = 0; a < agents; ++a) farm.StartAgent("agent" + std::to_string(a), threads);
-  farm.WaitForAgents(agents);
+  WaitForAgents(farm, agents);
   // submit takes render's overrides, so both solve the same job.
-  const int64_t id = farm.Submit(config.job_file, config.overrides);
-  const nlohmann::json job = farm.WaitDone(id, std::chrono::seconds(900));
+  const int64_t id = Submit(farm, config.job_file, config.overrides);
+  const nlohmann::json job = WaitDone(farm, id, std::chrono::seconds(900));
   const std::string out = dir + "/fetched";
-  farm.Fetch(id, out);
+  Fetch(farm, id, out);
   const double wall = 1e-3 * double(job.at("finished_at_ms").get<int64_t>() -
                                     job.at("started_at_ms").get<int64_t>());
   AddSample(setup, ReadStats(out), wall);

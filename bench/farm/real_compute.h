@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/farm/local_farm.h"
+#include "bench/farm/farm_checks.h"
 
 namespace radfarm::bench {
 

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "bench/farm_sim/agent_swarm.h"
+#include "testing/child_process.h"
 
 namespace radfarm::bench {
 namespace {
@@ -49,9 +50,10 @@ ScalingSample RunScalingCase(const FarmPrograms& programs, const std::string& sc
                              const std::string& work_dir, const ScalingCase& c) {
   std::filesystem::create_directories(work_dir);
   const std::string job_file = WriteJobFile(work_dir, scenes_dir, c);
-  LocalFarm farm(programs, work_dir);
-  farm.StartMaster(c.master_flags);
-  const double master_cpu_start = ProcessCpuSeconds(farm.master_pid()).value_or(0);
+  LoopbackFarm farm(programs, work_dir);
+  StartMaster(farm, c.master_flags);
+  const pid_t master_pid = farm.master()->pid();
+  const double master_cpu_start = testing::ProcessCpuSeconds(master_pid).value_or(0);
 
   sim::SwarmConfig config;
   config.master_address = farm.master_address();
@@ -61,10 +63,10 @@ ScalingSample RunScalingCase(const FarmPrograms& programs, const std::string& sc
   config.agent.latency_seconds = c.latency_ms / 1000;
   sim::AgentSwarm swarm(config);
   swarm.Start();
-  const int64_t id = farm.Submit(job_file);
+  const int64_t id = Submit(farm, job_file);
   const sim::SwarmReport report = swarm.Finish(std::chrono::seconds(600));
-  const nlohmann::json job = farm.WaitDone(id, std::chrono::seconds(60));
-  const double master_cpu_end = ProcessCpuSeconds(farm.master_pid()).value_or(0);
+  const nlohmann::json job = WaitDone(farm, id, std::chrono::seconds(60));
+  const double master_cpu_end = testing::ProcessCpuSeconds(master_pid).value_or(0);
 
   ScalingSample s;
   s.job_rays = job.at("rays").get<uint64_t>();

@@ -15,9 +15,6 @@
 namespace radfarm::bench {
 namespace {
 
-// Runs per row whose median time is reported.
-constexpr int kTimedRuns = 3;
-
 std::string Fmt(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", v);
@@ -136,7 +133,7 @@ class Study {
                double patch_size, const SolverSettings& solver, const RefineSettings& refine) {
     // The median of a few runs' times (a shared machine's load comes and goes); the runs are
     // bit-identical, so the last one's solution stands for all.
-    const int repeats = options_.quick ? 1 : kTimedRuns;
+    const int repeats = TimedRuns(options_);
     std::vector<double> times;
     Result<RefiningSolveResult> solved = Error{"not run"};
     for (int run = 0; run < repeats; ++run) {
@@ -252,6 +249,8 @@ std::vector<StudyScene> StudyScenes(bool quick) {
        {0.1, 0.05, 0.02, 0.01, 0.005}},
   };
 }
+
+int TimedRuns(const StudyOptions& options) { return options.quick ? 1 : 3; }
 
 StudyResult RunStudy(const StudyScene& scene, const StudyOptions& options) {
   return Study(scene, options).Run();

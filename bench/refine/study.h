@@ -69,4 +69,7 @@ struct StudyOptions {
 
 StudyResult RunStudy(const StudyScene& scene, const StudyOptions& options);
 
+// Runs per row whose median time is reported.
+int TimedRuns(const StudyOptions& options);
+
 }  // namespace radfarm::bench

@@ -1,9 +1,10 @@
 // radfarm-agent's command line, run as a process: help, usage and input errors, exit codes.
 #include <gtest/gtest.h>
 
+#include "testing/child_process.h"
+#include "testing/temp_dir.h"
 #include "tests/agent/agent_process.h"
 #include "tests/agent/test_farm.h"
-#include "tests/cli/run_command.h"
 
 namespace radfarm::agent::testing {
 namespace {

@@ -7,7 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "tests/cli/run_command.h"
+#include "testing/child_process.h"
+#include "testing/temp_dir.h"
 
 namespace radfarm::testing {
 

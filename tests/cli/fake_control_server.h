@@ -17,7 +17,8 @@
 #include <thread>
 #include <vector>
 
-#include "tests/cli/run_command.h"
+#include "testing/child_process.h"
+#include "testing/temp_dir.h"
 
 namespace radfarm::testing {
 

@@ -15,7 +15,8 @@
 #include <vector>
 
 #include "cli/exit_codes.h"
-#include "tests/cli/run_command.h"
+#include "testing/child_process.h"
+#include "testing/temp_dir.h"
 
 namespace radfarm {
 namespace {

@@ -2,7 +2,8 @@
 #include <gtest/gtest.h>
 
 #include "cli/exit_codes.h"
-#include "tests/cli/run_command.h"
+#include "testing/child_process.h"
+#include "testing/temp_dir.h"
 
 namespace radfarm {
 namespace {

@@ -8,7 +8,8 @@
 
 #include "cli/exit_codes.h"
 #include "protocol/farm_secret.h"
-#include "tests/cli/run_command.h"
+#include "testing/child_process.h"
+#include "testing/temp_dir.h"
 
 namespace radfarm {
 namespace {

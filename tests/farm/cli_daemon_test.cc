@@ -137,11 +137,11 @@ TEST_F(FarmTest, EveryQueueCommandAgainstARunningMaster) {
   EXPECT_NE(r.err.find("missing.obj"), std::string::npos) << r.err;
 
   // The master gone: exit 3, naming the socket.
-  master_->Signal(SIGKILL);
-  master_->WaitExit(std::chrono::seconds(30));
+  master().Signal(SIGKILL);
+  master().WaitExit(std::chrono::seconds(30));
   r = Cli({"list"});
   EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
-  EXPECT_NE(r.err.find(control_), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(control()), std::string::npos) << r.err;
 }
 
 // Sends `payload` as one frame on the control socket and returns what the master answers before
@@ -171,10 +171,10 @@ std::string RawControlExchange(const std::string& socket_path, const std::string
 
 TEST_F(FarmTest, AMalformedControlRequestCostsOnlyItsConnection) {
   StartMaster();
-  const std::string answer = RawControlExchange(control_, "this is not JSON");
+  const std::string answer = RawControlExchange(control(), "this is not JSON");
   EXPECT_NE(answer.find("bad_request"), std::string::npos) << answer;
   EXPECT_EQ(Cli({"list", "--json"}).exit_code, 0) << MasterLog();
-  EXPECT_TRUE(master_->WaitExit(std::chrono::milliseconds(0)) == std::nullopt);
+  EXPECT_TRUE(master().WaitExit(std::chrono::milliseconds(0)) == std::nullopt);
   EXPECT_GE(CountLines(MasterLog(), "not valid JSON"), 1u) << MasterLog();
 }
 

@@ -1,133 +1,55 @@
 #include "tests/farm/farm_fixture.h"
 
-#include <algorithm>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <mutex>
 #include <sstream>
 
-#include "protocol/farm_secret.h"
-
 namespace radfarm::testing {
 namespace {
 
-std::string Trim(std::string s) {
-  while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
-  return s;
-}
+// Short heartbeats and timeouts, so that tests of lost agents and handshakes take seconds.
+const std::vector<std::string> kMasterFlags = {
+    "--heartbeat-ms",         "200",  "--agent-timeout-ms", "2000",
+    "--handshake-timeout-ms", "2000", "--log-level",        "debug"};
 
 }  // namespace
 
-void FarmTest::SetUp() {
-  state_dir_ = dir_.File("master");
-  secret_file_ = dir_.File("secret");
-  control_ = state_dir_ + "/control.sock";
-  Result<protocol::FarmSecret> secret = protocol::FarmSecret::Generate();
-  ASSERT_TRUE(secret.ok());
-  std::ofstream(secret_file_) << secret->ToHex() << "\n";
-  std::filesystem::permissions(
-      secret_file_, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
-}
+FarmTest::FarmTest() : farm_({RADFARMD_PATH, RADFARM_AGENT_PATH, RADFARM_CLI_PATH}, dir_.path()) {}
 
 ChildProcess& FarmTest::StartMaster(const std::vector<std::string>& extra) {
-  const std::string addr_file = state_dir_ + "/listen.addr";
-  std::error_code ec;
-  std::filesystem::remove(addr_file, ec);
-  std::vector<std::string> args = {RADFARMD_PATH, "--state-dir",
-                                   state_dir_,    "--secret-file",
-                                   secret_file_,  "--heartbeat-ms",
-                                   "200",         "--agent-timeout-ms",
-                                   "2000",        "--handshake-timeout-ms",
-                                   "2000",        "--log-level",
-                                   "debug"};
-  // An ephemeral port unless the test names one (a restarted master keeps its port).
-  if (std::find(extra.begin(), extra.end(), "--listen") == extra.end()) {
-    args.insert(args.end(), {"--listen", "127.0.0.1:0"});
-  }
-  args.insert(args.end(), extra.begin(), extra.end());
-  master_ = std::make_unique<ChildProcess>(args, dir_.File("master.log"));
-  ++master_starts_;
-  const bool up = WaitUntil(
-      [&] {
-        return std::filesystem::exists(addr_file) ||
-               master_->WaitExit(std::chrono::milliseconds(0)).has_value();
-      },
-      std::chrono::seconds(60));
-  EXPECT_TRUE(up && master_->running()) << master_->Log();
-  master_address_ = Trim(ReadFile(addr_file));
-  return *master_;
+  std::vector<std::string> flags = kMasterFlags;
+  flags.insert(flags.end(), extra.begin(), extra.end());
+  ChildProcess& master = farm_.StartMaster(flags);
+  EXPECT_TRUE(!farm_.master_address().empty() && master.running()) << master.Log();
+  return master;
 }
 
 ChildProcess& FarmTest::StartAgent(const std::string& name, const std::vector<std::string>& extra,
                                    const std::string& secret_file) {
-  std::vector<std::string> args = {RADFARM_AGENT_PATH,
-                                   "--master",
-                                   master_address_,
-                                   "--secret-file",
-                                   secret_file.empty() ? secret_file_ : secret_file,
-                                   "--state-dir",
-                                   dir_.File("agent-" + name),
-                                   "--threads",
-                                   "1",
-                                   "--name",
-                                   name};
-  args.insert(args.end(), extra.begin(), extra.end());
-  agents_.push_back(std::make_unique<ChildProcess>(args, dir_.File("agent-" + name + ".log")));
-  return *agents_.back();
-}
-
-CommandResult FarmTest::Cli(const std::vector<std::string>& args) const {
-  std::vector<std::string> full = {RADFARM_CLI_PATH, "--control", control_};
-  full.insert(full.end(), args.begin(), args.end());
-  return RunCommand(full);
+  return farm_.StartAgent(name, 1, extra, secret_file);
 }
 
 int64_t FarmTest::Submit(const std::string& scene, const std::vector<std::string>& flags) {
-  std::vector<std::string> args = {"submit", std::string(RADFARM_SOURCE_DIR "/scenes/") + scene};
-  args.insert(args.end(), flags.begin(), flags.end());
-  const CommandResult r = Cli(args);
-  EXPECT_EQ(r.exit_code, 0) << r.err << MasterLog();
-  try {
-    return std::stoll(r.out);
-  } catch (...) {
-    ADD_FAILURE() << "submit printed '" << r.out << "'";
-    return -1;
-  }
-}
-
-nlohmann::json FarmTest::Status(int64_t id) const {
-  const CommandResult r = Cli({"status", std::to_string(id), "--json"});
-  if (r.exit_code != 0) return nullptr;
-  nlohmann::json json = nlohmann::json::parse(r.out, nullptr, false);
-  return json.is_discarded() ? nlohmann::json(nullptr) : json;
-}
-
-nlohmann::json FarmTest::Agents() const {
-  const CommandResult r = Cli({"agents", "--json"});
-  if (r.exit_code != 0) return nullptr;
-  nlohmann::json json = nlohmann::json::parse(r.out, nullptr, false);
-  return json.is_discarded() ? nlohmann::json(nullptr) : json;
+  std::string error;
+  const int64_t id =
+      farm_.Submit(std::string(RADFARM_SOURCE_DIR "/scenes/") + scene, flags, &error);
+  EXPECT_GE(id, 0) << error << MasterLog();
+  return id;
 }
 
 bool FarmTest::WaitForState(int64_t id, const std::string& state, std::chrono::seconds timeout) {
   if (id < 0) return false;  // the submit failed and said so
-  std::string last;
-  const bool reached = WaitUntil(
-      [&] {
-        const nlohmann::json job = Status(id);
-        if (job.is_object() && job.contains("state")) last = job["state"].get<std::string>();
-        return last == state;
-      },
-      timeout);
-  EXPECT_TRUE(reached) << "job " << id << " is '" << last << "', not '" << state << "'\n"
-                       << MasterLog();
-  return reached;
+  const nlohmann::json job = farm_.WaitForJob(
+      id, [&](const nlohmann::json& j) { return j.value("state", "") == state; }, timeout);
+  const std::string last = job.is_object() ? job.value("state", "") : "";
+  EXPECT_EQ(last, state) << "job " << id << " is '" << last << "', not '" << state << "'\n"
+                         << MasterLog();
+  return last == state;
 }
 
 std::string FarmTest::FetchPatches(int64_t id) {
   const std::string out = dir_.File("fetch-" + std::to_string(id));
-  const CommandResult r = Cli({"fetch", std::to_string(id), "--out", out});
+  const CommandResult r = farm_.Fetch(id, out);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   return ReadFile(out + "/patches.csv");
 }

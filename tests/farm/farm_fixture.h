@@ -1,18 +1,19 @@
-// FarmTest: a farm on loopback for integration tests: a real radfarmd with a temporary state
-// directory and an ephemeral port, real radfarm-agent processes, and the real `radfarm` CLI talking
-// to the master's control socket. Every wait polls a condition with a generous timeout.
+// FarmTest: the loopback farm (testing/loopback_farm.h) as a GoogleTest fixture: a real radfarmd
+// with a temporary state directory, an ephemeral port and short heartbeat and timeout settings,
+// real radfarm-agent processes, and the real `radfarm` CLI. Failures become test failures that
+// show the master's log.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "tests/cli/run_command.h"
-#include "tests/farm/child_process.h"
+#include "testing/child_process.h"
+#include "testing/loopback_farm.h"
+#include "testing/temp_dir.h"
 
 namespace radfarm::testing {
 
@@ -28,21 +29,22 @@ int64_t AgentLeases(const nlohmann::json& agents, const std::string& name);
 
 class FarmTest : public ::testing::Test {
  protected:
-  void SetUp() override;
+  FarmTest();
 
   // Starts (or restarts) radfarmd and waits for its listen.addr. `extra` flags go last.
   ChildProcess& StartMaster(const std::vector<std::string>& extra = {});
-  // Starts an agent connecting to the current master address; its state dir is agent-NAME.
+  // Starts a one-thread agent connecting to the current master address; its state dir is
+  // agent-NAME.
   ChildProcess& StartAgent(const std::string& name, const std::vector<std::string>& extra = {},
                            const std::string& secret_file = "");
 
   // `radfarm --control SOCKET args...`
-  CommandResult Cli(const std::vector<std::string>& args) const;
+  CommandResult Cli(const std::vector<std::string>& args) const { return farm_.Cli(args); }
   // Submits `scene` (relative to scenes/) with extra flags; returns the job id.
   int64_t Submit(const std::string& scene, const std::vector<std::string>& flags = {});
   // `radfarm status ID --json`'s job object; null on failure.
-  nlohmann::json Status(int64_t id) const;
-  nlohmann::json Agents() const;
+  nlohmann::json Status(int64_t id) const { return farm_.Status(id); }
+  nlohmann::json Agents() const { return farm_.Agents(); }
   // Waits until the job reaches `state`; fails the test (with the master's log) on timeout.
   bool WaitForState(int64_t id, const std::string& state,
                     std::chrono::seconds timeout = kJobTimeout);
@@ -53,16 +55,15 @@ class FarmTest : public ::testing::Test {
                                       const std::vector<std::string>& flags = {});
 
   std::string Path(const std::string& name) const { return dir_.File(name); }
-  std::string MasterLog() const { return master_ ? master_->Log() : ""; }
+  std::string MasterLog() const { return farm_.MasterLog(); }
+  ChildProcess& master() { return *farm_.master(); }
+  const std::string& master_address() const { return farm_.master_address(); }
+  const std::string& control() const { return farm_.control(); }
   // Counts the lines of `log` containing `text`.
   static size_t CountLines(const std::string& log, const std::string& text);
 
   TempDir dir_;
-  std::string state_dir_, secret_file_, control_;
-  std::string master_address_;
-  std::unique_ptr<ChildProcess> master_;
-  std::vector<std::unique_ptr<ChildProcess>> agents_;
-  int master_starts_ = 0;
+  LoopbackFarm farm_;
 };
 
 }  // namespace radfarm::testing

@@ -86,7 +86,8 @@ TEST_F(FarmRefineTest, ThreeAgentsRenderAnAdaptiveJobLikeRadfarmRender) {
 
 TEST_F(FarmRefineTest, TheMasterKilledAfterARefinementPointResumesTheAdaptiveJobIdentically) {
   StartMaster();
-  const std::string listen = "127.0.0.1:" + master_address_.substr(master_address_.rfind(':') + 1);
+  const std::string listen =
+      "127.0.0.1:" + master_address().substr(master_address().rfind(':') + 1);
   StartAgent("k1");
   StartAgent("k2");
   const int64_t id = Submit(kAdaptive, kFlags);
@@ -99,8 +100,8 @@ TEST_F(FarmRefineTest, TheMasterKilledAfterARefinementPointResumesTheAdaptiveJob
       kJobTimeout))
       << MasterLog();
   ASSERT_NE(Status(id)["state"], "done") << "the job ended before the master could be killed";
-  master_->Signal(SIGKILL);
-  ASSERT_TRUE(master_->WaitExit(std::chrono::seconds(30)).has_value());
+  master().Signal(SIGKILL);
+  ASSERT_TRUE(master().WaitExit(std::chrono::seconds(30)).has_value());
   StartMaster({"--listen", listen});
   ASSERT_TRUE(WaitForState(id, "done"));
   const std::string log = MasterLog();
@@ -119,7 +120,7 @@ TEST_F(FarmRefineTest, TheMasterRefusesRefineSettingsThatDoNotFitTheMesh) {
   job->refine.min_element_size = 1e-9;  // decodes (finite, >= 0); below the welding distance
   const std::vector<uint8_t> bundle = codec::EncodeJobBundle({*job, *scene});
   Outcome<ControlReply> reply =
-      AskMaster(control_, {{"command", "submit"}, {"name", "tiny"}, {"priority", 0}}, bundle);
+      AskMaster(control(), {{"command", "submit"}, {"name", "tiny"}, {"priority", 0}}, bundle);
   ASSERT_FALSE(reply.ok());
   EXPECT_NE(reply.failure().message.find("mesh.min_element_size"), std::string::npos)
       << reply.failure().message;

@@ -136,7 +136,8 @@ TEST_F(FarmTest, TheMasterKilledAtRandomPointsResumesEveryJobIdentically) {
   std::printf("kill points seed %u\n", seed);
   std::mt19937 random(seed);
   StartMaster();
-  const std::string listen = "127.0.0.1:" + master_address_.substr(master_address_.rfind(':') + 1);
+  const std::string listen =
+      "127.0.0.1:" + master_address().substr(master_address().rfind(':') + 1);
   StartAgent("k1");
   StartAgent("k2");
   const int64_t long_job = Submit("cornell-box.toml");
@@ -160,11 +161,11 @@ TEST_F(FarmTest, TheMasterKilledAtRandomPointsResumesEveryJobIdentically) {
     const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(delay);
     WaitUntil([&] { return std::chrono::steady_clock::now() >= until; },
               std::chrono::milliseconds(delay + 1000));
-    master_->Signal(SIGKILL);
-    ASSERT_TRUE(master_->WaitExit(std::chrono::seconds(30)).has_value());
+    master().Signal(SIGKILL);
+    ASSERT_TRUE(master().WaitExit(std::chrono::seconds(30)).has_value());
     std::printf("kill %d: %d ms after the wait\n", kill + 1, delay);
     StartMaster({"--listen", listen});
-    ASSERT_TRUE(master_->running());
+    ASSERT_TRUE(master().running());
   }
   ASSERT_TRUE(WaitForState(long_job, "done"));
   // The kills landed at different stages: some after checkpoints (the job resumed from one).
@@ -230,8 +231,8 @@ TEST_F(FarmTest, TheMasterTellsSystemdWhenItIsReadyAndWhenItStops) {
     return text.find("READY=1") != std::string::npos &&
            text.find("; 1 agents") != std::string::npos;
   })) << notify.Read();
-  master_->Signal(SIGTERM);
-  EXPECT_EQ(master_->WaitExit(std::chrono::seconds(30)), 0) << MasterLog();
+  master().Signal(SIGTERM);
+  EXPECT_EQ(master().WaitExit(std::chrono::seconds(30)), 0) << MasterLog();
   EXPECT_NE(notify.Read().find("STOPPING=1"), std::string::npos) << notify.Read();
 }
 

@@ -87,14 +87,14 @@ class HandAgent {
 
 TEST_F(FarmTest, AnAgentSendingAnInvalidResultIsDisconnectedAndBlocklisted) {
   StartMaster();
-  std::ifstream in(secret_file_);
+  std::ifstream in(farm_.secret_file());
   std::string hex;
   in >> hex;
   Result<protocol::FarmSecret> secret = protocol::FarmSecret::FromHex(hex);
   ASSERT_TRUE(secret.ok());
   const int64_t id = Submit("cornell-box.toml", kShortJob);
 
-  HandAgent liar(master_address_, *secret, "liar");
+  HandAgent liar(master_address(), *secret, "liar");
   ASSERT_TRUE(liar.Handshake()) << MasterLog();
   std::optional<protocol::Message> message;
   while ((message = liar.NextMessage()) &&
@@ -114,7 +114,7 @@ TEST_F(FarmTest, AnAgentSendingAnInvalidResultIsDisconnectedAndBlocklisted) {
       << MasterLog();
 
   // Coming back under the same name does not help.
-  HandAgent again(master_address_, *secret, "liar");
+  HandAgent again(master_address(), *secret, "liar");
   ASSERT_TRUE(again.Handshake());
   ASSERT_TRUE(WaitUntil([&] { return CountLines(MasterLog(), "refused, blocklisted") > 0; }))
       << MasterLog();

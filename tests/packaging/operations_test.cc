@@ -57,7 +57,7 @@ TEST_F(OperationsTest, AnOnlineBackupRestoresAndTheJobResumesToTheSameResult) {
   ASSERT_TRUE(WaitForState(id, "paused"));
   const int64_t round_at_backup = JobRound(Status(id));
 
-  const std::string db = state_dir_ + "/radfarm.db";
+  const std::string db = farm_.state_dir() + "/radfarm.db";
   const std::string backup = Path("backup.db");
   const CommandResult backed_up = RunCommand({sqlite3, db, ".backup '" + backup + "'"});
   ASSERT_EQ(backed_up.exit_code, 0) << backed_up.err;
@@ -70,8 +70,8 @@ TEST_F(OperationsTest, AnOnlineBackupRestoresAndTheJobResumesToTheSameResult) {
   const std::string finished = FetchPatches(id);
   ASSERT_FALSE(finished.empty());
   agent.Signal(SIGTERM);
-  master_->Signal(SIGTERM);
-  ASSERT_TRUE(master_->WaitExit(std::chrono::seconds(60)).has_value()) << MasterLog();
+  master().Signal(SIGTERM);
+  ASSERT_TRUE(master().WaitExit(std::chrono::seconds(60)).has_value()) << MasterLog();
   ASSERT_TRUE(agent.WaitExit(std::chrono::seconds(60)).has_value()) << agent.Log();
   for (const char* suffix : {"", "-wal", "-shm"}) fs::remove(db + suffix);
   fs::copy_file(backup, db);

@@ -1,0 +1,13 @@
+// solver_bench's raw figures as JSON (bench/bench_json.h): every point of every sweep, the raw
+// throughput and the seed workload, with the settings that produced them.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "bench/bench_report.h"
+
+namespace radfarm::bench {
+
+nlohmann::json SolverBenchJson(const BenchReport& report);
+
+}  // namespace radfarm::bench
