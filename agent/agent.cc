@@ -62,10 +62,10 @@ Status Agent::Start() {
   RADFARM_RETURN_IF_ERROR(io);
   io_ = std::move(io).value();
 
-  LeaseRunner::Callbacks callbacks;
+  LeaseWorker::Callbacks callbacks;
   callbacks.send = [this](const protocol::Message& message) { return Send(message); };
   callbacks.on_leases_changed = [this] { OnLeasesChanged(); };
-  runner_ = std::make_unique<LeaseRunner>(loop_, settings_, *batches_, *io_, std::move(store_),
+  runner_ = std::make_unique<LeaseWorker>(loop_, settings_, *batches_, *io_, std::move(store_),
                                           master_, std::move(callbacks));
 
   retry_timer_ = std::make_unique<loop::Timer>(loop_);

@@ -1,6 +1,6 @@
 // Agent: the radfarm-agent daemon on its event loop. It keeps one authenticated connection to the
 // master, reconnecting with backoff whenever it is lost, sends heartbeats, hands the master's work
-// messages to its LeaseRunner, and decides when to stop (signals, Drain, --exit-when-idle).
+// messages to its LeaseWorker, and decides when to stop (signals, Drain, --exit-when-idle).
 //
 // Connection states:
 //
@@ -37,7 +37,7 @@
 #include <string>
 
 #include "agent/agent_settings.h"
-#include "agent/lease_runner.h"
+#include "agent/lease_worker.h"
 #include "agent/master_link.h"
 #include "agent/reconnect_backoff.h"
 #include "agent/scene_store.h"
@@ -116,7 +116,7 @@ class Agent {
   std::unique_ptr<loop::Timer> retry_timer_, heartbeat_timer_, idle_timer_, stop_deadline_;
   std::unique_ptr<loop::Signal> sigterm_, sigint_;
   std::unique_ptr<MasterLink> link_;
-  std::unique_ptr<LeaseRunner> runner_;
+  std::unique_ptr<LeaseWorker> runner_;
   std::unique_ptr<idle::IdleMonitor> idle_monitor_;
   // Last, so they are destroyed first: their results point into this object.
   std::unique_ptr<loop::WorkQueue> io_, batches_;

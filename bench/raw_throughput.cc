@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "bench/stopwatch.h"
-#include "core/batch_runner.h"
+#include "core/batch_tracer.h"
 #include "core/progressive_solver.h"
 #include "core/ray_caster.h"
-#include "solve/local_solve.h"
 #include "core/thread_pool.h"
+#include "solve/local_solve.h"
 
 namespace radfarm::bench {
 namespace {
@@ -31,7 +31,7 @@ struct RayWork {
 // Solves `rounds` rounds (the solver needs each round's results to plan the next) and keeps their
 // batches.
 std::vector<Batch> PlanRounds(uint32_t rounds, ThreadPool* pool,
-                              std::vector<std::unique_ptr<BatchRunner>>* runners,
+                              std::vector<std::unique_ptr<BatchTracer>>* runners,
                               ProgressiveSolver* solver) {
   std::vector<Batch> batches;
   for (uint32_t r = 0; r < rounds; ++r) {
@@ -101,7 +101,7 @@ double TimeThreads(unsigned threads, const Body& body) {
   return clock.Seconds();
 }
 
-// Counts the traced rays' fates per batch the way BatchRunner does.
+// Counts the traced rays' fates per batch the way BatchTracer does.
 std::vector<BatchResult> CountHits(const PatchScene& scene, const RayCaster& caster,
                                    const RayWork& work, const std::vector<RTCRayHit>& traced) {
   std::vector<BatchResult> results(work.batches.size());
@@ -141,9 +141,9 @@ RawThroughput MeasureRawThroughput(const BenchScene& bench_scene, const SolverSe
   const RayCaster caster(scene);
   ProgressiveSolver solver(scene, settings);
   ThreadPool pool(threads);
-  std::vector<std::unique_ptr<BatchRunner>> runners;
+  std::vector<std::unique_ptr<BatchTracer>> runners;
   for (unsigned w = 0; w < pool.size(); ++w) {
-    runners.push_back(std::make_unique<BatchRunner>(scene, caster, solver.sampler()));
+    runners.push_back(std::make_unique<BatchTracer>(scene, caster, solver.sampler()));
   }
   RayWork work;
   work.batches = PlanRounds(rounds, &pool, &runners, &solver);

@@ -2,10 +2,10 @@
 // The rays of the first rounds of a solve are generated once, stored as RTCRayHit exactly as
 // RayCaster would hand them to Embree, and then traced three ways on the same threads:
 //   raw:    a bare rtcIntersect1 loop over the stored rays, one contiguous chunk per thread;
-//   runner: BatchRunner::Run over the same batches, the same chunks per thread (ray generation,
+//   runner: BatchTracer::Run over the same batches, the same chunks per thread (ray generation,
 //           tracing and hit counting: the solver's whole per-ray work);
 //   pool:   the same batches through ThreadPool::ParallelFor, as Solve() schedules them;
-// and, to show where the difference goes, the sampling alone (ShotSampler, as BatchRunner calls it,
+// and, to show where the difference goes, the sampling alone (ShotSampler, as BatchTracer calls it,
 // no tracing) over the same batches and chunks.
 #pragma once
 
@@ -35,7 +35,7 @@ struct RawThroughput {
   // ratio sees the same machine load).
   double runner_over_raw = 0;
   double pool_over_raw = 0;
-  // The raw loop's hits, counted per batch as BatchRunner counts them, equal the solver's results.
+  // The raw loop's hits, counted per batch as BatchTracer counts them, equal the solver's results.
   bool same_hits = false;
   uint64_t escaped_rays = 0;
   uint64_t back_rays = 0;

@@ -121,8 +121,8 @@ void AgentConnections::OnAgentMessage(AgentLink& link, protocol::Message& messag
 }
 
 void AgentConnections::OnBatchResult(AgentLink& link, const protocol::BatchResultMsg& result) {
-  JobRunner* runner = jobs_.FindRunner(result.lease.job_id);
-  if (runner == nullptr || runner->phase() != JobRunner::Phase::kRound) {
+  RunningJob* runner = jobs_.FindRunner(result.lease.job_id);
+  if (runner == nullptr || runner->phase() != RunningJob::Phase::kRound) {
     LogLine(LogLevel::kDebug, "agents") << link.Describe() << ": result for job "
                                         << result.lease.job_id << " dropped (job not in a round)";
     return;
@@ -171,7 +171,7 @@ void AgentConnections::OnLeaseReturn(AgentLink& link, const protocol::LeaseRetur
     by_job[lease.job_id].push_back(lease.batch_id);
   size_t returned = 0;
   for (auto& [job, batches] : by_job) {
-    if (JobRunner* runner = jobs_.FindRunner(job)) {
+    if (RunningJob* runner = jobs_.FindRunner(job)) {
       returned += runner->scheduler().ReturnLeases(link.id(), batches);
     }
   }
@@ -216,15 +216,15 @@ void AgentConnections::Dispatch(AgentLink& link) {
   // Don't queue work behind a slow socket.
   if (link.queued_bytes() > (4u << 20)) return;
   const auto now = LoopNow(loop_);
-  const std::vector<JobRunner*> order = jobs_.RunnersByPriority();
+  const std::vector<RunningJob*> order = jobs_.RunnersByPriority();
   uint32_t held = 0, capacity = 0;
-  for (JobRunner* runner : order) {
+  for (RunningJob* runner : order) {
     held += runner->scheduler().LeasesHeld(link.id());
     capacity = std::max(capacity, runner->scheduler().LeaseCapacityOf(link.id()));
   }
   // The highest-priority job with work fills the agent first; a lower one gets what is left of
   // its capacity (the tail of a round, a job between rounds).
-  for (JobRunner* runner : order) {
+  for (RunningJob* runner : order) {
     scheduler::RoundScheduler& s = runner->scheduler();
     while (true) {
       const uint32_t here = s.LeasesHeld(link.id());

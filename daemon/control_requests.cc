@@ -140,7 +140,7 @@ json ControlRequests::JobJson(const JobSummary& s) {
            {"eta_seconds", nullptr},
            {"stop_reason", nullptr}};
   double unshot = s.unshot_fraction;
-  if (JobRunner* runner = jobs_.FindRunner(static_cast<uint64_t>(r.id))) {
+  if (RunningJob* runner = jobs_.FindRunner(static_cast<uint64_t>(r.id))) {
     // The live view is ahead of the store by the rounds not yet committed.
     const JobTotals& t = runner->totals();
     job["round"] = t.round;

@@ -36,7 +36,7 @@ JobRounds::JobRounds(loop::EventLoop& loop, const MasterConfig& config,
       compute_(compute),
       agents_(std::move(agents)) {}
 
-JobRunner* JobRounds::FindRunner(uint64_t job_id) {
+RunningJob* JobRounds::FindRunner(uint64_t job_id) {
   const auto it = runners_.find(static_cast<store::JobId>(job_id));
   return it == runners_.end() ? nullptr : it->second.get();
 }
@@ -53,42 +53,42 @@ void JobRounds::StartQueuedJobs() {
   const int slots = static_cast<int>(config_.max_running_jobs - busy);
   // One step on the store thread: pick the jobs, mark them running, read what they need. The loop
   // thread then prepares them on the compute thread.
-  store_.Run([slots](store::JobStore& s) { return store::StartQueuedJobs(s, slots); },
-             [this](Result<std::vector<store::JobStart>> starts) {
-               start_pending_ = false;
-               if (stopping_) return;
-               if (!starts) {
-                 LogLine(LogLevel::kError, "store")
-                     << "cannot start queued jobs: " << starts.error();
-                 return;
-               }
-               for (store::JobStart& start : *starts) {
-                 const store::JobId id = start.record.id;
-                 starting_[id] = false;
-                 store_.LogEvent(id, store::EventLevel::kInfo,
-                                 start.checkpoint ? "started, resuming after round " +
-                                                        std::to_string(start.checkpoint->round)
-                                                  : "started");
-                 auto options = options_;
-                 auto shared = std::make_shared<store::JobStart>(std::move(start));
-                 Status s = compute_.Submit(
-                     [shared, options] {
-                       return JobRunner::Prepare(shared->record, shared->bundle, shared->checkpoint,
-                                                 shared->checkpoint_scene, shared->rounds, options);
-                     },
-                     [this, id](Result<std::shared_ptr<JobRunner>> runner) {
-                       OnJobPrepared(id, std::move(runner));
-                     });
-                 if (!s) LogLine(LogLevel::kError, "master") << s.error();
-               }
-               if (start_again_) {
-                 start_again_ = false;
-                 StartQueuedJobs();
-               }
-             });
+  store_.Run(
+      [slots](store::JobStore& s) { return store::StartQueuedJobs(s, slots); },
+      [this](Result<std::vector<store::JobStart>> starts) {
+        start_pending_ = false;
+        if (stopping_) return;
+        if (!starts) {
+          LogLine(LogLevel::kError, "store") << "cannot start queued jobs: " << starts.error();
+          return;
+        }
+        for (store::JobStart& start : *starts) {
+          const store::JobId id = start.record.id;
+          starting_[id] = false;
+          store_.LogEvent(id, store::EventLevel::kInfo,
+                          start.checkpoint ? "started, resuming after round " +
+                                                 std::to_string(start.checkpoint->round)
+                                           : "started");
+          auto options = options_;
+          auto shared = std::make_shared<store::JobStart>(std::move(start));
+          Status s = compute_.Submit(
+              [shared, options] {
+                return RunningJob::Prepare(shared->record, shared->bundle, shared->checkpoint,
+                                           shared->checkpoint_scene, shared->rounds, options);
+              },
+              [this, id](Result<std::shared_ptr<RunningJob>> runner) {
+                OnJobPrepared(id, std::move(runner));
+              });
+          if (!s) LogLine(LogLevel::kError, "master") << s.error();
+        }
+        if (start_again_) {
+          start_again_ = false;
+          StartQueuedJobs();
+        }
+      });
 }
 
-void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<JobRunner>> runner) {
+void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob>> runner) {
   if (stopping_) return;
   const bool cancelled = starting_[id];
   starting_.erase(id);
@@ -100,9 +100,9 @@ void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<JobRunner>
     FailJob(id, runner.error());
     return;
   }
-  std::shared_ptr<JobRunner> r = std::move(*runner);
+  std::shared_ptr<RunningJob> r = std::move(*runner);
   runners_[id] = r;
-  if (r->phase() == JobRunner::Phase::kFinished) {
+  if (r->phase() == RunningJob::Phase::kFinished) {
     FinishJob(r);
     return;
   }
@@ -113,7 +113,7 @@ void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<JobRunner>
   BeginRound(r);
 }
 
-void JobRounds::BeginRound(const std::shared_ptr<JobRunner>& runner) {
+void JobRounds::BeginRound(const std::shared_ptr<RunningJob>& runner) {
   const uint64_t rays = runner->planned_rays();
   if (rays > 0 && rays <= config_.local_round_rays) {
     RunRoundHere(runner);
@@ -129,7 +129,7 @@ void JobRounds::BeginRound(const std::shared_ptr<JobRunner>& runner) {
 // A round of a few rays per shooter (the tail of a solve: every patch still shoots, a handful of
 // rays each) costs agents a round trip per batch and the rays next to nothing. Its batches give
 // the same results here (core/batch.h), so the job's result does not change.
-void JobRounds::RunRoundHere(const std::shared_ptr<JobRunner>& runner) {
+void JobRounds::RunRoundHere(const std::shared_ptr<RunningJob>& runner) {
   Result<RoundPlan> plan = runner->TakePlannedRound();
   if (!plan) {
     FailJob(runner->id(), plan.error());
@@ -148,7 +148,7 @@ void JobRounds::RunRoundHere(const std::shared_ptr<JobRunner>& runner) {
 }
 
 void JobRounds::OnRoundComplete(store::JobId id) {
-  const std::shared_ptr<JobRunner> runner = runners_.at(id);
+  const std::shared_ptr<RunningJob> runner = runners_.at(id);
   Result<scheduler::CompletedRound> round = runner->TakeRound();
   if (!round) {
     FailJob(runner->id(), round.error());
@@ -173,7 +173,7 @@ bool JobRounds::CheckpointDue(store::JobId id) {
   return due;
 }
 
-void JobRounds::ReduceOnComputeThread(const std::shared_ptr<JobRunner>& runner,
+void JobRounds::ReduceOnComputeThread(const std::shared_ptr<RunningJob>& runner,
                                       std::function<RoundOutcome()> work) {
   Status s = compute_.Submit(std::move(work), [this, runner](Result<RoundOutcome> outcome) {
     if (stopping_) return;
@@ -186,7 +186,7 @@ void JobRounds::ReduceOnComputeThread(const std::shared_ptr<JobRunner>& runner,
   if (!s) FailJob(runner->id(), s.error());
 }
 
-void JobRounds::OnRoundReduced(const std::shared_ptr<JobRunner>& runner, RoundOutcome outcome) {
+void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundOutcome outcome) {
   if (FindRunner(runner->id()) != runner.get()) return;  // cancelled or paused meanwhile
   const store::JobId id = runner->id();
   const uint32_t keep = config_.checkpoint_keep;
@@ -222,14 +222,14 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<JobRunner>& runner, RoundOu
                         std::to_string(outcome.new_patch_count) + " elements, scene " +
                         protocol::HashToHex(outcome.new_scene_hash));
   }
-  if (runner->Resume(outcome)) {
+  if (runner->InstallOutcome(outcome)) {
     BeginRound(runner);
   } else {
     FinishJob(runner);
   }
 }
 
-void JobRounds::FinishJob(const std::shared_ptr<JobRunner>& runner) {
+void JobRounds::FinishJob(const std::shared_ptr<RunningJob>& runner) {
   const store::JobId id = runner->id();
   const std::string reason = runner->stop_reason().value_or("stopped");
   DropRunner(id);
@@ -272,24 +272,24 @@ void JobRounds::FailJob(store::JobId id, const std::string& error) {
              });
 }
 
-std::vector<JobRunner*> JobRounds::RunnersByPriority() {
-  std::vector<JobRunner*> order;
+std::vector<RunningJob*> JobRounds::RunnersByPriority() {
+  std::vector<RunningJob*> order;
   for (auto& [id, runner] : runners_) {
-    if (runner->phase() == JobRunner::Phase::kRound) order.push_back(runner.get());
+    if (runner->phase() == RunningJob::Phase::kRound) order.push_back(runner.get());
   }
   // Equal priorities take turns being first, so they share the agents.
   if (!order.empty()) {
     std::rotate(order.begin(), order.begin() + (dispatch_rotation_++ % order.size()), order.end());
   }
   std::stable_sort(order.begin(), order.end(),
-                   [](JobRunner* a, JobRunner* b) { return a->priority() > b->priority(); });
+                   [](RunningJob* a, RunningJob* b) { return a->priority() > b->priority(); });
   return order;
 }
 
 size_t JobRounds::Tick(scheduler::TimePoint now) {
   size_t offered = 0;
   for (auto& [job, runner] : runners_) {
-    if (runner->phase() == JobRunner::Phase::kRound) offered += runner->scheduler().Tick(now);
+    if (runner->phase() == RunningJob::Phase::kRound) offered += runner->scheduler().Tick(now);
   }
   return offered;
 }

@@ -1,6 +1,6 @@
 // JobRounds: the master's running jobs. It starts queued jobs (up to max_running_jobs, by
 // priority, then age), prepares each on the compute thread, runs its rounds (leased to agents
-// through its JobRunner's RoundScheduler, or computed here when small: local_round_rays), reduces
+// through its RunningJob's RoundScheduler, or computed here when small: local_round_rays), reduces
 // each round on the compute thread and commits the round and its checkpoint on the store thread
 // while the next round already runs; then it finishes or fails the job.
 //
@@ -22,8 +22,8 @@
 #include <string>
 #include <vector>
 
-#include "daemon/job_runner.h"
 #include "daemon/master_config.h"
+#include "daemon/running_job.h"
 #include "daemon/scheduler/round_scheduler.h"
 #include "daemon/store_thread.h"
 #include "loop/event_loop.h"
@@ -44,7 +44,7 @@ struct AgentHooks {
 
 class JobRounds {
  public:
-  using Runners = std::map<store::JobId, std::shared_ptr<JobRunner>>;
+  using Runners = std::map<store::JobId, std::shared_ptr<RunningJob>>;
 
   JobRounds(loop::EventLoop& loop, const MasterConfig& config,
             const scheduler::SchedulerOptions& options, StoreThread& store,
@@ -62,9 +62,9 @@ class JobRounds {
 
   // The running jobs (not those being prepared), by id.
   const Runners& runners() const { return runners_; }
-  JobRunner* FindRunner(uint64_t job_id);
+  RunningJob* FindRunner(uint64_t job_id);
   // The jobs in a round, highest priority first; equal priorities take turns being first.
-  std::vector<JobRunner*> RunnersByPriority();
+  std::vector<RunningJob*> RunnersByPriority();
   size_t starting() const { return starting_.size(); }
   // Offers overdue leases again (RoundScheduler::Tick); returns how many.
   size_t Tick(scheduler::TimePoint now);
@@ -75,18 +75,18 @@ class JobRounds {
   void Clear() { runners_.clear(); }
 
  private:
-  void OnJobPrepared(store::JobId id, Result<std::shared_ptr<JobRunner>> runner);
+  void OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob>> runner);
   // Starts the planned round on the agents, or computes it here when it is small
   // (MasterConfig::local_round_rays).
-  void BeginRound(const std::shared_ptr<JobRunner>& runner);
-  void RunRoundHere(const std::shared_ptr<JobRunner>& runner);
+  void BeginRound(const std::shared_ptr<RunningJob>& runner);
+  void RunRoundHere(const std::shared_ptr<RunningJob>& runner);
   // `work` (Reduce, perhaps after RunLocally) on the compute thread, then OnRoundReduced.
-  void ReduceOnComputeThread(const std::shared_ptr<JobRunner>& runner,
+  void ReduceOnComputeThread(const std::shared_ptr<RunningJob>& runner,
                              std::function<RoundOutcome()> work);
   // Whether the round about to be reduced checkpoints (every round, or every checkpoint_seconds).
   bool CheckpointDue(store::JobId id);
-  void OnRoundReduced(const std::shared_ptr<JobRunner>& runner, RoundOutcome outcome);
-  void FinishJob(const std::shared_ptr<JobRunner>& runner);
+  void OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundOutcome outcome);
+  void FinishJob(const std::shared_ptr<RunningJob>& runner);
   // Stops a job's work on every agent (Cancel) and forgets its runner.
   void DropRunner(store::JobId id);
 

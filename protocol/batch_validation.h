@@ -1,5 +1,5 @@
 // Checks a batch result against the batch it answers, before the master folds it into a round.
-// A result that passes is one BatchRunner::Run could have produced for that batch: every ray is
+// A result that passes is one BatchTracer::Run could have produced for that batch: every ray is
 // accounted for exactly once (front hit, back hit or escape), so a corrupt or malicious agent
 // cannot add or lose energy.
 #pragma once

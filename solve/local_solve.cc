@@ -31,7 +31,7 @@ std::vector<BatchResult> LocalBatches::Run(RoundDriver& driver, const RoundPlan&
   if (driver_ != &driver || generation_ != driver.mesh_generation() || runners_.empty()) {
     runners_.clear();
     for (unsigned w = 0; w < pool_.size(); ++w) {
-      runners_.push_back(std::make_unique<BatchRunner>(driver.scene(), driver.caster(),
+      runners_.push_back(std::make_unique<BatchTracer>(driver.scene(), driver.caster(),
                                                        driver.solver().sampler()));
     }
     driver_ = &driver;

@@ -10,7 +10,7 @@
 
 #include "base/result.h"
 #include "core/batch.h"
-#include "core/batch_runner.h"
+#include "core/batch_tracer.h"
 #include "core/patch_scene.h"
 #include "core/solver_settings.h"
 #include "core/thread_pool.h"
@@ -25,7 +25,7 @@ namespace radfarm {
 // batches long enough to amortise scheduling and short enough to balance threads.
 inline constexpr uint32_t kLocalBatchRays = 4096;
 
-// Computes a round's batches on a thread pool, a BatchRunner per worker, for a driver's current
+// Computes a round's batches on a thread pool, a BatchTracer per worker, for a driver's current
 // scene (rebuilt when a refinement step replaces it).
 class LocalBatches {
  public:
@@ -36,7 +36,7 @@ class LocalBatches {
   ThreadPool& pool_;
   const RoundDriver* driver_ = nullptr;
   uint32_t generation_ = 0;
-  std::vector<std::unique_ptr<BatchRunner>> runners_;
+  std::vector<std::unique_ptr<BatchTracer>> runners_;
 };
 
 struct RefiningSolveResult {

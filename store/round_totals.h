@@ -1,5 +1,5 @@
 // RoundTotals: what a job's recorded rounds add up to at a checkpoint. A job resumed from a
-// checkpoint (the master's JobRunner, `radfarm render --db`) starts from these totals, and `fetch`
+// checkpoint (the master's RunningJob, `radfarm render --db`) starts from these totals, and `fetch`
 // reports them, so the stopping rules see the same figures as in an uninterrupted solve.
 #pragma once
 

@@ -80,7 +80,7 @@ class AgentIdleTest : public ::testing::Test {
     return Assignment(job, blob_, scene_, batch, shooter, first_ray, rays);
   }
 
-  // Sends `assignment` and checks its result equals BatchRunner's on this machine.
+  // Sends `assignment` and checks its result equals BatchTracer's on this machine.
   void ExpectWorks(const protocol::BatchAssignmentMsg& assignment, const AgentProcess& agent) {
     master_.Send(assignment);
     std::optional<protocol::BatchResultMsg> found;

@@ -68,7 +68,7 @@ class AgentWorkTest : public ::testing::Test {
   FakeMaster master_;
 };
 
-TEST_F(AgentWorkTest, ResultsEqualBatchRunnerOnTheSameBatchBitForBit) {
+TEST_F(AgentWorkTest, ResultsEqualBatchTracerOnTheSameBatchBitForBit) {
   std::unique_ptr<AgentProcess> agent = StartAgent(2);
   const std::vector<TestJob> jobs = {Job(1, SamplerKind::kSobol, 3),
                                      Job(2, SamplerKind::kRandom, 4),

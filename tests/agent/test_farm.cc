@@ -3,7 +3,7 @@
 #include <fstream>
 
 #include "codec/patch_scene_codec.h"
-#include "core/batch_runner.h"
+#include "core/batch_tracer.h"
 #include "core/ray_caster.h"
 #include "core/ray_sampler.h"
 #include "protocol/batch_convert.h"
@@ -46,7 +46,7 @@ protocol::BatchAssignmentMsg Assignment(const TestJob& job, const std::vector<ui
 BatchResult RunLocally(const PatchScene& scene, const protocol::BatchAssignmentMsg& assignment) {
   const RayCaster caster(scene);
   const RaySampler sampler(assignment.sampler, assignment.seed, assignment.grid_step_degrees);
-  BatchRunner runner(scene, caster, sampler);
+  BatchTracer runner(scene, caster, sampler);
   return runner.Run(protocol::ToBatch(assignment));
 }
 

@@ -1,5 +1,5 @@
 // Scenes, secrets and assignments for the agent tests, and the reference result: a batch computed
-// locally with BatchRunner, which the agent's answer must equal bit for bit.
+// locally with BatchTracer, which the agent's answer must equal bit for bit.
 #pragma once
 
 #include <cstdint>
@@ -41,7 +41,7 @@ protocol::BatchAssignmentMsg Assignment(const TestJob& job, const std::vector<ui
                                         uint32_t shooter, uint64_t first_ray, uint32_t ray_count,
                                         uint32_t round = 0);
 
-// What BatchRunner::Run gives for the assignment on this machine.
+// What BatchTracer::Run gives for the assignment on this machine.
 BatchResult RunLocally(const PatchScene& scene, const protocol::BatchAssignmentMsg& assignment);
 
 // --master, --secret-file, --threads, --name and --log-level debug, then `extra`.

@@ -2,7 +2,7 @@
 // the batch size, or how often a batch is recomputed.
 #include <gtest/gtest.h>
 
-#include "core/batch_runner.h"
+#include "core/batch_tracer.h"
 #include "core/progressive_solver.h"
 #include "solve/local_solve.h"
 #include "tests/core/test_scenes.h"
@@ -45,7 +45,7 @@ TEST(DeterminismTest, BatchSizeOrderAndRecomputationNeverChangeTheResult) {
   for (int round = 0; round < 4; ++round) {
     const RoundPlan plan_a = a.PlanRound(4096);
     const RoundPlan plan_b = b.PlanRound(777);
-    BatchRunner runner_a(scene, caster, a.sampler()), runner_b(scene, caster, b.sampler());
+    BatchTracer runner_a(scene, caster, a.sampler()), runner_b(scene, caster, b.sampler());
     std::vector<BatchResult> results_a, results_b(plan_b.batches.size());
     for (const Batch& batch : plan_a.batches) results_a.push_back(runner_a.Run(batch));
     for (size_t k = plan_b.batches.size(); k-- > 0;) {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/batch_runner.h"
+#include "core/batch_tracer.h"
 #include "core/ray_caster.h"
 #include "core/ray_sampler.h"
 #include "tests/core/test_scenes.h"
@@ -22,7 +22,7 @@ double EstimateFormFactor(const PatchScene& scene, SamplerKind kind, uint64_t ra
                           double grid_step_degrees = 1.0) {
   const RayCaster caster(scene);
   const RaySampler sampler(kind, seed, grid_step_degrees);
-  BatchRunner runner(scene, caster, sampler);
+  BatchTracer runner(scene, caster, sampler);
   std::vector<Batch> batches;
   AppendShotBatches(0, 0, rays, 1 << 16, &batches);
   uint64_t hit = 0;
@@ -91,7 +91,7 @@ TEST(FormFactorTest, CoaxialDiscsOfRadiusEqualToDistance) {
   const double exact = 0.3819660113;
   for (SamplerKind kind : {SamplerKind::kRandom, SamplerKind::kSobol}) {
     const RaySampler sampler(kind, 3, 1.0);
-    BatchRunner runner(s, caster, sampler);
+    BatchTracer runner(s, caster, sampler);
     const uint64_t rays_per_triangle = 4096;
     uint64_t hit = 0;
     for (uint32_t t = 0; t < segments; ++t) {

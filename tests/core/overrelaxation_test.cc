@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "core/batch_runner.h"
+#include "core/batch_tracer.h"
 #include "core/progressive_solver.h"
 #include "core/ray_caster.h"
 #include "solve/local_solve.h"
@@ -81,7 +81,7 @@ TEST(OverrelaxationTest, ShooterKeepsOneMinusOmegaAndIsRankedByMagnitude) {
   ASSERT_EQ(first.shots.size(), 1u);
   EXPECT_EQ(first.shots[0].rays, uint64_t{3} << 15);  // omega * shot_rays: all the power, x 1.5
   const RayCaster caster(scene);
-  BatchRunner runner(scene, caster, solver.sampler());
+  BatchTracer runner(scene, caster, solver.sampler());
   std::vector<BatchResult> results;
   for (const Batch& b : first.batches) results.push_back(runner.Run(b));
   solver.ApplyRound(first, results);
@@ -113,7 +113,7 @@ TEST(OverrelaxationTest, ShooterKeepsOneMinusOmegaAndIsRankedByMagnitude) {
 template <typename After>
 void RunRounds(const PatchScene& scene, ProgressiveSolver* solver, int rounds, After after) {
   const RayCaster caster(scene);
-  BatchRunner runner(scene, caster, solver->sampler());
+  BatchTracer runner(scene, caster, solver->sampler());
   for (int round = 0; round < rounds; ++round) {
     const RoundPlan plan = solver->PlanRound(4096);
     if (plan.batches.empty()) return;
@@ -230,7 +230,7 @@ TEST(OverrelaxationTest, ThreadCountAndBatchCutNeverChangeTheResult) {
   for (int round = 0; round < 4; ++round) {
     const RoundPlan plan_a = a.PlanRound(4096);
     const RoundPlan plan_b = b.PlanRound(777);
-    BatchRunner runner(scene, caster, a.sampler());
+    BatchTracer runner(scene, caster, a.sampler());
     std::vector<BatchResult> results_a, results_b(plan_b.batches.size());
     for (const Batch& batch : plan_a.batches) results_a.push_back(runner.Run(batch));
     for (size_t k = plan_b.batches.size(); k-- > 0;) results_b[k] = runner.Run(plan_b.batches[k]);

@@ -4,7 +4,7 @@
 
 #include <limits>
 
-#include "core/batch_runner.h"
+#include "core/batch_tracer.h"
 #include "core/ray_caster.h"
 #include "protocol/batch_convert.h"
 #include "protocol/frame_codec.h"
@@ -120,7 +120,7 @@ TEST(ProtocolValidationTest, WeightedRaysCheckTheTotalWeight) {
   ExpectRejected(m, BatchBounds{100, 1, 475}, "2 hit patches from 1 rays");
 }
 
-// End to end: real batches through BatchRunner, the wire, and validation; the result that comes
+// End to end: real batches through BatchTracer, the wire, and validation; the result that comes
 // out is bit-identical to the one that went in.
 TEST(ProtocolValidationTest, RealBatchesRoundTripAndValidate) {
   PatchScene scene =
@@ -134,7 +134,7 @@ TEST(ProtocolValidationTest, RealBatchesRoundTripAndValidate) {
     job.settings.seed = 99;
     job.settings.grid_step_degrees = 10;
     const RaySampler sampler(kind, job.settings.seed, job.settings.grid_step_degrees);
-    BatchRunner runner(scene, caster, sampler);
+    BatchTracer runner(scene, caster, sampler);
     const uint32_t shooter = 4 * 9 + 4;  // the floor's middle patch, facing up
     const uint64_t first = 100;
     const Batch batch{3, shooter, first, kind == SamplerKind::kGrid ? 200u : 5000u};

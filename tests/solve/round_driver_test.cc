@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/batch_runner.h"
+#include "core/batch_tracer.h"
 #include "core/solve_control.h"
 #include "solve/local_solve.h"
 #include "tests/core/test_scenes.h"
@@ -35,7 +35,7 @@ SolverSettings Settings() {
 
 // Runs the driver's rounds one batch at a time, last batch first, with small batches.
 SolveResult DriveBackwards(RoundDriver& driver, std::vector<SolveState>* states = nullptr) {
-  BatchRunner runner(driver.scene(), driver.caster(), driver.solver().sampler());
+  BatchTracer runner(driver.scene(), driver.caster(), driver.solver().sampler());
   while (std::optional<RoundPlan> plan = driver.PlanNext(97, 0)) {
     std::vector<BatchResult> results(plan->batches.size());
     for (size_t b = plan->batches.size(); b-- > 0;) results[b] = runner.Run(plan->batches[b]);

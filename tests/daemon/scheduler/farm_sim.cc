@@ -22,7 +22,7 @@ FarmSim::FarmSim(const PatchScene& scene, const SolverSettings& settings,
     SimAgent& agent = agents_.emplace_back();
     agent.id = id++;
     agent.spec = spec;
-    agent.runner = std::make_unique<BatchRunner>(scene_, caster_, solver_.sampler());
+    agent.runner = std::make_unique<BatchTracer>(scene_, caster_, solver_.sampler());
     scheduler_.AddAgent(agent.id);
   }
 }

@@ -1,5 +1,5 @@
 // FarmSim: a whole solve driven through RoundScheduler by simulated agents on a fake clock, the
-// way the daemon's event loop will drive it. Agents compute their leases for real (BatchRunner)
+// way the daemon's event loop will drive it. Agents compute their leases for real (BatchTracer)
 // one at a time at a simulated speed, and can misbehave: die, hand leases back, stall, answer
 // late, answer twice, or lie once.
 #pragma once
@@ -9,7 +9,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/batch_runner.h"
+#include "core/batch_tracer.h"
 #include "core/patch_scene.h"
 #include "core/progressive_solver.h"
 #include "core/ray_caster.h"
@@ -56,7 +56,7 @@ class FarmSim {
   struct SimAgent {
     AgentId id = 0;
     SimAgentSpec spec;
-    std::unique_ptr<BatchRunner> runner;
+    std::unique_ptr<BatchTracer> runner;
     std::deque<Pending> pending;  // in delivery order
     TimePoint busy_until;
     bool alive = true;

@@ -1,10 +1,10 @@
-#include "agent/runner_pool.h"
+#include "agent/tracer_pool.h"
 
 #include <chrono>
 
 namespace radfarm::agent {
 
-BatchOutcome RunnerPool::Run(const std::shared_ptr<const PreparedScene>& scene,
+BatchOutcome TracerPool::Run(const std::shared_ptr<const PreparedScene>& scene,
                              const std::shared_ptr<const RaySampler>& sampler, const Batch& batch) {
   std::unique_ptr<Slot> slot = Borrow(scene.get(), sampler.get());
   if (slot->scene != scene || slot->sampler != sampler) {
@@ -22,7 +22,7 @@ BatchOutcome RunnerPool::Run(const std::shared_ptr<const PreparedScene>& scene,
   return outcome;
 }
 
-std::unique_ptr<RunnerPool::Slot> RunnerPool::Borrow(const PreparedScene* scene,
+std::unique_ptr<TracerPool::Slot> TracerPool::Borrow(const PreparedScene* scene,
                                                      const RaySampler* sampler) {
   std::lock_guard lock(mutex_);
   if (free_.empty()) return std::make_unique<Slot>();
@@ -35,7 +35,7 @@ std::unique_ptr<RunnerPool::Slot> RunnerPool::Borrow(const PreparedScene* scene,
   return slot;
 }
 
-void RunnerPool::GiveBack(std::unique_ptr<Slot> slot) {
+void TracerPool::GiveBack(std::unique_ptr<Slot> slot) {
   std::lock_guard lock(mutex_);
   free_.push_back(std::move(slot));
 }

@@ -1,4 +1,4 @@
-#include "agent/lease_runner.h"
+#include "agent/lease_worker.h"
 
 #include <algorithm>
 #include <chrono>
@@ -47,7 +47,7 @@ std::string DescribeLeases(const std::vector<protocol::LeaseRef>& leases) {
   return text.str();
 }
 
-LeaseRunner::LeaseRunner(loop::EventLoop& loop, const AgentSettings& settings,
+LeaseWorker::LeaseWorker(loop::EventLoop& loop, const AgentSettings& settings,
                          loop::WorkQueue& batches, loop::WorkQueue& io,
                          std::optional<SceneStore> store, std::string master, Callbacks callbacks)
     : loop_(loop),
@@ -67,7 +67,7 @@ LeaseRunner::LeaseRunner(loop::EventLoop& loop, const AgentSettings& settings,
   scenes_ = std::make_unique<SceneSupply>(io, std::move(store), master_, scene_callbacks);
 }
 
-void LeaseRunner::OnAssignment(const protocol::BatchAssignmentMsg& assignment, bool accepting) {
+void LeaseWorker::OnAssignment(const protocol::BatchAssignmentMsg& assignment, bool accepting) {
   if (!accepting) {
     Return({assignment.lease}, protocol::LeaseReturnReason::kDraining, "draining");
     return;
@@ -94,7 +94,7 @@ void LeaseRunner::OnAssignment(const protocol::BatchAssignmentMsg& assignment, b
   Dispatch();
 }
 
-Status LeaseRunner::CheckRayRange(const protocol::BatchAssignmentMsg& a) {
+Status LeaseWorker::CheckRayRange(const protocol::BatchAssignmentMsg& a) {
   // The grid sampler has a fixed number of rays per shot and no ray beyond it (its tables end
   // there): such a batch is a master's bug, refused rather than run.
   const uint64_t per_shot =
@@ -107,7 +107,7 @@ Status LeaseRunner::CheckRayRange(const protocol::BatchAssignmentMsg& a) {
   return Ok{};
 }
 
-void LeaseRunner::Enqueue(HeldLease& lease, const std::shared_ptr<const PreparedScene>& scene) {
+void LeaseWorker::Enqueue(HeldLease& lease, const std::shared_ptr<const PreparedScene>& scene) {
   if (scene->patch_count() != lease.assignment.patch_count) {
     ReturnOne(lease.id, protocol::LeaseReturnReason::kFailed,
               "scene " + protocol::HashToHex(scene->hash) + " has " +
@@ -118,12 +118,12 @@ void LeaseRunner::Enqueue(HeldLease& lease, const std::shared_ptr<const Prepared
   book_.MarkQueued(lease, scene);
 }
 
-void LeaseRunner::OnSceneReady(const std::shared_ptr<const PreparedScene>& scene) {
+void LeaseWorker::OnSceneReady(const std::shared_ptr<const PreparedScene>& scene) {
   for (uint64_t id : book_.AwaitingScene(scene->hash)) Enqueue(*book_.Find(id), scene);
   Dispatch();
 }
 
-void LeaseRunner::OnSceneFailed(const protocol::SceneHash& hash, protocol::LeaseReturnReason reason,
+void LeaseWorker::OnSceneFailed(const protocol::SceneHash& hash, protocol::LeaseReturnReason reason,
                                 const std::string& why) {
   std::vector<protocol::LeaseRef> leases;
   for (uint64_t id : book_.AwaitingScene(hash)) leases.push_back(book_.Remove(id));
@@ -132,7 +132,7 @@ void LeaseRunner::OnSceneFailed(const protocol::SceneHash& hash, protocol::Lease
   callbacks_.on_leases_changed();
 }
 
-void LeaseRunner::Dispatch() {
+void LeaseWorker::Dispatch() {
   while (batches_in_flight_ < settings_.threads) {
     HeldLease* lease = book_.PopQueued();
     if (lease == nullptr) return;
@@ -154,7 +154,7 @@ void LeaseRunner::Dispatch() {
   }
 }
 
-void LeaseRunner::OnBatchDone(uint64_t id, Result<BatchOutcome> outcome) {
+void LeaseWorker::OnBatchDone(uint64_t id, Result<BatchOutcome> outcome) {
   --batches_in_flight_;
   HeldLease* lease = book_.Find(id);
   if (lease == nullptr) {
@@ -185,7 +185,7 @@ void LeaseRunner::OnBatchDone(uint64_t id, Result<BatchOutcome> outcome) {
   Dispatch();
 }
 
-void LeaseRunner::SendResult(uint64_t id) {
+void LeaseWorker::SendResult(uint64_t id) {
   HeldLease* lease = book_.Find(id);
   if (lease == nullptr) return;
   if (Status sent = callbacks_.send(*lease->result); !sent) {
@@ -202,31 +202,31 @@ void LeaseRunner::SendResult(uint64_t id) {
   callbacks_.on_leases_changed();
 }
 
-size_t LeaseRunner::Cancel(uint64_t job_id) {
+size_t LeaseWorker::Cancel(uint64_t job_id) {
   const std::vector<protocol::LeaseRef> dropped = book_.RemoveJob(job_id);
   if (!dropped.empty()) callbacks_.on_leases_changed();
   return dropped.size();
 }
 
-void LeaseRunner::ReturnAll(protocol::LeaseReturnReason reason, const std::string& why) {
+void LeaseWorker::ReturnAll(protocol::LeaseReturnReason reason, const std::string& why) {
   std::vector<protocol::LeaseRef> leases = book_.RemoveAll();
   if (leases.empty()) return;
   Return(std::move(leases), reason, why);
   callbacks_.on_leases_changed();
 }
 
-size_t LeaseRunner::DropAll() {
+size_t LeaseWorker::DropAll() {
   scenes_->OnDisconnected();
   return book_.RemoveAll().size();
 }
 
-void LeaseRunner::ReturnOne(uint64_t id, protocol::LeaseReturnReason reason,
+void LeaseWorker::ReturnOne(uint64_t id, protocol::LeaseReturnReason reason,
                             const std::string& why) {
   Return({book_.Remove(id)}, reason, why);
   callbacks_.on_leases_changed();
 }
 
-void LeaseRunner::Return(std::vector<protocol::LeaseRef> leases, protocol::LeaseReturnReason reason,
+void LeaseWorker::Return(std::vector<protocol::LeaseRef> leases, protocol::LeaseReturnReason reason,
                          const std::string& why) {
   LogLine(LogLevel::kInfo, "agent") << "returning " << DescribeLeases(leases) << " to " << master_
                                     << " (" << ReasonName(reason) << "): " << why;

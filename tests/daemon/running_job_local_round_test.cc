@@ -1,19 +1,19 @@
-// JobRunner::RunLocally: a job whose every round the master computes itself ends with the
+// RunningJob::RunLocally: a job whose every round the master computes itself ends with the
 // radiosity `radfarm render` gives, to the bit (core/batch.h: a batch's result does not depend on
 // where it runs).
 #include <gtest/gtest.h>
 
 #include "codec/job_bundle.h"
-#include "solve/local_solve.h"
-#include "daemon/job_runner.h"
+#include "daemon/running_job.h"
 #include "input/input_scene.h"
 #include "job/job.h"
 #include "mesh/patch_mesh.h"
+#include "solve/local_solve.h"
 
 namespace radfarm::daemon {
 namespace {
 
-TEST(JobRunnerLocalRoundTest, RoundsRunHereGiveTheLocalSolveBitForBit) {
+TEST(RunningJobLocalRoundTest, RoundsRunHereGiveTheLocalSolveBitForBit) {
   Result<Job> job = LoadJob(RADFARM_SOURCE_DIR "/scenes/cornell-box.toml");
   ASSERT_TRUE(job.ok()) << job.error();
   Result<InputScene> scene = LoadObjScene(job->scene_path);
@@ -24,24 +24,24 @@ TEST(JobRunnerLocalRoundTest, RoundsRunHereGiveTheLocalSolveBitForBit) {
   const codec::JobBundle bundle{*job, *scene};
   store::JobRecord record;
   record.id = 1;
-  Result<std::shared_ptr<JobRunner>> runner = JobRunner::Prepare(
+  Result<std::shared_ptr<RunningJob>> runner = RunningJob::Prepare(
       record, codec::EncodeJobBundle(bundle), std::nullopt, std::nullopt, {}, {});
   ASSERT_TRUE(runner.ok()) << runner.error();
-  JobRunner& r = **runner;
+  RunningJob& r = **runner;
 
   std::vector<Rgb> radiosity;
   for (int rounds = 0; rounds < 1000; ++rounds) {
     ASSERT_GT(r.planned_rays(), 0u);
     Result<RoundPlan> plan = r.TakePlannedRound();
     ASSERT_TRUE(plan.ok()) << plan.error();
-    EXPECT_EQ(r.phase(), JobRunner::Phase::kReducing);
+    EXPECT_EQ(r.phase(), RunningJob::Phase::kReducing);
     const scheduler::CompletedRound round = r.RunLocally(std::move(*plan));
     ASSERT_EQ(round.results.size(), round.plan.batches.size());
     RoundOutcome outcome = r.Reduce(round, 0.01, true, 4096);
     radiosity = outcome.checkpoint.radiosity;
-    if (!r.Resume(outcome)) break;
+    if (!r.InstallOutcome(outcome)) break;
   }
-  ASSERT_EQ(r.phase(), JobRunner::Phase::kFinished);
+  ASSERT_EQ(r.phase(), RunningJob::Phase::kFinished);
   EXPECT_EQ(r.planned_rays(), 0u);
   EXPECT_FALSE(r.TakePlannedRound().ok());
 

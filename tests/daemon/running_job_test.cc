@@ -1,7 +1,7 @@
-// JobRunner::Prepare with adaptive refinement: a fresh job refines before round 0 exactly as the
+// RunningJob::Prepare with adaptive refinement: a fresh job refines before round 0 exactly as the
 // local solve does (same scene blob), a checkpoint on a refined mesh resumes on it, and every way
 // a checkpoint's refined mesh can be wrong fails the job with a message naming it.
-#include "daemon/job_runner.h"
+#include "daemon/running_job.h"
 
 #include <gtest/gtest.h>
 
@@ -62,18 +62,18 @@ store::Checkpoint CheckpointOn(const std::vector<uint8_t>& blob) {
   return c;
 }
 
-Result<std::shared_ptr<JobRunner>> Prepare(const codec::JobBundle& bundle,
-                                           const std::optional<store::Checkpoint>& checkpoint,
-                                           const std::optional<std::vector<uint8_t>>& scene) {
+Result<std::shared_ptr<RunningJob>> Prepare(const codec::JobBundle& bundle,
+                                            const std::optional<store::Checkpoint>& checkpoint,
+                                            const std::optional<std::vector<uint8_t>>& scene) {
   store::JobRecord record;
   record.id = 1;
-  return JobRunner::Prepare(record, codec::EncodeJobBundle(bundle), checkpoint, scene, {}, {});
+  return RunningJob::Prepare(record, codec::EncodeJobBundle(bundle), checkpoint, scene, {}, {});
 }
 
-TEST(JobRunnerRefineTest, AFreshJobRefinesBeforeRoundZeroLikeTheLocalSolve) {
+TEST(RunningJobRefineTest, AFreshJobRefinesBeforeRoundZeroLikeTheLocalSolve) {
   const codec::JobBundle bundle = AdaptiveBundle();
   const std::vector<uint8_t> local = LocallyRefinedBlob(bundle);
-  Result<std::shared_ptr<JobRunner>> runner = Prepare(bundle, std::nullopt, std::nullopt);
+  Result<std::shared_ptr<RunningJob>> runner = Prepare(bundle, std::nullopt, std::nullopt);
   ASSERT_TRUE(runner.ok()) << runner.error();
   EXPECT_TRUE(*(*runner)->scene_blob() == local);
   EXPECT_EQ((*runner)->wire_info().scene_hash, protocol::HashScene(local));
@@ -83,38 +83,38 @@ TEST(JobRunnerRefineTest, AFreshJobRefinesBeforeRoundZeroLikeTheLocalSolve) {
   EXPECT_GT((*runner)->patch_count(), initial->patch_scene().patches.size());
 }
 
-TEST(JobRunnerRefineTest, ACheckpointOnARefinedMeshResumesOnIt) {
+TEST(RunningJobRefineTest, ACheckpointOnARefinedMeshResumesOnIt) {
   const codec::JobBundle bundle = AdaptiveBundle();
   const std::vector<uint8_t> blob = LocallyRefinedBlob(bundle);
-  Result<std::shared_ptr<JobRunner>> runner = Prepare(bundle, CheckpointOn(blob), blob);
+  Result<std::shared_ptr<RunningJob>> runner = Prepare(bundle, CheckpointOn(blob), blob);
   ASSERT_TRUE(runner.ok()) << runner.error();
   EXPECT_TRUE(*(*runner)->scene_blob() == blob);
   EXPECT_EQ((*runner)->totals().round, 1u);
-  EXPECT_EQ((*runner)->phase(), JobRunner::Phase::kRound);
+  EXPECT_EQ((*runner)->phase(), RunningJob::Phase::kRound);
 }
 
 // The checkpoint of the round a job stopped after (a capped round may leave rays of the budget):
 // a master restarted before it marked the job done finishes it without another round.
-TEST(JobRunnerRefineTest, TheLastCheckpointOfAJobRunsNoFurtherRound) {
+TEST(RunningJobRefineTest, TheLastCheckpointOfAJobRunsNoFurtherRound) {
   const codec::JobBundle bundle = AdaptiveBundle();
   const std::vector<uint8_t> blob = LocallyRefinedBlob(bundle);
   store::Checkpoint last = CheckpointOn(blob);
   last.stop_reason = "ray budget";
-  Result<std::shared_ptr<JobRunner>> runner = Prepare(bundle, last, blob);
+  Result<std::shared_ptr<RunningJob>> runner = Prepare(bundle, last, blob);
   ASSERT_TRUE(runner.ok()) << runner.error();
-  EXPECT_EQ((*runner)->phase(), JobRunner::Phase::kFinished);
+  EXPECT_EQ((*runner)->phase(), RunningJob::Phase::kFinished);
   EXPECT_EQ((*runner)->stop_reason(), std::optional<std::string>("ray budget"));
   // Without the mark the same state goes on (unshot above the tolerance, no ray budget).
-  Result<std::shared_ptr<JobRunner>> going_on = Prepare(bundle, CheckpointOn(blob), blob);
+  Result<std::shared_ptr<RunningJob>> going_on = Prepare(bundle, CheckpointOn(blob), blob);
   ASSERT_TRUE(going_on.ok()) << going_on.error();
-  EXPECT_EQ((*going_on)->phase(), JobRunner::Phase::kRound);
+  EXPECT_EQ((*going_on)->phase(), RunningJob::Phase::kRound);
 }
 
-TEST(JobRunnerRefineTest, AWrongRefinedMeshFailsTheJob) {
+TEST(RunningJobRefineTest, AWrongRefinedMeshFailsTheJob) {
   const codec::JobBundle bundle = AdaptiveBundle();
   const std::vector<uint8_t> blob = LocallyRefinedBlob(bundle);
   const store::Checkpoint checkpoint = CheckpointOn(blob);
-  const auto expect_error = [](const Result<std::shared_ptr<JobRunner>>& r,
+  const auto expect_error = [](const Result<std::shared_ptr<RunningJob>>& r,
                                const std::string& words) {
     ASSERT_FALSE(r.ok()) << words;
     EXPECT_NE(r.error().find(words), std::string::npos) << r.error();

@@ -1,5 +1,5 @@
 // Computes batches: casts their rays and counts hits. Holds a per-thread scratch array, so use one
-// BatchRunner per thread; the caster, sampler and scene are shared read-only.
+// BatchTracer per thread; the caster, sampler and scene are shared read-only.
 #pragma once
 
 #include <vector>
@@ -11,9 +11,9 @@
 
 namespace radfarm {
 
-class BatchRunner {
+class BatchTracer {
  public:
-  BatchRunner(const PatchScene& scene, const RayCaster& caster, const RaySampler& sampler);
+  BatchTracer(const PatchScene& scene, const RayCaster& caster, const RaySampler& sampler);
 
   BatchResult Run(const Batch& batch);
 

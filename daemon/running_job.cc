@@ -1,4 +1,4 @@
-#include "daemon/job_runner.h"
+#include "daemon/running_job.h"
 
 #include <cmath>
 
@@ -31,7 +31,7 @@ Result<PatchScene> RefinedSceneOf(const store::Checkpoint& checkpoint, const Ref
 
 }  // namespace
 
-Result<std::shared_ptr<JobRunner>> JobRunner::Prepare(
+Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
     const store::JobRecord& record, const std::vector<uint8_t>& bundle_blob,
     const std::optional<store::Checkpoint>& checkpoint,
     const std::optional<std::vector<uint8_t>>& checkpoint_scene,
@@ -42,7 +42,7 @@ Result<std::shared_ptr<JobRunner>> JobRunner::Prepare(
   Result<PatchMesh> mesh = PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
   RADFARM_RETURN_IF_ERROR(mesh);
 
-  std::shared_ptr<JobRunner> runner(new JobRunner());
+  std::shared_ptr<RunningJob> runner(new RunningJob());
   runner->record_ = record;
   runner->settings_ = bundle->job.solver;
   // The checkpoint as the driver resumes it; a refined mesh's scene checked against its hash.
@@ -98,7 +98,7 @@ Result<std::shared_ptr<JobRunner>> JobRunner::Prepare(
   return runner;
 }
 
-Status JobRunner::StartPlannedRound(scheduler::TimePoint now) {
+Status RunningJob::StartPlannedRound(scheduler::TimePoint now) {
   if (!planned_) return Error{"job " + std::to_string(id()) + ": no round planned"};
   Status s = scheduler_.StartRound(std::move(*planned_), now);
   planned_.reset();
@@ -109,7 +109,7 @@ Status JobRunner::StartPlannedRound(scheduler::TimePoint now) {
   return s;
 }
 
-Result<RoundPlan> JobRunner::TakePlannedRound() {
+Result<RoundPlan> RunningJob::TakePlannedRound() {
   if (!planned_) return Error{"job " + std::to_string(id()) + ": no round planned"};
   RoundPlan plan = std::move(*planned_);
   planned_.reset();
@@ -117,21 +117,21 @@ Result<RoundPlan> JobRunner::TakePlannedRound() {
   return plan;
 }
 
-scheduler::CompletedRound JobRunner::RunLocally(RoundPlan plan) {
+scheduler::CompletedRound RunningJob::RunLocally(RoundPlan plan) {
   scheduler::CompletedRound round;
   round.results = LocalBatches(*pool_).Run(*driver_, plan);
   round.plan = std::move(plan);
   return round;
 }
 
-Result<scheduler::CompletedRound> JobRunner::TakeRound() {
+Result<scheduler::CompletedRound> RunningJob::TakeRound() {
   Result<scheduler::CompletedRound> done = scheduler_.TakeCompletedRound();
   if (done.ok()) phase_ = Phase::kReducing;
   return done;
 }
 
-RoundOutcome JobRunner::Reduce(const scheduler::CompletedRound& round, double round_seconds,
-                               bool checkpoint_due, uint32_t batch_rays) {
+RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double round_seconds,
+                                bool checkpoint_due, uint32_t batch_rays) {
   RoundOutcome out;
   const AppliedRound applied =
       driver_->Apply(round.plan, round.results, totals_.seconds + round_seconds);
@@ -171,7 +171,7 @@ RoundOutcome JobRunner::Reduce(const scheduler::CompletedRound& round, double ro
   return out;
 }
 
-void JobRunner::UpdateTotals() {
+void RunningJob::UpdateTotals() {
   const SolveTotals& spent = driver_->totals();
   const ProgressiveSolver& solver = driver_->solver();
   totals_.round = solver.rounds_done();
@@ -183,14 +183,14 @@ void JobRunner::UpdateTotals() {
   totals_.gather_rays_left = solver.PendingGatherRays();
 }
 
-void JobRunner::EncodeRefinedScene() {
+void RunningJob::EncodeRefinedScene() {
   refined_blob_ =
       std::make_shared<const std::vector<uint8_t>>(codec::EncodePatchScene(driver_->scene()));
   refined_hash_ = protocol::HashToHex(protocol::HashScene(*refined_blob_));
   refined_unsaved_ = true;
 }
 
-bool JobRunner::Resume(RoundOutcome& outcome) {
+bool RunningJob::InstallOutcome(RoundOutcome& outcome) {
   if (outcome.new_scene) {
     scene_blob_ = std::move(outcome.new_scene);
     wire_.scene_hash = outcome.new_scene_hash;
@@ -206,7 +206,7 @@ bool JobRunner::Resume(RoundOutcome& outcome) {
   return true;
 }
 
-double JobRunner::RaysPerSecond() const {
+double RunningJob::RaysPerSecond() const {
   uint64_t rays = 0;
   double seconds = 0;
   for (const auto& [r, s] : recent_) {
@@ -216,7 +216,7 @@ double JobRunner::RaysPerSecond() const {
   return seconds > 0 ? double(rays) / seconds : 0;
 }
 
-std::optional<double> JobRunner::EtaSeconds() const {
+std::optional<double> RunningJob::EtaSeconds() const {
   if (phase_ == Phase::kFinished) return 0.0;
   const double left = EstimateSecondsLeft(totals_.unshot_fraction, settings_.tolerance,
                                           totals_.seconds, totals_.rays, totals_.gather_rays_left);

@@ -1,14 +1,14 @@
-#include "core/batch_runner.h"
+#include "core/batch_tracer.h"
 
 #include <algorithm>
 
 namespace radfarm {
 
-BatchRunner::BatchRunner(const PatchScene& scene, const RayCaster& caster,
+BatchTracer::BatchTracer(const PatchScene& scene, const RayCaster& caster,
                          const RaySampler& sampler)
     : scene_(scene), caster_(caster), sampler_(sampler), weight_by_patch_(scene.patches.size()) {}
 
-BatchResult BatchRunner::Run(const Batch& batch) {
+BatchResult BatchTracer::Run(const Batch& batch) {
   BatchResult result;
   const Patch& shooter = scene_.patches[batch.shooter];
   const ShotSampler shot = sampler_.Shot(shooter, batch.shooter, batch.round);

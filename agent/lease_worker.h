@@ -1,12 +1,12 @@
-// LeaseRunner: the agent's work side. It takes the master's BatchAssignments, gets their scenes
-// (SceneSupply), runs their batches on the batch work queue, one BatchRunner per worker
-// (RunnerPool), holds each result for --slowdown, and answers with a BatchResult, or returns the
+// LeaseWorker: the agent's work side. It takes the master's BatchAssignments, gets their scenes
+// (SceneSupply), runs their batches on the batch work queue, one BatchTracer per worker
+// (TracerPool), holds each result for --slowdown, and answers with a BatchResult, or returns the
 // lease in a LeaseReturn when it cannot run it. LeaseBook has each lease's stages.
 //
 // The runner keeps at most `threads` batches on the work queue and the rest in its own queue, so
 // a Cancel drops the queued ones at once; the result of a running batch whose lease is gone
 // (cancelled, returned, connection lost) is discarded when it comes back. Batches are computed
-// exactly as BatchRunner::Run computes them locally: nothing here changes a result.
+// exactly as BatchTracer::Run computes them locally: nothing here changes a result.
 //
 // Loop thread only; batches run on the work queue's workers, scene work on the I/O queue's.
 #pragma once
@@ -20,18 +20,18 @@
 
 #include "agent/agent_settings.h"
 #include "agent/lease_book.h"
-#include "agent/runner_pool.h"
 #include "agent/sampler_cache.h"
 #include "agent/scene_store.h"
 #include "agent/scene_supply.h"
 #include "agent/throughput_meter.h"
+#include "agent/tracer_pool.h"
 #include "loop/event_loop.h"
 #include "loop/work_queue.h"
 #include "protocol/messages.h"
 
 namespace radfarm::agent {
 
-class LeaseRunner {
+class LeaseWorker {
  public:
   struct Callbacks {
     // Sends a message to the master; fails when there is no connection.
@@ -41,7 +41,7 @@ class LeaseRunner {
   };
 
   // The queues must outlive the runner's last delivered result: destroy them first.
-  LeaseRunner(loop::EventLoop& loop, const AgentSettings& settings, loop::WorkQueue& batches,
+  LeaseWorker(loop::EventLoop& loop, const AgentSettings& settings, loop::WorkQueue& batches,
               loop::WorkQueue& io, std::optional<SceneStore> store, std::string master,
               Callbacks callbacks);
 
@@ -83,7 +83,7 @@ class LeaseRunner {
   Callbacks callbacks_;
   LeaseBook book_;
   SamplerCache samplers_;
-  std::shared_ptr<RunnerPool> runners_ = std::make_shared<RunnerPool>();
+  std::shared_ptr<TracerPool> runners_ = std::make_shared<TracerPool>();
   ThroughputMeter meter_;
   std::unique_ptr<SceneSupply> scenes_;
   size_t batches_in_flight_ = 0;

@@ -1,4 +1,4 @@
-// RunnerPool: the BatchRunners of the batch worker threads. A BatchRunner keeps a scratch array as
+// TracerPool: the BatchTracers of the batch worker threads. A BatchTracer keeps a scratch array as
 // long as its scene has patches, so workers reuse runners rather than build one per batch: each
 // batch borrows a free runner, preferring one already made for its scene and sampler, and gives it
 // back when done. At most one runner exists per batch running at once, so the pool never holds
@@ -15,7 +15,7 @@
 
 #include "agent/prepared_scene.h"
 #include "core/batch.h"
-#include "core/batch_runner.h"
+#include "core/batch_tracer.h"
 #include "core/ray_sampler.h"
 
 namespace radfarm::agent {
@@ -26,17 +26,17 @@ struct BatchOutcome {
   double compute_seconds = 0;
 };
 
-class RunnerPool {
+class TracerPool {
  public:
   BatchOutcome Run(const std::shared_ptr<const PreparedScene>& scene,
                    const std::shared_ptr<const RaySampler>& sampler, const Batch& batch);
 
  private:
-  // A runner and what it is bound to (BatchRunner keeps references to both).
+  // A runner and what it is bound to (BatchTracer keeps references to both).
   struct Slot {
     std::shared_ptr<const PreparedScene> scene;
     std::shared_ptr<const RaySampler> sampler;
-    std::optional<BatchRunner> runner;
+    std::optional<BatchTracer> runner;
   };
   std::unique_ptr<Slot> Borrow(const PreparedScene* scene, const RaySampler* sampler);
   void GiveBack(std::unique_ptr<Slot> slot);

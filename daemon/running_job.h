@@ -1,4 +1,4 @@
-// JobRunner: one job the master is solving. It owns the job's RoundDriver (solve/round_driver.h:
+// RunningJob: one job the master is solving. It owns the job's RoundDriver (solve/round_driver.h:
 // the mesh, the solver, the refinement schedule) and its RoundScheduler, and runs the driver's
 // rounds with agents in place of `radfarm render`'s threads, so the result is bit-identical to
 // `radfarm render` of the same job:
@@ -11,13 +11,13 @@
 //     refinement point), plans the next one, and the state is copied for the checkpoint the store
 //     thread writes meanwhile.
 //
-// A refinement step gives a new mesh, scene blob (new hash) and solver; Resume installs the blob
-// on the loop thread before the next round's batches are leased, and a round's batch ids carry its
-// round, so a result is always validated against the scene of its own round.
+// A refinement step gives a new mesh, scene blob (new hash) and solver; InstallOutcome installs
+// the blob on the loop thread before the next round's batches are leased, and a round's batch ids
+// carry its round, so a result is always validated against the scene of its own round.
 //
-// Threads: the loop thread owns the runner; Reduce runs on a worker while phase() is kReducing,
+// Threads: the loop thread owns the job; Reduce runs on a worker while phase() is kReducing,
 // and the loop thread leaves the mesh and solver alone until its result comes back. What the loop
-// thread reads in any phase (the scene blob, the wire info) changes only in Resume.
+// thread reads in any phase (the scene blob, the wire info) changes only in InstallOutcome.
 #pragma once
 
 #include <chrono>
@@ -69,14 +69,14 @@ struct RoundOutcome {
   uint32_t new_patch_count = 0;
 };
 
-class JobRunner {
+class RunningJob {
  public:
   enum class Phase { kRound, kReducing, kFinished };
 
   // Heavy (meshing, refining, planning): call on a worker thread. `checkpoint` and `rounds` come
   // from the store: the job resumes after the checkpoint's round, with the totals of the rounds up
   // to it; `checkpoint_scene` is the blob of the refined scene the checkpoint names (scene_hash).
-  static Result<std::shared_ptr<JobRunner>> Prepare(
+  static Result<std::shared_ptr<RunningJob>> Prepare(
       const store::JobRecord& record, const std::vector<uint8_t>& bundle_blob,
       const std::optional<store::Checkpoint>& checkpoint,
       const std::optional<std::vector<uint8_t>>& checkpoint_scene,
@@ -119,7 +119,7 @@ class JobRunner {
                       bool checkpoint_due, uint32_t batch_rays);
   // Loop thread: takes Reduce's outcome back (and installs a refined scene). Returns true when the
   // job goes on (a round is planned), false when it is finished.
-  bool Resume(RoundOutcome& outcome);
+  bool InstallOutcome(RoundOutcome& outcome);
 
   // Recent throughput for status: rays/s over the last rounds (0 before the first).
   double RaysPerSecond() const;
@@ -128,7 +128,7 @@ class JobRunner {
   scheduler::TimePoint round_started() const { return round_started_; }
 
  private:
-  JobRunner() = default;
+  RunningJob() = default;
   // Worker thread: encodes the driver's refined scene after a step that split.
   void EncodeRefinedScene();
   // The totals and progress figures of the driver's state, for status.
