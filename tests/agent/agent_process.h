@@ -3,13 +3,13 @@
 // child with SIGKILL if it is still running and reaps it.
 #pragma once
 
-#include <sys/types.h>
-
 #include <chrono>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "testing/child_process.h"
+#include "testing/temp_dir.h"
 #include "tests/agent/fake_master.h"
 
 namespace radfarm::agent::testing {
@@ -18,43 +18,31 @@ class AgentProcess {
  public:
   // Starts RADFARM_AGENT_PATH with `args` (not including the program).
   explicit AgentProcess(const std::vector<std::string>& args);
-  ~AgentProcess();
   AgentProcess(const AgentProcess&) = delete;
   AgentProcess& operator=(const AgentProcess&) = delete;
 
   // Everything the agent has logged so far.
-  std::string Log() const;
+  std::string Log() const { return process_.Log(); }
   // Waits until the log holds `text` at least `count` times.
   bool WaitForLog(const std::string& text, int count = 1,
                   std::chrono::milliseconds timeout = kWaitTimeout) const;
   int CountInLog(const std::string& text) const;
 
-  void Signal(int signum);
+  void Signal(int signum) { process_.Signal(signum); }
   // The exit code (128 + signal if killed by one), once it exits; nullopt after `timeout`.
-  std::optional<int> WaitExit(std::chrono::milliseconds timeout = kWaitTimeout);
+  std::optional<int> WaitExit(std::chrono::milliseconds timeout = kWaitTimeout) {
+    return process_.WaitExit(timeout);
+  }
   // Whether the process is still running (reaps it if it has exited).
-  bool Running() { return !WaitExit(std::chrono::milliseconds(0)).has_value(); }
+  bool Running() { return process_.running(); }
 
  private:
-  std::string dir_;
-  std::string log_path_;
-  pid_t pid_ = -1;
-  std::optional<int> exit_code_;
+  ::radfarm::testing::TempDir dir_;  // holds the log; declared first, so it outlives the process
+  ::radfarm::testing::ChildProcess process_;
 };
 
 // A fresh directory under the temp dir, removed with its contents by the destructor.
-class ScratchDir {
- public:
-  ScratchDir();
-  ~ScratchDir();
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  const std::string& path() const { return path_; }
-  std::string File(const std::string& name) const { return path_ + "/" + name; }
-
- private:
-  std::string path_;
-};
+using ScratchDir = ::radfarm::testing::TempDir;
 
 void WriteTextFile(const std::string& path, const std::string& text);
 std::string ReadTextFile(const std::string& path);
