@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <numeric>
+#include <span>
 
 #include "core/direct_light.h"
 
@@ -20,14 +21,11 @@ struct ShotHits {
   uint64_t escaped = 0, back = 0;
 };
 
-// Sums the batches of `shooter`, which start at plan.batches[*b], into `hit_weight` (zero where
-// not touched) and moves *b past them.
-ShotHits SumShotHits(const RoundPlan& plan, const std::vector<BatchResult>& results,
-                     uint32_t shooter, size_t* b, std::vector<uint64_t>* hit_weight) {
+// Sums one shot's batch results into `hit_weight` (zero where not touched).
+ShotHits SumShotHits(std::span<const BatchResult> results, std::vector<uint64_t>* hit_weight) {
   ShotHits out;
   std::vector<uint64_t>& weight = *hit_weight;
-  for (; *b < plan.batches.size() && plan.batches[*b].shooter == shooter; ++*b) {
-    const BatchResult& r = results[*b];
+  for (const BatchResult& r : results) {
     out.escaped += r.escaped_weight;
     out.back += r.back_weight;
     for (const PatchHits& h : r.hits) {
@@ -215,76 +213,85 @@ RoundPlan ProgressiveSolver::PlanRound(uint32_t batch_rays, uint64_t ray_cap) co
   return plan;
 }
 
-void ProgressiveSolver::ApplyGather(const RoundPlan& plan,
-                                    const std::vector<BatchResult>& results) {
-  // Each gathering patch's radiosity from the state at the start of the round (all patches read
-  // the same B), so the order of patches does not matter; hits summed in increasing patch order.
-  std::vector<Rgb> gathered(scene_.patches.size());
-  std::vector<uint64_t> hit_weight(scene_.patches.size());
+void ProgressiveSolver::ApplyRound(const RoundPlan& plan, const std::vector<BatchResult>& results) {
+  BeginRound(plan);
   size_t b = 0;
-  for (const Shot& shot : plan.shots) {
-    const ShotHits hits = SumShotHits(plan, results, shot.shooter, &b, &hit_weight);
-    const double total = double(sampler_.TotalWeight(shot.rays));
-    Rgb bounced;
-    for (uint32_t j : hits.touched) {
-      // With the direct light known, only light that bounced is gathered; else all of it.
-      const Rgb seen = direct_.empty() ? radiosity_[j] : radiosity_[j] - scene_.patches[j].emission;
-      bounced += seen * (double(hit_weight[j]) / total);
-      hit_weight[j] = 0;
-    }
-    gathered[shot.shooter] = bounced;
+  for (size_t s = 0; s < plan.shots.size(); ++s) {
+    const size_t first = b;
+    while (b < plan.batches.size() && plan.batches[b].shooter == plan.shots[s].shooter) ++b;
+    ApplyShot(plan, s, std::span(results).subspan(first, b - first));
   }
-  for (const Shot& shot : plan.shots) {
-    const Patch& p = scene_.patches[shot.shooter];
-    const Rgb direct = direct_.empty() ? Rgb{} : direct_[shot.shooter];
-    radiosity_[shot.shooter] = p.emission + p.reflectance * (direct + gathered[shot.shooter]);
-  }
-  // The unshot left (below the tolerance) is taken as absorbed: the account still balances.
-  energy_.absorbed += SignedUnshotPower();
-  std::fill(unshot_.begin(), unshot_.end(), Rgb{});
-  energy_.unshot = 0;
-  rounds_done_ = plan.round + 1;
+  EndRound(plan);
 }
 
-void ProgressiveSolver::ApplyRound(const RoundPlan& plan, const std::vector<BatchResult>& results) {
-  if (plan.gather) {
-    ApplyGather(plan, results);
-    return;
-  }
-  // Sum each shot's batches (integers: exact in any order).
-  std::vector<uint64_t> hit_weight(scene_.patches.size());
-  std::vector<Rgb> shot_power(plan.shots.size());
+void ProgressiveSolver::BeginRound(const RoundPlan& plan) {
+  hit_weight_.assign(scene_.patches.size(), 0);
+  shot_light_.assign(plan.shots.size(), Rgb{});
+  if (plan.gather) return;
   // Take every shooter's unshot radiosity first: shots of one round all start from the state at
   // the start of the round (a shooter may also receive light in its own round). Relaxing by omega
   // shoots omega times the unshot and leaves (1 - omega) times it: exactly all and none for 1.
   const double omega = settings_.overrelaxation;
   for (size_t s = 0; s < plan.shots.size(); ++s) {
     const uint32_t i = plan.shots[s].shooter;
-    shot_power[s] = unshot_[i] * scene_.patches[i].area * omega;
+    shot_light_[s] = unshot_[i] * scene_.patches[i].area * omega;
     unshot_[i] = omega == 1 ? Rgb{} : unshot_[i] * (1 - omega);
   }
-  size_t b = 0;
-  for (size_t s = 0; s < plan.shots.size(); ++s) {
-    const Shot& shot = plan.shots[s];
-    const ShotHits hits = SumShotHits(plan, results, shot.shooter, &b, &hit_weight);
-    const double total = double(sampler_.TotalWeight(shot.rays));
-    const Rgb power = shot_power[s];
-    // Southwell update: receiver j gets flux power * F_ij; it reflects rho_j of it, which raises
-    // its radiosity and unshot radiosity by rho_j * flux / A_j (= rho_j * dB_i * F_ij * A_i / A_j).
+}
+
+void ProgressiveSolver::ApplyShot(const RoundPlan& plan, size_t s,
+                                  std::span<const BatchResult> results) {
+  const Shot& shot = plan.shots[s];
+  const ShotHits hits = SumShotHits(results, &hit_weight_);
+  const double total = double(sampler_.TotalWeight(shot.rays));
+  if (plan.gather) {
+    // Each gathering patch's radiosity from the state at the start of the round (all patches read
+    // the same B until EndRound), so the order of patches does not matter.
+    Rgb bounced;
     for (uint32_t j : hits.touched) {
-      const Patch& receiver = scene_.patches[j];
-      const Rgb flux = power * (double(hit_weight[j]) / total);
-      const Rgb reflected = receiver.reflectance * flux;
-      const Rgb gain = reflected / receiver.area;
-      radiosity_[j] += gain;
-      unshot_[j] += gain;
-      energy_.absorbed += (flux - reflected).Sum();
-      hit_weight[j] = 0;
+      // With the direct light known, only light that bounced is gathered; else all of it.
+      const Rgb seen = direct_.empty() ? radiosity_[j] : radiosity_[j] - scene_.patches[j].emission;
+      bounced += seen * (double(hit_weight_[j]) / total);
+      hit_weight_[j] = 0;
     }
-    energy_.escaped += power.Sum() * (double(hits.escaped) / total);
-    energy_.absorbed += power.Sum() * (double(hits.back) / total);
+    shot_light_[s] = bounced;
+    return;
   }
-  energy_.unshot = TotalUnshotPower();
+  const Rgb power = shot_light_[s];
+  // Southwell update: receiver j gets flux power * F_ij; it reflects rho_j of it, which raises
+  // its radiosity and unshot radiosity by rho_j * flux / A_j (= rho_j * dB_i * F_ij * A_i / A_j).
+  for (uint32_t j : hits.touched) {
+    const Patch& receiver = scene_.patches[j];
+    const Rgb flux = power * (double(hit_weight_[j]) / total);
+    const Rgb reflected = receiver.reflectance * flux;
+    const Rgb gain = reflected / receiver.area;
+    radiosity_[j] += gain;
+    unshot_[j] += gain;
+    energy_.absorbed += (flux - reflected).Sum();
+    hit_weight_[j] = 0;
+  }
+  energy_.escaped += power.Sum() * (double(hits.escaped) / total);
+  energy_.absorbed += power.Sum() * (double(hits.back) / total);
+}
+
+void ProgressiveSolver::EndRound(const RoundPlan& plan) {
+  if (plan.gather) {
+    for (size_t s = 0; s < plan.shots.size(); ++s) {
+      const uint32_t i = plan.shots[s].shooter;
+      const Patch& p = scene_.patches[i];
+      const Rgb direct = direct_.empty() ? Rgb{} : direct_[i];
+      radiosity_[i] = p.emission + p.reflectance * (direct + shot_light_[s]);
+    }
+    // The unshot left (below the tolerance) is taken as absorbed: the account still balances.
+    energy_.absorbed += SignedUnshotPower();
+    std::fill(unshot_.begin(), unshot_.end(), Rgb{});
+    energy_.unshot = 0;
+  } else {
+    energy_.unshot = TotalUnshotPower();
+  }
+  // The round's scratch goes: between rounds the solver holds its state only.
+  hit_weight_ = {};
+  shot_light_ = {};
   rounds_done_ = plan.round + 1;
 }
 

@@ -33,7 +33,9 @@
 // Round lifecycle:  PlanRound() -> [batches computed anywhere, any order] -> ApplyRound().
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/batch.h"
@@ -89,6 +91,14 @@ class ProgressiveSolver {
   // Folds the round's results into the solution. `results[k]` is the result of plan.batches[k].
   void ApplyRound(const RoundPlan& plan, const std::vector<BatchResult>& results);
 
+  // ApplyRound in steps, for folding shots in as their batches arrive (core/round_reduction.h):
+  // BeginRound, ApplyShot for every shot in increasing shot order (`results`: that shot's
+  // batches, in any order), EndRound. The same arithmetic in the same order as ApplyRound, so the
+  // same bits; nothing else may be called on the solver in between.
+  void BeginRound(const RoundPlan& plan);
+  void ApplyShot(const RoundPlan& plan, size_t shot, std::span<const BatchResult> results);
+  void EndRound(const RoundPlan& plan);
+
   const std::vector<Rgb>& radiosity() const { return radiosity_; }
   const std::vector<Rgb>& unshot() const { return unshot_; }
   const EnergyAccount& energy() const { return energy_; }
@@ -119,7 +129,6 @@ class ProgressiveSolver {
   double UnshotPower(uint32_t patch) const;
   double TotalUnshotPower() const;
   RoundPlan PlanGather(uint32_t batch_rays, uint64_t ray_cap) const;
-  void ApplyGather(const RoundPlan& plan, const std::vector<BatchResult>& results);
 
   const PatchScene& scene_;
   SolverSettings settings_;  // shot_rays resolved (never 0)
@@ -130,6 +139,10 @@ class ProgressiveSolver {
   std::vector<Rgb> direct_;  // per patch, Ke units; empty unless the solve started from it
   EnergyAccount energy_;
   uint32_t rounds_done_ = 0;
+  // Within a round (BeginRound to EndRound): hit weights per patch, zero between shots, and per
+  // shot the power it shoots (shooting) or the light it gathered (gather).
+  std::vector<uint64_t> hit_weight_;
+  std::vector<Rgb> shot_light_;
 };
 
 }  // namespace radfarm

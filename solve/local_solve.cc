@@ -1,6 +1,7 @@
 #include "solve/local_solve.h"
 
 #include <chrono>
+#include <mutex>
 #include <utility>
 
 namespace radfarm {
@@ -17,8 +18,9 @@ double RunRounds(RoundDriver& driver, ThreadPool& pool,
   };
   LocalBatches batches(pool);
   while (std::optional<RoundPlan> plan = driver.PlanNext(kLocalBatchRays, elapsed())) {
-    const std::vector<BatchResult> results = batches.Run(driver, *plan);
-    const AppliedRound applied = driver.Apply(*plan, results, elapsed());
+    std::unique_ptr<RoundReduction> reduction = driver.Reduction(*plan);
+    batches.Reduce(driver, *plan, *reduction);
+    const AppliedRound applied = driver.Apply(*plan, *reduction, elapsed());
     if (on_round) on_round(driver.Progress(*plan, applied));
     if (after_round) after_round(driver.State());
   }
@@ -27,21 +29,36 @@ double RunRounds(RoundDriver& driver, ThreadPool& pool,
 
 }  // namespace
 
-std::vector<BatchResult> LocalBatches::Run(RoundDriver& driver, const RoundPlan& plan) {
-  if (driver_ != &driver || generation_ != driver.mesh_generation() || runners_.empty()) {
-    runners_.clear();
-    for (unsigned w = 0; w < pool_.size(); ++w) {
-      runners_.push_back(std::make_unique<BatchTracer>(driver.scene(), driver.caster(),
-                                                       driver.solver().sampler()));
-    }
-    driver_ = &driver;
-    generation_ = driver.mesh_generation();
+void LocalBatches::Prepare(RoundDriver& driver) {
+  if (driver_ == &driver && generation_ == driver.mesh_generation() && !tracers_.empty()) return;
+  tracers_.clear();
+  for (unsigned w = 0; w < pool_.size(); ++w) {
+    tracers_.push_back(
+        std::make_unique<BatchTracer>(driver.scene(), driver.caster(), driver.solver().sampler()));
   }
+  driver_ = &driver;
+  generation_ = driver.mesh_generation();
+}
+
+std::vector<BatchResult> LocalBatches::Run(RoundDriver& driver, const RoundPlan& plan) {
+  Prepare(driver);
   std::vector<BatchResult> results(plan.batches.size());
   pool_.ParallelFor(plan.batches.size(), [&](unsigned worker, size_t b) {
-    results[b] = runners_[worker]->Run(plan.batches[b]);
+    results[b] = tracers_[worker]->Run(plan.batches[b]);
   });
   return results;
+}
+
+void LocalBatches::Reduce(RoundDriver& driver, const RoundPlan& plan, RoundReduction& reduction) {
+  Prepare(driver);
+  // The pool hands out batches in increasing order, so the reduction's frontier trails the
+  // newest batch by about one batch per thread, and that is all it holds.
+  std::mutex mutex;
+  pool_.ParallelFor(plan.batches.size(), [&](unsigned worker, size_t b) {
+    BatchResult result = tracers_[worker]->Run(plan.batches[b]);
+    std::lock_guard lock(mutex);
+    reduction.Add(b, std::move(result));
+  });
 }
 
 Result<RefiningSolveResult> SolveRefining(PatchMesh mesh, const SolverSettings& settings,

@@ -12,6 +12,7 @@
 #include "core/batch.h"
 #include "core/batch_tracer.h"
 #include "core/patch_scene.h"
+#include "core/round_reduction.h"
 #include "core/solver_settings.h"
 #include "core/thread_pool.h"
 #include "mesh/patch_mesh.h"
@@ -30,13 +31,18 @@ inline constexpr uint32_t kLocalBatchRays = 4096;
 class LocalBatches {
  public:
   explicit LocalBatches(ThreadPool& pool) : pool_(pool) {}
+  // The round's results, all of them (the master's small rounds).
   std::vector<BatchResult> Run(RoundDriver& driver, const RoundPlan& plan);
+  // The round's results folded into `reduction` (RoundDriver::Reduction) as they come.
+  void Reduce(RoundDriver& driver, const RoundPlan& plan, RoundReduction& reduction);
 
  private:
+  void Prepare(RoundDriver& driver);
+
   ThreadPool& pool_;
   const RoundDriver* driver_ = nullptr;
   uint32_t generation_ = 0;
-  std::vector<std::unique_ptr<BatchTracer>> runners_;
+  std::vector<std::unique_ptr<BatchTracer>> tracers_;
 };
 
 struct RefiningSolveResult {

@@ -94,12 +94,29 @@ std::optional<RoundPlan> RoundDriver::PlanNext(uint32_t batch_rays, double secon
 
 AppliedRound RoundDriver::Apply(const RoundPlan& plan, const std::vector<BatchResult>& results,
                                 double seconds) {
-  AppliedRound applied;
+  uint64_t escaped_rays = 0, back_rays = 0;
   for (const BatchResult& r : results) {
-    applied.escaped_rays += r.escaped_rays;
-    applied.back_rays += r.back_rays;
+    escaped_rays += r.escaped_rays;
+    back_rays += r.back_rays;
   }
   solver_->ApplyRound(plan, results);
+  return AfterApply(plan, escaped_rays, back_rays, seconds);
+}
+
+std::unique_ptr<RoundReduction> RoundDriver::Reduction(const RoundPlan& plan) {
+  return std::make_unique<RoundReduction>(*solver_, plan);
+}
+
+AppliedRound RoundDriver::Apply(const RoundPlan& plan, RoundReduction& reduction, double seconds) {
+  reduction.Finish();
+  return AfterApply(plan, reduction.escaped_rays(), reduction.back_rays(), seconds);
+}
+
+AppliedRound RoundDriver::AfterApply(const RoundPlan& plan, uint64_t escaped_rays,
+                                     uint64_t back_rays, double seconds) {
+  AppliedRound applied;
+  applied.escaped_rays = escaped_rays;
+  applied.back_rays = back_rays;
   totals_.rays += plan.rays;
   totals_.escaped_rays += applied.escaped_rays;
   totals_.backface_hits += applied.back_rays;

@@ -30,6 +30,7 @@
 #include "core/patch_scene.h"
 #include "core/progressive_solver.h"
 #include "core/ray_caster.h"
+#include "core/round_reduction.h"
 #include "core/solver_settings.h"
 #include "core/thread_pool.h"
 #include "mesh/patch_mesh.h"
@@ -71,6 +72,12 @@ class RoundDriver {
   // Folds in `plan`'s results (`results[k]` of plan.batches[k]), `seconds` spent in all by now.
   AppliedRound Apply(const RoundPlan& plan, const std::vector<BatchResult>& results,
                      double seconds);
+  // Apply with the results folded in as they arrive, so a round's results are never all held
+  // (core/round_reduction.h): Reduction(plan), Add every batch's result to it, then
+  // Apply(plan, reduction, seconds). The same bits as the Apply above. Between Reduction and
+  // Apply nothing else may be called on the driver.
+  std::unique_ptr<RoundReduction> Reduction(const RoundPlan& plan);
+  AppliedRound Apply(const RoundPlan& plan, RoundReduction& reduction, double seconds);
 
   // Set once the solve has stopped (by PlanNext or a capped round in Apply), with the reason.
   const std::optional<std::string>& stop_reason() const { return stop_; }
@@ -98,6 +105,9 @@ class RoundDriver {
  private:
   RoundDriver(const SolverSettings& settings, ThreadPool* pool);
   Status Resume(const SolveState& state);
+  // Apply's bookkeeping once the solver has the round: totals, stop, refinement step.
+  AppliedRound AfterApply(const RoundPlan& plan, uint64_t escaped_rays, uint64_t back_rays,
+                          double seconds);
   void Install(RefinementStep step);
   // The solver's settings for the current phase of the schedule (fewer rays before a restart).
   SolverSettings PhaseSettings() const;
