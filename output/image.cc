@@ -15,6 +15,9 @@ constexpr double kGuardBand = 2.0;
 // Near plane as a fraction of the scene's far extent. Depth is stored as 1/z in doubles, so a tiny
 // near distance costs no depth precision; it only has to keep the perspective divide finite.
 constexpr double kNearFraction = 1e-5;
+// Screen triangles set up at once, and the bytes of subpixel strata drawn at once (RenderImage).
+constexpr size_t kChunkTriangles = size_t{1} << 16;
+constexpr size_t kStrataBytes = size_t{64} << 20;
 
 struct ScreenVertex {
   double x = 0, y = 0;
@@ -73,34 +76,48 @@ void AddTriangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVerte
   out->push_back(t);
 }
 
-std::vector<ScreenTriangle> SetUpTriangles(const DisplayMesh& mesh, const ViewTransform& view) {
+// The view's clip planes: the near plane and the guard band.
+struct ClipPlanes {
+  ClipPlane planes[5];
+};
+
+ClipPlanes MakeClipPlanes(const DisplayMesh& mesh, const ViewTransform& view) {
   const Bounds3 bounds = MeshBounds(mesh);
   const double far = Length(bounds.Centre() - view.eye) + 0.5 * bounds.Diagonal();
   const double near = (far > 0 && std::isfinite(far)) ? kNearFraction * far : kNearFraction;
   const double gx = kGuardBand * view.centre_x / view.focal_pixels;
   const double gy = kGuardBand * view.centre_y / view.focal_pixels;
-  const ClipPlane planes[] = {
-      {{0, 0, 1}, -near}, {{-1, 0, gx}, 0}, {{1, 0, gx}, 0}, {{0, -1, gy}, 0}, {{0, 1, gy}, 0},
-  };
+  return {
+      {{{0, 0, 1}, -near}, {{-1, 0, gx}, 0}, {{1, 0, gx}, 0}, {{0, -1, gy}, 0}, {{0, 1, gy}, 0}}};
+}
 
-  std::vector<ScreenTriangle> triangles;
-  triangles.reserve(mesh.triangles.size());
+// Screen triangles of mesh.triangles[first, last), in mesh order, into `triangles` (cleared);
+// triangles of the patches `black_patch` marks get radiance 0.
+void SetUpTriangles(const DisplayMesh& mesh, const ViewTransform& view, const ClipPlanes& clip,
+                    const std::vector<bool>& black_patch, size_t first, size_t last,
+                    std::vector<ScreenTriangle>* out) {
+  std::vector<ScreenTriangle>& triangles = *out;
+  triangles.clear();
   const size_t vertex_count = mesh.positions.size();
-  for (const auto& indices : mesh.triangles) {
+  for (size_t t = first; t < last; ++t) {
+    const auto& indices = mesh.triangles[t];
     if (indices[0] >= vertex_count || indices[1] >= vertex_count || indices[2] >= vertex_count) {
       continue;
     }
+    const uint32_t patch = t < mesh.triangle_patch.size() ? mesh.triangle_patch[t] : ~0u;
+    const bool black = patch < black_patch.size() && black_patch[patch];
     ClipPolygon polygon;
     polygon.count = 3;
     bool finite = true;
     for (int k = 0; k < 3; ++k) {
       const uint32_t index = indices[k];
       polygon.vertices[k].position = view.ToCamera(mesh.positions[index]);
-      polygon.vertices[k].radiance = index < mesh.radiance.size() ? mesh.radiance[index] : Rgb{};
+      polygon.vertices[k].radiance =
+          !black && index < mesh.radiance.size() ? mesh.radiance[index] : Rgb{};
       finite = finite && IsFinite(polygon.vertices[k].position);
     }
     if (!finite) continue;
-    for (const ClipPlane& plane : planes) {
+    for (const ClipPlane& plane : clip.planes) {
       bool outside = false;
       for (int k = 0; k < polygon.count; ++k) {
         outside = outside || plane.Distance(polygon.vertices[k].position) < 0;
@@ -123,7 +140,6 @@ std::vector<ScreenTriangle> SetUpTriangles(const DisplayMesh& mesh, const ViewTr
       AddTriangle(projected[0], projected[k], projected[k + 1], &triangles);
     }
   }
-  return triangles;
 }
 
 // Pixel range [first, last] whose sample at offset `offset` lies within [lo, hi], clamped to the
@@ -137,12 +153,11 @@ void SampleRange(double lo, double hi, double offset, uint32_t size, int64_t* fi
 }
 
 // One subpixel sample per pixel at (x + ox, y + oy), z-buffered on 1/z (larger is nearer; a tie
-// keeps the triangle drawn first, so the result does not depend on anything but mesh order).
+// keeps the triangle drawn first, so the result does not depend on anything but mesh order), over
+// what earlier triangles left in `depth` and `colour`.
 void RasterisePass(const std::vector<ScreenTriangle>& triangles, double ox, double oy,
                    uint32_t width, uint32_t height, std::vector<double>* depth,
                    std::vector<Rgb>* colour) {
-  std::fill(depth->begin(), depth->end(), 0.0);
-  std::fill(colour->begin(), colour->end(), Rgb{});
   for (const ScreenTriangle& t : triangles) {
     int64_t x0, x1, y0, y1;
     SampleRange(t.min_x, t.max_x, ox, width, &x0, &x1);
@@ -183,29 +198,47 @@ Camera ResolveCamera(const DisplayMesh& mesh, const Camera& camera) {
   return camera.automatic ? AutoCamera(MeshBounds(mesh), camera) : camera;
 }
 
-Image RenderImage(const DisplayMesh& mesh, const Camera& camera_in) {
+Image RenderImage(const DisplayMesh& mesh, const Camera& camera_in,
+                  const std::vector<bool>& black_patch) {
   const Camera camera = ResolveCamera(mesh, camera_in);
   Image image;
   image.width = camera.width;
   image.height = camera.height;
   const size_t pixel_count = static_cast<size_t>(camera.width) * camera.height;
   image.pixels.assign(pixel_count, Rgb{});
-  if (pixel_count == 0) return image;
+  if (pixel_count == 0 || mesh.triangles.empty()) return image;
 
   const ViewTransform view = MakeViewTransform(camera);
-  const std::vector<ScreenTriangle> triangles = SetUpTriangles(mesh, view);
-  if (triangles.empty()) return image;
-
-  // One full-image pass per subpixel stratum keeps memory at one sample per pixel whatever the
-  // sample count; the setup above is shared by all passes.
+  const ClipPlanes clip = MakeClipPlanes(mesh, view);
+  // Memory stays independent of the mesh: triangles are set up a chunk at a time, and each chunk
+  // is drawn into as many subpixel strata as kStrataBytes holds at once (all of them at the
+  // default 4 samples of 512 x 512 pixels; a group at a time, each setting the chunks up again,
+  // beyond). Every stratum still sees the triangles in mesh order, and strata are summed in order.
   const uint32_t n = GridSize(camera.samples_per_pixel);
-  std::vector<double> depth(pixel_count);
-  std::vector<Rgb> colour(pixel_count);
-  for (uint32_t sy = 0; sy < n; ++sy) {
-    for (uint32_t sx = 0; sx < n; ++sx) {
-      const double ox = (sx + 0.5) / n, oy = (sy + 0.5) / n;
-      RasterisePass(triangles, ox, oy, camera.width, camera.height, &depth, &colour);
-      for (size_t i = 0; i < pixel_count; ++i) image.pixels[i] += colour[i];
+  const size_t strata = static_cast<size_t>(n) * n;
+  const size_t stratum_bytes = pixel_count * (sizeof(double) + sizeof(Rgb));
+  const size_t group = std::clamp<size_t>(kStrataBytes / stratum_bytes, 1, strata);
+  std::vector<std::vector<double>> depth(group);
+  std::vector<std::vector<Rgb>> colour(group);
+  std::vector<ScreenTriangle> triangles;
+  triangles.reserve(std::min(kChunkTriangles, mesh.triangles.size()));
+  for (size_t first_stratum = 0; first_stratum < strata; first_stratum += group) {
+    const size_t count = std::min(group, strata - first_stratum);
+    for (size_t g = 0; g < count; ++g) {
+      depth[g].assign(pixel_count, 0.0);
+      colour[g].assign(pixel_count, Rgb{});
+    }
+    for (size_t first = 0; first < mesh.triangles.size(); first += kChunkTriangles) {
+      const size_t last = std::min(mesh.triangles.size(), first + kChunkTriangles);
+      SetUpTriangles(mesh, view, clip, black_patch, first, last, &triangles);
+      for (size_t g = 0; g < count; ++g) {
+        const size_t stratum = first_stratum + g;
+        const double ox = (stratum % n + 0.5) / n, oy = (stratum / n + 0.5) / n;
+        RasterisePass(triangles, ox, oy, camera.width, camera.height, &depth[g], &colour[g]);
+      }
+    }
+    for (size_t g = 0; g < count; ++g) {
+      for (size_t i = 0; i < pixel_count; ++i) image.pixels[i] += colour[g][i];
     }
   }
   const double weight = 1.0 / (static_cast<double>(n) * n);

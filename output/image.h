@@ -32,7 +32,10 @@ Camera ResolveCamera(const DisplayMesh& mesh, const Camera& camera);
 // of an ordered n x n grid of subpixel samples at the stratum centres, n = ceil(sqrt(spp)).
 // Uncovered samples are black. Triangles are clipped at a near plane and a guard band, so geometry
 // behind or beside the camera is safe. Triangles with invalid indices or non-finite positions are
-// skipped; a vertex without radiance (radiance shorter than positions) is black.
-Image RenderImage(const DisplayMesh& mesh, const Camera& camera);
+// skipped; a vertex without radiance (radiance shorter than positions) is black, and so are the
+// triangles of patches `black_patch` marks (they still hide what is behind them). Memory does not
+// grow with the mesh: a fixed chunk of set-up triangles and at most 64 MB of subpixel buffers.
+Image RenderImage(const DisplayMesh& mesh, const Camera& camera,
+                  const std::vector<bool>& black_patch = {});
 
 }  // namespace radfarm
