@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <utility>
 
 namespace radfarm {
 namespace {
@@ -57,27 +58,81 @@ void SyncDirectory(const std::string& path) {
 
 }  // namespace
 
-Status WriteFileAtomically(const std::string& path, std::string_view contents) {
-  if (path.empty()) return Error{"(empty path): cannot write a file without a name"};
-  const std::string temporary = TemporaryName(path);
-  // 0666 lets the umask decide the final permissions, as for any newly created file.
-  const int fd = open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) return Fail(path, "cannot create temporary file", errno);
+// Bytes an AtomicFileWriter collects before each write(2).
+constexpr size_t kWriteBufferBytes = size_t{1} << 20;
 
-  Status written = WriteAll(fd, contents);
+Status WriteFileAtomically(const std::string& path, std::string_view contents) {
+  Result<AtomicFileWriter> writer = AtomicFileWriter::Open(path);
+  RADFARM_RETURN_IF_ERROR(writer);
+  RADFARM_RETURN_IF_ERROR(writer->Append(contents));
+  return writer->Commit();
+}
+
+Result<AtomicFileWriter> AtomicFileWriter::Open(const std::string& path) {
+  if (path.empty()) return Error{"(empty path): cannot write a file without a name"};
+  std::string temporary = TemporaryName(path);
+  // 0666 lets the umask decide the final permissions, as for any newly created file.
+  UniqueFd fd(open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
+  if (!fd.valid()) return Fail(path, "cannot create temporary file", errno);
+  return AtomicFileWriter(path, std::move(temporary), std::move(fd));
+}
+
+AtomicFileWriter::AtomicFileWriter(std::string path, std::string temporary, UniqueFd fd)
+    : path_(std::move(path)), temporary_(std::move(temporary)), fd_(std::move(fd)) {}
+
+AtomicFileWriter::AtomicFileWriter(AtomicFileWriter&& other) noexcept
+    : path_(std::move(other.path_)),
+      temporary_(std::exchange(other.temporary_, std::string())),
+      fd_(std::move(other.fd_)),
+      buffer_(std::move(other.buffer_)),
+      error_(std::move(other.error_)) {}
+
+AtomicFileWriter::~AtomicFileWriter() {
+  if (temporary_.empty()) return;  // committed, or moved from
+  fd_.Reset();
+  unlink(temporary_.c_str());
+}
+
+Status AtomicFileWriter::Flush() {
+  if (!error_.empty()) return Error{error_};
+  if (Status written = WriteAll(fd_.get(), buffer_); !written.ok()) {
+    error_ = path_ + ": cannot write: " + written.error();
+    return Error{error_};
+  }
+  buffer_.clear();
+  return Ok{};
+}
+
+Status AtomicFileWriter::Append(std::string_view bytes) {
+  if (!error_.empty()) return Error{error_};
+  if (temporary_.empty()) return Error{path_ + ": cannot write: the file is already committed"};
+  if (buffer_.size() + bytes.size() > kWriteBufferBytes) {
+    RADFARM_RETURN_IF_ERROR(Flush());
+    if (bytes.size() >= kWriteBufferBytes) {  // large pieces go straight out
+      if (Status written = WriteAll(fd_.get(), bytes); !written.ok()) {
+        error_ = path_ + ": cannot write: " + written.error();
+        return Error{error_};
+      }
+      return Ok{};
+    }
+  }
+  buffer_.append(bytes);
+  return Ok{};
+}
+
+Status AtomicFileWriter::Commit() {
+  if (temporary_.empty()) return Error{path_ + ": cannot write: the file is already committed"};
+  RADFARM_RETURN_IF_ERROR(Flush());
   // fsync before rename: otherwise a crash can leave the new name pointing at an empty file.
-  if (written.ok() && fsync(fd) != 0) written = Error{std::strerror(errno)};
-  if (close(fd) != 0 && written.ok()) written = Error{std::strerror(errno)};
-  if (!written.ok()) {
-    unlink(temporary.c_str());
-    return Error{path + ": cannot write: " + written.error()};
+  if (fsync(fd_.get()) != 0) error_ = path_ + ": cannot write: " + std::strerror(errno);
+  if (fd_.Close() != 0 && error_.empty())
+    error_ = path_ + ": cannot write: " + std::strerror(errno);
+  if (!error_.empty()) return Error{error_};  // the destructor removes the temporary
+  if (rename(temporary_.c_str(), path_.c_str()) != 0) {
+    return Fail(path_, "cannot rename temporary file into place", errno);
   }
-  if (rename(temporary.c_str(), path.c_str()) != 0) {
-    const int rename_errno = errno;
-    unlink(temporary.c_str());
-    return Fail(path, "cannot rename temporary file into place", rename_errno);
-  }
-  SyncDirectory(path);
+  temporary_.clear();
+  SyncDirectory(path_);
   return Ok{};
 }
 

@@ -7,12 +7,41 @@
 #include <string_view>
 
 #include "base/result.h"
+#include "base/unique_fd.h"
 
 namespace radfarm {
 
 // Writes `contents` to `path` atomically. Errors name `path` and the failing step; on error no
 // temporary file is left behind and an existing file at `path` is untouched.
 Status WriteFileAtomically(const std::string& path, std::string_view contents);
+
+// WriteFileAtomically for files too large to build in memory first: Open, Append as often as
+// needed (buffered), Commit. Destroyed without a successful Commit (an error, an early return), it
+// removes its temporary and leaves `path` untouched. Move-only.
+class AtomicFileWriter {
+ public:
+  static Result<AtomicFileWriter> Open(const std::string& path);
+  AtomicFileWriter(AtomicFileWriter&& other) noexcept;
+  AtomicFileWriter& operator=(AtomicFileWriter&&) = delete;
+  AtomicFileWriter(const AtomicFileWriter&) = delete;
+  ~AtomicFileWriter();
+
+  // Queues `bytes`, writing them out whenever the buffer is full. After an error every later call
+  // fails with it.
+  Status Append(std::string_view bytes);
+  // The rest written, flushed to disk and renamed over the target.
+  Status Commit();
+
+ private:
+  AtomicFileWriter(std::string path, std::string temporary, UniqueFd fd);
+  Status Flush();
+
+  std::string path_;
+  std::string temporary_;  // empty once committed or moved from
+  UniqueFd fd_;
+  std::string buffer_;
+  std::string error_;
+};
 
 // Whether a file name (without its directory) is one of WriteFileAtomically's temporaries
 // ("NAME.tmp.PID.N"), e.g. left behind by a writer that crashed, for cleanups at start-up.

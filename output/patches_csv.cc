@@ -24,7 +24,11 @@ Status WritePatchesCsv(const std::string& path, const PatchScene& scene,
     return Error{path + ": cannot write patches: " + std::to_string(scene.patches.size()) +
                  " patches but " + std::to_string(radiance.size()) + " radiance values"};
   }
-  std::string out = std::string(kPatchesCsvHeader) + "\n";
+  // Streamed a row at a time: a million patches make about 200 MB of text.
+  Result<AtomicFileWriter> file = AtomicFileWriter::Open(path);
+  RADFARM_RETURN_IF_ERROR(file);
+  RADFARM_RETURN_IF_ERROR(file->Append(std::string(kPatchesCsvHeader) + "\n"));
+  std::string out;
   for (size_t i = 0; i < scene.patches.size(); ++i) {
     const Patch& p = scene.patches[i];
     if (p.material >= scene.material_names.size()) {
@@ -44,8 +48,10 @@ Status WritePatchesCsv(const std::string& path, const PatchScene& scene,
       out += FormatDouble(value);
     }
     out += '\n';
+    RADFARM_RETURN_IF_ERROR(file->Append(out));
+    out.clear();
   }
-  return WriteFileAtomically(path, out);
+  return file->Commit();
 }
 
 }  // namespace radfarm

@@ -80,8 +80,11 @@ Status WritePly(const std::string& path, const DisplayMesh& mesh, const Camera& 
                                             : ExposureStops(Image{}, camera);
   const double scale = std::exp2(stops);
 
+  // Streamed in pieces of about a megabyte: the body is some 40 bytes per vertex and triangle.
+  Result<AtomicFileWriter> file = AtomicFileWriter::Open(path);
+  RADFARM_RETURN_IF_ERROR(file);
   std::string out = Header(mesh.positions.size(), mesh.triangles.size());
-  out.reserve(out.size() + mesh.positions.size() * 27 + mesh.triangles.size() * 13);
+  constexpr size_t kPiece = size_t{1} << 20;
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
     const Vec3& p = mesh.positions[i];
     const Rgb& radiance = mesh.radiance[i];
@@ -92,12 +95,21 @@ Status WritePly(const std::string& path, const DisplayMesh& mesh, const Camera& 
     AppendLittleEndian(static_cast<float>(radiance.r), &out);
     AppendLittleEndian(static_cast<float>(radiance.g), &out);
     AppendLittleEndian(static_cast<float>(radiance.b), &out);
+    if (out.size() >= kPiece) {
+      RADFARM_RETURN_IF_ERROR(file->Append(out));
+      out.clear();
+    }
   }
   for (const auto& triangle : mesh.triangles) {
     out.push_back(3);
     for (uint32_t index : triangle) AppendLittleEndian(static_cast<int32_t>(index), &out);
+    if (out.size() >= kPiece) {
+      RADFARM_RETURN_IF_ERROR(file->Append(out));
+      out.clear();
+    }
   }
-  return WriteFileAtomically(path, out);
+  RADFARM_RETURN_IF_ERROR(file->Append(out));
+  return file->Commit();
 }
 
 }  // namespace radfarm

@@ -41,6 +41,45 @@ TEST(AtomicFileTest, RenameFailureLeavesNoTemporary) {
   EXPECT_EQ(dir.Entries(), std::vector<std::string>{"sub"});
 }
 
+// Pieces of every size around the 1 MiB buffer, streamed: the file is their concatenation.
+TEST(AtomicFileTest, StreamedPiecesArriveWholeAndInOrder) {
+  TestDir dir;
+  const std::string path = dir.File("big.bin");
+  Result<AtomicFileWriter> writer = AtomicFileWriter::Open(path);
+  ASSERT_TRUE(writer.ok()) << writer.error();
+  std::string expected;
+  for (size_t size : {size_t{1}, size_t{1000}, size_t{1} << 20, size_t{3}, (size_t{1} << 20) - 1,
+                      size_t{5} << 20, size_t{7}}) {
+    std::string piece(size, '\0');
+    for (size_t k = 0; k < size; ++k)
+      piece[k] = static_cast<char>('a' + (k + expected.size()) % 26);
+    ASSERT_TRUE(writer->Append(piece).ok());
+    expected += piece;
+  }
+  EXPECT_EQ(dir.Entries().size(), 1u);  // the temporary, not yet the file
+  ASSERT_TRUE(writer->Commit().ok());
+  EXPECT_EQ(ReadFileBytes(path), expected);
+  EXPECT_EQ(dir.Entries(), std::vector<std::string>{"big.bin"});
+  EXPECT_FALSE(writer->Append("more").ok());
+  EXPECT_FALSE(writer->Commit().ok());
+}
+
+// A writer given up on (an error while producing the contents) leaves the old file as it was.
+TEST(AtomicFileTest, AbandonedWriterLeavesTheOldFileAndNoTemporary) {
+  TestDir dir;
+  const std::string path = dir.File("out.txt");
+  ASSERT_TRUE(WriteFileAtomically(path, "old").ok());
+  {
+    Result<AtomicFileWriter> writer = AtomicFileWriter::Open(path);
+    ASSERT_TRUE(writer.ok());
+    ASSERT_TRUE(writer->Append(std::string(3 << 20, 'x')).ok());
+    AtomicFileWriter moved(std::move(*writer));  // the moved-from writer must not delete it
+    ASSERT_TRUE(moved.Append("y").ok());
+  }
+  EXPECT_EQ(ReadFileBytes(path), "old");
+  EXPECT_EQ(dir.Entries(), std::vector<std::string>{"out.txt"});
+}
+
 TEST(AtomicFileTest, KnowsItsTemporaryNames) {
   EXPECT_TRUE(IsAtomicFileTemporary("abc.scene.tmp.123.4"));
   EXPECT_TRUE(IsAtomicFileTemporary("image.png.tmp.9.0"));
