@@ -133,6 +133,7 @@ void AgentConnections::OnBatchResult(AgentLink& link, const protocol::BatchResul
   const auto& lease = result.lease;
   switch (v.verdict.disposition) {
     case scheduler::Disposition::kAccepted:
+      jobs_.OnResultAccepted(runner->id(), lease.batch_id);
       break;
     case scheduler::Disposition::kDropped:
       LogLine(LogLevel::kInfo, "agents")

@@ -147,6 +147,21 @@ void JobRounds::RunRoundHere(const std::shared_ptr<RunningJob>& runner) {
   });
 }
 
+void JobRounds::OnResultAccepted(store::JobId id, scheduler::BatchId batch) {
+  const std::shared_ptr<RunningJob>& runner = runners_.at(id);
+  if (!runner->QueueFold(batch)) return;
+  // Behind the round's start and ahead of its Reduce on the one compute thread.
+  auto results =
+      std::make_shared<std::vector<std::pair<uint32_t, BatchResult>>>(runner->TakeFolds());
+  Status s = compute_.Submit(
+      [runner, results]() -> Status {
+        runner->Fold(std::move(*results));
+        return Ok{};
+      },
+      [](Status) {});
+  if (!s) FailJob(id, s.error());
+}
+
 void JobRounds::OnRoundComplete(store::JobId id) {
   const std::shared_ptr<RunningJob> runner = runners_.at(id);
   Result<scheduler::CompletedRound> round = runner->TakeRound();

@@ -54,6 +54,8 @@ class JobRounds {
 
   // Starts queued jobs while there are free slots (after a submit, a resume, a job's end).
   void StartQueuedJobs();
+  // A batch result of the job's round was accepted: it goes on to be folded in.
+  void OnResultAccepted(store::JobId id, scheduler::BatchId batch);
   // The last batch of the job's round is in: reduce it.
   void OnRoundComplete(store::JobId id);
   // Forgets a job the operator cancelled or paused (the store knows already).

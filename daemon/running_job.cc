@@ -14,6 +14,8 @@ namespace radfarm::daemon {
 namespace {
 
 constexpr size_t kRecentRounds = 8;
+// Accepted results sent to the worker together: one hand-over per few dozen batches.
+constexpr size_t kFoldChunk = 32;
 
 // The refined scene `checkpoint` names: its stored blob, checked against the hash, decoded.
 Result<PatchScene> RefinedSceneOf(const store::Checkpoint& checkpoint, const RefineSettings& refine,
@@ -100,6 +102,8 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
 
 Status RunningJob::StartPlannedRound(scheduler::TimePoint now) {
   if (!planned_) return Error{"job " + std::to_string(id()) + ": no round planned"};
+  fold_plan_ = std::make_shared<const RoundPlan>(*planned_);
+  unfolded_.clear();
   Status s = scheduler_.StartRound(std::move(*planned_), now);
   planned_.reset();
   if (s.ok()) {
@@ -126,15 +130,46 @@ scheduler::CompletedRound RunningJob::RunLocally(RoundPlan plan) {
 
 Result<scheduler::CompletedRound> RunningJob::TakeRound() {
   Result<scheduler::CompletedRound> done = scheduler_.TakeCompletedRound();
-  if (done.ok()) phase_ = Phase::kReducing;
+  if (!done.ok()) return done;
+  // Results taken out for folding but not sent yet go back in: Reduce adds them.
+  for (auto& [index, result] : unfolded_) done->results[index] = std::move(result);
+  unfolded_.clear();
+  phase_ = Phase::kReducing;
   return done;
+}
+
+bool RunningJob::QueueFold(scheduler::BatchId batch) {
+  std::optional<BatchResult> result = scheduler_.TakeResult(batch);
+  if (!result) return false;
+  unfolded_.emplace_back(scheduler::BatchIndex(batch), std::move(*result));
+  return unfolded_.size() >= kFoldChunk;
+}
+
+std::vector<std::pair<uint32_t, BatchResult>> RunningJob::TakeFolds() {
+  return std::exchange(unfolded_, {});
+}
+
+void RunningJob::Fold(std::vector<std::pair<uint32_t, BatchResult>> results) {
+  if (!fold_) fold_ = driver_->Reduction(*fold_plan_);
+  for (auto& [index, result] : results) fold_->Add(index, std::move(result));
 }
 
 RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double round_seconds,
                                 bool checkpoint_due, uint32_t batch_rays) {
   RoundOutcome out;
-  const AppliedRound applied =
-      driver_->Apply(round.plan, round.results, totals_.seconds + round_seconds);
+  const double seconds = totals_.seconds + round_seconds;
+  AppliedRound applied;
+  if (fold_plan_ && fold_plan_->round == round.plan.round) {
+    // The round's results were folded in as they came; any the loop thread kept are added now
+    // (the reduction refuses the ones it has).
+    if (!fold_) fold_ = driver_->Reduction(*fold_plan_);
+    for (size_t k = 0; k < round.results.size(); ++k) fold_->Add(k, round.results[k]);
+    applied = driver_->Apply(*fold_plan_, *fold_, seconds);
+    fold_.reset();
+    fold_plan_.reset();
+  } else {  // computed here (RunLocally): all at once
+    applied = driver_->Apply(round.plan, round.results, seconds);
+  }
   recent_.push_back({round.plan.rays, round_seconds});
   if (recent_.size() > kRecentRounds) recent_.erase(recent_.begin());
   out.record = {id(),

@@ -6,7 +6,9 @@
 //   Prepare (worker thread): decode the bundle, mesh it, start the driver (from the latest
 //     checkpoint, on the refined mesh it names, if any), encode the scene blob agents fetch, plan
 //     the first round.
-//   loop thread: the scheduler leases the round's batches and collects their results.
+//   loop thread: the scheduler leases the round's batches and collects their results; each
+//     accepted result goes on to the worker (QueueFold, TakeFolds -> Fold), which folds it into
+//     the round (core/round_reduction.h) as it comes, so no round's results are all held.
 //   Reduce (worker thread): the driver applies the round (and refines when it passed a
 //     refinement point), plans the next one, and the state is copied for the checkpoint the store
 //     thread writes meanwhile.
@@ -25,6 +27,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "base/result.h"
@@ -111,6 +114,15 @@ class RunningJob {
   // Loop thread: the round is complete; hands its results over. phase() becomes kReducing.
   Result<scheduler::CompletedRound> TakeRound();
 
+  // Loop thread: takes the accepted result of `batch` out of the scheduler to be folded in; true
+  // when enough are queued to be worth sending to the worker (TakeFolds).
+  bool QueueFold(scheduler::BatchId batch);
+  // Loop thread: the queued results, for Fold.
+  std::vector<std::pair<uint32_t, BatchResult>> TakeFolds();
+  // Worker thread, after StartPlannedRound and before Reduce, in order: folds in results of the
+  // round's batches (index into the plan, result).
+  void Fold(std::vector<std::pair<uint32_t, BatchResult>> results);
+
   // Worker thread, while kReducing: folds the round in and plans the next one.
   // `checkpoint_due`: copy the state for a checkpoint even if the job goes on.
   // `batch_rays` sizes the next round's batches (the scheduler's suggestion, read on the loop
@@ -142,6 +154,10 @@ class RunningJob {
   std::unique_ptr<ThreadPool> pool_;
   std::unique_ptr<RoundDriver> driver_;
   std::shared_ptr<const std::vector<uint8_t>> refined_blob_;
+  // The round being folded in: its plan (a copy the loop thread makes in StartPlannedRound, read
+  // by the worker only after that) and the reduction, begun with the first Fold.
+  std::shared_ptr<const RoundPlan> fold_plan_;
+  std::unique_ptr<RoundReduction> fold_;
   std::string refined_hash_;      // hex, the store's key
   bool refined_unsaved_ = false;  // no checkpoint has stored refined_blob_ yet
   // Loop side: what agents are sent and fetch.
@@ -149,6 +165,7 @@ class RunningJob {
   protocol::JobWireInfo wire_;
   scheduler::RoundScheduler scheduler_;
   std::optional<RoundPlan> planned_;
+  std::vector<std::pair<uint32_t, BatchResult>> unfolded_;  // accepted, not yet sent to Fold
   std::optional<std::string> stop_reason_;
   JobTotals totals_;
   Phase phase_ = Phase::kRound;

@@ -85,6 +85,16 @@ Result<CompletedRound> RoundScheduler::TakeCompletedRound() {
   return done;
 }
 
+std::optional<BatchResult> RoundScheduler::TakeResult(BatchId batch_id) {
+  if (!round_ || BatchRound(batch_id) != round_->plan.round) return std::nullopt;
+  const uint32_t index = BatchIndex(batch_id);
+  if (index >= round_->batches.size()) return std::nullopt;
+  BatchSlot& slot = round_->batches[index];
+  if (slot.state != BatchState::kDone || slot.result_taken) return std::nullopt;
+  slot.result_taken = true;
+  return std::exchange(slot.result, BatchResult{});
+}
+
 const Batch* RoundScheduler::FindBatch(BatchId batch_id) const {
   if (!round_ || BatchRound(batch_id) != round_->plan.round) return nullptr;
   const uint32_t index = BatchIndex(batch_id);

@@ -106,6 +106,10 @@ class RoundScheduler {
   bool RoundComplete() const;
   // Ends the round and returns its results in batch order. Fails unless RoundComplete().
   Result<CompletedRound> TakeCompletedRound();
+  // Moves the accepted result of `batch_id` out, for a reduction that folds results in as they
+  // arrive (RunningJob::Fold); the batch stays done, and TakeCompletedRound then holds an empty
+  // result for it. nullopt when the batch is not done in the current round or was taken already.
+  std::optional<BatchResult> TakeResult(BatchId batch_id);
   // The batch a batch id names in the current round, to validate a result against; nullptr when
   // the id is not in the current round.
   const Batch* FindBatch(BatchId batch_id) const;
@@ -167,6 +171,7 @@ class RoundScheduler {
     std::vector<AttemptId> attempts;  // every attempt issued for it, oldest first
     std::optional<AttemptId> winner;
     BatchResult result;
+    bool result_taken = false;  // TakeResult moved it out
   };
   struct Round {
     RoundPlan plan;

@@ -49,6 +49,34 @@ TEST(RoundSchedulerTest, LeasesUpToTheInitialCapacityAndCounts) {
   EXPECT_EQ(c.agents[0].leases_held, 2u);
 }
 
+// TakeResult moves an accepted result out once, for a reduction that folds results as they come;
+// the batch stays done and a late copy is still dropped.
+TEST(RoundSchedulerTest, AcceptedResultsCanBeTakenOutOnce) {
+  RoundScheduler s;
+  s.AddAgent(1);
+  s.AddAgent(2);
+  ASSERT_TRUE(s.StartRound(Plan(2, 2), kT0).ok());
+  const auto a = s.NextAssignment(1, kT0);
+  ASSERT_TRUE(a);
+  EXPECT_FALSE(s.TakeResult(a->batch_id));  // not done yet
+  ASSERT_EQ(s.OnResult(1, a->batch_id, a->attempt_id, ResultFor(7), kT0).disposition,
+            Disposition::kAccepted);
+  const std::optional<BatchResult> taken = s.TakeResult(a->batch_id);
+  ASSERT_TRUE(taken);
+  EXPECT_EQ(*taken, ResultFor(7));
+  EXPECT_FALSE(s.TakeResult(a->batch_id));         // once
+  EXPECT_FALSE(s.TakeResult(MakeBatchId(3, 0)));   // another round
+  EXPECT_FALSE(s.TakeResult(MakeBatchId(2, 99)));  // no such batch
+  const auto b = s.NextAssignment(2, kT0);
+  ASSERT_TRUE(b);
+  ASSERT_EQ(s.OnResult(2, b->batch_id, b->attempt_id, ResultFor(8), kT0).disposition,
+            Disposition::kAccepted);
+  Result<CompletedRound> done = s.TakeCompletedRound();
+  ASSERT_TRUE(done.ok());
+  EXPECT_EQ(done->results[0], BatchResult{});  // taken out before
+  EXPECT_EQ(done->results[1], ResultFor(8));
+}
+
 TEST(RoundSchedulerTest, LeasesHeldForOtherJobsCountAgainstTheCapacity) {
   SchedulerOptions options;
   options.initial_leases = 3;
