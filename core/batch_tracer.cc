@@ -6,24 +6,35 @@ namespace radfarm {
 
 BatchTracer::BatchTracer(const PatchScene& scene, const RayCaster& caster,
                          const RaySampler& sampler)
-    : scene_(scene), caster_(caster), sampler_(sampler), weight_by_patch_(scene.patches.size()) {}
+    : scene_(scene),
+      caster_(caster),
+      sampler_(sampler),
+      block_(std::make_unique<RayBlock>()),
+      weight_by_patch_(scene.patches.size()) {}
 
 BatchResult BatchTracer::Run(const Batch& batch) {
   BatchResult result;
   const Patch& shooter = scene_.patches[batch.shooter];
   const ShotSampler shot = sampler_.Shot(shooter, batch.shooter, batch.round);
-  for (uint64_t k = batch.first_ray; k < batch.first_ray + batch.ray_count; ++k) {
-    const RaySample ray = shot.Sample(k);
-    const RayHit hit = caster_.Trace(ray.origin, ray.direction, shooter.normal);
-    if (hit.patch == RayHit::kMiss) {
-      result.escaped_weight += ray.weight;
-      ++result.escaped_rays;
-    } else if (!hit.front) {
-      result.back_weight += ray.weight;
-      ++result.back_rays;
-    } else {
-      if (weight_by_patch_[hit.patch] == 0) touched_.push_back(hit.patch);
-      weight_by_patch_[hit.patch] += ray.weight;
+  RayBlock& block = *block_;
+  RayHit hits[RayBlock::kSize];
+  for (uint32_t done = 0; done < batch.ray_count; done += RayBlock::kSize) {
+    const int count = static_cast<int>(std::min<uint32_t>(RayBlock::kSize, batch.ray_count - done));
+    shot.SampleBlock(batch.first_ray + done, count, &block);
+    caster_.TraceBlock(block, shooter.normal, hits);
+    for (int i = 0; i < count; ++i) {
+      const RayHit hit = hits[i];
+      const uint64_t weight = block.weight[i];
+      if (hit.patch == RayHit::kMiss) {
+        result.escaped_weight += weight;
+        ++result.escaped_rays;
+      } else if (!hit.front) {
+        result.back_weight += weight;
+        ++result.back_rays;
+      } else {
+        if (weight_by_patch_[hit.patch] == 0) touched_.push_back(hit.patch);
+        weight_by_patch_[hit.patch] += weight;
+      }
     }
   }
   std::sort(touched_.begin(), touched_.end());

@@ -121,6 +121,49 @@ RayHit RayCaster::Trace(const Vec3& origin, const Vec3& direction,
   return hit;
 }
 
+void RayCaster::TraceBlock(const RayBlock& block, const Vec3& surface_normal, RayHit* hits) const {
+  const int n = block.count;
+  // Embree's records for the block, on the stack: no allocation per ray or per block.
+  RTCRayHit rays[RayBlock::kSize];
+  const Vec3 lift = surface_normal * origin_offset_;  // as PrepareRay adds it
+  for (int i = 0; i < n; ++i) {
+    RTCRayHit& rh = rays[i];
+    rh.ray.org_x = static_cast<float>((block.origin_x[i] - centre_.x) + lift.x);
+    rh.ray.org_y = static_cast<float>((block.origin_y[i] - centre_.y) + lift.y);
+    rh.ray.org_z = static_cast<float>((block.origin_z[i] - centre_.z) + lift.z);
+    rh.ray.dir_x = static_cast<float>(block.direction_x[i]);
+    rh.ray.dir_y = static_cast<float>(block.direction_y[i]);
+    rh.ray.dir_z = static_cast<float>(block.direction_z[i]);
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = INFINITY;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = 0xffffffffu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (int i = 0; i < n; ++i) rtcIntersect1(embree_->scene, &context, &rays[i]);
+  // Patches first, then normals: each pass's loads are independent of each other.
+  for (int i = 0; i < n; ++i) {
+    hits[i].patch = rays[i].hit.geomID == RTC_INVALID_GEOMETRY_ID
+                        ? RayHit::kMiss
+                        : triangle_patch_[rays[i].hit.primID];
+  }
+  for (int i = 0; i < n; ++i) {
+    if (hits[i].patch == RayHit::kMiss) {
+      hits[i].front = true;
+      continue;
+    }
+    const Vec3& normal = patch_normals_[hits[i].patch];
+    hits[i].front = block.direction_x[i] * normal.x + block.direction_y[i] * normal.y +
+                        block.direction_z[i] * normal.z <
+                    0;
+  }
+}
+
 bool RayCaster::Unoccluded(const Vec3& origin, const Vec3& target,
                            const Vec3& surface_normal) const {
   const Vec3 lifted = origin + surface_normal * origin_offset_;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/patch_scene.h"
+#include "core/ray_sampler.h"
 #include "core/vec3.h"
 
 struct RTCSceneTy;  // Embree's scene handle type (embree3/rtcore_scene.h)
@@ -38,6 +39,12 @@ class RayCaster {
   // lifted off its surface by a small scene-relative offset along `surface_normal` so the ray does
   // not hit the surface it starts on.
   RayHit Trace(const Vec3& origin, const Vec3& direction, const Vec3& surface_normal) const;
+
+  // Trace for each ray of `block` (all leaving a surface with `surface_normal`): hits[i] is bit
+  // for bit Trace(origin i, direction i, surface_normal). The rays are converted for Embree in
+  // vectorised loops and traced back to back, and the hits' patches and normals are looked up
+  // after the whole block, so those cache misses overlap instead of following each ray's trace.
+  void TraceBlock(const RayBlock& block, const Vec3& surface_normal, RayHit* hits) const;
 
   // Whether nothing lies between origin (lifted as by Trace) and `target`: a shadow ray. It stops
   // kShadowRayMargin of the way short of the target, so the surface the target lies on does not

@@ -24,6 +24,52 @@ Vec3 SampleTriangle(const Vec3& a, const Vec3& b, const Vec3& c, double u, doubl
   return a * (1 - su) + b * (su * (1 - v)) + c * (su * v);
 }
 
+// Pull a sampled point a hair toward the centre: a ray starting within a float ulp of the patch's
+// rim could otherwise start behind a wall that meets the patch there and hit its back.
+constexpr double kRimShrink = 1e-5;
+constexpr double kTwoPi = 2 * std::numbers::pi;
+
+// The block versions of SamplePatchPoint and SampleCosineDirection: the same operations in the same
+// order on each ray (so the same bits), written as branch-free loops over arrays that GCC
+// vectorises, in AVX2 where the CPU has it (no FMA: contracting a*b+c would change the bits).
+// RADFARM_CLONES picks the vector width at load time.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define RADFARM_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define RADFARM_CLONES
+#endif
+
+// One coordinate of SamplePatchPoint for n points: corner values a, b1/c1 (first triangle) and
+// b2/c2 (second), the centre's value `centre`.
+RADFARM_CLONES void PatchPointCoordinate(double a, double b1, double c1, double b2, double c2,
+                                         double centre, double split, const double* __restrict u,
+                                         const double* __restrict v, int n,
+                                         double* __restrict out) {
+  for (int i = 0; i < n; ++i) {
+    const bool first = u[i] < split;
+    const double uu = first ? u[i] / split : std::min((u[i] - split) / (1 - split), 1.0);
+    const double su = std::sqrt(uu);
+    const double point =
+        a * (1 - su) + (first ? b1 : b2) * (su * (1 - v[i])) + (first ? c1 : c2) * (su * v[i]);
+    out[i] = point + (centre - point) * kRimShrink;
+  }
+}
+
+// SampleCosineDirection for n rays, given cos and sin of each ray's (single-precision) phi.
+RADFARM_CLONES void CosineDirections(Vec3 t, Vec3 b, Vec3 nrm, const double* __restrict u,
+                                     const float* __restrict cos_phi,
+                                     const float* __restrict sin_phi, int n, double* __restrict dx,
+                                     double* __restrict dy, double* __restrict dz) {
+  for (int i = 0; i < n; ++i) {
+    const double r = std::sqrt(u[i]);
+    const double z = std::sqrt(std::max(0.0, 1 - u[i]));
+    const double rc = r * cos_phi[i], rs = r * sin_phi[i];
+    dx[i] = t.x * rc + b.x * rs + nrm.x * z;
+    dy[i] = t.y * rc + b.y * rs + nrm.y * z;
+    dz[i] = t.z * rc + b.z * rs + nrm.z * z;
+  }
+}
+
 }  // namespace
 
 double TriangleSplit(const Patch& patch) {
@@ -39,16 +85,13 @@ Vec3 SamplePatchPoint(const Patch& patch, double split, double u, double v) {
   const Vec3 point =
       u < split ? SampleTriangle(p[0], p[1], p[2], u / split, v)
                 : SampleTriangle(p[0], p[2], p[3], std::min((u - split) / (1 - split), 1.0), v);
-  // Pull the point a hair toward the centre: a ray starting within a float ulp of the patch's rim
-  // could otherwise start behind a wall that meets the patch there and hit its back.
-  constexpr double kRimShrink = 1e-5;
   return point + (patch.centre - point) * kRimShrink;
 }
 
 Vec3 SampleCosineDirection(const Vec3& t, const Vec3& b, const Vec3& n, double u, double v) {
   const double r = std::sqrt(u);
   // Single-precision trigonometry: twice as fast, and Embree traces in single precision anyway.
-  const float phi = static_cast<float>(2 * std::numbers::pi * v);
+  const float phi = static_cast<float>(kTwoPi * v);
   const double z = std::sqrt(std::max(0.0, 1 - u));
   return t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * z;
 }
@@ -80,6 +123,58 @@ RaySample ShotSampler::Sample(uint64_t index) const {
     }
   }
   return {};
+}
+
+void ShotSampler::SampleBlock(uint64_t first, int count, RayBlock* block) const {
+  block->count = count;
+  if (sampler_.kind_ == SamplerKind::kGrid) {
+    for (int i = 0; i < count; ++i) {
+      const RaySample ray = sampler_.GridSample(shooter_, tangent_, bitangent_, first + i);
+      block->origin_x[i] = ray.origin.x;
+      block->origin_y[i] = ray.origin.y;
+      block->origin_z[i] = ray.origin.z;
+      block->direction_x[i] = ray.direction.x;
+      block->direction_y[i] = ray.direction.y;
+      block->direction_z[i] = ray.direction.z;
+      block->weight[i] = ray.weight;
+    }
+    return;
+  }
+  alignas(64) double uniforms[4][RayBlock::kSize];
+  double* const u[4] = {uniforms[0], uniforms[1], uniforms[2], uniforms[3]};
+  if (sampler_.kind_ == SamplerKind::kSobol) {
+    sobol_.Points(static_cast<uint32_t>(first), count, u);
+  } else {
+    for (int i = 0; i < count; ++i) {
+      const CounterRng rng(HashWords(shot_key_, first + i));
+      for (uint32_t d = 0; d < 4; ++d) u[d][i] = rng.Uniform(d);
+    }
+  }
+  for (int i = 0; i < count; ++i) block->weight[i] = 1;
+  MapUniforms(u, block);
+}
+
+void ShotSampler::MapUniforms(double* const u[4], RayBlock* block) const {
+  const int n = block->count;
+  const auto& p = shooter_.corners;
+  const Vec3& c = shooter_.centre;
+  const double split = triangle_split_;
+  PatchPointCoordinate(p[0].x, p[1].x, p[2].x, p[2].x, p[3].x, c.x, split, u[0], u[1], n,
+                       block->origin_x);
+  PatchPointCoordinate(p[0].y, p[1].y, p[2].y, p[2].y, p[3].y, c.y, split, u[0], u[1], n,
+                       block->origin_y);
+  PatchPointCoordinate(p[0].z, p[1].z, p[2].z, p[2].z, p[3].z, c.z, split, u[0], u[1], n,
+                       block->origin_z);
+  // sin and cos in single precision by the C library, one ray at a time: vector versions
+  // (libmvec) round differently.
+  alignas(64) float cos_phi[RayBlock::kSize], sin_phi[RayBlock::kSize];
+  for (int i = 0; i < n; ++i) {
+    const float phi = static_cast<float>(kTwoPi * u[3][i]);
+    cos_phi[i] = std::cos(phi);
+    sin_phi[i] = std::sin(phi);
+  }
+  CosineDirections(tangent_, bitangent_, shooter_.normal, u[2], cos_phi, sin_phi, n,
+                   block->direction_x, block->direction_y, block->direction_z);
 }
 
 RaySampler::RaySampler(SamplerKind kind, uint64_t seed, double grid_step_degrees)
