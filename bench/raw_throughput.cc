@@ -164,7 +164,7 @@ std::vector<BatchResult> CountHits(const PatchScene& scene, const RayCaster& cas
         ++results[b].escaped_rays;
         continue;
       }
-      const uint32_t patch = caster.triangle_patch()[rh.hit.primID];
+      const uint32_t patch = caster.PatchOfTriangle(rh.hit.primID);
       if (Dot(work.directions[i], scene.patches[patch].normal) >= 0) {
         results[b].back_weight += work.weights[i];
         ++results[b].back_rays;

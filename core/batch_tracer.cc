@@ -37,11 +37,22 @@ BatchResult BatchTracer::Run(const Batch& batch) {
       }
     }
   }
-  std::sort(touched_.begin(), touched_.end());
   result.hits.reserve(touched_.size());
-  for (uint32_t patch : touched_) {
-    result.hits.push_back({patch, weight_by_patch_[patch]});
-    weight_by_patch_[patch] = 0;
+  // The hits in patch order: a sort of the touched patches, or, when they are many against the
+  // scene's patches (a long batch in a small scene), one pass over the dense array, which is
+  // cheaper than sorting them.
+  if (touched_.size() * 16 >= weight_by_patch_.size()) {
+    for (uint32_t patch = 0; patch < weight_by_patch_.size(); ++patch) {
+      if (weight_by_patch_[patch] == 0) continue;
+      result.hits.push_back({patch, weight_by_patch_[patch]});
+      weight_by_patch_[patch] = 0;
+    }
+  } else {
+    std::sort(touched_.begin(), touched_.end());
+    for (uint32_t patch : touched_) {
+      result.hits.push_back({patch, weight_by_patch_[patch]});
+      weight_by_patch_[patch] = 0;
+    }
   }
   touched_.clear();
   return result;

@@ -39,18 +39,32 @@ constexpr double kTwoPi = 2 * std::numbers::pi;
 #define RADFARM_CLONES
 #endif
 
-// One coordinate of SamplePatchPoint for n points: corner values a, b1/c1 (first triangle) and
-// b2/c2 (second), the centre's value `centre`.
-RADFARM_CLONES void PatchPointCoordinate(double a, double b1, double c1, double b2, double c2,
-                                         double centre, double split, const double* __restrict u,
-                                         const double* __restrict v, int n,
-                                         double* __restrict out) {
+// SampleTriangle's corner weights for n points of a quad split at `split` (or a triangle, split 1):
+// which triangle each point falls in (u < split: the first), then 1 - sqrt(u'), sqrt(u') (1 - v)
+// and sqrt(u') v for the point's u rescaled to its triangle.
+RADFARM_CLONES void TriangleWeights(double split, const double* __restrict u,
+                                    const double* __restrict v, int n, double* __restrict wa,
+                                    double* __restrict wb, double* __restrict wc) {
   for (int i = 0; i < n; ++i) {
     const bool first = u[i] < split;
     const double uu = first ? u[i] / split : std::min((u[i] - split) / (1 - split), 1.0);
     const double su = std::sqrt(uu);
-    const double point =
-        a * (1 - su) + (first ? b1 : b2) * (su * (1 - v[i])) + (first ? c1 : c2) * (su * v[i]);
+    wa[i] = 1 - su;
+    wb[i] = su * (1 - v[i]);
+    wc[i] = su * v[i];
+  }
+}
+
+// One coordinate of SamplePatchPoint for n points from TriangleWeights: corner values a, b1/c1
+// (first triangle) and b2/c2 (second), the centre's value `centre`.
+RADFARM_CLONES void PatchPointCoordinate(double a, double b1, double c1, double b2, double c2,
+                                         double centre, double split, const double* __restrict u,
+                                         const double* __restrict wa, const double* __restrict wb,
+                                         const double* __restrict wc, int n,
+                                         double* __restrict out) {
+  for (int i = 0; i < n; ++i) {
+    const bool first = u[i] < split;
+    const double point = a * wa[i] + (first ? b1 : b2) * wb[i] + (first ? c1 : c2) * wc[i];
     out[i] = point + (centre - point) * kRimShrink;
   }
 }
@@ -159,11 +173,13 @@ void ShotSampler::MapUniforms(double* const u[4], RayBlock* block) const {
   const auto& p = shooter_.corners;
   const Vec3& c = shooter_.centre;
   const double split = triangle_split_;
-  PatchPointCoordinate(p[0].x, p[1].x, p[2].x, p[2].x, p[3].x, c.x, split, u[0], u[1], n,
+  alignas(64) double wa[RayBlock::kSize], wb[RayBlock::kSize], wc[RayBlock::kSize];
+  TriangleWeights(split, u[0], u[1], n, wa, wb, wc);
+  PatchPointCoordinate(p[0].x, p[1].x, p[2].x, p[2].x, p[3].x, c.x, split, u[0], wa, wb, wc, n,
                        block->origin_x);
-  PatchPointCoordinate(p[0].y, p[1].y, p[2].y, p[2].y, p[3].y, c.y, split, u[0], u[1], n,
+  PatchPointCoordinate(p[0].y, p[1].y, p[2].y, p[2].y, p[3].y, c.y, split, u[0], wa, wb, wc, n,
                        block->origin_y);
-  PatchPointCoordinate(p[0].z, p[1].z, p[2].z, p[2].z, p[3].z, c.z, split, u[0], u[1], n,
+  PatchPointCoordinate(p[0].z, p[1].z, p[2].z, p[2].z, p[3].z, c.z, split, u[0], wa, wb, wc, n,
                        block->origin_z);
   // sin and cos in single precision by the C library, one ray at a time: vector versions
   // (libmvec) round differently.
