@@ -22,6 +22,10 @@ BatchResult BatchTracer::Run(const Batch& batch) {
     const int count = static_cast<int>(std::min<uint32_t>(RayBlock::kSize, batch.ray_count - done));
     shot.SampleBlock(batch.first_ray + done, count, &block);
     caster_.TraceBlock(block, shooter.normal, hits);
+    // Start the loads of the hit patches' weights before the loop below needs them.
+    for (int i = 0; i < count; ++i) {
+      if (hits[i].patch != RayHit::kMiss) __builtin_prefetch(&weight_by_patch_[hits[i].patch]);
+    }
     for (int i = 0; i < count; ++i) {
       const RayHit hit = hits[i];
       const uint64_t weight = block.weight[i];

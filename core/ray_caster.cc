@@ -171,7 +171,13 @@ void RayCaster::TraceBlock(const RayBlock& block, const Vec3& surface_normal, Ra
   }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  for (int i = 0; i < n; ++i) rtcIntersect1(embree_->scene, &context, &rays[i]);
+  for (int i = 0; i < n; ++i) {
+    rtcIntersect1(embree_->scene, &context, &rays[i]);
+    // The hit's triangle record is read after the block: fetch it while the next rays trace.
+    if (rays[i].hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+      __builtin_prefetch(&triangles_[rays[i].hit.primID]);
+    }
+  }
   // The hits' patches and sides after the whole block, so the triangle loads overlap. The side
   // comes from Embree's Ng unless the ray is too close to grazing for its sign to be certain
   // (about never: the margin is a few float ulps for a flat patch); then, as in Trace, from the
