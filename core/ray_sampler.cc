@@ -27,7 +27,36 @@ Vec3 SampleTriangle(const Vec3& a, const Vec3& b, const Vec3& c, double u, doubl
 // Pull a sampled point a hair toward the centre: a ray starting within a float ulp of the patch's
 // rim could otherwise start behind a wall that meets the patch there and hit its back.
 constexpr double kRimShrink = 1e-5;
-constexpr double kTwoPi = 2 * std::numbers::pi;
+
+// cos and sin of 2 pi v for v in [0, 1), within 1e-10, by quadrant and Taylor polynomials to
+// x^14 and x^15 on [0, pi/2): additions and multiplications only, so every build and every
+// vector width rounds them alike (the C library's sinf/cosf come in FMA and non-FMA builds picked
+// at load time, and vectorise only through libmvec, which rounds differently again). Inline: the
+// one-ray path and the block loops share it.
+inline void UnitCircle(double v, double* c, double* s) {
+  const double q4 = 4 * v;
+  // Quadrant 0..3 by comparisons, which vectorise where a conversion to int may not.
+  const double quadrant = (q4 >= 1 ? 1.0 : 0.0) + (q4 >= 2 ? 1.0 : 0.0) + (q4 >= 3 ? 1.0 : 0.0);
+  const double x = (q4 - quadrant) * (std::numbers::pi / 2);
+  const double x2 = x * x;
+  const double cx =
+      1 +
+      x2 * (-1.0 / 2 +
+            x2 * (1.0 / 24 + x2 * (-1.0 / 720 +
+                                   x2 * (1.0 / 40320 + x2 * (-1.0 / 3628800 +
+                                                             x2 * (1.0 / 479001600 +
+                                                                   x2 * (-1.0 / 87178291200)))))));
+  const double sx =
+      x * (1 + x2 * (-1.0 / 6 +
+                     x2 * (1.0 / 120 +
+                           x2 * (-1.0 / 5040 + x2 * (1.0 / 362880 +
+                                                     x2 * (-1.0 / 39916800 +
+                                                           x2 * (1.0 / 6227020800 +
+                                                                 x2 * (-1.0 / 1307674368000))))))));
+  // Rotate by the quadrant: (cos, sin) of x + quadrant pi / 2.
+  *c = quadrant == 0 ? cx : quadrant == 1 ? -sx : quadrant == 2 ? -cx : sx;
+  *s = quadrant == 0 ? sx : quadrant == 1 ? cx : quadrant == 2 ? -sx : -cx;
+}
 
 // The block versions of SamplePatchPoint and SampleCosineDirection: the same operations in the same
 // order on each ray (so the same bits), written as branch-free loops over arrays that GCC
@@ -69,15 +98,16 @@ RADFARM_CLONES void PatchPointCoordinate(double a, double b1, double c1, double 
   }
 }
 
-// SampleCosineDirection for n rays, given cos and sin of each ray's (single-precision) phi.
+// SampleCosineDirection for n rays.
 RADFARM_CLONES void CosineDirections(Vec3 t, Vec3 b, Vec3 nrm, const double* __restrict u,
-                                     const float* __restrict cos_phi,
-                                     const float* __restrict sin_phi, int n, double* __restrict dx,
+                                     const double* __restrict v, int n, double* __restrict dx,
                                      double* __restrict dy, double* __restrict dz) {
   for (int i = 0; i < n; ++i) {
     const double r = std::sqrt(u[i]);
     const double z = std::sqrt(std::max(0.0, 1 - u[i]));
-    const double rc = r * cos_phi[i], rs = r * sin_phi[i];
+    double c, s;
+    UnitCircle(v[i], &c, &s);
+    const double rc = r * c, rs = r * s;
     dx[i] = t.x * rc + b.x * rs + nrm.x * z;
     dy[i] = t.y * rc + b.y * rs + nrm.y * z;
     dz[i] = t.z * rc + b.z * rs + nrm.z * z;
@@ -104,10 +134,10 @@ Vec3 SamplePatchPoint(const Patch& patch, double split, double u, double v) {
 
 Vec3 SampleCosineDirection(const Vec3& t, const Vec3& b, const Vec3& n, double u, double v) {
   const double r = std::sqrt(u);
-  // Single-precision trigonometry: twice as fast, and Embree traces in single precision anyway.
-  const float phi = static_cast<float>(kTwoPi * v);
   const double z = std::sqrt(std::max(0.0, 1 - u));
-  return t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * z;
+  double c, s;
+  UnitCircle(v, &c, &s);
+  return t * (r * c) + b * (r * s) + n * z;
 }
 
 ShotSampler::ShotSampler(const RaySampler& sampler, const Patch& shooter, uint64_t shot_key)
@@ -181,16 +211,8 @@ void ShotSampler::MapUniforms(double* const u[4], RayBlock* block) const {
                        block->origin_y);
   PatchPointCoordinate(p[0].z, p[1].z, p[2].z, p[2].z, p[3].z, c.z, split, u[0], wa, wb, wc, n,
                        block->origin_z);
-  // sin and cos in single precision by the C library, one ray at a time: vector versions
-  // (libmvec) round differently.
-  alignas(64) float cos_phi[RayBlock::kSize], sin_phi[RayBlock::kSize];
-  for (int i = 0; i < n; ++i) {
-    const float phi = static_cast<float>(kTwoPi * u[3][i]);
-    cos_phi[i] = std::cos(phi);
-    sin_phi[i] = std::sin(phi);
-  }
-  CosineDirections(tangent_, bitangent_, shooter_.normal, u[2], cos_phi, sin_phi, n,
-                   block->direction_x, block->direction_y, block->direction_z);
+  CosineDirections(tangent_, bitangent_, shooter_.normal, u[2], u[3], n, block->direction_x,
+                   block->direction_y, block->direction_z);
 }
 
 RaySampler::RaySampler(SamplerKind kind, uint64_t seed, double grid_step_degrees)
