@@ -41,9 +41,11 @@ class RayCaster {
   RayHit Trace(const Vec3& origin, const Vec3& direction, const Vec3& surface_normal) const;
 
   // Trace for each ray of `block` (all leaving a surface with `surface_normal`): hits[i] is bit
-  // for bit Trace(origin i, direction i, surface_normal). The rays are converted for Embree in
-  // vectorised loops and traced back to back, and the hits' patches and normals are looked up
-  // after the whole block, so those cache misses overlap instead of following each ray's trace.
+  // for bit Trace(origin i, direction i, surface_normal). The rays are traced back to back, each
+  // hit's triangle record fetched while the next ray traces, and the hits' patches and sides are
+  // worked out after the whole block, so the cache misses overlap instead of following each trace.
+  // A hit's side comes from Embree's Ng where its sign is certain to be that of the patch normal's
+  // (Triangle::ng_margin), otherwise from the patch normal as in Trace.
   void TraceBlock(const RayBlock& block, const Vec3& surface_normal, RayHit* hits) const;
 
   // Whether nothing lies between origin (lifted as by Trace) and `target`: a shadow ray. It stops
@@ -80,7 +82,7 @@ class RayCaster {
   struct Embree;
   std::unique_ptr<Embree> embree_;
   std::vector<Vec3> patch_normals_;  // compact copy: Trace reads one per hit
-  std::vector<Triangle> triangles_;  // by Embree primitive id
+  std::vector<Triangle> triangles_;  // by Embree primitive id; 8 bytes each
   Vec3 centre_;                      // subtracted from every coordinate given to Embree
   double origin_offset_ = 0;
 };
