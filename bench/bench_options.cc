@@ -13,6 +13,8 @@ bool ParseBenchOptions(int argc, char** argv, BenchOptions* options, std::string
     const std::string_view arg = argv[i];
     if (arg == "--quick") {
       options->quick = true;
+    } else if (arg == "--raw-only") {
+      options->raw_only = true;
     } else if ((arg == "--json" || arg == "--scenes") && i + 1 < argc) {
       (arg == "--json" ? options->json_path : options->scenes_dir) = argv[++i];
     } else if (arg == "-h" || arg == "--help") {

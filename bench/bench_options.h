@@ -7,13 +7,15 @@ namespace radfarm::bench {
 
 struct BenchOptions {
   bool quick = false;      // smoke check: fewer budgets, one repetition, under a minute
+  bool raw_only = false;   // only section 2 (the ray loop against raw Embree), printed, no JSON
   std::string json_path;   // where the raw figures go
   std::string scenes_dir;  // where cornell-box.obj and seed-room.obj are
 };
 
 inline constexpr char kUsage[] =
-    "usage: solver_bench [--quick] [--json PATH] [--scenes DIR]\n"
+    "usage: solver_bench [--quick] [--raw-only] [--json PATH] [--scenes DIR]\n"
     "  --quick         smoke check: fewer budgets, 1 repetition (under a minute)\n"
+    "  --raw-only      only the ray loop against raw Embree, printed (no JSON written)\n"
     "  --json PATH     write the figures there (default: bench/results/solver_bench.json)\n"
     "  --scenes DIR    read the scenes from there (default: the source tree's scenes/)\n";
 

@@ -18,8 +18,9 @@ struct BenchReport {
   std::string load_average_end;    // /proc/loadavg when the measurements were done
   SweepConfig sweep_config;        // shared by the scenes except for the ladder
   std::vector<SceneSweep> sweeps;  // speed against error, one per scene
-  RawThroughput raw;               // the solver's ray loop against raw Embree
-  SeedWorkload seed;               // the seed paper's workload and equal time on its room
+  std::vector<RawThroughput>
+      raw;            // the solver's ray loop against raw Embree, per scene and threads
+  SeedWorkload seed;  // the seed paper's workload and equal time on its room
 };
 
 }  // namespace radfarm::bench

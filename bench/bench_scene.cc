@@ -20,6 +20,7 @@ BenchScene LoadBenchScene(const std::string& name, const std::string& path, doub
   BenchScene scene;
   scene.name = name;
   scene.path = path;
+  scene.patch_size = patch_size;
   scene.mesh = std::make_unique<PatchMesh>(std::move(mesh).value());
   scene.load_seconds = clock.Seconds();
   return scene;

@@ -10,8 +10,9 @@
 namespace radfarm::bench {
 
 struct BenchScene {
-  std::string name;  // short name for tables and file names, e.g. "cornell-box"
-  std::string path;  // the OBJ as given
+  std::string name;       // short name for tables and file names, e.g. "cornell-box"
+  std::string path;       // the OBJ as given
+  double patch_size = 0;  // as given to LoadBenchScene
   std::unique_ptr<PatchMesh> mesh;
   double load_seconds = 0;  // LoadObjScene + PatchMesh::Build
 

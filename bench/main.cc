@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "bench/bench_json.h"
@@ -31,6 +32,33 @@ namespace {
 // on a small machine, and the samplers compare the same way.
 constexpr double kCornellPatchSize = 50;
 constexpr double kSeedRoomPatchSize = 0.5;
+// The ray loop's big scene: the Cornell box at 5 mm, about 10^5 patches (issue 17's size).
+constexpr double kBigCornellPatchSize = 5;
+// Its rays: a fixed shot_rays keeps the stored rays of its first 3 rounds near the small box's
+// (the automatic 1024 rays per patch would store 10^8 rays), in batches of a few rays from round 1
+// on, as a big scene's many weak shooters give.
+constexpr uint64_t kBigCornellShotRays = uint64_t{1} << 20;
+
+// Section 2 (the ray loop against raw Embree) on the Cornell box and its 10^5-patch version, on
+// 1 thread and on all cores.
+std::vector<RawThroughput> MeasureRayLoop(const BenchScene& cornell, const BenchOptions& options) {
+  const BenchScene big =
+      LoadBenchScene("cornell-box", options.scenes_dir + "/cornell-box.obj", kBigCornellPatchSize);
+  SolverSettings big_settings;
+  big_settings.shot_rays = kBigCornellShotRays;
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<unsigned> thread_counts{1};
+  if (cores > 1) thread_counts.push_back(cores);
+  const int repetitions = options.quick ? 1 : 5;
+  std::vector<RawThroughput> out;
+  for (const auto& [scene, settings] :
+       {std::pair{&cornell, SolverSettings{}}, std::pair{&big, big_settings}}) {
+    for (unsigned threads : thread_counts) {
+      out.push_back(MeasureRawThroughput(*scene, settings, 3, repetitions, threads));
+    }
+  }
+  return out;
+}
 
 std::vector<uint64_t> Ladder(uint64_t first, int rungs) {
   std::vector<uint64_t> ladder;
@@ -65,6 +93,10 @@ int Run(int argc, char** argv) {
 
   const BenchScene cornell =
       LoadBenchScene("cornell-box", options.scenes_dir + "/cornell-box.obj", kCornellPatchSize);
+  if (options.raw_only) {
+    MeasureRayLoop(cornell, options);
+    return 0;
+  }
   const BenchScene room =
       LoadBenchScene("seed-room", options.scenes_dir + "/seed-room.obj", kSeedRoomPatchSize);
 
@@ -75,8 +107,7 @@ int Run(int argc, char** argv) {
   room_config.shot_rays = Ladder(uint64_t{1} << 16, rungs);
   report.sweeps.push_back(RunSweep(room, room_config));
 
-  const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  report.raw = MeasureRawThroughput(cornell, SolverSettings{}, 3, options.quick ? 1 : 5, threads);
+  report.raw = MeasureRayLoop(cornell, options);
   report.seed =
       RunSeedWorkload(room, report.sweeps[1].reference, options.quick ? 1 : 5, config.repetitions);
 

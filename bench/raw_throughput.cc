@@ -3,6 +3,7 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -91,10 +92,62 @@ size_t RayIndex(const RayWork& work, size_t batch) {
   return batch < work.batches.size() ? work.ray_begin[batch] : work.rays.size();
 }
 
+// The stored rays [begin, end) as packets of 16 in Embree's packet layout; `valid` per packet.
+constexpr int kPacket = 16;
+struct alignas(64) PacketMask {  // Embree reads the mask with aligned vector loads
+  std::array<int, kPacket> lanes;
+};
+struct Packets {
+  std::vector<RTCRayHit16> rays;
+  std::vector<PacketMask> valid;
+};
+
+void FillPackets(const RayWork& work, size_t begin, size_t end, Packets* packets) {
+  const size_t count = (end - begin + kPacket - 1) / kPacket;
+  packets->rays.resize(count);
+  packets->valid.resize(count);
+  for (size_t p = 0; p < count; ++p) {
+    RTCRayHit16& ph = packets->rays[p];
+    for (int l = 0; l < kPacket; ++l) {
+      const size_t i = begin + p * kPacket + l;
+      packets->valid[p].lanes[l] = i < end ? -1 : 0;
+      const RTCRayHit& rh = work.rays[i < end ? i : begin];
+      ph.ray.org_x[l] = rh.ray.org_x;
+      ph.ray.org_y[l] = rh.ray.org_y;
+      ph.ray.org_z[l] = rh.ray.org_z;
+      ph.ray.dir_x[l] = rh.ray.dir_x;
+      ph.ray.dir_y[l] = rh.ray.dir_y;
+      ph.ray.dir_z[l] = rh.ray.dir_z;
+      ph.ray.tnear[l] = rh.ray.tnear;
+      ph.ray.tfar[l] = rh.ray.tfar;
+      ph.ray.time[l] = rh.ray.time;
+      ph.ray.mask[l] = rh.ray.mask;
+      ph.ray.id[l] = rh.ray.id;
+      ph.ray.flags[l] = rh.ray.flags;
+      ph.hit.geomID[l] = rh.hit.geomID;
+      ph.hit.primID[l] = rh.hit.primID;
+    }
+  }
+}
+
+// The packets' hits back in single-ray layout (only what CountHits reads).
+void UnpackHits(const Packets& packets, size_t begin, size_t end, std::vector<RTCRayHit>* traced) {
+  for (size_t i = begin; i < end; ++i) {
+    const RTCRayHit16& ph = packets.rays[(i - begin) / kPacket];
+    const size_t l = (i - begin) % kPacket;
+    (*traced)[i].hit.geomID = ph.hit.geomID[l];
+    (*traced)[i].hit.primID = ph.hit.primID[l];
+  }
+}
+
 // Runs body(t) on `threads` std::threads and returns the wall time from start to the last join.
 template <typename Body>
 double TimeThreads(unsigned threads, const Body& body) {
   const Stopwatch clock;
+  if (threads == 1) {  // on the calling thread, as ThreadPool runs a pool of one
+    body(0);
+    return clock.Seconds();
+  }
   std::vector<std::thread> pool;
   for (unsigned t = 0; t < threads; ++t) pool.emplace_back([&body, t] { body(t); });
   for (std::thread& th : pool) th.join();
@@ -115,7 +168,7 @@ std::vector<BatchResult> CountHits(const PatchScene& scene, const RayCaster& cas
         ++results[b].escaped_rays;
         continue;
       }
-      const uint32_t patch = caster.triangle_patch()[rh.hit.primID];
+      const uint32_t patch = caster.PatchOfTriangle(rh.hit.primID);
       if (Dot(work.directions[i], scene.patches[patch].normal) >= 0) {
         results[b].back_weight += work.weights[i];
         ++results[b].back_rays;
@@ -152,6 +205,7 @@ RawThroughput MeasureRawThroughput(const BenchScene& bench_scene, const SolverSe
 
   RawThroughput out;
   out.scene = bench_scene.name;
+  out.patch_size = bench_scene.patch_size;
   out.patches = scene.patches.size();
   out.rounds = solver.rounds_done();
   out.rays = work.rays.size();
@@ -173,6 +227,21 @@ RawThroughput MeasureRawThroughput(const BenchScene& bench_scene, const SolverSe
       }
     });
   };
+  std::vector<Packets> packets(threads);
+  std::vector<Packets> packets_template(threads);
+  for (unsigned t = 0; t < threads; ++t) {
+    FillPackets(work, RayIndex(work, group[t]), RayIndex(work, group[t + 1]), &packets_template[t]);
+  }
+  auto packet = [&] {
+    packets = packets_template;  // untimed: reset tfar and hits
+    return TimeThreads(threads, [&](unsigned t) {
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      for (size_t p = 0; p < packets[t].rays.size(); ++p) {
+        rtcIntersect16(packets[t].valid[p].lanes.data(), embree, &context, &packets[t].rays[p]);
+      }
+    });
+  };
   auto runner = [&] {
     return TimeThreads(threads, [&](unsigned t) {
       for (size_t b = group[t]; b < group[t + 1]; ++b)
@@ -183,13 +252,16 @@ RawThroughput MeasureRawThroughput(const BenchScene& bench_scene, const SolverSe
   auto sampling = [&] {
     return TimeThreads(threads, [&](unsigned t) {
       double sum = 0;
+      RayBlock block;
       for (size_t b = group[t]; b < group[t + 1]; ++b) {
         const Batch& batch = work.batches[b];
         const ShotSampler shot =
             solver.sampler().Shot(scene.patches[batch.shooter], batch.shooter, batch.round);
-        for (uint64_t k = batch.first_ray; k < batch.first_ray + batch.ray_count; ++k) {
-          const RaySample ray = shot.Sample(k);
-          sum += ray.origin.x + ray.direction.x;
+        for (uint32_t done = 0; done < batch.ray_count; done += RayBlock::kSize) {
+          const int count =
+              static_cast<int>(std::min<uint32_t>(RayBlock::kSize, batch.ray_count - done));
+          shot.SampleBlock(batch.first_ray + done, count, &block);
+          sum += block.origin_x[0] + block.direction_x[count - 1];
         }
       }
       sink[t] = sum;
@@ -207,31 +279,41 @@ RawThroughput MeasureRawThroughput(const BenchScene& bench_scene, const SolverSe
   raw();
   runner();
   out.same_hits = CountHits(scene, caster, work, traced) == results;
+  packet();
+  for (unsigned t = 0; t < threads; ++t) {
+    UnpackHits(packets[t], RayIndex(work, group[t]), RayIndex(work, group[t + 1]), &traced);
+  }
+  out.same_hits = out.same_hits && CountHits(scene, caster, work, traced) == results;
   for (const BatchResult& r : results) {
     out.escaped_rays += r.escaped_rays;
     out.back_rays += r.back_rays;
   }
 
-  std::vector<double> runner_ratio, pool_ratio;
+  std::vector<double> packet_ratio, runner_ratio, pool_ratio;
   for (int rep = 0; rep < repetitions; ++rep) {
     out.raw_seconds.push_back(raw());
+    out.packet_seconds.push_back(packet());
     out.runner_seconds.push_back(runner());
     out.pool_seconds.push_back(pooled());
     out.sample_seconds.push_back(sampling());
+    packet_ratio.push_back(out.raw_seconds.back() / out.packet_seconds.back());
     runner_ratio.push_back(out.raw_seconds.back() / out.runner_seconds.back());
     pool_ratio.push_back(out.raw_seconds.back() / out.pool_seconds.back());
     std::printf(
-        "%s raw throughput, repetition %d: raw %.3f s, runner %.3f s, pool %.3f s, sampling "
-        "%.3f s\n",
-        out.scene.c_str(), rep + 1, out.raw_seconds.back(), out.runner_seconds.back(),
+        "%s (%zu patches) on %u threads, repetition %d: raw %.3f s, packets %.3f s, tracer %.3f s "
+        "(%.1f %% of raw), pool %.3f s, sampling %.3f s\n",
+        out.scene.c_str(), out.patches, threads, rep + 1, out.raw_seconds.back(),
+        out.packet_seconds.back(), out.runner_seconds.back(), 100 * runner_ratio.back(),
         out.pool_seconds.back(), out.sample_seconds.back());
     std::fflush(stdout);
   }
   const double rays = double(out.rays);
   out.raw_rays_per_second = rays / Median(out.raw_seconds);
+  out.packet_rays_per_second = rays / Median(out.packet_seconds);
   out.runner_rays_per_second = rays / Median(out.runner_seconds);
   out.pool_rays_per_second = rays / Median(out.pool_seconds);
   out.sample_rays_per_second = rays / Median(out.sample_seconds);
+  out.packet_over_raw = Median(packet_ratio);
   out.runner_over_raw = Median(runner_ratio);
   out.pool_over_raw = Median(pool_ratio);
   return out;

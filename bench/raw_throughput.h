@@ -1,12 +1,15 @@
 // Section 2 of the report: how close the solver's ray loop comes to Embree's own closest-hit speed.
 // The rays of the first rounds of a solve are generated once, stored as RTCRayHit exactly as
-// RayCaster would hand them to Embree, and then traced three ways on the same threads:
-//   raw:    a bare rtcIntersect1 loop over the stored rays, one contiguous chunk per thread;
+// RayCaster would hand them to Embree, and then traced on the same threads:
+//   raw:    a bare rtcIntersect1 loop over the stored rays, one contiguous chunk per thread (the
+//           yardstick of issue 17: the solver's loop should reach 90% of it);
+//   packet: the same stored rays as packets of 16 consecutive rays (rtcIntersect16, converted to
+//           Embree's packet layout untimed): what Embree's packet query alone gives on these rays;
 //   runner: BatchTracer::Run over the same batches, the same chunks per thread (ray generation,
 //           tracing and hit counting: the solver's whole per-ray work);
 //   pool:   the same batches through ThreadPool::ParallelFor, as Solve() schedules them;
-// and, to show where the difference goes, the sampling alone (ShotSampler, as BatchTracer calls it,
-// no tracing) over the same batches and chunks.
+// and, to show where the difference goes, the sampling alone (ShotSampler::SampleBlock, as
+// BatchTracer calls it, no tracing) over the same batches and chunks.
 #pragma once
 
 #include <cstdint>
@@ -19,6 +22,7 @@ namespace radfarm::bench {
 
 struct RawThroughput {
   std::string scene;
+  double patch_size = 0;
   size_t patches = 0;
   uint32_t rounds = 0;
   uint64_t rays = 0;
@@ -26,23 +30,25 @@ struct RawThroughput {
   unsigned threads = 0;
   int repetitions = 0;
   // One per repetition.
-  std::vector<double> raw_seconds, runner_seconds, pool_seconds, sample_seconds;
+  std::vector<double> raw_seconds, packet_seconds, runner_seconds, pool_seconds, sample_seconds;
   double raw_rays_per_second = 0;  // medians
+  double packet_rays_per_second = 0;
   double runner_rays_per_second = 0;
   double pool_rays_per_second = 0;
   double sample_rays_per_second = 0;
   // Medians of the per-repetition ratios (each repetition times all three back to back, so the
   // ratio sees the same machine load).
+  double packet_over_raw = 0;
   double runner_over_raw = 0;
   double pool_over_raw = 0;
-  // The raw loop's hits, counted per batch as BatchTracer counts them, equal the solver's results.
+  // The raw loops' hits, counted per batch as BatchTracer counts them, equal the solver's results.
   bool same_hits = false;
   uint64_t escaped_rays = 0;
   uint64_t back_rays = 0;
 };
 
 // Plans and solves `rounds` rounds of `settings` on the scene (untimed) to obtain their batches,
-// then times the three loops `repetitions` times each on `threads` threads.
+// then times the loops `repetitions` times each on `threads` threads.
 RawThroughput MeasureRawThroughput(const BenchScene& scene, const SolverSettings& settings,
                                    uint32_t rounds, int repetitions, unsigned threads);
 

@@ -54,6 +54,7 @@ json Sweep(const SceneSweep& s) {
 
 json Raw(const RawThroughput& t) {
   return {{"scene", t.scene},
+          {"patch_size", t.patch_size},
           {"patches", t.patches},
           {"rounds", t.rounds},
           {"rays", t.rays},
@@ -61,13 +62,16 @@ json Raw(const RawThroughput& t) {
           {"threads", t.threads},
           {"repetitions", t.repetitions},
           {"raw_seconds", t.raw_seconds},
+          {"packet_seconds", t.packet_seconds},
           {"runner_seconds", t.runner_seconds},
           {"pool_seconds", t.pool_seconds},
           {"sample_seconds", t.sample_seconds},
           {"raw_rays_per_second", t.raw_rays_per_second},
+          {"packet_rays_per_second", t.packet_rays_per_second},
           {"runner_rays_per_second", t.runner_rays_per_second},
           {"pool_rays_per_second", t.pool_rays_per_second},
           {"sample_rays_per_second", t.sample_rays_per_second},
+          {"packet_over_raw", t.packet_over_raw},
           {"runner_over_raw", t.runner_over_raw},
           {"pool_over_raw", t.pool_over_raw},
           {"same_hits", t.same_hits},
@@ -100,6 +104,8 @@ json SolverBenchJson(const BenchReport& r) {
   const SweepConfig& c = r.sweep_config;
   json sweeps = json::array();
   for (const SceneSweep& s : r.sweeps) sweeps.push_back(Sweep(s));
+  json raw = json::array();
+  for (const RawThroughput& t : r.raw) raw.push_back(Raw(t));
   const SolverSettings defaults;
   return {{"program", "solver_bench"},
           {"quick", r.quick},
@@ -119,7 +125,7 @@ json SolverBenchJson(const BenchReport& r) {
             {"default_sampler", std::string(SamplerName(defaults.sampler))},
             {"default_tolerance", defaults.tolerance}}},
           {"sweeps", sweeps},
-          {"raw", Raw(r.raw)},
+          {"raw", raw},
           {"seed", Seed(r.seed)}};
 }
 

@@ -1,7 +1,10 @@
-// Computes batches: casts their rays and counts hits. Holds a per-thread scratch array, so use one
-// BatchTracer per thread; the caster, sampler and scene are shared read-only.
+// Computes batches: casts their rays and counts hits. Holds per-thread scratch (a block of rays and
+// a dense weight array), so use one BatchTracer per thread; the caster, sampler and scene are
+// shared read-only. A batch's rays are made and traced a RayBlock at a time (ray_sampler.h,
+// ray_caster.h); the result is bit for bit that of sampling and tracing them one by one.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "core/batch.h"
@@ -21,6 +24,7 @@ class BatchTracer {
   const PatchScene& scene_;
   const RayCaster& caster_;
   const RaySampler& sampler_;
+  std::unique_ptr<RayBlock> block_;        // scratch: the rays being traced
   std::vector<uint64_t> weight_by_patch_;  // dense scratch, all zero between calls
   std::vector<uint32_t> touched_;
 };

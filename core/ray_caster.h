@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/patch_scene.h"
+#include "core/ray_sampler.h"
 #include "core/vec3.h"
 
 struct RTCSceneTy;  // Embree's scene handle type (embree3/rtcore_scene.h)
@@ -39,6 +40,14 @@ class RayCaster {
   // not hit the surface it starts on.
   RayHit Trace(const Vec3& origin, const Vec3& direction, const Vec3& surface_normal) const;
 
+  // Trace for each ray of `block` (all leaving a surface with `surface_normal`): hits[i] is bit
+  // for bit Trace(origin i, direction i, surface_normal). The rays are traced back to back, each
+  // hit's triangle record fetched while the next ray traces, and the hits' patches and sides are
+  // worked out after the whole block, so the cache misses overlap instead of following each trace.
+  // A hit's side comes from Embree's Ng where its sign is certain to be that of the patch normal's
+  // (Triangle::ng_margin), otherwise from the patch normal as in Trace.
+  void TraceBlock(const RayBlock& block, const Vec3& surface_normal, RayHit* hits) const;
+
   // Whether nothing lies between origin (lifted as by Trace) and `target`: a shadow ray. It stops
   // kShadowRayMargin of the way short of the target, so the surface the target lies on does not
   // count as an occluder. Cheaper than Trace: any hit ends the search.
@@ -50,20 +59,31 @@ class RayCaster {
 
   // For benchmarks that time raw Embree calls on the same BVH: the committed scene (its coordinates
   // are scene coordinates minus the scene's centre; PrepareRay converts); primitive k belongs to
-  // triangle_patch()[k].
+  // patch PatchOfTriangle(k).
   RTCSceneTy* embree_scene() const;
   // Fills `ray` exactly as Trace() would before calling Embree (origin moved to Embree's frame and
   // lifted off its surface, no hit yet).
   void PrepareRay(const Vec3& origin, const Vec3& direction, const Vec3& surface_normal,
                   RTCRayHit* ray) const;
-  const std::vector<uint32_t>& triangle_patch() const { return triangle_patch_; }
+  uint32_t PatchOfTriangle(uint32_t primitive) const { return triangles_[primitive].patch; }
 
  private:
+  // What a hit on one of Embree's triangles needs: its patch, and how far the direction of the
+  // triangle's normal as Embree reports it (Ng) may be from its patch's normal, in cosine, float
+  // rounding included: TraceBlock takes a hit's side from Ng when the ray's cosine with Ng is
+  // further from 0 than this, so it need not read the patch's normal.
+  struct Triangle {
+    uint32_t patch;
+    float ng_margin;  // +inf: always read the patch's normal
+  };
+  static float NgMargin(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& patch_normal,
+                        double scene_diagonal);
+
   struct Embree;
   std::unique_ptr<Embree> embree_;
-  std::vector<Vec3> patch_normals_;       // compact copy: Trace reads one per hit
-  std::vector<uint32_t> triangle_patch_;  // Embree primitive id -> patch id
-  Vec3 centre_;                           // subtracted from every coordinate given to Embree
+  std::vector<Vec3> patch_normals_;  // compact copy: Trace reads one per hit
+  std::vector<Triangle> triangles_;  // by Embree primitive id; 8 bytes each
+  Vec3 centre_;                      // subtracted from every coordinate given to Embree
   double origin_offset_ = 0;
 };
 

@@ -24,6 +24,96 @@ Vec3 SampleTriangle(const Vec3& a, const Vec3& b, const Vec3& c, double u, doubl
   return a * (1 - su) + b * (su * (1 - v)) + c * (su * v);
 }
 
+// Pull a sampled point a hair toward the centre: a ray starting within a float ulp of the patch's
+// rim could otherwise start behind a wall that meets the patch there and hit its back.
+constexpr double kRimShrink = 1e-5;
+
+// cos and sin of 2 pi v for v in [0, 1), within 1e-10, by quadrant and Taylor polynomials to
+// x^14 and x^15 on [0, pi/2): additions and multiplications only, so every build and every
+// vector width rounds them alike (the C library's sinf/cosf come in FMA and non-FMA builds picked
+// at load time, and vectorise only through libmvec, which rounds differently again). Inline: the
+// one-ray path and the block loops share it.
+inline void UnitCircle(double v, double* c, double* s) {
+  const double q4 = 4 * v;
+  // Quadrant 0..3 by comparisons, which vectorise where a conversion to int may not.
+  const double quadrant = (q4 >= 1 ? 1.0 : 0.0) + (q4 >= 2 ? 1.0 : 0.0) + (q4 >= 3 ? 1.0 : 0.0);
+  const double x = (q4 - quadrant) * (std::numbers::pi / 2);
+  const double x2 = x * x;
+  const double cx =
+      1 +
+      x2 * (-1.0 / 2 +
+            x2 * (1.0 / 24 + x2 * (-1.0 / 720 +
+                                   x2 * (1.0 / 40320 + x2 * (-1.0 / 3628800 +
+                                                             x2 * (1.0 / 479001600 +
+                                                                   x2 * (-1.0 / 87178291200)))))));
+  const double sx =
+      x * (1 + x2 * (-1.0 / 6 +
+                     x2 * (1.0 / 120 +
+                           x2 * (-1.0 / 5040 + x2 * (1.0 / 362880 +
+                                                     x2 * (-1.0 / 39916800 +
+                                                           x2 * (1.0 / 6227020800 +
+                                                                 x2 * (-1.0 / 1307674368000))))))));
+  // Rotate by the quadrant: (cos, sin) of x + quadrant pi / 2.
+  *c = quadrant == 0 ? cx : quadrant == 1 ? -sx : quadrant == 2 ? -cx : sx;
+  *s = quadrant == 0 ? sx : quadrant == 1 ? cx : quadrant == 2 ? -sx : -cx;
+}
+
+// The block versions of SamplePatchPoint and SampleCosineDirection: the same operations in the same
+// order on each ray (so the same bits), written as branch-free loops over arrays that GCC
+// vectorises, in AVX2 where the CPU has it (no FMA: contracting a*b+c would change the bits).
+// RADFARM_CLONES picks the vector width at load time.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define RADFARM_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define RADFARM_CLONES
+#endif
+
+// SampleTriangle's corner weights for n points of a quad split at `split` (or a triangle, split 1):
+// which triangle each point falls in (u < split: the first), then 1 - sqrt(u'), sqrt(u') (1 - v)
+// and sqrt(u') v for the point's u rescaled to its triangle.
+RADFARM_CLONES void TriangleWeights(double split, const double* __restrict u,
+                                    const double* __restrict v, int n, double* __restrict wa,
+                                    double* __restrict wb, double* __restrict wc) {
+  for (int i = 0; i < n; ++i) {
+    const bool first = u[i] < split;
+    const double uu = first ? u[i] / split : std::min((u[i] - split) / (1 - split), 1.0);
+    const double su = std::sqrt(uu);
+    wa[i] = 1 - su;
+    wb[i] = su * (1 - v[i]);
+    wc[i] = su * v[i];
+  }
+}
+
+// One coordinate of SamplePatchPoint for n points from TriangleWeights: corner values a, b1/c1
+// (first triangle) and b2/c2 (second), the centre's value `centre`.
+RADFARM_CLONES void PatchPointCoordinate(double a, double b1, double c1, double b2, double c2,
+                                         double centre, double split, const double* __restrict u,
+                                         const double* __restrict wa, const double* __restrict wb,
+                                         const double* __restrict wc, int n,
+                                         double* __restrict out) {
+  for (int i = 0; i < n; ++i) {
+    const bool first = u[i] < split;
+    const double point = a * wa[i] + (first ? b1 : b2) * wb[i] + (first ? c1 : c2) * wc[i];
+    out[i] = point + (centre - point) * kRimShrink;
+  }
+}
+
+// SampleCosineDirection for n rays.
+RADFARM_CLONES void CosineDirections(Vec3 t, Vec3 b, Vec3 nrm, const double* __restrict u,
+                                     const double* __restrict v, int n, double* __restrict dx,
+                                     double* __restrict dy, double* __restrict dz) {
+  for (int i = 0; i < n; ++i) {
+    const double r = std::sqrt(u[i]);
+    const double z = std::sqrt(std::max(0.0, 1 - u[i]));
+    double c, s;
+    UnitCircle(v[i], &c, &s);
+    const double rc = r * c, rs = r * s;
+    dx[i] = t.x * rc + b.x * rs + nrm.x * z;
+    dy[i] = t.y * rc + b.y * rs + nrm.y * z;
+    dz[i] = t.z * rc + b.z * rs + nrm.z * z;
+  }
+}
+
 }  // namespace
 
 double TriangleSplit(const Patch& patch) {
@@ -39,18 +129,15 @@ Vec3 SamplePatchPoint(const Patch& patch, double split, double u, double v) {
   const Vec3 point =
       u < split ? SampleTriangle(p[0], p[1], p[2], u / split, v)
                 : SampleTriangle(p[0], p[2], p[3], std::min((u - split) / (1 - split), 1.0), v);
-  // Pull the point a hair toward the centre: a ray starting within a float ulp of the patch's rim
-  // could otherwise start behind a wall that meets the patch there and hit its back.
-  constexpr double kRimShrink = 1e-5;
   return point + (patch.centre - point) * kRimShrink;
 }
 
 Vec3 SampleCosineDirection(const Vec3& t, const Vec3& b, const Vec3& n, double u, double v) {
   const double r = std::sqrt(u);
-  // Single-precision trigonometry: twice as fast, and Embree traces in single precision anyway.
-  const float phi = static_cast<float>(2 * std::numbers::pi * v);
   const double z = std::sqrt(std::max(0.0, 1 - u));
-  return t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * z;
+  double c, s;
+  UnitCircle(v, &c, &s);
+  return t * (r * c) + b * (r * s) + n * z;
 }
 
 ShotSampler::ShotSampler(const RaySampler& sampler, const Patch& shooter, uint64_t shot_key)
@@ -80,6 +167,52 @@ RaySample ShotSampler::Sample(uint64_t index) const {
     }
   }
   return {};
+}
+
+void ShotSampler::SampleBlock(uint64_t first, int count, RayBlock* block) const {
+  block->count = count;
+  if (sampler_.kind_ == SamplerKind::kGrid) {
+    for (int i = 0; i < count; ++i) {
+      const RaySample ray = sampler_.GridSample(shooter_, tangent_, bitangent_, first + i);
+      block->origin_x[i] = ray.origin.x;
+      block->origin_y[i] = ray.origin.y;
+      block->origin_z[i] = ray.origin.z;
+      block->direction_x[i] = ray.direction.x;
+      block->direction_y[i] = ray.direction.y;
+      block->direction_z[i] = ray.direction.z;
+      block->weight[i] = ray.weight;
+    }
+    return;
+  }
+  alignas(64) double uniforms[4][RayBlock::kSize];
+  double* const u[4] = {uniforms[0], uniforms[1], uniforms[2], uniforms[3]};
+  if (sampler_.kind_ == SamplerKind::kSobol) {
+    sobol_.Points(static_cast<uint32_t>(first), count, u);
+  } else {
+    for (int i = 0; i < count; ++i) {
+      const CounterRng rng(HashWords(shot_key_, first + i));
+      for (uint32_t d = 0; d < 4; ++d) u[d][i] = rng.Uniform(d);
+    }
+  }
+  for (int i = 0; i < count; ++i) block->weight[i] = 1;
+  MapUniforms(u, block);
+}
+
+void ShotSampler::MapUniforms(double* const u[4], RayBlock* block) const {
+  const int n = block->count;
+  const auto& p = shooter_.corners;
+  const Vec3& c = shooter_.centre;
+  const double split = triangle_split_;
+  alignas(64) double wa[RayBlock::kSize], wb[RayBlock::kSize], wc[RayBlock::kSize];
+  TriangleWeights(split, u[0], u[1], n, wa, wb, wc);
+  PatchPointCoordinate(p[0].x, p[1].x, p[2].x, p[2].x, p[3].x, c.x, split, u[0], wa, wb, wc, n,
+                       block->origin_x);
+  PatchPointCoordinate(p[0].y, p[1].y, p[2].y, p[2].y, p[3].y, c.y, split, u[0], wa, wb, wc, n,
+                       block->origin_y);
+  PatchPointCoordinate(p[0].z, p[1].z, p[2].z, p[2].z, p[3].z, c.z, split, u[0], wa, wb, wc, n,
+                       block->origin_z);
+  CosineDirections(tangent_, bitangent_, shooter_.normal, u[2], u[3], n, block->direction_x,
+                   block->direction_y, block->direction_z);
 }
 
 RaySampler::RaySampler(SamplerKind kind, uint64_t seed, double grid_step_degrees)

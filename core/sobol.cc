@@ -38,26 +38,32 @@ constexpr DirectionTable MakeDirections() {
   return v;
 }
 
-// Direction numbers stored bit-reversed (bit k of the table is the coefficient of 2^-(k+1)).
-constexpr DirectionTable MakeReversedDirections() {
-  DirectionTable v = MakeDirections();
-  for (auto& dim : v) {
-    for (uint32_t& x : dim) {
-      uint32_t r = 0;
-      for (int bit = 0; bit < 32; ++bit) r |= ((x >> bit) & 1u) << (31 - bit);
-      x = r;
-    }
+constexpr DirectionTable kDirections = MakeDirections();
+
+// kPrefixXor[d][j] = kDirections[d][0] ^ ... ^ kDirections[d][j]: going from index k to k + 1
+// flips bits 0..ctz(k + 1) of the index, so the point's bits change by this prefix.
+constexpr DirectionTable MakePrefixXor() {
+  DirectionTable p = kDirections;
+  for (auto& dim : p) {
+    for (int k = 1; k < 32; ++k) dim[k] ^= dim[k - 1];
   }
-  return v;
+  return p;
 }
 
-constexpr DirectionTable kReversedDirections = MakeReversedDirections();
+constexpr DirectionTable kPrefixXor = MakePrefixXor();
 
-inline uint32_t ReverseBits(uint32_t x) {
-  x = __builtin_bswap32(x);
-  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
-  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
-  return ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+// The unscrambled bits of point `index`: the XOR of the direction numbers of its set bits.
+std::array<uint32_t, ScrambledSobol4::kDimensions> PointBits(uint32_t index) {
+  static_assert(ScrambledSobol4::kDimensions == 4);
+  uint32_t x0 = 0, x1 = 0, x2 = 0, x3 = 0;  // registers, not an array: this loop is hot
+  for (uint32_t bits = index; bits != 0; bits &= bits - 1) {
+    const int bit = __builtin_ctz(bits);
+    x0 ^= kDirections[0][bit];
+    x1 ^= kDirections[1][bit];
+    x2 ^= kDirections[2][bit];
+    x3 ^= kDirections[3][bit];
+  }
+  return {x0, x1, x2, x3};
 }
 
 }  // namespace
@@ -69,20 +75,19 @@ ScrambledSobol4::ScrambledSobol4(uint64_t seed) {
 }
 
 std::array<double, ScrambledSobol4::kDimensions> ScrambledSobol4::Point(uint32_t index) const {
-  static_assert(kDimensions == 4);
-  uint32_t x0 = 0, x1 = 0, x2 = 0, x3 = 0;  // registers, not an array: this loop is hot
-  for (uint32_t bits = index; bits != 0; bits &= bits - 1) {
-    const int bit = __builtin_ctz(bits);
-    x0 ^= kReversedDirections[0][bit];
-    x1 ^= kReversedDirections[1][bit];
-    x2 ^= kReversedDirections[2][bit];
-    x3 ^= kReversedDirections[3][bit];
+  const auto x = PointBits(index);
+  return {double(x[0] ^ dim_seeds_[0]) * 0x1.0p-32, double(x[1] ^ dim_seeds_[1]) * 0x1.0p-32,
+          double(x[2] ^ dim_seeds_[2]) * 0x1.0p-32, double(x[3] ^ dim_seeds_[3]) * 0x1.0p-32};
+}
+
+void ScrambledSobol4::Points(uint32_t first, int count, double* const u[kDimensions]) const {
+  auto x = PointBits(first);
+  for (int i = 0; i < count; ++i) {
+    for (int d = 0; d < kDimensions; ++d) u[d][i] = double(x[d] ^ dim_seeds_[d]) * 0x1.0p-32;
+    const uint32_t next = first + static_cast<uint32_t>(i) + 1;
+    const int flipped = next == 0 ? 31 : __builtin_ctz(next);  // 2^32 wraps to 0: all bits clear
+    for (int d = 0; d < kDimensions; ++d) x[d] ^= kPrefixXor[d][flipped];
   }
-  // The table is bit-reversed, so reverse back before the digital shift.
-  return {double(ReverseBits(x0) ^ dim_seeds_[0]) * 0x1.0p-32,
-          double(ReverseBits(x1) ^ dim_seeds_[1]) * 0x1.0p-32,
-          double(ReverseBits(x2) ^ dim_seeds_[2]) * 0x1.0p-32,
-          double(ReverseBits(x3) ^ dim_seeds_[3]) * 0x1.0p-32};
 }
 
 }  // namespace radfarm

@@ -25,6 +25,11 @@ class ScrambledSobol4 {
   // The index-th point, each coordinate in [0, 1).
   std::array<double, kDimensions> Point(uint32_t index) const;
 
+  // Points first, first + 1, ..., first + count - 1 (indices wrap at 2^32, as Point's do), the same
+  // values as Point's, coordinate d of point first + i in u[d][i]. One XOR per coordinate per point
+  // instead of one per set bit of the index.
+  void Points(uint32_t first, int count, double* const u[kDimensions]) const;
+
  private:
   std::array<uint32_t, kDimensions> dim_seeds_;
 };
