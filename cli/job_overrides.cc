@@ -1,6 +1,7 @@
 #include "cli/job_overrides.h"
 
 #include <CLI/CLI.hpp>
+#include <limits>
 
 #include "cli/option_checks.h"
 
@@ -24,6 +25,12 @@ void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
           "Largest patch edge in scene units; triangles up to sqrt(2) times it (default: scene "
           "diagonal / 40)")
       ->check(PositiveReal());
+  command
+      ->add_option("--max-memory", overrides->max_memory,
+                   "Refuse a job whose solve would need more memory than this, e.g. 8G or 512M "
+                   "(default: this machine's physical memory)")
+      ->transform(CLI::AsSizeValue(false))
+      ->check(CLI::Range(uint64_t{1}, std::numeric_limits<uint64_t>::max()));
 }
 
 Status ApplyOverrides(const JobOverrides& overrides, Job* job) {
@@ -34,6 +41,7 @@ Status ApplyOverrides(const JobOverrides& overrides, Job* job) {
   if (overrides.rays) s.max_rays = *overrides.rays;
   if (overrides.seconds) s.max_seconds = *overrides.seconds;
   if (overrides.patch_size) job->mesh.patch_size = *overrides.patch_size;
+  if (overrides.max_memory) job->mesh.max_memory = *overrides.max_memory;
   if (overrides.sampler && !ParseSamplerName(*overrides.sampler, &s.sampler)) {
     return Error{"--sampler: unknown sampler '" + *overrides.sampler +
                  "' (expected grid, random or sobol)"};

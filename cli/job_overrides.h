@@ -24,9 +24,11 @@ struct JobOverrides {
   std::optional<double> seconds;
   std::optional<std::string> sampler;
   std::optional<double> patch_size;
+  std::optional<uint64_t> max_memory;  // bytes; the machine's memory when unset
 };
 
-// Adds --seed, --tolerance, --rays, --seconds, --sampler and --patch-size (not --threads).
+// Adds --seed, --tolerance, --rays, --seconds, --sampler, --patch-size and --max-memory (not
+// --threads).
 void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides);
 
 // Applies the overrides on top of the job file's settings. Errors name the option.

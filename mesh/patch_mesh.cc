@@ -10,6 +10,7 @@
 #include "mesh/clean_faces.h"
 #include "mesh/contact_cut.h"
 #include "mesh/hidden_faces.h"
+#include "mesh/memory_estimate.h"
 #include "mesh/polygon_split.h"
 #include "mesh/surfaces.h"
 
@@ -116,6 +117,17 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
     std::ostringstream out;
     out << scene.path << ": patch size " << pm.patch_size_ << " would make over " << kMaxPatches
         << " patches";
+    return Error{out.str()};
+  }
+  const uint64_t memory_limit =
+      settings.max_memory > 0 ? settings.max_memory : PhysicalMemoryBytes();
+  if (memory_limit > 0 && EstimatedSolveBytes(piece_count) > memory_limit) {
+    std::ostringstream out;
+    out << scene.path << ": " << piece_count << " patches (patch size " << pm.patch_size_
+        << ") need about " << FormatMegabytes(EstimatedSolveBytes(piece_count))
+        << " of memory, more than the limit of " << FormatMegabytes(memory_limit)
+        << (settings.max_memory > 0 ? " (--max-memory)" : " (this machine's memory)")
+        << "; use a larger patch size";
     return Error{out.str()};
   }
 

@@ -1,6 +1,8 @@
 // Bad input to `radfarm render`: a one-line error naming the file and the line or key, exit code 2.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "cli/exit_codes.h"
 #include "testing/child_process.h"
 #include "testing/temp_dir.h"
@@ -101,6 +103,31 @@ TEST(RenderUsageTest, UnwritableOutputDirectoryIsAFailure) {
                              "--out", blocker + "/sub", "-q"});
   EXPECT_EQ(r.exit_code, kExitFailure);
   EXPECT_NE(r.err.find(blocker), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace radfarm
+
+namespace radfarm {
+namespace {
+
+// A job too large for the memory limit is refused before meshing, with the estimate and the limit.
+TEST(RenderMemoryLimitTest, AJobOverTheLimitIsRefusedWithTheEstimateAndTheLimit) {
+  testing::TempDir out;
+  const std::string cornell = RADFARM_SOURCE_DIR "/scenes/cornell-box.obj";
+  auto r = testing::RunCommand({RADFARM_CLI_PATH, "render", cornell, "--out", out.path(),
+                                "--patch-size", "5", "--max-memory", "100M"});
+  EXPECT_EQ(r.exit_code, kExitBadInput) << r.err;
+  // The estimate is the mesher's count before welding: 90,547 pieces for 88,747 patches.
+  EXPECT_NE(r.err.find("cornell-box.obj: 90547 patches (patch size 5) need about 196 MB of "
+                       "memory, more than the limit of 100 MB (--max-memory)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(std::filesystem::is_empty(out.path()));
+  r = testing::RunCommand(
+      {RADFARM_CLI_PATH, "render", cornell, "--out", out.path(), "--max-memory", "lots"});
+  EXPECT_EQ(r.exit_code, kExitBadInput) << r.err;
+  EXPECT_NE(r.err.find("--max-memory"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -151,6 +151,14 @@ TEST(PatchMeshTest, ExpectedFailuresAreErrors) {
 
   const std::string too_many = PatchMesh::Build(SceneOf({kFloor}), {1e-4}, nullptr).error();
   EXPECT_EQ(too_many, "scenes/test.obj: patch size 0.0001 would make over 8388608 patches");
+
+  MeshSettings limited;
+  limited.patch_size = 0.01;
+  limited.max_memory = 64 << 20;
+  // 400 x 400 patches: 96 MiB + 1152 bytes each.
+  EXPECT_EQ(PatchMesh::Build(SceneOf({kFloor}), limited, nullptr).error(),
+            "scenes/test.obj: 160000 patches (patch size 0.01) need about 272 MB of memory, more "
+            "than the limit of 64 MB (--max-memory); use a larger patch size");
 }
 
 TEST(PatchMeshTest, DuplicateFacesGetTheirOwnVerticesQuietly) {
