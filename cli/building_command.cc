@@ -82,7 +82,7 @@ int RunBuilding(const BuildingOptions& options) {
     return kExitFailure;
   }
   const scenegen::BuildingCounts counts = scenegen::CountBuilding(params);
-  std::printf("wrote %s: %lld rooms, %lld doors, %lld lights, %zu faces\n", written->c_str(),
+  std::printf("wrote %s (rooms %lld, doors %lld, lights %lld, faces %zu)\n", written->c_str(),
               static_cast<long long>(counts.rooms), static_cast<long long>(counts.doors),
               static_cast<long long>(counts.lights), model->faces().size());
   return kExitOk;
