@@ -16,12 +16,12 @@ using testing::ReadFile;
 using testing::RunCommand;
 using testing::TempDir;
 
-testing::CommandResult Building(std::vector<std::string> args) {
+testing::CommandResult RunBuildingCommand(std::vector<std::string> args) {
   args.insert(args.begin(), {RADFARM_CLI_PATH, "building"});
   return RunCommand(args);
 }
 
-double JsonNumber(const std::string& json, const std::string& key) {
+double StatsValue(const std::string& json, const std::string& key) {
   const size_t at = json.find("\"" + key + "\":");
   if (at == std::string::npos) return NAN;
   return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
@@ -29,23 +29,24 @@ double JsonNumber(const std::string& json, const std::string& key) {
 
 TEST(BuildingCommandTest, WritesAJobThatRendersClosed) {
   TempDir dir;
-  const auto made = Building({"--out", dir.path(), "--rooms", "2x1", "--room-size", "3",
-                              "--windows", "--patch-size", "0.5"});
+  const auto made = RunBuildingCommand({"--out", dir.path(), "--rooms", "2x1", "--room-size", "3",
+                                        "--windows", "--patch-size", "0.5"});
   ASSERT_EQ(made.exit_code, kExitOk) << made.err;
   EXPECT_NE(made.out.find("(rooms 2, doors 1, lights 10"), std::string::npos) << made.out;
   const auto render = RunCommand({RADFARM_CLI_PATH, "render", dir.File("building.toml"), "--out",
                                   dir.File("out"), "--tolerance", "0.02", "-q"});
   ASSERT_EQ(render.exit_code, kExitOk) << render.err;
   const std::string stats = ReadFile(dir.File("out/stats.json"));
-  EXPECT_GT(JsonNumber(stats, "rays"), 1e6) << stats;
-  EXPECT_EQ(JsonNumber(stats, "escaped_rays"), 0) << stats;
-  EXPECT_EQ(JsonNumber(stats, "patch_size"), 0.5) << stats;
+  EXPECT_GT(StatsValue(stats, "rays"), 1e6) << stats;
+  EXPECT_EQ(StatsValue(stats, "escaped_rays"), 0) << stats;
+  EXPECT_EQ(StatsValue(stats, "patch_size"), 0.5) << stats;
 }
 
 TEST(BuildingCommandTest, SameArgumentsSameFiles) {
   TempDir a, b;
   for (const TempDir* dir : {&a, &b}) {
-    ASSERT_EQ(Building({"--out", dir->path(), "--floors", "2", "--seed", "4"}).exit_code, kExitOk);
+    ASSERT_EQ(RunBuildingCommand({"--out", dir->path(), "--floors", "2", "--seed", "4"}).exit_code,
+              kExitOk);
   }
   for (const char* file : {"building.obj", "building.mtl", "building.toml"}) {
     EXPECT_FALSE(ReadFile(a.File(file)).empty()) << file;
@@ -67,11 +68,11 @@ TEST(BuildingCommandTest, RefusesBadArgumentsNamingThem) {
   for (const auto& [extra, word] : cases) {
     std::vector<std::string> args = {"--out", dir.path()};
     args.insert(args.end(), extra.begin(), extra.end());
-    const auto r = Building(args);
+    const auto r = RunBuildingCommand(args);
     EXPECT_EQ(r.exit_code, kExitBadInput) << extra[0] << " " << extra[1];
     EXPECT_NE(r.err.find(word), std::string::npos) << r.err;
   }
-  const auto missing = Building({"--rooms", "2x2"});
+  const auto missing = RunBuildingCommand({"--rooms", "2x2"});
   EXPECT_EQ(missing.exit_code, kExitBadInput);
   EXPECT_NE(missing.err.find("--out"), std::string::npos) << missing.err;
 }
