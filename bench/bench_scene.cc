@@ -1,10 +1,15 @@
 #include "bench/bench_scene.h"
 
+#include <filesystem>
 #include <stdexcept>
 #include <vector>
 
+#include <unistd.h>
+
 #include "bench/stopwatch.h"
 #include "input/input_scene.h"
+#include "scenegen/building.h"
+#include "scenegen/obj_writer.h"
 
 namespace radfarm::bench {
 
@@ -23,6 +28,27 @@ BenchScene LoadBenchScene(const std::string& name, const std::string& path, doub
   scene.patch_size = patch_size;
   scene.mesh = std::make_unique<PatchMesh>(std::move(mesh).value());
   scene.load_seconds = clock.Seconds();
+  return scene;
+}
+
+BenchScene LoadBuildingBenchScene(const std::string& name, const scenegen::BuildingParams& params,
+                                  double patch_size) {
+  Result<scenegen::SceneModel> model = scenegen::GenerateBuilding(params);
+  if (!model.ok()) throw std::runtime_error(model.error());
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("radfarm-bench-" + name + "-" + std::to_string(::getpid()));
+  const Result<std::string> written = scenegen::WriteScene(*model, dir.string(), name, {});
+  if (!written.ok()) throw std::runtime_error(written.error());
+  struct RemoveDir {
+    std::filesystem::path dir;
+    ~RemoveDir() {
+      std::error_code ignored;
+      std::filesystem::remove_all(dir, ignored);
+    }
+  } remove{dir};
+  BenchScene scene = LoadBenchScene(name, (dir / (name + ".obj")).string(), patch_size);
+  scene.path = "radfarm building --floors " + std::to_string(params.floors) + " --rooms " +
+               std::to_string(params.rooms_x) + "x" + std::to_string(params.rooms_z);
   return scene;
 }
 

@@ -6,6 +6,7 @@
 
 #include "core/patch_scene.h"
 #include "mesh/patch_mesh.h"
+#include "scenegen/building_params.h"
 
 namespace radfarm::bench {
 
@@ -22,5 +23,10 @@ struct BenchScene {
 // Loads and meshes `path` with the given patch size (0: automatic). Throws std::runtime_error with
 // the loader's or mesher's message on failure.
 BenchScene LoadBenchScene(const std::string& name, const std::string& path, double patch_size);
+
+// The procedural building (scenegen/) as `radfarm building` writes it: generated, written to a
+// temporary directory, loaded and meshed like any OBJ; the files are removed afterwards.
+BenchScene LoadBuildingBenchScene(const std::string& name, const scenegen::BuildingParams& params,
+                                  double patch_size);
 
 }  // namespace radfarm::bench

@@ -38,21 +38,29 @@ constexpr double kBigCornellPatchSize = 5;
 // (the automatic 1024 rays per patch would store 10^8 rays), in batches of a few rays from round 1
 // on, as a big scene's many weak shooters give.
 constexpr uint64_t kBigCornellShotRays = uint64_t{1} << 20;
+// The generated building (scenegen/) at its job files' patch size: 2x2 rooms (6,834 patches) in
+// --quick runs, 6x6 (60,887) otherwise, with the big box's shot_rays.
+constexpr double kBuildingPatchSize = 0.25;
 
-// Section 2 (the ray loop against raw Embree) on the Cornell box and its 10^5-patch version, on
-// 1 thread and on all cores.
+// Section 2 (the ray loop against raw Embree) on the Cornell box, its 10^5-patch version and the
+// generated building, on 1 thread and on all cores.
 std::vector<RawThroughput> MeasureRayLoop(const BenchScene& cornell, const BenchOptions& options) {
   const BenchScene big =
       LoadBenchScene("cornell-box", options.scenes_dir + "/cornell-box.obj", kBigCornellPatchSize);
   SolverSettings big_settings;
   big_settings.shot_rays = kBigCornellShotRays;
+  scenegen::BuildingParams building_params;
+  building_params.rooms_x = building_params.rooms_z = options.quick ? 2 : 6;
+  const BenchScene building =
+      LoadBuildingBenchScene("building", building_params, kBuildingPatchSize);
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   std::vector<unsigned> thread_counts{1};
   if (cores > 1) thread_counts.push_back(cores);
   const int repetitions = options.quick ? 1 : 5;
   std::vector<RawThroughput> out;
   for (const auto& [scene, settings] :
-       {std::pair{&cornell, SolverSettings{}}, std::pair{&big, big_settings}}) {
+       {std::pair{&cornell, SolverSettings{}}, std::pair{&big, big_settings},
+        std::pair{&building, big_settings}}) {
     for (unsigned threads : thread_counts) {
       out.push_back(MeasureRawThroughput(*scene, settings, 3, repetitions, threads));
     }

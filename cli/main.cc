@@ -4,6 +4,7 @@
 //   pause resume log fetch      (docs/CONTROL.md; farm_command.h)
 //   agents
 //   secret new                  a fresh farm secret (secret_command.h)
+//   building                    a procedural building scene (building_command.h, scenegen/)
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <string>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "cli/agents_command.h"
+#include "cli/building_command.h"
 #include "cli/control_client.h"
 #include "cli/exit_codes.h"
 #include "cli/fetch_command.h"
@@ -64,6 +66,8 @@ int main(int argc, char** argv) {
   commands.emplace_back(AddAgentsCommand(app, &agents), [&] { return RunAgents(agents, control); });
   SecretOptions secret;
   commands.emplace_back(AddSecretCommand(app, &secret), [&] { return RunSecretNew(secret); });
+  BuildingOptions building;
+  commands.emplace_back(AddBuildingCommand(app, &building), [&] { return RunBuilding(building); });
 
   try {
     app.parse(argc, argv);

@@ -192,6 +192,88 @@ std::vector<Loop> Loops(const std::vector<Segment>& segments, double tol) {
   return loops;
 }
 
+// Whether three or more segment ends meet at one point: solids side by side (a wall's segments and
+// the lintels between them) share edges there, and Loops' first-come chaining can then walk from
+// one solid's outline into its neighbour's and close no loop, or the wrong one.
+bool Branches(const std::vector<Segment>& segments, double tol) {
+  std::vector<Vec3> ends;
+  for (const Segment& s : segments) ends.insert(ends.end(), {s.a, s.b});
+  for (size_t i = 0; i < ends.size(); ++i) {
+    int meeting = 0;
+    for (const Vec3& e : ends) meeting += Length(e - ends[i]) <= tol;
+    if (meeting > 2) return true;
+  }
+  return false;
+}
+
+// The bounded faces of the segments' planar arrangement (in the plane with unit normal n), each
+// traced once: from every segment in each direction, taking at every corner the sharpest turn to
+// one side walks around the smallest face on that side; a walk that turns the other way overall is
+// the outline of the whole arrangement and is dropped.
+std::vector<Loop> FaceLoops(const std::vector<Segment>& segments, const Vec3& n, double tol) {
+  // Corners: segment ends merged within tol, in order of first appearance.
+  std::vector<Vec3> corners;
+  auto corner_of = [&](const Vec3& p) {
+    for (size_t i = 0; i < corners.size(); ++i) {
+      if (Length(corners[i] - p) <= tol) return i;
+    }
+    corners.push_back(p);
+    return corners.size() - 1;
+  };
+  std::vector<std::pair<size_t, size_t>> ends;  // per segment, its two corners
+  for (const Segment& s : segments) {
+    const size_t a = corner_of(s.a);
+    ends.emplace_back(a, corner_of(s.b));
+  }
+  std::vector<Loop> loops;
+  std::vector<std::vector<size_t>> seen;  // each loop's sorted segments
+  for (size_t s = 0; s < segments.size(); ++s) {
+    for (const bool reverse : {false, true}) {
+      for (const double side : {1.0, -1.0}) {  // sharpest turn left, then right
+        size_t from = reverse ? ends[s].second : ends[s].first;
+        size_t at = reverse ? ends[s].first : ends[s].second;
+        const size_t start = from;
+        Loop loop{{corners[from]}, {s}};
+        size_t last = s;
+        bool closed = false;
+        for (size_t steps = 0; steps < segments.size() && !closed; ++steps) {
+          if (at == start) {
+            closed = true;
+            break;
+          }
+          loop.corners.push_back(corners[at]);
+          const Vec3 in = corners[at] - corners[from];
+          size_t best = segments.size();
+          double best_turn = -INFINITY;
+          for (size_t t = 0; t < segments.size(); ++t) {
+            if (t == last || (ends[t].first != at && ends[t].second != at)) continue;
+            const size_t next = ends[t].first == at ? ends[t].second : ends[t].first;
+            const Vec3 out = corners[next] - corners[at];
+            const double turn = side * std::atan2(Dot(n, Cross(in, out)), Dot(in, out));
+            if (turn > best_turn) {
+              best_turn = turn;
+              best = t;
+            }
+          }
+          if (best == segments.size()) break;  // an open end
+          loop.segments.push_back(best);
+          last = best;
+          from = at;
+          at = ends[best].first == at ? ends[best].second : ends[best].first;
+        }
+        // Turning left all round goes counter-clockwise about n around a bounded face.
+        if (!closed || side * Dot(VectorArea(loop.corners), n) <= 0) continue;
+        std::vector<size_t> key = loop.segments;
+        std::sort(key.begin(), key.end());
+        if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
+        seen.push_back(std::move(key));
+        loops.push_back(std::move(loop));
+      }
+    }
+  }
+  return loops;
+}
+
 // The part of a convex polygon where Dot(m, x - c) * side >= 0 (Sutherland-Hodgman).
 std::vector<Vec3> ClipHalfSpace(const std::vector<Vec3>& polygon, const Vec3& m, const Vec3& c,
                                 double side) {
@@ -243,7 +325,9 @@ std::vector<std::vector<Footprint>> FindFootprints(const std::vector<CleanFace>&
       }
       segments.push_back(edge);
     }
-    for (Loop& loop : Loops(segments, tol)) {
+    std::vector<Loop> loops =
+        Branches(segments, tol) ? FaceLoops(segments, face.normal, tol) : Loops(segments, tol);
+    for (Loop& loop : loops) {
       std::vector<Vec3>& c = loop.corners;
       if (Area(c, face.normal) < 0) std::reverse(c.begin(), c.end());
       RemoveRedundantCorners(tol, &c);

@@ -38,7 +38,8 @@ using Footprint = std::vector<Vec3>;  // convex, counter-clockwise about the fac
 // The largest gap under a covering sheet, as a share of the square root of its area.
 inline constexpr double kSheetGap = 0.02;
 
-// For each face, the footprints of what stands on it.
+// For each face, the footprints of what stands on it; solids side by side whose outlines share
+// edges there (a wall's parts and the lintels between them, on a ceiling) each give their own.
 std::vector<std::vector<Footprint>> FindFootprints(const std::vector<CleanFace>& faces, double tol);
 
 // For each face, the outlines of the sheets covering it, projected onto it.
