@@ -143,7 +143,7 @@ std::optional<Assignment> RoundScheduler::NextAssignment(AgentId agent_id, TimeP
   }
   if (const auto index = PopFresh()) return Issue(*index, agent_id, agent, now, false);
   if (const auto index = PopOverdueFor(agent_id)) return Issue(*index, agent_id, agent, now, true);
-  if (const auto taken = TakeOverFor(agent_id, agent)) {
+  if (const auto taken = TakeOverFor(agent_id, agent, now)) {
     const AttemptRecord& old = round_->attempts.at(taken->second);
     const Takeover from{old.agent, MakeBatchId(round_->plan.round, taken->first), taken->second};
     Assignment a = Issue(taken->first, agent_id, agent, now, false);
@@ -382,28 +382,40 @@ std::optional<uint32_t> RoundScheduler::PopOverdueFor(AgentId agent) {
   return std::nullopt;
 }
 
-double RoundScheduler::FinishEstimate(const AgentState& agent) const {
-  return agent.throughput.ExpectedSeconds(agent.live_rays, options_);
+double RoundScheduler::FinishEstimate(const AgentState& agent, TimePoint now) const {
+  if (agent.live.empty()) return 0;
+  // Its newest lease was expected done after all it held then; time since has run down that
+  // work, but an agent running late still needs at least that batch's time.
+  const auto& [attempt_id, index] = *agent.live.rbegin();
+  const double left =
+      std::chrono::duration<double>(round_->attempts.at(attempt_id).expected_done - now).count();
+  return std::max(
+      left, agent.throughput.ExpectedSeconds(round_->plan.batches[index].ray_count, options_));
 }
 
 std::optional<std::pair<uint32_t, AttemptId>> RoundScheduler::TakeOverFor(AgentId agent_id,
-                                                                          const AgentState& agent) {
+                                                                          const AgentState& agent,
+                                                                          TimePoint now) {
   const AgentState* victim = nullptr;
   double victim_finish = 0;
   for (const auto& [id, other] : agents_) {
     if (id == agent_id || other.live.empty()) continue;
-    const double finish = FinishEstimate(other);
+    const double finish = FinishEstimate(other, now);
     if (victim == nullptr || finish > victim_finish) {
       victim = &other;
       victim_finish = finish;
     }
   }
   if (victim == nullptr) return std::nullopt;
-  // Its newest lease is the last it would start.
+  // Its newest lease is the last it would start. Moving it pays when this agent would finish it
+  // clearly before the victim would start it: by a quarter of the victim's time for it, which
+  // covers the round trip and keeps two equal agents from trading a batch about to start.
   const auto& [attempt_id, index] = *victim->live.rbegin();
   const uint32_t rays = round_->plan.batches[index].ray_count;
-  const double mine = agent.throughput.ExpectedSeconds(agent.live_rays + rays, options_);
-  if (mine >= victim_finish) return std::nullopt;
+  const double mine = FinishEstimate(agent, now) + agent.throughput.ExpectedSeconds(rays, options_);
+  const double start_there =
+      victim_finish - 0.25 * victim->throughput.ExpectedSeconds(rays, options_);
+  if (mine >= start_there) return std::nullopt;
   if (LiveAttempts(round_->batches[index]) != 1) return std::nullopt;
   return std::make_pair(index, attempt_id);
 }

@@ -231,13 +231,14 @@ class RoundScheduler {
   // The queue is empty: the newest live lease of the agent expected to finish last, when `agent`
   // would finish it sooner; returns its batch index and the attempt it replaces.
   std::optional<std::pair<uint32_t, AttemptId>> TakeOverFor(AgentId agent_id,
-                                                            const AgentState& agent);
+                                                            const AgentState& agent, TimePoint now);
   // The end game: for an idle agent, the running lease (some agent's oldest) furthest past its
   // expected time, if at least end_game_copy_factor times it, and its batch may have another live
   // attempt.
   std::optional<uint32_t> EndGameCopyFor(AgentId agent_id, const AgentState& agent, TimePoint now);
-  // When the agent's held work is done, in seconds from now.
-  double FinishEstimate(const AgentState& agent) const;
+  // When the agent's held work is done, in seconds from now: its newest lease's expected time,
+  // at least that batch's time at its speed; 0 when it holds nothing.
+  double FinishEstimate(const AgentState& agent, TimePoint now) const;
   // OnResult without the measurement: `measured` gets the rays and issue time to measure.
   ResultVerdict Record(AgentId agent_id, BatchId batch_id, AttemptId attempt_id, BatchResult result,
                        TimePoint now, uint64_t* rays, TimePoint* issued);
