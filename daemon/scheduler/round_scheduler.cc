@@ -148,6 +148,7 @@ std::optional<Assignment> RoundScheduler::NextAssignment(AgentId agent_id, TimeP
     const Takeover from{old.agent, MakeBatchId(round_->plan.round, taken->first), taken->second};
     Assignment a = Issue(taken->first, agent_id, agent, now, false);
     EndAttempt(taken->second, AttemptState::kTakenOver);
+    round_->batches[taken->first].taken_over = true;
     ++totals_.takeovers;
     a.taken_from = from;
     return a;
@@ -416,7 +417,8 @@ std::optional<std::pair<uint32_t, AttemptId>> RoundScheduler::TakeOverFor(AgentI
   const double start_there =
       victim_finish - 0.25 * victim->throughput.ExpectedSeconds(rays, options_);
   if (mine >= start_there) return std::nullopt;
-  if (LiveAttempts(round_->batches[index]) != 1) return std::nullopt;
+  const BatchSlot& slot = round_->batches[index];
+  if (slot.taken_over || LiveAttempts(slot) != 1) return std::nullopt;
   return std::make_pair(index, attempt_id);
 }
 

@@ -203,6 +203,7 @@ class RoundScheduler {
     BatchState state = BatchState::kQueued;
     bool in_fresh_queue = false;
     bool in_overdue_queue = false;
+    bool taken_over = false;          // moved once already: never again, so takeovers cannot cycle
     std::vector<AttemptId> attempts;  // every attempt issued for it, oldest first
     std::optional<AttemptId> winner;
     BatchResult result;
