@@ -80,9 +80,6 @@ Status Master::Wire() {
   RADFARM_RETURN_IF_ERROR(listener);
   listener_ = std::move(*listener);
   listen_address_ = listener_->address();
-  if (Status s = WriteFileAtomically(config_.ListenAddrPath(), listen_address_ + "\n"); !s) {
-    return Error{s.error()};
-  }
 
   ControlRequests* control = control_.get();
   auto control_server = ControlServer::Listen(
@@ -91,6 +88,11 @@ Status Master::Wire() {
       });
   RADFARM_RETURN_IF_ERROR(control_server);
   control_server_ = std::move(*control_server);
+  // listen.addr last: whoever waits for it (scripts, tests, the README) may use the control
+  // socket at once.
+  if (Status s = WriteFileAtomically(config_.ListenAddrPath(), listen_address_ + "\n"); !s) {
+    return Error{s.error()};
+  }
 
   heartbeat_timer_ = std::make_unique<loop::Timer>(loop_);
   heartbeat_timer_->Start(std::chrono::milliseconds(config_.heartbeat_ms),
