@@ -43,8 +43,10 @@ class IdleAgentTest : public FarmTest {
 
 TEST_F(IdleAgentTest, AUserComingBackMidJobGetsTheMachineBackAndTheJobEndsTheSame) {
   SetUser("idle");
-  StartMaster();
-  StartAgent("steady");
+  // Every round on the agents (none computed on the master), so the job keeps leasing until its
+  // end: a user who comes back in a later round still finds the desk agent holding leases.
+  StartMaster({"--local-round-rays", "0"});
+  StartAgent("steady", {"--slowdown", "3"});
   // Results held 10 x their compute time: the desk agent holds leases most of the time.
   ChildProcess& desk = StartDeskAgent("desk", {"--slowdown", "10"});
   const int64_t id = Submit("cornell-box.toml", kJob);
