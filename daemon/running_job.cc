@@ -96,13 +96,13 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
     runner->phase_ = Phase::kFinished;
     return runner;
   }
+  runner->fold_plan_ = std::make_shared<const RoundPlan>(*plan);
   runner->planned_ = std::move(*plan);
   return runner;
 }
 
 Status RunningJob::StartPlannedRound(scheduler::TimePoint now) {
   if (!planned_) return Error{"job " + std::to_string(id()) + ": no round planned"};
-  fold_plan_ = std::make_shared<const RoundPlan>(*planned_);
   unfolded_.clear();
   Status s = scheduler_.StartRound(std::move(*planned_), now);
   planned_.reset();
@@ -158,18 +158,12 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
                                 bool checkpoint_due, uint32_t batch_rays) {
   RoundOutcome out;
   const double seconds = totals_.seconds + round_seconds;
-  AppliedRound applied;
-  if (fold_plan_ && fold_plan_->round == round.plan.round) {
-    // The round's results were folded in as they came; any the loop thread kept are added now
-    // (the reduction refuses the ones it has).
-    if (!fold_) fold_ = driver_->Reduction(*fold_plan_);
-    for (size_t k = 0; k < round.results.size(); ++k) fold_->Add(k, round.results[k]);
-    applied = driver_->Apply(*fold_plan_, *fold_, seconds);
-    fold_.reset();
-    fold_plan_.reset();
-  } else {  // computed here (RunLocally): all at once
-    applied = driver_->Apply(round.plan, round.results, seconds);
-  }
+  // The round's results were folded in as they came (or, for a round computed here, come all at
+  // once); any the loop thread kept are added now: the reduction refuses the ones it has.
+  if (!fold_) fold_ = driver_->Reduction(*fold_plan_);
+  for (size_t k = 0; k < round.results.size(); ++k) fold_->Add(k, round.results[k]);
+  const AppliedRound applied = driver_->Apply(*fold_plan_, *fold_, seconds);
+  fold_.reset();
   recent_.push_back({round.plan.rays, round_seconds});
   if (recent_.size() > kRecentRounds) recent_.erase(recent_.begin());
   out.record = {id(),
@@ -189,6 +183,7 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
   }
   UpdateTotals();
   if (std::optional<RoundPlan> next = driver_->PlanNext(batch_rays, totals_.seconds)) {
+    fold_plan_ = std::make_shared<const RoundPlan>(*next);  // the worker's copy, for the fold
     out.next = std::move(*next);
   } else {
     out.stop = driver_->stop_reason();

@@ -154,8 +154,8 @@ class RunningJob {
   std::unique_ptr<ThreadPool> pool_;
   std::unique_ptr<RoundDriver> driver_;
   std::shared_ptr<const std::vector<uint8_t>> refined_blob_;
-  // The round being folded in: its plan (a copy the loop thread makes in StartPlannedRound, read
-  // by the worker only after that) and the reduction, begun with the first Fold.
+  // The planned round as the worker folds it in: a copy of the plan it made (the scheduler owns
+  // the loop's), and the reduction, begun with the first Fold or in Reduce.
   std::shared_ptr<const RoundPlan> fold_plan_;
   std::unique_ptr<RoundReduction> fold_;
   std::string refined_hash_;      // hex, the store's key
