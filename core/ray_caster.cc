@@ -30,6 +30,25 @@ void CheckDevice(RTCDevice device, const char* what) {
   }
 }
 
+// An Embree record for a closest-hit query from `o` (relative to the scene centre) along `d`.
+inline void SetRay(float ox, float oy, float oz, float dx, float dy, float dz, RTCRayHit* ray) {
+  RTCRayHit& rh = *ray;
+  rh.ray.org_x = ox;
+  rh.ray.org_y = oy;
+  rh.ray.org_z = oz;
+  rh.ray.dir_x = dx;
+  rh.ray.dir_y = dy;
+  rh.ray.dir_z = dz;
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = INFINITY;
+  rh.ray.time = 0.0f;
+  rh.ray.mask = 0xffffffffu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+}
+
 }  // namespace
 
 RayCaster::RayCaster(const PatchScene& scene) : embree_(std::make_unique<Embree>()) {
@@ -116,21 +135,9 @@ RTCSceneTy* RayCaster::embree_scene() const { return embree_->scene; }
 void RayCaster::PrepareRay(const Vec3& origin, const Vec3& direction, const Vec3& surface_normal,
                            RTCRayHit* ray) const {
   const Vec3 o = origin - centre_ + surface_normal * origin_offset_;
-  RTCRayHit& rh = *ray;
-  rh.ray.org_x = static_cast<float>(o.x);
-  rh.ray.org_y = static_cast<float>(o.y);
-  rh.ray.org_z = static_cast<float>(o.z);
-  rh.ray.dir_x = static_cast<float>(direction.x);
-  rh.ray.dir_y = static_cast<float>(direction.y);
-  rh.ray.dir_z = static_cast<float>(direction.z);
-  rh.ray.tnear = 0.0f;
-  rh.ray.tfar = INFINITY;
-  rh.ray.time = 0.0f;
-  rh.ray.mask = 0xffffffffu;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  SetRay(static_cast<float>(o.x), static_cast<float>(o.y), static_cast<float>(o.z),
+         static_cast<float>(direction.x), static_cast<float>(direction.y),
+         static_cast<float>(direction.z), ray);
 }
 
 RayHit RayCaster::Trace(const Vec3& origin, const Vec3& direction,
@@ -153,21 +160,11 @@ void RayCaster::TraceBlock(const RayBlock& block, const Vec3& surface_normal, Ra
   RTCRayHit rays[RayBlock::kSize];
   const Vec3 lift = surface_normal * origin_offset_;  // as PrepareRay adds it
   for (int i = 0; i < n; ++i) {
-    RTCRayHit& rh = rays[i];
-    rh.ray.org_x = static_cast<float>((block.origin_x[i] - centre_.x) + lift.x);
-    rh.ray.org_y = static_cast<float>((block.origin_y[i] - centre_.y) + lift.y);
-    rh.ray.org_z = static_cast<float>((block.origin_z[i] - centre_.z) + lift.z);
-    rh.ray.dir_x = static_cast<float>(block.direction_x[i]);
-    rh.ray.dir_y = static_cast<float>(block.direction_y[i]);
-    rh.ray.dir_z = static_cast<float>(block.direction_z[i]);
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = INFINITY;
-    rh.ray.time = 0.0f;
-    rh.ray.mask = 0xffffffffu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    SetRay(static_cast<float>((block.origin_x[i] - centre_.x) + lift.x),
+           static_cast<float>((block.origin_y[i] - centre_.y) + lift.y),
+           static_cast<float>((block.origin_z[i] - centre_.z) + lift.z),
+           static_cast<float>(block.direction_x[i]), static_cast<float>(block.direction_y[i]),
+           static_cast<float>(block.direction_z[i]), &rays[i]);
   }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
