@@ -109,6 +109,7 @@ Status Agent::Start() {
   } else {
     StartAttempt();
   }
+  UpdateIdleTimer();  // --exit-when-idle counts from the start, connected or not
   if (systemd_ != nullptr) systemd_->Ready();
   ReportStatus();
   return Ok{};
@@ -221,7 +222,6 @@ void Agent::OnLeasesChanged() {
 void Agent::OnLinkClosed(const LinkClosed& closed) {
   std::unique_ptr<MasterLink> dead = std::move(link_);  // allowed: on_closed is its last act
   heartbeat_timer_->Stop();
-  idle_timer_->Stop();
   if (state_ == State::kStopping) {
     StopLoop();
     return;
@@ -237,6 +237,7 @@ void Agent::OnLinkClosed(const LinkClosed& closed) {
     state_ = State::kPaused;
     LogLine(LogLevel::kDebug, "agent") << "disconnected from " << master_ << " while paused";
     if (may_work_) Resume("idle again while disconnecting");
+    UpdateIdleTimer();
     ReportStatus();
     return;
   }
@@ -264,6 +265,7 @@ void Agent::ScheduleRetry(const std::string& what, const std::string& reason) {
                           << delay.count() << " ms";
   waiting_reason_ = what + " " + master_ + ": " + reason;
   retry_timer_->Start(delay, [this] { StartAttempt(); });
+  UpdateIdleTimer();
   ReportStatus();
 }
 
@@ -305,7 +307,6 @@ void Agent::Pause(const std::string& reason) {
           << " and disconnecting until idle again";
       state_ = State::kPaused;
       heartbeat_timer_->Stop();
-      idle_timer_->Stop();
       // Every lease, queued or running, goes back now: the master requeues them at once. Then
       // the connection ends, so the master leases us nothing while we are paused. It ends
       // without a Close message; either way radfarmd requeues at once what the connection still
@@ -317,6 +318,7 @@ void Agent::Pause(const std::string& reason) {
     }
   }
   state_ = State::kPaused;
+  UpdateIdleTimer();
   ReportStatus();
 }
 
@@ -371,16 +373,31 @@ void Agent::SendHeartbeat() {
   ReportStatus();
 }
 
+// --exit-when-idle counts the time without a lease, whatever the reason: connected with no work,
+// the master unreachable (a batch agent must not hold its allocation until the walltime because
+// the master is gone), or paused by the idle policy. One period runs across reconnects; only a
+// lease stops it.
 void Agent::UpdateIdleTimer() {
-  if (settings_.exit_when_idle_seconds <= 0) return;
-  if (state_ != State::kConnected || runner_->held() > 0) {
+  if (settings_.exit_when_idle_seconds <= 0 || state_ == State::kStopping) return;
+  if (state_ == State::kConnected && runner_->held() > 0) {
     idle_timer_->Stop();
     return;
   }
   if (idle_timer_->active()) return;
   const auto idle =
       milliseconds(static_cast<int64_t>(std::min(settings_.exit_when_idle_seconds * 1000, 1e15)));
-  idle_timer_->Start(idle, [this] { Finish("idle, as --exit-when-idle asked"); });
+  idle_timer_->Start(idle, [this] { OnIdleTimeout(); });
+}
+
+void Agent::OnIdleTimeout() {
+  std::ostringstream reason;
+  reason << "no lease for " << settings_.exit_when_idle_seconds << " s";
+  if (state_ != State::kConnected) {
+    reason << " (" << (waiting_reason_.empty() ? "not connected to " + master_ : waiting_reason_)
+           << ")";
+  }
+  reason << ", as --exit-when-idle asked";
+  Finish(reason.str());
 }
 
 Status Agent::Send(const protocol::Message& message) {

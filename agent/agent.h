@@ -91,6 +91,7 @@ class Agent {
   void OnLeasesChanged();
   void SendHeartbeat();
   void UpdateIdleTimer();
+  void OnIdleTimeout();
   Status Send(const protocol::Message& message);
 
   // Returns the leases held, closes with Close(Shutdown) and stops the loop once that is written.

@@ -26,7 +26,7 @@ struct AgentSettings {
   std::string name;         // the agent's name in the master's logs (IsValidAgentName)
   loop::LogLevel log_level = loop::LogLevel::kInfo;
   double slowdown = 1;                // >= 1: results are held (slowdown - 1) x their compute time
-  double exit_when_idle_seconds = 0;  // > 0: exit after this long connected with no lease; 0: never
+  double exit_when_idle_seconds = 0;  // > 0: exit after this long with no lease (connected or not)
   // The config file's [idle] table. Absent, or enabled = false: work whenever the master has work.
   std::optional<idle::IdleConfig> idle;
   // Non-empty: the idle policy reads the user's activity from this file ("idle" or "busy", see

@@ -35,7 +35,7 @@ void AddFlags(CLI::App& app, Flags* f) {
                  "F >= 1: hold each result (F-1) x its compute time, to simulate a slower machine")
       ->check(CLI::Range(1.0, 1e9));
   app.add_option("--exit-when-idle", f->exit_when_idle,
-                 "Exit 0 after SECONDS connected with no lease held")
+                 "Exit 0 after SECONDS with no lease held, connected or not (no master reachable)")
       ->check(CLI::PositiveNumber);
   app.add_option("--idle-source", f->idle_source,
                  "For tests and operations: read the user's activity from FILE ('idle' or 'busy') "

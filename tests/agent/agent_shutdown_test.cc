@@ -167,8 +167,10 @@ TEST_F(AgentShutdownTest, DrainWithoutExitRefusesNewLeasesAndStaysConnected) {
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
 }
 
+// The idle period counts from the agent's start, so it is long enough for the agent to connect
+// first (a few milliseconds on loopback) even on a loaded machine.
 TEST_F(AgentShutdownTest, ExitWhenIdleExitsOnceNothingIsHeld) {
-  std::unique_ptr<AgentProcess> agent = StartAgent(1, {"--exit-when-idle", "0.5"});
+  std::unique_ptr<AgentProcess> agent = StartAgent(1, {"--exit-when-idle", "2"});
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
   ExpectClosedWithShutdown();
   EXPECT_NE(agent->Log().find("--exit-when-idle"), std::string::npos) << agent->Log();
@@ -180,17 +182,47 @@ TEST_F(AgentShutdownTest, ExitWhenIdleWaitsForHeldLeases) {
   const std::vector<protocol::BatchAssignmentMsg> leases = Leases(1, 100);
   StartMaster({leases[0]});
   std::unique_ptr<AgentProcess> agent =
-      StartAgent(1, {"--exit-when-idle", "0.2", "--slowdown", "1000000"});
+      StartAgent(1, {"--exit-when-idle", "1", "--slowdown", "1000000"});
   ASSERT_TRUE(agent->WaitForLog("result held for")) << agent->Log();
-  // Many idle periods pass, in heartbeats, while the lease is held; then Cancel frees the agent.
+  // Three idle periods pass, in heartbeats (every 250 ms), while the lease is held; then Cancel
+  // frees the agent.
   const size_t beats = master_->Snapshot().All<protocol::HeartbeatMsg>().size();
   ASSERT_TRUE(master_->WaitFor([beats](const Record& r) {
-    return r.All<protocol::HeartbeatMsg>().size() >= beats + 10;
+    return r.All<protocol::HeartbeatMsg>().size() >= beats + 12;
   })) << agent->Log();
   EXPECT_TRUE(agent->Running()) << agent->Log();
   master_->Send(protocol::CancelMsg{1});
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
   ExpectClosedWithShutdown();
+}
+
+// Issue 19: `--exit-when-idle 2` against an unreachable master still ran after 8 s, so a batch
+// agent held its allocation until the walltime. Without a master the idle period runs too.
+TEST_F(AgentShutdownTest, ExitWhenIdleExitsWhenNoMasterIsReachable) {
+  const std::string gone = master_->address();
+  master_.reset();  // nobody listens on its port any more
+  AgentProcess agent(AgentArgs(gone, dir_.File("key"), 1, {"--exit-when-idle", "1"}));
+  EXPECT_EQ(agent.WaitExit(), 0) << agent.Log();
+  const std::string log = agent.Log();
+  EXPECT_NE(log.find("no lease for 1 s (cannot connect to " + gone), std::string::npos) << log;
+  EXPECT_NE(log.find("--exit-when-idle"), std::string::npos) << log;
+  EXPECT_EQ(log.find("connected to " + gone + " as "), std::string::npos) << log;
+}
+
+// The master goes away while the agent holds a lease: the lease is dropped with the connection,
+// and the idle period that starts then ends the agent although it never reconnects.
+TEST_F(AgentShutdownTest, ExitWhenIdleExitsWhenTheMasterGoesAwayForGood) {
+  const std::vector<protocol::BatchAssignmentMsg> leases = Leases(1, 100);
+  StartMaster({leases[0]});
+  const std::string address = master_->address();
+  std::unique_ptr<AgentProcess> agent =
+      StartAgent(1, {"--exit-when-idle", "1", "--slowdown", "1000000"});
+  ASSERT_TRUE(agent->WaitForLog("result held for")) << agent->Log();
+  master_.reset();
+  EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
+  const std::string log = agent->Log();
+  EXPECT_NE(log.find("lost the connection to " + address), std::string::npos) << log;
+  EXPECT_NE(log.find("no lease for 1 s ("), std::string::npos) << log;
 }
 
 }  // namespace
