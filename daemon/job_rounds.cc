@@ -209,6 +209,7 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
   auto record = outcome.record;
   if (outcome.checkpoint_due) {
     auto checkpoint = std::make_shared<store::Checkpoint>(std::move(outcome.checkpoint));
+    const uint64_t queued_ms = loop_.NowMs();
     store_.Run(
         [record, checkpoint, keep, scene = outcome.checkpoint_scene](store::JobStore& s) -> Status {
           // The refined scene first: the checkpoint refers to it. A scene left behind by a crash
@@ -219,8 +220,10 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
           if (Status st = s.SaveCheckpoint(record, *checkpoint); !st) return st;
           return s.PruneCheckpoints(record.job, static_cast<int>(keep));
         },
-        [this, id](Status s) {
-          if (!s) FailJob(id, "cannot save the checkpoint: " + s.error());
+        [this, id, queued_ms](Status s) {
+          if (!s) return FailJob(id, "cannot save the checkpoint: " + s.error());
+          // The loop's clock, read at the start of the iteration that delivered the commit.
+          checkpoint_latency_.Record(double(loop_.NowMs() - queued_ms) / 1000);
         });
   } else {
     store_.Run([record](store::JobStore& s) { return s.RecordRound(record); },
@@ -268,6 +271,7 @@ void JobRounds::DropJob(store::JobId id) {
 void JobRounds::DropRunner(store::JobId id) {
   const auto it = runners_.find(id);
   if (it == runners_.end()) return;
+  retired_.Add(it->second->scheduler().counters(LoopNow(loop_)));
   runners_.erase(it);
   last_checkpoint_ms_.erase(id);
   // Agents drop the job's queued batches; results still in flight are ignored on arrival.
@@ -299,6 +303,12 @@ std::vector<RunningJob*> JobRounds::RunnersByPriority() {
   std::stable_sort(order.begin(), order.end(),
                    [](RunningJob* a, RunningJob* b) { return a->priority() > b->priority(); });
   return order;
+}
+
+BatchTotals JobRounds::batch_totals(scheduler::TimePoint now) const {
+  BatchTotals totals = retired_;
+  for (const auto& [id, runner] : runners_) totals.Add(runner->scheduler().counters(now));
+  return totals;
 }
 
 size_t JobRounds::Tick(scheduler::TimePoint now) {

@@ -22,10 +22,12 @@
 #include <string>
 #include <vector>
 
+#include "daemon/batch_totals.h"
 #include "daemon/master_config.h"
 #include "daemon/running_job.h"
 #include "daemon/scheduler/round_scheduler.h"
 #include "daemon/store_thread.h"
+#include "daemon/web/latency_histogram.h"
 #include "loop/event_loop.h"
 #include "loop/work_queue.h"
 #include "store/job_store.h"
@@ -68,6 +70,11 @@ class JobRounds {
   // The jobs in a round, highest priority first; equal priorities take turns being first.
   std::vector<RunningJob*> RunnersByPriority();
   size_t starting() const { return starting_.size(); }
+  // The batch counters of every job since the master started: the finished runners' and the
+  // running ones' (for /metrics).
+  BatchTotals batch_totals(scheduler::TimePoint now) const;
+  // Seconds from queueing each checkpoint on the store thread to its commit.
+  const web::LatencyHistogram& checkpoint_latency() const { return checkpoint_latency_; }
   // Offers overdue leases again (RoundScheduler::Tick); returns how many.
   size_t Tick(scheduler::TimePoint now);
 
@@ -100,6 +107,8 @@ class JobRounds {
   AgentHooks agents_;
 
   Runners runners_;
+  BatchTotals retired_;  // the counters of runners that went
+  web::LatencyHistogram checkpoint_latency_;
   std::map<store::JobId, uint64_t> last_checkpoint_ms_;  // loop NowMs() of each job's last one
   std::map<store::JobId, bool> starting_;  // being prepared; true once cancelled meanwhile
   bool start_pending_ = false;             // a StartQueuedJobs query is in flight

@@ -24,7 +24,8 @@ constexpr int kExitFailure = 1;
 constexpr int kExitBadInput = 2;
 
 struct Flags {
-  std::optional<std::string> config, listen, state_dir, secret_file, control, log_level;
+  std::optional<std::string> config, listen, state_dir, secret_file, control, log_level, http,
+      http_token_file;
   std::optional<uint32_t> heartbeat_ms, agent_timeout_ms, handshake_timeout_ms, checkpoint_keep,
       max_running_jobs, max_agents;
   std::optional<double> checkpoint_seconds, lease_seconds;
@@ -68,6 +69,14 @@ void AddFlags(CLI::App& app, Flags* f) {
                  "Rounds of at most this many rays are computed by the master, not leased to "
                  "agents; 0 = never (default 262144)")
       ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 40));
+  app.add_option("--http", f->http,
+                 "HOST:PORT of the web console (status page, /metrics); off by default; port 0 "
+                 "picks a free one, written to STATE/http.addr; a non-loopback HOST needs "
+                 "--http-token-file");
+  app.add_option("--http-token-file", f->http_token_file,
+                 "A file holding the web token (16+ characters; `radfarm secret new FILE` makes "
+                 "one): needed to pause, resume or cancel from the page, and for everything "
+                 "when --http is not on loopback");
 }
 
 template <typename T>
@@ -94,6 +103,8 @@ Result<MasterConfig> ResolveConfig(const Flags& f) {
   Override(f.lease_seconds, &c.lease_seconds);
   Override(f.max_agents, &c.max_agents);
   Override(f.local_round_rays, &c.local_round_rays);
+  Override(f.http, &c.http);
+  Override(f.http_token_file, &c.http_token_file);
   RADFARM_RETURN_IF_ERROR(CheckMasterConfig(c));
   return c;
 }

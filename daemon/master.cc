@@ -88,6 +88,11 @@ Status Master::Wire() {
       });
   RADFARM_RETURN_IF_ERROR(control_server);
   control_server_ = std::move(*control_server);
+  if (!config_.http.empty()) {
+    auto web = WebConsole::Start(loop_, config_, *control_, *jobs_, *store_);
+    RADFARM_RETURN_IF_ERROR(web);
+    web_ = std::move(*web);
+  }
   // listen.addr last: whoever waits for it (scripts, tests, the README) may use the control
   // socket at once.
   if (Status s = WriteFileAtomically(config_.ListenAddrPath(), listen_address_ + "\n"); !s) {
@@ -115,6 +120,7 @@ void Master::Shutdown(const std::string& why) {
   shutting_down_ = true;
   loop::LogLine(loop::LogLevel::kInfo, "master") << why << ": shutting down";
   notifier_->Stopping();
+  if (web_) web_->Stop();  // first: no HTTP thread may wait on the loop from here on
   agents_->Stop();  // agents keep their state and reconnect to the next master by themselves
   jobs_->Stop();
   control_->Stop();

@@ -7,6 +7,7 @@
 //                                           checkpointed, jobs finished or failed
 //   ControlRequests (control_requests.h)    the control socket's requests
 //   StoreThread (store_thread.h)            the job store and the thread it runs on
+//   WebConsole (web_console.h)              --http: status page, events, /metrics, actions
 //
 // Threads. One event loop (the loop thread) runs the agent listener, the control socket, the
 // heartbeat and lease timers and every job's RoundScheduler; every part lives on it. SQLite runs
@@ -31,6 +32,7 @@
 #include "daemon/master_config.h"
 #include "daemon/scheduler/round_scheduler.h"
 #include "daemon/store_thread.h"
+#include "daemon/web_console.h"
 #include "loop/event_loop.h"
 #include "loop/os_signal.h"
 #include "loop/tcp_listener.h"
@@ -77,6 +79,7 @@ class Master {
   std::unique_ptr<ControlRequests> control_;
   std::unique_ptr<loop::TcpListener> listener_;
   std::unique_ptr<ControlServer> control_server_;
+  std::unique_ptr<WebConsole> web_;  // --http only
   std::unique_ptr<loop::Timer> heartbeat_timer_;
   std::unique_ptr<loop::Timer> tick_timer_;
   std::unique_ptr<loop::Signal> sigterm_;

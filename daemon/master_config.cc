@@ -5,6 +5,7 @@
 #include "base/result.h"
 #include "base/toml_file.h"
 #include "base/toml_table_reader.h"
+#include "daemon/web/web_access.h"
 #include "loop/host_port.h"
 
 namespace radfarm::daemon {
@@ -17,6 +18,9 @@ std::string MasterConfig::DatabasePath() const {
 }
 std::string MasterConfig::ListenAddrPath() const {
   return (std::filesystem::path(state_dir) / "listen.addr").string();
+}
+std::string MasterConfig::HttpAddrPath() const {
+  return (std::filesystem::path(state_dir) / "http.addr").string();
 }
 
 Status ReadMasterConfigFile(const std::string& path, MasterConfig* c) {
@@ -36,7 +40,8 @@ Status ReadMasterConfigFile(const std::string& path, MasterConfig* c) {
                    r.Integer("max_running_jobs", 1, 1024, &c->max_running_jobs),
                    r.Real("lease_seconds", Interval::Open(0, 3600), &c->lease_seconds),
                    r.Integer("max_agents", 1, 1000000, &c->max_agents),
-                   r.Integer("local_round_rays", 0, kMaxLocalRoundRays, &c->local_round_rays)}) {
+                   r.Integer("local_round_rays", 0, kMaxLocalRoundRays, &c->local_round_rays),
+                   r.String("http", &c->http), r.String("http_token_file", &c->http_token_file)}) {
     RADFARM_RETURN_IF_ERROR(s);
   }
   RADFARM_RETURN_IF_ERROR(r.CheckNoUnknownKeys());
@@ -51,6 +56,17 @@ Status CheckMasterConfig(const MasterConfig& c) {
   if (c.log_level != "debug" && c.log_level != "info" && c.log_level != "warning" &&
       c.log_level != "error") {
     return Error{"--log-level: expected debug, info, warning or error, got '" + c.log_level + "'"};
+  }
+  if (!c.http.empty()) {
+    Result<loop::HostPort> http = loop::ParseHostPort(c.http, "--http");
+    RADFARM_RETURN_IF_ERROR(http);
+    if (!web::IsLoopbackHost(http->host) && c.http_token_file.empty()) {
+      return Error{"--http " + c.http +
+                   ": a web console outside loopback needs --http-token-file (the token every "
+                   "request must then carry)"};
+    }
+  } else if (!c.http_token_file.empty()) {
+    return Error{"--http-token-file: only with --http"};
   }
   if (c.agent_timeout_ms < 2 * c.heartbeat_ms) {
     return Error{"--agent-timeout-ms (" + std::to_string(c.agent_timeout_ms) +

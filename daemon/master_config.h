@@ -27,10 +27,15 @@ struct MasterConfig {
   // rounds of a solve are a few rays per patch, which cost agents a round trip per batch.
   uint64_t local_round_rays = 262144;
   uint32_t max_agents = 4096;  // connections beyond this are refused
+  // The web console (status page, /metrics): HOST:PORT, empty = off. A host other than loopback
+  // needs http_token_file (the token that reading and acting then need).
+  std::string http;
+  std::string http_token_file;
 
   std::string ControlPath() const;
   std::string DatabasePath() const;
   std::string ListenAddrPath() const;
+  std::string HttpAddrPath() const;  // STATE/http.addr: the web console's bound HOST:PORT
 };
 
 // Reads `path` over `config`: unknown keys, wrong types and out-of-range values are errors naming

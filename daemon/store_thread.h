@@ -34,6 +34,8 @@ class StoreThread {
   // Logs `text` and appends it to the store's event log (farm-wide when `job` is nullopt); once
   // draining, it is only logged.
   void LogEvent(std::optional<store::JobId> job, store::EventLevel level, const std::string& text);
+  // Store operations queued, not yet started (the store queue depth of /metrics).
+  size_t queued() const { return queue_->queued(); }
   // Lets the queued work finish, then runs `done` on the loop thread.
   void Drain(std::function<void()> done);
 

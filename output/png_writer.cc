@@ -12,13 +12,13 @@
 
 namespace radfarm {
 
-Status WritePng(const std::string& path, const Image& linear, const Camera& camera) {
+Result<std::string> EncodePng(const Image& linear, const Camera& camera) {
   if (linear.width == 0 || linear.height == 0 ||
       linear.pixels.size() != static_cast<size_t>(linear.width) * linear.height) {
-    return Error{path + ": cannot write PNG: image is empty or its size does not match its pixels"};
+    return Error{"cannot write PNG: image is empty or its size does not match its pixels"};
   }
   if (linear.width > std::numeric_limits<png_int_32>::max() / 3) {
-    return Error{path + ": cannot write PNG: image too wide"};
+    return Error{"cannot write PNG: image too wide"};
   }
   const std::vector<uint8_t> rgb = ToneMapImage(linear, camera);
 
@@ -36,16 +36,23 @@ Status WritePng(const std::string& path, const Image& linear, const Camera& came
   if (!png_image_write_get_memory_size(image, size, 0, rgb.data(), stride, nullptr)) {
     const std::string message = image.message;
     png_image_free(&image);
-    return Error{path + ": cannot encode PNG: " + message};
+    return Error{"cannot encode PNG: " + message};
   }
-  std::vector<char> encoded(size);
+  std::string encoded(size, '\0');
   if (!png_image_write_to_memory(&image, encoded.data(), &size, 0, rgb.data(), stride, nullptr)) {
     const std::string message = image.message;
     png_image_free(&image);
-    return Error{path + ": cannot encode PNG: " + message};
+    return Error{"cannot encode PNG: " + message};
   }
   png_image_free(&image);
-  return WriteFileAtomically(path, std::string_view(encoded.data(), size));
+  encoded.resize(size);
+  return encoded;
+}
+
+Status WritePng(const std::string& path, const Image& linear, const Camera& camera) {
+  Result<std::string> encoded = EncodePng(linear, camera);
+  if (!encoded) return Error{path + ": " + encoded.error()};
+  return WriteFileAtomically(path, *encoded);
 }
 
 }  // namespace radfarm

@@ -12,4 +12,7 @@ namespace radfarm {
 // Written atomically (base/atomic_file.h); errors name `path`.
 Status WritePng(const std::string& path, const Image& linear, const Camera& camera);
 
+// The PNG file's bytes (the status page's previews); errors say what is wrong with the image.
+Result<std::string> EncodePng(const Image& linear, const Camera& camera);
+
 }  // namespace radfarm

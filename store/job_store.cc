@@ -271,6 +271,26 @@ Status JobStore::AppendEvent(std::optional<JobId> job, EventLevel level, const s
   return stmt->Run();
 }
 
+namespace {
+
+Result<std::vector<Event>> ReadEvents(Statement& stmt) {
+  std::vector<Event> events;
+  while (true) {
+    Result<bool> row = stmt.Step();
+    RADFARM_RETURN_IF_ERROR(row);
+    if (!*row) return events;
+    Event event;
+    event.id = stmt.Int(0);
+    event.job = OptionalInt(stmt, 1);
+    event.time_ms = stmt.Int(2);
+    event.level = ParseEventLevel(stmt.Text(3)).value_or(EventLevel::kInfo);
+    event.text = stmt.Text(4);
+    events.push_back(std::move(event));
+  }
+}
+
+}  // namespace
+
 Result<std::vector<Event>> JobStore::ListEvents(std::optional<JobId> job, int limit) {
   // `job_id IS ?1` matches NULL to NULL, so one statement serves farm-wide events too.
   Result<Statement> stmt = db_.Prepare(
@@ -284,19 +304,17 @@ Result<std::vector<Event>> JobStore::ListEvents(std::optional<JobId> job, int li
     stmt->BindNull(1);
   }
   stmt->Bind(2, int64_t{limit});
-  std::vector<Event> events;
-  while (true) {
-    Result<bool> row = stmt->Step();
-    RADFARM_RETURN_IF_ERROR(row);
-    if (!*row) return events;
-    Event event;
-    event.id = stmt->Int(0);
-    event.job = OptionalInt(*stmt, 1);
-    event.time_ms = stmt->Int(2);
-    event.level = ParseEventLevel(stmt->Text(3)).value_or(EventLevel::kInfo);
-    event.text = stmt->Text(4);
-    events.push_back(std::move(event));
-  }
+  return ReadEvents(*stmt);
+}
+
+Result<std::vector<Event>> JobStore::ListRecentEvents(int limit) {
+  Result<Statement> stmt = db_.Prepare(
+      "SELECT id, job_id, time_ms, level, text FROM ("
+      "  SELECT * FROM events ORDER BY id DESC LIMIT ?1"
+      ") ORDER BY id");
+  RADFARM_RETURN_IF_ERROR(stmt);
+  stmt->Bind(1, int64_t{limit});
+  return ReadEvents(*stmt);
 }
 
 }  // namespace radfarm::store

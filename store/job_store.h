@@ -160,6 +160,8 @@ class JobStore {
   Status AppendEvent(std::optional<JobId> job, EventLevel level, const std::string& text);
   // The last `limit` events of `job` (nullopt: farm-wide ones), oldest first.
   Result<std::vector<Event>> ListEvents(std::optional<JobId> job, int limit);
+  // The last `limit` events of the farm and every job together, oldest first (the status page).
+  Result<std::vector<Event>> ListRecentEvents(int limit);
 
   const std::string& path() const { return db_.path(); }
 

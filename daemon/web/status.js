@@ -1,0 +1,222 @@
+// The radfarm status page: reads GET /api/session, then follows GET /api/events (server-sent
+// events, each a whole status snapshot) and redraws the tables in place. Text goes in through
+// textContent only, so a job or agent name cannot inject markup.
+"use strict";
+
+let session = { read: false, act: false, token: false, authenticated: false };
+let source = null;
+const previews = new Map();  // job id -> {round, at}: when its preview was last reloaded
+
+function el(tag, attrs, text) {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs || {})) e.setAttribute(k, v);
+  if (text !== undefined) e.textContent = text;
+  return e;
+}
+
+function seconds(s) {
+  if (s === null || s === undefined) return "?";
+  if (s < 60) return s.toFixed(s < 10 ? 1 : 0) + " s";
+  if (s < 3600) return Math.floor(s / 60) + " min " + Math.round(s % 60) + " s";
+  return Math.floor(s / 3600) + " h " + Math.round((s % 3600) / 60) + " min";
+}
+
+function rate(r) {
+  if (!r) return "0";
+  if (r >= 1e6) return (r / 1e6).toFixed(2) + " M";
+  if (r >= 1e3) return (r / 1e3).toFixed(1) + " k";
+  return r.toFixed(0);
+}
+
+// The row of `key` in `tbody`, made with `cells` empty cells if missing; rows not in `keep` go.
+function rowFor(tbody, key, cells) {
+  let row = tbody.querySelector(`tr[data-key="${CSS.escape(String(key))}"]`);
+  if (!row) {
+    row = el("tr", { "data-key": String(key) });
+    for (let i = 0; i < cells; i++) row.appendChild(el("td"));
+    tbody.appendChild(row);
+  }
+  return row;
+}
+
+function prune(tbody, keep) {
+  for (const row of Array.from(tbody.rows)) {
+    if (!keep.has(row.dataset.key)) row.remove();
+  }
+}
+
+function setText(cell, text, cls) {
+  if (cell.textContent !== text) cell.textContent = text;
+  if (cls !== undefined) cell.className = cls;
+}
+
+function act(id, action) {
+  fetch(`/api/jobs/${id}/${action}`, {
+    method: "POST",
+    headers: { "X-Radfarm-Request": "1" },
+    credentials: "same-origin",
+  }).then(async (r) => {
+    if (!r.ok) {
+      const body = await r.json().catch(() => ({}));
+      alert(`${action} job ${id}: ${body.error || r.status}`);
+    }
+  });
+}
+
+function drawActions(cell, job) {
+  const wanted = [];
+  if (session.act) {
+    if (job.state === "running" || job.state === "queued") wanted.push("pause");
+    if (job.state === "paused") wanted.push("resume");
+    if (["running", "queued", "paused"].includes(job.state)) wanted.push("cancel");
+  }
+  const have = Array.from(cell.querySelectorAll("button")).map((b) => b.dataset.action);
+  if (have.join() === wanted.join()) return;
+  cell.replaceChildren();
+  for (const action of wanted) {
+    const b = el("button", { "data-action": action, type: "button" }, action);
+    b.addEventListener("click", () => act(job.id, action));
+    cell.appendChild(b);
+  }
+}
+
+function drawPreview(cell, job) {
+  if (job.round === 0 && job.state !== "done") {
+    cell.replaceChildren();
+    return;
+  }
+  // A new image when the job moved on, at most every 5 s (rendering one meshes the scene), and
+  // once more when it ends.
+  const seen = previews.get(job.id);
+  const now = Date.now();
+  const finished = ["done", "failed", "cancelled"].includes(job.state);
+  if (seen && (seen.round === job.round || (!finished && now - seen.at < 5000))) return;
+  previews.set(job.id, { round: job.round, at: now });
+  let img = cell.querySelector("img");
+  if (!img) {
+    img = el("img", { class: "preview", alt: `job ${job.id}` });
+    img.addEventListener("error", () => { img.hidden = true; });
+    img.addEventListener("load", () => { img.hidden = false; });
+    cell.appendChild(img);
+  }
+  img.src = `/api/jobs/${job.id}/preview.png?round=${job.round}`;
+}
+
+function drawJobs(jobs) {
+  const tbody = document.querySelector("#jobs tbody");
+  const keep = new Set();
+  for (const job of jobs) {
+    keep.add(String(job.id));
+    const row = rowFor(tbody, job.id, 10);
+    row.className = `job state-${job.state}`;
+    row.dataset.state = job.state;
+    row.dataset.progress = String(job.progress);
+    const c = row.cells;
+    setText(c[0], String(job.id), "number");
+    setText(c[1], job.name);
+    setText(c[2], job.state, "state");
+    if (!c[3].firstChild) {
+      const bar = el("span", { class: "bar" });
+      bar.appendChild(el("div"));
+      c[3].append(bar, el("span", { class: "percent" }));
+    }
+    const percent = (100 * job.progress).toFixed(1) + "%";
+    c[3].querySelector(".bar > div").style.width = percent;
+    setText(c[3].querySelector(".percent"), " " + percent);
+    setText(c[4], String(job.round), "number");
+    setText(c[5], job.state === "running" ? seconds(job.eta_seconds) : "", "number eta");
+    setText(c[6], job.state === "running" ? rate(job.rays_per_second) : "", "number rate");
+    setText(c[7], String(job.agents), "number");
+    drawPreview(c[8], job);
+    drawActions(c[9], job);
+  }
+  prune(tbody, keep);
+  document.getElementById("no-jobs").hidden = jobs.length > 0;
+}
+
+function drawAgents(agents) {
+  const tbody = document.querySelector("#agents tbody");
+  const keep = new Set();
+  for (const a of agents) {
+    keep.add(String(a.id));
+    const row = rowFor(tbody, a.id, 7);
+    const state = a.stale ? "stale" : a.leases > 0 ? "busy" : "idle";
+    row.className = `agent agent-${state}`;
+    row.dataset.name = a.name;
+    row.dataset.state = state;
+    const host = a.address.replace(/:\d+$/, "").replace(/^\[(.*)\]$/, "$1");
+    const c = row.cells;
+    setText(c[0], a.name, "name");
+    setText(c[1], host);
+    setText(c[2], String(a.threads), "number");
+    setText(c[3], rate(a.rays_per_second), "number");
+    setText(c[4], state, "state");
+    setText(c[5], String(a.leases), "number");
+    setText(c[6], seconds(a.last_heartbeat_ms_ago / 1000) + " ago", "number");
+  }
+  prune(tbody, keep);
+  document.getElementById("no-agents").hidden = agents.length > 0;
+}
+
+function drawEvents(events) {
+  const list = document.getElementById("events");
+  const items = events.map((e) => {
+    const when = new Date(e.time_ms).toLocaleTimeString();
+    const who = e.job === null || e.job === undefined ? "farm" : `job ${e.job}`;
+    return el("li", { class: `level-${e.level}` }, `${when} ${e.level} ${who}: ${e.text}`);
+  });
+  list.replaceChildren(...items);
+}
+
+function draw(status) {
+  drawJobs(status.jobs);
+  drawAgents(status.agents);
+  drawEvents(status.events);
+  document.getElementById("updated").textContent =
+    "updated " + new Date(status.time_ms).toLocaleTimeString();
+}
+
+function setConnection(state) {
+  const c = document.getElementById("connection");
+  c.dataset.state = state;
+  c.textContent = state;
+}
+
+function follow() {
+  if (source) source.close();
+  source = new EventSource("/api/events");
+  source.addEventListener("open", () => setConnection("live"));
+  source.addEventListener("error", () => setConnection("reconnecting"));
+  source.addEventListener("status", (e) => draw(JSON.parse(e.data)));
+}
+
+async function loadSession() {
+  const r = await fetch("/api/session", { credentials: "same-origin" });
+  session = await r.json();
+  document.getElementById("login").hidden = !session.token || session.authenticated;
+  document.getElementById("session").textContent =
+    session.act ? "signed in: actions enabled"
+    : session.token ? "read-only until you sign in"
+    : "read-only (no web token configured)";
+  if (session.read) follow();
+  else setConnection("sign in to see the farm");
+}
+
+document.getElementById("login").addEventListener("submit", async (e) => {
+  e.preventDefault();
+  const token = document.getElementById("token").value;
+  const r = await fetch("/api/session", {
+    method: "POST",
+    headers: { "X-Radfarm-Request": "1", "Content-Type": "application/json" },
+    credentials: "same-origin",
+    body: JSON.stringify({ token }),
+  });
+  if (!r.ok) {
+    alert("sign in: wrong token");
+    return;
+  }
+  document.getElementById("token").value = "";
+  await loadSession();
+});
+
+loadSession();
