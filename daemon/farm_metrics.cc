@@ -40,7 +40,7 @@ web::FarmMetrics FarmMetricsOf(const nlohmann::json& jobs, const nlohmann::json&
   }
   m.agents_by_state = {{"busy", 0}, {"idle", 0}, {"stale", 0}};
   for (const auto& agent : agents) {
-    const char* state = agent.value("stale", false)           ? "stale"
+    const char* state = agent.value("stale", false)              ? "stale"
                         : agent.value("leases", uint64_t{0}) > 0 ? "busy"
                                                                  : "idle";
     ++m.agents_by_state[state];

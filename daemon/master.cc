@@ -121,7 +121,7 @@ void Master::Shutdown(const std::string& why) {
   loop::LogLine(loop::LogLevel::kInfo, "master") << why << ": shutting down";
   notifier_->Stopping();
   if (web_) web_->Stop();  // first: no HTTP thread may wait on the loop from here on
-  agents_->Stop();  // agents keep their state and reconnect to the next master by themselves
+  agents_->Stop();         // agents keep their state and reconnect to the next master by themselves
   jobs_->Stop();
   control_->Stop();
   listener_->Close();

@@ -59,8 +59,8 @@ void StatusPublisher::Refresh() {
       store_.Run([](store::JobStore& s) { return s.ListRecentEvents(kEvents); },
                  [this, jobs, agents](Result<std::vector<store::Event>> events) {
                    if (stopped_) return;
-                   const bool ok = jobs.body.value("ok", false) &&
-                                   agents.body.value("ok", false) && events.ok();
+                   const bool ok = jobs.body.value("ok", false) && agents.body.value("ok", false) &&
+                                   events.ok();
                    if (ok) Publish(jobs.body["jobs"], agents.body["agents"], EventsJson(*events));
                    timer_->Start(kInterval, [this] { Refresh(); });
                  });
@@ -73,9 +73,9 @@ void StatusPublisher::Publish(const json& jobs, const json& agents, const json& 
   snapshot.status_json =
       json{{"time_ms", UnixMs()}, {"jobs", jobs}, {"agents", agents}, {"events", events}}.dump(
           -1, ' ', false, json::error_handler_t::replace);  // never throw on bad UTF-8
-  snapshot.metrics_text = web::FormatMetrics(
-      FarmMetricsOf(jobs, agents, jobs_.batch_totals(LoopNow(loop_)), jobs_.checkpoint_latency(),
-                    store_.queued()));
+  snapshot.metrics_text =
+      web::FormatMetrics(FarmMetricsOf(jobs, agents, jobs_.batch_totals(LoopNow(loop_)),
+                                       jobs_.checkpoint_latency(), store_.queued()));
   board_.Publish(std::move(snapshot));
 }
 

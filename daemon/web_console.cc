@@ -80,13 +80,13 @@ web::WebHandlers WebConsole::Handlers() {
     const ControlCommand command = action == "pause"    ? ControlCommand::kPause
                                    : action == "resume" ? ControlCommand::kResume
                                                         : ControlCommand::kCancel;
-    return caller_->Call([this, command, id](web::LoopCaller::Reply reply) {
-      Act(command, id, std::move(reply));
-    }, kCallTimeout);
+    return caller_->Call(
+        [this, command, id](web::LoopCaller::Reply reply) { Act(command, id, std::move(reply)); },
+        kCallTimeout);
   };
   handlers.preview = [this](int64_t id) {
-    return caller_->Call([this, id](web::LoopCaller::Reply reply) { Preview(id, std::move(reply)); },
-                         kCallTimeout);
+    return caller_->Call(
+        [this, id](web::LoopCaller::Reply reply) { Preview(id, std::move(reply)); }, kCallTimeout);
   };
   return handlers;
 }
@@ -124,10 +124,10 @@ void WebConsole::Preview(int64_t id, web::LoopCaller::Reply reply) {
 void WebConsole::Stop() {
   if (stopped_) return;
   stopped_ = true;
-  board_.Close();                   // event streams end
-  if (caller_) caller_->Close();    // HTTP threads waiting on the loop get 503
+  board_.Close();                 // event streams end
+  if (caller_) caller_->Close();  // HTTP threads waiting on the loop get 503
   publisher_.Stop();
-  if (server_) server_->Stop();     // joins the HTTP threads, none of them waiting now
+  if (server_) server_->Stop();  // joins the HTTP threads, none of them waiting now
   if (previews_) previews_->Shutdown(loop::WorkQueue::ShutdownMode::kCancel, [] {});
 }
 

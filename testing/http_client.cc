@@ -46,7 +46,8 @@ class Connection {
               const std::function<bool(const std::string&)>& stop) {
     char buffer[16384];
     while (!stop(*out)) {
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+      const auto left =
+          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
       if (left.count() <= 0) return Error{"timed out reading the response"};
       pollfd p{fd_, POLLIN, 0};
       if (::poll(&p, 1, int(left.count())) <= 0) continue;

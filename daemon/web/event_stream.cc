@@ -14,8 +14,7 @@ size_t EventStream::Read(char* out, size_t max) {
 }
 
 bool EventStream::Refill() {
-  auto snapshot =
-      board_.WaitNewer(sent_version_, std::chrono::steady_clock::now() + kKeepAlive);
+  auto snapshot = board_.WaitNewer(sent_version_, std::chrono::steady_clock::now() + kKeepAlive);
   if (board_.closed()) return false;
   offset_ = 0;
   if (!snapshot || snapshot->version <= sent_version_) {

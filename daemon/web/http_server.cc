@@ -123,14 +123,15 @@ Result<std::unique_ptr<HttpServer>> HttpServer::Start(const loop::HostPort& addr
   if (resolved->empty()) return Error{"--http " + address.ToString() + ": no address"};
   const loop::SocketAddress& bind = resolved->front();
   std::unique_ptr<HttpServer> server(new HttpServer(std::move(routes), board));
-  unsigned flags = MHD_USE_THREAD_PER_CONNECTION | MHD_USE_INTERNAL_POLLING_THREAD |
-                   MHD_USE_ERROR_LOG;
+  unsigned flags =
+      MHD_USE_THREAD_PER_CONNECTION | MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_ERROR_LOG;
   if (bind.family() == AF_INET6) flags |= MHD_USE_IPv6;
   server->daemon_ = MHD_start_daemon(
       flags, bind.port(), nullptr, nullptr, &HttpGlue::OnRequest, server.get(),
-      MHD_OPTION_EXTERNAL_LOGGER, &LogFromMhd, nullptr, MHD_OPTION_SOCK_ADDR, bind.get(), MHD_OPTION_CONNECTION_LIMIT, kMaxConnections,
-      MHD_OPTION_PER_IP_CONNECTION_LIMIT, kMaxPerAddress, MHD_OPTION_CONNECTION_TIMEOUT,
-      unsigned{60}, MHD_OPTION_NOTIFY_COMPLETED, &HttpGlue::Completed, nullptr, MHD_OPTION_END);
+      MHD_OPTION_EXTERNAL_LOGGER, &LogFromMhd, nullptr, MHD_OPTION_SOCK_ADDR, bind.get(),
+      MHD_OPTION_CONNECTION_LIMIT, kMaxConnections, MHD_OPTION_PER_IP_CONNECTION_LIMIT,
+      kMaxPerAddress, MHD_OPTION_CONNECTION_TIMEOUT, unsigned{60}, MHD_OPTION_NOTIFY_COMPLETED,
+      &HttpGlue::Completed, nullptr, MHD_OPTION_END);
   if (!server->daemon_) {
     return Error{"--http " + address.ToString() + ": cannot listen (address in use?)"};
   }

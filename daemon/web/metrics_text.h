@@ -17,14 +17,14 @@ struct FarmMetrics {
   double rays_per_second = 0;                       // summed over the running jobs
   uint64_t rays_total = 0;                          // rays of every job so far
   // Batches, since the master started (the running jobs' schedulers plus the finished ones').
-  uint64_t batches_issued = 0;                          // attempts handed to agents
-  uint64_t batches_reissued_overdue = 0;                // copies of an overdue lease
-  uint64_t batches_reissued_requeued = 0;               // put back after a loss or a return
-  uint64_t results_accepted = 0;                        // the first valid result of a batch
-  std::map<std::string, uint64_t> results_rejected;     // by reason: the agent is at fault
-  std::map<std::string, uint64_t> results_dropped;      // by reason: too late or repeated
-  LatencyHistogram checkpoint_seconds;                  // queued on the store -> committed
-  uint64_t store_queue_depth = 0;                       // store operations waiting to run
+  uint64_t batches_issued = 0;                       // attempts handed to agents
+  uint64_t batches_reissued_overdue = 0;             // copies of an overdue lease
+  uint64_t batches_reissued_requeued = 0;            // put back after a loss or a return
+  uint64_t results_accepted = 0;                     // the first valid result of a batch
+  std::map<std::string, uint64_t> results_rejected;  // by reason: the agent is at fault
+  std::map<std::string, uint64_t> results_dropped;   // by reason: too late or repeated
+  LatencyHistogram checkpoint_seconds;               // queued on the store -> committed
+  uint64_t store_queue_depth = 0;                    // store operations waiting to run
 };
 
 // The exposition text; series in a fixed order, labels sorted, numbers in their shortest exact

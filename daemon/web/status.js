@@ -5,7 +5,7 @@
 
 let session = { read: false, act: false, token: false, authenticated: false };
 let source = null;
-const previews = new Map();  // job id -> {round, at}: when its preview was last reloaded
+const previews = new Map();  // job id -> {key, at}: what its preview shows, and since when
 
 function el(tag, attrs, text) {
   const e = document.createElement(tag);
@@ -90,8 +90,9 @@ function drawPreview(cell, job) {
   const seen = previews.get(job.id);
   const now = Date.now();
   const finished = ["done", "failed", "cancelled"].includes(job.state);
-  if (seen && (seen.round === job.round || (!finished && now - seen.at < 5000))) return;
-  previews.set(job.id, { round: job.round, at: now });
+  const key = `${job.round}/${finished}`;
+  if (seen && (seen.key === key || (!finished && now - seen.at < 5000))) return;
+  previews.set(job.id, { key, at: now });
   let img = cell.querySelector("img");
   if (!img) {
     img = el("img", { class: "preview", alt: `job ${job.id}` });
@@ -99,7 +100,7 @@ function drawPreview(cell, job) {
     img.addEventListener("load", () => { img.hidden = false; });
     cell.appendChild(img);
   }
-  img.src = `/api/jobs/${job.id}/preview.png?round=${job.round}`;
+  img.src = `/api/jobs/${job.id}/preview.png?v=${encodeURIComponent(key)}`;
 }
 
 function drawJobs(jobs) {

@@ -28,10 +28,10 @@
 namespace radfarm::web {
 
 struct WebRequest {
-  std::string method;  // "GET", "POST", ...
-  std::string path;    // without the query
+  std::string method;                       // "GET", "POST", ...
+  std::string path;                         // without the query
   std::string host, authorization, cookie;  // headers ("" when absent)
-  bool marked = false;  // the X-Radfarm-Request header is present
+  bool marked = false;                      // the X-Radfarm-Request header is present
   std::string body;
 };
 

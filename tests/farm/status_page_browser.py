@@ -71,7 +71,8 @@ def main():
             By.CSS_SELECTOR, f'#agents tbody tr[data-name="{args.agent}"]'))
         agent = driver.find_element(By.CSS_SELECTOR, f'#agents tbody tr[data-name="{args.agent}"]')
         assert agent.get_attribute("data-state") in ("idle", "busy"), agent.text
-        assert not driver.find_element(By.ID, "no-jobs").get_attribute("hidden") is None
+        wait_for(driver, "the page to say there are no jobs", lambda: driver.find_element(
+            By.ID, "no-jobs").is_displayed())
 
         submitted = subprocess.run(
             [args.cli, "--control", args.control, "submit", args.scene, "--name", "browser-test"],

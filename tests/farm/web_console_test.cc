@@ -8,8 +8,8 @@
 #include <regex>
 #include <sstream>
 
-#include "tests/farm/farm_fixture.h"
 #include "testing/http_client.h"
+#include "tests/farm/farm_fixture.h"
 
 namespace radfarm::testing {
 namespace {
@@ -19,8 +19,8 @@ const std::string kToken = "web-token-0123456789abcdef";
 class WebConsoleTest : public FarmTest {
  protected:
   // Starts the master with the web console on a free loopback port; returns its HOST:PORT.
-  std::string StartMasterWithConsole(bool with_token) {
-    std::vector<std::string> flags = {"--http", "127.0.0.1:0"};
+  std::string StartMasterWithConsole(bool with_token, std::vector<std::string> flags = {}) {
+    flags.insert(flags.end(), {"--http", "127.0.0.1:0"});
     if (with_token) {
       std::ofstream(Path("web.token")) << kToken << "\n";
       flags.insert(flags.end(), {"--http-token-file", Path("web.token")});
@@ -42,7 +42,7 @@ class WebConsoleTest : public FarmTest {
   std::map<std::string, double> Scrape() {
     const HttpResponse r = Request("GET", "/metrics");
     EXPECT_EQ(r.status, 200);
-    EXPECT_EQ(r.headers["content-type"], "text/plain; version=0.0.4; charset=utf-8");
+    EXPECT_EQ(r.headers.at("content-type"), "text/plain; version=0.0.4; charset=utf-8");
     const std::regex sample(R"(^([a-zA-Z_:][a-zA-Z0-9_:]*(\{[^}]*\})?) (\S+)$)");
     std::map<std::string, double> values;
     std::istringstream lines(r.body);
@@ -60,18 +60,20 @@ class WebConsoleTest : public FarmTest {
 };
 
 TEST_F(WebConsoleTest, MetricsCountARealJobsBatchesCheckpointsAndAgents) {
-  address_ = StartMasterWithConsole(false);
+  // Every round on the agent (none computed by the master), so batches are leased.
+  address_ = StartMasterWithConsole(false, {"--local-round-rays", "0"});
   StartAgent("metrics-agent");
   ASSERT_TRUE(farm_.WaitForAgents(1, std::chrono::seconds(60)));
-  // Rounds above the master's local_round_rays go to the agent, so batches are leased.
   const int64_t id = Submit("cornell-box.toml", {"--rays", "3000000"});
   ASSERT_TRUE(WaitForState(id, "done"));
   // The page's snapshot follows the store within a refresh: poll until it shows the job done.
   std::map<std::string, double> m;
-  ASSERT_TRUE(WaitUntil([&] {
-    m = Scrape();
-    return m["radfarm_jobs{state=\"done\"}"] == 1;
-  }, std::chrono::seconds(60)));
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        m = Scrape();
+        return m["radfarm_jobs{state=\"done\"}"] == 1;
+      },
+      std::chrono::seconds(60)));
   EXPECT_EQ(m["radfarm_jobs{state=\"running\"}"], 0);
   EXPECT_EQ(m["radfarm_jobs{state=\"queued\"}"], 0);
   EXPECT_EQ(m["radfarm_agents{state=\"idle\"}"] + m["radfarm_agents{state=\"busy\"}"], 1);
@@ -105,7 +107,7 @@ TEST_F(WebConsoleTest, MetricsCountARealJobsBatchesCheckpointsAndAgents) {
   // The preview of the finished job is a PNG.
   const HttpResponse preview = Request("GET", "/api/jobs/" + std::to_string(id) + "/preview.png");
   EXPECT_EQ(preview.status, 200) << preview.body;
-  EXPECT_EQ(preview.headers["content-type"], "image/png");
+  EXPECT_EQ(preview.headers.at("content-type"), "image/png");
   EXPECT_EQ(preview.body.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
   EXPECT_EQ(Request("GET", "/api/jobs/999/preview.png").status, 404);
 }
@@ -117,8 +119,9 @@ TEST_F(WebConsoleTest, PauseResumeAndCancelNeedTheTokenAndChangeTheJob) {
   const std::string job = "/api/jobs/" + std::to_string(id);
   const std::string bearer = "Authorization: Bearer " + kToken;
   EXPECT_EQ(Request("POST", job + "/pause").status, 401);
-  EXPECT_EQ(Request("POST", job + "/pause", {"Authorization: Bearer wrong-token-0123456789"}).status,
-            401);
+  EXPECT_EQ(
+      Request("POST", job + "/pause", {"Authorization: Bearer wrong-token-0123456789"}).status,
+      401);
   EXPECT_EQ(Request("POST", job + "/pause", {bearer, "Host: rebound.example"}).status, 403);
 
   const HttpResponse paused = Request("POST", job + "/pause", {bearer});

@@ -7,7 +7,7 @@
 namespace radfarm::web {
 namespace {
 
-const std::string kToken = "0123456789abcdef0123";
+const std::string kRoutesToken = "0123456789abcdef0123";
 
 class WebRoutesTest : public ::testing::Test {
  protected:
@@ -66,21 +66,21 @@ TEST_F(WebRoutesTest, StatusAndMetricsComeFromTheLatestSnapshot) {
 }
 
 TEST_F(WebRoutesTest, ARequestForAnotherHostNameIsRefusedOnLoopback) {
-  WebRoutes routes = Routes(true, kToken);
+  WebRoutes routes = Routes(true, kRoutesToken);
   WebRequest r = Get("/api/session");
   r.host = "rebound.example:8080";
   EXPECT_EQ(routes.Handle(r).reply.status, 403u);
 }
 
 TEST_F(WebRoutesTest, OffLoopbackEveryDataRouteNeedsTheToken) {
-  WebRoutes routes = Routes(false, kToken);
+  WebRoutes routes = Routes(false, kRoutesToken);
   board.Publish(StatusSnapshot{});
   for (const char* path : {"/api/status", "/api/events", "/metrics", "/api/jobs/1/preview.png"}) {
     const WebResponse denied = routes.Handle(Get(path));
     EXPECT_EQ(denied.reply.status, 401u) << path;
     EXPECT_FALSE(denied.event_stream);
     WebRequest with = Get(path);
-    with.authorization = "Bearer " + kToken;
+    with.authorization = "Bearer " + kRoutesToken;
     EXPECT_EQ(routes.Handle(with).reply.status, 200u) << path;
   }
   EXPECT_EQ(routes.Handle(Get("/")).reply.status, 200u);  // the page itself holds no data
@@ -98,7 +98,7 @@ TEST_F(WebRoutesTest, WithoutATokenThePageIsReadOnly) {
 }
 
 TEST_F(WebRoutesTest, ActionsNeedTheTokenAndWithACookieTheRequestHeader) {
-  WebRoutes routes = Routes(true, kToken);
+  WebRoutes routes = Routes(true, kRoutesToken);
   WebRequest anonymous = Post("/api/jobs/3/pause");
   anonymous.marked = true;
   EXPECT_EQ(routes.Handle(anonymous).reply.status, 401u);
@@ -107,13 +107,13 @@ TEST_F(WebRoutesTest, ActionsNeedTheTokenAndWithACookieTheRequestHeader) {
   login.marked = true;
   login.body = R"({"token":"wrong-wrong-wrong-wrong"})";
   EXPECT_EQ(routes.Handle(login).reply.status, 401u);
-  login.body = nlohmann::json{{"token", kToken}}.dump();
+  login.body = nlohmann::json{{"token", kRoutesToken}}.dump();
   const WebResponse signed_in = routes.Handle(login);
   ASSERT_EQ(signed_in.reply.status, 200u);
   ASSERT_EQ(signed_in.headers.size(), 1u);
   EXPECT_EQ(signed_in.headers[0].first, "Set-Cookie");
-  const std::string cookie = signed_in.headers[0].second.substr(
-      0, signed_in.headers[0].second.find(';'));
+  const std::string cookie =
+      signed_in.headers[0].second.substr(0, signed_in.headers[0].second.find(';'));
 
   WebRequest forged = Post("/api/jobs/3/cancel");  // a form on another site: no header
   forged.cookie = cookie;
@@ -124,15 +124,15 @@ TEST_F(WebRoutesTest, ActionsNeedTheTokenAndWithACookieTheRequestHeader) {
   page.marked = true;
   EXPECT_EQ(routes.Handle(page).reply.status, 200u);
   WebRequest script = Post("/api/jobs/4/resume");
-  script.authorization = "Bearer " + kToken;
+  script.authorization = "Bearer " + kRoutesToken;
   EXPECT_EQ(routes.Handle(script).reply.status, 200u);
   EXPECT_EQ(acted, (std::vector<std::string>{"cancel 3", "resume 4"}));
 }
 
 TEST_F(WebRoutesTest, JobRoutesCheckTheIdActionAndMethod) {
-  WebRoutes routes = Routes(true, kToken);
+  WebRoutes routes = Routes(true, kRoutesToken);
   WebRequest r = Post("/api/jobs/3/delete");
-  r.authorization = "Bearer " + kToken;
+  r.authorization = "Bearer " + kRoutesToken;
   EXPECT_EQ(routes.Handle(r).reply.status, 404u);
   for (const char* bad : {"/api/jobs/-1/pause", "/api/jobs/x/pause", "/api/jobs/1x/pause",
                           "/api/jobs/99999999999999999999/pause", "/api/jobs//pause"}) {
