@@ -27,9 +27,9 @@ TEST_F(FarmTest, TheStatusPageFollowsAJobInARealBrowser) {
   const std::string screenshot =
       wanted ? wanted : std::string(RADFARM_BINARY_DIR "/status-page.png");
   const CommandResult r =
-      RunCommand({"python3", RADFARM_SOURCE_DIR "/tests/farm/status_page_browser.py", "--url",
-                  "http://" + address.substr(0, address.find('\n')) + "/", "--token", token,
-                  "--cli", RADFARM_CLI_PATH, "--control", control(), "--scene",
+      RunCommand({"/usr/bin/python3", RADFARM_SOURCE_DIR "/tests/farm/status_page_browser.py",
+                  "--url", "http://" + address.substr(0, address.find('\n')) + "/", "--token",
+                  token, "--cli", RADFARM_CLI_PATH, "--control", control(), "--scene",
                   RADFARM_SOURCE_DIR "/scenes/cornell-box.toml", "--agent", "desk-01",
                   "--screenshot", screenshot});
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err << "\nmaster:\n" << MasterLog();

@@ -30,7 +30,7 @@ TEST(EventStreamTest, SendsTheLatestSnapshotThenEachNewOneAsAnEvent) {
   first.status_json = R"({"jobs":[1]})";
   board.Publish(first);
   EventStream stream(board);
-  EXPECT_EQ(ReadThrough(stream, "\n\n\n\n"),
+  EXPECT_EQ(ReadThrough(stream, "[1]}\n\n"),
             "retry: 2000\n\nevent: status\ndata: {\"jobs\":[1]}\n\n");
   std::thread publisher([&] {
     StatusSnapshot second;
