@@ -83,9 +83,11 @@ Status Master::Wire() {
 
   ControlRequests* control = control_.get();
   auto control_server = ControlServer::Listen(
-      loop_, config_.ControlPath(), [control](ControlRequest request, ControlRespond respond) {
+      loop_, config_.ControlPath(),
+      [control](ControlRequest request, ControlRespond respond) {
         control->Handle(std::move(request), std::move(respond));
-      });
+      },
+      ControlServerOptions{std::chrono::milliseconds(config_.control_timeout_ms)});
   RADFARM_RETURN_IF_ERROR(control_server);
   control_server_ = std::move(*control_server);
   // listen.addr last: whoever waits for it (scripts, tests, the README) may use the control
