@@ -143,8 +143,9 @@ TEST_F(FarmTest, AnAttachmentThatNeverComesAndAnIdleClientAreClosedAtTheDeadline
   const int idle = ConnectUnixSocket(control());
   ASSERT_GE(announcer, 0);
   ASSERT_GE(idle, 0);
-  ASSERT_TRUE(SendSome(
-      announcer, Frame(R"({"command":"submit","attachment_bytes":1000})") + std::string(10, 'x')));
+  // The JSON, then the attachment's prefix and 10 of its 1000 bytes.
+  ASSERT_TRUE(SendSome(announcer, Frame(R"({"command":"submit","attachment_bytes":1000})") +
+                                      FramePrefix(1000) + std::string(10, 'x')));
   EXPECT_TRUE(WaitForPeerClose(announcer, kControlAnswerTimeout));
   EXPECT_TRUE(WaitForPeerClose(idle, kControlAnswerTimeout));
   ::close(announcer);
