@@ -4,6 +4,9 @@
 // instead of failing it, and the job resumes by itself once the store has room again.
 #include <signal.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "store/database.h"
 #include "tests/farm/farm_fixture.h"
 
@@ -58,6 +61,22 @@ TEST_F(FarmTest, ABitFlippedInAStoredCheckpointIsNoticedAndTheJobStillEndsLikeRe
   EXPECT_EQ(CountLines(MasterLog(), expected), 1u) << MasterLog();
   const CommandResult log = Cli({"log", std::to_string(id)});
   EXPECT_NE(log.out.find(expected), std::string::npos) << log.out;
+}
+
+// F2: a 0-byte radfarm.db started as an empty store, every job gone, no warning.
+TEST_F(FarmTest, RadfarmdRefusesAnEmptyStoreFileAndLeavesIt) {
+  const std::string state = Path("empty-state");
+  std::filesystem::create_directories(state);
+  { std::ofstream(state + "/radfarm.db"); }
+  const std::string secret = Path("empty-state-secret");
+  ASSERT_EQ(RunCommand({RADFARM_CLI_PATH, "secret", "new", secret}).exit_code, 0);
+  const CommandResult r = RunCommand(
+      {RADFARMD_PATH, "--state-dir", state, "--secret-file", secret, "--listen", "127.0.0.1:0"});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find(state + "/radfarm.db: the file is empty (0 bytes), not a job store"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(std::filesystem::file_size(state + "/radfarm.db"), 0u);
 }
 
 // F5: a brief disk-full turned running jobs `failed` and `resume` refused them. The store's size
