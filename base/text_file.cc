@@ -1,5 +1,10 @@
 #include "base/text_file.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -10,21 +15,62 @@
 #include <sstream>
 
 #include "base/diagnostic.h"
+#include "base/unique_fd.h"
 
 namespace radfarm {
 
-Result<std::string> ReadTextFile(const std::string& path) {
-  std::error_code ec;
-  // std::ifstream happily opens a directory on Linux and then reads nothing: refuse it up front.
-  if (std::filesystem::is_directory(path, ec)) {
-    return Error{path + ": cannot open: is a directory"};
+namespace {
+
+const char* FileKind(mode_t mode) {
+  if (S_ISDIR(mode)) return "is a directory";
+  if (S_ISFIFO(mode)) return "not a regular file (a FIFO)";
+  if (S_ISCHR(mode)) return "not a regular file (a character device)";
+  if (S_ISBLK(mode)) return "not a regular file (a block device)";
+  if (S_ISSOCK(mode)) return "not a regular file (a socket)";
+  return "not a regular file";
+}
+
+}  // namespace
+
+Result<std::string> ReadTextFile(const std::string& path, uint64_t max_bytes) {
+  // O_NONBLOCK: opening a FIFO with no writer would wait for one forever. It changes nothing for
+  // the regular files read below.
+  UniqueFd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY));
+  if (!fd.valid()) return Error{path + ": cannot open: " + std::strerror(errno)};
+  struct stat st {};
+  if (::fstat(fd.get(), &st) != 0) return Error{path + ": cannot stat: " + std::strerror(errno)};
+  if (!S_ISREG(st.st_mode)) return Error{path + ": cannot open: " + FileKind(st.st_mode)};
+  const uint64_t size = static_cast<uint64_t>(st.st_size);
+  if (size > max_bytes) {
+    return Error{path + ": the file is " + std::to_string(size) + " bytes, over the limit of " +
+                 std::to_string(max_bytes) + " bytes"};
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path + ": cannot open: " + std::strerror(errno)};
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (in.bad()) return Error{path + ": cannot read: " + std::strerror(errno)};
-  return bytes.str();
+  std::string bytes(size, '\0');
+  size_t have = 0;
+  while (true) {
+    if (have == bytes.size()) {
+      // The file may have grown since fstat: read on, within the limit.
+      if (bytes.size() >= max_bytes) {
+        char probe;
+        const ssize_t more = ::read(fd.get(), &probe, 1);
+        if (more > 0) {
+          return Error{path + ": the file grew past the limit of " + std::to_string(max_bytes) +
+                       " bytes while it was read"};
+        }
+        break;
+      }
+      bytes.resize(std::min<uint64_t>(max_bytes, bytes.size() + 65536));
+    }
+    const ssize_t got = ::read(fd.get(), bytes.data() + have, bytes.size() - have);
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      return Error{path + ": cannot read: " + std::strerror(errno)};
+    }
+    if (got == 0) break;
+    have += static_cast<size_t>(got);
+  }
+  bytes.resize(have);
+  return bytes;
 }
 
 std::vector<std::string_view> SplitLines(std::string_view text) {

@@ -11,9 +11,16 @@
 
 namespace radfarm {
 
-// The file's bytes. Error "path: cannot open: <reason>" when it is missing, unreadable or not a
-// regular file.
-Result<std::string> ReadTextFile(const std::string& path);
+// Input files are read whole into memory, so their size is checked before the first byte is read:
+// 1 GiB by default, as large as a job bundle may be (protocol::kDefaultMaxSceneBytes).
+inline constexpr uint64_t kDefaultMaxInputFileBytes = uint64_t{1} << 30;
+
+// The file's bytes. Errors: "path: cannot open: <reason>" when it is missing or unreadable;
+// "path: cannot open: not a regular file (a FIFO)" for a device, FIFO, socket or directory (they
+// would hang the reader or never end: /dev/zero, /dev/urandom); "path: the file is N bytes, over
+// the limit of M bytes" when it is larger than `max_bytes`, decided from its size alone.
+Result<std::string> ReadTextFile(const std::string& path,
+                                 uint64_t max_bytes = kDefaultMaxInputFileBytes);
 
 // Splits at "\n", "\r\n" or a lone "\r", the same line breaks tinyobjloader honours, so line
 // numbers agree with it. The views point into `text`.

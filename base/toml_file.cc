@@ -4,6 +4,12 @@
 #include "base/text_file.h"
 
 namespace radfarm {
+namespace {
+
+// Job files and configurations are a few kilobytes; a larger one is a mistake (or /dev/zero).
+constexpr uint64_t kMaxTomlFileBytes = 16u << 20;
+
+}  // namespace
 
 Result<toml::table> ParseToml(const std::string& path, const std::string& text) {
 #if TOML_EXCEPTIONS
@@ -24,7 +30,7 @@ Result<toml::table> ParseToml(const std::string& path, const std::string& text) 
 }
 
 Result<toml::table> ReadTomlFile(const std::string& path) {
-  Result<std::string> text = ReadTextFile(path);
+  Result<std::string> text = ReadTextFile(path, kMaxTomlFileBytes);
   RADFARM_RETURN_IF_ERROR(text);
   return ParseToml(path, *text);
 }

@@ -80,9 +80,11 @@ Outcome<ControlReply> ControlClient::Call(json request, std::span<const uint8_t>
   std::string text;
   try {
     text = request.dump();
-  } catch (const json::type_error& e) {
-    // Strings from the command line that are not UTF-8 (a --name, say).
-    return Failure{kExitBadInput, "'" + command + "' request: " + e.what()};
+  } catch (const json::type_error&) {
+    // Commands check their strings first (submit's --name); this is the net under them.
+    return Failure{kExitBadInput, "'" + command +
+                                      "' request: a text argument is not UTF-8; use UTF-8 "
+                                      "characters or plain ASCII"};
   }
   if (text.size() > kMaxJsonFrameBytes) {
     return Failure{kExitBadInput, "'" + command + "' request is over the 1 MiB limit"};

@@ -76,10 +76,8 @@ void AddJsonFlag(CLI::App* command, bool* json) {
                     "Print the master's objects as JSON (shapes in docs/CONTROL.md)");
 }
 
-void AddJobIdArgument(CLI::App* command, int64_t* id) {
-  command->add_option("ID", *id, "Job id (from submit or list)")
-      ->required()
-      ->check(PositiveInteger());
+void AddJobIdArgument(CLI::App* command, uint64_t* id) {
+  command->add_option("ID", *id, "Job id (from submit or list)")->required()->check(PositiveId());
 }
 
 }  // namespace radfarm

@@ -39,6 +39,7 @@ void PrintJson(const nlohmann::json& value);
 // --json: "print the master's objects as JSON (docs/CONTROL.md)".
 void AddJsonFlag(CLI::App* command, bool* json);
 // The positional job ID (a positive integer).
-void AddJobIdArgument(CLI::App* command, int64_t* id);
+// Any unsigned 64-bit id >= 1: one the master does not know is its "no job ID" (exit 2).
+void AddJobIdArgument(CLI::App* command, uint64_t* id);
 
 }  // namespace radfarm

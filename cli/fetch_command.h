@@ -14,7 +14,7 @@ class App;
 namespace radfarm {
 
 struct FetchOptions {
-  int64_t id = 0;
+  uint64_t id = 0;
   std::string out_dir;
   bool json = false;
 };

@@ -3,6 +3,8 @@
 #include <utility>
 
 #include "base/result.h"
+#include "base/text_file.h"
+#include "job/output_budget.h"
 #include "mesh/refine.h"
 
 namespace radfarm {
@@ -12,7 +14,13 @@ Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& o
   Result<Job> job = LoadJob(path);
   RADFARM_RETURN_IF_ERROR(job);
   RADFARM_RETURN_IF_ERROR(ApplyOverrides(overrides, &*job));
-  Result<InputScene> scene = LoadObjScene(job->scene_path);
+  // The image's cost first: it needs no scene, and a job that could never be shown is refused
+  // before the scene is read.
+  if (Status budget = CheckOutputBudget(job->camera, job->mesh.max_memory); !budget) {
+    return Error{path + ": " + budget.error()};
+  }
+  Result<InputScene> scene =
+      LoadObjScene(job->scene_path, overrides.max_scene_bytes.value_or(kDefaultMaxInputFileBytes));
   RADFARM_RETURN_IF_ERROR(scene);
   warnings->insert(warnings->end(), scene->warnings.begin(), scene->warnings.end());
   Result<PatchMesh> mesh = PatchMesh::Build(*scene, job->mesh, warnings);

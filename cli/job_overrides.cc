@@ -31,6 +31,12 @@ void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
                    "(default: this machine's physical memory)")
       ->transform(CLI::AsSizeValue(false))
       ->check(CLI::Range(uint64_t{1}, std::numeric_limits<uint64_t>::max()));
+  command
+      ->add_option("--max-scene-bytes", overrides->max_scene_bytes,
+                   "Refuse an OBJ or MTL file larger than this, from its size before reading it, "
+                   "e.g. 4G (default 1G)")
+      ->transform(CLI::AsSizeValue(false))
+      ->check(CLI::Range(uint64_t{1}, std::numeric_limits<uint64_t>::max()));
 }
 
 Status ApplyOverrides(const JobOverrides& overrides, Job* job) {

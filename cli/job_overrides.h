@@ -25,10 +25,12 @@ struct JobOverrides {
   std::optional<std::string> sampler;
   std::optional<double> patch_size;
   std::optional<uint64_t> max_memory;  // bytes; the machine's memory when unset
+  // The OBJ's and each MTL's size at most, checked before reading; 1 GiB when unset.
+  std::optional<uint64_t> max_scene_bytes;
 };
 
-// Adds --seed, --tolerance, --rays, --seconds, --sampler, --patch-size and --max-memory (not
-// --threads).
+// Adds --seed, --tolerance, --rays, --seconds, --sampler, --patch-size, --max-memory and
+// --max-scene-bytes (not --threads).
 void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides);
 
 // Applies the overrides on top of the job file's settings. Errors name the option.

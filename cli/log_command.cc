@@ -13,8 +13,7 @@ namespace radfarm {
 CLI::App* AddLogCommand(CLI::App& app, LogOptions* options) {
   CLI::App* log = app.add_subcommand(
       "log", "Show a job's events, or the farm-wide log without an ID (oldest first)");
-  log->add_option("ID", options->id, "Job id (default: the farm-wide log)")
-      ->check(PositiveInteger());
+  log->add_option("ID", options->id, "Job id (default: the farm-wide log)")->check(PositiveId());
   log->add_option("--limit,-n", options->limit, "Show the last N events (default 100)")
       ->check(PositiveInteger());
   AddJsonFlag(log, &options->json);

@@ -15,7 +15,7 @@ namespace radfarm {
 inline constexpr int64_t kDefaultLogLimit = 100;
 
 struct LogOptions {
-  std::optional<int64_t> id;
+  std::optional<uint64_t> id;
   int64_t limit = kDefaultLogLimit;
   bool json = false;
 };

@@ -24,6 +24,21 @@ const CLI::Validator& PositiveInteger() {
   return check;
 }
 
+const CLI::Validator& PositiveId() {
+  static const CLI::Validator check(
+      [](std::string& text) -> std::string {
+        uint64_t value = 0;
+        const char* end = text.data() + text.size();
+        const auto [stop, error] = std::from_chars(text.data(), end, value);
+        if (error != std::errc() || stop != end || value < 1) {
+          return "'" + text + "' is not a job id (an integer from 1 to 18446744073709551615)";
+        }
+        return "";
+      },
+      "ID >= 1");
+  return check;
+}
+
 const CLI::Validator& PositiveReal() {
   static const CLI::Validator check(
       [](std::string& text) -> std::string {

@@ -8,6 +8,8 @@ namespace radfarm {
 
 // An integer >= 1 that fits in int64 (job ids, counts).
 const CLI::Validator& PositiveInteger();
+// A job id: decimal digits, 1 to 2^64 - 1.
+const CLI::Validator& PositiveId();
 // A finite number > 0 (seconds, lengths).
 const CLI::Validator& PositiveReal();
 // A number in [low, high].

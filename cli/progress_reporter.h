@@ -4,8 +4,8 @@
 
 #include <cstdio>
 
-#include "solve/solve_state.h"
 #include "core/solve_control.h"  // ConvergenceFraction, EstimateSecondsLeft
+#include "solve/solve_state.h"
 
 namespace radfarm {
 

@@ -21,7 +21,7 @@ int RunList(const ListOptions& options, const std::string& control_path);
 // A request that changes one job's state and answers with the job: cancel, pause or resume.
 struct JobActionOptions {
   std::string command;  // the control command's name, also the subcommand's
-  int64_t id = 0;
+  uint64_t id = 0;
   bool json = false;
 };
 

@@ -16,8 +16,6 @@
 
 #include "base/result.h"
 #include "codec/job_bundle.h"
-#include "base/result.h"
-#include "store/job_store.h"
 #include "solve/solve_state.h"
 #include "store/job_store.h"
 

@@ -16,7 +16,7 @@
 namespace radfarm {
 namespace {
 
-nlohmann::json StatusRequest(int64_t id) { return {{"command", "status"}, {"id", id}}; }
+nlohmann::json StatusRequest(uint64_t id) { return {{"command", "status"}, {"id", id}}; }
 
 int Watch(const StatusOptions& options, const std::string& control_path) {
   // One connection for the whole watch: the protocol allows any number of requests on it.

@@ -15,7 +15,7 @@ namespace radfarm {
 inline constexpr int kWatchIntervalMs = 500;
 
 struct StatusOptions {
-  int64_t id = 0;
+  uint64_t id = 0;
   bool watch = false;
   bool json = false;
 };

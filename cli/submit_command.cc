@@ -2,7 +2,9 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <optional>
 
+#include "base/utf8.h"
 #include "cli/control_frames.h"
 #include "cli/exit_codes.h"
 #include "cli/farm_command.h"
@@ -24,6 +26,13 @@ CLI::App* AddSubmitCommand(CLI::App& app, SubmitOptions* options) {
 }
 
 int RunSubmit(const SubmitOptions& options, const std::string& control_path) {
+  // The name travels in JSON, which holds UTF-8 only (a scene path may be any bytes: the master
+  // shows its bad bytes as U+FFFD).
+  if (const std::optional<size_t> bad = FindInvalidUtf8(options.name)) {
+    PrintError("--name: not UTF-8 text (" + DescribeInvalidUtf8(options.name, *bad) +
+               "); use UTF-8 characters or plain ASCII");
+    return kExitBadInput;
+  }
   std::vector<std::string> warnings;
   Result<LoadedJob> loaded = LoadJobForSolve(options.scene, options.overrides, &warnings);
   PrintMessages(warnings);

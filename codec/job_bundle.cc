@@ -7,6 +7,7 @@
 
 #include "base/result.h"
 #include "codec/decode_checks.h"
+#include "job/output_budget.h"
 #include "job_bundle_generated.h"
 
 namespace radfarm::codec {
@@ -98,6 +99,9 @@ Status DecodeCamera(const wire::BundleCamera& in, Camera* out) {
   if (!std::isfinite(out->exposure)) return Bad("camera.exposure", "is not finite");
   if (out->samples_per_pixel < 1 || out->samples_per_pixel > 1024) {
     return Bad("camera.samples_per_pixel", "not in [1, 1024]");
+  }
+  if (Status budget = CheckPixelSamples(*out); !budget) {
+    return Error{std::string(kKind) + ": " + budget.error()};
   }
   return Ok{};
 }

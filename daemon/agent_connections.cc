@@ -13,6 +13,10 @@ namespace {
 using loop::LogLevel;
 using loop::LogLine;
 
+// Door log lines: enough to see who knocks, too few to flood the journal.
+constexpr uint32_t kDoorLogLines = 20;
+constexpr auto kDoorLogWindow = std::chrono::seconds(10);
+
 template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
@@ -29,15 +33,16 @@ AgentConnections::AgentConnections(loop::EventLoop& loop, const MasterConfig& co
       secret_(secret),
       options_(options),
       store_(store),
-      jobs_(jobs) {}
+      jobs_(jobs),
+      doors_(config.max_unauthenticated),
+      door_log_(kDoorLogLines, kDoorLogWindow) {}
+
+void AgentConnections::LogAtDoor(const std::string& line) {
+  if (door_log_.Allow(LoopNow(loop_))) LogLine(LogLevel::kWarning, "agents") << line;
+}
 
 void AgentConnections::OnConnection(std::unique_ptr<loop::FramedConnection> connection) {
   if (stopping_) return;  // dropped: closes silently
-  if (links_.size() >= config_.max_agents) {
-    LogLine(LogLevel::kWarning, "agents")
-        << connection->peer() << ": refused, already " << links_.size() << " connections";
-    return;
-  }
   const uint64_t id = next_agent_id_++;
   protocol::MasterConfig session;
   session.agent_id = id;
@@ -54,9 +59,33 @@ void AgentConnections::OnConnection(std::unique_ptr<loop::FramedConnection> conn
   AgentLink& ref = *link;
   links_[id] = std::move(link);
   ref.Start();
+  // Over the quota of strangers: the oldest goes (door_keeper.h says why not the newcomer).
+  if (const std::optional<uint64_t> oldest = doors_.Admit(id)) {
+    const auto it = links_.find(*oldest);
+    if (it != links_.end()) {
+      const std::string why = "over the quota of " + std::to_string(doors_.max_unauthenticated()) +
+                              " unauthenticated connections (--max-unauthenticated); the oldest "
+                              "goes";
+      LogAtDoor(it->second->address() + ": closed before authentication: " + why);
+      it->second->Drop(why);
+    }
+  }
 }
 
 void AgentConnections::OnAuthenticated(AgentLink& link) {
+  doors_.Authenticated(link.id());
+  size_t agents = 0;
+  for (const auto& [id, other] : links_) {
+    agents += other.get() != &link && other->authenticated() && !other->closing();
+  }
+  if (agents >= config_.max_agents) {
+    doors_.RefusedFull();
+    LogAtDoor(link.Describe() + ": refused, already " + std::to_string(agents) +
+              " agents (--max-agents)");
+    link.Close(protocol::CloseCode::kShutdown,
+               "the master has its " + std::to_string(config_.max_agents) + " agents");
+    return;
+  }
   const auto blocked = blocklist_.find(link.name());
   if (blocked != blocklist_.end()) {
     if (blocked->second > LoopNow(loop_)) {
@@ -84,6 +113,8 @@ void AgentConnections::OnAgentClosed(AgentLink& link, const std::string& reason)
   if (link.was_authenticated()) {
     LogLine(LogLevel::kInfo, "agents") << link.Describe() << " disconnected: " << reason;
     for (auto& [job, runner] : jobs_.runners()) runner->scheduler().OnAgentLost(id);
+  } else if (doors_.ClosedBeforeAuth(id)) {
+    LogAtDoor(link.address() + ": closed before authentication: " + reason);
   }
   links_.erase(id);  // destroys the link; it is not used after this
   DispatchAll();
@@ -280,6 +311,12 @@ size_t AgentConnections::active() const {
 }
 
 void AgentConnections::Heartbeat() {
+  if (const std::optional<uint64_t> held_back = door_log_.TakeSuppressed(LoopNow(loop_))) {
+    LogLine(LogLevel::kWarning, "agents")
+        << *held_back << " more connections refused or closed before authentication were not "
+        << "logged (at most " << kDoorLogLines << " lines per "
+        << std::chrono::seconds(kDoorLogWindow).count() << " s)";
+  }
   const uint64_t now_ms = loop_.NowMs();
   protocol::HeartbeatMsg beat;
   for (auto& [job, runner] : jobs_.runners()) beat.rays_per_second += runner->RaysPerSecond();

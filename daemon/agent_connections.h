@@ -1,13 +1,15 @@
 // AgentConnections: the master's side of its agent connections. It accepts connections (one
-// AgentLink each, up to max_agents), refuses blocklisted agents after the handshake, hands leases
-// of the running jobs' rounds to agents with room (Dispatch), takes their results, lease returns
-// and scene requests, sends heartbeats, and takes the leases of an agent that disconnects or
-// misses its heartbeats away (the job's scheduler requeues them).
+// AgentLink each; those still in the handshake under DoorKeeper's quota, door_keeper.h), admits
+// up to max_agents authenticated agents, refuses blocklisted agents after the handshake, hands
+// leases of the running jobs' rounds to agents with room (Dispatch), takes their results, lease
+// returns and scene requests, sends heartbeats, and takes the leases of an agent that disconnects
+// or misses its heartbeats away (the job's scheduler requeues them).
 //
 // Agent bookkeeping: an agent that missed its heartbeats is stale (no work until it speaks
 // again); one that handed leases back as draining or overloaded declines work on this connection;
 // one that sent an invalid result is closed and its name blocklisted for a while
-// (SchedulerOptions::blocklist_duration).
+// (SchedulerOptions::blocklist_duration). Every connection refused or closed before it
+// authenticated is logged, at most kDoorLogLines lines per kDoorLogWindow (LogRateLimiter).
 //
 // Loop thread only. It reads and drives the jobs' schedulers through JobRounds.
 #pragma once
@@ -20,7 +22,9 @@
 #include <vector>
 
 #include "daemon/agent_link.h"
+#include "daemon/door_keeper.h"
 #include "daemon/job_rounds.h"
+#include "daemon/log_rate_limiter.h"
 #include "daemon/master_config.h"
 #include "daemon/store_thread.h"
 #include "loop/event_loop.h"
@@ -53,6 +57,9 @@ class AgentConnections {
   std::vector<const AgentLink*> Authenticated() const;
   // Authenticated and not stale: the agents working for the farm.
   size_t active() const;
+  // The connections at the door: strangers waiting, evicted, refused (control `agents`).
+  const DoorCounters& doors() const { return doors_.counters(); }
+  uint32_t max_unauthenticated() const { return doors_.max_unauthenticated(); }
 
   // Shutdown: tells every agent and refuses new connections and dispatches.
   void Stop();
@@ -68,6 +75,8 @@ class AgentConnections {
   void OnSceneRequest(AgentLink& link, const protocol::SceneRequestMsg& request);
   void TakeLeasesAway(AgentLink& link, const char* why);
   void Blocklist(AgentLink& link, const std::string& why);
+  // A refused or pre-authentication close, through the rate limiter.
+  void LogAtDoor(const std::string& line);
   // Hands leases to one agent.
   void Dispatch(AgentLink& link);
 
@@ -81,6 +90,8 @@ class AgentConnections {
   std::map<uint64_t, std::unique_ptr<AgentLink>> links_;
   uint64_t next_agent_id_ = 1;
   std::unordered_map<std::string, scheduler::TimePoint> blocklist_;  // agent name -> until
+  DoorKeeper doors_;
+  LogRateLimiter door_log_;
   bool stopping_ = false;
 };
 

@@ -45,13 +45,12 @@ void AgentLink::Start() {
         handshake_deadline_.Close();
         callbacks_.on_closed(*this, reason);  // may destroy *this
       });
+  connection_->SetMaxReceiveFrameBytes(protocol::kMaxHandshakeFrameBytes);
   handshake_deadline_.Start(options_.handshake_timeout, [this] {
     if (authenticated() || closing_) return;
-    loop::LogLine(loop::LogLevel::kWarning, "agents")
-        << address_ << ": handshake not finished within " << options_.handshake_timeout.count()
-        << " ms; closing";
     session_.Abort("handshake timeout");
-    Fail("handshake timeout");
+    Fail("handshake not finished within " + std::to_string(options_.handshake_timeout.count()) +
+         " ms");
   });
 }
 
@@ -71,6 +70,13 @@ void AgentLink::Close(protocol::CloseCode code, const std::string& reason) {
   connection_->CloseAfterFlush(reason);
 }
 
+void AgentLink::Drop(const std::string& reason) {
+  if (closing_) return;
+  closing_ = true;
+  session_.Abort(reason);
+  connection_->Close(reason);
+}
+
 void AgentLink::Fail(const std::string& reason) {
   if (closing_) return;
   closing_ = true;
@@ -83,25 +89,29 @@ void AgentLink::OnFrame(std::span<const uint8_t> payload) {
   last_heard_ms_ = loop_.NowMs();
   Result<protocol::DecodedFrame> frame = protocol::DecodeFrameBody(payload);
   if (!frame) {
-    loop::LogLine(loop::LogLevel::kWarning, "agents")
-        << Describe() << ": malformed frame: " << frame.error() << "; closing";
+    if (was_authenticated_) {
+      loop::LogLine(loop::LogLevel::kWarning, "agents")
+          << Describe() << ": malformed frame: " << frame.error() << "; closing";
+    }
     session_.Abort(frame.error());
-    Fail("malformed frame");
+    Fail("malformed frame: " + frame.error());
     return;
   }
   const bool was_authenticated = session_.authenticated();
   Result<protocol::ProtocolSession::Accepted> accepted = session_.Accept(*frame);
   if (!accepted) {
-    loop::LogLine(loop::LogLevel::kWarning, "agents")
-        << Describe() << (was_authenticated ? ": protocol error: " : ": refused: ")
-        << accepted.error() << "; closing";
-    Fail(accepted.error());
+    if (was_authenticated) {
+      loop::LogLine(loop::LogLevel::kWarning, "agents")
+          << Describe() << ": protocol error: " << accepted.error() << "; closing";
+    }
+    Fail((was_authenticated ? "" : "refused: ") + accepted.error());
     return;
   }
   if (!accepted->reply.empty()) (void)connection_->SendPrefixed(std::move(accepted->reply));
   if (!was_authenticated && session_.authenticated()) {
     handshake_deadline_.Stop();
     was_authenticated_ = true;
+    connection_->SetMaxReceiveFrameBytes(options_.max_frame_bytes);
     connected_unix_ms_ = UnixMs();
     connection_->SetReadIdleTimeout(options_.idle_close_timeout);
     callbacks_.on_authenticated(*this);

@@ -1,7 +1,10 @@
 // AgentLink: the master's end of one agent connection. It runs the handshake (ProtocolSession),
 // enforces its deadline, checks every frame (DecodeFrameBody, then the session's state and
 // direction rules) and hands authenticated application messages to the master. Any protocol
-// error is logged with the peer's address and closes this one connection only.
+// error closes this one connection only. After the handshake it is logged here with the agent's
+// name; before it, the reason goes to on_closed alone and the master logs it rate-limited
+// (a stranger's junk must not flood the journal). Until it authenticates, the peer's frames may be
+// at most protocol::kMaxHandshakeFrameBytes long.
 //
 // Lifecycle:  accepted --Hello..Welcome--> authenticated --Close/error/EOF/idle--> closed
 //             accepted --deadline, bad proof, malformed frame--> closed
@@ -52,6 +55,8 @@ class AgentLink {
   Status Send(const protocol::Message& message);
   // Sends a Close with `code` and `reason`, then closes once it is flushed.
   void Close(protocol::CloseCode code, const std::string& reason);
+  // Closes at once, sending nothing: for a stranger that must make room (DoorKeeper).
+  void Drop(const std::string& reason);
 
   uint64_t id() const { return id_; }
   bool authenticated() const { return session_.authenticated(); }

@@ -1,6 +1,7 @@
 #include "daemon/control_requests.h"
 
 #include <chrono>
+#include <limits>
 
 #include "base/result.h"
 #include "codec/job_bundle.h"
@@ -27,7 +28,7 @@ struct Lookup {
   std::string invalid;  // set: the request is not allowed in the job's state
 };
 
-ControlResponse NotFound(int64_t id) {
+ControlResponse NotFound(uint64_t id) {
   return ControlError("not_found", "no job " + std::to_string(id));
 }
 
@@ -67,13 +68,18 @@ void ControlRequests::Handle(ControlRequest request, ControlRespond respond) {
     respond(ControlError("internal", "the master is shutting down"));
     return;
   }
+  // Ids are positive int64 in the store; a larger one names no job (and is said as given).
+  if (request.id && *request.id > uint64_t(std::numeric_limits<store::JobId>::max())) {
+    respond(NotFound(*request.id));
+    return;
+  }
   switch (request.command) {
     case ControlCommand::kSubmit:
       return Submit(std::move(request), std::move(respond));
     case ControlCommand::kList:
       return RespondWithJobs(std::nullopt, std::move(respond));
     case ControlCommand::kStatus:
-      return RespondWithJobs(*request.id, std::move(respond));
+      return RespondWithJobs(store::JobId(*request.id), std::move(respond));
     case ControlCommand::kCancel:
     case ControlCommand::kPause:
     case ControlCommand::kResume:
@@ -85,14 +91,15 @@ void ControlRequests::Handle(ControlRequest request, ControlRespond respond) {
     case ControlCommand::kAgents: {
       json list = json::array();
       for (const AgentLink* link : agents_.Authenticated()) list.push_back(AgentJson(*link));
-      respond({json{{"ok", true}, {"agents", list}}, {}});
+      respond({json{{"ok", true}, {"agents", list}, {"connections", DoorsJson()}}, {}});
       return;
     }
   }
 }
 
 void ControlRequests::Log(ControlRequest request, ControlRespond respond) {
-  const std::optional<store::JobId> id = request.id;
+  const std::optional<store::JobId> id =
+      request.id ? std::optional<store::JobId>(store::JobId(*request.id)) : std::nullopt;
   const int limit = static_cast<int>(request.limit);
   store_.Run(
       [id, limit](store::JobStore& s) -> Result<std::optional<std::vector<store::Event>>> {
@@ -160,6 +167,18 @@ json ControlRequests::JobJson(const JobSummary& s) {
   job["progress"] =
       r.state == store::JobState::kDone ? 1.0 : ConvergenceFraction(unshot, s.settings.tolerance);
   return job;
+}
+
+json ControlRequests::DoorsJson() const {
+  const DoorCounters& d = agents_.doors();
+  return json{{"unauthenticated", d.unauthenticated},
+              {"unauthenticated_peak", d.unauthenticated_peak},
+              {"max_unauthenticated", agents_.max_unauthenticated()},
+              {"accepted", d.accepted},
+              {"authenticated", d.authenticated},
+              {"evicted", d.evicted},
+              {"closed_before_auth", d.closed_before_auth},
+              {"refused_full", d.refused_full}};
 }
 
 json ControlRequests::AgentJson(const AgentLink& link) const {
@@ -282,7 +301,7 @@ void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
 }
 
 void ControlRequests::ChangeState(ControlRequest request, ControlRespond respond) {
-  const store::JobId id = *request.id;
+  const store::JobId id = store::JobId(*request.id);
   const ControlCommand command = request.command;
   const store::JobCommand job_command =
       command == ControlCommand::kCancel  ? store::JobCommand::kCancel
@@ -318,7 +337,7 @@ void ControlRequests::ChangeState(ControlRequest request, ControlRespond respond
 }
 
 void ControlRequests::Fetch(ControlRequest request, ControlRespond respond) {
-  const store::JobId id = *request.id;
+  const store::JobId id = store::JobId(*request.id);
   using Answer = std::pair<std::optional<JobSummary>, std::vector<uint8_t>>;
   store_.Run(
       [id](store::JobStore& s) -> Result<Answer> {

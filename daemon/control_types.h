@@ -26,7 +26,9 @@ enum class ControlCommand {
 
 struct ControlRequest {
   ControlCommand command = ControlCommand::kList;
-  std::optional<int64_t> id;        // status, cancel, pause, resume, fetch: required; log: optional
+  // status, cancel, pause, resume, fetch: required; log: optional. Any unsigned 64-bit number:
+  // one above the store's largest id is simply no job.
+  std::optional<uint64_t> id;
   std::string name;                 // submit
   int64_t priority = 0;             // submit
   int64_t limit = 100;              // log
@@ -43,5 +45,10 @@ using ControlRespond = std::function<void(ControlResponse)>;
 // {"ok": false, "error": message, "code": code}; code is bad_request, not_found, invalid_state or
 // internal.
 ControlResponse ControlError(const std::string& code, const std::string& message);
+
+// The text of a JSON value for the wire. Strings that are not UTF-8 (a scene path in Latin-1, a
+// job name from a bundle with 0xFF in it) have each bad byte replaced by U+FFFD instead of
+// throwing: names are for people, and an exception here would end the daemon.
+std::string JsonText(const nlohmann::json& value);
 
 }  // namespace radfarm::daemon

@@ -65,6 +65,9 @@ void JobRounds::StartQueuedJobs() {
         for (store::JobStart& start : *starts) {
           const store::JobId id = start.record.id;
           starting_[id] = false;
+          for (const std::string& w : start.warnings) {
+            LogLine(LogLevel::kWarning, "job " + std::to_string(id)) << w;
+          }
           store_.LogEvent(id, store::EventLevel::kInfo,
                           start.checkpoint ? "started, resuming after round " +
                                                  std::to_string(start.checkpoint->round)
@@ -221,14 +224,14 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
           return s.PruneCheckpoints(record.job, static_cast<int>(keep));
         },
         [this, id, queued_ms](Status s) {
-          if (!s) return FailJob(id, "cannot save the checkpoint: " + s.error());
+          if (!s) return HoldOrFail(id, "cannot save the checkpoint: " + s.error());
           // The loop's clock, read at the start of the iteration that delivered the commit.
           checkpoint_latency_.Record(double(loop_.NowMs() - queued_ms) / 1000);
         });
   } else {
     store_.Run([record](store::JobStore& s) { return s.RecordRound(record); },
                [this, id](Status s) {
-                 if (!s) FailJob(id, "cannot record the round: " + s.error());
+                 if (!s) HoldOrFail(id, "cannot record the round: " + s.error());
                });
   }
   LogLine(LogLevel::kInfo, "job " + std::to_string(id))

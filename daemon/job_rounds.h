@@ -9,6 +9,9 @@
 //     (or RunRoundHere)--> reducing --OnRoundReduced--> BeginRound ... --> FinishJob / FailJob
 //   DropJob (cancel, pause) forgets a running job at any point; a job still starting is dropped
 //   when its preparation ends.
+//   A store fault (disk full, I/O error) while a round is committed holds the job instead of
+//   failing it (HoldJob, job_holds.cc): paused with a "held: " reason, and RetryHeldJobs puts it
+//   back in the queue every hold_retry_ms until the store writes again.
 //
 // It knows nothing of connections: what it needs of the agents comes through AgentHooks.
 // Loop thread only (the compute and store threads hand their results back to it).
@@ -63,6 +66,10 @@ class JobRounds {
   // Forgets a job the operator cancelled or paused (the store knows already).
   void DropJob(store::JobId id);
   void FailJob(store::JobId id, const std::string& error);
+  // A store fault: hold the job (store/job_state.h); any other error fails it.
+  void HoldOrFail(store::JobId id, const std::string& error);
+  // From a timer: at most every hold_retry_ms, held jobs go back to the queue if the store writes.
+  void RetryHeldJobs(uint64_t now_ms);
 
   // The running jobs (not those being prepared), by id.
   const Runners& runners() const { return runners_; }
@@ -115,6 +122,12 @@ class JobRounds {
   bool start_again_ = false;               // ... and another was asked for meanwhile
   size_t dispatch_rotation_ = 0;
   bool stopping_ = false;
+  // Held jobs: some were held (perhaps by an earlier master) and wait for RetryHeldJobs; those
+  // whose hold could not be written are still "running" in the store.
+  bool holds_waiting_ = true;  // a master starts by looking for holds left from before
+  std::vector<store::JobId> unrecorded_holds_;
+  uint64_t next_hold_retry_ms_ = 0;
+  bool hold_retry_pending_ = false;
 };
 
 }  // namespace radfarm::daemon

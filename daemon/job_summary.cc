@@ -8,10 +8,11 @@
 namespace radfarm::daemon {
 
 std::string SubmittedSettings::ToJson() const {
+  // The scene path is any bytes; a byte that is not UTF-8 becomes U+FFFD (it is only shown).
   return nlohmann::json{{"tolerance", tolerance},     {"max_rays", max_rays},
                         {"max_seconds", max_seconds}, {"sampler", sampler},
                         {"patches", patches},         {"scene", scene}}
-      .dump();
+      .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 Result<SubmittedSettings> SubmittedSettings::FromJson(const std::string& text) {

@@ -26,10 +26,10 @@ constexpr int kExitBadInput = 2;
 struct Flags {
   std::optional<std::string> config, listen, state_dir, secret_file, control, log_level, http,
       http_token_file;
-  std::optional<uint32_t> heartbeat_ms, agent_timeout_ms, handshake_timeout_ms, checkpoint_keep,
-      max_running_jobs, max_agents;
+  std::optional<uint32_t> heartbeat_ms, agent_timeout_ms, handshake_timeout_ms, control_timeout_ms,
+      hold_retry_ms, checkpoint_keep, max_running_jobs, max_agents, max_unauthenticated;
   std::optional<double> checkpoint_seconds, lease_seconds;
-  std::optional<uint64_t> local_round_rays;
+  std::optional<uint64_t> local_round_rays, max_store_bytes;
 };
 
 void AddFlags(CLI::App& app, Flags* f) {
@@ -52,6 +52,19 @@ void AddFlags(CLI::App& app, Flags* f) {
   app.add_option("--handshake-timeout-ms", f->handshake_timeout_ms,
                  "Close connections not authenticated within this (default 5000)")
       ->check(CLI::Range(100u, 86400000u));
+  app.add_option("--control-timeout-ms", f->control_timeout_ms,
+                 "A control client must send each whole request, attachment included, within "
+                 "this; idle clients are closed (default 60000)")
+      ->check(CLI::Range(100u, 86400000u));
+  app.add_option("--hold-retry-ms", f->hold_retry_ms,
+                 "A job held after a store fault (disk full, I/O error) is tried again this often "
+                 "(default 10000)")
+      ->check(CLI::Range(100u, 86400000u));
+  app.add_option("--max-store-bytes", f->max_store_bytes,
+                 "The job store's size at most, e.g. 10G; reaching it holds running jobs as a "
+                 "full disk does (default 0: no limit)")
+      ->transform(CLI::AsSizeValue(false))
+      ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 50));
   app.add_option("--checkpoint-keep", f->checkpoint_keep,
                  "Full checkpoints kept per job (default 3)")
       ->check(CLI::Range(1u, 1000000u));
@@ -63,7 +76,12 @@ void AddFlags(CLI::App& app, Flags* f) {
   app.add_option("--lease-seconds", f->lease_seconds,
                  "Time one batch should take on its agent (default 0.25)")
       ->check(CLI::Range(0.001, 3600.0));
-  app.add_option("--max-agents", f->max_agents, "Agent connections at most (default 4096)")
+  app.add_option("--max-agents", f->max_agents,
+                 "Authenticated agents at most; more are refused (default 4096)")
+      ->check(CLI::Range(1u, 1000000u));
+  app.add_option("--max-unauthenticated", f->max_unauthenticated,
+                 "Connections in the handshake at once; a newer one closes the oldest, and they "
+                 "never count toward --max-agents (default 64)")
       ->check(CLI::Range(1u, 1000000u));
   app.add_option("--local-round-rays", f->local_round_rays,
                  "Rounds of at most this many rays are computed by the master, not leased to "
@@ -97,11 +115,15 @@ Result<MasterConfig> ResolveConfig(const Flags& f) {
   Override(f.heartbeat_ms, &c.heartbeat_ms);
   Override(f.agent_timeout_ms, &c.agent_timeout_ms);
   Override(f.handshake_timeout_ms, &c.handshake_timeout_ms);
+  Override(f.control_timeout_ms, &c.control_timeout_ms);
+  Override(f.hold_retry_ms, &c.hold_retry_ms);
+  Override(f.max_store_bytes, &c.max_store_bytes);
   Override(f.checkpoint_keep, &c.checkpoint_keep);
   Override(f.checkpoint_seconds, &c.checkpoint_seconds);
   Override(f.max_running_jobs, &c.max_running_jobs);
   Override(f.lease_seconds, &c.lease_seconds);
   Override(f.max_agents, &c.max_agents);
+  Override(f.max_unauthenticated, &c.max_unauthenticated);
   Override(f.local_round_rays, &c.local_round_rays);
   Override(f.http, &c.http);
   Override(f.http_token_file, &c.http_token_file);

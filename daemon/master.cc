@@ -2,6 +2,7 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <system_error>
 
@@ -35,7 +36,12 @@ Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const Maste
   }
   std::unique_ptr<Master> master(new Master(loop, config, std::move(secret)));
 
-  Result<store::JobStore> store = store::JobStore::Open(config.DatabasePath());
+  store::JobStoreOptions store_options;
+  // SQLite counts pages of 4 KiB (its default page size, which the store keeps).
+  if (config.max_store_bytes > 0) {
+    store_options.max_pages = std::max<int64_t>(1, int64_t(config.max_store_bytes / 4096));
+  }
+  Result<store::JobStore> store = store::JobStore::Open(config.DatabasePath(), store_options);
   RADFARM_RETURN_IF_ERROR(store);
   // Jobs that were running when the last master stopped go back to the queue; they resume from
   // their latest checkpoints when they start again.
@@ -83,9 +89,11 @@ Status Master::Wire() {
 
   ControlRequests* control = control_.get();
   auto control_server = ControlServer::Listen(
-      loop_, config_.ControlPath(), [control](ControlRequest request, ControlRespond respond) {
+      loop_, config_.ControlPath(),
+      [control](ControlRequest request, ControlRespond respond) {
         control->Handle(std::move(request), std::move(respond));
-      });
+      },
+      ControlServerOptions{std::chrono::milliseconds(config_.control_timeout_ms)});
   RADFARM_RETURN_IF_ERROR(control_server);
   control_server_ = std::move(*control_server);
   if (!config_.http.empty()) {
@@ -146,6 +154,7 @@ void Master::OnHeartbeatTimer() {
 
 void Master::OnTickTimer() {
   if (jobs_->Tick(LoopNow(loop_)) > 0) agents_->DispatchAll();
+  jobs_->RetryHeldJobs(loop_.NowMs());
 }
 
 void Master::ReportStatus() {

@@ -34,12 +34,16 @@ Status ReadMasterConfigFile(const std::string& path, MasterConfig* c) {
                    r.Integer("heartbeat_ms", 10, kMaxMs, &c->heartbeat_ms),
                    r.Integer("agent_timeout_ms", 100, kMaxMs, &c->agent_timeout_ms),
                    r.Integer("handshake_timeout_ms", 100, kMaxMs, &c->handshake_timeout_ms),
+                   r.Integer("control_timeout_ms", 100, kMaxMs, &c->control_timeout_ms),
+                   r.Integer("hold_retry_ms", 100, kMaxMs, &c->hold_retry_ms),
+                   r.Integer("max_store_bytes", 0, int64_t{1} << 50, &c->max_store_bytes),
                    r.String("log_level", &c->log_level),
                    r.Integer("checkpoint_keep", 1, 1000000, &c->checkpoint_keep),
                    r.Real("checkpoint_seconds", Interval::AtLeast(0), &c->checkpoint_seconds),
                    r.Integer("max_running_jobs", 1, 1024, &c->max_running_jobs),
                    r.Real("lease_seconds", Interval::Open(0, 3600), &c->lease_seconds),
                    r.Integer("max_agents", 1, 1000000, &c->max_agents),
+                   r.Integer("max_unauthenticated", 1, 1000000, &c->max_unauthenticated),
                    r.Integer("local_round_rays", 0, kMaxLocalRoundRays, &c->local_round_rays),
                    r.String("http", &c->http), r.String("http_token_file", &c->http_token_file)}) {
     RADFARM_RETURN_IF_ERROR(s);

@@ -18,6 +18,8 @@ struct MasterConfig {
   uint32_t heartbeat_ms = 1000;
   uint32_t agent_timeout_ms = 5000;      // silent this long: the agent's leases go back
   uint32_t handshake_timeout_ms = 5000;  // unauthenticated this long: the connection is closed
+  // A control client must send each whole request (attachment included) within this.
+  uint32_t control_timeout_ms = 60000;
   std::string log_level = "info";
   uint32_t checkpoint_keep = 3;   // full checkpoints kept per job
   double checkpoint_seconds = 0;  // 0: checkpoint every round; else at most this often
@@ -26,7 +28,14 @@ struct MasterConfig {
   // Rounds of at most this many rays are computed by the master itself (0: never): the last
   // rounds of a solve are a few rays per patch, which cost agents a round trip per batch.
   uint64_t local_round_rays = 262144;
-  uint32_t max_agents = 4096;  // connections beyond this are refused
+  // A job that meets a store fault (disk full, I/O error) is held and tried again this often.
+  uint32_t hold_retry_ms = 10000;
+  // The job store's size at most (0: no limit but the disk's). Reaching it is like a full disk:
+  // running jobs are held until there is room.
+  uint64_t max_store_bytes = 0;
+  uint32_t max_agents = 4096;  // authenticated agents beyond this are refused
+  // Connections still in the handshake at once; a newer one makes the oldest go (door_keeper.h).
+  uint32_t max_unauthenticated = 64;
   // The web console (status page, /metrics): HOST:PORT, empty = off. A host other than loopback
   // needs http_token_file (the token that reading and acting then need).
   std::string http;

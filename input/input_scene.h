@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "base/result.h"
+#include "base/text_file.h"
 #include "core/rgb.h"
 #include "core/vec3.h"
 
@@ -33,7 +34,10 @@ struct InputScene {
 
 // Reads and validates an OBJ (and the MTL files it names). Errors are one line naming the file and
 // the line, face or material: missing file, unparseable line, index out of range, non-finite
-// coordinates, reflectance outside [0, 1), negative emission, no emitter ("nothing to light").
-Result<InputScene> LoadObjScene(const std::string& path);
+// coordinates, reflectance outside [0, 1), negative emission, no emitter ("nothing to light");
+// an OBJ or MTL that is not a regular file or is larger than `max_file_bytes` (refused from its
+// size, before it is read).
+Result<InputScene> LoadObjScene(const std::string& path,
+                                uint64_t max_file_bytes = kDefaultMaxInputFileBytes);
 
 }  // namespace radfarm

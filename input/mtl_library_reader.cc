@@ -31,9 +31,15 @@ bool MtlLibraryReader::operator()(const std::string& name,
   // tinyobjloader's own messages carry no file name; ours come from IndexMtlLines and the loader.
   if (error_ || !requested_.insert(name).second) return false;
   const std::string path = (directory_ / name).string();
-  Result<std::string> text = ReadTextFile(path);
+  Result<std::string> text = ReadTextFile(path, max_file_bytes_);
   if (!text) {
-    missing_.push_back(name);
+    std::error_code ec;
+    // A missing library is a warning (the scene may still light); `mtllib /dev/zero` is an error.
+    if (!std::filesystem::exists(path, ec)) {
+      missing_.push_back(name);
+    } else {
+      error_ = Error{text.error()};
+    }
     return false;
   }
   BlankComments(&*text);

@@ -24,7 +24,9 @@ struct MaterialOrigin {
 
 class MtlLibraryReader : public tinyobj::MaterialReader {
  public:
-  explicit MtlLibraryReader(std::filesystem::path directory) : directory_(std::move(directory)) {}
+  // Each MTL file may be at most `max_file_bytes` (ReadTextFile).
+  MtlLibraryReader(std::filesystem::path directory, uint64_t max_file_bytes)
+      : directory_(std::move(directory)), max_file_bytes_(max_file_bytes) {}
 
   // Called by tinyobjloader once per file named by `mtllib`. Always returns false: tinyobjloader
   // stops at the first file of a `mtllib` line that loads, but the OBJ specification loads them
@@ -35,7 +37,8 @@ class MtlLibraryReader : public tinyobj::MaterialReader {
 
   // Where each of tinyobjloader's materials was defined, by material id.
   const std::vector<MaterialOrigin>& origins() const { return origins_; }
-  // `mtllib` names that could not be read, as written in the OBJ.
+  // `mtllib` names that do not exist, as written in the OBJ. One that exists but cannot be used
+  // (not a regular file, over the size limit, unreadable) is an error().
   const std::vector<std::string>& missing() const { return missing_; }
   // Warnings from the MTL files, already prefixed with their names.
   const std::vector<std::string>& warnings() const { return warnings_; }
@@ -44,6 +47,7 @@ class MtlLibraryReader : public tinyobj::MaterialReader {
 
  private:
   std::filesystem::path directory_;
+  uint64_t max_file_bytes_;
   std::set<std::string> requested_;
   std::vector<MaterialOrigin> origins_;
   std::vector<std::string> missing_;

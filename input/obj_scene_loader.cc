@@ -140,8 +140,8 @@ Status CheckSomethingEmits(const std::string& path, const MtlLibraryReader& read
 
 }  // namespace
 
-Result<InputScene> LoadObjScene(const std::string& path) {
-  Result<std::string> text = ReadTextFile(path);
+Result<InputScene> LoadObjScene(const std::string& path, uint64_t max_file_bytes) {
+  Result<std::string> text = ReadTextFile(path, max_file_bytes);
   RADFARM_RETURN_IF_ERROR(text);
   BlankComments(&*text);
   Result<ObjLineIndex> index = IndexObjLines(path, *text);
@@ -151,7 +151,7 @@ Result<InputScene> LoadObjScene(const std::string& path) {
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
   std::string warn, err;
-  MtlLibraryReader reader(std::filesystem::path(path).parent_path());
+  MtlLibraryReader reader(std::filesystem::path(path).parent_path(), max_file_bytes);
   std::istringstream stream(*text);
   const bool parsed = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &stream, &reader,
                                        /*triangulate=*/false, /*default_vcols_fallback=*/false);

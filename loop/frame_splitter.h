@@ -34,6 +34,12 @@ class FrameSplitter {
   // splitter at once; the rest of the chunk is dropped (the caller is closing the stream).
   using OnPayload = std::function<bool(std::span<const uint8_t> payload)>;
 
+  // Changes the limit for the frames whose length has not arrived yet (a frame under way keeps
+  // the limit it was checked against). Callable from on_payload: the next frame of the same
+  // chunk is checked against the new limit.
+  void set_max_payload_bytes(uint32_t max_payload_bytes) { max_payload_bytes_ = max_payload_bytes; }
+  uint32_t max_payload_bytes() const { return max_payload_bytes_; }
+
   // Fails (and stays failed) on a length above the limit.
   Status Feed(std::span<const uint8_t> bytes, const OnPayload& on_payload);
 

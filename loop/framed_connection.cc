@@ -123,7 +123,7 @@ struct FramedConnection::Impl : internal::HandleBlock {
       if (impl->flushing) {
         impl->CloseWith(impl->flush_reason);
       } else if (n == UV_EOF) {
-        impl->CloseWith("peer closed the connection");
+        impl->CloseWith(kPeerClosedReason);
       } else {
         impl->CloseWith(UvErrorText("read from " + impl->peer, static_cast<int>(n)));
       }
@@ -354,6 +354,13 @@ uint64_t FramedConnection::bytes_received() const {
 
 uint64_t FramedConnection::frames_received() const {
   return block_.get() ? block_->frames_received : 0;
+}
+
+void FramedConnection::SetMaxReceiveFrameBytes(uint32_t max_frame_bytes) {
+  Impl* impl = block_.get();
+  if (impl == nullptr || !impl->splitter) return;
+  internal::CheckLoopThread(impl->timer.loop);
+  impl->splitter->set_max_payload_bytes(max_frame_bytes);
 }
 
 }  // namespace radfarm::loop

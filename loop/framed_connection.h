@@ -37,6 +37,9 @@ namespace internal {
 struct ListenBlock;
 }
 
+// on_close's reason when the peer ended the stream (EOF) while the connection was open.
+inline constexpr const char* kPeerClosedReason = "peer closed the connection";
+
 struct ConnectionOptions {
   uint32_t max_frame_bytes = 16u << 20;  // payload limit, both directions
   size_t max_queued_bytes = 64u << 20;   // unwritten bytes before a slow peer is dropped
@@ -80,6 +83,10 @@ class FramedConnection {
   void Close(const std::string& reason);  // no-op unless open
   void CloseAfterFlush(const std::string& reason);
   void SetReadIdleTimeout(std::chrono::milliseconds timeout);
+  // The limit of the frames received from now on (after Start; the send limit stays
+  // options.max_frame_bytes). A server lowers it for peers it does not trust yet (a handshake
+  // frame is a few hundred bytes) and raises it once they authenticate or announce what comes.
+  void SetMaxReceiveFrameBytes(uint32_t max_frame_bytes);
 
   // "127.0.0.1:53412", "[::1]:7000", "unix:/run/radfarm/control.sock (pid 12 uid 0)". For logs.
   const std::string& peer() const { return peer_; }

@@ -14,6 +14,10 @@ inline constexpr uint16_t kMinProtocolVersion = 1;
 // Frame: a 4-byte little-endian length prefix, then that many bytes of FlatBuffer.
 inline constexpr size_t kLengthPrefixBytes = 4;
 inline constexpr uint32_t kDefaultMaxFrameBytes = 16u << 20;
+// Before the handshake a peer is a stranger: the master reads frames of at most this many bytes
+// from it. A Hello is 112 bytes with a short name (at most ~180 with a 64-byte one), a Proof less;
+// a Close with its longest detail about 300.
+inline constexpr uint32_t kMaxHandshakeFrameBytes = 512;
 // Smallest well-formed frame body: root offset, identifier, a table. Anything shorter is junk.
 inline constexpr uint32_t kMinFrameBytes = 12;
 // No peer may announce (Welcome) or use a frame limit below this: the largest scene chunk and a

@@ -14,7 +14,10 @@
 //   queued, running, paused ---------- kCancelled (reason optional) ----------------> cancelled
 //
 // done, failed and cancelled are terminal: a retry is a new SubmitJob(). kFailed requires an error
-// text, kCancelled takes an optional reason, other transitions take none.
+// text, kCancelled and kPaused take an optional reason, other transitions take none (and clear
+// it). A job paused with a reason starting "held: " was held by the master after a store fault
+// (disk full, I/O error: HoldJob in job_transactions.h), not by an operator; it goes back to the
+// queue by itself once the store writes again (ReleaseHeldJobs), or with `radfarm resume`.
 // Times: started_at is set on the first entry to running; finished_at on entry to a terminal state.
 //
 // An operator's command (`radfarm cancel|pause|resume`, ChangeJobState in job_transactions.h)

@@ -1,9 +1,11 @@
 #include "store/job_store.h"
 
 #include <chrono>
+#include <filesystem>
 #include <utility>
 
 #include "base/result.h"
+#include "store/blob_checksum.h"
 
 namespace radfarm::store {
 namespace {
@@ -76,6 +78,15 @@ std::string_view EventLevelName(EventLevel level) {
 }
 
 Result<JobStore> JobStore::Open(const std::string& path, JobStoreOptions options) {
+  // SQLite would take a 0-byte file as a new, empty database: every job of a store truncated by
+  // accident (or a full disk) would be gone without a word. Only a missing file is created.
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) == 0 &&
+      !ec) {
+    return Error{"job store " + path +
+                 ": the file is empty (0 bytes), not a job store; refusing to start over in it. "
+                 "Restore it from a backup, or delete it to start with no jobs"};
+  }
   Result<Database> db = Database::Open(path, options.database);
   RADFARM_RETURN_IF_ERROR(db);
   // Everything up to here only read the file; refuse before the first write.
@@ -155,8 +166,9 @@ Status JobStore::SetJobState(JobId id, JobState to, std::optional<std::string> e
   if (to == JobState::kFailed && !error) {
     return Error{"job store: " + job_name + ": failing a job needs an error text"};
   }
-  if (error && to != JobState::kFailed && to != JobState::kCancelled) {
-    return Error{"job store: " + job_name + ": an error text only goes with failed or cancelled"};
+  if (error && to != JobState::kFailed && to != JobState::kCancelled && to != JobState::kPaused) {
+    return Error{"job store: " + job_name +
+                 ": an error text only goes with failed, cancelled or paused (held)"};
   }
   Result<Transaction> transaction = Transaction::Begin(db_);
   RADFARM_RETURN_IF_ERROR(transaction);
@@ -201,13 +213,14 @@ Status JobStore::PutScene(const std::string& hash, std::span<const uint8_t> geom
   Result<Transaction> transaction = Transaction::Begin(db_);
   RADFARM_RETURN_IF_ERROR(transaction);
   Result<Statement> insert = db_.Prepare(
-      "INSERT INTO scenes (hash, geometry, size, stored_at_ms) VALUES (?1, ?2, ?3, ?4)"
-      " ON CONFLICT (hash) DO NOTHING");
+      "INSERT INTO scenes (hash, geometry, size, stored_at_ms, checksum)"
+      " VALUES (?1, ?2, ?3, ?4, ?5) ON CONFLICT (hash) DO NOTHING");
   RADFARM_RETURN_IF_ERROR(insert);
   insert->Bind(1, hash)
       .BindBlob(2, geometry)
       .Bind(3, static_cast<int64_t>(geometry.size()))
-      .Bind(4, now_ms_());
+      .Bind(4, now_ms_())
+      .BindBlob(5, BlobChecksum(geometry));
   RADFARM_RETURN_IF_ERROR(insert->Run());
   if (db_.Changes() == 0) {
     Result<std::optional<std::vector<uint8_t>>> stored = GetScene(hash);
@@ -221,13 +234,19 @@ Status JobStore::PutScene(const std::string& hash, std::span<const uint8_t> geom
 }
 
 Result<std::optional<std::vector<uint8_t>>> JobStore::GetScene(const std::string& hash) {
-  Result<Statement> stmt = db_.Prepare("SELECT geometry FROM scenes WHERE hash = ?1");
+  Result<Statement> stmt = db_.Prepare("SELECT geometry, checksum FROM scenes WHERE hash = ?1");
   RADFARM_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, hash);
   Result<bool> row = stmt->Step();
   RADFARM_RETURN_IF_ERROR(row);
   if (!*row) return std::optional<std::vector<uint8_t>>();
-  return std::optional<std::vector<uint8_t>>(stmt->Blob(0));
+  std::vector<uint8_t> geometry = stmt->Blob(0);
+  if (!ChecksumMatches(stmt->Blob(1), BlobChecksum(geometry))) {
+    return Error{"job store " + path() + ": scene " + hash +
+                 " is damaged (its bytes do not match its checksum); restore the store from a "
+                 "backup or submit the job again"};
+  }
+  return std::optional<std::vector<uint8_t>>(std::move(geometry));
 }
 
 // --- agents and events -------------------------------------------------------------------------

@@ -93,6 +93,12 @@ struct Checkpoint {
   std::optional<std::string> stop_reason;
 };
 
+// A checkpoint whose bytes no longer match their checksum (rot on disk: blob_checksum.h).
+struct DamagedCheckpoint {
+  uint32_t round = 0;
+  std::string message;  // "job store PATH: the checkpoint of job 3 round 7 is damaged (...)"
+};
+
 enum class EventLevel { kInfo, kWarning, kError };
 
 struct Event {
@@ -134,6 +140,7 @@ class JobStore {
   // --- scenes ---
   // Idempotent for the same bytes; an error if `hash` is stored with different bytes.
   Status PutScene(const std::string& hash, std::span<const uint8_t> geometry);
+  // Verified against its checksum: damaged bytes are an error naming the scene.
   Result<std::optional<std::vector<uint8_t>>> GetScene(const std::string& hash);
 
   // --- rounds and checkpoints ---
@@ -144,8 +151,12 @@ class JobStore {
   // checkpoint.job and .round must equal round.job and .round; checkpoint.scene_hash, when set,
   // must be stored.
   Status SaveCheckpoint(const RoundRecord& round, const Checkpoint& checkpoint);
-  // The checkpoint with the highest round, with the same bits that were saved.
-  Result<std::optional<Checkpoint>> LoadLatestCheckpoint(JobId job);
+  // The checkpoint with the highest round, with the same bits that were saved, verified against
+  // its checksum. A damaged one is an error when `damaged` is null; otherwise it is appended
+  // there and the next older checkpoint is tried (none left: nullopt, the job starts over).
+  Result<std::optional<Checkpoint>> LoadLatestCheckpoint(
+      JobId job, std::vector<DamagedCheckpoint>* damaged = nullptr);
+  Status DeleteCheckpoint(JobId job, uint32_t round);
   // The stop_reason of the checkpoint with the highest round (none: no checkpoint, or the job
   // had not stopped there), without reading its arrays.
   Result<std::optional<std::string>> LoadLatestStopReason(JobId job);

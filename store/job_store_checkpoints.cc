@@ -2,6 +2,7 @@
 #include <utility>
 
 #include "base/result.h"
+#include "store/blob_checksum.h"
 #include "store/blob_codec.h"
 #include "store/job_store.h"
 
@@ -67,6 +68,10 @@ Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& chec
   std::vector<uint8_t> radiosity = EncodeRgbs(checkpoint.radiosity);
   std::vector<uint8_t> unshot = EncodeRgbs(checkpoint.unshot);
   std::vector<uint8_t> energy = EncodeEnergy(checkpoint.energy);
+  const Checksum checksum = CheckpointChecksum(
+      {checkpoint.job, int64_t{checkpoint.round}, int64_t{checkpoint.rounds_done},
+       int64_t{checkpoint.refine_points}, radiosity, unshot, energy, &checkpoint.scene_hash,
+       &checkpoint.stop_reason});
   int64_t now = now_ms_();
 
   Result<Transaction> transaction = Transaction::Begin(db_);
@@ -74,8 +79,8 @@ Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& chec
   RADFARM_RETURN_IF_ERROR(InsertRound(round, now));
   Result<Statement> stmt = db_.Prepare(
       "INSERT OR REPLACE INTO checkpoints (job_id, round, rounds_done, patches, radiosity, unshot,"
-      " energy, created_at_ms, scene_hash, refine_points, stop_reason)"
-      " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)");
+      " energy, created_at_ms, scene_hash, refine_points, stop_reason, checksum)"
+      " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)");
   RADFARM_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, checkpoint.job)
       .Bind(2, int64_t{checkpoint.round})
@@ -85,7 +90,8 @@ Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& chec
       .BindBlob(6, unshot)
       .BindBlob(7, energy)
       .Bind(8, now)
-      .Bind(10, int64_t{checkpoint.refine_points});
+      .Bind(10, int64_t{checkpoint.refine_points})
+      .BindBlob(12, checksum);
   for (const auto& [index, text] :
        {std::pair(9, &checkpoint.scene_hash), std::pair(11, &checkpoint.stop_reason)}) {
     if (*text) {
@@ -98,34 +104,59 @@ Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& chec
   return transaction->Commit();
 }
 
-Result<std::optional<Checkpoint>> JobStore::LoadLatestCheckpoint(JobId job) {
+Result<std::optional<Checkpoint>> JobStore::LoadLatestCheckpoint(
+    JobId job, std::vector<DamagedCheckpoint>* damaged) {
   Result<Statement> stmt = db_.Prepare(
       "SELECT round, rounds_done, radiosity, unshot, energy, created_at_ms, scene_hash,"
-      " refine_points, stop_reason FROM checkpoints"
-      " WHERE job_id = ?1 ORDER BY round DESC LIMIT 1");
+      " refine_points, stop_reason, checksum FROM checkpoints"
+      " WHERE job_id = ?1 ORDER BY round DESC");
   RADFARM_RETURN_IF_ERROR(stmt);
   stmt->Bind(1, job);
-  Result<bool> row = stmt->Step();
-  RADFARM_RETURN_IF_ERROR(row);
-  if (!*row) return std::optional<Checkpoint>();
-  Checkpoint checkpoint;
-  checkpoint.job = job;
-  checkpoint.round = static_cast<uint32_t>(stmt->Int(0));
-  checkpoint.rounds_done = static_cast<uint32_t>(stmt->Int(1));
-  Result<std::vector<Rgb>> radiosity = DecodeRgbs(stmt->Blob(2));
-  RADFARM_RETURN_IF_ERROR(radiosity);
-  Result<std::vector<Rgb>> unshot = DecodeRgbs(stmt->Blob(3));
-  RADFARM_RETURN_IF_ERROR(unshot);
-  Result<EnergyAccount> energy = DecodeEnergy(stmt->Blob(4));
-  RADFARM_RETURN_IF_ERROR(energy);
-  checkpoint.radiosity = std::move(*radiosity);
-  checkpoint.unshot = std::move(*unshot);
-  checkpoint.energy = *energy;
-  checkpoint.created_at_ms = stmt->Int(5);
-  if (!stmt->IsNull(6)) checkpoint.scene_hash = stmt->Text(6);
-  checkpoint.refine_points = static_cast<uint32_t>(stmt->Int(7));
-  if (!stmt->IsNull(8)) checkpoint.stop_reason = stmt->Text(8);
-  return std::optional<Checkpoint>(std::move(checkpoint));
+  // Newest first; one whose bytes do not match its checksum is passed over for the one before.
+  while (true) {
+    Result<bool> row = stmt->Step();
+    RADFARM_RETURN_IF_ERROR(row);
+    if (!*row) return std::optional<Checkpoint>();
+    Checkpoint checkpoint;
+    checkpoint.job = job;
+    checkpoint.round = static_cast<uint32_t>(stmt->Int(0));
+    checkpoint.rounds_done = static_cast<uint32_t>(stmt->Int(1));
+    const std::vector<uint8_t> radiosity_blob = stmt->Blob(2), unshot_blob = stmt->Blob(3),
+                               energy_blob = stmt->Blob(4);
+    checkpoint.created_at_ms = stmt->Int(5);
+    if (!stmt->IsNull(6)) checkpoint.scene_hash = stmt->Text(6);
+    checkpoint.refine_points = static_cast<uint32_t>(stmt->Int(7));
+    if (!stmt->IsNull(8)) checkpoint.stop_reason = stmt->Text(8);
+    const Checksum computed =
+        CheckpointChecksum({job, int64_t{checkpoint.round}, int64_t{checkpoint.rounds_done},
+                            int64_t{checkpoint.refine_points}, radiosity_blob, unshot_blob,
+                            energy_blob, &checkpoint.scene_hash, &checkpoint.stop_reason});
+    if (!ChecksumMatches(stmt->Blob(9), computed)) {
+      const std::string why = "job store " + path() + ": the checkpoint of job " +
+                              std::to_string(job) + " round " + std::to_string(checkpoint.round) +
+                              " is damaged (its bytes do not match its checksum)";
+      if (damaged == nullptr) return Error{why};
+      damaged->push_back({checkpoint.round, why});
+      continue;
+    }
+    Result<std::vector<Rgb>> radiosity = DecodeRgbs(radiosity_blob);
+    RADFARM_RETURN_IF_ERROR(radiosity);
+    Result<std::vector<Rgb>> unshot = DecodeRgbs(unshot_blob);
+    RADFARM_RETURN_IF_ERROR(unshot);
+    Result<EnergyAccount> energy = DecodeEnergy(energy_blob);
+    RADFARM_RETURN_IF_ERROR(energy);
+    checkpoint.radiosity = std::move(*radiosity);
+    checkpoint.unshot = std::move(*unshot);
+    checkpoint.energy = *energy;
+    return std::optional<Checkpoint>(std::move(checkpoint));
+  }
+}
+
+Status JobStore::DeleteCheckpoint(JobId job, uint32_t round) {
+  Result<Statement> stmt = db_.Prepare("DELETE FROM checkpoints WHERE job_id = ?1 AND round = ?2");
+  RADFARM_RETURN_IF_ERROR(stmt);
+  stmt->Bind(1, job).Bind(2, int64_t{round});
+  return stmt->Run();
 }
 
 Result<std::optional<std::string>> JobStore::LoadLatestStopReason(JobId job) {

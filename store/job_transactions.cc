@@ -1,5 +1,6 @@
 #include "store/job_transactions.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace radfarm::store {
@@ -27,9 +28,22 @@ Result<std::vector<JobStart>> StartQueuedJobs(JobStore& store, int slots) {
     RADFARM_RETURN_IF_ERROR(bundle);
     if (!*bundle) return Error{JobName(record.id) + ": its scene is missing"};
     start.bundle = std::move(**bundle);
-    Result<std::optional<Checkpoint>> checkpoint = store.LoadLatestCheckpoint(record.id);
+    std::vector<DamagedCheckpoint> damaged;
+    Result<std::optional<Checkpoint>> checkpoint = store.LoadLatestCheckpoint(record.id, &damaged);
     RADFARM_RETURN_IF_ERROR(checkpoint);
     start.checkpoint = std::move(*checkpoint);
+    // Rot in a checkpoint: the job resumes from the one before (or from the start) and computes
+    // the same bits again; the damaged rows go, so nothing reads them later.
+    for (const DamagedCheckpoint& d : damaged) {
+      const std::string warning =
+          d.message + "; resuming from " +
+          (start.checkpoint ? "round " + std::to_string(start.checkpoint->round)
+                            : std::string("the start")) +
+          ", the later rounds are computed again";
+      (void)store.AppendEvent(record.id, EventLevel::kWarning, warning);
+      RADFARM_RETURN_IF_ERROR(store.DeleteCheckpoint(record.id, d.round));
+      start.warnings.push_back(warning);
+    }
     if (start.checkpoint && start.checkpoint->scene_hash) {
       Result<std::optional<std::vector<uint8_t>>> scene =
           store.GetScene(*start.checkpoint->scene_hash);
@@ -96,8 +110,17 @@ Result<std::optional<StoredSolution>> LoadSolution(JobStore& store, JobId id) {
   Result<std::optional<JobRecord>> job = store.GetJob(id);
   RADFARM_RETURN_IF_ERROR(job);
   if (!*job) return Error{"no " + JobName(id)};
-  Result<std::optional<Checkpoint>> checkpoint = store.LoadLatestCheckpoint(id);
-  RADFARM_RETURN_IF_ERROR(checkpoint);
+  // A finished job's solution is its last checkpoint: a damaged one is an error, never an older
+  // solution in its place. A job still on its way shows its latest good one.
+  std::vector<DamagedCheckpoint> damaged;
+  const bool finished = IsTerminal((*job)->state);
+  Result<std::optional<Checkpoint>> checkpoint =
+      store.LoadLatestCheckpoint(id, finished ? nullptr : &damaged);
+  if (!checkpoint) {
+    return Error{checkpoint.error() +
+                 ": the solution cannot be fetched; restore the store from a backup or submit "
+                 "the job again"};
+  }
   if (!*checkpoint) return std::optional<StoredSolution>();
   StoredSolution solution;
   solution.job = std::move(**job);
@@ -114,6 +137,33 @@ Result<std::optional<StoredSolution>> LoadSolution(JobStore& store, JobId id) {
   RADFARM_RETURN_IF_ERROR(rounds);
   solution.totals = TotalsUpToRound(*rounds, solution.checkpoint.round);
   return std::optional(std::move(solution));
+}
+
+Status HoldJob(JobStore& store, JobId id, const std::string& why) {
+  RADFARM_RETURN_IF_ERROR(store.SetJobState(id, JobState::kPaused, std::string(kHeldPrefix) + why));
+  (void)store.AppendEvent(id, EventLevel::kWarning, std::string(kHeldPrefix) + why);
+  return Ok{};
+}
+
+Result<std::vector<JobId>> ReleaseHeldJobs(JobStore& store, const std::vector<JobId>& unrecorded) {
+  Result<std::vector<JobRecord>> jobs = store.ListJobs();
+  RADFARM_RETURN_IF_ERROR(jobs);
+  std::vector<JobId> released;
+  for (const JobRecord& job : *jobs) {
+    const bool held = job.state == JobState::kPaused && job.error &&
+                      std::string_view(*job.error).starts_with(kHeldPrefix);
+    const bool unrecorded_hold =
+        job.state == JobState::kRunning &&
+        std::find(unrecorded.begin(), unrecorded.end(), job.id) != unrecorded.end();
+    if (!held && !unrecorded_hold) continue;
+    // A write: while the store still fails, this fails too and the job stays held.
+    RADFARM_RETURN_IF_ERROR(store.SetJobState(job.id, JobState::kQueued));
+    (void)store.AppendEvent(job.id, EventLevel::kInfo,
+                            "released: the store writes again; the job resumes from its latest "
+                            "checkpoint");
+    released.push_back(job.id);
+  }
+  return released;
 }
 
 }  // namespace radfarm::store

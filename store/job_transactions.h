@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "base/result.h"
@@ -29,6 +30,9 @@ struct JobStart {
   // caller fails the job then: a resumed refined job cannot go on without its mesh).
   std::optional<std::vector<uint8_t>> checkpoint_scene;
   std::vector<RoundRecord> rounds;
+  // Damaged checkpoints passed over (and deleted) on the way to `checkpoint`, one line each, also
+  // appended to the job's events.
+  std::vector<std::string> warnings;
 };
 
 // Marks up to `slots` queued jobs running, in NextRunnableJobs' order (priority, then age), and
@@ -74,5 +78,17 @@ struct StoredSolution {
 // job has no checkpoint yet. Errors: no job `id` ("no job N"), its bundle or its refined scene
 // missing ("job N: scene missing", "job N: refined scene H missing"), any store error.
 Result<std::optional<StoredSolution>> LoadSolution(JobStore& store, JobId id);
+
+// A held job's reason starts with this (job_state.h).
+inline constexpr std::string_view kHeldPrefix = "held: ";
+
+// Holds a running job after a store fault: paused, with "held: " + `why` as its reason, and an
+// event. A failed job would be final; a held one resumes from its checkpoints, which are intact.
+Status HoldJob(JobStore& store, JobId id, const std::string& why);
+
+// Puts held jobs back in the queue: every paused job whose reason starts with kHeldPrefix, and the
+// jobs of `unrecorded` still marked running (their hold could not be written: the store was
+// failing). Returns the ids queued; an error when the store still cannot write (they stay held).
+Result<std::vector<JobId>> ReleaseHeldJobs(JobStore& store, const std::vector<JobId>& unrecorded);
 
 }  // namespace radfarm::store

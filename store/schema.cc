@@ -94,7 +94,15 @@ ALTER TABLE checkpoints ADD COLUMN refine_points INTEGER NOT NULL DEFAULT 0
 ALTER TABLE checkpoints ADD COLUMN stop_reason TEXT;
 )sql";
 
-constexpr std::array<Migration, 4> kMigrations = {{{1, kV1}, {2, kV2}, {3, kV3}, {4, kV4}}};
+// Version 5: checksums (blob_checksum.h) on checkpoints and stored scenes, verified on load. Rows
+// from before have none and are read as before.
+constexpr std::string_view kV5 = R"sql(
+ALTER TABLE checkpoints ADD COLUMN checksum BLOB CHECK (checksum IS NULL OR length(checksum) = 32);
+ALTER TABLE scenes ADD COLUMN checksum BLOB CHECK (checksum IS NULL OR length(checksum) = 32);
+)sql";
+
+constexpr std::array<Migration, 5> kMigrations = {
+    {{1, kV1}, {2, kV2}, {3, kV3}, {4, kV4}, {5, kV5}}};
 
 Result<int64_t> FileBytes(Database& db) {
   Result<int64_t> pages = db.QueryInt("PRAGMA page_count");

@@ -113,4 +113,9 @@ Error SqliteError(std::string_view path, std::string_view what, int code, sqlite
   return Error{std::move(message)};
 }
 
+bool IsStoreFault(std::string_view message) {
+  return message.find("SQLITE_FULL") != std::string_view::npos ||
+         message.find("SQLITE_IOERR") != std::string_view::npos;
+}
+
 }  // namespace radfarm::store

@@ -22,4 +22,9 @@ std::string SqliteCodeName(int code);
 // set.
 Error SqliteError(std::string_view path, std::string_view what, int code, sqlite3* db);
 
+// Whether a store error is a fault of the disk under it that may pass (SQLITE_FULL: disk full or
+// the store's size limit; SQLITE_IOERR_*: an I/O error) rather than of the request: the master
+// holds a job that meets one instead of failing it.
+bool IsStoreFault(std::string_view message);
+
 }  // namespace radfarm::store

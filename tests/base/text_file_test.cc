@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 
 namespace radfarm {
 namespace {
@@ -66,6 +68,24 @@ TEST(ReadTextFileTest, NamesTheFileItCannotOpen) {
   ASSERT_FALSE(text.ok());
   EXPECT_EQ(text.error(), "/nonexistent/file.obj: cannot open: No such file or directory");
   EXPECT_FALSE(ReadTextFile("/").ok());
+}
+
+// Issue 20, F6: /dev/zero and /dev/urandom never end, a FIFO blocks; only regular files are read.
+TEST(ReadTextFileTest, RefusesWhatIsNotARegularFile) {
+  Result<std::string> text = ReadTextFile("/dev/zero");
+  ASSERT_FALSE(text.ok());
+  EXPECT_EQ(text.error(), "/dev/zero: cannot open: not a regular file (a character device)");
+  EXPECT_EQ(ReadTextFile("/").error(), "/: cannot open: is a directory");
+}
+
+TEST(ReadTextFileTest, RefusesAFileOverTheLimitFromItsSize) {
+  const std::string path = ::testing::TempDir() + "/read_text_file_limit.txt";
+  { std::ofstream(path) << "0123456789"; }
+  EXPECT_EQ(*ReadTextFile(path, 10), "0123456789");
+  Result<std::string> text = ReadTextFile(path, 9);
+  ASSERT_FALSE(text.ok());
+  EXPECT_EQ(text.error(), path + ": the file is 10 bytes, over the limit of 9 bytes");
+  std::remove(path.c_str());
 }
 
 }  // namespace

@@ -119,12 +119,16 @@ TEST(ExampleConfigTest, RadfarmdReadsItsExampleAndItHoldsTheDefaults) {
   EXPECT_EQ(config.heartbeat_ms, defaults.heartbeat_ms);
   EXPECT_EQ(config.agent_timeout_ms, defaults.agent_timeout_ms);
   EXPECT_EQ(config.handshake_timeout_ms, defaults.handshake_timeout_ms);
+  EXPECT_EQ(config.control_timeout_ms, defaults.control_timeout_ms);
+  EXPECT_EQ(config.hold_retry_ms, defaults.hold_retry_ms);
+  EXPECT_EQ(config.max_store_bytes, defaults.max_store_bytes);
   EXPECT_EQ(config.log_level, defaults.log_level);
   EXPECT_EQ(config.checkpoint_keep, defaults.checkpoint_keep);
   EXPECT_EQ(config.checkpoint_seconds, defaults.checkpoint_seconds);
   EXPECT_EQ(config.max_running_jobs, defaults.max_running_jobs);
   EXPECT_EQ(config.lease_seconds, defaults.lease_seconds);
   EXPECT_EQ(config.max_agents, defaults.max_agents);
+  EXPECT_EQ(config.max_unauthenticated, defaults.max_unauthenticated);
   EXPECT_EQ(config.local_round_rays, defaults.local_round_rays);
 }
 #endif
