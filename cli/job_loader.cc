@@ -3,6 +3,8 @@
 #include <utility>
 
 #include "base/result.h"
+#include "cli/scene_settings.h"
+#include "input/scene_loader.h"
 #include "mesh/refine.h"
 
 namespace radfarm {
@@ -12,11 +14,16 @@ Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& o
   Result<Job> job = LoadJob(path);
   RADFARM_RETURN_IF_ERROR(job);
   RADFARM_RETURN_IF_ERROR(ApplyOverrides(overrides, &*job));
-  Result<InputScene> scene = LoadObjScene(job->scene_path);
+  Result<InputScene> scene = LoadScene(job->scene_path);
   RADFARM_RETURN_IF_ERROR(scene);
   warnings->insert(warnings->end(), scene->warnings.begin(), scene->warnings.end());
+  RADFARM_RETURN_IF_ERROR(ApplyTwoSided(path, *job, &*scene));
+  if (overrides.camera) job->camera_name = *overrides.camera;
+  RADFARM_RETURN_IF_ERROR(ChooseCamera(job->camera_name, *scene, &*job));
   Result<PatchMesh> mesh = PatchMesh::Build(*scene, job->mesh, warnings);
   RADFARM_RETURN_IF_ERROR(mesh);
+  const std::vector<std::string> back = BackFaceWarnings(scene->path, *mesh);
+  warnings->insert(warnings->end(), back.begin(), back.end());
   if (job->refine.enabled) {
     // The checks that need the mesh (the smallest element against the welding distance).
     Result<ResolvedRefineSettings> refine =

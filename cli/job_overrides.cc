@@ -31,6 +31,9 @@ void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
                    "(default: this machine's physical memory)")
       ->transform(CLI::AsSizeValue(false))
       ->check(CLI::Range(uint64_t{1}, std::numeric_limits<uint64_t>::max()));
+  command->add_option("--camera", overrides->camera,
+                      "A camera of the glTF scene, by node or camera name (default: the job "
+                      "file's camera, else the scene's first camera)");
 }
 
 Status ApplyOverrides(const JobOverrides& overrides, Job* job) {

@@ -25,10 +25,11 @@ struct JobOverrides {
   std::optional<std::string> sampler;
   std::optional<double> patch_size;
   std::optional<uint64_t> max_memory;  // bytes; the machine's memory when unset
+  std::optional<std::string> camera;   // a camera of the scene file by name (Job::camera_name)
 };
 
-// Adds --seed, --tolerance, --rays, --seconds, --sampler, --patch-size and --max-memory (not
-// --threads).
+// Adds --seed, --tolerance, --rays, --seconds, --sampler, --patch-size, --max-memory and --camera
+// (not --threads).
 void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides);
 
 // Applies the overrides on top of the job file's settings. Errors name the option.
