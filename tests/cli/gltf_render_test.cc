@@ -19,16 +19,16 @@ using testing::ReadFile;
 using testing::RunCommand;
 using testing::TempDir;
 
-const std::string kScenes = RADFARM_SOURCE_DIR "/scenes/";
+const std::string kSceneDir = RADFARM_SOURCE_DIR "/scenes/";
 
-testing::CommandResult Render(const std::string& scene, const std::string& out,
-                              std::vector<std::string> extra = {}) {
+testing::CommandResult RenderScene(const std::string& scene, const std::string& out,
+                                   std::vector<std::string> extra = {}) {
   std::vector<std::string> args = {RADFARM_CLI_PATH, "render", scene, "--out", out, "-q"};
   args.insert(args.end(), extra.begin(), extra.end());
   return RunCommand(args);
 }
 
-std::string Write(const std::string& path, const std::string& text) {
+std::string WriteText(const std::string& path, const std::string& text) {
   std::ofstream(path) << text;
   return path;
 }
@@ -39,7 +39,7 @@ struct CsvPatch {
   double c[3] = {}, n[3] = {}, rgb[3] = {};
 };
 
-std::vector<CsvPatch> ReadPatches(const std::string& path) {
+std::vector<CsvPatch> ReadCsvPatches(const std::string& path) {
   std::vector<CsvPatch> patches;
   std::istringstream in(ReadFile(path));
   std::string line;
@@ -79,23 +79,23 @@ TEST(GltfRenderTest, CornellBoxAsGltfAndGlbRendersLikeTheObj) {
   // The same coarse settings for all three; millimetres for the OBJ, metres for glTF.
   const std::string settings = "[solver]\ntolerance = 0.01\ngather_rays = 256\n";
   const std::string obj_job =
-      Write(dir.File("obj.toml"), "scene = \"" + kScenes + "cornell-box.obj\"\n" + settings +
-                                      "[mesh]\npatch_size = 50.0\n");
+      WriteText(dir.File("obj.toml"), "scene = \"" + kSceneDir + "cornell-box.obj\"\n" + settings +
+                                          "[mesh]\npatch_size = 50.0\n");
   const std::string gltf_job =
-      Write(dir.File("gltf.toml"), "scene = \"" + kScenes + "cornell-box.gltf\"\n" + settings +
-                                       "[mesh]\npatch_size = 0.05\n");
+      WriteText(dir.File("gltf.toml"), "scene = \"" + kSceneDir + "cornell-box.gltf\"\n" +
+                                           settings + "[mesh]\npatch_size = 0.05\n");
   const std::string glb_job =
-      Write(dir.File("glb.toml"), "scene = \"" + kScenes + "cornell-box.glb\"\n" + settings +
-                                      "[mesh]\npatch_size = 0.05\n");
+      WriteText(dir.File("glb.toml"), "scene = \"" + kSceneDir + "cornell-box.glb\"\n" + settings +
+                                          "[mesh]\npatch_size = 0.05\n");
   std::map<std::string, std::map<std::string, double>> means;
   std::map<std::string, std::string> csv;
   for (const std::string& job : {obj_job, gltf_job, glb_job}) {
     SCOPED_TRACE(job);
     TempDir out;
-    const auto r = Render(job, out.path());
+    const auto r = RenderScene(job, out.path());
     ASSERT_EQ(r.exit_code, kExitOk) << r.err;
     EXPECT_EQ(r.err.find("lit from behind"), std::string::npos) << r.err;
-    means[job] = MaterialMeans(ReadPatches(out.File("patches.csv")));
+    means[job] = MaterialMeans(ReadCsvPatches(out.File("patches.csv")));
     csv[job] = ReadFile(out.File("patches.csv"));
   }
   // One file in two encodings: the same bytes out.
@@ -111,7 +111,7 @@ TEST(GltfRenderTest, CornellBoxAsGltfAndGlbRendersLikeTheObj) {
 
 TEST(GltfRenderTest, AnUnknownCameraNameIsBadInput) {
   TempDir out;
-  const auto r = Render(kScenes + "cornell-box.glb", out.path(), {"--camera", "nope"});
+  const auto r = RenderScene(kSceneDir + "cornell-box.glb", out.path(), {"--camera", "nope"});
   EXPECT_EQ(r.exit_code, kExitBadInput);
   EXPECT_NE(r.err.find("cornell-box.glb: no camera named 'nope' (cameras: 'Camera')"),
             std::string::npos)
@@ -137,29 +137,31 @@ std::string OutwardCube(const std::string& material, bool with_lamp) {
 
 TEST(GltfRenderTest, AnOutwardFacingRoomWarnsAndIsLitWhenTwoSided) {
   TempDir dir;
-  Write(dir.File("room.mtl"), "newmtl wall\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\n");
-  Write(dir.File("room.obj"), OutwardCube("wall", true));
+  WriteText(dir.File("room.mtl"),
+            "newmtl wall\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\n");
+  WriteText(dir.File("room.obj"), OutwardCube("wall", true));
   const std::string settings = "[mesh]\npatch_size = 0.1\n[solver]\ngather_rays = 64\n";
-  const std::string one_sided = Write(dir.File("one.toml"), "scene = \"room.obj\"\n" + settings);
+  const std::string one_sided =
+      WriteText(dir.File("one.toml"), "scene = \"room.obj\"\n" + settings);
   const std::string two_sided =
-      Write(dir.File("two.toml"),
-            "scene = \"room.obj\"\n" + settings + "[materials.wall]\ntwo_sided = true\n");
+      WriteText(dir.File("two.toml"),
+                "scene = \"room.obj\"\n" + settings + "[materials.wall]\ntwo_sided = true\n");
   {
     TempDir out;
-    const auto r = Render(one_sided, out.path());
+    const auto r = RenderScene(one_sided, out.path());
     ASSERT_EQ(r.exit_code, kExitOk) << r.err;
     EXPECT_NE(r.err.find("room.obj: warning: material 'wall' is lit from behind: 100% of the "
                          "emitters' light"),
               std::string::npos)
         << r.err;
-    EXPECT_DOUBLE_EQ(MaterialMeans(ReadPatches(out.File("patches.csv")))["wall"], 0);
+    EXPECT_DOUBLE_EQ(MaterialMeans(ReadCsvPatches(out.File("patches.csv")))["wall"], 0);
   }
   TempDir out;
-  const auto r = Render(two_sided, out.path());
+  const auto r = RenderScene(two_sided, out.path());
   ASSERT_EQ(r.exit_code, kExitOk) << r.err;
   EXPECT_EQ(r.err.find("lit from behind"), std::string::npos) << r.err;
   double inside = 0, outside = 0;
-  for (const CsvPatch& p : ReadPatches(out.File("patches.csv"))) {
+  for (const CsvPatch& p : ReadCsvPatches(out.File("patches.csv"))) {
     if (p.material != "wall") continue;
     double outward = 0;
     for (int k = 0; k < 3; ++k) outward += p.n[k] * (p.c[k] - 0.5);
@@ -174,16 +176,16 @@ TEST(GltfRenderTest, AnOutwardFacingRoomWarnsAndIsLitWhenTwoSided) {
 // sides would read something in between on both).
 TEST(GltfRenderTest, ATwoSidedFurnaceReachesEOverOneMinusRhoInsideAndEOutside) {
   TempDir dir;
-  Write(dir.File("room.mtl"), "newmtl glow\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
-  Write(dir.File("room.obj"), OutwardCube("glow", false));
-  const std::string job = Write(dir.File("furnace.toml"),
-                                "scene = \"room.obj\"\ntwo_sided = true\n[mesh]\n"
-                                "patch_size = 0.25\n[solver]\ntolerance = 0.0001\n"
-                                "gather_rays = 4096\n");
+  WriteText(dir.File("room.mtl"), "newmtl glow\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
+  WriteText(dir.File("room.obj"), OutwardCube("glow", false));
+  const std::string job = WriteText(dir.File("furnace.toml"),
+                                    "scene = \"room.obj\"\ntwo_sided = true\n[mesh]\n"
+                                    "patch_size = 0.25\n[solver]\ntolerance = 0.0001\n"
+                                    "gather_rays = 4096\n");
   TempDir out;
-  const auto r = Render(job, out.path());
+  const auto r = RenderScene(job, out.path());
   ASSERT_EQ(r.exit_code, kExitOk) << r.err;
-  const std::vector<CsvPatch> patches = ReadPatches(out.File("patches.csv"));
+  const std::vector<CsvPatch> patches = ReadCsvPatches(out.File("patches.csv"));
   ASSERT_EQ(patches.size(), 2u * 6 * 16);
   for (const CsvPatch& p : patches) {
     double outward = 0;

@@ -15,15 +15,15 @@ using testing::FloorAndLight;
 using testing::GltfFixture;
 using testing::TempDir;
 
-Vec3 FaceNormal(const InputScene& scene, const InputFace& face) {
+Vec3 GltfFaceNormal(const InputScene& scene, const InputFace& face) {
   const Vec3& a = scene.positions[face.indices[0]];
   const Vec3 n = Cross(scene.positions[face.indices[1]] - a, scene.positions[face.indices[2]] - a);
   return n / Length(n);
 }
 
-bool Near(const Vec3& a, const Vec3& b) { return Length(a - b) < 1e-6; }
+bool NearPoint(const Vec3& a, const Vec3& b) { return Length(a - b) < 1e-6; }
 
-std::string LoadError(const std::string& path) {
+std::string GltfLoadError(const std::string& path) {
   Result<InputScene> scene = LoadScene(path);
   EXPECT_FALSE(scene.ok()) << path << " loaded but should not have";
   if (scene.ok()) return "";
@@ -50,8 +50,8 @@ TEST(LoadGltfSceneTest, ReadsIndexedAndPlainTrianglesAndTheirMaterials) {
     EXPECT_DOUBLE_EQ(lamp.emission.r, 4);
     EXPECT_DOUBLE_EQ(lamp.emission.g, 2);
     EXPECT_DOUBLE_EQ(lamp.emission.b, 1);
-    EXPECT_TRUE(Near(FaceNormal(*scene, scene->faces[0]), {0, 1, 0}));
-    EXPECT_TRUE(Near(FaceNormal(*scene, scene->faces[3]), {0, -1, 0}));
+    EXPECT_TRUE(NearPoint(GltfFaceNormal(*scene, scene->faces[0]), {0, 1, 0}));
+    EXPECT_TRUE(NearPoint(GltfFaceNormal(*scene, scene->faces[3]), {0, -1, 0}));
     EXPECT_TRUE(scene->cameras.empty());
   }
 }
@@ -72,8 +72,8 @@ TEST(LoadGltfSceneTest, AppliesTheNodeHierarchyWithMatricesAndTrs) {
   Result<InputScene> scene = LoadScene(f.WriteGltf(dir.File("s.gltf")));
   ASSERT_TRUE(scene.ok()) << scene.error();
   // Floor corner (0, 0, 1): scaled (0, 0, 2), rotated about x to (0, -2, 0), moved to (10, -2, 0).
-  EXPECT_TRUE(Near(scene->positions[scene->faces[0].indices[1]], {10, -2, 0}));
-  EXPECT_TRUE(Near(FaceNormal(*scene, scene->faces[0]), {0, 0, 1}));
+  EXPECT_TRUE(NearPoint(scene->positions[scene->faces[0].indices[1]], {10, -2, 0}));
+  EXPECT_TRUE(NearPoint(GltfFaceNormal(*scene, scene->faces[0]), {0, 0, 1}));
 }
 
 TEST(LoadGltfSceneTest, AMirroringTransformKeepsTheFrontFacingTheSameWay) {
@@ -84,7 +84,7 @@ TEST(LoadGltfSceneTest, AMirroringTransformKeepsTheFrontFacingTheSameWay) {
   TempDir dir;
   Result<InputScene> scene = LoadScene(f.WriteGltf(dir.File("s.gltf")));
   ASSERT_TRUE(scene.ok()) << scene.error();
-  EXPECT_TRUE(Near(FaceNormal(*scene, scene->faces[0]), {0, -1, 0}));
+  EXPECT_TRUE(NearPoint(GltfFaceNormal(*scene, scene->faces[0]), {0, -1, 0}));
 }
 
 TEST(LoadGltfSceneTest, DoubleSidedMaterialsAreTwoSided) {
@@ -141,9 +141,9 @@ TEST(LoadGltfSceneTest, ReadsPerspectiveCamerasLookingDownTheirMinusZ) {
   const InputCamera& c = scene->cameras[0];
   EXPECT_EQ(c.name, "Cam");
   EXPECT_EQ(c.data_name, "lens");
-  EXPECT_TRUE(Near(c.eye, {0.5, 0.5, -2}));
-  EXPECT_TRUE(Near(c.target, {0.5, 0.5, -1}));
-  EXPECT_TRUE(Near(c.up, {0, 1, 0}));
+  EXPECT_TRUE(NearPoint(c.eye, {0.5, 0.5, -2}));
+  EXPECT_TRUE(NearPoint(c.target, {0.5, 0.5, -1}));
+  EXPECT_TRUE(NearPoint(c.up, {0, 1, 0}));
   EXPECT_NEAR(c.fov_degrees, 45, 1e-9);
 }
 
@@ -152,9 +152,9 @@ TEST(LoadGltfSceneTest, RefusesLinesNamingTheMesh) {
   f.json()["meshes"][0]["primitives"][0]["mode"] = 1;
   TempDir dir;
   const std::string path = f.WriteGltf(dir.File("s.gltf"));
-  EXPECT_EQ(LoadError(path), path +
-                                 ": mesh 0 'floor' primitive 0: mode 1 (lines) is not "
-                                 "supported; export triangles");
+  EXPECT_EQ(GltfLoadError(path), path +
+                                     ": mesh 0 'floor' primitive 0: mode 1 (lines) is not "
+                                     "supported; export triangles");
 }
 
 TEST(LoadGltfSceneTest, RefusesAnIndexOutOfRangeNamingTheAccessor) {
@@ -162,9 +162,9 @@ TEST(LoadGltfSceneTest, RefusesAnIndexOutOfRangeNamingTheAccessor) {
   f.json()["meshes"][0]["primitives"][0]["indices"] = f.AddIndices({0, 1, 7});
   TempDir dir;
   const std::string path = f.WriteGltf(dir.File("s.gltf"));
-  EXPECT_EQ(LoadError(path), path +
-                                 ": mesh 0 'floor' primitive 0: index 7 out of range (4 "
-                                 "vertices, accessor 3)");
+  EXPECT_EQ(GltfLoadError(path), path +
+                                     ": mesh 0 'floor' primitive 0: index 7 out of range (4 "
+                                     "vertices, accessor 3)");
 }
 
 TEST(LoadGltfSceneTest, RefusesAnAccessorPastItsBuffer) {
@@ -172,7 +172,7 @@ TEST(LoadGltfSceneTest, RefusesAnAccessorPastItsBuffer) {
   f.json()["accessors"][0]["count"] = 400;
   TempDir dir;
   const std::string path = f.WriteGltf(dir.File("s.gltf"));
-  const std::string error = LoadError(path);
+  const std::string error = GltfLoadError(path);
   EXPECT_NE(error.find(path + ": mesh 0 'floor' primitive 0 POSITION (accessor 0)"),
             std::string::npos)
       << error;
@@ -183,7 +183,7 @@ TEST(LoadGltfSceneTest, RefusesANodeThatIsItsOwnAncestor) {
   f.json()["nodes"][0]["children"] = {0};
   TempDir dir;
   const std::string path = f.WriteGltf(dir.File("s.gltf"));
-  EXPECT_EQ(LoadError(path), path + ": node 0 'Floor': is its own ancestor");
+  EXPECT_EQ(GltfLoadError(path), path + ": node 0 'Floor': is its own ancestor");
 }
 
 TEST(LoadGltfSceneTest, RefusesABadFactorNamingTheMaterial) {
@@ -191,7 +191,7 @@ TEST(LoadGltfSceneTest, RefusesABadFactorNamingTheMaterial) {
   f.json()["materials"][1]["emissiveFactor"] = {1, -1, 0};
   TempDir dir;
   const std::string path = f.WriteGltf(dir.File("s.gltf"));
-  const std::string error = LoadError(path);
+  const std::string error = GltfLoadError(path);
   EXPECT_EQ(error.rfind(path + ": material 1 'lamp': emissiveFactor", 0), 0u) << error;
 }
 
@@ -203,18 +203,19 @@ TEST(LoadGltfSceneTest, NothingToLightMentionsPunctualLamps) {
       {"KHR_lights_punctual", {{"lights", {{{"type", "point"}, {"intensity", 10}}}}}}};
   TempDir dir;
   const std::string path = f.WriteGltf(dir.File("s.gltf"));
-  EXPECT_EQ(LoadError(path), path +
-                                 ": nothing to light: no triangle uses a material with "
-                                 "emissiveFactor > 0 (KHR_lights_punctual lamps are not read)");
+  EXPECT_EQ(GltfLoadError(path), path +
+                                     ": nothing to light: no triangle uses a material with "
+                                     "emissiveFactor > 0 (KHR_lights_punctual lamps are not read)");
 }
 
 TEST(LoadGltfSceneTest, MissingAndUnparseableFiles) {
   TempDir dir;
-  EXPECT_EQ(LoadError(dir.File("none.glb")), dir.File("none.glb") + ": cannot open: no such file");
+  EXPECT_EQ(GltfLoadError(dir.File("none.glb")),
+            dir.File("none.glb") + ": cannot open: no such file");
   testing::GltfFixture f;
   const std::string path = dir.File("bad.gltf");
   { std::ofstream(path) << "{ not json"; }
-  EXPECT_EQ(LoadError(path).rfind(path + ": not a valid glTF file: ", 0), 0u);
+  EXPECT_EQ(GltfLoadError(path).rfind(path + ": not a valid glTF file: ", 0), 0u);
 }
 
 }  // namespace
