@@ -4,6 +4,8 @@
 
 #include "base/result.h"
 #include "base/text_file.h"
+#include "cli/scene_settings.h"
+#include "input/scene_loader.h"
 #include "job/output_budget.h"
 #include "mesh/refine.h"
 
@@ -20,11 +22,16 @@ Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& o
     return Error{path + ": " + budget.error()};
   }
   Result<InputScene> scene =
-      LoadObjScene(job->scene_path, overrides.max_scene_bytes.value_or(kDefaultMaxInputFileBytes));
+      LoadScene(job->scene_path, overrides.max_scene_bytes.value_or(kDefaultMaxInputFileBytes));
   RADFARM_RETURN_IF_ERROR(scene);
   warnings->insert(warnings->end(), scene->warnings.begin(), scene->warnings.end());
+  RADFARM_RETURN_IF_ERROR(ApplyTwoSided(path, *job, &*scene));
+  if (overrides.camera) job->camera_name = *overrides.camera;
+  RADFARM_RETURN_IF_ERROR(ChooseCamera(job->camera_name, *scene, &*job));
   Result<PatchMesh> mesh = PatchMesh::Build(*scene, job->mesh, warnings);
   RADFARM_RETURN_IF_ERROR(mesh);
+  const std::vector<std::string> back = BackFaceWarnings(scene->path, *mesh);
+  warnings->insert(warnings->end(), back.begin(), back.end());
   if (job->refine.enabled) {
     // The checks that need the mesh (the smallest element against the welding distance).
     Result<ResolvedRefineSettings> refine =

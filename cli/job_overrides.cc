@@ -33,10 +33,13 @@ void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
       ->check(CLI::Range(uint64_t{1}, std::numeric_limits<uint64_t>::max()));
   command
       ->add_option("--max-scene-bytes", overrides->max_scene_bytes,
-                   "Refuse an OBJ or MTL file larger than this, from its size before reading it, "
+                   "Refuse a scene file (OBJ, MTL, glTF) larger than this, from its size before reading it, "
                    "e.g. 4G (default 1G)")
       ->transform(CLI::AsSizeValue(false))
       ->check(CLI::Range(uint64_t{1}, std::numeric_limits<uint64_t>::max()));
+  command->add_option("--camera", overrides->camera,
+                      "A camera of the glTF scene, by node or camera name (default: the job "
+                      "file's camera, else the scene's first camera)");
 }
 
 Status ApplyOverrides(const JobOverrides& overrides, Job* job) {

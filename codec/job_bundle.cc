@@ -115,7 +115,8 @@ Status DecodeScene(const wire::JobBundleBlob& in, InputScene* scene) {
     scene->positions.push_back(v);
   }
   for (const auto* m : *in.materials()) {
-    Material material{m->name()->str(), FromWire(m->diffuse()), FromWire(m->emission())};
+    Material material{m->name()->str(), FromWire(m->diffuse()), FromWire(m->emission()),
+                      m->two_sided()};
     const std::string field = "material '" + material.name + "'";
     if (!IsReflectance(material.diffuse)) return Bad(field, "reflectance Kd outside [0, 1)");
     if (!IsNonNegative(material.emission)) return Bad(field, "emission Ke negative or not finite");
@@ -165,7 +166,7 @@ std::vector<uint8_t> EncodeJobBundle(const JobBundle& bundle) {
   for (const Material& m : scene.materials) {
     const auto name = fbb.CreateString(m.name);
     const wire::BundleColour kd = ToWire(m.diffuse), ke = ToWire(m.emission);
-    materials.push_back(wire::CreateBundleMaterial(fbb, name, &kd, &ke));
+    materials.push_back(wire::CreateBundleMaterial(fbb, name, &kd, &ke, m.two_sided));
   }
   const auto material_vec = fbb.CreateVector(materials);
   std::vector<flatbuffers::Offset<wire::BundleFace>> faces;

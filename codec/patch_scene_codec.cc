@@ -36,6 +36,7 @@ Result<Patch> DecodePatch(const wire::ScenePatch& in, uint32_t index, size_t mat
   p.emission = FromWire(in.emission());
   p.surface = in.surface();
   p.material = in.material();
+  p.two_sided = in.two_sided();
   for (uint32_t k = 0; k < p.corner_count; ++k) {
     if (!IsFinite(p.corners[k])) return FieldError(kKind, field, "has a non-finite corner");
   }
@@ -74,7 +75,8 @@ std::vector<uint8_t> EncodePatchScene(const PatchScene& scene) {
     const wire::Point normal = ToWire(p.normal), centre = ToWire(p.centre);
     const wire::Colour reflectance = ToWire(p.reflectance), emission = ToWire(p.emission);
     patches.push_back(wire::CreateScenePatch(fbb, corner_vec, &normal, &centre, p.area,
-                                             &reflectance, &emission, p.surface, p.material));
+                                             &reflectance, &emission, p.surface, p.material,
+                                             p.two_sided));
   }
   const auto patch_vec = fbb.CreateVector(patches);
   const auto names = fbb.CreateVectorOfStrings(scene.material_names);

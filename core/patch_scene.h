@@ -25,6 +25,10 @@ struct Patch {
   Rgb emission;           // emitted radiance (MTL Ke units)
   uint32_t surface = 0;   // id of the smooth surface the patch belongs to (vertex averaging)
   uint32_t material = 0;  // index into PatchScene::material_names
+  // One side of a two-sided surface: the other side is a patch of its own, coincident and facing
+  // the other way (mesh/patch_mesh.h). Rays see such a patch only from its front, so they meet
+  // the side that faces them (core/ray_caster.h).
+  bool two_sided = false;
 };
 
 struct PatchScene {

@@ -66,8 +66,21 @@ RayCaster::RayCaster(const PatchScene& scene) : embree_(std::make_unique<Embree>
   rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);
 
+  const double diagonal = bounds.Diagonal();
+  for (const Patch& p : scene.patches) patch_normals_.push_back(p.normal);
+  AddGeometry(scene, false, diagonal);
+  two_sided_first_ = triangles_.size();
+  AddGeometry(scene, true, diagonal);
+  rtcCommitScene(embree_->scene);
+  CheckDevice(embree_->device, "scene build");
+}
+
+void RayCaster::AddGeometry(const PatchScene& scene, bool two_sided, double diagonal) {
   size_t triangle_count = 0;
-  for (const Patch& p : scene.patches) triangle_count += p.corner_count - 2;
+  for (const Patch& p : scene.patches) {
+    if (p.two_sided == two_sided) triangle_count += p.corner_count - 2;
+  }
+  if (triangle_count == 0) return;
   RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
@@ -79,8 +92,7 @@ RayCaster::RayCaster(const PatchScene& scene) : embree_(std::make_unique<Embree>
   // Each triangle gets its own three vertices; identical input coordinates map to identical floats,
   // which is all watertightness needs.
   size_t t = 0;
-  triangles_.reserve(triangle_count);
-  const double diagonal = bounds.Diagonal();
+  triangles_.reserve(triangles_.size() + triangle_count);
   auto emit = [&](const Vec3& a, const Vec3& b, const Vec3& c, uint32_t patch) {
     const Vec3 corners[3] = {a - centre_, b - centre_, c - centre_};
     Vec3 as_float[3];  // the corners as Embree sees them
@@ -98,15 +110,39 @@ RayCaster::RayCaster(const PatchScene& scene) : embree_(std::make_unique<Embree>
   };
   for (uint32_t i = 0; i < scene.patches.size(); ++i) {
     const Patch& p = scene.patches[i];
-    patch_normals_.push_back(p.normal);
+    if (p.two_sided != two_sided) continue;
     emit(p.corners[0], p.corners[1], p.corners[2], i);
     if (p.corner_count == 4) emit(p.corners[0], p.corners[2], p.corners[3], i);
   }
+  if (two_sided) {
+    rtcSetGeometryUserData(geometry, this);
+    rtcSetGeometryIntersectFilterFunction(geometry, &RayCaster::FrontOnlyFilter);
+  }
   rtcCommitGeometry(geometry);
-  rtcAttachGeometry(embree_->scene, geometry);
+  rtcAttachGeometryByID(embree_->scene, geometry,
+                        two_sided ? kTwoSidedGeometry : kOneSidedGeometry);
   rtcReleaseGeometry(geometry);
-  rtcCommitScene(embree_->scene);
-  CheckDevice(embree_->device, "scene build");
+  CheckDevice(embree_->device, "geometry");
+}
+
+bool RayCaster::MeetsFront(const Triangle& triangle, const Vec3& d, const Vec3& ng) const {
+  const double cosine = Dot(d, ng);
+  if (std::abs(cosine) > triangle.ng_margin * Length(ng)) return cosine < 0;
+  return Dot(d, patch_normals_[triangle.patch]) < 0;
+}
+
+void RayCaster::FrontOnlyFilter(const RTCFilterFunctionNArguments* args) {
+  const auto* caster = static_cast<const RayCaster*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const Vec3 d{RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                 RTCRayN_dir_z(args->ray, args->N, i)};
+    const Vec3 ng{RTCHitN_Ng_x(args->hit, args->N, i), RTCHitN_Ng_y(args->hit, args->N, i),
+                  RTCHitN_Ng_z(args->hit, args->N, i)};
+    const Triangle& triangle =
+        caster->TriangleOf(kTwoSidedGeometry, RTCHitN_primID(args->hit, args->N, i));
+    if (!caster->MeetsFront(triangle, d, ng)) args->valid[i] = 0;
+  }
 }
 
 RayCaster::~RayCaster() = default;
@@ -149,8 +185,9 @@ RayHit RayCaster::Trace(const Vec3& origin, const Vec3& direction,
   rtcIntersect1(embree_->scene, &context, &rh);
   RayHit hit;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
-  hit.patch = triangles_[rh.hit.primID].patch;
-  hit.front = Dot(direction, patch_normals_[hit.patch]) < 0;
+  hit.patch = TriangleOf(rh.hit.geomID, rh.hit.primID).patch;
+  // The filter let only the front of a two-sided patch through.
+  hit.front = rh.hit.geomID == kTwoSidedGeometry || Dot(direction, patch_normals_[hit.patch]) < 0;
   return hit;
 }
 
@@ -172,7 +209,7 @@ void RayCaster::TraceBlock(const RayBlock& block, const Vec3& surface_normal, Ra
     rtcIntersect1(embree_->scene, &context, &rays[i]);
     // The hit's triangle record is read after the block: fetch it while the next rays trace.
     if (rays[i].hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-      __builtin_prefetch(&triangles_[rays[i].hit.primID]);
+      __builtin_prefetch(&TriangleOf(rays[i].hit.geomID, rays[i].hit.primID));
     }
   }
   // The hits' patches and sides after the whole block, so the triangle loads overlap. The side
@@ -185,16 +222,12 @@ void RayCaster::TraceBlock(const RayBlock& block, const Vec3& surface_normal, Ra
       hits[i] = RayHit{};
       continue;
     }
-    const Triangle triangle = triangles_[h.primID];
+    const Triangle triangle = TriangleOf(h.geomID, h.primID);
     const Vec3 d{block.direction_x[i], block.direction_y[i], block.direction_z[i]};
-    const Vec3 ng{h.Ng_x, h.Ng_y, h.Ng_z};
-    const double cosine = Dot(d, ng);
     hits[i].patch = triangle.patch;
-    if (std::abs(cosine) > triangle.ng_margin * Length(ng)) {
-      hits[i].front = cosine < 0;
-    } else {
-      hits[i].front = Dot(d, patch_normals_[triangle.patch]) < 0;
-    }
+    // The filter let only the front of a two-sided patch through.
+    hits[i].front =
+        h.geomID == kTwoSidedGeometry || MeetsFront(triangle, d, {h.Ng_x, h.Ng_y, h.Ng_z});
   }
 }
 

@@ -5,6 +5,11 @@
 // like the same room at the origin. The BVH is built in robust (watertight) mode so that rays do
 // not slip between triangles that share an edge.
 //
+// Two-sided surfaces (Patch::two_sided) are two patches back to back at the same place. They go
+// into a second Embree geometry whose filter drops hits on a patch's back, so a ray meets the side
+// that faces it, whichever of the two Embree finds first; a scene without them has the one
+// geometry and traces exactly as before. Shadow rays (Unoccluded) take any hit.
+//
 // Thread safety: Trace() is const and may be called from any number of threads at once.
 #pragma once
 
@@ -16,8 +21,9 @@
 #include "core/ray_sampler.h"
 #include "core/vec3.h"
 
-struct RTCSceneTy;  // Embree's scene handle type (embree3/rtcore_scene.h)
-struct RTCRayHit;   // Embree's ray and hit record (embree3/rtcore_ray.h)
+struct RTCSceneTy;                   // Embree's scene handle type (embree3/rtcore_scene.h)
+struct RTCRayHit;                    // Embree's ray and hit record (embree3/rtcore_ray.h)
+struct RTCFilterFunctionNArguments;  // a filter callback's arguments (embree3/rtcore_geometry.h)
 
 namespace radfarm {
 
@@ -66,6 +72,9 @@ class RayCaster {
   void PrepareRay(const Vec3& origin, const Vec3& direction, const Vec3& surface_normal,
                   RTCRayHit* ray) const;
   uint32_t PatchOfTriangle(uint32_t primitive) const { return triangles_[primitive].patch; }
+  // Embree's geometry ids: one-sided patches, and the sides of two-sided surfaces (filtered).
+  static constexpr unsigned kOneSidedGeometry = 0;
+  static constexpr unsigned kTwoSidedGeometry = 1;
 
  private:
   // What a hit on one of Embree's triangles needs: its patch, and how far the direction of the
@@ -78,11 +87,25 @@ class RayCaster {
   };
   static float NgMargin(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& patch_normal,
                         double scene_diagonal);
+  // Whether direction d meets the front of `triangle`, given Embree's Ng for the hit: TraceBlock's
+  // rule, which the two-sided filter applies too.
+  bool MeetsFront(const Triangle& triangle, const Vec3& d, const Vec3& ng) const;
+  // The triangle record of Embree's (geometry, primitive).
+  const Triangle& TriangleOf(unsigned geometry, unsigned primitive) const {
+    return triangles_[(geometry == kTwoSidedGeometry ? two_sided_first_ : 0) + primitive];
+  }
+  // Embree's intersection filter on the two-sided geometry: drops hits on a patch's back.
+  static void FrontOnlyFilter(const RTCFilterFunctionNArguments* args);
+
+  // Adds the one-sided patches' triangles, or the two-sided ones', as an Embree geometry (none when
+  // there are none).
+  void AddGeometry(const PatchScene& scene, bool two_sided, double diagonal);
 
   struct Embree;
   std::unique_ptr<Embree> embree_;
   std::vector<Vec3> patch_normals_;  // compact copy: Trace reads one per hit
-  std::vector<Triangle> triangles_;  // by Embree primitive id; 8 bytes each
+  std::vector<Triangle> triangles_;  // one-sided by primitive id, then two-sided; 8 bytes each
+  size_t two_sided_first_ = 0;       // index in triangles_ of the two-sided geometry's first
   Vec3 centre_;                      // subtracted from every coordinate given to Embree
   double origin_offset_ = 0;
 };

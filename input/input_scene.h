@@ -9,6 +9,7 @@
 #include "base/text_file.h"
 #include "core/rgb.h"
 #include "core/vec3.h"
+#include "input/input_camera.h"
 
 namespace radfarm {
 
@@ -16,6 +17,9 @@ struct Material {
   std::string name;
   Rgb diffuse;   // MTL Kd, each channel in [0, 1)
   Rgb emission;  // MTL Ke, emitted radiance, each channel >= 0
+  // Both sides receive and emit (glTF doubleSided; for OBJ the job file's two_sided): meshed as
+  // two patches back to back, each with its own radiosity.
+  bool two_sided = false;
 };
 
 struct InputFace {
@@ -30,6 +34,7 @@ struct InputScene {
   std::vector<Material> materials;
   std::vector<InputFace> faces;
   std::vector<std::string> warnings;  // one line each, already prefixed with the file name
+  std::vector<InputCamera> cameras;   // in the file's order (glTF); the first is the default
 };
 
 // Reads and validates an OBJ (and the MTL files it names). Errors are one line naming the file and

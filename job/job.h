@@ -2,6 +2,7 @@
 // or made with defaults for a bare OBJ.
 #pragma once
 
+#include <map>
 #include <string>
 
 #include "base/result.h"
@@ -19,9 +20,18 @@ struct Job {
   // A job gathers unless its file says otherwise (the report's measured default).
   SolverSettings solver{.gather_rays = kDefaultGatherRays};
   Camera camera;
+  // The scene's camera to use (a glTF camera's node or camera name; `[camera] name`, or
+  // `--camera`); empty: the job's own camera, else the scene's first, else the automatic one.
+  std::string camera_name;
+  // Which materials receive and emit on both sides (Material::two_sided): every one when
+  // `two_sided = true` at the top of the job file, and those `[materials.NAME] two_sided` names,
+  // which wins over the former and over a glTF file's doubleSided.
+  bool two_sided = false;
+  std::map<std::string, bool> material_two_sided;
 };
 
-// Loads SCENE: a `.toml` job file, or an `.obj` that becomes a job with default settings.
+// Loads SCENE: a `.toml` job file, or an `.obj`, `.gltf` or `.glb` that becomes a job with default
+// settings.
 // Unknown keys, wrong types and out-of-range values are errors naming the file, line and key.
 Result<Job> LoadJob(const std::string& path);
 

@@ -1,6 +1,7 @@
 // LoadJob. A job file is TOML; every key is optional except `scene`, and any other key is an error:
 //
-//   scene = "cornell-box.obj"     # the OBJ; a relative path is relative to this file's directory
+//   scene = "cornell-box.obj"     # the OBJ, .gltf or .glb; relative to this file's directory
+//   two_sided = false             # every surface receives and emits on both sides
 //   [mesh]
 //   patch_size = 30.0             # largest patch edge in scene units, > 0 (absent: automatic);
 //                                 # a triangle's longest edge may be sqrt(2) times it
@@ -30,6 +31,9 @@
 //   height = 512                  # pixels, in [1, 16384]
 //   exposure = 0.0                # stops; setting it turns off automatic exposure
 //   samples_per_pixel = 4         # in [1, 1024]
+//   name = "Camera"               # a camera of the scene file (glTF) by node or camera name
+//   [materials.NAME]              # per material of the scene, by name
+//   two_sided = true              # this material receives and emits on both sides
 //
 // Errors are one line naming the file, the line and the dotted key:
 // "job.toml:7: unknown key 'solver.sampel'".
@@ -134,6 +138,22 @@ Status ReadCamera(TomlTableReader* r, Camera* camera) {
   return Ok{};
 }
 
+// [materials.NAME] tables, one per material named, each with its optional two_sided.
+Status ReadMaterials(const std::string& path, TomlTableReader* materials, const toml::table& table,
+                     Job* job) {
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    Result<const toml::table*> one = materials->Table(name);
+    RADFARM_RETURN_IF_ERROR(one);
+    TomlTableReader reader(path, **one, "materials." + name + ".");
+    bool two_sided = false;
+    RADFARM_RETURN_IF_ERROR(reader.Bool("two_sided", &two_sided));
+    if ((*one)->contains("two_sided")) job->material_two_sided[name] = two_sided;
+    RADFARM_RETURN_IF_ERROR(reader.CheckNoUnknownKeys());
+  }
+  return Ok{};
+}
+
 Status ReadJob(const std::string& path, const toml::table& table, Job* job) {
   TomlTableReader root(path, table, "");
   std::string scene;
@@ -147,8 +167,17 @@ Status ReadJob(const std::string& path, const toml::table& table, Job* job) {
   }));
   RADFARM_RETURN_IF_ERROR(ReadSection(
       path, &root, "solver", [&](TomlTableReader* r) { return ReadSolver(r, &job->solver); }));
-  RADFARM_RETURN_IF_ERROR(ReadSection(
-      path, &root, "camera", [&](TomlTableReader* r) { return ReadCamera(r, &job->camera); }));
+  RADFARM_RETURN_IF_ERROR(root.Bool("two_sided", &job->two_sided));
+  RADFARM_RETURN_IF_ERROR(ReadSection(path, &root, "camera", [&](TomlTableReader* r) -> Status {
+    RADFARM_RETURN_IF_ERROR(r->String("name", &job->camera_name));
+    return ReadCamera(r, &job->camera);
+  }));
+  Result<const toml::table*> materials = root.Table("materials");
+  RADFARM_RETURN_IF_ERROR(materials);
+  if (*materials != nullptr) {
+    TomlTableReader reader(path, **materials, "materials.");
+    RADFARM_RETURN_IF_ERROR(ReadMaterials(path, &reader, **materials, job));
+  }
   return root.CheckNoUnknownKeys();
 }
 
@@ -172,12 +201,12 @@ std::string LowercaseExtension(const std::string& path) {
 Result<Job> LoadJob(const std::string& path) {
   const std::string ext = LowercaseExtension(path);
   if (ext == ".toml") return LoadTomlJob(path);
-  if (ext == ".obj") {
+  if (ext == ".obj" || ext == ".gltf" || ext == ".glb") {
     Job job;
     job.scene_path = path;
     return job;
   }
-  return ErrorAt(path, 0, "not a scene: expected a .obj or a .toml job file");
+  return ErrorAt(path, 0, "not a scene: expected a .obj, .gltf, .glb or a .toml job file");
 }
 
 }  // namespace radfarm

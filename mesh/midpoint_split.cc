@@ -12,6 +12,7 @@ MidpointSplit SplitAtMidpoints(const DisplayMesh& coarse) {
   fine.positions = coarse.positions;
   fine.radiance = coarse.radiance;
   fine.radiance.resize(coarse.positions.size());
+  fine.patch_front_only = coarse.patch_front_only;
   fine.triangles.reserve(4 * coarse.triangles.size());
   fine.triangle_patch.reserve(4 * coarse.triangles.size());
   out.triangle_midpoints.reserve(coarse.triangles.size());

@@ -108,6 +108,7 @@ bool PatchAssembler::Add(const PieceCorners& piece, uint32_t surface, uint32_t m
   patch.emission = m.emission;
   patch.surface = surface;
   patch.material = material;
+  patch.two_sided = m.two_sided;
   data_.scene.patches.push_back(patch);
 
   const PatchProperties& p = data_.props;

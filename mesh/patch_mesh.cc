@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <map>
 #include <sstream>
 #include <utility>
 
@@ -73,6 +74,37 @@ std::vector<CleanFace> DropHidden(std::vector<CleanFace> faces, double tol,
   return kept;
 }
 
+// The back of a two-sided face: its patches again, facing the other way, on a surface of their
+// own. Two patches rather than one that receives and emits on both sides: an opaque sheet lit on
+// one side reflects that light to the same side only, so each side has its own radiosity (one
+// patch for both would send half the light a room's wall receives out of the room). The back is
+// not cut along footprints or sheets: what stands on the front does not touch it.
+void AddBackSide(const SplitPlan& plan, uint32_t surface, uint32_t material,
+                 PatchAssembler* assembler) {
+  std::vector<PieceCorners> pieces;
+  EmitPieces(plan, &pieces);
+  for (PieceCorners& piece : pieces) {
+    std::reverse(piece.corners.begin(), piece.corners.begin() + piece.count);
+    assembler->Add(piece, surface, material);
+  }
+}
+
+// Surface ids for the backs of two-sided surfaces, numbered after the others in order of first
+// use, so the front's vertex averages never mix with the back's.
+class BackSurfaces {
+ public:
+  explicit BackSurfaces(size_t* surface_count) : surface_count_(surface_count) {}
+  uint32_t Of(uint32_t front) {
+    const auto [it, added] = back_of_.try_emplace(front, static_cast<uint32_t>(*surface_count_));
+    if (added) ++*surface_count_;
+    return it->second;
+  }
+
+ private:
+  size_t* surface_count_;
+  std::map<uint32_t, uint32_t> back_of_;
+};
+
 }  // namespace
 
 Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& settings,
@@ -107,7 +139,8 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   uint64_t piece_count = 0;
   for (const CleanFace& face : faces) {
     plans.push_back(PlanSplit(face.corners, face.normal, pm.patch_size_, tol));
-    piece_count += std::min(plans.back().PieceCount(), kMaxPatches + 1);  // no overflow
+    const int sides = scene.materials[face.material].two_sided ? 2 : 1;
+    piece_count += sides * std::min(plans.back().PieceCount(), kMaxPatches + 1);  // no overflow
     if (!plans.back().simple && warnings != nullptr) {
       warnings->push_back(scene.path + ":" + std::to_string(face.line) +
                           ": face is self-intersecting; its patches may overlap");
@@ -135,6 +168,7 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   pm.tol_ = tol;
   pm.min_area_ = min_area;
   PatchAssembler assembler(tol, min_area, pm.materials_);
+  BackSurfaces back_surface(&pm.surface_count_);
   std::vector<PieceCorners> pieces;
   for (size_t f = 0; f < faces.size(); ++f) {
     pieces.clear();
@@ -152,6 +186,9 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
     }
     for (const PieceCorners& piece : pieces) {
       assembler.Add(piece, surfaces.surface[f], faces[f].material);
+    }
+    if (pm.materials_[faces[f].material].two_sided) {
+      AddBackSide(plans[f], back_surface.Of(surfaces.surface[f]), faces[f].material, &assembler);
     }
   }
   pm.data_ = std::move(assembler).Finish();

@@ -214,6 +214,16 @@ DisplayMesh PatchMesh::PatchDisplayMesh() const {
     out.radiance.push_back(mesh.property(p.radiance, vh));
   }
   const std::vector<std::vector<uint32_t>> rings = FaceRings();
+  for (const Patch& patch : data_.scene.patches) {
+    if (!patch.two_sided) continue;
+    out.patch_front_only.resize(data_.scene.patches.size());
+    break;
+  }
+  if (!out.patch_front_only.empty()) {
+    for (uint32_t f = 0; f < data_.scene.patches.size(); ++f) {
+      out.patch_front_only[f] = data_.scene.patches[f].two_sided;
+    }
+  }
   std::vector<Vec3> ring_positions;
   for (uint32_t f = 0; f < data_.scene.patches.size(); ++f) {
     const std::vector<uint32_t>& ring = rings[f];

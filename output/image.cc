@@ -91,6 +91,12 @@ ClipPlanes MakeClipPlanes(const DisplayMesh& mesh, const ViewTransform& view) {
       {{{0, 0, 1}, -near}, {{-1, 0, gx}, 0}, {{1, 0, gx}, 0}, {{0, -1, gy}, 0}, {{0, 1, gy}, 0}}};
 }
 
+// Whether the eye sees the triangle's back: its corners run clockwise seen from the eye.
+bool FacesAway(const DisplayMesh& mesh, const std::array<uint32_t, 3>& v, const Vec3& eye) {
+  const Vec3& a = mesh.positions[v[0]];
+  return Dot(Cross(mesh.positions[v[1]] - a, mesh.positions[v[2]] - a), eye - a) <= 0;
+}
+
 // Screen triangles of mesh.triangles[first, last), in mesh order, into `triangles` (cleared);
 // triangles of the patches `black_patch` marks get radiance 0.
 void SetUpTriangles(const DisplayMesh& mesh, const ViewTransform& view, const ClipPlanes& clip,
@@ -105,6 +111,10 @@ void SetUpTriangles(const DisplayMesh& mesh, const ViewTransform& view, const Cl
       continue;
     }
     const uint32_t patch = t < mesh.triangle_patch.size() ? mesh.triangle_patch[t] : ~0u;
+    if (patch < mesh.patch_front_only.size() && mesh.patch_front_only[patch] &&
+        FacesAway(mesh, indices, view.eye)) {
+      continue;  // the other side of a two-sided surface is drawn here
+    }
     const bool black = patch < black_patch.size() && black_patch[patch];
     ClipPolygon polygon;
     polygon.count = 3;

@@ -27,7 +27,8 @@ Bounds3 MeshBounds(const DisplayMesh& mesh);
 // otherwise `camera` itself.
 Camera ResolveCamera(const DisplayMesh& mesh, const Camera& camera);
 
-// Z-buffered pinhole rendering of the mesh's triangles (both sides, no culling) with per-vertex
+// Z-buffered pinhole rendering of the mesh's triangles (both sides, no culling, except for the
+// patches DisplayMesh::patch_front_only marks, drawn from the front only) with per-vertex
 // radiance interpolated perspective-correctly. Antialiasing: every pixel is the box-filtered mean
 // of an ordered n x n grid of subpixel samples at the stratum centres, n = ceil(sqrt(spp)).
 // Uncovered samples are black. Triangles are clipped at a near plane and a guard band, so geometry

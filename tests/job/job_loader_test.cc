@@ -44,7 +44,8 @@ TEST(LoadJobTest, BareObjGetsDefaults) {
 }
 
 TEST(LoadJobTest, OtherExtensionsAreRefused) {
-  EXPECT_EQ(JobError("scene.ply"), "scene.ply: not a scene: expected a .obj or a .toml job file");
+  EXPECT_EQ(JobError("scene.ply"),
+            "scene.ply: not a scene: expected a .obj, .gltf, .glb or a .toml job file");
 }
 
 TEST(LoadJobTest, MissingJobFile) {

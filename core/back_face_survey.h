@@ -1,0 +1,26 @@
+// Where the emitters' light lands, front or back, per material: a cheap look before the solve that
+// finds surfaces modelled facing the wrong way (a room built as a cube with outward normals: every
+// wall is hit from behind, absorbs the light and renders black).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/patch_scene.h"
+#include "core/ray_caster.h"
+
+namespace radfarm {
+
+struct BackFaceCounts {
+  // By material index (PatchScene::material_names): rays whose first hit was the material's
+  // front, and its back.
+  std::vector<uint64_t> front;
+  std::vector<uint64_t> back;
+  uint64_t rays = 0;  // all rays cast, escaped ones included
+};
+
+// Casts about `rays` rays from the emitting patches, each patch's share in proportion to its
+// emitted power, and counts first hits per material and side. Deterministic (fixed Sobol rays).
+BackFaceCounts SurveyBackFaces(const PatchScene& scene, const RayCaster& caster, uint64_t rays);
+
+}  // namespace radfarm

@@ -1,0 +1,22 @@
+// Reading a glTF 2.0 scene (.gltf with its buffers and images, or .glb) into an InputScene, through
+// tinygltf. Units and axes are glTF's (metres, +Y up) and are kept as they are, as OBJ
+// coordinates are.
+#pragma once
+
+#include <string>
+
+#include "base/result.h"
+#include "input/input_scene.h"
+
+namespace radfarm {
+
+// The default scene (or the first), every node's mesh under its world transform (the node
+// hierarchy, matrices or translation/rotation/scale; mirroring transforms flip the winding as glTF
+// says), triangles indexed or not, materials as gltf_material.h describes, and the perspective
+// cameras of the scene's nodes. Errors are one line naming the file and the node, mesh, primitive,
+// material or accessor: unreadable file, primitive modes other than triangles, indices out of
+// range, non-finite coordinates, bad factors, "nothing to light". Unsupported features that
+// change little (alphaMode, skins, KHR_lights_punctual lamps) give warnings.
+Result<InputScene> LoadGltfScene(const std::string& path);
+
+}  // namespace radfarm

@@ -1,0 +1,49 @@
+#include "input/scene_loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "base/diagnostic.h"
+#include "input/gltf_scene_loader.h"
+
+namespace radfarm {
+namespace {
+
+std::string LowercaseExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+bool IsSceneFile(const std::string& path) {
+  const std::string ext = LowercaseExtension(path);
+  return ext == ".obj" || ext == ".gltf" || ext == ".glb";
+}
+
+Result<InputScene> LoadScene(const std::string& path, uint64_t max_file_bytes) {
+  const std::string ext = LowercaseExtension(path);
+  if (ext == ".obj") return LoadObjScene(path, max_file_bytes);
+  if (ext == ".gltf" || ext == ".glb") {
+    // tinygltf reads the file itself: check what ReadTextFile would before it does.
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (ec) return Error{path + ": cannot open: " + ec.message()};
+    if (!std::filesystem::is_regular_file(status)) {
+      return Error{path + ": cannot open: not a regular file"};
+    }
+    const uint64_t size = std::filesystem::file_size(path, ec);
+    if (ec) return Error{path + ": cannot stat: " + ec.message()};
+    if (size > max_file_bytes) {
+      return Error{path + ": the file is " + std::to_string(size) + " bytes, over the limit of " +
+                   std::to_string(max_file_bytes) + " bytes"};
+    }
+    return LoadGltfScene(path);
+  }
+  return ErrorAt(path, 0, "not a scene: expected a .obj, .gltf or .glb file");
+}
+
+}  // namespace radfarm

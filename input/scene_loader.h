@@ -1,0 +1,21 @@
+// Scene files by their extension: Wavefront OBJ (obj_scene_loader) or glTF 2.0 (.gltf, .glb).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "base/result.h"
+#include "base/text_file.h"
+#include "input/input_scene.h"
+
+namespace radfarm {
+
+// Whether `path` names a scene file this reader knows (.obj, .gltf, .glb, any case).
+bool IsSceneFile(const std::string& path);
+
+// LoadObjScene or LoadGltfScene; any other extension is an error naming the file. The scene file
+// must be a regular file of at most `max_file_bytes` (decided from its size, before reading).
+Result<InputScene> LoadScene(const std::string& path,
+                             uint64_t max_file_bytes = kDefaultMaxInputFileBytes);
+
+}  // namespace radfarm

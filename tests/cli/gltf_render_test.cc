@@ -1,0 +1,199 @@
+// glTF scenes and two-sided surfaces end to end: the Cornell box as glTF and GLB (scenes/, written
+// by scenes/make-cornell-box-gltf.py) renders like the OBJ; a room whose walls face outward is
+// lit inside when two-sided, and warns when not. Runs the real binary.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "cli/exit_codes.h"
+#include "testing/child_process.h"
+#include "testing/temp_dir.h"
+
+namespace radfarm {
+namespace {
+
+using testing::ReadFile;
+using testing::RunCommand;
+using testing::TempDir;
+
+const std::string kSceneDir = RADFARM_SOURCE_DIR "/scenes/";
+
+testing::CommandResult RenderScene(const std::string& scene, const std::string& out,
+                                   std::vector<std::string> extra = {}) {
+  std::vector<std::string> args = {RADFARM_CLI_PATH, "render", scene, "--out", out, "-q"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return RunCommand(args);
+}
+
+std::string WriteText(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+  return path;
+}
+
+struct CsvPatch {
+  std::string material;
+  double area = 0;
+  double c[3] = {}, n[3] = {}, rgb[3] = {};
+};
+
+std::vector<CsvPatch> ReadCsvPatches(const std::string& path) {
+  std::vector<CsvPatch> patches;
+  std::istringstream in(ReadFile(path));
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::istringstream cell_stream(line);
+    for (std::string cell; std::getline(cell_stream, cell, ',');) cells.push_back(cell);
+    if (cells.size() != 13) continue;
+    CsvPatch p;
+    p.material = cells[2];
+    p.area = std::stod(cells[3]);
+    for (int k = 0; k < 3; ++k) {
+      p.c[k] = std::stod(cells[4 + k]);
+      p.n[k] = std::stod(cells[7 + k]);
+      p.rgb[k] = std::stod(cells[10 + k]);
+    }
+    patches.push_back(p);
+  }
+  return patches;
+}
+
+// Area-weighted mean of r + g + b per material.
+std::map<std::string, double> MaterialMeans(const std::vector<CsvPatch>& patches) {
+  std::map<std::string, std::pair<double, double>> sums;
+  for (const CsvPatch& p : patches) {
+    sums[p.material].first += p.area * (p.rgb[0] + p.rgb[1] + p.rgb[2]);
+    sums[p.material].second += p.area;
+  }
+  std::map<std::string, double> means;
+  for (const auto& [name, s] : sums) means[name] = s.first / s.second;
+  return means;
+}
+
+TEST(GltfRenderTest, CornellBoxAsGltfAndGlbRendersLikeTheObj) {
+  TempDir dir;
+  // The same coarse settings for all three; millimetres for the OBJ, metres for glTF.
+  const std::string settings = "[solver]\ntolerance = 0.01\ngather_rays = 256\n";
+  const std::string obj_job =
+      WriteText(dir.File("obj.toml"), "scene = \"" + kSceneDir + "cornell-box.obj\"\n" + settings +
+                                          "[mesh]\npatch_size = 50.0\n");
+  const std::string gltf_job =
+      WriteText(dir.File("gltf.toml"), "scene = \"" + kSceneDir + "cornell-box.gltf\"\n" +
+                                           settings + "[mesh]\npatch_size = 0.05\n");
+  const std::string glb_job =
+      WriteText(dir.File("glb.toml"), "scene = \"" + kSceneDir + "cornell-box.glb\"\n" + settings +
+                                          "[mesh]\npatch_size = 0.05\n");
+  std::map<std::string, std::map<std::string, double>> means;
+  std::map<std::string, std::string> csv;
+  for (const std::string& job : {obj_job, gltf_job, glb_job}) {
+    SCOPED_TRACE(job);
+    TempDir out;
+    const auto r = RenderScene(job, out.path());
+    ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+    EXPECT_EQ(r.err.find("lit from behind"), std::string::npos) << r.err;
+    means[job] = MaterialMeans(ReadCsvPatches(out.File("patches.csv")));
+    csv[job] = ReadFile(out.File("patches.csv"));
+  }
+  // One file in two encodings: the same bytes out.
+  EXPECT_TRUE(csv[gltf_job] == csv[glb_job]);
+  // Quads there, triangle pairs here: different patches, the same light within a few percent.
+  for (const char* material : {"white", "red", "green", "light"}) {
+    const double obj = means[obj_job][material];
+    const double gltf = means[gltf_job][material];
+    EXPECT_GT(obj, 0) << material;
+    EXPECT_NEAR(gltf / obj, 1, 0.03) << material << ": obj " << obj << ", gltf " << gltf;
+  }
+}
+
+TEST(GltfRenderTest, AnUnknownCameraNameIsBadInput) {
+  TempDir out;
+  const auto r = RenderScene(kSceneDir + "cornell-box.glb", out.path(), {"--camera", "nope"});
+  EXPECT_EQ(r.exit_code, kExitBadInput);
+  EXPECT_NE(r.err.find("cornell-box.glb: no camera named 'nope' (cameras: 'Camera')"),
+            std::string::npos)
+      << r.err;
+}
+
+// A unit cube with its faces' normals pointing out, as a cube modelled in Blender has.
+std::string OutwardCube(const std::string& material, bool with_lamp) {
+  std::string obj =
+      "mtllib room.mtl\n"
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+      "usemtl " +
+      material +
+      "\n"
+      "f 1 2 6 5\nf 4 8 7 3\nf 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\n";
+  if (with_lamp) {
+    obj +=
+        "v 0.4 0.9 0.4\nv 0.6 0.9 0.4\nv 0.6 0.9 0.6\nv 0.4 0.9 0.6\n"
+        "usemtl lamp\nf 9 10 11 12\n";
+  }
+  return obj;
+}
+
+TEST(GltfRenderTest, AnOutwardFacingRoomWarnsAndIsLitWhenTwoSided) {
+  TempDir dir;
+  WriteText(dir.File("room.mtl"),
+            "newmtl wall\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\n");
+  WriteText(dir.File("room.obj"), OutwardCube("wall", true));
+  const std::string settings = "[mesh]\npatch_size = 0.1\n[solver]\ngather_rays = 64\n";
+  const std::string one_sided =
+      WriteText(dir.File("one.toml"), "scene = \"room.obj\"\n" + settings);
+  const std::string two_sided =
+      WriteText(dir.File("two.toml"),
+                "scene = \"room.obj\"\n" + settings + "[materials.wall]\ntwo_sided = true\n");
+  {
+    TempDir out;
+    const auto r = RenderScene(one_sided, out.path());
+    ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+    EXPECT_NE(r.err.find("room.obj: warning: material 'wall' is lit from behind: 100% of the "
+                         "emitters' light"),
+              std::string::npos)
+        << r.err;
+    EXPECT_DOUBLE_EQ(MaterialMeans(ReadCsvPatches(out.File("patches.csv")))["wall"], 0);
+  }
+  TempDir out;
+  const auto r = RenderScene(two_sided, out.path());
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_EQ(r.err.find("lit from behind"), std::string::npos) << r.err;
+  double inside = 0, outside = 0;
+  for (const CsvPatch& p : ReadCsvPatches(out.File("patches.csv"))) {
+    if (p.material != "wall") continue;
+    double outward = 0;
+    for (int k = 0; k < 3; ++k) outward += p.n[k] * (p.c[k] - 0.5);
+    (outward < 0 ? inside : outside) += p.area * p.rgb[0];
+  }
+  EXPECT_GT(inside, 0);
+  EXPECT_EQ(outside, 0);  // nothing outside lights the walls' outer sides
+}
+
+// A closed furnace of two-sided walls that all emit 1 and reflect 0.5: inside, every side sees
+// only the inside, so its radiance is E / (1 - rho) = 2; outside it is E = 1 (one patch for both
+// sides would read something in between on both).
+TEST(GltfRenderTest, ATwoSidedFurnaceReachesEOverOneMinusRhoInsideAndEOutside) {
+  TempDir dir;
+  WriteText(dir.File("room.mtl"), "newmtl glow\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
+  WriteText(dir.File("room.obj"), OutwardCube("glow", false));
+  const std::string job = WriteText(dir.File("furnace.toml"),
+                                    "scene = \"room.obj\"\ntwo_sided = true\n[mesh]\n"
+                                    "patch_size = 0.25\n[solver]\ntolerance = 0.0001\n"
+                                    "gather_rays = 4096\n");
+  TempDir out;
+  const auto r = RenderScene(job, out.path());
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  const std::vector<CsvPatch> patches = ReadCsvPatches(out.File("patches.csv"));
+  ASSERT_EQ(patches.size(), 2u * 6 * 16);
+  for (const CsvPatch& p : patches) {
+    double outward = 0;
+    for (int k = 0; k < 3; ++k) outward += p.n[k] * (p.c[k] - 0.5);
+    EXPECT_NEAR(p.rgb[1], outward < 0 ? 2.0 : 1.0, 0.03)
+        << "patch at " << p.c[0] << " " << p.c[1] << " " << p.c[2];
+  }
+}
+
+}  // namespace
+}  // namespace radfarm

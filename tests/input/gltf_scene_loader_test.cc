@@ -1,0 +1,222 @@
+#include "input/gltf_scene_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "input/scene_loader.h"
+#include "testing/temp_dir.h"
+#include "tests/input/gltf_fixture.h"
+
+namespace radfarm {
+namespace {
+
+using testing::FloorAndLight;
+using testing::GltfFixture;
+using testing::TempDir;
+
+Vec3 GltfFaceNormal(const InputScene& scene, const InputFace& face) {
+  const Vec3& a = scene.positions[face.indices[0]];
+  const Vec3 n = Cross(scene.positions[face.indices[1]] - a, scene.positions[face.indices[2]] - a);
+  return n / Length(n);
+}
+
+bool NearPoint(const Vec3& a, const Vec3& b) { return Length(a - b) < 1e-6; }
+
+std::string GltfLoadError(const std::string& path) {
+  Result<InputScene> scene = LoadScene(path);
+  EXPECT_FALSE(scene.ok()) << path << " loaded but should not have";
+  if (scene.ok()) return "";
+  EXPECT_EQ(scene.error().find('\n'), std::string::npos) << scene.error();
+  return scene.error();
+}
+
+TEST(LoadGltfSceneTest, ReadsIndexedAndPlainTrianglesAndTheirMaterials) {
+  TempDir dir;
+  for (const std::string& path : {FloorAndLight().WriteGltf(dir.File("s.gltf")),
+                                  FloorAndLight().WriteGlb(dir.File("s.glb"))}) {
+    SCOPED_TRACE(path);
+    Result<InputScene> scene = LoadScene(path);
+    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_EQ(scene->faces.size(), 4u);
+    ASSERT_EQ(scene->materials.size(), 2u);
+    const Material& floor = scene->materials[scene->faces[0].material];
+    const Material& lamp = scene->materials[scene->faces[3].material];
+    EXPECT_EQ(floor.name, "floor");
+    EXPECT_DOUBLE_EQ(floor.diffuse.g, 0.5);
+    EXPECT_FALSE(floor.two_sided);
+    EXPECT_EQ(lamp.name, "lamp");
+    // emissiveFactor times KHR_materials_emissive_strength.
+    EXPECT_DOUBLE_EQ(lamp.emission.r, 4);
+    EXPECT_DOUBLE_EQ(lamp.emission.g, 2);
+    EXPECT_DOUBLE_EQ(lamp.emission.b, 1);
+    EXPECT_TRUE(NearPoint(GltfFaceNormal(*scene, scene->faces[0]), {0, 1, 0}));
+    EXPECT_TRUE(NearPoint(GltfFaceNormal(*scene, scene->faces[3]), {0, -1, 0}));
+    EXPECT_TRUE(scene->cameras.empty());
+  }
+}
+
+TEST(LoadGltfSceneTest, AppliesTheNodeHierarchyWithMatricesAndTrs) {
+  GltfFixture f = FloorAndLight();
+  // Floor under a parent: the parent's matrix translates by (10, 0, 0); the floor node rotates a
+  // quarter turn about x (y -> z) and scales by 2.
+  const double s = std::sqrt(0.5);
+  f.json()["nodes"][0]["rotation"] = {s, 0, 0, s};
+  f.json()["nodes"][0]["scale"] = {2, 2, 2};
+  f.json()["scenes"][0]["nodes"] = {2, 1};
+  f.AddNode({{"name", "Parent"},
+             {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 10, 0, 0, 1}},
+             {"children", {0}}},
+            false);
+  TempDir dir;
+  Result<InputScene> scene = LoadScene(f.WriteGltf(dir.File("s.gltf")));
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  // Floor corner (0, 0, 1): scaled (0, 0, 2), rotated about x to (0, -2, 0), moved to (10, -2, 0).
+  EXPECT_TRUE(NearPoint(scene->positions[scene->faces[0].indices[1]], {10, -2, 0}));
+  EXPECT_TRUE(NearPoint(GltfFaceNormal(*scene, scene->faces[0]), {0, 0, 1}));
+}
+
+TEST(LoadGltfSceneTest, AMirroringTransformKeepsTheFrontFacingTheSameWay) {
+  GltfFixture f = FloorAndLight();
+  // Mirrored in y and lifted: the floor faces -y now in geometry; glTF says its front is then the
+  // clockwise side, so the face must still face the way the mirrored normal points (-y).
+  f.json()["nodes"][0]["scale"] = {1, -1, 1};
+  TempDir dir;
+  Result<InputScene> scene = LoadScene(f.WriteGltf(dir.File("s.gltf")));
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  EXPECT_TRUE(NearPoint(GltfFaceNormal(*scene, scene->faces[0]), {0, -1, 0}));
+}
+
+TEST(LoadGltfSceneTest, DoubleSidedMaterialsAreTwoSided) {
+  GltfFixture f = FloorAndLight();
+  f.json()["materials"][0]["doubleSided"] = true;
+  TempDir dir;
+  Result<InputScene> scene = LoadScene(f.WriteGltf(dir.File("s.gltf")));
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  EXPECT_TRUE(scene->materials[scene->faces[0].material].two_sided);
+  EXPECT_FALSE(scene->materials[scene->faces[3].material].two_sided);
+}
+
+TEST(LoadGltfSceneTest, ATexturedTriangleReflectsTheTexturesMeanOverItsUvFootprint) {
+  GltfFixture f = FloorAndLight();
+  // 2 x 1 texels: red on the left, blue on the right; a base colour factor of 0.5 on top.
+  const int texture = f.AddTexture(2, 1, {255, 0, 0, 0, 0, 255});
+  f.json()["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", texture}};
+  // Triangle 1 of the floor maps into the left half, triangle 2 into the right.
+  const int uv = f.AddTexCoords(
+      {{0.05f, 0.1f}, {0.45f, 0.1f}, {0.05f, 0.9f}, {0.55f, 0.1f}, {0.95f, 0.1f}, {0.55f, 0.9f}});
+  const int points =
+      f.AddPositions({{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {0, 0, 0}, {1, 0, 1}, {1, 0, 0}});
+  f.json()["meshes"][0] = {
+      {"name", "floor"},
+      {"primitives",
+       {{{"attributes", {{"POSITION", points}, {"TEXCOORD_0", uv}}}, {"material", 0}}}}};
+  TempDir dir;
+  Result<InputScene> scene = LoadScene(f.WriteGltf(dir.File("s.gltf")));
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  const Material& left = scene->materials[scene->faces[0].material];
+  const Material& right = scene->materials[scene->faces[1].material];
+  EXPECT_EQ(left.name, "floor");
+  EXPECT_EQ(right.name, "floor");
+  EXPECT_DOUBLE_EQ(left.diffuse.r, 0.5);
+  EXPECT_DOUBLE_EQ(left.diffuse.b, 0);
+  EXPECT_DOUBLE_EQ(right.diffuse.r, 0);
+  EXPECT_DOUBLE_EQ(right.diffuse.b, 0.5);
+}
+
+TEST(LoadGltfSceneTest, ReadsPerspectiveCamerasLookingDownTheirMinusZ) {
+  GltfFixture f = FloorAndLight();
+  f.json()["cameras"] = {{{"name", "lens"},
+                          {"type", "perspective"},
+                          {"perspective", {{"yfov", M_PI / 4}, {"znear", 0.1}}}}};
+  // Half a turn about y: looks along +z from (0.5, 0.5, -2).
+  f.AddNode({{"name", "Cam"},
+             {"camera", 0},
+             {"translation", {0.5, 0.5, -2}},
+             {"rotation", {0, 1, 0, 0}}});
+  TempDir dir;
+  Result<InputScene> scene = LoadScene(f.WriteGltf(dir.File("s.gltf")));
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  ASSERT_EQ(scene->cameras.size(), 1u);
+  const InputCamera& c = scene->cameras[0];
+  EXPECT_EQ(c.name, "Cam");
+  EXPECT_EQ(c.data_name, "lens");
+  EXPECT_TRUE(NearPoint(c.eye, {0.5, 0.5, -2}));
+  EXPECT_TRUE(NearPoint(c.target, {0.5, 0.5, -1}));
+  EXPECT_TRUE(NearPoint(c.up, {0, 1, 0}));
+  EXPECT_NEAR(c.fov_degrees, 45, 1e-9);
+}
+
+TEST(LoadGltfSceneTest, RefusesLinesNamingTheMesh) {
+  GltfFixture f = FloorAndLight();
+  f.json()["meshes"][0]["primitives"][0]["mode"] = 1;
+  TempDir dir;
+  const std::string path = f.WriteGltf(dir.File("s.gltf"));
+  EXPECT_EQ(GltfLoadError(path), path +
+                                     ": mesh 0 'floor' primitive 0: mode 1 (lines) is not "
+                                     "supported; export triangles");
+}
+
+TEST(LoadGltfSceneTest, RefusesAnIndexOutOfRangeNamingTheAccessor) {
+  GltfFixture f = FloorAndLight();
+  f.json()["meshes"][0]["primitives"][0]["indices"] = f.AddIndices({0, 1, 7});
+  TempDir dir;
+  const std::string path = f.WriteGltf(dir.File("s.gltf"));
+  EXPECT_EQ(GltfLoadError(path), path +
+                                     ": mesh 0 'floor' primitive 0: index 7 out of range (4 "
+                                     "vertices, accessor 3)");
+}
+
+TEST(LoadGltfSceneTest, RefusesAnAccessorPastItsBuffer) {
+  GltfFixture f = FloorAndLight();
+  f.json()["accessors"][0]["count"] = 400;
+  TempDir dir;
+  const std::string path = f.WriteGltf(dir.File("s.gltf"));
+  const std::string error = GltfLoadError(path);
+  EXPECT_NE(error.find(path + ": mesh 0 'floor' primitive 0 POSITION (accessor 0)"),
+            std::string::npos)
+      << error;
+}
+
+TEST(LoadGltfSceneTest, RefusesANodeThatIsItsOwnAncestor) {
+  GltfFixture f = FloorAndLight();
+  f.json()["nodes"][0]["children"] = {0};
+  TempDir dir;
+  const std::string path = f.WriteGltf(dir.File("s.gltf"));
+  EXPECT_EQ(GltfLoadError(path), path + ": node 0 'Floor': is its own ancestor");
+}
+
+TEST(LoadGltfSceneTest, RefusesABadFactorNamingTheMaterial) {
+  GltfFixture f = FloorAndLight();
+  f.json()["materials"][1]["emissiveFactor"] = {1, -1, 0};
+  TempDir dir;
+  const std::string path = f.WriteGltf(dir.File("s.gltf"));
+  const std::string error = GltfLoadError(path);
+  EXPECT_EQ(error.rfind(path + ": material 1 'lamp': emissiveFactor", 0), 0u) << error;
+}
+
+TEST(LoadGltfSceneTest, NothingToLightMentionsPunctualLamps) {
+  GltfFixture f = FloorAndLight();
+  f.json()["materials"][1].erase("emissiveFactor");
+  f.json()["extensionsUsed"].push_back("KHR_lights_punctual");
+  f.json()["extensions"] = {
+      {"KHR_lights_punctual", {{"lights", {{{"type", "point"}, {"intensity", 10}}}}}}};
+  TempDir dir;
+  const std::string path = f.WriteGltf(dir.File("s.gltf"));
+  EXPECT_EQ(GltfLoadError(path), path +
+                                     ": nothing to light: no triangle uses a material with "
+                                     "emissiveFactor > 0 (KHR_lights_punctual lamps are not read)");
+}
+
+TEST(LoadGltfSceneTest, MissingAndUnparseableFiles) {
+  TempDir dir;
+  EXPECT_EQ(GltfLoadError(dir.File("none.glb")),
+            dir.File("none.glb") + ": cannot open: no such file");
+  testing::GltfFixture f;
+  const std::string path = dir.File("bad.gltf");
+  { std::ofstream(path) << "{ not json"; }
+  EXPECT_EQ(GltfLoadError(path).rfind(path + ": not a valid glTF file: ", 0), 0u);
+}
+
+}  // namespace
+}  // namespace radfarm
