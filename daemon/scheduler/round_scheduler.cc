@@ -71,6 +71,13 @@ bool RoundScheduler::RoundComplete() const {
   return round_ && round_->done == round_->batches.size();
 }
 
+bool RoundScheduler::InEndGame() const {
+  if (!round_ || RoundComplete()) return false;
+  return std::none_of(round_->fresh.begin(), round_->fresh.end(), [&](uint32_t index) {
+    return round_->batches[index].state == BatchState::kQueued;
+  });
+}
+
 Result<CompletedRound> RoundScheduler::TakeCompletedRound() {
   if (!round_) return Error{"no round is active"};
   if (!RoundComplete()) {
@@ -108,6 +115,18 @@ uint32_t RoundScheduler::LeasesHeld(AgentId agent) const {
   return it == agents_.end() ? 0 : static_cast<uint32_t>(it->second.live.size());
 }
 
+uint32_t RoundScheduler::LeaseSizeOf(AgentId agent) const {
+  const auto it = agents_.find(agent);
+  if (it == agents_.end()) return 0;
+  const double batch_rays = round_ ? round_->mean_batch_rays : options_.default_batch_rays;
+  uint32_t size = it->second.throughput.LeaseBatches(batch_rays, options_);
+  if (round_ && !round_->fresh.empty()) {
+    const size_t share = (round_->fresh.size() + agents_.size() - 1) / agents_.size();
+    size = static_cast<uint32_t>(std::min<size_t>(size, std::max<size_t>(1, share)));
+  }
+  return size;
+}
+
 uint32_t RoundScheduler::LeaseCapacityOf(AgentId agent) const {
   const auto it = agents_.find(agent);
   return it == agents_.end() ? 0 : LeaseCapacity(it->second);
@@ -124,11 +143,67 @@ std::optional<Assignment> RoundScheduler::NextAssignment(AgentId agent_id, TimeP
   }
   if (const auto index = PopFresh()) return Issue(*index, agent_id, agent, now, false);
   if (const auto index = PopOverdueFor(agent_id)) return Issue(*index, agent_id, agent, now, true);
+  if (const auto taken = TakeOverFor(agent_id, agent, now)) {
+    const AttemptRecord& old = round_->attempts.at(taken->second);
+    const Takeover from{old.agent, MakeBatchId(round_->plan.round, taken->first), taken->second};
+    Assignment a = Issue(taken->first, agent_id, agent, now, false);
+    EndAttempt(taken->second, AttemptState::kTakenOver);
+    round_->batches[taken->first].taken_over = true;
+    ++totals_.takeovers;
+    a.taken_from = from;
+    return a;
+  }
+  if (const auto index = EndGameCopyFor(agent_id, agent, now)) {
+    return Issue(*index, agent_id, agent, now, true);
+  }
   return std::nullopt;
 }
 
 ResultVerdict RoundScheduler::OnResult(AgentId agent_id, BatchId batch_id, AttemptId attempt_id,
                                        BatchResult result, TimePoint now) {
+  uint64_t rays = 0;
+  TimePoint issued = now;
+  const ResultVerdict verdict =
+      Record(agent_id, batch_id, attempt_id, std::move(result), now, &rays, &issued);
+  if (rays > 0) {
+    if (const auto agent = agents_.find(agent_id); agent != agents_.end()) {
+      agent->second.throughput.AddResult(rays, issued, now, options_.throughput_smoothing,
+                                         options_.min_batch_rays);
+    }
+  }
+  return verdict;
+}
+
+std::vector<ResultVerdict> RoundScheduler::OnResults(AgentId agent_id,
+                                                     std::vector<SubmittedResult> results,
+                                                     TimePoint now) {
+  std::vector<ResultVerdict> verdicts;
+  verdicts.reserve(results.size());
+  uint64_t total_rays = 0;
+  TimePoint first_issued = now;
+  for (SubmittedResult& r : results) {
+    uint64_t rays = 0;
+    TimePoint issued = now;
+    verdicts.push_back(
+        Record(agent_id, r.batch_id, r.attempt_id, std::move(r.result), now, &rays, &issued));
+    total_rays += rays;
+    if (rays > 0) first_issued = std::min(first_issued, issued);
+  }
+  if (total_rays > 0) {
+    if (const auto agent = agents_.find(agent_id); agent != agents_.end()) {
+      agent->second.throughput.AddResult(total_rays, first_issued, now,
+                                         options_.throughput_smoothing, options_.min_batch_rays);
+    }
+  }
+  // The round may have completed on an earlier result of the frame: say so on every verdict.
+  const bool complete = RoundComplete();
+  for (ResultVerdict& v : verdicts) v.round_complete = complete;
+  return verdicts;
+}
+
+ResultVerdict RoundScheduler::Record(AgentId agent_id, BatchId batch_id, AttemptId attempt_id,
+                                     BatchResult result, TimePoint now, uint64_t* rays,
+                                     TimePoint* issued) {
   if (!round_ || BatchRound(batch_id) != round_->plan.round) {
     return Verdict(Disposition::kDropped, DropReason::kStaleRound);
   }
@@ -148,12 +223,12 @@ ResultVerdict RoundScheduler::OnResult(AgentId agent_id, BatchId batch_id, Attem
   // The agent did the work whatever becomes of the result: measure it, free its lease.
   const bool already_answered = attempt.state == AttemptState::kAnswered;
   if (!already_answered) {
+    const uint32_t batch_rays = round_->plan.batches[attempt.batch_index].ray_count;
+    *rays = batch_rays;
+    *issued = attempt.issued;
     const auto agent = agents_.find(agent_id);
-    if (agent != agents_.end()) {
-      const uint32_t rays = round_->plan.batches[attempt.batch_index].ray_count;
-      agent->second.throughput.AddResult(rays, attempt.issued, now, options_.throughput_smoothing,
-                                         options_.min_batch_rays);
-      if (agent->second.live.erase(attempt_id) > 0) agent->second.live_rays -= rays;
+    if (agent != agents_.end() && agent->second.live.erase(attempt_id) > 0) {
+      agent->second.live_rays -= batch_rays;
     }
     attempt.state = AttemptState::kAnswered;
   }
@@ -308,6 +383,67 @@ std::optional<uint32_t> RoundScheduler::PopOverdueFor(AgentId agent) {
   return std::nullopt;
 }
 
+double RoundScheduler::FinishEstimate(const AgentState& agent, TimePoint now) const {
+  if (agent.live.empty()) return 0;
+  // Its newest lease was expected done after all it held then; time since has run down that
+  // work, but an agent running late still needs at least that batch's time.
+  const auto& [attempt_id, index] = *agent.live.rbegin();
+  const double left =
+      std::chrono::duration<double>(round_->attempts.at(attempt_id).expected_done - now).count();
+  return std::max(
+      left, agent.throughput.ExpectedSeconds(round_->plan.batches[index].ray_count, options_));
+}
+
+std::optional<std::pair<uint32_t, AttemptId>> RoundScheduler::TakeOverFor(AgentId agent_id,
+                                                                          const AgentState& agent,
+                                                                          TimePoint now) {
+  const AgentState* victim = nullptr;
+  double victim_finish = 0;
+  for (const auto& [id, other] : agents_) {
+    if (id == agent_id || other.live.empty()) continue;
+    const double finish = FinishEstimate(other, now);
+    if (victim == nullptr || finish > victim_finish) {
+      victim = &other;
+      victim_finish = finish;
+    }
+  }
+  if (victim == nullptr) return std::nullopt;
+  // Its newest lease is the last it would start. Moving it pays when this agent would finish it
+  // clearly before the victim would start it: by a quarter of the victim's time for it, which
+  // covers the round trip and keeps two equal agents from trading a batch about to start.
+  const auto& [attempt_id, index] = *victim->live.rbegin();
+  const uint32_t rays = round_->plan.batches[index].ray_count;
+  const double mine = FinishEstimate(agent, now) + agent.throughput.ExpectedSeconds(rays, options_);
+  const double start_there =
+      victim_finish - 0.25 * victim->throughput.ExpectedSeconds(rays, options_);
+  if (mine >= start_there) return std::nullopt;
+  const BatchSlot& slot = round_->batches[index];
+  if (slot.taken_over || LiveAttempts(slot) != 1) return std::nullopt;
+  return std::make_pair(index, attempt_id);
+}
+
+std::optional<uint32_t> RoundScheduler::EndGameCopyFor(AgentId agent_id, const AgentState& agent,
+                                                       TimePoint now) {
+  if (!agent.live.empty() || options_.end_game_copy_factor <= 0) return std::nullopt;
+  // The running lease (each agent's oldest) that has taken longest past its expected time,
+  // counted in expected times; only one past end_game_copy_factor of them is worth a copy.
+  std::optional<uint32_t> pick;
+  double worst = options_.end_game_copy_factor;
+  for (const auto& [id, other] : agents_) {
+    if (id == agent_id || other.live.empty()) continue;
+    const auto& [attempt_id, index] = *other.live.begin();
+    const AttemptRecord& attempt = round_->attempts.at(attempt_id);
+    const double expected = std::max(
+        1e-3, std::chrono::duration<double>(attempt.expected_done - attempt.issued).count());
+    const double taken = std::chrono::duration<double>(now - attempt.issued).count();
+    if (taken / expected < worst) continue;
+    if (LiveAttempts(round_->batches[index]) >= options_.max_live_attempts) continue;
+    worst = taken / expected;
+    pick = index;
+  }
+  return pick;
+}
+
 Assignment RoundScheduler::Issue(uint32_t index, AgentId agent_id, AgentState& agent, TimePoint now,
                                  bool speculative) {
   const AttemptId id = next_attempt_++;
@@ -316,13 +452,16 @@ Assignment RoundScheduler::Issue(uint32_t index, AgentId agent_id, AgentState& a
   agent.live.emplace(id, index);
   agent.live_rays += batch.ray_count;
   const TimePoint deadline = agent.throughput.Deadline(agent.live_rays, now, options_);
-  round_->attempts[id] = {agent_id, index, now, deadline, AttemptState::kLive};
+  const TimePoint expected_done =
+      now + std::chrono::duration_cast<Duration>(std::chrono::duration<double>(
+                agent.throughput.ExpectedSeconds(agent.live_rays, options_)));
+  round_->attempts[id] = {agent_id, index, now, deadline, expected_done, AttemptState::kLive};
   BatchSlot& slot = round_->batches[index];
   slot.state = BatchState::kLeased;
   slot.attempts.push_back(id);
   ++totals_.attempts_issued;
   if (speculative) ++totals_.speculative_attempts;
-  return {MakeBatchId(round_->plan.round, index), id, batch, deadline, speculative};
+  return {MakeBatchId(round_->plan.round, index), id, batch, deadline, speculative, std::nullopt};
 }
 
 size_t RoundScheduler::LiveAttempts(const BatchSlot& slot) const {
