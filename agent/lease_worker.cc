@@ -139,7 +139,7 @@ size_t LeaseWorker::Revoke(const protocol::LeaseRevokeMsg& revoke) {
   for (uint64_t group : touched) MaybeFinishGroup(group);
   if (dropped > 0) {
     LogLine(LogLevel::kDebug, "agent")
-        << master_ << " took over " << dropped << " of our batches not started yet";
+        << master_ << " took back " << dropped << " of our batches not started yet";
     callbacks_.on_leases_changed();
   }
   return dropped;

@@ -18,6 +18,24 @@ struct Overloaded : Ts... {
   using Ts::operator()...;
 };
 
+// Takes back the leases `agent` holds for jobs of lower priority than order[k] (a job with
+// batches queued for it), into `refs` for one LeaseRevoke; returns how many. The agent runs its
+// queue in order, so a higher-priority lease sent behind them would wait until they are done: with
+// leases filling lease_seconds, the whole of every reduction of the higher job (CI: the low job of
+// FarmTest.AHigherPriorityJobGetsTheAgentsFirst finished first on one agent).
+uint32_t PreemptLowerPriority(const std::vector<RunningJob*>& order, size_t k, uint64_t agent,
+                              std::vector<protocol::LeaseRef>& refs) {
+  uint32_t taken = 0;
+  for (size_t j = k + 1; j < order.size(); ++j) {
+    if (order[j]->priority() >= order[k]->priority()) continue;
+    for (const scheduler::Takeover& t : order[j]->scheduler().Preempt(agent)) {
+      refs.push_back({static_cast<uint64_t>(order[j]->id()), t.batch_id, t.attempt_id});
+      ++taken;
+    }
+  }
+  return taken;
+}
+
 }  // namespace
 
 AgentConnections::AgentConnections(loop::EventLoop& loop, const MasterConfig& config,
@@ -230,10 +248,22 @@ void AgentConnections::Dispatch(AgentLink& link) {
   // The highest-priority job with work fills the agent first; a lower one gets what is left of
   // its capacity (the tail of a round, a job between rounds). Each job's new leases go out as
   // LeaseAssignment frames of at most LeaseSizeOf() batches; leases taken over from another agent
-  // are revoked there in one LeaseRevoke per agent.
+  // are revoked there in one LeaseRevoke per agent. A job with batches queued takes the agent's
+  // leases of lower-priority jobs back first.
   std::map<uint64_t, std::vector<protocol::LeaseRef>> revoked;
-  for (RunningJob* runner : order) {
+  for (size_t k = 0; k < order.size(); ++k) {
+    RunningJob* runner = order[k];
     scheduler::RoundScheduler& s = runner->scheduler();
+    if (s.WantsAgent(link.id(), now)) {
+      std::vector<protocol::LeaseRef> preempted;
+      held -= PreemptLowerPriority(order, k, link.id(), preempted);
+      // Before the new leases, so that the agent drops the old ones first.
+      for (size_t i = 0; i < preempted.size(); i += protocol::kMaxLeaseBatches) {
+        const auto end =
+            preempted.begin() + std::min(preempted.size(), i + protocol::kMaxLeaseBatches);
+        (void)link.Send(protocol::LeaseRevokeMsg{{preempted.begin() + i, end}});
+      }
+    }
     bool more = true;
     while (more) {
       const uint32_t size = std::min<uint32_t>(s.LeaseSizeOf(link.id()),

@@ -39,6 +39,22 @@ size_t RoundScheduler::ReturnLeases(AgentId agent, std::span<const BatchId> batc
   return returned;
 }
 
+std::vector<Takeover> RoundScheduler::Preempt(AgentId agent) {
+  std::vector<Takeover> taken;
+  const auto it = agents_.find(agent);
+  if (it == agents_.end() || !round_) return taken;
+  std::vector<AttemptId> live;
+  for (const auto& [id, index] : it->second.live) live.push_back(id);
+  // Newest first: EndAttempt puts each batch at the queue's front, so they end up in lease order.
+  for (auto id = live.rbegin(); id != live.rend(); ++id) {
+    const uint32_t index = round_->attempts.at(*id).batch_index;
+    taken.push_back({agent, MakeBatchId(round_->plan.round, index), *id});
+    EndAttempt(*id, AttemptState::kPreempted);
+  }
+  totals_.leases_preempted += taken.size();
+  return taken;
+}
+
 bool RoundScheduler::IsBlocklisted(AgentId agent, TimePoint now) const {
   const auto it = blocked_until_.find(agent);
   return it != blocked_until_.end() && now < it->second;
@@ -60,6 +76,7 @@ Status RoundScheduler::StartRound(RoundPlan plan, TimePoint /*now*/) {
   for (uint32_t k = 0; k < plan.batches.size(); ++k) {
     round.fresh.push_back(k);
     round.batches[k].in_fresh_queue = true;
+    ++round.queued;
     rays += plan.batches[k].ray_count;
   }
   round.mean_batch_rays = double(rays) / double(plan.batches.size());
@@ -71,11 +88,10 @@ bool RoundScheduler::RoundComplete() const {
   return round_ && round_->done == round_->batches.size();
 }
 
-bool RoundScheduler::InEndGame() const {
-  if (!round_ || RoundComplete()) return false;
-  return std::none_of(round_->fresh.begin(), round_->fresh.end(), [&](uint32_t index) {
-    return round_->batches[index].state == BatchState::kQueued;
-  });
+bool RoundScheduler::InEndGame() const { return round_ && !RoundComplete() && round_->queued == 0; }
+
+bool RoundScheduler::WantsAgent(AgentId agent, TimePoint now) const {
+  return round_ && round_->queued > 0 && agents_.count(agent) > 0 && !IsBlocklisted(agent, now);
 }
 
 Result<CompletedRound> RoundScheduler::TakeCompletedRound() {
@@ -238,7 +254,7 @@ ResultVerdict RoundScheduler::Record(AgentId agent_id, BatchId batch_id, Attempt
     return Verdict(Disposition::kDropped,
                    already_answered ? DropReason::kDuplicate : DropReason::kLate);
   }
-  slot.state = BatchState::kDone;
+  SetState(slot, BatchState::kDone);
   slot.winner = attempt_id;
   slot.result = std::move(result);
   ++round_->done;
@@ -457,7 +473,7 @@ Assignment RoundScheduler::Issue(uint32_t index, AgentId agent_id, AgentState& a
                 agent.throughput.ExpectedSeconds(agent.live_rays, options_)));
   round_->attempts[id] = {agent_id, index, now, deadline, expected_done, AttemptState::kLive};
   BatchSlot& slot = round_->batches[index];
-  slot.state = BatchState::kLeased;
+  SetState(slot, BatchState::kLeased);
   slot.attempts.push_back(id);
   ++totals_.attempts_issued;
   if (speculative) ++totals_.speculative_attempts;
@@ -470,6 +486,12 @@ size_t RoundScheduler::LiveAttempts(const BatchSlot& slot) const {
   });
 }
 
+void RoundScheduler::SetState(BatchSlot& slot, BatchState state) {
+  if (slot.state == BatchState::kQueued) --round_->queued;
+  if (state == BatchState::kQueued) ++round_->queued;
+  slot.state = state;
+}
+
 void RoundScheduler::EndAttempt(AttemptId id, AttemptState how) {
   AttemptRecord& attempt = round_->attempts.at(id);
   if (attempt.state != AttemptState::kLive) return;
@@ -480,7 +502,7 @@ void RoundScheduler::EndAttempt(AttemptId id, AttemptState how) {
   }
   BatchSlot& slot = round_->batches[attempt.batch_index];
   if (slot.state == BatchState::kDone || LiveAttempts(slot) > 0) return;
-  slot.state = BatchState::kQueued;
+  SetState(slot, BatchState::kQueued);
   ++totals_.leases_requeued;
   if (!slot.in_fresh_queue) {
     slot.in_fresh_queue = true;

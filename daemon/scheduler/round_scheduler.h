@@ -25,7 +25,8 @@
 // time: the end game.
 // And Tick offers batches past their deadline to agents with room. A daemon with several jobs keeps
 // one scheduler per job and asks them in turn, so agents idle on one job's reduction work on
-// another.
+// another; when a higher-priority job has batches queued again, the daemon takes the lower jobs'
+// leases off the agent (Preempt) so that it moves at once.
 //
 // LIFECYCLE OF A BATCH (within a round):
 //
@@ -46,14 +47,15 @@
 //                    |  \---- OnAgentLost ------------------------------->  LOST
 //                    |  \---- ReturnLeases ------------------------------>  RETURNED
 //                    |  \---- OnInvalidResult (agent blocklisted) ------->  REVOKED
+//                    |  \---- Preempt (a higher-priority job needs it) -->  PREEMPTED
 //                    |  \---- NextAssignment for another agent: taken over ->  TAKEN_OVER
 //                    \-- Tick past its deadline: marked overdue, stays LIVE and valid; the batch
 //                        is offered to another agent (at most max_live_attempts live at once).
 //
 // Only LIVE attempts count against an agent's leases. A result for an attempt that is no longer
-// LIVE is still correct work: from its own agent, for a batch not DONE, it is accepted (a LOST or
-// RETURNED lease that answers anyway); once the batch is DONE it is dropped as kLate (another
-// attempt won) or kDuplicate (this attempt already answered).
+// LIVE is still correct work: from its own agent, for a batch not DONE, it is accepted (a LOST,
+// RETURNED or PREEMPTED lease that answers anyway); once the batch is DONE it is dropped as kLate
+// (another attempt won) or kDuplicate (this attempt already answered).
 #pragma once
 
 #include <deque>
@@ -118,6 +120,11 @@ class RoundScheduler {
   // The agent handed these leases back (LeaseReturn): requeued at once. Batch ids the agent does
   // not hold a live attempt of are ignored. Returns how many leases were returned.
   size_t ReturnLeases(AgentId agent, std::span<const BatchId> batches);
+  // Takes back every live lease `agent` holds, for a higher-priority job that has batches queued
+  // (WantsAgent) while the agent is full: the batches go back to the front of the queue, and the
+  // daemon tells the agent in a LeaseRevoke, which drops those not started. A preempted batch the
+  // agent had started still counts when it answers first (as a returned lease would).
+  std::vector<Takeover> Preempt(AgentId agent);
   // Blocklisting is keyed by AgentId and outlives OnAgentLost: to keep a lying agent out after it
   // reconnects, give the same agent (by name) the same AgentId again.
   bool IsBlocklisted(AgentId agent, TimePoint now) const;
@@ -130,6 +137,9 @@ class RoundScheduler {
   // The round's queue is empty but some batches have no result yet: idle agents may take over or
   // copy leases (NextAssignment), so the daemon offers them work on its tick.
   bool InEndGame() const;
+  // The round has batches waiting for a lease that `agent` may take (known, not blocklisted):
+  // lower-priority jobs should make room for them. O(1).
+  bool WantsAgent(AgentId agent, TimePoint now) const;
   // Ends the round and returns its results in batch order. Fails unless RoundComplete().
   Result<CompletedRound> TakeCompletedRound();
   // Moves the accepted result of `batch_id` out, for a reduction that folds results in as they
@@ -189,7 +199,16 @@ class RoundScheduler {
 
  private:
   enum class BatchState { kQueued, kLeased, kDone };
-  enum class AttemptState { kLive, kAnswered, kSuperseded, kLost, kReturned, kRevoked, kTakenOver };
+  enum class AttemptState {
+    kLive,
+    kAnswered,
+    kSuperseded,
+    kLost,
+    kReturned,
+    kRevoked,
+    kTakenOver,
+    kPreempted
+  };
 
   struct AttemptRecord {
     AgentId agent = 0;
@@ -217,6 +236,7 @@ class RoundScheduler {
     std::deque<uint32_t> overdue;  // batch indices offered again by Tick
     double mean_batch_rays = 0;
     size_t done = 0;
+    size_t queued = 0;  // batches in state kQueued (SetState keeps it)
   };
   struct AgentState {
     std::map<AttemptId, uint32_t> live;  // live attempts -> batch index
@@ -246,6 +266,8 @@ class RoundScheduler {
   Assignment Issue(uint32_t index, AgentId agent_id, AgentState& agent, TimePoint now,
                    bool speculative);
   size_t LiveAttempts(const BatchSlot& slot) const;
+  // Changes a batch's state, keeping Round::queued.
+  void SetState(BatchSlot& slot, BatchState state);
   // Ends a live attempt without a result; requeues its batch if no live attempt is left.
   void EndAttempt(AttemptId id, AttemptState how);
   ResultVerdict Verdict(Disposition disposition, DropReason reason);

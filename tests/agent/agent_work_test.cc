@@ -118,7 +118,7 @@ TEST_F(AgentWorkTest, ARevokedBatchNotStartedIsLeftOutOfTheLeaseResult) {
     EXPECT_EQ(frame->results[k].lease, batches[k].lease);
     EXPECT_EQ(protocol::ToBatchResult(frame->results[k]), RunLocally(scene_, batches[k]));
   }
-  EXPECT_TRUE(agent->WaitForLog("took over 1 of our batches")) << agent->Log();
+  EXPECT_TRUE(agent->WaitForLog("took back 1 of our batches")) << agent->Log();
   agent->Signal(SIGTERM);
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
 }

@@ -224,6 +224,35 @@ TEST(RoundSchedulerTest, LostAndReturnedLeasesAreRequeuedFirst) {
             Disposition::kAccepted);
 }
 
+// A higher-priority job takes an agent's leases back: they go to the queue's front in lease order,
+// the agent's capacity is free again, and a preempted batch the agent had started still counts.
+TEST(RoundSchedulerTest, PreemptedLeasesAreRequeuedInOrderAndMayStillAnswer) {
+  RoundScheduler s;
+  s.AddAgent(1);
+  EXPECT_FALSE(s.WantsAgent(1, kT0));  // no round
+  ASSERT_TRUE(s.StartRound(Plan(0, 3), kT0).ok());
+  EXPECT_FALSE(s.WantsAgent(2, kT0));  // unknown agent
+  const auto a0 = s.NextAssignment(1, kT0);
+  const auto a1 = s.NextAssignment(1, kT0);
+  ASSERT_TRUE(a0 && a1);
+  EXPECT_TRUE(s.WantsAgent(1, kT0));                                   // batch 2 is still queued
+  EXPECT_TRUE(s.NextAssignment(1, kT0 + seconds(1)) == std::nullopt);  // full
+  const std::vector<Takeover> taken = s.Preempt(1);
+  ASSERT_EQ(taken.size(), 2u);
+  EXPECT_EQ(s.LeasesHeld(1), 0u);
+  EXPECT_EQ(s.counters(kT0).leases_preempted, 2u);
+  EXPECT_EQ(s.counters(kT0).batches_queued, 3u);
+  EXPECT_TRUE(s.Preempt(1).empty());
+  // Back at the front, in the order they were leased.
+  EXPECT_EQ(s.NextAssignment(1, kT0)->batch_id, a0->batch_id);
+  // Batch 1 had started before the revocation reached the agent: its answer is good work.
+  EXPECT_EQ(s.OnResult(1, a1->batch_id, a1->attempt_id, ResultFor(1), kT0).disposition,
+            Disposition::kAccepted);
+  EXPECT_EQ(s.NextAssignment(1, kT0)->batch_id, MakeBatchId(0, 2));  // 1 is done: skipped
+  EXPECT_FALSE(s.WantsAgent(1, kT0));                                // nothing queued: the end game
+  EXPECT_TRUE(s.InEndGame());
+}
+
 TEST(RoundSchedulerTest, InvalidResultBlocklistsTheAgentForAWhile) {
   SchedulerOptions options;
   options.blocklist_duration = seconds(60);
