@@ -26,7 +26,9 @@ LeaseRef FromWire(const wire::LeaseRef& l) { return {l.job_id(), l.batch_id(), l
 // frame could place 8-byte fields off alignment, and reading them would be undefined.
 template <typename T>
 bool IsAligned(const flatbuffers::Vector<const T*>& v) {
-  return reinterpret_cast<uintptr_t>(v.Data()) % alignof(T) == 0;
+  // An empty vector reads nothing; FlatBuffers aligns it only to 4 bytes (PreAlign skips a zero
+  // length), so a LeaseResult whose batches hit no patch would otherwise be refused.
+  return v.size() == 0 || reinterpret_cast<uintptr_t>(v.Data()) % alignof(T) == 0;
 }
 
 Result<Message> Read(const wire::Hello& t) {
