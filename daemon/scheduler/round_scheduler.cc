@@ -245,6 +245,7 @@ ResultVerdict RoundScheduler::Record(AgentId agent_id, BatchId batch_id, Attempt
     const auto agent = agents_.find(agent_id);
     if (agent != agents_.end() && agent->second.live.erase(attempt_id) > 0) {
       agent->second.live_rays -= batch_rays;
+      Reindex(agent_id, agent->second);
     }
     attempt.state = AttemptState::kAnswered;
   }
@@ -399,6 +400,24 @@ std::optional<uint32_t> RoundScheduler::PopOverdueFor(AgentId agent) {
   return std::nullopt;
 }
 
+void RoundScheduler::Reindex(AgentId id, AgentState& agent) {
+  if (agent.finish_key) finish_index_.erase({*agent.finish_key, id});
+  if (agent.copy_key) copy_index_.erase({*agent.copy_key, id});
+  agent.finish_key.reset();
+  agent.copy_key.reset();
+  if (agent.live.empty() || !round_) return;
+  agent.finish_key = round_->attempts.at(agent.live.rbegin()->first).expected_done;
+  finish_index_.emplace(*agent.finish_key, id);
+  if (options_.end_game_copy_factor <= 0) return;
+  const AttemptRecord& oldest = round_->attempts.at(agent.live.begin()->first);
+  // At least 1 ms of expected time, as EndGameCopyFor counts it.
+  const auto expected =
+      std::max<Duration>(std::chrono::milliseconds(1), oldest.expected_done - oldest.issued);
+  agent.copy_key = oldest.issued +
+                   std::chrono::duration_cast<Duration>(expected * options_.end_game_copy_factor);
+  copy_index_.emplace(*agent.copy_key, id);
+}
+
 double RoundScheduler::FinishEstimate(const AgentState& agent, TimePoint now) const {
   if (agent.live.empty()) return 0;
   // Its newest lease was expected done after all it held then; time since has run down that
@@ -413,10 +432,16 @@ double RoundScheduler::FinishEstimate(const AgentState& agent, TimePoint now) co
 std::optional<std::pair<uint32_t, AttemptId>> RoundScheduler::TakeOverFor(AgentId agent_id,
                                                                           const AgentState& agent,
                                                                           TimePoint now) {
+  // The agent expected to finish last: among the few latest in finish_index_ (an agent running
+  // late still needs its newest batch's time, which the index does not order by).
+  constexpr int kCandidates = 4;
   const AgentState* victim = nullptr;
   double victim_finish = 0;
-  for (const auto& [id, other] : agents_) {
-    if (id == agent_id || other.live.empty()) continue;
+  int seen = 0;
+  for (auto it = finish_index_.rbegin(); it != finish_index_.rend() && seen < kCandidates; ++it) {
+    if (it->second == agent_id) continue;
+    ++seen;
+    const AgentState& other = agents_.at(it->second);
     const double finish = FinishEstimate(other, now);
     if (victim == nullptr || finish > victim_finish) {
       victim = &other;
@@ -441,12 +466,18 @@ std::optional<std::pair<uint32_t, AttemptId>> RoundScheduler::TakeOverFor(AgentI
 std::optional<uint32_t> RoundScheduler::EndGameCopyFor(AgentId agent_id, const AgentState& agent,
                                                        TimePoint now) {
   if (!agent.live.empty() || options_.end_game_copy_factor <= 0) return std::nullopt;
-  // The running lease (each agent's oldest) that has taken longest past its expected time,
-  // counted in expected times; only one past end_game_copy_factor of them is worth a copy.
+  // The running lease (some agent's oldest) that has taken longest past its expected time,
+  // counted in expected times; only one past end_game_copy_factor of them is worth a copy. Only
+  // the first few agents of copy_index_ past that point are looked at (in the order they got
+  // there), not every agent.
+  constexpr int kLooked = 16;
   std::optional<uint32_t> pick;
   double worst = options_.end_game_copy_factor;
-  for (const auto& [id, other] : agents_) {
-    if (id == agent_id || other.live.empty()) continue;
+  int looked = 0;
+  for (auto it = copy_index_.begin();
+       it != copy_index_.end() && it->first <= now && looked < kLooked; ++it, ++looked) {
+    if (it->second == agent_id) continue;
+    const AgentState& other = agents_.at(it->second);
     const auto& [attempt_id, index] = *other.live.begin();
     const AttemptRecord& attempt = round_->attempts.at(attempt_id);
     const double expected = std::max(
@@ -472,6 +503,7 @@ Assignment RoundScheduler::Issue(uint32_t index, AgentId agent_id, AgentState& a
       now + std::chrono::duration_cast<Duration>(std::chrono::duration<double>(
                 agent.throughput.ExpectedSeconds(agent.live_rays, options_)));
   round_->attempts[id] = {agent_id, index, now, deadline, expected_done, AttemptState::kLive};
+  Reindex(agent_id, agent);
   BatchSlot& slot = round_->batches[index];
   SetState(slot, BatchState::kLeased);
   slot.attempts.push_back(id);
@@ -498,7 +530,10 @@ void RoundScheduler::EndAttempt(AttemptId id, AttemptState how) {
   attempt.state = how;
   const uint32_t rays = round_->plan.batches[attempt.batch_index].ray_count;
   if (const auto agent = agents_.find(attempt.agent); agent != agents_.end()) {
-    if (agent->second.live.erase(id) > 0) agent->second.live_rays -= rays;
+    if (agent->second.live.erase(id) > 0) {
+      agent->second.live_rays -= rays;
+      Reindex(attempt.agent, agent->second);
+    }
   }
   BatchSlot& slot = round_->batches[attempt.batch_index];
   if (slot.state == BatchState::kDone || LiveAttempts(slot) > 0) return;

@@ -61,6 +61,7 @@
 #include <deque>
 #include <map>
 #include <optional>
+#include <set>
 #include <span>
 #include <unordered_map>
 #include <utility>
@@ -241,6 +242,8 @@ class RoundScheduler {
   struct AgentState {
     std::map<AttemptId, uint32_t> live;  // live attempts -> batch index
     uint64_t live_rays = 0;
+    // Its keys in finish_index_ and copy_index_ while it holds leases (Reindex keeps them).
+    std::optional<TimePoint> finish_key, copy_key;
     ThroughputEstimate throughput;
     uint64_t results_accepted = 0;
   };
@@ -257,6 +260,9 @@ class RoundScheduler {
   // expected time, if at least end_game_copy_factor times it, and its batch may have another live
   // attempt.
   std::optional<uint32_t> EndGameCopyFor(AgentId agent_id, const AgentState& agent, TimePoint now);
+  // After agent.live changed: its entries in finish_index_ and copy_index_ follow its newest and
+  // oldest live attempts.
+  void Reindex(AgentId id, AgentState& agent);
   // When the agent's held work is done, in seconds from now: its newest lease's expected time,
   // at least that batch's time at its speed; 0 when it holds nothing.
   double FinishEstimate(const AgentState& agent, TimePoint now) const;
@@ -275,6 +281,13 @@ class RoundScheduler {
   SchedulerOptions options_;
   std::optional<Round> round_;
   std::map<AgentId, AgentState> agents_;
+  // Agents holding leases, by their newest lease's expected_done (when all they hold is done):
+  // the takeover's victim is found among the last few, not by a pass over every agent, which cost
+  // O(agents) per lease in a round's end game (farm_bench, 1000 agents).
+  std::set<std::pair<TimePoint, AgentId>> finish_index_;
+  // Agents holding leases, by when their oldest lease has run end_game_copy_factor times its
+  // expected time: the end game's copies come from the first few of them.
+  std::set<std::pair<TimePoint, AgentId>> copy_index_;
   std::unordered_map<AgentId, TimePoint> blocked_until_;
   AttemptId next_attempt_ = 1;
   SchedulerCounters totals_;  // the since-creation fields only
