@@ -180,9 +180,11 @@ void Agent::OnAuthenticated(const protocol::WelcomeMsg& welcome) {
 
 void Agent::OnMessage(const protocol::Message& message) {
   if (state_ != State::kConnected) return;  // stopping: the work messages no longer matter
-  if (const auto* assignment = std::get_if<protocol::BatchAssignmentMsg>(&message)) {
-    runner_->OnAssignment(*assignment, !draining_);
+  if (const auto* lease = std::get_if<protocol::LeaseAssignmentMsg>(&message)) {
+    runner_->OnLease(*lease, !draining_);
     UpdateIdleTimer();
+  } else if (const auto* revoke = std::get_if<protocol::LeaseRevokeMsg>(&message)) {
+    runner_->Revoke(*revoke);
   } else if (const auto* cancel = std::get_if<protocol::CancelMsg>(&message)) {
     const size_t dropped = runner_->Cancel(cancel->job_id);
     LogLine(LogLevel::kInfo, "agent") << "cancel of job " << cancel->job_id << " from " << master_

@@ -2,11 +2,13 @@
 
 namespace radfarm::agent {
 
-HeldLease& LeaseBook::Add(const protocol::BatchAssignmentMsg& assignment) {
+HeldLease& LeaseBook::Add(const protocol::BatchAssignmentMsg& assignment, uint64_t group) {
   const uint64_t id = next_id_++;
   HeldLease& lease = leases_[id];
   lease.id = id;
+  lease.group = group;
   lease.assignment = assignment;
+  by_ref_[KeyOf(assignment.lease)] = id;
   return lease;
 }
 
@@ -15,29 +17,38 @@ HeldLease* LeaseBook::Find(uint64_t id) {
   return found == leases_.end() ? nullptr : &found->second;
 }
 
+HeldLease* LeaseBook::Find(const protocol::LeaseRef& lease) {
+  const auto found = by_ref_.find(KeyOf(lease));
+  return found == by_ref_.end() ? nullptr : Find(found->second);
+}
+
 bool LeaseBook::Holds(const protocol::LeaseRef& lease) const {
-  for (const auto& [id, held] : leases_) {
-    if (held.assignment.lease == lease) return true;
-  }
-  return false;
+  return by_ref_.count(KeyOf(lease)) > 0;
 }
 
 void LeaseBook::MarkQueued(HeldLease& lease, std::shared_ptr<const PreparedScene> scene) {
   lease.stage = LeaseStage::kQueued;
   lease.scene = std::move(scene);
   queue_.push_back(lease.id);
+  queued_rays_ += lease.assignment.ray_count;
+}
+
+HeldLease* LeaseBook::FrontQueued() {
+  while (!queue_.empty()) {
+    HeldLease* lease = Find(queue_.front());
+    if (lease != nullptr && lease->stage == LeaseStage::kQueued) return lease;
+    queue_.pop_front();
+  }
+  return nullptr;
 }
 
 HeldLease* LeaseBook::PopQueued() {
-  while (!queue_.empty()) {
-    HeldLease* lease = Find(queue_.front());
-    queue_.pop_front();
-    if (lease != nullptr && lease->stage == LeaseStage::kQueued) {
-      lease->stage = LeaseStage::kRunning;
-      return lease;
-    }
-  }
-  return nullptr;
+  HeldLease* lease = FrontQueued();
+  if (lease == nullptr) return nullptr;
+  queue_.pop_front();
+  lease->stage = LeaseStage::kRunning;
+  queued_rays_ -= lease->assignment.ray_count;
+  return lease;
 }
 
 std::vector<uint64_t> LeaseBook::AwaitingScene(const protocol::SceneHash& hash) const {
@@ -53,6 +64,9 @@ std::vector<uint64_t> LeaseBook::AwaitingScene(const protocol::SceneHash& hash) 
 protocol::LeaseRef LeaseBook::Remove(uint64_t id) {
   auto found = leases_.find(id);
   const protocol::LeaseRef ref = found->second.assignment.lease;
+  if (found->second.stage == LeaseStage::kQueued)
+    queued_rays_ -= found->second.assignment.ray_count;
+  by_ref_.erase(KeyOf(ref));
   leases_.erase(found);
   return ref;
 }
@@ -62,6 +76,8 @@ std::vector<protocol::LeaseRef> LeaseBook::RemoveJob(uint64_t job_id) {
   for (auto it = leases_.begin(); it != leases_.end();) {
     if (it->second.assignment.lease.job_id == job_id) {
       removed.push_back(it->second.assignment.lease);
+      if (it->second.stage == LeaseStage::kQueued) queued_rays_ -= it->second.assignment.ray_count;
+      by_ref_.erase(KeyOf(it->second.assignment.lease));
       it = leases_.erase(it);
     } else {
       ++it;
@@ -74,7 +90,9 @@ std::vector<protocol::LeaseRef> LeaseBook::RemoveAll() {
   std::vector<protocol::LeaseRef> removed;
   for (const auto& [id, held] : leases_) removed.push_back(held.assignment.lease);
   leases_.clear();
+  by_ref_.clear();
   queue_.clear();
+  queued_rays_ = 0;
   return removed;
 }
 

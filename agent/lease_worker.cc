@@ -67,31 +67,82 @@ LeaseWorker::LeaseWorker(loop::EventLoop& loop, const AgentSettings& settings,
   scenes_ = std::make_unique<SceneSupply>(io, std::move(store), master_, scene_callbacks);
 }
 
-void LeaseWorker::OnAssignment(const protocol::BatchAssignmentMsg& assignment, bool accepting) {
+void LeaseWorker::OnLease(const protocol::LeaseAssignmentMsg& frame, bool accepting) {
   if (!accepting) {
-    Return({assignment.lease}, protocol::LeaseReturnReason::kDraining, "draining");
+    std::vector<protocol::LeaseRef> leases;
+    for (const protocol::LeaseBatch& b : frame.batches) {
+      leases.push_back({frame.job_id, b.batch_id, b.attempt_id});
+    }
+    Return(std::move(leases), protocol::LeaseReturnReason::kDraining, "draining");
     return;
   }
-  if (book_.Holds(assignment.lease)) {
-    LogLine(LogLevel::kWarning, "agent") << "lease " << Describe(assignment.lease) << " from "
-                                         << master_ << ": already held; ignored the repeat";
-    return;
+  const uint64_t group_id = next_group_++;
+  {
+    std::vector<protocol::LeaseRef> refs;
+    for (size_t k = 0; k < std::min<size_t>(frame.batches.size(), 4); ++k) {
+      refs.push_back({frame.job_id, frame.batches[k].batch_id, frame.batches[k].attempt_id});
+    }
+    LogLine(LogLevel::kDebug, "agent")
+        << "received " << frame.batches.size() << " batches of round " << frame.round << ": "
+        << DescribeLeases(refs) << " from " << master_ << ", scene "
+        << protocol::HashToHex(frame.scene_hash);
   }
-  HeldLease& lease = book_.Add(assignment);
-  if (Status valid = CheckRayRange(assignment); !valid) {
-    ReturnOne(lease.id, protocol::LeaseReturnReason::kFailed, valid.error());
-    return;
+  std::vector<uint64_t> ids;
+  for (size_t k = 0; k < frame.batches.size(); ++k) {
+    const protocol::BatchAssignmentMsg assignment = protocol::BatchOf(frame, k);
+    if (book_.Holds(assignment.lease)) {
+      LogLine(LogLevel::kWarning, "agent") << "lease " << Describe(assignment.lease) << " from "
+                                           << master_ << ": already held; ignored the repeat";
+      continue;
+    }
+    ids.push_back(book_.Add(assignment, group_id).id);
   }
-  LogLine(LogLevel::kDebug, "agent")
-      << "lease " << Describe(assignment.lease) << " from " << master_ << ": "
-      << assignment.ray_count << " rays of shooter " << assignment.shooter << " in round "
-      << assignment.round << ", scene " << protocol::HashToHex(assignment.scene_hash);
-  if (std::shared_ptr<const PreparedScene> scene = scenes_->Find(assignment.scene_hash)) {
-    Enqueue(lease, scene);
-  } else if (Status wanted = scenes_->Want(assignment.scene_hash); !wanted) {
-    ReturnOne(lease.id, protocol::LeaseReturnReason::kFailed, wanted.error());
+  groups_[group_id] = Group{frame.job_id, ids, std::nullopt, nullptr};
+  // The group is complete before any batch can leave it (ReturnOne may end it).
+  std::vector<uint64_t> added;
+  for (uint64_t id : ids) {
+    if (Status valid = CheckRayRange(book_.Find(id)->assignment); !valid) {
+      ReturnOne(id, protocol::LeaseReturnReason::kFailed, valid.error());
+      continue;
+    }
+    added.push_back(id);
   }
+  if (std::shared_ptr<const PreparedScene> scene = scenes_->Find(frame.scene_hash)) {
+    for (uint64_t id : added) {
+      if (HeldLease* lease = book_.Find(id)) Enqueue(*lease, scene);
+    }
+  } else if (!added.empty()) {
+    if (Status wanted = scenes_->Want(frame.scene_hash); !wanted) {
+      for (uint64_t id : added) {
+        if (book_.Find(id) != nullptr)
+          ReturnOne(id, protocol::LeaseReturnReason::kFailed, wanted.error());
+      }
+    }
+  }
+  MaybeFinishGroup(group_id);  // every batch refused: nothing left to wait for
   Dispatch();
+}
+
+size_t LeaseWorker::Revoke(const protocol::LeaseRevokeMsg& revoke) {
+  std::vector<uint64_t> touched;
+  size_t dropped = 0;
+  for (const protocol::LeaseRef& ref : revoke.leases) {
+    HeldLease* lease = book_.Find(ref);
+    if (lease == nullptr) continue;
+    if (lease->stage != LeaseStage::kQueued && lease->stage != LeaseStage::kAwaitingScene) {
+      continue;  // running or done: its result still goes out, and the first valid one wins
+    }
+    touched.push_back(lease->group);
+    book_.Remove(lease->id);
+    ++dropped;
+  }
+  for (uint64_t group : touched) MaybeFinishGroup(group);
+  if (dropped > 0) {
+    LogLine(LogLevel::kDebug, "agent")
+        << master_ << " took back " << dropped << " of our batches not started yet";
+    callbacks_.on_leases_changed();
+  }
+  return dropped;
 }
 
 Status LeaseWorker::CheckRayRange(const protocol::BatchAssignmentMsg& a) {
@@ -126,90 +177,182 @@ void LeaseWorker::OnSceneReady(const std::shared_ptr<const PreparedScene>& scene
 void LeaseWorker::OnSceneFailed(const protocol::SceneHash& hash, protocol::LeaseReturnReason reason,
                                 const std::string& why) {
   std::vector<protocol::LeaseRef> leases;
-  for (uint64_t id : book_.AwaitingScene(hash)) leases.push_back(book_.Remove(id));
+  std::vector<uint64_t> touched;
+  for (uint64_t id : book_.AwaitingScene(hash)) {
+    touched.push_back(book_.Find(id)->group);
+    leases.push_back(book_.Remove(id));
+  }
   if (leases.empty()) return;
   Return(std::move(leases), reason, "scene " + protocol::HashToHex(hash) + ": " + why);
+  for (uint64_t group : touched) MaybeFinishGroup(group);
   callbacks_.on_leases_changed();
 }
 
+namespace {
+
+// A worker task runs queued batches up to about this many rays (a few ms on one thread): big
+// enough that the queue hand-off is noise, small enough that the threads share a lease evenly.
+constexpr uint64_t kChunkRays = 32768;
+
+}  // namespace
+
 void LeaseWorker::Dispatch() {
-  while (batches_in_flight_ < settings_.threads) {
-    HeldLease* lease = book_.PopQueued();
-    if (lease == nullptr) return;
-    const protocol::BatchAssignmentMsg& a = lease->assignment;
+  while (tasks_in_flight_ < settings_.threads) {
+    HeldLease* first = book_.FrontQueued();
+    if (first == nullptr) return;
+    const std::shared_ptr<const PreparedScene> scene = first->scene;
+    const protocol::BatchAssignmentMsg& a = first->assignment;
     std::shared_ptr<const RaySampler> sampler =
         samplers_.Get(a.sampler, a.seed, a.grid_step_degrees);
+    // An equal share of what is queued for each thread, so the last batches of a lease do not
+    // all land on one worker.
+    const uint64_t share =
+        std::clamp<uint64_t>(book_.queued_rays() / std::max(1u, settings_.threads), 1, kChunkRays);
+    std::vector<uint64_t> ids;
+    std::vector<Batch> batches;
+    uint64_t rays = 0;
+    while (HeldLease* next = book_.FrontQueued()) {
+      const protocol::BatchAssignmentMsg& n = next->assignment;
+      if (!ids.empty() && (rays >= share || next->scene != scene ||
+                           samplers_.Get(n.sampler, n.seed, n.grid_step_degrees) != sampler)) {
+        break;
+      }
+      book_.PopQueued();
+      ids.push_back(next->id);
+      batches.push_back(protocol::ToBatch(n));
+      rays += n.ray_count;
+      Group& group = groups_[next->group];
+      if (!group.started) group.started = std::chrono::steady_clock::now();
+    }
     Status submitted = batches_.Submit(
-        [runners = runners_, scene = lease->scene, sampler, batch = protocol::ToBatch(a)] {
-          return runners->Run(scene, sampler, batch);
+        [runners = runners_, scene, sampler, batches = std::move(batches)] {
+          return runners->RunAll(scene, sampler, batches);
         },
-        [this, id = lease->id](Result<BatchOutcome> outcome) {
-          OnBatchDone(id, std::move(outcome));
+        [this, ids](Result<std::vector<BatchOutcome>> outcomes) {
+          OnBatchesDone(ids, std::move(outcomes));
         });
     if (!submitted) {
-      ReturnOne(lease->id, protocol::LeaseReturnReason::kFailed, submitted.error());
+      for (uint64_t id : ids)
+        ReturnOne(id, protocol::LeaseReturnReason::kFailed, submitted.error());
       continue;
     }
-    ++batches_in_flight_;
+    ++tasks_in_flight_;
   }
 }
 
-void LeaseWorker::OnBatchDone(uint64_t id, Result<BatchOutcome> outcome) {
-  --batches_in_flight_;
-  HeldLease* lease = book_.Find(id);
-  if (lease == nullptr) {
-    LogLine(LogLevel::kDebug, "agent") << "discarded the result of a lease no longer held";
-  } else if (!outcome) {
-    LogLine(LogLevel::kError, "agent") << "lease " << Describe(lease->assignment.lease)
-                                       << ": the batch failed: " << outcome.error();
-    ReturnOne(id, protocol::LeaseReturnReason::kFailed, outcome.error());
-  } else {
-    meter_.Add(lease->assignment.ray_count, outcome->compute_seconds);
-    lease->result = protocol::MakeBatchResult(lease->assignment.lease, outcome->result,
-                                              outcome->compute_seconds);
-    if (settings_.slowdown > 1) {
-      // Simulates a slower machine: the result goes out (F - 1) x its compute time later.
-      const double hold_ms = (settings_.slowdown - 1) * outcome->compute_seconds * 1000;
-      lease->stage = LeaseStage::kHolding;
-      const std::chrono::milliseconds hold(
-          static_cast<int64_t>(std::min(std::ceil(hold_ms), 1e15)));
-      LogLine(LogLevel::kDebug, "agent")
-          << "lease " << Describe(lease->assignment.lease) << ": result held for " << hold.count()
-          << " ms (--slowdown)";
-      lease->hold_timer = std::make_unique<loop::Timer>(loop_);
-      lease->hold_timer->Start(hold, [this, id] { SendResult(id); });
-    } else {
-      SendResult(id);
+void LeaseWorker::OnBatchesDone(const std::vector<uint64_t>& ids,
+                                Result<std::vector<BatchOutcome>> outcomes) {
+  --tasks_in_flight_;
+  std::vector<uint64_t> touched;
+  for (size_t k = 0; k < ids.size(); ++k) {
+    HeldLease* lease = book_.Find(ids[k]);
+    if (lease == nullptr) {
+      LogLine(LogLevel::kDebug, "agent") << "discarded the result of a lease no longer held";
+      continue;
     }
+    touched.push_back(lease->group);
+    if (!outcomes) {
+      LogLine(LogLevel::kError, "agent") << "lease " << Describe(lease->assignment.lease)
+                                         << ": the batch failed: " << outcomes.error();
+      ReturnOne(ids[k], protocol::LeaseReturnReason::kFailed, outcomes.error());
+      continue;
+    }
+    const BatchOutcome& outcome = (*outcomes)[k];
+    meter_.Add(lease->assignment.ray_count, outcome.compute_seconds);
+    lease->result =
+        protocol::MakeBatchResult(lease->assignment.lease, outcome.result, outcome.compute_seconds);
+    lease->stage = LeaseStage::kDone;
   }
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  for (uint64_t group : touched) MaybeFinishGroup(group);
   Dispatch();
 }
 
-void LeaseWorker::SendResult(uint64_t id) {
-  HeldLease* lease = book_.Find(id);
-  if (lease == nullptr) return;
-  if (Status sent = callbacks_.send(*lease->result); !sent) {
-    LogLine(LogLevel::kError, "agent")
-        << "lease " << Describe(lease->assignment.lease) << ": cannot send the result to "
-        << master_ << ": " << sent.error();
-    ReturnOne(id, protocol::LeaseReturnReason::kFailed, sent.error());
+void LeaseWorker::MaybeFinishGroup(uint64_t group_id) {
+  const auto it = groups_.find(group_id);
+  if (it == groups_.end()) return;
+  Group& group = it->second;
+  if (group.hold_timer) return;  // already held, on its way out
+  bool any = false;
+  for (uint64_t id : group.ids) {
+    const HeldLease* lease = book_.Find(id);
+    if (lease == nullptr) continue;
+    if (lease->stage != LeaseStage::kDone) return;  // still waiting for this one
+    any = true;
+  }
+  if (!any) {  // every batch was returned, revoked or cancelled
+    groups_.erase(it);
     return;
   }
-  LogLine(LogLevel::kDebug, "agent")
-      << "lease " << Describe(lease->assignment.lease) << ": result sent to " << master_ << " ("
-      << lease->result->compute_seconds << " s)";
-  book_.Remove(id);
+  if (settings_.slowdown > 1 && group.started) {
+    // Simulates a slower machine: the results go out (F - 1) x the frame's time later.
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - *group.started).count();
+    const double hold_ms = (settings_.slowdown - 1) * seconds * 1000;
+    const std::chrono::milliseconds hold(static_cast<int64_t>(std::min(std::ceil(hold_ms), 1e15)));
+    LogLine(LogLevel::kDebug, "agent")
+        << "lease frame of job " << group.job_id << ": result held for " << hold.count()
+        << " ms (--slowdown)";
+    group.hold_timer = std::make_unique<loop::Timer>(loop_);
+    group.hold_timer->Start(hold, [this, group_id] { SendGroup(group_id); });
+    return;
+  }
+  SendGroup(group_id);
+}
+
+void LeaseWorker::SendGroup(uint64_t group_id) {
+  const auto it = groups_.find(group_id);
+  if (it == groups_.end()) return;
+  // Results go out in frames of at most about kResultFrameBytes (~72 bytes a batch, 16 a hit):
+  // the master's connection reads a frame that size without growing its buffer past what it keeps
+  // between frames (loop/frame_splitter.cc), where 1 MiB frames cost it a fresh, page-faulting
+  // buffer each (20% of the master's CPU on the Cornell job, perf).
+  constexpr size_t kResultFrameBytes = 60 * 1024;
+  std::vector<uint64_t> sent_ids;
+  protocol::LeaseResultMsg message;
+  size_t bytes = 0;
+  Status sent = Ok{};
+  auto flush = [&] {
+    if (message.results.empty() || !sent) return;
+    sent = callbacks_.send(message);
+    message.results.clear();
+    bytes = 0;
+  };
+  for (uint64_t id : it->second.ids) {
+    HeldLease* lease = book_.Find(id);
+    if (lease == nullptr || lease->stage != LeaseStage::kDone) continue;
+    const size_t cost = 96 + 16 * lease->result->hits.size();
+    if (bytes + cost > kResultFrameBytes || message.results.size() == protocol::kMaxLeaseBatches) {
+      flush();
+    }
+    message.results.push_back(std::move(*lease->result));
+    bytes += cost;
+    sent_ids.push_back(id);
+  }
+  flush();
+  groups_.erase(it);
+  if (!sent) {
+    LogLine(LogLevel::kError, "agent")
+        << "cannot send " << sent_ids.size() << " results to " << master_ << ": " << sent.error();
+  } else {
+    LogLine(LogLevel::kDebug, "agent") << sent_ids.size() << " results sent to " << master_;
+  }
+  // Sent or not (no connection: the master requeues them when it notices), they are done here.
+  for (uint64_t id : sent_ids) book_.Remove(id);
   callbacks_.on_leases_changed();
 }
 
 size_t LeaseWorker::Cancel(uint64_t job_id) {
   const std::vector<protocol::LeaseRef> dropped = book_.RemoveJob(job_id);
+  std::erase_if(groups_, [&](const auto& entry) { return entry.second.job_id == job_id; });
   if (!dropped.empty()) callbacks_.on_leases_changed();
   return dropped.size();
 }
 
 void LeaseWorker::ReturnAll(protocol::LeaseReturnReason reason, const std::string& why) {
   std::vector<protocol::LeaseRef> leases = book_.RemoveAll();
+  groups_.clear();
   if (leases.empty()) return;
   Return(std::move(leases), reason, why);
   callbacks_.on_leases_changed();
@@ -217,12 +360,15 @@ void LeaseWorker::ReturnAll(protocol::LeaseReturnReason reason, const std::strin
 
 size_t LeaseWorker::DropAll() {
   scenes_->OnDisconnected();
+  groups_.clear();
   return book_.RemoveAll().size();
 }
 
 void LeaseWorker::ReturnOne(uint64_t id, protocol::LeaseReturnReason reason,
                             const std::string& why) {
+  const uint64_t group = book_.Find(id)->group;
   Return({book_.Remove(id)}, reason, why);
+  MaybeFinishGroup(group);  // the frame's other batches may all be done
   callbacks_.on_leases_changed();
 }
 

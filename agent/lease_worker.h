@@ -1,18 +1,23 @@
-// LeaseWorker: the agent's work side. It takes the master's BatchAssignments, gets their scenes
-// (SceneSupply), runs their batches on the batch work queue, one BatchTracer per worker
-// (TracerPool), holds each result for --slowdown, and answers with a BatchResult, or returns the
-// lease in a LeaseReturn when it cannot run it. LeaseBook has each lease's stages.
+// LeaseWorker: the agent's work side. It takes the master's LeaseAssignments (many batches a
+// frame), gets their scenes (SceneSupply), runs their batches on the batch work queue, one
+// BatchTracer per worker (TracerPool), and answers each frame's batches together in one
+// LeaseResult once all are computed (after --slowdown's hold), or returns a batch in a LeaseReturn
+// when it cannot run it. A LeaseRevoke drops the named batches not started yet (another agent
+// took them over); the frame is then answered without them. LeaseBook has each batch's stages.
 //
-// The runner keeps at most `threads` batches on the work queue and the rest in its own queue, so
-// a Cancel drops the queued ones at once; the result of a running batch whose lease is gone
-// (cancelled, returned, connection lost) is discarded when it comes back. Batches are computed
-// exactly as BatchTracer::Run computes them locally: nothing here changes a result.
+// The runner keeps at most `threads` tasks on the work queue, each a run of queued batches of about
+// an equal share of the queued rays (at most kChunkRays), and the rest in its own queue, so a
+// Cancel or LeaseRevoke drops the queued ones at once; the result of a running batch whose lease
+// is gone (cancelled, returned, connection lost) is discarded when it comes back. Batches are
+// computed exactly as BatchTracer::Run computes them locally: nothing here changes a result.
 //
 // Loop thread only; batches run on the work queue's workers, scene work on the I/O queue's.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -26,6 +31,7 @@
 #include "agent/throughput_meter.h"
 #include "agent/tracer_pool.h"
 #include "loop/event_loop.h"
+#include "loop/timer.h"
 #include "loop/work_queue.h"
 #include "protocol/messages.h"
 
@@ -45,8 +51,11 @@ class LeaseWorker {
               loop::WorkQueue& io, std::optional<SceneStore> store, std::string master,
               Callbacks callbacks);
 
-  // A new lease. When not `accepting` (draining) it is returned at once (reason Draining).
-  void OnAssignment(const protocol::BatchAssignmentMsg& assignment, bool accepting);
+  // A new lease frame. When not `accepting` (draining) its batches are returned at once (reason
+  // Draining).
+  void OnLease(const protocol::LeaseAssignmentMsg& lease, bool accepting);
+  // Drops the named batches that have not started; returns how many were dropped.
+  size_t Revoke(const protocol::LeaseRevokeMsg& revoke);
   // Drops the job's leases, queued and running; returns how many were held.
   size_t Cancel(uint64_t job_id);
   // Returns every lease held to the master (one LeaseReturn per 65536) with `reason`.
@@ -57,7 +66,7 @@ class LeaseWorker {
   SceneSupply& scenes() { return *scenes_; }
   size_t held() const { return book_.size(); }
   // Batches submitted to the workers and scene work on the I/O queue, not yet delivered back.
-  bool busy() const { return batches_in_flight_ > 0 || scenes_->busy() > 0; }
+  bool busy() const { return tasks_in_flight_ > 0 || scenes_->busy() > 0; }
   double RaysPerSecond() const { return meter_.RaysPerSecond(); }
 
  private:
@@ -70,8 +79,10 @@ class LeaseWorker {
   void Enqueue(HeldLease& lease, const std::shared_ptr<const PreparedScene>& scene);
   // Starts queued leases while a worker is free.
   void Dispatch();
-  void OnBatchDone(uint64_t id, Result<BatchOutcome> outcome);
-  void SendResult(uint64_t id);
+  void OnBatchesDone(const std::vector<uint64_t>& ids, Result<std::vector<BatchOutcome>> outcomes);
+  // Once every batch of the frame still held is computed: holds (--slowdown) and sends them.
+  void MaybeFinishGroup(uint64_t group);
+  void SendGroup(uint64_t group);
   void Return(std::vector<protocol::LeaseRef> leases, protocol::LeaseReturnReason reason,
               const std::string& why);
   void ReturnOne(uint64_t id, protocol::LeaseReturnReason reason, const std::string& why);
@@ -86,7 +97,17 @@ class LeaseWorker {
   std::shared_ptr<TracerPool> runners_ = std::make_shared<TracerPool>();
   ThroughputMeter meter_;
   std::unique_ptr<SceneSupply> scenes_;
-  size_t batches_in_flight_ = 0;
+  size_t tasks_in_flight_ = 0;
+
+  // One lease frame's batches (LeaseBook ids), answered together.
+  struct Group {
+    uint64_t job_id = 0;
+    std::vector<uint64_t> ids;
+    std::optional<std::chrono::steady_clock::time_point> started;  // its first batch began
+    std::unique_ptr<loop::Timer> hold_timer;                       // --slowdown
+  };
+  std::map<uint64_t, Group> groups_;
+  uint64_t next_group_ = 1;
 };
 
 // "job 3 batch 17 attempt 0"; for several leases the count and the first few.

@@ -30,6 +30,11 @@ class TracerPool {
  public:
   BatchOutcome Run(const std::shared_ptr<const PreparedScene>& scene,
                    const std::shared_ptr<const RaySampler>& sampler, const Batch& batch);
+  // Several batches of one scene and sampler, one after another on one borrowed runner: a
+  // worker takes a run of a lease's small batches at once instead of one queue hand-off each.
+  std::vector<BatchOutcome> RunAll(const std::shared_ptr<const PreparedScene>& scene,
+                                   const std::shared_ptr<const RaySampler>& sampler,
+                                   const std::vector<Batch>& batches);
 
  private:
   // A runner and what it is bound to (BatchTracer keeps references to both).
@@ -38,7 +43,8 @@ class TracerPool {
     std::shared_ptr<const RaySampler> sampler;
     std::optional<BatchTracer> runner;
   };
-  std::unique_ptr<Slot> Borrow(const PreparedScene* scene, const RaySampler* sampler);
+  std::unique_ptr<Slot> Borrow(const std::shared_ptr<const PreparedScene>& scene,
+                               const std::shared_ptr<const RaySampler>& sampler);
   void GiveBack(std::unique_ptr<Slot> slot);
 
   std::mutex mutex_;

@@ -22,6 +22,24 @@ struct Overloaded : Ts... {
   using Ts::operator()...;
 };
 
+// Takes back the leases `agent` holds for jobs of lower priority than order[k] (a job with
+// batches queued for it), into `refs` for one LeaseRevoke; returns how many. The agent runs its
+// queue in order, so a higher-priority lease sent behind them would wait until they are done: with
+// leases filling lease_seconds, the whole of every reduction of the higher job (CI: the low job of
+// FarmTest.AHigherPriorityJobGetsTheAgentsFirst finished first on one agent).
+uint32_t PreemptLowerPriority(const std::vector<RunningJob*>& order, size_t k, uint64_t agent,
+                              std::vector<protocol::LeaseRef>& refs) {
+  uint32_t taken = 0;
+  for (size_t j = k + 1; j < order.size(); ++j) {
+    if (order[j]->priority() >= order[k]->priority()) continue;
+    for (const scheduler::Takeover& t : order[j]->scheduler().Preempt(agent)) {
+      refs.push_back({static_cast<uint64_t>(order[j]->id()), t.batch_id, t.attempt_id});
+      ++taken;
+    }
+  }
+  return taken;
+}
+
 }  // namespace
 
 AgentConnections::AgentConnections(loop::EventLoop& loop, const MasterConfig& config,
@@ -138,7 +156,7 @@ void AgentConnections::OnAgentMessage(AgentLink& link, protocol::Message& messag
   }
   std::visit(Overloaded{
                  [&](const protocol::HeartbeatMsg& h) { link.set_last_heartbeat(h); },
-                 [&](const protocol::BatchResultMsg& r) { OnBatchResult(link, r); },
+                 [&](const protocol::LeaseResultMsg& r) { OnLeaseResult(link, r); },
                  [&](const protocol::LeaseReturnMsg& r) { OnLeaseReturn(link, r); },
                  [&](const protocol::SceneRequestMsg& r) { OnSceneRequest(link, r); },
                  [&](const auto& other) {
@@ -151,40 +169,44 @@ void AgentConnections::OnAgentMessage(AgentLink& link, protocol::Message& messag
   if (!link.closing()) Dispatch(link);
 }
 
-void AgentConnections::OnBatchResult(AgentLink& link, const protocol::BatchResultMsg& result) {
-  RunningJob* runner = jobs_.FindRunner(result.lease.job_id);
-  if (runner == nullptr || runner->phase() != RunningJob::Phase::kRound) {
-    LogLine(LogLevel::kDebug, "agents") << link.Describe() << ": result for job "
-                                        << result.lease.job_id << " dropped (job not in a round)";
-    return;
-  }
-  scheduler::IntakeVerdict v =
-      scheduler::SubmitBatchResult(runner->scheduler(), link.id(), result, runner->sampler(),
-                                   runner->patch_count(), LoopNow(loop_));
-  const auto& lease = result.lease;
-  switch (v.verdict.disposition) {
-    case scheduler::Disposition::kAccepted:
-      jobs_.OnResultAccepted(runner->id(), lease.batch_id);
-      break;
-    case scheduler::Disposition::kDropped:
-      LogLine(LogLevel::kInfo, "agents")
-          << "job " << lease.job_id << " batch " << lease.batch_id << " attempt "
-          << lease.attempt_id << " from " << link.Describe() << ": result dropped ("
-          << scheduler::DropReasonName(v.verdict.reason) << ")";
-      break;
-    case scheduler::Disposition::kRejected:
+void AgentConnections::OnLeaseResult(AgentLink& link, const protocol::LeaseResultMsg& message) {
+  // One frame may answer leases of several jobs: each job's results go to its scheduler together.
+  std::map<uint64_t, std::vector<const protocol::BatchResultMsg*>> by_job;
+  for (const protocol::BatchResultMsg& r : message.results) by_job[r.lease.job_id].push_back(&r);
+  for (auto& [job_id, results] : by_job) {
+    RunningJob* runner = jobs_.FindRunner(job_id);
+    if (runner == nullptr || runner->phase() != RunningJob::Phase::kRound) {
+      LogLine(LogLevel::kDebug, "agents")
+          << link.Describe() << ": " << results.size() << " results for job " << job_id
+          << " dropped (job not in a round)";
+      continue;
+    }
+    const scheduler::LeaseIntake intake =
+        scheduler::SubmitLeaseResults(runner->scheduler(), link.id(), results, runner->sampler(),
+                                      runner->patch_count(), LoopNow(loop_));
+    const scheduler::ResultVerdict& v = intake.last.verdict;
+    if (v.reason == scheduler::DropReason::kInvalid) {
       LogLine(LogLevel::kWarning, "agents")
-          << "job " << lease.job_id << " batch " << lease.batch_id << " attempt "
-          << lease.attempt_id << " from " << link.Describe() << ": result rejected ("
-          << scheduler::DropReasonName(v.verdict.reason) << ")"
-          << (v.detail.empty() ? "" : ": " + v.detail);
-      if (v.verdict.reason == scheduler::DropReason::kInvalid) {
-        Blocklist(link, v.detail);
-        return;
+          << "job " << job_id << " from " << link.Describe()
+          << ": result rejected (invalid): " << intake.last.detail;
+      for (scheduler::BatchId batch : intake.accepted_batches) {
+        jobs_.OnResultAccepted(runner->id(), batch);
       }
-      break;
+      Blocklist(link, intake.last.detail);
+      return;
+    }
+    for (scheduler::BatchId batch : intake.accepted_batches) {
+      jobs_.OnResultAccepted(runner->id(), batch);
+    }
+    if (intake.dropped > 0 || intake.rejected > 0) {
+      LogLine(intake.rejected > 0 ? LogLevel::kWarning : LogLevel::kDebug, "agents")
+          << "job " << job_id << " from " << link.Describe() << ": "
+          << intake.accepted_batches.size() << " results accepted, " << intake.dropped
+          << " dropped (late, duplicate or old), " << intake.rejected
+          << " rejected (not its lease)";
+    }
+    if (v.round_complete) jobs_.OnRoundComplete(runner->id());
   }
-  if (v.verdict.round_complete) jobs_.OnRoundComplete(runner->id());
 }
 
 void AgentConnections::Blocklist(AgentLink& link, const std::string& why) {
@@ -255,24 +277,61 @@ void AgentConnections::Dispatch(AgentLink& link) {
     capacity = std::max(capacity, runner->scheduler().LeaseCapacityOf(link.id()));
   }
   // The highest-priority job with work fills the agent first; a lower one gets what is left of
-  // its capacity (the tail of a round, a job between rounds).
-  for (RunningJob* runner : order) {
+  // its capacity (the tail of a round, a job between rounds). Each job's new leases go out as
+  // LeaseAssignment frames of at most LeaseSizeOf() batches; leases taken over from another agent
+  // are revoked there in one LeaseRevoke per agent. A job with batches queued takes the agent's
+  // leases of lower-priority jobs back first.
+  std::map<uint64_t, std::vector<protocol::LeaseRef>> revoked;
+  for (size_t k = 0; k < order.size(); ++k) {
+    RunningJob* runner = order[k];
     scheduler::RoundScheduler& s = runner->scheduler();
-    while (true) {
-      const uint32_t here = s.LeasesHeld(link.id());
-      auto a = s.NextAssignment(link.id(), now, held - here, capacity);
-      if (!a) break;
-      ++held;
-      const auto lease_ms = std::max<int64_t>(
-          1, std::chrono::duration_cast<std::chrono::milliseconds>(a->deadline - now).count());
-      protocol::BatchAssignmentMsg msg =
-          protocol::MakeBatchAssignment(runner->wire_info(), a->batch_id, a->attempt_id, a->batch,
-                                        static_cast<uint32_t>(lease_ms));
-      if (Status st = link.Send(msg); !st) {
-        LogLine(LogLevel::kWarning, "agents") << link.Describe() << ": " << st.error();
-        return;
+    if (s.WantsAgent(link.id(), now)) {
+      std::vector<protocol::LeaseRef> preempted;
+      held -= PreemptLowerPriority(order, k, link.id(), preempted);
+      // Before the new leases, so that the agent drops the old ones first.
+      for (size_t i = 0; i < preempted.size(); i += protocol::kMaxLeaseBatches) {
+        const auto end =
+            preempted.begin() + std::min(preempted.size(), i + protocol::kMaxLeaseBatches);
+        (void)link.Send(protocol::LeaseRevokeMsg{{preempted.begin() + i, end}});
       }
     }
+    bool more = true;
+    while (more) {
+      const uint32_t size = std::min<uint32_t>(s.LeaseSizeOf(link.id()),
+                                               static_cast<uint32_t>(protocol::kMaxLeaseBatches));
+      std::vector<protocol::LeasedBatch> lease;
+      scheduler::TimePoint deadline = now;
+      while (lease.size() < size) {
+        const uint32_t here = s.LeasesHeld(link.id());
+        auto a = s.NextAssignment(link.id(), now, held - here, capacity);
+        if (!a) {
+          more = false;
+          break;
+        }
+        ++held;
+        deadline = std::max(deadline, a->deadline);
+        lease.push_back({a->batch_id, a->attempt_id, a->batch});
+        if (a->taken_from) {
+          revoked[a->taken_from->agent].push_back({static_cast<uint64_t>(runner->id()),
+                                                   a->taken_from->batch_id,
+                                                   a->taken_from->attempt_id});
+        }
+      }
+      if (lease.empty()) break;
+      const auto lease_ms = std::max<int64_t>(
+          1, std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now).count());
+      if (Status st = link.Send(protocol::MakeLeaseAssignment(runner->wire_info(), lease,
+                                                              static_cast<uint32_t>(lease_ms)));
+          !st) {
+        LogLine(LogLevel::kWarning, "agents") << link.Describe() << ": " << st.error();
+        more = false;
+      }
+    }
+  }
+  for (auto& [agent_id, leases] : revoked) {
+    const auto it = links_.find(agent_id);
+    if (it == links_.end() || !it->second->authenticated() || it->second->closing()) continue;
+    (void)it->second->Send(protocol::LeaseRevokeMsg{std::move(leases)});
   }
 }
 

@@ -70,7 +70,7 @@ class AgentConnections {
   void OnAuthenticated(AgentLink& link);
   void OnAgentMessage(AgentLink& link, protocol::Message& message);
   void OnAgentClosed(AgentLink& link, const std::string& reason);
-  void OnBatchResult(AgentLink& link, const protocol::BatchResultMsg& result);
+  void OnLeaseResult(AgentLink& link, const protocol::LeaseResultMsg& message);
   void OnLeaseReturn(AgentLink& link, const protocol::LeaseReturnMsg& message);
   void OnSceneRequest(AgentLink& link, const protocol::SceneRequestMsg& request);
   void TakeLeasesAway(AgentLink& link, const char* why);

@@ -322,4 +322,13 @@ size_t JobRounds::Tick(scheduler::TimePoint now) {
   return offered;
 }
 
+bool JobRounds::InEndGame() const {
+  for (const auto& [job, runner] : runners_) {
+    if (runner->phase() == RunningJob::Phase::kRound && runner->scheduler().InEndGame()) {
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace radfarm::daemon

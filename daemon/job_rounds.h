@@ -84,6 +84,9 @@ class JobRounds {
   const web::LatencyHistogram& checkpoint_latency() const { return checkpoint_latency_; }
   // Offers overdue leases again (RoundScheduler::Tick); returns how many.
   size_t Tick(scheduler::TimePoint now);
+  // Whether some job's round is in its end game (RoundScheduler::InEndGame): idle agents should be
+  // offered work on every tick, not only when they speak.
+  bool InEndGame() const;
 
   // Shutdown: no new work starts, results coming back are dropped.
   void Stop() { stopping_ = true; }

@@ -3,7 +3,9 @@
 // which the determinism contract needs.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "core/batch.h"
 #include "core/solver_settings.h"
@@ -22,6 +24,18 @@ struct JobWireInfo {
 BatchAssignmentMsg MakeBatchAssignment(const JobWireInfo& job, uint64_t batch_id,
                                        uint32_t attempt_id, const Batch& batch, uint32_t lease_ms);
 Batch ToBatch(const BatchAssignmentMsg& assignment);
+
+// One batch of a lease to add to MakeLeaseAssignment.
+struct LeasedBatch {
+  uint64_t batch_id = 0;
+  uint32_t attempt_id = 0;
+  Batch batch;
+};
+// A lease of `batches` (one job, one round: the first batch's round is the lease's).
+LeaseAssignmentMsg MakeLeaseAssignment(const JobWireInfo& job,
+                                       const std::vector<LeasedBatch>& batches, uint32_t lease_ms);
+// Batch k of a lease, as the one-batch assignment the agent keeps for it.
+BatchAssignmentMsg BatchOf(const LeaseAssignmentMsg& lease, size_t k);
 
 BatchResultMsg MakeBatchResult(const LeaseRef& lease, const BatchResult& result,
                                double compute_seconds);

@@ -7,9 +7,11 @@
 
 namespace radfarm::protocol {
 
-// The version this build writes, and the oldest one it still accepts in a Hello.
-inline constexpr uint16_t kProtocolVersion = 1;
-inline constexpr uint16_t kMinProtocolVersion = 1;
+// The version this build writes, and the oldest one it still accepts in a Hello. Version 2 leases
+// many batches in one LeaseAssignment and answers them in one LeaseResult; version 1's one-batch
+// BatchAssignment/BatchResult are refused, so a version-1 peer is turned away at the handshake.
+inline constexpr uint16_t kProtocolVersion = 2;
+inline constexpr uint16_t kMinProtocolVersion = 2;
 
 // Frame: a 4-byte little-endian length prefix, then that many bytes of FlatBuffer.
 inline constexpr size_t kLengthPrefixBytes = 4;
@@ -37,6 +39,8 @@ inline constexpr size_t kMaxCloseDetailBytes = 256;
 inline constexpr uint32_t kMaxSceneChunkBytes = 1u << 20;
 inline constexpr uint64_t kDefaultMaxSceneBytes = uint64_t{1} << 30;
 inline constexpr size_t kMaxLeaseReturnEntries = 65536;
+// Batches in one LeaseAssignment, results in one LeaseResult, leases in one LeaseRevoke.
+inline constexpr size_t kMaxLeaseBatches = 65536;
 inline constexpr double kMaxGridStepDegrees = 90;
 
 }  // namespace radfarm::protocol

@@ -1,7 +1,9 @@
 #include "protocol/message_checks.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace radfarm::protocol {
 namespace {
@@ -63,43 +65,92 @@ bool IsKnown(SamplerKind k) {
   return k == SamplerKind::kGrid || k == SamplerKind::kRandom || k == SamplerKind::kSobol;
 }
 
-Status Check(const BatchAssignmentMsg& m) {
-  if (m.patch_count < 1) return Fail("BatchAssignment", "patch_count 0");
-  if (m.shooter >= m.patch_count) {
-    return Fail("BatchAssignment",
-                "shooter " + Str(m.shooter) + " >= patch_count " + Str(m.patch_count));
+// The rules of one batch, shared by BatchAssignment (version 1) and LeaseAssignment.
+Status CheckBatchRange(std::string_view message, uint32_t shooter, uint64_t first_ray,
+                       uint32_t ray_count, uint32_t patch_count) {
+  if (shooter >= patch_count) {
+    return Fail(message, "shooter " + Str(shooter) + " >= patch_count " + Str(patch_count));
   }
-  if (m.ray_count < 1) return Fail("BatchAssignment", "ray_count 0");
-  if (m.first_ray > UINT64_MAX - m.ray_count) {
-    return Fail("BatchAssignment", "first_ray + ray_count overflows");
-  }
-  if (!IsKnown(m.sampler)) {
-    return Fail("BatchAssignment", "unknown sampler " + Str(static_cast<uint8_t>(m.sampler)));
-  }
-  if (!std::isfinite(m.grid_step_degrees)) {
-    return Fail("BatchAssignment", "grid_step_degrees not finite");
-  }
-  if (m.sampler == SamplerKind::kGrid &&
-      !(m.grid_step_degrees > 0 && m.grid_step_degrees <= kMaxGridStepDegrees)) {
-    return Fail("BatchAssignment", "grid_step_degrees not in (0, 90]");
-  }
-  if (m.lease_ms < 1) return Fail("BatchAssignment", "lease_ms 0");
+  if (ray_count < 1) return Fail(message, "ray_count 0");
+  if (first_ray > UINT64_MAX - ray_count) return Fail(message, "first_ray + ray_count overflows");
   return Ok{};
 }
 
-Status Check(const BatchResultMsg& m) {
+// The rules of the job's fields, shared by BatchAssignment and LeaseAssignment.
+Status CheckJobFields(std::string_view message, SamplerKind sampler, double grid_step_degrees,
+                      uint32_t patch_count, uint32_t lease_ms) {
+  if (patch_count < 1) return Fail(message, "patch_count 0");
+  if (!IsKnown(sampler)) {
+    return Fail(message, "unknown sampler " + Str(static_cast<uint8_t>(sampler)));
+  }
+  if (!std::isfinite(grid_step_degrees)) return Fail(message, "grid_step_degrees not finite");
+  if (sampler == SamplerKind::kGrid &&
+      !(grid_step_degrees > 0 && grid_step_degrees <= kMaxGridStepDegrees)) {
+    return Fail(message, "grid_step_degrees not in (0, 90]");
+  }
+  if (lease_ms < 1) return Fail(message, "lease_ms 0");
+  return Ok{};
+}
+
+Status Check(const BatchAssignmentMsg& m) {
+  RADFARM_RETURN_IF_ERROR(
+      CheckJobFields("BatchAssignment", m.sampler, m.grid_step_degrees, m.patch_count, m.lease_ms));
+  return CheckBatchRange("BatchAssignment", m.shooter, m.first_ray, m.ray_count, m.patch_count);
+}
+
+Status Check(const LeaseAssignmentMsg& m) {
+  if (m.batches.empty() || m.batches.size() > kMaxLeaseBatches) {
+    return Fail("LeaseAssignment",
+                Str(m.batches.size()) + " batches, not 1.." + Str(kMaxLeaseBatches));
+  }
+  RADFARM_RETURN_IF_ERROR(
+      CheckJobFields("LeaseAssignment", m.sampler, m.grid_step_degrees, m.patch_count, m.lease_ms));
+  for (size_t k = 0; k < m.batches.size(); ++k) {
+    const LeaseBatch& b = m.batches[k];
+    RADFARM_RETURN_IF_ERROR(CheckBatchRange("LeaseAssignment batch " + Str(k), b.shooter,
+                                            b.first_ray, b.ray_count, m.patch_count));
+  }
+  std::vector<uint64_t> ids;
+  ids.reserve(m.batches.size());
+  for (const LeaseBatch& b : m.batches) ids.push_back(b.batch_id);
+  std::sort(ids.begin(), ids.end());
+  if (const auto repeat = std::adjacent_find(ids.begin(), ids.end()); repeat != ids.end()) {
+    return Fail("LeaseAssignment", "batch " + Str(*repeat) + " appears twice");
+  }
+  return Ok{};
+}
+
+Status CheckResult(std::string_view name, const BatchResultMsg& m) {
   for (size_t i = 0; i < m.hits.size(); ++i) {
     if (m.hits[i].weight == 0) {
-      return Fail("BatchResult",
-                  "hit " + Str(i) + " (patch " + Str(m.hits[i].patch) + ") has weight 0");
+      return Fail(name, "hit " + Str(i) + " (patch " + Str(m.hits[i].patch) + ") has weight 0");
     }
     if (i > 0 && m.hits[i].patch <= m.hits[i - 1].patch) {
-      return Fail("BatchResult", "hit " + Str(i) + " patch " + Str(m.hits[i].patch) +
-                                     " not above the previous patch " + Str(m.hits[i - 1].patch));
+      return Fail(name, "hit " + Str(i) + " patch " + Str(m.hits[i].patch) +
+                            " not above the previous patch " + Str(m.hits[i - 1].patch));
     }
   }
   if (!IsNonNegativeFinite(m.compute_seconds)) {
-    return Fail("BatchResult", "compute_seconds not finite and >= 0");
+    return Fail(name, "compute_seconds not finite and >= 0");
+  }
+  return Ok{};
+}
+
+Status Check(const BatchResultMsg& m) { return CheckResult("BatchResult", m); }
+
+Status Check(const LeaseResultMsg& m) {
+  if (m.results.empty() || m.results.size() > kMaxLeaseBatches) {
+    return Fail("LeaseResult", Str(m.results.size()) + " results, not 1.." + Str(kMaxLeaseBatches));
+  }
+  for (size_t k = 0; k < m.results.size(); ++k) {
+    RADFARM_RETURN_IF_ERROR(CheckResult("LeaseResult result " + Str(k), m.results[k]));
+  }
+  return Ok{};
+}
+
+Status Check(const LeaseRevokeMsg& m) {
+  if (m.leases.empty() || m.leases.size() > kMaxLeaseBatches) {
+    return Fail("LeaseRevoke", Str(m.leases.size()) + " leases, not 1.." + Str(kMaxLeaseBatches));
   }
   return Ok{};
 }

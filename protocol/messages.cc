@@ -7,13 +7,27 @@ namespace {
 constexpr std::string_view kMessageNames[] = {
     "Hello",           "Challenge",        "Proof",       "Welcome", "Heartbeat",
     "BatchAssignment", "BatchResult",      "LeaseReturn", "Cancel",  "SceneRequest",
-    "SceneChunk",      "SceneUnavailable", "Drain",       "Close",
+    "SceneChunk",      "SceneUnavailable", "Drain",       "Close",   "LeaseAssignment",
+    "LeaseResult",     "LeaseRevoke",
 };
 static_assert(std::size(kMessageNames) == std::variant_size_v<Message>);
 
 }  // namespace
 
 std::string_view MessageName(const Message& message) { return kMessageNames[message.index()]; }
+
+bool InVersion(const Message& message, uint16_t version) {
+  if (std::holds_alternative<BatchAssignmentMsg>(message) ||
+      std::holds_alternative<BatchResultMsg>(message)) {
+    return version == 1;
+  }
+  if (std::holds_alternative<LeaseAssignmentMsg>(message) ||
+      std::holds_alternative<LeaseResultMsg>(message) ||
+      std::holds_alternative<LeaseRevokeMsg>(message)) {
+    return version >= 2;
+  }
+  return true;
+}
 
 std::string_view CloseCodeName(CloseCode code) {
   switch (code) {

@@ -85,6 +85,8 @@ struct HeartbeatMsg {          // both ways
   bool operator==(const HeartbeatMsg&) const = default;
 };
 
+// Version 1 only (a lease of one batch); version 2 sends LeaseAssignmentMsg. The agent still
+// describes each batch it holds by one (protocol/batch_convert.h, BatchOf).
 struct BatchAssignmentMsg {  // master -> agent
   LeaseRef lease;
   uint32_t round = 0;
@@ -100,6 +102,7 @@ struct BatchAssignmentMsg {  // master -> agent
   bool operator==(const BatchAssignmentMsg&) const = default;
 };
 
+// Version 1 only as a message; in version 2 each entry of a LeaseResultMsg is one.
 struct BatchResultMsg {  // agent -> master
   LeaseRef lease;
   std::vector<PatchHits> hits;  // strictly increasing patch id, no zero weights
@@ -109,6 +112,42 @@ struct BatchResultMsg {  // agent -> master
   uint64_t back_rays = 0;
   double compute_seconds = 0;  // finite, >= 0
   bool operator==(const BatchResultMsg&) const = default;
+};
+
+// One batch of a lease: rays [first_ray, first_ray + ray_count) of `shooter`, attempt `attempt_id`.
+struct LeaseBatch {
+  uint64_t batch_id = 0;
+  uint32_t attempt_id = 0;
+  uint32_t shooter = 0;  // < patch_count
+  uint64_t first_ray = 0;
+  uint32_t ray_count = 0;  // >= 1; first_ray + ray_count does not overflow
+  bool operator==(const LeaseBatch&) const = default;
+};
+
+// Version 2: many batches of one job and round in one frame; the fields as in BatchAssignmentMsg.
+struct LeaseAssignmentMsg {  // master -> agent
+  uint64_t job_id = 0;
+  uint32_t round = 0;
+  uint64_t seed = 0;
+  SamplerKind sampler = SamplerKind::kSobol;
+  double grid_step_degrees = 1;
+  SceneHash scene_hash{};
+  uint32_t patch_count = 0;         // >= 1
+  uint32_t lease_ms = 0;            // >= 1
+  std::vector<LeaseBatch> batches;  // 1..kMaxLeaseBatches, distinct batch ids
+  bool operator==(const LeaseAssignmentMsg&) const = default;
+};
+
+// Version 2: results of batches of one or more leases, in one frame.
+struct LeaseResultMsg {                 // agent -> master
+  std::vector<BatchResultMsg> results;  // 1..kMaxLeaseBatches, each as BatchResultMsg's rules
+  bool operator==(const LeaseResultMsg&) const = default;
+};
+
+// Version 2: batches the master took over; the agent drops those it has not started.
+struct LeaseRevokeMsg {          // master -> agent
+  std::vector<LeaseRef> leases;  // 1..kMaxLeaseBatches
+  bool operator==(const LeaseRevokeMsg&) const = default;
 };
 
 struct LeaseReturnMsg {          // agent -> master
@@ -159,10 +198,10 @@ struct CloseMsg {  // both ways, any state; the sender closes the connection aft
 };
 
 // In the order of the schema's Payload union: index() + 1 is the wire type.
-using Message =
-    std::variant<HelloMsg, ChallengeMsg, ProofMsg, WelcomeMsg, HeartbeatMsg, BatchAssignmentMsg,
-                 BatchResultMsg, LeaseReturnMsg, CancelMsg, SceneRequestMsg, SceneChunkMsg,
-                 SceneUnavailableMsg, DrainMsg, CloseMsg>;
+using Message = std::variant<HelloMsg, ChallengeMsg, ProofMsg, WelcomeMsg, HeartbeatMsg,
+                             BatchAssignmentMsg, BatchResultMsg, LeaseReturnMsg, CancelMsg,
+                             SceneRequestMsg, SceneChunkMsg, SceneUnavailableMsg, DrainMsg,
+                             CloseMsg, LeaseAssignmentMsg, LeaseResultMsg, LeaseRevokeMsg>;
 
 // A verified incoming frame.
 struct DecodedFrame {
@@ -171,6 +210,9 @@ struct DecodedFrame {
 };
 
 std::string_view MessageName(const Message& message);
+// Whether `message` exists in protocol `version` (BatchAssignment and BatchResult only in 1, the
+// Lease messages from 2 on).
+bool InVersion(const Message& message, uint16_t version);
 std::string_view CloseCodeName(CloseCode code);
 
 }  // namespace radfarm::protocol

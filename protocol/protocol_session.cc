@@ -20,13 +20,14 @@ bool MasterMaySend(const Message& m) {
   return std::holds_alternative<HeartbeatMsg>(m) || std::holds_alternative<BatchAssignmentMsg>(m) ||
          std::holds_alternative<CancelMsg>(m) || std::holds_alternative<SceneChunkMsg>(m) ||
          std::holds_alternative<SceneUnavailableMsg>(m) || std::holds_alternative<DrainMsg>(m) ||
-         std::holds_alternative<CloseMsg>(m);
+         std::holds_alternative<CloseMsg>(m) || std::holds_alternative<LeaseAssignmentMsg>(m) ||
+         std::holds_alternative<LeaseRevokeMsg>(m);
 }
 
 bool AgentMaySend(const Message& m) {
   return std::holds_alternative<HeartbeatMsg>(m) || std::holds_alternative<BatchResultMsg>(m) ||
          std::holds_alternative<LeaseReturnMsg>(m) || std::holds_alternative<SceneRequestMsg>(m) ||
-         std::holds_alternative<CloseMsg>(m);
+         std::holds_alternative<CloseMsg>(m) || std::holds_alternative<LeaseResultMsg>(m);
 }
 
 std::string VersionRange(uint16_t lo, uint16_t hi) {
@@ -116,9 +117,10 @@ Result<ProtocolSession::Accepted> ProtocolSession::AcceptHello(const DecodedFram
   const uint16_t version = std::min(hello->max_version, kProtocolVersion);
   if (version < std::max(hello->min_version, kMinProtocolVersion)) {
     return Fail(CloseCode::kVersionMismatch,
-                "handshake: no common version: agent speaks " +
-                    VersionRange(hello->min_version, hello->max_version) + ", master " +
-                    VersionRange(kMinProtocolVersion, kProtocolVersion));
+                "handshake: no common protocol version: the agent speaks " +
+                    VersionRange(hello->min_version, hello->max_version) + ", this master " +
+                    VersionRange(kMinProtocolVersion, kProtocolVersion) +
+                    "; install the same radfarm release on both");
   }
   Result<Nonce> nonce = FreshNonce();
   if (!nonce) return Fail(CloseCode::kInternalError, nonce.error());
@@ -210,6 +212,11 @@ Result<ProtocolSession::Accepted> ProtocolSession::AcceptApplication(const Decod
                                                std::to_string(frame.version) + ", not " +
                                                std::to_string(version_));
   }
+  if (!InVersion(frame.message, version_)) {
+    return Fail(CloseCode::kProtocolError, "session: " + std::string(MessageName(frame.message)) +
+                                               " is not a message of protocol version " +
+                                               std::to_string(version_));
+  }
   return Accepted{{}, true};
 }
 
@@ -226,6 +233,10 @@ Result<std::vector<uint8_t>> ProtocolSession::Encode(const Message& message) {
   if (!(role_ == Role::kMaster ? MasterMaySend(message) : AgentMaySend(message))) {
     return Error{"session: " + name + " may not be sent by " +
                  (role_ == Role::kMaster ? "the master" : "an agent")};
+  }
+  if (!InVersion(message, WireVersion())) {
+    return Error{"session: " + name + " is not a message of protocol version " +
+                 std::to_string(WireVersion())};
   }
   RADFARM_RETURN_IF_ERROR(CheckMessage(message));
   std::vector<uint8_t> frame = EncodeFrame(message, WireVersion());

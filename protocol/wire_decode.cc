@@ -26,7 +26,9 @@ LeaseRef FromWire(const wire::LeaseRef& l) { return {l.job_id(), l.batch_id(), l
 // frame could place 8-byte fields off alignment, and reading them would be undefined.
 template <typename T>
 bool IsAligned(const flatbuffers::Vector<const T*>& v) {
-  return reinterpret_cast<uintptr_t>(v.Data()) % alignof(T) == 0;
+  // An empty vector reads nothing; FlatBuffers aligns it only to 4 bytes (PreAlign skips a zero
+  // length), so a LeaseResult whose batches hit no patch would otherwise be refused.
+  return v.size() == 0 || reinterpret_cast<uintptr_t>(v.Data()) % alignof(T) == 0;
 }
 
 Result<Message> Read(const wire::Hello& t) {
@@ -56,24 +58,28 @@ Result<Message> Read(const wire::Heartbeat& t) {
   return Message{HeartbeatMsg{t.load(), t.rays_per_second(), t.leases_held()}};
 }
 
+Result<SamplerKind> ReadSampler(wire::SamplerKind kind, const char* message) {
+  switch (kind) {
+    case wire::SamplerKind::Grid:
+      return SamplerKind::kGrid;
+    case wire::SamplerKind::Random:
+      return SamplerKind::kRandom;
+    case wire::SamplerKind::Sobol:
+      return SamplerKind::kSobol;
+    default:
+      break;
+  }
+  return Error{std::string(message) + ": unknown sampler " +
+               std::to_string(static_cast<unsigned>(kind))};
+}
+
 Result<Message> Read(const wire::BatchAssignment& t) {
   if (!t.lease()) return Missing("BatchAssignment", "lease");
   if (!t.scene_hash()) return Missing("BatchAssignment", "scene_hash");
   BatchAssignmentMsg m;
-  switch (t.sampler()) {
-    case wire::SamplerKind::Grid:
-      m.sampler = SamplerKind::kGrid;
-      break;
-    case wire::SamplerKind::Random:
-      m.sampler = SamplerKind::kRandom;
-      break;
-    case wire::SamplerKind::Sobol:
-      m.sampler = SamplerKind::kSobol;
-      break;
-    default:
-      return Error{"BatchAssignment: unknown sampler " +
-                   std::to_string(static_cast<unsigned>(t.sampler()))};
-  }
+  Result<SamplerKind> sampler = ReadSampler(t.sampler(), "BatchAssignment");
+  RADFARM_RETURN_IF_ERROR(sampler);
+  m.sampler = *sampler;
   m.lease = FromWire(*t.lease());
   m.round = t.round();
   m.shooter = t.shooter();
@@ -111,6 +117,71 @@ Result<Message> Read(const wire::LeaseReturn& t) {
   for (const wire::LeaseRef* l : *t.leases()) m.leases.push_back(FromWire(*l));
   // Same numbering as the schema; CheckMessage rejects values past the last one.
   m.reason = static_cast<LeaseReturnReason>(t.reason());
+  return Message{std::move(m)};
+}
+
+Result<Message> Read(const wire::LeaseAssignment& t) {
+  if (!t.scene_hash()) return Missing("LeaseAssignment", "scene_hash");
+  if (!t.batches()) return Missing("LeaseAssignment", "batches");
+  if (!IsAligned(*t.batches())) return Error{"LeaseAssignment: misaligned batches"};
+  LeaseAssignmentMsg m;
+  Result<SamplerKind> sampler = ReadSampler(t.sampler(), "LeaseAssignment");
+  RADFARM_RETURN_IF_ERROR(sampler);
+  m.sampler = *sampler;
+  m.job_id = t.job_id();
+  m.round = t.round();
+  m.seed = t.seed();
+  m.grid_step_degrees = t.grid_step_degrees();
+  m.scene_hash = FromWire(*t.scene_hash());
+  m.patch_count = t.patch_count();
+  m.lease_ms = t.lease_ms();
+  m.batches.reserve(t.batches()->size());
+  for (const wire::LeaseBatch* b : *t.batches()) {
+    m.batches.push_back(
+        {b->batch_id(), b->attempt_id(), b->shooter(), b->first_ray(), b->ray_count()});
+  }
+  return Message{std::move(m)};
+}
+
+Result<Message> Read(const wire::LeaseResult& t) {
+  if (!t.batches()) return Missing("LeaseResult", "batches");
+  if (!t.hits()) return Missing("LeaseResult", "hits");
+  if (!IsAligned(*t.batches())) return Error{"LeaseResult: misaligned batches"};
+  if (!IsAligned(*t.hits())) return Error{"LeaseResult: misaligned hits"};
+  // The hit counts must slice `hits` exactly: check the sum before reading any slice.
+  uint64_t total = 0;
+  for (const wire::BatchTally* b : *t.batches()) total += b->hit_count();
+  if (total != t.hits()->size()) {
+    return Error{"LeaseResult: hit counts add up to " + std::to_string(total) + ", not the " +
+                 std::to_string(t.hits()->size()) + " hits sent"};
+  }
+  LeaseResultMsg m;
+  m.results.reserve(t.batches()->size());
+  uint32_t next = 0;
+  for (const wire::BatchTally* b : *t.batches()) {
+    BatchResultMsg r;
+    r.lease = FromWire(b->lease());
+    r.hits.reserve(b->hit_count());
+    for (uint32_t k = 0; k < b->hit_count(); ++k, ++next) {
+      const wire::PatchHit* h = t.hits()->Get(next);
+      r.hits.push_back({h->patch(), h->weight()});
+    }
+    r.escaped_weight = b->escaped_weight();
+    r.escaped_rays = b->escaped_rays();
+    r.back_weight = b->back_weight();
+    r.back_rays = b->back_rays();
+    r.compute_seconds = b->compute_seconds();
+    m.results.push_back(std::move(r));
+  }
+  return Message{std::move(m)};
+}
+
+Result<Message> Read(const wire::LeaseRevoke& t) {
+  if (!t.leases()) return Missing("LeaseRevoke", "leases");
+  if (!IsAligned(*t.leases())) return Error{"LeaseRevoke: misaligned leases"};
+  LeaseRevokeMsg m;
+  m.leases.reserve(t.leases()->size());
+  for (const wire::LeaseRef* l : *t.leases()) m.leases.push_back(FromWire(*l));
   return Message{std::move(m)};
 }
 
@@ -182,6 +253,12 @@ Result<Message> ReadPayload(const wire::Frame& frame) {
       return ReadAs<wire::Drain>(frame);
     case P::Close:
       return ReadAs<wire::Close>(frame);
+    case P::LeaseAssignment:
+      return ReadAs<wire::LeaseAssignment>(frame);
+    case P::LeaseResult:
+      return ReadAs<wire::LeaseResult>(frame);
+    case P::LeaseRevoke:
+      return ReadAs<wire::LeaseRevoke>(frame);
     default:
       break;
   }

@@ -116,6 +116,41 @@ Offset<void> Build(FlatBufferBuilder& fbb, const CloseMsg& m) {
   return wire::CreateClose(fbb, static_cast<wire::CloseCode>(m.code), detail).Union();
 }
 
+Offset<void> Build(FlatBufferBuilder& fbb, const LeaseAssignmentMsg& m) {
+  std::vector<wire::LeaseBatch> wire_batches;
+  wire_batches.reserve(m.batches.size());
+  for (const LeaseBatch& b : m.batches) {
+    wire_batches.emplace_back(b.batch_id, b.first_ray, b.shooter, b.ray_count, b.attempt_id);
+  }
+  const auto batches = fbb.CreateVectorOfStructs(wire_batches.data(), wire_batches.size());
+  const wire::Bytes32 hash = ToWire(m.scene_hash);
+  return wire::CreateLeaseAssignment(fbb, m.job_id, m.round, m.seed, ToWire(m.sampler),
+                                     m.grid_step_degrees, &hash, m.patch_count, m.lease_ms, batches)
+      .Union();
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const LeaseResultMsg& m) {
+  std::vector<wire::BatchTally> tallies;
+  std::vector<wire::PatchHit> wire_hits;
+  tallies.reserve(m.results.size());
+  for (const BatchResultMsg& r : m.results) {
+    tallies.emplace_back(ToWire(r.lease), r.escaped_weight, r.escaped_rays, r.back_weight,
+                         r.back_rays, r.compute_seconds, static_cast<uint32_t>(r.hits.size()));
+    for (const PatchHits& h : r.hits) wire_hits.emplace_back(h.patch, h.weight);
+  }
+  const auto batches = fbb.CreateVectorOfStructs(tallies.data(), tallies.size());
+  const auto hits = fbb.CreateVectorOfStructs(wire_hits.data(), wire_hits.size());
+  return wire::CreateLeaseResult(fbb, batches, hits).Union();
+}
+
+Offset<void> Build(FlatBufferBuilder& fbb, const LeaseRevokeMsg& m) {
+  std::vector<wire::LeaseRef> wire_leases;
+  wire_leases.reserve(m.leases.size());
+  for (const LeaseRef& l : m.leases) wire_leases.push_back(ToWire(l));
+  const auto leases = fbb.CreateVectorOfStructs(wire_leases.data(), wire_leases.size());
+  return wire::CreateLeaseRevoke(fbb, leases).Union();
+}
+
 }  // namespace
 
 Offset<void> BuildPayload(FlatBufferBuilder& fbb, const Message& message, wire::Payload* type) {

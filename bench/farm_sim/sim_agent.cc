@@ -4,6 +4,7 @@
 
 #include "base/result.h"
 #include "bench/farm_sim/simulated_result.h"
+#include "protocol/batch_convert.h"
 #include "protocol/frame_codec.h"
 #include "protocol/limits.h"
 
@@ -89,7 +90,8 @@ void SimAgent::Process(const std::vector<uint8_t>& payload) {
 
 void SimAgent::OnMessage(const protocol::Message& message) {
   std::visit(Overloaded{
-                 [&](const protocol::BatchAssignmentMsg& m) { OnAssignment(m); },
+                 [&](const protocol::LeaseAssignmentMsg& m) { OnLease(m); },
+                 [&](const protocol::LeaseRevokeMsg& m) { OnRevoke(m); },
                  [&](const protocol::SceneChunkMsg& m) { OnSceneChunk(m); },
                  [&](const protocol::CancelMsg& m) { OnCancel(m.job_id); },
                  [&](const protocol::SceneUnavailableMsg&) { Fail("the master lost a scene"); },
@@ -99,13 +101,52 @@ void SimAgent::OnMessage(const protocol::Message& message) {
              message);
 }
 
-void SimAgent::OnAssignment(const protocol::BatchAssignmentMsg& batch) {
+void SimAgent::OnLease(const protocol::LeaseAssignmentMsg& lease) {
+  const uint64_t group = next_group_++;
+  groups_[group] = Group{lease.job_id, lease.batches.size(), {}, {}};
+  for (size_t k = 0; k < lease.batches.size(); ++k)
+    OnAssignment(protocol::BatchOf(lease, k), group);
+}
+
+void SimAgent::OnRevoke(const protocol::LeaseRevokeMsg& revoke) {
+  std::set<std::tuple<uint64_t, uint64_t, uint32_t>> refs;
+  for (const protocol::LeaseRef& l : revoke.leases)
+    refs.insert({l.job_id, l.batch_id, l.attempt_id});
+  std::vector<uint64_t> touched;
+  const auto revoked = [&](const Queued& q) {
+    const protocol::LeaseRef& l = q.batch.lease;
+    if (refs.count({l.job_id, l.batch_id, l.attempt_id}) == 0) return false;
+    touched.push_back(q.group);
+    return true;
+  };
+  std::erase_if(queue_, revoked);
+  std::erase_if(parked_, revoked);
+  for (uint64_t group : touched) {
+    const auto it = groups_.find(group);
+    if (it == groups_.end()) continue;
+    --it->second.outstanding;
+    MaybeSendGroup(group);
+  }
+}
+
+void SimAgent::MaybeSendGroup(uint64_t group) {
+  const auto it = groups_.find(group);
+  if (it == groups_.end() || it->second.outstanding > 0) return;
+  if (!it->second.results.empty()) {
+    Send(protocol::LeaseResultMsg{std::move(it->second.results)});
+    stats_.last_result = SteadySeconds() + settings_.latency_seconds;
+    for (uint32_t round : it->second.rounds) stats_.rounds[round].last_result = stats_.last_result;
+  }
+  groups_.erase(it);
+}
+
+void SimAgent::OnAssignment(const protocol::BatchAssignmentMsg& batch, uint64_t group) {
   const double now = SteadySeconds();
   const double at_socket = now - settings_.latency_seconds;
   if (stats_.first_assignment < 0) stats_.first_assignment = at_socket;
   RoundSpan& round = stats_.rounds[batch.round];
   if (round.first_assignment < 0) round.first_assignment = at_socket;
-  Queued item{batch, now};
+  Queued item{batch, now, group};
   if (scenes_.count(batch.scene_hash) > 0) {
     queue_.push_back(std::move(item));
     if (!computing_) StartNext();
@@ -156,6 +197,7 @@ void SimAgent::OnCancel(uint64_t job_id) {
   const auto of_job = [job_id](const Queued& q) { return q.batch.lease.job_id == job_id; };
   std::erase_if(queue_, of_job);
   std::erase_if(parked_, of_job);
+  std::erase_if(groups_, [job_id](const auto& g) { return g.second.job_id == job_id; });
   if (computing_ && of_job(current_)) {
     computing_ = false;
     ++generation_;  // its Finish is void
@@ -188,12 +230,16 @@ void SimAgent::Finish(uint64_t generation) {
   ++stats_.batches;
   stats_.rays += current_.batch.ray_count;
   stats_.busy_seconds += seconds;
-  Send(*result);
-  stats_.last_result = SteadySeconds() + settings_.latency_seconds;
   RoundSpan& round = stats_.rounds[current_.batch.round];
-  round.last_result = stats_.last_result;
   round.busy_seconds += seconds;
   ++round.batches;
+  // The lease frame's results go out together once all its batches are done.
+  if (const auto it = groups_.find(current_.group); it != groups_.end()) {
+    it->second.results.push_back(std::move(*result));
+    it->second.rounds.insert(current_.batch.round);
+    --it->second.outstanding;
+    MaybeSendGroup(current_.group);
+  }
   StartNext();
 }
 

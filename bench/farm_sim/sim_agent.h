@@ -2,8 +2,9 @@
 // TCP connection (loop::FramedConnection::ConnectTcp, protocol::ProtocolSession::ForAgent: the
 // HMAC handshake, heartbeats, scene fetch by hash), but computes nothing: each BatchAssignment
 // takes ray_count / rays_per_second seconds of simulated time, one batch after another (a
-// one-thread "office machine"), and is answered with MakeSimulatedResult. An optional one-way
-// latency delays every frame it sends and every frame it receives.
+// one-thread "office machine"), and a LeaseAssignment's batches are answered together in one
+// LeaseResult of MakeSimulatedResults; a LeaseRevoke drops the named batches still queued. An
+// optional one-way latency delays every frame it sends and every frame it receives.
 //
 // Time: busy periods chain exactly in simulated time: a batch starts when the previous one's
 // compute ends or when it arrives, whichever is later, however late the DelayLine runs the
@@ -19,6 +20,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "bench/farm_sim/delay_line.h"
@@ -87,12 +89,23 @@ class SimAgent {
   struct Queued {
     protocol::BatchAssignmentMsg batch;
     double arrival;  // after the added latency: when the agent could start it
+    uint64_t group = 0;
+  };
+  // One LeaseAssignment's batches, answered together.
+  struct Group {
+    uint64_t job_id = 0;
+    size_t outstanding = 0;  // batches neither computed nor revoked
+    std::vector<protocol::BatchResultMsg> results;
+    std::set<uint32_t> rounds;
   };
 
   void OnFrame(std::span<const uint8_t> payload);
   void Process(const std::vector<uint8_t>& payload);
   void OnMessage(const protocol::Message& message);
-  void OnAssignment(const protocol::BatchAssignmentMsg& batch);
+  void OnLease(const protocol::LeaseAssignmentMsg& lease);
+  void OnRevoke(const protocol::LeaseRevokeMsg& revoke);
+  void OnAssignment(const protocol::BatchAssignmentMsg& batch, uint64_t group);
+  void MaybeSendGroup(uint64_t group);
   void OnSceneChunk(const protocol::SceneChunkMsg& chunk);
   void OnCancel(uint64_t job_id);
   void RequestSceneChunks(protocol::SceneAssembler& assembler);
@@ -121,6 +134,8 @@ class SimAgent {
   Queued current_{};
   double busy_until_ = 0;    // simulated end of the current or last batch
   uint64_t generation_ = 0;  // bumped by Cancel: a pending Finish of a cancelled batch is void
+  std::map<uint64_t, Group> groups_;
+  uint64_t next_group_ = 1;
 };
 
 }  // namespace radfarm::sim

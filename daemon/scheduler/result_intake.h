@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/ray_sampler.h"
 #include "daemon/scheduler/round_scheduler.h"
@@ -23,5 +24,20 @@ struct IntakeVerdict {
 IntakeVerdict SubmitBatchResult(RoundScheduler& scheduler, AgentId agent,
                                 const protocol::BatchResultMsg& message, const RaySampler& sampler,
                                 uint32_t patch_count, TimePoint now);
+
+// The results of one job from a LeaseResult frame: each validated as above, then all handed to
+// RoundScheduler::OnResults (the agent's speed measured once over the frame). The first invalid
+// result stops the intake: OnInvalidResult, and the verdict says kInvalid with its detail.
+// Otherwise the verdict is the last result's, round_complete set if the round is complete, and
+// `accepted_batches` are the batches whose results entered the round (before a lie too), in order.
+struct LeaseIntake {
+  IntakeVerdict last;
+  std::vector<BatchId> accepted_batches;
+  size_t dropped = 0;   // harmless: late, duplicate, old round
+  size_t rejected = 0;  // not the agent's lease, wrong batch (logged by the caller)
+};
+LeaseIntake SubmitLeaseResults(RoundScheduler& scheduler, AgentId agent,
+                               const std::vector<const protocol::BatchResultMsg*>& results,
+                               const RaySampler& sampler, uint32_t patch_count, TimePoint now);
 
 }  // namespace radfarm::scheduler

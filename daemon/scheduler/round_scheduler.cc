@@ -39,6 +39,22 @@ size_t RoundScheduler::ReturnLeases(AgentId agent, std::span<const BatchId> batc
   return returned;
 }
 
+std::vector<Takeover> RoundScheduler::Preempt(AgentId agent) {
+  std::vector<Takeover> taken;
+  const auto it = agents_.find(agent);
+  if (it == agents_.end() || !round_) return taken;
+  std::vector<AttemptId> live;
+  for (const auto& [id, index] : it->second.live) live.push_back(id);
+  // Newest first: EndAttempt puts each batch at the queue's front, so they end up in lease order.
+  for (auto id = live.rbegin(); id != live.rend(); ++id) {
+    const uint32_t index = round_->attempts.at(*id).batch_index;
+    taken.push_back({agent, MakeBatchId(round_->plan.round, index), *id});
+    EndAttempt(*id, AttemptState::kPreempted);
+  }
+  totals_.leases_preempted += taken.size();
+  return taken;
+}
+
 bool RoundScheduler::IsBlocklisted(AgentId agent, TimePoint now) const {
   const auto it = blocked_until_.find(agent);
   return it != blocked_until_.end() && now < it->second;
@@ -60,6 +76,7 @@ Status RoundScheduler::StartRound(RoundPlan plan, TimePoint /*now*/) {
   for (uint32_t k = 0; k < plan.batches.size(); ++k) {
     round.fresh.push_back(k);
     round.batches[k].in_fresh_queue = true;
+    ++round.queued;
     rays += plan.batches[k].ray_count;
   }
   round.mean_batch_rays = double(rays) / double(plan.batches.size());
@@ -69,6 +86,12 @@ Status RoundScheduler::StartRound(RoundPlan plan, TimePoint /*now*/) {
 
 bool RoundScheduler::RoundComplete() const {
   return round_ && round_->done == round_->batches.size();
+}
+
+bool RoundScheduler::InEndGame() const { return round_ && !RoundComplete() && round_->queued == 0; }
+
+bool RoundScheduler::WantsAgent(AgentId agent, TimePoint now) const {
+  return round_ && round_->queued > 0 && agents_.count(agent) > 0 && !IsBlocklisted(agent, now);
 }
 
 Result<CompletedRound> RoundScheduler::TakeCompletedRound() {
@@ -108,6 +131,18 @@ uint32_t RoundScheduler::LeasesHeld(AgentId agent) const {
   return it == agents_.end() ? 0 : static_cast<uint32_t>(it->second.live.size());
 }
 
+uint32_t RoundScheduler::LeaseSizeOf(AgentId agent) const {
+  const auto it = agents_.find(agent);
+  if (it == agents_.end()) return 0;
+  const double batch_rays = round_ ? round_->mean_batch_rays : options_.default_batch_rays;
+  uint32_t size = it->second.throughput.LeaseBatches(batch_rays, options_);
+  if (round_ && !round_->fresh.empty()) {
+    const size_t share = (round_->fresh.size() + agents_.size() - 1) / agents_.size();
+    size = static_cast<uint32_t>(std::min<size_t>(size, std::max<size_t>(1, share)));
+  }
+  return size;
+}
+
 uint32_t RoundScheduler::LeaseCapacityOf(AgentId agent) const {
   const auto it = agents_.find(agent);
   return it == agents_.end() ? 0 : LeaseCapacity(it->second);
@@ -124,11 +159,67 @@ std::optional<Assignment> RoundScheduler::NextAssignment(AgentId agent_id, TimeP
   }
   if (const auto index = PopFresh()) return Issue(*index, agent_id, agent, now, false);
   if (const auto index = PopOverdueFor(agent_id)) return Issue(*index, agent_id, agent, now, true);
+  if (const auto taken = TakeOverFor(agent_id, agent, now)) {
+    const AttemptRecord& old = round_->attempts.at(taken->second);
+    const Takeover from{old.agent, MakeBatchId(round_->plan.round, taken->first), taken->second};
+    Assignment a = Issue(taken->first, agent_id, agent, now, false);
+    EndAttempt(taken->second, AttemptState::kTakenOver);
+    round_->batches[taken->first].taken_over = true;
+    ++totals_.takeovers;
+    a.taken_from = from;
+    return a;
+  }
+  if (const auto index = EndGameCopyFor(agent_id, agent, now)) {
+    return Issue(*index, agent_id, agent, now, true);
+  }
   return std::nullopt;
 }
 
 ResultVerdict RoundScheduler::OnResult(AgentId agent_id, BatchId batch_id, AttemptId attempt_id,
                                        BatchResult result, TimePoint now) {
+  uint64_t rays = 0;
+  TimePoint issued = now;
+  const ResultVerdict verdict =
+      Record(agent_id, batch_id, attempt_id, std::move(result), now, &rays, &issued);
+  if (rays > 0) {
+    if (const auto agent = agents_.find(agent_id); agent != agents_.end()) {
+      agent->second.throughput.AddResult(rays, issued, now, options_.throughput_smoothing,
+                                         options_.min_batch_rays);
+    }
+  }
+  return verdict;
+}
+
+std::vector<ResultVerdict> RoundScheduler::OnResults(AgentId agent_id,
+                                                     std::vector<SubmittedResult> results,
+                                                     TimePoint now) {
+  std::vector<ResultVerdict> verdicts;
+  verdicts.reserve(results.size());
+  uint64_t total_rays = 0;
+  TimePoint first_issued = now;
+  for (SubmittedResult& r : results) {
+    uint64_t rays = 0;
+    TimePoint issued = now;
+    verdicts.push_back(
+        Record(agent_id, r.batch_id, r.attempt_id, std::move(r.result), now, &rays, &issued));
+    total_rays += rays;
+    if (rays > 0) first_issued = std::min(first_issued, issued);
+  }
+  if (total_rays > 0) {
+    if (const auto agent = agents_.find(agent_id); agent != agents_.end()) {
+      agent->second.throughput.AddResult(total_rays, first_issued, now,
+                                         options_.throughput_smoothing, options_.min_batch_rays);
+    }
+  }
+  // The round may have completed on an earlier result of the frame: say so on every verdict.
+  const bool complete = RoundComplete();
+  for (ResultVerdict& v : verdicts) v.round_complete = complete;
+  return verdicts;
+}
+
+ResultVerdict RoundScheduler::Record(AgentId agent_id, BatchId batch_id, AttemptId attempt_id,
+                                     BatchResult result, TimePoint now, uint64_t* rays,
+                                     TimePoint* issued) {
   if (!round_ || BatchRound(batch_id) != round_->plan.round) {
     return Verdict(Disposition::kDropped, DropReason::kStaleRound);
   }
@@ -148,12 +239,13 @@ ResultVerdict RoundScheduler::OnResult(AgentId agent_id, BatchId batch_id, Attem
   // The agent did the work whatever becomes of the result: measure it, free its lease.
   const bool already_answered = attempt.state == AttemptState::kAnswered;
   if (!already_answered) {
+    const uint32_t batch_rays = round_->plan.batches[attempt.batch_index].ray_count;
+    *rays = batch_rays;
+    *issued = attempt.issued;
     const auto agent = agents_.find(agent_id);
-    if (agent != agents_.end()) {
-      const uint32_t rays = round_->plan.batches[attempt.batch_index].ray_count;
-      agent->second.throughput.AddResult(rays, attempt.issued, now, options_.throughput_smoothing,
-                                         options_.min_batch_rays);
-      if (agent->second.live.erase(attempt_id) > 0) agent->second.live_rays -= rays;
+    if (agent != agents_.end() && agent->second.live.erase(attempt_id) > 0) {
+      agent->second.live_rays -= batch_rays;
+      Reindex(agent_id, agent->second);
     }
     attempt.state = AttemptState::kAnswered;
   }
@@ -163,7 +255,7 @@ ResultVerdict RoundScheduler::OnResult(AgentId agent_id, BatchId batch_id, Attem
     return Verdict(Disposition::kDropped,
                    already_answered ? DropReason::kDuplicate : DropReason::kLate);
   }
-  slot.state = BatchState::kDone;
+  SetState(slot, BatchState::kDone);
   slot.winner = attempt_id;
   slot.result = std::move(result);
   ++round_->done;
@@ -308,6 +400,97 @@ std::optional<uint32_t> RoundScheduler::PopOverdueFor(AgentId agent) {
   return std::nullopt;
 }
 
+void RoundScheduler::Reindex(AgentId id, AgentState& agent) {
+  if (agent.finish_key) finish_index_.erase({*agent.finish_key, id});
+  if (agent.copy_key) copy_index_.erase({*agent.copy_key, id});
+  agent.finish_key.reset();
+  agent.copy_key.reset();
+  if (agent.live.empty() || !round_) return;
+  agent.finish_key = round_->attempts.at(agent.live.rbegin()->first).expected_done;
+  finish_index_.emplace(*agent.finish_key, id);
+  if (options_.end_game_copy_factor <= 0) return;
+  const AttemptRecord& oldest = round_->attempts.at(agent.live.begin()->first);
+  // At least 1 ms of expected time, as EndGameCopyFor counts it.
+  const auto expected =
+      std::max<Duration>(std::chrono::milliseconds(1), oldest.expected_done - oldest.issued);
+  agent.copy_key = oldest.issued +
+                   std::chrono::duration_cast<Duration>(expected * options_.end_game_copy_factor);
+  copy_index_.emplace(*agent.copy_key, id);
+}
+
+double RoundScheduler::FinishEstimate(const AgentState& agent, TimePoint now) const {
+  if (agent.live.empty()) return 0;
+  // Its newest lease was expected done after all it held then; time since has run down that
+  // work, but an agent running late still needs at least that batch's time.
+  const auto& [attempt_id, index] = *agent.live.rbegin();
+  const double left =
+      std::chrono::duration<double>(round_->attempts.at(attempt_id).expected_done - now).count();
+  return std::max(
+      left, agent.throughput.ExpectedSeconds(round_->plan.batches[index].ray_count, options_));
+}
+
+std::optional<std::pair<uint32_t, AttemptId>> RoundScheduler::TakeOverFor(AgentId agent_id,
+                                                                          const AgentState& agent,
+                                                                          TimePoint now) {
+  // The agent expected to finish last: among the few latest in finish_index_ (an agent running
+  // late still needs its newest batch's time, which the index does not order by).
+  constexpr int kCandidates = 4;
+  const AgentState* victim = nullptr;
+  double victim_finish = 0;
+  int seen = 0;
+  for (auto it = finish_index_.rbegin(); it != finish_index_.rend() && seen < kCandidates; ++it) {
+    if (it->second == agent_id) continue;
+    ++seen;
+    const AgentState& other = agents_.at(it->second);
+    const double finish = FinishEstimate(other, now);
+    if (victim == nullptr || finish > victim_finish) {
+      victim = &other;
+      victim_finish = finish;
+    }
+  }
+  if (victim == nullptr) return std::nullopt;
+  // Its newest lease is the last it would start. Moving it pays when this agent would finish it
+  // clearly before the victim would start it: by a quarter of the victim's time for it, which
+  // covers the round trip and keeps two equal agents from trading a batch about to start.
+  const auto& [attempt_id, index] = *victim->live.rbegin();
+  const uint32_t rays = round_->plan.batches[index].ray_count;
+  const double mine = FinishEstimate(agent, now) + agent.throughput.ExpectedSeconds(rays, options_);
+  const double start_there =
+      victim_finish - 0.25 * victim->throughput.ExpectedSeconds(rays, options_);
+  if (mine >= start_there) return std::nullopt;
+  const BatchSlot& slot = round_->batches[index];
+  if (slot.taken_over || LiveAttempts(slot) != 1) return std::nullopt;
+  return std::make_pair(index, attempt_id);
+}
+
+std::optional<uint32_t> RoundScheduler::EndGameCopyFor(AgentId agent_id, const AgentState& agent,
+                                                       TimePoint now) {
+  if (!agent.live.empty() || options_.end_game_copy_factor <= 0) return std::nullopt;
+  // The running lease (some agent's oldest) that has taken longest past its expected time,
+  // counted in expected times; only one past end_game_copy_factor of them is worth a copy. Only
+  // the first few agents of copy_index_ past that point are looked at (in the order they got
+  // there), not every agent.
+  constexpr int kLooked = 16;
+  std::optional<uint32_t> pick;
+  double worst = options_.end_game_copy_factor;
+  int looked = 0;
+  for (auto it = copy_index_.begin();
+       it != copy_index_.end() && it->first <= now && looked < kLooked; ++it, ++looked) {
+    if (it->second == agent_id) continue;
+    const AgentState& other = agents_.at(it->second);
+    const auto& [attempt_id, index] = *other.live.begin();
+    const AttemptRecord& attempt = round_->attempts.at(attempt_id);
+    const double expected = std::max(
+        1e-3, std::chrono::duration<double>(attempt.expected_done - attempt.issued).count());
+    const double taken = std::chrono::duration<double>(now - attempt.issued).count();
+    if (taken / expected < worst) continue;
+    if (LiveAttempts(round_->batches[index]) >= options_.max_live_attempts) continue;
+    worst = taken / expected;
+    pick = index;
+  }
+  return pick;
+}
+
 Assignment RoundScheduler::Issue(uint32_t index, AgentId agent_id, AgentState& agent, TimePoint now,
                                  bool speculative) {
   const AttemptId id = next_attempt_++;
@@ -316,13 +499,17 @@ Assignment RoundScheduler::Issue(uint32_t index, AgentId agent_id, AgentState& a
   agent.live.emplace(id, index);
   agent.live_rays += batch.ray_count;
   const TimePoint deadline = agent.throughput.Deadline(agent.live_rays, now, options_);
-  round_->attempts[id] = {agent_id, index, now, deadline, AttemptState::kLive};
+  const TimePoint expected_done =
+      now + std::chrono::duration_cast<Duration>(std::chrono::duration<double>(
+                agent.throughput.ExpectedSeconds(agent.live_rays, options_)));
+  round_->attempts[id] = {agent_id, index, now, deadline, expected_done, AttemptState::kLive};
+  Reindex(agent_id, agent);
   BatchSlot& slot = round_->batches[index];
-  slot.state = BatchState::kLeased;
+  SetState(slot, BatchState::kLeased);
   slot.attempts.push_back(id);
   ++totals_.attempts_issued;
   if (speculative) ++totals_.speculative_attempts;
-  return {MakeBatchId(round_->plan.round, index), id, batch, deadline, speculative};
+  return {MakeBatchId(round_->plan.round, index), id, batch, deadline, speculative, std::nullopt};
 }
 
 size_t RoundScheduler::LiveAttempts(const BatchSlot& slot) const {
@@ -331,17 +518,26 @@ size_t RoundScheduler::LiveAttempts(const BatchSlot& slot) const {
   });
 }
 
+void RoundScheduler::SetState(BatchSlot& slot, BatchState state) {
+  if (slot.state == BatchState::kQueued) --round_->queued;
+  if (state == BatchState::kQueued) ++round_->queued;
+  slot.state = state;
+}
+
 void RoundScheduler::EndAttempt(AttemptId id, AttemptState how) {
   AttemptRecord& attempt = round_->attempts.at(id);
   if (attempt.state != AttemptState::kLive) return;
   attempt.state = how;
   const uint32_t rays = round_->plan.batches[attempt.batch_index].ray_count;
   if (const auto agent = agents_.find(attempt.agent); agent != agents_.end()) {
-    if (agent->second.live.erase(id) > 0) agent->second.live_rays -= rays;
+    if (agent->second.live.erase(id) > 0) {
+      agent->second.live_rays -= rays;
+      Reindex(attempt.agent, agent->second);
+    }
   }
   BatchSlot& slot = round_->batches[attempt.batch_index];
   if (slot.state == BatchState::kDone || LiveAttempts(slot) > 0) return;
-  slot.state = BatchState::kQueued;
+  SetState(slot, BatchState::kQueued);
   ++totals_.leases_requeued;
   if (!slot.in_fresh_queue) {
     slot.in_fresh_queue = true;

@@ -16,10 +16,17 @@
 //   when a verdict says round_complete: done = TakeCompletedRound();
 //   solver.ApplyRound(done.plan, done.results); plan the next round.
 // The next round can only be planned after ApplyRound (the plan depends on the unshot radiosity),
-// so rounds do not overlap. Agents are kept busy through the round's tail instead: once the queue
-// is empty, Tick offers overdue batches to agents with room, so the stragglers of a round are
-// recomputed in parallel rather than waited for. A daemon with several jobs keeps one scheduler
-// per job and asks them in turn, so agents idle on one job's reduction work on another.
+// so rounds do not overlap. The round's tail is cut instead, in three ways. Leases shrink as the
+// queue empties (LeaseSizeOf: at most the queue's share per agent). Once the queue is empty, an
+// agent with room takes over the newest lease of the agent expected to finish last, while it
+// would finish that batch sooner (the daemon tells the old holder with a LeaseRevoke; the newest
+// of its leases is the one it has not started). When nothing is worth taking over, an idle agent
+// gets a copy of a running lease (some agent's oldest) that has taken several times its expected
+// time: the end game.
+// And Tick offers batches past their deadline to agents with room. A daemon with several jobs keeps
+// one scheduler per job and asks them in turn, so agents idle on one job's reduction work on
+// another; when a higher-priority job has batches queued again, the daemon takes the lower jobs'
+// leases off the agent (Preempt) so that it moves at once.
 //
 // LIFECYCLE OF A BATCH (within a round):
 //
@@ -28,7 +35,7 @@
 //          v          NextAssignment                 OnResult (first valid)
 //       QUEUED  ------------------------>  LEASED  ------------------------->  DONE
 //          ^                               |    ^                               |
-//          |  OnAgentLost, ReturnLeases,   |    |  Tick (overdue) +             |
+//          |  OnAgentLost, ReturnLeases,   |    |  Tick (overdue), end game +   |
 //          TakeCompletedRound |  OnInvalidResult: the last    |    |  NextAssignment: another v
 //          +---- live attempt ended -------+    +- attempt, batch stays LEASED  (round handed over)
 //
@@ -40,20 +47,24 @@
 //                    |  \---- OnAgentLost ------------------------------->  LOST
 //                    |  \---- ReturnLeases ------------------------------>  RETURNED
 //                    |  \---- OnInvalidResult (agent blocklisted) ------->  REVOKED
+//                    |  \---- Preempt (a higher-priority job needs it) -->  PREEMPTED
+//                    |  \---- NextAssignment for another agent: taken over ->  TAKEN_OVER
 //                    \-- Tick past its deadline: marked overdue, stays LIVE and valid; the batch
 //                        is offered to another agent (at most max_live_attempts live at once).
 //
 // Only LIVE attempts count against an agent's leases. A result for an attempt that is no longer
-// LIVE is still correct work: from its own agent, for a batch not DONE, it is accepted (a LOST or
-// RETURNED lease that answers anyway); once the batch is DONE it is dropped as kLate (another
-// attempt won) or kDuplicate (this attempt already answered).
+// LIVE is still correct work: from its own agent, for a batch not DONE, it is accepted (a LOST,
+// RETURNED or PREEMPTED lease that answers anyway); once the batch is DONE it is dropped as kLate
+// (another attempt won) or kDuplicate (this attempt already answered).
 #pragma once
 
 #include <deque>
 #include <map>
 #include <optional>
+#include <set>
 #include <span>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "base/result.h"
@@ -68,12 +79,27 @@ namespace radfarm::scheduler {
 
 // A lease handed to an agent: send it as a BatchAssignment (protocol/batch_convert.h) with
 // lease_ms = deadline - now.
+// A lease taken over from another agent: tell that agent to drop it (LeaseRevoke) if not started.
+struct Takeover {
+  AgentId agent = 0;
+  BatchId batch_id = 0;
+  AttemptId attempt_id = 0;
+};
+
 struct Assignment {
   BatchId batch_id = 0;
   AttemptId attempt_id = 0;
   Batch batch;
   TimePoint deadline;
-  bool speculative = false;  // a copy of an overdue lease still held elsewhere
+  bool speculative = false;  // a copy of an overdue or end-game lease still held elsewhere
+  std::optional<Takeover> taken_from;
+};
+
+// One result of a LeaseResult frame (already validated), for OnResults.
+struct SubmittedResult {
+  BatchId batch_id = 0;
+  AttemptId attempt_id = 0;
+  BatchResult result;
 };
 
 // A finished round: results[k] answers plan.batches[k].
@@ -95,6 +121,11 @@ class RoundScheduler {
   // The agent handed these leases back (LeaseReturn): requeued at once. Batch ids the agent does
   // not hold a live attempt of are ignored. Returns how many leases were returned.
   size_t ReturnLeases(AgentId agent, std::span<const BatchId> batches);
+  // Takes back every live lease `agent` holds, for a higher-priority job that has batches queued
+  // (WantsAgent) while the agent is full: the batches go back to the front of the queue, and the
+  // daemon tells the agent in a LeaseRevoke, which drops those not started. A preempted batch the
+  // agent had started still counts when it answers first (as a returned lease would).
+  std::vector<Takeover> Preempt(AgentId agent);
   // Blocklisting is keyed by AgentId and outlives OnAgentLost: to keep a lying agent out after it
   // reconnects, give the same agent (by name) the same AgentId again.
   bool IsBlocklisted(AgentId agent, TimePoint now) const;
@@ -104,6 +135,12 @@ class RoundScheduler {
   Status StartRound(RoundPlan plan, TimePoint now);
   bool round_active() const { return round_.has_value(); }
   bool RoundComplete() const;
+  // The round's queue is empty but some batches have no result yet: idle agents may take over or
+  // copy leases (NextAssignment), so the daemon offers them work on its tick.
+  bool InEndGame() const;
+  // The round has batches waiting for a lease that `agent` may take (known, not blocklisted):
+  // lower-priority jobs should make room for them. O(1).
+  bool WantsAgent(AgentId agent, TimePoint now) const;
   // Ends the round and returns its results in batch order. Fails unless RoundComplete().
   Result<CompletedRound> TakeCompletedRound();
   // Moves the accepted result of `batch_id` out, for a reduction that folds results in as they
@@ -126,6 +163,10 @@ class RoundScheduler {
   std::optional<Assignment> NextAssignment(AgentId agent, TimePoint now,
                                            uint32_t leases_elsewhere = 0,
                                            std::optional<uint32_t> capacity = std::nullopt);
+  // How many batches the next lease frame to `agent` should carry: those its own measured speed
+  // fills in target_lease_seconds (ThroughputEstimate::LeaseBatches), at most the queue's share
+  // per agent (ceil(queued / agents)) so that a round's last leases are small; at least 1.
+  uint32_t LeaseSizeOf(AgentId agent) const;
   // Live leases `agent` holds in this scheduler (0 for an unknown agent). Cheap.
   uint32_t LeasesHeld(AgentId agent) const;
   // How many leases this scheduler would let `agent` hold now (0 for an unknown agent).
@@ -134,6 +175,10 @@ class RoundScheduler {
   // of a batch wins; see DropReason for the others.
   ResultVerdict OnResult(AgentId agent, BatchId batch_id, AttemptId attempt_id, BatchResult result,
                          TimePoint now);
+  // The results of one LeaseResult frame, each as OnResult, in order; the agent's speed is
+  // measured once, over all their rays (a lease's batches come back together).
+  std::vector<ResultVerdict> OnResults(AgentId agent, std::vector<SubmittedResult> results,
+                                       TimePoint now);
   // A result that failed ValidateBatchResult: the agent is blocklisted until now +
   // options.blocklist_duration and all its live leases are revoked and requeued.
   ResultVerdict OnInvalidResult(AgentId agent, BatchId batch_id, AttemptId attempt_id,
@@ -155,19 +200,30 @@ class RoundScheduler {
 
  private:
   enum class BatchState { kQueued, kLeased, kDone };
-  enum class AttemptState { kLive, kAnswered, kSuperseded, kLost, kReturned, kRevoked };
+  enum class AttemptState {
+    kLive,
+    kAnswered,
+    kSuperseded,
+    kLost,
+    kReturned,
+    kRevoked,
+    kTakenOver,
+    kPreempted
+  };
 
   struct AttemptRecord {
     AgentId agent = 0;
     uint32_t batch_index = 0;
     TimePoint issued;
     TimePoint deadline;
+    TimePoint expected_done;  // issued + the agent's expected time for its work then held
     AttemptState state = AttemptState::kLive;
   };
   struct BatchSlot {
     BatchState state = BatchState::kQueued;
     bool in_fresh_queue = false;
     bool in_overdue_queue = false;
+    bool taken_over = false;          // moved once already: never again, so takeovers cannot cycle
     std::vector<AttemptId> attempts;  // every attempt issued for it, oldest first
     std::optional<AttemptId> winner;
     BatchResult result;
@@ -181,10 +237,13 @@ class RoundScheduler {
     std::deque<uint32_t> overdue;  // batch indices offered again by Tick
     double mean_batch_rays = 0;
     size_t done = 0;
+    size_t queued = 0;  // batches in state kQueued (SetState keeps it)
   };
   struct AgentState {
     std::map<AttemptId, uint32_t> live;  // live attempts -> batch index
     uint64_t live_rays = 0;
+    // Its keys in finish_index_ and copy_index_ while it holds leases (Reindex keeps them).
+    std::optional<TimePoint> finish_key, copy_key;
     ThroughputEstimate throughput;
     uint64_t results_accepted = 0;
   };
@@ -193,9 +252,28 @@ class RoundScheduler {
   AgentCounters CountersOf(AgentId id, const AgentState& agent, TimePoint now) const;
   std::optional<uint32_t> PopFresh();
   std::optional<uint32_t> PopOverdueFor(AgentId agent);
+  // The queue is empty: the newest live lease of the agent expected to finish last, when `agent`
+  // would finish it sooner; returns its batch index and the attempt it replaces.
+  std::optional<std::pair<uint32_t, AttemptId>> TakeOverFor(AgentId agent_id,
+                                                            const AgentState& agent, TimePoint now);
+  // The end game: for an idle agent, the running lease (some agent's oldest) furthest past its
+  // expected time, if at least end_game_copy_factor times it, and its batch may have another live
+  // attempt.
+  std::optional<uint32_t> EndGameCopyFor(AgentId agent_id, const AgentState& agent, TimePoint now);
+  // After agent.live changed: its entries in finish_index_ and copy_index_ follow its newest and
+  // oldest live attempts.
+  void Reindex(AgentId id, AgentState& agent);
+  // When the agent's held work is done, in seconds from now: its newest lease's expected time,
+  // at least that batch's time at its speed; 0 when it holds nothing.
+  double FinishEstimate(const AgentState& agent, TimePoint now) const;
+  // OnResult without the measurement: `measured` gets the rays and issue time to measure.
+  ResultVerdict Record(AgentId agent_id, BatchId batch_id, AttemptId attempt_id, BatchResult result,
+                       TimePoint now, uint64_t* rays, TimePoint* issued);
   Assignment Issue(uint32_t index, AgentId agent_id, AgentState& agent, TimePoint now,
                    bool speculative);
   size_t LiveAttempts(const BatchSlot& slot) const;
+  // Changes a batch's state, keeping Round::queued.
+  void SetState(BatchSlot& slot, BatchState state);
   // Ends a live attempt without a result; requeues its batch if no live attempt is left.
   void EndAttempt(AttemptId id, AttemptState how);
   ResultVerdict Verdict(Disposition disposition, DropReason reason);
@@ -203,6 +281,13 @@ class RoundScheduler {
   SchedulerOptions options_;
   std::optional<Round> round_;
   std::map<AgentId, AgentState> agents_;
+  // Agents holding leases, by their newest lease's expected_done (when all they hold is done):
+  // the takeover's victim is found among the last few, not by a pass over every agent, which cost
+  // O(agents) per lease in a round's end game (farm_bench, 1000 agents).
+  std::set<std::pair<TimePoint, AgentId>> finish_index_;
+  // Agents holding leases, by when their oldest lease has run end_game_copy_factor times its
+  // expected time: the end game's copies come from the first few of them.
+  std::set<std::pair<TimePoint, AgentId>> copy_index_;
   std::unordered_map<AgentId, TimePoint> blocked_until_;
   AttemptId next_attempt_ = 1;
   SchedulerCounters totals_;  // the since-creation fields only

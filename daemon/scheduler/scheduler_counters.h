@@ -28,8 +28,10 @@ struct SchedulerCounters {
   uint64_t batches_done = 0;
   // Since the scheduler was made.
   uint64_t attempts_issued = 0;
-  uint64_t speculative_attempts = 0;  // of attempts_issued: copies of an overdue lease
+  uint64_t speculative_attempts = 0;  // of attempts_issued: copies of an overdue or end-game lease
+  uint64_t takeovers = 0;             // of attempts_issued: leases taken over from a busy agent
   uint64_t leases_requeued = 0;       // batches put back after a loss, return or revocation
+  uint64_t leases_preempted = 0;      // live leases taken back for a higher-priority job
   uint64_t results_accepted = 0;
   std::array<uint64_t, kDropReasonCount> results_dropped{};  // by DropReason; [kNone] unused
   std::vector<AgentCounters> agents;                         // increasing agent id

@@ -13,6 +13,8 @@ struct SchedulerOptions {
   // result. An agent holds about this much work (its smoothed rays/s times this), so a fast agent
   // holds more leases and a slow one is never flooded. Keep it within 100-500 ms.
   double target_lease_seconds = 0.5;
+  // A lease is one attempt at one batch; the daemon sends an agent's new leases in one
+  // LeaseAssignment frame of at most LeaseSizeOf() batches (protocol version 2).
   // Leases an agent holds before its first result is measured, and the cap for anyone.
   uint32_t initial_leases = 2;
   uint32_t max_leases_per_agent = 64;
@@ -20,6 +22,9 @@ struct SchedulerOptions {
   // batch is already there when one finishes and it never idles for the round trip to the master
   // (result out, next lease back). radfarmd uses 1 (daemon/master.cc).
   uint32_t spare_leases = 0;
+  // Beyond spare_leases: this fraction of the target's leases again, so that an agent working
+  // through one multi-batch lease already holds the next (radfarmd: 1, a second lease's worth).
+  double spare_lease_fraction = 0;
   // Weight of the newest result in the smoothed throughput (exponential moving average).
   double throughput_smoothing = 0.3;
   // A lease is overdue after deadline_multiple times its expected time, at least deadline_floor;
@@ -27,6 +32,9 @@ struct SchedulerOptions {
   double deadline_multiple = 4;
   Duration deadline_floor = std::chrono::seconds(2);
   double unmeasured_expected_seconds = 2;
+  // The end game (the round's queue empty): an idle agent gets a copy of a running lease that has
+  // taken this many times its expected time. 0: no end-game copies (only Tick's overdue ones).
+  double end_game_copy_factor = 2;
   // Live attempts of one batch at most (the original plus speculative copies).
   uint32_t max_live_attempts = 2;
   // How long an agent that sent an invalid result gets no work.

@@ -34,9 +34,23 @@ uint32_t ThroughputEstimate::LeaseCapacity(double batch_rays,
   const uint32_t cap = std::max<uint32_t>(1, options.max_leases_per_agent);
   if (!measured()) return std::clamp<uint32_t>(options.initial_leases, 1, cap);
   const double want = rays_per_second() * options.target_lease_seconds / std::max(1.0, batch_rays);
-  const double spare = double(options.spare_leases);
-  return static_cast<uint32_t>(
-      std::clamp(std::max(1.0, std::floor(want)) + spare, 1.0, double(cap)));
+  const double fill = std::max(1.0, std::floor(want));
+  const double spare =
+      double(options.spare_leases) + std::floor(fill * std::max(0.0, options.spare_lease_fraction));
+  return static_cast<uint32_t>(std::clamp(fill + spare, 1.0, double(cap)));
+}
+
+uint32_t ThroughputEstimate::LeaseBatches(double batch_rays,
+                                          const SchedulerOptions& options) const {
+  const uint32_t cap = std::max<uint32_t>(1, options.max_leases_per_agent);
+  if (!measured()) return std::clamp<uint32_t>(options.initial_leases, 1, cap);
+  const double want = rays_per_second() * options.target_lease_seconds / std::max(1.0, batch_rays);
+  return static_cast<uint32_t>(std::clamp(std::floor(want), 1.0, double(cap)));
+}
+
+double ThroughputEstimate::ExpectedSeconds(uint64_t rays, const SchedulerOptions& options) const {
+  if (rays == 0) return 0;
+  return measured() ? double(rays) / rays_per_second() : options.unmeasured_expected_seconds;
 }
 
 TimePoint ThroughputEstimate::Deadline(uint64_t held_rays, TimePoint now,

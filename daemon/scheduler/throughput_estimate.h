@@ -33,7 +33,15 @@ class ThroughputEstimate {
   // Leases to hold so the held work takes about options.target_lease_seconds:
   // max(1, floor(rays/s * target / batch_rays)) + spare_leases, at most max_leases_per_agent;
   // options.initial_leases (capped) before the first result.
+  // Plus floor(that target count * spare_lease_fraction).
   uint32_t LeaseCapacity(double batch_rays, const SchedulerOptions& options) const;
+  // Batches for one lease frame: those that fill target_lease_seconds, max(1, floor(rays/s *
+  // target / batch_rays)), at most max_leases_per_agent; options.initial_leases before the first
+  // result. The agent's own speed: a fast agent gets big leases whatever the slowest one does.
+  uint32_t LeaseBatches(double batch_rays, const SchedulerOptions& options) const;
+  // Seconds the agent needs for `rays` at its measured speed; options.unmeasured_expected_seconds
+  // for any work before the first result.
+  double ExpectedSeconds(uint64_t rays, const SchedulerOptions& options) const;
 
   // When a lease issued at `now` is overdue, given the rays the agent then holds (this lease
   // included): now + max(floor, multiple * held_rays / rays_per_second).

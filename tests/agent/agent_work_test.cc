@@ -68,6 +68,61 @@ class AgentWorkTest : public ::testing::Test {
   FakeMaster master_;
 };
 
+// Protocol version 2: many batches in one LeaseAssignment come back in one LeaseResult, each
+// result equal to that batch computed alone.
+TEST_F(AgentWorkTest, AMultiBatchLeaseIsAnsweredInOneFrameWithSingleBatchResults) {
+  std::unique_ptr<AgentProcess> agent = StartAgent(2);
+  const TestJob job = Job(4, SamplerKind::kSobol, 11);
+  std::vector<protocol::BatchAssignmentMsg> batches;
+  for (uint32_t k = 0; k < 40; ++k) {
+    batches.push_back(Assign(job, 100 + k, /*shooter=*/k % 54, /*first_ray=*/1000 * k, 170 + k));
+  }
+  master_.Send(LeaseOf(batches));
+  std::optional<protocol::LeaseResultMsg> frame;
+  ASSERT_TRUE(master_.WaitFor([&](const Record& r) {
+    const auto frames = r.All<protocol::LeaseResultMsg>();
+    if (!frames.empty()) frame = frames.front();
+    return frame.has_value();
+  })) << agent->Log();
+  ASSERT_EQ(frame->results.size(), batches.size());  // all in the one frame
+  for (const protocol::BatchAssignmentMsg& batch : batches) {
+    const auto found = std::find_if(frame->results.begin(), frame->results.end(),
+                                    [&](const auto& r) { return r.lease == batch.lease; });
+    ASSERT_NE(found, frame->results.end()) << "batch " << batch.lease.batch_id;
+    EXPECT_EQ(protocol::ToBatchResult(*found), RunLocally(scene_, batch))
+        << "batch " << batch.lease.batch_id;
+  }
+  EXPECT_EQ(master_.Snapshot().All<protocol::LeaseResultMsg>().size(), 1u);
+  agent->Signal(SIGTERM);
+  EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
+}
+
+// A LeaseRevoke right behind the lease: the agent's one thread has not reached the last batch
+// (each takes tens of ms), so it drops it and answers the others without it.
+TEST_F(AgentWorkTest, ARevokedBatchNotStartedIsLeftOutOfTheLeaseResult) {
+  std::unique_ptr<AgentProcess> agent = StartAgent(1);
+  const TestJob job = Job(5, SamplerKind::kSobol, 12);
+  std::vector<protocol::BatchAssignmentMsg> batches;
+  for (uint32_t k = 0; k < 6; ++k) {
+    batches.push_back(Assign(job, 200 + k, /*shooter=*/k, /*first_ray=*/0, 200000));
+  }
+  master_.Send({LeaseOf(batches), protocol::LeaseRevokeMsg{{batches.back().lease}}});
+  std::optional<protocol::LeaseResultMsg> frame;
+  ASSERT_TRUE(master_.WaitFor([&](const Record& r) {
+    const auto frames = r.All<protocol::LeaseResultMsg>();
+    if (!frames.empty()) frame = frames.front();
+    return frame.has_value();
+  })) << agent->Log();
+  ASSERT_EQ(frame->results.size(), batches.size() - 1) << agent->Log();
+  for (size_t k = 0; k + 1 < batches.size(); ++k) {
+    EXPECT_EQ(frame->results[k].lease, batches[k].lease);
+    EXPECT_EQ(protocol::ToBatchResult(frame->results[k]), RunLocally(scene_, batches[k]));
+  }
+  EXPECT_TRUE(agent->WaitForLog("took back 1 of our batches")) << agent->Log();
+  agent->Signal(SIGTERM);
+  EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
+}
+
 TEST_F(AgentWorkTest, ResultsEqualBatchTracerOnTheSameBatchBitForBit) {
   std::unique_ptr<AgentProcess> agent = StartAgent(2);
   const std::vector<TestJob> jobs = {Job(1, SamplerKind::kSobol, 3),

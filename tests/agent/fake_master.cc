@@ -159,6 +159,13 @@ void FakeMaster::Loop::Deliver(Connection* c, const protocol::Message& message) 
   {
     std::lock_guard lock(master->mutex_);
     master->record_.received.push_back(message);
+    // Each batch of a LeaseResult is recorded as a BatchResultMsg too, right after it, so tests
+    // look results up by lease whichever frame carried them.
+    if (const auto* results = std::get_if<protocol::LeaseResultMsg>(&message)) {
+      for (const protocol::BatchResultMsg& r : results->results) {
+        master->record_.received.push_back(r);
+      }
+    }
   }
   if (std::holds_alternative<protocol::CloseMsg>(message)) {
     c->stream->Close("the agent sent Close");
@@ -198,6 +205,11 @@ void FakeMaster::Loop::Refuse(Connection* c, const std::string& reason) {
 }
 
 void FakeMaster::Loop::Write(Connection* c, const protocol::Message& message) {
+  // A BatchAssignmentMsg (version 1's message) goes out as a lease frame of that one batch.
+  if (const auto* one = std::get_if<protocol::BatchAssignmentMsg>(&message)) {
+    Write(c, LeaseOf({*one}));
+    return;
+  }
   Result<std::vector<uint8_t>> frame = c->session.Encode(message);
   if (!frame) {
     std::lock_guard lock(master->mutex_);
@@ -286,6 +298,24 @@ bool FakeMaster::WaitFor(const std::function<bool(const Record&)>& done,
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   return true;
+}
+
+protocol::LeaseAssignmentMsg LeaseOf(const std::vector<protocol::BatchAssignmentMsg>& batches) {
+  const protocol::BatchAssignmentMsg& first = batches.front();
+  protocol::LeaseAssignmentMsg lease;
+  lease.job_id = first.lease.job_id;
+  lease.round = first.round;
+  lease.seed = first.seed;
+  lease.sampler = first.sampler;
+  lease.grid_step_degrees = first.grid_step_degrees;
+  lease.scene_hash = first.scene_hash;
+  lease.patch_count = first.patch_count;
+  lease.lease_ms = first.lease_ms;
+  for (const protocol::BatchAssignmentMsg& b : batches) {
+    lease.batches.push_back(
+        {b.lease.batch_id, b.lease.attempt_id, b.shooter, b.first_ray, b.ray_count});
+  }
+  return lease;
 }
 
 }  // namespace radfarm::agent::testing

@@ -2,6 +2,8 @@
 // thread runs its own loop::EventLoop with a TcpListener on 127.0.0.1 (port 0) and one
 // ProtocolSession::ForMaster per accepted connection. It records every message agents send,
 // answers SceneRequests from the scenes it was given, and sends what the test tells it to.
+// Tests may speak in single batches: a BatchAssignmentMsg is sent as a LeaseAssignment of that
+// one batch (LeaseOf), and every batch of a LeaseResult is recorded as a BatchResultMsg after it.
 //
 // Threads: the test thread calls every method; the loop runs on the master's thread. Commands
 // cross over through an Async; what the master saw comes back as a Record snapshot under a mutex.
@@ -39,6 +41,9 @@ inline FakeMasterOptions Heartbeats(uint32_t interval_ms, bool send_heartbeats) 
   options.send_heartbeats = send_heartbeats;
   return options;
 }
+
+// The lease frame carrying these batches (all of one job, round and scene).
+protocol::LeaseAssignmentMsg LeaseOf(const std::vector<protocol::BatchAssignmentMsg>& batches);
 
 // What the master has seen so far.
 struct Record {

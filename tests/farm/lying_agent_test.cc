@@ -98,15 +98,15 @@ TEST_F(FarmTest, AnAgentSendingAnInvalidResultIsDisconnectedAndBlocklisted) {
   ASSERT_TRUE(liar.Handshake()) << MasterLog();
   std::optional<protocol::Message> message;
   while ((message = liar.NextMessage()) &&
-         !std::holds_alternative<protocol::BatchAssignmentMsg>(*message)) {
+         !std::holds_alternative<protocol::LeaseAssignmentMsg>(*message)) {
   }
   ASSERT_TRUE(message.has_value()) << MasterLog();
-  const auto& assignment = std::get<protocol::BatchAssignmentMsg>(*message);
-  // Every ray "hits" a patch that does not exist.
+  const auto& lease = std::get<protocol::LeaseAssignmentMsg>(*message);
+  // Every ray of the lease's first batch "hits" a patch that does not exist.
   protocol::BatchResultMsg lie;
-  lie.lease = assignment.lease;
-  lie.hits = {{assignment.patch_count + 7, assignment.ray_count}};
-  ASSERT_TRUE(liar.Send(lie));
+  lie.lease = {lease.job_id, lease.batches[0].batch_id, lease.batches[0].attempt_id};
+  lie.hits = {{lease.patch_count + 7, lease.batches[0].ray_count}};
+  ASSERT_TRUE(liar.Send(protocol::LeaseResultMsg{{lie}}));
   // The master closes the connection.
   while ((message = liar.NextMessage()) && !std::holds_alternative<protocol::CloseMsg>(*message)) {
   }

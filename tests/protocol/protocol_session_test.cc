@@ -192,21 +192,60 @@ TEST(ProtocolSessionTest, TamperedHelloFailsAuthentication) {
 }
 
 TEST(ProtocolSessionTest, VersionNegotiation) {
-  // An agent that speaks 1..3 gets version 1 from this master.
+  // An agent that speaks 2..4 gets version 2 from this master.
   Session master = Master();
-  Session agent = Session::ForAgent(Secret(1), AgentConfig{"new-agent", 2, 1, 3});
+  Session agent = Session::ForAgent(Secret(1), AgentConfig{"new-agent", 2, 2, 4});
   const std::vector<uint8_t> hello = *agent.Start();
-  EXPECT_EQ(Decode(hello).version, 3);
+  EXPECT_EQ(Decode(hello).version, 4);
   Result<Session::Accepted> a = master.Accept(Decode(hello));
   ASSERT_TRUE(a) << a.error();
-  EXPECT_EQ(master.version(), 1);
+  EXPECT_EQ(master.version(), 2);
   ASSERT_TRUE(agent.Accept(Decode(a->reply)));
-  EXPECT_EQ(agent.version(), 1);
-  // One that only speaks 2..3 is turned away.
+  EXPECT_EQ(agent.version(), 2);
+  // One that only speaks 3..4 is turned away.
   Session old_master = Master();
-  Session newer = Session::ForAgent(Secret(1), AgentConfig{"newer", 2, 2, 3});
+  Session newer = Session::ForAgent(Secret(1), AgentConfig{"newer", 2, 3, 4});
   EXPECT_FALSE(old_master.Accept(Decode(*newer.Start())));
   EXPECT_EQ(CloseOf(old_master.CloseFrame()).code, CloseCode::kVersionMismatch);
+}
+
+// Version 2 changed the batch messages (multi-batch leases): an agent of version 1 is refused at
+// the handshake with a Close that names both sides' versions, which it can still read.
+TEST(ProtocolSessionTest, AVersionOneAgentIsRefusedWithAMessageNamingBothVersions) {
+  Session master = Master();
+  Session old_agent = Session::ForAgent(Secret(1), AgentConfig{"old-agent", 2, 1, 1});
+  const std::vector<uint8_t> hello = *old_agent.Start();
+  EXPECT_EQ(Decode(hello).version, 1);
+  Result<Session::Accepted> refused = master.Accept(Decode(hello));
+  ASSERT_FALSE(refused);
+  const CloseMsg close = CloseOf(master.CloseFrame());
+  EXPECT_EQ(close.code, CloseCode::kVersionMismatch);
+  EXPECT_NE(close.detail.find("the agent speaks 1..1"), std::string::npos) << close.detail;
+  EXPECT_NE(close.detail.find("this master 2..2"), std::string::npos) << close.detail;
+  // The old agent reads that Close (a Close is accepted in any version, in any state).
+  Result<Session::Accepted> read = old_agent.Accept(Decode(master.CloseFrame()));
+  ASSERT_TRUE(read) << read.error();
+  EXPECT_EQ(old_agent.peer_close()->code, CloseCode::kVersionMismatch);
+}
+
+TEST(ProtocolSessionTest, VersionOneBatchMessagesAreRefusedInVersionTwo) {
+  Session master = Master(), agent = Agent();
+  RunHandshake(master, agent);
+  ASSERT_EQ(master.version(), 2);
+  BatchAssignmentMsg one;
+  one.ray_count = 1;
+  one.patch_count = 1;
+  one.lease_ms = 1;
+  Result<std::vector<uint8_t>> out = master.Encode(one);
+  ASSERT_FALSE(out);
+  EXPECT_NE(out.error().find("not a message of protocol version 2"), std::string::npos);
+  Result<Session::Accepted> in =
+      master.Accept(Decode(EncodeFrame(BatchResultMsg{{}, {}, 0, 0, 0, 0, 0}, 2)));
+  ASSERT_FALSE(in);
+  EXPECT_NE(in.error().find("BatchResult is not a message of protocol version 2"),
+            std::string::npos)
+      << in.error();
+  EXPECT_EQ(CloseOf(master.CloseFrame()).code, CloseCode::kProtocolError);
 }
 
 TEST(ProtocolSessionTest, AgentRejectsAVersionItDoesNotSpeak) {
@@ -219,14 +258,15 @@ TEST(ProtocolSessionTest, AgentRejectsAVersionItDoesNotSpeak) {
 TEST(ProtocolSessionTest, FramesMustUseTheNegotiatedVersion) {
   Session master = Master(), agent = Agent();
   RunHandshake(master, agent);
-  EXPECT_FALSE(master.Accept(Decode(EncodeFrame(HeartbeatMsg{}, 2))));
+  EXPECT_FALSE(master.Accept(Decode(EncodeFrame(HeartbeatMsg{}, 3))));
   Session m2 = Master();
   HelloMsg hello = std::get<HelloMsg>(Decode(*Agent().Start()).message);
-  EXPECT_FALSE(m2.Accept(Decode(EncodeFrame(hello, 2))));  // Hello not in its max_version
+  EXPECT_FALSE(m2.Accept(Decode(EncodeFrame(hello, 3))));  // Hello not in its max_version
 }
 
 TEST(ProtocolSessionTest, AfterAuthenticationOnlyTheRightDirectionIsAccepted) {
-  const std::vector<std::string> from_agent = {"Heartbeat", "BatchResult", "LeaseReturn",
+  // Version 2: BatchAssignment and BatchResult (version 1's) go neither way.
+  const std::vector<std::string> from_agent = {"Heartbeat", "LeaseResult", "LeaseReturn",
                                                "SceneRequest", "Close"};
   for (const Message& m : testing::SampleMessages()) {
     Session master = Master(), agent = Agent();
@@ -234,8 +274,8 @@ TEST(ProtocolSessionTest, AfterAuthenticationOnlyTheRightDirectionIsAccepted) {
     const std::string name(MessageName(m));
     const bool agent_sends =
         std::find(from_agent.begin(), from_agent.end(), name) != from_agent.end();
-    const bool master_sends = name == "Heartbeat" || name == "BatchAssignment" ||
-                              name == "Cancel" || name == "SceneChunk" ||
+    const bool master_sends = name == "Heartbeat" || name == "LeaseAssignment" ||
+                              name == "LeaseRevoke" || name == "Cancel" || name == "SceneChunk" ||
                               name == "SceneUnavailable" || name == "Drain" || name == "Close";
     Result<Session::Accepted> at_master = master.Accept(Decode(EncodeFrame(m)));
     Result<Session::Accepted> at_agent = agent.Accept(Decode(EncodeFrame(m)));
@@ -273,7 +313,7 @@ TEST(ProtocolSessionTest, AgentWillNotSendAFrameAboveTheMastersLimit) {
   ASSERT_TRUE(agent.authenticated());
   BatchResultMsg big;
   for (uint32_t p = 0; p < kMinPeerFrameBytes / 16 + 10; ++p) big.hits.push_back({p, 1});
-  Result<std::vector<uint8_t>> frame = agent.Encode(big);
+  Result<std::vector<uint8_t>> frame = agent.Encode(LeaseResultMsg{{big}});
   ASSERT_FALSE(frame);
   EXPECT_NE(frame.error().find("exceeds the master's limit"), std::string::npos);
 }

@@ -61,7 +61,12 @@ TEST_F(FarmSolveTest, FiveAgentsOfDifferentSpeeds) {
   ExpectSameAsSolve(farm);
   const SchedulerCounters c = farm.scheduler().counters(farm.now());
   ASSERT_EQ(c.agents.size(), 5u);
-  for (const AgentCounters& a : c.agents) EXPECT_GT(a.results_accepted, 0u) << a.agent;
+  // The four faster ones all contribute; the slowest (81 times slower than the fastest) may lose
+  // every batch it held to takeovers and copies at the rounds' ends, which is the point of them.
+  for (size_t k = 1; k < c.agents.size(); ++k) {
+    EXPECT_GT(c.agents[k].results_accepted, 0u) << c.agents[k].agent;
+  }
+  EXPECT_GT(c.agents[4].results_accepted, c.agents[0].results_accepted);
 }
 
 TEST_F(FarmSolveTest, AgentsThatDieMidRoundHaveTheirLeasesRequeued) {
@@ -84,7 +89,7 @@ TEST_F(FarmSolveTest, DuplicatedAndLateResultsAreDropped) {
   farm.Drain(seconds(30));
   const SchedulerCounters c = farm.scheduler().counters(farm.now());
   EXPECT_GT(c.dropped(DropReason::kDuplicate), 0u);
-  EXPECT_GT(c.speculative_attempts, 0u);
+  EXPECT_GT(c.speculative_attempts + c.takeovers, 0u);  // its leases went to others
   EXPECT_GT(c.dropped(DropReason::kLate) + c.dropped(DropReason::kStaleRound), 0u);
 }
 
@@ -95,7 +100,7 @@ TEST_F(FarmSolveTest, StragglersAreReissuedAndBothAttemptsAnswer) {
   ExpectSameAsSolve(farm);
   farm.Drain(seconds(600));  // the straggler finishes what it held
   const SchedulerCounters c = farm.scheduler().counters(farm.now());
-  EXPECT_GT(c.speculative_attempts, 0u);
+  EXPECT_GT(c.speculative_attempts + c.takeovers, 0u);
   EXPECT_GT(c.dropped(DropReason::kLate) + c.dropped(DropReason::kStaleRound), 0u);
 }
 
