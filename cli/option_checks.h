@@ -4,6 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "base/toml_table_reader.h"
+
 namespace radfarm {
 
 // An integer >= 1 that fits in int64 (job ids, counts).
@@ -12,5 +14,7 @@ const CLI::Validator& PositiveInteger();
 const CLI::Validator& PositiveReal();
 // A number in [low, high].
 CLI::Validator RealInRange(double low, double high);
+// A number in `range`, refused in the job file's words: "must be in (0, 1), got 1".
+CLI::Validator RealIn(const Interval& range);
 
 }  // namespace radfarm

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "base/result.h"
+#include "base/toml_table_reader.h"
 #include "core/solver_settings.h"
 #include "mesh/mesh_settings.h"
 #include "mesh/refine_settings.h"
@@ -20,6 +21,10 @@ struct Job {
   SolverSettings solver{.gather_rays = kDefaultGatherRays};
   Camera camera;
 };
+
+// The tolerance a job may ask for (`solver.tolerance` in the job file, `--tolerance` on the command
+// line): one range, so both refuse the same values with the same words.
+inline Interval ToleranceRange() { return Interval::Open(0, 1); }
 
 // Loads SCENE: a `.toml` job file, or an `.obj` that becomes a job with default settings.
 // Unknown keys, wrong types and out-of-range values are errors naming the file, line and key.
