@@ -18,6 +18,7 @@ std::string FormatWatchLine(const JobInfo& j) {
   if (!IsTerminalState(j.state)) {
     line += ", ETA " + (j.eta_seconds ? FormatDuration(*j.eta_seconds) : std::string("?"));
   }
+  if (j.waiting_for_agents) line += std::string("; ") + kNoAgentConnected;
   if (j.stop_reason) line += ", " + *j.stop_reason;
   if (j.error) line += ": " + *j.error;
   return line;
@@ -34,7 +35,7 @@ void WatchPrinter::Show(const JobInfo& job, const nlohmann::json& object) {
                  std::string(kWidth - filled, '.').c_str(), FormatWatchLine(job).c_str());
     drew_bar_ = true;
   } else {
-    const Seen seen{job.state, job.round, job.agents};
+    const Seen seen{job.state, job.round, job.agents, job.waiting_for_agents};
     if (last_ == seen) return;
     last_ = seen;
     const std::string line =

@@ -21,7 +21,8 @@ enum class WatchStyle {
 };
 
 // "job 3 running: round 12, unshot 0.5320%, 123456 rays, 3.21 Mrays/s, 2 agents, ETA 14s", then
-// the stop reason or the error when there is one.
+// kNoAgentConnected when the job waits for agents and none is connected, the stop reason or the
+// error when there is one.
 std::string FormatWatchLine(const JobInfo& job);
 
 class WatchPrinter {
@@ -38,6 +39,7 @@ class WatchPrinter {
     std::string state;
     uint64_t round;
     uint64_t agents;
+    bool waiting_for_agents;
     bool operator==(const Seen&) const = default;
   };
 

@@ -138,7 +138,8 @@ json ControlRequests::JobJson(const JobSummary& s) {
            {"rays_per_second", 0.0},
            {"agents", 0},
            {"eta_seconds", nullptr},
-           {"stop_reason", nullptr}};
+           {"stop_reason", nullptr},
+           {"waiting_for_agents", false}};
   double unshot = s.unshot_fraction;
   if (RunningJob* runner = jobs_.FindRunner(static_cast<uint64_t>(r.id))) {
     // The live view is ahead of the store by the rounds not yet committed.
@@ -152,6 +153,9 @@ json ControlRequests::JobJson(const JobSummary& s) {
       agents += a.leases_held > 0;
     job["agents"] = agents;
     if (auto eta = runner->EtaSeconds()) job["eta_seconds"] = *eta;
+    // Its round is leased out (a round computed here, a reduction or the end run on the compute
+    // thread in the other phases) and nobody is there to take the leases.
+    job["waiting_for_agents"] = runner->phase() == RunningJob::Phase::kRound && agents_.active() == 0;
   }
   if (r.state == store::JobState::kDone) {
     job["stop_reason"] = StopReasonOf(s);
