@@ -26,7 +26,7 @@ bool FdIsJournalStream(int fd, const char* journal_stream) {
       !ParseUnsigned(value.substr(colon + 1), &inode)) {
     return false;
   }
-  struct stat st{};
+  struct stat st {};
   if (::fstat(fd, &st) != 0) return false;
   return uintmax_t(st.st_dev) == device && uintmax_t(st.st_ino) == inode;
 }

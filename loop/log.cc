@@ -22,7 +22,7 @@ std::atomic<PrefixMode> prefix_mode{PrefixMode::kUnknown};
 
 PrefixMode DetectPrefixMode() {
   return FdIsJournalStream(STDERR_FILENO, std::getenv("JOURNAL_STREAM")) ? PrefixMode::kPriority
-                                                                        : PrefixMode::kPlain;
+                                                                         : PrefixMode::kPlain;
 }
 
 bool WithPriorityPrefix() {

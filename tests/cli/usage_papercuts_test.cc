@@ -58,11 +58,12 @@ TEST(UsagePapercutsTest, ToleranceOneIsRefusedOnTheCommandLineAsInTheJobFile) {
     if (std::string(command) == "render") args.insert(args.end(), {"--out", dir.path()});
     const auto r = RunCommand(args);
     EXPECT_EQ(r.exit_code, kExitBadInput) << command;
-    EXPECT_TRUE(Mentions(r.err, "--tolerance: must be in (0, 1), got 1")) << command << ": "
-                                                                          << r.err;
+    EXPECT_TRUE(Mentions(r.err, "--tolerance: must be in (0, 1), got 1"))
+        << command << ": " << r.err;
   }
   const std::string job = dir.path() + "/tolerance.toml";
-  std::ofstream(job) << "scene = \"" << kPapercutScenes << "furnace.obj\"\n[solver]\ntolerance = 1\n";
+  std::ofstream(job) << "scene = \"" << kPapercutScenes
+                     << "furnace.obj\"\n[solver]\ntolerance = 1\n";
   const auto r = RunCommand({RADFARM_CLI_PATH, "render", job, "--out", dir.path()});
   EXPECT_EQ(r.exit_code, kExitBadInput);
   EXPECT_TRUE(Mentions(r.err, "'solver.tolerance' must be in (0, 1), got 1")) << r.err;
@@ -94,8 +95,8 @@ TEST(UsagePapercutsTest, SubmitHelpSaysWhatTheDefaultNameIs) {
 // Was: "ray budget after 1 rounds".
 TEST(UsagePapercutsTest, OneRoundIsSingular) {
   TempDir dir;
-  const auto r = RunCommand(
-      {RADFARM_CLI_PATH, "render", kPapercutScenes + "furnace.obj", "--out", dir.path(), "--rays", "100"});
+  const auto r = RunCommand({RADFARM_CLI_PATH, "render", kPapercutScenes + "furnace.obj", "--out",
+                             dir.path(), "--rays", "100"});
   EXPECT_EQ(r.exit_code, kExitOk) << r.err;
   EXPECT_TRUE(Mentions(r.out, "ray budget after 1 round:")) << r.out;
 }

@@ -33,9 +33,10 @@ TEST(JournalIntegrationTest, JournalctlPriorityWarningShowsWarningsAndErrorsOnly
                           std::to_string(std::random_device{}());
   // systemd-cat connects stdout and stderr to the journal's stream; $JOURNAL_STREAM is set from
   // that stream as systemd sets it for a service, whether or not this systemd-cat sets it itself.
-  const auto cat = RunCommand({"/usr/bin/systemd-cat", "-t", tag, "/bin/sh", "-c",
-                               "JOURNAL_STREAM=$(stat -L -c %d:%i /proc/self/fd/2) exec \"$0\" \"$1\"",
-                               RADFARM_LOG_PROBE_PATH, tag});
+  const auto cat =
+      RunCommand({"/usr/bin/systemd-cat", "-t", tag, "/bin/sh", "-c",
+                  "JOURNAL_STREAM=$(stat -L -c %d:%i /proc/self/fd/2) exec \"$0\" \"$1\"",
+                  RADFARM_LOG_PROBE_PATH, tag});
   ASSERT_EQ(cat.exit_code, 0) << cat.err;
   // journald stores the lines asynchronously: wait until the last one is there.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);

@@ -18,7 +18,7 @@ namespace radfarm::loop {
 namespace {
 
 std::string DeviceInode(int fd) {
-  struct stat st{};
+  struct stat st {};
   EXPECT_EQ(::fstat(fd, &st), 0);
   return std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino);
 }
