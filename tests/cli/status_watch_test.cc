@@ -78,10 +78,9 @@ json Waiting(json job, bool waiting) {
 
 // Issue 19: a watch sat at "round 0, ... 0 agents, ETA ?" with no hint that no agent was there.
 TEST(StatusWatchTest, SaysPlainlyWhenNoAgentIsConnectedAndWhenOneComes) {
-  FakeControlServer server(Script({Waiting(JobObject(3, "running", 0), true),
-                                   Waiting(JobObject(3, "running", 0), true),
-                                   Waiting(JobObject(3, "running", 0), false),
-                                   JobObject(3, "done", 3)}));
+  FakeControlServer server(
+      Script({Waiting(JobObject(3, "running", 0), true), Waiting(JobObject(3, "running", 0), true),
+              Waiting(JobObject(3, "running", 0), false), JobObject(3, "done", 3)}));
   const auto r = RunFarm(server.socket_path(), {"status", "3", "--watch"});
   ASSERT_EQ(r.exit_code, kExitOk) << r.err;
   const std::vector<std::string> lines = Lines(r.out);
@@ -93,8 +92,9 @@ TEST(StatusWatchTest, SaysPlainlyWhenNoAgentIsConnectedAndWhenOneComes) {
 }
 
 TEST(StatusWatchTest, StatusSaysNoAgentIsConnected) {
-  FakeControlServer server(
-      [](const ControlRequest&) { return OkAnswer({{"job", Waiting(JobObject(3, "running", 0), true)}}); });
+  FakeControlServer server([](const ControlRequest&) {
+    return OkAnswer({{"job", Waiting(JobObject(3, "running", 0), true)}});
+  });
   const auto r = RunFarm(server.socket_path(), {"status", "3"});
   ASSERT_EQ(r.exit_code, kExitOk) << r.err;
   EXPECT_NE(r.out.find("agents:     0, no agent connected: start radfarm-agent"), std::string::npos)
