@@ -47,7 +47,8 @@ Agent::Agent(loop::EventLoop& loop, AgentSettings settings, protocol::FarmSecret
       settings_(std::move(settings)),
       secret_(std::move(secret)),
       store_(std::move(store)),
-      master_(settings_.master.ToString()),
+      master_(settings_.master_file.empty() ? settings_.master.ToString()
+                                            : "the master in " + settings_.master_file),
       backoff_(ReconnectBackoff::Options{}, jitter_seed),
       systemd_(systemd) {}
 
@@ -121,6 +122,10 @@ void Agent::StartAttempt() {
   LogLine(LogLevel::kDebug, "agent")
       << "connecting to " << master_ << " (attempt " << attempt_ << ")";
   ReportStatus();
+  if (!settings_.master_file.empty()) {
+    ConnectFromMasterFile();
+    return;
+  }
   if (Result<loop::SocketAddress> literal = loop::SocketAddress::FromIpLiteral(settings_.master)) {
     Connect(*literal);
     return;
@@ -136,6 +141,44 @@ void Agent::StartAttempt() {
           return;
         }
         Connect(*address);
+      });
+  if (submitted) {
+    ++resolving_;
+  } else {
+    ScheduleRetry("cannot connect to", submitted.error());
+  }
+}
+
+// The file is read again at every attempt: it does not exist before the master listens, and a
+// master restarted on port 0 writes another port into it. Reading and resolving both block, so
+// they run on the I/O worker.
+void Agent::ConnectFromMasterFile() {
+  struct Found {
+    loop::HostPort master;
+    loop::SocketAddress address;
+  };
+  Status submitted = io_->Submit(
+      [file = settings_.master_file, n = attempt_ - 1]() -> Result<Found> {
+        Result<loop::HostPort> master = ReadMasterFile(file);
+        RADFARM_RETURN_IF_ERROR(master);
+        Result<loop::SocketAddress> address = loop::SocketAddress::FromIpLiteral(*master);
+        if (!address) address = ResolveMaster(*master, n);
+        RADFARM_RETURN_IF_ERROR(address);
+        return Found{*master, *address};
+      },
+      [this](Result<Found> found) {
+        --resolving_;
+        if (state_ != State::kConnecting || link_) return;
+        if (!found) {
+          ScheduleRetry("cannot connect to", found.error());
+          return;
+        }
+        const std::string master = found->master.ToString();
+        if (master != master_) {
+          LogLine(LogLevel::kInfo, "agent") << settings_.master_file << " names " << master;
+          master_ = master;
+        }
+        Connect(found->address);
       });
   if (submitted) {
     ++resolving_;

@@ -74,6 +74,8 @@ class Agent {
 
   void StartAttempt();
   void Connect(const loop::SocketAddress& address);
+  // Reads settings_.master_file on the I/O worker, then connects to the address it names.
+  void ConnectFromMasterFile();
   void OnAuthenticated(const protocol::WelcomeMsg& welcome);
   void OnMessage(const protocol::Message& message);
   void OnLinkClosed(const LinkClosed& closed);
@@ -102,7 +104,7 @@ class Agent {
   AgentSettings settings_;
   protocol::FarmSecret secret_;
   std::optional<SceneStore> store_;
-  std::string master_;  // HOST:PORT as given, for logs
+  std::string master_;  // HOST:PORT as given or last read from the master file, for logs
   ReconnectBackoff backoff_;
   State state_ = State::kWaiting;
   uint32_t attempt_ = 0;  // attempts since the last handshake that succeeded

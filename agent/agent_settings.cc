@@ -27,12 +27,22 @@ T Pick(const std::optional<T>& first, const std::optional<T>& second, T fallback
 
 Result<AgentSettings> ResolveSettings(const AgentOptions& command_line, const AgentOptions& file) {
   AgentSettings settings;
-  if (command_line.master) {
-    settings.master = *command_line.master;
-  } else if (file.master) {
-    settings.master = *file.master;
+  if (command_line.master && command_line.master_file) {
+    return Error{"--master and --master-file: give one of them, not both"};
+  }
+  if (file.master && file.master_file) {
+    return Error{"'master' and 'master_file' in the --config file: give one of them, not both"};
+  }
+  const bool from_command_line = command_line.master || command_line.master_file;
+  const AgentOptions& source = from_command_line ? command_line : file;
+  if (source.master) {
+    settings.master = *source.master;
+  } else if (source.master_file) {
+    settings.master_file = *source.master_file;
   } else {
-    return Error{"no master: give --master HOST:PORT or 'master' in the --config file"};
+    return Error{
+        "no master: give --master HOST:PORT, --master-file FILE, or 'master' or 'master_file' in "
+        "the --config file"};
   }
   settings.secret_file = Pick(command_line.secret_file, file.secret_file, std::string());
   if (settings.secret_file.empty()) {

@@ -19,7 +19,11 @@ namespace radfarm::agent {
 inline constexpr unsigned kMaxThreads = 1024;
 
 struct AgentSettings {
-  loop::HostPort master;    // where radfarmd listens
+  loop::HostPort master;  // where radfarmd listens (unset when master_file is)
+  // Non-empty: the master's HOST:PORT is read from this file (its listen.addr) before every
+  // connection attempt, so the agent waits for a master that has not started yet and finds one
+  // restarted on another port.
+  std::string master_file;
   std::string secret_file;  // hex farm secret (protocol/farm_secret.h)
   std::string state_dir;    // empty: scenes are kept in memory only
   unsigned threads = 1;     // batch worker threads
@@ -39,6 +43,7 @@ struct AgentSettings {
 // One source's settings; absent values are left to the other source or the default.
 struct AgentOptions {
   std::optional<loop::HostPort> master;
+  std::optional<std::string> master_file;
   std::optional<std::string> secret_file;
   std::optional<std::string> state_dir;
   std::optional<unsigned> threads;
@@ -50,8 +55,10 @@ struct AgentOptions {
   std::optional<std::string> idle_source;
 };
 
-// Command-line values win over the config file's. Errors when no source names the master or the
-// secret file, or when an idle source is given without an enabled idle policy.
+// Command-line values win over the config file's (a master or master file on the command line
+// replaces either in the file). Errors when no source names the master or the secret file, when one
+// source gives both a master and a master file, or when an idle source is given without an enabled
+// idle policy.
 Result<AgentSettings> ResolveSettings(const AgentOptions& command_line, const AgentOptions& file);
 
 // The master's "HOST:PORT"; port 0 is refused (it only means something to a listener). Errors read

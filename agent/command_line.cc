@@ -14,13 +14,18 @@ namespace {
 
 // The raw flag values; an option's count() says whether it was given.
 struct Flags {
-  std::string master, secret_file, state_dir, name, config, log_level, idle_source;
+  std::string master, master_file, secret_file, state_dir, name, config, log_level, idle_source;
   unsigned threads = 0;
   double slowdown = 1, exit_when_idle = 0;
 };
 
 void AddFlags(CLI::App& app, Flags* f) {
   app.add_option("--master", f->master, "HOST:PORT of the master daemon radfarmd");
+  app.add_option(
+      "--master-file", f->master_file,
+      "Read HOST:PORT from FILE (the master's STATE_DIR/listen.addr) before every "
+      "connection attempt: waits for the file, and follows a master restarted on another "
+      "port");
   app.add_option("--secret-file", f->secret_file, "File holding the farm secret in hex");
   app.add_option("--state-dir", f->state_dir,
                  "Directory for fetched scenes (default: keep them in memory only)");
@@ -50,6 +55,10 @@ Result<AgentOptions> OptionsFromFlags(const CLI::App& app, const Flags& f) {
     Result<loop::HostPort> master = ParseMasterAddress(f.master, "--master");
     RADFARM_RETURN_IF_ERROR(master);
     options.master = *master;
+  }
+  if (given("--master-file")) {
+    if (f.master_file.empty()) return Error{"--master-file: must not be empty"};
+    options.master_file = f.master_file;
   }
   if (given("--secret-file")) options.secret_file = f.secret_file;
   if (given("--state-dir")) options.state_dir = f.state_dir;

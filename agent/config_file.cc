@@ -42,6 +42,8 @@ Status ReadKey(TomlTableReader& reader, const std::string& path, const std::stri
     Result<loop::HostPort> master = ParseMasterAddress(text, "'master'");
     if (!master) return ErrorAt(path, line, master.error());
     options->master = *master;
+  } else if (key == "master_file") {
+    RADFARM_RETURN_IF_ERROR(ReadPath(reader, path, key, &options->master_file));
   } else if (key == "secret_file") {
     RADFARM_RETURN_IF_ERROR(ReadPath(reader, path, key, &options->secret_file));
   } else if (key == "state_dir") {

@@ -32,6 +32,7 @@ Result<JobInfo> ParseJob(const nlohmann::json& object, const std::string& where)
   job.agents = r.Count("agents");
   job.eta_seconds = r.NullableNumber("eta_seconds");
   job.stop_reason = r.NullableString("stop_reason");
+  job.waiting_for_agents = r.Bool("waiting_for_agents");
   RADFARM_RETURN_IF_ERROR(r.status());
   return job;
 }

@@ -32,6 +32,7 @@ struct JobInfo {
   uint64_t agents = 0;
   std::optional<double> eta_seconds;
   std::optional<std::string> stop_reason;
+  bool waiting_for_agents = false;  // its round is leased out and no agent is connected
 };
 
 struct AgentInfo {

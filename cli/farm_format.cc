@@ -92,7 +92,8 @@ std::string FormatJobStatus(const JobInfo& j) {
       {"progress:", Percent(j.progress, "%.1f%%")},
       {"rays:", std::to_string(j.rays)},
       {"rays/s:", FormatRaysPerSecond(j.rays_per_second)},
-      {"agents:", std::to_string(j.agents)},
+      {"agents:", std::to_string(j.agents) +
+                      (j.waiting_for_agents ? std::string(", ") + kNoAgentConnected : "")},
       {"ETA:", Eta(j)},
       {"patches:", std::to_string(j.patches)},
       {"seed:", std::to_string(j.seed)},

@@ -20,6 +20,12 @@ std::string FormatRaysPerSecond(double rays_per_second);
 // Left-aligned columns two spaces apart; the first row is the header. No trailing spaces.
 std::string FormatTable(const std::vector<std::vector<std::string>>& rows);
 
+// What `status` says of a job whose round waits for agents when none is connected (the master's
+// `waiting_for_agents`): without it a watch sits at round 0 and "ETA ?" with no hint why.
+inline constexpr const char* kNoAgentConnected =
+    "no agent connected: start radfarm-agent --master ADDRESS --secret-file FILE (ADDRESS is in "
+    "the master's STATE_DIR/listen.addr)";
+
 std::string FormatJobTable(const std::vector<JobInfo>& jobs);
 // One "key: value" line per field, aligned.
 std::string FormatJobStatus(const JobInfo& job);

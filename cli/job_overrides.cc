@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "cli/option_checks.h"
+#include "job/job.h"
 
 namespace radfarm {
 
@@ -12,7 +13,7 @@ void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
   command
       ->add_option("--tolerance", overrides->tolerance,
                    "Stop when unshot power < T x emitted power (default 0.001)")
-      ->check(RealInRange(1e-12, 1.0));
+      ->check(RealIn(ToleranceRange()));
   command->add_option("--rays", overrides->rays, "Stop after N rays (default: no limit)")
       ->check(PositiveInteger());
   command->add_option("--seconds", overrides->seconds, "Stop after S seconds (default: no limit)")

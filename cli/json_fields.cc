@@ -73,6 +73,12 @@ std::string FieldReader::String(const char* key) {
   return Expect(v->is_string(), key, *v, "a string") ? v->get<std::string>() : "";
 }
 
+bool FieldReader::Bool(const char* key) {
+  const json* v = Field(key);
+  if (!v) return false;
+  return Expect(v->is_boolean(), key, *v, "true or false") && v->get<bool>();
+}
+
 std::string FieldReader::OneOf(const char* key, const std::vector<std::string_view>& allowed) {
   std::string value = String(key);
   if (problem_) return value;

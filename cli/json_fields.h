@@ -23,6 +23,7 @@ class FieldReader {
   uint64_t Count(const char* key);  // an integer >= 0
   double Number(const char* key);   // any JSON number
   std::string String(const char* key);
+  bool Bool(const char* key);
   // A string that must be one of `allowed`.
   std::string OneOf(const char* key, const std::vector<std::string_view>& allowed);
   // These also accept null, returned as nullopt.

@@ -23,6 +23,27 @@
 #include "cli/status_command.h"
 #include "cli/submit_command.h"
 
+namespace {
+
+// CLI11 checks required options and subcommands before it complains about arguments it does not
+// know, so `radfarm bogus` said "A subcommand is required" and `render --bogus x` "--out is
+// required". An argument nobody knows is the first thing to name.
+CLI::Error UnknownArgumentsFirst(const CLI::App& app, const CLI::ParseError& error) {
+  const std::vector<std::string> unknown = app.remaining(/*recurse=*/true);
+  if (unknown.empty()) return error;
+  if (app.get_subcommands().empty() && !unknown.front().starts_with('-')) {
+    std::string names;
+    for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; }))
+      names += (names.empty() ? "" : ", ") + command->get_name();
+    return CLI::Error("UnknownSubcommand",
+                      "unknown subcommand '" + unknown.front() + "' (one of " + names + ")",
+                      CLI::ExitCodes::ExtrasError);
+  }
+  return CLI::ExtrasError(unknown);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace radfarm;
   CLI::App app{"radfarm: progressive-refinement radiosity on one machine or a farm"};
@@ -72,8 +93,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? kExitOk : kExitBadInput;
+    if (e.get_exit_code() == 0) return app.exit(e) == 0 ? kExitOk : kExitBadInput;  // --help
+    app.exit(UnknownArgumentsFirst(app, e));
+    return kExitBadInput;
   }
   for (const auto& [command, run] : commands) {
     if (command->parsed()) return run();

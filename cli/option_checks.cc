@@ -72,4 +72,16 @@ CLI::Validator RealInRange(double low, double high) {
       "NUMBER in " + range);
 }
 
+CLI::Validator RealIn(const Interval& range) {
+  return CLI::Validator(
+      [range](std::string& text) -> std::string {
+        char* stop = nullptr;
+        const double value = std::strtod(text.c_str(), &stop);
+        if (text.empty() || *stop != '\0') return "must be a number, got '" + text + "'";
+        if (!range.Contains(value)) return "must be " + range.Describe() + ", got " + text;
+        return "";
+      },
+      "NUMBER " + range.Describe());
+}
+
 }  // namespace radfarm

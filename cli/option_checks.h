@@ -4,6 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "base/toml_table_reader.h"
+
 namespace radfarm {
 
 // An integer >= 1 that fits in int64 (job ids, counts).
@@ -14,5 +16,7 @@ const CLI::Validator& PositiveId();
 const CLI::Validator& PositiveReal();
 // A number in [low, high].
 CLI::Validator RealInRange(double low, double high);
+// A number in `range`, refused in the job file's words: "must be in (0, 1), got 1".
+CLI::Validator RealIn(const Interval& range);
 
 }  // namespace radfarm

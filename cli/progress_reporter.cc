@@ -5,39 +5,90 @@
 #include <string>
 
 namespace radfarm {
+namespace {
+
+constexpr int kBarWidth = 30;
+// A terminal's bar is redrawn at most this often during a round; a log gets a line at most once
+// a second.
+constexpr double kRedrawSeconds = 0.2;
+constexpr double kLogLineSeconds = 1.0;
+
+}  // namespace
 
 ProgressReporter::ProgressReporter(std::FILE* out, bool interactive)
     : out_(out), interactive_(interactive) {}
 
+std::string ProgressReporter::Eta(const ProgressEstimate& e) {
+  if (!e.seconds_left) return "ETA ?";
+  return "ETA " + std::to_string(int64_t(std::ceil(*e.seconds_left))) + "s";
+}
+
+void ProgressReporter::Bar(double fraction, const std::string& text) {
+  const int filled = int(std::clamp(fraction, 0.0, 1.0) * kBarWidth);
+  std::fprintf(out_, "\r[%s%s] %s   ", std::string(filled, '#').c_str(),
+               std::string(kBarWidth - filled, '.').c_str(), text.c_str());
+  drew_ = true;
+}
+
 void ProgressReporter::OnRound(const RoundProgress& p) {
+  std::lock_guard lock(mutex_);
+  if (!estimator_) estimator_.emplace(p.tolerance);
+  estimator_->AddRound(
+      {p.round_rays, p.round_seconds, p.unshot_before, p.unshot_fraction, p.gather});
+  position_ = {p.rays, p.unshot_fraction, p.gather_rays_left};
+  const ProgressEstimate e = estimator_->Estimate(position_);
   const double rate = p.seconds > 0 ? double(p.rays) / p.seconds : 0;
-  const double eta =
-      EstimateSecondsLeft(p.unshot_fraction, p.tolerance, p.seconds, p.rays, p.gather_rays_left);
-  const std::string eta_text = eta < 0 ? "?" : std::to_string(int(std::ceil(eta))) + "s";
+  char text[160];
   if (p.gather) {
     std::fprintf(out_, "%sfinal gather: %llu rays in all, %.2f Mrays/s\n", drew_ ? "\n" : "",
                  static_cast<unsigned long long>(p.rays), rate / 1e6);
     drew_ = false;
   } else if (interactive_) {
-    constexpr int kWidth = 30;
-    const int filled = int(ConvergenceFraction(p.unshot_fraction, p.tolerance) * kWidth);
-    std::fprintf(out_, "\r[%s%s] round %u  unshot %.3f%%  %.2f Mrays/s  ETA %s   ",
-                 std::string(filled, '#').c_str(), std::string(kWidth - filled, '.').c_str(),
-                 p.round, 100 * p.unshot_fraction, rate / 1e6, eta_text.c_str());
-    drew_ = true;
+    std::snprintf(text, sizeof text, "round %u  unshot %.3f%%  %.2f Mrays/s  %s", p.round,
+                  100 * p.unshot_fraction, rate / 1e6, Eta(e).c_str());
+    Bar(e.fraction, text);
   } else {
     const bool last = p.unshot_fraction <= p.tolerance;
-    if (!last && p.seconds - last_print_seconds_ < 1.0) return;
+    if (!last && p.seconds - last_print_seconds_ < kLogLineSeconds) return;
     last_print_seconds_ = p.seconds;
-    std::fprintf(out_, "round %u: unshot %.4f%% of emitted, %llu rays, %.2f Mrays/s, ETA %s\n",
-                 p.round, 100 * p.unshot_fraction, static_cast<unsigned long long>(p.rays),
-                 rate / 1e6, eta_text.c_str());
+    std::fprintf(out_, "round %u: unshot %.4f%% of emitted, %llu rays, %.2f Mrays/s, %s\n", p.round,
+                 100 * p.unshot_fraction, static_cast<unsigned long long>(p.rays), rate / 1e6,
+                 Eta(e).c_str());
+  }
+  std::fflush(out_);
+}
+
+void ProgressReporter::OnRoundRunning(const RoundRunning& r) {
+  if (!r.gather || r.round_rays == 0) return;
+  std::lock_guard lock(mutex_);
+  const double every = interactive_ ? kRedrawSeconds : kLogLineSeconds;
+  const bool last = r.round_rays_done >= r.round_rays;
+  if (last || (last_gather_print_ >= 0 && r.round_seconds - last_gather_print_ < every)) return;
+  if (last_gather_print_ < 0 && r.round_seconds < every) return;  // a short gather needs no lines
+  last_gather_print_ = r.round_seconds;
+  SolvePosition now = position_;
+  now.round_rays = r.round_rays;
+  now.round_rays_done = r.round_rays_done;
+  now.round_seconds = r.round_seconds;
+  now.round_gather = true;
+  const ProgressEstimate e = estimator_ ? estimator_->Estimate(now) : ProgressEstimate{};
+  const double part = double(r.round_rays_done) / double(r.round_rays);
+  const double rate = r.round_seconds > 0 ? double(r.round_rays_done) / r.round_seconds : 0;
+  char text[160];
+  std::snprintf(text, sizeof text, "final gather %.0f%% of %llu rays  %.2f Mrays/s  %s", 100 * part,
+                static_cast<unsigned long long>(r.round_rays), rate / 1e6, Eta(e).c_str());
+  if (interactive_) {
+    Bar(e.fraction, text);
+  } else {
+    std::fprintf(out_, "%s\n", text);
   }
   std::fflush(out_);
 }
 
 void ProgressReporter::Finish() {
+  std::lock_guard lock(mutex_);
   if (interactive_ && drew_) std::fputc('\n', out_);
+  drew_ = false;
   std::fflush(out_);
 }
 

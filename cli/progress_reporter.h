@@ -1,10 +1,15 @@
 // Progress of a solve for a person watching: a redrawn bar on a terminal, plain log lines (at most
-// one a second, plus the last) when stdout is a pipe or a file.
+// one a second, plus the last) when stdout is a pipe or a file. The bar and the ETA count rays:
+// the shooting rounds still to come and the final gather (core/progress_estimator.h), so the bar
+// does not reach its end before the gather, and the gather shows its own progress.
 #pragma once
 
 #include <cstdio>
+#include <mutex>
+#include <optional>
+#include <string>
 
-#include "core/solve_control.h"  // ConvergenceFraction, EstimateSecondsLeft
+#include "core/progress_estimator.h"
 #include "solve/solve_state.h"
 
 namespace radfarm {
@@ -14,14 +19,26 @@ class ProgressReporter {
   // `interactive`: redraw one line in place (a terminal); otherwise print log lines.
   ProgressReporter(std::FILE* out, bool interactive);
 
+  // After each round (the solve's calling thread).
   void OnRound(const RoundProgress& progress);
+  // During a round, after each batch (RefiningHooks::during_round: a worker thread, one call at
+  // a time). Shows the final gather's progress; a shooting round is short and waits for OnRound.
+  void OnRoundRunning(const RoundRunning& running);
   // Ends the bar's line (interactive) so later output starts on a fresh line.
   void Finish();
 
  private:
+  // "ETA 12s", or "ETA ?" before anything is known.
+  static std::string Eta(const ProgressEstimate& estimate);
+  void Bar(double fraction, const std::string& text);
+
   std::FILE* out_;
   bool interactive_;
+  std::mutex mutex_;  // OnRound and OnRoundRunning come from different threads
+  std::optional<ProgressEstimator> estimator_;  // made at the first round (the tolerance)
+  SolvePosition position_;                      // after the last round
   double last_print_seconds_ = -1;
+  double last_gather_print_ = -1;  // round seconds of the gather's last line
   bool drew_ = false;
 };
 

@@ -77,6 +77,8 @@ int RunRender(const RenderOptions& options) {
     };
   }
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
+  if (!options.quiet)
+    hooks.during_round = [&](const RoundRunning& r) { reporter.OnRoundRunning(r); };
   Result<RefiningSolveResult> solved = Error{"not solved"};
   try {
     solved = SolveRefining(
@@ -113,11 +115,11 @@ int RunRender(const RenderOptions& options) {
   }
   if (!options.quiet) {
     const SolveStats& st = solution.stats;
-    std::printf(
-        "%s after %llu rounds: unshot %.4f%%, %llu rays in %.2f s (%.2f Mrays/s); wrote %s\n",
-        st.stop_reason.c_str(), static_cast<unsigned long long>(st.rounds),
-        100 * st.unshot_fraction, static_cast<unsigned long long>(st.rays), st.seconds,
-        st.rays_per_second / 1e6, options.out_dir.c_str());
+    std::printf("%s after %llu %s: unshot %.4f%%, %llu rays in %.2f s (%.2f Mrays/s); wrote %s\n",
+                st.stop_reason.c_str(), static_cast<unsigned long long>(st.rounds),
+                st.rounds == 1 ? "round" : "rounds", 100 * st.unshot_fraction,
+                static_cast<unsigned long long>(st.rays), st.seconds, st.rays_per_second / 1e6,
+                options.out_dir.c_str());
   }
   return kExitOk;
 }

@@ -47,8 +47,26 @@ class TempFile {
 
 std::string Errno(const std::string& what) { return what + ": " + std::strerror(errno); }
 
+// Creates the missing folders above `file`, each with mode 0700 (only its owner may look inside
+// a folder that holds a secret); folders that exist are left as they are.
+Status CreateMissingParents(const std::string& file) {
+  const std::filesystem::path parent = std::filesystem::path(file).parent_path();
+  std::filesystem::path path;
+  for (const std::filesystem::path& part : parent) {
+    path /= part;
+    if (::mkdir(path.c_str(), 0700) != 0 && errno != EEXIST) {
+      return Error{Errno(path.string() + ": cannot create the folder")};
+    }
+  }
+  return Ok{};
+}
+
 // Returns the exit code.
 int WriteSecretFile(const std::string& file, const std::string& text, bool force) {
+  if (Status s = CreateMissingParents(file); !s) {
+    PrintError(s.error());
+    return kExitFailure;
+  }
   TempFile temp(file);
   if (temp.fd() < 0) {
     PrintError(Errno(file + ": cannot create a temporary file beside it"));
@@ -82,7 +100,9 @@ CLI::App* AddSecretCommand(CLI::App& app, SecretOptions* options) {
   CLI::App* secret = app.add_subcommand("secret", "Manage the farm secret (the handshake's key)");
   secret->require_subcommand(1);
   CLI::App* create = secret->add_subcommand(
-      "new", "Write a fresh farm secret as hex to FILE (mode 0600), or to stdout with -");
+      "new",
+      "Write a fresh farm secret as hex to FILE (mode 0600; missing folders above it are made "
+      "with mode 0700), or to stdout with -");
   create->add_option("FILE", options->file, "Key file to create, or - for stdout")->required();
   create->add_flag("--force,-f", options->force, "Replace FILE if it exists");
   return create;

@@ -17,7 +17,11 @@ std::string FormatWatchLine(const JobInfo& j) {
   std::string line = text;
   if (!IsTerminalState(j.state)) {
     line += ", ETA " + (j.eta_seconds ? FormatDuration(*j.eta_seconds) : std::string("?"));
+    char done[32];
+    std::snprintf(done, sizeof done, ", %.0f%% done", 100 * std::clamp(j.progress, 0.0, 1.0));
+    line += done;
   }
+  if (j.waiting_for_agents) line += std::string("; ") + kNoAgentConnected;
   if (j.stop_reason) line += ", " + *j.stop_reason;
   if (j.error) line += ": " + *j.error;
   return line;
@@ -34,7 +38,8 @@ void WatchPrinter::Show(const JobInfo& job, const nlohmann::json& object) {
                  std::string(kWidth - filled, '.').c_str(), FormatWatchLine(job).c_str());
     drew_bar_ = true;
   } else {
-    const Seen seen{job.state, job.round, job.agents};
+    const Seen seen{job.state, job.round, job.agents, job.waiting_for_agents,
+                    int(std::clamp(job.progress, 0.0, 1.0) * 10)};
     if (last_ == seen) return;
     last_ = seen;
     const std::string line =

@@ -1,7 +1,7 @@
 // WatchPrinter: what `radfarm status ID --watch` shows of a job it polls. On a terminal, one line
 // redrawn in place: a progress bar with round, unshot power, rays/s, agents and ETA. Otherwise (a
-// pipe, a file, or --json) one line per change of state, round or agent count: a log to read
-// later, not a copy of every poll.
+// pipe, a file, or --json) one line per change of state, round, agent count or tenth of progress:
+// a log to read later, not a copy of every poll.
 #pragma once
 
 #include <cstdint>
@@ -21,7 +21,8 @@ enum class WatchStyle {
 };
 
 // "job 3 running: round 12, unshot 0.5320%, 123456 rays, 3.21 Mrays/s, 2 agents, ETA 14s", then
-// the stop reason or the error when there is one.
+// kNoAgentConnected when the job waits for agents and none is connected, the stop reason or the
+// error when there is one.
 std::string FormatWatchLine(const JobInfo& job);
 
 class WatchPrinter {
@@ -38,6 +39,8 @@ class WatchPrinter {
     std::string state;
     uint64_t round;
     uint64_t agents;
+    bool waiting_for_agents;
+    int tenths;  // of progress: a long round (the final gather) still shows it moving
     bool operator==(const Seen&) const = default;
   };
 

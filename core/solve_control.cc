@@ -40,14 +40,4 @@ double ConvergenceFraction(double unshot_fraction, double tolerance) {
   return std::clamp(std::log(unshot_fraction) / std::log(tolerance), 0.0, 1.0);
 }
 
-double EstimateSecondsLeft(double unshot_fraction, double tolerance, double seconds, uint64_t rays,
-                           uint64_t gather_rays_left) {
-  const double done = ConvergenceFraction(unshot_fraction, tolerance);
-  if (done <= 0 || seconds <= 0) return -1;
-  const double shooting = seconds * (1 - done) / done;
-  if (gather_rays_left == 0) return shooting;
-  if (rays == 0) return -1;
-  return shooting + seconds * double(gather_rays_left) / double(rays);
-}
-
 }  // namespace radfarm

@@ -34,9 +34,4 @@ std::optional<std::string> StopAfterRound(const RoundPlan& plan, const Progressi
 // log space from 1 (start) to the tolerance (done).
 double ConvergenceFraction(double unshot_fraction, double tolerance);
 
-// Seconds left, extrapolating the geometric decay seen so far, plus the final gather's rays still
-// to come at the rate seen so far (`rays` in `seconds`); negative when unknown.
-double EstimateSecondsLeft(double unshot_fraction, double tolerance, double seconds, uint64_t rays,
-                           uint64_t gather_rays_left);
-
 }  // namespace radfarm

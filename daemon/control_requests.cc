@@ -145,27 +145,34 @@ json ControlRequests::JobJson(const JobSummary& s) {
            {"rays_per_second", 0.0},
            {"agents", 0},
            {"eta_seconds", nullptr},
-           {"stop_reason", nullptr}};
-  double unshot = s.unshot_fraction;
+           {"stop_reason", nullptr},
+           {"waiting_for_agents", false}};
+  // A job not running: how far its convergence came, in log space (no rays to count it by).
+  double progress = ConvergenceFraction(s.unshot_fraction, s.settings.tolerance);
   if (RunningJob* runner = jobs_.FindRunner(static_cast<uint64_t>(r.id))) {
     // The live view is ahead of the store by the rounds not yet committed.
     const JobTotals& t = runner->totals();
     job["round"] = t.round;
     job["rays"] = t.rays;
-    job["unshot_fraction"] = unshot = t.unshot_fraction;
+    job["unshot_fraction"] = t.unshot_fraction;
     job["rays_per_second"] = runner->RaysPerSecond();
     uint32_t agents = 0;
     for (const auto& a : runner->scheduler().counters(LoopNow(loop_)).agents)
       agents += a.leases_held > 0;
     job["agents"] = agents;
-    if (auto eta = runner->EtaSeconds()) job["eta_seconds"] = *eta;
+    const ProgressEstimate estimate = runner->Progress(LoopNow(loop_));
+    if (estimate.seconds_left) job["eta_seconds"] = *estimate.seconds_left;
+    progress = estimate.fraction;
+    // Its round is leased out (a round computed here, a reduction or the end run on the compute
+    // thread in the other phases) and nobody is there to take the leases.
+    job["waiting_for_agents"] =
+        runner->phase() == RunningJob::Phase::kRound && agents_.active() == 0;
   }
   if (r.state == store::JobState::kDone) {
     job["stop_reason"] = StopReasonOf(s);
     job["eta_seconds"] = 0.0;
   }
-  job["progress"] =
-      r.state == store::JobState::kDone ? 1.0 : ConvergenceFraction(unshot, s.settings.tolerance);
+  job["progress"] = r.state == store::JobState::kDone ? 1.0 : progress;
   return job;
 }
 

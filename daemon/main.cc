@@ -11,6 +11,7 @@
 
 #include "base/result.h"
 #include "base/text_file.h"
+#include "daemon/detach.h"
 #include "daemon/master.h"
 #include "daemon/master_config.h"
 #include "loop/event_loop.h"
@@ -30,6 +31,7 @@ struct Flags {
       hold_retry_ms, checkpoint_keep, max_running_jobs, max_agents, max_unauthenticated;
   std::optional<double> checkpoint_seconds, lease_seconds;
   std::optional<uint64_t> local_round_rays, max_store_bytes;
+  bool detach = false;
 };
 
 void AddFlags(CLI::App& app, Flags* f) {
@@ -95,6 +97,10 @@ void AddFlags(CLI::App& app, Flags* f) {
                  "A file holding the web token (16+ characters; `radfarm secret new FILE` makes "
                  "one): needed to pause, resume or cancel from the page, and for everything "
                  "when --http is not on loopback");
+  app.add_flag("--detach", f->detach,
+               "Run in the background: return once the daemon is ready (store open, listeners "
+               "bound, listen.addr written), printing its pid; or with its exit code when it "
+               "cannot start. For scripts; under systemd, leave it out");
 }
 
 template <typename T>
@@ -151,7 +157,8 @@ loop::LogLevel ParseLevel(const std::string& name) {
   return loop::LogLevel::kInfo;
 }
 
-int Run(const MasterConfig& config) {
+// `detached` (with --detach) is told once the master is ready.
+int Run(const MasterConfig& config, std::optional<Detached> detached) {
   loop::SetMinLogLevel(ParseLevel(config.log_level));
   // A peer that closes its socket while we write to it must cost that connection only: without
   // this, the write raises SIGPIPE and the default action ends the daemon.
@@ -168,6 +175,7 @@ int Run(const MasterConfig& config) {
     (void)loop.Close();
     return kExitFailure;
   }
+  if (detached) detached->Ready();
   loop.Run();
   master->reset();
   if (Status s = loop.Close(); !s) {
@@ -200,5 +208,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "radfarmd: %s\n", config.error().c_str());
     return radfarm::daemon::kExitBadInput;
   }
-  return radfarm::daemon::Run(*config);
+  // With --detach the caller's process exits inside Detach.
+  std::optional<radfarm::daemon::Detached> detached =
+      flags.detach ? radfarm::daemon::Detached::Detach() : std::nullopt;
+  if (flags.detach && !detached) return radfarm::daemon::kExitFailure;
+  return radfarm::daemon::Run(*config, std::move(detached));
 }

@@ -47,6 +47,7 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   std::shared_ptr<RunningJob> runner(new RunningJob());
   runner->record_ = record;
   runner->settings_ = bundle->job.solver;
+  runner->estimator_ = ProgressEstimator(runner->settings_.tolerance);
   // The checkpoint as the driver resumes it; a refined mesh's scene checked against its hash.
   std::optional<SolveState> resume;
   std::optional<PatchScene> refined_scene;
@@ -104,6 +105,8 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
 Status RunningJob::StartPlannedRound(scheduler::TimePoint now) {
   if (!planned_) return Error{"job " + std::to_string(id()) + ": no round planned"};
   unfolded_.clear();
+  running_rays_ = planned_->rays;
+  running_gather_ = planned_->gather;
   Status s = scheduler_.StartRound(std::move(*planned_), now);
   planned_.reset();
   if (s.ok()) {
@@ -118,6 +121,7 @@ Result<RoundPlan> RunningJob::TakePlannedRound() {
   RoundPlan plan = std::move(*planned_);
   planned_.reset();
   phase_ = Phase::kReducing;
+  running_rays_ = 0;  // computed here: shown from Reduce's result
   return plan;
 }
 
@@ -165,6 +169,8 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
   const AppliedRound applied = driver_->Apply(*fold_plan_, *fold_, seconds);
   fold_.reset();
   recent_.push_back({round.plan.rays, round_seconds});
+  estimator_.AddRound({round.plan.rays, round_seconds, totals_.unshot_fraction,
+                       applied.unshot_fraction, round.plan.gather});
   if (recent_.size() > kRecentRounds) recent_.erase(recent_.begin());
   out.record = {id(),
                 round.plan.round,
@@ -246,12 +252,19 @@ double RunningJob::RaysPerSecond() const {
   return seconds > 0 ? double(rays) / seconds : 0;
 }
 
-std::optional<double> RunningJob::EtaSeconds() const {
-  if (phase_ == Phase::kFinished) return 0.0;
-  const double left = EstimateSecondsLeft(totals_.unshot_fraction, settings_.tolerance,
-                                          totals_.seconds, totals_.rays, totals_.gather_rays_left);
-  if (left < 0 || !std::isfinite(left)) return std::nullopt;
-  return left;
+ProgressEstimate RunningJob::Progress(scheduler::TimePoint now) const {
+  if (phase_ == Phase::kFinished) return {1.0, 0.0, 0};
+  if (phase_ == Phase::kReducing) return last_progress_;
+  SolvePosition at{totals_.rays, totals_.unshot_fraction, totals_.gather_rays_left};
+  const scheduler::SchedulerCounters counters = scheduler_.counters(now);
+  if (counters.round_active && counters.batches > 0) {
+    at.round_rays = running_rays_;
+    at.round_rays_done = running_rays_ * counters.batches_done / counters.batches;
+    at.round_seconds = std::chrono::duration<double>(now - round_started_).count();
+    at.round_gather = running_gather_;
+  }
+  last_progress_ = estimator_.Estimate(at);
+  return last_progress_;
 }
 
 }  // namespace radfarm::daemon

@@ -33,6 +33,7 @@
 #include "base/result.h"
 #include "codec/job_bundle.h"
 #include "core/patch_scene.h"
+#include "core/progress_estimator.h"
 #include "core/progressive_solver.h"
 #include "core/thread_pool.h"
 #include "daemon/scheduler/round_scheduler.h"
@@ -135,8 +136,12 @@ class RunningJob {
 
   // Recent throughput for status: rays/s over the last rounds (0 before the first).
   double RaysPerSecond() const;
-  // Seconds to convergence, extrapolated from the decay so far; nullopt when unknown.
-  std::optional<double> EtaSeconds() const;
+  // Loop thread: the share of the job's rays done, the running round's accepted batches included,
+  // and the seconds left (core/progress_estimator.h). While kReducing, the figures from before.
+  ProgressEstimate Progress(scheduler::TimePoint now) const;
+  std::optional<double> EtaSeconds(scheduler::TimePoint now) const {
+    return Progress(now).seconds_left;
+  }
   scheduler::TimePoint round_started() const { return round_started_; }
 
  private:
@@ -172,6 +177,13 @@ class RunningJob {
   scheduler::TimePoint round_started_{};
   // (rays, seconds) of the last rounds, for RaysPerSecond.
   std::vector<std::pair<uint64_t, double>> recent_;
+  // Fed by Reduce (worker), read on the loop thread outside kReducing.
+  ProgressEstimator estimator_{0.001};
+  // Loop side: the round the scheduler or this machine runs (rays, final gather), and the last
+  // estimate, shown while the worker reduces.
+  uint64_t running_rays_ = 0;
+  bool running_gather_ = false;
+  mutable ProgressEstimate last_progress_;
 };
 
 }  // namespace radfarm::daemon

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "base/result.h"
+#include "base/toml_table_reader.h"
 #include "core/solver_settings.h"
 #include "mesh/mesh_settings.h"
 #include "mesh/refine_settings.h"
@@ -29,6 +30,10 @@ struct Job {
   bool two_sided = false;
   std::map<std::string, bool> material_two_sided;
 };
+
+// The tolerance a job may ask for (`solver.tolerance` in the job file, `--tolerance` on the command
+// line): one range, so both refuse the same values with the same words.
+inline Interval ToleranceRange() { return Interval::Open(0, 1); }
 
 // Loads SCENE: a `.toml` job file, or an `.obj`, `.gltf` or `.glb` that becomes a job with default
 // settings.

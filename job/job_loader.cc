@@ -87,7 +87,7 @@ Status ReadSolver(TomlTableReader* r, SolverSettings* solver) {
                        "must be \"grid\", \"random\" or \"sobol\", got \"" + sampler + "\"");
   }
   RADFARM_RETURN_IF_ERROR(r->Integer("seed", 0, kMaxInt64, &solver->seed));
-  RADFARM_RETURN_IF_ERROR(r->Real("tolerance", Interval::Open(0, 1), &solver->tolerance));
+  RADFARM_RETURN_IF_ERROR(r->Real("tolerance", ToleranceRange(), &solver->tolerance));
   RADFARM_RETURN_IF_ERROR(r->Integer("rays", 0, kMaxInt64, &solver->max_rays));
   RADFARM_RETURN_IF_ERROR(r->Real("seconds", Interval::AtLeast(0), &solver->max_seconds));
   RADFARM_RETURN_IF_ERROR(r->Integer("shot_rays", 1, kMaxInt64, &solver->shot_rays));

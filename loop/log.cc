@@ -5,13 +5,34 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <mutex>
+
+#include "loop/journal_stream.h"
 
 namespace radfarm::loop {
 namespace {
 
 std::atomic<int> min_level{static_cast<int>(LogLevel::kInfo)};
+
+// Whether lines start with "<N>": unknown until the first line or DetectJournalStderr.
+enum class PrefixMode { kUnknown, kPlain, kPriority };
+std::atomic<PrefixMode> prefix_mode{PrefixMode::kUnknown};
+
+PrefixMode DetectPrefixMode() {
+  return FdIsJournalStream(STDERR_FILENO, std::getenv("JOURNAL_STREAM")) ? PrefixMode::kPriority
+                                                                         : PrefixMode::kPlain;
+}
+
+bool WithPriorityPrefix() {
+  PrefixMode mode = prefix_mode.load();
+  if (mode == PrefixMode::kUnknown) {
+    mode = DetectPrefixMode();
+    prefix_mode.store(mode);
+  }
+  return mode == PrefixMode::kPriority;
+}
 
 std::mutex& SinkMutex() {
   static std::mutex mutex;
@@ -75,6 +96,22 @@ void WriteAll(int fd, std::string_view bytes) {
 
 }  // namespace
 
+int SyslogPriority(LogLevel level) {
+  switch (level) {
+    case LogLevel::kDebug:
+      return 7;
+    case LogLevel::kInfo:
+      return 6;
+    case LogLevel::kWarning:
+      return 4;
+    case LogLevel::kError:
+      return 3;
+  }
+  return 6;
+}
+
+void DetectJournalStderr() { prefix_mode.store(DetectPrefixMode()); }
+
 bool LogEnabled(LogLevel level) { return static_cast<int>(level) >= min_level.load(); }
 
 void SetMinLogLevel(LogLevel level) { min_level.store(static_cast<int>(level)); }
@@ -86,7 +123,9 @@ void SetLogSink(LogSink sink) {
 
 void Log(LogLevel level, std::string_view component, std::string_view message) {
   if (!LogEnabled(level)) return;
-  std::string line = Timestamp();
+  std::string line;
+  if (WithPriorityPrefix()) line = "<" + std::to_string(SyslogPriority(level)) + ">";
+  line += Timestamp();
   line += ' ';
   line += LevelName(level);
   line += ' ';

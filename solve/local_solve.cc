@@ -10,18 +10,33 @@ namespace {
 // Runs the driver's rounds on `pool` until it stops; returns the seconds spent in all.
 double RunRounds(RoundDriver& driver, ThreadPool& pool,
                  const std::function<void(const RoundProgress&)>& on_round,
-                 const std::function<void(const SolveState&)>& after_round, double seconds_before,
-                 std::chrono::steady_clock::time_point start) {
+                 const std::function<void(const SolveState&)>& after_round,
+                 const std::function<void(const RoundRunning&)>& during_round,
+                 double seconds_before, std::chrono::steady_clock::time_point start) {
   auto elapsed = [&] {
     return seconds_before +
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   LocalBatches batches(pool);
   while (std::optional<RoundPlan> plan = driver.PlanNext(kLocalBatchRays, elapsed())) {
+    const double round_start = elapsed();
+    const double unshot_before = driver.solver().UnshotFraction();
     std::unique_ptr<RoundReduction> reduction = driver.Reduction(*plan);
-    batches.Reduce(driver, *plan, *reduction);
+    std::function<void(uint64_t)> on_batch;
+    if (during_round) {
+      on_batch = [&](uint64_t rays_done) {
+        during_round({plan->round, plan->rays, rays_done, elapsed() - round_start, plan->gather});
+      };
+    }
+    batches.Reduce(driver, *plan, *reduction, on_batch);
     const AppliedRound applied = driver.Apply(*plan, *reduction, elapsed());
-    if (on_round) on_round(driver.Progress(*plan, applied));
+    if (on_round) {
+      RoundProgress progress = driver.Progress(*plan, applied);
+      progress.round_rays = plan->rays;
+      progress.round_seconds = elapsed() - round_start;
+      progress.unshot_before = unshot_before;
+      on_round(progress);
+    }
     if (after_round) after_round(driver.State());
   }
   return elapsed();
@@ -49,15 +64,19 @@ std::vector<BatchResult> LocalBatches::Run(RoundDriver& driver, const RoundPlan&
   return results;
 }
 
-void LocalBatches::Reduce(RoundDriver& driver, const RoundPlan& plan, RoundReduction& reduction) {
+void LocalBatches::Reduce(RoundDriver& driver, const RoundPlan& plan, RoundReduction& reduction,
+                          const std::function<void(uint64_t rays_done)>& on_batch) {
   Prepare(driver);
   // The pool hands out batches in increasing order, so the reduction's frontier trails the
   // newest batch by about one batch per thread, and that is all it holds.
   std::mutex mutex;
+  uint64_t rays_done = 0;
   pool_.ParallelFor(plan.batches.size(), [&](unsigned worker, size_t b) {
     BatchResult result = tracers_[worker]->Run(plan.batches[b]);
     std::lock_guard lock(mutex);
     reduction.Add(b, std::move(result));
+    rays_done += plan.batches[b].ray_count;
+    if (on_batch) on_batch(rays_done);
   });
 }
 
@@ -73,8 +92,8 @@ Result<RefiningSolveResult> SolveRefining(PatchMesh mesh, const SolverSettings& 
   Result<std::unique_ptr<RoundDriver>> driver =
       RoundDriver::Start(std::move(mesh), settings, refine, hooks.resume, pool);
   if (!driver) return Error{driver.error()};
-  const double seconds =
-      RunRounds(**driver, pool, on_round, hooks.after_round, seconds_before, start);
+  const double seconds = RunRounds(**driver, pool, on_round, hooks.after_round, hooks.during_round,
+                                   seconds_before, start);
   out.solution = (*driver)->Finish(seconds, pool.size());
   out.refinements = (*driver)->refinements();
   out.mesh = (*driver)->TakeMesh();
@@ -89,7 +108,7 @@ SolveResult Solve(const PatchScene& scene, const SolverSettings& settings,
   const double seconds_before = resume != nullptr ? resume->totals.seconds : 0;
   ThreadPool pool(settings.threads);
   std::unique_ptr<RoundDriver> driver = RoundDriver::Start(scene, settings, resume);
-  const double seconds = RunRounds(*driver, pool, on_round, after_round, seconds_before, start);
+  const double seconds = RunRounds(*driver, pool, on_round, after_round, {}, seconds_before, start);
   return driver->Finish(seconds, pool.size());
 }
 

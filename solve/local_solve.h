@@ -33,8 +33,11 @@ class LocalBatches {
   explicit LocalBatches(ThreadPool& pool) : pool_(pool) {}
   // The round's results, all of them (the master's small rounds).
   std::vector<BatchResult> Run(RoundDriver& driver, const RoundPlan& plan);
-  // The round's results folded into `reduction` (RoundDriver::Reduction) as they come.
-  void Reduce(RoundDriver& driver, const RoundPlan& plan, RoundReduction& reduction);
+  // The round's results folded into `reduction` (RoundDriver::Reduction) as they come;
+  // `on_batch` (optional) after each batch with the round's rays computed so far, on a worker
+  // thread, one call at a time.
+  void Reduce(RoundDriver& driver, const RoundPlan& plan, RoundReduction& reduction,
+              const std::function<void(uint64_t rays_done)>& on_batch = {});
 
  private:
   void Prepare(RoundDriver& driver);
@@ -58,6 +61,9 @@ struct RefiningHooks {
   // After every round, on the calling thread: the state at that boundary, taken after the
   // refinement step the round triggered.
   std::function<void(const SolveState&)> after_round;
+  // While a round runs, after each batch, on a worker thread, one call at a time: for progress
+  // within a long round (the final gather). It must be quick.
+  std::function<void(const RoundRunning&)> during_round;
 };
 
 // Solves `mesh` with adaptive refinement as `refine` says (off: the mesh as given) until a

@@ -46,6 +46,19 @@ struct RoundProgress {
   const EnergyAccount* energy = nullptr;
   bool gather = false;            // the round was the final gather
   uint64_t gather_rays_left = 0;  // ProgressiveSolver::PendingGatherRays after the round
+  // The round alone, for estimates (core/progress_estimator.h).
+  uint64_t round_rays = 0;
+  double round_seconds = 0;
+  double unshot_before = 0;
+};
+
+// While a round of a local solve runs (RefiningHooks::during_round), after each of its batches.
+struct RoundRunning {
+  uint32_t round = 0;
+  uint64_t round_rays = 0;       // planned
+  uint64_t round_rays_done = 0;  // computed so far
+  double round_seconds = 0;      // since the round started
+  bool gather = false;
 };
 
 struct SolveResult {

@@ -23,7 +23,8 @@ const std::vector<std::string> kJobKeys = {"id",
                                            "rays_per_second",
                                            "agents",
                                            "eta_seconds",
-                                           "stop_reason"};
+                                           "stop_reason",
+                                           "waiting_for_agents"};
 const std::vector<std::string> kAgentKeys = {"id",
                                              "name",
                                              "address",
@@ -59,7 +60,8 @@ nlohmann::json JobObject(int64_t id, const std::string& state, uint64_t round) {
           {"rays_per_second", state == "running" ? 2.5e6 : 0.0},
           {"agents", state == "running" ? 2 : 0},
           {"eta_seconds", state == "running" ? nlohmann::json(42.0) : nlohmann::json()},
-          {"stop_reason", state == "done" ? nlohmann::json("converged") : nlohmann::json()}};
+          {"stop_reason", state == "done" ? nlohmann::json("converged") : nlohmann::json()},
+          {"waiting_for_agents", false}};
 }
 
 nlohmann::json AgentObject(int64_t id, const std::string& name) {

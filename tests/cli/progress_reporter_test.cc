@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
+
+#include "core/solve_control.h"
 
 namespace radfarm {
 namespace {
@@ -12,16 +16,6 @@ TEST(ProgressTest, ConvergenceFractionIsLogarithmic) {
   EXPECT_DOUBLE_EQ(ConvergenceFraction(1.0, 1e-3), 0.0);
   EXPECT_NEAR(ConvergenceFraction(0.1, 1e-3), 1.0 / 3, 1e-12);
   EXPECT_DOUBLE_EQ(ConvergenceFraction(1e-4, 1e-3), 1.0);
-  EXPECT_LT(EstimateSecondsLeft(1.0, 1e-3, 5, 100, 0), 0);  // unknown before any progress
-  EXPECT_NEAR(EstimateSecondsLeft(0.1, 1e-3, 2, 100, 0), 4, 1e-9);
-}
-
-// The final gather still to come adds its rays at the rate seen so far, also once the shooting
-// has converged (it used to read 0 s there, while the gather took most of the time).
-TEST(ProgressTest, EtaCountsTheGatherStillToCome) {
-  EXPECT_NEAR(EstimateSecondsLeft(0.1, 1e-3, 2, 1000, 500), 4 + 1, 1e-9);
-  EXPECT_NEAR(EstimateSecondsLeft(1e-4, 1e-3, 2, 1000, 3000), 6, 1e-9);
-  EXPECT_DOUBLE_EQ(EstimateSecondsLeft(1e-4, 1e-3, 2, 1000, 0), 0);
 }
 
 std::string Capture(bool interactive, int rounds) {
@@ -72,6 +66,84 @@ TEST(ProgressTest, TheFinalGatherIsNamed) {
     EXPECT_EQ(s.back(), '\n') << s;
     EXPECT_EQ(s.find("\n\n"), std::string::npos) << s;
   }
+}
+
+// What a memstream received.
+class Captured {
+ public:
+  Captured() : file_(open_memstream(&text_, &size_)) {}
+  ~Captured() {
+    if (file_ != nullptr) fclose(file_);
+    free(text_);
+  }
+  FILE* file() { return file_; }
+  std::string Text() {
+    fflush(file_);
+    return std::string(text_, size_);
+  }
+
+ private:
+  char* text_ = nullptr;
+  size_t size_ = 0;
+  FILE* file_;
+};
+
+// A shooting round that reaches the tolerance with the gather still to come, then the gather.
+RoundProgress Shooting(uint32_t round, double before, double after, uint64_t rays_total) {
+  RoundProgress p{round, rays_total, 1.0 * round, after, 1e-3};
+  p.gather_rays_left = 8'000'000;
+  p.round_rays = 1'000'000;
+  p.round_seconds = 1.0;
+  p.unshot_before = before;
+  return p;
+}
+
+// Issue 19: the bar reached 100% before the final gather, which casts most of a job's rays.
+TEST(ProgressTest, TheBarLeavesRoomForTheGather) {
+  Captured out;
+  ProgressReporter reporter(out.file(), true);
+  reporter.OnRound(Shooting(1, 0.01, 5e-4, 1'000'000));
+  const std::string s = out.Text();
+  const size_t bar = s.rfind('[');
+  ASSERT_NE(bar, std::string::npos) << s;
+  const std::string cells = s.substr(bar + 1, 30);
+  const auto filled = std::count(cells.begin(), cells.end(), '#');
+  EXPECT_EQ(filled, 3) << s;                            // 1 M of 9 M rays
+  EXPECT_NE(s.find("ETA 8s"), std::string::npos) << s;  // 8 M rays at 1 M rays/s
+}
+
+// Issue 19: the gather showed no progress.
+TEST(ProgressTest, TheFinalGatherShowsItsProgressOncePerSecondInALog) {
+  Captured out;
+  ProgressReporter reporter(out.file(), false);
+  reporter.OnRound(Shooting(1, 0.01, 5e-4, 1'000'000));
+  for (double seconds : {0.5, 1.2, 1.9, 2.5, 3.6}) {
+    reporter.OnRoundRunning(
+        {2, 8'000'000, uint64_t(seconds / 4 * 8'000'000), seconds, /*gather=*/true});
+  }
+  reporter.OnRoundRunning({2, 8'000'000, 8'000'000, 4.0, true});
+  RoundProgress gather{2, 9'000'000, 5.0, 0, 1e-3};
+  gather.gather = true;
+  reporter.OnRound(gather);
+  reporter.Finish();
+  const std::string s = out.Text();
+  // At 1.2 s (the first second), 2.5 s and 3.6 s: each a second after the one before.
+  EXPECT_EQ(s.find("final gather 12%"), std::string::npos) << s;
+  EXPECT_NE(s.find("final gather 30% of 8000000 rays  2.00 Mrays/s  ETA 3s\n"), std::string::npos)
+      << s;
+  EXPECT_EQ(s.find("final gather 48%"), std::string::npos) << s;
+  EXPECT_NE(s.find("final gather 62%"), std::string::npos) << s;
+  EXPECT_NE(s.find("final gather 90%"), std::string::npos) << s;
+  EXPECT_NE(s.find("\nfinal gather: 9000000 rays in all"), std::string::npos) << s;
+}
+
+TEST(ProgressTest, AShortGatherPrintsNoProgressLines) {
+  Captured out;
+  ProgressReporter reporter(out.file(), false);
+  reporter.OnRound(Shooting(1, 0.01, 5e-4, 1'000'000));
+  reporter.OnRoundRunning({2, 8'000'000, 4'000'000, 0.1, true});
+  reporter.OnRoundRunning({2, 8'000'000, 8'000'000, 0.2, true});
+  EXPECT_EQ(out.Text().find("final gather "), std::string::npos) << out.Text();
 }
 
 }  // namespace

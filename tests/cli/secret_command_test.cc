@@ -83,13 +83,26 @@ TEST(SecretCommandTest, DashPrintsTheSecret) {
   EXPECT_EQ(r.err, "");
 }
 
-TEST(SecretCommandTest, MissingDirectoryFails) {
+// Issue 19: the README's `radfarm secret new /tmp/farm/secret` failed because /tmp/farm did not
+// exist.
+TEST(SecretCommandTest, MissingFoldersAreMadeWithMode0700) {
   TempDir dir;
-  const auto r = SecretNew({dir.File("no/such/dir/farm.key")});
+  ::chmod(dir.path().c_str(), 0755);
+  const auto r = SecretNew({dir.File("farm/keys/farm.key")});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  ExpectLoadableSecret(ReadFile(dir.File("farm/keys/farm.key")));
+  EXPECT_EQ(Mode(dir.File("farm")), 0700u);
+  EXPECT_EQ(Mode(dir.File("farm/keys")), 0700u);
+  EXPECT_EQ(Mode(dir.File("farm/keys/farm.key")), 0600u);
+  EXPECT_EQ(Mode(dir.path()), 0755u) << "a folder that exists is left as it is";
+}
+
+TEST(SecretCommandTest, AFolderThatCannotBeMadeFails) {
+  TempDir dir;
+  std::ofstream(dir.File("plain")) << "a file, not a folder\n";
+  const auto r = SecretNew({dir.File("plain/farm/farm.key")});
   EXPECT_EQ(r.exit_code, kExitFailure);
-  EXPECT_NE(r.err.find("no/such/dir/farm.key: cannot create a temporary file beside it"),
-            std::string::npos)
-      << r.err;
+  EXPECT_NE(r.err.find("plain/farm: cannot create the folder"), std::string::npos) << r.err;
 }
 
 TEST(SecretCommandTest, UsageErrors) {

@@ -70,6 +70,46 @@ TEST(StatusWatchTest, FollowsTheJobUntilDoneWithALinePerChange) {
   EXPECT_EQ(r.err, "");
 }
 
+json Waiting(json job, bool waiting) {
+  job["waiting_for_agents"] = waiting;
+  job["agents"] = 0;
+  return job;
+}
+
+// Issue 19: a watch sat at "round 0, ... 0 agents, ETA ?" with no hint that no agent was there.
+TEST(StatusWatchTest, SaysPlainlyWhenNoAgentIsConnectedAndWhenOneComes) {
+  FakeControlServer server(
+      Script({Waiting(JobObject(3, "running", 0), true), Waiting(JobObject(3, "running", 0), true),
+              Waiting(JobObject(3, "running", 0), false), JobObject(3, "done", 3)}));
+  const auto r = RunFarm(server.socket_path(), {"status", "3", "--watch"});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  const std::vector<std::string> lines = Lines(r.out);
+  ASSERT_EQ(lines.size(), 3u) << r.out;  // the change of waiting_for_agents is a change
+  EXPECT_NE(lines[0].find("no agent connected: start radfarm-agent --master"), std::string::npos)
+      << lines[0];
+  EXPECT_EQ(lines[1].find("no agent connected"), std::string::npos) << lines[1];
+  EXPECT_EQ(lines[2].find("no agent connected"), std::string::npos) << lines[2];
+}
+
+TEST(StatusWatchTest, StatusSaysNoAgentIsConnected) {
+  FakeControlServer server([](const ControlRequest&) {
+    return OkAnswer({{"job", Waiting(JobObject(3, "running", 0), true)}});
+  });
+  const auto r = RunFarm(server.socket_path(), {"status", "3"});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("agents:     0, no agent connected: start radfarm-agent"), std::string::npos)
+      << r.out;
+}
+
+TEST(StatusWatchTest, AJobObjectWithoutWaitingForAgentsIsRefused) {
+  json job = JobObject(3, "running", 1);
+  job.erase("waiting_for_agents");
+  FakeControlServer server([job](const ControlRequest&) { return OkAnswer({{"job", job}}); });
+  const auto r = RunFarm(server.socket_path(), {"status", "3"});
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  EXPECT_NE(r.err.find("waiting_for_agents"), std::string::npos) << r.err;
+}
+
 TEST(StatusWatchTest, FailedJobEndsTheWatchWithExit1) {
   FakeControlServer server(Script({JobObject(3, "running", 1), JobObject(3, "failed", 1)}));
   const auto r = RunFarm(server.socket_path(), {"status", "3", "--watch"});

@@ -39,7 +39,8 @@ void ExpectJobKeys(const nlohmann::json& job) {
                           "rays_per_second",
                           "agents",
                           "eta_seconds",
-                          "stop_reason"}) {
+                          "stop_reason",
+                          "waiting_for_agents"}) {
     EXPECT_TRUE(job.contains(key)) << key << " missing from " << job.dump();
   }
 }
@@ -167,6 +168,22 @@ std::string RawControlExchange(const std::string& socket_path, const std::string
   while ((got = ::read(fd, buffer, sizeof buffer)) > 0) answer.append(buffer, size_t(got));
   ::close(fd);
   return answer;
+}
+
+// Issue 19: `status` said "0 agents, ETA ?" forever with no hint that no agent was connected.
+TEST_F(FarmTest, StatusSaysWhenTheJobWaitsForAnAgentAndStopsSayingItWhenOneComes) {
+  StartMaster();
+  const int64_t id = Submit("cornell-box.toml", kShortJob);
+  ASSERT_GT(id, 0);
+  ASSERT_TRUE(WaitUntil([&] { return Status(id).value("waiting_for_agents", false); }))
+      << Status(id).dump() << MasterLog();
+  const CommandResult text = Cli({"status", std::to_string(id)});
+  EXPECT_NE(text.out.find("no agent connected: start radfarm-agent"), std::string::npos)
+      << text.out;
+  StartAgent("late");
+  ASSERT_TRUE(WaitForState(id, "done"));
+  EXPECT_FALSE(Status(id).value("waiting_for_agents", true));
+  EXPECT_EQ(Cli({"status", std::to_string(id)}).out.find("no agent connected"), std::string::npos);
 }
 
 TEST_F(FarmTest, AMalformedControlRequestCostsOnlyItsConnection) {

@@ -1,0 +1,129 @@
+#include "core/progress_estimator.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace radfarm {
+namespace {
+
+// Rounds beyond this are not predicted (a solve that has stopped converging).
+constexpr double kMaxRounds = 1e4;
+
+// y = slope * x + intercept by least squares, both >= 0: the intercept is dropped (a line
+// through the origin) when the points cannot fit a non-negative one.
+struct Line {
+  double slope = 0;
+  double intercept = 0;
+};
+
+Line FitNonNegative(const std::vector<double>& x, const std::vector<double>& y) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = double(x.size());
+  for (size_t i = 0; i < x.size(); ++i) {
+    sx += x[i];
+    sy += y[i];
+    sxx += x[i] * x[i];
+    sxy += x[i] * y[i];
+  }
+  const double det = n * sxx - sx * sx;
+  if (x.size() >= 2 && det > 1e-12 * n * sxx) {
+    const Line line{(n * sxy - sx * sy) / det, (sy * sxx - sx * sxy) / det};
+    if (line.slope > 0 && line.intercept >= 0) return line;
+  }
+  if (sx > 0) return {sy / sx, 0};
+  return {0, n > 0 ? sy / n : 0};
+}
+
+void Keep(std::vector<RoundSample>& window, const RoundSample& round, size_t size) {
+  window.push_back(round);
+  if (window.size() > size) window.erase(window.begin());
+}
+
+}  // namespace
+
+void ProgressEstimator::AddRound(const RoundSample& round) {
+  if (round.seconds > 0) Keep(timed_, round, kTimedWindow);
+  if (!round.gather && round.unshot_before > 0) Keep(shooting_, round, kWindow);
+}
+
+double ProgressEstimator::ShootingRoundRays(double unshot) const {
+  std::vector<double> x, y;
+  for (const RoundSample& r : shooting_) {
+    x.push_back(r.unshot_before);
+    y.push_back(double(r.rays));
+  }
+  const Line line = FitNonNegative(x, y);
+  return line.slope * unshot + line.intercept;
+}
+
+std::optional<ProgressEstimator::Shooting> ProgressEstimator::ShootingLeft(double unshot) const {
+  if (unshot <= tolerance_) return Shooting{};
+  if (shooting_.empty()) return std::nullopt;
+  // The decay a round, as the geometric mean of the rounds seen.
+  double log_decay = 0;
+  for (const RoundSample& r : shooting_) {
+    log_decay += std::log(std::max(r.unshot_after, 1e-300) / r.unshot_before);
+  }
+  log_decay /= double(shooting_.size());
+  const double q = std::exp(std::min(log_decay, std::log(0.999)));
+  const double rounds =
+      std::min(kMaxRounds, std::ceil(std::log(tolerance_ / unshot) / std::log(q)));
+  // Sum over the rounds j = 0 .. rounds-1 of a * unshot * q^j + b.
+  const double a_part = ShootingRoundRays(unshot) - ShootingRoundRays(0);
+  const double b = ShootingRoundRays(0);
+  return Shooting{rounds, a_part * (1 - std::pow(q, rounds)) / (1 - q) + b * rounds};
+}
+
+std::optional<double> ProgressEstimator::Seconds(double rays, double rounds) const {
+  if (timed_.empty()) return std::nullopt;
+  std::vector<double> x, y;
+  for (const RoundSample& r : timed_) {
+    x.push_back(double(r.rays));
+    y.push_back(r.seconds);
+  }
+  const Line line = FitNonNegative(x, y);
+  return line.slope * rays + line.intercept * rounds;
+}
+
+ProgressEstimate ProgressEstimator::Estimate(const SolvePosition& now) const {
+  ProgressEstimate out;
+  const bool running = now.round_rays > 0;
+  const double round_rest = double(now.round_rays - std::min(now.round_rays, now.round_rays_done));
+  // What comes after the running round (or from now, between rounds).
+  std::optional<Shooting> shooting;
+  double gather_rays = double(now.gather_rays_left);
+  double gather_rounds = now.gather_rays_left > 0 ? 1 : 0;
+  if (running && now.round_gather) {
+    shooting = Shooting{};
+    gather_rays = gather_rounds = 0;  // the running round is the gather
+  } else {
+    shooting = ShootingLeft(now.unshot_fraction);
+    if (shooting && running && shooting->rounds > 0) {
+      // The running round is the first of them.
+      shooting->rays = std::max(0.0, shooting->rays - ShootingRoundRays(now.unshot_fraction));
+      shooting->rounds -= 1;
+    }
+  }
+  const double later_rays = (shooting ? shooting->rays : 0) + gather_rays;
+  const double rays_left = round_rest + later_rays;
+  out.rays_left = uint64_t(std::llround(rays_left));
+  const double done = double(now.rays_done + std::min(now.round_rays, now.round_rays_done));
+  out.fraction = done + rays_left > 0 ? done / (done + rays_left) : 0;
+  if (!shooting) return out;  // the shooting still to come cannot be sized yet
+
+  std::optional<double> later = Seconds(later_rays, shooting->rounds + gather_rounds);
+  if (!later) return out;
+  double rest = 0;
+  if (running) {
+    // The running round at its own pace once it has one, else at the fitted one.
+    if (now.round_rays_done > 0 && now.round_seconds > 0) {
+      rest = now.round_seconds * round_rest / double(now.round_rays_done);
+    } else {
+      rest = std::max(0.0, *Seconds(double(now.round_rays), 1) - now.round_seconds);
+    }
+  }
+  out.seconds_left = rest + *later;
+  return out;
+}
+
+}  // namespace radfarm

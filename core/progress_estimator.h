@@ -1,0 +1,85 @@
+// ProgressEstimator: how much of a solve is done and how long the rest will take, from the rounds
+// seen so far. Pure arithmetic with no clock: the caller passes each round's rays and seconds, so
+// tests drive it with made-up rounds; `radfarm render` and the farm master feed it the same way.
+//
+// The model. Work is rays, and the rays still to come are of two kinds:
+//   - shooting: a round casts rays in proportion to the unshot power it shoots, plus about one ray
+//     per weak shooter (ProgressiveSolver::PlanRound), and the unshot fraction falls by a steady
+//     factor q a round. So the rounds left until the tolerance are log(tolerance / unshot) / log q,
+//     and their rays a geometric series: rays = a * unshot_before + b per round, a and b fitted
+//     to the rounds seen (b = 0 until two rounds differ).
+//   - the final gather: exactly the rays ProgressiveSolver::PendingGatherRays says.
+// Time is seconds = overhead + rays / rate per round, fitted the same way (overhead 0 until two
+// rounds differ), so rounds that shrink to a few rays still cost their fixed part.
+// The earlier estimate extrapolated elapsed time in log(unshot), as if every round cost the same:
+// 2-5x too high, since the first rounds cast most of the shooting rays, and its progress reached
+// 100% before the gather, which is most of a job's rays (issue 19).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace radfarm {
+
+// One round as it ran.
+struct RoundSample {
+  uint64_t rays = 0;
+  double seconds = 0;        // wall time of the round alone
+  double unshot_before = 0;  // unshot fraction before and after it
+  double unshot_after = 0;
+  bool gather = false;
+};
+
+// Where the solve stands now.
+struct SolvePosition {
+  uint64_t rays_done = 0;         // in every round applied
+  double unshot_fraction = 1;     // after the last round applied
+  uint64_t gather_rays_left = 0;  // ProgressiveSolver::PendingGatherRays
+  // The round running now, if any: its planned rays and the part of them computed so far.
+  uint64_t round_rays = 0;
+  uint64_t round_rays_done = 0;
+  double round_seconds = 0;   // spent in it so far
+  bool round_gather = false;  // it is the final gather
+};
+
+struct ProgressEstimate {
+  double fraction = 0;                 // of the solve's rays, 0..1
+  std::optional<double> seconds_left;  // nullopt until a round has been timed
+  uint64_t rays_left = 0;              // predicted, the running round's rest included
+};
+
+class ProgressEstimator {
+ public:
+  explicit ProgressEstimator(double tolerance) : tolerance_(tolerance) {}
+
+  void AddRound(const RoundSample& round);
+  ProgressEstimate Estimate(const SolvePosition& now) const;
+
+  // The shooting rounds and rays still to come from `unshot` on (none at or below the tolerance);
+  // nullopt when no shooting round has been seen to fit them to.
+  struct Shooting {
+    double rounds = 0;
+    double rays = 0;
+  };
+  std::optional<Shooting> ShootingLeft(double unshot) const;
+  // The rays of a shooting round that starts at `unshot`, as fitted.
+  double ShootingRoundRays(double unshot) const;
+  // The seconds `rounds` rounds of `rays` rays in all take, at the fitted rate and overhead;
+  // nullopt before any round was timed.
+  std::optional<double> Seconds(double rays, double rounds) const;
+
+ private:
+  // The rounds the fits use: the last kWindow shooting rounds for rays (older ones describe a
+  // solve that has moved on); up to kTimedWindow rounds for time, so the big early rounds anchor
+  // the rate: the last rounds cast a few rays each, and a rate fitted to them alone is mostly
+  // their fixed cost (progress_bench: the 4x4 building's ETA was 8x too high at the last rounds).
+  static constexpr size_t kWindow = 4;
+  static constexpr size_t kTimedWindow = 64;
+
+  double tolerance_;
+  std::vector<RoundSample> shooting_;  // the last kWindow shooting rounds
+  std::vector<RoundSample> timed_;     // the last kTimedWindow rounds of any kind
+};
+
+}  // namespace radfarm

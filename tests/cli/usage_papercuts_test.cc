@@ -1,0 +1,105 @@
+// The command-line papercuts of issue 19: each message names what is wrong, and the CLI refuses
+// what the job file refuses in the same words. Runs the real binary.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "cli/exit_codes.h"
+#include "testing/child_process.h"
+#include "testing/temp_dir.h"
+
+namespace radfarm {
+namespace {
+
+using testing::RunCommand;
+using testing::TempDir;
+
+const std::string kPapercutScenes = RADFARM_SOURCE_DIR "/scenes/";
+
+bool Mentions(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// Was: "A subcommand is required".
+TEST(UsagePapercutsTest, AnUnknownSubcommandIsNamed) {
+  const auto r = RunCommand({RADFARM_CLI_PATH, "bogus"});
+  EXPECT_EQ(r.exit_code, kExitBadInput);
+  EXPECT_TRUE(Mentions(r.err, "radfarm: unknown subcommand 'bogus'")) << r.err;
+  EXPECT_TRUE(Mentions(r.err, "render")) << r.err;  // the list of what there is
+  EXPECT_FALSE(Mentions(r.err, "required")) << r.err;
+}
+
+TEST(UsagePapercutsTest, AnUnknownSubcommandAfterTheControlOptionIsNamed) {
+  const auto r = RunCommand({RADFARM_CLI_PATH, "--control", "/nonexistent.sock", "stauts", "1"});
+  EXPECT_EQ(r.exit_code, kExitBadInput);
+  EXPECT_TRUE(Mentions(r.err, "unknown subcommand 'stauts'")) << r.err;
+}
+
+// Was: "--out is required".
+TEST(UsagePapercutsTest, AnUnknownOptionIsNamedBeforeMissingRequiredOnes) {
+  const auto r = RunCommand({RADFARM_CLI_PATH, "render", "--bogus", "x"});
+  EXPECT_EQ(r.exit_code, kExitBadInput);
+  EXPECT_TRUE(Mentions(r.err, "--bogus")) << r.err;
+  EXPECT_FALSE(Mentions(r.err, "--out is required")) << r.err;
+}
+
+TEST(UsagePapercutsTest, AMissingRequiredOptionIsStillReported) {
+  const auto r = RunCommand({RADFARM_CLI_PATH, "render", kPapercutScenes + "furnace.obj"});
+  EXPECT_EQ(r.exit_code, kExitBadInput);
+  EXPECT_TRUE(Mentions(r.err, "--out is required")) << r.err;
+}
+
+// Was: the CLI took --tolerance 1, which the job file refuses.
+TEST(UsagePapercutsTest, ToleranceOneIsRefusedOnTheCommandLineAsInTheJobFile) {
+  TempDir dir;
+  for (const char* command : {"render", "submit"}) {
+    std::vector<std::string> args = {RADFARM_CLI_PATH, command, kPapercutScenes + "furnace.obj",
+                                     "--tolerance", "1"};
+    if (std::string(command) == "render") args.insert(args.end(), {"--out", dir.path()});
+    const auto r = RunCommand(args);
+    EXPECT_EQ(r.exit_code, kExitBadInput) << command;
+    EXPECT_TRUE(Mentions(r.err, "--tolerance: must be in (0, 1), got 1"))
+        << command << ": " << r.err;
+  }
+  const std::string job = dir.path() + "/tolerance.toml";
+  std::ofstream(job) << "scene = \"" << kPapercutScenes
+                     << "furnace.obj\"\n[solver]\ntolerance = 1\n";
+  const auto r = RunCommand({RADFARM_CLI_PATH, "render", job, "--out", dir.path()});
+  EXPECT_EQ(r.exit_code, kExitBadInput);
+  EXPECT_TRUE(Mentions(r.err, "'solver.tolerance' must be in (0, 1), got 1")) << r.err;
+}
+
+TEST(UsagePapercutsTest, ToleranceInsideTheRangeIsTaken) {
+  TempDir dir;
+  const auto r = RunCommand({RADFARM_CLI_PATH, "render", kPapercutScenes + "furnace.obj", "--out",
+                             dir.path(), "--tolerance", "0.5", "--quiet"});
+  EXPECT_EQ(r.exit_code, kExitOk) << r.err;
+}
+
+TEST(UsagePapercutsTest, AToleranceThatIsNoNumberIsNamed) {
+  TempDir dir;
+  const auto r = RunCommand({RADFARM_CLI_PATH, "render", kPapercutScenes + "furnace.obj", "--out",
+                             dir.path(), "--tolerance", "small"});
+  EXPECT_EQ(r.exit_code, kExitBadInput);
+  EXPECT_TRUE(Mentions(r.err, "--tolerance: must be a number, got 'small'")) << r.err;
+}
+
+// Was: "default: job-ID", though the master names a job after its scene's OBJ.
+TEST(UsagePapercutsTest, SubmitHelpSaysWhatTheDefaultNameIs) {
+  const auto r = RunCommand({RADFARM_CLI_PATH, "submit", "--help"});
+  EXPECT_EQ(r.exit_code, kExitOk);
+  EXPECT_FALSE(Mentions(r.out, "job-ID")) << r.out;
+  EXPECT_TRUE(Mentions(r.out, "the file name of the scene's OBJ")) << r.out;
+}
+
+// Was: "ray budget after 1 rounds".
+TEST(UsagePapercutsTest, OneRoundIsSingular) {
+  TempDir dir;
+  const auto r = RunCommand({RADFARM_CLI_PATH, "render", kPapercutScenes + "furnace.obj", "--out",
+                             dir.path(), "--rays", "100"});
+  EXPECT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_TRUE(Mentions(r.out, "ray budget after 1 round:")) << r.out;
+}
+
+}  // namespace
+}  // namespace radfarm

@@ -1,0 +1,154 @@
+// ProgressEstimator against made-up solves whose every round is known in advance: rays in
+// proportion to the unshot power plus a floor, a steady decay, a fixed rate and per-round
+// overhead, then a gather. No clock: the "seconds" are computed.
+#include "core/progress_estimator.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace radfarm {
+namespace {
+
+struct FakeSolve {
+  double unshot0 = 0.5;
+  double decay = 0.4;
+  double rays_per_unshot = 1e6;
+  double floor_rays = 2000;
+  double rays_per_second = 2e6;
+  double overhead_seconds = 0.02;
+  double tolerance = 1e-3;
+  uint64_t gather_rays = 5'000'000;
+
+  // Every round, the gather last.
+  std::vector<RoundSample> Rounds() const {
+    std::vector<RoundSample> rounds;
+    for (double u = unshot0; u > tolerance; u *= decay) {
+      const auto rays = uint64_t(rays_per_unshot * u + floor_rays);
+      rounds.push_back({rays, Seconds(rays), u, u * decay, false});
+    }
+    const double last = rounds.back().unshot_after;
+    rounds.push_back({gather_rays, Seconds(gather_rays), last, 0, true});
+    return rounds;
+  }
+  double Seconds(uint64_t rays) const { return overhead_seconds + double(rays) / rays_per_second; }
+};
+
+// The position after rounds [0, k) of `rounds`.
+SolvePosition After(const std::vector<RoundSample>& rounds, size_t k, uint64_t gather_rays) {
+  SolvePosition at;
+  for (size_t i = 0; i < k; ++i) at.rays_done += rounds[i].rays;
+  at.unshot_fraction = rounds[k - 1].unshot_after;
+  at.gather_rays_left = rounds[k - 1].gather ? 0 : gather_rays;
+  return at;
+}
+
+double SecondsFrom(const std::vector<RoundSample>& rounds, size_t k) {
+  double s = 0;
+  for (size_t i = k; i < rounds.size(); ++i) s += rounds[i].seconds;
+  return s;
+}
+
+TEST(ProgressEstimatorTest, NothingIsKnownBeforeTheFirstRound) {
+  ProgressEstimator estimator(1e-3);
+  const ProgressEstimate e = estimator.Estimate({0, 1.0, 1000, 0, 0, 0, false});
+  EXPECT_FALSE(e.seconds_left.has_value());
+  EXPECT_EQ(e.fraction, 0);
+}
+
+TEST(ProgressEstimatorTest, WithinThirtyPercentFromTheFirstRoundAndExactOnceTheModelIsFitted) {
+  const FakeSolve solve;
+  const std::vector<RoundSample> rounds = solve.Rounds();
+  ASSERT_GE(rounds.size(), 6u);
+  ProgressEstimator estimator(solve.tolerance);
+  for (size_t k = 1; k < rounds.size(); ++k) {
+    estimator.AddRound(rounds[k - 1]);
+    const ProgressEstimate e = estimator.Estimate(After(rounds, k, solve.gather_rays));
+    const double actual = SecondsFrom(rounds, k);
+    ASSERT_TRUE(e.seconds_left.has_value()) << "after round " << k;
+    EXPECT_NEAR(*e.seconds_left, actual, 0.3 * actual) << "after round " << k;
+    // From the third round on, rays and times are fitted with floor and overhead: exact, but for
+    // the rounding of the round count.
+    if (k >= 3) {
+      EXPECT_NEAR(*e.seconds_left, actual, 0.02 * actual) << "after round " << k;
+    }
+  }
+}
+
+// The old estimate put progress at 100% once the unshot power reached the tolerance, before the
+// gather that casts most of the rays.
+TEST(ProgressEstimatorTest, ProgressCountsTheGatherStillToCome) {
+  const FakeSolve solve;
+  const std::vector<RoundSample> rounds = solve.Rounds();
+  ProgressEstimator estimator(solve.tolerance);
+  const size_t shooting = rounds.size() - 1;
+  for (size_t k = 0; k < shooting; ++k) estimator.AddRound(rounds[k]);
+  const ProgressEstimate before_gather =
+      estimator.Estimate(After(rounds, shooting, solve.gather_rays));
+  uint64_t shooting_rays = 0;
+  for (size_t k = 0; k < shooting; ++k) shooting_rays += rounds[k].rays;
+  EXPECT_NEAR(before_gather.fraction,
+              double(shooting_rays) / double(shooting_rays + solve.gather_rays), 1e-9);
+  EXPECT_LT(before_gather.fraction, 0.5);
+  EXPECT_EQ(before_gather.rays_left, solve.gather_rays);
+}
+
+TEST(ProgressEstimatorTest, TheGatherShowsItsOwnProgressAndPace) {
+  const FakeSolve solve;
+  const std::vector<RoundSample> rounds = solve.Rounds();
+  ProgressEstimator estimator(solve.tolerance);
+  const size_t shooting = rounds.size() - 1;
+  for (size_t k = 0; k < shooting; ++k) estimator.AddRound(rounds[k]);
+  SolvePosition at = After(rounds, shooting, solve.gather_rays);
+  at.round_rays = solve.gather_rays;
+  at.round_gather = true;
+  double last_fraction = estimator.Estimate(at).fraction;
+  for (uint64_t done : {1'000'000u, 2'500'000u, 4'000'000u, 5'000'000u}) {
+    at.round_rays_done = done;
+    at.round_seconds = 4.0 * double(done) / double(solve.gather_rays);  // slower than fitted
+    const ProgressEstimate e = estimator.Estimate(at);
+    EXPECT_GT(e.fraction, last_fraction) << done;
+    last_fraction = e.fraction;
+    // The rest of the round at the round's own pace: 4 s for the whole gather.
+    ASSERT_TRUE(e.seconds_left.has_value());
+    EXPECT_NEAR(*e.seconds_left, 4.0 - at.round_seconds, 1e-9) << done;
+    EXPECT_EQ(e.rays_left, solve.gather_rays - done);
+  }
+  EXPECT_DOUBLE_EQ(last_fraction, 1.0);
+}
+
+TEST(ProgressEstimatorTest, ARunningShootingRoundIsNotCountedTwice) {
+  const FakeSolve solve;
+  const std::vector<RoundSample> rounds = solve.Rounds();
+  ProgressEstimator estimator(solve.tolerance);
+  for (size_t k = 0; k < 3; ++k) estimator.AddRound(rounds[k]);
+  SolvePosition between = After(rounds, 3, solve.gather_rays);
+  SolvePosition running = between;
+  running.round_rays = rounds[3].rays;
+  const ProgressEstimate b = estimator.Estimate(between);
+  const ProgressEstimate r = estimator.Estimate(running);
+  EXPECT_NEAR(double(r.rays_left), double(b.rays_left), 0.01 * double(b.rays_left));
+  EXPECT_NEAR(*r.seconds_left, *b.seconds_left, 0.01 * *b.seconds_left);
+}
+
+TEST(ProgressEstimatorTest, ASolveThatStoppedConvergingStillGetsAFiniteEstimate) {
+  ProgressEstimator estimator(1e-3);
+  estimator.AddRound({1000, 1.0, 0.5, 0.5, false});
+  const ProgressEstimate e = estimator.Estimate({1000, 0.5, 0, 0, 0, 0, false});
+  ASSERT_TRUE(e.seconds_left.has_value());
+  EXPECT_TRUE(std::isfinite(*e.seconds_left));
+  EXPECT_GT(*e.seconds_left, 100.0);  // thousands of rounds at 1 s
+}
+
+TEST(ProgressEstimatorTest, DoneWhenNothingIsLeft) {
+  ProgressEstimator estimator(1e-3);
+  estimator.AddRound({1000, 1.0, 0.5, 1e-4, false});
+  const ProgressEstimate e = estimator.Estimate({1000, 1e-4, 0, 0, 0, 0, false});
+  EXPECT_DOUBLE_EQ(e.fraction, 1.0);
+  EXPECT_EQ(e.rays_left, 0u);
+  EXPECT_DOUBLE_EQ(*e.seconds_left, 0.0);
+}
+
+}  // namespace
+}  // namespace radfarm
