@@ -33,6 +33,7 @@ void ProgressReporter::Bar(double fraction, const std::string& text) {
 void ProgressReporter::OnRound(const RoundProgress& p) {
   std::lock_guard lock(mutex_);
   if (!estimator_) estimator_.emplace(p.tolerance);
+  estimator_->SetGatherRayCost(p.gather_ray_cost);
   estimator_->AddRound(
       {p.round_rays, p.round_seconds, p.unshot_before, p.unshot_fraction, p.gather});
   position_ = {p.rays, p.unshot_fraction, p.gather_rays_left};

@@ -8,7 +8,8 @@
 //     factor q a round. So the rounds left until the tolerance are log(tolerance / unshot) / log q,
 //     and their rays a geometric series: rays = a * unshot_before + b per round, a and b fitted
 //     to the rounds seen (b = 0 until two rounds differ).
-//   - the final gather: exactly the rays ProgressiveSolver::PendingGatherRays says.
+//   - the final gather: exactly the rays ProgressiveSolver::PendingGatherRays says, each priced at
+//     a shooting ray's cost times the ratio the caller measured (SetGatherRayCost).
 // Time is seconds = overhead + rays / rate per round, fitted the same way (overhead 0 until two
 // rounds differ), so rounds that shrink to a few rays still cost their fixed part.
 // The earlier estimate extrapolated elapsed time in log(unshot), as if every round cost the same:
@@ -54,6 +55,9 @@ class ProgressEstimator {
   explicit ProgressEstimator(double tolerance) : tolerance_(tolerance) {}
 
   void AddRound(const RoundSample& round);
+  // Seconds per gather ray over seconds per shooting ray (core/ray_cost_probe.h): the gather
+  // still to come is priced at the fitted rate times this. 1 until set (or when set to <= 0).
+  void SetGatherRayCost(double relative) { gather_ray_cost_ = relative > 0 ? relative : 1; }
   ProgressEstimate Estimate(const SolvePosition& now) const;
 
   // The shooting rounds and rays still to come from `unshot` on (none at or below the tolerance);
@@ -78,6 +82,7 @@ class ProgressEstimator {
   static constexpr size_t kTimedWindow = 64;
 
   double tolerance_;
+  double gather_ray_cost_ = 1;
   std::vector<RoundSample> shooting_;  // the last kWindow shooting rounds
   std::vector<RoundSample> timed_;     // the last kTimedWindow rounds of any kind
 };

@@ -19,6 +19,11 @@ double RunRounds(RoundDriver& driver, ThreadPool& pool,
   };
   LocalBatches batches(pool);
   while (std::optional<RoundPlan> plan = driver.PlanNext(kLocalBatchRays, elapsed())) {
+    if (on_round) {  // for the ETA; not part of the round's time
+      driver.MeasureGatherRayCost(*plan, kLocalBatchRays, [&](const std::vector<Batch>& sample) {
+        batches.TraceOnly(driver, sample);
+      });
+    }
     const double round_start = elapsed();
     const double unshot_before = driver.solver().UnshotFraction();
     std::unique_ptr<RoundReduction> reduction = driver.Reduction(*plan);
@@ -33,7 +38,8 @@ double RunRounds(RoundDriver& driver, ThreadPool& pool,
     if (on_round) {
       RoundProgress progress = driver.Progress(*plan, applied);
       progress.round_rays = plan->rays;
-      progress.round_seconds = elapsed() - round_start;
+      // A refinement step is no part of a round's pace: it comes once, when it comes.
+      progress.round_seconds = elapsed() - round_start - applied.refine_seconds;
       progress.unshot_before = unshot_before;
       on_round(progress);
     }
@@ -62,6 +68,12 @@ std::vector<BatchResult> LocalBatches::Run(RoundDriver& driver, const RoundPlan&
     results[b] = tracers_[worker]->Run(plan.batches[b]);
   });
   return results;
+}
+
+void LocalBatches::TraceOnly(RoundDriver& driver, const std::vector<Batch>& batches) {
+  Prepare(driver);
+  pool_.ParallelFor(batches.size(),
+                    [&](unsigned worker, size_t b) { tracers_[worker]->Run(batches[b]); });
 }
 
 void LocalBatches::Reduce(RoundDriver& driver, const RoundPlan& plan, RoundReduction& reduction,

@@ -38,10 +38,12 @@ class LocalBatches {
   // thread, one call at a time.
   void Reduce(RoundDriver& driver, const RoundPlan& plan, RoundReduction& reduction,
               const std::function<void(uint64_t rays_done)>& on_batch = {});
+  // Traces `batches` on the pool and throws their results away (RoundDriver::MeasureGatherRayCost).
+  void TraceOnly(RoundDriver& driver, const std::vector<Batch>& batches);
 
  private:
+  // The tracers of the driver's current scene, if not made yet.
   void Prepare(RoundDriver& driver);
-
   ThreadPool& pool_;
   const RoundDriver* driver_ = nullptr;
   uint32_t generation_ = 0;

@@ -1,5 +1,7 @@
 #include "solve/round_driver.h"
 
+#include <algorithm>
+#include <chrono>
 #include <stdexcept>
 #include <utility>
 
@@ -129,11 +131,14 @@ AppliedRound RoundDriver::AfterApply(const RoundPlan& plan, uint64_t escaped_ray
   stop_ = StopAfterRound(plan, *solver_, settings_);
   // Refinement between rounds: only when the solve goes on.
   if (!stop_ && schedule_ && schedule_->PointPassed(*solver_)) {
+    const auto start = std::chrono::steady_clock::now();
     std::optional<RefinementStep> step = schedule_->AfterRound(*mesh_, *solver_, caster(), *pool_);
     if (step) {
       Install(std::move(*step));
       applied.refined = true;
     }
+    applied.refine_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   return applied;
 }
@@ -172,9 +177,26 @@ SolveResult RoundDriver::Finish(double seconds, uint32_t threads) const {
   return out;
 }
 
+void RoundDriver::MeasureGatherRayCost(const RoundPlan& plan, uint32_t batch_rays,
+                                       const RayCostTracer& trace) {
+  if (gather_ray_cost_tried_ || plan.gather || !solver_->GatherPending()) return;
+  gather_ray_cost_tried_ = true;
+  const uint64_t gathering = solver_->GatheringPatches();
+  if (gathering == 0) return;
+  const uint64_t gather_rays = solver_->PendingGatherRays();
+  RayCostProbe probe;
+  probe.rays_per_kind = std::clamp<uint64_t>(gather_rays / 200, 8192, 65536);
+  const RayCostSamples samples =
+      SampleRayCosts(*scene_, plan, gather_rays / gathering, batch_rays, probe.rays_per_kind);
+  gather_ray_cost_ = GatherRayCostRatio(samples, trace, probe.passes);
+}
+
 RoundProgress RoundDriver::Progress(const RoundPlan& plan, const AppliedRound& applied) const {
-  return {solver_->rounds_done(), totals_.rays,       totals_.seconds, applied.unshot_fraction,
-          settings_.tolerance,    &solver_->energy(), plan.gather,     applied.gather_rays_left};
+  RoundProgress progress{
+      solver_->rounds_done(), totals_.rays,       totals_.seconds, applied.unshot_fraction,
+      settings_.tolerance,    &solver_->energy(), plan.gather,     solver_->PendingGatherRays()};
+  progress.gather_ray_cost = gather_ray_cost_.value_or(0);
+  return progress;
 }
 
 const RayCaster& RoundDriver::caster() {

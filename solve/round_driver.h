@@ -30,6 +30,7 @@
 #include "core/patch_scene.h"
 #include "core/progressive_solver.h"
 #include "core/ray_caster.h"
+#include "core/ray_cost_probe.h"
 #include "core/round_reduction.h"
 #include "core/solver_settings.h"
 #include "core/thread_pool.h"
@@ -47,7 +48,8 @@ struct AppliedRound {
   double unshot_fraction = 0;
   double unshot_power = 0;  // EnergyAccount::unshot
   uint64_t gather_rays_left = 0;
-  bool refined = false;  // a refinement step replaced the mesh, scene and solver
+  bool refined = false;       // a refinement step replaced the mesh, scene and solver
+  double refine_seconds = 0;  // spent deciding on and making that step
 };
 
 class RoundDriver {
@@ -85,7 +87,15 @@ class RoundDriver {
   SolveState State() const;
   // After the last round: the solution and its stats (threads: what computed the batches).
   SolveResult Finish(double seconds, uint32_t threads) const;
-  // After Apply of `plan`: how far the solve has come, for progress displays.
+  // Times a sample of `plan`'s rays against a sample of the final gather's, both traced by
+  // `trace` as the solve traces its rounds (core/ray_cost_probe.h), once per solve: only while a
+  // gather is pending and `plan` shoots. It traces about 2% of the gather's rays again (at most
+  // 262,144); their results are thrown away, so the solve's bits do not depend on it. Progress
+  // reports the ratio. The farm master does not call it (its agents trace, it has no caster), so
+  // its ETA prices gather rays at the shooting rate.
+  void MeasureGatherRayCost(const RoundPlan& plan, uint32_t batch_rays, const RayCostTracer& trace);
+  // After Apply of `plan`: how far the solve has come, for progress displays (the gather still to
+  // come on the mesh as it is now, after any refinement step).
   RoundProgress Progress(const RoundPlan& plan, const AppliedRound& applied) const;
 
   const PatchScene& scene() const { return *scene_; }
@@ -125,7 +135,9 @@ class RoundDriver {
   uint32_t last_round_ = 0;  // the plan's round number of the last round applied
   uint32_t last_shooters_ = 0;
   uint32_t refinements_ = 0;
-  bool refined_ = false;  // the mesh is no longer the one given
+  bool refined_ = false;                   // the mesh is no longer the one given
+  std::optional<double> gather_ray_cost_;  // MeasureGatherRayCost's ratio
+  bool gather_ray_cost_tried_ = false;
 };
 
 }  // namespace radfarm

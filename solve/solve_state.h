@@ -50,6 +50,9 @@ struct RoundProgress {
   uint64_t round_rays = 0;
   double round_seconds = 0;
   double unshot_before = 0;
+  // Seconds per ray of the final gather over those of a shooting round, as measured on this
+  // machine (RoundDriver::MeasureGatherRayCost); 0 when not measured.
+  double gather_ray_cost = 0;
 };
 
 // While a round of a local solve runs (RefiningHooks::during_round), after each of its batches.

@@ -39,6 +39,9 @@ EtaTrace TraceJob(const std::string& name, const std::string& job_path, unsigned
     trace.points.push_back(
         {round, in_gather, now(), e.seconds_left ? *e.seconds_left : -1.0, 0, e.fraction});
   };
+  struct {
+    double rays = 0, seconds = 0;
+  } shooting, gather;  // the rounds of each kind, for gather_ray_cost_seen
   RefiningHooks hooks;
   uint32_t rounds = 0;
   double next_tenth = 0.1;
@@ -59,6 +62,10 @@ EtaTrace TraceJob(const std::string& name, const std::string& job_path, unsigned
       std::move(*mesh), settings, job->refine,
       [&](const RoundProgress& p) {
         std::lock_guard lock(mutex);
+        estimator.SetGatherRayCost(p.gather_ray_cost);
+        trace.gather_ray_cost_probed = p.gather_ray_cost;
+        (p.gather ? gather : shooting).rays += double(p.round_rays);
+        (p.gather ? gather : shooting).seconds += p.round_seconds;
         estimator.AddRound(
             {p.round_rays, p.round_seconds, p.unshot_before, p.unshot_fraction, p.gather});
         position = {p.rays, p.unshot_fraction, p.gather_rays_left};
@@ -69,6 +76,10 @@ EtaTrace TraceJob(const std::string& name, const std::string& job_path, unsigned
   if (!solved) throw std::runtime_error(solved.error());
   trace.seconds = now();
   trace.rays = solved->solution.stats.rays;
+  if (gather.rays > 0 && shooting.rays > 0 && shooting.seconds > 0) {
+    trace.gather_ray_cost_seen =
+        (gather.seconds / gather.rays) / (shooting.seconds / shooting.rays);
+  }
   for (EtaPoint& point : trace.points) point.actual_left = trace.seconds - point.seconds;
   return trace;
 }

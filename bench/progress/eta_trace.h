@@ -25,6 +25,10 @@ struct EtaTrace {
   uint64_t rays = 0;
   double seconds = 0;  // the whole solve
   std::vector<EtaPoint> points;
+  // Seconds per gather ray over seconds per shooting ray: as the probe measured it before round 1
+  // (core/ray_cost_probe.h; 0 if it did not) and as the rounds then ran (0 without a gather).
+  double gather_ray_cost_probed = 0;
+  double gather_ray_cost_seen = 0;
 };
 
 // Loads and meshes the job file `job_path` and solves it on `threads` threads. Throws

@@ -113,6 +113,8 @@ nlohmann::json TraceJson(const EtaTrace& t) {
           {"threads", t.threads},
           {"rays", t.rays},
           {"seconds", t.seconds},
+          {"gather_ray_cost_probed", t.gather_ray_cost_probed},
+          {"gather_ray_cost_seen", t.gather_ray_cost_seen},
           {"judged_points", errors.size()},
           {"max_error", errors.empty()
                             ? nlohmann::json()
@@ -125,6 +127,8 @@ void PrintTrace(const EtaTrace& t) {
   std::printf("%s: %llu patches, %llu rays, %.1f s on %u threads\n", t.scene.c_str(),
               static_cast<unsigned long long>(t.patches), static_cast<unsigned long long>(t.rays),
               t.seconds, t.threads);
+  std::printf("  a gather ray's cost over a shooting ray's: %.2f probed, %.2f seen\n",
+              t.gather_ray_cost_probed, t.gather_ray_cost_seen);
   std::printf("  %5s %7s %9s %11s %10s %7s %6s\n", "round", "gather", "at s", "ETA s", "left s",
               "error", "bar");
   for (const EtaPoint& p : t.points) {
