@@ -20,7 +20,6 @@ flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<wire::WireLight>>> E
 // The lights of a verified buffer (null: none), each checked (PunctualLightProblem); errors name
 // the blob `kind` and the light.
 Result<std::vector<PunctualLight>> DecodeLights(
-    const flatbuffers::Vector<flatbuffers::Offset<wire::WireLight>>* lights,
-    std::string_view kind);
+    const flatbuffers::Vector<flatbuffers::Offset<wire::WireLight>>* lights, std::string_view kind);
 
 }  // namespace radfarm::codec

@@ -59,7 +59,7 @@ class DirectLight {
   std::vector<uint32_t> emitters_;  // patch ids with emission
   std::vector<double> splits_;      // TriangleSplit of each emitter
   std::vector<Light> lights_;
-  uint32_t grid_ = 1;  // grid_ x grid_ stratified shadow rays per emitter patch
+  uint32_t grid_ = 1;     // grid_ x grid_ stratified shadow rays per emitter patch
   double sun_reach_ = 0;  // beyond the scene from any point in it (ShadowRayTarget)
 };
 

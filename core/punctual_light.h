@@ -20,9 +20,9 @@ enum class PunctualKind : uint8_t { kPoint = 0, kSpot = 1, kSun = 2 };
 
 struct PunctualLight {
   PunctualKind kind = PunctualKind::kPoint;
-  Vec3 position;   // world space (point, spot); unused for a sun
-  Vec3 direction;  // unit, the way the light travels (spot axis, sun rays): the node's -Z
-  Rgb intensity;   // linear colour times intensity: candela (point, spot) or lux (sun), >= 0
+  Vec3 position;     // world space (point, spot); unused for a sun
+  Vec3 direction;    // unit, the way the light travels (spot axis, sun rays): the node's -Z
+  Rgb intensity;     // linear colour times intensity: candela (point, spot) or lux (sun), >= 0
   double range = 0;  // metres; 0: unlimited (point, spot)
   // Spot cone half-angles in radians, 0 <= inner < outer <= pi / 2 (glTF's defaults 0, pi / 4).
   double inner_cone = 0;

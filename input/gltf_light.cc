@@ -61,8 +61,7 @@ Result<std::optional<PunctualLight>> ReadNodeLight(const tinygltf::Model& model,
     if (in.color.size() != 3) return Error{what + ": color must have 3 components"};
     colour = {in.color[0], in.color[1], in.color[2]};
   }
-  if (!colour.IsFinite() || colour.Min() < 0 || !std::isfinite(in.intensity) ||
-      in.intensity < 0) {
+  if (!colour.IsFinite() || colour.Min() < 0 || !std::isfinite(in.intensity) || in.intensity < 0) {
     return Error{what + ": color and intensity must be finite and >= 0"};
   }
   if (!std::isfinite(in.range) || in.range < 0) return Error{what + ": range must be > 0"};

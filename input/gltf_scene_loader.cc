@@ -22,7 +22,7 @@ constexpr uint64_t kMaxTriangles = uint64_t{1} << 26;  // the job bundle's face 
 
 // Extensions read here; others in extensionsUsed give a warning, in extensionsRequired an error.
 const std::set<std::string> kReadExtensions = {"KHR_materials_emissive_strength",
-                                                "KHR_lights_punctual"};
+                                               "KHR_lights_punctual"};
 
 std::string FirstLine(const std::string& text) {
   std::string line = text.substr(0, text.find('\n'));

@@ -126,7 +126,8 @@ TEST(GltfRenderTest, ACornellBoxLitByPunctualLampsAloneRendersTheSameOnAnyThread
     EXPECT_EQ(r.err.find("nothing to light"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("KHR_lights_punctual"), std::string::npos) << r.err;
     csv[threads] = ReadFile(out.File("patches.csv"));
-    const std::map<std::string, double> means = MaterialMeans(ReadCsvPatches(out.File("patches.csv")));
+    const std::map<std::string, double> means =
+        MaterialMeans(ReadCsvPatches(out.File("patches.csv")));
     for (const char* material : {"white", "red", "green", "light"}) {
       EXPECT_GT(means.at(material), 0) << material;
     }

@@ -117,8 +117,9 @@ TEST(PatchSceneCodecTest, RejectsValuesOutOfRangeNamingThePatch) {
   EXPECT_FALSE(DecodePatchScene(EncodePatchScene(s)).ok());
 }
 
-// Punctual lights ride in the blob (the master's checkpointed refined scene, core/punctual_light.h);
-// a scene without them has the bytes it had before they existed: no `lights` field at all.
+// Punctual lights ride in the blob (the master's checkpointed refined scene,
+// core/punctual_light.h); a scene without them has the bytes it had before they existed: no
+// `lights` field at all.
 TEST(PatchSceneCodecTest, CarriesPunctualLightsAndChecksThem) {
   PatchScene scene = CornellPatches();
   const std::vector<uint8_t> without = EncodePatchScene(scene);

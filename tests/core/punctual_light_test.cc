@@ -170,8 +170,8 @@ TEST(PunctualLightTest, SectionsCountLightsAndNeedNoGather) {
 // A closed box lit by a point lamp alone: the solve starts from the lamp's light, its account
 // balances, and it converges as a box with an emitter does; with any number of threads.
 TEST(PunctualLightTest, ABoxLitByALampAloneSolvesWithAndWithoutGather) {
-  PatchScene scene = testing::MakeClosedBox({0, 0, 0}, {1, 1, 1}, 4,
-                                            testing::Surface{{0.6, 0.6, 0.6}, {}, 0});
+  PatchScene scene =
+      testing::MakeClosedBox({0, 0, 0}, {1, 1, 1}, 4, testing::Surface{{0.6, 0.6, 0.6}, {}, 0});
   scene.lights = {PointLamp({0.5, 0.8, 0.5}, {1, 1, 1})};
   for (uint32_t gather_rays : {0u, 256u}) {
     SolverSettings settings = Gathering(gather_rays, 2000);

@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "input/scene_loader.h"
 #include "testing/temp_dir.h"
@@ -255,9 +255,8 @@ TEST(LoadGltfSceneTest, ReadsPointSpotAndSunLightsUnderTheirNodesTransforms) {
     const PunctualLight& spot = scene->lights[1];
     EXPECT_EQ(spot.kind, PunctualKind::kSpot);
     EXPECT_TRUE(NearPoint(spot.position, {0.5, 0.8, 0.5}));
-    EXPECT_TRUE(NearPoint(spot.direction, {0, -1, 0})) << spot.direction.x << " "
-                                                       << spot.direction.y << " "
-                                                       << spot.direction.z;
+    EXPECT_TRUE(NearPoint(spot.direction, {0, -1, 0}))
+        << spot.direction.x << " " << spot.direction.y << " " << spot.direction.z;
     EXPECT_DOUBLE_EQ(spot.inner_cone, 0.1);
     EXPECT_NEAR(spot.outer_cone, std::numbers::pi / 4, 1e-9) << "glTF's default";
     EXPECT_EQ(spot.intensity, (Rgb{3, 3, 3})) << "white without a colour";
