@@ -207,7 +207,7 @@ GltfFixture FloorWithLights(const nlohmann::json& lights) {
 }
 
 TEST(LoadGltfSceneTest, NothingToLightNamesPunctualLightsOnNoNode) {
-  GltfFixture f = FloorWithLights({{{"type", "point"}, {"intensity", 10}}});
+  GltfFixture f = FloorWithLights(nlohmann::json::array({{{"type", "point"}, {"intensity", 10}}}));
   TempDir dir;
   const std::string path = f.WriteGltf(dir.File("s.gltf"));
   EXPECT_EQ(GltfLoadError(path),
@@ -289,7 +289,7 @@ TEST(LoadGltfSceneTest, RefusesBadLightsNamingNodeAndLight) {
       {{{"type", "point"}}, 3, "node 2 'L': light 3 does not exist (1 lights)"},
   };
   for (const Case& c : cases) {
-    GltfFixture f = FloorWithLights({c.light});
+    GltfFixture f = FloorWithLights(nlohmann::json::array({c.light}));
     f.AddNode({{"name", "L"}, {"extensions", {{"KHR_lights_punctual", {{"light", c.index}}}}}});
     TempDir dir;
     const std::string path = f.WriteGltf(dir.File("s.gltf"));
