@@ -7,8 +7,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/back_face_survey.h"
 #include "core/direct_light.h"
 #include "core/progressive_solver.h"
+#include "core/ray_caster.h"
 #include "tests/core/test_scenes.h"
 
 namespace radfarm {
@@ -202,6 +204,39 @@ TEST(PunctualLightTest, EmittersStillShootBesideALampWithoutGather) {
   }
   const EnergyAccount& e = solver.energy();
   EXPECT_NEAR(e.emitted, e.absorbed + solver.SignedUnshotPower() + e.escaped, 1e-9);
+}
+
+// The survey behind "lit from behind" (core/back_face_survey.h) shoots from lamps too: a lamp in
+// a box of inward faces meets fronts only, the same lamp outside meets backs only, a sun nothing.
+TEST(PunctualLightTest, TheBackFaceSurveyShootsFromPointAndSpotLamps) {
+  PatchScene box =
+      testing::MakeClosedBox({0, 0, 0}, {1, 1, 1}, 2, testing::Surface{{0.5, 0.5, 0.5}, {}, 0});
+  box.material_names = {"wall"};
+  PunctualLight spot = PointLamp({0.5, 0.5, 0.5}, {1, 1, 1});
+  spot.kind = PunctualKind::kSpot;
+  for (const PunctualLight& inside : {PointLamp({0.5, 0.5, 0.5}, {1, 1, 1}), spot}) {
+    PatchScene scene = box;
+    scene.lights = {inside};
+    const RayCaster caster(scene);
+    const BackFaceCounts counts = SurveyBackFaces(scene, caster, 1000);
+    EXPECT_EQ(counts.rays, 1000u);
+    EXPECT_EQ(counts.front[0], 1000u);
+    EXPECT_EQ(counts.back[0], 0u);
+  }
+  PatchScene scene = box;
+  scene.lights = {PointLamp({0.5, 3, 0.5}, {1, 1, 1})};
+  const RayCaster caster(scene);
+  const BackFaceCounts outside = SurveyBackFaces(scene, caster, 10000);
+  EXPECT_EQ(outside.front[0], 0u);
+  // The box's top, 2 below the lamp, subtends 4 atan(1 / (4 sqrt(18))) = 0.2352 sr: 1.87% of the
+  // sphere, 187 rays; within 3.5 standard deviations (13.6).
+  EXPECT_NEAR(double(outside.back[0]), 187.2, 48);
+  PunctualLight sun;
+  sun.kind = PunctualKind::kSun;
+  sun.direction = {0, -1, 0};
+  sun.intensity = {1, 1, 1};
+  scene.lights = {sun};
+  EXPECT_EQ(SurveyBackFaces(scene, caster, 1000).rays, 0u);
 }
 
 }  // namespace
