@@ -37,7 +37,8 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
     mesh.SetSolution(solution.radiosity, solution.unshot);
   } else {
     mesh.SetSolution(solution.radiosity, solution.unshot,
-                     {direct, job.solver.seed, job.solver.threads});
+                     {direct, job.solver.seed, job.solver.threads,
+                      EmittersInDirectStart(mesh.patch_scene(), job.solver)});
   }
   const DisplayMesh display = mesh.MakeDisplayMesh();
   std::vector<bool> emitter_patch;

@@ -7,6 +7,7 @@
 
 #include "base/result.h"
 #include "codec/decode_checks.h"
+#include "codec/punctual_light_codec.h"
 #include "job/output_budget.h"
 #include "job_bundle_generated.h"
 
@@ -180,8 +181,9 @@ std::vector<uint8_t> EncodeJobBundle(const JobBundle& bundle) {
     refine = wire::CreateBundleRefine(fbb, true, job.refine.tolerance, job.refine.min_element_size,
                                       job.refine.max_elements);
   }
+  const auto lights = EncodeLights(fbb, scene.lights);
   fbb.Finish(wire::CreateJobBundleBlob(fbb, path, job.mesh.patch_size, solver, camera, positions,
-                                       material_vec, face_vec, refine),
+                                       material_vec, face_vec, refine, lights),
              "RDJB");
   return {fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()};
 }
@@ -211,6 +213,9 @@ Result<JobBundle> DecodeJobBundle(std::span<const uint8_t> blob) {
   RADFARM_RETURN_IF_ERROR(DecodeCamera(*root->camera(), &bundle.job.camera));
   RADFARM_RETURN_IF_ERROR(DecodeRefine(root->refine(), &bundle.job.refine));
   RADFARM_RETURN_IF_ERROR(DecodeScene(*root, &bundle.scene));
+  Result<std::vector<PunctualLight>> lights = DecodeLights(root->lights(), kKind);
+  RADFARM_RETURN_IF_ERROR(lights);
+  bundle.scene.lights = std::move(*lights);
   return bundle;
 }
 

@@ -3,9 +3,11 @@
 #include <flatbuffers/flatbuffers.h>
 
 #include <string>
+#include <utility>
 
 #include "base/result.h"
 #include "codec/decode_checks.h"
+#include "codec/punctual_light_codec.h"
 #include "patch_scene_generated.h"
 
 namespace radfarm::codec {
@@ -80,7 +82,8 @@ std::vector<uint8_t> EncodePatchScene(const PatchScene& scene) {
   }
   const auto patch_vec = fbb.CreateVector(patches);
   const auto names = fbb.CreateVectorOfStrings(scene.material_names);
-  fbb.Finish(wire::CreatePatchSceneBlob(fbb, patch_vec, names), "RDPS");
+  const auto lights = EncodeLights(fbb, scene.lights);
+  fbb.Finish(wire::CreatePatchSceneBlob(fbb, patch_vec, names, lights), "RDPS");
   return {fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()};
 }
 
@@ -110,6 +113,9 @@ Result<PatchScene> DecodePatchScene(std::span<const uint8_t> blob) {
     RADFARM_RETURN_IF_ERROR(p);
     scene.patches.push_back(*p);
   }
+  Result<std::vector<PunctualLight>> lights = DecodeLights(root->lights(), kKind);
+  RADFARM_RETURN_IF_ERROR(lights);
+  scene.lights = std::move(*lights);
   return scene;
 }
 

@@ -19,8 +19,10 @@ struct BackFaceCounts {
   uint64_t rays = 0;  // all rays cast, escaped ones included
 };
 
-// Casts about `rays` rays from the emitting patches, each patch's share in proportion to its
-// emitted power, and counts first hits per material and side. Deterministic (fixed Sobol rays).
+// Casts about `rays` rays from the emitting patches and the point and spot lamps
+// (PatchScene::lights; suns are left out), each one's share in proportion to its emitted power,
+// and counts first hits per material and side. Deterministic (fixed Sobol rays from patches,
+// counter-based ones from lamps).
 BackFaceCounts SurveyBackFaces(const PatchScene& scene, const RayCaster& caster, uint64_t rays);
 
 }  // namespace radfarm

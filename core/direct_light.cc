@@ -13,10 +13,25 @@
 
 namespace radfarm {
 
-DirectLight::DirectLight(const PatchScene& scene, const RayCaster& caster, uint32_t rays_per_point)
+namespace {
+
+// Farther than any two points of the scene are apart.
+double SceneReach(const PatchScene& scene) {
+  Bounds3 box;
+  for (const Patch& p : scene.patches) {
+    for (uint8_t c = 0; c < p.corner_count; ++c) box.Extend(p.corners[c]);
+  }
+  return box.Empty() ? 1.0 : 2 * Length(box.hi - box.lo) + 1;
+}
+
+}  // namespace
+
+DirectLight::DirectLight(const PatchScene& scene, const RayCaster& caster, uint32_t rays_per_point,
+                         bool emitters)
     : scene_(scene), caster_(caster) {
+  if (!scene.lights.empty()) sun_reach_ = SceneReach(scene);
   std::map<std::pair<uint32_t, std::array<double, 3>>, size_t> light_of;  // (surface, Ke) -> light
-  for (uint32_t i = 0; i < scene.patches.size(); ++i) {
+  for (uint32_t i = 0; i < scene.patches.size() && emitters; ++i) {
     const Patch& p = scene.patches[i];
     if (p.emission.Max() <= 0) continue;
     const auto [it, added] = light_of.try_emplace(
@@ -52,6 +67,21 @@ double DirectLight::Visible(const Vec3& x, const Vec3& n, uint32_t k, uint64_t k
 }
 
 Rgb DirectLight::Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const {
+  if (scene_.lights.empty()) return EmitterIrradiance(x, n, key);
+  return EmitterIrradiance(x, n, key) + PunctualIrradiance(x, n);
+}
+
+Rgb DirectLight::PunctualIrradiance(const Vec3& x, const Vec3& n) const {
+  Rgb e;
+  for (const PunctualLight& light : scene_.lights) {
+    const Rgb lit = UnshadowedIrradiance(light, x, n);
+    if (lit.Max() <= 0) continue;
+    if (caster_.Unoccluded(x, ShadowRayTarget(light, x, sun_reach_), n)) e += lit;
+  }
+  return e;
+}
+
+Rgb DirectLight::EmitterIrradiance(const Vec3& x, const Vec3& n, uint64_t key) const {
   Rgb e;
   for (const Light& light : lights_) {
     const double whole = PointToOutlineFormFactor(x, n, light.outline);
@@ -82,13 +112,15 @@ Rgb DirectLight::Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const {
 }
 
 std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, uint64_t seed,
-                                  unsigned threads) {
+                                  unsigned threads, bool emitters, double* punctual_power) {
   std::vector<Rgb> out(scene.patches.size());
+  if (punctual_power != nullptr) *punctual_power = 0;
   bool any_emitter = false;
   for (const Patch& p : scene.patches) any_emitter = any_emitter || p.emission.Max() > 0;
-  if (!any_emitter) return out;
+  if (!(any_emitter && emitters) && scene.lights.empty()) return out;
   const RayCaster caster(scene);
-  const DirectLight direct(scene, caster, 1);
+  const DirectLight direct(scene, caster, 1, emitters);
+  std::vector<Rgb> punctual(scene.lights.empty() ? 0 : scene.patches.size());
   ThreadPool pool(threads);
   const uint32_t m = std::max(1u, sections);
   // Stream constant: keeps these keys apart from every other use of the seed.
@@ -96,45 +128,76 @@ std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, ui
   pool.ParallelFor(scene.patches.size(), [&](unsigned, size_t i) {
     const Patch& p = scene.patches[i];
     const double split = TriangleSplit(p);
-    Rgb sum;
+    Rgb sum, lamps;
     for (uint32_t a = 0; a < m; ++a) {
       for (uint32_t b = 0; b < m; ++b) {
         const CounterRng rng(HashWords(stream, i, a * m + b));
         const Vec3 x =
             SamplePatchPoint(p, split, (a + rng.Uniform(0)) / m, (b + rng.Uniform(1)) / m);
-        sum += direct.Irradiance(x, p.normal, HashWords(stream, i, a * m + b, 1));
+        sum += direct.EmitterIrradiance(x, p.normal, HashWords(stream, i, a * m + b, 1));
+        if (!punctual.empty()) lamps += direct.PunctualIrradiance(x, p.normal);
       }
     }
-    out[i] = sum / double(m * m);
+    if (punctual.empty()) {
+      out[i] = sum / double(m * m);
+    } else {
+      punctual[i] = lamps / double(m * m);
+      out[i] = (sum + lamps) / double(m * m);
+    }
   });
+  if (punctual_power != nullptr) {
+    for (size_t i = 0; i < punctual.size(); ++i) {
+      *punctual_power += scene.patches[i].area * punctual[i].Sum();
+    }
+  }
   return out;
 }
 
-uint32_t DirectLightSections(const PatchScene& scene, const SolverSettings& settings) {
-  if (!GatherOn(settings)) return 0;
+namespace {
+
+uint64_t EmitterPatches(const PatchScene& scene) {
   uint64_t emitters = 0;
   for (const Patch& p : scene.patches) emitters += p.emission.Max() > 0;
-  // A shadow ray per point and emitter patch: at least 4 x 4 points per patch, worth it while that
-  // is no more than the gather's rays. Big patches near a light need more points (the form factor
-  // changes across the patch).
-  if (emitters == 0 || emitters * 16 > settings.gather_rays) return 0;
-  return static_cast<uint32_t>(std::clamp(
-      std::floor(std::sqrt(settings.gather_rays / (2.0 * double(emitters)))), 4.0, 16.0));
+  return emitters;
 }
 
-std::vector<Rgb> StartingDirectLight(const PatchScene& scene, const SolverSettings& settings) {
+}  // namespace
+
+bool EmittersInDirectStart(const PatchScene& scene, const SolverSettings& settings) {
+  if (!GatherOn(settings)) return false;
+  // A shadow ray per point and emitter patch: at least 4 x 4 points per patch, worth it while that
+  // is no more than the gather's rays.
+  const uint64_t emitters = EmitterPatches(scene);
+  return emitters > 0 && emitters * 16 <= settings.gather_rays;
+}
+
+uint32_t DirectLightSections(const PatchScene& scene, const SolverSettings& settings) {
+  // Punctual lights have no surface to shoot from: they are always in the start.
+  const uint64_t sources =
+      (EmittersInDirectStart(scene, settings) ? EmitterPatches(scene) : 0) + scene.lights.size();
+  if (sources == 0) return 0;
+  // Big patches near a light need more points (the irradiance changes across the patch).
+  const double rays = GatherOn(settings) ? double(settings.gather_rays) : 512.0;
+  return static_cast<uint32_t>(
+      std::clamp(std::floor(std::sqrt(rays / (2.0 * double(sources)))), 4.0, 16.0));
+}
+
+std::vector<Rgb> StartingDirectLight(const PatchScene& scene, const SolverSettings& settings,
+                                     double* punctual_power) {
+  if (punctual_power != nullptr) *punctual_power = 0;
   const uint32_t sections = DirectLightSections(scene, settings);
   if (sections == 0) return {};
-  return PatchDirectLight(scene, sections, settings.seed, settings.threads);
+  return PatchDirectLight(scene, sections, settings.seed, settings.threads,
+                          EmittersInDirectStart(scene, settings), punctual_power);
 }
 
 std::vector<Rgb> PointsDirectLight(const PatchScene& scene,
                                    const std::vector<ReceiverPoint>& points, uint64_t seed,
-                                   unsigned threads) {
+                                   unsigned threads, bool emitters) {
   std::vector<Rgb> out(points.size());
   if (points.empty()) return out;
   const RayCaster caster(scene);
-  const DirectLight direct(scene, caster, kPointShadowRays);
+  const DirectLight direct(scene, caster, kPointShadowRays, emitters);
   ThreadPool pool(threads);
   // Stream constant: keeps these keys apart from PatchDirectLight's and every other use of the
   // seed.

@@ -6,6 +6,11 @@
 // V_p(x), with F the unoccluded form factor in closed form (core/point_form_factor.h) and V_p the
 // share of shadow rays from x to stratified points on p that reach p. Away from shadows it is
 // exact; in a penumbra its noise is that of the shadow rays, not of a mesh.
+//
+// Punctual lights (PatchScene::lights, core/punctual_light.h) add their closed-form irradiance
+// times one shadow ray each: no random numbers, a pure function of the point. Their cost is one
+// ray per light per point, all in PunctualIrradiance: the one place a light hierarchy (issue 21)
+// would go.
 #pragma once
 
 #include <cstdint>
@@ -23,12 +28,18 @@ namespace radfarm {
 class DirectLight {
  public:
   // About `rays_per_point` shadow rays per point in all (at least one per emitter patch). `scene`
-  // and `caster` (built from it) must outlive this.
-  DirectLight(const PatchScene& scene, const RayCaster& caster, uint32_t rays_per_point);
+  // and `caster` (built from it) must outlive this. Without `emitters`, the emitter patches are
+  // left out (they shoot their light instead) and only the punctual lights count.
+  DirectLight(const PatchScene& scene, const RayCaster& caster, uint32_t rays_per_point,
+              bool emitters = true);
 
   // Irradiance at x (unit normal n) in Ke units; `key` picks the shadow rays' points, so a call is
-  // a pure function of its arguments.
+  // a pure function of its arguments. EmitterIrradiance + PunctualIrradiance.
   Rgb Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const;
+  // From the emitter patches alone (zero without `emitters`).
+  Rgb EmitterIrradiance(const Vec3& x, const Vec3& n, uint64_t key) const;
+  // From the punctual lights alone: each light's UnshadowedIrradiance where its shadow ray arrives.
+  Rgb PunctualIrradiance(const Vec3& x, const Vec3& n) const;
 
  private:
   // The emitter patches of one light: one surface, one emission. Where it is planar, the form
@@ -48,25 +59,36 @@ class DirectLight {
   std::vector<uint32_t> emitters_;  // patch ids with emission
   std::vector<double> splits_;      // TriangleSplit of each emitter
   std::vector<Light> lights_;
-  uint32_t grid_ = 1;  // grid_ x grid_ stratified shadow rays per emitter patch
+  uint32_t grid_ = 1;     // grid_ x grid_ stratified shadow rays per emitter patch
+  double sun_reach_ = 0;  // beyond the scene from any point in it (ShadowRayTarget)
 };
 
 // Per patch, the direct irradiance averaged over the patch (Ke units): DirectLight at
-// sections^2 jittered points of each patch (one per stratum), one shadow ray per emitter patch per
-// point. A pure function of the scene, `sections` and `seed`, whatever `threads` (0: all cores).
-// Patches facing away from every emitter get zero without a ray.
+// sections^2 jittered points of each patch (one per stratum), one shadow ray per emitter patch
+// (with `emitters`) and per punctual light per point. A pure function of the scene, `sections`,
+// `seed` and `emitters`, whatever `threads` (0: all cores). If `punctual_power` is not null it
+// receives the punctual lights' share summed over the patches (area times channel sum): the
+// power they deliver.
 std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, uint64_t seed,
-                                  unsigned threads);
+                                  unsigned threads, bool emitters = true,
+                                  double* punctual_power = nullptr);
+
+// Whether a solve with these settings starts from the emitter patches' direct light rather than
+// letting them shoot: the gather on (GatherOn), some emitter, and no more than gather_rays / 16
+// emitter patches (else, a furnace, the emitters shoot).
+bool EmittersInDirectStart(const PatchScene& scene, const SolverSettings& settings);
 
 // The points per side of each patch at which a solve with these settings computes the direct
-// light it starts from (ProgressiveSolver), or 0 where it does not start from it: the gather off
-// (GatherOn), no emitter, or more than gather_rays / 16 emitter patches (a furnace: the emitters
-// shoot). Within, up to half the gather's rays per patch go to points, 4 x 4 to 16 x 16.
+// light it starts from (ProgressiveSolver), or 0 where it does not start from one: no emitter in
+// it (EmittersInDirectStart) and no punctual light. Within, up to half the gather's rays per
+// patch (512 rays without a gather) go to points, 4 x 4 to 16 x 16; a shadow ray per point and
+// emitter patch or punctual light.
 uint32_t DirectLightSections(const PatchScene& scene, const SolverSettings& settings);
 
 // The direct light a solve with these settings starts from: PatchDirectLight at
-// DirectLightSections, or empty where that is 0.
-std::vector<Rgb> StartingDirectLight(const PatchScene& scene, const SolverSettings& settings);
+// DirectLightSections with EmittersInDirectStart, or empty where that is 0.
+std::vector<Rgb> StartingDirectLight(const PatchScene& scene, const SolverSettings& settings,
+                                     double* punctual_power = nullptr);
 
 // Shadow rays per point (about) for PointsDirectLight.
 inline constexpr uint32_t kPointShadowRays = 64;
@@ -77,9 +99,10 @@ struct ReceiverPoint {
 };
 
 // DirectLight::Irradiance at each point with about kPointShadowRays shadow rays: a pure function
-// of the scene, the points and `seed`, whatever `threads` (0: all cores).
+// of the scene, the points, `seed` and `emitters` (DirectLight's), whatever `threads` (0: all
+// cores).
 std::vector<Rgb> PointsDirectLight(const PatchScene& scene,
                                    const std::vector<ReceiverPoint>& points, uint64_t seed,
-                                   unsigned threads);
+                                   unsigned threads, bool emitters = true);
 
 }  // namespace radfarm

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/punctual_light.h"
 #include "core/rgb.h"
 #include "core/vec3.h"
 
@@ -34,6 +35,9 @@ struct Patch {
 struct PatchScene {
   std::vector<Patch> patches;
   std::vector<std::string> material_names;
+  // Lights without a surface (glTF KHR_lights_punctual), in world space: they light the patches
+  // directly (core/direct_light.h) and are never hit.
+  std::vector<PunctualLight> lights;
 };
 
 }  // namespace radfarm

@@ -57,20 +57,26 @@ ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettin
   // Start from the direct light where DirectLightSections says it pays. Elsewhere (a furnace, a
   // sky of emitters) the emitters shoot as usual and the gather sees their light like any other.
   // The direct light is delivered (absorbed or reflected), the reflected part is unshot, and what
-  // the emitters emitted beyond it left the scene or met a back face.
-  direct_ = StartingDirectLight(scene, settings_);
+  // the emitters emitted beyond it left the scene or met a back face. Punctual lights are always
+  // in the start (they have no surface to shoot from); what they deliver counts as their emitted
+  // power (a sun's whole power has no bound).
+  double punctual_power = 0;
+  direct_ = StartingDirectLight(scene, settings_, &punctual_power);
   if (direct_.empty()) return;
+  emitters_direct_ = EmittersInDirectStart(scene, settings_);
+  const double emitter_power = energy_.emitted;
+  energy_.emitted += punctual_power;
   double delivered = 0;
   energy_.absorbed = 0;
   for (size_t i = 0; i < scene.patches.size(); ++i) {
     const Patch& p = scene.patches[i];
     const Rgb reflected = p.reflectance * direct_[i];
     radiosity_[i] = p.emission + reflected;
-    unshot_[i] = reflected;
+    unshot_[i] = emitters_direct_ ? reflected : p.emission + reflected;
     delivered += p.area * direct_[i].Sum();
     energy_.absorbed += p.area * (direct_[i] - reflected).Sum();
   }
-  energy_.escaped = energy_.emitted - delivered;
+  energy_.escaped = energy_.emitted - delivered - (emitters_direct_ ? 0.0 : emitter_power);
   energy_.unshot = TotalUnshotPower();
 }
 
@@ -250,7 +256,8 @@ void ProgressiveSolver::ApplyShot(const RoundPlan& plan, size_t s,
     Rgb bounced;
     for (uint32_t j : hits.touched) {
       // With the direct light known, only light that bounced is gathered; else all of it.
-      const Rgb seen = direct_.empty() ? radiosity_[j] : radiosity_[j] - scene_.patches[j].emission;
+      const Rgb seen =
+          emitters_direct_ ? radiosity_[j] - scene_.patches[j].emission : radiosity_[j];
       bounced += seen * (double(hit_weight_[j]) / total);
       hit_weight_[j] = 0;
     }

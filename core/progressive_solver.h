@@ -108,8 +108,9 @@ class ProgressiveSolver {
   uint64_t GatheringPatches() const;
   // The rays the final gather will cast (before any ray budget cuts it): 0 when none is pending.
   uint64_t PendingGatherRays() const;
-  // The direct light of every patch the solve started from (empty when the gather is off, or the
-  // scene has more emitter patches than it pays to compute it for: then they shoot as usual).
+  // The direct light of every patch the solve started from: the punctual lights' (always), and
+  // the emitter patches' where EmittersInDirectStart (else they shoot as usual). Empty when
+  // neither is in it.
   const std::vector<Rgb>& direct_light() const { return direct_; }
   // Unshot power (magnitudes) over emitted power: the convergence measure.
   double UnshotFraction() const;
@@ -137,6 +138,9 @@ class ProgressiveSolver {
   std::vector<Rgb> unshot_;
   bool gather_ = false;      // GatherOn(settings)
   std::vector<Rgb> direct_;  // per patch, Ke units; empty unless the solve started from it
+  // The emitter patches' light is in direct_ (EmittersInDirectStart): they do not shoot, and the
+  // gather takes only bounced light. Otherwise direct_ holds the punctual lights' alone, if any.
+  bool emitters_direct_ = false;
   EnergyAccount energy_;
   uint32_t rounds_done_ = 0;
   // Within a round (BeginRound to EndRound): hit weights per patch, zero between shots, and per

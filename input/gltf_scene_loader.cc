@@ -11,6 +11,7 @@
 
 #include "base/diagnostic.h"
 #include "input/gltf_accessor.h"
+#include "input/gltf_light.h"
 #include "input/gltf_material.h"
 #include "input/gltf_node_walk.h"
 
@@ -20,7 +21,8 @@ namespace {
 constexpr uint64_t kMaxTriangles = uint64_t{1} << 26;  // the job bundle's face limit
 
 // Extensions read here; others in extensionsUsed give a warning, in extensionsRequired an error.
-const std::set<std::string> kReadExtensions = {"KHR_materials_emissive_strength"};
+const std::set<std::string> kReadExtensions = {"KHR_materials_emissive_strength",
+                                               "KHR_lights_punctual"};
 
 std::string FirstLine(const std::string& text) {
   std::string line = text.substr(0, text.find('\n'));
@@ -65,13 +67,7 @@ Status CheckExtensions(const std::string& path, const tinygltf::Model& model,
   }
   for (const std::string& ext : model.extensionsUsed) {
     if (kReadExtensions.count(ext)) continue;
-    if (ext == "KHR_lights_punctual") {
-      warnings->push_back(WarningAt(path, 0,
-                                    "KHR_lights_punctual lamps are ignored: light comes from "
-                                    "emissive meshes only (emissiveFactor)"));
-    } else {
-      warnings->push_back(WarningAt(path, 0, "extension " + ext + " ignored"));
-    }
+    warnings->push_back(WarningAt(path, 0, "extension " + ext + " ignored"));
   }
   return Ok{};
 }
@@ -110,6 +106,9 @@ class SceneBuilder {
   Status Node(int node, const Mat4& world) {
     const tinygltf::Node& n = model_.nodes[node];
     if (n.camera >= 0) RADFARM_RETURN_IF_ERROR(Camera(node, world));
+    Result<std::optional<PunctualLight>> light = ReadNodeLight(model_, node, world);
+    if (!light.ok()) return ErrorAt(path_, 0, light.error());
+    if (light->has_value()) scene_->lights.push_back(**light);
     if (n.mesh < 0) return Ok{};
     if (static_cast<size_t>(n.mesh) >= model_.meshes.size()) {
       return ErrorAt(
@@ -261,8 +260,13 @@ Status CheckSomethingEmits(const std::string& path, const tinygltf::Model& model
   for (const InputFace& face : scene.faces) {
     if (scene.materials[face.material].emission.Max() > 0) return Ok{};
   }
-  std::string why = "nothing to light: no triangle uses a material with emissiveFactor > 0";
-  if (!model.lights.empty()) why += " (KHR_lights_punctual lamps are not read)";
+  for (const PunctualLight& light : scene.lights) {
+    if (light.intensity.Max() > 0) return Ok{};
+  }
+  std::string why =
+      "nothing to light: no triangle uses a material with emissiveFactor > 0 and no node carries "
+      "a KHR_lights_punctual light with intensity > 0";
+  if (!model.lights.empty()) why += " (the file's lights are on no node of the scene)";
   return ErrorAt(path, 0, why);
 }
 

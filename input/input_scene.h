@@ -7,6 +7,7 @@
 
 #include "base/result.h"
 #include "base/text_file.h"
+#include "core/punctual_light.h"
 #include "core/rgb.h"
 #include "core/vec3.h"
 #include "input/input_camera.h"
@@ -35,6 +36,7 @@ struct InputScene {
   std::vector<InputFace> faces;
   std::vector<std::string> warnings;  // one line each, already prefixed with the file name
   std::vector<InputCamera> cameras;   // in the file's order (glTF); the first is the default
+  std::vector<PunctualLight> lights;  // glTF KHR_lights_punctual, in world space, the walk's order
 };
 
 // Reads and validates an OBJ (and the MTL files it names). Errors are one line naming the file and

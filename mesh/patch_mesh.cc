@@ -192,6 +192,7 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
     }
   }
   pm.data_ = std::move(assembler).Finish();
+  pm.data_.scene.lights = scene.lights;
   return pm;
 }
 
@@ -222,6 +223,7 @@ PatchMesh PatchMesh::Rebuilt(const std::vector<Piece>& pieces) const {
   PatchAssembler assembler(tol_, min_area_, pm.materials_);
   for (const Piece& piece : pieces) assembler.Add(piece.corners, piece.surface, piece.material);
   pm.data_ = std::move(assembler).Finish();
+  pm.data_.scene.lights = data_.scene.lights;
   return pm;
 }
 

@@ -86,6 +86,9 @@ class PatchMesh {
     const std::vector<Rgb>& patch_direct;
     uint64_t seed = 0;
     unsigned threads = 0;  // 0: all cores
+    // Whether patch_direct holds the emitter patches' light (EmittersInDirectStart) or only the
+    // punctual lights' (the emitters shot theirs): the points then compute the same.
+    bool emitters = true;
   };
   // As above, but the display is finer than the solution and shows the direct light where it is
   // computed. Every display triangle is cut into four at its edge midpoints (midpoint_split.h), and

@@ -148,7 +148,7 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
     points.push_back({at + inward * kVertexInset, mid_normals[k] / length});
   }
   const std::vector<Rgb> irradiance =
-      PointsDirectLight(data_.scene, points, direct.seed, direct.threads);
+      PointsDirectLight(data_.scene, points, direct.seed, direct.threads, direct.emitters);
   std::vector<Rgb> point_irradiance(groups + midpoints);
   for (size_t n = 0; n < point_irradiance.size(); ++n) {
     if (point_of[n] != kNoPoint) point_irradiance[n] = irradiance[point_of[n]];

@@ -1,10 +1,14 @@
 #!/usr/bin/env python3
-"""Writes cornell-box.gltf and cornell-box.glb from cornell-box.obj and cornell-box.mtl.
+"""Writes cornell-box.gltf and cornell-box.glb from cornell-box.obj and cornell-box.mtl, and
+cornell-box-lamp.gltf: the same box lit by KHR_lights_punctual lamps instead of its ceiling panel.
 
 The same box in glTF's terms: one mesh and node per OBJ object (polygons fanned into triangles),
 under a root node that scales millimetres to metres; the published camera as a camera node; the
 light's Ke as emissiveFactor times KHR_materials_emissive_strength. Materials are single-sided, as
-OBJ faces are, so a render matches the OBJ's. Run from anywhere: python3 scenes/make-cornell-box-gltf.py
+OBJ faces are, so a render matches the OBJ's. The lamp version keeps the panel, unlit, and adds a
+warm bulb hanging under it, a cool spot in a front corner aimed at the floor's centre and a low sun
+shining in through the open front; the bulb and the spot sit under the millimetre node, the sun
+at the root. Run from anywhere: python3 scenes/make-cornell-box-gltf.py
 """
 import base64
 import json
@@ -45,6 +49,56 @@ def read_obj(path):
         elif words[0] == "f":
             current["faces"].append((material, [int(w.split("/")[0]) - 1 for w in words[1:]]))
     return vertices, objects
+
+
+def turning_minus_z_to(d):
+    """The unit quaternion (x, y, z, w) that turns -Z onto the direction d (glTF lights shine
+    down their node's -Z)."""
+    n = math.sqrt(sum(c * c for c in d))
+    d = [c / n for c in d]
+    axis = [d[1], -d[0], 0.0]  # cross((0, 0, -1), d)
+    sin = math.sqrt(sum(c * c for c in axis))
+    cos = -d[2]
+    if sin < 1e-12:
+        return [0.0, 0.0, 0.0, 1.0] if cos > 0 else [1.0, 0.0, 0.0, 0.0]
+    half = math.atan2(sin, cos) / 2
+    return [c / sin * math.sin(half) for c in axis] + [math.cos(half)]
+
+
+def add_lamps(gltf):
+    """The lamp version of the box: no emissive panel, three punctual lights."""
+    gltf = json.loads(json.dumps(gltf))
+    for m in gltf["materials"]:
+        m.pop("emissiveFactor", None)
+        m.pop("extensions", None)
+    gltf["extensionsUsed"] = ["KHR_lights_punctual"]
+    gltf["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"name": "bulb", "type": "point", "color": [1.0, 0.85, 0.6], "intensity": 0.3},
+        {"name": "spot", "type": "spot", "color": [0.6, 0.8, 1.0], "intensity": 0.8,
+         "spot": {"innerConeAngle": 0.15, "outerConeAngle": 0.35}},
+        {"name": "sun", "type": "directional", "color": [1.0, 0.95, 0.85], "intensity": 0.6},
+    ]}}
+    nodes = gltf["nodes"]
+    box = next(i for i, n in enumerate(nodes) if n["name"] == "CornellBox")
+    spot_at, spot_target = [500.0, 480.0, 60.0], [278.0, 0.0, 280.0]
+    lamps = [
+        # In millimetres under the box node, whose scale leaves a light's intensity alone.
+        {"name": "Bulb", "translation": [278.0, 500.0, 279.5],
+         "extensions": {"KHR_lights_punctual": {"light": 0}}},
+        {"name": "Spot", "translation": spot_at,
+         "rotation": turning_minus_z_to([t - a for a, t in zip(spot_at, spot_target)]),
+         "extensions": {"KHR_lights_punctual": {"light": 1}}},
+    ]
+    for lamp in lamps:
+        nodes[box]["children"].append(len(nodes))
+        nodes.append(lamp)
+    # The sun at the root, in metres: down and into the box through its open front (+z).
+    nodes.append({"name": "Sun", "rotation": turning_minus_z_to([-0.3, -0.5, 1.0]),
+                  "extensions": {"KHR_lights_punctual": {"light": 2}}})
+    gltf["scenes"][0]["nodes"].append(len(nodes) - 1)
+    gltf["scenes"][0]["name"] = "Cornell box with lamps"
+    gltf["asset"]["generator"] = "radfarm scenes/make-cornell-box-gltf.py (lamps)"
+    return gltf
 
 
 def build():
@@ -112,13 +166,18 @@ def build():
     return gltf, bytes(blob)
 
 
-def main():
-    gltf, blob = build()
+def write_gltf(gltf, blob, name):
     text = dict(gltf, buffers=[{"byteLength": len(blob), "uri": "data:application/octet-stream;base64,"
                                 + base64.b64encode(blob).decode()}])
-    with open(os.path.join(HERE, "cornell-box.gltf"), "w") as out:
+    with open(os.path.join(HERE, name), "w") as out:
         json.dump(text, out, indent=1)
         out.write("\n")
+
+
+def main():
+    gltf, blob = build()
+    write_gltf(gltf, blob, "cornell-box.gltf")
+    write_gltf(add_lamps(gltf), blob, "cornell-box-lamp.gltf")
     chunk = json.dumps(dict(gltf, buffers=[{"byteLength": len(blob)}])).encode()
     chunk += b" " * (-len(chunk) % 4)
     blob += b"\0" * (-len(blob) % 4)

@@ -109,6 +109,32 @@ TEST(GltfRenderTest, CornellBoxAsGltfAndGlbRendersLikeTheObj) {
   }
 }
 
+// The lamp-lit box (scenes/cornell-box-lamp.gltf): no emissive triangle, three KHR_lights_punctual
+// lamps. It renders, every surface is lit (the blocks' tops by the bulb, the walls by bounces),
+// and the panel the bulb hangs under is lit from below; one thread or three, the same bytes.
+TEST(GltfRenderTest, ACornellBoxLitByPunctualLampsAloneRendersTheSameOnAnyThreads) {
+  TempDir dir;
+  const std::string job = WriteText(
+      dir.File("lamp.toml"), "scene = \"" + kSceneDir +
+                                 "cornell-box-lamp.gltf\"\n[mesh]\npatch_size = 0.05\n"
+                                 "[solver]\ntolerance = 0.01\n[camera]\nwidth = 64\nheight = 64\n");
+  std::map<std::string, std::string> csv;
+  for (const char* threads : {"1", "3"}) {
+    TempDir out;
+    const auto r = RenderScene(job, out.path(), {"--threads", threads});
+    ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+    EXPECT_EQ(r.err.find("nothing to light"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("KHR_lights_punctual"), std::string::npos) << r.err;
+    csv[threads] = ReadFile(out.File("patches.csv"));
+    const std::map<std::string, double> means =
+        MaterialMeans(ReadCsvPatches(out.File("patches.csv")));
+    for (const char* material : {"white", "red", "green", "light"}) {
+      EXPECT_GT(means.at(material), 0) << material;
+    }
+  }
+  EXPECT_TRUE(csv["1"] == csv["3"]) << "thread counts differ";
+}
+
 TEST(GltfRenderTest, AnUnknownCameraNameIsBadInput) {
   TempDir out;
   const auto r = RenderScene(kSceneDir + "cornell-box.glb", out.path(), {"--camera", "nope"});

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "codec/patch_scene_codec.h"
+#include "input/scene_loader.h"
 #include "mesh/patch_mesh.h"
 
 namespace radfarm::codec {
@@ -49,6 +50,26 @@ TEST(JobBundleTest, MeshingTheDecodedBundleGivesTheSamePatches) {
     EXPECT_EQ(back->job.camera.width, bundle.job.camera.width);
     EXPECT_EQ(MeshBlob(*back), MeshBlob(bundle));
   }
+}
+
+// The lamp-lit box (scenes/cornell-box-lamp.gltf): its lamps reach the master in the bundle.
+TEST(JobBundleTest, CarriesPunctualLights) {
+  Result<Job> job = LoadJob(RADFARM_SOURCE_DIR "/scenes/cornell-box-lamp.toml");
+  ASSERT_TRUE(job.ok()) << job.error();
+  Result<InputScene> scene = LoadScene(job->scene_path);
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  ASSERT_EQ(scene->lights.size(), 3u);
+  const JobBundle bundle{*job, *scene};
+  Result<JobBundle> back = DecodeJobBundle(EncodeJobBundle(bundle));
+  ASSERT_TRUE(back.ok()) << back.error();
+  ASSERT_EQ(back->scene.lights.size(), 3u);
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(back->scene.lights[i].kind, scene->lights[i].kind) << i;
+    EXPECT_EQ(back->scene.lights[i].position, scene->lights[i].position) << i;
+    EXPECT_EQ(back->scene.lights[i].direction, scene->lights[i].direction) << i;
+    EXPECT_EQ(back->scene.lights[i].intensity, scene->lights[i].intensity) << i;
+  }
+  EXPECT_EQ(MeshBlob(*back), MeshBlob(bundle)) << "the meshed scene carries them too";
 }
 
 TEST(JobBundleTest, RejectsCorruptBlobsAndBadValues) {

@@ -117,5 +117,50 @@ TEST(PatchSceneCodecTest, RejectsValuesOutOfRangeNamingThePatch) {
   EXPECT_FALSE(DecodePatchScene(EncodePatchScene(s)).ok());
 }
 
+// Punctual lights ride in the blob (the master's checkpointed refined scene,
+// core/punctual_light.h); a scene without them has the bytes it had before they existed: no
+// `lights` field at all.
+TEST(PatchSceneCodecTest, CarriesPunctualLightsAndChecksThem) {
+  PatchScene scene = CornellPatches();
+  const std::vector<uint8_t> without = EncodePatchScene(scene);
+  PunctualLight spot;
+  spot.kind = PunctualKind::kSpot;
+  spot.position = {0.1, 0.2, 0.3};
+  spot.direction = {0, -1, 0};
+  spot.intensity = {1.5, 2.5, 3.5};
+  spot.range = 7;
+  spot.inner_cone = 0.25;
+  spot.outer_cone = 0.5;
+  PunctualLight sun;
+  sun.kind = PunctualKind::kSun;
+  sun.direction = {0, 0, -1};
+  sun.intensity = {100, 100, 100};
+  scene.lights = {spot, sun};
+  const std::vector<uint8_t> with = EncodePatchScene(scene);
+  EXPECT_GT(with.size(), without.size());
+  Result<PatchScene> back = DecodePatchScene(with);
+  ASSERT_TRUE(back.ok()) << back.error();
+  ASSERT_EQ(back->lights.size(), 2u);
+  const PunctualLight& b = back->lights[0];
+  EXPECT_EQ(b.kind, PunctualKind::kSpot);
+  EXPECT_TRUE(SameBits(b.position, spot.position));
+  EXPECT_TRUE(SameBits(b.direction, spot.direction));
+  EXPECT_TRUE(SameBits(b.intensity, spot.intensity));
+  EXPECT_TRUE(SameBits(b.range, spot.range));
+  EXPECT_TRUE(SameBits(b.inner_cone, spot.inner_cone));
+  EXPECT_TRUE(SameBits(b.outer_cone, spot.outer_cone));
+  EXPECT_EQ(back->lights[1].kind, PunctualKind::kSun);
+  EXPECT_EQ(EncodePatchScene(*back), with);
+  scene.lights[1].intensity.g = -1;
+  Result<PatchScene> bad = DecodePatchScene(EncodePatchScene(scene));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error(), "scene blob: light 1 intensity is negative or not finite");
+  scene.lights[1].intensity.g = 1;
+  scene.lights[1].kind = static_cast<PunctualKind>(7);
+  bad = DecodePatchScene(EncodePatchScene(scene));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().find("light 1 kind 7"), std::string::npos) << bad.error();
+}
+
 }  // namespace
 }  // namespace radfarm::codec

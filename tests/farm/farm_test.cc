@@ -44,6 +44,21 @@ TEST_F(FarmTest, ThreeAgentsRenderTheCornellBoxLikeRadfarmRender) {
   }
 }
 
+// A glTF scene lit by KHR_lights_punctual lamps alone: the lamps travel in the job bundle to the
+// master, whose solve starts from their light as render's does, to the byte.
+TEST_F(FarmTest, ALampLitGltfSceneRendersLikeRadfarmRender) {
+  StartMaster();
+  StartAgent("a1");
+  StartAgent("a2");
+  const std::vector<std::string> flags = {"--rays", "2000000", "--patch-size", "0.05"};
+  const int64_t id = Submit("cornell-box-lamp.toml", flags);
+  ASSERT_TRUE(WaitForState(id, "done")) << MasterLog();
+  const std::string patches = FetchPatches(id);
+  ASSERT_FALSE(patches.empty());
+  EXPECT_TRUE(patches == ReferencePatches("cornell-box-lamp.toml", flags))
+      << "farm and render differ";
+}
+
 // Rounds of at most --local-round-rays rays are computed by the master itself: with the limit
 // above every round of the job, it is solved with no agent at all, and gives render's patches.
 TEST_F(FarmTest, RoundsUnderTheLocalLimitAreSolvedByTheMasterAlone) {

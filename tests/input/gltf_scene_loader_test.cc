@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "input/scene_loader.h"
 #include "testing/temp_dir.h"
@@ -195,17 +197,104 @@ TEST(LoadGltfSceneTest, RefusesABadFactorNamingTheMaterial) {
   EXPECT_EQ(error.rfind(path + ": material 1 'lamp': emissiveFactor", 0), 0u) << error;
 }
 
-TEST(LoadGltfSceneTest, NothingToLightMentionsPunctualLamps) {
+// FloorAndLight without its emissive quad's emission and with these KHR_lights_punctual lights.
+GltfFixture FloorWithLights(const nlohmann::json& lights) {
   GltfFixture f = FloorAndLight();
   f.json()["materials"][1].erase("emissiveFactor");
   f.json()["extensionsUsed"].push_back("KHR_lights_punctual");
-  f.json()["extensions"] = {
-      {"KHR_lights_punctual", {{"lights", {{{"type", "point"}, {"intensity", 10}}}}}}};
+  f.json()["extensions"] = {{"KHR_lights_punctual", {{"lights", lights}}}};
+  return f;
+}
+
+TEST(LoadGltfSceneTest, NothingToLightNamesPunctualLightsOnNoNode) {
+  GltfFixture f = FloorWithLights(nlohmann::json::array({{{"type", "point"}, {"intensity", 10}}}));
   TempDir dir;
   const std::string path = f.WriteGltf(dir.File("s.gltf"));
-  EXPECT_EQ(GltfLoadError(path), path +
-                                     ": nothing to light: no triangle uses a material with "
-                                     "emissiveFactor > 0 (KHR_lights_punctual lamps are not read)");
+  EXPECT_EQ(GltfLoadError(path),
+            path +
+                ": nothing to light: no triangle uses a material with emissiveFactor > 0 and no "
+                "node carries a KHR_lights_punctual light with intensity > 0 (the file's lights "
+                "are on no node of the scene)");
+}
+
+TEST(LoadGltfSceneTest, ReadsPointSpotAndSunLightsUnderTheirNodesTransforms) {
+  GltfFixture f = FloorWithLights(
+      {{{"type", "point"}, {"color", {1, 0.5, 0.25}}, {"intensity", 8}, {"range", 5}},
+       {{"type", "spot"}, {"intensity", 3}, {"spot", {{"innerConeAngle", 0.1}}}},
+       {{"type", "directional"}, {"name", "Sun"}, {"intensity", 1000}}});
+  const double s = std::sqrt(0.5);
+  // The point under a parent that moves it by (1, 2, 3) and scales by 10 (no effect on a light).
+  const int point = f.AddNode({{"name", "Bulb"},
+                               {"translation", {0.1, 0.2, 0.3}},
+                               {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}},
+                              false);
+  f.AddNode({{"name", "Fixture"},
+             {"translation", {1, 2, 3}},
+             {"scale", {10, 10, 10}},
+             {"children", {point}}});
+  // The spot turned -90 degrees about x: its -Z points down (-Y).
+  f.AddNode({{"name", "Spot"},
+             {"translation", {0.5, 0.8, 0.5}},
+             {"rotation", {-s, 0, 0, s}},
+             {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+  // The sun with no rotation: its rays travel along -Z.
+  f.AddNode({{"name", "SunNode"}, {"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}});
+  TempDir dir;
+  for (const std::string& path : {f.WriteGltf(dir.File("s.gltf")), f.WriteGlb(dir.File("s.glb"))}) {
+    SCOPED_TRACE(path);
+    Result<InputScene> scene = LoadScene(path);
+    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_EQ(scene->lights.size(), 3u);
+    const PunctualLight& bulb = scene->lights[0];
+    EXPECT_EQ(bulb.kind, PunctualKind::kPoint);
+    EXPECT_TRUE(NearPoint(bulb.position, {2, 4, 6})) << "(1, 2, 3) + 10 * (0.1, 0.2, 0.3)";
+    EXPECT_DOUBLE_EQ(bulb.intensity.r, 8);
+    EXPECT_DOUBLE_EQ(bulb.intensity.g, 4);
+    EXPECT_DOUBLE_EQ(bulb.intensity.b, 2);
+    EXPECT_DOUBLE_EQ(bulb.range, 5) << "the node's scale leaves the range alone";
+    const PunctualLight& spot = scene->lights[1];
+    EXPECT_EQ(spot.kind, PunctualKind::kSpot);
+    EXPECT_TRUE(NearPoint(spot.position, {0.5, 0.8, 0.5}));
+    EXPECT_TRUE(NearPoint(spot.direction, {0, -1, 0}))
+        << spot.direction.x << " " << spot.direction.y << " " << spot.direction.z;
+    EXPECT_DOUBLE_EQ(spot.inner_cone, 0.1);
+    EXPECT_NEAR(spot.outer_cone, std::numbers::pi / 4, 1e-9) << "glTF's default";
+    EXPECT_EQ(spot.intensity, (Rgb{3, 3, 3})) << "white without a colour";
+    const PunctualLight& sun = scene->lights[2];
+    EXPECT_EQ(sun.kind, PunctualKind::kSun);
+    EXPECT_TRUE(NearPoint(sun.direction, {0, 0, -1}));
+    EXPECT_DOUBLE_EQ(sun.intensity.g, 1000);
+    for (const std::string& w : scene->warnings) {
+      EXPECT_EQ(w.find("KHR_lights_punctual"), std::string::npos) << w;
+    }
+  }
+}
+
+TEST(LoadGltfSceneTest, RefusesBadLightsNamingNodeAndLight) {
+  struct Case {
+    nlohmann::json light;
+    int index;
+    std::string error;
+  };
+  const std::vector<Case> cases = {
+      {{{"type", "area"}}, 0, "node 2 'L', light 0: type 'area' is not point, spot or directional"},
+      {{{"type", "point"}, {"name", "Neg"}, {"intensity", -1}},
+       0,
+       "node 2 'L', light 0 'Neg': color and intensity must be finite and >= 0"},
+      {{{"type", "spot"}, {"spot", {{"innerConeAngle", 0.5}, {"outerConeAngle", 0.4}}}},
+       0,
+       "node 2 'L', light 0: spot cone angles must satisfy 0 <= innerConeAngle < outerConeAngle "
+       "<= pi/2"},
+      {{{"type", "point"}, {"range", -2}}, 0, "node 2 'L', light 0: range must be > 0"},
+      {{{"type", "point"}}, 3, "node 2 'L': light 3 does not exist (1 lights)"},
+  };
+  for (const Case& c : cases) {
+    GltfFixture f = FloorWithLights(nlohmann::json::array({c.light}));
+    f.AddNode({{"name", "L"}, {"extensions", {{"KHR_lights_punctual", {{"light", c.index}}}}}});
+    TempDir dir;
+    const std::string path = f.WriteGltf(dir.File("s.gltf"));
+    EXPECT_EQ(GltfLoadError(path), path + ": " + c.error);
+  }
 }
 
 TEST(LoadGltfSceneTest, MissingAndUnparseableFiles) {
