@@ -7,6 +7,7 @@
 
 #include "core/progress_estimator.h"
 #include "input/input_scene.h"
+#include "input/scene_loader.h"
 #include "job/job.h"
 #include "mesh/patch_mesh.h"
 #include "solve/local_solve.h"
@@ -16,7 +17,7 @@ namespace radfarm::bench {
 EtaTrace TraceJob(const std::string& name, const std::string& job_path, unsigned threads) {
   Result<Job> job = LoadJob(job_path);
   if (!job) throw std::runtime_error(job.error());
-  Result<InputScene> input = LoadObjScene(job->scene_path);
+  Result<InputScene> input = LoadScene(job->scene_path);
   if (!input) throw std::runtime_error(input.error());
   std::vector<std::string> warnings;
   Result<PatchMesh> mesh = PatchMesh::Build(*input, job->mesh, &warnings);
