@@ -14,6 +14,7 @@ struct BatchTotals {
   uint64_t issued = 0;
   uint64_t speculative = 0;  // of issued: copies of an overdue lease
   uint64_t requeued = 0;
+  uint64_t preempted = 0;  // live leases taken back for a higher-priority job
   uint64_t accepted = 0;
   std::array<uint64_t, scheduler::kDropReasonCount> dropped{};  // by scheduler::DropReason
 

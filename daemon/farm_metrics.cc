@@ -48,6 +48,7 @@ web::FarmMetrics FarmMetricsOf(const nlohmann::json& jobs, const nlohmann::json&
   m.batches_issued = batches.issued;
   m.batches_reissued_overdue = batches.speculative;
   m.batches_reissued_requeued = batches.requeued;
+  m.leases_preempted = batches.preempted;
   m.results_accepted = batches.accepted;
   for (size_t i = 1; i < batches.dropped.size(); ++i) {
     const auto reason = static_cast<scheduler::DropReason>(i);

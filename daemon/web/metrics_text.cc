@@ -90,6 +90,9 @@ std::string FormatMetrics(const FarmMetrics& m) {
   e.Sample("radfarm_batches_reissued_total", double(m.batches_reissued_overdue), "why", "overdue");
   e.Sample("radfarm_batches_reissued_total", double(m.batches_reissued_requeued), "why",
            "requeued");
+  e.Family("radfarm_leases_preempted_total", "counter",
+           "Live leases taken back from agents for a higher-priority job's batches.");
+  e.Sample("radfarm_leases_preempted_total", double(m.leases_preempted));
   e.Family("radfarm_batch_results_accepted_total", "counter",
            "Batch results accepted (the first valid result of each batch).");
   e.Sample("radfarm_batch_results_accepted_total", double(m.results_accepted));

@@ -20,6 +20,7 @@ struct FarmMetrics {
   uint64_t batches_issued = 0;                       // attempts handed to agents
   uint64_t batches_reissued_overdue = 0;             // copies of an overdue lease
   uint64_t batches_reissued_requeued = 0;            // put back after a loss or a return
+  uint64_t leases_preempted = 0;                     // taken back for a higher-priority job
   uint64_t results_accepted = 0;                     // the first valid result of a batch
   std::map<std::string, uint64_t> results_rejected;  // by reason: the agent is at fault
   std::map<std::string, uint64_t> results_dropped;   // by reason: too late or repeated

@@ -33,6 +33,7 @@ TEST(FarmMetricsTest, DroppedResultsAreSplitIntoRejectionsAndLateOnes) {
   a.attempts_issued = 10;
   a.speculative_attempts = 1;
   a.leases_requeued = 2;
+  a.leases_preempted = 5;
   a.results_accepted = 8;
   a.results_dropped[size_t(scheduler::DropReason::kInvalid)] = 1;
   a.results_dropped[size_t(scheduler::DropReason::kNotHolder)] = 2;
@@ -44,6 +45,7 @@ TEST(FarmMetricsTest, DroppedResultsAreSplitIntoRejectionsAndLateOnes) {
   EXPECT_EQ(m.batches_issued, 20u);
   EXPECT_EQ(m.batches_reissued_overdue, 2u);
   EXPECT_EQ(m.batches_reissued_requeued, 4u);
+  EXPECT_EQ(m.leases_preempted, 10u);
   EXPECT_EQ(m.results_accepted, 16u);
   EXPECT_EQ(m.results_rejected.at("invalid"), 2u);
   EXPECT_EQ(m.results_rejected.at("not_the_holder"), 4u);

@@ -17,6 +17,7 @@ FarmMetrics Example() {
   m.batches_issued = 500;
   m.batches_reissued_overdue = 4;
   m.batches_reissued_requeued = 7;
+  m.leases_preempted = 6;
   m.results_accepted = 490;
   m.results_rejected = {{"invalid", 1}};
   m.results_dropped = {{"late", 3}};
@@ -40,6 +41,8 @@ TEST(MetricsTextTest, EverySeriesHasHelpAndTypeAndTheExactValue) {
            "radfarm_batches_issued_total 500",
            "radfarm_batches_reissued_total{why=\"overdue\"} 4",
            "radfarm_batches_reissued_total{why=\"requeued\"} 7",
+           "# TYPE radfarm_leases_preempted_total counter",
+           "radfarm_leases_preempted_total 6",
            "radfarm_batch_results_accepted_total 490",
            "radfarm_batch_results_rejected_total{reason=\"invalid\"} 1",
            "radfarm_batch_results_dropped_total{reason=\"late\"} 3",
