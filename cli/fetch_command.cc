@@ -11,8 +11,7 @@
 #include "cli/render_outputs.h"
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
-#include "codec/patch_scene_codec.h"
-#include "mesh/patch_mesh.h"
+#include "codec/solution_mesh.h"
 
 namespace radfarm {
 namespace {
@@ -24,39 +23,14 @@ Status WriteSolution(const std::vector<uint8_t>& blob, const std::string& out_di
   if (!solution.ok()) return Error{"the job solution from the master: " + solution.error()};
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(solution->bundle);
   if (!bundle.ok()) return Error{"the job bundle in the solution: " + bundle.error()};
-  // The warnings were shown when the job was submitted.
-  Result<PatchMesh> mesh = PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
-  if (!mesh.ok()) return Error{"meshing the job's scene again: " + mesh.error()};
-  const size_t initial_patches = mesh->patch_scene().patches.size();
-  if (!solution->scene.empty()) {
-    // Adaptive refinement: the values belong to the refined mesh, rebuilt from its scene on the
-    // mesh the bundle makes (as the master resumes a refined job).
-    if (!bundle->job.refine.enabled) {
-      return Error{"the job solution holds a refined mesh, but the job does not refine"};
-    }
-    Result<PatchScene> scene = codec::DecodePatchScene(solution->scene);
-    if (!scene.ok()) return Error{"the refined scene in the solution: " + scene.error()};
-    PatchMesh refined = mesh->Rebuilt(PatchMesh::PiecesOf(*scene));
-    if (refined.patch_scene().patches.size() != scene->patches.size()) {
-      return Error{"the refined scene in the solution has " +
-                   std::to_string(scene->patches.size()) + " elements, rebuilt " +
-                   std::to_string(refined.patch_scene().patches.size())};
-    }
-    *mesh = std::move(refined);
-  }
-  const size_t patches = mesh->patch_scene().patches.size();
-  if (solution->radiosity.size() != patches || solution->unshot.size() != patches) {
-    return Error{"the job solution holds " + std::to_string(solution->radiosity.size()) +
-                 " radiosities and " + std::to_string(solution->unshot.size()) +
-                 " unshot values, but the scene meshes into " + std::to_string(patches) +
-                 " patches"};
-  }
+  Result<codec::SolutionMesh> solved = codec::MeshOfSolution(*solution, *bundle);
+  RADFARM_RETURN_IF_ERROR(solved);
   RADFARM_RETURN_IF_ERROR(CreateOutputDirectory(out_dir));
   const SolveResult result{
       std::move(solution->radiosity), std::move(solution->unshot), std::move(solution->stats), {}};
   // As `radfarm render`: stats.json names the initial patch count of a refining job.
-  return WriteOutputs(out_dir, *mesh, result, bundle->job,
-                      bundle->job.refine.enabled ? initial_patches : 0);
+  return WriteOutputs(out_dir, solved->mesh, result, bundle->job,
+                      bundle->job.refine.enabled ? solved->initial_patches : 0);
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
-#include "codec/patch_scene_codec.h"
+#include "codec/solution_mesh.h"
 #include "mesh/patch_mesh.h"
 #include "output/exposure_meter.h"
 #include "output/image.h"
@@ -18,22 +18,13 @@ Result<std::string> RenderPreviewPng(std::span<const uint8_t> blob) {
   RADFARM_RETURN_IF_ERROR(solution);
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(solution->bundle);
   RADFARM_RETURN_IF_ERROR(bundle);
-  Result<PatchMesh> mesh = PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
-  RADFARM_RETURN_IF_ERROR(mesh);
-  if (!solution->scene.empty()) {  // refined: the values belong to the checkpoint's mesh
-    Result<PatchScene> scene = codec::DecodePatchScene(solution->scene);
-    RADFARM_RETURN_IF_ERROR(scene);
-    *mesh = mesh->Rebuilt(PatchMesh::PiecesOf(*scene));
-  }
-  const size_t patches = mesh->patch_scene().patches.size();
-  if (solution->radiosity.size() != patches || solution->unshot.size() != patches) {
-    return Error{"the checkpoint holds " + std::to_string(solution->radiosity.size()) +
-                 " values for " + std::to_string(patches) + " patches"};
-  }
-  mesh->SetSolution(solution->radiosity, solution->unshot);
-  const DisplayMesh display = mesh->MakeDisplayMesh();
+  Result<codec::SolutionMesh> solved = codec::MeshOfSolution(*solution, *bundle);
+  RADFARM_RETURN_IF_ERROR(solved);
+  PatchMesh& mesh = solved->mesh;
+  mesh.SetSolution(solution->radiosity, solution->unshot);
+  const DisplayMesh display = mesh.MakeDisplayMesh();
   std::vector<bool> emitter_patch;
-  for (const Patch& p : mesh->patch_scene().patches) emitter_patch.push_back(p.emission.Max() > 0);
+  for (const Patch& p : mesh.patch_scene().patches) emitter_patch.push_back(p.emission.Max() > 0);
   Camera camera = ResolveCamera(display, bundle->job.camera);
   const double scale =
       double(kPreviewPixels) / double(std::max({camera.width, camera.height, kPreviewPixels}));
