@@ -77,16 +77,23 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
                    std::to_string(runner->driver_->scene().patches.size()) + " rebuilt)"};
     }
     runner->refined_blob_ = std::move(encoded);
+    runner->refined_packed_ =
+        std::make_shared<const protocol::PackedScene>(protocol::PackScene(*runner->refined_blob_));
     runner->refined_hash_ = *checkpoint->scene_hash;
   } else if (runner->driver_->refined()) {
     runner->EncodeRefinedScene();  // the step before round 0
   }
-  auto blob = runner->refined_blob_ ? runner->refined_blob_
-                                    : std::make_shared<const std::vector<uint8_t>>(
-                                          codec::EncodePatchScene(runner->driver_->scene()));
-  runner->wire_ = {static_cast<uint64_t>(record.id), runner->settings_, protocol::HashScene(*blob),
+  // Packed once for every agent, straight from the encoder's buffer: the uncompressed blob is
+  // never copied or kept.
+  std::shared_ptr<const protocol::PackedScene> packed = runner->refined_packed_;
+  if (!packed) {
+    codec::EncodePatchScene(runner->driver_->scene(), [&](std::span<const uint8_t> blob) {
+      packed = std::make_shared<const protocol::PackedScene>(protocol::PackScene(blob));
+    });
+  }
+  runner->wire_ = {static_cast<uint64_t>(record.id), runner->settings_, packed->hash,
                    static_cast<uint32_t>(runner->driver_->scene().patches.size())};
-  runner->scene_blob_ = std::move(blob);
+  runner->scene_ = std::move(packed);
   runner->scheduler_ = scheduler::RoundScheduler(options);
   runner->UpdateTotals();
 
@@ -183,8 +190,8 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
                 applied.back_rays};
   if (applied.refined) {
     EncodeRefinedScene();
-    out.new_scene = refined_blob_;
-    out.new_scene_hash = protocol::HashScene(*refined_blob_);
+    out.new_scene = refined_packed_;
+    out.new_scene_hash = refined_packed_->hash;
     out.new_patch_count = static_cast<uint32_t>(driver_->scene().patches.size());
   }
   UpdateTotals();
@@ -222,13 +229,15 @@ void RunningJob::UpdateTotals() {
 void RunningJob::EncodeRefinedScene() {
   refined_blob_ =
       std::make_shared<const std::vector<uint8_t>>(codec::EncodePatchScene(driver_->scene()));
-  refined_hash_ = protocol::HashToHex(protocol::HashScene(*refined_blob_));
+  refined_packed_ =
+      std::make_shared<const protocol::PackedScene>(protocol::PackScene(*refined_blob_));
+  refined_hash_ = protocol::HashToHex(refined_packed_->hash);
   refined_unsaved_ = true;
 }
 
 bool RunningJob::InstallOutcome(RoundOutcome& outcome) {
   if (outcome.new_scene) {
-    scene_blob_ = std::move(outcome.new_scene);
+    scene_ = std::move(outcome.new_scene);
     wire_.scene_hash = outcome.new_scene_hash;
     wire_.patch_count = outcome.new_patch_count;
   }
