@@ -31,6 +31,16 @@ Result<PatchScene> RefinedSceneOf(const store::Checkpoint& checkpoint, const Ref
   return scene;
 }
 
+// The scene agents fetch, packed once, straight from the encoder's buffer: the uncompressed blob
+// is never copied or kept.
+std::shared_ptr<const protocol::PackedScene> PackPatchScene(const PatchScene& scene) {
+  std::shared_ptr<const protocol::PackedScene> packed;
+  codec::EncodePatchScene(scene, [&](std::span<const uint8_t> blob) {
+    packed = std::make_shared<const protocol::PackedScene>(protocol::PackScene(blob));
+  });
+  return packed;
+}
+
 }  // namespace
 
 Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
@@ -60,6 +70,11 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
     }
     resume = store::ResumeStateOf(c, rounds, refined_scene ? &*refined_scene : nullptr);
   }
+  // Without refinement the solver's scene is the mesh's as it stands: pack it now, before the ray
+  // caster and the solver exist, so the encoder's buffer (about 220 bytes a patch) is not added
+  // to theirs at the master's peak.
+  std::shared_ptr<const protocol::PackedScene> packed;
+  if (!bundle->job.refine.enabled) packed = PackPatchScene(mesh->patch_scene());
   runner->pool_ = std::make_unique<ThreadPool>(1);
   Result<std::unique_ptr<RoundDriver>> driver =
       RoundDriver::Start(std::move(*mesh), runner->settings_, bundle->job.refine,
@@ -83,13 +98,10 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   } else if (runner->driver_->refined()) {
     runner->EncodeRefinedScene();  // the step before round 0
   }
-  // Packed once for every agent, straight from the encoder's buffer: the uncompressed blob is
-  // never copied or kept.
-  std::shared_ptr<const protocol::PackedScene> packed = runner->refined_packed_;
-  if (!packed) {
-    codec::EncodePatchScene(runner->driver_->scene(), [&](std::span<const uint8_t> blob) {
-      packed = std::make_shared<const protocol::PackedScene>(protocol::PackScene(blob));
-    });
+  if (runner->refined_packed_) {
+    packed = runner->refined_packed_;
+  } else if (!packed) {
+    packed = PackPatchScene(runner->driver_->scene());
   }
   runner->wire_ = {static_cast<uint64_t>(record.id), runner->settings_, packed->hash,
                    static_cast<uint32_t>(runner->driver_->scene().patches.size())};

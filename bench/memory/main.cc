@@ -80,6 +80,12 @@ nlohmann::json ReadJsonFile(const std::string& path) {
   return nlohmann::json::parse(in);
 }
 
+std::string Fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
 std::string Format(double size) {
   std::ostringstream out;
   out << size;
@@ -176,19 +182,19 @@ int Main(int argc, char** argv) {
     nlohmann::json run = MeasureRender(o, size, dir.path());
     if (o.farm) run.update(MeasureFarm(o, size, dir.path()));
     auto farm_figure = [&](const char* key, double scale) {
-      return o.farm ? Format(run[key].get<double>() / scale) : std::string("-");
+      return o.farm ? Fixed(run[key].get<double>() / scale, 1) : std::string("-");
     };
     const std::string scene = o.farm
-                                  ? Format(run["scene_bytes"].get<double>() / kMiB) + "/" +
-                                        Format(run["scene_compressed_bytes"].get<double>() / kMiB)
+                                  ? Fixed(run["scene_bytes"].get<double>() / kMiB, 1) + "/" +
+                                        Fixed(run["scene_compressed_bytes"].get<double>() / kMiB, 1)
                                   : "-";
-    std::printf("%10s %10llu %9.2f %9.2f %12.1f %12s %10s %12s %10s\n", Format(size).c_str(),
-                run["patches"].get<unsigned long long>(), run["seconds"].get<double>(),
-                run["rays_per_second"].get<double>() / 1e6,
-                run["peak_rss_bytes"].get<double>() / kMiB,
-                farm_figure("master_peak_rss_bytes", kMiB).c_str(),
-                farm_figure("agent_peak_rss_bytes", kMiB).c_str(), scene.c_str(),
-                farm_figure("agent_start_to_first_result_seconds", 1).c_str());
+    std::printf(
+        "%10s %10llu %9.2f %9.2f %12.1f %12s %10s %12s %10s\n", Format(size).c_str(),
+        run["patches"].get<unsigned long long>(), run["seconds"].get<double>(),
+        run["rays_per_second"].get<double>() / 1e6, run["peak_rss_bytes"].get<double>() / kMiB,
+        farm_figure("master_peak_rss_bytes", kMiB).c_str(),
+        farm_figure("agent_peak_rss_bytes", kMiB).c_str(), scene.c_str(),
+        o.farm ? Fixed(run["agent_start_to_first_result_seconds"].get<double>(), 2).c_str() : "-");
     std::fflush(stdout);
     runs.push_back(std::move(run));
   }
