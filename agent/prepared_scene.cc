@@ -7,11 +7,14 @@
 
 namespace radfarm::agent {
 
-Result<std::shared_ptr<const PreparedScene>> PrepareScene(const protocol::SceneHash& hash,
-                                                          std::span<const uint8_t> blob) {
+Result<std::shared_ptr<const PreparedScene>> PrepareScene(
+    const protocol::SceneHash& hash, std::vector<uint8_t> blob,
+    const std::function<void(std::span<const uint8_t> blob)>& decoded_callback) {
   Result<PatchScene> decoded = codec::DecodePatchScene(blob);
   if (!decoded) return Error{"cannot decode: " + decoded.error()};
   if (decoded->patches.empty()) return Error{"has no patches"};
+  if (decoded_callback) decoded_callback(blob);
+  std::vector<uint8_t>().swap(blob);  // not needed for tracing
   auto prepared = std::make_shared<PreparedScene>();
   prepared->hash = hash;
   prepared->scene = std::move(decoded).value();

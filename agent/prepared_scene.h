@@ -4,8 +4,10 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "base/result.h"
 #include "core/patch_scene.h"
@@ -22,9 +24,12 @@ struct PreparedScene {
   uint32_t patch_count() const { return static_cast<uint32_t>(scene.patches.size()); }
 };
 
-// Decodes a verified blob (codec::DecodePatchScene) and builds its RayCaster. Slow for big scenes:
-// call it off the loop thread. Errors say what is wrong; the caller names the scene.
-Result<std::shared_ptr<const PreparedScene>> PrepareScene(const protocol::SceneHash& hash,
-                                                          std::span<const uint8_t> blob);
+// Decodes a verified blob (codec::DecodePatchScene), calls `decoded` with the blob (to save it),
+// frees the blob and only then builds the RayCaster, so the blob (about 220 bytes a patch) is
+// not held through the BVH build, the agent's peak. Slow for big scenes: call it off the loop
+// thread. Errors say what is wrong; the caller names the scene.
+Result<std::shared_ptr<const PreparedScene>> PrepareScene(
+    const protocol::SceneHash& hash, std::vector<uint8_t> blob,
+    const std::function<void(std::span<const uint8_t> blob)>& decoded = {});
 
 }  // namespace radfarm::agent

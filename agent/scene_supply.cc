@@ -43,7 +43,8 @@ Status SceneSupply::LoadFromDisk(const protocol::SceneHash& hash) {
         Prepared prepared;
         prepared.detail = loaded.detail;
         if (loaded.outcome != SceneStore::LoadOutcome::kFound) return prepared;
-        Result<std::shared_ptr<const PreparedScene>> scene = PrepareScene(hash, loaded.blob);
+        Result<std::shared_ptr<const PreparedScene>> scene =
+            PrepareScene(hash, std::move(loaded.blob));
         if (!scene) {
           prepared.kind = Prepared::Kind::kUndecodable;
           prepared.detail = scene.error();
@@ -144,9 +145,17 @@ void SceneSupply::PrepareFetched(const protocol::SceneHash& hash, std::vector<ui
   pending_[hash].stage = Stage::kPreparing;
   const SceneStore* store = store_ ? &*store_ : nullptr;
   Status submitted = io_.Submit(
-      [store, hash, blob = std::move(blob)]() -> Prepared {
+      [store, hash, blob = std::move(blob)]() mutable -> Prepared {
         Prepared prepared;
-        Result<std::shared_ptr<const PreparedScene>> scene = PrepareScene(hash, blob);
+        // Saved once decoded (an undecodable scene is not kept), before the caster is built.
+        auto save = [&](std::span<const uint8_t> decoded) {
+          if (store == nullptr) return;
+          Status saved = store->Save(hash, decoded);
+          prepared.detail =
+              saved ? "saved as " + store->PathFor(hash) : "kept in memory only: " + saved.error();
+        };
+        Result<std::shared_ptr<const PreparedScene>> scene =
+            PrepareScene(hash, std::move(blob), save);
         if (!scene) {
           prepared.kind = Prepared::Kind::kUndecodable;
           prepared.detail = scene.error();
@@ -154,11 +163,6 @@ void SceneSupply::PrepareFetched(const protocol::SceneHash& hash, std::vector<ui
         }
         prepared.kind = Prepared::Kind::kReady;
         prepared.scene = std::move(scene).value();
-        if (store != nullptr) {
-          Status saved = store->Save(hash, blob);
-          prepared.detail =
-              saved ? "saved as " + store->PathFor(hash) : "kept in memory only: " + saved.error();
-        }
         return prepared;
       },
       [this, hash](Result<Prepared> prepared) {

@@ -67,6 +67,14 @@ Result<Patch> DecodePatch(const wire::ScenePatch& in, uint32_t index, size_t mat
 }  // namespace
 
 std::vector<uint8_t> EncodePatchScene(const PatchScene& scene) {
+  std::vector<uint8_t> blob;
+  EncodePatchScene(
+      scene, [&](std::span<const uint8_t> bytes) { blob.assign(bytes.begin(), bytes.end()); });
+  return blob;
+}
+
+void EncodePatchScene(const PatchScene& scene,
+                      const std::function<void(std::span<const uint8_t> blob)>& use) {
   flatbuffers::FlatBufferBuilder fbb(1024 + scene.patches.size() * 256);
   std::vector<flatbuffers::Offset<wire::ScenePatch>> patches;
   patches.reserve(scene.patches.size());
@@ -84,7 +92,7 @@ std::vector<uint8_t> EncodePatchScene(const PatchScene& scene) {
   const auto names = fbb.CreateVectorOfStrings(scene.material_names);
   const auto lights = EncodeLights(fbb, scene.lights);
   fbb.Finish(wire::CreatePatchSceneBlob(fbb, patch_vec, names, lights), "RDPS");
-  return {fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()};
+  use(std::span<const uint8_t>(fbb.GetBufferPointer(), fbb.GetSize()));
 }
 
 Result<PatchScene> DecodePatchScene(std::span<const uint8_t> blob) {

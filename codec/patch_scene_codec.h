@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -14,6 +15,10 @@
 namespace radfarm::codec {
 
 std::vector<uint8_t> EncodePatchScene(const PatchScene& scene);
+// The same bytes, lent to `use` while the encoder holds them: no copy (the master packs the scene
+// straight from here, protocol/scene_packing.h).
+void EncodePatchScene(const PatchScene& scene,
+                      const std::function<void(std::span<const uint8_t> blob)>& use);
 
 // Verifies the buffer and every value (finite numbers, 3..4 corners, positive areas, reflectance
 // in [0, 1), emission >= 0, material ids in range) before building the scene. Errors name the

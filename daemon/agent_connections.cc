@@ -248,7 +248,7 @@ void AgentConnections::OnSceneRequest(AgentLink& link, const protocol::SceneRequ
   for (auto& [job, runner] : jobs_.runners()) {
     if (runner->wire_info().scene_hash != request.scene_hash) continue;
     Result<protocol::SceneChunkMsg> chunk =
-        protocol::MakeSceneChunk(*runner->scene_blob(), request);
+        protocol::MakeSceneChunk(*runner->packed_scene(), request);
     if (!chunk) {
       LogLine(LogLevel::kWarning, "agents")
           << link.Describe() << ": bad scene request: " << chunk.error() << "; closing";
@@ -256,8 +256,9 @@ void AgentConnections::OnSceneRequest(AgentLink& link, const protocol::SceneRequ
       return;
     }
     if (request.offset == 0) {
-      LogLine(LogLevel::kInfo, "agents") << link.Describe() << " fetches the scene of job " << job
-                                         << " (" << runner->scene_blob()->size() << " bytes)";
+      LogLine(LogLevel::kInfo, "agents")
+          << link.Describe() << " fetches the scene of job " << job << " ("
+          << runner->packed_scene()->compressed.size() << " bytes compressed)";
     }
     (void)link.Send(std::move(*chunk));
     return;

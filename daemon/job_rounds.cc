@@ -111,7 +111,8 @@ void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob
   }
   LogLine(LogLevel::kInfo, "job " + std::to_string(id))
       << r->patch_count() << " patches, scene " << protocol::HashToHex(r->wire_info().scene_hash)
-      << " (" << r->scene_blob()->size() << " bytes)";
+      << " (" << r->packed_scene()->size << " bytes, " << r->packed_scene()->compressed.size()
+      << " compressed)";
   for (uint64_t agent : agents_.available_agents()) r->scheduler().AddAgent(agent);
   BeginRound(r);
 }

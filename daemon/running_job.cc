@@ -31,6 +31,16 @@ Result<PatchScene> RefinedSceneOf(const store::Checkpoint& checkpoint, const Ref
   return scene;
 }
 
+// The scene agents fetch, packed once, straight from the encoder's buffer: the uncompressed blob
+// is never copied or kept.
+std::shared_ptr<const protocol::PackedScene> PackPatchScene(const PatchScene& scene) {
+  std::shared_ptr<const protocol::PackedScene> packed;
+  codec::EncodePatchScene(scene, [&](std::span<const uint8_t> blob) {
+    packed = std::make_shared<const protocol::PackedScene>(protocol::PackScene(blob));
+  });
+  return packed;
+}
+
 }  // namespace
 
 Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
@@ -60,6 +70,11 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
     }
     resume = store::ResumeStateOf(c, rounds, refined_scene ? &*refined_scene : nullptr);
   }
+  // Without refinement the solver's scene is the mesh's as it stands: pack it now, before the ray
+  // caster and the solver exist, so the encoder's buffer (about 220 bytes a patch) is not added
+  // to theirs at the master's peak.
+  std::shared_ptr<const protocol::PackedScene> packed;
+  if (!bundle->job.refine.enabled) packed = PackPatchScene(mesh->patch_scene());
   runner->pool_ = std::make_unique<ThreadPool>(1);
   Result<std::unique_ptr<RoundDriver>> driver =
       RoundDriver::Start(std::move(*mesh), runner->settings_, bundle->job.refine,
@@ -77,16 +92,20 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
                    std::to_string(runner->driver_->scene().patches.size()) + " rebuilt)"};
     }
     runner->refined_blob_ = std::move(encoded);
+    runner->refined_packed_ =
+        std::make_shared<const protocol::PackedScene>(protocol::PackScene(*runner->refined_blob_));
     runner->refined_hash_ = *checkpoint->scene_hash;
   } else if (runner->driver_->refined()) {
     runner->EncodeRefinedScene();  // the step before round 0
   }
-  auto blob = runner->refined_blob_ ? runner->refined_blob_
-                                    : std::make_shared<const std::vector<uint8_t>>(
-                                          codec::EncodePatchScene(runner->driver_->scene()));
-  runner->wire_ = {static_cast<uint64_t>(record.id), runner->settings_, protocol::HashScene(*blob),
+  if (runner->refined_packed_) {
+    packed = runner->refined_packed_;
+  } else if (!packed) {
+    packed = PackPatchScene(runner->driver_->scene());
+  }
+  runner->wire_ = {static_cast<uint64_t>(record.id), runner->settings_, packed->hash,
                    static_cast<uint32_t>(runner->driver_->scene().patches.size())};
-  runner->scene_blob_ = std::move(blob);
+  runner->scene_ = std::move(packed);
   runner->scheduler_ = scheduler::RoundScheduler(options);
   runner->UpdateTotals();
 
@@ -183,8 +202,8 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
                 applied.back_rays};
   if (applied.refined) {
     EncodeRefinedScene();
-    out.new_scene = refined_blob_;
-    out.new_scene_hash = protocol::HashScene(*refined_blob_);
+    out.new_scene = refined_packed_;
+    out.new_scene_hash = refined_packed_->hash;
     out.new_patch_count = static_cast<uint32_t>(driver_->scene().patches.size());
   }
   UpdateTotals();
@@ -222,13 +241,15 @@ void RunningJob::UpdateTotals() {
 void RunningJob::EncodeRefinedScene() {
   refined_blob_ =
       std::make_shared<const std::vector<uint8_t>>(codec::EncodePatchScene(driver_->scene()));
-  refined_hash_ = protocol::HashToHex(protocol::HashScene(*refined_blob_));
+  refined_packed_ =
+      std::make_shared<const protocol::PackedScene>(protocol::PackScene(*refined_blob_));
+  refined_hash_ = protocol::HashToHex(refined_packed_->hash);
   refined_unsaved_ = true;
 }
 
 bool RunningJob::InstallOutcome(RoundOutcome& outcome) {
   if (outcome.new_scene) {
-    scene_blob_ = std::move(outcome.new_scene);
+    scene_ = std::move(outcome.new_scene);
     wire_.scene_hash = outcome.new_scene_hash;
     wire_.patch_count = outcome.new_patch_count;
   }

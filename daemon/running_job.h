@@ -66,9 +66,9 @@ struct RoundOutcome {
   // The refined scene's blob, to store (PutScene under checkpoint.scene_hash) before the
   // checkpoint: set on the first checkpoint after a refinement.
   std::shared_ptr<const std::vector<uint8_t>> checkpoint_scene;
-  // Set when the round's refinement step split something: the blob agents must trace from the next
-  // round on, its hash and its element count.
-  std::shared_ptr<const std::vector<uint8_t>> new_scene;
+  // Set when the round's refinement step split something: the scene agents must trace from the
+  // next round on (compressed), its hash and its element count.
+  std::shared_ptr<const protocol::PackedScene> new_scene;
   protocol::SceneHash new_scene_hash{};
   uint32_t new_patch_count = 0;
 };
@@ -91,7 +91,8 @@ class RunningJob {
   int64_t priority() const { return record_.spec.priority; }
   const SolverSettings& settings() const { return settings_; }
   const protocol::JobWireInfo& wire_info() const { return wire_; }
-  const std::shared_ptr<const std::vector<uint8_t>>& scene_blob() const { return scene_blob_; }
+  // The scene agents fetch, compressed once (protocol/scene_packing.h).
+  const std::shared_ptr<const protocol::PackedScene>& packed_scene() const { return scene_; }
   uint32_t patch_count() const { return wire_.patch_count; }
   const RaySampler& sampler() const { return driver_->solver().sampler(); }
   const JobTotals& totals() const { return totals_; }
@@ -159,14 +160,16 @@ class RunningJob {
   std::unique_ptr<ThreadPool> pool_;
   std::unique_ptr<RoundDriver> driver_;
   std::shared_ptr<const std::vector<uint8_t>> refined_blob_;
+  std::shared_ptr<const protocol::PackedScene> refined_packed_;  // refined_blob_ compressed
   // The planned round as the worker folds it in: a copy of the plan it made (the scheduler owns
   // the loop's), and the reduction, begun with the first Fold or in Reduce.
   std::shared_ptr<const RoundPlan> fold_plan_;
   std::unique_ptr<RoundReduction> fold_;
   std::string refined_hash_;      // hex, the store's key
   bool refined_unsaved_ = false;  // no checkpoint has stored refined_blob_ yet
-  // Loop side: what agents are sent and fetch.
-  std::shared_ptr<const std::vector<uint8_t>> scene_blob_;
+  // Loop side: what agents are sent and fetch. Only the compressed scene: the uncompressed blob
+  // is dropped once packed (about 220 bytes a patch, four times the compressed size).
+  std::shared_ptr<const protocol::PackedScene> scene_;
   protocol::JobWireInfo wire_;
   scheduler::RoundScheduler scheduler_;
   std::optional<RoundPlan> planned_;

@@ -8,10 +8,11 @@
 namespace radfarm::protocol {
 
 // The version this build writes, and the oldest one it still accepts in a Hello. Version 2 leases
-// many batches in one LeaseAssignment and answers them in one LeaseResult; version 1's one-batch
-// BatchAssignment/BatchResult are refused, so a version-1 peer is turned away at the handshake.
-inline constexpr uint16_t kProtocolVersion = 2;
-inline constexpr uint16_t kMinProtocolVersion = 2;
+// many batches in one LeaseAssignment and answers them in one LeaseResult; version 3 sends scenes
+// zstd-compressed (SceneChunk.scene_size, protocol/scene_packing.h). A version-2 peer would read
+// compressed bytes as a scene, so it is turned away at the handshake.
+inline constexpr uint16_t kProtocolVersion = 3;
+inline constexpr uint16_t kMinProtocolVersion = 3;
 
 // Frame: a 4-byte little-endian length prefix, then that many bytes of FlatBuffer.
 inline constexpr size_t kLengthPrefixBytes = 4;

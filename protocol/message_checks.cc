@@ -185,6 +185,7 @@ Status Check(const SceneChunkMsg& m) {
     return Fail("SceneChunk", "bytes " + Str(m.offset) + "+" + Str(m.data.size()) +
                                   " beyond total_size " + Str(m.total_size));
   }
+  if (m.scene_size == 0) return Fail("SceneChunk", "scene_size 0");
   return Ok{};
 }
 

@@ -172,9 +172,10 @@ struct SceneRequestMsg {  // agent -> master
 
 struct SceneChunkMsg {  // master -> agent
   SceneHash scene_hash{};
-  uint64_t total_size = 0;    // >= 1
+  uint64_t total_size = 0;    // of the compressed scene (scene_packing.h), >= 1
   uint64_t offset = 0;        // offset + data.size() <= total_size
-  std::vector<uint8_t> data;  // 1..kMaxSceneChunkBytes
+  std::vector<uint8_t> data;  // 1..kMaxSceneChunkBytes of the compressed scene
+  uint64_t scene_size = 0;    // of the uncompressed blob the hash names, >= 1
   bool operator==(const SceneChunkMsg&) const = default;
 };
 

@@ -41,9 +41,9 @@ Result<SceneHash> HashFromHex(std::string_view hex) {
   return hash;
 }
 
-Result<SceneChunkMsg> MakeSceneChunk(std::span<const uint8_t> blob,
-                                     const SceneRequestMsg& request) {
+Result<SceneChunkMsg> MakeSceneChunk(const PackedScene& scene, const SceneRequestMsg& request) {
   RADFARM_RETURN_IF_ERROR(CheckMessage(request));
+  const std::span<const uint8_t> blob = scene.compressed;
   if (request.offset >= blob.size()) {
     return Error{"SceneRequest: offset " + Str(request.offset) + " at or past the scene's " +
                  Str(blob.size()) + " bytes"};
@@ -51,7 +51,8 @@ Result<SceneChunkMsg> MakeSceneChunk(std::span<const uint8_t> blob,
   const size_t length = std::min<uint64_t>(request.max_length, blob.size() - request.offset);
   const auto first = blob.begin() + static_cast<std::ptrdiff_t>(request.offset);
   return SceneChunkMsg{request.scene_hash, blob.size(), request.offset,
-                       std::vector<uint8_t>(first, first + static_cast<std::ptrdiff_t>(length))};
+                       std::vector<uint8_t>(first, first + static_cast<std::ptrdiff_t>(length)),
+                       scene.size};
 }
 
 SceneAssembler::SceneAssembler(const SceneHash& hash, uint64_t max_scene_bytes,
@@ -78,30 +79,41 @@ Status SceneAssembler::Add(const SceneChunkMsg& chunk) {
   if (complete_) return Fail(where + "chunk after the scene was complete");
   if (Status ok = CheckMessage(chunk); !ok) return Fail(where + ok.error());
   if (chunk.scene_hash != hash_) return Fail(where + "chunk of another scene");
-  if (chunk.total_size > max_scene_bytes_) {
-    return Fail(where + "size " + Str(chunk.total_size) + " exceeds the limit of " +
-                Str(max_scene_bytes_) + " bytes");
+  if (chunk.total_size > max_scene_bytes_ || chunk.scene_size > max_scene_bytes_) {
+    return Fail(where + "size " + Str(chunk.scene_size) + " (" + Str(chunk.total_size) +
+                " compressed) exceeds the limit of " + Str(max_scene_bytes_) + " bytes");
   }
-  if (total_size_ && chunk.total_size != *total_size_) {
-    return Fail(where + "total size changed from " + Str(*total_size_) + " to " +
-                Str(chunk.total_size));
+  if (total_size_ && (chunk.total_size != *total_size_ || chunk.scene_size != scene_size_)) {
+    return Fail(where + "size changed from " + Str(scene_size_) + " (" + Str(*total_size_) +
+                " compressed) to " + Str(chunk.scene_size) + " (" + Str(chunk.total_size) + ")");
   }
-  if (chunk.offset != blob_.size()) {
-    return Fail(where + "chunk at offset " + Str(chunk.offset) + ", expected " + Str(blob_.size()));
+  if (chunk.offset != received_) {
+    return Fail(where + "chunk at offset " + Str(chunk.offset) + ", expected " + Str(received_));
   }
+  if (!total_size_) compressed_.reserve(chunk.total_size);  // within the limit: checked above
   total_size_ = chunk.total_size;
+  scene_size_ = chunk.scene_size;
+  received_ += chunk.data.size();
   // The first request was sent before the size was known; never ask past the end.
-  requested_ = std::min(std::max(requested_, blob_.size() + chunk.data.size()), *total_size_);
-  blob_.insert(blob_.end(), chunk.data.begin(), chunk.data.end());
-  if (blob_.size() < *total_size_) return Ok{};
-  if (HashScene(blob_) != hash_)
-    return Fail(where + "SHA-256 of the received bytes does not match");
+  requested_ = std::min(std::max(requested_, received_), *total_size_);
+  compressed_.insert(compressed_.end(), chunk.data.begin(), chunk.data.end());
+  if (received_ < *total_size_) return Ok{};
+  Result<std::vector<uint8_t>> blob = UnpackScene(compressed_, scene_size_, max_scene_bytes_);
+  compressed_.clear();
+  compressed_.shrink_to_fit();
+  if (!blob) return Fail(where + blob.error());
+  if (HashScene(*blob) != hash_) {
+    return Fail(where + "SHA-256 of the decompressed bytes does not match");
+  }
+  blob_ = std::move(blob).value();
   complete_ = true;
   return Ok{};
 }
 
 Status SceneAssembler::Fail(std::string reason) {
   failed_ = true;
+  compressed_.clear();
+  compressed_.shrink_to_fit();
   blob_.clear();
   blob_.shrink_to_fit();
   return Error{std::move(reason)};

@@ -196,7 +196,8 @@ Result<Message> Read(const wire::SceneChunk& t) {
   if (!t.scene_hash()) return Missing("SceneChunk", "scene_hash");
   if (!t.data()) return Missing("SceneChunk", "data");
   return Message{SceneChunkMsg{FromWire(*t.scene_hash()), t.total_size(), t.offset(),
-                               std::vector<uint8_t>(t.data()->begin(), t.data()->end())}};
+                               std::vector<uint8_t>(t.data()->begin(), t.data()->end()),
+                               t.scene_size()}};
 }
 
 Result<Message> Read(const wire::SceneUnavailable& t) {

@@ -99,7 +99,7 @@ Offset<void> Build(FlatBufferBuilder& fbb, const SceneRequestMsg& m) {
 Offset<void> Build(FlatBufferBuilder& fbb, const SceneChunkMsg& m) {
   const auto data = fbb.CreateVector(m.data);
   const wire::Bytes32 hash = ToWire(m.scene_hash);
-  return wire::CreateSceneChunk(fbb, &hash, m.total_size, m.offset, data).Union();
+  return wire::CreateSceneChunk(fbb, &hash, m.total_size, m.offset, data, m.scene_size).Union();
 }
 
 Offset<void> Build(FlatBufferBuilder& fbb, const SceneUnavailableMsg& m) {

@@ -173,20 +173,20 @@ void FakeMaster::Loop::Deliver(Connection* c, const protocol::Message& message) 
   }
   const auto* request = std::get_if<protocol::SceneRequestMsg>(&message);
   if (request == nullptr) return;
-  std::vector<uint8_t> blob;
+  std::shared_ptr<const protocol::PackedScene> scene;
   {
     std::lock_guard lock(master->mutex_);
     ++master->record_.scene_requests;
     if (request->offset == 0) ++master->record_.fetches[request->scene_hash];
     if (auto found = master->scenes_.find(request->scene_hash); found != master->scenes_.end()) {
-      blob = found->second;
+      scene = found->second;
     }
   }
-  if (blob.empty()) {
+  if (!scene) {
     Write(c, protocol::SceneUnavailableMsg{request->scene_hash});
     return;
   }
-  Result<protocol::SceneChunkMsg> chunk = protocol::MakeSceneChunk(blob, *request);
+  Result<protocol::SceneChunkMsg> chunk = protocol::MakeSceneChunk(*scene, *request);
   if (!chunk) {
     Refuse(c, chunk.error());
     return;
@@ -264,7 +264,8 @@ void FakeMaster::Post(std::function<void()> command) {
 
 void FakeMaster::AddScene(std::vector<uint8_t> blob) {
   std::lock_guard lock(mutex_);
-  scenes_[protocol::HashScene(blob)] = std::move(blob);
+  auto packed = std::make_shared<const protocol::PackedScene>(protocol::PackScene(blob));
+  scenes_[packed->hash] = std::move(packed);
 }
 
 void FakeMaster::Send(std::vector<protocol::Message> messages) {

@@ -21,6 +21,7 @@
 
 #include "protocol/farm_secret.h"
 #include "protocol/messages.h"
+#include "protocol/scene_packing.h"
 
 namespace radfarm::agent::testing {
 
@@ -97,8 +98,9 @@ class FakeMaster {
   FakeMasterOptions options_;
   uint16_t port_ = 0;
   mutable std::mutex mutex_;
-  Record record_;                                               // guarded by mutex_
-  std::map<protocol::SceneHash, std::vector<uint8_t>> scenes_;  // guarded by mutex_
+  Record record_;  // guarded by mutex_
+  // Packed as the master packs them; guarded by mutex_.
+  std::map<protocol::SceneHash, std::shared_ptr<const protocol::PackedScene>> scenes_;
   std::unique_ptr<Loop> loop_;
   std::thread thread_;
 };

@@ -41,13 +41,14 @@ struct Harness {
     loop::testing::ExpectClosesClean(loop);
   }
 
-  // Answers the requests in order, from `blob`, until none is left.
+  // Answers the requests in order, from `blob` packed as the master packs it, until none is left.
   void Serve(const std::vector<uint8_t>& blob) {
+    const protocol::PackedScene packed = protocol::PackScene(blob);
     while (!requests.empty()) {
       const protocol::SceneRequestMsg request = requests.front();
       requests.pop_front();
       ++served;
-      supply->OnChunk(protocol::MakeSceneChunk(blob, request).value());
+      supply->OnChunk(protocol::MakeSceneChunk(packed, request).value());
     }
   }
   bool RunUntilSettled() {
@@ -66,9 +67,10 @@ struct Harness {
 
 TEST(SceneSupplyTest, FetchesWithPipelinedRequestsSavesAndKeepsTheScene) {
   ScratchDir dir;
-  const PatchScene scene = testing::BoxScene(testing::kBigBox);
+  const PatchScene scene = testing::VariedBoxScene(testing::kBigBox);
   const std::vector<uint8_t> blob = codec::EncodePatchScene(scene);
-  ASSERT_GT(blob.size(), 2 * protocol::kMaxSceneChunkBytes) << "the scene should take 3+ chunks";
+  ASSERT_GT(protocol::PackScene(blob).compressed.size(), 2 * protocol::kMaxSceneChunkBytes)
+      << "the compressed scene should take 3+ chunks";
   const protocol::SceneHash hash = protocol::HashScene(blob);
   Harness h(SceneStore::Open(dir.path()).value());
 
@@ -158,16 +160,18 @@ TEST(SceneSupplyTest, AnUndecodableSceneFailsAndIsNotFetchedAgain) {
 }
 
 TEST(SceneSupplyTest, ABadChunkFailsTheFetchAndItsLateAnswersAreSkipped) {
-  const std::vector<uint8_t> blob = codec::EncodePatchScene(testing::BoxScene(testing::kBigBox));
-  const protocol::SceneHash hash = protocol::HashScene(blob);
+  const std::vector<uint8_t> blob =
+      codec::EncodePatchScene(testing::VariedBoxScene(testing::kBigBox));
+  const protocol::PackedScene packed = protocol::PackScene(blob);
+  const protocol::SceneHash hash = packed.hash;
   Harness h(std::nullopt);
   ASSERT_TRUE(h.supply->Want(hash).ok());
   // The first chunk claims another total size than the real one on the second.
   protocol::SceneRequestMsg first = h.requests.front();
   h.requests.pop_front();
-  h.supply->OnChunk(protocol::MakeSceneChunk(blob, first).value());
+  h.supply->OnChunk(protocol::MakeSceneChunk(packed, first).value());
   ASSERT_GT(h.requests.size(), 1u);
-  protocol::SceneChunkMsg bad = protocol::MakeSceneChunk(blob, h.requests.front()).value();
+  protocol::SceneChunkMsg bad = protocol::MakeSceneChunk(packed, h.requests.front()).value();
   h.requests.pop_front();
   bad.total_size += 1;
   h.supply->OnChunk(bad);
@@ -177,7 +181,7 @@ TEST(SceneSupplyTest, ABadChunkFailsTheFetchAndItsLateAnswersAreSkipped) {
   h.requests.clear();
   ASSERT_TRUE(h.supply->Want(hash).ok());
   for (const auto& request : late)
-    h.supply->OnChunk(protocol::MakeSceneChunk(blob, request).value());
+    h.supply->OnChunk(protocol::MakeSceneChunk(packed, request).value());
   h.Serve(blob);
   ASSERT_TRUE(RunUntil(h.loop, [&] { return !h.ready.empty(); }));
   EXPECT_EQ(h.failures.size(), 1u);
@@ -185,13 +189,14 @@ TEST(SceneSupplyTest, ABadChunkFailsTheFetchAndItsLateAnswersAreSkipped) {
 
 TEST(SceneSupplyTest, AChunkNobodyAskedForIsIgnored) {
   const std::vector<uint8_t> blob = codec::EncodePatchScene(testing::BoxScene(2));
-  const protocol::SceneHash hash = protocol::HashScene(blob);
+  const protocol::PackedScene packed = protocol::PackScene(blob);
+  const protocol::SceneHash hash = packed.hash;
   Harness h(std::nullopt);
   const protocol::SceneRequestMsg request{hash, 0, protocol::kMaxSceneChunkBytes};
-  h.supply->OnChunk(protocol::MakeSceneChunk(blob, request).value());  // no fetch at all
+  h.supply->OnChunk(protocol::MakeSceneChunk(packed, request).value());  // no fetch at all
   ASSERT_TRUE(h.supply->Want(hash).ok());
   h.Serve(blob);
-  h.supply->OnChunk(protocol::MakeSceneChunk(blob, request).value());  // one answer too many
+  h.supply->OnChunk(protocol::MakeSceneChunk(packed, request).value());  // one answer too many
   ASSERT_TRUE(h.RunUntilSettled());
   EXPECT_EQ(h.ready.size(), 1u);
   EXPECT_TRUE(h.failures.empty());

@@ -19,6 +19,22 @@ PatchScene BoxScene(int n) {
   return scene;
 }
 
+PatchScene VariedBoxScene(int n) {
+  PatchScene scene = BoxScene(n);
+  uint64_t x = 0x9e3779b97f4a7c15ull;
+  auto next = [&x] {  // xorshift64: 53 random mantissa bits a value
+    x ^= x << 13;
+    x ^= x >> 7;
+    x ^= x << 17;
+    return static_cast<double>(x >> 11) / 9007199254740992.0;
+  };
+  for (Patch& p : scene.patches) {
+    p.reflectance = Rgb(0.2 + 0.6 * next(), 0.2 + 0.6 * next(), 0.2 + 0.6 * next());
+    p.emission = Rgb(0.1 * next(), 0.1 * next(), 0.1 * next());
+  }
+  return scene;
+}
+
 protocol::FarmSecret TestSecret(uint8_t fill) {
   const std::vector<uint8_t> bytes(32, fill);
   return protocol::FarmSecret::FromBytes(bytes).value();

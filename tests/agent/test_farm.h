@@ -16,8 +16,11 @@ namespace radfarm::agent::testing {
 
 // A closed box of 6 x n x n patches, one material.
 PatchScene BoxScene(int n);
-// A box whose blob takes 3 scene chunks (about 230 bytes a patch).
-inline constexpr int kBigBox = 45;
+// BoxScene(n) with every patch's reflectance and emission its own (hashed from its index), so
+// zstd cannot shrink the blob much: real scenes differ patch to patch; a uniform box packs 10:1.
+PatchScene VariedBoxScene(int n);
+// A varied box whose compressed scene takes 3 scene chunks.
+inline constexpr int kBigBox = 75;
 
 // A 32-byte secret filled with `fill`, and its key file.
 protocol::FarmSecret TestSecret(uint8_t fill);

@@ -75,7 +75,7 @@ TEST(RunningJobRefineTest, AFreshJobRefinesBeforeRoundZeroLikeTheLocalSolve) {
   const std::vector<uint8_t> local = LocallyRefinedBlob(bundle);
   Result<std::shared_ptr<RunningJob>> runner = Prepare(bundle, std::nullopt, std::nullopt);
   ASSERT_TRUE(runner.ok()) << runner.error();
-  EXPECT_TRUE(*(*runner)->scene_blob() == local);
+  EXPECT_TRUE((*runner)->packed_scene()->compressed == protocol::PackScene(local).compressed);
   EXPECT_EQ((*runner)->wire_info().scene_hash, protocol::HashScene(local));
   EXPECT_EQ((*runner)->patch_count(), codec::DecodePatchScene(local)->patches.size());
   Result<PatchMesh> initial = PatchMesh::Build(bundle.scene, bundle.job.mesh, nullptr);
@@ -88,7 +88,7 @@ TEST(RunningJobRefineTest, ACheckpointOnARefinedMeshResumesOnIt) {
   const std::vector<uint8_t> blob = LocallyRefinedBlob(bundle);
   Result<std::shared_ptr<RunningJob>> runner = Prepare(bundle, CheckpointOn(blob), blob);
   ASSERT_TRUE(runner.ok()) << runner.error();
-  EXPECT_TRUE(*(*runner)->scene_blob() == blob);
+  EXPECT_TRUE((*runner)->packed_scene()->compressed == protocol::PackScene(blob).compressed);
   EXPECT_EQ((*runner)->totals().round, 1u);
   EXPECT_EQ((*runner)->phase(), RunningJob::Phase::kRound);
 }

@@ -92,7 +92,7 @@ TEST(ProtocolCodecTest, MisalignedBufferDecodes) {
 
 TEST(ProtocolCodecTest, LargestSceneChunkFitsTheSmallestPeerLimit) {
   SceneChunkMsg chunk{testing::Pattern(1), uint64_t{1} << 40, 0,
-                      std::vector<uint8_t>(kMaxSceneChunkBytes, 0xab)};
+                      std::vector<uint8_t>(kMaxSceneChunkBytes, 0xab), uint64_t{1} << 42};
   const std::vector<uint8_t> frame = EncodeFrame(chunk);
   EXPECT_LE(frame.size() - kLengthPrefixBytes, kMinPeerFrameBytes);
   Result<DecodedFrame> decoded = DecodeFrame(frame, kMinPeerFrameBytes);

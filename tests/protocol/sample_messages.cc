@@ -25,7 +25,7 @@ std::vector<Message> SampleMessages() {
       LeaseReturnMsg{{lease, {2, 3, 4}}, LeaseReturnReason::kSceneUnavailable},
       CancelMsg{42},
       SceneRequestMsg{Pattern(6), 1 << 20, 4096},
-      SceneChunkMsg{Pattern(7), 1 << 21, 1 << 20, scene_bytes},
+      SceneChunkMsg{Pattern(7), 1 << 21, 1 << 20, scene_bytes, 5 << 21},
       SceneUnavailableMsg{Pattern(8)},
       DrainMsg{DrainMode::kReturnLeases, true},
       CloseMsg{CloseCode::kShutdown, "master shutting down: maintenance"},
