@@ -1,5 +1,5 @@
 // `radfarm fetch ID --out DIR`: downloads a job's solution (its latest checkpoint) and writes
-// image.png, image.exr, radiosity.ply, patches.csv and stats.json through the same code as
+// image.png, image.exr, radiosity.ply, lit.glb, patches.csv and stats.json through the same code as
 // `radfarm render` (render_outputs.h): the bundle the job was submitted with is meshed again, so
 // the files match a local render of the same radiosity byte for byte (stats.json aside).
 #pragma once

@@ -1,6 +1,6 @@
 // `radfarm render`: the embedded single-machine mode. Loads a scene or job file, meshes it, solves
-// it on this machine's cores and writes image.png, image.exr, radiosity.ply, patches.csv and
-// stats.json into the output directory.
+// it on this machine's cores and writes image.png, image.exr, radiosity.ply, lit.glb, patches.csv
+// and stats.json into the output directory.
 #pragma once
 
 #include <string>

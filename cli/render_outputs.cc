@@ -8,6 +8,7 @@
 #include "output/exposure_meter.h"
 #include "output/exr_writer.h"
 #include "output/image.h"
+#include "output/lit_glb_writer.h"
 #include "output/patches_csv.h"
 #include "output/ply_writer.h"
 #include "output/png_writer.h"
@@ -47,9 +48,12 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
   const Camera exposed = MeterExposure(display, emitter_patch, ResolveCamera(display, job.camera));
   const Image image = RenderImage(display, exposed);
   const auto path = [&](const char* name) { return (fs::path(dir) / name).string(); };
+  std::vector<uint32_t> patch_object(mesh.patch_scene().patches.size());
+  for (uint32_t p = 0; p < patch_object.size(); ++p) patch_object[p] = mesh.patch_object(p);
   for (const Status& s :
        {WritePng(path("image.png"), image, exposed), WriteExr(path("image.exr"), image),
         WritePly(path("radiosity.ply"), display, exposed),
+        WriteLitGlb(path("lit.glb"), display, {mesh.objects(), patch_object}, exposed.exposure),
         WritePatchesCsv(path("patches.csv"), mesh.patch_scene(), solution.radiosity),
         WriteStatsJson(path("stats.json"), solution.stats,
                        {{"patch_size", mesh.patch_size()},

@@ -1,4 +1,5 @@
-// The files of a solved job: image.png, image.exr, radiosity.ply, patches.csv and stats.json.
+// The files of a solved job: image.png, image.exr, radiosity.ply, lit.glb (the user's objects with
+// their light: output/lit_glb_writer.h), patches.csv and stats.json.
 // `radfarm render` and `radfarm fetch` both write them here, so for the same radiosity they are
 // byte-identical (stats.json aside: it carries the solve's timings).
 #pragma once

@@ -2,6 +2,8 @@
 
 #include <flatbuffers/flatbuffers.h>
 
+#include <algorithm>
+#include <array>
 #include <limits>
 #include <string>
 
@@ -137,7 +139,42 @@ Status DecodeScene(const wire::JobBundleBlob& in, InputScene* scene) {
     if (f->material() >= scene->materials.size()) return Bad(field, "material out of range");
     face.material = f->material();
     face.line = f->line();
+    face.object = f->object();
+    if (face.object >= std::max<size_t>(scene->objects.size(), 1)) {
+      return Bad(field, "object out of range");
+    }
     scene->faces.push_back(std::move(face));
+  }
+  return Ok{};
+}
+
+// A matrix is 16 finite values or absent (identity).
+Status DecodeMatrix(const flatbuffers::Vector<double>* in, const std::string& field,
+                    std::array<double, 16>* out) {
+  if (in == nullptr) return Ok{};
+  if (in->size() != 16) return Bad(field, "is not 16 values");
+  for (uint32_t i = 0; i < 16; ++i) {
+    if (!std::isfinite(in->Get(i))) return Bad(field, "is not finite");
+    (*out)[i] = in->Get(i);
+  }
+  return Ok{};
+}
+
+Status DecodeObjects(const wire::JobBundleBlob& in, InputScene* scene) {
+  if (in.objects() == nullptr) return Ok{};
+  if (in.objects()->size() > kMaxFaces) return Bad("objects", "too many");
+  for (const auto* o : *in.objects()) {
+    const std::string field = "object " + std::to_string(scene->objects.size());
+    InputObject object;
+    if (o->name() != nullptr) object.name = o->name()->str();
+    object.parent = o->parent();
+    if (object.parent < -1 || object.parent >= static_cast<int64_t>(scene->objects.size())) {
+      return Bad(field, "parent is not an earlier object");
+    }
+    RADFARM_RETURN_IF_ERROR(DecodeMatrix(o->local(), field + " local", &object.local));
+    RADFARM_RETURN_IF_ERROR(DecodeMatrix(o->world(), field + " world", &object.world));
+    object.has_faces = o->has_faces();
+    scene->objects.push_back(std::move(object));
   }
   return Ok{};
 }
@@ -173,9 +210,25 @@ std::vector<uint8_t> EncodeJobBundle(const JobBundle& bundle) {
   std::vector<flatbuffers::Offset<wire::BundleFace>> faces;
   faces.reserve(scene.faces.size());
   for (const InputFace& f : scene.faces) {
-    faces.push_back(wire::CreateBundleFace(fbb, fbb.CreateVector(f.indices), f.material, f.line));
+    faces.push_back(
+        wire::CreateBundleFace(fbb, fbb.CreateVector(f.indices), f.material, f.line, f.object));
   }
   const auto face_vec = fbb.CreateVector(faces);
+  flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<wire::BundleObject>>> object_vec = 0;
+  if (!scene.objects.empty()) {
+    std::vector<flatbuffers::Offset<wire::BundleObject>> objects;
+    for (const InputObject& o : scene.objects) {
+      const auto matrix = [&fbb](const std::array<double, 16>& m) {
+        if (m == InputObject::kIdentityMatrix)
+          return flatbuffers::Offset<flatbuffers::Vector<double>>();
+        return fbb.CreateVector(m.data(), m.size());
+      };
+      const auto name = fbb.CreateString(o.name);
+      const auto local = matrix(o.local), world = matrix(o.world);
+      objects.push_back(wire::CreateBundleObject(fbb, name, o.parent, local, world, o.has_faces));
+    }
+    object_vec = fbb.CreateVector(objects);
+  }
   flatbuffers::Offset<wire::BundleRefine> refine = 0;
   if (job.refine.enabled) {
     refine = wire::CreateBundleRefine(fbb, true, job.refine.tolerance, job.refine.min_element_size,
@@ -183,7 +236,7 @@ std::vector<uint8_t> EncodeJobBundle(const JobBundle& bundle) {
   }
   const auto lights = EncodeLights(fbb, scene.lights);
   fbb.Finish(wire::CreateJobBundleBlob(fbb, path, job.mesh.patch_size, solver, camera, positions,
-                                       material_vec, face_vec, refine, lights),
+                                       material_vec, face_vec, refine, lights, object_vec),
              "RDJB");
   return {fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()};
 }
@@ -212,6 +265,7 @@ Result<JobBundle> DecodeJobBundle(std::span<const uint8_t> blob) {
   RADFARM_RETURN_IF_ERROR(DecodeSolver(*root->solver(), &bundle.job.solver));
   RADFARM_RETURN_IF_ERROR(DecodeCamera(*root->camera(), &bundle.job.camera));
   RADFARM_RETURN_IF_ERROR(DecodeRefine(root->refine(), &bundle.job.refine));
+  RADFARM_RETURN_IF_ERROR(DecodeObjects(*root, &bundle.scene));
   RADFARM_RETURN_IF_ERROR(DecodeScene(*root, &bundle.scene));
   Result<std::vector<PunctualLight>> lights = DecodeLights(root->lights(), kKind);
   RADFARM_RETURN_IF_ERROR(lights);

@@ -56,23 +56,30 @@ bool AllFinite(const std::vector<double>& values) {
   return true;
 }
 
-Status Walk(const tinygltf::Model& model, int node, const Mat4& parent, std::vector<bool>* on_path,
-            int depth, const std::function<Status(int, const Mat4&)>& visit) {
+struct WalkState {
+  std::vector<bool> on_path;
+  int visits = 0;
+};
+
+Status Walk(const tinygltf::Model& model, int node, const Mat4& parent, int parent_visit,
+            WalkState* state, int depth,
+            const std::function<Status(int, const Mat4&, int)>& visit) {
   if (node < 0 || static_cast<size_t>(node) >= model.nodes.size()) {
     return Error{"node " + std::to_string(node) + " does not exist"};
   }
   const std::string what = NodeName(model, node);
-  if ((*on_path)[node] || depth > kMaxDepth) return Error{what + ": is its own ancestor"};
+  if (state->on_path[node] || depth > kMaxDepth) return Error{what + ": is its own ancestor"};
   const tinygltf::Node& n = model.nodes[node];
   Result<Mat4> local = LocalMatrix(n, what);
   RADFARM_RETURN_IF_ERROR(local);
   const Mat4 world = parent * *local;
-  RADFARM_RETURN_IF_ERROR(visit(node, world));
-  (*on_path)[node] = true;
+  const int this_visit = state->visits++;
+  RADFARM_RETURN_IF_ERROR(visit(node, world, parent_visit));
+  state->on_path[node] = true;
   for (int child : n.children) {
-    RADFARM_RETURN_IF_ERROR(Walk(model, child, world, on_path, depth + 1, visit));
+    RADFARM_RETURN_IF_ERROR(Walk(model, child, world, this_visit, state, depth + 1, visit));
   }
-  (*on_path)[node] = false;
+  state->on_path[node] = false;
   return Ok{};
 }
 
@@ -142,9 +149,16 @@ Result<Mat4> LocalMatrix(const tinygltf::Node& node, const std::string& what) {
 
 Status WalkScene(const tinygltf::Model& model, const tinygltf::Scene& scene,
                  const std::function<Status(int, const Mat4&)>& visit) {
-  std::vector<bool> on_path(model.nodes.size());
+  return WalkSceneTree(model, scene,
+                       [&](int node, const Mat4& world, int) { return visit(node, world); });
+}
+
+Status WalkSceneTree(const tinygltf::Model& model, const tinygltf::Scene& scene,
+                     const std::function<Status(int, const Mat4&, int)>& visit) {
+  WalkState state;
+  state.on_path.resize(model.nodes.size());
   for (int root : scene.nodes) {
-    RADFARM_RETURN_IF_ERROR(Walk(model, root, Mat4{}, &on_path, 0, visit));
+    RADFARM_RETURN_IF_ERROR(Walk(model, root, Mat4{}, -1, &state, 0, visit));
   }
   return Ok{};
 }

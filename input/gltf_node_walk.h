@@ -44,4 +44,9 @@ std::string NodeName(const tinygltf::Model& model, int node);
 Status WalkScene(const tinygltf::Model& model, const tinygltf::Scene& scene,
                  const std::function<Status(int, const Mat4&)>& visit);
 
+// As WalkScene, and visit also gets the number of its parent's visit (visits numbered from 0 in
+// the order they are made; -1 for a root), so a caller can rebuild the tree it walked.
+Status WalkSceneTree(const tinygltf::Model& model, const tinygltf::Scene& scene,
+                     const std::function<Status(int, const Mat4&, int)>& visit);
+
 }  // namespace radfarm

@@ -103,8 +103,19 @@ class SceneBuilder {
   SceneBuilder(const std::string& path, const tinygltf::Model& model, InputScene* scene)
       : path_(path), model_(model), scene_(scene), materials_(model, path, &scene->warnings) {}
 
-  Status Node(int node, const Mat4& world) {
+  // parent_visit: as WalkSceneTree gives it. Every visit becomes an object (PruneObjects later
+  // drops those with no mesh below them).
+  Status Node(int node, const Mat4& world, int parent_visit) {
     const tinygltf::Node& n = model_.nodes[node];
+    object_ = static_cast<uint32_t>(scene_->objects.size());
+    InputObject object;
+    object.name = n.name;
+    object.parent = parent_visit;
+    Result<Mat4> local = LocalMatrix(n, NodeName(model_, node));  // checked by the walk
+    RADFARM_RETURN_IF_ERROR(local);
+    object.local = local->m;
+    object.world = world.m;
+    scene_->objects.push_back(std::move(object));
     if (n.camera >= 0) RADFARM_RETURN_IF_ERROR(Camera(node, world));
     Result<std::optional<PunctualLight>> light = ReadNodeLight(model_, node, world);
     if (!light.ok()) return ErrorAt(path_, 0, light.error());
@@ -165,6 +176,7 @@ class SceneBuilder {
           what + ": " + std::to_string(indices.size()) + " vertices do not make whole triangles");
     }
     triangles_ += indices.size() / 3;
+    if (!indices.empty()) scene_->objects[object_].has_faces = true;
     if (triangles_ > kMaxTriangles) {
       return ErrorAt(path_, 0, "more than " + std::to_string(kMaxTriangles) + " triangles");
     }
@@ -207,6 +219,7 @@ class SceneBuilder {
       InputFace face;
       face.indices = {first + corner[0], first + corner[1], first + corner[2]};
       face.material = *material;
+      face.object = object_;
       scene_->faces.push_back(std::move(face));
     }
     return Ok{};
@@ -252,7 +265,29 @@ class SceneBuilder {
   GltfMaterials materials_;
   uint64_t triangles_ = 0;
   std::set<int> warned_skin_;
+  uint32_t object_ = 0;  // of the node being visited
 };
+
+// Keeps the objects with triangles and their ancestors (the hierarchy lit.glb gives back), drops
+// the rest (cameras, lamps, empties with nothing below them), and renumbers the faces' objects.
+void PruneObjects(InputScene* scene) {
+  std::vector<InputObject>& objects = scene->objects;
+  std::vector<bool> keep(objects.size());
+  for (size_t i = objects.size(); i-- > 0;) {  // children after parents: visit them first
+    keep[i] = keep[i] || objects[i].has_faces;
+    if (keep[i] && objects[i].parent >= 0) keep[objects[i].parent] = true;
+  }
+  std::vector<int32_t> renumbered(objects.size(), -1);
+  std::vector<InputObject> kept;
+  for (size_t i = 0; i < objects.size(); ++i) {
+    if (!keep[i]) continue;
+    renumbered[i] = static_cast<int32_t>(kept.size());
+    kept.push_back(std::move(objects[i]));
+    if (kept.back().parent >= 0) kept.back().parent = renumbered[kept.back().parent];
+  }
+  objects = std::move(kept);
+  for (InputFace& face : scene->faces) face.object = static_cast<uint32_t>(renumbered[face.object]);
+}
 
 Status CheckSomethingEmits(const std::string& path, const tinygltf::Model& model,
                            const InputScene& scene) {
@@ -284,8 +319,9 @@ Result<InputScene> LoadGltfScene(const std::string& path) {
     return ErrorAt(path, 0, "default scene " + std::to_string(which) + " does not exist");
   }
   SceneBuilder builder(path, *model, &scene);
-  Status walked = WalkScene(*model, model->scenes[which],
-                            [&](int node, const Mat4& world) { return builder.Node(node, world); });
+  Status walked = WalkSceneTree(
+      *model, model->scenes[which],
+      [&](int node, const Mat4& world, int parent) { return builder.Node(node, world, parent); });
   if (!walked.ok()) {
     const std::string& message = walked.error();
     // The walk's own errors (bad nodes) come without the file name; the builder's carry it.
@@ -293,6 +329,7 @@ Result<InputScene> LoadGltfScene(const std::string& path) {
     return ErrorAt(path, 0, message);
   }
   scene.materials = builder.TakeMaterials();
+  PruneObjects(&scene);
   RADFARM_RETURN_IF_ERROR(CheckSomethingEmits(path, *model, scene));
   return scene;
 }

@@ -1,6 +1,7 @@
 // InputScene: polygons and materials as read from a Wavefront OBJ + MTL, validated, before meshing.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -23,10 +24,27 @@ struct Material {
   bool two_sided = false;
 };
 
+// An object of the user's scene, as lit.glb gives it back: an OBJ `o`/`g` name, or a glTF node
+// (with its place in the hierarchy, so the objects come back where they were).
+struct InputObject {
+  std::string name;
+  int32_t parent = -1;  // into InputScene::objects, always an earlier one; -1 for a root
+  // Column-major 4x4 affine matrices as glTF writes them: the node's own transform and its world
+  // transform (parent's world times local). Identity for OBJ objects, whose vertices are in world
+  // space as written.
+  std::array<double, 16> local = kIdentityMatrix;
+  std::array<double, 16> world = kIdentityMatrix;
+  bool has_faces = false;  // false for an ancestor kept for the hierarchy only
+
+  static constexpr std::array<double, 16> kIdentityMatrix = {1, 0, 0, 0, 0, 1, 0, 0,
+                                                             0, 0, 1, 0, 0, 0, 0, 1};
+};
+
 struct InputFace {
   std::vector<uint32_t> indices;  // into InputScene::positions; 3 or more, as written in the file
   uint32_t material = 0;          // into InputScene::materials
   uint32_t line = 0;              // 1-based line of the `f` statement, for messages
+  uint32_t object = 0;            // into InputScene::objects (0 when the scene lists none)
 };
 
 struct InputScene {
@@ -37,7 +55,17 @@ struct InputScene {
   std::vector<std::string> warnings;  // one line each, already prefixed with the file name
   std::vector<InputCamera> cameras;   // in the file's order (glTF); the first is the default
   std::vector<PunctualLight> lights;  // glTF KHR_lights_punctual, in world space, the walk's order
+  // Parents before children. Empty in scenes made in code: every face is then object 0 of one
+  // unnamed object (ObjectsOrDefault).
+  std::vector<InputObject> objects;
 };
+
+// The name of the object holding faces that belong to none (OBJ faces before any `o` or `g`): the
+// file's stem, as Blender's importer names them ("scenes/room.obj" -> "room").
+std::string DefaultObjectName(const std::string& scene_path);
+
+// scene.objects, or one root object named after the scene's file when it lists none.
+std::vector<InputObject> ObjectsOrDefault(const InputScene& scene);
 
 // Reads and validates an OBJ (and the MTL files it names). Errors are one line naming the file and
 // the line, face or material: missing file, unparseable line, index out of range, non-finite

@@ -59,11 +59,39 @@ class MaterialTable {
   std::vector<Material> used_;
 };
 
+// The scene's objects from tinyobjloader's shapes (one per `o` or `g` run of faces): shapes of
+// the same name are one object, in order of first appearance; faces before any `o` or `g` belong
+// to an object named after the file.
+class ObjectTable {
+ public:
+  ObjectTable(const std::string& path, InputScene* scene) : path_(path), scene_(scene) {}
+
+  uint32_t Index(const std::string& shape_name) {
+    const std::string name = shape_name.empty() ? DefaultObjectName(path_) : shape_name;
+    auto [it, added] = index_.try_emplace(name, static_cast<uint32_t>(scene_->objects.size()));
+    if (added) {
+      InputObject object;
+      object.name = name;
+      object.has_faces = true;
+      scene_->objects.push_back(std::move(object));
+    }
+    return it->second;
+  }
+
+ private:
+  const std::string& path_;
+  InputScene* scene_;
+  std::map<std::string, uint32_t> index_;
+};
+
 // Copies tinyobjloader's faces, in file order, pairing the k-th with the k-th `f` statement.
 Status CollectFaces(const std::string& path, const std::vector<tinyobj::shape_t>& shapes,
                     const ObjLineIndex& index, MaterialTable* materials, InputScene* scene) {
+  ObjectTable objects(path, scene);
   for (const tinyobj::shape_t& shape : shapes) {
     const tinyobj::mesh_t& mesh = shape.mesh;
+    if (mesh.num_face_vertices.empty()) continue;  // lines or points only: no object
+    const uint32_t object = objects.Index(shape.name);
     size_t corner = 0;
     for (size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
       const size_t k = scene->faces.size();
@@ -75,6 +103,7 @@ Status CollectFaces(const std::string& path, const std::vector<tinyobj::shape_t>
       }
       InputFace face;
       face.line = index.faces[k].line;
+      face.object = object;
       for (uint32_t c = 0; c < corners; ++c) {
         face.indices.push_back(static_cast<uint32_t>(mesh.indices[corner++].vertex_index));
       }

@@ -8,7 +8,9 @@
 #include <cstdint>
 
 #include "base/result.h"
+#include "mesh/patch_mesh.h"
 #include "output/camera.h"
+#include "output/lit_glb_writer.h"
 
 namespace radfarm {
 
@@ -19,6 +21,18 @@ inline constexpr uint64_t kMaxPixelSamples = uint64_t{1} << 32;
 inline constexpr uint64_t kImageBytesPerPixel = 80;
 
 uint64_t EstimatedImageBytes(const Camera& camera);
+
+// lit.glb (output/lit_glb_writer.h) per patch, with headroom: 24 bytes per vertex (position and
+// COLOR_0) and 12 per triangle; the densest display (cut at its midpoints when the final gather
+// is on) measured 171 bytes per patch on the Cornell box (3,849 patches, 661,256 bytes), a room
+// without the gather 54. Its writer keeps 12 bytes per vertex and 4 per triangle besides the
+// display mesh, inside kSolveBytesPerPatch (mesh/memory_estimate.h): `radfarm render` of a 3x3
+// `radfarm building` (15,309 patches) peaked at 86.4 MB with lit.glb, 85.3 MB without.
+inline constexpr uint64_t kLitGlbBytesPerPatch = 256;
+// So at the patch limit lit.glb stays well inside glTF's 32-bit binary container, and no job is
+// refused for it before solving; WriteLitGlb checks the exact size before it writes (a display
+// with unusually many T-vertices), naming the limit and the patch size to change.
+static_assert(kMaxPatches * kLitGlbBytesPerPatch < kMaxGlbBytes);
 
 // Errors name the figures and what to change: "camera: 16384 x 16384 pixels x 1024 samples =
 // 274877906944 pixel samples, more than the limit of 4294967296; use fewer samples_per_pixel or

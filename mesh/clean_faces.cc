@@ -12,6 +12,7 @@ CleanFaces CleanInputFaces(const InputScene& scene, double tol, double min_area)
     CleanFace face;
     face.material = input.material;
     face.line = input.line;
+    face.object = input.object;
     for (uint32_t index : input.indices) face.corners.push_back(scene.positions[index]);
     RemoveRedundantCorners(tol, &face.corners);
     const Vec3 vector_area = VectorArea(face.corners);

@@ -15,7 +15,8 @@ struct CleanFace {
   Vec3 normal;                // unit, the Newell normal (best plane of a non-planar face)
   double area = 0;            // length of the Newell vector area
   uint32_t material = 0;
-  uint32_t line = 0;  // of the `f` statement, for messages
+  uint32_t line = 0;    // of the `f` statement, for messages
+  uint32_t object = 0;  // InputFace::object
 };
 
 struct CleanFaces {

@@ -24,8 +24,12 @@ constexpr size_t kListedLines = 10;        // lines named in one warning
 
 // The loader validates its scenes, but InputScene is a plain struct: check what meshing relies on.
 Status CheckScene(const InputScene& scene) {
+  const size_t objects = std::max<size_t>(scene.objects.size(), 1);
   for (const InputFace& face : scene.faces) {
     const std::string where = scene.path + ":" + std::to_string(face.line) + ": ";
+    if (face.object >= objects) {
+      return Error{where + "object index " + std::to_string(face.object) + " out of range"};
+    }
     if (face.material >= scene.materials.size()) {
       return Error{where + "material index " + std::to_string(face.material) + " out of range"};
     }
@@ -165,6 +169,11 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   }
 
   pm.materials_ = scene.materials;
+  pm.objects_ = ObjectsOrDefault(scene);
+  const auto set_object = [&pm](uint32_t surface, uint32_t object) {
+    if (pm.surface_object_.size() <= surface) pm.surface_object_.resize(surface + 1);
+    pm.surface_object_[surface] = object;
+  };
   pm.tol_ = tol;
   pm.min_area_ = min_area;
   PatchAssembler assembler(tol, min_area, pm.materials_);
@@ -182,15 +191,20 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
       CutFootprints({sheet}, faces[f].normal, tol, min_area, &pieces, &covered);
       const auto surface = static_cast<uint32_t>(pm.surface_count_++);
       pm.covered_surfaces_.push_back(surface);
+      set_object(surface, faces[f].object);
       for (const PieceCorners& piece : covered) assembler.Add(piece, surface, faces[f].material);
     }
     for (const PieceCorners& piece : pieces) {
       assembler.Add(piece, surfaces.surface[f], faces[f].material);
     }
+    set_object(surfaces.surface[f], faces[f].object);
     if (pm.materials_[faces[f].material].two_sided) {
-      AddBackSide(plans[f], back_surface.Of(surfaces.surface[f]), faces[f].material, &assembler);
+      const uint32_t back = back_surface.Of(surfaces.surface[f]);
+      AddBackSide(plans[f], back, faces[f].material, &assembler);
+      set_object(back, faces[f].object);
     }
   }
+  pm.surface_object_.resize(pm.surface_count_);
   pm.data_ = std::move(assembler).Finish();
   pm.data_.scene.lights = scene.lights;
   return pm;
@@ -217,6 +231,8 @@ PatchMesh PatchMesh::Rebuilt(const std::vector<Piece>& pieces) const {
   pm.dropped_hidden_ = dropped_hidden_;
   pm.surface_count_ = surface_count_;
   pm.covered_surfaces_ = covered_surfaces_;
+  pm.objects_ = objects_;
+  pm.surface_object_ = surface_object_;
   pm.materials_ = materials_;
   pm.tol_ = tol_;
   pm.min_area_ = min_area_;

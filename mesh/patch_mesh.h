@@ -72,6 +72,13 @@ class PatchMesh {
   size_t surface_count() const { return surface_count_; }
   // The surfaces under covering sheets (contact_cut.h): seen only through the slit under a sheet.
   const std::vector<uint32_t>& covered_surfaces() const { return covered_surfaces_; }
+  // The user's objects (ObjectsOrDefault of the input scene), and the one each patch belongs to:
+  // surfaces never span two objects (surfaces.h), so it is a function of the patch's surface, and
+  // a refined mesh (Rebuilt, which keeps surfaces) knows it too.
+  const std::vector<InputObject>& objects() const { return objects_; }
+  uint32_t patch_object(uint32_t patch) const {
+    return surface_object_[data_.scene.patches[patch].surface];
+  }
 
   // Stores the solution (one value per patch, in the solver's units: those of the emission) in the
   // face properties B and dB, and sets each vertex's radiance to the area-weighted average of B
@@ -139,6 +146,8 @@ class PatchMesh {
   size_t dropped_hidden_ = 0;
   size_t surface_count_ = 0;
   std::vector<uint32_t> covered_surfaces_;
+  std::vector<InputObject> objects_;
+  std::vector<uint32_t> surface_object_;  // by surface id
   std::vector<Material> materials_;
   double tol_ = 0;
   double min_area_ = 0;

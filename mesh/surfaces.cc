@@ -79,7 +79,7 @@ SurfaceGroups GroupSurfaces(const std::vector<CleanFace>& faces, double tol) {
       for (uint32_t id : grid.NearSegment(a, b, tol)) {
         const Owner o = owners[id];
         const CleanFace& g = faces[o.face];
-        if (o.face == f || g.material != faces[f].material ||
+        if (o.face == f || g.material != faces[f].material || g.object != faces[f].object ||
             Dot(g.normal, faces[f].normal) < min_cos || groups.Find(o.face) == groups.Find(f)) {
           continue;
         }

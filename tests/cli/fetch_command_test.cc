@@ -1,5 +1,5 @@
 // `radfarm fetch` against a fake master serving a job solution made here by the same Solve()
-// `radfarm render` runs: the five files, byte-identical to render's (stats.json aside), and the
+// `radfarm render` runs: the six files, byte-identical to render's (stats.json aside), and the
 // ways a solution can be unusable.
 #include <gtest/gtest.h>
 
@@ -14,8 +14,8 @@
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
 #include "codec/patch_scene_codec.h"
-#include "solve/local_solve.h"
 #include "mesh/patch_mesh.h"
+#include "solve/local_solve.h"
 #include "tests/cli/control_fixtures.h"
 #include "tests/cli/fake_control_server.h"
 
@@ -91,7 +91,7 @@ TEST_F(FetchCommandTest, WritesTheFilesRenderWritesByteForByte) {
   const auto render = RunCommand({RADFARM_CLI_PATH, "render", kCornell, "--tolerance", kTolerance,
                                   "--patch-size", kPatchSize, "--quiet", "--out", rendered});
   ASSERT_EQ(render.exit_code, kExitOk) << render.err;
-  for (const char* file : {"patches.csv", "image.png", "image.exr", "radiosity.ply"}) {
+  for (const char* file : {"patches.csv", "image.png", "image.exr", "radiosity.ply", "lit.glb"}) {
     const std::string mine = ReadFile(fetched + "/" + file);
     EXPECT_FALSE(mine.empty()) << file;
     EXPECT_TRUE(mine == ReadFile(rendered + "/" + file)) << file << " differs from render's";

@@ -1,7 +1,8 @@
 // Every shipped scene rendered with its defaults, its outputs' SHA-256s checked against committed
-// values (golden_render.sha256): a refactor that changes one bit of patches.csv, image.exr or
-// radiosity.ply fails here. A change that means to alter the results regenerates the file in the
-// same commit: RADFARM_UPDATE_GOLDEN=1 build/tests/cli/cli_test --gtest_filter='GoldenRender*'.
+// values (golden_render.sha256): a refactor that changes one bit of patches.csv, image.exr,
+// radiosity.ply or lit.glb fails here. A change that means to alter the results regenerates the
+// file in the same commit: RADFARM_UPDATE_GOLDEN=1 build/tests/cli/cli_test
+// --gtest_filter='GoldenRender*'.
 #include <gtest/gtest.h>
 #include <sodium.h>
 
@@ -27,7 +28,7 @@ using testing::TempDir;
 
 const std::string kGoldenScenes = RADFARM_SOURCE_DIR "/scenes/";
 const std::string kGoldenFile = RADFARM_SOURCE_DIR "/tests/cli/golden_render.sha256";
-const char* const kCheckedFiles[] = {"patches.csv", "image.exr", "radiosity.ply"};
+const char* const kCheckedFiles[] = {"patches.csv", "image.exr", "radiosity.ply", "lit.glb"};
 
 // Every job file, and every OBJ (a bare OBJ is a job of its own: automatic camera, defaults).
 std::vector<std::string> ShippedScenes() {

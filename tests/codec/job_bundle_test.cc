@@ -186,3 +186,43 @@ TEST(JobBundleTest, RejectsBadRefineValues) {
 
 }  // namespace
 }  // namespace radfarm::codec
+
+namespace radfarm::codec {
+namespace {
+
+TEST(JobBundleTest, CarriesTheScenesObjectsAndRejectsBadOnes) {
+  // The glTF Cornell box: eight objects under the CornellBox node, which scales millimetres.
+  JobBundle bundle = LoadBundle(RADFARM_SOURCE_DIR "/scenes/cornell-box.toml");
+  Result<InputScene> scene = LoadScene(RADFARM_SOURCE_DIR "/scenes/cornell-box.gltf");
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  bundle.scene = *scene;
+  bundle.job.scene_path = scene->path;
+  ASSERT_EQ(bundle.scene.objects.size(), 9u);
+  Result<JobBundle> back = DecodeJobBundle(EncodeJobBundle(bundle));
+  ASSERT_TRUE(back.ok()) << back.error();
+  ASSERT_EQ(back->scene.objects.size(), 9u);
+  for (size_t o = 0; o < 9; ++o) {
+    EXPECT_EQ(back->scene.objects[o].name, bundle.scene.objects[o].name);
+    EXPECT_EQ(back->scene.objects[o].parent, bundle.scene.objects[o].parent);
+    EXPECT_EQ(back->scene.objects[o].local, bundle.scene.objects[o].local);
+    EXPECT_EQ(back->scene.objects[o].world, bundle.scene.objects[o].world);
+    EXPECT_EQ(back->scene.objects[o].has_faces, bundle.scene.objects[o].has_faces);
+  }
+  for (size_t f = 0; f < bundle.scene.faces.size(); ++f) {
+    EXPECT_EQ(back->scene.faces[f].object, bundle.scene.faces[f].object);
+  }
+
+  JobBundle bad_parent = bundle;
+  bad_parent.scene.objects[0].parent = 3;
+  Result<JobBundle> r = DecodeJobBundle(EncodeJobBundle(bad_parent));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().find("parent is not an earlier object"), std::string::npos) << r.error();
+  JobBundle bad_face = bundle;
+  bad_face.scene.faces[0].object = 9;
+  r = DecodeJobBundle(EncodeJobBundle(bad_face));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().find("object out of range"), std::string::npos) << r.error();
+}
+
+}  // namespace
+}  // namespace radfarm::codec

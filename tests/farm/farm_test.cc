@@ -39,7 +39,7 @@ TEST_F(FarmTest, ThreeAgentsRenderTheCornellBoxLikeRadfarmRender) {
   for (const char* name : {"a1@", "a2@", "a3@"}) {
     EXPECT_GE(CountLines(log, std::string(name)), 1u) << name;
   }
-  for (const char* f : {"image.png", "image.exr", "radiosity.ply", "stats.json"}) {
+  for (const char* f : {"image.png", "image.exr", "radiosity.ply", "lit.glb", "stats.json"}) {
     EXPECT_TRUE(std::filesystem::exists(Path("fetch-" + std::to_string(id)) + "/" + f)) << f;
   }
 }

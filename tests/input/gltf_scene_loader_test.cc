@@ -78,6 +78,39 @@ TEST(LoadGltfSceneTest, AppliesTheNodeHierarchyWithMatricesAndTrs) {
   EXPECT_TRUE(NearPoint(GltfFaceNormal(*scene, scene->faces[0]), {0, 0, 1}));
 }
 
+TEST(LoadGltfSceneTest, NodesWithMeshesAndTheirAncestorsBecomeObjects) {
+  GltfFixture f = FloorAndLight();  // nodes 0 Floor, 1 Lamp
+  f.json()["scenes"][0]["nodes"] = {2, 3};
+  f.AddNode({{"name", "Parent"},
+             {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 10, 0, 0, 1}},
+             {"children", {0}}},
+            false);
+  f.AddNode({{"name", "Empty"}, {"children", {1, 4}}}, false);
+  f.AddNode({{"name", "Nothing"}}, false);  // under Empty, nothing below it: dropped
+  TempDir dir;
+  Result<InputScene> scene = LoadScene(f.WriteGltf(dir.File("s.gltf")));
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  ASSERT_EQ(scene->objects.size(), 4u);
+  EXPECT_EQ(scene->objects[0].name, "Parent");
+  EXPECT_EQ(scene->objects[0].parent, -1);
+  EXPECT_FALSE(scene->objects[0].has_faces);
+  EXPECT_EQ(scene->objects[0].local[12], 10);
+  EXPECT_EQ(scene->objects[1].name, "Floor");
+  EXPECT_EQ(scene->objects[1].parent, 0);
+  EXPECT_TRUE(scene->objects[1].has_faces);
+  EXPECT_EQ(scene->objects[1].world[12], 10);  // the parent's translation
+  EXPECT_EQ(scene->objects[1].local[12], 0);
+  EXPECT_EQ(scene->objects[2].name, "Empty");
+  EXPECT_EQ(scene->objects[3].name, "Lamp");
+  EXPECT_EQ(scene->objects[3].parent, 2);
+  for (const InputFace& face : scene->faces) {
+    const std::string& name = scene->objects[face.object].name;
+    EXPECT_TRUE(name == "Floor" || name == "Lamp") << name;
+  }
+  EXPECT_EQ(scene->objects[scene->faces.front().object].name, "Floor");
+  EXPECT_EQ(scene->objects[scene->faces.back().object].name, "Lamp");
+}
+
 TEST(LoadGltfSceneTest, AMirroringTransformKeepsTheFrontFacingTheSameWay) {
   GltfFixture f = FloorAndLight();
   // Mirrored in y and lifted: the floor faces -y now in geometry; glTF says its front is then the

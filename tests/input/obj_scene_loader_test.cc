@@ -229,3 +229,36 @@ TEST(LoadObjSceneTest, IgnoredStatementsWarnOnce) {
 
 }  // namespace
 }  // namespace radfarm
+
+namespace radfarm {
+namespace {
+
+TEST(LoadObjSceneTest, OAndGNamesBecomeObjectsAndUnnamedFacesTakeTheFilesName) {
+  testing::WriteScratchFile("room.mtl", "newmtl light\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
+  const std::string path = testing::WriteScratchFile(
+      "room.obj",
+      "mtllib room.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl light\n"
+      "f 1 2 3\n"
+      "o table\nf 1 3 4\n"
+      "g lamp\nf 1 2 4\n"
+      "o table\nf 2 3 4\n");  // the same name again: the same object
+  Result<InputScene> scene = LoadObjScene(path);
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  ASSERT_EQ(scene->objects.size(), 3u);
+  EXPECT_EQ(scene->objects[0].name, "room");
+  EXPECT_EQ(scene->objects[1].name, "table");
+  EXPECT_EQ(scene->objects[2].name, "lamp");
+  for (const InputObject& o : scene->objects) {
+    EXPECT_EQ(o.parent, -1);
+    EXPECT_TRUE(o.has_faces);
+    EXPECT_EQ(o.world, InputObject::kIdentityMatrix);
+  }
+  ASSERT_EQ(scene->faces.size(), 4u);
+  EXPECT_EQ(scene->faces[0].object, 0u);
+  EXPECT_EQ(scene->faces[1].object, 1u);
+  EXPECT_EQ(scene->faces[2].object, 2u);
+  EXPECT_EQ(scene->faces[3].object, 1u);
+}
+
+}  // namespace
+}  // namespace radfarm

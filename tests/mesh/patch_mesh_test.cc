@@ -83,6 +83,35 @@ TEST(PatchMeshTest, NeighbouringFacesOfOneSurfaceShareOpenMeshVertices) {
   EXPECT_EQ(mesh->mesh().n_vertices(), 15u);
 }
 
+TEST(PatchMeshTest, EveryPatchKnowsItsObjectAlsoAfterARebuild) {
+  // The floor as two quads in two objects: two surfaces, each patch in its face's object.
+  const std::vector<Vec3> left = {{0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0}};
+  const std::vector<Vec3> right = {{2, 0, 0}, {2, 0, 2}, {4, 0, 2}, {4, 0, 0}};
+  InputScene scene = SceneOf({left, right});
+  scene.objects.resize(2);
+  scene.objects[0].name = "left";
+  scene.objects[1].name = "right";
+  scene.faces[1].object = 1;
+  Result<PatchMesh> mesh = PatchMesh::Build(scene, {1}, nullptr);
+  ASSERT_TRUE(mesh.ok()) << mesh.error();
+  EXPECT_EQ(mesh->surface_count(), 2u);
+  ASSERT_EQ(mesh->objects().size(), 2u);
+  EXPECT_EQ(mesh->objects()[1].name, "right");
+  const PatchMesh rebuilt = mesh->Rebuilt(PatchMesh::PiecesOf(mesh->patch_scene()));
+  for (const PatchMesh* m : {static_cast<const PatchMesh*>(&*mesh), &rebuilt}) {
+    const auto& patches = m->patch_scene().patches;
+    ASSERT_EQ(patches.size(), 8u);
+    for (uint32_t p = 0; p < patches.size(); ++p) {
+      EXPECT_EQ(m->patch_object(p), patches[p].centre.x < 2 ? 0u : 1u) << p;
+    }
+  }
+  // A scene made in code lists no objects: one, named after its file.
+  Result<PatchMesh> plain = PatchMesh::Build(SceneOf({left}), {1}, nullptr);
+  ASSERT_TRUE(plain.ok());
+  ASSERT_EQ(plain->objects().size(), 1u);
+  EXPECT_EQ(plain->patch_object(0), 0u);
+}
+
 TEST(PatchMeshTest, NonPlanarQuadBecomesTrianglesWithTheirOwnNormals) {
   const std::vector<Vec3> bent = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0.2}, {0, 1, 0}};
   Result<PatchMesh> mesh = PatchMesh::Build(SceneOf({bent}), {10}, nullptr);

@@ -28,6 +28,21 @@ TEST(SurfacesTest, CoplanarNeighboursWithOneMaterialJoin) {
   EXPECT_EQ(g.surface, (std::vector<uint32_t>{0, 1, 0, 2, 3}));
 }
 
+TEST(SurfacesTest, TheSeamBetweenTwoObjectsSeparatesSurfaces) {
+  // Two halves of one floor, one material: one surface in one object, two in two (lit.glb gives
+  // each object back on its own, and a patch's object is its surface's).
+  for (uint32_t right_object : {0u, 1u}) {
+    SceneBuilder b;
+    b.AddMaterial("white", {0.5, 0.5, 0.5});
+    b.AddFace({{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}});
+    b.AddFace({{1, 0, 0}, {1, 0, 1}, {2, 0, 1}, {2, 0, 0}});
+    InputScene scene = b.scene();
+    scene.faces[1].object = right_object;
+    scene.objects.resize(2);
+    EXPECT_EQ(Group(scene).count, right_object + 1) << right_object;
+  }
+}
+
 TEST(SurfacesTest, TJunctionsJoin) {
   SceneBuilder b;
   b.AddMaterial("white", {0.5, 0.5, 0.5});

@@ -46,10 +46,10 @@ cd "$scratch"
 source "$scratch/blocks.sh"
 
 echo "--- checks"
-for file in image.png image.exr radiosity.ply patches.csv stats.json; do
+for file in image.png image.exr radiosity.ply lit.glb patches.csv stats.json; do
   [ -s "out-farm/$file" ] || { echo "out-farm/$file is missing"; exit 1; }
 done
-for file in patches.csv image.exr radiosity.ply; do
+for file in patches.csv image.exr radiosity.ply lit.glb; do
   want=$(awk -v f="cornell-box.toml/$file" '$2 == f { print $1 }' \
     "$source_dir/tests/cli/golden_render.sha256")
   got=$(sha256sum "out-farm/$file" | cut -d' ' -f1)
