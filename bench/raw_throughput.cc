@@ -64,7 +64,7 @@ void GenerateRays(const PatchScene& scene, const RayCaster& caster, const RaySam
     const Batch& b = work->batches[bi];
     const Patch& shooter = scene.patches[b.shooter];
     for (uint32_t k = 0; k < b.ray_count; ++k) {
-      const RaySample s = sampler.Sample(shooter, b.shooter, b.round, b.first_ray + k);
+      const RaySample s = sampler.Sample(shooter, b.shooter, b.round, caster.origin_offset(), b.first_ray + k);
       caster.PrepareRay(s.origin, s.direction, shooter.normal,
                         &work->rays[work->ray_begin[bi] + k]);
       work->weights[work->ray_begin[bi] + k] = s.weight;
@@ -256,7 +256,8 @@ RawThroughput MeasureRawThroughput(const BenchScene& bench_scene, const SolverSe
       for (size_t b = group[t]; b < group[t + 1]; ++b) {
         const Batch& batch = work.batches[b];
         const ShotSampler shot =
-            solver.sampler().Shot(scene.patches[batch.shooter], batch.shooter, batch.round);
+            solver.sampler().Shot(scene.patches[batch.shooter], batch.shooter, batch.round,
+                                  caster.origin_offset());
         for (uint32_t done = 0; done < batch.ray_count; done += RayBlock::kSize) {
           const int count =
               static_cast<int>(std::min<uint32_t>(RayBlock::kSize, batch.ray_count - done));

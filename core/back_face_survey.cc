@@ -65,7 +65,7 @@ BackFaceCounts SurveyBackFaces(const PatchScene& scene, const RayCaster& caster,
     const double share = shooter.area * shooter.emission.Sum() / total;
     if (!(share > 0)) continue;
     const auto count = static_cast<uint64_t>(std::ceil(share * static_cast<double>(rays)));
-    const ShotSampler shot = sampler.Shot(shooter, i, kSurveyRound);
+    const ShotSampler shot = sampler.Shot(shooter, i, kSurveyRound, caster.origin_offset());
     for (uint64_t done = 0; done < count; done += RayBlock::kSize) {
       const int n = static_cast<int>(std::min<uint64_t>(RayBlock::kSize, count - done));
       shot.SampleBlock(done, n, &block);

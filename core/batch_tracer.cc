@@ -15,7 +15,8 @@ BatchTracer::BatchTracer(const PatchScene& scene, const RayCaster& caster,
 BatchResult BatchTracer::Run(const Batch& batch) {
   BatchResult result;
   const Patch& shooter = scene_.patches[batch.shooter];
-  const ShotSampler shot = sampler_.Shot(shooter, batch.shooter, batch.round);
+  const ShotSampler shot =
+      sampler_.Shot(shooter, batch.shooter, batch.round, caster_.origin_offset());
   RayBlock& block = *block_;
   RayHit hits[RayBlock::kSize];
   for (uint32_t done = 0; done < batch.ray_count; done += RayBlock::kSize) {

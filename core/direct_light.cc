@@ -39,7 +39,7 @@ DirectLight::DirectLight(const PatchScene& scene, const RayCaster& caster, uint3
     if (added) lights_.emplace_back();
     lights_[it->second].members.push_back(static_cast<uint32_t>(emitters_.size()));
     emitters_.push_back(i);
-    splits_.push_back(TriangleSplit(p));
+    sampling_.push_back(PreparePatchSampling(p, caster.origin_offset()));
   }
   const double tol = 0.1 * caster.origin_offset();  // 1e-7 of the scene's diagonal
   for (Light& light : lights_) {
@@ -60,7 +60,7 @@ double DirectLight::Visible(const Vec3& x, const Vec3& n, uint32_t k, uint64_t k
     for (uint32_t j = 0; j < grid_; ++j) {
       const CounterRng rng(HashWords(key, emitters_[k], i * grid_ + j));
       const double u = (i + rng.Uniform(0)) / grid_, v = (j + rng.Uniform(1)) / grid_;
-      if (caster_.Unoccluded(x, SamplePatchPoint(p, splits_[k], u, v), n)) ++seen;
+      if (caster_.Unoccluded(x, SamplePatchPoint(p, sampling_[k], u, v), n)) ++seen;
     }
   }
   return double(seen) / double(grid_ * grid_);
@@ -127,13 +127,13 @@ std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, ui
   const uint64_t stream = HashWords(seed, 0x6469726563746cull);
   pool.ParallelFor(scene.patches.size(), [&](unsigned, size_t i) {
     const Patch& p = scene.patches[i];
-    const double split = TriangleSplit(p);
+    const PatchSampling sampling = PreparePatchSampling(p, caster.origin_offset());
     Rgb sum, lamps;
     for (uint32_t a = 0; a < m; ++a) {
       for (uint32_t b = 0; b < m; ++b) {
         const CounterRng rng(HashWords(stream, i, a * m + b));
         const Vec3 x =
-            SamplePatchPoint(p, split, (a + rng.Uniform(0)) / m, (b + rng.Uniform(1)) / m);
+            SamplePatchPoint(p, sampling, (a + rng.Uniform(0)) / m, (b + rng.Uniform(1)) / m);
         sum += direct.EmitterIrradiance(x, p.normal, HashWords(stream, i, a * m + b, 1));
         if (!punctual.empty()) lamps += direct.PunctualIrradiance(x, p.normal);
       }

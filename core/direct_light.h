@@ -19,6 +19,7 @@
 #include "core/patch_scene.h"
 #include "core/point_form_factor.h"
 #include "core/ray_caster.h"
+#include "core/ray_sampler.h"
 #include "core/rgb.h"
 #include "core/solver_settings.h"
 #include "core/vec3.h"
@@ -57,7 +58,7 @@ class DirectLight {
   const PatchScene& scene_;
   const RayCaster& caster_;
   std::vector<uint32_t> emitters_;  // patch ids with emission
-  std::vector<double> splits_;      // TriangleSplit of each emitter
+  std::vector<PatchSampling> sampling_;  // of each emitter
   std::vector<Light> lights_;
   uint32_t grid_ = 1;     // grid_ x grid_ stratified shadow rays per emitter patch
   double sun_reach_ = 0;  // beyond the scene from any point in it (ShadowRayTarget)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/counter_rng.h"
@@ -24,9 +25,13 @@ Vec3 SampleTriangle(const Vec3& a, const Vec3& b, const Vec3& c, double u, doubl
   return a * (1 - su) + b * (su * (1 - v)) + c * (su * v);
 }
 
-// Pull a sampled point a hair toward the centre: a ray starting within a float ulp of the patch's
-// rim could otherwise start behind a wall that meets the patch there and hit its back.
-constexpr double kRimShrink = 1e-5;
+// Sampled points are pulled a hair toward the patch's centre: a ray starting within float
+// resolution of the patch's rim could otherwise start behind a wall that meets the patch there and
+// hit its back, or leave a closed room through the wall. The pull is a fraction of the way to the
+// centre: at least kMinRimShrink, enough to move rim points `rim_margin` inside every edge, at most
+// kMaxRimShrink (a tiny patch is sampled over 99% of its extent rather than at its centre).
+constexpr double kMinRimShrink = 1e-5;
+constexpr double kMaxRimShrink = 1e-2;
 
 // cos and sin of 2 pi v for v in [0, 1), within 1e-10, by quadrant and Taylor polynomials to
 // x^14 and x^15 on [0, pi/2): additions and multiplications only, so every build and every
@@ -87,14 +92,15 @@ RADFARM_CLONES void TriangleWeights(double split, const double* __restrict u,
 // One coordinate of SamplePatchPoint for n points from TriangleWeights: corner values a, b1/c1
 // (first triangle) and b2/c2 (second), the centre's value `centre`.
 RADFARM_CLONES void PatchPointCoordinate(double a, double b1, double c1, double b2, double c2,
-                                         double centre, double split, const double* __restrict u,
+                                         double centre, double split, double shrink,
+                                         const double* __restrict u,
                                          const double* __restrict wa, const double* __restrict wb,
                                          const double* __restrict wc, int n,
                                          double* __restrict out) {
   for (int i = 0; i < n; ++i) {
     const bool first = u[i] < split;
     const double point = a * wa[i] + (first ? b1 : b2) * wb[i] + (first ? c1 : c2) * wc[i];
-    out[i] = point + (centre - point) * kRimShrink;
+    out[i] = point + (centre - point) * shrink;
   }
 }
 
@@ -124,12 +130,31 @@ double TriangleSplit(const Patch& patch) {
   return a0 / (a0 + a1);
 }
 
-Vec3 SamplePatchPoint(const Patch& patch, double split, double u, double v) {
+double RimShrink(const Patch& patch, double rim_margin) {
+  // A rim point pulled a fraction f of the way to the centre moves f times the centre's distance
+  // to the edge's line inside that edge, so the nearest edge line sets f.
+  double inset = std::numeric_limits<double>::infinity();
+  for (uint32_t i = 0; i < patch.corner_count; ++i) {
+    const Vec3& a = patch.corners[i];
+    const Vec3 edge = patch.corners[(i + 1) % patch.corner_count] - a;
+    const double length = Length(edge);
+    if (length > 0) inset = std::min(inset, Length(Cross(patch.centre - a, edge)) / length);
+  }
+  if (!(inset > 0) || !(rim_margin > 0)) return kMinRimShrink;
+  return std::clamp(rim_margin / inset, kMinRimShrink, kMaxRimShrink);
+}
+
+PatchSampling PreparePatchSampling(const Patch& patch, double rim_margin) {
+  return {TriangleSplit(patch), RimShrink(patch, rim_margin)};
+}
+
+Vec3 SamplePatchPoint(const Patch& patch, const PatchSampling& sampling, double u, double v) {
   const auto& p = patch.corners;
+  const double split = sampling.split;
   const Vec3 point =
       u < split ? SampleTriangle(p[0], p[1], p[2], u / split, v)
                 : SampleTriangle(p[0], p[2], p[3], std::min((u - split) / (1 - split), 1.0), v);
-  return point + (patch.centre - point) * kRimShrink;
+  return point + (patch.centre - point) * sampling.shrink;
 }
 
 Vec3 SampleCosineDirection(const Vec3& t, const Vec3& b, const Vec3& n, double u, double v) {
@@ -140,10 +165,11 @@ Vec3 SampleCosineDirection(const Vec3& t, const Vec3& b, const Vec3& n, double u
   return t * (r * c) + b * (r * s) + n * z;
 }
 
-ShotSampler::ShotSampler(const RaySampler& sampler, const Patch& shooter, uint64_t shot_key)
+ShotSampler::ShotSampler(const RaySampler& sampler, const Patch& shooter, double rim_margin,
+                         uint64_t shot_key)
     : sampler_(sampler),
       shooter_(shooter),
-      triangle_split_(TriangleSplit(shooter)),
+      sampling_(PreparePatchSampling(shooter, rim_margin)),
       shot_key_(shot_key),
       sobol_(shot_key) {
   OrthonormalBasis(shooter.normal, &tangent_, &bitangent_);
@@ -155,14 +181,14 @@ RaySample ShotSampler::Sample(uint64_t index) const {
       return sampler_.GridSample(shooter_, tangent_, bitangent_, index);
     case SamplerKind::kRandom: {
       const CounterRng rng(HashWords(shot_key_, index));
-      return {SamplePatchPoint(shooter_, triangle_split_, rng.Uniform(0), rng.Uniform(1)),
+      return {SamplePatchPoint(shooter_, sampling_, rng.Uniform(0), rng.Uniform(1)),
               SampleCosineDirection(tangent_, bitangent_, shooter_.normal, rng.Uniform(2),
                                     rng.Uniform(3)),
               1};
     }
     case SamplerKind::kSobol: {
       const auto u = sobol_.Point(static_cast<uint32_t>(index));
-      return {SamplePatchPoint(shooter_, triangle_split_, u[0], u[1]),
+      return {SamplePatchPoint(shooter_, sampling_, u[0], u[1]),
               SampleCosineDirection(tangent_, bitangent_, shooter_.normal, u[2], u[3]), 1};
     }
   }
@@ -202,14 +228,14 @@ void ShotSampler::MapUniforms(double* const u[4], RayBlock* block) const {
   const int n = block->count;
   const auto& p = shooter_.corners;
   const Vec3& c = shooter_.centre;
-  const double split = triangle_split_;
+  const double split = sampling_.split, shrink = sampling_.shrink;
   alignas(64) double wa[RayBlock::kSize], wb[RayBlock::kSize], wc[RayBlock::kSize];
   TriangleWeights(split, u[0], u[1], n, wa, wb, wc);
-  PatchPointCoordinate(p[0].x, p[1].x, p[2].x, p[2].x, p[3].x, c.x, split, u[0], wa, wb, wc, n,
+  PatchPointCoordinate(p[0].x, p[1].x, p[2].x, p[2].x, p[3].x, c.x, split, shrink, u[0], wa, wb, wc, n,
                        block->origin_x);
-  PatchPointCoordinate(p[0].y, p[1].y, p[2].y, p[2].y, p[3].y, c.y, split, u[0], wa, wb, wc, n,
+  PatchPointCoordinate(p[0].y, p[1].y, p[2].y, p[2].y, p[3].y, c.y, split, shrink, u[0], wa, wb, wc, n,
                        block->origin_y);
-  PatchPointCoordinate(p[0].z, p[1].z, p[2].z, p[2].z, p[3].z, c.z, split, u[0], wa, wb, wc, n,
+  PatchPointCoordinate(p[0].z, p[1].z, p[2].z, p[2].z, p[3].z, c.z, split, shrink, u[0], wa, wb, wc, n,
                        block->origin_z);
   CosineDirections(tangent_, bitangent_, shooter_.normal, u[2], u[3], n, block->direction_x,
                    block->direction_y, block->direction_z);
@@ -256,13 +282,14 @@ RaySample RaySampler::GridSample(const Patch& shooter, const Vec3& t, const Vec3
   return {shooter.centre, dir, grid_row_weight_[row]};
 }
 
-ShotSampler RaySampler::Shot(const Patch& shooter, uint32_t shooter_id, uint32_t round) const {
-  return ShotSampler(*this, shooter, ShotKey(seed_, round, shooter_id));
+ShotSampler RaySampler::Shot(const Patch& shooter, uint32_t shooter_id, uint32_t round,
+                             double rim_margin) const {
+  return ShotSampler(*this, shooter, rim_margin, ShotKey(seed_, round, shooter_id));
 }
 
 RaySample RaySampler::Sample(const Patch& shooter, uint32_t shooter_id, uint32_t round,
-                             uint64_t index) const {
-  return Shot(shooter, shooter_id, round).Sample(index);
+                             double rim_margin, uint64_t index) const {
+  return Shot(shooter, shooter_id, round, rim_margin).Sample(index);
 }
 
 }  // namespace radfarm

@@ -35,6 +35,12 @@ struct RayBlock {
 
 class RaySampler;
 
+// What sampling points on a patch needs beyond its corners, computed once per patch.
+struct PatchSampling {
+  double split = 1;   // TriangleSplit: share of the first triangle (0,1,2) in a quad's area
+  double shrink = 0;  // RimShrink: how far points are pulled toward the centre, as a fraction
+};
+
 // The rays of one shot (one shooter in one round), with everything that does not depend on the ray
 // index computed once: the shooter's frame, its triangle split and the shot's scramble. Cheap to
 // copy; valid while the RaySampler and the patch it came from live.
@@ -51,12 +57,13 @@ class ShotSampler {
   // Origins and directions of block->count rays from uniform numbers u[0..3] as Sample maps them.
   void MapUniforms(double* const u[4], RayBlock* block) const;
 
-  ShotSampler(const RaySampler& sampler, const Patch& shooter, uint64_t shot_key);
+  ShotSampler(const RaySampler& sampler, const Patch& shooter, double rim_margin,
+              uint64_t shot_key);
 
   const RaySampler& sampler_;
   const Patch& shooter_;
   Vec3 tangent_, bitangent_;
-  double triangle_split_;  // share of the first triangle (0,1,2) in a quad's area
+  PatchSampling sampling_;
   uint64_t shot_key_;
   ScrambledSobol4 sobol_;
 };
@@ -71,11 +78,14 @@ class RaySampler {
   // solver chooses the count from the shooter's unshot power.
   uint64_t FixedRaysPerShot() const;
 
-  // The rays of `shooter` (a patch id) in `round`.
-  ShotSampler Shot(const Patch& shooter, uint32_t shooter_id, uint32_t round) const;
+  // The rays of `shooter` (a patch id) in `round`, starting at least `rim_margin` (a length: the
+  // caster's origin_offset()) inside the patch's edges where the patch is large enough.
+  ShotSampler Shot(const Patch& shooter, uint32_t shooter_id, uint32_t round,
+                   double rim_margin) const;
 
   // Ray `index` of `shooter` in `round` (same as Shot(...).Sample(index)).
-  RaySample Sample(const Patch& shooter, uint32_t shooter_id, uint32_t round, uint64_t index) const;
+  RaySample Sample(const Patch& shooter, uint32_t shooter_id, uint32_t round, double rim_margin,
+                   uint64_t index) const;
 
   // Sum of the weights of rays [0, count) of one shot: what a shooter's hit weights divide by.
   uint64_t TotalWeight(uint64_t count) const;
@@ -96,9 +106,15 @@ class RaySampler {
 // Share of a quad's area in its first triangle (0,1,2); 1 for a triangle.
 double TriangleSplit(const Patch& patch);
 
+// How far SamplePatchPoint pulls points toward the patch's centre, as a fraction of the way: enough
+// that points on the rim start `rim_margin` inside every edge, within [1e-5, 1e-2].
+double RimShrink(const Patch& patch, double rim_margin);
+
+PatchSampling PreparePatchSampling(const Patch& patch, double rim_margin);
+
 // Maps two uniform numbers to a uniformly distributed point on the patch (a quad is picked as one
-// of its two triangles in proportion to their areas; `split` is TriangleSplit(patch)).
-Vec3 SamplePatchPoint(const Patch& patch, double split, double u, double v);
+// of its two triangles in proportion to their areas), pulled toward the centre by sampling.shrink.
+Vec3 SamplePatchPoint(const Patch& patch, const PatchSampling& sampling, double u, double v);
 
 // Maps two uniform numbers to a cosine-weighted direction in the frame (t, b, n), n the normal.
 Vec3 SampleCosineDirection(const Vec3& t, const Vec3& b, const Vec3& n, double u, double v);

@@ -58,14 +58,14 @@ PatchError MeasurePatchError(const PatchScene& run, const std::vector<Rgb>& radi
     }
     // The direct light over the element itself, not as the reference mesh drew it.
     const Patch& p = run.patches[e];
-    const double split = TriangleSplit(p);
+    const PatchSampling sampling = PreparePatchSampling(p, caster.origin_offset());
     constexpr uint32_t m = kDirectSections;
     Rgb sum;
     for (uint32_t a = 0; a < m; ++a) {
       for (uint32_t b = 0; b < m; ++b) {
         const CounterRng rng(HashWords(3, e, a * m + b));
         const Vec3 x =
-            SamplePatchPoint(p, split, (a + rng.Uniform(0)) / m, (b + rng.Uniform(1)) / m);
+            SamplePatchPoint(p, sampling, (a + rng.Uniform(0)) / m, (b + rng.Uniform(1)) / m);
         sum += direct.Irradiance(x, p.normal, HashWords(4, e, a * m + b));
       }
     }

@@ -71,7 +71,7 @@ TEST(RayBlockTest, SampleBlockAndTraceBlockMatchSampleAndTrace) {
     const RaySampler sampler(kind, 11, 4.0);
     for (uint32_t id = 0; id < scene.patches.size(); id += 3) {
       const Patch& patch = scene.patches[id];
-      const ShotSampler shot = sampler.Shot(patch, id, 2);
+      const ShotSampler shot = sampler.Shot(patch, id, 2, caster.origin_offset());
       RayBlock block;
       RayHit hits[RayBlock::kSize];
       for (uint64_t first : {uint64_t{0}, uint64_t{37}, uint64_t{3000}}) {
