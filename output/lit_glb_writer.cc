@@ -1,14 +1,13 @@
 #include "output/lit_glb_writer.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <utility>
 
 #include "base/atomic_file.h"
+#include "base/little_endian.h"
 #include "output/affine_matrix.h"
 
 namespace radfarm {
@@ -22,16 +21,6 @@ constexpr uint32_t kElementArrayBuffer = 34963;
 constexpr uint32_t kFloat = 5126;
 constexpr uint32_t kUnsignedInt = 5125;
 constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
-
-template <typename T>
-void AppendLittleEndian(T value, std::string* out) {
-  char bytes[sizeof(T)];
-  std::memcpy(bytes, &value, sizeof(T));
-  if constexpr (std::endian::native == std::endian::big) {
-    for (size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(bytes[i], bytes[sizeof(T) - 1 - i]);
-  }
-  out->append(bytes, sizeof(T));
-}
 
 // The display triangles grouped by object, in display order within each: a counting sort.
 struct ObjectTriangles {

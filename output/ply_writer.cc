@@ -1,31 +1,19 @@
 #include "output/ply_writer.h"
 
-#include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <string>
 #include <utility>
 
 #include "base/atomic_file.h"
+#include "base/little_endian.h"
 #include "base/result.h"
 #include "output/image.h"
 #include "output/tone_map.h"
 
 namespace radfarm {
 namespace {
-
-// Appends the value's bytes in little-endian order whatever the host's order.
-template <typename T>
-void AppendLittleEndian(T value, std::string* out) {
-  char bytes[sizeof(T)];
-  std::memcpy(bytes, &value, sizeof(T));
-  if constexpr (std::endian::native == std::endian::big) {
-    for (size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(bytes[i], bytes[sizeof(T) - 1 - i]);
-  }
-  out->append(bytes, sizeof(T));
-}
 
 std::string Header(size_t vertex_count, size_t face_count) {
   return "ply\n"
