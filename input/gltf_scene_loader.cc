@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "base/diagnostic.h"
+#include "base/file_extension.h"
 #include "input/gltf_accessor.h"
 #include "input/gltf_light.h"
 #include "input/gltf_material.h"
@@ -30,11 +31,7 @@ std::string FirstLine(const std::string& text) {
   return line;
 }
 
-bool IsBinary(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".glb";
-}
+bool IsBinary(const std::string& path) { return LowercaseExtension(path) == ".glb"; }
 
 Result<tinygltf::Model> ReadModel(const std::string& path, std::vector<std::string>* warnings) {
   std::error_code ec;

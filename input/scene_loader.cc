@@ -1,23 +1,12 @@
 #include "input/scene_loader.h"
 
-#include <algorithm>
-#include <cctype>
 #include <filesystem>
 
 #include "base/diagnostic.h"
+#include "base/file_extension.h"
 #include "input/gltf_scene_loader.h"
 
 namespace radfarm {
-namespace {
-
-std::string LowercaseExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
-}  // namespace
 
 bool IsSceneFile(const std::string& path) {
   const std::string ext = LowercaseExtension(path);
@@ -38,8 +27,8 @@ Result<InputScene> LoadScene(const std::string& path, uint64_t max_file_bytes) {
     if (std::filesystem::is_regular_file(status)) {
       const uint64_t size = std::filesystem::file_size(path, ec);
       if (!ec && size > max_file_bytes) {
-        return Error{path + ": the file is " + std::to_string(size) +
-                     " bytes, over the limit of " + std::to_string(max_file_bytes) + " bytes"};
+        return Error{path + ": the file is " + std::to_string(size) + " bytes, over the limit of " +
+                     std::to_string(max_file_bytes) + " bytes"};
       }
     }
     return LoadGltfScene(path);

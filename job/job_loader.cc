@@ -43,6 +43,7 @@
 #include <limits>
 
 #include "base/diagnostic.h"
+#include "base/file_extension.h"
 #include "base/result.h"
 #include "base/toml_file.h"
 #include "base/toml_table_reader.h"
@@ -187,13 +188,6 @@ Result<Job> LoadTomlJob(const std::string& path) {
   Job job;
   RADFARM_RETURN_IF_ERROR(ReadJob(path, *table, &job));
   return job;
-}
-
-std::string LowercaseExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
 }
 
 }  // namespace
