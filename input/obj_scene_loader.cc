@@ -11,6 +11,7 @@
 #include "base/diagnostic.h"
 #include "base/result.h"
 #include "base/text_file.h"
+#include "input/emission_hint.h"
 #include "input/input_scene.h"
 #include "input/material_check.h"
 #include "input/mtl_library_reader.h"
@@ -153,7 +154,24 @@ void WarnAboutGrey(const std::string& path, const ObjLineIndex& index,
   }
 }
 
+// The materials faces use, for the emission hint: tinyobjloader's own, which keep Ka.
+std::vector<DarkMaterial> UsedMaterials(const std::vector<tinyobj::material_t>& materials,
+                                        const MtlLibraryReader& reader, const InputScene& scene) {
+  std::set<std::string> used;
+  for (const Material& m : scene.materials) used.insert(m.name);
+  std::vector<DarkMaterial> dark;
+  for (size_t id = 0; id < materials.size(); ++id) {
+    const tinyobj::material_t& m = materials[id];
+    if (used.erase(m.name) == 0) continue;  // unused, or a later definition of a used name
+    const MaterialOrigin& origin = reader.origins()[id];
+    dark.push_back({m.name, Rgb(m.ambient[0], m.ambient[1], m.ambient[2]), origin.mtl_path,
+                    origin.lines.newmtl, origin.lines.ka});
+  }
+  return dark;
+}
+
 Status CheckSomethingEmits(const std::string& path, const MtlLibraryReader& reader,
+                           const std::vector<tinyobj::material_t>& materials,
                            const InputScene& scene) {
   if (scene.faces.empty()) return ErrorAt(path, 0, "no faces");
   for (const InputFace& face : scene.faces) {
@@ -163,6 +181,8 @@ Status CheckSomethingEmits(const std::string& path, const MtlLibraryReader& read
   // The usual cause, named here because the warnings may never be shown once loading fails.
   if (!reader.missing().empty()) {
     why += " (material library '" + reader.missing().front() + "' not found)";
+  } else {
+    why += EmissionHint(UsedMaterials(materials, reader, scene));
   }
   return ErrorAt(path, 0, why);
 }
@@ -202,7 +222,7 @@ Result<InputScene> LoadObjScene(const std::string& path, uint64_t max_file_bytes
   RADFARM_RETURN_IF_ERROR(CollectFaces(path, shapes, *index, &table, &scene));
   scene.materials = table.Take();
   WarnAboutGrey(path, *index, reader, materials, &scene);
-  RADFARM_RETURN_IF_ERROR(CheckSomethingEmits(path, reader, scene));
+  RADFARM_RETURN_IF_ERROR(CheckSomethingEmits(path, reader, materials, scene));
   return scene;
 }
 

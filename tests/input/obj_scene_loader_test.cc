@@ -211,6 +211,66 @@ TEST(LoadObjSceneTest, NothingToLightNamesTheMissingLibrary) {
                                  "(material library 'missing.mtl' not found)");
 }
 
+// Blender's OBJ exporter writes a lamp built on an Emission node as Ke 0 (make_emission_node.py).
+TEST(LoadObjSceneTest, NothingToLightNamesTheMaterialThatLooksLikeALight) {
+  const std::string path = DataPath("emission_node.obj");
+  EXPECT_EQ(LoadError(path),
+            path +
+                ": nothing to light: no face uses a material with Ke > 0; material "
+                "'Ceiling_Light' (" +
+                DataPath("emission_node.mtl") +
+                ":4) looks like a light but has Ke 0: radfarm reads emission from Ke only, and "
+                "Blender exports an Emission shader node as Ke 0 (use a Principled BSDF's "
+                "Emission, or set Ke in the MTL)");
+}
+
+TEST(LoadObjSceneTest, NothingToLightNamesMaterialsWithAnAmbientColourWhenNoNameLooksLikeALight) {
+  WriteScratchFile("ambient.mtl",
+                   "newmtl wall\nKd 0.5 0.5 0.5\n\nnewmtl glass\nKd 0.1 0.1 0.1\nKa 0 0 0\n"
+                   "newmtl panel\nKd 0.8 0.8 0.8\nKa 4 4 4\n");
+  const std::string path = WriteScratchFile(
+      "ambient.obj",
+      "mtllib ambient.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl wall\nf 1 2 3\nusemtl glass\n"
+      "f 1 2 3\nusemtl panel\nf 1 3 2\n");
+  const std::string mtl = path.substr(0, path.size() - 3) + "mtl";
+  EXPECT_EQ(LoadError(path), path +
+                                 ": nothing to light: no face uses a material with Ke > 0; "
+                                 "material 'panel' (" +
+                                 mtl +
+                                 ":9) sets Ka (ambient) and Ke 0; if one should glow: radfarm "
+                                 "reads emission from Ke only, and Blender exports an Emission "
+                                 "shader node as Ke 0 (use a Principled BSDF's Emission, or set Ke "
+                                 "in the MTL)");
+}
+
+TEST(LoadObjSceneTest, NothingToLightWithoutAClueSaysNoMore) {
+  const std::string path = DataPath("no_light.obj");
+  EXPECT_EQ(LoadError(path).find(';'), std::string::npos);
+}
+
+TEST(LoadObjSceneTest, TexturesAndTransparencyInTheMtlWarnOncePerKind) {
+  WriteScratchFile("textured.mtl",
+                   "newmtl lamp\nKe 1 1 1\nd 1\nTr 0\n"
+                   "newmtl floor\nKd 0.5 0.5 0.5\nmap_Kd floor.png\nbump floor_n.png\nd 0.5\n"
+                   "newmtl tiles\nKd 0.5 0.5 0.5\nmap_Kd tiles.png\nKs 1 1 1\nNs 90\nillum 2\n");
+  const std::string path = WriteScratchFile(
+      "textured.obj",
+      "mtllib textured.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl lamp\nf 1 2 3\nusemtl floor\n"
+      "f 1 3 2\nusemtl tiles\nf 1 2 3\n");
+  const std::string mtl = path.substr(0, path.size() - 3) + "mtl";
+  Result<InputScene> scene = LoadObjScene(path);
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  ASSERT_EQ(scene->warnings.size(), 3u);
+  EXPECT_EQ(scene->warnings[0], mtl +
+                                    ":8: warning: 'bump' ignored: radfarm reads no texture maps "
+                                    "from MTL");
+  EXPECT_EQ(scene->warnings[1], mtl + ":9: warning: 'd' ignored: surfaces are opaque in radfarm");
+  EXPECT_EQ(scene->warnings[2],
+            mtl +
+                ":7: warning: 'map_Kd' ignored (and 1 more): radfarm takes a surface's colour "
+                "from Kd alone (textures are read from glTF's baseColorTexture)");
+}
+
 TEST(LoadObjSceneTest, NoFaces) {
   const std::string path = WriteScratchFile("empty.obj", "# nothing\nv 0 0 0\n");
   EXPECT_EQ(LoadError(path), path + ": no faces");
