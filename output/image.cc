@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "output/clip_polygon.h"
+#include "output/enclosure_camera.h"
 #include "output/view_transform.h"
 
 namespace radfarm {
@@ -205,7 +207,10 @@ Bounds3 MeshBounds(const DisplayMesh& mesh) {
 }
 
 Camera ResolveCamera(const DisplayMesh& mesh, const Camera& camera) {
-  return camera.automatic ? AutoCamera(MeshBounds(mesh), camera) : camera;
+  if (!camera.automatic) return camera;
+  const Bounds3 bounds = MeshBounds(mesh);
+  std::optional<Camera> inside = InsideCamera(mesh, bounds, camera);
+  return inside ? *inside : AutoCamera(bounds, camera);
 }
 
 Image RenderImage(const DisplayMesh& mesh, const Camera& camera_in,
