@@ -1,10 +1,11 @@
 # libFuzzer targets (docs/FUZZING.md), built only with -DRADFARM_FUZZ=ON and clang:
 #
-#   radfarm_add_fuzzer(<name> SOURCES <file>... LIBRARIES <target>... CORPUS <dir>
+#   radfarm_add_fuzzer(<name> SOURCES <file>... LIBRARIES <target>... CORPUS <dir>...
 #                      SMOKE_TEST <test name> [SMOKE_SECONDS <n>])
 #
-# adds the fuzzer executable <name> (part of the target `fuzzers`) and the ctest <test name>: a short run over a copy of the seed
-# corpus CORPUS (copied so new inputs do not land in the source tree), with leak detection on,
+# adds the fuzzer executable <name> (part of the target `fuzzers`) and the ctest <test name>: a
+# short run over a copy of the files of the CORPUS directories (the seeds, and the findings kept as
+# regressions; copied so new inputs do not land in the source tree), with leak detection on,
 # labelled `fuzz` (ctest -L fuzz runs them all).
 # With RADFARM_FUZZ every target of the build is compiled with coverage feedback
 # (fuzzer-no-link), ASan and UBSan, so the libraries under test report what the fuzzer reaches.
@@ -24,7 +25,7 @@ if(RADFARM_FUZZ)
 endif()
 
 function(radfarm_add_fuzzer name)
-  cmake_parse_arguments(PARSE_ARGV 1 arg "" "CORPUS;SMOKE_TEST;SMOKE_SECONDS" "SOURCES;LIBRARIES")
+  cmake_parse_arguments(PARSE_ARGV 1 arg "" "SMOKE_TEST;SMOKE_SECONDS" "SOURCES;LIBRARIES;CORPUS")
   if(NOT arg_SOURCES OR NOT arg_CORPUS OR NOT arg_SMOKE_TEST)
     message(FATAL_ERROR "radfarm_add_fuzzer(${name}): SOURCES, CORPUS and SMOKE_TEST are required")
   endif()
@@ -38,8 +39,8 @@ function(radfarm_add_fuzzer name)
   set(work ${CMAKE_CURRENT_BINARY_DIR}/${name}_work)
   add_test(NAME ${arg_SMOKE_TEST}
            COMMAND ${CMAKE_COMMAND} -E env ASAN_OPTIONS=detect_leaks=1
-                   sh -c "rm -rf \"$1\" && cp -r \"$2\" \"$1\" && \"$3\" -max_total_time=$4 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \"$1\""
-                   fuzz_smoke ${work} ${arg_CORPUS} $<TARGET_FILE:${name}> ${arg_SMOKE_SECONDS})
+                   sh -c "w=\"$1\" f=\"$2\" s=\"$3\"; shift 3; rm -rf \"$w\" && mkdir -p \"$w\" && for d in \"$@\"; do cp \"$d\"/* \"$w\"/; done && \"$f\" -max_total_time=$s -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \"$w\""
+                   fuzz_smoke ${work} $<TARGET_FILE:${name}> ${arg_SMOKE_SECONDS} ${arg_CORPUS})
   math(EXPR timeout "${arg_SMOKE_SECONDS} * 6 + 60")
   set_tests_properties(${arg_SMOKE_TEST} PROPERTIES TIMEOUT ${timeout} LABELS fuzz)
 endfunction()
