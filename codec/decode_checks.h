@@ -1,8 +1,11 @@
 // Small checks shared by the decoders: every decode error names the blob kind and the field.
 #pragma once
 
+#include <flatbuffers/flatbuffers.h>
+
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <string>
 #include <string_view>
@@ -28,6 +31,25 @@ inline bool IsFinite(const Rgb& c) {
 bool IsReflectance(const Rgb& c);
 // Each channel finite and >= 0.
 bool IsNonNegative(const Rgb& c);
+
+// Element i of a FlatBuffers vector of structs, copied out byte for byte. The verifier checks only
+// that a vector's length field is 4-byte aligned, so a crafted blob can place structs of doubles
+// where 8 does not divide the address; reading them through the vector's pointers is undefined
+// behaviour (UBSan: "member call on misaligned address"), a copy is not.
+template <typename Struct>
+Struct StructAt(const flatbuffers::Vector<const Struct*>& in, flatbuffers::uoffset_t i) {
+  Struct out;
+  std::memcpy(static_cast<void*>(&out), in.Data() + size_t{i} * sizeof(Struct), sizeof(Struct));
+  return out;
+}
+
+// Element i of a FlatBuffers vector of 8-byte scalars (doubles), copied for the same reason.
+template <typename Scalar>
+Scalar ScalarAt(const flatbuffers::Vector<Scalar>& in, flatbuffers::uoffset_t i) {
+  Scalar out;
+  std::memcpy(&out, in.Data() + size_t{i} * sizeof(Scalar), sizeof(Scalar));
+  return flatbuffers::EndianScalar(out);
+}
 
 Error FieldError(std::string_view kind, const std::string& field, std::string_view what);
 

@@ -110,8 +110,10 @@ Status DecodeCamera(const wire::BundleCamera& in, Camera* out) {
 }
 
 Status DecodeScene(const wire::JobBundleBlob& in, InputScene* scene) {
-  for (const auto* p : *in.positions()) {
-    const Vec3 v{p->x(), p->y(), p->z()};
+  const auto& positions = *in.positions();
+  for (flatbuffers::uoffset_t i = 0; i < positions.size(); ++i) {
+    const wire::BundlePoint p = StructAt(positions, i);
+    const Vec3 v{p.x(), p.y(), p.z()};
     if (!IsFinite(v)) {
       return Bad("positions[" + std::to_string(scene->positions.size()) + "]", "is not finite");
     }
@@ -154,8 +156,9 @@ Status DecodeMatrix(const flatbuffers::Vector<double>* in, const std::string& fi
   if (in == nullptr) return Ok{};
   if (in->size() != 16) return Bad(field, "is not 16 values");
   for (uint32_t i = 0; i < 16; ++i) {
-    if (!std::isfinite(in->Get(i))) return Bad(field, "is not finite");
-    (*out)[i] = in->Get(i);
+    const double value = ScalarAt(*in, i);
+    if (!std::isfinite(value)) return Bad(field, "is not finite");
+    (*out)[i] = value;
   }
   return Ok{};
 }

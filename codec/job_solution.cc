@@ -16,7 +16,10 @@ constexpr std::string_view kKind = "job solution";
 std::vector<Rgb> FromWire(const flatbuffers::Vector<const wire::SolutionColour*>& in) {
   std::vector<Rgb> out;
   out.reserve(in.size());
-  for (const auto* c : in) out.push_back({c->r(), c->g(), c->b()});
+  for (flatbuffers::uoffset_t i = 0; i < in.size(); ++i) {
+    const wire::SolutionColour c = StructAt(in, i);
+    out.push_back({c.r(), c.g(), c.b()});
+  }
   return out;
 }
 

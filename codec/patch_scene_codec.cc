@@ -30,7 +30,10 @@ Result<Patch> DecodePatch(const wire::ScenePatch& in, uint32_t index, size_t mat
                       "has " + std::to_string(corners->size()) + " corners (expected 3 or 4)");
   }
   p.corner_count = static_cast<uint8_t>(corners->size());
-  for (uint32_t k = 0; k < corners->size(); ++k) p.corners[k] = FromWire(corners->Get(k));
+  for (uint32_t k = 0; k < corners->size(); ++k) {
+    const wire::Point corner = StructAt(*corners, k);
+    p.corners[k] = FromWire(&corner);
+  }
   p.normal = FromWire(in.normal());
   p.centre = FromWire(in.centre());
   p.area = in.area();

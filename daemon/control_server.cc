@@ -5,14 +5,6 @@
 
 namespace radfarm::daemon {
 
-ControlResponse ControlError(const std::string& code, const std::string& message) {
-  return {nlohmann::json{{"ok", false}, {"error", message}, {"code", code}}, {}};
-}
-
-std::string JsonText(const nlohmann::json& value) {
-  return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-}
-
 struct ControlServer::Client {
   uint64_t id = 0;
   std::unique_ptr<loop::FramedConnection> connection;
@@ -23,106 +15,6 @@ struct ControlServer::Client {
   bool busy = false;          // a request is being answered
   bool close_logged = false;  // we closed it and said why
 };
-
-namespace {
-
-struct CommandName {
-  const char* name;
-  ControlCommand command;
-};
-constexpr CommandName kCommands[] = {
-    {"submit", ControlCommand::kSubmit}, {"list", ControlCommand::kList},
-    {"status", ControlCommand::kStatus}, {"cancel", ControlCommand::kCancel},
-    {"pause", ControlCommand::kPause},   {"resume", ControlCommand::kResume},
-    {"log", ControlCommand::kLog},       {"fetch", ControlCommand::kFetch},
-    {"agents", ControlCommand::kAgents},
-};
-
-Result<int64_t> IntArg(const nlohmann::json& json, const char* key) {
-  const auto it = json.find(key);
-  if (it == json.end() || !it->is_number_integer()) {
-    return Error{std::string("'") + key + "' must be an integer"};
-  }
-  return it->get<int64_t>();
-}
-
-// A job id: any unsigned 64-bit integer, kept as given so that errors can name it.
-Result<uint64_t> IdArg(const nlohmann::json& json) {
-  const auto it = json.find("id");
-  if (it == json.end() || !it->is_number_integer()) return Error{"'id' must be an integer"};
-  if (it->is_number_unsigned()) return it->get<uint64_t>();
-  if (it->get<int64_t>() < 0) return Error{"'id' must not be negative"};
-  return static_cast<uint64_t>(it->get<int64_t>());
-}
-
-}  // namespace
-
-Result<ControlRequest> ParseControlRequest(const nlohmann::json& json, uint64_t* attachment_bytes) {
-  *attachment_bytes = 0;
-  if (!json.is_object()) return Error{"a request must be a JSON object"};
-  const auto command = json.find("command");
-  if (command == json.end() || !command->is_string()) {
-    return Error{"'command' must be a string"};
-  }
-  ControlRequest request;
-  bool known = false;
-  for (const CommandName& c : kCommands) {
-    if (*command == c.name) {
-      request.command = c.command;
-      known = true;
-    }
-  }
-  if (!known) return Error{"unknown command '" + command->get<std::string>() + "'"};
-  switch (request.command) {
-    case ControlCommand::kStatus:
-    case ControlCommand::kCancel:
-    case ControlCommand::kPause:
-    case ControlCommand::kResume:
-    case ControlCommand::kFetch: {
-      Result<uint64_t> id = IdArg(json);
-      RADFARM_RETURN_IF_ERROR(id);
-      request.id = *id;
-      break;
-    }
-    case ControlCommand::kLog:
-      if (json.contains("id") && !json["id"].is_null()) {
-        Result<uint64_t> id = IdArg(json);
-        RADFARM_RETURN_IF_ERROR(id);
-        request.id = *id;
-      }
-      if (json.contains("limit")) {
-        Result<int64_t> limit = IntArg(json, "limit");
-        RADFARM_RETURN_IF_ERROR(limit);
-        if (*limit < 1 || *limit > 100000) return Error{"'limit' must be in [1, 100000]"};
-        request.limit = *limit;
-      }
-      break;
-    case ControlCommand::kSubmit: {
-      if (json.contains("name")) {
-        if (!json["name"].is_string()) return Error{"'name' must be a string"};
-        request.name = json["name"].get<std::string>();
-        if (request.name.size() > 256) return Error{"'name' is longer than 256 bytes"};
-      }
-      if (json.contains("priority")) {
-        Result<int64_t> priority = IntArg(json, "priority");
-        RADFARM_RETURN_IF_ERROR(priority);
-        request.priority = *priority;
-      }
-      Result<int64_t> bytes = IntArg(json, "attachment_bytes");
-      if (!bytes) return Error{"submit needs the job bundle: " + bytes.error()};
-      if (*bytes < 1 || uint64_t(*bytes) > kMaxControlAttachmentBytes) {
-        return Error{"'attachment_bytes' must be in [1, " +
-                     std::to_string(kMaxControlAttachmentBytes) + "]"};
-      }
-      *attachment_bytes = uint64_t(*bytes);
-      break;
-    }
-    case ControlCommand::kList:
-    case ControlCommand::kAgents:
-      break;
-  }
-  return request;
-}
 
 Result<std::unique_ptr<ControlServer>> ControlServer::Listen(loop::EventLoop& loop,
                                                              const std::string& path,
@@ -226,13 +118,13 @@ void ControlServer::OnFrame(Client& client, std::span<const uint8_t> payload) {
     Refuse(client, "bad_request", "a request arrived before the previous one was answered");
     return;
   }
-  nlohmann::json json = nlohmann::json::parse(payload.begin(), payload.end(), nullptr, false);
-  if (json.is_discarded()) {
-    Refuse(client, "bad_request", "the request is not valid JSON");
+  Result<nlohmann::json> json = ParseControlJson(payload);
+  if (!json) {
+    Refuse(client, "bad_request", json.error());
     return;
   }
   uint64_t attachment_bytes = 0;
-  Result<ControlRequest> request = ParseControlRequest(json, &attachment_bytes);
+  Result<ControlRequest> request = ParseControlRequest(*json, &attachment_bytes);
   if (!request) {
     // A well-formed frame with a bad request: answer, keep the connection.
     Reply(client.id, ControlError("bad_request", request.error()));

@@ -19,6 +19,7 @@
 #include <string>
 
 #include "base/result.h"
+#include "daemon/control_request_parser.h"
 #include "daemon/control_types.h"
 #include "loop/event_loop.h"
 #include "loop/framed_connection.h"
@@ -26,9 +27,6 @@
 #include "loop/unix_listener.h"
 
 namespace radfarm::daemon {
-
-inline constexpr uint32_t kMaxControlJsonBytes = 1u << 20;
-inline constexpr uint32_t kMaxControlAttachmentBytes = 1u << 30;
 
 struct ControlServerOptions {
   std::chrono::milliseconds request_timeout{60000};
@@ -67,8 +65,5 @@ class ControlServer {
   std::map<uint64_t, std::unique_ptr<Client>> clients_;
   uint64_t next_client_ = 1;
 };
-
-// Parses one request's JSON (docs/CONTROL.md); errors say which key is wrong.
-Result<ControlRequest> ParseControlRequest(const nlohmann::json& json, uint64_t* attachment_bytes);
 
 }  // namespace radfarm::daemon

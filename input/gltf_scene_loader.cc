@@ -6,11 +6,13 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "base/diagnostic.h"
 #include "base/file_extension.h"
+#include "base/text_file.h"
 #include "input/gltf_accessor.h"
 #include "input/gltf_light.h"
 #include "input/gltf_material.h"
@@ -33,13 +35,47 @@ std::string FirstLine(const std::string& text) {
 
 bool IsBinary(const std::string& path) { return LowercaseExtension(path) == ".glb"; }
 
-Result<tinygltf::Model> ReadModel(const std::string& path, std::vector<std::string>* warnings) {
+// tinygltf reads the scene file and every buffer and image file a .gltf references through this
+// callback: each read goes through ReadTextFile (regular files only, size checked before reading)
+// against what is left of the scene's byte budget, so no file, and no number of references to
+// files, makes the reader hold more than the budget.
+struct BoundedReads {
+  uint64_t remaining_bytes;
+  std::optional<Error> error;  // the first refused read, reported as it is
+};
+
+bool ReadWithinBudget(std::vector<unsigned char>* out, std::string* err,
+                      const std::string& filepath, void* user_data) {
+  auto* reads = static_cast<BoundedReads*>(user_data);
+  Result<std::string> bytes = ReadTextFile(filepath, reads->remaining_bytes);
+  if (!bytes) {
+    if (!reads->error) reads->error = Error{bytes.error()};
+    *err += bytes.error() + "\n";
+    return false;
+  }
+  reads->remaining_bytes -= bytes->size();
+  out->assign(bytes->begin(), bytes->end());
+  return true;
+}
+
+// tinygltf's own check opens the file, which waits forever for a FIFO's writer: stat instead, and
+// let ReadWithinBudget refuse what is not a regular file.
+bool ExistsWithoutOpening(const std::string& path, void*) {
+  std::error_code ec;
+  return std::filesystem::exists(path, ec);
+}
+
+Result<tinygltf::Model> ReadModel(const std::string& path, uint64_t max_file_bytes,
+                                  std::vector<std::string>* warnings) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return ErrorAt(path, 0, "cannot open: no such file");
   if (!std::filesystem::is_regular_file(path, ec)) {
     return ErrorAt(path, 0, "cannot open: not a regular file");
   }
   tinygltf::TinyGLTF loader;
+  BoundedReads reads{max_file_bytes, std::nullopt};
+  loader.SetFsCallbacks({&ExistsWithoutOpening, &tinygltf::ExpandFilePath, &ReadWithinBudget,
+                         &tinygltf::WriteWholeFile, &reads});
   tinygltf::Model model;
   std::string err, warn;
   const bool ok = IsBinary(path) ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
@@ -49,6 +85,11 @@ Result<tinygltf::Model> ReadModel(const std::string& path, std::vector<std::stri
     if (!line.empty()) warnings->push_back(WarningAt(path, 0, line));
   }
   if (!ok) {
+    if (reads.error) {
+      // The scene file itself names its own size; a referenced file is named after the scene.
+      if (reads.error->message.rfind(path + ":", 0) == 0) return *reads.error;
+      return ErrorAt(path, 0, "cannot read a referenced file: " + reads.error->message);
+    }
     const std::string why = FirstLine(err);
     return ErrorAt(path, 0, "not a valid glTF file: " + (why.empty() ? "unreadable" : why));
   }
@@ -304,10 +345,10 @@ Status CheckSomethingEmits(const std::string& path, const tinygltf::Model& model
 
 }  // namespace
 
-Result<InputScene> LoadGltfScene(const std::string& path) {
+Result<InputScene> LoadGltfScene(const std::string& path, uint64_t max_file_bytes) {
   InputScene scene;
   scene.path = path;
-  Result<tinygltf::Model> model = ReadModel(path, &scene.warnings);
+  Result<tinygltf::Model> model = ReadModel(path, max_file_bytes, &scene.warnings);
   RADFARM_RETURN_IF_ERROR(model);
   RADFARM_RETURN_IF_ERROR(CheckExtensions(path, *model, &scene.warnings));
   if (model->scenes.empty()) return ErrorAt(path, 0, "no scene");

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "base/result.h"
+#include "base/text_file.h"
 #include "input/input_scene.h"
 
 namespace radfarm {
@@ -17,6 +18,12 @@ namespace radfarm {
 // material or accessor: unreadable file, primitive modes other than triangles, indices out of
 // range, non-finite coordinates, bad factors, "nothing to light". Unsupported features that
 // change little (alphaMode, skins, KHR_lights_punctual lamps) give warnings.
-Result<InputScene> LoadGltfScene(const std::string& path);
+//
+// The scene file and the buffer and image files a .gltf references are read only if they are
+// regular files, and together they may hold at most `max_file_bytes`: each is refused from its size
+// before it is read once the files before it have used up the rest ("path: the file is N bytes,
+// over the limit of M bytes", M what is left).
+Result<InputScene> LoadGltfScene(const std::string& path,
+                                 uint64_t max_file_bytes = kDefaultMaxInputFileBytes);
 
 }  // namespace radfarm

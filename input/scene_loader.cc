@@ -22,17 +22,9 @@ Result<InputScene> LoadScene(const std::string& path, uint64_t max_file_bytes) {
   }
   const std::string ext = LowercaseExtension(path);
   if (ext == ".obj") return LoadObjScene(path, max_file_bytes);
-  if (ext == ".gltf" || ext == ".glb") {
-    // tinygltf reads the file itself: refuse an oversized one from its size first.
-    if (std::filesystem::is_regular_file(status)) {
-      const uint64_t size = std::filesystem::file_size(path, ec);
-      if (!ec && size > max_file_bytes) {
-        return Error{path + ": the file is " + std::to_string(size) + " bytes, over the limit of " +
-                     std::to_string(max_file_bytes) + " bytes"};
-      }
-    }
-    return LoadGltfScene(path);
-  }
+  // tinygltf reads through LoadGltfScene's bounded reads, which refuse an oversized file (and
+  // oversized buffers and images it references) from their size first.
+  if (ext == ".gltf" || ext == ".glb") return LoadGltfScene(path, max_file_bytes);
   return ErrorAt(path, 0, "not a scene: expected a .obj, .gltf or .glb file");
 }
 

@@ -1,8 +1,11 @@
 #include "input/gltf_scene_loader.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
 
@@ -31,6 +34,19 @@ std::string GltfLoadError(const std::string& path) {
   if (scene.ok()) return "";
   EXPECT_EQ(scene.error().find('\n'), std::string::npos) << scene.error();
   return scene.error();
+}
+
+// Writes FloorAndLight as `name` in `dir` with extra buffers that reference `uris` (each
+// `byte_length` long), which tinygltf reads as it loads the file.
+std::string WriteWithExternalBuffers(const TempDir& dir, const std::string& name,
+                                     const std::vector<std::string>& uris, uint64_t byte_length) {
+  const std::string path = FloorAndLight().WriteGltf(dir.File(name));
+  nlohmann::json doc = nlohmann::json::parse(testing::ReadFile(path));
+  for (const std::string& uri : uris) {
+    doc["buffers"].push_back({{"byteLength", byte_length}, {"uri", uri}});
+  }
+  std::ofstream(path, std::ios::trunc) << doc.dump(1);
+  return path;
 }
 
 TEST(LoadGltfSceneTest, ReadsIndexedAndPlainTrianglesAndTheirMaterials) {
@@ -190,6 +206,70 @@ TEST(LoadGltfSceneTest, RefusesLinesNamingTheMesh) {
   EXPECT_EQ(GltfLoadError(path), path +
                                      ": mesh 0 'floor' primitive 0: mode 1 (lines) is not "
                                      "supported; export triangles");
+}
+
+// Issue 20, F6: a .gltf's buffers and images were read whole by tinygltf, however large; a 2 GiB
+// buffer is now refused from its size (a sparse file: nothing is read, nothing is allocated).
+TEST(LoadGltfSceneTest, RefusesAnExternalBufferOverTheLimitFromItsSize) {
+  TempDir dir;
+  const std::string big = dir.File("big.bin");
+  std::ofstream{big}.close();
+  std::filesystem::resize_file(big, uint64_t{2} << 30);
+  const std::string path = WriteWithExternalBuffers(dir, "s.gltf", {"big.bin"}, uint64_t{2} << 30);
+  const std::string error = GltfLoadError(path);
+  EXPECT_EQ(error.rfind(path + ": cannot read a referenced file: " + big +
+                            ": the file is 2147483648 bytes, over the limit of ",
+                        0),
+            0u)
+      << error;
+}
+
+// Many references to one file within the limit each may not add up past it: the scene's files
+// share one budget.
+TEST(LoadGltfSceneTest, ReferencedFilesShareTheSceneFilesLimit) {
+  TempDir dir;
+  std::ofstream(dir.File("part.bin")) << std::string(400, 'x');
+  const std::string path =
+      WriteWithExternalBuffers(dir, "s.gltf", {"part.bin", "part.bin", "part.bin"}, 400);
+  const uint64_t scene_bytes = std::filesystem::file_size(path);
+  EXPECT_TRUE(LoadScene(path, scene_bytes + 3 * 400).ok());
+  Result<InputScene> over = LoadScene(path, scene_bytes + 2 * 400 + 399);
+  ASSERT_FALSE(over.ok());
+  EXPECT_NE(over.error().find("part.bin: the file is 400 bytes, over the limit of 399 bytes"),
+            std::string::npos)
+      << over.error();
+}
+
+// Issue 20, F6: a buffer that is a device would never end, and tinygltf's check that a file exists
+// opened it, so a FIFO hung the reader; both are refused as not regular files, before any read.
+TEST(LoadGltfSceneTest, RefusesABufferThatIsADeviceOrAFifoWithoutReadingIt) {
+  TempDir dir;
+  // tinygltf reads uris relative to the scene's directory, "/dev/zero" included: climb to the root.
+  std::string up;
+  for (const auto& part : std::filesystem::path(dir.path()).relative_path()) {
+    if (!part.empty()) up += "../";
+  }
+  const std::string device = WriteWithExternalBuffers(dir, "device.gltf", {up + "dev/zero"}, 1024);
+  std::string error = GltfLoadError(device);
+  EXPECT_NE(error.find("dev/zero: cannot open: not a regular file (a character device)"),
+            std::string::npos)
+      << error;
+  ASSERT_EQ(::mkfifo(dir.File("pipe").c_str(), 0600), 0);
+  const std::string fifo = WriteWithExternalBuffers(dir, "fifo.gltf", {"pipe"}, 1024);
+  error = GltfLoadError(fifo);
+  EXPECT_NE(error.find("pipe: cannot open: not a regular file (a FIFO)"), std::string::npos)
+      << error;
+}
+
+// The scene file itself: over the limit, named as OBJ files are.
+TEST(LoadGltfSceneTest, RefusesASceneFileOverTheLimitFromItsSize) {
+  TempDir dir;
+  const std::string path = FloorAndLight().WriteGlb(dir.File("s.glb"));
+  const uint64_t size = std::filesystem::file_size(path);
+  Result<InputScene> scene = LoadScene(path, size - 1);
+  ASSERT_FALSE(scene.ok());
+  EXPECT_EQ(scene.error(), path + ": the file is " + std::to_string(size) +
+                               " bytes, over the limit of " + std::to_string(size - 1) + " bytes");
 }
 
 TEST(LoadGltfSceneTest, RefusesAnIndexOutOfRangeNamingTheAccessor) {

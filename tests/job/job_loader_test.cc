@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <string>
@@ -51,6 +52,21 @@ TEST(LoadJobTest, OtherExtensionsAreRefused) {
 TEST(LoadJobTest, MissingJobFile) {
   EXPECT_EQ(JobError(DataPath("jobs/none.toml")),
             DataPath("jobs/none.toml") + ": cannot open: No such file or directory");
+}
+
+// Issue 20, F6: a job file is refused from its size before it is read (a sparse 2 GiB file: nothing
+// is read or allocated), and a FIFO named like a job file is refused without waiting for a writer.
+TEST(LoadJobTest, AJobFileOverTheLimitOrNotARegularFileIsRefusedBeforeReading) {
+  const std::string big = WriteScratchFile("big.toml", "");
+  std::filesystem::resize_file(big, uint64_t{2} << 30);
+  EXPECT_EQ(JobError(big),
+            big + ": the file is 2147483648 bytes, over the limit of 16777216 bytes");
+  const std::string fifo = std::filesystem::path(big).parent_path() / "pipe.toml";
+  std::filesystem::remove(fifo);  // from an earlier run
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_EQ(JobError(fifo), fifo + ": cannot open: not a regular file (a FIFO)");
+  std::filesystem::remove(big);
+  std::filesystem::remove(fifo);
 }
 
 TEST(LoadJobTest, MinimalJobKeepsDefaultsAndResolvesTheSceneBesideIt) {

@@ -1,0 +1,72 @@
+// Writes the job bundle and job solution fuzzers' seed corpora (tests/codec/fuzz_corpus/, see
+// docs/FUZZING.md) from the shipped scenes: run by scripts/make-fuzz-seeds after a schema change.
+//   codec_fuzz_seed_writer SCENES_DIR OUT_DIR
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "codec/job_bundle.h"
+#include "codec/job_solution.h"
+#include "input/scene_loader.h"
+#include "job/job.h"
+
+namespace {
+
+using radfarm::codec::JobBundle;
+using radfarm::codec::JobSolution;
+
+void WriteBlob(const std::filesystem::path& path, const std::vector<uint8_t>& bytes) {
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size()));
+}
+
+// A solution with a few patches of each sign and the stats' strings set, so every field has bytes.
+JobSolution SampleSolution(std::vector<uint8_t> bundle, bool with_scene) {
+  JobSolution solution;
+  solution.bundle = std::move(bundle);
+  solution.radiosity = {{0.5, 0.25, 0.125}, {1, 2, 3}, {0, 0, 0}};
+  solution.unshot = {{0.01, -0.02, 0.03}, {0, 0, 0}, {-1, 0, 1}};
+  solution.stats.rays = 4096;
+  solution.stats.rounds = 3;
+  solution.stats.patches = 3;
+  solution.stats.sampler = "sobol";
+  solution.stats.stop_reason = "converged";
+  if (with_scene) solution.scene = {1, 2, 3, 4};
+  return solution;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 3) {
+    std::fprintf(stderr, "usage: %s SCENES_DIR OUT_DIR\n", argv[0]);
+    return 2;
+  }
+  const std::filesystem::path scenes = argv[1], out = argv[2];
+  std::filesystem::create_directories(out / "job_bundle");
+  std::filesystem::create_directories(out / "job_solution");
+  // Small scenes of each kind: OBJ with and without a job file, glTF and .glb, lights and cameras.
+  const char* jobs[] = {"cornell-box.toml",      "seed-room.toml",  "furnace.obj",
+                        "cornell-box-lamp.toml", "cornell-box.glb", "hard-shadow.toml"};
+  bool first = true;
+  for (const char* name : jobs) {
+    auto job = radfarm::LoadJob((scenes / name).string());
+    if (!job) return std::fprintf(stderr, "%s\n", job.error().c_str()), 1;
+    auto scene = radfarm::LoadScene(job->scene_path);
+    if (!scene) return std::fprintf(stderr, "%s\n", scene.error().c_str()), 1;
+    // Paths as the farm sees them: relative to nothing on this machine.
+    job->scene_path = std::filesystem::path(job->scene_path).filename().string();
+    scene->path = job->scene_path;
+    const std::vector<uint8_t> bundle = radfarm::codec::EncodeJobBundle({*job, *scene});
+    const std::string stem = std::filesystem::path(name).stem().string() +
+                             std::filesystem::path(name).extension().string().replace(0, 1, "-");
+    WriteBlob(out / "job_bundle" / (stem + ".bin"), bundle);
+    WriteBlob(out / "job_solution" / (stem + ".bin"),
+              radfarm::codec::EncodeJobSolution(SampleSolution(bundle, first)));
+    first = false;
+  }
+  return 0;
+}
