@@ -253,10 +253,22 @@ TEST(RoundSchedulerTest, PreemptedLeasesAreRequeuedInOrderAndMayStillAnswer) {
   EXPECT_TRUE(s.InEndGame());
 }
 
-TEST(RoundSchedulerTest, InvalidResultBlocklistsTheAgentForAWhile) {
-  SchedulerOptions options;
-  options.blocklist_duration = seconds(60);
-  RoundScheduler s(options);
+TEST(RoundSchedulerTest, AnInvalidResultRevokesTheAgentsLeasesButDoesNotBlocklistIt) {
+  RoundScheduler s;
+  s.AddAgent(1);
+  ASSERT_TRUE(s.StartRound(Plan(0, 4), kT0).ok());
+  const auto a = s.NextAssignment(1, kT0);
+  const auto b = s.NextAssignment(1, kT0);
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(s.OnInvalidResult(1, a->batch_id, a->attempt_id, kT0).reason, DropReason::kInvalid);
+  EXPECT_FALSE(s.IsBlocklisted(1, kT0));  // the daemon decides that (JobBlocklist)
+  EXPECT_EQ(s.counters(kT0).agents[0].leases_held, 0u);
+  EXPECT_EQ(s.counters(kT0).batches_queued, 4u);
+  EXPECT_TRUE(s.NextAssignment(1, kT0));
+}
+
+TEST(RoundSchedulerTest, ABlocklistedAgentGetsNoWorkAndItsResultsAreRejectedUntilItEnds) {
+  RoundScheduler s;
   s.AddAgent(1);
   s.AddAgent(2);
   ASSERT_TRUE(s.StartRound(Plan(0, 4), kT0).ok());
@@ -264,6 +276,9 @@ TEST(RoundSchedulerTest, InvalidResultBlocklistsTheAgentForAWhile) {
   const auto b = s.NextAssignment(1, kT0);
   ASSERT_TRUE(a && b);
   EXPECT_EQ(s.OnInvalidResult(1, a->batch_id, a->attempt_id, kT0).reason, DropReason::kInvalid);
+  s.Blocklist(1, kT0 + seconds(60));
+  s.OnAgentLost(1);
+  s.AddAgent(1);  // reconnected: still blocklisted
   EXPECT_TRUE(s.IsBlocklisted(1, kT0 + seconds(59)));
   EXPECT_FALSE(s.NextAssignment(1, kT0 + seconds(59)));
   EXPECT_EQ(s.OnResult(1, b->batch_id, b->attempt_id, ResultFor(1), kT0).reason,
