@@ -253,21 +253,9 @@ TEST(RoundSchedulerTest, PreemptedLeasesAreRequeuedInOrderAndMayStillAnswer) {
   EXPECT_TRUE(s.InEndGame());
 }
 
-TEST(RoundSchedulerTest, AnInvalidResultRevokesTheAgentsLeasesButDoesNotBlocklistIt) {
-  RoundScheduler s;
-  s.AddAgent(1);
-  ASSERT_TRUE(s.StartRound(Plan(0, 4), kT0).ok());
-  const auto a = s.NextAssignment(1, kT0);
-  const auto b = s.NextAssignment(1, kT0);
-  ASSERT_TRUE(a && b);
-  EXPECT_EQ(s.OnInvalidResult(1, a->batch_id, a->attempt_id, kT0).reason, DropReason::kInvalid);
-  EXPECT_FALSE(s.IsBlocklisted(1, kT0));  // the daemon decides that (JobBlocklist)
-  EXPECT_EQ(s.counters(kT0).agents[0].leases_held, 0u);
-  EXPECT_EQ(s.counters(kT0).batches_queued, 4u);
-  EXPECT_TRUE(s.NextAssignment(1, kT0));
-}
-
-TEST(RoundSchedulerTest, ABlocklistedAgentGetsNoWorkAndItsResultsAreRejectedUntilItEnds) {
+// An invalid result revokes the agent's leases; blocklisting it is the daemon's call
+// (daemon/job_blocklist.h), which then keeps it from work and its results out until it ends.
+TEST(RoundSchedulerTest, AnInvalidResultRevokesLeasesAndABlocklistedAgentGetsNoWorkUntilItEnds) {
   RoundScheduler s;
   s.AddAgent(1);
   s.AddAgent(2);
@@ -276,6 +264,8 @@ TEST(RoundSchedulerTest, ABlocklistedAgentGetsNoWorkAndItsResultsAreRejectedUnti
   const auto b = s.NextAssignment(1, kT0);
   ASSERT_TRUE(a && b);
   EXPECT_EQ(s.OnInvalidResult(1, a->batch_id, a->attempt_id, kT0).reason, DropReason::kInvalid);
+  EXPECT_FALSE(s.IsBlocklisted(1, kT0));
+  EXPECT_EQ(s.LeasesHeld(1), 0u);
   s.Blocklist(1, kT0 + seconds(60));
   s.OnAgentLost(1);
   s.AddAgent(1);  // reconnected: still blocklisted
