@@ -194,6 +194,10 @@ Result<ProtocolSession::Accepted> ProtocolSession::AcceptProof(const DecodedFram
 }
 
 Result<ProtocolSession::Accepted> ProtocolSession::AcceptWelcome(const DecodedFrame& frame) {
+  // The master seals everything after its Welcome, so we seal our answer even when it is a
+  // Close refusing that Welcome: a genuine master whose Welcome was tampered with on the way
+  // then reads why, and a master without the secret reads nothing.
+  StartSealing();
   const auto* welcome = std::get_if<WelcomeMsg>(&frame.message);
   if (!welcome) {
     return Fail(CloseCode::kProtocolError,
@@ -210,7 +214,6 @@ Result<ProtocolSession::Accepted> ProtocolSession::AcceptWelcome(const DecodedFr
   }
   welcome_ = *welcome;
   state_ = State::kAuthenticated;
-  StartSealing();
   return Accepted{{}, false};
 }
 

@@ -278,7 +278,11 @@ TEST(ProtocolSessionTest, VersionOneBatchMessagesAreRefusedInTheCurrentVersion) 
   EXPECT_NE(in.error().find("BatchResult is not a message of protocol version 4"),
             std::string::npos)
       << in.error();
-  EXPECT_EQ(CloseOf(master.CloseFrame()).code, CloseCode::kProtocolError);
+  // Authenticated: the Close is sealed, for the agent.
+  const std::vector<uint8_t> close = master.CloseFrame();
+  Result<DecodedFrame> read = agent.Decode(std::span(close).subspan(kLengthPrefixBytes));
+  ASSERT_TRUE(read) << read.error();
+  EXPECT_EQ(std::get<CloseMsg>(read->message).code, CloseCode::kProtocolError);
 }
 
 TEST(ProtocolSessionTest, AgentRejectsAVersionItDoesNotSpeak) {
