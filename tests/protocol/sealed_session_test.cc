@@ -142,22 +142,6 @@ TEST(SealedSessionTest, TheCloseAfterAFailureIsSealedAndSaysWhy) {
   EXPECT_NE(msg.detail.find("frame failed authentication"), std::string::npos) << msg.detail;
 }
 
-// A Welcome whose tag was changed on the way: the agent refuses it with a sealed Close, which the
-// genuine master (sealing since its Welcome) reads.
-TEST(SealedSessionTest, AnAgentRefusingATamperedWelcomeTellsTheGenuineMasterWhy) {
-  Session master = Session::ForMaster(Secret(), MasterConfig{3, 1000, kDefaultMaxFrameBytes});
-  Session agent = Session::ForAgent(Secret(), AgentConfig{"node-1", 2});
-  Result<Session::Accepted> a = master.Accept(Clear(*agent.Start()));
-  a = agent.Accept(Clear(a->reply));
-  a = master.Accept(Clear(a->reply));
-  DecodedFrame welcome = Clear(a->reply);
-  std::get<WelcomeMsg>(welcome.message).tag[5] ^= 1;
-  ASSERT_FALSE(agent.Accept(welcome));
-  Result<DecodedFrame> read = master.Decode(Body(agent.CloseFrame()));
-  ASSERT_TRUE(read) << read.error();
-  EXPECT_EQ(std::get<CloseMsg>(read->message).code, CloseCode::kAuthFailed);
-}
-
 TEST(SealedSessionTest, AFrameTooShortForATagFailsAuthentication) {
   Pair p;
   ExpectUnauthentic(p.master, std::vector<uint8_t>(kLengthPrefixBytes + kSealTagBytes - 1, 0));
