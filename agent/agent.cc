@@ -24,6 +24,9 @@ using std::chrono::milliseconds;
 constexpr milliseconds kFlushTimeout{500};
 constexpr milliseconds kStopDeadline{900};
 constexpr milliseconds kHandshakeTimeout{10000};
+// After Close(Blocklisted): the master refuses this agent work of a job for minutes
+// (radfarmd --blocklist-seconds); a minute between attempts keeps its log readable.
+constexpr milliseconds kBlocklistedRetry{60000};
 
 // The 1-minute load average; 0 where the system does not say.
 double LoadAverage() {
@@ -287,7 +290,15 @@ void Agent::OnLinkClosed(const LinkClosed& closed) {
     return;
   }
   state_ = State::kWaiting;
-  if (closed.was_authenticated) {
+  if (closed.blocklisted) {
+    // Our results failed the master's validation: coming straight back would only be refused
+    // work again. Say why, loudly, and wait long enough for an operator to look.
+    ScheduleRetry("blocklisted by",
+                  closed.reason +
+                      " (this agent's results failed validation: check its hardware "
+                      "and that it runs the master's radfarm release)",
+                  kBlocklistedRetry);
+  } else if (closed.was_authenticated) {
     ScheduleRetry("lost the connection to",
                   closed.reason + "; dropped " + std::to_string(dropped) + " leases");
   } else if (closed.auth_failed) {
@@ -299,10 +310,13 @@ void Agent::OnLinkClosed(const LinkClosed& closed) {
   }
 }
 
-void Agent::ScheduleRetry(const std::string& what, const std::string& reason) {
+void Agent::ScheduleRetry(const std::string& what, const std::string& reason,
+                          milliseconds at_least) {
   state_ = State::kWaiting;
-  const milliseconds delay = backoff_.Next();
-  const LogLevel level = what == "authentication with" ? LogLevel::kError : LogLevel::kWarning;
+  const milliseconds delay = std::max(backoff_.Next(), at_least);
+  const LogLevel level = what == "authentication with" || what == "blocklisted by"
+                             ? LogLevel::kError
+                             : LogLevel::kWarning;
   // attempt_ is 0 when an established connection was lost: no attempt failed.
   const std::string attempt =
       attempt_ > 0 ? " (attempt " + std::to_string(attempt_) + ")" : std::string();

@@ -31,6 +31,7 @@
 // which joins the idle workers, and closes the loop cleanly.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -79,7 +80,9 @@ class Agent {
   void OnAuthenticated(const protocol::WelcomeMsg& welcome);
   void OnMessage(const protocol::Message& message);
   void OnLinkClosed(const LinkClosed& closed);
-  void ScheduleRetry(const std::string& what, const std::string& reason);
+  // Logs why and tries again after the backoff's next delay, or `at_least` if that is longer.
+  void ScheduleRetry(const std::string& what, const std::string& reason,
+                     std::chrono::milliseconds at_least = std::chrono::milliseconds(0));
 
   // The idle policy's answer changed.
   void OnIdleChange(const idle::IdleDecision& decision);

@@ -4,7 +4,6 @@
 #include <variant>
 
 #include "base/result.h"
-#include "protocol/frame_codec.h"
 #include "protocol/limits.h"
 
 namespace radfarm::agent {
@@ -13,14 +12,6 @@ namespace {
 // Silence after which the master is taken as gone: 4 heartbeat intervals.
 std::chrono::milliseconds SilenceLimit(uint32_t heartbeat_interval_ms) {
   return std::chrono::milliseconds(uint64_t{4} * heartbeat_interval_ms);
-}
-
-// The code of the Close frame the session would send: tells an authentication failure of our own
-// (the master's tag was wrong) from other errors, without parsing messages.
-protocol::CloseCode FailureCode(const protocol::ProtocolSession& session) {
-  Result<protocol::DecodedFrame> frame = protocol::DecodeFrame(session.CloseFrame());
-  if (!frame) return protocol::CloseCode::kInternalError;
-  return std::get<protocol::CloseMsg>(frame->message).code;
 }
 
 }  // namespace
@@ -66,16 +57,15 @@ void MasterLink::OnConnected() {
 
 void MasterLink::OnFrame(std::span<const uint8_t> payload) {
   if (session_.state() == protocol::ProtocolSession::State::kClosed) return;
-  Result<protocol::DecodedFrame> frame = protocol::DecodeFrameBody(payload);
+  Result<protocol::DecodedFrame> frame = session_.Decode(payload);
   if (!frame) {
-    session_.Abort(frame.error());
     FailWith("bad frame from the master: " + frame.error());
     return;
   }
   const bool was_authenticated = session_.authenticated();
   Result<protocol::ProtocolSession::Accepted> accepted = session_.Accept(*frame);
   if (!accepted) {
-    auth_failed_ = FailureCode(session_) == protocol::CloseCode::kAuthFailed;
+    auth_failed_ = session_.failure_code() == protocol::CloseCode::kAuthFailed;
     FailWith(accepted.error());
     return;
   }
@@ -84,6 +74,7 @@ void MasterLink::OnFrame(std::span<const uint8_t> payload) {
   }
   if (const auto& close = session_.peer_close(); close && accepted->deliver) {
     auth_failed_ = close->code == protocol::CloseCode::kAuthFailed;
+    blocklisted_ = close->code == protocol::CloseCode::kBlocklisted;
     close_reason_ =
         "the master closed the connection: " + std::string(protocol::CloseCodeName(close->code)) +
         (close->detail.empty() ? "" : " (" + close->detail + ")");
@@ -109,6 +100,7 @@ void MasterLink::OnClose(const std::string& reason) {
   LinkClosed closed;
   closed.reason = close_reason_.empty() ? reason : close_reason_;
   closed.auth_failed = auth_failed_;
+  closed.blocklisted = blocklisted_;
   closed.was_authenticated = was_authenticated_;
   std::function<void(const LinkClosed&)> on_closed = std::move(callbacks_.on_closed);
   if (on_closed) on_closed(closed);  // last: it may destroy this link

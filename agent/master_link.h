@@ -8,7 +8,8 @@
 // Silence: until Welcome the whole handshake must finish within `handshake_timeout`; after it, a
 // master that sends no byte for 4 heartbeat intervals is taken as gone. Any decode or session
 // error is answered with the session's Close frame before the connection is dropped, as
-// docs/PROTOCOL.md asks.
+// docs/PROTOCOL.md asks. A frame that fails authentication (protocol/frame_seal.h) is such an
+// error: the agent reconnects as after any lost connection.
 //
 // Loop thread only. on_closed runs once, after the socket is closed; it may destroy the link.
 // Destroying the link closes it silently.
@@ -31,6 +32,8 @@ namespace radfarm::agent {
 struct LinkClosed {
   std::string reason;
   bool auth_failed = false;  // either side refused the other's proof
+  // The master closed with Close(Blocklisted): its results for a job failed validation too often.
+  bool blocklisted = false;
   bool was_authenticated = false;
 };
 
@@ -88,6 +91,7 @@ class MasterLink {
   std::string peer_;
   std::string close_reason_;  // set when we or the peer decided to close
   bool auth_failed_ = false;
+  bool blocklisted_ = false;
   bool was_authenticated_ = false;
 };
 

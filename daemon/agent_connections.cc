@@ -52,6 +52,7 @@ AgentConnections::AgentConnections(loop::EventLoop& loop, const MasterConfig& co
       options_(options),
       store_(store),
       jobs_(jobs),
+      blocklist_(options.blocklist_duration),
       doors_(config.max_unauthenticated),
       door_log_(kDoorLogLines, kDoorLogWindow) {}
 
@@ -103,15 +104,6 @@ void AgentConnections::OnAuthenticated(AgentLink& link) {
     link.Close(protocol::CloseCode::kShutdown,
                "the master has its " + std::to_string(config_.max_agents) + " agents");
     return;
-  }
-  const auto blocked = blocklist_.find(link.name());
-  if (blocked != blocklist_.end()) {
-    if (blocked->second > LoopNow(loop_)) {
-      LogLine(LogLevel::kWarning, "agents") << link.Describe() << ": refused, blocklisted";
-      link.Close(protocol::CloseCode::kProtocolError, "blocklisted after an invalid result");
-      return;
-    }
-    blocklist_.erase(blocked);
   }
   LogLine(LogLevel::kInfo, "agents")
       << link.Describe() << " connected (" << link.threads() << " threads)";
@@ -186,14 +178,12 @@ void AgentConnections::OnLeaseResult(AgentLink& link, const protocol::LeaseResul
                                       runner->patch_count(), LoopNow(loop_));
     const scheduler::ResultVerdict& v = intake.last.verdict;
     if (v.reason == scheduler::DropReason::kInvalid) {
-      LogLine(LogLevel::kWarning, "agents")
-          << "job " << job_id << " from " << link.Describe()
-          << ": result rejected (invalid): " << intake.last.detail;
       for (scheduler::BatchId batch : intake.accepted_batches) {
         jobs_.OnResultAccepted(runner->id(), batch);
       }
-      Blocklist(link, intake.last.detail);
-      return;
+      OnInvalidResult(link, *runner, intake.last.detail);
+      if (link.closing()) return;
+      continue;
     }
     for (scheduler::BatchId batch : intake.accepted_batches) {
       jobs_.OnResultAccepted(runner->id(), batch);
@@ -209,14 +199,43 @@ void AgentConnections::OnLeaseResult(AgentLink& link, const protocol::LeaseResul
   }
 }
 
-void AgentConnections::Blocklist(AgentLink& link, const std::string& why) {
-  blocklist_[link.name()] = LoopNow(loop_) + options_.blocklist_duration;
-  store_.LogEvent(std::nullopt, store::EventLevel::kWarning,
-                  "agent " + link.name() + " at " + link.address() +
-                      " sent an invalid result and is blocklisted: " + why);
-  // Its leases were revoked by the scheduler that saw the invalid result; take the others too.
-  for (auto& [job, runner] : jobs_.runners()) runner->scheduler().OnAgentLost(link.id());
-  link.Close(protocol::CloseCode::kProtocolError, "invalid batch result: " + why);
+void AgentConnections::OnInvalidResult(AgentLink& link, RunningJob& runner,
+                                       const std::string& why) {
+  // The frame authenticated, so the agent computed (or made up) this result itself: its fault.
+  const auto now = LoopNow(loop_);
+  const std::optional<scheduler::TimePoint> until =
+      blocklist_.Strike(runner.id(), link.name(), now);
+  const uint32_t strikes =
+      until ? JobBlocklist::kStrikes : blocklist_.Strikes(runner.id(), link.name(), now);
+  LogLine(LogLevel::kWarning, "agents")
+      << "job " << runner.id() << " from " << link.Describe() << ": result rejected (invalid, "
+      << strikes << " of " << JobBlocklist::kStrikes << "): " << why;
+  if (!until) return;  // its leases of this job were revoked and requeued by the scheduler
+  const auto seconds = std::chrono::duration_cast<std::chrono::seconds>(*until - now).count();
+  const std::string reason = "job " + std::to_string(runner.id()) + ": " +
+                             std::to_string(JobBlocklist::kStrikes) +
+                             " results failed validation (last: " + why +
+                             "); no work of this job for " + std::to_string(seconds) + " s";
+  LogLine(LogLevel::kWarning, "agents")
+      << "agent " << link.name() << " blocklisted for job " << runner.id() << " for " << seconds
+      << " s after " << JobBlocklist::kStrikes << " invalid results";
+  store_.LogEvent(runner.id(), store::EventLevel::kWarning,
+                  "agent " + link.name() + " is blocklisted for this job for " +
+                      std::to_string(seconds) + " s: " + std::to_string(JobBlocklist::kStrikes) +
+                      " of its results failed validation (last: " + why + ")");
+  for (auto& [id, other] : links_) {
+    if (other->was_authenticated() && other->name() == link.name()) {
+      runner.scheduler().Blocklist(id, *until);
+    }
+  }
+  link.Close(protocol::CloseCode::kBlocklisted, reason);
+}
+
+bool AgentConnections::Blocklisted(AgentLink& link, RunningJob& runner, scheduler::TimePoint now) {
+  const std::optional<scheduler::TimePoint> until =
+      blocklist_.BlockedUntil(runner.id(), link.name(), now);
+  if (until) runner.scheduler().Blocklist(link.id(), *until);
+  return until.has_value();
 }
 
 void AgentConnections::OnLeaseReturn(AgentLink& link, const protocol::LeaseReturnMsg& message) {
@@ -286,6 +305,7 @@ void AgentConnections::Dispatch(AgentLink& link) {
   for (size_t k = 0; k < order.size(); ++k) {
     RunningJob* runner = order[k];
     scheduler::RoundScheduler& s = runner->scheduler();
+    if (Blocklisted(link, *runner, now)) continue;
     if (s.WantsAgent(link.id(), now)) {
       std::vector<protocol::LeaseRef> preempted;
       held -= PreemptLowerPriority(order, k, link.id(), preempted);

@@ -1,14 +1,17 @@
 // AgentConnections: the master's side of its agent connections. It accepts connections (one
 // AgentLink each; those still in the handshake under DoorKeeper's quota, door_keeper.h), admits
-// up to max_agents authenticated agents, refuses blocklisted agents after the handshake, hands
+// up to max_agents authenticated agents, hands
 // leases of the running jobs' rounds to agents with room (Dispatch), takes their results, lease
 // returns and scene requests, sends heartbeats, and takes the leases of an agent that disconnects
 // or misses its heartbeats away (the job's scheduler requeues them).
 //
 // Agent bookkeeping: an agent that missed its heartbeats is stale (no work until it speaks
 // again); one that handed leases back as draining or overloaded declines work on this connection;
-// one that sent an invalid result is closed and its name blocklisted for a while
-// (SchedulerOptions::blocklist_duration). Every connection refused or closed before it
+// one whose results authenticate but fail validation earns a strike for that job, and after
+// JobBlocklist::kStrikes it is blocklisted for that job, by its name, for
+// SchedulerOptions::blocklist_duration, and closed with Close(Blocklisted) saying why. A frame that
+// fails authentication is the wire's fault: AgentLink closes that connection, nothing more. Every
+// connection refused or closed before it
 // authenticated is logged, at most kDoorLogLines lines per kDoorLogWindow (LogRateLimiter).
 //
 // Loop thread only. It reads and drives the jobs' schedulers through JobRounds.
@@ -23,6 +26,7 @@
 
 #include "daemon/agent_link.h"
 #include "daemon/door_keeper.h"
+#include "daemon/job_blocklist.h"
 #include "daemon/job_rounds.h"
 #include "daemon/log_rate_limiter.h"
 #include "daemon/master_config.h"
@@ -74,7 +78,10 @@ class AgentConnections {
   void OnLeaseReturn(AgentLink& link, const protocol::LeaseReturnMsg& message);
   void OnSceneRequest(AgentLink& link, const protocol::SceneRequestMsg& request);
   void TakeLeasesAway(AgentLink& link, const char* why);
-  void Blocklist(AgentLink& link, const std::string& why);
+  // A result of `runner`'s job from `link` failed validation: a strike, maybe a blocklisting.
+  void OnInvalidResult(AgentLink& link, RunningJob& runner, const std::string& why);
+  // Whether `link`'s agent is blocklisted for `runner`'s job; if so, its scheduler is told.
+  bool Blocklisted(AgentLink& link, RunningJob& runner, scheduler::TimePoint now);
   // A refused or pre-authentication close, through the rate limiter.
   void LogAtDoor(const std::string& line);
   // Hands leases to one agent.
@@ -89,7 +96,7 @@ class AgentConnections {
 
   std::map<uint64_t, std::unique_ptr<AgentLink>> links_;
   uint64_t next_agent_id_ = 1;
-  std::unordered_map<std::string, scheduler::TimePoint> blocklist_;  // agent name -> until
+  JobBlocklist blocklist_;
   DoorKeeper doors_;
   LogRateLimiter door_log_;
   bool stopping_ = false;

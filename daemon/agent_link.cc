@@ -4,7 +4,6 @@
 
 #include "base/result.h"
 #include "loop/log.h"
-#include "protocol/frame_codec.h"
 
 namespace radfarm::daemon {
 namespace {
@@ -87,14 +86,15 @@ void AgentLink::Fail(const std::string& reason) {
 void AgentLink::OnFrame(std::span<const uint8_t> payload) {
   if (closing_) return;
   last_heard_ms_ = loop_.NowMs();
-  Result<protocol::DecodedFrame> frame = protocol::DecodeFrameBody(payload);
+  // Decode opens sealed frames: a frame that fails authentication is the wire's fault (or an
+  // attacker's), not the agent's, so it only ends this connection; the agent may reconnect.
+  Result<protocol::DecodedFrame> frame = session_.Decode(payload);
   if (!frame) {
     if (was_authenticated_) {
       loop::LogLine(loop::LogLevel::kWarning, "agents")
-          << Describe() << ": malformed frame: " << frame.error() << "; closing";
+          << Describe() << ": " << frame.error() << "; closing the connection";
     }
-    session_.Abort(frame.error());
-    Fail("malformed frame: " + frame.error());
+    Fail(frame.error());
     return;
   }
   const bool was_authenticated = session_.authenticated();

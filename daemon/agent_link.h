@@ -1,10 +1,10 @@
 // AgentLink: the master's end of one agent connection. It runs the handshake (ProtocolSession),
-// enforces its deadline, checks every frame (DecodeFrameBody, then the session's state and
-// direction rules) and hands authenticated application messages to the master. Any protocol
-// error closes this one connection only. After the handshake it is logged here with the agent's
-// name; before it, the reason goes to on_closed alone and the master logs it rate-limited
-// (a stranger's junk must not flood the journal). Until it authenticates, the peer's frames may be
-// at most protocol::kMaxHandshakeFrameBytes long.
+// enforces its deadline, checks every frame (ProtocolSession::Decode: opened once sealed, then
+// DecodeFrameBody; then the session's state and direction rules) and hands authenticated
+// application messages to the master. Any protocol error closes this one connection only. After the
+// handshake it is logged here with the agent's name; before it, the reason goes to on_closed alone
+// and the master logs it rate-limited (a stranger's junk must not flood the journal). Until it
+// authenticates, the peer's frames may be at most protocol::kMaxHandshakeFrameBytes long.
 //
 // Lifecycle:  accepted --Hello..Welcome--> authenticated --Close/error/EOF/idle--> closed
 //             accepted --deadline, bad proof, malformed frame--> closed

@@ -28,7 +28,8 @@ struct Flags {
   std::optional<std::string> config, listen, state_dir, secret_file, control, log_level, http,
       http_token_file;
   std::optional<uint32_t> heartbeat_ms, agent_timeout_ms, handshake_timeout_ms, control_timeout_ms,
-      hold_retry_ms, checkpoint_keep, max_running_jobs, max_agents, max_unauthenticated;
+      hold_retry_ms, checkpoint_keep, max_running_jobs, max_agents, max_unauthenticated,
+      blocklist_seconds;
   std::optional<double> checkpoint_seconds, lease_seconds;
   std::optional<uint64_t> local_round_rays, max_store_bytes;
   bool detach = false;
@@ -58,6 +59,10 @@ void AddFlags(CLI::App& app, Flags* f) {
                  "A control client must send each whole request, attachment included, within "
                  "this; idle clients are closed (default 60000)")
       ->check(CLI::Range(100u, 86400000u));
+  app.add_option("--blocklist-seconds", f->blocklist_seconds,
+                 "An agent whose results fail validation 3 times for a job gets none of that "
+                 "job's work for this long (default 600)")
+      ->check(CLI::Range(1u, 604800u));
   app.add_option("--hold-retry-ms", f->hold_retry_ms,
                  "A job held after a store fault (disk full, I/O error) is tried again this often "
                  "(default 10000)")
@@ -129,6 +134,7 @@ Result<MasterConfig> ResolveConfig(const Flags& f) {
   Override(f.max_running_jobs, &c.max_running_jobs);
   Override(f.lease_seconds, &c.lease_seconds);
   Override(f.max_agents, &c.max_agents);
+  Override(f.blocklist_seconds, &c.blocklist_seconds);
   Override(f.max_unauthenticated, &c.max_unauthenticated);
   Override(f.local_round_rays, &c.local_round_rays);
   Override(f.http, &c.http);

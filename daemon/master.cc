@@ -19,6 +19,7 @@ Master::Master(loop::EventLoop& loop, const MasterConfig& config, protocol::Farm
   // A lease is overdue (offered to another agent too) once it takes several times its expected
   // time, but never sooner than the time an agent may stay silent.
   scheduler_options_.deadline_floor = std::chrono::milliseconds(config.agent_timeout_ms);
+  scheduler_options_.blocklist_duration = std::chrono::seconds(config.blocklist_seconds);
   // One lease queued behind the running ones: an agent holding only what fills lease_seconds
   // (usually one batch) idles for a round trip after every batch. farm_bench measured it with 1000
   // simulated agents: 38 % of their time idle mid-round on loopback, 68 % with 20 ms latency.

@@ -33,6 +33,9 @@ struct MasterConfig {
   // The job store's size at most (0: no limit but the disk's). Reaching it is like a full disk:
   // running jobs are held until there is room.
   uint64_t max_store_bytes = 0;
+  // An agent whose results fail validation 3 times for a job (authenticated, so not the wire's
+  // fault) gets no more of that job's work for this long (job_blocklist.h).
+  uint32_t blocklist_seconds = 600;
   uint32_t max_agents = 4096;  // authenticated agents beyond this are refused
   // Connections still in the handshake at once; a newer one makes the oldest go (door_keeper.h).
   uint32_t max_unauthenticated = 64;

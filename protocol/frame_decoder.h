@@ -37,6 +37,10 @@ class FrameDecoder {
   // malformed (oversized or undersized length, bad FlatBuffer, bad values).
   Result<std::optional<DecodedFrame>> Next();
 
+  // The next complete frame's bytes after its length prefix, undecoded (the length checked as
+  // for Next()): for a sealed frame, which ProtocolSession::Decode opens and decodes.
+  Result<std::optional<std::vector<uint8_t>>> NextBody();
+
   // Bytes received but not yet returned as frames.
   size_t buffered_bytes() const { return buffer_.size() - read_; }
   bool failed() const { return !error_.empty(); }

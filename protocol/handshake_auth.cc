@@ -41,7 +41,9 @@ class Mac {
   crypto_auth_hmacsha256_state state_;
 };
 
-Tag TranscriptTag(const FarmSecret& secret, const char* label, size_t label_size,
+}  // namespace
+
+Tag TranscriptMac(const FarmSecret& secret, const char* label, size_t label_size,
                   const HelloMsg& hello, const ChallengeMsg& challenge) {
   Mac mac(secret);
   mac.Add(label, label_size);
@@ -55,8 +57,6 @@ Tag TranscriptTag(const FarmSecret& secret, const char* label, size_t label_size
   mac.Add(challenge.nonce.data(), challenge.nonce.size());
   return mac.Finish();
 }
-
-}  // namespace
 
 Status InitSodium() {
   // sodium_init is itself safe to call from several threads; the static keeps it to one call.
@@ -73,11 +73,11 @@ Result<Nonce> FreshNonce() {
 }
 
 Tag AgentTag(const FarmSecret& secret, const HelloMsg& hello, const ChallengeMsg& challenge) {
-  return TranscriptTag(secret, kAgentLabel, sizeof(kAgentLabel), hello, challenge);
+  return TranscriptMac(secret, kAgentLabel, sizeof(kAgentLabel), hello, challenge);
 }
 
 Tag MasterTag(const FarmSecret& secret, const HelloMsg& hello, const ChallengeMsg& challenge) {
-  return TranscriptTag(secret, kMasterLabel, sizeof(kMasterLabel), hello, challenge);
+  return TranscriptMac(secret, kMasterLabel, sizeof(kMasterLabel), hello, challenge);
 }
 
 bool TagsEqual(const Tag& a, const Tag& b) {

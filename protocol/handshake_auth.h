@@ -24,6 +24,11 @@ Status InitSodium();
 // 32 bytes from libsodium's CSPRNG.
 Result<Nonce> FreshNonce();
 
+// HMAC(secret, label || transcript), the label with its terminating NUL (sizeof a literal). The
+// proofs below and the session keys (frame_seal.h) are this with different labels.
+Tag TranscriptMac(const FarmSecret& secret, const char* label, size_t label_size,
+                  const HelloMsg& hello, const ChallengeMsg& challenge);
+
 Tag AgentTag(const FarmSecret& secret, const HelloMsg& hello, const ChallengeMsg& challenge);
 Tag MasterTag(const FarmSecret& secret, const HelloMsg& hello, const ChallengeMsg& challenge);
 

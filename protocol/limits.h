@@ -9,10 +9,11 @@ namespace radfarm::protocol {
 
 // The version this build writes, and the oldest one it still accepts in a Hello. Version 2 leases
 // many batches in one LeaseAssignment and answers them in one LeaseResult; version 3 sends scenes
-// zstd-compressed (SceneChunk.scene_size, protocol/scene_packing.h). A version-2 peer would read
-// compressed bytes as a scene, so it is turned away at the handshake.
-inline constexpr uint16_t kProtocolVersion = 3;
-inline constexpr uint16_t kMinProtocolVersion = 3;
+// zstd-compressed (SceneChunk.scene_size, protocol/scene_packing.h); version 4 seals every frame
+// after the handshake (frame_seal.h) and adds Close code Blocklisted. A version-3 peer would send
+// and expect clear frames, so it is turned away at the handshake.
+inline constexpr uint16_t kProtocolVersion = 4;
+inline constexpr uint16_t kMinProtocolVersion = 4;
 
 // Frame: a 4-byte little-endian length prefix, then that many bytes of FlatBuffer.
 inline constexpr size_t kLengthPrefixBytes = 4;

@@ -199,7 +199,7 @@ Status Check(const DrainMsg& m) {
 }
 
 Status Check(const CloseMsg& m) {
-  if (static_cast<uint8_t>(m.code) > static_cast<uint8_t>(CloseCode::kInternalError)) {
+  if (static_cast<uint8_t>(m.code) > static_cast<uint8_t>(CloseCode::kBlocklisted)) {
     return Fail("Close", "unknown code " + Str(static_cast<uint8_t>(m.code)));
   }
   if (m.detail.size() > kMaxCloseDetailBytes || !IsPrintableAscii(m.detail)) {

@@ -43,6 +43,8 @@ std::string_view CloseCodeName(CloseCode code) {
       return "version mismatch";
     case CloseCode::kInternalError:
       return "internal error";
+    case CloseCode::kBlocklisted:
+      return "blocklisted";
   }
   return "unknown";
 }

@@ -35,7 +35,8 @@ enum class CloseCode : uint8_t {
   kProtocolError = 2,
   kAuthFailed = 3,
   kVersionMismatch = 4,
-  kInternalError = 5
+  kInternalError = 5,
+  kBlocklisted = 6  // version 4
 };
 
 // One attempt at one batch of one job: the master's unit of bookkeeping.

@@ -76,6 +76,20 @@ Result<std::vector<uint8_t>> ProtocolSession::Start() {
   return EncodeFrame(hello_, hello_.max_version);
 }
 
+Result<DecodedFrame> ProtocolSession::Decode(std::span<const uint8_t> body) {
+  if (state_ == State::kClosed) return Error{"session: frame after the session closed"};
+  std::vector<uint8_t> opened;
+  if (receive_seal_) {
+    Result<std::vector<uint8_t>> plain = receive_seal_->Open(body);
+    if (!plain) return Fail(CloseCode::kProtocolError, plain.error());
+    opened = std::move(plain).value();
+    body = opened;
+  }
+  Result<DecodedFrame> frame = DecodeFrameBody(body);
+  if (!frame) return Fail(CloseCode::kProtocolError, frame.error());
+  return frame;
+}
+
 Result<ProtocolSession::Accepted> ProtocolSession::Accept(const DecodedFrame& frame) {
   if (state_ == State::kClosed) return Error{"session: frame after the session closed"};
   if (const auto* close = std::get_if<CloseMsg>(&frame.message)) {
@@ -174,10 +188,16 @@ Result<ProtocolSession::Accepted> ProtocolSession::AcceptProof(const DecodedFram
     return Fail(CloseCode::kInternalError, valid.error());
   }
   state_ = State::kAuthenticated;
-  return Accepted{EncodeFrame(welcome_, version_), false};
+  std::vector<uint8_t> welcome_frame = EncodeFrame(welcome_, version_);
+  StartSealing();  // after the Welcome, which the agent must read in clear
+  return Accepted{std::move(welcome_frame), false};
 }
 
 Result<ProtocolSession::Accepted> ProtocolSession::AcceptWelcome(const DecodedFrame& frame) {
+  // The master seals everything after its Welcome, so we seal our answer even when it is a
+  // Close refusing that Welcome: a genuine master whose Welcome was tampered with on the way
+  // then reads why, and a master without the secret reads nothing.
+  StartSealing();
   const auto* welcome = std::get_if<WelcomeMsg>(&frame.message);
   if (!welcome) {
     return Fail(CloseCode::kProtocolError,
@@ -240,6 +260,7 @@ Result<std::vector<uint8_t>> ProtocolSession::Encode(const Message& message) {
   }
   RADFARM_RETURN_IF_ERROR(CheckMessage(message));
   std::vector<uint8_t> frame = EncodeFrame(message, WireVersion());
+  if (send_seal_) frame = send_seal_->Seal(frame);
   if (role_ == Role::kAgent && state_ == State::kAuthenticated &&
       frame.size() - kLengthPrefixBytes > welcome_.max_frame_bytes) {
     return Error{"session: " + name + " frame of " + std::to_string(frame.size()) +
@@ -258,8 +279,18 @@ void ProtocolSession::Abort(std::string_view reason) {
   state_ = State::kClosed;
 }
 
-std::vector<uint8_t> ProtocolSession::CloseFrame() const {
-  return EncodeFrame(CloseMsg{failure_code_, CloseDetail(failure_reason_)}, WireVersion());
+std::vector<uint8_t> ProtocolSession::CloseFrame() {
+  std::vector<uint8_t> frame =
+      EncodeFrame(CloseMsg{failure_code_, CloseDetail(failure_reason_)}, WireVersion());
+  return send_seal_ ? send_seal_->Seal(frame) : frame;
+}
+
+void ProtocolSession::StartSealing() {
+  const SessionKeys keys = DeriveSessionKeys(secret_, hello_, challenge_);
+  const SealMode mode = SealModeFromEnvironment();
+  const bool master = role_ == Role::kMaster;
+  send_seal_.emplace(master ? keys.master_to_agent : keys.agent_to_master, mode);
+  receive_seal_.emplace(master ? keys.agent_to_master : keys.master_to_agent, mode);
 }
 
 uint16_t ProtocolSession::WireVersion() const {

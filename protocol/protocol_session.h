@@ -16,9 +16,14 @@
 // repeated, replayed or out-of-order handshake message is an error, and so is a frame written in
 // another version than the negotiated one. Closed is final: every later frame is an error.
 //
+// Every frame after the Welcome is sealed (frame_seal.h) with keys derived from the handshake:
+// Decode() opens what arrives, Encode() and CloseFrame() seal what goes out. A frame that fails to
+// open closes the session ("frame failed authentication").
+//
 // Master:                                           Agent:
-//   Result<Accepted> a = session.Accept(frame);       Write(*session.Start());
-//   if (!a) { Log(a.error());                          ... then the same Accept loop.
+//   Result<DecodedFrame> f = session.Decode(body);    Write(*session.Start());
+//   Result<Accepted> a = f ? session.Accept(*f) : f.error();   ... then the same loop.
+//   if (!a) { Log(a.error());
 //             Write(session.CloseFrame()); Drop(); }
 //   Write(a->reply);                // may be empty
 //   if (a->deliver) Handle(frame.message);
@@ -26,12 +31,14 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "base/result.h"
 #include "protocol/farm_secret.h"
+#include "protocol/frame_seal.h"
 #include "protocol/messages.h"
 
 namespace radfarm::protocol {
@@ -73,6 +80,10 @@ class ProtocolSession {
   // Agent only, once, first: the Hello frame that opens the connection.
   Result<std::vector<uint8_t>> Start();
 
+  // Opens (once authenticated) and decodes the bytes after one frame's length prefix
+  // (DecodeFrameBody). An error closes the session like Accept's.
+  Result<DecodedFrame> Decode(std::span<const uint8_t> body);
+
   // Runs one incoming, already verified frame through the state machine. An error moves the
   // session to Closed; CloseFrame() then says why, for the peer.
   Result<Accepted> Accept(const DecodedFrame& frame);
@@ -84,8 +95,10 @@ class ProtocolSession {
   // Closes after an error found outside the session (e.g. by the FrameDecoder).
   void Abort(std::string_view reason);
   // The Close frame to write before dropping the connection: the failure code and reason after
-  // an error or Abort(), else a normal close.
-  std::vector<uint8_t> CloseFrame() const;
+  // an error or Abort(), else a normal close. Sealed once authenticated (it uses up a counter).
+  std::vector<uint8_t> CloseFrame();
+  // The code CloseFrame() carries.
+  CloseCode failure_code() const { return failure_code_; }
 
   Role role() const { return role_; }
   State state() const { return state_; }
@@ -113,6 +126,8 @@ class ProtocolSession {
   uint16_t WireVersion() const;
   // Whether the peer (the other role) may send `message` once authenticated.
   bool PeerMaySend(const Message& message) const;
+  // Derives the session keys; from now on frames both ways are sealed.
+  void StartSealing();
 
   Role role_;
   FarmSecret secret_;
@@ -124,6 +139,8 @@ class ProtocolSession {
   ChallengeMsg challenge_;
   WelcomeMsg welcome_;
   std::optional<CloseMsg> peer_close_;
+  std::optional<FrameSeal> send_seal_;
+  std::optional<FrameSeal> receive_seal_;
   CloseCode failure_code_ = CloseCode::kNormal;
   std::string failure_reason_;
 };

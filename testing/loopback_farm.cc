@@ -74,10 +74,10 @@ ChildProcess& LoopbackFarm::StartMaster(const std::vector<std::string>& flags,
 
 ChildProcess& LoopbackFarm::StartAgent(const std::string& name, unsigned threads,
                                        const std::vector<std::string>& extra,
-                                       const std::string& secret_file) {
+                                       const std::string& secret_file, const std::string& master) {
   std::vector<std::string> args = {programs_.agent,
                                    "--master",
-                                   master_address_,
+                                   master.empty() ? master_address_ : master,
                                    "--secret-file",
                                    secret_file.empty() ? secret_file_ : secret_file,
                                    "--state-dir",

@@ -49,10 +49,11 @@ class LoopbackFarm {
   ChildProcess& StartMaster(const std::vector<std::string>& flags = {},
                             std::chrono::milliseconds timeout = std::chrono::seconds(60));
   // Starts radfarm-agent NAME (state dir agent-NAME) with `threads` threads against the current
-  // master address; `extra` flags go last. An empty `secret_file` means the farm's.
+  // master address (or `master`, e.g. a proxy's, if not empty); `extra` flags go last. An empty
+  // `secret_file` means the farm's.
   ChildProcess& StartAgent(const std::string& name, unsigned threads,
                            const std::vector<std::string>& extra = {},
-                           const std::string& secret_file = "");
+                           const std::string& secret_file = "", const std::string& master = "");
 
   // `radfarm --control SOCKET args...`
   CommandResult Cli(const std::vector<std::string>& args) const;

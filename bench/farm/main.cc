@@ -36,6 +36,20 @@ void PrintRealSummary(const FarmBenchReport& report) {
                 : s.patches_identical ? "identical"
                                       : "DIFFERENT");
   }
+  // What encryption costs: the sealed farm against the same farm with frames in clear (but
+  // authenticated), paired by repetition (docs/PROTOCOL.md, "Sealed frames").
+  const RealComputeSetup& sealed = report.real.setups[1];
+  const RealComputeSetup& clear = report.real.setups[3];
+  std::vector<double> ratios;
+  for (size_t i = 0; i < sealed.rays_per_second.size() && i < clear.rays_per_second.size(); ++i) {
+    ratios.push_back(sealed.rays_per_second[i] / clear.rays_per_second[i]);
+  }
+  if (!ratios.empty()) {
+    std::printf(
+        "encryption: farm 1 x 2 encrypted / not encrypted, median of %zu paired ratios: "
+        "%.1f%%\n",
+        ratios.size(), 100 * Median(ratios));
+  }
 }
 
 int Run(int argc, char** argv) {

@@ -1,5 +1,7 @@
 #include "bench/farm/real_compute.h"
 
+#include <stdlib.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -44,12 +46,18 @@ std::string RunEmbedded(const RealComputeConfig& config, const std::string& out,
 }
 
 // A fresh farm of `agents` agents with `threads` threads each; submits, waits, fetches.
+// `authenticate_only`: master and agents seal frames without encrypting them
+// (RADFARM_WIRE_SEAL=authenticate-only, protocol/frame_seal.h), to measure what encryption costs.
 void RunFarm(const RealComputeConfig& config, const std::string& dir, int agents, unsigned threads,
-             const std::string& reference_patches, RealComputeSetup& setup) {
+             const std::string& reference_patches, RealComputeSetup& setup,
+             bool authenticate_only = false) {
   std::filesystem::create_directories(dir);
   LoopbackFarm farm(config.programs, dir);
+  // The children inherit it; this process seals nothing.
+  if (authenticate_only) ::setenv("RADFARM_WIRE_SEAL", "authenticate-only", 1);
   StartMaster(farm);
   for (int a = 0; a < agents; ++a) farm.StartAgent("agent" + std::to_string(a), threads);
+  ::unsetenv("RADFARM_WIRE_SEAL");
   WaitForAgents(farm, agents);
   // submit takes render's overrides, so both solve the same job.
   const int64_t id = Submit(farm, config.job_file, config.overrides);
@@ -87,6 +95,14 @@ RealComputeResult RunRealCompute(const RealComputeConfig& config) {
        0,
        0,
        true},
+      {"farm 1 agent x 2 threads, frames not encrypted",
+       "as farm 1 x 2, `RADFARM_WIRE_SEAL=authenticate-only` (frames authenticated, in clear)",
+       {},
+       {},
+       {},
+       0,
+       0,
+       true},
   };
   for (int rep = 0; rep < config.repetitions; ++rep) {
     const std::string base = config.work_dir + "/real-" + std::to_string(rep);
@@ -94,8 +110,15 @@ RealComputeResult RunRealCompute(const RealComputeConfig& config) {
     const std::string reference = RunEmbedded(config, base + "/render", result.setups[0]);
     std::printf("  rep %d: embedded %.2f Mrays/s", rep + 1,
                 result.setups[0].rays_per_second.back() / 1e6);
-    RunFarm(config, base + "/farm-1x2", 1, 2, reference, result.setups[1]);
-    std::printf(", farm 1x2 %.2f", result.setups[1].rays_per_second.back() / 1e6);
+    // Encrypted and clear back to back, in alternating order, so that a change in the machine's
+    // load between them weighs on both alike (their ratio is the cost of encryption).
+    for (const bool clear : {rep % 2 == 1, rep % 2 == 0}) {
+      RunFarm(config, base + (clear ? "/farm-1x2-clear" : "/farm-1x2"), 1, 2, reference,
+              result.setups[clear ? 3 : 1], clear);
+    }
+    std::printf(", farm 1x2 %.2f, not encrypted %.2f",
+                result.setups[1].rays_per_second.back() / 1e6,
+                result.setups[3].rays_per_second.back() / 1e6);
     RunFarm(config, base + "/farm-2x1", 2, 1, reference, result.setups[2]);
     std::printf(", farm 2x1 %.2f Mrays/s\n", result.setups[2].rays_per_second.back() / 1e6);
     std::fflush(stdout);

@@ -5,7 +5,6 @@
 #include "base/result.h"
 #include "bench/farm_sim/simulated_result.h"
 #include "protocol/batch_convert.h"
-#include "protocol/frame_codec.h"
 #include "protocol/limits.h"
 
 namespace radfarm::sim {
@@ -64,9 +63,8 @@ void SimAgent::OnFrame(std::span<const uint8_t> payload) {
 
 void SimAgent::Process(const std::vector<uint8_t>& payload) {
   if (session_.state() == protocol::ProtocolSession::State::kClosed || !open()) return;
-  Result<protocol::DecodedFrame> frame = protocol::DecodeFrameBody(payload);
+  Result<protocol::DecodedFrame> frame = session_.Decode(payload);
   if (!frame) {
-    session_.Abort(frame.error());
     Fail("bad frame from the master: " + frame.error());
     return;
   }

@@ -55,6 +55,11 @@ std::vector<Takeover> RoundScheduler::Preempt(AgentId agent) {
   return taken;
 }
 
+void RoundScheduler::Blocklist(AgentId agent, TimePoint until) {
+  TimePoint& blocked = blocked_until_[agent];
+  blocked = std::max(blocked, until);
+}
+
 bool RoundScheduler::IsBlocklisted(AgentId agent, TimePoint now) const {
   const auto it = blocked_until_.find(agent);
   return it != blocked_until_.end() && now < it->second;
@@ -269,8 +274,7 @@ ResultVerdict RoundScheduler::Record(AgentId agent_id, BatchId batch_id, Attempt
 }
 
 ResultVerdict RoundScheduler::OnInvalidResult(AgentId agent_id, BatchId /*batch_id*/,
-                                              AttemptId /*attempt_id*/, TimePoint now) {
-  blocked_until_[agent_id] = now + options_.blocklist_duration;
+                                              AttemptId /*attempt_id*/, TimePoint /*now*/) {
   if (const auto it = agents_.find(agent_id); it != agents_.end()) {
     std::vector<AttemptId> live;
     for (const auto& [id, index] : it->second.live) live.push_back(id);

@@ -46,7 +46,7 @@
 //                    |  \---- OnResult(another attempt) ------------------>  SUPERSEDED
 //                    |  \---- OnAgentLost ------------------------------->  LOST
 //                    |  \---- ReturnLeases ------------------------------>  RETURNED
-//                    |  \---- OnInvalidResult (agent blocklisted) ------->  REVOKED
+//                    |  \---- OnInvalidResult (the agent's leases) ------->  REVOKED
 //                    |  \---- Preempt (a higher-priority job needs it) -->  PREEMPTED
 //                    |  \---- NextAssignment for another agent: taken over ->  TAKEN_OVER
 //                    \-- Tick past its deadline: marked overdue, stays LIVE and valid; the batch
@@ -126,8 +126,10 @@ class RoundScheduler {
   // daemon tells the agent in a LeaseRevoke, which drops those not started. A preempted batch the
   // agent had started still counts when it answers first (as a returned lease would).
   std::vector<Takeover> Preempt(AgentId agent);
-  // Blocklisting is keyed by AgentId and outlives OnAgentLost: to keep a lying agent out after it
-  // reconnects, give the same agent (by name) the same AgentId again.
+  // No leases for `agent` until `until`, and its results are rejected (kBlocklisted). The daemon
+  // decides who is blocklisted (daemon/job_blocklist.h, by the agent's name) and tells every
+  // connection of that agent here; it outlives OnAgentLost.
+  void Blocklist(AgentId agent, TimePoint until);
   bool IsBlocklisted(AgentId agent, TimePoint now) const;
 
   // --- Rounds ---
@@ -179,8 +181,8 @@ class RoundScheduler {
   // measured once, over all their rays (a lease's batches come back together).
   std::vector<ResultVerdict> OnResults(AgentId agent, std::vector<SubmittedResult> results,
                                        TimePoint now);
-  // A result that failed ValidateBatchResult: the agent is blocklisted until now +
-  // options.blocklist_duration and all its live leases are revoked and requeued.
+  // A result that failed ValidateBatchResult: all the agent's live leases are revoked and
+  // requeued (whether to blocklist it is the daemon's call: Blocklist).
   ResultVerdict OnInvalidResult(AgentId agent, BatchId batch_id, AttemptId attempt_id,
                                 TimePoint now);
   // Offers to other agents each leased batch whose live attempts are all past their deadline,

@@ -37,8 +37,8 @@ struct SchedulerOptions {
   double end_game_copy_factor = 2;
   // Live attempts of one batch at most (the original plus speculative copies).
   uint32_t max_live_attempts = 2;
-  // How long an agent that sent an invalid result gets no work.
-  Duration blocklist_duration = std::chrono::minutes(10);
+  // How long an agent blocklisted for a job gets none of its work (daemon/job_blocklist.h).
+  Duration blocklist_duration = std::chrono::minutes(10);  // MasterConfig::blocklist_seconds
   // SuggestedBatchRays() bounds.
   uint32_t min_batch_rays = 256;
   uint32_t max_batch_rays = 1 << 20;

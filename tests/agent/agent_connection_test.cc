@@ -103,6 +103,28 @@ TEST(AgentConnectionTest, AMasterThatClosesTheConnectionGetsAReconnect) {
   EXPECT_EQ(agent.WaitExit(), 0) << agent.Log();
 }
 
+// Close(Blocklisted): the master refuses this agent a job's work because its results failed
+// validation. The agent says why in its own log and waits a minute, not the usual backoff.
+TEST(AgentConnectionTest, ABlocklistedAgentSaysWhyAndBacksOff) {
+  ScratchDir dir;
+  const protocol::FarmSecret secret = TestSecret(0x45);
+  WriteSecretFile(dir.File("key"), secret);
+  FakeMaster master(secret);
+  AgentProcess agent(AgentArgs(master.address(), dir.File("key"), 1));
+  ASSERT_TRUE(agent.WaitForLog(Connected(master, 1))) << agent.Log();
+  master.Send(protocol::CloseMsg{protocol::CloseCode::kBlocklisted,
+                                 "job 7: 3 results failed validation (last: patch 99 of 12)"});
+  ASSERT_TRUE(agent.WaitForLog("blocklisted by " + master.address())) << agent.Log();
+  const std::string log = agent.Log();
+  EXPECT_NE(log.find("job 7: 3 results failed validation (last: patch 99 of 12)"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("retrying in 60000 ms"), std::string::npos) << log;
+  EXPECT_EQ(master.Snapshot().accepted, 1) << log;
+  agent.Signal(SIGTERM);
+  EXPECT_EQ(agent.WaitExit(), 0) << agent.Log();
+}
+
 TEST(AgentConnectionTest, ASilentMasterIsTakenAsGoneAndReconnected) {
   ScratchDir dir;
   const protocol::FarmSecret secret = TestSecret(0x55);

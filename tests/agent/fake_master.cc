@@ -118,9 +118,8 @@ void FakeMaster::Loop::OnAccept(std::unique_ptr<loop::FramedConnection> stream) 
 }
 
 void FakeMaster::Loop::OnFrame(Connection* c, std::span<const uint8_t> payload) {
-  Result<protocol::DecodedFrame> frame = protocol::DecodeFrameBody(payload);
+  Result<protocol::DecodedFrame> frame = c->session.Decode(payload);
   if (!frame) {
-    c->session.Abort(frame.error());
     Refuse(c, frame.error());
     return;
   }

@@ -166,8 +166,10 @@ TEST(ProtocolCheckTest, DrainAndClose) {
   d.mode = static_cast<DrainMode>(2);
   ExpectRejected(d, "Drain: unknown mode 2");
   CloseMsg c = Sample<CloseMsg>();
-  c.code = static_cast<CloseCode>(6);
-  ExpectRejected(c, "Close: unknown code 6");
+  c.code = CloseCode::kBlocklisted;  // the last code (version 4)
+  EXPECT_TRUE(CheckMessage(c));
+  c.code = static_cast<CloseCode>(7);
+  ExpectRejected(c, "Close: unknown code 7");
   c = Sample<CloseMsg>();
   c.detail = std::string(kMaxCloseDetailBytes + 1, 'x');
   ExpectRejected(c, "Close: detail");

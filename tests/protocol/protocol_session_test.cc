@@ -109,7 +109,12 @@ TEST(ProtocolSessionTest, AgentRejectsAMasterThatCannotProveTheSecret) {
   Result<Session::Accepted> r = agent.Accept(Decode(EncodeFrame(forged)));
   ASSERT_FALSE(r);
   EXPECT_NE(r.error().find("master's proof"), std::string::npos) << r.error();
-  EXPECT_EQ(CloseOf(agent.CloseFrame()).code, CloseCode::kAuthFailed);
+  // The refusal is sealed (the master seals since its Welcome): a genuine master whose Welcome was
+  // tampered with on the way reads why; one without the secret reads nothing.
+  const std::vector<uint8_t> close = agent.CloseFrame();
+  Result<DecodedFrame> read = master.Decode(std::span(close).subspan(kLengthPrefixBytes));
+  ASSERT_TRUE(read) << read.error();
+  EXPECT_EQ(std::get<CloseMsg>(read->message).code, CloseCode::kAuthFailed);
 }
 
 TEST(ProtocolSessionTest, NothingButTheHandshakeBeforeAuthentication) {
@@ -192,19 +197,19 @@ TEST(ProtocolSessionTest, TamperedHelloFailsAuthentication) {
 }
 
 TEST(ProtocolSessionTest, VersionNegotiation) {
-  // An agent that speaks 2..5 gets version 3 from this master.
+  // An agent that speaks 2..5 gets version 4 from this master.
   Session master = Master();
   Session agent = Session::ForAgent(Secret(1), AgentConfig{"new-agent", 2, 2, 5});
   const std::vector<uint8_t> hello = *agent.Start();
   EXPECT_EQ(Decode(hello).version, 5);
   Result<Session::Accepted> a = master.Accept(Decode(hello));
   ASSERT_TRUE(a) << a.error();
-  EXPECT_EQ(master.version(), 3);
+  EXPECT_EQ(master.version(), 4);
   ASSERT_TRUE(agent.Accept(Decode(a->reply)));
-  EXPECT_EQ(agent.version(), 3);
-  // One that only speaks 4..5 is turned away.
+  EXPECT_EQ(agent.version(), 4);
+  // One that only speaks 5..6 is turned away.
   Session old_master = Master();
-  Session newer = Session::ForAgent(Secret(1), AgentConfig{"newer", 2, 4, 5});
+  Session newer = Session::ForAgent(Secret(1), AgentConfig{"newer", 2, 5, 6});
   EXPECT_FALSE(old_master.Accept(Decode(*newer.Start())));
   EXPECT_EQ(CloseOf(old_master.CloseFrame()).code, CloseCode::kVersionMismatch);
 }
@@ -221,7 +226,7 @@ TEST(ProtocolSessionTest, AVersionOneAgentIsRefusedWithAMessageNamingBothVersion
   const CloseMsg close = CloseOf(master.CloseFrame());
   EXPECT_EQ(close.code, CloseCode::kVersionMismatch);
   EXPECT_NE(close.detail.find("the agent speaks 1..1"), std::string::npos) << close.detail;
-  EXPECT_NE(close.detail.find("this master 3..3"), std::string::npos) << close.detail;
+  EXPECT_NE(close.detail.find("this master 4..4"), std::string::npos) << close.detail;
   // The old agent reads that Close (a Close is accepted in any version, in any state).
   Result<Session::Accepted> read = old_agent.Accept(Decode(master.CloseFrame()));
   ASSERT_TRUE(read) << read.error();
@@ -236,33 +241,53 @@ TEST(ProtocolSessionTest, AVersionTwoAgentIsRefusedBeforeItFetchesACompressedSce
   ASSERT_FALSE(master.Accept(Decode(*old_agent.Start())));
   const CloseMsg close = CloseOf(master.CloseFrame());
   EXPECT_EQ(close.code, CloseCode::kVersionMismatch);
-  EXPECT_NE(close.detail.find("the agent speaks 2..2, this master 3..3"), std::string::npos)
+  EXPECT_NE(close.detail.find("the agent speaks 2..2, this master 4..4"), std::string::npos)
       << close.detail;
-  // And a version-3 agent refuses a master that chooses version 2.
+  // And a version-4 agent refuses a master that chooses version 2.
   Session agent = Agent();
   ASSERT_TRUE(agent.Start());
   EXPECT_FALSE(agent.Accept(Decode(EncodeFrame(ChallengeMsg{2, testing::Pattern(1)}, 2))));
   EXPECT_EQ(CloseOf(agent.CloseFrame()).code, CloseCode::kVersionMismatch);
 }
 
-TEST(ProtocolSessionTest, VersionOneBatchMessagesAreRefusedInVersionThree) {
+// Version 4 seals every frame after the handshake: a version-3 agent would send clear frames, so it
+// is refused at the handshake, and a version-4 agent refuses a master that chooses version 3.
+TEST(ProtocolSessionTest, AVersionThreeAgentIsRefusedBeforeItSendsAClearFrame) {
+  Session master = Master();
+  Session old_agent = Session::ForAgent(Secret(1), AgentConfig{"v3-agent", 2, 3, 3});
+  ASSERT_FALSE(master.Accept(Decode(*old_agent.Start())));
+  EXPECT_NE(CloseOf(master.CloseFrame()).detail.find("the agent speaks 3..3, this master 4..4"),
+            std::string::npos);
+  ASSERT_TRUE(old_agent.Accept(Decode(master.CloseFrame())));
+  EXPECT_EQ(old_agent.peer_close()->code, CloseCode::kVersionMismatch);
+  Session agent = Agent();
+  ASSERT_TRUE(agent.Start());
+  EXPECT_FALSE(agent.Accept(Decode(EncodeFrame(ChallengeMsg{3, testing::Pattern(1)}, 3))));
+  EXPECT_EQ(CloseOf(agent.CloseFrame()).code, CloseCode::kVersionMismatch);
+}
+
+TEST(ProtocolSessionTest, VersionOneBatchMessagesAreRefusedInTheCurrentVersion) {
   Session master = Master(), agent = Agent();
   RunHandshake(master, agent);
-  ASSERT_EQ(master.version(), 3);
+  ASSERT_EQ(master.version(), 4);
   BatchAssignmentMsg one;
   one.ray_count = 1;
   one.patch_count = 1;
   one.lease_ms = 1;
   Result<std::vector<uint8_t>> out = master.Encode(one);
   ASSERT_FALSE(out);
-  EXPECT_NE(out.error().find("not a message of protocol version 3"), std::string::npos);
+  EXPECT_NE(out.error().find("not a message of protocol version 4"), std::string::npos);
   Result<Session::Accepted> in =
-      master.Accept(Decode(EncodeFrame(BatchResultMsg{{}, {}, 0, 0, 0, 0, 0}, 3)));
+      master.Accept(Decode(EncodeFrame(BatchResultMsg{{}, {}, 0, 0, 0, 0, 0}, 4)));
   ASSERT_FALSE(in);
-  EXPECT_NE(in.error().find("BatchResult is not a message of protocol version 3"),
+  EXPECT_NE(in.error().find("BatchResult is not a message of protocol version 4"),
             std::string::npos)
       << in.error();
-  EXPECT_EQ(CloseOf(master.CloseFrame()).code, CloseCode::kProtocolError);
+  // Authenticated: the Close is sealed, for the agent.
+  const std::vector<uint8_t> close = master.CloseFrame();
+  Result<DecodedFrame> read = agent.Decode(std::span(close).subspan(kLengthPrefixBytes));
+  ASSERT_TRUE(read) << read.error();
+  EXPECT_EQ(std::get<CloseMsg>(read->message).code, CloseCode::kProtocolError);
 }
 
 TEST(ProtocolSessionTest, AgentRejectsAVersionItDoesNotSpeak) {
@@ -338,8 +363,11 @@ TEST(ProtocolSessionTest, AgentWillNotSendAFrameAboveTheMastersLimit) {
 TEST(ProtocolSessionTest, CloseEndsTheSession) {
   Session master = Master(), agent = Agent();
   RunHandshake(master, agent);
-  Result<Session::Accepted> a =
-      master.Accept(Decode(*agent.Encode(CloseMsg{CloseCode::kShutdown, "draining done"})));
+  const std::vector<uint8_t> sealed =
+      *agent.Encode(CloseMsg{CloseCode::kShutdown, "draining done"});
+  Result<DecodedFrame> frame = master.Decode(std::span(sealed).subspan(kLengthPrefixBytes));
+  ASSERT_TRUE(frame) << frame.error();
+  Result<Session::Accepted> a = master.Accept(*frame);
   ASSERT_TRUE(a);
   EXPECT_TRUE(a->deliver);
   EXPECT_EQ(master.state(), State::kClosed);

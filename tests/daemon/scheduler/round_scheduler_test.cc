@@ -253,10 +253,10 @@ TEST(RoundSchedulerTest, PreemptedLeasesAreRequeuedInOrderAndMayStillAnswer) {
   EXPECT_TRUE(s.InEndGame());
 }
 
-TEST(RoundSchedulerTest, InvalidResultBlocklistsTheAgentForAWhile) {
-  SchedulerOptions options;
-  options.blocklist_duration = seconds(60);
-  RoundScheduler s(options);
+// An invalid result revokes the agent's leases; blocklisting it is the daemon's call
+// (daemon/job_blocklist.h), which then keeps it from work and its results out until it ends.
+TEST(RoundSchedulerTest, AnInvalidResultRevokesLeasesAndABlocklistedAgentGetsNoWorkUntilItEnds) {
+  RoundScheduler s;
   s.AddAgent(1);
   s.AddAgent(2);
   ASSERT_TRUE(s.StartRound(Plan(0, 4), kT0).ok());
@@ -264,6 +264,11 @@ TEST(RoundSchedulerTest, InvalidResultBlocklistsTheAgentForAWhile) {
   const auto b = s.NextAssignment(1, kT0);
   ASSERT_TRUE(a && b);
   EXPECT_EQ(s.OnInvalidResult(1, a->batch_id, a->attempt_id, kT0).reason, DropReason::kInvalid);
+  EXPECT_FALSE(s.IsBlocklisted(1, kT0));
+  EXPECT_EQ(s.LeasesHeld(1), 0u);
+  s.Blocklist(1, kT0 + seconds(60));
+  s.OnAgentLost(1);
+  s.AddAgent(1);  // reconnected: still blocklisted
   EXPECT_TRUE(s.IsBlocklisted(1, kT0 + seconds(59)));
   EXPECT_FALSE(s.NextAssignment(1, kT0 + seconds(59)));
   EXPECT_EQ(s.OnResult(1, b->batch_id, b->attempt_id, ResultFor(1), kT0).reason,
