@@ -29,8 +29,10 @@ Status ReadMasterConfigFile(const std::string& path, MasterConfig* c) {
   TomlTableReader r(path, *table, "");
   constexpr int64_t kMaxMs = 24 * 3600 * 1000;
   constexpr int64_t kMaxLocalRoundRays = int64_t{1} << 40;
-  for (Status s : {r.String("listen", &c->listen), r.String("state_dir", &c->state_dir),
-                   r.String("secret_file", &c->secret_file), r.String("control", &c->control),
+  for (Status s : {r.String("listen", &c->listen),
+                   r.String("state_dir", &c->state_dir),
+                   r.String("secret_file", &c->secret_file),
+                   r.String("control", &c->control),
                    r.Integer("heartbeat_ms", 10, kMaxMs, &c->heartbeat_ms),
                    r.Integer("agent_timeout_ms", 100, kMaxMs, &c->agent_timeout_ms),
                    r.Integer("handshake_timeout_ms", 100, kMaxMs, &c->handshake_timeout_ms),
@@ -45,7 +47,9 @@ Status ReadMasterConfigFile(const std::string& path, MasterConfig* c) {
                    r.Integer("max_agents", 1, 1000000, &c->max_agents),
                    r.Integer("max_unauthenticated", 1, 1000000, &c->max_unauthenticated),
                    r.Integer("local_round_rays", 0, kMaxLocalRoundRays, &c->local_round_rays),
-                   r.String("http", &c->http), r.String("http_token_file", &c->http_token_file)}) {
+                   r.Bool("keep_round_results", &c->keep_round_results),
+                   r.String("http", &c->http),
+                   r.String("http_token_file", &c->http_token_file)}) {
     RADFARM_RETURN_IF_ERROR(s);
   }
   RADFARM_RETURN_IF_ERROR(r.CheckNoUnknownKeys());
