@@ -192,7 +192,6 @@ void JobRounds::SendFolds(const std::shared_ptr<RunningJob>& runner) {
 
 void JobRounds::OnRoundComplete(store::JobId id) {
   const std::shared_ptr<RunningJob> runner = runners_.at(id);
-  journal_.DiscardWaiting(id);
   Result<scheduler::CompletedRound> round = runner->TakeRound();
   if (!round) {
     FailJob(runner->id(), round.error());

@@ -17,7 +17,7 @@ void ResultJournal::Add(store::JobId job, std::vector<store::StoredBatchResult> 
   if (!queue.writing) Write(job);
 }
 
-void ResultJournal::DiscardWaiting(store::JobId job) {
+void ResultJournal::Forget(store::JobId job) {
   const auto it = jobs_.find(job);
   if (it == jobs_.end()) return;
   counters_.results_discarded += it->second.waiting.size();

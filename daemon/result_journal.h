@@ -26,7 +26,7 @@ struct JournalCounters {
   uint64_t results_written = 0;    // committed
   uint64_t writes = 0;             // transactions committed
   uint64_t results_failed = 0;     // in writes that failed
-  uint64_t results_discarded = 0;  // waiting when their round ended or their job went
+  uint64_t results_discarded = 0;  // waiting when their job went
 };
 
 class ResultJournal {
@@ -35,13 +35,13 @@ class ResultJournal {
   ResultJournal(const ResultJournal&) = delete;
   ResultJournal& operator=(const ResultJournal&) = delete;
 
-  // Queues `results` of job `job` for the store.
+  // Queues `results` of job `job` for the store. Those of a round written after its checkpoint
+  // (they waited while it was queued) are deleted by the next checkpoint and never read: a
+  // restart reads only rounds after its checkpoint.
   void Add(store::JobId job, std::vector<store::StoredBatchResult> results);
-  // The job's round is complete: results still waiting are not worth a write (the round's
-  // checkpoint, written next, deletes its rows anyway).
-  void DiscardWaiting(store::JobId job);
-  // The job left (finished, failed, cancelled, paused): forget what waits.
-  void Forget(store::JobId job) { DiscardWaiting(job); }
+  // The job left (finished, failed, cancelled, paused): what waits is not written, so nothing is
+  // written after a job's last checkpoint.
+  void Forget(store::JobId job);
   const JournalCounters& counters() const { return counters_; }
 
  private:

@@ -120,7 +120,8 @@ TEST_F(FarmTest, WithRareCheckpointsARestartReplaysTheRoundsSinceTheCheckpoint) 
   StartMaster(again);
   ASSERT_TRUE(WaitForState(id, "done"));
   const std::string log = MasterLog();
-  EXPECT_GE(CountLines(log, "batches restored from the store"), 3u) << "kept " << kept << "\n"
+  // The Cornell box leases rounds 0 and 1; the later ones are small enough for the master.
+  EXPECT_GE(CountLines(log, "batches restored from the store"), 2u) << "kept " << kept << "\n"
                                                                     << log;
   EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml"));
   EXPECT_EQ(KeptResults(Path("master/radfarm.db"), id), 0);
