@@ -34,7 +34,8 @@ JobRounds::JobRounds(loop::EventLoop& loop, const MasterConfig& config,
       options_(options),
       store_(store),
       compute_(compute),
-      agents_(std::move(agents)) {}
+      agents_(std::move(agents)),
+      journal_(store) {}
 
 RunningJob* JobRounds::FindRunner(uint64_t job_id) {
   const auto it = runners_.find(static_cast<store::JobId>(job_id));
@@ -77,7 +78,8 @@ void JobRounds::StartQueuedJobs() {
           Status s = compute_.Submit(
               [shared, options] {
                 return RunningJob::Prepare(shared->record, shared->bundle, shared->checkpoint,
-                                           shared->checkpoint_scene, shared->rounds, options);
+                                           shared->checkpoint_scene, shared->rounds, options,
+                                           std::move(shared->round_results));
               },
               [this, id](Result<std::shared_ptr<RunningJob>> runner) {
                 OnJobPrepared(id, std::move(runner));
@@ -127,6 +129,22 @@ void JobRounds::BeginRound(const std::shared_ptr<RunningJob>& runner) {
     FailJob(runner->id(), s.error());
     return;
   }
+  if (const size_t restored = runner->restored_batches(); restored > 0) {
+    // Results a previous master received and kept: folded in first, their batches not leased.
+    batches_restored_ += restored;
+    const scheduler::SchedulerCounters c = runner->scheduler().counters(LoopNow(loop_));
+    LogLine(LogLevel::kInfo, "job " + std::to_string(runner->id()))
+        << "round " << c.round << ": " << restored << " of " << c.batches
+        << " batches restored from the store, " << c.batches - restored << " to lease"
+        << (runner->restore_mismatches() > 0 ? " (" + std::to_string(runner->restore_mismatches()) +
+                                                   " stored results did not match the plan)"
+                                             : std::string());
+    SendFolds(runner);
+    if (runner->scheduler().RoundComplete()) {
+      OnRoundComplete(runner->id());
+      return;
+    }
+  }
   agents_.dispatch_all();
 }
 
@@ -153,7 +171,13 @@ void JobRounds::RunRoundHere(const std::shared_ptr<RunningJob>& runner) {
 
 void JobRounds::OnResultAccepted(store::JobId id, scheduler::BatchId batch) {
   const std::shared_ptr<RunningJob>& runner = runners_.at(id);
-  if (!runner->QueueFold(batch)) return;
+  std::vector<store::StoredBatchResult> keep;
+  const bool chunk = runner->QueueFold(batch, config_.keep_round_results ? &keep : nullptr);
+  journal_.Add(id, std::move(keep));
+  if (chunk) SendFolds(runner);
+}
+
+void JobRounds::SendFolds(const std::shared_ptr<RunningJob>& runner) {
   // Behind the round's start and ahead of its Reduce on the one compute thread.
   auto results =
       std::make_shared<std::vector<std::pair<uint32_t, BatchResult>>>(runner->TakeFolds());
@@ -163,7 +187,7 @@ void JobRounds::OnResultAccepted(store::JobId id, scheduler::BatchId batch) {
         return Ok{};
       },
       [](Status) {});
-  if (!s) FailJob(id, s.error());
+  if (!s) FailJob(runner->id(), s.error());
 }
 
 void JobRounds::OnRoundComplete(store::JobId id) {
@@ -278,6 +302,7 @@ void JobRounds::DropRunner(store::JobId id) {
   retired_.Add(it->second->scheduler().counters(LoopNow(loop_)));
   runners_.erase(it);
   last_checkpoint_ms_.erase(id);
+  journal_.Forget(id);
   // Agents drop the job's queued batches; results still in flight are ignored on arrival.
   agents_.cancel_job(id);
   agents_.dispatch_all();

@@ -27,6 +27,7 @@
 
 #include "daemon/batch_totals.h"
 #include "daemon/master_config.h"
+#include "daemon/result_journal.h"
 #include "daemon/running_job.h"
 #include "daemon/scheduler/round_scheduler.h"
 #include "daemon/store_thread.h"
@@ -80,6 +81,9 @@ class JobRounds {
   // The batch counters of every job since the master started: the finished runners' and the
   // running ones' (for /metrics).
   BatchTotals batch_totals(scheduler::TimePoint now) const;
+  // What the store kept of the rounds in progress, and what restarts found there.
+  const JournalCounters& journal() const { return journal_.counters(); }
+  uint64_t batches_restored() const { return batches_restored_; }
   // Seconds from queueing each checkpoint on the store thread to its commit.
   const web::LatencyHistogram& checkpoint_latency() const { return checkpoint_latency_; }
   // Offers overdue leases again (RoundScheduler::Tick); returns how many.
@@ -99,6 +103,8 @@ class JobRounds {
   // (MasterConfig::local_round_rays).
   void BeginRound(const std::shared_ptr<RunningJob>& runner);
   void RunRoundHere(const std::shared_ptr<RunningJob>& runner);
+  // Sends the runner's queued results (TakeFolds) to the compute thread to be folded in.
+  void SendFolds(const std::shared_ptr<RunningJob>& runner);
   // `work` (Reduce, perhaps after RunLocally) on the compute thread, then OnRoundReduced.
   void ReduceOnComputeThread(const std::shared_ptr<RunningJob>& runner,
                              std::function<RoundOutcome()> work);
@@ -117,6 +123,8 @@ class JobRounds {
   AgentHooks agents_;
 
   Runners runners_;
+  ResultJournal journal_;
+  uint64_t batches_restored_ = 0;
   BatchTotals retired_;  // the counters of runners that went
   web::LatencyHistogram checkpoint_latency_;
   std::map<store::JobId, uint64_t> last_checkpoint_ms_;  // loop NowMs() of each job's last one

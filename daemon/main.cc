@@ -32,6 +32,7 @@ struct Flags {
       blocklist_seconds;
   std::optional<double> checkpoint_seconds, lease_seconds;
   std::optional<uint64_t> local_round_rays, max_store_bytes;
+  std::optional<bool> keep_round_results;
   bool detach = false;
 };
 
@@ -94,6 +95,9 @@ void AddFlags(CLI::App& app, Flags* f) {
                  "Rounds of at most this many rays are computed by the master, not leased to "
                  "agents; 0 = never (default 262144)")
       ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 40));
+  app.add_option("--keep-round-results", f->keep_round_results,
+                 "Keep each accepted batch result in the store until its round's checkpoint, so "
+                 "a restarted master leases only the batches it had not received (default true)");
   app.add_option("--http", f->http,
                  "HOST:PORT of the web console (status page, /metrics); off by default; port 0 "
                  "picks a free one, written to STATE/http.addr; a non-loopback HOST needs "
@@ -137,6 +141,7 @@ Result<MasterConfig> ResolveConfig(const Flags& f) {
   Override(f.blocklist_seconds, &c.blocklist_seconds);
   Override(f.max_unauthenticated, &c.max_unauthenticated);
   Override(f.local_round_rays, &c.local_round_rays);
+  Override(f.keep_round_results, &c.keep_round_results);
   Override(f.http, &c.http);
   Override(f.http_token_file, &c.http_token_file);
   RADFARM_RETURN_IF_ERROR(CheckMasterConfig(c));

@@ -48,6 +48,7 @@ Status ReadMasterConfigFile(const std::string& path, MasterConfig* c) {
                    r.Integer("max_agents", 1, 1000000, &c->max_agents),
                    r.Integer("max_unauthenticated", 1, 1000000, &c->max_unauthenticated),
                    r.Integer("local_round_rays", 0, kMaxLocalRoundRays, &c->local_round_rays),
+                   r.Bool("keep_round_results", &c->keep_round_results),
                    r.String("http", &c->http),
                    r.String("http_token_file", &c->http_token_file)}) {
     RADFARM_RETURN_IF_ERROR(s);

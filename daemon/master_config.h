@@ -28,6 +28,10 @@ struct MasterConfig {
   // Rounds of at most this many rays are computed by the master itself (0: never): the last
   // rounds of a solve are a few rays per patch, which cost agents a round trip per batch.
   uint64_t local_round_rays = 262144;
+  // Keep each accepted batch result in the store until its round's checkpoint, so a restarted
+  // master leases only the batches it had not received (daemon/result_journal.h). Off: a restart
+  // computes the whole round again, as before.
+  bool keep_round_results = true;
   // A job that meets a store fault (disk full, I/O error) is held and tried again this often.
   uint32_t hold_retry_ms = 10000;
   // The job store's size at most (0: no limit but the disk's). Reaching it is like a full disk:

@@ -41,13 +41,19 @@ std::shared_ptr<const protocol::PackedScene> PackPatchScene(const PatchScene& sc
   return packed;
 }
 
+bool SameBatch(const Batch& a, const Batch& b) {
+  return a.round == b.round && a.shooter == b.shooter && a.first_ray == b.first_ray &&
+         a.ray_count == b.ray_count;
+}
+
 }  // namespace
 
 Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
     const store::JobRecord& record, const std::vector<uint8_t>& bundle_blob,
     const std::optional<store::Checkpoint>& checkpoint,
     const std::optional<std::vector<uint8_t>>& checkpoint_scene,
-    const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options) {
+    const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options,
+    std::vector<store::StoredBatchResult> stored) {
   const std::string job = "job " + std::to_string(record.id);
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(bundle_blob);
   RADFARM_RETURN_IF_ERROR(bundle);
@@ -109,25 +115,59 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   runner->scheduler_ = scheduler::RoundScheduler(options);
   runner->UpdateTotals();
 
-  std::optional<RoundPlan> plan =
-      runner->driver_->PlanNext(options.default_batch_rays, runner->totals_.seconds);
+  // The round the solver plans next, with the batch size its kept results were planned with.
+  runner->stored_ = std::move(stored);
+  const uint32_t batch_rays =
+      runner->BatchRaysFor(runner->driver_->solver().rounds_done(), options.default_batch_rays);
+  std::optional<RoundPlan> plan = runner->driver_->PlanNext(batch_rays, runner->totals_.seconds);
   if (!plan) {
     runner->stop_reason_ = runner->driver_->stop_reason();
     runner->phase_ = Phase::kFinished;
     return runner;
   }
+  runner->RestoreResults(*plan, batch_rays);
   runner->fold_plan_ = std::make_shared<const RoundPlan>(*plan);
   runner->planned_ = std::move(*plan);
+  runner->planned_batch_rays_ = batch_rays;
   return runner;
+}
+
+uint32_t RunningJob::BatchRaysFor(uint32_t round, uint32_t fallback) const {
+  for (const store::StoredBatchResult& r : stored_) {
+    if (r.batch.round == round) return r.batch_rays;
+  }
+  return fallback;
+}
+
+void RunningJob::RestoreResults(const RoundPlan& plan, uint32_t batch_rays) {
+  restored_.clear();
+  restore_mismatches_ = 0;
+  for (store::StoredBatchResult& r : stored_) {
+    if (r.batch.round != plan.round) continue;
+    if (r.batch_rays == batch_rays && r.index < plan.batches.size() &&
+        SameBatch(plan.batches[r.index], r.batch)) {
+      restored_.emplace_back(r.index, std::move(r.result));
+    } else {
+      ++restore_mismatches_;
+    }
+  }
+  std::erase_if(stored_,
+                [&](const store::StoredBatchResult& r) { return r.batch.round <= plan.round; });
 }
 
 Status RunningJob::StartPlannedRound(scheduler::TimePoint now) {
   if (!planned_) return Error{"job " + std::to_string(id()) + ": no round planned"};
-  unfolded_.clear();
   running_rays_ = planned_->rays;
   running_gather_ = planned_->gather;
-  Status s = scheduler_.StartRound(std::move(*planned_), now);
+  running_batch_rays_ = planned_batch_rays_;
+  std::vector<uint32_t> done;
+  done.reserve(restored_.size());
+  for (const auto& [index, result] : restored_) done.push_back(index);
+  Status s = scheduler_.StartRound(std::move(*planned_), now, done);
   planned_.reset();
+  // The restored results are folded in as accepted ones are, first.
+  unfolded_ = std::exchange(restored_, {});
+  restored_count_ = unfolded_.size();
   if (s.ok()) {
     phase_ = Phase::kRound;
     round_started_ = now;
@@ -139,6 +179,7 @@ Result<RoundPlan> RunningJob::TakePlannedRound() {
   if (!planned_) return Error{"job " + std::to_string(id()) + ": no round planned"};
   RoundPlan plan = std::move(*planned_);
   planned_.reset();
+  restored_.clear();  // computed here anyway: cheaper than the hand-over
   phase_ = Phase::kReducing;
   running_rays_ = 0;  // computed here: shown from Reduce's result
   return plan;
@@ -161,9 +202,13 @@ Result<scheduler::CompletedRound> RunningJob::TakeRound() {
   return done;
 }
 
-bool RunningJob::QueueFold(scheduler::BatchId batch) {
+bool RunningJob::QueueFold(scheduler::BatchId batch, std::vector<store::StoredBatchResult>* keep) {
   std::optional<BatchResult> result = scheduler_.TakeResult(batch);
   if (!result) return false;
+  if (keep != nullptr) {
+    keep->push_back(
+        {scheduler::BatchIndex(batch), running_batch_rays_, *scheduler_.FindBatch(batch), *result});
+  }
   unfolded_.emplace_back(scheduler::BatchIndex(batch), std::move(*result));
   return unfolded_.size() >= kFoldChunk;
 }
@@ -207,11 +252,16 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
     out.new_patch_count = static_cast<uint32_t>(driver_->scene().patches.size());
   }
   UpdateTotals();
-  if (std::optional<RoundPlan> next = driver_->PlanNext(batch_rays, totals_.seconds)) {
+  // A restarted master replays the rounds it kept results of with the batch size they had.
+  const uint32_t rays = BatchRaysFor(driver_->solver().rounds_done(), batch_rays);
+  if (std::optional<RoundPlan> next = driver_->PlanNext(rays, totals_.seconds)) {
+    RestoreResults(*next, rays);
     fold_plan_ = std::make_shared<const RoundPlan>(*next);  // the worker's copy, for the fold
     out.next = std::move(*next);
+    out.next_batch_rays = rays;
   } else {
     out.stop = driver_->stop_reason();
+    stored_.clear();
   }
   out.checkpoint_due = checkpoint_due || out.stop.has_value();
   if (out.checkpoint_due) {
@@ -259,6 +309,7 @@ bool RunningJob::InstallOutcome(RoundOutcome& outcome) {
     return false;
   }
   planned_ = std::move(outcome.next);
+  planned_batch_rays_ = outcome.next_batch_rays;
   phase_ = Phase::kRound;
   return true;
 }

@@ -71,6 +71,7 @@ struct RoundOutcome {
   std::shared_ptr<const protocol::PackedScene> new_scene;
   protocol::SceneHash new_scene_hash{};
   uint32_t new_patch_count = 0;
+  uint32_t next_batch_rays = 0;  // the batch size `next` was planned with
 };
 
 class RunningJob {
@@ -80,11 +81,15 @@ class RunningJob {
   // Heavy (meshing, refining, planning): call on a worker thread. `checkpoint` and `rounds` come
   // from the store: the job resumes after the checkpoint's round, with the totals of the rounds up
   // to it; `checkpoint_scene` is the blob of the refined scene the checkpoint names (scene_hash).
+  // `stored`: accepted results a previous master kept of the rounds after the checkpoint; each of
+  // those rounds is planned with their batch size, so the same batches, and the results that
+  // match the plan exactly start done (StartPlannedRound).
   static Result<std::shared_ptr<RunningJob>> Prepare(
       const store::JobRecord& record, const std::vector<uint8_t>& bundle_blob,
       const std::optional<store::Checkpoint>& checkpoint,
       const std::optional<std::vector<uint8_t>>& checkpoint_scene,
-      const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options);
+      const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options,
+      std::vector<store::StoredBatchResult> stored = {});
 
   store::JobId id() const { return record_.id; }
   const store::JobRecord& record() const { return record_; }
@@ -102,8 +107,13 @@ class RunningJob {
   scheduler::RoundScheduler& scheduler() { return scheduler_; }
   const scheduler::RoundScheduler& scheduler() const { return scheduler_; }
 
-  // Loop thread: starts the planned round. Fails if there is none.
+  // Loop thread: starts the planned round. Fails if there is none. Results restored from the
+  // store start done and are queued for the fold (TakeFolds); the round may be complete at once.
   Status StartPlannedRound(scheduler::TimePoint now);
+  // Of the round started last: batches restored from the store; stored results that did not
+  // match the plan (and are computed again).
+  size_t restored_batches() const { return restored_count_; }
+  size_t restore_mismatches() const { return restore_mismatches_; }
   // Loop thread: the rays of the planned round (0 when none is planned).
   uint64_t planned_rays() const { return planned_ ? planned_->rays : 0; }
   // Loop thread: takes the planned round to compute here instead of on agents (RunLocally);
@@ -117,8 +127,9 @@ class RunningJob {
   Result<scheduler::CompletedRound> TakeRound();
 
   // Loop thread: takes the accepted result of `batch` out of the scheduler to be folded in; true
-  // when enough are queued to be worth sending to the worker (TakeFolds).
-  bool QueueFold(scheduler::BatchId batch);
+  // when enough are queued to be worth sending to the worker (TakeFolds). A copy goes to `keep`,
+  // for the store (so a restarted master need not lease the batch again).
+  bool QueueFold(scheduler::BatchId batch, std::vector<store::StoredBatchResult>* keep);
   // Loop thread: the queued results, for Fold.
   std::vector<std::pair<uint32_t, BatchResult>> TakeFolds();
   // Worker thread, after StartPlannedRound and before Reduce, in order: folds in results of the
@@ -147,6 +158,12 @@ class RunningJob {
 
  private:
   RunningJob() = default;
+  // Worker thread (Prepare, Reduce): the batch size the kept results of `round` were planned
+  // with, or `fallback` when none are kept.
+  uint32_t BatchRaysFor(uint32_t round, uint32_t fallback) const;
+  // Worker thread: moves the kept results that answer `plan`'s batches exactly to restored_, for
+  // StartPlannedRound, and forgets the kept results of its round and those before.
+  void RestoreResults(const RoundPlan& plan, uint32_t batch_rays);
   // Worker thread: encodes the driver's refined scene after a step that split.
   void EncodeRefinedScene();
   // The totals and progress figures of the driver's state, for status.
@@ -174,6 +191,16 @@ class RunningJob {
   scheduler::RoundScheduler scheduler_;
   std::optional<RoundPlan> planned_;
   std::vector<std::pair<uint32_t, BatchResult>> unfolded_;  // accepted, not yet sent to Fold
+  // Worker side: results a previous master kept of rounds not planned yet (with
+  // checkpoint_seconds above 0, several rounds after the checkpoint), replayed round by round.
+  std::vector<store::StoredBatchResult> stored_;
+  // Kept results matching the planned round's batches (Prepare, Reduce), for StartPlannedRound.
+  std::vector<std::pair<uint32_t, BatchResult>> restored_;
+  size_t restored_count_ = 0;
+  size_t restore_mismatches_ = 0;
+  // The batch size the planned round and the running one were planned with (stored with results).
+  uint32_t planned_batch_rays_ = 0;
+  uint32_t running_batch_rays_ = 0;
   std::optional<std::string> stop_reason_;
   JobTotals totals_;
   Phase phase_ = Phase::kRound;

@@ -73,9 +73,12 @@ void StatusPublisher::Publish(const json& jobs, const json& agents, const json& 
   snapshot.status_json =
       json{{"time_ms", UnixMs()}, {"jobs", jobs}, {"agents", agents}, {"events", events}}.dump(
           -1, ' ', false, json::error_handler_t::replace);  // never throw on bad UTF-8
-  snapshot.metrics_text =
-      web::FormatMetrics(FarmMetricsOf(jobs, agents, jobs_.batch_totals(LoopNow(loop_)),
-                                       jobs_.checkpoint_latency(), store_.queued()));
+  web::FarmMetrics metrics = FarmMetricsOf(jobs, agents, jobs_.batch_totals(LoopNow(loop_)),
+                                           jobs_.checkpoint_latency(), store_.queued());
+  metrics.round_results_kept = jobs_.journal().results_written;
+  metrics.round_result_writes = jobs_.journal().writes;
+  metrics.batches_restored = jobs_.batches_restored();
+  snapshot.metrics_text = web::FormatMetrics(metrics);
   board_.Publish(std::move(snapshot));
 }
 

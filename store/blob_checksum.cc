@@ -49,6 +49,15 @@ Checksum CheckpointChecksum(const CheckpointFields& f) {
   return h.Final();
 }
 
+Checksum RoundResultChecksum(const RoundResultFields& f) {
+  Hasher h;
+  for (int64_t v : {f.job, f.round, f.index, f.shooter, f.first_ray, f.ray_count, f.batch_rays}) {
+    h.Integer(uint64_t(v));
+  }
+  h.Bytes(f.result);
+  return h.Final();
+}
+
 Checksum BlobChecksum(std::span<const uint8_t> blob) {
   Checksum out;
   crypto_generichash(out.data(), out.size(), blob.data(), blob.size(), nullptr, 0);

@@ -7,6 +7,9 @@
 //     radiosity, unshot and energy blobs, scene_hash and stop_reason as an 8-byte little-endian
 //     length and its bytes (a NULL text as length 2^64 - 1 and no bytes).
 //   scenes.checksum: BLAKE2b-256 over the geometry blob.
+//   round_results.checksum (version 6): BLAKE2b-256 over the job id, round, batch index, shooter,
+//     first_ray, ray_count and batch_rays (each 8 bytes little-endian), then the result blob as an
+//     8-byte little-endian length and its bytes.
 //
 // A row written before version 5 has a NULL checksum: it is read unverified, as before.
 #pragma once
@@ -33,7 +36,19 @@ struct CheckpointFields {
   const std::optional<std::string>* stop_reason = nullptr;
 };
 
+struct RoundResultFields {
+  int64_t job = 0;
+  int64_t round = 0;
+  int64_t index = 0;
+  int64_t shooter = 0;
+  int64_t first_ray = 0;
+  int64_t ray_count = 0;
+  int64_t batch_rays = 0;
+  std::span<const uint8_t> result;
+};
+
 Checksum CheckpointChecksum(const CheckpointFields& fields);
+Checksum RoundResultChecksum(const RoundResultFields& fields);
 Checksum BlobChecksum(std::span<const uint8_t> blob);
 
 // Whether `stored` (a checksum column: empty when NULL) matches; a NULL one always does.

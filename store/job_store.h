@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "base/result.h"
+#include "core/batch.h"
 #include "core/progressive_solver.h"
 #include "core/rgb.h"
 #include "store/database.h"
@@ -99,6 +100,22 @@ struct DamagedCheckpoint {
   std::string message;  // "job store PATH: the checkpoint of job 3 round 7 is damaged (...)"
 };
 
+// One accepted batch result of a round in progress (schema version 6), kept until the round's
+// checkpoint, so a restarted master leases again only the batches it had not received.
+struct StoredBatchResult {
+  uint32_t index = 0;       // into the round's plan.batches
+  uint32_t batch_rays = 0;  // the batch size the round was planned with
+  Batch batch;              // plan.batches[index] (its round is the result's round)
+  BatchResult result;
+};
+
+// Stored round results of a job, verified against their checksums.
+struct StoredRoundResults {
+  std::vector<StoredBatchResult> results;  // by round, then index
+  // One line per damaged row found (and deleted): its batch is leased again.
+  std::vector<std::string> damaged;
+};
+
 enum class EventLevel { kInfo, kWarning, kError };
 
 struct Event {
@@ -149,7 +166,7 @@ class JobStore {
   Result<std::vector<RoundRecord>> ListRounds(JobId job);
   // Writes the round row and the checkpoint of its results in one transaction: both or neither.
   // checkpoint.job and .round must equal round.job and .round; checkpoint.scene_hash, when set,
-  // must be stored.
+  // must be stored. The job's stored round results up to that round go in the same transaction.
   Status SaveCheckpoint(const RoundRecord& round, const Checkpoint& checkpoint);
   // The checkpoint with the highest round, with the same bits that were saved, verified against
   // its checksum. A damaged one is an error when `damaged` is null; otherwise it is appended
@@ -164,6 +181,14 @@ class JobStore {
   // Freed pages are reused by later checkpoints, so the file stays near keep_last+1 checkpoints.
   Status PruneCheckpoints(JobId job, int keep_last);
   Result<int64_t> CountCheckpoints(JobId job);
+
+  // --- results of the round in progress (round_results, see StoredBatchResult) ---
+  // Writes `results` (all of job `job`) in one transaction; a result stored again replaces the row.
+  Status SaveRoundResults(JobId job, std::span<const StoredBatchResult> results);
+  // The job's stored results of rounds after `after_round` (all rounds when nullopt). A row whose
+  // bytes do not match its checksum, or do not decode, is deleted and named in `damaged`.
+  Result<StoredRoundResults> LoadRoundResults(JobId job, std::optional<uint32_t> after_round);
+  Result<int64_t> CountRoundResults(JobId job, uint32_t round);
 
   // --- agents and events ---
   Status RecordAgentSeen(const std::string& name, const std::string& address, uint32_t threads);
@@ -180,6 +205,7 @@ class JobStore {
   JobStore(Database db, std::function<int64_t()> now_ms)
       : db_(std::move(db)), now_ms_(std::move(now_ms)) {}
   Status InsertRound(const RoundRecord& round, int64_t now);
+  Status DeleteRoundResults(JobId job, uint32_t up_to_round);
 
   Database db_;
   std::function<int64_t()> now_ms_;

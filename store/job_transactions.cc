@@ -53,6 +53,16 @@ Result<std::vector<JobStart>> StartQueuedJobs(JobStore& store, int slots) {
     Result<std::vector<RoundRecord>> rounds = store.ListRounds(record.id);
     RADFARM_RETURN_IF_ERROR(rounds);
     start.rounds = std::move(*rounds);
+    // Results of the rounds after the checkpoint a previous master had received; damaged ones
+    // are dropped (and deleted) and their batches leased again.
+    Result<StoredRoundResults> kept = store.LoadRoundResults(
+        record.id, start.checkpoint ? std::optional(start.checkpoint->round) : std::nullopt);
+    RADFARM_RETURN_IF_ERROR(kept);
+    start.round_results = std::move(kept->results);
+    for (const std::string& warning : kept->damaged) {
+      (void)store.AppendEvent(record.id, EventLevel::kWarning, warning);
+      start.warnings.push_back(warning);
+    }
     Result<JobRecord> fresh = ReadBack(store, record.id, " vanished");
     RADFARM_RETURN_IF_ERROR(fresh);
     start.record = std::move(*fresh);

@@ -30,8 +30,11 @@ struct JobStart {
   // caller fails the job then: a resumed refined job cannot go on without its mesh).
   std::optional<std::vector<uint8_t>> checkpoint_scene;
   std::vector<RoundRecord> rounds;
-  // Damaged checkpoints passed over (and deleted) on the way to `checkpoint`, one line each, also
-  // appended to the job's events.
+  // Accepted batch results of the rounds after the checkpoint (JobStore::LoadRoundResults): the
+  // round the job resumes with leases only the batches not among them.
+  std::vector<StoredBatchResult> round_results;
+  // Damaged checkpoints passed over (and deleted) on the way to `checkpoint` and damaged stored
+  // round results (deleted), one line each, also appended to the job's events.
   std::vector<std::string> warnings;
 };
 

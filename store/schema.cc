@@ -101,8 +101,26 @@ ALTER TABLE checkpoints ADD COLUMN checksum BLOB CHECK (checksum IS NULL OR leng
 ALTER TABLE scenes ADD COLUMN checksum BLOB CHECK (checksum IS NULL OR length(checksum) = 32);
 )sql";
 
-constexpr std::array<Migration, 5> kMigrations = {
-    {{1, kV1}, {2, kV2}, {3, kV3}, {4, kV4}, {5, kV5}}};
+// Version 6: the accepted batch results of a round in progress, so a restarted master re-leases
+// only the batches it had not received. Rows of a round go with its checkpoint (SaveCheckpoint
+// deletes them in the same transaction), so the table holds about one round per running job.
+constexpr std::string_view kV6 = R"sql(
+CREATE TABLE round_results (
+  job_id INTEGER NOT NULL REFERENCES jobs(id) ON DELETE CASCADE,
+  round INTEGER NOT NULL CHECK (round >= 0),
+  batch INTEGER NOT NULL CHECK (batch >= 0),
+  shooter INTEGER NOT NULL,
+  first_ray INTEGER NOT NULL,
+  ray_count INTEGER NOT NULL,
+  batch_rays INTEGER NOT NULL,
+  result BLOB NOT NULL,
+  checksum BLOB NOT NULL CHECK (length(checksum) = 32),
+  PRIMARY KEY (job_id, round, batch)
+) WITHOUT ROWID;
+)sql";
+
+constexpr std::array<Migration, 6> kMigrations = {
+    {{1, kV1}, {2, kV2}, {3, kV3}, {4, kV4}, {5, kV5}, {6, kV6}}};
 
 Result<int64_t> FileBytes(Database& db) {
   Result<int64_t> pages = db.QueryInt("PRAGMA page_count");

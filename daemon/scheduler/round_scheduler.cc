@@ -67,7 +67,8 @@ bool RoundScheduler::IsBlocklisted(AgentId agent, TimePoint now) const {
 
 // --- Rounds ---
 
-Status RoundScheduler::StartRound(RoundPlan plan, TimePoint /*now*/) {
+Status RoundScheduler::StartRound(RoundPlan plan, TimePoint /*now*/,
+                                  std::span<const uint32_t> restored) {
   if (round_) {
     return Error{"round " + std::to_string(round_->plan.round) + " is still active"};
   }
@@ -78,11 +79,18 @@ Status RoundScheduler::StartRound(RoundPlan plan, TimePoint /*now*/) {
   Round& round = round_.emplace();
   round.batches.resize(plan.batches.size());
   uint64_t rays = 0;
+  for (uint32_t k : restored) {
+    if (k >= plan.batches.size() || round.batches[k].state == BatchState::kDone) continue;
+    round.batches[k].state = BatchState::kDone;
+    round.batches[k].result_taken = true;
+    ++round.done;
+  }
   for (uint32_t k = 0; k < plan.batches.size(); ++k) {
+    rays += plan.batches[k].ray_count;
+    if (round.batches[k].state == BatchState::kDone) continue;
     round.fresh.push_back(k);
     round.batches[k].in_fresh_queue = true;
     ++round.queued;
-    rays += plan.batches[k].ray_count;
   }
   round.mean_batch_rays = double(rays) / double(plan.batches.size());
   round.plan = std::move(plan);

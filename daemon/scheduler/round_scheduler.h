@@ -134,7 +134,10 @@ class RoundScheduler {
 
   // --- Rounds ---
   // Starts a round from a non-empty plan. Fails while another round is active (not yet taken).
-  Status StartRound(RoundPlan plan, TimePoint now);
+  // The batches in `restored` (indices into plan.batches) start done with their results taken:
+  // a restarted master had them from its store and folds them in itself; out-of-range or repeated
+  // indices are ignored. The round may then be complete at once.
+  Status StartRound(RoundPlan plan, TimePoint now, std::span<const uint32_t> restored = {});
   bool round_active() const { return round_.has_value(); }
   bool RoundComplete() const;
   // The round's queue is empty but some batches have no result yet: idle agents may take over or

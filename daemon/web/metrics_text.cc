@@ -115,6 +115,15 @@ std::string FormatMetrics(const FarmMetrics& m) {
   e.Family("radfarm_store_queue_depth", "gauge",
            "Store operations (SQLite transactions) queued, not yet started.");
   e.Sample("radfarm_store_queue_depth", double(m.store_queue_depth));
+  e.Family("radfarm_round_results_kept_total", "counter",
+           "Accepted batch results written to the store for a restart of the master.");
+  e.Sample("radfarm_round_results_kept_total", double(m.round_results_kept));
+  e.Family("radfarm_round_result_writes_total", "counter",
+           "Store transactions that wrote them (results are grouped while one is running).");
+  e.Sample("radfarm_round_result_writes_total", double(m.round_result_writes));
+  e.Family("radfarm_batches_restored_total", "counter",
+           "Batches whose stored result a restarted master folded in instead of leasing them.");
+  e.Sample("radfarm_batches_restored_total", double(m.batches_restored));
   return e.Take();
 }
 

@@ -26,6 +26,11 @@ struct FarmMetrics {
   std::map<std::string, uint64_t> results_dropped;   // by reason: too late or repeated
   LatencyHistogram checkpoint_seconds;               // queued on the store -> committed
   uint64_t store_queue_depth = 0;                    // store operations waiting to run
+  // Accepted results kept in the store for a restart (daemon/result_journal.h), the writes that
+  // kept them, and batches a restart found there and did not lease again.
+  uint64_t round_results_kept = 0;
+  uint64_t round_result_writes = 0;
+  uint64_t batches_restored = 0;
 };
 
 // The exposition text; series in a fixed order, labels sorted, numbers in their shortest exact

@@ -77,6 +77,40 @@ TEST(RoundSchedulerTest, AcceptedResultsCanBeTakenOutOnce) {
   EXPECT_EQ(done->results[1], ResultFor(8));
 }
 
+// A restarted master had some batches' results from its store: they start done and are never
+// leased; only the others are. Bad indices are ignored; all restored, the round is complete.
+TEST(RoundSchedulerTest, RestoredBatchesStartDoneAndOnlyTheOthersAreLeased) {
+  SchedulerOptions options;
+  options.initial_leases = 10;
+  RoundScheduler s(options);
+  s.AddAgent(1);
+  const std::vector<uint32_t> restored = {0, 2, 2, 9, 4};
+  ASSERT_TRUE(s.StartRound(Plan(5, 5), kT0, restored).ok());
+  EXPECT_FALSE(s.RoundComplete());
+  SchedulerCounters c = s.counters(kT0);
+  EXPECT_EQ(c.batches_done, 3u);
+  EXPECT_EQ(c.batches_queued, 2u);
+  std::vector<uint32_t> leased;
+  while (const auto a = s.NextAssignment(1, kT0)) {
+    leased.push_back(BatchIndex(a->batch_id));
+    ASSERT_EQ(s.OnResult(1, a->batch_id, a->attempt_id, ResultFor(1), kT0).disposition,
+              Disposition::kAccepted);
+  }
+  EXPECT_EQ(leased, (std::vector<uint32_t>{1, 3}));
+  EXPECT_TRUE(s.RoundComplete());
+  EXPECT_FALSE(s.TakeResult(MakeBatchId(5, 0)));  // the restored result is the caller's
+  Result<CompletedRound> done = s.TakeCompletedRound();
+  ASSERT_TRUE(done.ok());
+  EXPECT_EQ(done->results[0], BatchResult{});
+  EXPECT_EQ(done->results[1], ResultFor(1));
+
+  const std::vector<uint32_t> all = {0, 1};
+  ASSERT_TRUE(s.StartRound(Plan(6, 2), kT0, all).ok());
+  EXPECT_TRUE(s.RoundComplete());
+  EXPECT_FALSE(s.NextAssignment(1, kT0));
+  EXPECT_TRUE(s.TakeCompletedRound().ok());
+}
+
 TEST(RoundSchedulerTest, LeasesHeldForOtherJobsCountAgainstTheCapacity) {
   SchedulerOptions options;
   options.initial_leases = 3;

@@ -47,6 +47,8 @@ TEST(MetricsTextTest, EverySeriesHasHelpAndTypeAndTheExactValue) {
            "radfarm_batch_results_rejected_total{reason=\"invalid\"} 1",
            "radfarm_batch_results_dropped_total{reason=\"late\"} 3",
            "radfarm_store_queue_depth 5",
+           "radfarm_round_results_kept_total 0",
+           "radfarm_batches_restored_total 0",
        }) {
     EXPECT_NE(text.find(std::string(line) + "\n"), std::string::npos) << line << "\n" << text;
   }

@@ -1,0 +1,194 @@
+// Results of the round in progress (schema version 6): accepted batch results are kept so that a
+// restarted master leases again only what it had not received. They read back with the same
+// bits, go with their round's checkpoint (in its transaction), and a damaged one is dropped, with
+// a line naming it, so its batch is computed again.
+#include <gtest/gtest.h>
+
+#include "store/batch_result_codec.h"
+#include "store/job_store.h"
+#include "store/job_transactions.h"
+#include "tests/store/flip_bit.h"
+#include "tests/store/temp_dir.h"
+
+namespace radfarm::store {
+namespace {
+
+StoredBatchResult Kept(uint32_t round, uint32_t index) {
+  StoredBatchResult r;
+  r.index = index;
+  r.batch_rays = 4096;
+  r.batch = {round, 7 + index, uint64_t{index} * 4096, 4096};
+  r.result.hits = {{3, 1000 + index}, {9, ~uint64_t{0} - index}, {4'000'000'000u, 1}};
+  r.result.escaped_weight = 123456789012345ull + index;
+  r.result.escaped_rays = 17;
+  r.result.back_weight = 5;
+  r.result.back_rays = 1;
+  return r;
+}
+
+void ExpectSame(const StoredBatchResult& a, const StoredBatchResult& b) {
+  EXPECT_EQ(a.index, b.index);
+  EXPECT_EQ(a.batch_rays, b.batch_rays);
+  EXPECT_EQ(a.batch.round, b.batch.round);
+  EXPECT_EQ(a.batch.shooter, b.batch.shooter);
+  EXPECT_EQ(a.batch.first_ray, b.batch.first_ray);
+  EXPECT_EQ(a.batch.ray_count, b.batch.ray_count);
+  EXPECT_TRUE(a.result == b.result);
+}
+
+Checkpoint CheckpointOfRound(JobId job, uint32_t round) {
+  Checkpoint c;
+  c.job = job;
+  c.round = round;
+  c.rounds_done = round + 1;
+  c.radiosity = {Rgb(1, 2, 3)};
+  c.unshot = {Rgb(0, 0, 0)};
+  return c;
+}
+
+class RoundResultsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    path_ = dir_.File("radfarm.db");
+    Reopen();
+    ASSERT_TRUE(store_->PutScene("scene", std::vector<uint8_t>{1, 2, 3}).ok());
+    job_ = *store_->SubmitJob({"job", "scene", "", 1, 0});
+  }
+  void Reopen() {
+    store_.reset();
+    Result<JobStore> store = JobStore::Open(path_);
+    ASSERT_TRUE(store.ok()) << store.error();
+    store_.emplace(std::move(*store));
+  }
+  void Save(std::vector<StoredBatchResult> results) {
+    Status s = store_->SaveRoundResults(job_, results);
+    ASSERT_TRUE(s.ok()) << s.error();
+  }
+
+  TempDir dir_;
+  std::string path_;
+  std::optional<JobStore> store_;
+  JobId job_ = 0;
+};
+
+TEST_F(RoundResultsTest, ResultsReadBackWithTheSameBitsInRoundAndBatchOrder) {
+  Save({Kept(4, 2), Kept(4, 0)});
+  Save({Kept(3, 5), Kept(4, 1)});
+  Save({Kept(4, 1)});  // stored again (a second master received it again): one row
+  Reopen();
+  Result<StoredRoundResults> all = store_->LoadRoundResults(job_, std::nullopt);
+  ASSERT_TRUE(all.ok()) << all.error();
+  EXPECT_TRUE(all->damaged.empty());
+  ASSERT_EQ(all->results.size(), 4u);
+  ExpectSame(all->results[0], Kept(3, 5));
+  ExpectSame(all->results[1], Kept(4, 0));
+  ExpectSame(all->results[2], Kept(4, 1));
+  ExpectSame(all->results[3], Kept(4, 2));
+  Result<StoredRoundResults> after = store_->LoadRoundResults(job_, 3);
+  ASSERT_TRUE(after.ok());
+  EXPECT_EQ(after->results.size(), 3u);
+  EXPECT_EQ(*store_->CountRoundResults(job_, 4), 3);
+  EXPECT_EQ(*store_->CountRoundResults(job_, 5), 0);
+}
+
+TEST_F(RoundResultsTest, ARoundsCheckpointDeletesItsResultsAndThoseBeforeButNotLaterOnes) {
+  Save({Kept(2, 0), Kept(3, 0), Kept(3, 1), Kept(4, 0)});
+  ASSERT_TRUE(
+      store_->SaveCheckpoint({job_, 3, 1, 100, 0.5, 1, 0.1}, CheckpointOfRound(job_, 3)).ok());
+  EXPECT_EQ(*store_->CountRoundResults(job_, 2), 0);
+  EXPECT_EQ(*store_->CountRoundResults(job_, 3), 0);
+  EXPECT_EQ(*store_->CountRoundResults(job_, 4), 1);
+}
+
+TEST_F(RoundResultsTest, ACheckpointThatFailsKeepsTheRoundsResults) {
+  Save({Kept(3, 0)});
+  // The checkpoint names a refined scene that is not stored: its row fails after the kept results
+  // were deleted, and the transaction rolls back as a whole.
+  Checkpoint c = CheckpointOfRound(job_, 3);
+  c.scene_hash = "not stored";
+  EXPECT_FALSE(store_->SaveCheckpoint({job_, 3, 1, 100, 0.5, 1, 0.1}, c).ok());
+  EXPECT_EQ(*store_->CountRoundResults(job_, 3), 1);
+}
+
+TEST_F(RoundResultsTest, ADamagedResultIsNamedDeletedAndTheOthersStillLoad) {
+  Save({Kept(4, 0), Kept(4, 1), Kept(4, 2)});
+  FlipBit(path_, "round_results", "result",
+          "job_id = " + std::to_string(job_) + " AND round = 4 AND batch = 1");
+  FlipBit(path_, "round_results", "checksum",
+          "job_id = " + std::to_string(job_) + " AND round = 4 AND batch = 2");
+  Reopen();
+  Result<StoredRoundResults> loaded = store_->LoadRoundResults(job_, std::nullopt);
+  ASSERT_TRUE(loaded.ok()) << loaded.error();
+  ASSERT_EQ(loaded->results.size(), 1u);
+  ExpectSame(loaded->results[0], Kept(4, 0));
+  ASSERT_EQ(loaded->damaged.size(), 2u);
+  EXPECT_NE(loaded->damaged[0].find("the stored result of job 1 round 4 batch 1 is damaged (its "
+                                    "bytes do not match its checksum); it is computed again"),
+            std::string::npos)
+      << loaded->damaged[0];
+  EXPECT_NE(loaded->damaged[1].find("round 4 batch 2 is damaged"), std::string::npos);
+  // Deleted: the next load finds only the good one, and says nothing.
+  Result<StoredRoundResults> again = store_->LoadRoundResults(job_, std::nullopt);
+  ASSERT_TRUE(again.ok());
+  EXPECT_EQ(again->results.size(), 1u);
+  EXPECT_TRUE(again->damaged.empty());
+}
+
+TEST_F(RoundResultsTest, AJobStartsWithTheResultsAfterItsCheckpointAndWarnsOfDamagedOnes) {
+  ASSERT_TRUE(
+      store_->SaveCheckpoint({job_, 3, 1, 100, 0.5, 1, 0.1}, CheckpointOfRound(job_, 3)).ok());
+  Save({Kept(4, 0), Kept(4, 1)});
+  FlipBit(path_, "round_results", "result",
+          "job_id = " + std::to_string(job_) + " AND round = 4 AND batch = 0");
+  Result<std::vector<JobStart>> starts = StartQueuedJobs(*store_, 1);
+  ASSERT_TRUE(starts.ok()) << starts.error();
+  ASSERT_EQ(starts->size(), 1u);
+  const JobStart& start = (*starts)[0];
+  ASSERT_EQ(start.round_results.size(), 1u);
+  ExpectSame(start.round_results[0], Kept(4, 1));
+  ASSERT_EQ(start.warnings.size(), 1u);
+  EXPECT_NE(start.warnings[0].find("round 4 batch 0 is damaged"), std::string::npos);
+  Result<std::vector<Event>> events = store_->ListEvents(job_, 10);
+  ASSERT_TRUE(events.ok());
+  ASSERT_FALSE(events->empty());
+  EXPECT_EQ(events->back().text, start.warnings[0]);
+}
+
+TEST_F(RoundResultsTest, AFullStoreRefusesTheWriteAsAWhole) {
+  store_.reset();
+  JobStoreOptions options;
+  options.max_pages = 1;  // SQLite keeps the file's size: every write that grows it fails
+  Result<JobStore> capped = JobStore::Open(path_, options);
+  ASSERT_TRUE(capped.ok()) << capped.error();
+  std::vector<StoredBatchResult> many;
+  for (uint32_t k = 0; k < 2000; ++k) many.push_back(Kept(0, k));
+  Status s = capped->SaveRoundResults(job_, many);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().find("SQLITE_FULL"), std::string::npos) << s.error();
+  EXPECT_EQ(*capped->CountRoundResults(job_, 0), 0);
+}
+
+TEST(BatchResultCodecTest, EncodingRoundTripsAndBadBlobsAreRefused) {
+  const BatchResult result = Kept(0, 1).result;
+  const std::vector<uint8_t> blob = EncodeBatchResult(result);
+  EXPECT_EQ(blob.size(), kBatchResultHeaderBytes + 3 * kBatchResultHitBytes);
+  Result<BatchResult> back = DecodeBatchResult(blob);
+  ASSERT_TRUE(back.ok()) << back.error();
+  EXPECT_TRUE(*back == result);
+  EXPECT_TRUE(DecodeBatchResult(EncodeBatchResult(BatchResult{})).ok());
+
+  std::vector<uint8_t> short_blob(blob.begin(), blob.end() - 1);
+  EXPECT_FALSE(DecodeBatchResult(short_blob).ok());
+  EXPECT_FALSE(DecodeBatchResult(std::span(blob).first(10)).ok());
+  BatchResult unordered = result;
+  std::swap(unordered.hits[0], unordered.hits[1]);
+  Result<BatchResult> bad = DecodeBatchResult(EncodeBatchResult(unordered));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().find("out of patch order"), std::string::npos) << bad.error();
+  BatchResult zero = result;
+  zero.hits[2].weight = 0;
+  EXPECT_FALSE(DecodeBatchResult(EncodeBatchResult(zero)).ok());
+}
+
+}  // namespace
+}  // namespace radfarm::store
