@@ -172,7 +172,10 @@ void JobRounds::RunRoundHere(const std::shared_ptr<RunningJob>& runner) {
 void JobRounds::OnResultAccepted(store::JobId id, scheduler::BatchId batch) {
   const std::shared_ptr<RunningJob>& runner = runners_.at(id);
   std::vector<store::StoredBatchResult> keep;
-  const bool chunk = runner->QueueFold(batch, config_.keep_round_results ? &keep : nullptr);
+  const double round_seconds =
+      std::chrono::duration<double>(LoopNow(loop_) - runner->round_started()).count();
+  const bool chunk =
+      runner->QueueFold(batch, KeepsRoundResult(config_, round_seconds) ? &keep : nullptr);
   journal_.Add(id, std::move(keep));
   if (chunk) SendFolds(runner);
 }

@@ -30,7 +30,7 @@ struct Flags {
   std::optional<uint32_t> heartbeat_ms, agent_timeout_ms, handshake_timeout_ms, control_timeout_ms,
       hold_retry_ms, checkpoint_keep, max_running_jobs, max_agents, max_unauthenticated,
       blocklist_seconds;
-  std::optional<double> checkpoint_seconds, lease_seconds;
+  std::optional<double> checkpoint_seconds, lease_seconds, keep_results_after_seconds;
   std::optional<uint64_t> local_round_rays, max_store_bytes;
   std::optional<bool> keep_round_results;
   bool detach = false;
@@ -98,6 +98,10 @@ void AddFlags(CLI::App& app, Flags* f) {
   app.add_option("--keep-round-results", f->keep_round_results,
                  "Keep each accepted batch result in the store until its round's checkpoint, so "
                  "a restarted master leases only the batches it had not received (default true)");
+  app.add_option("--keep-results-after", f->keep_results_after_seconds,
+                 "Keep only the results accepted once a round has run this many seconds: a "
+                 "shorter round is cheaper to compute again than to write (default 5)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--http", f->http,
                  "HOST:PORT of the web console (status page, /metrics); off by default; port 0 "
                  "picks a free one, written to STATE/http.addr; a non-loopback HOST needs "
@@ -142,6 +146,7 @@ Result<MasterConfig> ResolveConfig(const Flags& f) {
   Override(f.max_unauthenticated, &c.max_unauthenticated);
   Override(f.local_round_rays, &c.local_round_rays);
   Override(f.keep_round_results, &c.keep_round_results);
+  Override(f.keep_results_after_seconds, &c.keep_results_after_seconds);
   Override(f.http, &c.http);
   Override(f.http_token_file, &c.http_token_file);
   RADFARM_RETURN_IF_ERROR(CheckMasterConfig(c));

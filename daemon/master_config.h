@@ -32,6 +32,10 @@ struct MasterConfig {
   // master leases only the batches it had not received (daemon/result_journal.h). Off: a restart
   // computes the whole round again, as before.
   bool keep_round_results = true;
+  // ... but only the results accepted once a round has run this long: a short round is cheaper to
+  // compute again than to write (on a loopback farm keeping every result of the Cornell box's
+  // 1-2 s rounds cost 20% of its time), and a kill loses at most this much of a round's work.
+  double keep_results_after_seconds = 5;
   // A job that meets a store fault (disk full, I/O error) is held and tried again this often.
   uint32_t hold_retry_ms = 10000;
   // The job store's size at most (0: no limit but the disk's). Reaching it is like a full disk:
@@ -60,5 +64,10 @@ Status ReadMasterConfigFile(const std::string& path, MasterConfig* config);
 
 // The checks no single key can make (called after flags are applied).
 Status CheckMasterConfig(const MasterConfig& config);
+
+// Whether a result accepted `round_seconds` into its round is kept for a restart.
+inline bool KeepsRoundResult(const MasterConfig& config, double round_seconds) {
+  return config.keep_round_results && round_seconds >= config.keep_results_after_seconds;
+}
 
 }  // namespace radfarm::daemon

@@ -3,7 +3,8 @@
 //   - without kills,
 //   - with the master SIGKILLed and restarted --kills times mid-round, keeping no round results
 //     (--keep-round-results false: what a restart cost before they were kept),
-//   - the same, keeping them (the default),
+//   - the same, keeping every result from the round's start (--keep-results-after 0),
+//   - without kills, keeping them after 5 s (the default, which a Cornell box round never reaches),
 // --runs times each (and without kills, not keeping, for the cost of keeping), and prints the
 // medians of the wall time and of the batch results accepted beyond the run without kills: work
 // computed again because a master forgot it (a Cornell box round holds 2,800-3,800 batches). Every
@@ -124,12 +125,19 @@ struct RunResult {
   std::string patches;
 };
 
-RunResult RunJob(const Options& o, int kills, bool keep) {
+// keep_after: --keep-results-after, or negative for --keep-round-results false.
+RunResult RunJob(const Options& o, int kills, double keep_after) {
   testing::TempDir dir;
   testing::LoopbackFarm farm({RADFARMD_PATH, RADFARM_AGENT_PATH, RADFARM_CLI_PATH}, dir.path());
-  const std::vector<std::string> flags = {
-      "--log-level",          "warning", "--http", "127.0.0.1:0", "--keep-round-results",
-      keep ? "true" : "false"};
+  std::vector<std::string> flags = {"--log-level",
+                                    "warning",
+                                    "--http",
+                                    "127.0.0.1:0",
+                                    "--keep-round-results",
+                                    keep_after >= 0 ? "true" : "false"};
+  if (keep_after >= 0) {
+    flags.insert(flags.end(), {"--keep-results-after", std::to_string(keep_after)});
+  }
   farm.StartMaster(flags);
   if (farm.master_address().empty()) throw std::runtime_error("radfarmd: " + farm.MasterLog());
   const std::string listen =
@@ -221,12 +229,14 @@ int main(int argc, char** argv) {
     struct Mode {
       const char* name;
       int kills;
-      bool keep;
+      double keep_after;  // negative: not kept
+      bool keep() const { return keep_after >= 0; }
     };
-    const std::vector<Mode> modes = {{"no kills, results kept", 0, true},
-                                     {"no kills, not kept", 0, false},
-                                     {"kills, not kept", o.kills, false},
-                                     {"kills, results kept", o.kills, true}};
+    const std::vector<Mode> modes = {{"no kills, all kept", 0, 0},
+                                     {"no kills, kept after 5 s", 0, 5},
+                                     {"no kills, not kept", 0, -1},
+                                     {"kills, not kept", o.kills, -1},
+                                     {"kills, all kept", o.kills, 0}};
     nlohmann::json json{{"machine", MachineJson(machine)},
                         {"kills", o.kills},
                         {"runs", o.runs},
@@ -240,7 +250,7 @@ int main(int argc, char** argv) {
       std::vector<double> seconds, issued, accepted, restored;
       double kept = 0, writes = 0;
       for (int run = 0; run < o.runs; ++run) {
-        const RunResult r = RunJob(o, mode.kills, mode.keep);
+        const RunResult r = RunJob(o, mode.kills, mode.keep_after);
         if (reference.empty()) reference = r.patches;
         if (r.patches != reference)
           throw std::runtime_error(std::string(mode.name) + ": bytes differ");
@@ -248,7 +258,7 @@ int main(int argc, char** argv) {
         issued.push_back(r.batches_issued);
         accepted.push_back(r.results_accepted);
         restored.push_back(r.batches_restored);
-        if (mode.kills == 0 && mode.keep) {
+        if (mode.kills == 0 && mode.keep_after == 0) {
           produced_per_second = std::max(produced_per_second, r.results_accepted / r.seconds);
           kept += r.results_kept;
           writes += r.result_writes;
@@ -260,14 +270,15 @@ int main(int argc, char** argv) {
                   Median(issued), Median(accepted), again, Median(restored));
       json["modes"].push_back({{"mode", mode.name},
                                {"kills", mode.kills},
-                               {"keep_round_results", mode.keep},
+                               {"keep_round_results", mode.keep()},
+                               {"keep_results_after_seconds", mode.keep_after},
                                {"seconds", seconds},
                                {"batches_issued", issued},
                                {"results_accepted", accepted},
                                {"batches_restored", restored},
                                {"median_seconds", Median(seconds)},
                                {"median_results_computed_again", again}});
-      if (mode.kills == 0 && mode.keep && writes > 0) {
+      if (mode.kills == 0 && mode.keep_after == 0 && writes > 0) {
         std::printf("  without kills: %.0f results/s accepted, kept in %.1f results a write\n",
                     produced_per_second, kept / writes);
         json["farm_results_per_second"] = produced_per_second;

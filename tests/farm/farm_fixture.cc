@@ -9,8 +9,11 @@ namespace {
 
 // Short heartbeats and timeouts, so that tests of lost agents and handshakes take seconds.
 const std::vector<std::string> kMasterFlags = {
-    "--heartbeat-ms",         "200",  "--agent-timeout-ms", "2000",
-    "--handshake-timeout-ms", "2000", "--log-level",        "debug"};
+    "--heartbeat-ms", "200", "--agent-timeout-ms", "2000", "--handshake-timeout-ms", "2000",
+    "--log-level", "debug",
+    // Rounds here last a second or two: keep their results from the start, so the restart tests
+    // find them (the 5 s default is KeepsRoundResultTest's).
+    "--keep-results-after", "0"};
 
 }  // namespace
 

@@ -131,6 +131,7 @@ TEST(ExampleConfigTest, RadfarmdReadsItsExampleAndItHoldsTheDefaults) {
   EXPECT_EQ(config.max_unauthenticated, defaults.max_unauthenticated);
   EXPECT_EQ(config.local_round_rays, defaults.local_round_rays);
   EXPECT_EQ(config.keep_round_results, defaults.keep_round_results);
+  EXPECT_EQ(config.keep_results_after_seconds, defaults.keep_results_after_seconds);
 }
 #endif
 
