@@ -103,9 +103,10 @@ class Campaign {
     std::ofstream(db, std::ios::binary) << bytes;
     farm_.StartMaster(plan_.master_flags, std::chrono::seconds(60));
     const std::optional<int> exit = farm_.master()->WaitExit(std::chrono::seconds(60));
-    const std::string log = farm_.MasterLog();
+    std::string log = farm_.MasterLog();
+    while (!log.empty() && log.back() == '\n') log.pop_back();
     say_(std::string("store damaged before start (") + kinds[kind] +
-         "): " + log.substr(log.rfind('\n', log.size() - 2) + 1));
+         "): " + log.substr(log.rfind('\n') + 1));
     ++out_.faults["store_damaged"];
     if (!exit || *exit == 0 || log.find("radfarm.db") == std::string::npos) {
       Problem(std::string("radfarmd did not refuse a store file of ") + kinds[kind] +

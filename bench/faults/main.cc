@@ -29,7 +29,7 @@ using testing::FaultPlan;
 
 struct Options {
   FaultPlan plan;
-  std::string patch_size = "100";
+  std::string patch_size;  // empty: the scene's default
   std::string rays = "6000000";
   std::string json = DefaultJsonPath("fault_bench");
 };
@@ -69,7 +69,7 @@ Options Parse(int argc, char** argv) {
     } else if (a == "-h" || a == "--help") {
       std::printf(
           "fault_bench [--seed N] [--agents 3] [--jobs 8] [--agent-faults 100]\n"
-          "            [--master-kills 30] [--disk-fills 5] [--patch-size 100] [--rays 6000000]\n"
+          "            [--master-kills 30] [--disk-fills 5] [--patch-size MM] [--rays 6000000]\n"
           "            [--json PATH]\n"
           "  A seeded fault campaign against a loopback farm rendering the Cornell box; every\n"
           "  job is checked against `radfarm render`. --disk-fills needs root (a tmpfs).\n");
@@ -86,7 +86,9 @@ int Run(int argc, char** argv) {
   Options o = Parse(argc, argv);
   FaultPlan& plan = o.plan;
   plan.job_file = RADFARM_SOURCE_DIR "/scenes/cornell-box.toml";
-  plan.job_flags = {"--patch-size", o.patch_size, "--rays", o.rays};
+  plan.job_flags = {"--rays", o.rays};
+  if (!o.patch_size.empty())
+    plan.job_flags.insert(plan.job_flags.end(), {"--patch-size", o.patch_size});
   plan.master_flags = {
       "--heartbeat-ms",  "200", "--agent-timeout-ms", "2000", "--handshake-timeout-ms", "2000",
       "--hold-retry-ms", "200", "--log-level",        "info"};
