@@ -3,6 +3,8 @@
 #include <limits>
 #include <string>
 
+#include "protocol/message_checks.h"
+
 namespace radfarm::daemon {
 
 namespace {
@@ -16,7 +18,8 @@ constexpr CommandName kCommands[] = {
     {"status", ControlCommand::kStatus}, {"cancel", ControlCommand::kCancel},
     {"pause", ControlCommand::kPause},   {"resume", ControlCommand::kResume},
     {"log", ControlCommand::kLog},       {"fetch", ControlCommand::kFetch},
-    {"agents", ControlCommand::kAgents},
+    {"agents", ControlCommand::kAgents}, {"enroll_agent", ControlCommand::kEnrollAgent},
+    {"revoke_agent", ControlCommand::kRevokeAgent},
 };
 
 Result<int64_t> IntArg(const nlohmann::json& json, const char* key) {
@@ -103,6 +106,16 @@ Result<ControlRequest> ParseControlRequest(const nlohmann::json& json, uint64_t*
                      std::to_string(kMaxControlAttachmentBytes) + "]"};
       }
       *attachment_bytes = uint64_t(*bytes);
+      break;
+    }
+    case ControlCommand::kEnrollAgent:
+    case ControlCommand::kRevokeAgent: {
+      const auto name = json.find("name");
+      if (name == json.end() || !name->is_string()) return Error{"'name' must be a string"};
+      request.name = name->get<std::string>();
+      if (!protocol::IsValidAgentName(request.name)) {
+        return Error{"'name' must be an agent name: 1 to 64 of A-Z a-z 0-9 . _ : @ -"};
+      }
       break;
     }
     case ControlCommand::kList:
