@@ -3,8 +3,6 @@
 #include <limits>
 #include <string>
 
-#include "protocol/message_checks.h"
-
 namespace radfarm::daemon {
 
 namespace {
@@ -14,11 +12,16 @@ struct CommandName {
   ControlCommand command;
 };
 constexpr CommandName kCommands[] = {
-    {"submit", ControlCommand::kSubmit}, {"list", ControlCommand::kList},
-    {"status", ControlCommand::kStatus}, {"cancel", ControlCommand::kCancel},
-    {"pause", ControlCommand::kPause},   {"resume", ControlCommand::kResume},
-    {"log", ControlCommand::kLog},       {"fetch", ControlCommand::kFetch},
-    {"agents", ControlCommand::kAgents}, {"enroll_agent", ControlCommand::kEnrollAgent},
+    {"submit", ControlCommand::kSubmit},
+    {"list", ControlCommand::kList},
+    {"status", ControlCommand::kStatus},
+    {"cancel", ControlCommand::kCancel},
+    {"pause", ControlCommand::kPause},
+    {"resume", ControlCommand::kResume},
+    {"log", ControlCommand::kLog},
+    {"fetch", ControlCommand::kFetch},
+    {"agents", ControlCommand::kAgents},
+    {"enroll_agent", ControlCommand::kEnrollAgent},
     {"revoke_agent", ControlCommand::kRevokeAgent},
 };
 
@@ -113,10 +116,7 @@ Result<ControlRequest> ParseControlRequest(const nlohmann::json& json, uint64_t*
       const auto name = json.find("name");
       if (name == json.end() || !name->is_string()) return Error{"'name' must be a string"};
       request.name = name->get<std::string>();
-      if (!protocol::IsValidAgentName(request.name)) {
-        return Error{"'name' must be an agent name: 1 to 64 of A-Z a-z 0-9 . _ : @ -"};
-      }
-      break;
+      break;  // ControlRequests checks it is an agent name (protocol::IsValidAgentName)
     }
     case ControlCommand::kList:
     case ControlCommand::kAgents:

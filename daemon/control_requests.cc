@@ -10,6 +10,7 @@
 #include "loop/log.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/refine.h"
+#include "protocol/message_checks.h"
 #include "protocol/scene_transfer.h"
 #include "store/job_transactions.h"
 
@@ -95,9 +96,16 @@ void ControlRequests::Handle(ControlRequest request, ControlRespond respond) {
       return;
     }
     case ControlCommand::kEnrollAgent:
-      return EnrollAgent(request.name, std::move(respond));
     case ControlCommand::kRevokeAgent:
-      return RevokeAgent(request.name, std::move(respond));
+      if (!protocol::IsValidAgentName(request.name)) {
+        respond(ControlError("bad_request",
+                             "'name' must be an agent name: 1 to 64 of A-Z a-z 0-9 . _ : @ -"));
+        return;
+      }
+      if (request.command == ControlCommand::kRevokeAgent) {
+        return RevokeAgent(request.name, std::move(respond));
+      }
+      return EnrollAgent(request.name, std::move(respond));
   }
 }
 

@@ -61,7 +61,8 @@ TEST(AgentCredentialsTest, WithoutTheSharedSecretOnlyEnrolledAgentsGetIn) {
   EXPECT_NE(key.error().find("allow_shared_secret = false"), std::string::npos) << key.error();
 }
 
-TEST(AgentCredentialsTest, ControlRequestsNameOneValidAgent) {
+// (Whether the name is an agent name is checked by ControlRequests: FarmTest.RevokingANameNever...)
+TEST(AgentCredentialsTest, ControlRequestsNameOneAgent) {
   uint64_t attachment = 0;
   Result<ControlRequest> enroll = ParseControlRequest(
       nlohmann::json{{"command", "enroll_agent"}, {"name", "node-1"}}, &attachment);
@@ -72,12 +73,9 @@ TEST(AgentCredentialsTest, ControlRequestsNameOneValidAgent) {
       nlohmann::json{{"command", "revoke_agent"}, {"name", "node-1"}}, &attachment);
   ASSERT_TRUE(revoke.ok());
   EXPECT_EQ(revoke->command, ControlCommand::kRevokeAgent);
-  for (const nlohmann::json& bad :
-       {nlohmann::json{{"command", "enroll_agent"}},
-        nlohmann::json{{"command", "enroll_agent"}, {"name", 5}},
-        nlohmann::json{{"command", "revoke_agent"}, {"name", "two words"}},
-        nlohmann::json{{"command", "revoke_agent"}, {"name", ""}},
-        nlohmann::json{{"command", "enroll_agent"}, {"name", std::string(65, 'a')}}}) {
+  for (const nlohmann::json& bad : {nlohmann::json{{"command", "enroll_agent"}},
+                                    nlohmann::json{{"command", "enroll_agent"}, {"name", 5}},
+                                    nlohmann::json{{"command", "revoke_agent"}}}) {
     Result<ControlRequest> r = ParseControlRequest(bad, &attachment);
     EXPECT_FALSE(r.ok()) << bad.dump();
   }
