@@ -298,13 +298,20 @@ void Agent::OnLinkClosed(const LinkClosed& closed) {
                       " (this agent's results failed validation: check its hardware "
                       "and that it runs the master's radfarm release)",
                   kBlocklistedRetry);
+  } else if (closed.was_authenticated && closed.auth_failed) {
+    // `radfarm agents revoke`: our key is no good any more; retrying is refused at the handshake
+    // until an operator enrolls this agent again and gives it the new key.
+    ScheduleRetry("authentication with",
+                  "revoked: " + closed.reason + "; dropped " + std::to_string(dropped) + " leases");
   } else if (closed.was_authenticated) {
     ScheduleRetry("lost the connection to",
                   closed.reason + "; dropped " + std::to_string(dropped) + " leases");
   } else if (closed.auth_failed) {
     ScheduleRetry(
         "authentication with",
-        "failed: " + closed.reason + " (do the agent and the master use the same farm secret?)");
+        "failed: " + closed.reason +
+            " (does the agent's secret file hold the farm secret, or this agent's key from "
+            "`radfarm agents enroll`?)");
   } else {
     ScheduleRetry("cannot connect to", closed.reason);
   }

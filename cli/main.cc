@@ -2,7 +2,7 @@
 //   render                      the embedded single-machine mode (render_command.h)
 //   submit list status cancel   the master's job queue, through its control socket
 //   pause resume log fetch      (docs/CONTROL.md; farm_command.h)
-//   agents
+//   agents [enroll NAME | revoke NAME]   per-agent keys (agent_credential_commands.h)
 //   secret new                  a fresh farm secret (secret_command.h)
 //   building                    a procedural building scene (building_command.h, scenegen/)
 #include <CLI/CLI.hpp>
@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli/agent_credential_commands.h"
 #include "cli/agents_command.h"
 #include "cli/building_command.h"
 #include "cli/control_client.h"
@@ -83,8 +84,16 @@ int main(int argc, char** argv) {
   commands.emplace_back(AddLogCommand(app, &log), [&] { return RunLog(log, control); });
   FetchOptions fetch;
   commands.emplace_back(AddFetchCommand(app, &fetch), [&] { return RunFetch(fetch, control); });
+  // enroll and revoke before agents: `agents` counts as parsed when one of them is.
   AgentsOptions agents;
-  commands.emplace_back(AddAgentsCommand(app, &agents), [&] { return RunAgents(agents, control); });
+  CLI::App* agents_command = AddAgentsCommand(app, &agents);
+  EnrollOptions enroll;
+  commands.emplace_back(AddEnrollCommand(*agents_command, &enroll),
+                        [&] { return RunEnroll(enroll, control); });
+  RevokeOptions revoke;
+  commands.emplace_back(AddRevokeCommand(*agents_command, &revoke),
+                        [&] { return RunRevoke(revoke, control); });
+  commands.emplace_back(agents_command, [&] { return RunAgents(agents, control); });
   SecretOptions secret;
   commands.emplace_back(AddSecretCommand(app, &secret), [&] { return RunSecretNew(secret); });
   BuildingOptions building;

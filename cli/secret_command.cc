@@ -61,7 +61,8 @@ Status CreateMissingParents(const std::string& file) {
   return Ok{};
 }
 
-// Returns the exit code.
+}  // namespace
+
 int WriteSecretFile(const std::string& file, const std::string& text, bool force) {
   if (Status s = CreateMissingParents(file); !s) {
     PrintError(s.error());
@@ -93,8 +94,6 @@ int WriteSecretFile(const std::string& file, const std::string& text, bool force
   PrintError(Errno(file));
   return kExitFailure;
 }
-
-}  // namespace
 
 CLI::App* AddSecretCommand(CLI::App& app, SecretOptions* options) {
   CLI::App* secret = app.add_subcommand("secret", "Manage the farm secret (the handshake's key)");

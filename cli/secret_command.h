@@ -20,4 +20,9 @@ struct SecretOptions {
 CLI::App* AddSecretCommand(CLI::App& app, SecretOptions* options);
 int RunSecretNew(const SecretOptions& options);
 
+// Writes `text` (a key's hex) to `file` as `secret new` does (mode 0600, atomically, missing
+// folders 0700, never over an existing file without `force`); errors are printed. Returns the
+// exit code. Also writes `agents enroll`'s key files.
+int WriteSecretFile(const std::string& file, const std::string& text, bool force);
+
 }  // namespace radfarm

@@ -45,7 +45,8 @@ uint32_t PreemptLowerPriority(const std::vector<RunningJob*>& order, size_t k, u
 AgentConnections::AgentConnections(loop::EventLoop& loop, const MasterConfig& config,
                                    const protocol::FarmSecret& secret,
                                    const scheduler::SchedulerOptions& options, StoreThread& store,
-                                   JobRounds& jobs)
+                                   JobRounds& jobs,
+                                   const std::vector<store::AgentCredential>& credentials)
     : loop_(loop),
       config_(config),
       secret_(secret),
@@ -53,6 +54,7 @@ AgentConnections::AgentConnections(loop::EventLoop& loop, const MasterConfig& co
       store_(store),
       jobs_(jobs),
       blocklist_(options.blocklist_duration),
+      credentials_(secret, credentials, config.allow_shared_secret),
       doors_(config.max_unauthenticated),
       door_log_(kDoorLogLines, kDoorLogWindow) {}
 
@@ -66,6 +68,7 @@ void AgentConnections::OnConnection(std::unique_ptr<loop::FramedConnection> conn
   protocol::MasterConfig session;
   session.agent_id = id;
   session.heartbeat_interval_ms = config_.heartbeat_ms;
+  session.key_for_agent = [this](const std::string& name) { return credentials_.KeyFor(name); };
   AgentLinkOptions options;
   options.handshake_timeout = std::chrono::milliseconds(config_.handshake_timeout_ms);
   options.idle_close_timeout = std::chrono::milliseconds(6 * uint64_t{config_.agent_timeout_ms});
@@ -89,6 +92,30 @@ void AgentConnections::OnConnection(std::unique_ptr<loop::FramedConnection> conn
       it->second->Drop(why);
     }
   }
+}
+
+protocol::FarmSecret AgentConnections::Enrolled(const store::AgentCredential& credential) {
+  credentials_.Update(credential);
+  LogLine(LogLevel::kInfo, "agents")
+      << "agent " << credential.name << " enrolled (generation " << credential.generation << ")";
+  return credentials_.KeyOf(credential);
+}
+
+size_t AgentConnections::Revoked(const store::AgentCredential& credential) {
+  credentials_.Update(credential);
+  const std::string why =
+      "the credential of agent " + credential.name + " was revoked (`radfarm agents revoke`)";
+  std::vector<AgentLink*> closing;
+  // A link has a name once its Hello passed: authenticated, or awaiting a Proof made with the key
+  // just revoked.
+  for (auto& [id, link] : links_) {
+    if (!link->closing() && link->name() == credential.name) closing.push_back(link.get());
+  }
+  LogLine(LogLevel::kWarning, "agents")
+      << "agent " << credential.name << " revoked (generation " << credential.generation
+      << "): closing " << closing.size() << " connections";
+  for (AgentLink* link : closing) link->Close(protocol::CloseCode::kAuthFailed, why);
+  return closing.size();
 }
 
 void AgentConnections::OnAuthenticated(AgentLink& link) {

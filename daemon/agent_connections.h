@@ -24,6 +24,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "daemon/agent_credentials.h"
 #include "daemon/agent_link.h"
 #include "daemon/door_keeper.h"
 #include "daemon/job_blocklist.h"
@@ -41,7 +42,8 @@ class AgentConnections {
  public:
   AgentConnections(loop::EventLoop& loop, const MasterConfig& config,
                    const protocol::FarmSecret& secret, const scheduler::SchedulerOptions& options,
-                   StoreThread& store, JobRounds& jobs);
+                   StoreThread& store, JobRounds& jobs,
+                   const std::vector<store::AgentCredential>& credentials);
   AgentConnections(const AgentConnections&) = delete;
   AgentConnections& operator=(const AgentConnections&) = delete;
 
@@ -64,6 +66,13 @@ class AgentConnections {
   // The connections at the door: strangers waiting, evicted, refused (control `agents`).
   const DoorCounters& doors() const { return doors_.counters(); }
   uint32_t max_unauthenticated() const { return doors_.max_unauthenticated(); }
+
+  // After the store committed `radfarm agents enroll`: the name proves itself with this key from
+  // its next handshake on (a live connection stays). Returns the key to hand out.
+  protocol::FarmSecret Enrolled(const store::AgentCredential& credential);
+  // After the store committed `radfarm agents revoke`: the name is refused from now on, and its
+  // connections (authenticated or still in the handshake) close at once. Returns how many.
+  size_t Revoked(const store::AgentCredential& credential);
 
   // Shutdown: tells every agent and refuses new connections and dispatches.
   void Stop();
@@ -97,6 +106,7 @@ class AgentConnections {
   std::map<uint64_t, std::unique_ptr<AgentLink>> links_;
   uint64_t next_agent_id_ = 1;
   JobBlocklist blocklist_;
+  AgentCredentials credentials_;
   DoorKeeper doors_;
   LogRateLimiter door_log_;
   bool stopping_ = false;

@@ -12,11 +12,17 @@ struct CommandName {
   ControlCommand command;
 };
 constexpr CommandName kCommands[] = {
-    {"submit", ControlCommand::kSubmit}, {"list", ControlCommand::kList},
-    {"status", ControlCommand::kStatus}, {"cancel", ControlCommand::kCancel},
-    {"pause", ControlCommand::kPause},   {"resume", ControlCommand::kResume},
-    {"log", ControlCommand::kLog},       {"fetch", ControlCommand::kFetch},
+    {"submit", ControlCommand::kSubmit},
+    {"list", ControlCommand::kList},
+    {"status", ControlCommand::kStatus},
+    {"cancel", ControlCommand::kCancel},
+    {"pause", ControlCommand::kPause},
+    {"resume", ControlCommand::kResume},
+    {"log", ControlCommand::kLog},
+    {"fetch", ControlCommand::kFetch},
     {"agents", ControlCommand::kAgents},
+    {"enroll_agent", ControlCommand::kEnrollAgent},
+    {"revoke_agent", ControlCommand::kRevokeAgent},
 };
 
 Result<int64_t> IntArg(const nlohmann::json& json, const char* key) {
@@ -104,6 +110,13 @@ Result<ControlRequest> ParseControlRequest(const nlohmann::json& json, uint64_t*
       }
       *attachment_bytes = uint64_t(*bytes);
       break;
+    }
+    case ControlCommand::kEnrollAgent:
+    case ControlCommand::kRevokeAgent: {
+      const auto name = json.find("name");
+      if (name == json.end() || !name->is_string()) return Error{"'name' must be a string"};
+      request.name = name->get<std::string>();
+      break;  // ControlRequests checks it is an agent name (protocol::IsValidAgentName)
     }
     case ControlCommand::kList:
     case ControlCommand::kAgents:

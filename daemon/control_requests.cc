@@ -10,6 +10,7 @@
 #include "loop/log.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/refine.h"
+#include "protocol/message_checks.h"
 #include "protocol/scene_transfer.h"
 #include "store/job_transactions.h"
 
@@ -60,7 +61,7 @@ codec::JobSolution SolutionOf(store::StoredSolution stored, const JobSummary& su
 
 ControlRequests::ControlRequests(loop::EventLoop& loop, StoreThread& store,
                                  loop::WorkQueue& compute, JobRounds& jobs,
-                                 const AgentConnections& agents)
+                                 AgentConnections& agents)
     : loop_(loop), store_(store), compute_(compute), jobs_(jobs), agents_(agents) {}
 
 void ControlRequests::Handle(ControlRequest request, ControlRespond respond) {
@@ -94,7 +95,67 @@ void ControlRequests::Handle(ControlRequest request, ControlRespond respond) {
       respond({json{{"ok", true}, {"agents", list}, {"connections", DoorsJson()}}, {}});
       return;
     }
+    case ControlCommand::kEnrollAgent:
+    case ControlCommand::kRevokeAgent:
+      if (!protocol::IsValidAgentName(request.name)) {
+        respond(ControlError("bad_request",
+                             "'name' must be an agent name: 1 to 64 of A-Z a-z 0-9 . _ : @ -"));
+        return;
+      }
+      if (request.command == ControlCommand::kRevokeAgent) {
+        return RevokeAgent(request.name, std::move(respond));
+      }
+      return EnrollAgent(request.name, std::move(respond));
   }
+}
+
+void ControlRequests::EnrollAgent(const std::string& name, ControlRespond respond) {
+  store_.Run(
+      [name](store::JobStore& s) -> Result<store::AgentCredential> {
+        Result<store::AgentCredential> enrolled = s.EnrollAgent(name);
+        RADFARM_RETURN_IF_ERROR(enrolled);
+        (void)s.AppendEvent(std::nullopt, store::EventLevel::kInfo,
+                            "agent " + name + " enrolled (generation " +
+                                std::to_string(enrolled->generation) + ")");
+        return enrolled;
+      },
+      [this, respond](Result<store::AgentCredential> enrolled) {
+        if (!enrolled) return respond(ControlError("internal", enrolled.error()));
+        const protocol::FarmSecret key = agents_.Enrolled(*enrolled);
+        respond({json{{"ok", true},
+                      {"name", enrolled->name},
+                      {"generation", enrolled->generation},
+                      {"key", key.ToHex()}},
+                 {}});
+      });
+}
+
+void ControlRequests::RevokeAgent(const std::string& name, ControlRespond respond) {
+  store_.Run(
+      [name](store::JobStore& s) -> Result<std::optional<store::AgentCredential>> {
+        Result<std::optional<store::AgentCredential>> revoked = s.RevokeAgent(name);
+        RADFARM_RETURN_IF_ERROR(revoked);
+        if (*revoked) {
+          (void)s.AppendEvent(std::nullopt, store::EventLevel::kWarning,
+                              "agent " + name + " revoked (generation " +
+                                  std::to_string((*revoked)->generation) + ")");
+        }
+        return revoked;
+      },
+      [this, name, respond](Result<std::optional<store::AgentCredential>> revoked) {
+        if (!revoked) return respond(ControlError("internal", revoked.error()));
+        if (!*revoked) {
+          return respond(ControlError("not_found", "agent " + name +
+                                                       " is not enrolled (an agent using the "
+                                                       "farm secret is cut off by changing it)"));
+        }
+        const size_t closed = agents_.Revoked(**revoked);
+        respond({json{{"ok", true},
+                      {"name", name},
+                      {"generation", (*revoked)->generation},
+                      {"closed", closed}},
+                 {}});
+      });
 }
 
 void ControlRequests::Log(ControlRequest request, ControlRespond respond) {

@@ -1,5 +1,5 @@
 // ControlRequests: the master's answers to the control socket's requests (docs/CONTROL.md):
-// submit, list, status, cancel, pause, resume, log, fetch, agents. A request that reads or
+// submit, list, status, cancel, pause, resume, log, fetch, agents, enroll_agent, revoke_agent. A request that reads or
 // writes the store runs one of the store's named transactions (store/job_transactions.h) on the
 // store thread and answers when it is committed; a submitted bundle is decoded and meshed on the
 // compute thread first, so one the agents could not use is refused at once. Live figures (rays
@@ -23,7 +23,7 @@ namespace radfarm::daemon {
 class ControlRequests {
  public:
   ControlRequests(loop::EventLoop& loop, StoreThread& store, loop::WorkQueue& compute,
-                  JobRounds& jobs, const AgentConnections& agents);
+                  JobRounds& jobs, AgentConnections& agents);
   ControlRequests(const ControlRequests&) = delete;
   ControlRequests& operator=(const ControlRequests&) = delete;
 
@@ -41,6 +41,9 @@ class ControlRequests {
   void ChangeState(ControlRequest request, ControlRespond respond);
   void Fetch(ControlRequest request, ControlRespond respond);
   void Log(ControlRequest request, ControlRespond respond);
+  // `radfarm agents enroll|revoke NAME`: the store first, then the in-memory credentials.
+  void EnrollAgent(const std::string& name, ControlRespond respond);
+  void RevokeAgent(const std::string& name, ControlRespond respond);
   // Answers with the job object of `id` (all jobs when nullopt) read from the store.
   void RespondWithJobs(std::optional<store::JobId> id, ControlRespond respond);
 
@@ -48,7 +51,7 @@ class ControlRequests {
   StoreThread& store_;
   loop::WorkQueue& compute_;
   JobRounds& jobs_;
-  const AgentConnections& agents_;
+  AgentConnections& agents_;
   bool stopping_ = false;
 };
 

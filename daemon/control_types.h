@@ -21,7 +21,9 @@ enum class ControlCommand {
   kResume,
   kLog,
   kFetch,
-  kAgents
+  kAgents,
+  kEnrollAgent,
+  kRevokeAgent
 };
 
 struct ControlRequest {
@@ -29,7 +31,7 @@ struct ControlRequest {
   // status, cancel, pause, resume, fetch: required; log: optional. Any unsigned 64-bit number:
   // one above the store's largest id is simply no job.
   std::optional<uint64_t> id;
-  std::string name;                 // submit
+  std::string name;                 // submit; enroll_agent, revoke_agent: the agent's name
   int64_t priority = 0;             // submit
   int64_t limit = 100;              // log
   std::vector<uint8_t> attachment;  // submit: the job bundle

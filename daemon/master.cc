@@ -55,13 +55,16 @@ Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const Maste
   if (Result<int> requeued = store::RequeueRunningJobs(*store); !requeued) {
     return Error{requeued.error()};
   }
+  // Read here, once: from now on the handshake uses the in-memory copy (agent_credentials.h).
+  Result<std::vector<store::AgentCredential>> credentials = store->ListAgentCredentials();
+  RADFARM_RETURN_IF_ERROR(credentials);
   auto store_thread = StoreThread::Start(loop, std::move(*store));
   RADFARM_RETURN_IF_ERROR(store_thread);
   master->store_ = std::move(*store_thread);
   auto compute = loop::WorkQueue::Create(loop, 1, "compute");
   RADFARM_RETURN_IF_ERROR(compute);
   master->compute_ = std::move(*compute);
-  if (Status s = master->Wire(); !s) return Error{s.error()};
+  if (Status s = master->Wire(*credentials); !s) return Error{s.error()};
 
   master->notifier_ = std::make_unique<service::ServiceNotifier>(loop);
   master->notifier_->Ready();  // the store is open and both listeners are bound
@@ -73,7 +76,7 @@ Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const Maste
   return master;
 }
 
-Status Master::Wire() {
+Status Master::Wire(const std::vector<store::AgentCredential>& credentials) {
   // JobRounds reaches the agents only through these hooks (agents_ is made right after it).
   AgentHooks hooks{[this] { agents_->DispatchAll(); },
                    [this](store::JobId id) { agents_->CancelJob(id); },
@@ -81,7 +84,7 @@ Status Master::Wire() {
   jobs_ = std::make_unique<JobRounds>(loop_, config_, scheduler_options_, *store_, *compute_,
                                       std::move(hooks));
   agents_ = std::make_unique<AgentConnections>(loop_, config_, secret_, scheduler_options_, *store_,
-                                               *jobs_);
+                                               *jobs_, credentials);
   control_ = std::make_unique<ControlRequests>(loop_, *store_, *compute_, *jobs_, *agents_);
 
   Result<loop::HostPort> listen = loop::ParseHostPort(config_.listen, "--listen");

@@ -61,7 +61,7 @@ class Master {
  private:
   Master(loop::EventLoop& loop, const MasterConfig& config, protocol::FarmSecret secret);
   // Creates the parts and the handles that feed them.
-  Status Wire();
+  Status Wire(const std::vector<store::AgentCredential>& credentials);
   void OnHeartbeatTimer();
   void OnTickTimer();
   // "2 jobs running, 1 starting; 5 agents" for systemd's STATUS=.

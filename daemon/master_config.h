@@ -47,6 +47,9 @@ struct MasterConfig {
   uint32_t max_agents = 4096;  // authenticated agents beyond this are refused
   // Connections still in the handshake at once; a newer one makes the oldest go (door_keeper.h).
   uint32_t max_unauthenticated = 64;
+  // Whether an agent that is not enrolled (`radfarm agents enroll`) may prove itself with the farm
+  // secret. false: only enrolled agents, each with its own key, which can be revoked alone.
+  bool allow_shared_secret = true;
   // The web console (status page, /metrics): HOST:PORT, empty = off. A host other than loopback
   // needs http_token_file (the token that reading and acting then need).
   std::string http;

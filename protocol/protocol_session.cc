@@ -136,6 +136,12 @@ Result<ProtocolSession::Accepted> ProtocolSession::AcceptHello(const DecodedFram
                     VersionRange(kMinProtocolVersion, kProtocolVersion) +
                     "; install the same radfarm release on both");
   }
+  if (master_config_.key_for_agent) {
+    Result<ExpectedKey> expected = master_config_.key_for_agent(hello->agent_name);
+    if (!expected) return Fail(CloseCode::kAuthFailed, "handshake: " + expected.error());
+    secret_ = std::move(expected->key);
+    secret_description_ = std::move(expected->description);
+  }
   Result<Nonce> nonce = FreshNonce();
   if (!nonce) return Fail(CloseCode::kInternalError, nonce.error());
   hello_ = *hello;
@@ -180,7 +186,7 @@ Result<ProtocolSession::Accepted> ProtocolSession::AcceptProof(const DecodedFram
   }
   if (!TagsEqual(proof->tag, AgentTag(secret_, hello_, challenge_))) {
     return Fail(CloseCode::kAuthFailed,
-                "handshake: the agent's proof does not match the farm secret");
+                "handshake: the agent's proof does not match " + secret_description_);
   }
   welcome_ = WelcomeMsg{MasterTag(secret_, hello_, challenge_), master_config_.agent_id,
                         master_config_.heartbeat_interval_ms, master_config_.max_frame_bytes};

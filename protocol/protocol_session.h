@@ -30,6 +30,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -37,6 +38,7 @@
 #include <vector>
 
 #include "base/result.h"
+#include "protocol/agent_key.h"
 #include "protocol/farm_secret.h"
 #include "protocol/frame_seal.h"
 #include "protocol/messages.h"
@@ -47,6 +49,10 @@ struct MasterConfig {
   uint64_t agent_id = 0;  // told to the agent in Welcome, for logs on both sides
   uint32_t heartbeat_interval_ms = 5000;
   uint32_t max_frame_bytes = kDefaultMaxFrameBytes;  // the master's FrameDecoder limit
+  // Per-agent credentials (agent_key.h): given the Hello's agent name, the key that agent must
+  // prove itself with, in place of the session's secret for the proofs and the frame keys; an
+  // error (a revoked name) refuses it with Close(AuthFailed). Unset: the farm secret for all.
+  std::function<Result<ExpectedKey>(const std::string& agent_name)> key_for_agent;
 };
 
 struct AgentConfig {
@@ -131,6 +137,7 @@ class ProtocolSession {
 
   Role role_;
   FarmSecret secret_;
+  std::string secret_description_ = "the farm secret";  // for the proof's failure message
   State state_;
   MasterConfig master_config_;
   AgentConfig agent_config_;

@@ -134,6 +134,16 @@ struct AgentRecord {
   int64_t last_seen_ms = 0;
 };
 
+// An enrolled agent (agent_credentials): its key is protocol::DeriveAgentKey(secret, name,
+// generation); a revoked one is refused at the handshake.
+struct AgentCredential {
+  std::string name;
+  uint64_t generation = 0;
+  bool revoked = false;
+  int64_t enrolled_at_ms = 0;
+  std::optional<int64_t> revoked_at_ms;
+};
+
 class JobStore {
  public:
   // Opens or creates the store at `path` (checks, then migrates; see the design note).
@@ -193,6 +203,12 @@ class JobStore {
   // --- agents and events ---
   Status RecordAgentSeen(const std::string& name, const std::string& address, uint32_t threads);
   Result<std::vector<AgentRecord>> ListAgents();
+  // Enrolls `name`: generation 1, or the next one if it was enrolled before (a new key), and
+  // not revoked.
+  Result<AgentCredential> EnrollAgent(const std::string& name);
+  // Marks `name` revoked; nullopt if it was never enrolled.
+  Result<std::optional<AgentCredential>> RevokeAgent(const std::string& name);
+  Result<std::vector<AgentCredential>> ListAgentCredentials();
   Status AppendEvent(std::optional<JobId> job, EventLevel level, const std::string& text);
   // The last `limit` events of `job` (nullopt: farm-wide ones), oldest first.
   Result<std::vector<Event>> ListEvents(std::optional<JobId> job, int limit);

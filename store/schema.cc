@@ -119,8 +119,20 @@ CREATE TABLE round_results (
 ) WITHOUT ROWID;
 )sql";
 
-constexpr std::array<Migration, 6> kMigrations = {
-    {{1, kV1}, {2, kV2}, {3, kV3}, {4, kV4}, {5, kV5}, {6, kV6}}};
+// Version 7: per-agent credentials (protocol/agent_key.h). The key is derived from the farm secret,
+// the name and the generation, so no key is stored; enrolling a name again bumps the generation.
+constexpr std::string_view kV7 = R"sql(
+CREATE TABLE agent_credentials (
+  name TEXT PRIMARY KEY,
+  generation INTEGER NOT NULL CHECK (generation >= 1),
+  revoked INTEGER NOT NULL CHECK (revoked IN (0, 1)),
+  enrolled_at_ms INTEGER NOT NULL,
+  revoked_at_ms INTEGER
+);
+)sql";
+
+constexpr std::array<Migration, 7> kMigrations = {
+    {{1, kV1}, {2, kV2}, {3, kV3}, {4, kV4}, {5, kV5}, {6, kV6}, {7, kV7}}};
 
 Result<int64_t> FileBytes(Database& db) {
   Result<int64_t> pages = db.QueryInt("PRAGMA page_count");

@@ -56,7 +56,7 @@ TEST(AgentConnectionTest, AWrongSecretIsRefusedLoggedAndRetried) {
   ASSERT_TRUE(agent.WaitForLog("authentication with " + master.address() + " (attempt ", 2))
       << agent.Log();
   const std::string log = agent.Log();
-  EXPECT_NE(log.find("same farm secret"), std::string::npos) << log;
+  EXPECT_NE(log.find("the farm secret, or this agent's key"), std::string::npos) << log;
   EXPECT_EQ(log.find("connected to"), std::string::npos) << log;
   EXPECT_EQ(log.find(wrong.ToHex()), std::string::npos) << "the secret must never be logged";
   EXPECT_EQ(master.Snapshot().authenticated, 0);

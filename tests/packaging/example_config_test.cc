@@ -129,6 +129,7 @@ TEST(ExampleConfigTest, RadfarmdReadsItsExampleAndItHoldsTheDefaults) {
   EXPECT_EQ(config.lease_seconds, defaults.lease_seconds);
   EXPECT_EQ(config.max_agents, defaults.max_agents);
   EXPECT_EQ(config.max_unauthenticated, defaults.max_unauthenticated);
+  EXPECT_EQ(config.allow_shared_secret, defaults.allow_shared_secret);
   EXPECT_EQ(config.local_round_rays, defaults.local_round_rays);
   EXPECT_EQ(config.keep_round_results, defaults.keep_round_results);
   EXPECT_EQ(config.keep_results_after_seconds, defaults.keep_results_after_seconds);

@@ -42,7 +42,7 @@ Handshake RunHandshake(Session& master, Session& agent) {
 }
 
 Session Master(uint8_t secret = 1) {
-  return Session::ForMaster(Secret(secret), MasterConfig{17, 1000, kDefaultMaxFrameBytes});
+  return Session::ForMaster(Secret(secret), MasterConfig{17, 1000, kDefaultMaxFrameBytes, {}});
 }
 Session Agent(uint8_t secret = 1) {
   return Session::ForAgent(Secret(secret), AgentConfig{"node-1", 8});
@@ -349,7 +349,7 @@ TEST(ProtocolSessionTest, EncodeRefusesBeforeAuthenticationAndBadValues) {
 }
 
 TEST(ProtocolSessionTest, AgentWillNotSendAFrameAboveTheMastersLimit) {
-  Session master = Session::ForMaster(Secret(1), MasterConfig{1, 1000, kMinPeerFrameBytes});
+  Session master = Session::ForMaster(Secret(1), MasterConfig{1, 1000, kMinPeerFrameBytes, {}});
   Session agent = Agent();
   RunHandshake(master, agent);
   ASSERT_TRUE(agent.authenticated());

@@ -22,7 +22,7 @@ DecodedFrame Clear(const std::vector<uint8_t>& frame) { return DecodeFrame(frame
 
 // A master and an agent session after a complete handshake.
 struct Pair {
-  Session master = Session::ForMaster(Secret(), MasterConfig{3, 1000, kDefaultMaxFrameBytes});
+  Session master = Session::ForMaster(Secret(), MasterConfig{3, 1000, kDefaultMaxFrameBytes, {}});
   Session agent = Session::ForAgent(Secret(), AgentConfig{"node-1", 2});
   Pair() {
     Result<Session::Accepted> a = master.Accept(Clear(*agent.Start()));
