@@ -3,21 +3,11 @@
 // while an agent on the farm secret keeps working and the job still ends with render's bytes;
 // enrolling the name again issues a new key that works, and the old one stays refused.
 #include <fstream>
-#include <sstream>
 
 #include "tests/farm/farm_fixture.h"
 
 namespace radfarm::testing {
 namespace {
-
-size_t CountLinesWithBoth(const std::string& log, const std::string& a, const std::string& b) {
-  std::istringstream in(log);
-  size_t count = 0;
-  for (std::string line; std::getline(in, line);) {
-    count += line.find(a) != std::string::npos && line.find(b) != std::string::npos;
-  }
-  return count;
-}
 
 TEST_F(FarmTest, AnEnrolledAgentWorksWithItsKeyAndARevokeCutsItOffAtOnce) {
   StartMaster();

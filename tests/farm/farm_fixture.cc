@@ -82,6 +82,16 @@ size_t FarmTest::CountLines(const std::string& log, const std::string& text) {
   return count;
 }
 
+size_t FarmTest::CountLinesWithBoth(const std::string& log, const std::string& a,
+                                    const std::string& b) {
+  size_t count = 0;
+  std::istringstream lines(log);
+  for (std::string line; std::getline(lines, line);) {
+    count += line.find(a) != std::string::npos && line.find(b) != std::string::npos;
+  }
+  return count;
+}
+
 int64_t JobRound(const nlohmann::json& job) {
   return job.is_object() && job["round"].is_number() ? job["round"].get<int64_t>() : -1;
 }

@@ -61,6 +61,9 @@ class FarmTest : public ::testing::Test {
   const std::string& control() const { return farm_.control(); }
   // Counts the lines of `log` containing `text`.
   static size_t CountLines(const std::string& log, const std::string& text);
+  // Counts the lines of `log` containing both `a` and `b`.
+  static size_t CountLinesWithBoth(const std::string& log, const std::string& a,
+                                   const std::string& b);
 
   TempDir dir_;
   LoopbackFarm farm_;

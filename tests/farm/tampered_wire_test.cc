@@ -2,23 +2,12 @@
 // (protocol/frame_seal.h) make the master drop that connection with "frame failed authentication"
 // naming the peer; the wire is blamed, not the agent: it reconnects and is never blocklisted, a
 // healthy agent on the same host keeps working, and the job still ends with render's bytes.
-#include <sstream>
 
 #include "tests/farm/farm_fixture.h"
 #include "tests/farm/tamper_proxy.h"
 
 namespace radfarm::testing {
 namespace {
-
-// Lines of `log` that contain both `a` and `b`.
-size_t CountLinesWithBoth(const std::string& log, const std::string& a, const std::string& b) {
-  std::istringstream in(log);
-  size_t count = 0;
-  for (std::string line; std::getline(in, line);) {
-    count += line.find(a) != std::string::npos && line.find(b) != std::string::npos;
-  }
-  return count;
-}
 
 TEST_F(FarmTest, AFrameTamperedOnTheWireDropsOnlyThatConnectionAndBlamesNoAgent) {
   StartMaster();
