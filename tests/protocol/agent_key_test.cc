@@ -6,6 +6,7 @@
 
 #include "protocol/frame_codec.h"
 #include "protocol/protocol_session.h"
+#include "tests/protocol/session_test_helpers.h"
 
 namespace radfarm::protocol {
 namespace {
@@ -13,13 +14,8 @@ namespace {
 using Session = ProtocolSession;
 using State = ProtocolSession::State;
 
-FarmSecret Secret(uint8_t fill) { return *FarmSecret::FromBytes(std::vector<uint8_t>(32, fill)); }
-
-DecodedFrame Decode(const std::vector<uint8_t>& frame) {
-  Result<DecodedFrame> decoded = DecodeFrame(frame);
-  EXPECT_TRUE(decoded) << decoded.error();
-  return decoded ? std::move(decoded).value() : DecodedFrame{};
-}
+using testing::Decode;
+using testing::Secret;
 
 TEST(AgentKeyTest, TheKeyDependsOnSecretNameAndGeneration) {
   const FarmSecret farm = Secret(1);

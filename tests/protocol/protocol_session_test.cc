@@ -4,6 +4,7 @@
 
 #include "protocol/frame_codec.h"
 #include "tests/protocol/sample_messages.h"
+#include "tests/protocol/session_test_helpers.h"
 
 namespace radfarm::protocol {
 namespace {
@@ -11,13 +12,8 @@ namespace {
 using Session = ProtocolSession;
 using State = ProtocolSession::State;
 
-FarmSecret Secret(uint8_t fill) { return *FarmSecret::FromBytes(std::vector<uint8_t>(32, fill)); }
-
-DecodedFrame Decode(const std::vector<uint8_t>& frame) {
-  Result<DecodedFrame> decoded = DecodeFrame(frame);
-  EXPECT_TRUE(decoded) << decoded.error();
-  return decoded ? std::move(decoded).value() : DecodedFrame{};
-}
+using testing::Decode;
+using testing::Secret;
 
 // The frames of one handshake, captured as they went over the wire.
 struct Handshake {
