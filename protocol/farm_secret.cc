@@ -45,7 +45,26 @@ Result<FarmSecret> FarmSecret::Generate() {
   return FarmSecret(std::move(key));
 }
 
-FarmSecret::~FarmSecret() {
+FarmSecret& FarmSecret::operator=(const FarmSecret& other) {
+  if (this != &other) {
+    Wipe();
+    key_.assign(other.key_.begin(), other.key_.end());
+  }
+  return *this;
+}
+
+FarmSecret& FarmSecret::operator=(FarmSecret&& other) noexcept {
+  if (this != &other) {
+    Wipe();
+    key_ = std::move(other.key_);
+    other.key_.clear();
+  }
+  return *this;
+}
+
+FarmSecret::~FarmSecret() { Wipe(); }
+
+void FarmSecret::Wipe() {
   if (!key_.empty()) sodium_memzero(key_.data(), key_.size());
 }
 

@@ -23,8 +23,10 @@ class FarmSecret {
 
   FarmSecret(const FarmSecret&) = default;
   FarmSecret(FarmSecret&&) = default;
-  FarmSecret& operator=(const FarmSecret&) = default;
-  FarmSecret& operator=(FarmSecret&&) = default;
+  // Assignment wipes the key it replaces before its buffer is reused or freed; a moved-from
+  // secret is empty.
+  FarmSecret& operator=(const FarmSecret& other);
+  FarmSecret& operator=(FarmSecret&& other) noexcept;
   ~FarmSecret();
 
   std::span<const uint8_t> bytes() const { return key_; }
@@ -32,6 +34,7 @@ class FarmSecret {
 
  private:
   explicit FarmSecret(std::vector<uint8_t> key) : key_(std::move(key)) {}
+  void Wipe();
   std::vector<uint8_t> key_;
 };
 

@@ -27,6 +27,22 @@ TEST(ProtocolSecretTest, HexRoundTripAndErrors) {
   EXPECT_NE(FarmSecret::Generate()->ToHex(), generated->ToHex());
 }
 
+TEST(ProtocolSecretTest, AssignmentTakesTheOtherKeyAndEmptiesAMovedFromSecret) {
+  const std::vector<uint8_t> one(32, 1), two(40, 2);
+  FarmSecret a = *FarmSecret::FromBytes(one);
+  FarmSecret b = *FarmSecret::FromBytes(two);
+  a = b;  // a longer key into a shorter one's buffer
+  EXPECT_TRUE(std::ranges::equal(a.bytes(), two));
+  EXPECT_TRUE(std::ranges::equal(b.bytes(), two));
+  FarmSecret c = *FarmSecret::FromBytes(one);
+  a = std::move(c);
+  EXPECT_TRUE(std::ranges::equal(a.bytes(), one));
+  EXPECT_TRUE(c.bytes().empty());  // NOLINT(bugprone-use-after-move): moved-from is specified
+  const FarmSecret& self = a;
+  a = self;
+  EXPECT_TRUE(std::ranges::equal(a.bytes(), one));
+}
+
 TEST(ProtocolSecretTest, TagsDependOnSecretTranscriptAndDirection) {
   const FarmSecret a = *FarmSecret::FromBytes(std::vector<uint8_t>(32, 1));
   const FarmSecret b = *FarmSecret::FromBytes(std::vector<uint8_t>(32, 2));
