@@ -6,6 +6,7 @@
 
 #include "cli/exit_codes.h"
 #include "cli/farm_command.h"
+#include "cli/farm_format.h"
 #include "cli/secret_command.h"
 #include "protocol/farm_secret.h"
 
@@ -30,7 +31,72 @@ Outcome<std::string> KeyText(const ControlReply& reply) {
   return it->get<std::string>() + "\n";
 }
 
+// One row of `agents enrolled`, checked: NAME, GENERATION, STATE, ENROLLED, CONNECTED.
+Outcome<std::vector<std::string>> EnrolledRow(const nlohmann::json& entry) {
+  const Failure bad{kExitFailure,
+                    "the master's answer to enrolled_agents has an entry without "
+                    "name, generation, revoked, enrolled_at_ms or connected: " +
+                        entry.dump()};
+  if (!entry.is_object()) return bad;
+  const auto name = entry.find("name");
+  const auto generation = entry.find("generation");
+  const auto revoked = entry.find("revoked");
+  const auto enrolled_at = entry.find("enrolled_at_ms");
+  const auto revoked_at = entry.find("revoked_at_ms");
+  const auto connected = entry.find("connected");
+  if (name == entry.end() || !name->is_string() || generation == entry.end() ||
+      !generation->is_number_unsigned() || revoked == entry.end() || !revoked->is_boolean() ||
+      enrolled_at == entry.end() || !enrolled_at->is_number_integer() || connected == entry.end() ||
+      !connected->is_number_unsigned()) {
+    return bad;
+  }
+  std::string state = "enrolled";
+  if (revoked->get<bool>()) {
+    state = "revoked";
+    if (revoked_at != entry.end() && revoked_at->is_number_integer()) {
+      state += " " + FormatUtcTime(revoked_at->get<int64_t>());
+    }
+  }
+  return std::vector<std::string>{
+      name->get<std::string>(), std::to_string(generation->get<uint64_t>()), state,
+      FormatUtcTime(enrolled_at->get<int64_t>()), std::to_string(connected->get<uint64_t>())};
+}
+
 }  // namespace
+
+CLI::App* AddEnrolledCommand(CLI::App& agents, EnrolledOptions* options) {
+  CLI::App* enrolled = agents.add_subcommand(
+      "enrolled",
+      "List every agent name enrolled with its own key: its generation, whether it is revoked, "
+      "when it was enrolled, and how many of its connections are in now");
+  AddJsonFlag(enrolled, &options->json);
+  return enrolled;
+}
+
+int RunEnrolled(const EnrolledOptions& options, const std::string& control_path) {
+  Outcome<ControlReply> reply = AskMaster(control_path, {{"command", "enrolled_agents"}});
+  if (!reply.ok()) return ReportFailure(reply.failure());
+  const auto list = reply->body.find("enrolled");
+  if (list == reply->body.end() || !list->is_array()) {
+    return ReportFailure(
+        {kExitFailure, "the master's answer to enrolled_agents has no 'enrolled'"});
+  }
+  std::vector<std::vector<std::string>> rows{
+      {"NAME", "GENERATION", "STATE", "ENROLLED", "CONNECTED"}};
+  for (const nlohmann::json& entry : *list) {
+    Outcome<std::vector<std::string>> row = EnrolledRow(entry);
+    if (!row.ok()) return ReportFailure(row.failure());
+    rows.push_back(std::move(*row));
+  }
+  if (options.json) {
+    PrintJson(*list);
+  } else if (rows.size() == 1) {
+    std::printf("no agent enrolled (every agent uses the farm secret)\n");
+  } else {
+    std::printf("%s", FormatTable(rows).c_str());
+  }
+  return kExitOk;
+}
 
 CLI::App* AddEnrollCommand(CLI::App& agents, EnrollOptions* options) {
   CLI::App* enroll = agents.add_subcommand(

@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
   commands.emplace_back(AddLogCommand(app, &log), [&] { return RunLog(log, control); });
   FetchOptions fetch;
   commands.emplace_back(AddFetchCommand(app, &fetch), [&] { return RunFetch(fetch, control); });
-  // enroll and revoke before agents: `agents` counts as parsed when one of them is.
+  // enroll, revoke and enrolled before agents: `agents` counts as parsed when one of them is.
   AgentsOptions agents;
   CLI::App* agents_command = AddAgentsCommand(app, &agents);
   EnrollOptions enroll;
@@ -93,6 +93,9 @@ int main(int argc, char** argv) {
   RevokeOptions revoke;
   commands.emplace_back(AddRevokeCommand(*agents_command, &revoke),
                         [&] { return RunRevoke(revoke, control); });
+  EnrolledOptions enrolled;
+  commands.emplace_back(AddEnrolledCommand(*agents_command, &enrolled),
+                        [&] { return RunEnrolled(enrolled, control); });
   commands.emplace_back(agents_command, [&] { return RunAgents(agents, control); });
   SecretOptions secret;
   commands.emplace_back(AddSecretCommand(app, &secret), [&] { return RunSecretNew(secret); });

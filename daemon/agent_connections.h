@@ -70,6 +70,8 @@ class AgentConnections {
   // After the store committed `radfarm agents enroll`: the name proves itself with this key from
   // its next handshake on (a live connection stays). Returns the key to hand out.
   protocol::FarmSecret Enrolled(const store::AgentCredential& credential);
+  // Every enrolled name and its state, by name.
+  std::vector<store::AgentCredential> Enrollments() const { return credentials_.List(); }
   // After the store committed `radfarm agents revoke`: the name is refused from now on, and its
   // connections (authenticated or still in the handshake) close at once. Returns how many.
   size_t Revoked(const store::AgentCredential& credential);

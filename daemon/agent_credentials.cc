@@ -35,6 +35,13 @@ void AgentCredentials::Update(const store::AgentCredential& credential) {
   by_name_[credential.name] = credential;
 }
 
+std::vector<store::AgentCredential> AgentCredentials::List() const {
+  std::vector<store::AgentCredential> list;
+  list.reserve(by_name_.size());
+  for (const auto& [name, credential] : by_name_) list.push_back(credential);
+  return list;
+}
+
 protocol::FarmSecret AgentCredentials::KeyOf(const store::AgentCredential& credential) const {
   return protocol::DeriveAgentKey(secret_, credential.name, credential.generation);
 }

@@ -26,6 +26,8 @@ class AgentCredentials {
   Result<protocol::ExpectedKey> KeyFor(const std::string& name) const;
   // After the store committed an enroll or a revoke.
   void Update(const store::AgentCredential& credential);
+  // Every name ever enrolled, revoked ones included, by name (`radfarm agents enrolled`).
+  std::vector<store::AgentCredential> List() const;
   // The key of an enrolled credential, for `radfarm agents enroll` to hand out.
   protocol::FarmSecret KeyOf(const store::AgentCredential& credential) const;
 

@@ -23,6 +23,7 @@ constexpr CommandName kCommands[] = {
     {"agents", ControlCommand::kAgents},
     {"enroll_agent", ControlCommand::kEnrollAgent},
     {"revoke_agent", ControlCommand::kRevokeAgent},
+    {"enrolled_agents", ControlCommand::kEnrolledAgents},
 };
 
 Result<int64_t> IntArg(const nlohmann::json& json, const char* key) {
@@ -120,6 +121,7 @@ Result<ControlRequest> ParseControlRequest(const nlohmann::json& json, uint64_t*
     }
     case ControlCommand::kList:
     case ControlCommand::kAgents:
+    case ControlCommand::kEnrolledAgents:
       break;
   }
   return request;

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <limits>
+#include <map>
 
 #include "base/result.h"
 #include "codec/job_bundle.h"
@@ -95,6 +96,9 @@ void ControlRequests::Handle(ControlRequest request, ControlRespond respond) {
       respond({json{{"ok", true}, {"agents", list}, {"connections", DoorsJson()}}, {}});
       return;
     }
+    case ControlCommand::kEnrolledAgents:
+      respond({json{{"ok", true}, {"enrolled", EnrolledJson()}}, {}});
+      return;
     case ControlCommand::kEnrollAgent:
     case ControlCommand::kRevokeAgent:
       if (!protocol::IsValidAgentName(request.name)) {
@@ -247,6 +251,22 @@ json ControlRequests::DoorsJson() const {
               {"evicted", d.evicted},
               {"closed_before_auth", d.closed_before_auth},
               {"refused_full", d.refused_full}};
+}
+
+json ControlRequests::EnrolledJson() const {
+  std::map<std::string, uint64_t> connected;
+  for (const AgentLink* link : agents_.Authenticated()) ++connected[link->name()];
+  json list = json::array();
+  for (const store::AgentCredential& c : agents_.Enrollments()) {
+    const auto it = connected.find(c.name);
+    list.push_back(json{{"name", c.name},
+                        {"generation", c.generation},
+                        {"revoked", c.revoked},
+                        {"enrolled_at_ms", c.enrolled_at_ms},
+                        {"revoked_at_ms", Nullable(c.revoked_at_ms)},
+                        {"connected", it == connected.end() ? 0 : it->second}});
+  }
+  return list;
 }
 
 json ControlRequests::AgentJson(const AgentLink& link) const {

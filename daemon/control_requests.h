@@ -35,6 +35,8 @@ class ControlRequests {
  private:
   nlohmann::json JobJson(const JobSummary& summary);
   nlohmann::json AgentJson(const AgentLink& link) const;
+  // `enrolled_agents`: every enrolled name, its state and how many of its connections are in.
+  nlohmann::json EnrolledJson() const;
   // The door counters (agent_connections.h, door_keeper.h): `agents`' "connections" object.
   nlohmann::json DoorsJson() const;
   void Submit(ControlRequest request, ControlRespond respond);

@@ -23,7 +23,8 @@ enum class ControlCommand {
   kFetch,
   kAgents,
   kEnrollAgent,
-  kRevokeAgent
+  kRevokeAgent,
+  kEnrolledAgents
 };
 
 struct ControlRequest {

@@ -61,6 +61,22 @@ TEST(AgentCredentialsTest, WithoutTheSharedSecretOnlyEnrolledAgentsGetIn) {
   EXPECT_NE(key.error().find("allow_shared_secret = false"), std::string::npos) << key.error();
 }
 
+TEST(AgentCredentialsTest, ListsEveryEnrolledNameByNameRevokedOnesIncluded) {
+  const protocol::FarmSecret farm = Farm();
+  AgentCredentials credentials(farm, {Credential("node-2", 1, false)}, true);
+  EXPECT_EQ(credentials.List().size(), 1u);
+  credentials.Update(Credential("node-1", 3, true));
+  credentials.Update(Credential("node-2", 2, false));
+  const std::vector<store::AgentCredential> list = credentials.List();
+  ASSERT_EQ(list.size(), 2u);
+  EXPECT_EQ(list[0].name, "node-1");
+  EXPECT_TRUE(list[0].revoked);
+  EXPECT_EQ(list[0].generation, 3u);
+  EXPECT_EQ(list[1].name, "node-2");
+  EXPECT_FALSE(list[1].revoked);
+  EXPECT_EQ(list[1].generation, 2u);
+}
+
 // (Whether the name is an agent name is checked by ControlRequests: FarmTest.RevokingANameNever...)
 TEST(AgentCredentialsTest, ControlRequestsNameOneAgent) {
   uint64_t attachment = 0;
@@ -73,6 +89,10 @@ TEST(AgentCredentialsTest, ControlRequestsNameOneAgent) {
       nlohmann::json{{"command", "revoke_agent"}, {"name", "node-1"}}, &attachment);
   ASSERT_TRUE(revoke.ok());
   EXPECT_EQ(revoke->command, ControlCommand::kRevokeAgent);
+  Result<ControlRequest> list =
+      ParseControlRequest(nlohmann::json{{"command", "enrolled_agents"}}, &attachment);
+  ASSERT_TRUE(list.ok()) << list.error();
+  EXPECT_EQ(list->command, ControlCommand::kEnrolledAgents);
   for (const nlohmann::json& bad : {nlohmann::json{{"command", "enroll_agent"}},
                                     nlohmann::json{{"command", "enroll_agent"}, {"name", 5}},
                                     nlohmann::json{{"command", "revoke_agent"}}}) {

@@ -9,6 +9,17 @@
 namespace radfarm::testing {
 namespace {
 
+// The entry for `name` in `radfarm agents enrolled --json`'s output (null when it is not listed).
+nlohmann::json EnrolledEntry(const CommandResult& listed, const std::string& name) {
+  EXPECT_EQ(listed.exit_code, 0) << listed.err;
+  const nlohmann::json list = nlohmann::json::parse(listed.out, nullptr, false);
+  if (!list.is_array()) return nullptr;
+  for (const nlohmann::json& entry : list) {
+    if (entry.value("name", "") == name) return entry;
+  }
+  return nullptr;
+}
+
 TEST_F(FarmTest, AnEnrolledAgentWorksWithItsKeyAndARevokeCutsItOffAtOnce) {
   StartMaster();
   const std::string key_file = Path("keyed.key");
@@ -22,6 +33,13 @@ TEST_F(FarmTest, AnEnrolledAgentWorksWithItsKeyAndARevokeCutsItOffAtOnce) {
   ASSERT_TRUE(WaitForState(first, "done")) << keyed.Log();
   EXPECT_TRUE(FetchPatches(first) == ReferencePatches("cornell-box.toml", kShortJob));
   EXPECT_EQ(CountLinesWithBoth(MasterLog(), "keyed@", " connected ("), 1u) << MasterLog();
+  const nlohmann::json listed = EnrolledEntry(Cli({"agents", "enrolled", "--json"}), "keyed");
+  EXPECT_EQ(listed.value("generation", 0), 1) << listed.dump();
+  EXPECT_EQ(listed.value("revoked", true), false) << listed.dump();
+  EXPECT_EQ(listed.value("connected", 0), 1) << listed.dump();
+  const CommandResult table = Cli({"agents", "enrolled"});
+  EXPECT_NE(table.out.find("keyed"), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("enrolled"), std::string::npos) << table.out;
 
   // A shared-secret agent joins; the enrolled one is revoked while connected.
   ChildProcess& shared = StartAgent("shared");
@@ -35,6 +53,13 @@ TEST_F(FarmTest, AnEnrolledAgentWorksWithItsKeyAndARevokeCutsItOffAtOnce) {
   ASSERT_TRUE(WaitUntil([&] { return keyed.Log().find("revoked: ") != std::string::npos; }))
       << keyed.Log();
   EXPECT_LT(AgentLeases(Agents(), "keyed"), 0) << Agents().dump();
+  const nlohmann::json revoked_entry =
+      EnrolledEntry(Cli({"agents", "enrolled", "--json"}), "keyed");
+  EXPECT_EQ(revoked_entry.value("revoked", false), true) << revoked_entry.dump();
+  EXPECT_EQ(revoked_entry.value("connected", 1), 0) << revoked_entry.dump();
+  EXPECT_TRUE(revoked_entry["revoked_at_ms"].is_number_integer()) << revoked_entry.dump();
+  EXPECT_TRUE(EnrolledEntry(Cli({"agents", "enrolled", "--json"}), "shared")
+                  .is_null());  // on the farm secret: not listed
   // It tries again and is refused at its Hello, every time.
   ASSERT_TRUE(WaitUntil([&] {
     return CountLinesWithBoth(keyed.Log(), "authentication with", "is revoked") >= 2;
