@@ -152,6 +152,7 @@ class Campaign {
     schedule.insert(schedule.end(), size_t(plan_.agent_faults), "agent");
     schedule.insert(schedule.end(), size_t(plan_.master_kills), "master_kill");
     schedule.insert(schedule.end(), size_t(plan_.disk_fills), "disk_full");
+    schedule.insert(schedule.end(), size_t(plan_.store_truncations), "store_truncated");
     std::shuffle(schedule.begin(), schedule.end(), random_);
     const size_t total = schedule.size();
     int next_job = 0;
@@ -169,6 +170,7 @@ class Campaign {
       if (schedule[i] == "agent") AgentFault(prefix);
       if (schedule[i] == "master_kill" && !MasterKill(prefix)) return;
       if (schedule[i] == "disk_full") DiskFull(prefix);
+      if (schedule[i] == "store_truncated" && !StoreTruncation(prefix)) return;
     }
     while (next_job++ < plan_.jobs) Submit();
   }
@@ -205,6 +207,58 @@ class Campaign {
     }
     ++out_.faults["master_kill"];
     say_(prefix + "SIGKILL and restart radfarmd");
+    return StartMaster();
+  }
+
+  // SIGKILLs the master and cuts its store file short at a random byte, as a bad copy or a lost
+  // write would. The restarted master must refuse the file naming it; then the copy taken before
+  // is put back, as an operator restores a backup, and it starts again. If it comes up instead
+  // (what was cut held no page the store needs, or the WAL still has them), no job may be lost
+  // or changed: the final check says.
+  bool StoreTruncation(const std::string& prefix) {
+    farm_.master()->Signal(SIGKILL);
+    if (!farm_.master()->WaitExit(std::chrono::seconds(30))) {
+      Problem("radfarmd did not die of SIGKILL");
+      return false;
+    }
+    namespace fs = std::filesystem;
+    const std::string db = farm_.state_dir() + "/radfarm.db";
+    const std::string copy = farm_.File("store-copy");
+    fs::create_directories(copy);
+    for (const char* suffix : {"", "-wal"}) {
+      fs::remove(copy + "/radfarm.db" + suffix);
+      if (fs::exists(db + suffix)) fs::copy_file(db + suffix, copy + "/radfarm.db" + suffix);
+    }
+    const uintmax_t size = fs::file_size(db);
+    const uintmax_t cut = std::uniform_int_distribution<uintmax_t>(0, size - 1)(random_);
+    fs::resize_file(db, cut);
+    const std::string what = prefix + "SIGKILL radfarmd, its store cut to " + std::to_string(cut) +
+                             " of " + std::to_string(size) + " bytes: ";
+    const size_t log_before = farm_.MasterLog().size();
+    std::vector<std::string> flags = plan_.master_flags;
+    flags.insert(flags.end(), {"--listen", listen_});
+    farm_.StartMaster(flags, std::chrono::seconds(60));
+    ++out_.faults["store_truncated"];
+    if (!farm_.master_address().empty() && farm_.master()->running()) {
+      ++out_.faults["store_truncated_taken"];
+      say_(what + "taken, every page still there");
+      return true;
+    }
+    const std::optional<int> exit = farm_.master()->WaitExit(std::chrono::seconds(60));
+    std::string log = farm_.MasterLog().substr(log_before);
+    while (!log.empty() && log.back() == '\n') log.pop_back();
+    say_(what + "refused (" + log.substr(log.rfind('\n') + 1) + "); restored from the copy");
+    if (!exit || *exit == 0 || log.find("radfarm.db") == std::string::npos) {
+      Problem("radfarmd neither took nor refused, naming it, a store file cut short: " + log);
+      return false;
+    }
+    for (const char* suffix : {"", "-wal"}) {
+      fs::remove(db + suffix);
+      if (fs::exists(copy + "/radfarm.db" + suffix)) {
+        fs::copy_file(copy + "/radfarm.db" + suffix, db + suffix);
+      }
+    }
+    fs::remove(db + "-shm");
     return StartMaster();
   }
 

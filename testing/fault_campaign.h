@@ -3,7 +3,8 @@
 // SIGKILLed and restarted, SIGSTOPped and SIGCONTed, stopped (SIGTERM) and restarted; the master
 // SIGKILLed and restarted on the same state directory and port; the state directory (a small
 // tmpfs the campaign mounts) filled to ENOSPC and freed; the store file damaged before the first
-// start. The invariants: every job ends byte-identical to the reference (`radfarm render`) or
+// start; the master SIGKILLed and its store file cut short at a random byte before its restart
+// (refused and restored from a copy, as an operator restores a backup, or taken if intact). The invariants: every job ends byte-identical to the reference (`radfarm render`) or
 // failed with a message; every job submitted is listed once, none more.
 //
 // Shared by tests/farm/fault_campaign_test.cc (a small campaign in CI) and bench/faults (the long
@@ -29,6 +30,7 @@ struct FaultPlan {
   int agent_faults = 10;
   int master_kills = 3;
   int disk_fills = 0;  // > 0 mounts a tmpfs of `state_dir_bytes` as the master's state dir
+  int store_truncations = 0;  // master SIGKILLs whose restart finds the store file cut short
   bool damage_store_at_start = true;
   uint64_t state_dir_bytes = 64ull << 20;
   std::string job_file;  // absolute path of the scene or job file every job renders

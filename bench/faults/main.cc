@@ -1,12 +1,14 @@
 // fault_bench: a long fault campaign (testing/fault_campaign.h) on the loopback farm: agents
 // SIGKILLed, SIGSTOPped and restarted, the master SIGKILLed and restarted on its state and port,
 // the state directory (a tmpfs) filled to ENOSPC and freed, a damaged store file refused at start,
-// while jobs run; then every job is checked against `radfarm render`. Prints the counts and writes
-// bench/results/fault_bench.json; docs/BENCHMARKS-faults.md keeps the table. Needs root for the
-// tmpfs (or --disk-fills 0). The seed is printed; --seed N re-runs a campaign.
+// the store file cut short before a master restart, while jobs run; then every job is checked
+// against `radfarm render`. Prints the counts and writes bench/results/fault_bench.json;
+// docs/BENCHMARKS-faults.md keeps the table. Needs root for the tmpfs (or --disk-fills 0). The seed
+// is printed; --seed N re-runs a campaign.
 //
 //   fault_bench [--seed N] [--agents 3] [--jobs 8] [--agent-faults 100] [--master-kills 30]
-//               [--disk-fills 5] [--patch-size MM] [--rays N] [--json PATH]
+//               [--disk-fills 5] [--store-truncations 5] [--patch-size MM] [--rays N]
+//               [--json PATH]
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -42,6 +44,7 @@ Options Parse(int argc, char** argv) {
   o.plan.agent_faults = 100;
   o.plan.master_kills = 30;
   o.plan.disk_fills = 5;
+  o.plan.store_truncations = 5;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -60,6 +63,8 @@ Options Parse(int argc, char** argv) {
       o.plan.master_kills = std::stoi(next());
     } else if (a == "--disk-fills") {
       o.plan.disk_fills = std::stoi(next());
+    } else if (a == "--store-truncations") {
+      o.plan.store_truncations = std::stoi(next());
     } else if (a == "--patch-size") {
       o.patch_size = next();
     } else if (a == "--rays") {
@@ -69,8 +74,8 @@ Options Parse(int argc, char** argv) {
     } else if (a == "-h" || a == "--help") {
       std::printf(
           "fault_bench [--seed N] [--agents 3] [--jobs 8] [--agent-faults 100]\n"
-          "            [--master-kills 30] [--disk-fills 5] [--patch-size MM] [--rays 6000000]\n"
-          "            [--json PATH]\n"
+          "            [--master-kills 30] [--disk-fills 5] [--store-truncations 5]\n"
+          "            [--patch-size MM] [--rays 6000000] [--json PATH]\n"
           "  A seeded fault campaign against a loopback farm rendering the Cornell box; every\n"
           "  job is checked against `radfarm render`. --disk-fills needs root (a tmpfs).\n");
       std::exit(0);

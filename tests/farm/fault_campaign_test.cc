@@ -30,6 +30,7 @@ TEST_F(FarmTest, AFaultCampaignEndsEveryJobLikeRenderAndLosesNone) {
   plan.jobs = 2;
   plan.agent_faults = 10;
   plan.master_kills = 3;
+  plan.store_truncations = 1;
   plan.disk_fills = ::geteuid() == 0 ? 1 : 0;  // mounting the tmpfs needs root
   plan.job_file = RADFARM_SOURCE_DIR "/scenes/cornell-box.toml";
   plan.job_flags = kShortJob;
@@ -43,6 +44,7 @@ TEST_F(FarmTest, AFaultCampaignEndsEveryJobLikeRenderAndLosesNone) {
   EXPECT_TRUE(out.ok()) << "seed " << plan.seed << "\n" << ReadFile(Path("campaign/master.log"));
   EXPECT_EQ(out.faults.at("store_damaged"), 1);
   EXPECT_EQ(out.faults.at("master_kill"), 3);
+  EXPECT_EQ(out.faults.at("store_truncated"), 1);
   EXPECT_GE(out.jobs_submitted, 2);
   EXPECT_EQ(out.jobs_listed, out.jobs_submitted);
   EXPECT_EQ(out.byte_identical, out.jobs_submitted) << "seed " << plan.seed;
