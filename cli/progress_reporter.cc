@@ -60,24 +60,31 @@ void ProgressReporter::OnRound(const RoundProgress& p) {
 }
 
 void ProgressReporter::OnRoundRunning(const RoundRunning& r) {
-  if (!r.gather || r.round_rays == 0) return;
+  if (r.round_rays == 0) return;
   std::lock_guard lock(mutex_);
+  if (r.round != running_round_) {
+    running_round_ = r.round;
+    last_running_print_ = -1;
+  }
   const double every = interactive_ ? kRedrawSeconds : kLogLineSeconds;
   const bool last = r.round_rays_done >= r.round_rays;
-  if (last || (last_gather_print_ >= 0 && r.round_seconds - last_gather_print_ < every)) return;
-  if (last_gather_print_ < 0 && r.round_seconds < every) return;  // a short gather needs no lines
-  last_gather_print_ = r.round_seconds;
+  if (last || (last_running_print_ >= 0 && r.round_seconds - last_running_print_ < every)) return;
+  if (last_running_print_ < 0 && r.round_seconds < every) return;  // a short round needs no lines
+  last_running_print_ = r.round_seconds;
   SolvePosition now = position_;
   now.round_rays = r.round_rays;
   now.round_rays_done = r.round_rays_done;
   now.round_seconds = r.round_seconds;
-  now.round_gather = true;
+  now.round_gather = r.gather;
+  // Before the first round ends there is no estimator: no ETA yet.
   const ProgressEstimate e = estimator_ ? estimator_->Estimate(now) : ProgressEstimate{};
   const double part = double(r.round_rays_done) / double(r.round_rays);
   const double rate = r.round_seconds > 0 ? double(r.round_rays_done) / r.round_seconds : 0;
+  const std::string what = r.gather ? "final gather" : "round " + std::to_string(r.round + 1);
   char text[160];
-  std::snprintf(text, sizeof text, "final gather %.0f%% of %llu rays  %.2f Mrays/s  %s", 100 * part,
-                static_cast<unsigned long long>(r.round_rays), rate / 1e6, Eta(e).c_str());
+  std::snprintf(text, sizeof text, "%s %.0f%% of %llu rays  %.2f Mrays/s  %s", what.c_str(),
+                100 * part, static_cast<unsigned long long>(r.round_rays), rate / 1e6,
+                Eta(e).c_str());
   if (interactive_) {
     Bar(e.fraction, text);
   } else {

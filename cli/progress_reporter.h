@@ -4,6 +4,7 @@
 // does not reach its end before the gather, and the gather shows its own progress.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <mutex>
 #include <optional>
@@ -22,7 +23,8 @@ class ProgressReporter {
   // After each round (the solve's calling thread).
   void OnRound(const RoundProgress& progress);
   // During a round, after each batch (RefiningHooks::during_round: a worker thread, one call at
-  // a time). Shows the final gather's progress; a shooting round is short and waits for OnRound.
+  // a time). Shows a long round's progress (the final gather, a big scene's first rounds); a
+  // round shorter than a redraw (a log line) shows none.
   void OnRoundRunning(const RoundRunning& running);
   // Ends the bar's line (interactive) so later output starts on a fresh line.
   void Finish();
@@ -38,7 +40,8 @@ class ProgressReporter {
   std::optional<ProgressEstimator> estimator_;  // made at the first round (the tolerance)
   SolvePosition position_;                      // after the last round
   double last_print_seconds_ = -1;
-  double last_gather_print_ = -1;  // round seconds of the gather's last line
+  uint32_t running_round_ = UINT32_MAX;  // the round OnRoundRunning last saw
+  double last_running_print_ = -1;       // its round seconds at its last line
   bool drew_ = false;
 };
 

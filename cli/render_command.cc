@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <optional>
@@ -36,8 +37,24 @@ CLI::App* AddRenderCommand(CLI::App& app, RenderOptions* options) {
 }
 
 int RunRender(const RenderOptions& options) {
+  // The time budget (--seconds) counts from here: reading and meshing the scene are part of it.
+  const auto started = std::chrono::steady_clock::now();
+  auto seconds_since_start = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  };
+  // On a terminal, a status line while the scene is read and meshed (seconds on a big scene),
+  // cleared before anything else is printed; a log gets the time in the line after it.
+  const bool announce = !options.quiet && isatty(STDOUT_FILENO) == 1;
+  if (announce) {
+    std::printf("reading and meshing %s ...", options.scene.c_str());
+    std::fflush(stdout);
+  }
   std::vector<std::string> warnings;
   Result<LoadedJob> loaded = LoadJobForSolve(options.scene, options.overrides, &warnings);
+  if (announce) {
+    std::printf("\r\033[K");
+    std::fflush(stdout);
+  }
   PrintMessages(warnings);
   if (!loaded.ok()) {
     PrintError(loaded.error());
@@ -50,11 +67,15 @@ int RunRender(const RenderOptions& options) {
   }
 
   if (!options.quiet) {
-    std::printf("%s: %zu patches (target size %g%s), sampler %s, seed %llu\n",
-                job.scene_path.c_str(), loaded->mesh.patch_scene().patches.size(),
-                loaded->mesh.patch_size(), job.refine.enabled ? ", adaptive" : "",
-                std::string(SamplerName(job.solver.sampler)).c_str(),
-                static_cast<unsigned long long>(job.solver.seed));
+    std::printf(
+        "%s: %zu patches (target size %g%s), sampler %s, seed %llu; read and meshed in "
+        "%.1f s\n",
+        job.scene_path.c_str(), loaded->mesh.patch_scene().patches.size(),
+        loaded->mesh.patch_size(), job.refine.enabled ? ", adaptive" : "",
+        std::string(SamplerName(job.solver.sampler)).c_str(),
+        static_cast<unsigned long long>(job.solver.seed), seconds_since_start());
+    if (announce) std::printf("direct light ...");
+    std::fflush(stdout);
   }
   std::optional<RenderState> state;
   RefiningHooks hooks;
@@ -77,8 +98,16 @@ int RunRender(const RenderOptions& options) {
     };
   }
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
-  if (!options.quiet)
+  if (!options.quiet) {
     hooks.during_round = [&](const RoundRunning& r) { reporter.OnRoundRunning(r); };
+    hooks.after_start = [announce](double seconds) {
+      if (announce) std::printf("\r\033[K");
+      // Most scenes start in a blink; say it when it was worth waiting for.
+      if (seconds >= 0.5) std::printf("direct light in %.1f s\n", seconds);
+      std::fflush(stdout);
+    };
+  }
+  hooks.seconds_spent_before = seconds_since_start();
   Result<RefiningSolveResult> solved = Error{"not solved"};
   try {
     solved = SolveRefining(

@@ -25,6 +25,12 @@ uint64_t NextRoundRayCap(const SolverSettings& settings, uint64_t rays) {
   return settings.max_rays > 0 ? settings.max_rays - rays : 0;
 }
 
+uint64_t TimeRayCap(const SolverSettings& settings, double seconds, double rays_per_second) {
+  if (!(settings.max_seconds > 0) || !(rays_per_second > 0)) return 0;
+  const double rays = (settings.max_seconds - seconds) * rays_per_second;
+  return rays >= 1 ? static_cast<uint64_t>(std::min(rays, 1e18)) : 1;
+}
+
 std::optional<std::string> StopAfterRound(const RoundPlan& plan, const ProgressiveSolver& solver,
                                           const SolverSettings& settings) {
   // A capped gather has converged but gathered with fewer rays than asked: the budget stopped it.

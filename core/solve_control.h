@@ -26,6 +26,10 @@ std::optional<std::string> StopBeforeRound(const ProgressiveSolver& solver,
 // The ray cap for the next round's PlanRound (0: none).
 uint64_t NextRoundRayCap(const SolverSettings& settings, uint64_t rays);
 
+// The ray cap that keeps the next round within the time budget at `rays_per_second`, after
+// `seconds` spent (at least 1; 0: no time budget or no estimate).
+uint64_t TimeRayCap(const SolverSettings& settings, double seconds, double rays_per_second);
+
 // After ApplyRound of `plan`: a capped round that left the solve unconverged spent the budget.
 std::optional<std::string> StopAfterRound(const RoundPlan& plan, const ProgressiveSolver& solver,
                                           const SolverSettings& settings);

@@ -1,5 +1,6 @@
 #include "solve/local_solve.h"
 
+#include <algorithm>
 #include <chrono>
 #include <mutex>
 #include <utility>
@@ -7,18 +8,52 @@
 namespace radfarm {
 namespace {
 
+// Rays per second of `plan` on `batches`, timed on about 1% of its rays (at least a batch, at
+// most 1M rays), traced again with their results thrown away: a ray's fate is a pure function of
+// (seed, round, shooter, ray), so this changes no bit of the solve. 0 when too fast to time.
+double SampleRaysPerSecond(RoundDriver& driver, LocalBatches& batches, const RoundPlan& plan) {
+  const uint64_t wanted = std::clamp<uint64_t>(plan.rays / 100, 1, 1u << 20);
+  const size_t stride = std::max<size_t>(1, size_t(plan.rays / wanted / kLocalBatchRays));
+  std::vector<Batch> sample;
+  uint64_t rays = 0;
+  for (size_t b = 0; b < plan.batches.size() && rays < wanted; b += stride) {
+    sample.push_back(plan.batches[b]);
+    rays += plan.batches[b].ray_count;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  batches.TraceOnly(driver, sample);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return seconds > 0 ? double(rays) / seconds : 0;
+}
+
 // Runs the driver's rounds on `pool` until it stops; returns the seconds spent in all.
+// `spent_before` (reading and meshing the scene) counts toward the time budget only.
 double RunRounds(RoundDriver& driver, ThreadPool& pool,
                  const std::function<void(const RoundProgress&)>& on_round,
                  const std::function<void(const SolveState&)>& after_round,
                  const std::function<void(const RoundRunning&)>& during_round,
-                 double seconds_before, std::chrono::steady_clock::time_point start) {
+                 double seconds_before, std::chrono::steady_clock::time_point start,
+                 double spent_before = 0) {
   auto elapsed = [&] {
     return seconds_before +
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
+  auto budget_elapsed = [&] { return elapsed() + spent_before; };
+  const bool time_budget = driver.settings().max_seconds > 0;
+  double rays_per_second = 0;  // the pace of the rounds, to keep the next within the budget
   LocalBatches batches(pool);
-  while (std::optional<RoundPlan> plan = driver.PlanNext(kLocalBatchRays, elapsed())) {
+  while (true) {
+    std::optional<RoundPlan> plan =
+        driver.PlanNext(kLocalBatchRays, budget_elapsed(), rays_per_second);
+    if (plan && time_budget && rays_per_second == 0) {
+      // No pace yet (the first round, often the longest): time a sample of it, plan again.
+      rays_per_second = SampleRaysPerSecond(driver, batches, *plan);
+      if (rays_per_second > 0) {
+        plan = driver.PlanNext(kLocalBatchRays, budget_elapsed(), rays_per_second);
+      }
+    }
+    if (!plan) break;
     if (on_round) {  // for the ETA; not part of the round's time
       driver.MeasureGatherRayCost(*plan, kLocalBatchRays, [&](const std::vector<Batch>& sample) {
         batches.TraceOnly(driver, sample);
@@ -34,6 +69,10 @@ double RunRounds(RoundDriver& driver, ThreadPool& pool,
       };
     }
     batches.Reduce(driver, *plan, *reduction, on_batch);
+    // The best pace seen: a short round's fixed costs make it look slow, and its pace would trim
+    // a long round (the gather) far short of the budget.
+    const double traced = elapsed() - round_start;
+    if (traced > 0) rays_per_second = std::max(rays_per_second, double(plan->rays) / traced);
     const AppliedRound applied = driver.Apply(*plan, *reduction, elapsed());
     if (on_round) {
       RoundProgress progress = driver.Progress(*plan, applied);
@@ -104,8 +143,12 @@ Result<RefiningSolveResult> SolveRefining(PatchMesh mesh, const SolverSettings& 
   Result<std::unique_ptr<RoundDriver>> driver =
       RoundDriver::Start(std::move(mesh), settings, refine, hooks.resume, pool);
   if (!driver) return Error{driver.error()};
+  if (hooks.after_start) {
+    hooks.after_start(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
   const double seconds = RunRounds(**driver, pool, on_round, hooks.after_round, hooks.during_round,
-                                   seconds_before, start);
+                                   seconds_before, start, hooks.seconds_spent_before);
   out.solution = (*driver)->Finish(seconds, pool.size());
   out.refinements = (*driver)->refinements();
   out.mesh = (*driver)->TakeMesh();

@@ -66,6 +66,12 @@ struct RefiningHooks {
   // While a round runs, after each batch, on a worker thread, one call at a time: for progress
   // within a long round (the final gather). It must be quick.
   std::function<void(const RoundRunning&)> during_round;
+  // Seconds already spent on this job before the solve (reading and meshing the scene): they
+  // count toward the time budget (max_seconds), not toward the solve's own seconds.
+  double seconds_spent_before = 0;
+  // Once the solver has started (the direct light computed, or the resumed state restored), with
+  // the seconds that took.
+  std::function<void(double seconds)> after_start;
 };
 
 // Solves `mesh` with adaptive refinement as `refine` says (off: the mesh as given) until a

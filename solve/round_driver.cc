@@ -82,13 +82,25 @@ Status RoundDriver::Resume(const SolveState& state) {
   return Ok{};
 }
 
-std::optional<RoundPlan> RoundDriver::PlanNext(uint32_t batch_rays, double seconds) {
+std::optional<RoundPlan> RoundDriver::PlanNext(uint32_t batch_rays, double seconds,
+                                               double rays_per_second) {
   if (stop_) return std::nullopt;
   stop_ = StopBeforeRound(*solver_, settings_, totals_.rays, seconds);
   if (stop_) return std::nullopt;
-  RoundPlan plan = solver_->PlanRound(batch_rays, NextRoundRayCap(settings_, totals_.rays));
-  if (plan.batches.empty()) {  // nothing left to shoot
-    stop_ = kStopConverged;
+  uint64_t cap = NextRoundRayCap(settings_, totals_.rays);
+  // The pace is the shooting rounds'; a gather ray costs MeasureGatherRayCost's ratio of one.
+  const bool gather_next =
+      solver_->UnshotFraction() <= settings_.tolerance && solver_->GatherPending();
+  if (gather_next && gather_ray_cost_ && *gather_ray_cost_ > 0) {
+    rays_per_second /= *gather_ray_cost_;
+  }
+  const uint64_t time_cap = TimeRayCap(settings_, seconds, rays_per_second);
+  time_capped_ = time_cap > 0 && (cap == 0 || time_cap < cap);
+  if (time_capped_) cap = time_cap;
+  RoundPlan plan = solver_->PlanRound(batch_rays, cap);
+  if (plan.batches.empty()) {
+    // Nothing left to shoot, or a gather that cannot give each patch a ray in the time left.
+    stop_ = time_capped_ ? kStopTimeBudget : kStopConverged;
     return std::nullopt;
   }
   return plan;
@@ -129,6 +141,7 @@ AppliedRound RoundDriver::AfterApply(const RoundPlan& plan, uint64_t escaped_ray
   applied.unshot_power = solver_->energy().unshot;
   applied.gather_rays_left = solver_->PendingGatherRays();
   stop_ = StopAfterRound(plan, *solver_, settings_);
+  if (stop_ && time_capped_) stop_ = kStopTimeBudget;
   // Refinement between rounds: only when the solve goes on.
   if (!stop_ && schedule_ && schedule_->PointPassed(*solver_)) {
     const auto start = std::chrono::steady_clock::now();

@@ -69,8 +69,12 @@ class RoundDriver {
   RoundDriver& operator=(const RoundDriver&) = delete;
 
   // The next round, its batches of at most `batch_rays` rays, after `seconds` spent in all; or
-  // nullopt when the solve stops before it.
-  std::optional<RoundPlan> PlanNext(uint32_t batch_rays, double seconds);
+  // nullopt when the solve stops before it. With a time budget and `rays_per_second` (the
+  // caller's estimate of its pace; 0: none), the round is trimmed to the rays that fit in the
+  // seconds left, so a long first round cannot overrun the budget; such a round ends the solve
+  // ("time budget"), as a trimmed round of a ray budget does.
+  std::optional<RoundPlan> PlanNext(uint32_t batch_rays, double seconds,
+                                    double rays_per_second = 0);
   // Folds in `plan`'s results (`results[k]` of plan.batches[k]), `seconds` spent in all by now.
   AppliedRound Apply(const RoundPlan& plan, const std::vector<BatchResult>& results,
                      double seconds);
@@ -108,6 +112,7 @@ class RoundDriver {
   uint32_t refinements() const { return refinements_; }
   bool refined() const { return refined_; }
   const ProgressiveSolver& solver() const { return *solver_; }
+  const SolverSettings& settings() const { return settings_; }
   const SolveTotals& totals() const { return totals_; }
   // The ray caster of the current scene, built on first use.
   const RayCaster& caster();
@@ -132,7 +137,8 @@ class RoundDriver {
   std::unique_ptr<RayCaster> caster_;  // for scene_, built on demand
   SolveTotals totals_;
   std::optional<std::string> stop_;
-  uint32_t last_round_ = 0;  // the plan's round number of the last round applied
+  bool time_capped_ = false;  // the last plan was trimmed to the time left, not the rays left
+  uint32_t last_round_ = 0;   // the plan's round number of the last round applied
   uint32_t last_shooters_ = 0;
   uint32_t refinements_ = 0;
   bool refined_ = false;                   // the mesh is no longer the one given

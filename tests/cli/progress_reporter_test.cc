@@ -138,6 +138,23 @@ TEST(ProgressTest, TheFinalGatherShowsItsProgressOncePerSecondInALog) {
   EXPECT_NE(s.find("\nfinal gather: 9000000 rays in all"), std::string::npos) << s;
 }
 
+// Issue 21: a big scene's first round ran 23 s without a line.
+TEST(ProgressTest, ALongShootingRoundShowsItsProgressBeforeItsEnd) {
+  Captured out;
+  ProgressReporter reporter(out.file(), false);
+  for (double seconds : {0.4, 1.1, 1.5, 2.4}) {
+    reporter.OnRoundRunning({0, 4'000'000, uint64_t(seconds / 4 * 4'000'000), seconds, false});
+  }
+  const std::string s = out.Text();
+  EXPECT_EQ(s.find("round 1 10%"), std::string::npos) << s;  // before the first second
+  EXPECT_NE(s.find("round 1 28% of 4000000 rays  1.00 Mrays/s  ETA ?\n"), std::string::npos) << s;
+  EXPECT_EQ(s.find("round 1 38%"), std::string::npos) << s;  // under a second after the last
+  EXPECT_NE(s.find("round 1 60%"), std::string::npos) << s;
+  // The next round starts its own count: its first second prints nothing.
+  reporter.OnRoundRunning({1, 1'000'000, 500'000, 0.5, false});
+  EXPECT_EQ(out.Text().find("round 2 "), std::string::npos) << out.Text();
+}
+
 TEST(ProgressTest, AShortGatherPrintsNoProgressLines) {
   Captured out;
   ProgressReporter reporter(out.file(), false);

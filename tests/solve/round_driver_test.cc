@@ -94,6 +94,49 @@ TEST(RoundDriverTest, TheBudgetsStopIt) {
   EXPECT_EQ(driver->stop_reason(), std::optional<std::string>(kStopTimeBudget));
 }
 
+// Issue 21: a 10 s budget ran a 23 s first round. With the caller's pace the round is trimmed to
+// the rays that fit in the seconds left, and it ends the solve with the time budget's reason.
+TEST(RoundDriverTest, ARoundIsTrimmedToTheTimeLeftAtTheCallersPace) {
+  const PatchScene scene = LitBox();
+  SolverSettings settings = Settings();
+  settings.tolerance = 1e-6;
+  settings.max_seconds = 10;
+  std::unique_ptr<RoundDriver> driver = RoundDriver::Start(scene, settings, nullptr);
+  const std::optional<RoundPlan> whole = driver->PlanNext(97, 0);  // no pace: not trimmed
+  ASSERT_TRUE(whole.has_value());
+  EXPECT_FALSE(whole->capped);
+  ASSERT_GT(whole->rays, 1000u);
+  // 2 s left at 300 rays/s: 600 rays.
+  const std::optional<RoundPlan> trimmed = driver->PlanNext(97, 8, 300);
+  ASSERT_TRUE(trimmed.has_value());
+  EXPECT_TRUE(trimmed->capped);
+  EXPECT_EQ(trimmed->rays, 600u);
+  BatchTracer runner(driver->scene(), driver->caster(), driver->solver().sampler());
+  std::vector<BatchResult> results;
+  for (const Batch& b : trimmed->batches) results.push_back(runner.Run(b));
+  driver->Apply(*trimmed, results, 9.5);
+  EXPECT_EQ(driver->stop_reason(), std::optional<std::string>(kStopTimeBudget));
+  EXPECT_EQ(driver->totals().rays, 600u);
+
+  // A pace that fits the whole round trims nothing and the solve goes on.
+  driver = RoundDriver::Start(scene, settings, nullptr);
+  const std::optional<RoundPlan> fits = driver->PlanNext(97, 1, 1e9);
+  ASSERT_TRUE(fits.has_value());
+  EXPECT_FALSE(fits->capped);
+  EXPECT_EQ(fits->rays, whole->rays);
+  // A ray budget smaller than the time's cap stays a ray budget.
+  settings.max_rays = 100;
+  driver = RoundDriver::Start(scene, settings, nullptr);
+  const std::optional<RoundPlan> rays = driver->PlanNext(97, 1, 1e9);
+  ASSERT_TRUE(rays.has_value());
+  EXPECT_EQ(rays->rays, 100u);
+  BatchTracer rays_runner(driver->scene(), driver->caster(), driver->solver().sampler());
+  results.clear();
+  for (const Batch& b : rays->batches) results.push_back(rays_runner.Run(b));
+  driver->Apply(*rays, results, 1.5);
+  EXPECT_EQ(driver->stop_reason(), std::optional<std::string>(kStopRayBudget));
+}
+
 TEST(RoundDriverTest, AStateOfAnotherSizeIsRefused) {
   const PatchScene scene = LitBox();
   SolveState state;
