@@ -138,7 +138,11 @@ int RunRender(const RenderOptions& options) {
   PatchMesh& mesh = *solved->mesh;
   const SolveResult& solution = solved->solution;
   const uint64_t patches_before = job.refine.enabled ? solved->patches_before : 0;
-  if (Status s = WriteOutputs(options.out_dir, mesh, solution, job, patches_before); !s.ok()) {
+  std::vector<std::string> output_warnings;
+  const Status written =
+      WriteOutputs(options.out_dir, mesh, solution, job, patches_before, &output_warnings);
+  PrintMessages(output_warnings);
+  if (Status s = written; !s.ok()) {
     PrintError(s.error());
     return kExitFailure;
   }

@@ -8,6 +8,8 @@
 #include "output/exposure_meter.h"
 #include "output/exr_writer.h"
 #include "output/image.h"
+#include "output/lightmap_uvs.h"
+#include "output/lightmap_writer.h"
 #include "output/lit_glb_writer.h"
 #include "output/patches_csv.h"
 #include "output/ply_writer.h"
@@ -24,7 +26,8 @@ Status CreateOutputDirectory(const std::string& dir) {
 }
 
 Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& solution,
-                    const Job& job, uint64_t patches_before_refinement) {
+                    const Job& job, uint64_t patches_before_refinement,
+                    std::vector<std::string>* warnings) {
   const double patches_after = double(mesh.patch_scene().patches.size());
   const double patches_before =
       patches_before_refinement > 0 ? double(patches_before_refinement) : patches_after;
@@ -50,10 +53,25 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
   const auto path = [&](const char* name) { return (fs::path(dir) / name).string(); };
   std::vector<uint32_t> patch_object(mesh.patch_scene().patches.size());
   for (uint32_t p = 0; p < patch_object.size(); ++p) patch_object[p] = mesh.patch_object(p);
+  // Lightmaps of the objects with a second UV set, in that UV; texels of a quarter patch, about
+  // the display's vertex spacing after its midpoint cut.
+  const DisplayLightmapUvs uvs =
+      LocateLightmapUvs(display, patch_object, mesh.objects().size(), mesh.lightmap_triangles());
+  Result<std::vector<Lightmap>> lightmaps =
+      WriteLightmaps(dir, display, mesh.objects(), uvs, mesh.lightmap_triangles(), exposed,
+                     mesh.patch_size() / 4, 0, warnings);
+  RADFARM_RETURN_IF_ERROR(lightmaps);
+  LitLightmaps lit_lightmaps{&uvs, std::vector<std::string>(mesh.objects().size()),
+                             std::vector<std::string>(mesh.objects().size())};
+  for (const Lightmap& map : *lightmaps) {
+    lit_lightmaps.png[map.object] = map.png;
+    lit_lightmaps.exr[map.object] = map.exr;
+  }
   for (const Status& s :
        {WritePng(path("image.png"), image, exposed), WriteExr(path("image.exr"), image),
         WritePly(path("radiosity.ply"), display, exposed),
-        WriteLitGlb(path("lit.glb"), display, {mesh.objects(), patch_object}, exposed.exposure),
+        WriteLitGlb(path("lit.glb"), display, {mesh.objects(), patch_object}, exposed.exposure,
+                    lit_lightmaps),
         WritePatchesCsv(path("patches.csv"), mesh.patch_scene(), solution.radiosity),
         WriteStatsJson(path("stats.json"), solution.stats,
                        {{"patch_size", mesh.patch_size()},

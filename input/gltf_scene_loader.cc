@@ -234,6 +234,9 @@ class SceneBuilder {
       }
       uvs = std::move(*read);
     }
+    Result<std::vector<std::array<double, 2>>> lightmap_uvs =
+        LightmapUvs(prim, what, points->size());
+    RADFARM_RETURN_IF_ERROR(lightmap_uvs);
     const auto first = static_cast<uint32_t>(scene_->positions.size());
     for (const auto& p : *points) {
       const Vec3 v = world.Point(Vec3{p[0], p[1], p[2]});
@@ -258,9 +261,32 @@ class SceneBuilder {
       face.indices = {first + corner[0], first + corner[1], first + corner[2]};
       face.material = *material;
       face.object = object_;
+      for (uint32_t k = 0; k < 3 && !lightmap_uvs->empty(); ++k) {
+        const std::array<double, 2>& uv = (*lightmap_uvs)[corner[k]];
+        face.lightmap_uv.push_back({static_cast<float>(uv[0]), static_cast<float>(uv[1])});
+      }
       scene_->faces.push_back(std::move(face));
     }
     return Ok{};
+  }
+
+  // TEXCOORD_1, the lightmap UV (Blender's second UV map); empty when the primitive has none.
+  Result<std::vector<std::array<double, 2>>> LightmapUvs(const tinygltf::Primitive& prim,
+                                                         const std::string& what, size_t vertices) {
+    const auto uv = prim.attributes.find("TEXCOORD_1");
+    if (uv == prim.attributes.end()) return std::vector<std::array<double, 2>>{};
+    Result<std::vector<std::array<double, 2>>> read =
+        ReadVec2Accessor(model_, uv->second, path_ + ": " + what + " TEXCOORD_1");
+    RADFARM_RETURN_IF_ERROR(read);
+    if (read->size() != vertices) {
+      return ErrorAt(path_, 0, what + ": TEXCOORD_1 and POSITION differ in length");
+    }
+    for (const auto& t : *read) {
+      if (!std::isfinite(t[0]) || !std::isfinite(t[1])) {
+        return ErrorAt(path_, 0, what + ": non-finite TEXCOORD_1");
+      }
+    }
+    return read;
   }
 
   Status Camera(int node, const Mat4& world) {

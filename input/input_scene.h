@@ -45,6 +45,9 @@ struct InputFace {
   uint32_t material = 0;          // into InputScene::materials
   uint32_t line = 0;              // 1-based line of the `f` statement, for messages
   uint32_t object = 0;            // into InputScene::objects (0 when the scene lists none)
+  // The lightmap UV of each corner (glTF TEXCOORD_1), as many as indices; empty when the face has
+  // none (OBJ has no second UV set). output/lightmap_writer.h bakes a lightmap in it.
+  std::vector<std::array<float, 2>> lightmap_uv;
 };
 
 struct InputScene {
@@ -66,6 +69,14 @@ std::string DefaultObjectName(const std::string& scene_path);
 
 // scene.objects, or one root object named after the scene's file when it lists none.
 std::vector<InputObject> ObjectsOrDefault(const InputScene& scene);
+
+// A face with a lightmap UV (InputFace::lightmap_uv), fanned into triangles in world space.
+struct LightmapTriangle {
+  uint32_t object = 0;  // into ObjectsOrDefault(scene)
+  std::array<Vec3, 3> position;
+  std::array<std::array<float, 2>, 3> uv;
+};
+std::vector<LightmapTriangle> LightmapTriangles(const InputScene& scene);
 
 // Reads and validates an OBJ (and the MTL files it names). Errors are one line naming the file and
 // the line, face or material: missing file, unparseable line, index out of range, non-finite

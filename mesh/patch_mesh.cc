@@ -170,6 +170,7 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
 
   pm.materials_ = scene.materials;
   pm.objects_ = ObjectsOrDefault(scene);
+  pm.lightmap_triangles_ = LightmapTriangles(scene);
   const auto set_object = [&pm](uint32_t surface, uint32_t object) {
     if (pm.surface_object_.size() <= surface) pm.surface_object_.resize(surface + 1);
     pm.surface_object_[surface] = object;
@@ -233,6 +234,7 @@ PatchMesh PatchMesh::Rebuilt(const std::vector<Piece>& pieces) const {
   pm.covered_surfaces_ = covered_surfaces_;
   pm.objects_ = objects_;
   pm.surface_object_ = surface_object_;
+  pm.lightmap_triangles_ = lightmap_triangles_;
   pm.materials_ = materials_;
   pm.tol_ = tol_;
   pm.min_area_ = min_area_;

@@ -76,6 +76,8 @@ class PatchMesh {
   // surfaces never span two objects (surfaces.h), so it is a function of the patch's surface, and
   // a refined mesh (Rebuilt, which keeps surfaces) knows it too.
   const std::vector<InputObject>& objects() const { return objects_; }
+  // The input's faces with a lightmap UV (glTF TEXCOORD_1), for output/lightmap_writer.h.
+  const std::vector<LightmapTriangle>& lightmap_triangles() const { return lightmap_triangles_; }
   uint32_t patch_object(uint32_t patch) const {
     return surface_object_[data_.scene.patches[patch].surface];
   }
@@ -148,6 +150,7 @@ class PatchMesh {
   std::vector<uint32_t> covered_surfaces_;
   std::vector<InputObject> objects_;
   std::vector<uint32_t> surface_object_;  // by surface id
+  std::vector<LightmapTriangle> lightmap_triangles_;
   std::vector<Material> materials_;
   double tol_ = 0;
   double min_area_ = 0;

@@ -93,39 +93,78 @@ Placement PlaceObjects(const std::vector<InputObject>& objects) {
   return out;
 }
 
-// One object's vertices: the display vertices its triangles use, in order of first use.
+bool HasLightmap(const LitLightmaps& lightmaps, size_t object) {
+  return lightmaps.uvs != nullptr && object < lightmaps.png.size() &&
+         !lightmaps.png[object].empty();
+}
+
+// One object's vertices: the display vertices its triangles use, in order of first use; with a
+// lightmap, one per display vertex and lightmap UV (a vertex on a UV seam is split).
 class VertexGather {
  public:
-  explicit VertexGather(size_t display_vertices)
-      : local_(display_vertices, kNone), stamp_(display_vertices, 0) {}
+  VertexGather(size_t display_vertices, const LitLightmaps& lightmaps)
+      : lightmaps_(lightmaps), local_(display_vertices, kNone), stamp_(display_vertices, 0) {}
 
   void Collect(const DisplayMesh& mesh, const ObjectTriangles& groups, uint32_t object) {
     vertices_.clear();
+    corners_.clear();
+    uvs_.clear();
+    next_.clear();
     ++generation_;  // 2^32 collections would be 2^32 objects: far past the face limit
+    const bool with_uv = HasLightmap(lightmaps_, object);
     for (uint32_t k = groups.offsets[object]; k < groups.offsets[object + 1]; ++k) {
-      for (uint32_t v : mesh.triangles[groups.order[k]]) {
-        if (stamp_[v] == generation_) continue;
-        stamp_[v] = generation_;
-        local_[v] = static_cast<uint32_t>(vertices_.size());
-        vertices_.push_back(v);
+      const uint32_t t = groups.order[k];
+      for (int c = 0; c < 3; ++c) {
+        const uint32_t v = mesh.triangles[t][c];
+        if (stamp_[v] != generation_) {
+          stamp_[v] = generation_;
+          local_[v] = kNone;
+        }
+        if (!with_uv) {
+          if (local_[v] == kNone) Add(v, {});
+          corners_.push_back(local_[v]);
+          continue;
+        }
+        const Uv uv = lightmaps_.uvs->source[t] >= 0 ? lightmaps_.uvs->uv[t][c] : Uv{0, 0};
+        uint32_t found = local_[v];
+        while (found != kNone && uvs_[found] != uv) found = next_[found];
+        if (found == kNone) found = Add(v, uv);
+        corners_.push_back(found);
       }
     }
   }
-  uint32_t Local(uint32_t display_vertex) const { return local_[display_vertex]; }
   const std::vector<uint32_t>& vertices() const { return vertices_; }
+  const std::vector<uint32_t>& corners() const { return corners_; }  // the triangles' corners
+  const std::vector<Uv>& uvs() const { return uvs_; }                // by vertex, with a lightmap
 
  private:
-  std::vector<uint32_t> local_;
+  uint32_t Add(uint32_t v, const Uv& uv) {
+    const auto local = static_cast<uint32_t>(vertices_.size());
+    next_.push_back(local_[v]);  // the vertex's other UVs, a chain through next_
+    local_[v] = local;
+    vertices_.push_back(v);
+    uvs_.push_back(uv);
+    return local;
+  }
+
+  const LitLightmaps& lightmaps_;
+  std::vector<uint32_t> local_;  // the display vertex's latest local vertex in this collection
   std::vector<uint32_t> stamp_;  // the collection local_ was set in
   std::vector<uint32_t> vertices_;
+  std::vector<uint32_t> corners_;
+  std::vector<Uv> uvs_;
+  std::vector<uint32_t> next_;
   uint32_t generation_ = 0;
 };
 
 struct ObjectLayout {
   uint32_t vertices = 0;
   uint32_t triangles = 0;
+  bool lightmap = false;  // TEXCOORD_1 (and _0) after COLOR_0
   std::array<float, 3> min{}, max{};
-  uint64_t Bytes() const { return uint64_t{vertices} * 24 + uint64_t{triangles} * 12; }
+  uint64_t Bytes() const {
+    return uint64_t{vertices} * (lightmap ? 32 : 24) + uint64_t{triangles} * 12;
+  }
 };
 
 std::array<float, 3> LocalPosition(const Placement& place, uint32_t object, const Vec3& p) {
@@ -135,11 +174,12 @@ std::array<float, 3> LocalPosition(const Placement& place, uint32_t object, cons
 
 Result<std::vector<ObjectLayout>> Layout(const std::string& path, const DisplayMesh& mesh,
                                          const ObjectTriangles& groups, const Placement& place,
-                                         VertexGather* gather) {
+                                         const LitLightmaps& lightmaps, VertexGather* gather) {
   std::vector<ObjectLayout> out(groups.offsets.size() - 1);
   for (uint32_t o = 0; o < out.size(); ++o) {
     gather->Collect(mesh, groups, o);
     ObjectLayout& layout = out[o];
+    layout.lightmap = HasLightmap(lightmaps, o);
     layout.vertices = static_cast<uint32_t>(gather->vertices().size());
     layout.triangles = groups.offsets[o + 1] - groups.offsets[o];
     layout.min.fill(std::numeric_limits<float>::infinity());
@@ -162,13 +202,30 @@ Result<std::vector<ObjectLayout>> Layout(const std::string& path, const DisplayM
 
 bool IsIdentity(const AffineMatrix& m) { return m == InputObject::kIdentityMatrix; }
 
+// Shows the lightmap PNG (exposed by 2^stops, sRGB) as emission scaled back to linear radiance.
+nlohmann::json LightmapMaterial(const std::string& object, size_t texture, const std::string& png,
+                                const std::string& exr, double exposure_stops) {
+  nlohmann::json extras = {{"lightmap_png", png}};
+  if (!exr.empty()) extras["lightmap_exr"] = exr;
+  return {
+      {"name", object + " lightmap"},
+      {"pbrMetallicRoughness",
+       {{"baseColorFactor", {0, 0, 0, 1}}, {"metallicFactor", 0}, {"roughnessFactor", 1}}},
+      {"emissiveFactor", {1, 1, 1}},
+      {"emissiveTexture", {{"index", texture}, {"texCoord", 1}}},
+      {"extensions",
+       {{"KHR_materials_emissive_strength", {{"emissiveStrength", std::exp2(-exposure_stops)}}}}},
+      {"extras", {{"radfarm", std::move(extras)}}}};
+}
+
 // The JSON chunk, padded with spaces to a multiple of 4 bytes as GLB requires.
 std::string JsonChunk(const std::vector<InputObject>& objects,
                       const std::vector<ObjectLayout>& layout, const Placement& place,
-                      double exposure_stops) {
+                      double exposure_stops, const LitLightmaps& lightmaps) {
   using nlohmann::json;
   json nodes = json::array(), meshes = json::array(), views = json::array(),
-       accessors = json::array(), roots = json::array();
+       accessors = json::array(), roots = json::array(), materials = json::array(),
+       images = json::array(), textures = json::array();
   std::vector<json> children(objects.size(), json::array());
   uint64_t offset = 0;
   const auto view = [&](uint64_t bytes, uint32_t target) {
@@ -194,14 +251,30 @@ std::string JsonChunk(const std::vector<InputObject>& objects,
                            {"componentType", kFloat},
                            {"count", l.vertices},
                            {"type", "VEC3"}});
+      json attributes = {{"POSITION", positions}, {"COLOR_0", positions + 1}};
+      json material = 0;
+      if (l.lightmap) {
+        attributes["TEXCOORD_0"] = attributes["TEXCOORD_1"] = accessors.size();
+        accessors.push_back({{"bufferView", view(uint64_t{l.vertices} * 8, kArrayBuffer)},
+                             {"componentType", kFloat},
+                             {"count", l.vertices},
+                             {"type", "VEC2"}});
+        material = 1 + materials.size();
+        materials.push_back(LightmapMaterial(objects[o].name, textures.size(), lightmaps.png[o],
+                                             o < lightmaps.exr.size() ? lightmaps.exr[o] : "",
+                                             exposure_stops));
+        textures.push_back({{"source", images.size()}, {"sampler", 0}});
+        images.push_back({{"uri", lightmaps.png[o]}, {"name", objects[o].name}});
+      }
+      const size_t indices = accessors.size();
       accessors.push_back({{"bufferView", view(uint64_t{l.triangles} * 12, kElementArrayBuffer)},
                            {"componentType", kUnsignedInt},
                            {"count", uint64_t{l.triangles} * 3},
                            {"type", "SCALAR"}});
       json mesh = {{"primitives",
-                    {{{"attributes", {{"POSITION", positions}, {"COLOR_0", positions + 1}}},
-                      {"indices", positions + 2},
-                      {"material", 0}}}}};
+                    {{{"attributes", std::move(attributes)},
+                      {"indices", indices},
+                      {"material", std::move(material)}}}}};
       if (!objects[o].name.empty()) mesh["name"] = objects[o].name;
       node["mesh"] = meshes.size();
       meshes.push_back(std::move(mesh));
@@ -234,6 +307,15 @@ std::string JsonChunk(const std::vector<InputObject>& objects,
          {"pbrMetallicRoughness",
           {{"baseColorFactor", {1, 1, 1, 1}}, {"metallicFactor", 0}, {"roughnessFactor", 1}}},
          {"extensions", {{"KHR_materials_unlit", json::object()}}}}}}};
+  if (!materials.empty()) {
+    for (json& m : materials) gltf["materials"].push_back(std::move(m));
+    gltf["extensionsUsed"].push_back("KHR_materials_emissive_strength");
+    gltf["textures"] = std::move(textures);
+    gltf["images"] = std::move(images);
+    // Linear filtering, clamped: the gutter (lightmap_writer.h) covers the islands' edges.
+    gltf["samplers"] = {
+        {{"magFilter", 9729}, {"minFilter", 9729}, {"wrapS", 33071}, {"wrapT", 33071}}};
+  }
   if (!meshes.empty()) {
     gltf["meshes"] = std::move(meshes);
     gltf["accessors"] = std::move(accessors);
@@ -265,7 +347,7 @@ struct Plan {
 };
 
 Result<Plan> MakePlan(const std::string& path, const DisplayMesh& mesh, const LitObjects& lit,
-                      double exposure_stops, VertexGather* gather) {
+                      double exposure_stops, const LitLightmaps& lightmaps, VertexGather* gather) {
   Plan plan;
   for (size_t o = 0; o < lit.objects.size(); ++o) {
     if (lit.objects[o].parent >= static_cast<int64_t>(o)) {
@@ -277,10 +359,14 @@ Result<Plan> MakePlan(const std::string& path, const DisplayMesh& mesh, const Li
   RADFARM_RETURN_IF_ERROR(groups);
   plan.groups = std::move(*groups);
   plan.place = PlaceObjects(lit.objects);
-  Result<std::vector<ObjectLayout>> layout = Layout(path, mesh, plan.groups, plan.place, gather);
+  if (lightmaps.uvs != nullptr && lightmaps.uvs->source.size() != mesh.triangles.size()) {
+    return Error{path + ": cannot write lit.glb: lightmap UVs and triangles differ in number"};
+  }
+  Result<std::vector<ObjectLayout>> layout =
+      Layout(path, mesh, plan.groups, plan.place, lightmaps, gather);
   RADFARM_RETURN_IF_ERROR(layout);
   plan.layout = std::move(*layout);
-  plan.json = JsonChunk(lit.objects, plan.layout, plan.place, exposure_stops);
+  plan.json = JsonChunk(lit.objects, plan.layout, plan.place, exposure_stops, lightmaps);
   plan.binary = BinaryBytes(plan.layout);
   return plan;
 }
@@ -308,10 +394,15 @@ Status WriteObject(const DisplayMesh& mesh, const Plan& plan, uint32_t object, V
     for (double x : {c.r, c.g, c.b}) AppendLittleEndian(static_cast<float>(x), &bytes);
     RADFARM_RETURN_IF_ERROR(flush_if_full());
   }
-  for (uint32_t k = plan.groups.offsets[object]; k < plan.groups.offsets[object + 1]; ++k) {
-    for (uint32_t v : mesh.triangles[plan.groups.order[k]]) {
-      AppendLittleEndian(gather->Local(v), &bytes);
+  if (plan.layout[object].lightmap) {
+    for (const Uv& uv : gather->uvs()) {
+      AppendLittleEndian(uv[0], &bytes);
+      AppendLittleEndian(uv[1], &bytes);
+      RADFARM_RETURN_IF_ERROR(flush_if_full());
     }
+  }
+  for (uint32_t local : gather->corners()) {
+    AppendLittleEndian(local, &bytes);
     RADFARM_RETURN_IF_ERROR(flush_if_full());
   }
   return file->Append(bytes);
@@ -319,16 +410,17 @@ Status WriteObject(const DisplayMesh& mesh, const Plan& plan, uint32_t object, V
 
 }  // namespace
 
-uint64_t LitGlbBytes(const DisplayMesh& mesh, const LitObjects& objects, double exposure_stops) {
-  VertexGather gather(mesh.positions.size());
-  Result<Plan> plan = MakePlan("", mesh, objects, exposure_stops, &gather);
+uint64_t LitGlbBytes(const DisplayMesh& mesh, const LitObjects& objects, double exposure_stops,
+                     const LitLightmaps& lightmaps) {
+  VertexGather gather(mesh.positions.size(), lightmaps);
+  Result<Plan> plan = MakePlan("", mesh, objects, exposure_stops, lightmaps, &gather);
   return plan.ok() ? FileBytes(plan->json, plan->binary) : 0;
 }
 
 Status WriteLitGlb(const std::string& path, const DisplayMesh& mesh, const LitObjects& objects,
-                   double exposure_stops) {
-  VertexGather gather(mesh.positions.size());
-  Result<Plan> plan = MakePlan(path, mesh, objects, exposure_stops, &gather);
+                   double exposure_stops, const LitLightmaps& lightmaps) {
+  VertexGather gather(mesh.positions.size(), lightmaps);
+  Result<Plan> plan = MakePlan(path, mesh, objects, exposure_stops, lightmaps, &gather);
   RADFARM_RETURN_IF_ERROR(plan);
   const uint64_t total = FileBytes(plan->json, plan->binary);
   if (total > kMaxGlbBytes) {

@@ -1,0 +1,131 @@
+#include "output/lightmap_writer.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <system_error>
+
+#include "output/exr_writer.h"
+#include "output/png_writer.h"
+#include "output/tone_map.h"
+
+namespace radfarm {
+namespace {
+
+double UvArea(const std::array<Uv, 3>& t) {
+  return 0.5 * std::abs(double(t[1][0] - t[0][0]) * double(t[2][1] - t[0][1]) -
+                        double(t[1][1] - t[0][1]) * double(t[2][0] - t[0][0]));
+}
+
+double WorldArea(const std::array<Vec3, 3>& t) {
+  return 0.5 * Length(Cross(t[1] - t[0], t[2] - t[0]));
+}
+
+// By input triangle: whether its front side (as the input faces) is the one to bake.
+std::vector<bool> BakedSides(const DisplayMesh& mesh, const DisplayLightmapUvs& uvs,
+                             size_t triangles) {
+  std::vector<double> front(triangles, 0), back(triangles, 0);
+  for (size_t d = 0; d < uvs.source.size(); ++d) {
+    if (uvs.source[d] < 0) continue;
+    const auto& t = mesh.triangles[d];
+    const double light = Luminance(mesh.radiance[t[0]] + mesh.radiance[t[1]] + mesh.radiance[t[2]]);
+    const double area =
+        WorldArea({mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]});
+    (uvs.front[d] ? front : back)[uvs.source[d]] += area * light;
+  }
+  std::vector<bool> out(triangles);
+  for (size_t i = 0; i < triangles; ++i) out[i] = front[i] >= back[i];
+  return out;
+}
+
+}  // namespace
+
+uint32_t LightmapSize(double world_area, double uv_area, double texel_size) {
+  double side = std::sqrt(world_area / uv_area) / texel_size;
+  if (!std::isfinite(side)) side = kMinLightmapSize;
+  side = std::clamp(side, double(kMinLightmapSize), double(kMaxLightmapSize));
+  return (static_cast<uint32_t>(std::ceil(side)) + 3) / 4 * 4;
+}
+
+std::vector<std::string> LightmapStems(const std::vector<InputObject>& objects) {
+  std::vector<std::string> out;
+  std::set<std::string> taken;
+  for (size_t o = 0; o < objects.size(); ++o) {
+    std::string stem = objects[o].name;
+    for (char& c : stem) {
+      const bool safe =
+          std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
+      if (!safe) c = '_';
+    }
+    if (stem.empty() || stem[0] == '.') stem = "object" + std::to_string(o) + stem;
+    std::string unique = stem;
+    for (int n = 2; taken.count(unique) > 0; ++n) unique = stem + "_" + std::to_string(n);
+    taken.insert(unique);
+    out.push_back(unique);
+  }
+  return out;
+}
+
+Result<std::vector<Lightmap>> WriteLightmaps(const std::string& dir, const DisplayMesh& mesh,
+                                             const std::vector<InputObject>& objects,
+                                             const DisplayLightmapUvs& uvs,
+                                             const std::vector<LightmapTriangle>& triangles,
+                                             const Camera& exposed, double texel_size,
+                                             uint32_t size, std::vector<std::string>* warnings) {
+  std::vector<Lightmap> out;
+  const std::vector<bool> baked = BakedSides(mesh, uvs, triangles.size());
+  // By object: the input triangles' areas, for the resolution.
+  std::vector<double> world_area(objects.size(), 0), uv_area(objects.size(), 0);
+  for (const LightmapTriangle& t : triangles) {
+    if (t.object >= objects.size()) continue;
+    world_area[t.object] += WorldArea(t.position);
+    uv_area[t.object] += UvArea(t.uv);
+  }
+  std::vector<std::vector<uint32_t>> drawn(objects.size());
+  for (size_t d = 0; d < uvs.source.size(); ++d) {
+    const int64_t s = uvs.source[d];
+    if (s >= 0 && uvs.front[d] == baked[s]) drawn[triangles[s].object].push_back(uint32_t(d));
+  }
+  const std::vector<std::string> stems = LightmapStems(objects);
+  namespace fs = std::filesystem;
+  for (uint32_t o = 0; o < objects.size(); ++o) {
+    if (o >= uvs.object_has_uv.size() || !uvs.object_has_uv[o]) continue;
+    if (out.empty()) {
+      std::error_code ec;
+      fs::create_directories(fs::path(dir) / "lightmaps", ec);
+      if (ec) return Error{dir + "/lightmaps: cannot create: " + ec.message()};
+    }
+    Lightmap map;
+    map.object = o;
+    map.size = size > 0 ? size : LightmapSize(world_area[o], uv_area[o], texel_size);
+    map.exr = "lightmaps/" + stems[o] + ".exr";
+    map.png = "lightmaps/" + stems[o] + ".png";
+    UvRaster raster(map.size, map.size);
+    for (uint32_t d : drawn[o]) {
+      const auto& t = mesh.triangles[d];
+      raster.Draw(uvs.uv[d], {mesh.radiance[t[0]], mesh.radiance[t[1]], mesh.radiance[t[2]]});
+    }
+    raster.Dilate(kLightmapGutter);
+    map.stats = raster.stats();
+    const std::string& name = objects[o].name.empty() ? stems[o] : objects[o].name;
+    if (warnings != nullptr && map.stats.overlapped * 100 > map.stats.covered) {
+      warnings->push_back(name + ": its lightmap UVs (TEXCOORD_1) overlap: " +
+                          std::to_string(map.stats.overlapped) + " of " +
+                          std::to_string(map.stats.covered) +
+                          " texels drawn twice (the first kept); unwrap it without overlaps");
+    }
+    RADFARM_RETURN_IF_ERROR(WriteExr((fs::path(dir) / map.exr).string(), raster.image()));
+    RADFARM_RETURN_IF_ERROR(WritePng((fs::path(dir) / map.png).string(), raster.image(), exposed));
+    out.push_back(std::move(map));
+  }
+  if (warnings != nullptr && uvs.unplaced > 0) {
+    warnings->push_back(std::to_string(uvs.unplaced) +
+                        " display triangles lie on no input triangle with a lightmap UV; they "
+                        "are missing from the lightmaps");
+  }
+  return out;
+}
+
+}  // namespace radfarm

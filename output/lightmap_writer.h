@@ -1,0 +1,57 @@
+// Lightmaps: for every object with a lightmap UV (glTF TEXCOORD_1; output/lightmap_uvs.h), its
+// light baked in that UV: lightmaps/<object>.exr (float linear radiance, the units of COLOR_0) and
+// lightmaps/<object>.png (the image's exposure and sRGB curve, a preview lit.glb shows as its
+// emission). Each display triangle is drawn in UV space with its vertices' radiance
+// (output/uv_raster.h), so a texel shows what the display shows at its point, cuts across
+// discontinuities included; then kLightmapGutter texels of gutter are filled around every island.
+// A lightmap holds one side: where a two-sided surface has both, the brighter side (area-weighted
+// luminance over each input triangle: the inside of a room whose walls face out).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "base/result.h"
+#include "input/input_scene.h"
+#include "mesh/display_mesh.h"
+#include "output/camera.h"
+#include "output/lightmap_uvs.h"
+#include "output/uv_raster.h"
+
+namespace radfarm {
+
+inline constexpr int kLightmapGutter = 4;
+inline constexpr uint32_t kMinLightmapSize = 32;
+inline constexpr uint32_t kMaxLightmapSize = 2048;
+
+struct Lightmap {
+  uint32_t object = 0;
+  std::string exr;  // relative to the output directory: "lightmaps/<name>.exr"
+  std::string png;
+  uint32_t size = 0;  // square
+  UvRasterStats stats;
+};
+
+// The side of a square lightmap giving texels of about `texel_size` in the world for an object of
+// `world_area` whose triangles cover `uv_area` of the unit UV square, clamped to
+// [kMinLightmapSize, kMaxLightmapSize] and rounded up to a multiple of 4.
+uint32_t LightmapSize(double world_area, double uv_area, double texel_size);
+
+// File stems by object: the name with characters other than letters, digits, '-', '_' and '.'
+// made '_' ("object<N>" when empty), "_<N>" appended to the second of two equal stems.
+std::vector<std::string> LightmapStems(const std::vector<InputObject>& objects);
+
+// Bakes and writes the lightmaps of the objects `uvs` places (into `dir`/lightmaps/, created when
+// needed). `size` 0: LightmapSize with `texel_size`; otherwise every lightmap is size x size.
+// Appends a warning naming the object when its UVs overlap (more than 1% of its texels drawn
+// twice) or some of its display triangles lie on no input triangle. The PNG uses `exposed`'s
+// exposure. Errors name the file.
+Result<std::vector<Lightmap>> WriteLightmaps(const std::string& dir, const DisplayMesh& mesh,
+                                             const std::vector<InputObject>& objects,
+                                             const DisplayLightmapUvs& uvs,
+                                             const std::vector<LightmapTriangle>& triangles,
+                                             const Camera& exposed, double texel_size,
+                                             uint32_t size, std::vector<std::string>* warnings);
+
+}  // namespace radfarm
