@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "output/affine_matrix.h"
+#include "output/png_writer.h"
 #include "tests/output/test_dir.h"
 
 namespace radfarm {
@@ -165,6 +166,66 @@ TEST(LitGlbWriterTest, AnObjectFlattenedToZeroScaleKeepsItsVerticesInWorldSpace)
   EXPECT_TRUE(model.nodes[2].matrix.empty());
   // Its parent has no inverse either, so the lamp's node sits at the identity under the identity.
   EXPECT_TRUE(model.nodes[1].matrix.empty());
+}
+
+TEST(LitGlbWriterTest, ObjectsWithALightmapCarryItsUvAndShowItAsEmission) {
+  TestDir dir;
+  Fixture f;
+  // The floor's two triangles on two UV islands: the shared edge's vertices split on the seam.
+  DisplayLightmapUvs uvs;
+  uvs.source = {0, 1, -1};
+  uvs.uv = {
+      {Uv{0, 0}, Uv{0.4f, 0.4f}, Uv{0.4f, 0}}, {Uv{0.6f, 0}, Uv{0.6f, 0.4f}, Uv{1, 0.4f}}, {}};
+  uvs.front = {true, true, false};
+  uvs.object_has_uv = {true, false, false};
+  const LitLightmaps lightmaps{
+      &uvs, {"lightmaps/floor.png", "", ""}, {"lightmaps/floor.exr", "", ""}};
+  // tinygltf reads the image the file names.
+  Image pixel;
+  pixel.width = pixel.height = 1;
+  pixel.pixels = {Rgb(0.5, 0.5, 0.5)};
+  std::filesystem::create_directories(dir.File("lightmaps"));
+  ASSERT_TRUE(WritePng(dir.File("lightmaps/floor.png"), pixel, Camera{}).ok());
+  const std::string path = dir.File("lit.glb");
+  ASSERT_TRUE(WriteLitGlb(path, f.mesh, f.lit(), 1.5, lightmaps).ok());
+  EXPECT_EQ(std::filesystem::file_size(path), LitGlbBytes(f.mesh, f.lit(), 1.5, lightmaps));
+  const tinygltf::Model model = Load(path);
+
+  const tinygltf::Primitive& floor = model.meshes[model.nodes[0].mesh].primitives.at(0);
+  ASSERT_TRUE(floor.attributes.count("TEXCOORD_1"));
+  // Blender 3.4 reads TEXCOORD_1 only after TEXCOORD_0: one accessor serves both.
+  EXPECT_EQ(floor.attributes.at("TEXCOORD_0"), floor.attributes.at("TEXCOORD_1"));
+  const auto positions = ReadAccessor<float, 3>(model, floor.attributes.at("POSITION"));
+  const auto texcoords = ReadAccessor<float, 2>(model, floor.attributes.at("TEXCOORD_1"));
+  const auto indices = ReadAccessor<uint32_t, 1>(model, floor.indices);
+  EXPECT_EQ(positions.size(), 6u);  // 4 display vertices, the 2 on the seam twice
+  ASSERT_EQ(indices.size(), 6u);
+  for (size_t corner = 0; corner < 6; ++corner) {
+    const Uv& expected = uvs.uv[corner / 3][corner % 3];
+    EXPECT_EQ(texcoords[indices[corner][0]], (std::array<float, 2>{expected[0], expected[1]}))
+        << corner;
+    const Vec3& p = f.mesh.positions[f.mesh.triangles[corner / 3][corner % 3]];
+    EXPECT_EQ(positions[indices[corner][0]],
+              (std::array<float, 3>{float(p.x), float(p.y), float(p.z)}));
+  }
+  // The floor's material: the PNG as emission on texCoord 1, scaled back by 2^-1.5.
+  ASSERT_EQ(model.materials.size(), 2u);
+  EXPECT_EQ(floor.material, 1);
+  const tinygltf::Material& m = model.materials[1];
+  EXPECT_EQ(m.emissiveTexture.texCoord, 1);
+  EXPECT_EQ(m.emissiveFactor, (std::vector<double>{1, 1, 1}));
+  EXPECT_EQ(m.pbrMetallicRoughness.baseColorFactor, (std::vector<double>{0, 0, 0, 1}));
+  const int image = model.textures.at(m.emissiveTexture.index).source;
+  EXPECT_EQ(model.images.at(image).uri, "lightmaps/floor.png");
+  EXPECT_NEAR(m.extensions.at("KHR_materials_emissive_strength")
+                  .Get("emissiveStrength")
+                  .GetNumberAsDouble(),
+              std::exp2(-1.5), 1e-12);
+  EXPECT_EQ(m.extras.Get("radfarm").Get("lightmap_exr").Get<std::string>(), "lightmaps/floor.exr");
+  // The lamp has no lightmap: the unlit material, no UVs.
+  const tinygltf::Primitive& lamp = model.meshes[model.nodes[2].mesh].primitives.at(0);
+  EXPECT_EQ(lamp.material, 0);
+  EXPECT_FALSE(lamp.attributes.count("TEXCOORD_1"));
 }
 
 TEST(LitGlbWriterTest, ErrorsNameTheFile) {
