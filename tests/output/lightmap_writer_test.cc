@@ -4,6 +4,7 @@
 #include "output/lightmap_writer.h"
 
 #include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <gtest/gtest.h>
 

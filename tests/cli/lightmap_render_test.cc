@@ -1,0 +1,170 @@
+// Lightmaps end to end: the room Blender's own exporter wrote with a second UV map on three of its
+// objects (tests/blender/make_lightmap_room.py) rendered by the real binary. Each of them gets
+// lightmaps/<object>.exr and .png, referenced from lit.glb; the lamp, without the UV, gets none;
+// and the EXR's texels match the display's radiance (COLOR_0) where the two meet.
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli/exit_codes.h"
+#include "testing/child_process.h"
+#include "testing/temp_dir.h"
+
+namespace radfarm {
+namespace {
+
+using testing::RunCommand;
+using testing::TempDir;
+
+const std::string kJob = RADFARM_SOURCE_DIR "/tests/blender/lightmap-room.toml";
+
+struct Exr {
+  int width = 0, height = 0;
+  std::vector<float> rgb[3];
+  // Bilinear at (u, v), glTF's UV: v down from the top row, texel centres at (i + 0.5) / size.
+  double Sample(int c, double u, double v) const {
+    const double x = std::clamp(u * width - 0.5, 0.0, width - 1.0);
+    const double y = std::clamp(v * height - 0.5, 0.0, height - 1.0);
+    const int x0 = std::min(int(x), width - 2), y0 = std::min(int(y), height - 2);
+    const double fx = x - x0, fy = y - y0;
+    const auto at = [&](int xi, int yi) { return double(rgb[c][size_t(yi) * width + xi]); };
+    return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
+           fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
+  }
+};
+
+Exr ReadExr(const std::string& path) {
+  Imf::InputFile file(path.c_str());
+  const Imath::Box2i window = file.header().dataWindow();
+  Exr out;
+  out.width = window.max.x - window.min.x + 1;
+  out.height = window.max.y - window.min.y + 1;
+  Imf::FrameBuffer frame;
+  const char* names[3] = {"R", "G", "B"};
+  for (int c = 0; c < 3; ++c) {
+    out.rgb[c].resize(size_t(out.width) * out.height);
+    frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(out.rgb[c].data()),
+                                      sizeof(float), out.width * sizeof(float)));
+  }
+  file.setFrameBuffer(frame);
+  file.readPixels(window.min.y, window.max.y);
+  return out;
+}
+
+template <int N, typename T = float>
+std::vector<std::array<T, N>> ReadAccessor(const tinygltf::Model& model, int index) {
+  const tinygltf::Accessor& a = model.accessors.at(index);
+  const tinygltf::BufferView& v = model.bufferViews.at(a.bufferView);
+  std::vector<std::array<T, N>> out(a.count);
+  std::memcpy(out.data(), model.buffers[v.buffer].data.data() + v.byteOffset + a.byteOffset,
+              a.count * sizeof(T) * N);
+  return out;
+}
+
+// Per triangle of the object's primitive: COLOR_0 at its centre (the corners' mean, exact for the
+// linear display) against the lightmap there, as relative differences of r + g + b.
+struct Comparison {
+  std::vector<double> differences;  // of the triangles lit on this side (COLOR_0 above 1% of max)
+  double colour_mean = 0, lightmap_mean = 0;  // area-weighted over those triangles
+};
+
+Comparison CompareAtCentres(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                            const Exr& exr) {
+  const auto positions = ReadAccessor<3>(model, primitive.attributes.at("POSITION"));
+  const auto colours = ReadAccessor<3>(model, primitive.attributes.at("COLOR_0"));
+  const auto uvs = ReadAccessor<2>(model, primitive.attributes.at("TEXCOORD_1"));
+  const auto indices = ReadAccessor<1, uint32_t>(model, primitive.indices);
+  double brightest = 0;
+  for (const auto& c : colours) brightest = std::max(brightest, double(c[0] + c[1] + c[2]));
+  Comparison out;
+  double weight = 0;
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    double colour = 0, u = 0, v = 0, e[2][3];
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t i = indices[t + k][0];
+      colour += (colours[i][0] + colours[i][1] + colours[i][2]) / 3;
+      u += uvs[i][0] / 3;
+      v += uvs[i][1] / 3;
+    }
+    if (colour < 0.01 * brightest) continue;  // the unlit side of a two-sided wall
+    const uint32_t a = indices[t][0], b = indices[t + 1][0], c = indices[t + 2][0];
+    for (int k = 0; k < 3; ++k) {
+      e[0][k] = positions[b][k] - positions[a][k];
+      e[1][k] = positions[c][k] - positions[a][k];
+    }
+    const double area = 0.5 * std::hypot(e[0][1] * e[1][2] - e[0][2] * e[1][1],
+                                         e[0][2] * e[1][0] - e[0][0] * e[1][2],
+                                         e[0][0] * e[1][1] - e[0][1] * e[1][0]);
+    const double texel = exr.Sample(0, u, v) + exr.Sample(1, u, v) + exr.Sample(2, u, v);
+    out.differences.push_back(std::abs(texel - colour) / colour);
+    out.colour_mean += area * colour;
+    out.lightmap_mean += area * texel;
+    weight += area;
+  }
+  out.colour_mean /= weight;
+  out.lightmap_mean /= weight;
+  std::sort(out.differences.begin(), out.differences.end());
+  return out;
+}
+
+TEST(LightmapRenderTest, ObjectsWithASecondUvGetLightmapsMatchingTheirVertexRadiance) {
+  TempDir dir;
+  const std::string out = dir.path() + "/out";
+  const testing::CommandResult r =
+      RunCommand({RADFARM_CLI_PATH, "render", kJob, "--out", out, "-q"});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_EQ(r.err.find("overlap"), std::string::npos) << r.err;  // Lightmap Pack does not overlap
+  namespace fs = std::filesystem;
+  for (const char* name : {"Room", "Floor", "Table"}) {
+    EXPECT_TRUE(fs::exists(out + "/lightmaps/" + name + ".exr")) << name;
+    EXPECT_TRUE(fs::exists(out + "/lightmaps/" + name + ".png")) << name;
+  }
+  EXPECT_FALSE(fs::exists(out + "/lightmaps/Lamp.exr"));
+
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, out + "/lit.glb")) << err;
+  for (const tinygltf::Node& node : model.nodes) {
+    const tinygltf::Primitive& primitive = model.meshes.at(node.mesh).primitives.at(0);
+    const tinygltf::Material& material = model.materials.at(primitive.material);
+    if (node.name == "Lamp") {
+      EXPECT_EQ(material.emissiveTexture.index, -1);
+      EXPECT_FALSE(primitive.attributes.count("TEXCOORD_1"));
+      continue;
+    }
+    SCOPED_TRACE(node.name);
+    ASSERT_GE(material.emissiveTexture.index, 0);
+    EXPECT_EQ(material.emissiveTexture.texCoord, 1);
+    const tinygltf::Image& image =
+        model.images.at(model.textures.at(material.emissiveTexture.index).source);
+    EXPECT_EQ(image.uri, "lightmaps/" + node.name + ".png");
+    EXPECT_GT(image.width, 0);  // tinygltf found and decoded it
+    const std::string exr_path =
+        material.extras.Get("radfarm").Get("lightmap_exr").Get<std::string>();
+    EXPECT_EQ(exr_path, "lightmaps/" + node.name + ".exr");
+    const Comparison c = CompareAtCentres(model, primitive, ReadExr(out + "/" + exr_path));
+    ASSERT_GT(c.differences.size(), 10u);
+    const double median = c.differences[c.differences.size() / 2];
+    const double p90 = c.differences[c.differences.size() * 9 / 10];
+    std::printf(
+        "%s: %zu triangles, relative difference median %.4f, 90th percentile %.4f; "
+        "mean COLOR_0 %.4f, lightmap %.4f\n",
+        node.name.c_str(), c.differences.size(), median, p90, c.colour_mean, c.lightmap_mean);
+    EXPECT_LT(median, 0.02);
+    EXPECT_LT(p90, 0.10);
+    EXPECT_NEAR(c.lightmap_mean, c.colour_mean, 0.03 * c.colour_mean);
+  }
+}
+
+}  // namespace
+}  // namespace radfarm
