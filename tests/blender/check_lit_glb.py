@@ -2,7 +2,7 @@
 # what a lighting artist gets back (ctest BlenderRoundTrip*, tests/blender/CMakeLists.txt):
 #
 #   blender -b --factory-startup --python check_lit_glb.py -- LIT_GLB PATCHES_CSV NAMES BRIGHTEST
-#           WALL_OBJECT WALL_MATERIAL PARENT
+#           WALL_OBJECT WALL_MATERIAL PARENT [LIGHTMAP_OBJECTS]
 #
 # - the objects are NAMES (comma-separated), each a mesh with COLOR_0 as its colour attribute,
 #   each a child of PARENT ("-": none; the input's hierarchy comes back);
@@ -11,7 +11,11 @@
 # - BRIGHTEST is the brightest object;
 # - WALL_OBJECT's area-weighted mean colour is the area-weighted mean radiance of the patches of
 #   patches.csv with WALL_MATERIAL inside its bounding box, within 3%;
-# - asset.extras.radfarm holds the image's exposure.
+# - asset.extras.radfarm holds the image's exposure;
+# - each of LIGHTMAP_OBJECTS (comma-separated) has its lightmap: an Image Texture of
+#   lightmaps/<object>.png that Blender loaded, on UV map "UVMap.001" (TEXCOORD_1), feeding the
+#   emission at strength 1 / exposure_scale; the image's pixels, sRGB-decoded and unexposed, match
+#   COLOR_0 at each lit triangle's centre (median within 3%, area-weighted means within 3%).
 # Exits 1 with a message on the first failed check.
 import csv
 import json
@@ -21,7 +25,8 @@ import sys
 import bpy
 
 args = sys.argv[sys.argv.index("--") + 1:]
-glb_path, csv_path, names, brightest, wall_object, wall_material, parent = args
+glb_path, csv_path, names, brightest, wall_object, wall_material, parent = args[:7]
+lightmap_objects = args[7].split(",") if len(args) > 7 and args[7] != "-" else []
 expected_names = set(names.split(","))
 
 
@@ -141,6 +146,74 @@ got = area_mean(wall)
 for k in range(3):
     if abs(got[k] - expected[k]) > 0.03 * expected[k] + 1e-3:
         fail("%s: mean colour %s, patches.csv %s" % (wall_object, got, expected))
-print("check_lit_glb: OK: %s; %s mean %s against patches.csv %s; exposure %s stops"
+
+
+def sample(image, pixels, u, v, channel):
+    # Bilinear at Blender's UV (v up; row 0 of pixels is the bottom row), texel centres at +0.5.
+    w, h = image.size
+    x = min(max(u * w - 0.5, 0.0), w - 1.0)
+    y = min(max(v * h - 0.5, 0.0), h - 1.0)
+    x0, y0 = min(int(x), w - 2), min(int(y), h - 2)
+    fx, fy = x - x0, y - y0
+
+    def at(xi, yi):
+        return pixels[(yi * w + xi) * 4 + channel]
+
+    return ((1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0))
+            + fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1)))
+
+
+lightmap_report = []
+for name in lightmap_objects:
+    obj = meshes[name]
+    tree = obj.data.materials[0].node_tree
+    textures = [n for n in tree.nodes if n.type == "TEX_IMAGE"]
+    if len(textures) != 1 or textures[0].image is None:
+        fail("%s: no lightmap Image Texture in its material" % name)
+    image = textures[0].image
+    if not image.filepath.replace("\\", "/").endswith("lightmaps/%s.png" % name):
+        fail("%s: the lightmap is %s, expected lightmaps/%s.png" % (name, image.filepath, name))
+    pixels = list(image.pixels)  # reading them loads the file
+    if not image.has_data or image.size[0] == 0 or len(pixels) != image.size[0] * image.size[1] * 4:
+        fail("%s: Blender did not load %s" % (name, image.filepath))
+    uv_nodes = [n for n in tree.nodes if n.type == "UVMAP"]
+    if [n.uv_map for n in uv_nodes] != ["UVMap.001"] or "UVMap.001" not in obj.data.uv_layers:
+        fail("%s: the lightmap is not on UV map UVMap.001 (TEXCOORD_1)" % name)
+    bsdf = [n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"][0]
+    strength = bsdf.inputs["Emission Strength"].default_value
+    if abs(strength * exposure["exposure_scale"] - 1) > 1e-4:
+        fail("%s: emission strength %s, expected 1 / %s" % (name, strength,
+                                                             exposure["exposure_scale"]))
+    uvs = obj.data.uv_layers["UVMap.001"].data
+    primitive = gltf["meshes"][nodes[name]["mesh"]]["primitives"][0]
+    colours = floats(gltf, binary, primitive["attributes"]["COLOR_0"])
+    indices = [i[0] for i in floats(gltf, binary, primitive["indices"])]
+    brightest = max(sum(c) for c in colours)
+    differences, colour_sum, texel_sum, weight = [], 0.0, 0.0, 0.0
+    for poly in obj.data.polygons:
+        loops = list(poly.loop_indices)
+        colour = sum(sum(colours[indices[k]]) for k in loops) / len(loops)
+        exposed = [c * exposure["exposure_scale"] for k in loops for c in colours[indices[k]]]
+        if colour < 0.01 * brightest or max(exposed) > 0.95:  # unlit side, or clipped in the PNG
+            continue
+        u = sum(uvs[k].uv[0] for k in loops) / len(loops)
+        v = sum(uvs[k].uv[1] for k in loops) / len(loops)
+        texel = sum(srgb_to_linear(sample(image, pixels, u, v, c)) for c in range(3))
+        texel /= exposure["exposure_scale"]
+        differences.append(abs(texel - colour) / colour)
+        colour_sum += poly.area * colour
+        texel_sum += poly.area * texel
+        weight += poly.area
+    if len(differences) < 10:
+        fail("%s: only %d lit, unclipped triangles to compare" % (name, len(differences)))
+    differences.sort()
+    median = differences[len(differences) // 2]
+    if median > 0.03 or abs(texel_sum - colour_sum) > 0.03 * colour_sum:
+        fail("%s: lightmap against COLOR_0: median difference %.4f, means %.4f and %.4f"
+             % (name, median, texel_sum / weight, colour_sum / weight))
+    lightmap_report.append("%s %dx%d median %.4f" % (name, image.size[0], image.size[1], median))
+
+print("check_lit_glb: OK: %s; %s mean %s against patches.csv %s; exposure %s stops%s"
       % (sorted(meshes), wall_object, [round(g, 4) for g in got],
-         [round(e, 4) for e in expected], exposure["exposure_stops"]))
+         [round(e, 4) for e in expected], exposure["exposure_stops"],
+         "; lightmaps: " + ", ".join(lightmap_report) if lightmap_report else ""))

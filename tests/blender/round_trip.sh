@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # One Blender round trip (ctest BlenderRoundTrip.*): radfarm renders SCENE into OUT, then Blender's
 # own glTF importer reads OUT/lit.glb in background mode and check_lit_glb.py checks it.
-#   round_trip.sh RADFARM SCENE OUT NAMES BRIGHTEST WALL_OBJECT WALL_MATERIAL PARENT
+#   round_trip.sh RADFARM SCENE OUT NAMES BRIGHTEST WALL_OBJECT WALL_MATERIAL PARENT [LIGHTMAPS]
 # Exits 77 (ctest: skipped) only when blender is not installed.
 set -euo pipefail
 radfarm=$1 scene=$2 out=$3
