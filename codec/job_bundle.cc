@@ -145,6 +145,14 @@ Status DecodeScene(const wire::JobBundleBlob& in, InputScene* scene) {
     if (face.object >= std::max<size_t>(scene->objects.size(), 1)) {
       return Bad(field, "object out of range");
     }
+    if (const auto* uv = f->lightmap_uv(); uv != nullptr) {
+      if (uv->size() != 2 * face.indices.size()) return Bad(field, "lightmap UVs not 2 per corner");
+      for (uint32_t k = 0; k < uv->size(); k += 2) {
+        const float u = ScalarAt(*uv, k), v = ScalarAt(*uv, k + 1);
+        if (!std::isfinite(u) || !std::isfinite(v)) return Bad(field, "lightmap UV not finite");
+        face.lightmap_uv.push_back({u, v});
+      }
+    }
     scene->faces.push_back(std::move(face));
   }
   return Ok{};
@@ -213,8 +221,15 @@ std::vector<uint8_t> EncodeJobBundle(const JobBundle& bundle) {
   std::vector<flatbuffers::Offset<wire::BundleFace>> faces;
   faces.reserve(scene.faces.size());
   for (const InputFace& f : scene.faces) {
+    flatbuffers::Offset<flatbuffers::Vector<float>> lightmap_uv = 0;
+    if (!f.lightmap_uv.empty()) {
+      std::vector<float> flat;
+      for (const auto& uv : f.lightmap_uv) flat.insert(flat.end(), uv.begin(), uv.end());
+      lightmap_uv = fbb.CreateVector(flat);
+    }
+    const auto indices = fbb.CreateVector(f.indices);
     faces.push_back(
-        wire::CreateBundleFace(fbb, fbb.CreateVector(f.indices), f.material, f.line, f.object));
+        wire::CreateBundleFace(fbb, indices, f.material, f.line, f.object, lightmap_uv));
   }
   const auto face_vec = fbb.CreateVector(faces);
   flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<wire::BundleObject>>> object_vec = 0;

@@ -224,5 +224,33 @@ TEST(JobBundleTest, CarriesTheScenesObjectsAndRejectsBadOnes) {
   EXPECT_NE(r.error().find("object out of range"), std::string::npos) << r.error();
 }
 
+TEST(JobBundleTest, CarriesLightmapUvsAndRejectsBadOnes) {
+  // The room Blender exported with a second UV map: `radfarm fetch` bakes the same lightmaps.
+  Result<InputScene> scene = LoadScene(RADFARM_SOURCE_DIR "/tests/blender/lightmap_room.glb");
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  JobBundle bundle = LoadBundle(RADFARM_SOURCE_DIR "/scenes/cornell-box.toml");
+  bundle.scene = *scene;
+  bundle.job.scene_path = scene->path;
+  size_t with_uv = 0;
+  for (const InputFace& f : bundle.scene.faces) with_uv += !f.lightmap_uv.empty();
+  ASSERT_GT(with_uv, 0u);
+  ASSERT_LT(with_uv, bundle.scene.faces.size());  // the lamp has none
+  Result<JobBundle> back = DecodeJobBundle(EncodeJobBundle(bundle));
+  ASSERT_TRUE(back.ok()) << back.error();
+  for (size_t f = 0; f < bundle.scene.faces.size(); ++f) {
+    EXPECT_EQ(back->scene.faces[f].lightmap_uv, bundle.scene.faces[f].lightmap_uv) << f;
+  }
+  JobBundle bad = bundle;
+  for (InputFace& f : bad.scene.faces) {
+    if (!f.lightmap_uv.empty()) {
+      f.lightmap_uv.pop_back();
+      break;
+    }
+  }
+  Result<JobBundle> r = DecodeJobBundle(EncodeJobBundle(bad));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().find("lightmap UVs not 2 per corner"), std::string::npos) << r.error();
+}
+
 }  // namespace
 }  // namespace radfarm::codec
