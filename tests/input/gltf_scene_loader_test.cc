@@ -138,6 +138,30 @@ TEST(LoadGltfSceneTest, AMirroringTransformKeepsTheFrontFacingTheSameWay) {
   EXPECT_TRUE(NearPoint(GltfFaceNormal(*scene, scene->faces[0]), {0, -1, 0}));
 }
 
+TEST(LoadGltfSceneTest, ReadsTheSecondUvSetAsTheLightmapUv) {
+  GltfFixture f = FloorAndLight();
+  const std::vector<std::array<float, 2>> uvs = {{0, 0}, {0, 0.5f}, {0.5f, 0.5f}, {0.5f, 0}};
+  f.json()["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = f.AddTexCoords(uvs);
+  TempDir dir;
+  Result<InputScene> scene = LoadScene(f.WriteGltf(dir.File("s.gltf")));
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  ASSERT_EQ(scene->faces.size(), 4u);
+  // The floor's triangles (0 1 2, 0 2 3): each corner's UV; the lamp has none.
+  const std::vector<uint16_t> corners = {0, 1, 2, 0, 2, 3};
+  for (size_t c = 0; c < 6; ++c) {
+    ASSERT_EQ(scene->faces[c / 3].lightmap_uv.size(), 3u);
+    EXPECT_EQ(scene->faces[c / 3].lightmap_uv[c % 3], uvs[corners[c]]) << c;
+  }
+  EXPECT_TRUE(scene->faces[2].lightmap_uv.empty());
+  EXPECT_EQ(LightmapTriangles(*scene).size(), 2u);
+
+  f.json()["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] =
+      f.AddTexCoords({{0, 0}, {1, 1}});
+  EXPECT_NE(GltfLoadError(f.WriteGltf(dir.File("short.gltf")))
+                .find("TEXCOORD_1 and POSITION differ in length"),
+            std::string::npos);
+}
+
 TEST(LoadGltfSceneTest, DoubleSidedMaterialsAreTwoSided) {
   GltfFixture f = FloorAndLight();
   f.json()["materials"][0]["doubleSided"] = true;
