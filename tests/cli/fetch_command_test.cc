@@ -103,6 +103,33 @@ TEST_F(FetchCommandTest, WritesTheFilesRenderWritesByteForByte) {
   EXPECT_EQ(stats["stop_reason"], Solution().stats.stop_reason);
 }
 
+TEST_F(FetchCommandTest, WritesTheLightmapsRenderWrites) {
+  // The room with a second UV map: the bundle carries the UVs, so fetch bakes the same lightmaps.
+  const std::string job_file = RADFARM_SOURCE_DIR "/tests/blender/lightmap-room.toml";
+  std::vector<std::string> warnings;
+  Result<LoadedJob> job = LoadJobForSolve(job_file, {}, &warnings);
+  ASSERT_TRUE(job.ok()) << job.error();
+  const SolveResult solved = Solve(job->mesh.patch_scene(), job->job.solver);
+  const codec::JobSolution solution{codec::EncodeJobBundle({job->job, job->scene}),
+                                    solved.radiosity,
+                                    solved.unshot,
+                                    solved.stats,
+                                    {}};
+  const std::string fetched = dir_.File("fetched");
+  const auto r = Fetch(Serve(solution), fetched);
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  const std::string rendered = dir_.File("rendered");
+  const auto render =
+      RunCommand({RADFARM_CLI_PATH, "render", job_file, "--quiet", "--out", rendered});
+  ASSERT_EQ(render.exit_code, kExitOk) << render.err;
+  for (const char* file : {"lit.glb", "lightmaps/Room.exr", "lightmaps/Floor.exr",
+                           "lightmaps/Table.exr", "lightmaps/Table.png"}) {
+    const std::string mine = ReadFile(fetched + "/" + file);
+    EXPECT_FALSE(mine.empty()) << file;
+    EXPECT_TRUE(mine == ReadFile(rendered + "/" + file)) << file << " differs from render's";
+  }
+}
+
 TEST_F(FetchCommandTest, JsonPrintsTheJob) {
   const auto r = Fetch(Serve(Solution()), dir_.File("out"), {"--json"});
   ASSERT_EQ(r.exit_code, kExitOk) << r.err;
