@@ -17,8 +17,8 @@ namespace {
 constexpr size_t kRecentRounds = 8;
 // Accepted results sent to the worker together: one hand-over per few dozen batches.
 constexpr size_t kFoldChunk = 32;
-// Above this many patches the master's ray caster (built to verify batches) is released after
-// each round rather than kept for the job (docs/MEMORY.md: the master holds no caster at its peak).
+// Above this many patches the ray caster built to verify batches is released when the round's
+// reduction starts rather than kept for the job (docs/MEMORY.md).
 constexpr size_t kKeepCasterPatches = 100000;
 
 // The refined scene `checkpoint` names: its stored blob, checked against the hash, decoded.
@@ -241,6 +241,9 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
                                 bool checkpoint_due, uint32_t batch_rays) {
   RoundOutcome out;
   const double seconds = totals_.seconds + round_seconds;
+  // The round's verifications are done (the barrier): the caster they built goes before Apply,
+  // whose refinement step and direct light build their own.
+  if (driver_->scene().patches.size() > kKeepCasterPatches) driver_->ReleaseCaster();
   // The round's results were folded in as they came (or, for a round computed here, come all at
   // once); any the loop thread kept are added now: the reduction refuses the ones it has.
   if (!fold_) fold_ = driver_->Reduction(*fold_plan_);
@@ -288,7 +291,6 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
     }
     out.checkpoint = store::CheckpointOf(id(), driver_->State(), std::move(scene_hash));
   }
-  if (driver_->scene().patches.size() > kKeepCasterPatches) driver_->ReleaseCaster();
   return out;
 }
 

@@ -3,7 +3,8 @@
 // fraction of them moves a millionth of one hit patch's weight (at least 1) to another hit
 // patch: the ray and weight totals still add up, so the result passes ValidateBatchResult and
 // only exact validation (daemon/batch_verifier.h) can tell. RADFARM_TEST_LIE_FRACTION (0..1,
-// default 1) says on which share of batches, chosen from the batch itself, so it is reproducible.
+// default 1) says on which share of batches, chosen from the batch itself, so it is reproducible;
+// RADFARM_TEST_LIE_FROM_ROUND (default 0), from which round on: an agent honest at first.
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
@@ -13,9 +14,9 @@
 
 namespace {
 
-double LieFraction() {
-  const char* text = std::getenv("RADFARM_TEST_LIE_FRACTION");
-  return text == nullptr ? 1.0 : std::strtod(text, nullptr);
+double EnvNumber(const char* name, double otherwise) {
+  const char* text = std::getenv(name);
+  return text == nullptr ? otherwise : std::strtod(text, nullptr);
 }
 
 uint64_t Mix(uint64_t x) {
@@ -26,7 +27,9 @@ uint64_t Mix(uint64_t x) {
 }
 
 void Perturb(const radfarm::Batch& batch, radfarm::BatchResult& result) {
-  static const double fraction = LieFraction();
+  static const double fraction = EnvNumber("RADFARM_TEST_LIE_FRACTION", 1);
+  static const double from_round = EnvNumber("RADFARM_TEST_LIE_FROM_ROUND", 0);
+  if (batch.round < from_round) return;
   const uint64_t h = Mix(Mix(Mix(batch.round) ^ batch.shooter) ^ batch.first_ray);
   if (double(h >> 11) * 0x1.0p-53 >= fraction) return;
   if (result.hits.size() < 2) return;  // nothing to move weight between: an honest answer

@@ -55,6 +55,27 @@ TEST_F(FarmTest, ASubtlyLyingAgentIsCaughtAndTheJobStaysExact) {
       << events.out;
 }
 
+// Honest in round 0 (its results there reduced and checkpointed), lying from round 1: caught in
+// round 1, the job goes back before round 0, its checkpoint of round 0 deleted, and all is
+// computed again without it.
+TEST_F(FarmTest, AnAgentThatLiesLaterIsUndoneBackToItsFirstResult) {
+  StartMaster();
+  ::setenv("RADFARM_TEST_LIE_FROM_ROUND", "1", 1);
+  farm_.StartAgentProgram(RADFARM_LYING_AGENT_PATH, "late-liar", 1);
+  ::unsetenv("RADFARM_TEST_LIE_FROM_ROUND");
+  StartAgent("honest");
+  ASSERT_TRUE(farm_.WaitForAgents(2, std::chrono::seconds(60))) << MasterLog();
+  const int64_t id = Submit("cornell-box.toml", kShortJob);
+  ASSERT_TRUE(WaitForState(id, "done"));
+  EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml", kShortJob));
+  const std::string log = MasterLog();
+  EXPECT_EQ(CountLines(log, "verification failed: agent late-liar: round 1 "), 1u) << log;
+  EXPECT_EQ(CountLinesWithBoth(log, "verification failed: agent late-liar",
+                               "goes back before round 0 without its results (every result"),
+            1u)
+      << log;
+}
+
 TEST_F(FarmTest, AHealthyFarmVerifiesBatchesAndFindsNoLie) {
   StartMaster({"--verify-fraction", "0.05"});
   StartAgent("a");
