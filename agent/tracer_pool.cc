@@ -3,6 +3,13 @@
 #include <chrono>
 
 namespace radfarm::agent {
+namespace {
+
+ResultTamper tamper_for_testing = nullptr;  // set before any worker thread starts
+
+}  // namespace
+
+void SetResultTamperForTesting(ResultTamper tamper) { tamper_for_testing = tamper; }
 
 BatchOutcome TracerPool::Run(const std::shared_ptr<const PreparedScene>& scene,
                              const std::shared_ptr<const RaySampler>& sampler, const Batch& batch) {
@@ -19,6 +26,7 @@ std::vector<BatchOutcome> TracerPool::RunAll(const std::shared_ptr<const Prepare
   for (const Batch& batch : batches) {
     BatchOutcome outcome;
     outcome.result = slot->runner->Run(batch);
+    if (tamper_for_testing != nullptr) tamper_for_testing(batch, outcome.result);
     const auto end = std::chrono::steady_clock::now();
     outcome.compute_seconds = std::chrono::duration<double>(end - start).count();
     start = end;

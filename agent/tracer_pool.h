@@ -26,6 +26,12 @@ struct BatchOutcome {
   double compute_seconds = 0;
 };
 
+// Tests only (tests/farm's radfarm-lying-agent): a function applied to every batch result before
+// it is sent, to make an agent that computes correctly and then lies. Set it before the agent
+// starts; the shipped radfarm-agent never sets it (no flag or variable reaches it).
+using ResultTamper = void (*)(const Batch& batch, BatchResult& result);
+void SetResultTamperForTesting(ResultTamper tamper);
+
 class TracerPool {
  public:
   BatchOutcome Run(const std::shared_ptr<const PreparedScene>& scene,

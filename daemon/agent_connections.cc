@@ -206,14 +206,14 @@ void AgentConnections::OnLeaseResult(AgentLink& link, const protocol::LeaseResul
     const scheduler::ResultVerdict& v = intake.last.verdict;
     if (v.reason == scheduler::DropReason::kInvalid) {
       for (scheduler::BatchId batch : intake.accepted_batches) {
-        jobs_.OnResultAccepted(runner->id(), batch);
+        jobs_.OnResultAccepted(runner->id(), batch, link.name());
       }
       OnInvalidResult(link, *runner, intake.last.detail);
       if (link.closing()) return;
       continue;
     }
     for (scheduler::BatchId batch : intake.accepted_batches) {
-      jobs_.OnResultAccepted(runner->id(), batch);
+      jobs_.OnResultAccepted(runner->id(), batch, link.name());
     }
     if (intake.dropped > 0 || intake.rejected > 0) {
       LogLine(intake.rejected > 0 ? LogLevel::kWarning : LogLevel::kDebug, "agents")
@@ -222,7 +222,9 @@ void AgentConnections::OnLeaseResult(AgentLink& link, const protocol::LeaseResul
           << " dropped (late, duplicate or old), " << intake.rejected
           << " rejected (not its lease)";
     }
-    if (v.round_complete) jobs_.OnRoundComplete(runner->id());
+    // A verification may have failed meanwhile: the job was rewound, its runner dropped.
+    if (v.round_complete && jobs_.FindRunner(job_id) == runner) jobs_.OnRoundComplete(runner->id());
+    if (link.closing()) return;
   }
 }
 
@@ -256,6 +258,27 @@ void AgentConnections::OnInvalidResult(AgentLink& link, RunningJob& runner,
     }
   }
   link.Close(protocol::CloseCode::kBlocklisted, reason);
+}
+
+void AgentConnections::Convict(store::JobId job, const std::string& name, const std::string& why) {
+  const auto now = LoopNow(loop_);
+  const scheduler::TimePoint until = blocklist_.Block(job, name, now);
+  const auto seconds = std::chrono::duration_cast<std::chrono::seconds>(until - now).count();
+  LogLine(LogLevel::kWarning, "agents")
+      << "agent " << name << " blocklisted for job " << job << " for " << seconds
+      << " s: a result failed verification: " << why;
+  store_.LogEvent(job, store::EventLevel::kWarning,
+                  "agent " + name + " is blocklisted for this job for " + std::to_string(seconds) +
+                      " s: a result failed verification (" + why + ")");
+  const std::string reason = "job " + std::to_string(job) +
+                             ": a result failed verification against the master's (" + why +
+                             "); no work of this job for " + std::to_string(seconds) + " s";
+  RunningJob* runner = jobs_.FindRunner(job);
+  for (auto& [id, link] : links_) {
+    if (!link->was_authenticated() || link->name() != name) continue;
+    if (runner != nullptr) runner->scheduler().Blocklist(id, until);
+    if (!link->closing()) link->Close(protocol::CloseCode::kBlocklisted, reason);
+  }
 }
 
 bool AgentConnections::Blocklisted(AgentLink& link, RunningJob& runner, scheduler::TimePoint now) {

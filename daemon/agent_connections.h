@@ -51,6 +51,9 @@ class AgentConnections {
   void OnConnection(std::unique_ptr<loop::FramedConnection> connection);
   // Hands leases to every agent with room.
   void DispatchAll();
+  // A result of the agent called `name` failed exact validation (JobRounds::Rewind): it is
+  // blocklisted for the job at once, and its connections close saying why.
+  void Convict(store::JobId job, const std::string& name, const std::string& why);
   // Tells every agent to drop the batches of job `id`.
   void CancelJob(store::JobId id);
   // Agents that get work when a job starts: authenticated and not stale, by id.

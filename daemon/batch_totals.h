@@ -17,6 +17,9 @@ struct BatchTotals {
   uint64_t preempted = 0;  // live leases taken back for a higher-priority job
   uint64_t accepted = 0;
   std::array<uint64_t, scheduler::kDropReasonCount> dropped{};  // by scheduler::DropReason
+  // Exact validation (JobRounds::verification, set by JobRounds::batch_totals, not by Add).
+  uint64_t verified = 0;
+  uint64_t verify_mismatches = 0;
 
   void Add(const scheduler::SchedulerCounters& counters);
   void Add(const BatchTotals& other);

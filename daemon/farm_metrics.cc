@@ -50,6 +50,8 @@ web::FarmMetrics FarmMetricsOf(const nlohmann::json& jobs, const nlohmann::json&
   m.batches_reissued_requeued = batches.requeued;
   m.leases_preempted = batches.preempted;
   m.results_accepted = batches.accepted;
+  m.batches_verified = batches.verified;
+  m.verify_mismatches = batches.verify_mismatches;
   for (size_t i = 1; i < batches.dropped.size(); ++i) {
     const auto reason = static_cast<scheduler::DropReason>(i);
     auto& into = IsRejection(reason) ? m.results_rejected : m.results_dropped;

@@ -18,6 +18,15 @@ std::optional<scheduler::TimePoint> JobBlocklist::Strike(int64_t job, const std:
   return entry.until;
 }
 
+scheduler::TimePoint JobBlocklist::Block(int64_t job, const std::string& agent,
+                                         scheduler::TimePoint now) {
+  Prune(now);
+  Entry& entry = entries_[{job, agent}];
+  entry.strikes.clear();
+  entry.until = now + duration_;
+  return *entry.until;
+}
+
 std::optional<scheduler::TimePoint> JobBlocklist::BlockedUntil(int64_t job,
                                                                const std::string& agent,
                                                                scheduler::TimePoint now) const {

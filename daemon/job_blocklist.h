@@ -29,6 +29,9 @@ class JobBlocklist {
   // strike blocklists the agent, else nullopt.
   std::optional<scheduler::TimePoint> Strike(int64_t job, const std::string& agent,
                                              scheduler::TimePoint now);
+  // Blocklists `agent` for `job` at once, without strikes: one of its results failed exact
+  // validation (daemon/batch_verifier.h), which no wire fault can cause. Returns until when.
+  scheduler::TimePoint Block(int64_t job, const std::string& agent, scheduler::TimePoint now);
   // Until when `agent` is blocklisted for `job`; nullopt if it is not (or no longer).
   std::optional<scheduler::TimePoint> BlockedUntil(int64_t job, const std::string& agent,
                                                    scheduler::TimePoint now) const;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <random>
 
 #include "loop/log.h"
 #include "protocol/scene_transfer.h"
@@ -35,7 +36,8 @@ JobRounds::JobRounds(loop::EventLoop& loop, const MasterConfig& config,
       store_(store),
       compute_(compute),
       agents_(std::move(agents)),
-      journal_(store) {}
+      journal_(store),
+      verify_seed_((uint64_t{std::random_device{}()} << 32) ^ std::random_device{}()) {}
 
 RunningJob* JobRounds::FindRunner(uint64_t job_id) {
   const auto it = runners_.find(static_cast<store::JobId>(job_id));
@@ -129,6 +131,7 @@ void JobRounds::BeginRound(const std::shared_ptr<RunningJob>& runner) {
     FailJob(runner->id(), s.error());
     return;
   }
+  StartVerifying(runner);
   if (const size_t restored = runner->restored_batches(); restored > 0) {
     // Results a previous master received and kept: folded in first, their batches not leased.
     batches_restored_ += restored;
@@ -169,15 +172,21 @@ void JobRounds::RunRoundHere(const std::shared_ptr<RunningJob>& runner) {
   });
 }
 
-void JobRounds::OnResultAccepted(store::JobId id, scheduler::BatchId batch) {
-  const std::shared_ptr<RunningJob>& runner = runners_.at(id);
+void JobRounds::OnResultAccepted(store::JobId id, scheduler::BatchId batch,
+                                 const std::string& agent) {
+  const std::shared_ptr<RunningJob> runner = runners_.at(id);
   std::vector<store::StoredBatchResult> keep;
   const double round_seconds =
       std::chrono::duration<double>(LoopNow(loop_) - runner->round_started()).count();
+  ResultDigest digest{};
   const bool chunk =
-      runner->QueueFold(batch, KeepsRoundResult(config_, round_seconds) ? &keep : nullptr);
+      runner->QueueFold(batch, KeepsRoundResult(config_, round_seconds) ? &keep : nullptr, &digest);
   journal_.Add(id, std::move(keep));
   if (chunk) SendFolds(runner);
+  const auto v = verifiers_.find(id);
+  if (v != verifiers_.end() && v->second.OnAccepted(scheduler::BatchIndex(batch), agent, digest)) {
+    VerifyOnComputeThread(runner, {scheduler::BatchIndex(batch)});
+  }
 }
 
 void JobRounds::SendFolds(const std::shared_ptr<RunningJob>& runner) {
@@ -195,6 +204,7 @@ void JobRounds::SendFolds(const std::shared_ptr<RunningJob>& runner) {
 
 void JobRounds::OnRoundComplete(store::JobId id) {
   const std::shared_ptr<RunningJob> runner = runners_.at(id);
+  if (!RoundVerified(runner)) return;
   Result<scheduler::CompletedRound> round = runner->TakeRound();
   if (!round) {
     FailJob(runner->id(), round.error());
@@ -262,9 +272,13 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
                  if (!s) HoldOrFail(id, "cannot record the round: " + s.error());
                });
   }
+  const auto v = verifiers_.find(id);
   LogLine(LogLevel::kInfo, "job " + std::to_string(id))
       << "round " << record.round << ": " << record.rays << " rays, unshot "
-      << Percent(record.unshot_fraction) << ", " << record.duration_seconds << " s";
+      << Percent(record.unshot_fraction) << ", " << record.duration_seconds << " s"
+      << (v != verifiers_.end() && v->second.enabled()
+              ? "; " + std::to_string(v->second.verified()) + " batches verified so far"
+              : std::string());
   if (outcome.new_scene) {
     store_.LogEvent(id, store::EventLevel::kInfo,
                     "refined after round " + std::to_string(record.round) + ": " +
@@ -305,6 +319,8 @@ void JobRounds::DropRunner(store::JobId id) {
   retired_.Add(it->second->scheduler().counters(LoopNow(loop_)));
   runners_.erase(it);
   last_checkpoint_ms_.erase(id);
+  verifiers_.erase(id);
+  awaiting_verification_.erase(id);
   journal_.Forget(id);
   // Agents drop the job's queued batches; results still in flight are ignored on arrival.
   agents_.cancel_job(id);
@@ -340,6 +356,8 @@ std::vector<RunningJob*> JobRounds::RunnersByPriority() {
 BatchTotals JobRounds::batch_totals(scheduler::TimePoint now) const {
   BatchTotals totals = retired_;
   for (const auto& [id, runner] : runners_) totals.Add(runner->scheduler().counters(now));
+  totals.verified = verify_counters_.verified;
+  totals.verify_mismatches = verify_counters_.mismatched;
   return totals;
 }
 

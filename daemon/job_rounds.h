@@ -22,10 +22,12 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "daemon/batch_totals.h"
+#include "daemon/batch_verifier.h"
 #include "daemon/master_config.h"
 #include "daemon/result_journal.h"
 #include "daemon/running_job.h"
@@ -46,6 +48,16 @@ struct AgentHooks {
   std::function<void()> dispatch_all;            // hand leases to every agent with room
   std::function<void(store::JobId)> cancel_job;  // tell every agent to drop the job's batches
   std::function<std::vector<uint64_t>()> available_agents;  // authenticated and not stale
+  // A result of `agent` failed exact validation (`why` names the batch and both digests):
+  // blocklist it for the job and close its connections.
+  std::function<void(store::JobId, const std::string& agent, const std::string& why)> convict;
+};
+
+// Exact validation since the master started (job_verification.cc).
+struct VerifyCounters {
+  uint64_t verified = 0;    // batches computed again here and compared
+  uint64_t mismatched = 0;  // of verified: the agent's bits differed
+  uint64_t rewinds = 0;     // jobs sent back before a liar's first result
 };
 
 class JobRounds {
@@ -60,8 +72,9 @@ class JobRounds {
 
   // Starts queued jobs while there are free slots (after a submit, a resume, a job's end).
   void StartQueuedJobs();
-  // A batch result of the job's round was accepted: it goes on to be folded in.
-  void OnResultAccepted(store::JobId id, scheduler::BatchId batch);
+  // A batch result of the job's round, computed by the agent called `agent`, was accepted: it
+  // goes on to be folded in, and is perhaps verified (batch_verifier.h).
+  void OnResultAccepted(store::JobId id, scheduler::BatchId batch, const std::string& agent);
   // The last batch of the job's round is in: reduce it.
   void OnRoundComplete(store::JobId id);
   // Forgets a job the operator cancelled or paused (the store knows already).
@@ -83,6 +96,7 @@ class JobRounds {
   BatchTotals batch_totals(scheduler::TimePoint now) const;
   // What the store kept of the rounds in progress, and what restarts found there.
   const JournalCounters& journal() const { return journal_.counters(); }
+  const VerifyCounters& verification() const { return verify_counters_; }
   uint64_t batches_restored() const { return batches_restored_; }
   // Seconds from queueing each checkpoint on the store thread to its commit.
   const web::LatencyHistogram& checkpoint_latency() const { return checkpoint_latency_; }
@@ -102,6 +116,20 @@ class JobRounds {
   // Starts the planned round on the agents, or computes it here when it is small
   // (MasterConfig::local_round_rays).
   void BeginRound(const std::shared_ptr<RunningJob>& runner);
+  // Exact validation (job_verification.cc). The round just started gets a fresh verifier round.
+  void StartVerifying(const std::shared_ptr<RunningJob>& runner);
+  // Computes the digests of the round's batches `indices` on the compute thread and compares them.
+  void VerifyOnComputeThread(const std::shared_ptr<RunningJob>& runner,
+                             std::vector<uint32_t> indices);
+  void OnBatchesVerified(const std::shared_ptr<RunningJob>& runner, uint32_t round,
+                         const std::vector<uint32_t>& indices,
+                         const std::vector<ResultDigest>& digests);
+  // The round is complete: true when every verification of it agreed; otherwise the end-of-round
+  // picks are sent to be verified and OnRoundComplete runs again after the last one (the barrier).
+  bool RoundVerified(const std::shared_ptr<RunningJob>& runner);
+  // A result failed verification: the agent is convicted, the runner dropped, and the job goes
+  // back in the store to before the agent's first result (RewindJob) and is queued again.
+  void Rewind(const std::shared_ptr<RunningJob>& runner, const Mismatch& mismatch);
   void RunRoundHere(const std::shared_ptr<RunningJob>& runner);
   // Sends the runner's queued results (TakeFolds) to the compute thread to be folded in.
   void SendFolds(const std::shared_ptr<RunningJob>& runner);
@@ -124,6 +152,10 @@ class JobRounds {
 
   Runners runners_;
   ResultJournal journal_;
+  uint64_t verify_seed_;                             // secret: agents cannot predict samples
+  std::map<store::JobId, BatchVerifier> verifiers_;  // of the running jobs
+  std::set<store::JobId> awaiting_verification_;     // complete rounds held at the barrier
+  VerifyCounters verify_counters_;
   uint64_t batches_restored_ = 0;
   BatchTotals retired_;  // the counters of runners that went
   web::LatencyHistogram checkpoint_latency_;

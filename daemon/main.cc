@@ -30,7 +30,8 @@ struct Flags {
   std::optional<uint32_t> heartbeat_ms, agent_timeout_ms, handshake_timeout_ms, control_timeout_ms,
       hold_retry_ms, checkpoint_keep, max_running_jobs, max_agents, max_unauthenticated,
       blocklist_seconds;
-  std::optional<double> checkpoint_seconds, lease_seconds, keep_results_after_seconds;
+  std::optional<double> checkpoint_seconds, lease_seconds, keep_results_after_seconds,
+      verify_fraction;
   std::optional<uint64_t> local_round_rays, max_store_bytes;
   std::optional<bool> keep_round_results;
   bool detach = false;
@@ -64,6 +65,12 @@ void AddFlags(CLI::App& app, Flags* f) {
                  "An agent whose results fail validation 3 times for a job gets none of that "
                  "job's work for this long (default 600)")
       ->check(CLI::Range(1u, 604800u));
+  app.add_option("--verify-fraction", f->verify_fraction,
+                 "This fraction of each agent's batches (and at least one per agent and round) "
+                 "is computed again by the master and compared bit for bit; a mismatch "
+                 "blocklists the agent and its results are computed again; 0 = off (default "
+                 "0.02)")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--hold-retry-ms", f->hold_retry_ms,
                  "A job held after a store fault (disk full, I/O error) is tried again this often "
                  "(default 10000)")
@@ -143,6 +150,7 @@ Result<MasterConfig> ResolveConfig(const Flags& f) {
   Override(f.lease_seconds, &c.lease_seconds);
   Override(f.max_agents, &c.max_agents);
   Override(f.blocklist_seconds, &c.blocklist_seconds);
+  Override(f.verify_fraction, &c.verify_fraction);
   Override(f.max_unauthenticated, &c.max_unauthenticated);
   Override(f.local_round_rays, &c.local_round_rays);
   Override(f.keep_round_results, &c.keep_round_results);

@@ -44,6 +44,10 @@ struct MasterConfig {
   // An agent whose results fail validation 3 times for a job (authenticated, so not the wire's
   // fault) gets no more of that job's work for this long (job_blocklist.h).
   uint32_t blocklist_seconds = 600;
+  // Exact validation (daemon/batch_verifier.h): this fraction of each agent's accepted batches,
+  // and at least one per agent and round it contributed to, is computed again by the master and
+  // compared bit for bit; a mismatch blocklists the agent and computes its results again. 0: off.
+  double verify_fraction = 0.02;
   uint32_t max_agents = 4096;  // authenticated agents beyond this are refused
   // Connections still in the handshake at once; a newer one makes the oldest go (door_keeper.h).
   uint32_t max_unauthenticated = 64;

@@ -4,6 +4,7 @@
 
 #include "base/result.h"
 #include "codec/patch_scene_codec.h"
+#include "core/batch_tracer.h"
 #include "core/solve_control.h"
 #include "mesh/patch_mesh.h"
 #include "protocol/scene_transfer.h"
@@ -16,6 +17,9 @@ namespace {
 constexpr size_t kRecentRounds = 8;
 // Accepted results sent to the worker together: one hand-over per few dozen batches.
 constexpr size_t kFoldChunk = 32;
+// Above this many patches the ray caster built to verify batches is released when the round's
+// reduction starts rather than kept for the job (docs/MEMORY.md).
+constexpr size_t kKeepCasterPatches = 100000;
 
 // The refined scene `checkpoint` names: its stored blob, checked against the hash, decoded.
 Result<PatchScene> RefinedSceneOf(const store::Checkpoint& checkpoint, const RefineSettings& refine,
@@ -160,6 +164,7 @@ Status RunningJob::StartPlannedRound(scheduler::TimePoint now) {
   running_rays_ = planned_->rays;
   running_gather_ = planned_->gather;
   running_batch_rays_ = planned_batch_rays_;
+  running_round_ = planned_->round;
   std::vector<uint32_t> done;
   done.reserve(restored_.size());
   for (const auto& [index, result] : restored_) done.push_back(index);
@@ -202,9 +207,11 @@ Result<scheduler::CompletedRound> RunningJob::TakeRound() {
   return done;
 }
 
-bool RunningJob::QueueFold(scheduler::BatchId batch, std::vector<store::StoredBatchResult>* keep) {
+bool RunningJob::QueueFold(scheduler::BatchId batch, std::vector<store::StoredBatchResult>* keep,
+                           ResultDigest* digest) {
   std::optional<BatchResult> result = scheduler_.TakeResult(batch);
   if (!result) return false;
+  if (digest != nullptr) *digest = DigestOf(*result);
   if (keep != nullptr) {
     keep->push_back(
         {scheduler::BatchIndex(batch), running_batch_rays_, *scheduler_.FindBatch(batch), *result});
@@ -217,6 +224,14 @@ std::vector<std::pair<uint32_t, BatchResult>> RunningJob::TakeFolds() {
   return std::exchange(unfolded_, {});
 }
 
+std::vector<ResultDigest> RunningJob::VerifyBatches(const std::vector<Batch>& batches) {
+  BatchTracer tracer(driver_->scene(), driver_->caster(), driver_->solver().sampler());
+  std::vector<ResultDigest> digests;
+  digests.reserve(batches.size());
+  for (const Batch& batch : batches) digests.push_back(DigestOf(tracer.Run(batch)));
+  return digests;
+}
+
 void RunningJob::Fold(std::vector<std::pair<uint32_t, BatchResult>> results) {
   if (!fold_) fold_ = driver_->Reduction(*fold_plan_);
   for (auto& [index, result] : results) fold_->Add(index, std::move(result));
@@ -226,6 +241,9 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
                                 bool checkpoint_due, uint32_t batch_rays) {
   RoundOutcome out;
   const double seconds = totals_.seconds + round_seconds;
+  // The round's verifications are done (the barrier): the caster they built goes before Apply,
+  // whose refinement step and direct light build their own.
+  if (driver_->scene().patches.size() > kKeepCasterPatches) driver_->ReleaseCaster();
   // The round's results were folded in as they came (or, for a round computed here, come all at
   // once); any the loop thread kept are added now: the reduction refuses the ones it has.
   if (!fold_) fold_ = driver_->Reduction(*fold_plan_);

@@ -36,6 +36,7 @@
 #include "core/progress_estimator.h"
 #include "core/progressive_solver.h"
 #include "core/thread_pool.h"
+#include "daemon/batch_verifier.h"
 #include "daemon/scheduler/round_scheduler.h"
 #include "protocol/batch_convert.h"
 #include "protocol/messages.h"
@@ -129,7 +130,15 @@ class RunningJob {
   // Loop thread: takes the accepted result of `batch` out of the scheduler to be folded in; true
   // when enough are queued to be worth sending to the worker (TakeFolds). A copy goes to `keep`,
   // for the store (so a restarted master need not lease the batch again).
-  bool QueueFold(scheduler::BatchId batch, std::vector<store::StoredBatchResult>* keep);
+  // `digest`, when given, gets the SHA-256 of the result's bits (batch_verifier.h).
+  bool QueueFold(scheduler::BatchId batch, std::vector<store::StoredBatchResult>* keep,
+                 ResultDigest* digest = nullptr);
+  // Loop thread: the round started last (StartPlannedRound).
+  uint32_t running_round() const { return running_round_; }
+  // Worker thread, before the round's Reduce: the digests of `batches` computed here, as an agent
+  // computes them (exact validation, batch_verifier.h). The ray caster is built on first use;
+  // Reduce releases it on a large scene (docs/MEMORY.md).
+  std::vector<ResultDigest> VerifyBatches(const std::vector<Batch>& batches);
   // Loop thread: the queued results, for Fold.
   std::vector<std::pair<uint32_t, BatchResult>> TakeFolds();
   // Worker thread, after StartPlannedRound and before Reduce, in order: folds in results of the
@@ -201,6 +210,7 @@ class RunningJob {
   // The batch size the planned round and the running one were planned with (stored with results).
   uint32_t planned_batch_rays_ = 0;
   uint32_t running_batch_rays_ = 0;
+  uint32_t running_round_ = 0;
   std::optional<std::string> stop_reason_;
   JobTotals totals_;
   Phase phase_ = Phase::kRound;

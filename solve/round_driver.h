@@ -116,6 +116,8 @@ class RoundDriver {
   const SolveTotals& totals() const { return totals_; }
   // The ray caster of the current scene, built on first use.
   const RayCaster& caster();
+  // Frees the caster (the next caster() builds it again); no BatchTracer of it may be left.
+  void ReleaseCaster() { caster_.reset(); }
 
  private:
   RoundDriver(const SolverSettings& settings, ThreadPool* pool);

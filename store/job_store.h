@@ -199,6 +199,12 @@ class JobStore {
   // bytes do not match its checksum, or do not decode, is deleted and named in `damaged`.
   Result<StoredRoundResults> LoadRoundResults(JobId job, std::optional<uint32_t> after_round);
   Result<int64_t> CountRoundResults(JobId job, uint32_t round);
+  // A liar was caught (daemon/batch_verifier.h): in one transaction, deletes the checkpoints of
+  // round `from_round` and later and the kept results of the rounds after it, and of
+  // `from_round` itself those of the batches in `discard` (or all of them when `discard_all`).
+  // A master that restarts then resumes before the lie, as the running one does.
+  Status RewindJob(JobId job, uint32_t from_round, std::span<const uint32_t> discard,
+                   bool discard_all);
 
   // --- agents and events ---
   Status RecordAgentSeen(const std::string& name, const std::string& address, uint32_t threads);

@@ -106,6 +106,34 @@ Result<int64_t> JobStore::CountRoundResults(JobId job, uint32_t round) {
   return stmt->Int(0);
 }
 
+Status JobStore::RewindJob(JobId job, uint32_t from_round, std::span<const uint32_t> discard,
+                           bool discard_all) {
+  Result<Transaction> transaction = Transaction::Begin(db_);
+  RADFARM_RETURN_IF_ERROR(transaction);
+  const int64_t round = from_round;
+  for (const char* sql : {"DELETE FROM checkpoints WHERE job_id = ?1 AND round >= ?2",
+                          "DELETE FROM round_results WHERE job_id = ?1 AND round > ?2"}) {
+    Result<Statement> stmt = db_.Prepare(sql);
+    RADFARM_RETURN_IF_ERROR(stmt);
+    stmt->Bind(1, job).Bind(2, round);
+    RADFARM_RETURN_IF_ERROR(stmt->Run());
+  }
+  Result<Statement> erase = db_.Prepare(
+      discard_all ? "DELETE FROM round_results WHERE job_id = ?1 AND round = ?2"
+                  : "DELETE FROM round_results WHERE job_id = ?1 AND round = ?2 AND batch = ?3");
+  RADFARM_RETURN_IF_ERROR(erase);
+  if (discard_all) {
+    erase->Bind(1, job).Bind(2, round);
+    RADFARM_RETURN_IF_ERROR(erase->Run());
+  }
+  for (size_t k = 0; !discard_all && k < discard.size(); ++k) {
+    erase->Bind(1, job).Bind(2, round).Bind(3, int64_t{discard[k]});
+    RADFARM_RETURN_IF_ERROR(erase->Run());
+    erase->Reset();
+  }
+  return transaction->Commit();
+}
+
 Status JobStore::DeleteRoundResults(JobId job, uint32_t up_to_round) {
   Result<Statement> stmt =
       db_.Prepare("DELETE FROM round_results WHERE job_id = ?1 AND round <= ?2");

@@ -75,7 +75,20 @@ ChildProcess& LoopbackFarm::StartMaster(const std::vector<std::string>& flags,
 ChildProcess& LoopbackFarm::StartAgent(const std::string& name, unsigned threads,
                                        const std::vector<std::string>& extra,
                                        const std::string& secret_file, const std::string& master) {
-  std::vector<std::string> args = {programs_.agent,
+  return StartAgentAs(programs_.agent, name, threads, extra, secret_file, master);
+}
+
+ChildProcess& LoopbackFarm::StartAgentProgram(const std::string& program, const std::string& name,
+                                              unsigned threads,
+                                              const std::vector<std::string>& extra) {
+  return StartAgentAs(program, name, threads, extra, "", "");
+}
+
+ChildProcess& LoopbackFarm::StartAgentAs(const std::string& program, const std::string& name,
+                                         unsigned threads, const std::vector<std::string>& extra,
+                                         const std::string& secret_file,
+                                         const std::string& master) {
+  std::vector<std::string> args = {program,
                                    "--master",
                                    master.empty() ? master_address_ : master,
                                    "--secret-file",

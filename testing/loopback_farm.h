@@ -54,6 +54,10 @@ class LoopbackFarm {
   ChildProcess& StartAgent(const std::string& name, unsigned threads,
                            const std::vector<std::string>& extra = {},
                            const std::string& secret_file = "", const std::string& master = "");
+  // StartAgent with another agent binary (tests/farm's radfarm-lying-agent) in place of
+  // FarmPrograms::agent.
+  ChildProcess& StartAgentProgram(const std::string& program, const std::string& name,
+                                  unsigned threads, const std::vector<std::string>& extra = {});
 
   // `radfarm --control SOCKET args...`
   CommandResult Cli(const std::vector<std::string>& args) const;
@@ -87,6 +91,9 @@ class LoopbackFarm {
   std::string MasterLog() const { return master_ ? master_->Log() : ""; }
 
  private:
+  ChildProcess& StartAgentAs(const std::string& program, const std::string& name, unsigned threads,
+                             const std::vector<std::string>& extra, const std::string& secret_file,
+                             const std::string& master);
   FarmPrograms programs_;
   std::string dir_, state_dir_, secret_file_, secret_hex_, control_;
   std::string master_address_;

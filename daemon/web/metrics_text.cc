@@ -96,6 +96,13 @@ std::string FormatMetrics(const FarmMetrics& m) {
   e.Family("radfarm_batch_results_accepted_total", "counter",
            "Batch results accepted (the first valid result of each batch).");
   e.Sample("radfarm_batch_results_accepted_total", double(m.results_accepted));
+  e.Family("radfarm_batches_verified_total", "counter",
+           "Accepted batch results computed again by the master and compared bit for bit.");
+  e.Sample("radfarm_batches_verified_total", double(m.batches_verified));
+  e.Family("radfarm_batch_verification_mismatches_total", "counter",
+           "Verified batch results whose bits differed from the master's (the agent was "
+           "blocklisted for the job and its results computed again).");
+  e.Sample("radfarm_batch_verification_mismatches_total", double(m.verify_mismatches));
   e.Labelled("radfarm_batch_results_rejected_total", "counter",
              "Batch results rejected as the agent's fault, by reason.", "reason",
              m.results_rejected);

@@ -17,11 +17,13 @@ struct FarmMetrics {
   double rays_per_second = 0;                       // summed over the running jobs
   uint64_t rays_total = 0;                          // rays of every job so far
   // Batches, since the master started (the running jobs' schedulers plus the finished ones').
-  uint64_t batches_issued = 0;                       // attempts handed to agents
-  uint64_t batches_reissued_overdue = 0;             // copies of an overdue lease
-  uint64_t batches_reissued_requeued = 0;            // put back after a loss or a return
-  uint64_t leases_preempted = 0;                     // taken back for a higher-priority job
-  uint64_t results_accepted = 0;                     // the first valid result of a batch
+  uint64_t batches_issued = 0;             // attempts handed to agents
+  uint64_t batches_reissued_overdue = 0;   // copies of an overdue lease
+  uint64_t batches_reissued_requeued = 0;  // put back after a loss or a return
+  uint64_t leases_preempted = 0;           // taken back for a higher-priority job
+  uint64_t results_accepted = 0;           // the first valid result of a batch
+  uint64_t batches_verified = 0;           // computed again by the master and compared bit for bit
+  uint64_t verify_mismatches = 0;  // of those: the agent's bits differed (it was blocklisted)
   std::map<std::string, uint64_t> results_rejected;  // by reason: the agent is at fault
   std::map<std::string, uint64_t> results_dropped;   // by reason: too late or repeated
   LatencyHistogram checkpoint_seconds;               // queued on the store -> committed

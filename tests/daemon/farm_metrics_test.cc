@@ -54,5 +54,14 @@ TEST(FarmMetricsTest, DroppedResultsAreSplitIntoRejectionsAndLateOnes) {
   EXPECT_EQ(m.results_dropped.at("stale_round"), 0u);
 }
 
+TEST(FarmMetricsTest, VerifiedAndMismatchedBatchesAreCounted) {
+  BatchTotals totals;
+  totals.verified = 40;
+  totals.verify_mismatches = 1;
+  const web::FarmMetrics m = FarmMetricsOf(json::array(), json::array(), totals, {}, 0);
+  EXPECT_EQ(m.batches_verified, 40u);
+  EXPECT_EQ(m.verify_mismatches, 1u);
+}
+
 }  // namespace
 }  // namespace radfarm::daemon

@@ -133,6 +133,7 @@ TEST(ExampleConfigTest, RadfarmdReadsItsExampleAndItHoldsTheDefaults) {
   EXPECT_EQ(config.local_round_rays, defaults.local_round_rays);
   EXPECT_EQ(config.keep_round_results, defaults.keep_round_results);
   EXPECT_EQ(config.keep_results_after_seconds, defaults.keep_results_after_seconds);
+  EXPECT_EQ(config.verify_fraction, defaults.verify_fraction);
 }
 #endif
 

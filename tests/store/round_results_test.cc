@@ -100,6 +100,38 @@ TEST_F(RoundResultsTest, ARoundsCheckpointDeletesItsResultsAndThoseBeforeButNotL
   EXPECT_EQ(*store_->CountRoundResults(job_, 4), 1);
 }
 
+// A liar caught in round 4 whose first result was in round 4: only its results of round 4 go.
+TEST_F(RoundResultsTest, RewindingToALiarsFirstRoundDeletesOnlyItsResultsThere) {
+  ASSERT_TRUE(
+      store_->SaveCheckpoint({job_, 3, 1, 100, 0.5, 1, 0.1}, CheckpointOfRound(job_, 3)).ok());
+  Save({Kept(4, 0), Kept(4, 1), Kept(4, 2)});
+  const std::vector<uint32_t> liars = {1};
+  ASSERT_TRUE(store_->RewindJob(job_, 4, liars, false).ok());
+  EXPECT_EQ(*store_->CountCheckpoints(job_), 1);
+  Result<StoredRoundResults> kept = store_->LoadRoundResults(job_, 3);
+  ASSERT_TRUE(kept.ok());
+  ASSERT_EQ(kept->results.size(), 2u);
+  ExpectSame(kept->results[0], Kept(4, 0));
+  ExpectSame(kept->results[1], Kept(4, 2));
+}
+
+// A liar whose first result was in round 2, caught in round 4: the checkpoints of rounds 2 and 3
+// held its results and go, and so does everything kept after round 2.
+TEST_F(RoundResultsTest, RewindingPastACheckpointDeletesItAndEveryLaterResult) {
+  for (uint32_t round : {1u, 2u, 3u}) {
+    ASSERT_TRUE(
+        store_->SaveCheckpoint({job_, round, 1, 100, 0.5, 1, 0.1}, CheckpointOfRound(job_, round))
+            .ok());
+  }
+  Save({Kept(4, 0), Kept(4, 1)});
+  ASSERT_TRUE(store_->RewindJob(job_, 2, {}, true).ok());
+  EXPECT_EQ(*store_->CountCheckpoints(job_), 1);
+  Result<std::optional<Checkpoint>> latest = store_->LoadLatestCheckpoint(job_);
+  ASSERT_TRUE(latest.ok() && latest->has_value());
+  EXPECT_EQ((*latest)->round, 1u);
+  EXPECT_EQ(*store_->CountRoundResults(job_, 4), 0);
+}
+
 TEST_F(RoundResultsTest, ACheckpointThatFailsKeepsTheRoundsResults) {
   Save({Kept(3, 0)});
   // The checkpoint names a refined scene that is not stored: its row fails after the kept results

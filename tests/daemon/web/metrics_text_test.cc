@@ -19,6 +19,8 @@ FarmMetrics Example() {
   m.batches_reissued_requeued = 7;
   m.leases_preempted = 6;
   m.results_accepted = 490;
+  m.batches_verified = 12;
+  m.verify_mismatches = 1;
   m.results_rejected = {{"invalid", 1}};
   m.results_dropped = {{"late", 3}};
   m.checkpoint_seconds.Record(0.004);
@@ -44,6 +46,9 @@ TEST(MetricsTextTest, EverySeriesHasHelpAndTypeAndTheExactValue) {
            "# TYPE radfarm_leases_preempted_total counter",
            "radfarm_leases_preempted_total 6",
            "radfarm_batch_results_accepted_total 490",
+           "# TYPE radfarm_batches_verified_total counter",
+           "radfarm_batches_verified_total 12",
+           "radfarm_batch_verification_mismatches_total 1",
            "radfarm_batch_results_rejected_total{reason=\"invalid\"} 1",
            "radfarm_batch_results_dropped_total{reason=\"late\"} 3",
            "radfarm_store_queue_depth 5",
