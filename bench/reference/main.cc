@@ -1,12 +1,15 @@
 // reference_bench: the display's error against the path-traced reference (bench/reference/) on
 // scenes rendered by `radfarm render`, with the render's time beside it.
 //
-//   reference_bench [--points N] [--seed S] [--relative-error E] [--max-samples N] [--threads N]
+//   reference_bench [--points N] [--band-points N] [--band-patches W] [--seed S] [--relative-error
+//   E] [--max-samples N] [--threads N]
 //                   [--work DIR] [--out FILE] [--render-arg ARG]... [NAME=JOB]...
 //
 // For each case: `radfarm render JOB --out WORK/NAME --threads T` (timed), the display read back
 // from radiosity.ply, N area-uniform points of the input's surfaces, the reference there to a
-// relative standard error E, and the display's relative error: median, p95, worst, mean bias.
+// relative standard error E, and the display's relative error: median, p95, worst, mean bias; then
+// the same on N points area-uniform over the band within W patch sizes of another surface
+// (contact lines, corners, the slit above a hanging lamp), where a display's errors gather.
 // Prints a table; writes every point's figures as JSON (default
 // bench/results/reference_bench.json).
 #include <chrono>
@@ -31,6 +34,8 @@ namespace {
 
 struct Options {
   uint32_t points = 300;
+  uint32_t band_points = 300;  // near another surface (SampleBandPoints)
+  double band_patches = 1.5;   // the band's width in patch sizes
   uint64_t seed = 1;
   TraceSettings trace;
   std::string work = "/tmp/reference_bench";
@@ -113,39 +118,64 @@ nlohmann::json RunCase(const Options& o, const std::string& name, const std::str
   Result<DisplayPly> ply = ReadDisplayPly(dir + "/radiosity.ply");
   if (!ply) throw std::runtime_error(ply.error());
   const DisplayLookup display(std::move(*ply), (*scene)->diagonal() * 1e-4);
-  const std::vector<SurfacePoint> points = SampleSurfacePoints(**scene, o.points, o.seed);
-  const auto trace_start = std::chrono::steady_clock::now();
-  const std::vector<PointEstimate> refs = PathTracer(**scene).EstimateAll(points, o.trace);
-  const double trace_seconds = Seconds(trace_start);
-
-  std::vector<PointScore> scores;
-  uint64_t samples = 0, rays = 0;
-  for (size_t i = 0; i < points.size(); ++i) {
-    scores.push_back(
-        {points[i], refs[i], display.RadianceAt(points[i].position, points[i].normal)});
-    samples += refs[i].samples;
-    rays += refs[i].rays;
-  }
-  const ErrorSummary s = ScoreDisplay(&scores);
-  std::printf("%-20s %8lld %8.2f %8.2f %7.2f%% %7.2f%% %7.2f%% %+7.2f%% %7.2f%% %5u %5u\n",
-              name.c_str(), (long long)stats.value("patches", 0), render_seconds, trace_seconds,
-              100 * s.median, 100 * s.p95, 100 * s.worst, 100 * s.mean_bias,
-              100 * s.reference_median_error, s.dark, s.unfound);
-  std::fflush(stdout);
-
-  nlohmann::json raw = nlohmann::json::array();
-  for (const PointScore& p : scores) {
-    raw.push_back(
-        {{"position", VecJson(p.point.position)},
-         {"normal", VecJson(p.point.normal)},
-         {"material", input->materials[(*scene)->triangles()[p.point.triangle].material].name},
-         {"reference", RgbJson(p.reference.radiance)},
-         {"reference_standard_error", RgbJson(p.reference.standard_error)},
-         {"reference_relative_error", p.reference.relative_error},
-         {"samples", p.reference.samples},
-         {"display", p.display ? RgbJson(*p.display) : nlohmann::json()},
-         {"relative_error", p.relative_error},
-         {"dark", p.dark}});
+  // The band near other surfaces: band_patches patch sizes wide (2.5% of the scene's diagonal
+  // when the job leaves the patch size automatic).
+  const double band = job->mesh.patch_size > 0 ? o.band_patches * job->mesh.patch_size
+                                               : 0.025 * (*scene)->diagonal();
+  nlohmann::json sets = nlohmann::json::object();
+  double trace_seconds = 0;
+  const std::pair<const char*, std::vector<SurfacePoint>> point_sets[] = {
+      {"uniform", SampleSurfacePoints(**scene, o.points, o.seed)},
+      {"band", SampleBandPoints(**scene, o.band_points, o.seed, band)}};
+  for (const auto& [set, points] : point_sets) {
+    const auto trace_start = std::chrono::steady_clock::now();
+    const std::vector<PointEstimate> refs = PathTracer(**scene).EstimateAll(points, o.trace);
+    const double seconds = Seconds(trace_start);
+    trace_seconds += seconds;
+    std::vector<PointScore> scores;
+    uint64_t samples = 0, rays = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+      scores.push_back(
+          {points[i], refs[i], display.RadianceAt(points[i].position, points[i].normal)});
+      samples += refs[i].samples;
+      rays += refs[i].rays;
+    }
+    const ErrorSummary s = ScoreDisplay(&scores);
+    std::printf("%-20s %-7s %8lld %8.2f %8.2f %7.2f%% %7.2f%% %7.2f%% %+7.2f%% %7.2f%% %5u %5u\n",
+                name.c_str(), set, (long long)stats.value("patches", 0), render_seconds, seconds,
+                100 * s.median, 100 * s.p95, 100 * s.worst, 100 * s.mean_bias,
+                100 * s.reference_median_error, s.dark, s.unfound);
+    std::fflush(stdout);
+    nlohmann::json raw = nlohmann::json::array();
+    for (const PointScore& p : scores) {
+      const uint32_t material = (*scene)->triangles()[p.point.triangle].material;
+      raw.push_back({{"position", VecJson(p.point.position)},
+                     {"normal", VecJson(p.point.normal)},
+                     {"material", input->materials[material].name},
+                     {"reference", RgbJson(p.reference.radiance)},
+                     {"reference_standard_error", RgbJson(p.reference.standard_error)},
+                     {"reference_relative_error", p.reference.relative_error},
+                     {"samples", p.reference.samples},
+                     {"display", p.display ? RgbJson(*p.display) : nlohmann::json()},
+                     {"relative_error", p.relative_error},
+                     {"dark", p.dark}});
+    }
+    sets[set] = {{"reference_seconds", seconds},
+                 {"reference_samples", samples},
+                 {"reference_rays", rays},
+                 {"summary",
+                  {{"points", s.points},
+                   {"scored", s.scored},
+                   {"dark", s.dark},
+                   {"unfound", s.unfound},
+                   {"median", s.median},
+                   {"p95", s.p95},
+                   {"worst", s.worst},
+                   {"worst_point", s.worst_point},
+                   {"mean_bias", s.mean_bias},
+                   {"reference_median_error", s.reference_median_error},
+                   {"reference_p95_error", s.reference_p95_error}}},
+                 {"points", raw}};
   }
   return {{"name", name},
           {"job", job_path},
@@ -153,35 +183,24 @@ nlohmann::json RunCase(const Options& o, const std::string& name, const std::str
           {"render_wall_seconds", render_seconds},
           {"render_stats", stats},
           {"reference_seconds", trace_seconds},
-          {"reference_samples", samples},
-          {"reference_rays", rays},
           {"triangles", (*scene)->triangles().size()},
-          {"summary",
-           {{"points", s.points},
-            {"scored", s.scored},
-            {"dark", s.dark},
-            {"unfound", s.unfound},
-            {"median", s.median},
-            {"p95", s.p95},
-            {"worst", s.worst},
-            {"worst_point", s.worst_point},
-            {"mean_bias", s.mean_bias},
-            {"reference_median_error", s.reference_median_error},
-            {"reference_p95_error", s.reference_p95_error}}},
-          {"points", raw}};
+          {"band", band},
+          {"sets", sets}};
 }
 
 int Main(int argc, char** argv) {
   Options o;
   if (!ParseOptions(argc, argv, &o)) return 2;
   const bench::MachineInfo machine = bench::ReadMachineInfo(argc, argv);
-  std::printf("%-20s %8s %8s %8s %8s %8s %8s %8s %8s %5s %5s\n", "scene", "patches", "render s",
-              "ref s", "median", "p95", "worst", "bias", "ref err", "dark", "miss");
+  std::printf("%-20s %-7s %8s %8s %8s %8s %8s %8s %8s %8s %5s %5s\n", "scene", "points", "patches",
+              "render s", "ref s", "median", "p95", "worst", "bias", "ref err", "dark", "miss");
   nlohmann::json cases = nlohmann::json::array();
   const auto start = std::chrono::steady_clock::now();
   for (const auto& [name, job] : o.cases) cases.push_back(RunCase(o, name, job));
   bench::WriteJson(o.out, {{"machine", bench::MachineJson(machine)},
                            {"points", o.points},
+                           {"band_points", o.band_points},
+                           {"band_patches", o.band_patches},
                            {"seed", o.seed},
                            {"relative_error", o.trace.relative_error},
                            {"max_samples", o.trace.max_samples},

@@ -87,5 +87,32 @@ TEST(ReferenceSceneTest, SurfacePointsAreAreaUniformAndTwoSidedGivesBothSides) {
   EXPECT_NE(SampleSurfacePoints(**scene, 10, 8)[9].position, points[9].position);
 }
 
+TEST(ReferenceSceneTest, BandPointsLieNearAnotherSurface) {
+  // A 10 x 10 floor (facing +z) and a wall standing on it along x = 5 (facing -x): the band of
+  // width 0.2 is the floor's strip |x - 5| < 0.2 (behind the wall too: its back is a surface
+  // there) and the wall's strip z < 0.2.
+  InputScene input;
+  input.path = "corner";
+  const uint32_t m = AddMaterial(&input, {0.5, 0.5, 0.5}, {});
+  AddQuad(&input, {Vec3{0, 0, 0}, Vec3{10, 0, 0}, Vec3{10, 10, 0}, Vec3{0, 10, 0}}, m);
+  AddQuad(&input, {Vec3{5, 0, 0}, Vec3{5, 10, 0}, Vec3{5, 10, 3}, Vec3{5, 0, 3}}, m);
+  auto scene = ReferenceScene::Build(input);
+  ASSERT_TRUE(scene);
+  const std::vector<SurfacePoint> band = SampleBandPoints(**scene, 200, 3, 0.2);
+  ASSERT_EQ(band.size(), 200u);
+  int on_floor = 0;
+  for (const SurfacePoint& p : band) {
+    if (p.normal.z > 0.5) {
+      ++on_floor;
+      EXPECT_LT(std::abs(p.position.x - 5), 0.2);
+    } else {
+      EXPECT_LT(p.position.z, 0.2);
+    }
+  }
+  // Strips of 0.4 x 10 and 0.2 x 10: two thirds on the floor.
+  EXPECT_NEAR(on_floor, 133, 4 * std::sqrt(200 * 2.0 / 9));
+  EXPECT_FALSE(NearAnotherSurface(**scene, {{2, 5, 0}, {0, 0, 1}, 0}, 0.2));
+}
+
 }  // namespace
 }  // namespace radfarm::reference
