@@ -60,6 +60,10 @@ bool ParseOptions(int argc, char** argv, Options* o) {
     };
     if (arg == "--points")
       o->points = uint32_t(std::stoul(value()));
+    else if (arg == "--band-points")
+      o->band_points = uint32_t(std::stoul(value()));
+    else if (arg == "--band-patches")
+      o->band_patches = std::stod(value());
     else if (arg == "--seed")
       o->seed = o->trace.seed = std::stoull(value());
     else if (arg == "--relative-error")
