@@ -25,12 +25,14 @@ ErrorSummary ScoreDisplay(std::vector<PointScore>* scores, double dark_fraction)
     const double ref = p.reference.radiance.Sum();
     p.dark = !(ref > dark_below);
     p.relative_error = 0;
-    if (!p.display) {
-      ++s.unfound;
-      continue;
-    }
+    // Dark first: the display has no triangles where the mesher dropped covered ground (under a
+    // block), and the light there is nothing.
     if (p.dark) {
       ++s.dark;
+      continue;
+    }
+    if (!p.display) {
+      ++s.unfound;
       continue;
     }
     p.relative_error = (p.display->Sum() - ref) / ref;

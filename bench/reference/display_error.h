@@ -25,8 +25,8 @@ struct ErrorSummary {
   uint32_t points = 0;
   uint32_t scored = 0;
   uint32_t dark = 0;
-  uint32_t unfound = 0;
-  double median = 0;  // of |relative error|
+  uint32_t unfound = 0;  // not dark, but no display triangle there
+  double median = 0;     // of |relative error|
   double p95 = 0;
   double worst = 0;
   int64_t worst_point = -1;  // index into the scores

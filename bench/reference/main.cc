@@ -149,6 +149,12 @@ nlohmann::json RunCase(const Options& o, const std::string& name, const std::str
                 name.c_str(), set, (long long)stats.value("patches", 0), render_seconds, seconds,
                 100 * s.median, 100 * s.p95, 100 * s.worst, 100 * s.mean_bias,
                 100 * s.reference_median_error, s.dark, s.unfound);
+    if (s.worst_point >= 0) {
+      const PointScore& w = scores[size_t(s.worst_point)];
+      std::printf("%29s worst at (%g, %g, %g) facing (%g, %g, %g): reference %g, display %g\n", "",
+                  w.point.position.x, w.point.position.y, w.point.position.z, w.point.normal.x,
+                  w.point.normal.y, w.point.normal.z, w.reference.radiance.Sum(), w.display->Sum());
+    }
     std::fflush(stdout);
     nlohmann::json raw = nlohmann::json::array();
     for (const PointScore& p : scores) {

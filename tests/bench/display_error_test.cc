@@ -65,10 +65,11 @@ TEST(DisplayErrorTest, SummaryLeavesOutDarkAndUnfoundPoints) {
   scores.push_back(Score(1, 0.5));                                        // -50%
   scores.push_back(Score(1e-4, 1));                                       // dark
   scores.push_back(Score(1, std::nullopt));                               // unfound
+  scores.push_back(Score(0, std::nullopt));  // dark, and not displayed (under a block)
   const ErrorSummary s = ScoreDisplay(&scores);
-  EXPECT_EQ(s.points, 22u);
+  EXPECT_EQ(s.points, 23u);
   EXPECT_EQ(s.scored, 20u);
-  EXPECT_EQ(s.dark, 1u);
+  EXPECT_EQ(s.dark, 2u);
   EXPECT_EQ(s.unfound, 1u);
   EXPECT_NEAR(s.median, 0.09, 1e-12);
   EXPECT_NEAR(s.p95, 0.18, 1e-12);
