@@ -1,5 +1,6 @@
 #include "mesh/gouraud_means.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -44,8 +45,13 @@ void StepTowardPatchMeans(DisplayMesh* display, const std::vector<Rgb>& target,
       weight[n] += twice_area;
     }
   }
+  // A dark vertex beside a brighter one (the slit above a hanging lamp) can be pushed below zero
+  // by its bright neighbours' shortfall; no light is negative, so it stops at zero.
   for (size_t n = 0; n < sum.size(); ++n) {
-    if (weight[n] > 0) display->radiance[n] += sum[n] / weight[n];
+    if (weight[n] <= 0) continue;
+    Rgb& v = display->radiance[n];
+    v += sum[n] / weight[n];
+    v = {std::max(v.r, 0.0), std::max(v.g, 0.0), std::max(v.b, 0.0)};
   }
 }
 

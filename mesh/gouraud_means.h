@@ -18,7 +18,8 @@ std::vector<Rgb> GouraudPatchMeans(const DisplayMesh& display, size_t patches);
 // One step toward target: every vertex moves by the average of (target - GouraudPatchMeans) over
 // the triangles that use it, weighted by their area. Patches with moves[f] false count as short
 // by nothing (an emitter shows its emission). One step only: it removes most of the bias of
-// linear interpolation, and further steps chase the noise in the targets.
+// linear interpolation, and further steps chase the noise in the targets. A channel the step would
+// take below zero stays at zero.
 void StepTowardPatchMeans(DisplayMesh* display, const std::vector<Rgb>& target,
                           const std::vector<bool>& moves);
 

@@ -108,5 +108,22 @@ TEST(StepTowardPatchMeansTest, AHeldPatchCountsAsShortByNothing) {
   EXPECT_NEAR(d.radiance[1].r, 1 + 2.0 / 3, 1e-12);
 }
 
+// A dark patch beside a bright one (the slit above a hanging lamp) whose target is far below what
+// it shows: its vertices would go negative; no light is, so they stop at zero.
+TEST(StepTowardPatchMeansTest, NoVertexGoesBelowZero) {
+  DisplayMesh d = TwoSquares();
+  d.radiance = {{0.1, 0.1, 0.1}, {1, 1, 1}, {1, 1, 1}, {0.1, 0.1, 0.1}, {1, 1, 1}, {1, 1, 1}};
+  StepTowardPatchMeans(&d, {{0, 0.5, 0}, {1, 1, 1}}, {true, true});
+  for (const Rgb& r : d.radiance) {
+    EXPECT_GE(r.r, 0.0);
+    EXPECT_GE(r.g, 0.0);
+    EXPECT_GE(r.b, 0.0);
+  }
+  // Patch 0 shows 0.55: vertex 0 (patch 0's alone) would go to 0.1 + (0 - 0.55) = -0.45 in red;
+  // in green to 0.1 + (0.5 - 0.55) = 0.05, which stays.
+  EXPECT_EQ(d.radiance[0].r, 0.0);
+  EXPECT_NEAR(d.radiance[0].g, 0.05, 1e-12);
+}
+
 }  // namespace
 }  // namespace radfarm
