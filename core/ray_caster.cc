@@ -8,27 +8,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/embree_handles.h"
+
 namespace radfarm {
 
-// Owns the Embree device and scene; released in reverse order of creation.
-struct RayCaster::Embree {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-  ~Embree() {
-    if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
-  }
-};
+struct RayCaster::Embree : EmbreeHandles {};
 
 namespace {
-
-void CheckDevice(RTCDevice device, const char* what) {
-  const RTCError error = rtcGetDeviceError(device);
-  if (error != RTC_ERROR_NONE) {
-    throw std::runtime_error(std::string("Embree error ") + std::to_string(int(error)) + " in " +
-                             what);
-  }
-}
 
 // An Embree record for a closest-hit query from `o` (relative to the scene centre) along `d`.
 inline void SetRay(float ox, float oy, float oz, float dx, float dy, float dz, RTCRayHit* ray) {
@@ -72,7 +58,7 @@ RayCaster::RayCaster(const PatchScene& scene) : embree_(std::make_unique<Embree>
   two_sided_first_ = triangles_.size();
   AddGeometry(scene, true, diagonal);
   rtcCommitScene(embree_->scene);
-  CheckDevice(embree_->device, "scene build");
+  ThrowOnEmbreeError(embree_->device, "scene build");
 }
 
 void RayCaster::AddGeometry(const PatchScene& scene, bool two_sided, double diagonal) {
@@ -87,7 +73,7 @@ void RayCaster::AddGeometry(const PatchScene& scene, bool two_sided, double diag
       3 * triangle_count + 1));  // +1: Embree may read 16 bytes past the last float3
   auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangle_count));
-  CheckDevice(embree_->device, "buffer allocation");
+  ThrowOnEmbreeError(embree_->device, "buffer allocation");
 
   // Each triangle gets its own three vertices; identical input coordinates map to identical floats,
   // which is all watertightness needs.
@@ -122,7 +108,7 @@ void RayCaster::AddGeometry(const PatchScene& scene, bool two_sided, double diag
   rtcAttachGeometryByID(embree_->scene, geometry,
                         two_sided ? kTwoSidedGeometry : kOneSidedGeometry);
   rtcReleaseGeometry(geometry);
-  CheckDevice(embree_->device, "geometry");
+  ThrowOnEmbreeError(embree_->device, "geometry");
 }
 
 bool RayCaster::MeetsFront(const Triangle& triangle, const Vec3& d, const Vec3& ng) const {

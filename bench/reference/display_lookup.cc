@@ -5,16 +5,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/embree_handles.h"
+
 namespace radfarm::reference {
 
-struct DisplayLookup::Embree {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-  ~Embree() {
-    if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
-  }
-};
+struct DisplayLookup::Embree : EmbreeHandles {};
 
 namespace {
 
@@ -71,9 +66,7 @@ DisplayLookup::DisplayLookup(DisplayPly display, double reach)
   rtcAttachGeometry(embree_->scene, geometry);
   rtcReleaseGeometry(geometry);
   rtcCommitScene(embree_->scene);
-  if (rtcGetDeviceError(embree_->device) != RTC_ERROR_NONE) {
-    throw std::runtime_error("Embree: building the display BVH failed");
-  }
+  ThrowOnEmbreeError(embree_->device, "building the display BVH");
 }
 
 DisplayLookup::~DisplayLookup() = default;

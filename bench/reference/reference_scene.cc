@@ -7,19 +7,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/embree_handles.h"
 #include "mesh/ear_clip.h"
 #include "mesh/polygon.h"
 
 namespace radfarm::reference {
 
-struct ReferenceScene::Embree {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-  ~Embree() {
-    if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
-  }
-};
+struct ReferenceScene::Embree : EmbreeHandles {};
 
 namespace {
 
@@ -123,9 +117,7 @@ void ReferenceScene::BuildBvh() {
   rtcAttachGeometry(embree_->scene, geometry);
   rtcReleaseGeometry(geometry);
   rtcCommitScene(embree_->scene);
-  if (rtcGetDeviceError(embree_->device) != RTC_ERROR_NONE) {
-    throw std::runtime_error("Embree: building the reference scene failed");
-  }
+  ThrowOnEmbreeError(embree_->device, "building the reference scene");
 }
 
 SurfaceHit ReferenceScene::Trace(const Vec3& origin, const Vec3& direction,
