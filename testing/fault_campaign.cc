@@ -199,12 +199,25 @@ class Campaign {
     }
   }
 
-  bool MasterKill(const std::string& prefix) {
+  bool KillMaster() {
     farm_.master()->Signal(SIGKILL);
-    if (!farm_.master()->WaitExit(std::chrono::seconds(30))) {
-      Problem("radfarmd did not die of SIGKILL");
-      return false;
+    if (farm_.master()->WaitExit(std::chrono::seconds(30))) return true;
+    Problem("radfarmd did not die of SIGKILL");
+    return false;
+  }
+
+  // Copies the store file and its WAL from `from` to `to` (paths of radfarm.db), replacing them.
+  static void CopyStore(const std::string& from, const std::string& to) {
+    for (const char* suffix : {"", "-wal"}) {
+      std::filesystem::remove(to + suffix);
+      if (std::filesystem::exists(from + suffix)) {
+        std::filesystem::copy_file(from + suffix, to + suffix);
+      }
     }
+  }
+
+  bool MasterKill(const std::string& prefix) {
+    if (!KillMaster()) return false;
     ++out_.faults["master_kill"];
     say_(prefix + "SIGKILL and restart radfarmd");
     return StartMaster();
@@ -216,19 +229,12 @@ class Campaign {
   // (what was cut held no page the store needs, or the WAL still has them), no job may be lost
   // or changed: the final check says.
   bool StoreTruncation(const std::string& prefix) {
-    farm_.master()->Signal(SIGKILL);
-    if (!farm_.master()->WaitExit(std::chrono::seconds(30))) {
-      Problem("radfarmd did not die of SIGKILL");
-      return false;
-    }
+    if (!KillMaster()) return false;
     namespace fs = std::filesystem;
     const std::string db = farm_.state_dir() + "/radfarm.db";
     const std::string copy = farm_.File("store-copy");
     fs::create_directories(copy);
-    for (const char* suffix : {"", "-wal"}) {
-      fs::remove(copy + "/radfarm.db" + suffix);
-      if (fs::exists(db + suffix)) fs::copy_file(db + suffix, copy + "/radfarm.db" + suffix);
-    }
+    CopyStore(db, copy + "/radfarm.db");
     const uintmax_t size = fs::file_size(db);
     const uintmax_t cut = std::uniform_int_distribution<uintmax_t>(0, size - 1)(random_);
     fs::resize_file(db, cut);
@@ -252,12 +258,7 @@ class Campaign {
       Problem("radfarmd neither took nor refused, naming it, a store file cut short: " + log);
       return false;
     }
-    for (const char* suffix : {"", "-wal"}) {
-      fs::remove(db + suffix);
-      if (fs::exists(copy + "/radfarm.db" + suffix)) {
-        fs::copy_file(copy + "/radfarm.db" + suffix, db + suffix);
-      }
-    }
+    CopyStore(copy + "/radfarm.db", db);
     fs::remove(db + "-shm");
     return StartMaster();
   }
