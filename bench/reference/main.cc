@@ -3,7 +3,8 @@
 //
 //   reference_bench [--points N] [--band-points N] [--band-patches W] [--seed S] [--relative-error
 //   E] [--max-samples N] [--threads N]
-//                   [--work DIR] [--out FILE] [--render-arg ARG]... [NAME=JOB]...
+//                   [--work DIR] [--out FILE] [--render-arg ARG]... [--reference-from FILE]
+//                   [NAME=JOB]...
 //
 // For each case: `radfarm render JOB --out WORK/NAME --threads T` (timed), the display read back
 // from radiosity.ply, N area-uniform points of the input's surfaces, the reference there to a
@@ -11,7 +12,9 @@
 // the same on N points area-uniform over the band within W patch sizes of another surface
 // (contact lines, corners, the slit above a hanging lamp), where a display's errors gather.
 // Prints a table; writes every point's figures as JSON (default
-// bench/results/reference_bench.json).
+// bench/results/reference_bench.json). With --reference-from, a case whose points are those of the
+// same case in that earlier JSON takes their reference from it instead of tracing again: the
+// display of a changed solver is scored against the very reference its predecessor was.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -42,6 +45,7 @@ struct Options {
   std::string out = bench::DefaultJsonPath("reference_bench");
   std::vector<std::string> render_args;
   std::vector<std::pair<std::string, std::string>> cases;  // name, job
+  nlohmann::json reference_from;                           // an earlier run's JSON, or null
 };
 
 double Seconds(std::chrono::steady_clock::time_point since) {
@@ -58,6 +62,19 @@ bool ParseOptions(int argc, char** argv, Options* o) {
       if (i + 1 >= argc) throw std::runtime_error(arg + " needs a value");
       return argv[++i];
     };
+    if (arg == "--help" || arg == "-h") {
+      std::printf(
+          "usage: reference_bench [--points N] [--band-points N] [--band-patches W] [--seed S]\n"
+          "         [--relative-error E] [--max-samples N] [--threads N] [--work DIR] [--out "
+          "FILE]\n"
+          "         [--render-arg ARG]... [--reference-from FILE] [NAME=JOB]...\n"
+          "Renders each job, traces an unbiased reference at area-uniform points and at points\n"
+          "near other surfaces, and prints the display's error against it (median, p95, worst,\n"
+          "bias). --reference-from reuses the reference of an earlier run's JSON where its\n"
+          "points are the same. Default cases: the Cornell box, lamp-under-ceiling,\n"
+          "block-on-floor.\n");
+      std::exit(0);
+    }
     if (arg == "--points")
       o->points = uint32_t(std::stoul(value()));
     else if (arg == "--band-points")
@@ -76,7 +93,12 @@ bool ParseOptions(int argc, char** argv, Options* o) {
       o->work = value();
     else if (arg == "--out")
       o->out = value();
-    else if (arg == "--render-arg")
+    else if (arg == "--reference-from") {
+      const std::string path = value();
+      std::ifstream in(path);
+      if (!in) throw std::runtime_error("--reference-from: cannot read " + path);
+      o->reference_from = nlohmann::json::parse(in);
+    } else if (arg == "--render-arg")
       o->render_args.push_back(value());
     else if (arg.find('=') != std::string::npos && arg[0] != '-') {
       o->cases.emplace_back(arg.substr(0, arg.find('=')), arg.substr(arg.find('=') + 1));
@@ -98,6 +120,31 @@ std::string Quote(const std::string& s) {
   std::string out = "'";
   for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return out + "'";
+}
+
+// The earlier run's reference at `points`, when that run's case `name` has set `set` at the same
+// points (to a millionth of the scene's diagonal); empty otherwise.
+std::vector<PointEstimate> EarlierReference(const Options& o, const std::string& name,
+                                            const std::string& set,
+                                            const std::vector<SurfacePoint>& points,
+                                            double tolerance) {
+  if (o.reference_from.is_null()) return {};
+  for (const nlohmann::json& c : o.reference_from.value("cases", nlohmann::json::array())) {
+    if (c.value("name", "") != name || !c.contains("sets") || !c["sets"].contains(set)) continue;
+    const nlohmann::json& raw = c["sets"][set]["points"];
+    if (raw.size() != points.size()) return {};
+    std::vector<PointEstimate> out;
+    for (size_t i = 0; i < points.size(); ++i) {
+      const nlohmann::json& p = raw[i];
+      const Vec3 at{p["position"][0], p["position"][1], p["position"][2]};
+      if (Length(at - points[i].position) > tolerance) return {};
+      auto rgb = [](const nlohmann::json& v) { return Rgb(v[0], v[1], v[2]); };
+      out.push_back({rgb(p["reference"]), rgb(p["reference_standard_error"]),
+                     p["reference_relative_error"], p["samples"], 0});
+    }
+    return out;
+  }
+  return {};
 }
 
 nlohmann::json RunCase(const Options& o, const std::string& name, const std::string& job_path) {
@@ -133,7 +180,10 @@ nlohmann::json RunCase(const Options& o, const std::string& name, const std::str
       {"band", SampleBandPoints(**scene, o.band_points, o.seed, band)}};
   for (const auto& [set, points] : point_sets) {
     const auto trace_start = std::chrono::steady_clock::now();
-    const std::vector<PointEstimate> refs = PathTracer(**scene).EstimateAll(points, o.trace);
+    std::vector<PointEstimate> refs =
+        EarlierReference(o, name, set, points, (*scene)->diagonal() * 1e-6);
+    const bool reused = !refs.empty();
+    if (!reused) refs = PathTracer(**scene).EstimateAll(points, o.trace);
     const double seconds = Seconds(trace_start);
     trace_seconds += seconds;
     std::vector<PointScore> scores;
@@ -171,6 +221,7 @@ nlohmann::json RunCase(const Options& o, const std::string& name, const std::str
                      {"dark", p.dark}});
     }
     sets[set] = {{"reference_seconds", seconds},
+                 {"reference_reused", reused},
                  {"reference_samples", samples},
                  {"reference_rays", rays},
                  {"summary",
