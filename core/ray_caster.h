@@ -72,6 +72,12 @@ class RayCaster {
   void PrepareRay(const Vec3& origin, const Vec3& direction, const Vec3& surface_normal,
                   RTCRayHit* ray) const;
   uint32_t PatchOfTriangle(uint32_t primitive) const { return triangles_[primitive].patch; }
+  // The patch of Embree's (geometry, primitive), for queries on embree_scene() (point queries).
+  uint32_t PatchOf(unsigned geometry, unsigned primitive) const {
+    return TriangleOf(geometry, primitive).patch;
+  }
+  // What embree_scene()'s coordinates are relative to: scene = Embree + centre().
+  const Vec3& centre() const { return centre_; }
   // Embree's geometry ids: one-sided patches, and the sides of two-sided surfaces (filtered).
   static constexpr unsigned kOneSidedGeometry = 0;
   static constexpr unsigned kTwoSidedGeometry = 1;

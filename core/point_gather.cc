@@ -1,0 +1,127 @@
+#include "core/point_gather.h"
+
+#include <embree3/rtcore.h>
+
+#include <array>
+#include <cmath>
+
+#include "core/counter_rng.h"
+#include "core/ray_sampler.h"
+#include "core/sobol.h"
+#include "core/thread_pool.h"
+#include "core/vec3.h"
+
+namespace radfarm {
+namespace {
+
+// The point of triangle (a, b, c) closest to p (Ericson, Real-Time Collision Detection, 5.1.5).
+Vec3 ClosestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = Dot(ab, ap), d2 = Dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = Dot(ab, bp), d4 = Dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const Vec3 cp = p - c;
+  const double d5 = Dot(ab, cp), d6 = Dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  }
+  const double denom = 1 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+struct NearQuery {
+  const PatchScene* scene;
+  const RayCaster* caster;
+  Vec3 point, normal;
+  double radius, plane_tolerance;
+  bool found = false;
+};
+
+// Embree calls this for each triangle whose box meets the query's sphere.
+bool VisitNearTriangle(RTCPointQueryFunctionArguments* args) {
+  NearQuery& q = *static_cast<NearQuery*>(args->userPtr);
+  const Patch& p = q.scene->patches[q.caster->PatchOf(args->geomID, args->primID)];
+  // The point's own plane (its surface, or one flush with it) hides nothing from it.
+  if (std::fabs(Dot(p.normal, q.normal)) > 1 - 1e-9 &&
+      std::fabs(Dot(p.centre - q.point, q.normal)) <= q.plane_tolerance) {
+    return false;
+  }
+  for (int t = 0; t + 2 < p.corner_count; ++t) {
+    const Vec3 closest =
+        ClosestOnTriangle(q.point, p.corners[0], p.corners[t + 1], p.corners[t + 2]);
+    const Vec3 to = closest - q.point;
+    if (Length(to) <= q.radius && Dot(to, q.normal) >= -q.plane_tolerance) {
+      q.found = true;
+      args->query->radius = 0;  // nothing more to learn
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<bool> NearOtherSurfaces(const PatchScene& scene, const RayCaster& caster,
+                                    const std::vector<ReceiverPoint>& points, double radius,
+                                    unsigned threads) {
+  std::vector<bool> out(points.size(), false);
+  if (points.empty() || !(radius > 0)) return out;
+  std::vector<uint8_t> near(points.size(), 0);  // vector<bool> is not safe to write in parallel
+  ThreadPool pool(threads);
+  // Embree's query is in float: its sphere is grown by a hair and each candidate is tested again
+  // in double here.
+  const double tolerance = 4 * caster.origin_offset();
+  pool.ParallelFor(points.size(), [&](unsigned, size_t i) {
+    NearQuery q{&scene, &caster, points[i].position, points[i].normal, radius, tolerance};
+    const Vec3 at = points[i].position - caster.centre();
+    RTCPointQuery query;
+    query.x = float(at.x);
+    query.y = float(at.y);
+    query.z = float(at.z);
+    query.time = 0;
+    query.radius = float(radius * (1 + 1e-5) + tolerance);
+    RTCPointQueryContext context;
+    rtcInitPointQueryContext(&context);
+    rtcPointQuery(caster.embree_scene(), &query, &context, VisitNearTriangle, &q);
+    near[i] = q.found;
+  });
+  for (size_t i = 0; i < points.size(); ++i) out[i] = near[i] != 0;
+  return out;
+}
+
+std::vector<Rgb> GatherLight(const RayCaster& caster, const std::vector<Rgb>& outgoing,
+                             const std::vector<ReceiverPoint>& points,
+                             const std::vector<bool>& gather, uint64_t seed, unsigned threads,
+                             uint32_t rays) {
+  std::vector<Rgb> out(points.size());
+  if (points.empty() || rays == 0) return out;
+  ThreadPool pool(threads);
+  // Stream constant: keeps these keys apart from every other use of the seed.
+  const uint64_t stream = HashWords(seed, 0x6761746865726eull);
+  pool.ParallelFor(points.size(), [&](unsigned, size_t i) {
+    if (!gather[i]) return;
+    const ReceiverPoint& point = points[i];
+    Vec3 t, b;
+    OrthonormalBasis(point.normal, &t, &b);
+    const ScrambledSobol4 sobol(HashWords(stream, i));
+    Rgb sum;
+    for (uint32_t k = 0; k < rays; ++k) {
+      const std::array<double, 4> u = sobol.Point(k);
+      const RayHit hit = caster.Trace(
+          point.position, SampleCosineDirection(t, b, point.normal, u[0], u[1]), point.normal);
+      if (hit.patch != RayHit::kMiss && hit.front) sum += outgoing[hit.patch];
+    }
+    out[i] = sum / double(rays);
+  });
+  return out;
+}
+
+}  // namespace radfarm

@@ -1,0 +1,44 @@
+// The bounced light arriving at single points, gathered by rays from the solved patches: what a
+// display point near another surface shows instead of an average of its patches.
+//
+// A patch's solution is a mean over its area. Where another surface is near (a corner, the foot of
+// a wall, the ceiling around a hanging lamp, the floor beside a block), the light a point receives
+// changes within a patch: the surface beside it hides part of the room. An average of the patches
+// around a vertex, or an extrapolation from inside, then draws corners too dark or too bright and
+// smears a lamp's shadow on the ceiling across its outline. So a point with another surface within
+// about a patch size and a half (NearOtherSurfaces) gathers: its irradiance is the mean, over
+// cosine-weighted rays, of the outgoing light of the patch each meets (nothing for a miss or the
+// back of a one-sided patch). Points in open space keep their average, smooth there and noiseless.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/direct_light.h"
+#include "core/patch_scene.h"
+#include "core/ray_caster.h"
+#include "core/rgb.h"
+
+namespace radfarm {
+
+// Rays per gathering point: the standard error of the irradiance in a room's corner is then about
+// 0.25 %; a small bright source alone is a binomial draw, sqrt(F (1 - F) / 512) of form factor F
+// (a randomised Sobol sequence per point; tests/core/point_gather_test.cc).
+inline constexpr uint32_t kPointGatherRays = 512;
+
+// Whether a patch of another plane than the point's own lies within `radius` of it, not wholly
+// behind it (an Embree point query on the caster's BVH). A pure function of its arguments.
+std::vector<bool> NearOtherSurfaces(const PatchScene& scene, const RayCaster& caster,
+                                    const std::vector<ReceiverPoint>& points, double radius,
+                                    unsigned threads);
+
+// For each point with gather[i] set, the mean over `rays` cosine-weighted rays of `outgoing` (one
+// value per patch: the light leaving it that the point should count) at the patch each meets;
+// zero elsewhere; `outgoing` follows the patches of the scene `caster` was built from. A pure
+// function of its arguments, whatever the thread count; `seed` keys the rays of point i with i.
+std::vector<Rgb> GatherLight(const RayCaster& caster, const std::vector<Rgb>& outgoing,
+                             const std::vector<ReceiverPoint>& points,
+                             const std::vector<bool>& gather, uint64_t seed, unsigned threads,
+                             uint32_t rays = kPointGatherRays);
+
+}  // namespace radfarm
