@@ -146,6 +146,13 @@ int RunRender(const RenderOptions& options) {
     PrintError(s.error());
     return kExitFailure;
   }
+  if (const PatchMesh::DisplayStats& d = mesh.display_stats(); !options.quiet && d.seconds >= 0.5) {
+    std::printf(
+        "display: %llu points, %llu gathering their own light near other surfaces, %llu "
+        "added where it bends, in %.1f s\n",
+        static_cast<unsigned long long>(d.points), static_cast<unsigned long long>(d.gathered),
+        static_cast<unsigned long long>(d.added), d.seconds);
+  }
   if (!options.quiet) {
     const SolveStats& st = solution.stats;
     std::printf("%s after %llu %s: unshot %.4f%%, %llu rays in %.2f s (%.2f Mrays/s); wrote %s\n",

@@ -79,7 +79,11 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
                         {"dropped_hidden_faces", double(mesh.dropped_hidden())},
                         {"patches_before_refinement", patches_before},
                         {"patches_after_refinement", patches_after},
-                        {"exposure_stops", exposed.exposure}})}) {
+                        {"exposure_stops", exposed.exposure},
+                        {"display_points", double(mesh.display_stats().points)},
+                        {"display_points_gathered", double(mesh.display_stats().gathered)},
+                        {"display_points_added", double(mesh.display_stats().added)},
+                        {"display_seconds", mesh.display_stats().seconds}})}) {
     RADFARM_RETURN_IF_ERROR(s);
   }
   return Ok{};

@@ -73,14 +73,21 @@ double Area(const std::vector<Vec3>& polygon, const Vec3& n) {
   return polygon.size() < 3 ? 0.0 : Dot(VectorArea(polygon), n);
 }
 
+// How far in front of a face a sheet of area `sheet_area` may hang and still cover it: kSheetGap of
+// its size, or up to `reach` (a few patch sizes) while that is at most kSheetGapFar of its size.
+double LargestSheetGap(double sheet_area, double reach) {
+  const double size = std::sqrt(sheet_area);
+  return std::max(kSheetGap * size, std::min(reach, kSheetGapFar * size));
+}
+
 // The outline of `g` projected onto the plane (p0, n), when g is a sheet over that plane: parallel
 // to it, facing the same way (its back toward the plane), in front of it by more than tol and at
-// most kSheetGap of its own size, its projection inside `outline`.
+// most LargestSheetGap, its projection inside `outline`.
 bool CoveringSheet(const CleanFace& g, const std::vector<Vec3>& outline, const Vec3& p0,
-                   const Vec3& n, double tol, Footprint* footprint) {
+                   const Vec3& n, double tol, double reach, Footprint* footprint) {
   if (Dot(g.normal, n) < 1 - 1e-9) return false;
   const double gap = Dot(g.corners[0] - p0, n);
-  if (gap <= tol || gap > kSheetGap * std::sqrt(g.area)) return false;
+  if (gap <= tol || gap > LargestSheetGap(g.area, reach)) return false;
   Footprint c;
   for (const Vec3& x : g.corners) {
     const double h = Dot(x - p0, n);
@@ -346,23 +353,23 @@ std::vector<std::vector<Footprint>> FindFootprints(const std::vector<CleanFace>&
 }
 
 std::vector<std::vector<Footprint>> FindCoveringSheets(const std::vector<CleanFace>& faces,
-                                                       double tol) {
+                                                       double tol, double reach) {
   std::vector<std::vector<Footprint>> out(faces.size());
   const CornerIndex index(faces);
   for (size_t f = 0; f < faces.size(); ++f) {
     const CleanFace& face = faces[f];
     // A sheet's outline projects within tol of the face's, so its area is at most the face's
-    // grown by tol all round, and its gap at most kSheetGap of that area's square root.
+    // grown by tol all round, and its gap at most LargestSheetGap of that area.
     double perimeter = 0;
     for (size_t i = 0; i < face.corners.size(); ++i) {
       perimeter += Length(face.corners[(i + 1) % face.corners.size()] - face.corners[i]);
     }
     const double largest_gap =
-        kSheetGap * std::sqrt(1.001 * (face.area + perimeter * tol + 4 * tol * tol));
+        LargestSheetGap(1.001 * (face.area + perimeter * tol + 4 * tol * tol), reach);
     for (uint32_t g :
          index.Near(face, face.corners[0], tol + largest_gap, static_cast<uint32_t>(f))) {
       Footprint sheet;
-      if (CoveringSheet(faces[g], face.corners, face.corners[0], face.normal, tol, &sheet)) {
+      if (CoveringSheet(faces[g], face.corners, face.corners[0], face.normal, tol, reach, &sheet)) {
         out[f].push_back(std::move(sheet));
       }
     }

@@ -14,14 +14,17 @@
 // hidden, is left uncut).
 //
 // A sheet over a face covers it too: a face parallel to F and facing the same way (its back toward
-// F), in front of F by at most kSheetGap of its size (the square root of its area), its outline
-// inside F's. The Cornell box's light hangs 0.8 mm under the ceiling, the seed room's 1 mm: the
-// ceiling above it sees only the light's back through a slit, so it is dark, and patches across
-// the light's outline, or vertices averaged across it, smear that step into the lit ceiling
-// around it (a dark ring in the image). F is cut along the sheet's outline, but the part under it
-// is kept, as a surface of its own (PatchMesh::Build): rays through the slit must still meet the
-// ceiling, and its own surface keeps its darkness out of the vertices around. A sheet facing F (a
-// light shining on it) covers nothing.
+// F), in front of F by at most kSheetGap of its size (the square root of its area), or by up to
+// a few patch sizes while that is at most kSheetGapFar of its size, its outline inside F's. The
+// Cornell box's light hangs 0.8 mm under the ceiling, the seed room's 1 mm: the ceiling above it
+// sees only the light's back through a slit, so it is dark, and patches across the light's outline,
+// or vertices averaged across it, smear that step into the lit ceiling around it (a dark ring in
+// the image). F is cut along the sheet's outline, but the part under it is kept, as a surface of
+// its own (PatchMesh::Build): rays through the slit must still meet the ceiling, and its own
+// surface keeps its darkness out of the vertices around. A sheet facing F (a light shining on it, a
+// cabinet's back 10 cm from a wall) covers nothing: cutting the wall behind a cabinet along its
+// outline was measured (docs/BENCHMARKS-accuracy.md) and did not help, the error there being the
+// coarse solution's in the crevice.
 #pragma once
 
 #include <cstddef>
@@ -35,16 +38,19 @@ namespace radfarm {
 
 using Footprint = std::vector<Vec3>;  // convex, counter-clockwise about the face's normal
 
-// The largest gap under a covering sheet, as a share of the square root of its area.
+// The largest gap under a covering sheet, as a share of the square root of its area: always
+// kSheetGap, and up to FindCoveringSheets' reach while under kSheetGapFar.
 inline constexpr double kSheetGap = 0.02;
+inline constexpr double kSheetGapFar = 0.5;
 
 // For each face, the footprints of what stands on it; solids side by side whose outlines share
 // edges there (a wall's parts and the lintels between them, on a ceiling) each give their own.
 std::vector<std::vector<Footprint>> FindFootprints(const std::vector<CleanFace>& faces, double tol);
 
-// For each face, the outlines of the sheets covering it, projected onto it.
+// For each face, the outlines of the sheets covering it, projected onto it; `reach` (a few patch
+// sizes) is how far a large sheet may hang.
 std::vector<std::vector<Footprint>> FindCoveringSheets(const std::vector<CleanFace>& faces,
-                                                       double tol);
+                                                       double tol, double reach);
 
 // Cuts `pieces` (convex, in a face with unit normal `normal`) along `footprints`: pieces outside
 // stay as they are, pieces inside are dropped, pieces across a footprint's edge become the convex

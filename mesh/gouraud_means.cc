@@ -31,7 +31,7 @@ std::vector<Rgb> GouraudPatchMeans(const DisplayMesh& display, size_t patches) {
 }
 
 void StepTowardPatchMeans(DisplayMesh* display, const std::vector<Rgb>& target,
-                          const std::vector<bool>& moves) {
+                          const std::vector<bool>& moves, const std::vector<bool>& held) {
   const std::vector<Rgb> shown = GouraudPatchMeans(*display, target.size());
   std::vector<Rgb> sum(display->positions.size());
   std::vector<double> weight(display->positions.size(), 0.0);
@@ -48,7 +48,7 @@ void StepTowardPatchMeans(DisplayMesh* display, const std::vector<Rgb>& target,
   // A dark vertex beside a brighter one (the slit above a hanging lamp) can be pushed below zero
   // by its bright neighbours' shortfall; no light is negative, so it stops at zero.
   for (size_t n = 0; n < sum.size(); ++n) {
-    if (weight[n] <= 0) continue;
+    if (weight[n] <= 0 || (!held.empty() && held[n])) continue;
     Rgb& v = display->radiance[n];
     v += sum[n] / weight[n];
     v = {std::max(v.r, 0.0), std::max(v.g, 0.0), std::max(v.b, 0.0)};

@@ -20,7 +20,8 @@ std::vector<Rgb> GouraudPatchMeans(const DisplayMesh& display, size_t patches);
 // by nothing (an emitter shows its emission). One step only: it removes most of the bias of
 // linear interpolation, and further steps chase the noise in the targets. A channel the step would
 // take below zero stays at zero.
+// Points marked in `held` (when not empty) keep their value.
 void StepTowardPatchMeans(DisplayMesh* display, const std::vector<Rgb>& target,
-                          const std::vector<bool>& moves);
+                          const std::vector<bool>& moves, const std::vector<bool>& held = {});
 
 }  // namespace radfarm

@@ -136,7 +136,7 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
 
   const SurfaceGroups surfaces = GroupSurfaces(faces, tol);
   const std::vector<std::vector<Footprint>> footprints = FindFootprints(faces, tol);
-  const std::vector<std::vector<Footprint>> sheets = FindCoveringSheets(faces, tol);
+  const std::vector<std::vector<Footprint>> sheets = FindCoveringSheets(faces, tol, kSheetReachPatches * pm.patch_size_);
   pm.surface_count_ = surfaces.count;
 
   std::vector<SplitPlan> plans;

@@ -38,6 +38,12 @@ inline constexpr uint64_t kMaxPatches = uint64_t{1} << 23;
 // How far toward the centres of its patches a vertex's direct light is computed, as a share of
 // the distance: far enough off a crease for its shadow rays, near enough to be the vertex's value.
 inline constexpr double kVertexInset = 1e-4;
+// A sheet hanging within this many patch sizes of a face covers it (mesh/contact_cut.h): any gap
+// a patch could straddle.
+inline constexpr double kSheetReachPatches = 2;
+// A display point gathers its bounced light itself (core/point_gather.h) when a surface lies
+// within this many patch sizes.
+inline constexpr double kGatherBand = 1.5;
 
 // Move-only: a copy of a large mesh is never wanted by accident.
 class PatchMesh {
@@ -112,8 +118,23 @@ class PatchMesh {
   // direct light's mean over the patch by the midpoint rule, exact for quadratics): point values
   // interpolated linearly run below a concave light between points (h^2 f'' / 12 on every
   // triangle). Costs a point of shadow rays (kPointShadowRays) per display vertex and midpoint.
+  // Near another surface (within kGatherBand patch sizes: corners, the ceiling beside a hanging
+  // lamp, the floor around a block) the rest is not smooth across a patch: such points gather it
+  // themselves (core/point_gather.h) and keep their values; where the corners of a triangle of
+  // such points differ by more than a fifth, it is cut (mesh/selective_split.h) and its new points
+  // computed the same way, up to two levels deep (patch_mesh_display.cc).
   void SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot,
                    const VertexDirectLight& direct);
+  // What the last SetSolution with VertexDirectLight computed: display points (vertices and
+  // midpoints), those that gathered their own light near another surface, and those added where
+  // the light bends; and its wall time.
+  struct DisplayStats {
+    uint64_t points = 0;
+    uint64_t gathered = 0;
+    uint64_t added = 0;
+    double seconds = 0;
+  };
+  const DisplayStats& display_stats() const { return display_stats_; }
 
   // Triangles with per-vertex radiance for the image and the PLY: one vertex per surface and
   // position, patches with T-vertices on their edges triangulated through them, so Gouraud shading
@@ -143,6 +164,7 @@ class PatchMesh {
   PatchMeshData data_;
   // The display cut at its midpoints by SetSolution with VertexDirectLight; empty otherwise.
   std::optional<DisplayMesh> split_display_;
+  DisplayStats display_stats_;
   double patch_size_ = 0;
   size_t dropped_degenerate_ = 0;
   size_t dropped_hidden_ = 0;

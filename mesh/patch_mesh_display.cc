@@ -1,17 +1,102 @@
 // PatchMesh's second half: from patch radiosities to vertex radiance and display triangles.
+#include <algorithm>
 #include <array>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/counter_rng.h"
 #include "core/direct_light.h"
+#include "core/point_gather.h"
 #include "mesh/border_extrapolation.h"
 #include "mesh/ear_clip.h"
 #include "mesh/gouraud_means.h"
 #include "mesh/midpoint_split.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/polygon.h"
+#include "mesh/selective_split.h"
 
 namespace radfarm {
+namespace {
+
+// Where a display triangle's gathered corners differ by more than this share of the brightest, the
+// light bends within it faster than the display shows (the ceiling just outside a hanging lamp's
+// outline rises from the slit's shadow within centimetres): it is cut into four, up to
+// kDisplayRefineLevels times, each new point at its own light.
+constexpr double kRefineContrast = 0.2;
+constexpr int kDisplayRefineLevels = 2;
+
+// Cuts the triangles of `fine` whose corners all hold their own light (`held`) and differ by more
+// than kRefineContrast, and sets each new point to its own light: rho times the direct light and
+// the gathered light. Returns the number of points added.
+uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
+                               const std::vector<Rgb>& outgoing,
+                               const PatchMesh::VertexDirectLight& direct, DisplayMesh* fine,
+                               std::vector<bool>* held) {
+  uint64_t points_added = 0;
+  for (int level = 1; level <= kDisplayRefineLevels; ++level) {
+    std::vector<bool> marked(fine->triangles.size(), false);
+    bool any = false;
+    for (size_t t = 0; t < fine->triangles.size(); ++t) {
+      const std::array<uint32_t, 3>& v = fine->triangles[t];
+      if (!(*held)[v[0]] || !(*held)[v[1]] || !(*held)[v[2]]) continue;
+      double lo = INFINITY, hi = -INFINITY;
+      for (uint32_t n : v) {
+        lo = std::min(lo, fine->radiance[n].Sum());
+        hi = std::max(hi, fine->radiance[n].Sum());
+      }
+      marked[t] = hi - lo > kRefineContrast * hi;
+      any = any || marked[t];
+    }
+    if (!any) break;
+    SelectiveSplit split = SplitMarked(*fine, std::move(marked));
+    DisplayMesh& mesh = split.mesh;
+    const size_t added = split.edge_ends.size();
+    // Each new point: a hair toward the centroids of the triangles around it, facing as their
+    // patches do, with their reflectance.
+    std::vector<Vec3> centroids(added), normals(added);
+    std::vector<Rgb> rho(added);
+    std::vector<double> weight(added, 0.0);
+    std::vector<uint32_t> around(added, 0);
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const std::array<uint32_t, 3>& v = mesh.triangles[t];
+      const Vec3 centroid =
+          (mesh.positions[v[0]] + mesh.positions[v[1]] + mesh.positions[v[2]]) / 3.0;
+      const Patch& p = scene.patches[mesh.triangle_patch[t]];
+      for (uint32_t n : v) {
+        if (n < split.first_new) continue;
+        const size_t k = n - split.first_new;
+        centroids[k] = centroids[k] + centroid;
+        normals[k] = normals[k] + p.normal * p.area;
+        rho[k] += p.reflectance * p.area;
+        weight[k] += p.area;
+        ++around[k];
+      }
+    }
+    std::vector<ReceiverPoint> points(added);
+    for (size_t k = 0; k < added; ++k) {
+      const Vec3& at = mesh.positions[split.first_new + k];
+      points[k] = {at + (centroids[k] / double(around[k]) - at) * kVertexInset,
+                   normals[k] / Length(normals[k])};
+      rho[k] = rho[k] / weight[k];
+    }
+    const uint64_t seed = HashWords(direct.seed, uint64_t(level));
+    const std::vector<Rgb> gathered =
+        GatherLight(caster, outgoing, points, std::vector<bool>(added, true), seed, direct.threads);
+    const std::vector<Rgb> irradiance =
+        PointsDirectLight(scene, points, seed, direct.threads, direct.emitters);
+    held->resize(mesh.positions.size(), true);
+    for (size_t k = 0; k < added; ++k) {
+      mesh.radiance[split.first_new + k] = rho[k] * (gathered[k] + irradiance[k]);
+    }
+    *fine = std::move(mesh);
+    points_added += added;
+  }
+  return points_added;
+}
+
+}  // namespace
 
 void PatchMesh::StoreSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot) {
   OmMesh& mesh = *data_.mesh;
@@ -70,7 +155,9 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
 
 void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot,
                             const VertexDirectLight& direct) {
+  const auto start = std::chrono::steady_clock::now();
   split_display_.reset();
+  display_stats_ = {};
   StoreSolution(radiosity, unshot);
   const std::vector<Patch>& patches = data_.scene.patches;
   if (direct.patch_direct.size() != patches.size()) {
@@ -93,13 +180,18 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   const size_t groups = data_.group_vertex.size();
   std::vector<Vec3> centre_sum(groups), normal_sum(groups);
   std::vector<uint32_t> count(groups, 0);
+  // Emitters show their emission: their points keep the average.
+  auto keeps_average = [](const Patch& p) { return p.emission.Max() > 0; };
+  std::vector<bool> average(groups, false);
   ForEachVertexPatch([&](uint32_t group, uint32_t face) {
     centre_sum[group] = centre_sum[group] + patches[face].centre;
     normal_sum[group] = normal_sum[group] + patches[face].normal * patches[face].area;
+    average[group] = average[group] || keeps_average(patches[face]);
     ++count[group];
   });
   constexpr uint32_t kNoPoint = ~uint32_t{0};
   std::vector<ReceiverPoint> points;
+  std::vector<bool> may_gather;                      // per point
   std::vector<uint32_t> point_of(groups, kNoPoint);  // per display vertex
   for (uint32_t g = 0; g < groups; ++g) {
     const double length = Length(normal_sum[g]);
@@ -108,6 +200,7 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
     const Vec3 inward = centre_sum[g] / double(count[g]) - at;
     point_of[g] = static_cast<uint32_t>(points.size());
     points.push_back({at + inward * kVertexInset, normal_sum[g] / length});
+    may_gather.push_back(!average[g]);
   }
 
   // The display cut at its midpoints; the rest there is the mean of its edge's ends.
@@ -120,6 +213,7 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   std::vector<Vec3> mid_centroids(midpoints), mid_normals(midpoints);
   std::vector<Rgb> mid_rho(midpoints);
   std::vector<double> mid_weight(midpoints, 0.0);
+  std::vector<bool> mid_average(midpoints, false);
   std::vector<uint32_t> mid_triangles(midpoints, 0);
   for (size_t t = 0; t < split.triangle_midpoints.size(); ++t) {
     const std::array<uint32_t, 3>& v = fine.triangles[4 * t + 3];  // the middle triangle
@@ -132,6 +226,7 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
       mid_normals[k] = mid_normals[k] + p.normal * p.area;
       mid_rho[k] += p.reflectance * p.area;
       mid_weight[k] += p.area;
+      mid_average[k] = mid_average[k] || keeps_average(p);
       ++mid_triangles[k];
     }
   }
@@ -146,7 +241,33 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
     rho[groups + k] = mid_rho[k] / mid_weight[k];
     point_of[groups + k] = static_cast<uint32_t>(points.size());
     points.push_back({at + inward * kVertexInset, mid_normals[k] / length});
+    may_gather.push_back(!mid_average[k]);
   }
+
+  // Near other surfaces (a patch size and a half: the mesh's, not the patches', as a sliver cut
+  // along a lamp's outline is near the lamp too), the rest at the point itself
+  // (core/point_gather.h): rho times the light gathered from the patches, less the emitters' where
+  // the direct light holds it. Such points hold their value: the step toward the patch means
+  // below is for averages.
+  const RayCaster caster(data_.scene);
+  std::vector<bool> gather =
+      NearOtherSurfaces(data_.scene, caster, points, kGatherBand * patch_size_, direct.threads);
+  for (size_t i = 0; i < points.size(); ++i) gather[i] = gather[i] && may_gather[i];
+  std::vector<Rgb> outgoing = radiosity;
+  if (direct.emitters) {
+    for (size_t f = 0; f < patches.size(); ++f) outgoing[f] = outgoing[f] - patches[f].emission;
+  }
+  const std::vector<Rgb> gathered =
+      GatherLight(caster, outgoing, points, gather, direct.seed, direct.threads);
+  std::vector<bool> held(groups + midpoints, false);
+  for (size_t n = 0; n < groups + midpoints; ++n) {
+    if (point_of[n] != kNoPoint && gather[point_of[n]]) {
+      fine.radiance[n] = rho[n] * gathered[point_of[n]];
+      held[n] = true;
+      ++display_stats_.gathered;
+    }
+  }
+
   const std::vector<Rgb> irradiance =
       PointsDirectLight(data_.scene, points, direct.seed, direct.threads, direct.emitters);
   std::vector<Rgb> point_irradiance(groups + midpoints);
@@ -176,7 +297,11 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
     moves[f] = patches[f].emission.Max() == 0 && area[f] > 0;  // an emitter shows its emission
     if (moves[f]) target[f] = rest[f] + patches[f].reflectance * (direct_sum[f] / (3 * area[f]));
   }
-  StepTowardPatchMeans(&fine, target, moves);
+  StepTowardPatchMeans(&fine, target, moves, held);
+  display_stats_.added = RefineWhereLightBends(data_.scene, caster, outgoing, direct, &fine, &held);
+  display_stats_.points = points.size() + display_stats_.added;
+  display_stats_.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   SetVertexRadiance(std::vector<Rgb>(fine.radiance.begin(), fine.radiance.begin() + groups));
   split_display_ = std::move(fine);
 }

@@ -110,7 +110,7 @@ TEST_P(ManyFacesTest, TheFootprintAndTheSheetAreFoundOnTheirFacesOnly) {
   ASSERT_GT(faces[block_floor].normal.y, 0.99);
   const double tol = 1e-6 * 60;  // 1e-6 of the scene's diagonal
   const auto footprints = FindFootprints(faces, tol);
-  const auto sheets = FindCoveringSheets(faces, tol);
+  const auto sheets = FindCoveringSheets(faces, tol, /*reach=*/0);
   ASSERT_EQ(footprints.size(), faces.size());
   ASSERT_EQ(sheets.size(), faces.size());
   for (size_t f = 0; f < faces.size(); ++f) {
@@ -198,11 +198,12 @@ TEST(ContactCutTest, ALightHangingJustUnderTheCeilingCoversIt) {
             std::vector<std::string>{});
 }
 
-// Not covered: a sheet further off than kSheetGap of its size (the ceiling above it is lit from
-// the side), one shining onto the ceiling, and one reaching past the ceiling's outline.
+// Not covered: a sheet further off than kSheetGapFar of its size (0.6 under a 1 m sheet with
+// 0.5 m patches, whose reach is 1 m: the ceiling above it is lit from the side), one shining onto
+// the ceiling, and one reaching past the ceiling's outline.
 TEST(ContactCutTest, ASheetFarOffFacingOrOverhangingCoversNothing) {
   for (const InputScene& scene :
-       {LightUnderCeiling(0.05, 1.25, 1.6, true), LightUnderCeiling(0.01, 1.25, 1.6, false),
+       {LightUnderCeiling(0.6, 1.25, 1.6, true), LightUnderCeiling(0.01, 1.25, 1.6, false),
         LightUnderCeiling(0.01, 3.5, 1.6, true)}) {
     Result<PatchMesh> mesh = PatchMesh::Build(scene, {0.5}, nullptr);
     ASSERT_TRUE(mesh.ok()) << mesh.error();
@@ -210,6 +211,19 @@ TEST(ContactCutTest, ASheetFarOffFacingOrOverhangingCoversNothing) {
     ASSERT_EQ(areas.size(), 1u);
     EXPECT_TRUE(mesh->covered_surfaces().empty());
     EXPECT_NEAR(areas.begin()->second, 16.0, 1e-9);
+  }
+}
+
+// A gap a patch could straddle is a slit however large against the sheet: 15 cm under a 1 m sheet
+// covers the ceiling with 0.5 m patches (reach 1 m) and with 0.1 m ones (0.2 m), not with 0.05 m
+// patches (0.1 m), where the patches resolve the light in the gap themselves.
+TEST(ContactCutTest, ASheetCoversTheFaceWithinTwoPatchSizes) {
+  for (const double patch_size : {0.5, 0.1, 0.05}) {
+    Result<PatchMesh> mesh =
+        PatchMesh::Build(LightUnderCeiling(0.15, 1.25, 1.6, true), {patch_size}, nullptr);
+    ASSERT_TRUE(mesh.ok()) << mesh.error();
+    EXPECT_EQ(mesh->covered_surfaces().size(), patch_size > 0.05 ? 1u : 0u) << patch_size;
+    EXPECT_EQ(CeilingAreas(*mesh).size(), patch_size > 0.05 ? 2u : 1u) << patch_size;
   }
 }
 

@@ -67,7 +67,8 @@ double WorstFloorVertex(const DisplayMesh& display, const PatchScene& scene) {
 // The Gouraud image of the floor against rho times the closed form: the mean relative difference
 // over 21 barycentric samples of every floor triangle. With `closed_form_vertices`, the display's
 // vertices are first set to the closed form itself (exact point values, interpolated linearly).
-// The floor's 16 x 16 quads are 512 triangles, or 2048 cut at their midpoints.
+// The floor's 16 x 16 quads are 512 triangles, or 2048 cut at their midpoints (and more where the
+// display refines the corner along the black wall).
 double FloorImageError(DisplayMesh display, const PatchScene& scene, bool closed_form_vertices,
                        size_t floor_triangles) {
   auto exact = [](const Vec3& p) { return kRho * LightFormFactor(p.x, p.z); };
@@ -95,7 +96,7 @@ double FloorImageError(DisplayMesh display, const PatchScene& scene, bool closed
       }
     }
   }
-  EXPECT_EQ(triangles, floor_triangles);
+  EXPECT_GE(triangles, floor_triangles);
   return error / sum;
 }
 
