@@ -122,13 +122,19 @@ Result<CompletedRound> RoundScheduler::TakeCompletedRound() {
 }
 
 std::optional<BatchResult> RoundScheduler::TakeResult(BatchId batch_id) {
-  if (!round_ || BatchRound(batch_id) != round_->plan.round) return std::nullopt;
-  const uint32_t index = BatchIndex(batch_id);
-  if (index >= round_->batches.size()) return std::nullopt;
-  BatchSlot& slot = round_->batches[index];
-  if (slot.state != BatchState::kDone || slot.result_taken) return std::nullopt;
+  if (PeekResult(batch_id) == nullptr) return std::nullopt;
+  BatchSlot& slot = round_->batches[BatchIndex(batch_id)];
   slot.result_taken = true;
   return std::exchange(slot.result, BatchResult{});
+}
+
+const BatchResult* RoundScheduler::PeekResult(BatchId batch_id) const {
+  if (!round_ || BatchRound(batch_id) != round_->plan.round) return nullptr;
+  const uint32_t index = BatchIndex(batch_id);
+  if (index >= round_->batches.size()) return nullptr;
+  const BatchSlot& slot = round_->batches[index];
+  if (slot.state != BatchState::kDone || slot.result_taken) return nullptr;
+  return &slot.result;
 }
 
 const Batch* RoundScheduler::FindBatch(BatchId batch_id) const {
