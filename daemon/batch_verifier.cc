@@ -54,6 +54,7 @@ void BatchVerifier::StartRound(uint32_t round) {
   round_ = round;
   picked_ = false;
   entries_.clear();
+  lowest_.assign(names_.size(), std::nullopt);
   pending_ = 0;
 }
 
@@ -62,16 +63,28 @@ uint32_t BatchVerifier::AgentIndex(const std::string& agent) {
   if (added) {
     names_.push_back(agent);
     first_round_.push_back(round_);
+    lowest_.emplace_back();
   }
   return it->second;
 }
 
 bool BatchVerifier::OnAccepted(uint32_t index, const std::string& agent,
-                               const ResultDigest& digest) {
+                               const std::function<ResultDigest()>& digest) {
   if (!enabled()) return false;
+  const uint32_t a = AgentIndex(agent);
   Entry& e = entries_[index];
-  e = {AgentIndex(agent), digest, Check::kNone};
-  if (SampleValue(seed_, job_, round_, agent, index) >= fraction_) return false;
+  e = {a, {}, Check::kNone};
+  const double value = SampleValue(seed_, job_, round_, agent, index);
+  const bool sampled = value < fraction_;
+  // Only the lowest-valued unsampled result of an agent can be picked at the round's end
+  // (PicksAtRoundEnd takes the least (value, batch)), so only a new lowest needs its digest.
+  const bool lowest = !sampled && (!lowest_[a] || std::pair(value, index) < *lowest_[a]);
+  if (sampled || lowest) {
+    e.digest = digest();
+    ++digests_;
+  }
+  if (lowest) lowest_[a] = {value, index};
+  if (!sampled) return false;
   e.check = Check::kPending;
   ++pending_;
   return true;
@@ -81,21 +94,15 @@ std::vector<uint32_t> BatchVerifier::PicksAtRoundEnd() {
   std::vector<uint32_t> picks;
   if (!enabled() || picked_) return picks;
   picked_ = true;
-  // Per agent: whether one of its results is checked, else its lowest-valued batch.
+  // Per agent: whether one of its results is checked, else its lowest-valued batch (lowest_,
+  // whose digest OnAccepted kept).
   std::vector<bool> covered(names_.size(), false);
-  std::vector<std::optional<std::pair<double, uint32_t>>> best(names_.size());
-  for (const auto& [index, e] : entries_) {
-    if (e.check != Check::kNone) {
-      covered[e.agent] = true;
-      continue;
-    }
-    const double v = SampleValue(seed_, job_, round_, names_[e.agent], index);
-    if (!best[e.agent] || std::pair(v, index) < *best[e.agent]) best[e.agent] = {v, index};
-  }
+  for (const auto& [index, e] : entries_)
+    covered[e.agent] = covered[e.agent] || e.check != Check::kNone;
   for (size_t a = 0; a < names_.size(); ++a) {
-    if (covered[a] || !best[a]) continue;
-    picks.push_back(best[a]->second);
-    entries_[best[a]->second].check = Check::kPending;
+    if (covered[a] || !lowest_[a]) continue;
+    picks.push_back(lowest_[a]->second);
+    entries_[lowest_[a]->second].check = Check::kPending;
     ++pending_;
   }
   std::sort(picks.begin(), picks.end());

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -57,7 +58,16 @@ class BatchVerifier {
   uint32_t round() const { return round_; }
   // An accepted result of batch `index` of the round, computed by `agent`: true when the master
   // is to verify it now (it is then pending).
-  bool OnAccepted(uint32_t index, const std::string& agent, const ResultDigest& digest);
+  bool OnAccepted(uint32_t index, const std::string& agent, const ResultDigest& digest) {
+    return OnAccepted(index, agent, [&] { return digest; });
+  }
+  // The same, with the digest computed only if it may be compared: the result is sampled now,
+  // or is so far its agent's lowest-valued batch (the one PicksAtRoundEnd would pick). A SHA-256
+  // of every accepted result cost the master more than the rest of accepting it.
+  bool OnAccepted(uint32_t index, const std::string& agent,
+                  const std::function<ResultDigest()>& digest);
+  // Digests computed since this verifier was made (the counts tests check).
+  uint64_t digests() const { return digests_; }
   // The round is complete: for each agent with results but none verified or pending, its batch
   // with the lowest SampleValue, now pending. Only the first call of a round picks.
   std::vector<uint32_t> PicksAtRoundEnd();
@@ -90,6 +100,9 @@ class BatchVerifier {
   std::vector<std::string> names_;
   std::map<std::string, uint32_t, std::less<>> agent_index_;
   std::vector<uint32_t> first_round_;  // by agent index
+  // By agent index, this round: its lowest (SampleValue, batch) not sampled, the round-end pick.
+  std::vector<std::optional<std::pair<double, uint32_t>>> lowest_;
+  uint64_t digests_ = 0;
   size_t pending_ = 0;
   uint64_t verified_ = 0;
   uint64_t mismatched_ = 0;

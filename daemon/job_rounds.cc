@@ -178,15 +178,18 @@ void JobRounds::OnResultAccepted(store::JobId id, scheduler::BatchId batch,
   std::vector<store::StoredBatchResult> keep;
   const double round_seconds =
       std::chrono::duration<double>(LoopNow(loop_) - runner->round_started()).count();
-  ResultDigest digest{};
+  const auto v = verifiers_.find(id);
+  BatchVerifier* verifier = v != verifiers_.end() && v->second.enabled() ? &v->second : nullptr;
+  // Before QueueFold moves the result on: the verifier digests it if it needs to.
+  const bool verify =
+      verifier != nullptr && verifier->OnAccepted(scheduler::BatchIndex(batch), agent, [&] {
+        return runner->DigestOfResult(batch).value_or(ResultDigest{});
+      });
   const bool chunk =
-      runner->QueueFold(batch, KeepsRoundResult(config_, round_seconds) ? &keep : nullptr, &digest);
+      runner->QueueFold(batch, KeepsRoundResult(config_, round_seconds) ? &keep : nullptr);
   journal_.Add(id, std::move(keep));
   if (chunk) SendFolds(runner);
-  const auto v = verifiers_.find(id);
-  if (v != verifiers_.end() && v->second.OnAccepted(scheduler::BatchIndex(batch), agent, digest)) {
-    VerifyOnComputeThread(runner, {scheduler::BatchIndex(batch)});
-  }
+  if (verify) VerifyOnComputeThread(runner, {scheduler::BatchIndex(batch)});
 }
 
 void JobRounds::SendFolds(const std::shared_ptr<RunningJob>& runner) {

@@ -207,11 +207,15 @@ Result<scheduler::CompletedRound> RunningJob::TakeRound() {
   return done;
 }
 
-bool RunningJob::QueueFold(scheduler::BatchId batch, std::vector<store::StoredBatchResult>* keep,
-                           ResultDigest* digest) {
+std::optional<ResultDigest> RunningJob::DigestOfResult(scheduler::BatchId batch) const {
+  const BatchResult* result = scheduler_.PeekResult(batch);
+  if (result == nullptr) return std::nullopt;
+  return DigestOf(*result);
+}
+
+bool RunningJob::QueueFold(scheduler::BatchId batch, std::vector<store::StoredBatchResult>* keep) {
   std::optional<BatchResult> result = scheduler_.TakeResult(batch);
   if (!result) return false;
-  if (digest != nullptr) *digest = DigestOf(*result);
   if (keep != nullptr) {
     keep->push_back(
         {scheduler::BatchIndex(batch), running_batch_rays_, *scheduler_.FindBatch(batch), *result});

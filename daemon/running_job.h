@@ -130,9 +130,10 @@ class RunningJob {
   // Loop thread: takes the accepted result of `batch` out of the scheduler to be folded in; true
   // when enough are queued to be worth sending to the worker (TakeFolds). A copy goes to `keep`,
   // for the store (so a restarted master need not lease the batch again).
-  // `digest`, when given, gets the SHA-256 of the result's bits (batch_verifier.h).
-  bool QueueFold(scheduler::BatchId batch, std::vector<store::StoredBatchResult>* keep,
-                 ResultDigest* digest = nullptr);
+  bool QueueFold(scheduler::BatchId batch, std::vector<store::StoredBatchResult>* keep);
+  // Loop thread: the SHA-256 of the bits of the accepted result QueueFold would take
+  // (batch_verifier.h); nullopt when there is none.
+  std::optional<ResultDigest> DigestOfResult(scheduler::BatchId batch) const;
   // Loop thread: the round started last (StartPlannedRound).
   uint32_t running_round() const { return running_round_; }
   // Worker thread, before the round's Reduce: the digests of `batches` computed here, as an agent

@@ -20,12 +20,13 @@ bool ParseFarmBenchOptions(int argc, char** argv, FarmBenchOptions* options, std
       options->radfarmd = argv[++i];
     } else if (arg == "--only" && i + 1 < argc) {
       const std::string_view part = argv[++i];
-      if (part != "real" && part != "sim") {
-        *error = "--only takes 'real' or 'sim', not '" + std::string(part) + "'";
+      if (part != "real" && part != "sim" && part != "capacity") {
+        *error = "--only takes 'real', 'sim' or 'capacity', not '" + std::string(part) + "'";
         return false;
       }
       options->real = part == "real";
-      options->simulated = part == "sim";
+      options->simulated = part != "real";
+      options->capacity_only = part == "capacity";
     } else if ((arg == "--agents" || arg == "--repetitions") && i + 1 < argc) {
       const std::string text = argv[++i];
       if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos ||

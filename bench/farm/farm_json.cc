@@ -32,6 +32,8 @@ json Sample(const ScalingSample& s) {
           {"utilisation_min", s.utilisation_min},
           {"efficiency", s.efficiency},
           {"master_cpu_seconds", s.master_cpu_seconds},
+          {"master_connect_cpu_seconds", s.master_connect_cpu_seconds},
+          {"frames", s.frames},
           {"swarm_cpu_seconds", s.swarm_cpu_seconds},
           {"mean_lateness", s.mean_lateness},
           {"max_lateness", s.max_lateness},

@@ -90,6 +90,9 @@ int Run(int argc, char** argv) {
   if (options.simulated) {
     SuitePlan plan = MakeSuitePlan(options.quick);
     if (options.repetitions > 0) plan.repetitions = options.repetitions;
+    if (options.capacity_only) {
+      std::erase_if(plan.rows, [](const ScalingRow& row) { return row.group != "capacity"; });
+    }
     if (options.agents > 0) {
       std::erase_if(plan.rows,
                     [&](const ScalingRow& row) { return row.config.agents != options.agents; });

@@ -72,6 +72,7 @@ ScalingSample RunScalingCase(const FarmPrograms& programs, const std::string& sc
   config.agent.latency_seconds = c.latency_ms / 1000;
   sim::AgentSwarm swarm(config);
   swarm.Start();
+  const double master_cpu_connected = testing::ProcessCpuSeconds(master_pid).value_or(0);
   const int64_t id = Submit(farm, job_file);
   const sim::SwarmReport report = swarm.Finish(std::chrono::seconds(600));
   const nlohmann::json job = WaitDone(farm, id, std::chrono::seconds(60));
@@ -82,6 +83,7 @@ ScalingSample RunScalingCase(const FarmPrograms& programs, const std::string& sc
   s.rounds = job.at("round").get<uint32_t>();
   s.wall_seconds = report.job_end - report.job_start;
   s.master_cpu_seconds = master_cpu_end - master_cpu_start;
+  s.master_connect_cpu_seconds = master_cpu_connected - master_cpu_start;
   s.swarm_cpu_seconds = report.cpu_seconds;
   s.mean_lateness = report.mean_lateness;
   s.max_lateness = report.max_lateness;
@@ -96,6 +98,7 @@ ScalingSample RunScalingCase(const FarmPrograms& programs, const std::string& sc
     s.bytes_sent += double(a.bytes_sent);
     s.bytes_received += double(a.bytes_received);
     s.scene_bytes += double(a.scene_bytes_received);
+    s.frames += a.frames_sent + a.frames_received;
     const double u = s.wall_seconds > 0 ? a.busy_seconds / s.wall_seconds : 0;
     busy += u;
     s.utilisation_min = std::min(s.utilisation_min, u);

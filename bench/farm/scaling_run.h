@@ -34,6 +34,8 @@ struct ScalingSample {
   double utilisation_mean = 0, utilisation_min = 0;            // busy / wall, over agents
   double efficiency = 0;                                       // (job rays / R) / (N * wall)
   double master_cpu_seconds = 0;               // radfarmd's CPU time over the whole run
+  double master_connect_cpu_seconds = 0;       // of it: until every agent had authenticated
+  uint64_t frames = 0;                         // frames the agents sent and received
   double swarm_cpu_seconds = 0;                // the simulator's
   double mean_lateness = 0, max_lateness = 0;  // the simulator's timers
   double connect_seconds = 0;

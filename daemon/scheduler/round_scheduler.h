@@ -152,6 +152,9 @@ class RoundScheduler {
   // arrive (RunningJob::Fold); the batch stays done, and TakeCompletedRound then holds an empty
   // result for it. nullopt when the batch is not done in the current round or was taken already.
   std::optional<BatchResult> TakeResult(BatchId batch_id);
+  // The accepted result TakeResult would move out, left in place; nullptr when it would give
+  // nullopt.
+  const BatchResult* PeekResult(BatchId batch_id) const;
   // The batch a batch id names in the current round, to validate a result against; nullptr when
   // the id is not in the current round.
   const Batch* FindBatch(BatchId batch_id) const;

@@ -120,6 +120,38 @@ TEST(BatchVerifierTest, RemembersEachAgentsFirstRoundAndItsBatches) {
   EXPECT_EQ(verifier.BatchesOf("a"), (std::vector<uint32_t>{1, 2}));  // this round's
 }
 
+// The digest of an accepted result is computed only when it may be compared: sampled, or the
+// agent's lowest-valued batch so far. The round-end picks still carry their own result's digest.
+TEST(BatchVerifierTest, DigestsOnlyWhatItMayCompareAndPicksCarryTheirOwnDigest) {
+  BatchVerifier verifier(1e-9, 7, 1);  // as good as never sampled on arrival
+  verifier.StartRound(0);
+  const auto result_of = [](uint32_t i) {
+    BatchResult r = SomeResult();
+    r.escaped_rays = i;  // every batch's bits differ
+    return r;
+  };
+  const uint32_t n = 2000;
+  for (uint32_t i = 0; i < n; ++i) {
+    verifier.OnAccepted(i, i % 2 == 0 ? "a" : "b", [&] { return DigestOf(result_of(i)); });
+  }
+  // A new lowest of n random values comes about ln(n) + 1 times per agent (9 for 1000).
+  EXPECT_LT(verifier.digests(), 60u);
+  EXPECT_GE(verifier.digests(), 2u);
+  const std::vector<uint32_t> picks = verifier.PicksAtRoundEnd();
+  ASSERT_EQ(picks.size(), 2u);
+  for (uint32_t p : picks) EXPECT_EQ(verifier.OnVerified(p, DigestOf(result_of(p))), std::nullopt);
+  EXPECT_EQ(verifier.mismatched(), 0u);
+
+  BatchVerifier off(0, 7, 1);
+  off.StartRound(0);
+  bool called = false;
+  off.OnAccepted(0, "a", [&] {
+    called = true;
+    return DigestOf({});
+  });
+  EXPECT_FALSE(called);
+}
+
 TEST(BatchVerifierTest, FractionZeroVerifiesNothing) {
   BatchVerifier verifier(0, 7, 1);
   verifier.StartRound(0);

@@ -127,6 +127,39 @@ TEST(FramedConnectionTest, EchoesFramesSentOneByteAtATime) {
   ExpectClosesClean(loop);
 }
 
+// Every connection of a loop reads into the same buffer (framed_connection.cc): a frame split
+// across reads on one connection must survive the other connections' reads in between.
+TEST(FramedConnectionTest, PartialFramesOfConnectionsSharingTheReadBufferStayApart) {
+  EventLoop loop;
+  {
+    Server server(loop, {});
+    server.on_frame = [](size_t, const Payload&) {};  // record only
+    RawClient a, b;
+    ASSERT_TRUE(a.ConnectTcp("127.0.0.1", server.port()));
+    ASSERT_TRUE(RunUntil(loop, [&] { return server.connections.size() == 1; }));
+    ASSERT_TRUE(b.ConnectTcp("127.0.0.1", server.port()));
+    ASSERT_TRUE(RunUntil(loop, [&] { return server.connections.size() == 2; }));
+    const Payload fa = Frame(Pattern(5000, 1)), fb = Frame(Pattern(3000, 2)),
+                  fc = Frame(Pattern(7000, 3));
+    const auto sent_to = [&](size_t index, size_t bytes) {
+      return RunUntil(loop, [&] { return server.connections[index]->bytes_received() == bytes; });
+    };
+    ASSERT_TRUE(a.SendAll(Payload(fa.begin(), fa.begin() + 2500)));
+    ASSERT_TRUE(sent_to(0, 2500));
+    Payload b_first(fb);  // all of B's first frame and half its second
+    b_first.insert(b_first.end(), fc.begin(), fc.begin() + 3500);
+    ASSERT_TRUE(b.SendAll(b_first));
+    ASSERT_TRUE(sent_to(1, b_first.size()));
+    ASSERT_TRUE(a.SendAll(Payload(fa.begin() + 2500, fa.end())));
+    ASSERT_TRUE(sent_to(0, fa.size()));
+    ASSERT_TRUE(b.SendAll(Payload(fc.begin() + 3500, fc.end())));
+    ASSERT_TRUE(sent_to(1, fb.size() + fc.size()));
+    EXPECT_EQ(server.frames[0], (std::vector<Payload>{Pattern(5000, 1)}));
+    EXPECT_EQ(server.frames[1], (std::vector<Payload>{Pattern(3000, 2), Pattern(7000, 3)}));
+  }
+  ExpectClosesClean(loop);
+}
+
 // Two FramedConnections: frames of up to 4 MiB both ways, so writes go partial and queue.
 TEST(FramedConnectionTest, EchoesLargeFramesBetweenFramedConnections) {
   EventLoop loop;
