@@ -27,8 +27,8 @@ double SceneReach(const PatchScene& scene) {
 }  // namespace
 
 DirectLight::DirectLight(const PatchScene& scene, const RayCaster& caster, uint32_t rays_per_point,
-                         bool emitters, size_t exact_lights)
-    : scene_(scene), caster_(caster) {
+                         bool emitters, size_t exact_lights, uint32_t light_cut)
+    : scene_(scene), caster_(caster), light_cut_(light_cut) {
   if (!scene.lights.empty()) sun_reach_ = SceneReach(scene);
   std::map<std::pair<uint32_t, std::array<double, 3>>, size_t> light_of;  // (surface, Ke) -> light
   for (uint32_t i = 0; i < scene.patches.size() && emitters; ++i) {
@@ -107,7 +107,7 @@ Rgb DirectLight::PunctualIrradiance(const Vec3& x, const Vec3& n, uint64_t key) 
   }
   for (uint32_t i : suns_) AddPunctual(i, x, n, 1.0, &e);
   std::vector<LightPick> picks;
-  punctual_tree_->Pick(x, n, HashWords(key, 0x70756e6374ull), kLightCut, &picks);
+  punctual_tree_->Pick(x, n, HashWords(key, 0x70756e6374ull), light_cut_, &picks);
   for (const LightPick& pick : picks) AddPunctual(positional_[pick.light], x, n, pick.weight, &e);
   return e;
 }
@@ -150,7 +150,7 @@ Rgb DirectLight::EmitterIrradiance(const Vec3& x, const Vec3& n, uint64_t key,
   }
   std::vector<LightPick> picks;
   // Its own stream: the pick's random numbers are apart from the shadow rays' (Visible).
-  emitter_tree_->Pick(x, n, HashWords(key, 0x656d6974ull), kLightCut, &picks);
+  emitter_tree_->Pick(x, n, HashWords(key, 0x656d6974ull), light_cut_, &picks);
   for (const LightPick& pick : picks) AddLight(lights_[pick.light], x, n, key, pick.weight, &e);
   if (evaluated != nullptr) *evaluated = static_cast<uint32_t>(picks.size());
   return e;

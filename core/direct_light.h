@@ -36,9 +36,11 @@ class DirectLight {
   // About `rays_per_point` shadow rays per point in all (at least one per emitter patch). `scene`
   // and `caster` (built from it) must outlive this. Without `emitters`, the emitter patches are
   // left out (they shoot their light instead) and only the punctual lights count. Above
-  // `exact_lights` lights of a kind, those are sampled through a LightTree.
+  // `exact_lights` lights of a kind, those are sampled through a LightTree, with a cut of
+  // `light_cut` lights per point.
   DirectLight(const PatchScene& scene, const RayCaster& caster, uint32_t rays_per_point,
-              bool emitters = true, size_t exact_lights = kExactLights);
+              bool emitters = true, size_t exact_lights = kExactLights,
+              uint32_t light_cut = kLightCut);
 
   // Irradiance at x (unit normal n) in Ke units; `key` picks the shadow rays' points, so a call is
   // a pure function of its arguments. EmitterIrradiance + PunctualIrradiance.
@@ -82,6 +84,7 @@ class DirectLight {
   std::unique_ptr<LightTree> punctual_tree_;  // over positional_, when sampled
   uint32_t grid_ = 1;     // grid_ x grid_ stratified shadow rays per emitter patch
   double sun_reach_ = 0;  // beyond the scene from any point in it (ShadowRayTarget)
+  uint32_t light_cut_ = kLightCut;
 };
 
 // Per patch, the direct irradiance averaged over the patch (Ke units): DirectLight at
