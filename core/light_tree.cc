@@ -114,21 +114,36 @@ double LightTree::Bound(uint32_t node, const Vec3& x, const Vec3& n) const {
   return std::fmin(b.cap, head_on * std::fmin(1.0, receiver / d) * std::fmin(1.0, emitter / d));
 }
 
+// The order in which the cut splits nodes: the bound over d^4, d the distance from x to the node's
+// box, so that near lights are split out first. The bounds cannot see walls and floors, and a near
+// light is the likelier to be seen: on the building (bench/lights/) ordering by the bound alone
+// left a p95 error of 48% at 10^4 lights with a cut of 64, by bound / d^4 about 4%.
+double LightTree::Priority(uint32_t node, double bound, const Vec3& x) const {
+  const Bounds3& box = nodes_[node].bounds.box;
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double gap = std::fmax(0.0, std::fmax(box.lo[k] - x[k], x[k] - box.hi[k]));
+    d2 += gap * gap;
+  }
+  return d2 > 0 ? bound / (d2 * d2) : INFINITY;
+}
+
 void LightTree::Pick(const Vec3& x, const Vec3& n, uint64_t key, uint32_t cut,
                      std::vector<LightPick>* picks) const {
   picks->clear();
   if (nodes_.empty()) return;
   struct Entry {
+    double priority;
     double bound;
     uint32_t node;
   };
-  // Largest bound on top; ties to the lower node, so the cut is a pure function of the point.
+  // Highest priority on top; ties to the lower node, so the cut is a pure function of the point.
   const auto below = [](const Entry& a, const Entry& b) {
-    return a.bound < b.bound || (a.bound == b.bound && a.node > b.node);
+    return a.priority < b.priority || (a.priority == b.priority && a.node > b.node);
   };
   std::vector<Entry> heap;
   heap.reserve(2 * cut + 2);
-  if (const double b = Bound(0, x, n); b > 0) heap.push_back({b, 0});
+  if (const double b = Bound(0, x, n); b > 0) heap.push_back({Priority(0, b, x), b, 0});
   size_t exact = 0;
   while (!heap.empty()) {
     const Entry top = heap.front();
@@ -145,7 +160,7 @@ void LightTree::Pick(const Vec3& x, const Vec3& n, uint64_t key, uint32_t cut,
     }
     for (const uint32_t child : {node.left, node.right}) {
       if (const double b = Bound(child, x, n); b > 0) {
-        heap.push_back({b, child});
+        heap.push_back({Priority(child, b, x), b, child});
         std::push_heap(heap.begin(), heap.end(), below);
       }
     }

@@ -5,9 +5,10 @@
 // Each node bounds, for any receiving point x with unit normal n, the unoccluded irradiance all
 // its lights can deliver (LightTree::Bound): power / pi times the receiver's and the emitter's
 // cosine bounds over the node's box, over the squared distance to the box, and never more than
-// the node's cap (a planar emitter's form factor is at most 1). The cut (Pick) is lightcuts'
-// greedy refinement: split the node of largest bound until the cut holds kLightCut nodes; lights
-// that reach the cut alone are evaluated exactly (weight 1), and each remaining node stands for
+// the node's cap (a planar emitter's form factor is at most 1). The cut (Pick) is a greedy
+// refinement as in lightcuts: split nodes, the near and strong first (the bound over d^4), until
+// the cut holds kLightCut nodes; lights that reach the cut alone are evaluated exactly (weight
+// 1), and each remaining node stands for
 // one of its lights chosen by descending with probability proportional to the children's bounds,
 // weighted 1 / p. That is unbiased: a light that gives anything has a positive bound all the way
 // down. The choice is a pure function of (x, n, key): the same whatever thread asks.
@@ -25,9 +26,9 @@ namespace radfarm {
 
 // Above this many lights DirectLight samples through a LightTree; up to it, the exact sum.
 inline constexpr size_t kExactLights = 64;
-// The cut's size: lights evaluated per point, at most (plus any whose box holds the point). On
-// the building (bench/lights/), 32 left a p95 error of 20% at 1000 lights, 64 about 2%: the bounds
-// cannot see the slabs and walls, so more lights look strong than are.
+// The cut's size: lights evaluated per point, at most. The bounds cannot see slabs and walls, so
+// far more lights look strong than are: on the building (bench/lights/, docs/BENCHMARKS.md) a cut
+// of 32 leaves several times the error of 64 at 10^4 lights.
 inline constexpr uint32_t kLightCut = 64;
 
 // What the tree knows of one light: where it is, which way it faces, how strong it is.
@@ -81,6 +82,7 @@ class LightTree {
     uint32_t left = 0, right = 0;  // children; 0 for a leaf (the root is no one's child)
     uint32_t light = 0;            // a leaf's light
   };
+  double Priority(uint32_t node, double bound, const Vec3& x) const;
   uint32_t Build(const std::vector<LightBounds>& lights, std::vector<uint32_t>* order, size_t lo,
                  size_t hi);
 

@@ -5,7 +5,7 @@
 // light with the same shadow rays: time per point on one thread, lights evaluated per point, and
 // the relative error per point. Prints a table and writes bench/results/light_bench.json.
 //
-//   light_bench [--points N] [--quick] [--json PATH]
+//   light_bench [--points N] [--quick] [--only LIGHTS] [--json PATH]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -34,6 +34,7 @@ constexpr double kPatchSize = 1.0;
 struct Options {
   uint32_t points = 1000;
   bool quick = false;
+  int only = 0;  // lights: one case alone
   std::string json = DefaultJsonPath("light_bench");
 };
 
@@ -47,16 +48,19 @@ Options Parse(int argc, char** argv) {
     };
     if (a == "--points") {
       o.points = uint32_t(std::stoul(next()));
+    } else if (a == "--only") {
+      o.only = std::stoi(next());
     } else if (a == "--quick") {
       o.quick = true;
     } else if (a == "--json") {
       o.json = next();
     } else if (a == "-h" || a == "--help") {
       std::printf(
-          "light_bench [--points N] [--quick] [--json PATH]\n"
+          "light_bench [--points N] [--quick] [--only LIGHTS] [--json PATH]\n"
           "  The direct light through the light tree against the exact sum over every light,\n"
           "  on the building with 10, 100, 1000 and 10^4 ceiling lights (--quick: up to 1000),\n"
-          "  at N points (1000). Writes bench/results/light_bench.json unless --json says "
+          "  at N points (1000); --only 1000: that case alone. Writes "
+          "bench/results/light_bench.json unless --json says "
           "where.\n");
       std::exit(0);
     } else {
@@ -207,6 +211,7 @@ int Main(int argc, char** argv) {
   nlohmann::json runs = nlohmann::json::array();
   for (const Case& c : cases) {
     if (o.quick && c.lights > 1000) continue;
+    if (o.only != 0 && o.only != c.lights) continue;
     runs.push_back(RunCase(c, o.points));
   }
   nlohmann::json out{{"machine", MachineJson(machine)},
