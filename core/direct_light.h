@@ -89,10 +89,10 @@ class DirectLight {
 
 // Per patch, the direct irradiance averaged over the patch (Ke units): DirectLight at
 // sections^2 jittered points of each patch (one per stratum), one shadow ray per emitter patch
-// (with `emitters`) and per punctual light per point. A pure function of the scene, `sections`,
-// `seed` and `emitters`, whatever `threads` (0: all cores). If `punctual_power` is not null it
-// receives the punctual lights' share summed over the patches (area times channel sum): the
-// power they deliver.
+// (with `emitters`) and per punctual light per point (of those the light tree picks, with many). A
+// pure function of the scene, `sections`, `seed` and `emitters`, whatever `threads` (0: all cores).
+// If `punctual_power` is not null it receives the punctual lights' share summed over the patches
+// (area times channel sum): the power they deliver.
 std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, uint64_t seed,
                                   unsigned threads, bool emitters = true,
                                   double* punctual_power = nullptr);

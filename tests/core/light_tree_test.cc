@@ -227,5 +227,24 @@ TEST(LightTreeTest, SampledPointsIgnoreThreads) {
   EXPECT_FALSE(BitIdentical(one, PointsDirectLight(scene, points, 8, 3)));
 }
 
+// The solver's start with many emitters and many lamps, both sampled: the same whatever the
+// threads.
+TEST(LightTreeTest, SampledPatchDirectLightIgnoresThreads) {
+  PatchScene scene = ManyPanels(100, 14, true);
+  for (int i = 0; i < 100; ++i) {
+    PunctualLight l;
+    l.position = {10 * U(15, i, 0) - 5, 10 * U(15, i, 1) - 5, 1 + 3 * U(15, i, 2)};
+    l.direction = {0, 0, -1};
+    l.intensity = {2, 2, 2};
+    scene.lights.push_back(l);
+  }
+  double power_one = 0, power_three = 0;
+  const std::vector<Rgb> one = PatchDirectLight(scene, 4, 11, 1, true, &power_one);
+  const std::vector<Rgb> three = PatchDirectLight(scene, 4, 11, 3, true, &power_three);
+  EXPECT_TRUE(BitIdentical(one, three));
+  EXPECT_EQ(power_one, power_three);
+  EXPECT_GT(power_one, 0);
+}
+
 }  // namespace
 }  // namespace radfarm
