@@ -8,10 +8,10 @@
 // the node's cap (a planar emitter's form factor is at most 1). The cut (Pick) is a greedy
 // refinement as in lightcuts: split nodes, the near and strong first (the bound over d^4), until
 // the cut holds kLightCut nodes; lights that reach the cut alone are evaluated exactly (weight
-// 1), and each remaining node stands for
-// one of its lights chosen by descending with probability proportional to the children's bounds,
-// weighted 1 / p. That is unbiased: a light that gives anything has a positive bound all the way
-// down. The choice is a pure function of (x, n, key): the same whatever thread asks.
+// 1), and each remaining node stands for one of its lights, chosen by descending with
+// probability proportional to the children's bounds and weighted 1 / p. That is unbiased: a
+// light that gives anything has a positive bound all the way down. The choice is a pure function
+// of (x, n, key): the same whatever thread asks.
 #pragma once
 
 #include <cstdint>
