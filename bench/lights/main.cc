@@ -1,9 +1,10 @@
 // light_bench: does a point's direct light still cost the same with 10^4 lights (issue 21)? On the
-// procedural building with 10, 100, 1000 and 10^4 ceiling panels (two per room; more rooms and
-// floors), the direct light at area-uniform points of its surfaces through the light tree
-// (DirectLight above kExactLights lights, core/light_tree.h) against the exact sum over every
-// light with the same shadow rays: time per point on one thread, lights evaluated per point, and
-// the relative error per point. Prints a table and writes bench/results/light_bench.json.
+// procedural building with 10, 100, 1000 and 10^4 ceiling panels, two per room in more rooms and
+// floors, or all in one open-plan room (`--lights AxB`), the direct light at area-uniform points of
+// its surfaces through the light tree (DirectLight above kExactLights lights, core/light_tree.h)
+// against the exact sum over every light with the same shadow rays: time per point on one thread,
+// lights evaluated per point, and the relative error per point. Prints a table and writes
+// bench/results/light_bench.json.
 //
 //   light_bench [--points N] [--quick] [--only LIGHTS] [--json PATH]
 #include <algorithm>
@@ -58,7 +59,9 @@ Options Parse(int argc, char** argv) {
       std::printf(
           "light_bench [--points N] [--quick] [--only LIGHTS] [--json PATH]\n"
           "  The direct light through the light tree against the exact sum over every light,\n"
-          "  on the building with 10, 100, 1000 and 10^4 ceiling lights (--quick: up to 1000),\n"
+          "  on the building with 10, 100, 1000 and 10^4 ceiling lights, in rooms of two or in "
+          "one\n"
+          "  open-plan room (--quick: up to 1000),\n"
           "  at N points (1000); --only 1000: that case alone. Writes "
           "bench/results/light_bench.json unless --json says "
           "where.\n");
@@ -71,7 +74,10 @@ Options Parse(int argc, char** argv) {
 }
 
 struct Case {
+  const char* layout;  // "rooms": two panels a 4 x 4 m room; "open": one room, a grid of panels
   int lights, floors, rooms_x, rooms_z;
+  double room_size = 4;
+  int lights_x = 2, lights_z = 1;
 };
 
 // Area-uniform points over the non-emitting patches; point i a pure function of (scene, i).
@@ -155,7 +161,10 @@ nlohmann::json RunCase(const Case& c, uint32_t count) {
   params.floors = c.floors;
   params.rooms_x = c.rooms_x;
   params.rooms_z = c.rooms_z;
-  const std::string name = "building-" + std::to_string(c.lights);
+  params.room_width = params.room_depth = c.room_size;
+  params.lights_x = c.lights_x;
+  params.lights_z = c.lights_z;
+  const std::string name = std::string("building-") + c.layout + "-" + std::to_string(c.lights);
   const BenchScene scene = LoadBuildingBenchScene(name, params, kPatchSize);
   const PatchScene& patches = scene.patches();
   const RayCaster caster(patches);
@@ -190,7 +199,8 @@ nlohmann::json RunCase(const Case& c, uint32_t count) {
     std::fflush(stdout);
     cuts.push_back(m);
   }
-  return {{"scene", scene.path},
+  return {{"layout", c.layout},
+          {"scene", scene.path},
           {"lights", exact.emitter_lights()},
           {"patches", patches.patches.size()},
           {"points", points.size()},
@@ -206,8 +216,14 @@ int Main(int argc, char** argv) {
   const MachineInfo machine = ReadMachineInfo(argc, argv);
   const Stopwatch total;
   // Two panels per room: 5, 50, 500 and 5000 rooms.
-  const std::vector<Case> cases = {
-      {10, 1, 5, 1}, {100, 1, 10, 5}, {1000, 2, 25, 10}, {10000, 10, 25, 20}};
+  const std::vector<Case> cases = {{"rooms", 10, 1, 5, 1},
+                                   {"rooms", 100, 1, 10, 5},
+                                   {"rooms", 1000, 2, 25, 10},
+                                   {"rooms", 10000, 10, 25, 20},
+                                   {"open", 10, 1, 1, 1, 10, 5, 2},
+                                   {"open", 100, 1, 1, 1, 20, 10, 10},
+                                   {"open", 1000, 1, 1, 1, 40, 40, 25},
+                                   {"open", 10000, 1, 1, 1, 50, 100, 100}};
   nlohmann::json runs = nlohmann::json::array();
   for (const Case& c : cases) {
     if (o.quick && c.lights > 1000) continue;
