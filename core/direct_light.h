@@ -42,8 +42,9 @@ class DirectLight {
               bool emitters = true, size_t exact_lights = kExactLights,
               uint32_t light_cut = kLightCut);
 
-  // Irradiance at x (unit normal n) in Ke units; `key` picks the shadow rays' points, so a call is
-  // a pure function of its arguments. EmitterIrradiance + PunctualIrradiance.
+  // Irradiance at x (unit normal n) in Ke units; `key` picks the shadow rays' points (and with
+  // many lights the lights sampled), so a call is a pure function of its arguments.
+  // EmitterIrradiance + PunctualIrradiance.
   Rgb Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const;
   // From the emitter patches alone (zero without `emitters`). `evaluated`, if not null, receives
   // how many lights (emitters of one surface and emission) were evaluated.
