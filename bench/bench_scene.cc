@@ -1,10 +1,11 @@
 #include "bench/bench_scene.h"
 
+#include <unistd.h>
+
 #include <filesystem>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
-
-#include <unistd.h>
 
 #include "bench/stopwatch.h"
 #include "input/input_scene.h"
@@ -49,6 +50,15 @@ BenchScene LoadBuildingBenchScene(const std::string& name, const scenegen::Build
   BenchScene scene = LoadBenchScene(name, (dir / (name + ".obj")).string(), patch_size);
   scene.path = "radfarm building --floors " + std::to_string(params.floors) + " --rooms " +
                std::to_string(params.rooms_x) + "x" + std::to_string(params.rooms_z);
+  if (params.room_width != 4 || params.room_depth != 4) {
+    std::ostringstream size;
+    size << " --room-size " << params.room_width << "x" << params.room_depth;
+    scene.path += size.str();
+  }
+  if (params.lights_x != 2 || params.lights_z != 1) {
+    scene.path +=
+        " --lights " + std::to_string(params.lights_x) + "x" + std::to_string(params.lights_z);
+  }
   return scene;
 }
 

@@ -34,6 +34,8 @@ CLI::App* AddBuildingCommand(CLI::App& app, BuildingOptions* options) {
       ->check(PositiveReal());
   command->add_option("--seed", options->seed,
                       "Seed of the furniture and door jitter (default: 1)");
+  command->add_option("--lights", options->lights,
+                      "Ceiling panels per room along x and z, as AxB (default: 2x1)");
   command->add_flag("--windows", options->windows, "A daylight panel on every outer wall");
   command->add_flag("--no-furniture", options->no_furniture,
                     "Only walls, floors, ceilings, lights");
@@ -57,6 +59,13 @@ int RunBuilding(const BuildingOptions& options) {
   }
   params.rooms_x = rooms->first;
   params.rooms_z = rooms->second;
+  const Result<std::pair<int, int>> lights = scenegen::ParseLightCounts(options.lights);
+  if (!lights.ok()) {
+    PrintError("building: " + lights.error());
+    return kExitBadInput;
+  }
+  params.lights_x = lights->first;
+  params.lights_z = lights->second;
   const Result<std::pair<double, double>> size = scenegen::ParseRoomSize(options.room_size);
   if (!size.ok()) {
     PrintError("building: " + size.error());

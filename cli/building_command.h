@@ -18,6 +18,7 @@ struct BuildingOptions {
   int floors = 1;
   std::string rooms = "2x2";
   std::string room_size = "4x4";
+  std::string lights = "2x1";  // ceiling panels per room
   double height = 3;
   uint64_t seed = 1;
   bool windows = false;

@@ -27,8 +27,8 @@ double SceneReach(const PatchScene& scene) {
 }  // namespace
 
 DirectLight::DirectLight(const PatchScene& scene, const RayCaster& caster, uint32_t rays_per_point,
-                         bool emitters)
-    : scene_(scene), caster_(caster) {
+                         bool emitters, size_t exact_lights, uint32_t light_cut)
+    : scene_(scene), caster_(caster), light_cut_(light_cut) {
   if (!scene.lights.empty()) sun_reach_ = SceneReach(scene);
   std::map<std::pair<uint32_t, std::array<double, 3>>, size_t> light_of;  // (surface, Ke) -> light
   for (uint32_t i = 0; i < scene.patches.size() && emitters; ++i) {
@@ -50,6 +50,26 @@ DirectLight::DirectLight(const PatchScene& scene, const RayCaster& caster, uint3
   }
   const double per_emitter = double(rays_per_point) / double(std::max<size_t>(1, emitters_.size()));
   grid_ = std::max(1u, static_cast<uint32_t>(std::ceil(std::sqrt(per_emitter))));
+  if (lights_.size() > exact_lights) {
+    std::vector<LightBounds> bounds;
+    for (const Light& light : lights_) {
+      std::vector<const Patch*> patches;
+      for (uint32_t k : light.members) patches.push_back(&scene.patches[emitters_[k]]);
+      bounds.push_back(EmitterLightBounds(patches, !light.outline.edges.empty()));
+    }
+    emitter_tree_ = std::make_unique<LightTree>(bounds);
+  }
+  for (uint32_t i = 0; i < scene.lights.size(); ++i) {
+    (scene.lights[i].kind == PunctualKind::kSun ? suns_ : positional_).push_back(i);
+  }
+  if (positional_.size() > exact_lights) {
+    std::vector<LightBounds> bounds;
+    for (uint32_t i : positional_) bounds.push_back(PunctualLightBounds(scene.lights[i]));
+    punctual_tree_ = std::make_unique<LightTree>(bounds);
+  } else {
+    positional_.clear();
+    suns_.clear();
+  }
 }
 
 double DirectLight::Visible(const Vec3& x, const Vec3& n, uint32_t k, uint64_t key) const {
@@ -68,46 +88,71 @@ double DirectLight::Visible(const Vec3& x, const Vec3& n, uint32_t k, uint64_t k
 
 Rgb DirectLight::Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const {
   if (scene_.lights.empty()) return EmitterIrradiance(x, n, key);
-  return EmitterIrradiance(x, n, key) + PunctualIrradiance(x, n);
+  return EmitterIrradiance(x, n, key) + PunctualIrradiance(x, n, key);
 }
 
-Rgb DirectLight::PunctualIrradiance(const Vec3& x, const Vec3& n) const {
+void DirectLight::AddPunctual(uint32_t i, const Vec3& x, const Vec3& n, double weight,
+                              Rgb* e) const {
+  const PunctualLight& light = scene_.lights[i];
+  const Rgb lit = UnshadowedIrradiance(light, x, n);
+  if (lit.Max() <= 0) return;
+  if (caster_.Unoccluded(x, ShadowRayTarget(light, x, sun_reach_), n)) *e += lit * weight;
+}
+
+Rgb DirectLight::PunctualIrradiance(const Vec3& x, const Vec3& n, uint64_t key) const {
   Rgb e;
-  for (const PunctualLight& light : scene_.lights) {
-    const Rgb lit = UnshadowedIrradiance(light, x, n);
-    if (lit.Max() <= 0) continue;
-    if (caster_.Unoccluded(x, ShadowRayTarget(light, x, sun_reach_), n)) e += lit;
+  if (punctual_tree_ == nullptr) {
+    for (uint32_t i = 0; i < scene_.lights.size(); ++i) AddPunctual(i, x, n, 1.0, &e);
+    return e;
   }
+  for (uint32_t i : suns_) AddPunctual(i, x, n, 1.0, &e);
+  std::vector<LightPick> picks;
+  punctual_tree_->Pick(x, n, HashWords(key, 0x70756e6374ull), light_cut_, &picks);
+  for (const LightPick& pick : picks) AddPunctual(positional_[pick.light], x, n, pick.weight, &e);
   return e;
 }
 
-Rgb DirectLight::EmitterIrradiance(const Vec3& x, const Vec3& n, uint64_t key) const {
-  Rgb e;
-  for (const Light& light : lights_) {
-    const double whole = PointToOutlineFormFactor(x, n, light.outline);
-    if (whole < 0) {  // patch by patch
-      for (uint32_t k : light.members) {
-        const Patch& p = scene_.patches[emitters_[k]];
-        const double f = PointToPatchFormFactor(x, n, p);
-        if (f > 0) e += p.emission * (f * Visible(x, n, k, key));
-      }
-      continue;
-    }
-    if (whole == 0) continue;
-    double weight = 0, visible = 0;
+void DirectLight::AddLight(const Light& light, const Vec3& x, const Vec3& n, uint64_t key,
+                           double weight, Rgb* e) const {
+  const double whole = PointToOutlineFormFactor(x, n, light.outline);
+  if (whole < 0) {  // patch by patch
     for (uint32_t k : light.members) {
       const Patch& p = scene_.patches[emitters_[k]];
-      const Vec3 d = p.centre - x;
-      const double r2 = Dot(d, d);
-      const double w =
-          p.area * std::max(0.0, Dot(n, d)) * std::max(0.0, -Dot(p.normal, d)) / (r2 * r2);
-      if (w <= 0) continue;
-      weight += w;
-      visible += w * Visible(x, n, k, key);
+      const double f = PointToPatchFormFactor(x, n, p);
+      if (f > 0) *e += p.emission * (f * Visible(x, n, k, key) * weight);
     }
-    if (weight > 0)
-      e += scene_.patches[emitters_[light.members[0]]].emission * (whole * visible / weight);
+    return;
   }
+  if (whole == 0) return;
+  double sum = 0, visible = 0;
+  for (uint32_t k : light.members) {
+    const Patch& p = scene_.patches[emitters_[k]];
+    const Vec3 d = p.centre - x;
+    const double r2 = Dot(d, d);
+    const double w =
+        p.area * std::max(0.0, Dot(n, d)) * std::max(0.0, -Dot(p.normal, d)) / (r2 * r2);
+    if (w <= 0) continue;
+    sum += w;
+    visible += w * Visible(x, n, k, key);
+  }
+  if (sum > 0) {
+    *e += scene_.patches[emitters_[light.members[0]]].emission * (whole * visible / sum * weight);
+  }
+}
+
+Rgb DirectLight::EmitterIrradiance(const Vec3& x, const Vec3& n, uint64_t key,
+                                   uint32_t* evaluated) const {
+  Rgb e;
+  if (emitter_tree_ == nullptr) {
+    for (const Light& light : lights_) AddLight(light, x, n, key, 1.0, &e);
+    if (evaluated != nullptr) *evaluated = static_cast<uint32_t>(lights_.size());
+    return e;
+  }
+  std::vector<LightPick> picks;
+  // Its own stream: the pick's random numbers are apart from the shadow rays' (Visible).
+  emitter_tree_->Pick(x, n, HashWords(key, 0x656d6974ull), light_cut_, &picks);
+  for (const LightPick& pick : picks) AddLight(lights_[pick.light], x, n, key, pick.weight, &e);
+  if (evaluated != nullptr) *evaluated = static_cast<uint32_t>(picks.size());
   return e;
 }
 
@@ -135,7 +180,9 @@ std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, ui
         const Vec3 x =
             SamplePatchPoint(p, sampling, (a + rng.Uniform(0)) / m, (b + rng.Uniform(1)) / m);
         sum += direct.EmitterIrradiance(x, p.normal, HashWords(stream, i, a * m + b, 1));
-        if (!punctual.empty()) lamps += direct.PunctualIrradiance(x, p.normal);
+        if (!punctual.empty()) {
+          lamps += direct.PunctualIrradiance(x, p.normal, HashWords(stream, i, a * m + b, 2));
+        }
       }
     }
     if (punctual.empty()) {

@@ -8,14 +8,19 @@
 // exact; in a penumbra its noise is that of the shadow rays, not of a mesh.
 //
 // Punctual lights (PatchScene::lights, core/punctual_light.h) add their closed-form irradiance
-// times one shadow ray each: no random numbers, a pure function of the point. Their cost is one
-// ray per light per point, all in PunctualIrradiance: the one place a light hierarchy (issue 21)
-// would go.
+// times one shadow ray each.
+//
+// Many lights (issue 21): above kExactLights emitter lights (or point and spot lights), a
+// LightTree (core/light_tree.h) picks about kLightCut of them per point, the strong ones exactly
+// and the rest sampled by their bounds with weight 1 / p: unbiased, and a point's cost no longer
+// grows with the number of lights. Up to kExactLights, every light is summed as before.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "core/light_tree.h"
 #include "core/patch_scene.h"
 #include "core/point_form_factor.h"
 #include "core/ray_caster.h"
@@ -30,17 +35,27 @@ class DirectLight {
  public:
   // About `rays_per_point` shadow rays per point in all (at least one per emitter patch). `scene`
   // and `caster` (built from it) must outlive this. Without `emitters`, the emitter patches are
-  // left out (they shoot their light instead) and only the punctual lights count.
+  // left out (they shoot their light instead) and only the punctual lights count. Above
+  // `exact_lights` lights of a kind, those are sampled through a LightTree, with a cut of
+  // `light_cut` lights per point.
   DirectLight(const PatchScene& scene, const RayCaster& caster, uint32_t rays_per_point,
-              bool emitters = true);
+              bool emitters = true, size_t exact_lights = kExactLights,
+              uint32_t light_cut = kLightCut);
 
-  // Irradiance at x (unit normal n) in Ke units; `key` picks the shadow rays' points, so a call is
-  // a pure function of its arguments. EmitterIrradiance + PunctualIrradiance.
+  // Irradiance at x (unit normal n) in Ke units; `key` picks the shadow rays' points (and with
+  // many lights the lights sampled), so a call is a pure function of its arguments.
+  // EmitterIrradiance + PunctualIrradiance.
   Rgb Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const;
-  // From the emitter patches alone (zero without `emitters`).
-  Rgb EmitterIrradiance(const Vec3& x, const Vec3& n, uint64_t key) const;
+  // From the emitter patches alone (zero without `emitters`). `evaluated`, if not null, receives
+  // how many lights (emitters of one surface and emission) were evaluated.
+  Rgb EmitterIrradiance(const Vec3& x, const Vec3& n, uint64_t key,
+                        uint32_t* evaluated = nullptr) const;
   // From the punctual lights alone: each light's UnshadowedIrradiance where its shadow ray arrives.
-  Rgb PunctualIrradiance(const Vec3& x, const Vec3& n) const;
+  // `key` picks the lights sampled when there are many; with few, it is unused.
+  Rgb PunctualIrradiance(const Vec3& x, const Vec3& n, uint64_t key = 0) const;
+  // The emitter lights (surfaces), and whether they are sampled through a LightTree.
+  size_t emitter_lights() const { return lights_.size(); }
+  bool emitters_sampled() const { return emitter_tree_ != nullptr; }
 
  private:
   // The emitter patches of one light: one surface, one emission. Where it is planar, the form
@@ -54,22 +69,31 @@ class DirectLight {
   };
   // Shares of patch k's shadow rays that arrive.
   double Visible(const Vec3& x, const Vec3& n, uint32_t k, uint64_t key) const;
+  // Adds `weight` times the light's irradiance at x to *e (weight 1: as summed without a tree).
+  void AddLight(const Light& light, const Vec3& x, const Vec3& n, uint64_t key, double weight,
+                Rgb* e) const;
+  // Adds `weight` times scene_.lights[i]'s irradiance (one shadow ray) to *e.
+  void AddPunctual(uint32_t i, const Vec3& x, const Vec3& n, double weight, Rgb* e) const;
 
   const PatchScene& scene_;
   const RayCaster& caster_;
-  std::vector<uint32_t> emitters_;  // patch ids with emission
+  std::vector<uint32_t> emitters_;       // patch ids with emission
   std::vector<PatchSampling> sampling_;  // of each emitter
   std::vector<Light> lights_;
+  std::unique_ptr<LightTree> emitter_tree_;   // over lights_, when sampled
+  std::vector<uint32_t> positional_, suns_;   // punctual lights by kind, when sampled
+  std::unique_ptr<LightTree> punctual_tree_;  // over positional_, when sampled
   uint32_t grid_ = 1;     // grid_ x grid_ stratified shadow rays per emitter patch
   double sun_reach_ = 0;  // beyond the scene from any point in it (ShadowRayTarget)
+  uint32_t light_cut_ = kLightCut;
 };
 
 // Per patch, the direct irradiance averaged over the patch (Ke units): DirectLight at
 // sections^2 jittered points of each patch (one per stratum), one shadow ray per emitter patch
-// (with `emitters`) and per punctual light per point. A pure function of the scene, `sections`,
-// `seed` and `emitters`, whatever `threads` (0: all cores). If `punctual_power` is not null it
-// receives the punctual lights' share summed over the patches (area times channel sum): the
-// power they deliver.
+// (with `emitters`) and per punctual light per point (of those the light tree picks, with many). A
+// pure function of the scene, `sections`, `seed` and `emitters`, whatever `threads` (0: all cores).
+// If `punctual_power` is not null it receives the punctual lights' share summed over the patches
+// (area times channel sum): the power they deliver.
 std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, uint64_t seed,
                                   unsigned threads, bool emitters = true,
                                   double* punctual_power = nullptr);

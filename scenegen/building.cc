@@ -9,7 +9,7 @@ BuildingCounts CountBuilding(const BuildingParams& p) {
   BuildingCounts c;
   c.rooms = int64_t{p.floors} * p.rooms_x * p.rooms_z;
   c.doors = int64_t{p.floors} * ((p.rooms_x - 1) * p.rooms_z + p.rooms_x * (p.rooms_z - 1));
-  c.lights = 2 * c.rooms;
+  c.lights = int64_t{p.lights_x} * p.lights_z * c.rooms;
   if (p.windows) c.lights += int64_t{p.floors} * 2 * (p.rooms_x + p.rooms_z);
   for (int f = 0; f < p.floors; ++f) {
     for (int i = 0; i < p.rooms_x; ++i) {

@@ -35,6 +35,18 @@ bool ParseReal(const std::string& s, double* value) {
   return ec == std::errc() && ptr == end && std::isfinite(*value);
 }
 
+// "AxB" as two whole numbers >= 1; errors begin with `what`.
+Result<std::pair<int, int>> ParseCounts(const std::string& text, const char* what) {
+  Result<std::pair<std::string, std::string>> halves = SplitAtX(text, what);
+  RADFARM_RETURN_IF_ERROR(halves);
+  std::pair<int, int> counts;
+  if (!ParseInt(halves->first, &counts.first) || !ParseInt(halves->second, &counts.second) ||
+      counts.first < 1 || counts.second < 1) {
+    return Error{std::string(what) + " '" + text + "': both counts must be whole numbers >= 1"};
+  }
+  return counts;
+}
+
 }  // namespace
 
 Status CheckBuildingParams(const BuildingParams& p) {
@@ -56,6 +68,12 @@ Status CheckBuildingParams(const BuildingParams& p) {
                    Text(kMaxRoomSize) + "] m (got " + Text(value) + ")"};
     }
   }
+  if (p.lights_x < 1 || p.lights_z < 1 || p.lights_x > kMaxLightsPerSide ||
+      p.lights_z > kMaxLightsPerSide) {
+    return Error{"lights per room must be from 1x1 to " + std::to_string(kMaxLightsPerSide) + "x" +
+                 std::to_string(kMaxLightsPerSide) + " (got " + std::to_string(p.lights_x) + "x" +
+                 std::to_string(p.lights_z) + ")"};
+  }
   if (!(p.room_height >= kMinRoomHeight && p.room_height <= kMaxRoomHeight)) {
     return Error{"room height must be in [" + Text(kMinRoomHeight) + ", " + Text(kMaxRoomHeight) +
                  "] m (got " + Text(p.room_height) + ")"};
@@ -64,14 +82,11 @@ Status CheckBuildingParams(const BuildingParams& p) {
 }
 
 Result<std::pair<int, int>> ParseRoomCounts(const std::string& text) {
-  Result<std::pair<std::string, std::string>> halves = SplitAtX(text, "rooms");
-  RADFARM_RETURN_IF_ERROR(halves);
-  std::pair<int, int> counts;
-  if (!ParseInt(halves->first, &counts.first) || !ParseInt(halves->second, &counts.second) ||
-      counts.first < 1 || counts.second < 1) {
-    return Error{"rooms '" + text + "': both counts must be whole numbers >= 1"};
-  }
-  return counts;
+  return ParseCounts(text, "rooms");
+}
+
+Result<std::pair<int, int>> ParseLightCounts(const std::string& text) {
+  return ParseCounts(text, "lights");
 }
 
 Result<std::pair<double, double>> ParseRoomSize(const std::string& text) {

@@ -18,6 +18,8 @@ struct BuildingParams {
   double room_height = 3;
   uint64_t seed = 1;     // furniture and door jitter; the same seed gives the same bytes
   bool windows = false;  // a daylight panel on every outer wall
+  int lights_x = 2;      // ceiling panels per room along x
+  int lights_z = 1;      // and along z
 };
 
 // Limits the checks enforce: furniture needs a room of at least kMinRoomSize; kMaxRooms keeps the
@@ -27,6 +29,7 @@ inline constexpr double kMaxRoomSize = 50;
 inline constexpr double kMinRoomHeight = 2.4;
 inline constexpr double kMaxRoomHeight = 20;
 inline constexpr int64_t kMaxRooms = 100000;
+inline constexpr int kMaxLightsPerSide = 100;  // ceiling panels per room along x or z
 inline constexpr double kWallThickness = 0.2;  // walls between rooms and around the building
 inline constexpr double kSlabThickness = 0.3;  // between storeys
 
@@ -35,6 +38,8 @@ Status CheckBuildingParams(const BuildingParams& params);
 
 // "6x4" -> (6, 4); errors name the text. Counts must be whole numbers >= 1.
 Result<std::pair<int, int>> ParseRoomCounts(const std::string& text);
+// "10x10" -> (10, 10): ceiling panels per room; counts whole numbers >= 1, errors name "lights".
+Result<std::pair<int, int>> ParseLightCounts(const std::string& text);
 // "4x3.5" -> (4, 3.5), or "4" -> (4, 4); errors name the text.
 Result<std::pair<double, double>> ParseRoomSize(const std::string& text);
 

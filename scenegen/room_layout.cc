@@ -1,5 +1,7 @@
 #include "scenegen/room_layout.h"
 
+#include <algorithm>
+
 #include "scenegen/jitter.h"
 
 namespace radfarm::scenegen {
@@ -60,15 +62,26 @@ void AddOpening(int axis, double from, double d0, double y0, const ShellMaterial
   }
 }
 
+// The centre of cell i of n across [lo, hi]. A lone cell's centre is computed as it was before
+// there could be more, so default buildings keep their bytes.
+double CellCentre(double lo, double hi, int i, int n) {
+  return n == 1 ? 0.5 * (lo + hi) : lo + (i + 0.5) / n * (hi - lo);
+}
+
+// lights_x x lights_z panels, one at the centre of each cell of a grid over the ceiling; a panel
+// is 0.6 x 1.2 m or 80% of its cell where that is smaller.
 void AddLights(const BuildingParams& p, const RoomBox& r, const ShellMaterials& m,
                SceneModel* model) {
   const double y = r.hi.y - kPanelGap;
-  const double zc = 0.5 * (r.lo.z + r.hi.z);
-  for (double share : {0.25, 0.75}) {
-    const double xc = r.lo.x + share * (r.hi.x - r.lo.x);
-    model->AddRectangle({xc - kCeilingPanelWidth / 2, y, zc - kCeilingPanelLength / 2},
-                        {xc + kCeilingPanelWidth / 2, y, zc + kCeilingPanelLength / 2}, 1, false,
-                        m.ceiling_light);
+  const double half_w = 0.5 * std::min(kCeilingPanelWidth, 0.8 * (r.hi.x - r.lo.x) / p.lights_x);
+  const double half_l = 0.5 * std::min(kCeilingPanelLength, 0.8 * (r.hi.z - r.lo.z) / p.lights_z);
+  for (int i = 0; i < p.lights_x; ++i) {
+    const double xc = CellCentre(r.lo.x, r.hi.x, i, p.lights_x);
+    for (int k = 0; k < p.lights_z; ++k) {
+      const double zc = CellCentre(r.lo.z, r.hi.z, k, p.lights_z);
+      model->AddRectangle({xc - half_w, y, zc - half_l}, {xc + half_w, y, zc + half_l}, 1, false,
+                          m.ceiling_light);
+    }
   }
   if (!p.windows) return;
   const double y0 = r.lo.y + kWindowSill, y1 = y0 + kWindowSize;

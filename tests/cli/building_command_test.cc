@@ -64,6 +64,8 @@ TEST(BuildingCommandTest, RefusesBadArgumentsNamingThem) {
       {{"--height", "-3"}, "height"},
       {{"--floors", "100", "--rooms", "100x100"}, "limit"},
       {{"--name", "a/b"}, "name"},
+      {{"--lights", "0x3"}, "lights"},
+      {{"--lights", "101x1"}, "lights"},
   };
   for (const auto& [extra, word] : cases) {
     std::vector<std::string> args = {"--out", dir.path()};

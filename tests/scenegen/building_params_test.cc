@@ -14,7 +14,9 @@ TEST(BuildingParams, RefusesValuesOutOfRangeNamingThem) {
     BuildingParams params;
     const char* names;
   };
-  BuildingParams floors, rooms, width, depth, height, nan, too_many;
+  BuildingParams floors, rooms, width, depth, height, nan, too_many, lights, too_many_lights;
+  lights.lights_x = 0;
+  too_many_lights.lights_z = kMaxLightsPerSide + 1;
   floors.floors = 0;
   rooms.rooms_z = 0;
   width.room_width = 1;
@@ -23,9 +25,10 @@ TEST(BuildingParams, RefusesValuesOutOfRangeNamingThem) {
   nan.room_width = std::nan("");
   too_many.floors = 10;
   too_many.rooms_x = too_many.rooms_z = 101;
-  for (const Case& c : {Case{floors, "floors"}, Case{rooms, "rooms"}, Case{width, "room width"},
-                        Case{depth, "room depth"}, Case{height, "room height"},
-                        Case{nan, "room width"}, Case{too_many, "limit"}}) {
+  for (const Case& c :
+       {Case{floors, "floors"}, Case{rooms, "rooms"}, Case{width, "room width"},
+        Case{depth, "room depth"}, Case{height, "room height"}, Case{nan, "room width"},
+        Case{too_many, "limit"}, Case{lights, "lights"}, Case{too_many_lights, "lights"}}) {
     const Status status = CheckBuildingParams(c.params);
     ASSERT_FALSE(status.ok()) << c.names;
     EXPECT_NE(status.error().find(c.names), std::string::npos) << status.error();
@@ -41,6 +44,18 @@ TEST(BuildingParams, ParsesRoomCounts) {
     const Result<std::pair<int, int>> r = ParseRoomCounts(bad);
     ASSERT_FALSE(r.ok()) << bad;
     EXPECT_NE(r.error().find("rooms"), std::string::npos) << r.error();
+  }
+}
+
+TEST(BuildingParams, ParsesLightCounts) {
+  const Result<std::pair<int, int>> counts = ParseLightCounts("10x3");
+  ASSERT_TRUE(counts.ok()) << counts.error();
+  EXPECT_EQ(counts->first, 10);
+  EXPECT_EQ(counts->second, 3);
+  for (const char* bad : {"2", "0x1", "2x", "ax1"}) {
+    const Result<std::pair<int, int>> r = ParseLightCounts(bad);
+    ASSERT_FALSE(r.ok()) << bad;
+    EXPECT_NE(r.error().find("lights"), std::string::npos) << r.error();
   }
 }
 

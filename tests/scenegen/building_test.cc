@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "scenegen/obj_writer.h"
+#include "scenegen/room_layout.h"
 
 namespace radfarm::scenegen {
 namespace {
@@ -65,6 +68,59 @@ TEST(Building, WindowsOnEveryOuterWall) {
   ASSERT_TRUE(model.ok()) << model.error();
   EXPECT_EQ(FacesOf(*model, "daylight"), 2 * 2 * (3 + 2));
   EXPECT_EQ(CountBuilding(p).lights, 2 * 6 * 2 + 2 * 2 * (3 + 2));
+}
+
+// The boxes of the faces of material `name`.
+std::vector<std::pair<Vec3, Vec3>> BoxesOf(const SceneModel& model, const std::string& name) {
+  std::vector<std::pair<Vec3, Vec3>> boxes;
+  for (const ModelFace& f : model.faces()) {
+    if (model.materials()[f.material].name != name) continue;
+    Vec3 lo = model.vertices()[f.vertices[0]], hi = lo;
+    for (uint32_t v : f.vertices) {
+      const Vec3& p = model.vertices()[v];
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    boxes.emplace_back(lo, hi);
+  }
+  return boxes;
+}
+
+// --lights AxB: A x B panels per room, none overlapping, all under the ceiling of a room; the
+// default two panels are where they always were.
+TEST(Building, LightsPerRoomOnAGrid) {
+  BuildingParams p = Params(1, 2, 1);
+  p.room_width = 5;
+  p.lights_x = 10;
+  p.lights_z = 4;
+  Result<SceneModel> model = GenerateBuilding(p);
+  ASSERT_TRUE(model.ok()) << model.error();
+  EXPECT_EQ(CountBuilding(p).lights, 2 * 10 * 4);
+  const std::vector<std::pair<Vec3, Vec3>> panels = BoxesOf(*model, "ceiling_light");
+  ASSERT_EQ(panels.size(), 2u * 10 * 4);
+  for (size_t i = 0; i < panels.size(); ++i) {
+    const auto& [lo, hi] = panels[i];
+    EXPECT_EQ(lo.y, p.room_height - kPanelGap);
+    const RoomBox room = RoomAt(p, 0, lo.x < RoomAt(p, 0, 1, 0).lo.x ? 0 : 1, 0);
+    EXPECT_TRUE(lo.x > room.lo.x && hi.x < room.hi.x && lo.z > room.lo.z && hi.z < room.hi.z);
+    for (size_t j = 0; j < i; ++j) {
+      const auto& [lo2, hi2] = panels[j];
+      EXPECT_TRUE(hi.x <= lo2.x || hi2.x <= lo.x || hi.z <= lo2.z || hi2.z <= lo.z)
+          << i << " " << j;
+    }
+  }
+  p.lights_x = 2;
+  p.lights_z = 1;
+  EXPECT_EQ(CountBuilding(p).lights, 2 * 2);
+  Result<SceneModel> two = GenerateBuilding(p);
+  ASSERT_TRUE(two.ok()) << two.error();
+  const std::vector<std::pair<Vec3, Vec3>> defaults = BoxesOf(*two, "ceiling_light");
+  ASSERT_EQ(defaults.size(), 4u);
+  const RoomBox first = RoomAt(p, 0, 0, 0);
+  EXPECT_EQ(defaults[0].first.x, first.lo.x + 0.25 * (first.hi.x - first.lo.x) - 0.3);
+  EXPECT_EQ(defaults[1].first.x, first.lo.x + 0.75 * (first.hi.x - first.lo.x) - 0.3);
+  EXPECT_EQ(defaults[0].first.z, 0.5 * (first.lo.z + first.hi.z) - 0.6);
+  EXPECT_EQ(defaults[0].second.z, 0.5 * (first.lo.z + first.hi.z) + 0.6);
 }
 
 TEST(Building, WithoutFurnitureOnlyTheShell) {
