@@ -120,9 +120,10 @@ class PatchMesh {
   // triangle). Costs a point of shadow rays (kPointShadowRays) per display vertex and midpoint.
   // Near another surface (within kGatherBand patch sizes: corners, the ceiling beside a hanging
   // lamp, the floor around a block) the rest is not smooth across a patch: such points gather it
-  // themselves (core/point_gather.h) and keep their values; where the corners of a triangle of
-  // such points differ by more than a fifth, it is cut (mesh/selective_split.h) and its new points
-  // computed the same way, up to two levels deep (patch_mesh_display.cc).
+  // themselves (core/point_gather.h) and keep their values. Where the corners of a triangle of
+  // such points differ by more than a fifth, or the direct light at the corners of any other does
+  // (a hard shadow's edge), it is cut (mesh/selective_split.h) and its new points computed the
+  // same way, up to three levels deep (patch_mesh_display.cc).
   void SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot,
                    const VertexDirectLight& direct);
   // What the last SetSolution with VertexDirectLight computed: display points (vertices and

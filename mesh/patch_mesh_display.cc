@@ -20,33 +20,49 @@
 namespace radfarm {
 namespace {
 
-// Where a display triangle's gathered corners differ by more than this share of the brightest, the
-// light bends within it faster than the display shows (the ceiling just outside a hanging lamp's
-// outline rises from the slit's shadow within centimetres): it is cut into four, up to
-// kDisplayRefineLevels times, each new point at its own light.
+// Where a display triangle's corners differ by more than this share of the brightest, the light
+// bends within it faster than the display shows: the ceiling just outside a hanging lamp's outline
+// rises from the slit's shadow within centimetres, a hard shadow's edge crosses it. It is cut into
+// four, up to kDisplayRefineLevels times, each new point at its own light.
 constexpr double kRefineContrast = 0.2;
-constexpr int kDisplayRefineLevels = 2;
+constexpr int kDisplayRefineLevels = 3;
 
-// Cuts the triangles of `fine` whose corners all hold their own light (`held`) and differ by more
-// than kRefineContrast, and sets each new point to its own light: rho times the direct light and
-// the gathered light. Returns the number of points added.
+// What the display knows of each of its points besides the radiance it shows.
+struct PointLight {
+  std::vector<bool> held;         // gathered: its value is its own, not a stand-in for a mean
+  std::vector<Rgb> irradiance;    // the direct light at the point
+  std::vector<Rgb> shown_direct;  // rho times that
+};
+
+// Cuts the triangles of `fine` where the light bends, and sets each new point to its own light.
+// A triangle whose corners all hold their own light (held: gathered) is cut where their light
+// differs by more than kRefineContrast of the brightest; any other where the direct light shown
+// at its corners does, a shadow's edge or a lamp's fall-off. A new point between two held ones
+// gathers (rho times the direct and the gathered light) and is held; any other shows the direct
+// light at itself plus the rest interpolated between its edge's ends. Returns the number of points
+// added.
 uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
                                const std::vector<Rgb>& outgoing,
                                const PatchMesh::VertexDirectLight& direct, DisplayMesh* fine,
-                               std::vector<bool>* held) {
+                               PointLight* light) {
+  std::vector<bool>& held = light->held;
+  std::vector<Rgb>& shown_direct = light->shown_direct;
   uint64_t points_added = 0;
   for (int level = 1; level <= kDisplayRefineLevels; ++level) {
     std::vector<bool> marked(fine->triangles.size(), false);
     bool any = false;
     for (size_t t = 0; t < fine->triangles.size(); ++t) {
+      if (scene.patches[fine->triangle_patch[t]].emission.Max() > 0) continue;
       const std::array<uint32_t, 3>& v = fine->triangles[t];
-      if (!(*held)[v[0]] || !(*held)[v[1]] || !(*held)[v[2]]) continue;
-      double lo = INFINITY, hi = -INFINITY;
+      const bool all_held = held[v[0]] && held[v[1]] && held[v[2]];
+      double lo = INFINITY, hi = -INFINITY, direct_lo = INFINITY, direct_hi = -INFINITY;
       for (uint32_t n : v) {
         lo = std::min(lo, fine->radiance[n].Sum());
         hi = std::max(hi, fine->radiance[n].Sum());
+        direct_lo = std::min(direct_lo, shown_direct[n].Sum());
+        direct_hi = std::max(direct_hi, shown_direct[n].Sum());
       }
-      marked[t] = hi - lo > kRefineContrast * hi;
+      marked[t] = (all_held ? hi - lo : direct_hi - direct_lo) > kRefineContrast * hi;
       any = any || marked[t];
     }
     if (!any) break;
@@ -81,14 +97,31 @@ uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
                    normals[k] / Length(normals[k])};
       rho[k] = rho[k] / weight[k];
     }
+    std::vector<bool> gathers(added);
+    for (size_t k = 0; k < added; ++k) {
+      gathers[k] = held[split.edge_ends[k][0]] && held[split.edge_ends[k][1]];
+    }
     const uint64_t seed = HashWords(direct.seed, uint64_t(level));
     const std::vector<Rgb> gathered =
-        GatherLight(caster, outgoing, points, std::vector<bool>(added, true), seed, direct.threads);
+        GatherLight(caster, outgoing, points, gathers, seed, direct.threads);
     const std::vector<Rgb> irradiance =
         PointsDirectLight(scene, points, seed, direct.threads, direct.emitters);
-    held->resize(mesh.positions.size(), true);
+    held.resize(mesh.positions.size(), false);
+    shown_direct.resize(mesh.positions.size());
+    light->irradiance.resize(mesh.positions.size());
     for (size_t k = 0; k < added; ++k) {
-      mesh.radiance[split.first_new + k] = rho[k] * (gathered[k] + irradiance[k]);
+      const uint32_t n = split.first_new + k;
+      const auto [a, b] = split.edge_ends[k];
+      const Rgb shown = rho[k] * irradiance[k];
+      if (gathers[k]) {
+        mesh.radiance[n] = rho[k] * gathered[k] + shown;
+      } else {
+        // The split set it to its ends' mean: their direct light's mean gives way to its own.
+        mesh.radiance[n] += shown - (shown_direct[a] + shown_direct[b]) * 0.5;
+      }
+      held[n] = gathers[k];
+      shown_direct[n] = shown;
+      light->irradiance[n] = irradiance[k];
     }
     *fine = std::move(mesh);
     points_added += added;
@@ -259,26 +292,28 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   }
   const std::vector<Rgb> gathered =
       GatherLight(caster, outgoing, points, gather, direct.seed, direct.threads);
-  std::vector<bool> held(groups + midpoints, false);
+  PointLight light;
+  light.held.assign(groups + midpoints, false);
   for (size_t n = 0; n < groups + midpoints; ++n) {
     if (point_of[n] != kNoPoint && gather[point_of[n]]) {
       fine.radiance[n] = rho[n] * gathered[point_of[n]];
-      held[n] = true;
+      light.held[n] = true;
       ++display_stats_.gathered;
     }
   }
 
   const std::vector<Rgb> irradiance =
       PointsDirectLight(data_.scene, points, direct.seed, direct.threads, direct.emitters);
-  std::vector<Rgb> point_irradiance(groups + midpoints);
-  for (size_t n = 0; n < point_irradiance.size(); ++n) {
-    if (point_of[n] != kNoPoint) point_irradiance[n] = irradiance[point_of[n]];
-    fine.radiance[n] += rho[n] * point_irradiance[n];
+  light.irradiance.resize(groups + midpoints);
+  light.shown_direct.resize(groups + midpoints);
+  for (size_t n = 0; n < groups + midpoints; ++n) {
+    if (point_of[n] != kNoPoint) light.irradiance[n] = irradiance[point_of[n]];
+    light.shown_direct[n] = rho[n] * light.irradiance[n];
+    fine.radiance[n] += light.shown_direct[n];
   }
 
-  // Each patch's mean light: the rest as solved plus rho times the direct light's mean over its
-  // triangles, each by the midpoint rule (the mean of its edge midpoints' values, exact for
-  // quadratics).
+  // Each patch's mean direct light over its triangles, each by the midpoint rule (the mean of its
+  // edge midpoints' values, exact for quadratics).
   std::vector<Rgb> direct_sum(patches.size());
   std::vector<double> area(patches.size(), 0.0);
   for (size_t t = 0; t < split.triangle_midpoints.size(); ++t) {
@@ -288,17 +323,42 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
     const double twice_area = Length(Cross(fine.positions[v[1]] - a, fine.positions[v[2]] - a));
     const uint32_t f = fine.triangle_patch[4 * t];
     direct_sum[f] +=
-        (point_irradiance[m[0]] + point_irradiance[m[1]] + point_irradiance[m[2]]) * twice_area;
+        (light.irradiance[m[0]] + light.irradiance[m[1]] + light.irradiance[m[2]]) * twice_area;
     area[f] += twice_area;
   }
+
+  display_stats_.added =
+      RefineWhereLightBends(data_.scene, caster, outgoing, direct, &fine, &light);
+  // A patch the refinement cut holds a shadow's edge or a steep rise, which three midpoints per
+  // triangle miss: its mean is the refined triangles' (each the mean of its corners).
+  const uint32_t first_new = static_cast<uint32_t>(groups + midpoints);
+  std::vector<bool> refined(patches.size(), false);
+  for (size_t t = 0; t < fine.triangles.size(); ++t) {
+    for (uint32_t n : fine.triangles[t]) {
+      if (n >= first_new) refined[fine.triangle_patch[t]] = true;
+    }
+  }
+  for (size_t f = 0; f < patches.size(); ++f) {
+    if (refined[f]) direct_sum[f] = Rgb(), area[f] = 0;
+  }
+  for (size_t t = 0; t < fine.triangles.size(); ++t) {
+    const uint32_t f = fine.triangle_patch[t];
+    if (!refined[f]) continue;
+    const std::array<uint32_t, 3>& v = fine.triangles[t];
+    const Vec3& a = fine.positions[v[0]];
+    const double twice_area = Length(Cross(fine.positions[v[1]] - a, fine.positions[v[2]] - a));
+    direct_sum[f] +=
+        (light.irradiance[v[0]] + light.irradiance[v[1]] + light.irradiance[v[2]]) * twice_area;
+    area[f] += twice_area;
+  }
+  // Then one step toward each patch's mean light: the rest as solved plus rho times that mean.
   std::vector<Rgb> target(patches.size());
   std::vector<bool> moves(patches.size());
   for (size_t f = 0; f < patches.size(); ++f) {
     moves[f] = patches[f].emission.Max() == 0 && area[f] > 0;  // an emitter shows its emission
     if (moves[f]) target[f] = rest[f] + patches[f].reflectance * (direct_sum[f] / (3 * area[f]));
   }
-  StepTowardPatchMeans(&fine, target, moves, held);
-  display_stats_.added = RefineWhereLightBends(data_.scene, caster, outgoing, direct, &fine, &held);
+  StepTowardPatchMeans(&fine, target, moves, light.held);
   display_stats_.points = points.size() + display_stats_.added;
   display_stats_.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
