@@ -255,5 +255,23 @@ TEST(LightmapRenderTest, HalfTheTexelEdgeDoublesTheAutomaticSides) {
   }
 }
 
+// A chosen size is refused before the scene is read when one lightmap would not fit the memory
+// limit (the automatic sides stop at 2048).
+TEST(LightmapRenderTest, ALightmapSizeOverTheMemoryLimitIsRefusedBeforeMeshing) {
+  TempDir dir;
+  const std::string out = dir.File("out");
+  const testing::CommandResult r =
+      RunCommand({RADFARM_CLI_PATH, "render", RoomJob(dir, "lightmap_size = 8192\n"), "--out", out,
+                  "-q", "--max-memory", "1G"});
+  EXPECT_EQ(r.exit_code, kExitBadInput) << r.err;
+  EXPECT_NE(
+      r.err.find("room.toml: output.lightmap_size: a 8192 x 8192 lightmap needs about 4096 MB "
+                 "of memory, more than the limit of 1024 MB (--max-memory); use a smaller "
+                 "lightmap_size"),
+      std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out + "/lightmaps"));
+}
+
 }  // namespace
 }  // namespace radfarm
