@@ -1,4 +1,4 @@
-// A render job: the scene file plus meshing, solver and camera settings. Read from a TOML job file,
+// A render job: the scene file plus meshing, solver, camera and lightmap settings. Read from a TOML job file,
 // or made with defaults for a bare OBJ.
 #pragma once
 
