@@ -1,5 +1,5 @@
-// A render job: the scene file plus meshing, solver, camera and lightmap settings. Read from a TOML job file,
-// or made with defaults for a bare OBJ.
+// A render job: the scene file plus meshing, solver, camera and lightmap settings. Read from a
+// TOML job file, or made with defaults for a bare OBJ.
 #pragma once
 
 #include <cstdint>
