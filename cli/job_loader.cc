@@ -16,9 +16,12 @@ Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& o
   Result<Job> job = LoadJob(path);
   RADFARM_RETURN_IF_ERROR(job);
   RADFARM_RETURN_IF_ERROR(ApplyOverrides(overrides, &*job));
-  // The image's cost first: it needs no scene, and a job that could never be shown is refused
-  // before the scene is read.
+  // The image's and a chosen lightmap's cost first: they need no scene, and a job that could never
+  // be shown is refused before the scene is read.
   if (Status budget = CheckOutputBudget(job->camera, job->mesh.max_memory); !budget) {
+    return Error{path + ": " + budget.error()};
+  }
+  if (Status budget = CheckLightmapBudget(job->lightmap_size, job->mesh.max_memory); !budget) {
     return Error{path + ": " + budget.error()};
   }
   Result<InputScene> scene =

@@ -1,12 +1,32 @@
 #include "cli/job_overrides.h"
 
 #include <CLI/CLI.hpp>
+#include <charconv>
+#include <cstdint>
 #include <limits>
 
 #include "cli/option_checks.h"
 #include "job/job.h"
 
 namespace radfarm {
+namespace {
+
+// 0 or a side in the job file's range, refused in its words.
+CLI::Validator LightmapSizeCheck() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        int64_t value = 0;
+        const char* end = text.data() + text.size();
+        const auto [stop, error] = std::from_chars(text.data(), end, value);
+        if (error != std::errc() || stop != end || !IsValidLightmapSize(value)) {
+          return "must be " + LightmapSizeRange() + ", got '" + text + "'";
+        }
+        return "";
+      },
+      "N");
+}
+
+}  // namespace
 
 void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
   command->add_option("--seed", overrides->seed, "Random seed (default 1)");
@@ -33,14 +53,20 @@ void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
       ->transform(CLI::AsSizeValue(false))
       ->check(CLI::Range(uint64_t{1}, std::numeric_limits<uint64_t>::max()));
   command
-      ->add_option("--max-scene-bytes", overrides->max_scene_bytes,
-                   "Refuse a scene file (OBJ, MTL, glTF) larger than this, from its size before reading it, "
-                   "e.g. 4G (default 1G)")
+      ->add_option(
+          "--max-scene-bytes", overrides->max_scene_bytes,
+          "Refuse a scene file (OBJ, MTL, glTF) larger than this, from its size before reading it, "
+          "e.g. 4G (default 1G)")
       ->transform(CLI::AsSizeValue(false))
       ->check(CLI::Range(uint64_t{1}, std::numeric_limits<uint64_t>::max()));
   command->add_option("--camera", overrides->camera,
                       "A camera of the glTF scene, by node or camera name (default: the job "
                       "file's camera, else the scene's first camera)");
+  command
+      ->add_option("--lightmap-size", overrides->lightmap_size,
+                   "Every lightmap N x N texels, N in [16, 8192]; 0: automatic (default: the job "
+                   "file's [output] lightmap_size, else by each object's area)")
+      ->check(LightmapSizeCheck());
 }
 
 Status ApplyOverrides(const JobOverrides& overrides, Job* job) {
@@ -52,6 +78,10 @@ Status ApplyOverrides(const JobOverrides& overrides, Job* job) {
   if (overrides.seconds) s.max_seconds = *overrides.seconds;
   if (overrides.patch_size) job->mesh.patch_size = *overrides.patch_size;
   if (overrides.max_memory) job->mesh.max_memory = *overrides.max_memory;
+  if (overrides.lightmap_size) {
+    job->lightmap_size = *overrides.lightmap_size;
+    if (job->lightmap_size > 0) job->lightmap_texel = 0;  // the chosen size wins
+  }
   if (overrides.sampler && !ParseSamplerName(*overrides.sampler, &s.sampler)) {
     return Error{"--sampler: unknown sampler '" + *overrides.sampler +
                  "' (expected grid, random or sobol)"};

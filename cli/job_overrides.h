@@ -27,11 +27,12 @@ struct JobOverrides {
   std::optional<uint64_t> max_memory;  // bytes; the machine's memory when unset
   // The OBJ's and each MTL's size at most, checked before reading; 1 GiB when unset.
   std::optional<uint64_t> max_scene_bytes;
-  std::optional<std::string> camera;  // a camera of the scene file by name (Job::camera_name)
+  std::optional<std::string> camera;      // a camera of the scene file by name (Job::camera_name)
+  std::optional<uint32_t> lightmap_size;  // Job::lightmap_size; 0: automatic
 };
 
 // Adds --seed, --tolerance, --rays, --seconds, --sampler, --patch-size, --max-memory,
-// --max-scene-bytes and --camera (not --threads).
+// --max-scene-bytes, --camera and --lightmap-size (not --threads).
 void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides);
 
 // Applies the overrides on top of the job file's settings. Errors name the option.

@@ -53,13 +53,14 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
   const auto path = [&](const char* name) { return (fs::path(dir) / name).string(); };
   std::vector<uint32_t> patch_object(mesh.patch_scene().patches.size());
   for (uint32_t p = 0; p < patch_object.size(); ++p) patch_object[p] = mesh.patch_object(p);
-  // Lightmaps of the objects with a second UV set, in that UV; texels of a quarter patch, about
-  // the display's vertex spacing after its midpoint cut.
+  // Lightmaps of the objects with a second UV set, in that UV: the job's size or texel, else
+  // texels of a quarter patch, about the display's vertex spacing after its midpoint cut.
   const DisplayLightmapUvs uvs =
       LocateLightmapUvs(display, patch_object, mesh.objects().size(), mesh.lightmap_triangles());
+  const double texel = job.lightmap_texel > 0 ? job.lightmap_texel : mesh.patch_size() / 4;
   Result<std::vector<Lightmap>> lightmaps =
-      WriteLightmaps(dir, display, mesh.objects(), uvs, mesh.lightmap_triangles(), exposed,
-                     mesh.patch_size() / 4, 0, warnings);
+      WriteLightmaps(dir, display, mesh.objects(), uvs, mesh.lightmap_triangles(), exposed, texel,
+                     job.lightmap_size, warnings);
   RADFARM_RETURN_IF_ERROR(lightmaps);
   LitLightmaps lit_lightmaps{&uvs, std::vector<std::string>(mesh.objects().size()),
                              std::vector<std::string>(mesh.objects().size())};

@@ -80,6 +80,22 @@ Status DecodeRefine(const wire::BundleRefine* in, RefineSettings* out) {
   return Ok{};
 }
 
+// The loader's ranges (job/job_loader.cc): a size or a texel, each 0 when unset.
+Status DecodeLightmapSettings(const wire::JobBundleBlob& in, Job* out) {
+  out->lightmap_size = in.lightmap_size();
+  out->lightmap_texel = in.lightmap_texel();
+  if (!IsValidLightmapSize(out->lightmap_size)) {
+    return Bad("output.lightmap_size", "is not " + LightmapSizeRange());
+  }
+  if (!(out->lightmap_texel >= 0) || !std::isfinite(out->lightmap_texel)) {
+    return Bad("output.lightmap_texel", "is negative or not finite");
+  }
+  if (out->lightmap_size > 0 && out->lightmap_texel > 0) {
+    return Bad("output.lightmap_texel", "is set with output.lightmap_size");
+  }
+  return Ok{};
+}
+
 Status DecodeCamera(const wire::BundleCamera& in, Camera* out) {
   out->automatic = in.automatic();
   out->eye = FromWire(in.eye());
@@ -254,7 +270,8 @@ std::vector<uint8_t> EncodeJobBundle(const JobBundle& bundle) {
   }
   const auto lights = EncodeLights(fbb, scene.lights);
   fbb.Finish(wire::CreateJobBundleBlob(fbb, path, job.mesh.patch_size, solver, camera, positions,
-                                       material_vec, face_vec, refine, lights, object_vec),
+                                       material_vec, face_vec, refine, lights, object_vec,
+                                       job.lightmap_size, job.lightmap_texel),
              "RDJB");
   return {fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()};
 }
@@ -283,6 +300,7 @@ Result<JobBundle> DecodeJobBundle(std::span<const uint8_t> blob) {
   RADFARM_RETURN_IF_ERROR(DecodeSolver(*root->solver(), &bundle.job.solver));
   RADFARM_RETURN_IF_ERROR(DecodeCamera(*root->camera(), &bundle.job.camera));
   RADFARM_RETURN_IF_ERROR(DecodeRefine(root->refine(), &bundle.job.refine));
+  RADFARM_RETURN_IF_ERROR(DecodeLightmapSettings(*root, &bundle.job));
   RADFARM_RETURN_IF_ERROR(DecodeObjects(*root, &bundle.scene));
   RADFARM_RETURN_IF_ERROR(DecodeScene(*root, &bundle.scene));
   Result<std::vector<PunctualLight>> lights = DecodeLights(root->lights(), kKind);

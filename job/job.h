@@ -1,7 +1,8 @@
-// A render job: the scene file plus meshing, solver and camera settings. Read from a TOML job file,
-// or made with defaults for a bare OBJ.
+// A render job: the scene file plus meshing, solver, camera and lightmap settings. Read from a
+// TOML job file, or made with defaults for a bare OBJ.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 
@@ -29,7 +30,20 @@ struct Job {
   // which wins over the former and over a glTF file's doubleSided.
   bool two_sided = false;
   std::map<std::string, bool> material_two_sided;
+  // The lightmaps' resolution (`[output] lightmap_size` or `lightmap_texel`, `--lightmap-size`;
+  // output/lightmap_writer.h). At most one is nonzero; both 0: texels of a quarter patch.
+  uint32_t lightmap_size = 0;  // every lightmap this many texels square
+  double lightmap_texel = 0;   // each object's texels about this size, in scene units
 };
+
+// The lightmap side a job may choose besides 0, automatic (`[output] lightmap_size`,
+// `--lightmap-size`): one range, so both refuse the same values with the same words.
+inline constexpr uint32_t kMinLightmapSizeSetting = 16;
+inline constexpr uint32_t kMaxLightmapSizeSetting = 8192;
+inline bool IsValidLightmapSize(int64_t size) {
+  return size == 0 || (size >= kMinLightmapSizeSetting && size <= kMaxLightmapSizeSetting);
+}
+inline std::string LightmapSizeRange() { return "0 (automatic) or in [16, 8192]"; }
 
 // The tolerance a job may ask for (`solver.tolerance` in the job file, `--tolerance` on the command
 // line): one range, so both refuse the same values with the same words.

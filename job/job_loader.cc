@@ -32,6 +32,11 @@
 //   exposure = 0.0                # stops; setting it turns off automatic exposure
 //   samples_per_pixel = 4         # in [1, 1024]
 //   name = "Camera"               # a camera of the scene file (glTF) by node or camera name
+//   [output]
+//   lightmap_size = 1024          # every lightmap this many texels square, 0 or in [16, 8192]
+//                                 # (absent or 0: automatic, 32 to 2048 by the object's area)
+//   lightmap_texel = 0.01         # automatic size from texels of about this edge, scene units,
+//                                 # > 0 (absent: patch size / 4); not with lightmap_size
 //   [materials.NAME]              # per material of the scene, by name
 //   two_sided = true              # this material receives and emits on both sides
 //
@@ -139,6 +144,26 @@ Status ReadCamera(TomlTableReader* r, Camera* camera) {
   return Ok{};
 }
 
+// The lightmaps' resolution: a fixed size or a texel size, not both.
+Status ReadOutput(TomlTableReader* r, Job* job) {
+  int64_t size = 0;
+  bool has_size = false, has_texel = false;
+  RADFARM_RETURN_IF_ERROR(r->Integer("lightmap_size", std::numeric_limits<int64_t>::min(),
+                                     kMaxInt64, &size, &has_size));
+  if (has_size && !IsValidLightmapSize(size)) {
+    return r->ErrorFor("lightmap_size",
+                       "must be " + LightmapSizeRange() + ", got " + std::to_string(size));
+  }
+  RADFARM_RETURN_IF_ERROR(
+      r->Real("lightmap_texel", Interval::Above(0), &job->lightmap_texel, &has_texel));
+  if (has_texel && has_size && size > 0) {
+    return r->ErrorFor("lightmap_texel",
+                       "is set with 'output.lightmap_size'; set one or the other");
+  }
+  job->lightmap_size = static_cast<uint32_t>(size);
+  return Ok{};
+}
+
 // [materials.NAME] tables, one per material named, each with its optional two_sided.
 Status ReadMaterials(const std::string& path, TomlTableReader* materials, const toml::table& table,
                      Job* job) {
@@ -173,6 +198,8 @@ Status ReadJob(const std::string& path, const toml::table& table, Job* job) {
     RADFARM_RETURN_IF_ERROR(r->String("name", &job->camera_name));
     return ReadCamera(r, &job->camera);
   }));
+  RADFARM_RETURN_IF_ERROR(
+      ReadSection(path, &root, "output", [&](TomlTableReader* r) { return ReadOutput(r, job); }));
   Result<const toml::table*> materials = root.Table("materials");
   RADFARM_RETURN_IF_ERROR(materials);
   if (*materials != nullptr) {

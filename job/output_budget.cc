@@ -32,4 +32,20 @@ Status CheckOutputBudget(const Camera& camera, uint64_t max_memory) {
                "; use a smaller image"};
 }
 
+uint64_t EstimatedLightmapBytes(uint32_t size) {
+  return uint64_t{size} * size * kLightmapBytesPerTexel;
+}
+
+Status CheckLightmapBudget(uint32_t size, uint64_t max_memory) {
+  const uint64_t limit = max_memory > 0 ? max_memory : PhysicalMemoryBytes();
+  const uint64_t bytes = EstimatedLightmapBytes(size);
+  if (limit == 0 || bytes <= limit) return Ok{};
+  const std::string side = std::to_string(size);
+  return Error{"output.lightmap_size: a " + side + " x " + side + " lightmap needs about " +
+               FormatMegabytes(bytes) + " of memory, more than the limit of " +
+               FormatMegabytes(limit) +
+               (max_memory > 0 ? " (--max-memory)" : " (this machine's memory)") +
+               "; use a smaller lightmap_size"};
+}
+
 }  // namespace radfarm

@@ -34,6 +34,13 @@ inline constexpr uint64_t kLitGlbBytesPerPatch = 256;
 // with unusually many T-vertices), naming the limit and the patch size to change.
 static_assert(kMaxPatches * kLitGlbBytesPerPatch < kMaxGlbBytes);
 
+// A lightmap while it is baked (output/lightmap_writer.h; one object at a time): its raster (24
+// bytes and 1 of state per texel), the EXR's floats (12) and encoding, the PNG's; `radfarm render`
+// of tests/blender/lightmap-room.toml peaked at 50 bytes per texel at sizes 2048 and 4096.
+inline constexpr uint64_t kLightmapBytesPerTexel = 64;
+
+uint64_t EstimatedLightmapBytes(uint32_t size);
+
 // Errors name the figures and what to change: "camera: 16384 x 16384 pixels x 1024 samples =
 // 274877906944 pixel samples, more than the limit of 4294967296; use fewer samples_per_pixel or
 // a smaller image". Checks the pixel samples only (for decoders that have no memory limit).
@@ -41,5 +48,10 @@ Status CheckPixelSamples(const Camera& camera);
 // Both: the pixel samples, and the image's memory against `max_memory` (0: this machine's
 // physical memory; --max-memory).
 Status CheckOutputBudget(const Camera& camera, uint64_t max_memory);
+// A chosen lightmap size (Job::lightmap_size; 0 passes: automatic sides stop at
+// kMaxLightmapSize) against `max_memory` as above: "output.lightmap_size: a 8192 x 8192 lightmap
+// needs about 4096 MB of memory, more than the limit of 1024 MB (--max-memory); use a smaller
+// lightmap_size".
+Status CheckLightmapBudget(uint32_t size, uint64_t max_memory);
 
 }  // namespace radfarm

@@ -104,29 +104,55 @@ TEST_F(FetchCommandTest, WritesTheFilesRenderWritesByteForByte) {
 }
 
 TEST_F(FetchCommandTest, WritesTheLightmapsRenderWrites) {
-  // The room with a second UV map: the bundle carries the UVs, so fetch bakes the same lightmaps.
+  // The room with a second UV map: the bundle carries the UVs and the lightmap size, so fetch
+  // bakes the same lightmaps, at the automatic sizes and at a size chosen on the command line.
   const std::string job_file = RADFARM_SOURCE_DIR "/tests/blender/lightmap-room.toml";
-  std::vector<std::string> warnings;
-  Result<LoadedJob> job = LoadJobForSolve(job_file, {}, &warnings);
-  ASSERT_TRUE(job.ok()) << job.error();
-  const SolveResult solved = Solve(job->mesh.patch_scene(), job->job.solver);
-  const codec::JobSolution solution{codec::EncodeJobBundle({job->job, job->scene}),
-                                    solved.radiosity,
-                                    solved.unshot,
-                                    solved.stats,
-                                    {}};
-  const std::string fetched = dir_.File("fetched");
-  const auto r = Fetch(Serve(solution), fetched);
-  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
-  const std::string rendered = dir_.File("rendered");
-  const auto render =
-      RunCommand({RADFARM_CLI_PATH, "render", job_file, "--quiet", "--out", rendered});
-  ASSERT_EQ(render.exit_code, kExitOk) << render.err;
-  for (const char* file : {"lit.glb", "lightmaps/Room.exr", "lightmaps/Floor.exr",
-                           "lightmaps/Table.exr", "lightmaps/Table.png"}) {
-    const std::string mine = ReadFile(fetched + "/" + file);
-    EXPECT_FALSE(mine.empty()) << file;
-    EXPECT_TRUE(mine == ReadFile(rendered + "/" + file)) << file << " differs from render's";
+  std::string automatic_table;
+  for (const uint32_t size : {0u, 40u}) {
+    SCOPED_TRACE(size);
+    JobOverrides overrides;
+    std::vector<std::string> extra;
+    if (size > 0) {
+      overrides.lightmap_size = size;
+      extra = {"--lightmap-size", std::to_string(size)};
+    }
+    std::vector<std::string> warnings;
+    Result<LoadedJob> job = LoadJobForSolve(job_file, overrides, &warnings);
+    ASSERT_TRUE(job.ok()) << job.error();
+    const SolveResult solved = Solve(job->mesh.patch_scene(), job->job.solver);
+    const codec::JobSolution solution{codec::EncodeJobBundle({job->job, job->scene}),
+                                      solved.radiosity,
+                                      solved.unshot,
+                                      solved.stats,
+                                      {}};
+    const std::string fetched = dir_.File("fetched" + std::to_string(size));
+    const auto r = Fetch(Serve(solution), fetched);
+    ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+    const std::string rendered = dir_.File("rendered" + std::to_string(size));
+    std::vector<std::string> args = {RADFARM_CLI_PATH, "render", job_file,
+                                     "--quiet",        "--out",  rendered};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto render = RunCommand(args);
+    ASSERT_EQ(render.exit_code, kExitOk) << render.err;
+    for (const char* file : {"lit.glb", "lightmaps/Room.exr", "lightmaps/Floor.exr",
+                             "lightmaps/Table.exr", "lightmaps/Table.png"}) {
+      const std::string mine = ReadFile(fetched + "/" + file);
+      EXPECT_FALSE(mine.empty()) << file;
+      EXPECT_TRUE(mine == ReadFile(rendered + "/" + file)) << file << " differs from render's";
+    }
+    const std::string table = ReadFile(fetched + "/lightmaps/Table.png");
+    if (size == 0) {
+      automatic_table = table;
+      continue;
+    }
+    EXPECT_NE(table, automatic_table);
+    // The PNG's IHDR: width and height, big-endian, at bytes 16 and 20.
+    ASSERT_GE(table.size(), 24u);
+    for (size_t at : {size_t{16}, size_t{20}}) {
+      uint32_t side = 0;
+      for (size_t k = 0; k < 4; ++k) side = side << 8 | uint8_t(table[at + k]);
+      EXPECT_EQ(side, size) << "at byte " << at;
+    }
   }
 }
 

@@ -12,6 +12,9 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -164,6 +167,110 @@ TEST(LightmapRenderTest, ObjectsWithASecondUvGetLightmapsMatchingTheirVertexRadi
     EXPECT_LT(p90, 0.10);
     EXPECT_NEAR(c.lightmap_mean, c.colour_mean, 0.03 * c.colour_mean);
   }
+}
+
+// The width and height in a PNG's IHDR chunk (bytes 16 to 23, big-endian).
+std::pair<uint32_t, uint32_t> PngSize(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char header[24] = {};
+  in.read(reinterpret_cast<char*>(header), sizeof header);
+  const auto word = [&](int at) {
+    return uint32_t{header[at]} << 24 | uint32_t{header[at + 1]} << 16 |
+           uint32_t{header[at + 2]} << 8 | uint32_t{header[at + 3]};
+  };
+  return in ? std::pair{word(16), word(20)} : std::pair{0u, 0u};
+}
+
+// The room's job file (kJob) with `output` as its [output] table, written into `dir`.
+std::string RoomJob(const TempDir& dir, const std::string& output) {
+  std::ifstream in(kJob);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string scene = "scene = \"lightmap_room.glb\"";
+  const size_t at = text.find(scene);
+  EXPECT_NE(at, std::string::npos) << kJob;
+  if (at != std::string::npos) {
+    text.replace(at, scene.size(),
+                 "scene = \"" RADFARM_SOURCE_DIR "/tests/blender/lightmap_room.glb\"");
+  }
+  const std::string path = dir.File("room.toml");
+  std::ofstream(path) << text << "\n[output]\n" << output;
+  return path;
+}
+
+// By object with a lightmap: the side of its PNG, which must be square and the EXR's size.
+std::map<std::string, uint32_t> RenderLightmapSizes(const TempDir& dir, const std::string& job,
+                                                    std::vector<std::string> extra = {}) {
+  const std::string out = dir.File("out");
+  std::filesystem::remove_all(out);
+  std::vector<std::string> args = {RADFARM_CLI_PATH, "render", job, "--out", out, "-q"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const testing::CommandResult r = RunCommand(args);
+  EXPECT_EQ(r.exit_code, kExitOk) << r.err;
+  std::map<std::string, uint32_t> sides;
+  for (const char* name : {"Room", "Floor", "Table"}) {
+    const auto [width, height] = PngSize(out + "/lightmaps/" + name + ".png");
+    EXPECT_EQ(width, height) << name;
+    const Exr exr = ReadExr(out + "/lightmaps/" + name + ".exr");
+    EXPECT_EQ(uint32_t(exr.width), width) << name;
+    EXPECT_EQ(uint32_t(exr.height), height) << name;
+    sides[name] = width;
+  }
+  return sides;
+}
+
+TEST(LightmapRenderTest, TheJobFilesLightmapSizeGivesEveryLightmapThatSize) {
+  TempDir dir;
+  const std::map<std::string, uint32_t> automatic =
+      RenderLightmapSizes(dir, RoomJob(dir, "lightmap_size = 0\n"));
+  // The automatic sizes differ between the objects, so a fixed size is seen to take effect.
+  EXPECT_NE(automatic.at("Room"), automatic.at("Table"));
+  for (const auto& [name, side] : RenderLightmapSizes(dir, RoomJob(dir, "lightmap_size = 64\n"))) {
+    EXPECT_EQ(side, 64u) << name;
+  }
+}
+
+TEST(LightmapRenderTest, TheCommandLinesLightmapSizeOverridesTheJobFile) {
+  TempDir dir;
+  const std::string job = RoomJob(dir, "lightmap_size = 64\n");
+  for (const auto& [name, side] : RenderLightmapSizes(dir, job, {"--lightmap-size", "100"})) {
+    EXPECT_EQ(side, 100u) << name;
+  }
+  // 0 brings back the automatic sizes, as without the key.
+  EXPECT_EQ(RenderLightmapSizes(dir, job, {"--lightmap-size", "0"}),
+            RenderLightmapSizes(dir, RoomJob(dir, "")));
+}
+
+TEST(LightmapRenderTest, HalfTheTexelEdgeDoublesTheAutomaticSides) {
+  TempDir dir;
+  // The automatic texel is a quarter of the patch size (0.25 in the room's job).
+  const std::map<std::string, uint32_t> automatic =
+      RenderLightmapSizes(dir, RoomJob(dir, "lightmap_texel = 0.0625\n"));
+  EXPECT_EQ(automatic, RenderLightmapSizes(dir, RoomJob(dir, "")));
+  const std::map<std::string, uint32_t> finer =
+      RenderLightmapSizes(dir, RoomJob(dir, "lightmap_texel = 0.03125\n"));
+  for (const auto& [name, side] : finer) {
+    // Sides are rounded up to a multiple of 4.
+    EXPECT_NEAR(double(side), 2.0 * automatic.at(name), 8.0) << name;
+    EXPECT_GT(side, automatic.at(name)) << name;
+  }
+}
+
+// A chosen size is refused before the scene is read when one lightmap would not fit the memory
+// limit (the automatic sides stop at 2048).
+TEST(LightmapRenderTest, ALightmapSizeOverTheMemoryLimitIsRefusedBeforeMeshing) {
+  TempDir dir;
+  const std::string out = dir.File("out");
+  const testing::CommandResult r =
+      RunCommand({RADFARM_CLI_PATH, "render", RoomJob(dir, "lightmap_size = 8192\n"), "--out", out,
+                  "-q", "--max-memory", "1G"});
+  EXPECT_EQ(r.exit_code, kExitBadInput) << r.err;
+  EXPECT_NE(
+      r.err.find("room.toml: output.lightmap_size: a 8192 x 8192 lightmap needs about 4096 MB "
+                 "of memory, more than the limit of 1024 MB (--max-memory); use a smaller "
+                 "lightmap_size"),
+      std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out + "/lightmaps"));
 }
 
 }  // namespace

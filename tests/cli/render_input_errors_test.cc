@@ -69,6 +69,8 @@ TEST(RenderUsageTest, BadOptionValuesExitTwo) {
                                                 {"--threads", "0"},
                                                 {"--tolerance", "-1"},
                                                 {"--rays", "many"},
+                                                {"--lightmap-size", "8"},
+                                                {"--lightmap-size", "8193"},
                                                 {"--no-such-option"}}) {
     std::vector<std::string> args = {RADFARM_CLI_PATH, "render", scene, "--out", out.path()};
     args.insert(args.end(), extra.begin(), extra.end());
@@ -88,7 +90,7 @@ TEST(RenderUsageTest, HelpDescribesEveryOption) {
   const auto r = RunCommand({RADFARM_CLI_PATH, "render", "--help"});
   EXPECT_EQ(r.exit_code, kExitOk);
   for (const char* option : {"--out", "--threads", "--seed", "--tolerance", "--rays", "--seconds",
-                             "--sampler", "--patch-size"}) {
+                             "--sampler", "--patch-size", "--camera", "--lightmap-size"}) {
     EXPECT_NE(r.out.find(option), std::string::npos) << option;
   }
   EXPECT_EQ(RunCommand({RADFARM_CLI_PATH, "--help"}).exit_code, kExitOk);

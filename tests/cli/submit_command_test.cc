@@ -38,6 +38,7 @@ TEST(SubmitCommandTest, SendsTheBundleWithOverridesAndPrintsTheId) {
                                               "--rays",    "123456", "--seconds",    "60"};
   std::vector<std::string> args = {"submit", kCornell, "--name", "box", "--priority", "-3"};
   args.insert(args.end(), overrides.begin(), overrides.end());
+  args.insert(args.end(), {"--lightmap-size", "256"});
   const auto r = RunFarm(server.socket_path(), args);
   ASSERT_EQ(r.exit_code, kExitOk) << r.err;
   EXPECT_EQ(r.out, "42\n");
@@ -58,6 +59,7 @@ TEST(SubmitCommandTest, SendsTheBundleWithOverridesAndPrintsTheId) {
   EXPECT_EQ(s.max_rays, 123456u);
   EXPECT_EQ(s.max_seconds, 60.0);
   EXPECT_EQ(bundle->job.mesh.patch_size, 50.0);
+  EXPECT_EQ(bundle->job.lightmap_size, 256u);  // `radfarm fetch` bakes at the submitted size
 
   // Exactly the bundle of the job as `render` would load it with the same options.
   JobOverrides same;
@@ -67,6 +69,7 @@ TEST(SubmitCommandTest, SendsTheBundleWithOverridesAndPrintsTheId) {
   same.patch_size = 50;
   same.rays = 123456;
   same.seconds = 60;
+  same.lightmap_size = 256;
   std::vector<std::string> warnings;
   Result<LoadedJob> local = LoadJobForSolve(kCornell, same, &warnings);
   ASSERT_TRUE(local.ok()) << local.error();
@@ -138,8 +141,12 @@ TEST(SubmitCommandTest, BadScenesFailLocallyLikeRenderWithoutConnecting) {
 TEST(SubmitCommandTest, BadOverridesAreUsageErrors) {
   TempDir dir;
   UnixListener listener(dir);
-  for (const std::vector<std::string>& extra : std::vector<std::vector<std::string>>{
-           {"--sampler", "fancy"}, {"--tolerance", "2"}, {"--rays", "-1"}, {"--priority", "x"}}) {
+  for (const std::vector<std::string>& extra :
+       std::vector<std::vector<std::string>>{{"--sampler", "fancy"},
+                                             {"--tolerance", "2"},
+                                             {"--rays", "-1"},
+                                             {"--priority", "x"},
+                                             {"--lightmap-size", "4"}}) {
     std::vector<std::string> args = {"submit", kCornell};
     args.insert(args.end(), extra.begin(), extra.end());
     const auto r = RunFarm(listener.path(), args);

@@ -252,5 +252,44 @@ TEST(JobBundleTest, CarriesLightmapUvsAndRejectsBadOnes) {
   EXPECT_NE(r.error().find("lightmap UVs not 2 per corner"), std::string::npos) << r.error();
 }
 
+// `radfarm fetch` bakes the lightmaps from the bundle's job, so their size must travel with it.
+// Unset (0) the fields are not written: bundles stay as they were before they existed.
+TEST(JobBundleTest, CarriesTheLightmapSettingsAndRejectsBadOnes) {
+  const JobBundle plain = LoadBundle(RADFARM_SOURCE_DIR "/scenes/cornell-box.toml");
+  ASSERT_EQ(plain.job.lightmap_size, 0u);
+  ASSERT_EQ(plain.job.lightmap_texel, 0.0);
+  const std::vector<uint8_t> plain_blob = EncodeJobBundle(plain);
+  for (const auto& [size, texel] : {std::pair<uint32_t, double>{64, 0}, {8192, 0}, {0, 0.125}}) {
+    JobBundle bundle = plain;
+    bundle.job.lightmap_size = size;
+    bundle.job.lightmap_texel = texel;
+    const std::vector<uint8_t> blob = EncodeJobBundle(bundle);
+    EXPECT_GT(blob.size(), plain_blob.size());
+    Result<JobBundle> back = DecodeJobBundle(blob);
+    ASSERT_TRUE(back.ok()) << back.error();
+    EXPECT_EQ(back->job.lightmap_size, size);
+    EXPECT_EQ(back->job.lightmap_texel, texel);
+  }
+  Result<JobBundle> back = DecodeJobBundle(plain_blob);
+  ASSERT_TRUE(back.ok()) << back.error();
+  EXPECT_EQ(back->job.lightmap_size, 0u);
+  EXPECT_EQ(back->job.lightmap_texel, 0.0);
+
+  const auto expect_error = [&plain](uint32_t size, double texel, const char* words) {
+    JobBundle bad = plain;
+    bad.job.lightmap_size = size;
+    bad.job.lightmap_texel = texel;
+    Result<JobBundle> r = DecodeJobBundle(EncodeJobBundle(bad));
+    ASSERT_FALSE(r.ok()) << words;
+    EXPECT_NE(r.error().find(words), std::string::npos) << r.error();
+  };
+  expect_error(8, 0, "output.lightmap_size is not 0 (automatic) or in [16, 8192]");
+  expect_error(8193, 0, "output.lightmap_size is not 0 (automatic) or in [16, 8192]");
+  expect_error(0, -1, "output.lightmap_texel is negative or not finite");
+  expect_error(0, std::numeric_limits<double>::infinity(), "output.lightmap_texel");
+  expect_error(0, std::numeric_limits<double>::quiet_NaN(), "output.lightmap_texel");
+  expect_error(64, 0.5, "output.lightmap_texel is set with output.lightmap_size");
+}
+
 }  // namespace
 }  // namespace radfarm::codec

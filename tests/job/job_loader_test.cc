@@ -119,6 +119,32 @@ TEST(LoadJobTest, ReadsEveryKey) {
   EXPECT_EQ(c.exposure, -1.5);
   EXPECT_FALSE(c.auto_exposure);
   EXPECT_EQ(c.samples_per_pixel, 9u);
+  EXPECT_EQ(job->lightmap_size, 512u);
+  EXPECT_EQ(job->lightmap_texel, 0.0);
+}
+
+TEST(LoadJobTest, LightmapsAreAutomaticUnlessASizeOrTexelIsGiven) {
+  const Job defaults;
+  EXPECT_EQ(defaults.lightmap_size, 0u);
+  EXPECT_EQ(defaults.lightmap_texel, 0.0);
+  const auto load = [](const std::string& name, const std::string& output) {
+    return LoadJob(WriteScratchFile(name, "scene = \"x.obj\"\n[output]\n" + output));
+  };
+  Result<Job> sized = load("lm_size.toml", "lightmap_size = 64\n");
+  ASSERT_TRUE(sized.ok()) << sized.error();
+  EXPECT_EQ(sized->lightmap_size, 64u);
+  EXPECT_EQ(sized->lightmap_texel, 0.0);
+  for (const char* ends : {"lightmap_size = 16\n", "lightmap_size = 8192\n"}) {
+    EXPECT_TRUE(load("lm_ends.toml", ends).ok()) << ends;
+  }
+  Result<Job> automatic = load("lm_zero.toml", "lightmap_size = 0\n");
+  ASSERT_TRUE(automatic.ok()) << automatic.error();
+  EXPECT_EQ(automatic->lightmap_size, 0u);
+  // A texel size with an explicit 0 (automatic) size is not a conflict.
+  Result<Job> texel = load("lm_texel.toml", "lightmap_size = 0\nlightmap_texel = 0.05\n");
+  ASSERT_TRUE(texel.ok()) << texel.error();
+  EXPECT_EQ(texel->lightmap_size, 0u);
+  EXPECT_EQ(texel->lightmap_texel, 0.05);
 }
 
 TEST(LoadJobTest, ExposureAloneKeepsTheAutomaticCamera) {
@@ -256,6 +282,25 @@ INSTANTIATE_TEST_SUITE_P(
                "3: 'camera.target' is set without 'camera.eye'; set both or neither"},
         BadJob{"EyeEqualsTarget", "[camera]\neye = [1, 1, 1]\ntarget = [1, 1, 1]\n",
                "3: 'camera.eye' must differ from camera.target"},
+        BadJob{"UnknownOutputKey", "[output]\nlightmap = 64\n", "3: unknown key 'output.lightmap'"},
+        BadJob{"LightmapSizeTooSmall", "[output]\nlightmap_size = 8\n",
+               "3: 'output.lightmap_size' must be 0 (automatic) or in [16, 8192], got 8"},
+        BadJob{"LightmapSizeTooBig", "[output]\nlightmap_size = 8193\n",
+               "3: 'output.lightmap_size' must be 0 (automatic) or in [16, 8192], got 8193"},
+        BadJob{"LightmapSizeNegative", "[output]\nlightmap_size = -64\n",
+               "3: 'output.lightmap_size' must be 0 (automatic) or in [16, 8192], got -64"},
+        BadJob{"LightmapSizeReal", "[output]\nlightmap_size = 64.0\n",
+               "3: 'output.lightmap_size' must be an integer, not a real number"},
+        BadJob{"LightmapSizeString", "[output]\nlightmap_size = \"1k\"\n",
+               "3: 'output.lightmap_size' must be an integer, not a string"},
+        BadJob{"LightmapTexelZero", "[output]\nlightmap_texel = 0\n",
+               "3: 'output.lightmap_texel' must be > 0, got 0"},
+        BadJob{"LightmapTexelString", "[output]\nlightmap_texel = \"1cm\"\n",
+               "3: 'output.lightmap_texel' must be a number, not a string"},
+        BadJob{"LightmapSizeAndTexel", "[output]\nlightmap_size = 64\nlightmap_texel = 0.1\n",
+               "4: 'output.lightmap_texel' is set with 'output.lightmap_size'; set one or the "
+               "other"},
+        BadJob{"OutputNotATable", "output = 64\n", "2: 'output' must be a table, not an integer"},
         BadJob{"UpAlongView", "[camera]\neye = [0, 0, 0]\ntarget = [0, 0, 1]\nup = [0, 0, 2]\n",
                "5: 'camera.up' must be nonzero and not parallel to camera.target - camera.eye"}));
 
