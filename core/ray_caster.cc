@@ -100,7 +100,7 @@ void RayCaster::AddGeometry(const Input& input, bool two_sided, double diagonal)
   RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-      vertex_count + 1));  // +1: Embree may read 16 bytes past the last
+      vertex_count + 1));  // +1: Embree may read 16 bytes past the last float3
   auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangle_count));
   ThrowOnEmbreeError(embree_->device, "buffer allocation");
