@@ -1,5 +1,6 @@
-// PreparedScene: a scene ready for batches: the decoded PatchScene and its RayCaster (the Embree
-// BVH), built once per scene. Shared read-only by every batch of the scene on any worker thread;
+// PreparedScene: a scene ready for batches: its patches' shapes (all that making and tracing rays
+// reads, 152 of a decoded Patch's 224 bytes) and its RayCaster (the Embree BVH), built once per
+// scene. Shared read-only by every batch of the scene on any worker thread;
 // a shared_ptr keeps it alive while a batch still runs on it after the agent let it go.
 #pragma once
 
@@ -7,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "base/result.h"
@@ -18,18 +20,21 @@ namespace radfarm::agent {
 
 struct PreparedScene {
   protocol::SceneHash hash{};
-  PatchScene scene;
+  std::vector<PatchShape> shapes;  // by patch id
   std::unique_ptr<const RayCaster> caster;
 
-  uint32_t patch_count() const { return static_cast<uint32_t>(scene.patches.size()); }
+  uint32_t patch_count() const { return static_cast<uint32_t>(shapes.size()); }
 };
 
-// Decodes a verified blob (codec::DecodePatchScene), calls `decoded` with the blob (to save it),
-// frees the blob and only then builds the RayCaster, so the blob (about 220 bytes a patch) is
-// not held through the BVH build, the agent's peak. Slow for big scenes: call it off the loop
-// thread. Errors say what is wrong; the caller names the scene.
+// Checks every value of a verified blob (codec::DecodePatches), then calls `decoded` with it (to
+// save it), which returns the path of a file holding the same bytes, or "" when there is none.
+// With a file, the blob is freed and the shapes are decoded from the file mapped read-only, its
+// pages dropped as they are read, so the blob (about 220 bytes a patch) and the shapes (152) are
+// never both held whole; without one, from the blob, freed after. Only then is the RayCaster
+// built. Slow for big scenes: call it off the loop thread. Errors say what is wrong; the caller
+// names the scene.
 Result<std::shared_ptr<const PreparedScene>> PrepareScene(
     const protocol::SceneHash& hash, std::vector<uint8_t> blob,
-    const std::function<void(std::span<const uint8_t> blob)>& decoded = {});
+    const std::function<std::string(std::span<const uint8_t> blob)>& decoded = {});
 
 }  // namespace radfarm::agent

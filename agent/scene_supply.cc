@@ -44,7 +44,8 @@ Status SceneSupply::LoadFromDisk(const protocol::SceneHash& hash) {
         prepared.detail = loaded.detail;
         if (loaded.outcome != SceneStore::LoadOutcome::kFound) return prepared;
         Result<std::shared_ptr<const PreparedScene>> scene =
-            PrepareScene(hash, std::move(loaded.blob));
+            PrepareScene(hash, std::move(loaded.blob),
+                         [&](std::span<const uint8_t>) { return store->PathFor(hash); });
         if (!scene) {
           prepared.kind = Prepared::Kind::kUndecodable;
           prepared.detail = scene.error();
@@ -148,11 +149,12 @@ void SceneSupply::PrepareFetched(const protocol::SceneHash& hash, std::vector<ui
       [store, hash, blob = std::move(blob)]() mutable -> Prepared {
         Prepared prepared;
         // Saved once decoded (an undecodable scene is not kept), before the caster is built.
-        auto save = [&](std::span<const uint8_t> decoded) {
-          if (store == nullptr) return;
+        auto save = [&](std::span<const uint8_t> decoded) -> std::string {
+          if (store == nullptr) return "";
           Status saved = store->Save(hash, decoded);
           prepared.detail =
               saved ? "saved as " + store->PathFor(hash) : "kept in memory only: " + saved.error();
+          return saved ? store->PathFor(hash) : "";
         };
         Result<std::shared_ptr<const PreparedScene>> scene =
             PrepareScene(hash, std::move(blob), save);

@@ -57,7 +57,7 @@ std::unique_ptr<TracerPool::Slot> TracerPool::Borrow(
     slot->runner.reset();  // bound to the old pair: unbind before letting it go
     slot->scene = scene;
     slot->sampler = sampler;
-    slot->runner.emplace(scene->scene, *scene->caster, *sampler);
+    slot->runner.emplace(scene->shapes, *scene->caster, *sampler);
   }
   return slot;
 }

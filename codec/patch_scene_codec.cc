@@ -98,7 +98,10 @@ void EncodePatchScene(const PatchScene& scene,
   use(std::span<const uint8_t>(fbb.GetBufferPointer(), fbb.GetSize()));
 }
 
-Result<PatchScene> DecodePatchScene(std::span<const uint8_t> blob) {
+Result<uint32_t> DecodePatches(
+    std::span<const uint8_t> blob,
+    const std::function<void(const Patch& patch, uint32_t index, uint32_t count)>& each,
+    PatchScene* rest) {
   RADFARM_RETURN_IF_ERROR(CheckBlobHeader(blob, kKind, "RDPS"));
   // The Verifier needs aligned data; a std::vector's buffer is, a span into a frame may not be.
   std::vector<uint8_t> aligned;
@@ -113,20 +116,36 @@ Result<PatchScene> DecodePatchScene(std::span<const uint8_t> blob) {
     return Error{std::string(kKind) + ": not a valid FlatBuffer (verification failed)"};
   }
   const wire::PatchSceneBlob* root = wire::GetPatchSceneBlob(blob.data());
-  PatchScene scene;
-  for (const auto* name : *root->material_names()) scene.material_names.push_back(name->str());
+  std::vector<std::string> material_names;
+  for (const auto* name : *root->material_names()) material_names.push_back(name->str());
   const auto* patches = root->patches();
   if (patches->size() == 0) return Error{std::string(kKind) + ": has no patches"};
   if (patches->size() > kMaxPatches) return Error{std::string(kKind) + ": too many patches"};
-  scene.patches.reserve(patches->size());
   for (uint32_t i = 0; i < patches->size(); ++i) {
-    Result<Patch> p = DecodePatch(*patches->Get(i), i, scene.material_names.size());
+    Result<Patch> p = DecodePatch(*patches->Get(i), i, material_names.size());
     RADFARM_RETURN_IF_ERROR(p);
-    scene.patches.push_back(*p);
+    each(*p, i, patches->size());
   }
   Result<std::vector<PunctualLight>> lights = DecodeLights(root->lights(), kKind);
   RADFARM_RETURN_IF_ERROR(lights);
-  scene.lights = std::move(*lights);
+  if (rest) {
+    rest->material_names = std::move(material_names);
+    rest->lights = std::move(*lights);
+  }
+  return patches->size();
+}
+
+Result<PatchScene> DecodePatchScene(std::span<const uint8_t> blob) {
+  PatchScene scene;
+  std::vector<Patch>& patches = scene.patches;
+  Result<uint32_t> count = DecodePatches(
+      blob,
+      [&patches](const Patch& p, uint32_t index, uint32_t count) {
+        if (index == 0) patches.reserve(count);
+        patches.push_back(p);
+      },
+      &scene);
+  RADFARM_RETURN_IF_ERROR(count);
   return scene;
 }
 

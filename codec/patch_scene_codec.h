@@ -25,4 +25,13 @@ void EncodePatchScene(const PatchScene& scene,
 // field and the patch.
 Result<PatchScene> DecodePatchScene(std::span<const uint8_t> blob);
 
+// The same checks, but each patch goes to `each` (with its index and the patch count) as it is
+// decoded instead of into a scene, so a caller that keeps only part of each patch (an agent,
+// agent/prepared_scene.h) never holds them all; `rest`, when given, gets the material names and
+// lights. Returns the patch count. On an error some patches may have gone to `each`.
+Result<uint32_t> DecodePatches(
+    std::span<const uint8_t> blob,
+    const std::function<void(const Patch& patch, uint32_t index, uint32_t count)>& each,
+    PatchScene* rest = nullptr);
+
 }  // namespace radfarm::codec

@@ -6,15 +6,23 @@ namespace radfarm {
 
 BatchTracer::BatchTracer(const PatchScene& scene, const RayCaster& caster,
                          const RaySampler& sampler)
-    : scene_(scene),
+    : patches_(scene.patches.data()),
       caster_(caster),
       sampler_(sampler),
       block_(std::make_unique<RayBlock>()),
       weight_by_patch_(scene.patches.size()) {}
 
+BatchTracer::BatchTracer(std::span<const PatchShape> shapes, const RayCaster& caster,
+                         const RaySampler& sampler)
+    : shapes_(shapes.data()),
+      caster_(caster),
+      sampler_(sampler),
+      block_(std::make_unique<RayBlock>()),
+      weight_by_patch_(shapes.size()) {}
+
 BatchResult BatchTracer::Run(const Batch& batch) {
   BatchResult result;
-  const Patch& shooter = scene_.patches[batch.shooter];
+  const PatchShape& shooter = Shape(batch.shooter);
   const ShotSampler shot =
       sampler_.Shot(shooter, batch.shooter, batch.round, caster_.origin_offset());
   RayBlock& block = *block_;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/batch.h"
@@ -17,11 +18,18 @@ namespace radfarm {
 class BatchTracer {
  public:
   BatchTracer(const PatchScene& scene, const RayCaster& caster, const RaySampler& sampler);
+  // For an agent, which keeps only its patches' shapes (agent/prepared_scene.h).
+  BatchTracer(std::span<const PatchShape> shapes, const RayCaster& caster,
+              const RaySampler& sampler);
 
   BatchResult Run(const Batch& batch);
 
  private:
-  const PatchScene& scene_;
+  // The shooter's shape: patches_[id] or shapes_[id], whichever was given.
+  const PatchShape& Shape(uint32_t id) const { return patches_ ? patches_[id] : shapes_[id]; }
+
+  const Patch* patches_ = nullptr;
+  const PatchShape* shapes_ = nullptr;
   const RayCaster& caster_;
   const RaySampler& sampler_;
   std::unique_ptr<RayBlock> block_;        // scratch: the rays being traced

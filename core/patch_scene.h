@@ -13,14 +13,19 @@
 
 namespace radfarm {
 
-// One radiosity patch: a planar, convex triangle or quad with constant radiosity.
-struct Patch {
+// A patch's shape: all that making and tracing its rays reads (core/ray_sampler.h), and all of
+// a patch an agent keeps (agent/prepared_scene.h).
+struct PatchShape {
   // Corners counter-clockwise seen from the side the normal points to; corners[3] unused for
   // triangles. A quad is split into triangles (0,1,2) and (0,2,3) wherever triangles are needed.
   std::array<Vec3, 4> corners;
   uint8_t corner_count = 3;
   Vec3 normal;  // unit
   Vec3 centre;  // area centroid
+};
+
+// One radiosity patch: a planar, convex triangle or quad with constant radiosity.
+struct Patch : PatchShape {
   double area = 0;
   Rgb reflectance;        // diffuse reflectance, each channel in [0, 1)
   Rgb emission;           // emitted radiance (MTL Ke units)

@@ -38,8 +38,28 @@ inline void SetRay(float ox, float oy, float oz, float dx, float dy, float dz, R
 }  // namespace
 
 RayCaster::RayCaster(const PatchScene& scene) : embree_(std::make_unique<Embree>()) {
+  Input input;
+  input.count = scene.patches.size();
+  input.patches = scene.patches.data();
+  Build(input);
+}
+
+RayCaster::RayCaster(std::span<const PatchShape> shapes, std::span<const uint8_t> two_sided)
+    : embree_(std::make_unique<Embree>()) {
+  if (two_sided.size() != shapes.size()) {
+    throw std::invalid_argument("RayCaster: one two-sided flag per shape needed");
+  }
+  Input input;
+  input.count = shapes.size();
+  input.shapes = shapes.data();
+  input.two_sided = two_sided.data();
+  Build(input);
+}
+
+void RayCaster::Build(const Input& input) {
   Bounds3 bounds;
-  for (const Patch& p : scene.patches) {
+  for (size_t i = 0; i < input.count; ++i) {
+    const PatchShape& p = input.Shape(i);
     for (int k = 0; k < p.corner_count; ++k) bounds.Extend(p.corners[k]);
   }
   centre_ = bounds.Empty() ? Vec3{} : bounds.Centre();
@@ -49,56 +69,70 @@ RayCaster::RayCaster(const PatchScene& scene) : embree_(std::make_unique<Embree>
   embree_->device = rtcNewDevice(nullptr);
   if (!embree_->device) throw std::runtime_error("cannot create an Embree device");
   embree_->scene = rtcNewScene(embree_->device);
+  // Not RTC_SCENE_FLAG_COMPACT: its leaves (indices into the vertex buffer) would save about 28
+  // bytes a triangle, but it changed block-on-floor's golden render and the farm's bytes.
   rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);
 
   const double diagonal = bounds.Diagonal();
-  for (const Patch& p : scene.patches) patch_normals_.push_back(p.normal);
-  AddGeometry(scene, false, diagonal);
+  if (input.patches) {
+    patch_normals_.reserve(input.count);
+    for (size_t i = 0; i < input.count; ++i) patch_normals_.push_back(input.Shape(i).normal);
+  } else {
+    borrowed_shapes_ = input.shapes;
+  }
+  AddGeometry(input, false, diagonal);
   two_sided_first_ = triangles_.size();
-  AddGeometry(scene, true, diagonal);
+  AddGeometry(input, true, diagonal);
   rtcCommitScene(embree_->scene);
   ThrowOnEmbreeError(embree_->device, "scene build");
 }
 
-void RayCaster::AddGeometry(const PatchScene& scene, bool two_sided, double diagonal) {
-  size_t triangle_count = 0;
-  for (const Patch& p : scene.patches) {
-    if (p.two_sided == two_sided) triangle_count += p.corner_count - 2;
+void RayCaster::AddGeometry(const Input& input, bool two_sided, double diagonal) {
+  size_t triangle_count = 0, vertex_count = 0;
+  for (size_t i = 0; i < input.count; ++i) {
+    if (input.TwoSided(i) != two_sided) continue;
+    const PatchShape& p = input.Shape(i);
+    triangle_count += p.corner_count - 2;
+    vertex_count += p.corner_count;
   }
   if (triangle_count == 0) return;
   RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-      3 * triangle_count + 1));  // +1: Embree may read 16 bytes past the last float3
+      vertex_count + 1));  // +1: Embree may read 16 bytes past the last float3
   auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangle_count));
   ThrowOnEmbreeError(embree_->device, "buffer allocation");
 
-  // Each triangle gets its own three vertices; identical input coordinates map to identical floats,
-  // which is all watertightness needs.
-  size_t t = 0;
+  // Each patch gets its own corners as vertices, which a quad's two triangles share; identical
+  // input coordinates map to identical floats, which is all watertightness needs.
+  size_t v = 0, t = 0;
   triangles_.reserve(triangles_.size() + triangle_count);
-  auto emit = [&](const Vec3& a, const Vec3& b, const Vec3& c, uint32_t patch) {
-    const Vec3 corners[3] = {a - centre_, b - centre_, c - centre_};
+  auto emit = [&](size_t a, size_t b, size_t c, uint32_t patch) {
+    const size_t corner[3] = {a, b, c};
     Vec3 as_float[3];  // the corners as Embree sees them
     for (int k = 0; k < 3; ++k) {
-      vertices[9 * t + 3 * k + 0] = static_cast<float>(corners[k].x);
-      vertices[9 * t + 3 * k + 1] = static_cast<float>(corners[k].y);
-      vertices[9 * t + 3 * k + 2] = static_cast<float>(corners[k].z);
-      indices[3 * t + k] = static_cast<unsigned>(3 * t + k);
-      as_float[k] = {vertices[9 * t + 3 * k + 0], vertices[9 * t + 3 * k + 1],
-                     vertices[9 * t + 3 * k + 2]};
+      indices[3 * t + k] = static_cast<unsigned>(corner[k]);
+      const float* xyz = vertices + 3 * corner[k];
+      as_float[k] = {xyz[0], xyz[1], xyz[2]};
     }
     triangles_.push_back({patch, NgMargin(as_float[0], as_float[1], as_float[2],
-                                          scene.patches[patch].normal, diagonal)});
+                                          input.Shape(patch).normal, diagonal)});
     ++t;
   };
-  for (uint32_t i = 0; i < scene.patches.size(); ++i) {
-    const Patch& p = scene.patches[i];
-    if (p.two_sided != two_sided) continue;
-    emit(p.corners[0], p.corners[1], p.corners[2], i);
-    if (p.corner_count == 4) emit(p.corners[0], p.corners[2], p.corners[3], i);
+  for (uint32_t i = 0; i < input.count; ++i) {
+    if (input.TwoSided(i) != two_sided) continue;
+    const PatchShape& p = input.Shape(i);
+    for (int k = 0; k < p.corner_count; ++k) {
+      const Vec3 corner = p.corners[k] - centre_;
+      vertices[3 * (v + k) + 0] = static_cast<float>(corner.x);
+      vertices[3 * (v + k) + 1] = static_cast<float>(corner.y);
+      vertices[3 * (v + k) + 2] = static_cast<float>(corner.z);
+    }
+    emit(v, v + 1, v + 2, i);
+    if (p.corner_count == 4) emit(v, v + 2, v + 3, i);
+    v += p.corner_count;
   }
   if (two_sided) {
     rtcSetGeometryUserData(geometry, this);
@@ -114,7 +148,7 @@ void RayCaster::AddGeometry(const PatchScene& scene, bool two_sided, double diag
 bool RayCaster::MeetsFront(const Triangle& triangle, const Vec3& d, const Vec3& ng) const {
   const double cosine = Dot(d, ng);
   if (std::abs(cosine) > triangle.ng_margin * Length(ng)) return cosine < 0;
-  return Dot(d, patch_normals_[triangle.patch]) < 0;
+  return Dot(d, NormalOf(triangle.patch)) < 0;
 }
 
 void RayCaster::FrontOnlyFilter(const RTCFilterFunctionNArguments* args) {
@@ -173,7 +207,7 @@ RayHit RayCaster::Trace(const Vec3& origin, const Vec3& direction,
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
   hit.patch = TriangleOf(rh.hit.geomID, rh.hit.primID).patch;
   // The filter let only the front of a two-sided patch through.
-  hit.front = rh.hit.geomID == kTwoSidedGeometry || Dot(direction, patch_normals_[hit.patch]) < 0;
+  hit.front = rh.hit.geomID == kTwoSidedGeometry || Dot(direction, NormalOf(hit.patch)) < 0;
   return hit;
 }
 

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/patch_scene.h"
@@ -37,6 +38,10 @@ class RayCaster {
  public:
   // Builds the BVH (a copy: the scene need not outlive the caster).
   explicit RayCaster(const PatchScene& scene);
+  // The same caster from the patches' shapes and whether each is two-sided (Patch::two_sided):
+  // what an agent keeps of a scene (agent/prepared_scene.h). `shapes` must outlive the caster,
+  // which reads their normals instead of copying them.
+  RayCaster(std::span<const PatchShape> shapes, std::span<const uint8_t> two_sided);
   ~RayCaster();
   RayCaster(const RayCaster&) = delete;
   RayCaster& operator=(const RayCaster&) = delete;
@@ -103,13 +108,28 @@ class RayCaster {
   // Embree's intersection filter on the two-sided geometry: drops hits on a patch's back.
   static void FrontOnlyFilter(const RTCFilterFunctionNArguments* args);
 
+  // The patches, from either constructor: patches, or shapes and two_sided.
+  struct Input {
+    size_t count = 0;
+    const Patch* patches = nullptr;
+    const PatchShape* shapes = nullptr;
+    const uint8_t* two_sided = nullptr;
+    const PatchShape& Shape(size_t i) const { return patches ? patches[i] : shapes[i]; }
+    bool TwoSided(size_t i) const { return patches ? patches[i].two_sided : two_sided[i] != 0; }
+  };
+  void Build(const Input& input);
   // Adds the one-sided patches' triangles, or the two-sided ones', as an Embree geometry (none when
   // there are none).
-  void AddGeometry(const PatchScene& scene, bool two_sided, double diagonal);
+  void AddGeometry(const Input& input, bool two_sided, double diagonal);
 
   struct Embree;
   std::unique_ptr<Embree> embree_;
-  std::vector<Vec3> patch_normals_;  // compact copy: Trace reads one per hit
+  // A patch's normal: a compact copy (Trace reads one per hit), or the borrowed shapes'.
+  const Vec3& NormalOf(uint32_t patch) const {
+    return borrowed_shapes_ ? borrowed_shapes_[patch].normal : patch_normals_[patch];
+  }
+  std::vector<Vec3> patch_normals_;
+  const PatchShape* borrowed_shapes_ = nullptr;
   std::vector<Triangle> triangles_;  // one-sided by primitive id, then two-sided; 8 bytes each
   size_t two_sided_first_ = 0;       // index in triangles_ of the two-sided geometry's first
   Vec3 centre_;                      // subtracted from every coordinate given to Embree

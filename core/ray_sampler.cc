@@ -93,10 +93,9 @@ RADFARM_CLONES void TriangleWeights(double split, const double* __restrict u,
 // (first triangle) and b2/c2 (second), the centre's value `centre`.
 RADFARM_CLONES void PatchPointCoordinate(double a, double b1, double c1, double b2, double c2,
                                          double centre, double split, double shrink,
-                                         const double* __restrict u,
-                                         const double* __restrict wa, const double* __restrict wb,
-                                         const double* __restrict wc, int n,
-                                         double* __restrict out) {
+                                         const double* __restrict u, const double* __restrict wa,
+                                         const double* __restrict wb, const double* __restrict wc,
+                                         int n, double* __restrict out) {
   for (int i = 0; i < n; ++i) {
     const bool first = u[i] < split;
     const double point = a * wa[i] + (first ? b1 : b2) * wb[i] + (first ? c1 : c2) * wc[i];
@@ -122,7 +121,7 @@ RADFARM_CLONES void CosineDirections(Vec3 t, Vec3 b, Vec3 nrm, const double* __r
 
 }  // namespace
 
-double TriangleSplit(const Patch& patch) {
+double TriangleSplit(const PatchShape& patch) {
   if (patch.corner_count == 3) return 1;
   const auto& p = patch.corners;
   const double a0 = Length(Cross(p[1] - p[0], p[2] - p[0]));
@@ -130,7 +129,7 @@ double TriangleSplit(const Patch& patch) {
   return a0 / (a0 + a1);
 }
 
-double RimShrink(const Patch& patch, double rim_margin) {
+double RimShrink(const PatchShape& patch, double rim_margin) {
   // A rim point pulled a fraction f of the way to the centre moves f times the centre's distance
   // to the edge's line inside that edge, so the nearest edge line sets f.
   double inset = std::numeric_limits<double>::infinity();
@@ -144,11 +143,11 @@ double RimShrink(const Patch& patch, double rim_margin) {
   return std::clamp(rim_margin / inset, kMinRimShrink, kMaxRimShrink);
 }
 
-PatchSampling PreparePatchSampling(const Patch& patch, double rim_margin) {
+PatchSampling PreparePatchSampling(const PatchShape& patch, double rim_margin) {
   return {TriangleSplit(patch), RimShrink(patch, rim_margin)};
 }
 
-Vec3 SamplePatchPoint(const Patch& patch, const PatchSampling& sampling, double u, double v) {
+Vec3 SamplePatchPoint(const PatchShape& patch, const PatchSampling& sampling, double u, double v) {
   const auto& p = patch.corners;
   const double split = sampling.split;
   const Vec3 point =
@@ -165,7 +164,7 @@ Vec3 SampleCosineDirection(const Vec3& t, const Vec3& b, const Vec3& n, double u
   return t * (r * c) + b * (r * s) + n * z;
 }
 
-ShotSampler::ShotSampler(const RaySampler& sampler, const Patch& shooter, double rim_margin,
+ShotSampler::ShotSampler(const RaySampler& sampler, const PatchShape& shooter, double rim_margin,
                          uint64_t shot_key)
     : sampler_(sampler),
       shooter_(shooter),
@@ -231,12 +230,12 @@ void ShotSampler::MapUniforms(double* const u[4], RayBlock* block) const {
   const double split = sampling_.split, shrink = sampling_.shrink;
   alignas(64) double wa[RayBlock::kSize], wb[RayBlock::kSize], wc[RayBlock::kSize];
   TriangleWeights(split, u[0], u[1], n, wa, wb, wc);
-  PatchPointCoordinate(p[0].x, p[1].x, p[2].x, p[2].x, p[3].x, c.x, split, shrink, u[0], wa, wb, wc, n,
-                       block->origin_x);
-  PatchPointCoordinate(p[0].y, p[1].y, p[2].y, p[2].y, p[3].y, c.y, split, shrink, u[0], wa, wb, wc, n,
-                       block->origin_y);
-  PatchPointCoordinate(p[0].z, p[1].z, p[2].z, p[2].z, p[3].z, c.z, split, shrink, u[0], wa, wb, wc, n,
-                       block->origin_z);
+  PatchPointCoordinate(p[0].x, p[1].x, p[2].x, p[2].x, p[3].x, c.x, split, shrink, u[0], wa, wb, wc,
+                       n, block->origin_x);
+  PatchPointCoordinate(p[0].y, p[1].y, p[2].y, p[2].y, p[3].y, c.y, split, shrink, u[0], wa, wb, wc,
+                       n, block->origin_y);
+  PatchPointCoordinate(p[0].z, p[1].z, p[2].z, p[2].z, p[3].z, c.z, split, shrink, u[0], wa, wb, wc,
+                       n, block->origin_z);
   CosineDirections(tangent_, bitangent_, shooter_.normal, u[2], u[3], n, block->direction_x,
                    block->direction_y, block->direction_z);
 }
@@ -271,7 +270,7 @@ uint64_t RaySampler::TotalWeight(uint64_t count) const {
   return total;
 }
 
-RaySample RaySampler::GridSample(const Patch& shooter, const Vec3& t, const Vec3& b,
+RaySample RaySampler::GridSample(const PatchShape& shooter, const Vec3& t, const Vec3& b,
                                  uint64_t index) const {
   const uint32_t row = static_cast<uint32_t>(index / grid_phi_steps_);
   const uint32_t col = static_cast<uint32_t>(index % grid_phi_steps_);
@@ -282,12 +281,12 @@ RaySample RaySampler::GridSample(const Patch& shooter, const Vec3& t, const Vec3
   return {shooter.centre, dir, grid_row_weight_[row]};
 }
 
-ShotSampler RaySampler::Shot(const Patch& shooter, uint32_t shooter_id, uint32_t round,
+ShotSampler RaySampler::Shot(const PatchShape& shooter, uint32_t shooter_id, uint32_t round,
                              double rim_margin) const {
   return ShotSampler(*this, shooter, rim_margin, ShotKey(seed_, round, shooter_id));
 }
 
-RaySample RaySampler::Sample(const Patch& shooter, uint32_t shooter_id, uint32_t round,
+RaySample RaySampler::Sample(const PatchShape& shooter, uint32_t shooter_id, uint32_t round,
                              double rim_margin, uint64_t index) const {
   return Shot(shooter, shooter_id, round, rim_margin).Sample(index);
 }

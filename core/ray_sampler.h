@@ -57,11 +57,11 @@ class ShotSampler {
   // Origins and directions of block->count rays from uniform numbers u[0..3] as Sample maps them.
   void MapUniforms(double* const u[4], RayBlock* block) const;
 
-  ShotSampler(const RaySampler& sampler, const Patch& shooter, double rim_margin,
+  ShotSampler(const RaySampler& sampler, const PatchShape& shooter, double rim_margin,
               uint64_t shot_key);
 
   const RaySampler& sampler_;
-  const Patch& shooter_;
+  const PatchShape& shooter_;
   Vec3 tangent_, bitangent_;
   PatchSampling sampling_;
   uint64_t shot_key_;
@@ -80,19 +80,20 @@ class RaySampler {
 
   // The rays of `shooter` (a patch id) in `round`, starting at least `rim_margin` (a length: the
   // caster's origin_offset()) inside the patch's edges where the patch is large enough.
-  ShotSampler Shot(const Patch& shooter, uint32_t shooter_id, uint32_t round,
+  ShotSampler Shot(const PatchShape& shooter, uint32_t shooter_id, uint32_t round,
                    double rim_margin) const;
 
   // Ray `index` of `shooter` in `round` (same as Shot(...).Sample(index)).
-  RaySample Sample(const Patch& shooter, uint32_t shooter_id, uint32_t round, double rim_margin,
-                   uint64_t index) const;
+  RaySample Sample(const PatchShape& shooter, uint32_t shooter_id, uint32_t round,
+                   double rim_margin, uint64_t index) const;
 
   // Sum of the weights of rays [0, count) of one shot: what a shooter's hit weights divide by.
   uint64_t TotalWeight(uint64_t count) const;
 
  private:
   friend class ShotSampler;
-  RaySample GridSample(const Patch& shooter, const Vec3& t, const Vec3& b, uint64_t index) const;
+  RaySample GridSample(const PatchShape& shooter, const Vec3& t, const Vec3& b,
+                       uint64_t index) const;
 
   SamplerKind kind_;
   uint64_t seed_;
@@ -104,17 +105,17 @@ class RaySampler {
 };
 
 // Share of a quad's area in its first triangle (0,1,2); 1 for a triangle.
-double TriangleSplit(const Patch& patch);
+double TriangleSplit(const PatchShape& patch);
 
 // How far SamplePatchPoint pulls points toward the patch's centre, as a fraction of the way: enough
 // that points on the rim start `rim_margin` inside every edge, within [1e-5, 1e-2].
-double RimShrink(const Patch& patch, double rim_margin);
+double RimShrink(const PatchShape& patch, double rim_margin);
 
-PatchSampling PreparePatchSampling(const Patch& patch, double rim_margin);
+PatchSampling PreparePatchSampling(const PatchShape& patch, double rim_margin);
 
 // Maps two uniform numbers to a uniformly distributed point on the patch (a quad is picked as one
 // of its two triangles in proportion to their areas), pulled toward the centre by sampling.shrink.
-Vec3 SamplePatchPoint(const Patch& patch, const PatchSampling& sampling, double u, double v);
+Vec3 SamplePatchPoint(const PatchShape& patch, const PatchSampling& sampling, double u, double v);
 
 // Maps two uniform numbers to a cosine-weighted direction in the frame (t, b, n), n the normal.
 Vec3 SampleCosineDirection(const Vec3& t, const Vec3& b, const Vec3& n, double u, double v);

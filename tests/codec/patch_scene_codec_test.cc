@@ -56,6 +56,29 @@ TEST(PatchSceneCodecTest, RoundTripsEveryBitAndIsDeterministic) {
   EXPECT_EQ(EncodePatchScene(*back), blob);
 }
 
+// DecodePatches (an agent's decoder) hands over the same patches, in order, as DecodePatchScene
+// keeps, and refuses what it refuses.
+TEST(PatchSceneCodecTest, DecodePatchesVisitsEveryPatchInOrder) {
+  const PatchScene scene = CornellPatches();
+  const std::vector<uint8_t> blob = EncodePatchScene(scene);
+  std::vector<Patch> visited;
+  Result<uint32_t> count = DecodePatches(blob, [&](const Patch& p, uint32_t index, uint32_t n) {
+    EXPECT_EQ(index, visited.size());
+    EXPECT_EQ(n, scene.patches.size());
+    visited.push_back(p);
+  });
+  ASSERT_TRUE(count.ok()) << count.error();
+  EXPECT_EQ(*count, scene.patches.size());
+  ASSERT_EQ(visited.size(), scene.patches.size());
+  PatchScene back;
+  back.patches = visited;
+  back.material_names = scene.material_names;
+  back.lights = scene.lights;
+  EXPECT_EQ(EncodePatchScene(back), blob);
+  std::vector<uint8_t> truncated(blob.begin(), blob.end() - 16);
+  EXPECT_FALSE(DecodePatches(truncated, [](const Patch&, uint32_t, uint32_t) {}).ok());
+}
+
 TEST(PatchSceneCodecTest, DecodesFromAnUnalignedBuffer) {
   const std::vector<uint8_t> blob = EncodePatchScene(CornellPatches());
   std::vector<uint8_t> shifted(blob.size() + 1);

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <vector>
 
+#include "core/batch_tracer.h"
 #include "core/ray_caster.h"
 #include "core/ray_sampler.h"
 #include "core/sobol.h"
@@ -96,6 +97,30 @@ TEST(RayBlockTest, SampleBlockAndTraceBlockMatchSampleAndTrace) {
         }
       }
     }
+  }
+}
+
+// What an agent keeps of a scene, the patches' shapes and sides (agent/prepared_scene.h), must
+// trace every batch exactly as the whole scene does, two-sided patches included.
+TEST(RayBlockTest, BatchesFromTheShapesMatchBatchesFromTheScene) {
+  PatchScene scene = MixedScene();
+  for (size_t i = 0; i < scene.patches.size(); i += 4) scene.patches[i].two_sided = true;
+  std::vector<PatchShape> shapes(scene.patches.begin(), scene.patches.end());
+  std::vector<uint8_t> two_sided;
+  for (const Patch& p : scene.patches) two_sided.push_back(p.two_sided ? 1 : 0);
+  const RayCaster whole(scene), from_shapes(shapes, two_sided);
+  ASSERT_EQ(whole.origin_offset(), from_shapes.origin_offset());
+  for (SamplerKind kind : {SamplerKind::kGrid, SamplerKind::kRandom, SamplerKind::kSobol}) {
+    const RaySampler sampler(kind, 5, 6.0);
+    BatchTracer a(scene, whole, sampler), b(shapes, from_shapes, sampler);
+    uint64_t two_sided_hits = 0;
+    for (uint32_t id = 0; id < scene.patches.size(); id += 2) {
+      const Batch batch{1, id, 100, 700};
+      const BatchResult expected = a.Run(batch);
+      EXPECT_EQ(b.Run(batch), expected) << SamplerName(kind) << " patch " << id;
+      for (const PatchHits& h : expected.hits) two_sided_hits += two_sided[h.patch];
+    }
+    EXPECT_GT(two_sided_hits, 0u) << SamplerName(kind);  // the two-sided geometry was traced
   }
 }
 
