@@ -13,8 +13,10 @@
 namespace radfarm::testing {
 namespace {
 
-// A few rounds, so the user can come back while the desk agent holds leases.
-const std::vector<std::string> kJob = {"--rays", "20000000"};
+// A few rounds, so the user can come back while the desk agent holds leases; long enough that
+// the job still leases after a visit that found none on a loaded machine (at 20M rays the steady
+// agent alone finished it during the desk agent's 2.5 s pause: CI-like load, 1 run in 3).
+const std::vector<std::string> kJob = {"--rays", "60000000"};
 
 size_t CountMatches(const std::string& text, const std::regex& pattern) {
   return static_cast<size_t>(std::distance(std::sregex_iterator(text.begin(), text.end(), pattern),
