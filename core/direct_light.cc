@@ -241,10 +241,17 @@ std::vector<Rgb> StartingDirectLight(const PatchScene& scene, const SolverSettin
 std::vector<Rgb> PointsDirectLight(const PatchScene& scene,
                                    const std::vector<ReceiverPoint>& points, uint64_t seed,
                                    unsigned threads, bool emitters) {
-  std::vector<Rgb> out(points.size());
-  if (points.empty()) return out;
+  if (points.empty()) return {};
   const RayCaster caster(scene);
   const DirectLight direct(scene, caster, kPointShadowRays, emitters);
+  return PointsDirectLight(direct, points, seed, threads);
+}
+
+std::vector<Rgb> PointsDirectLight(const DirectLight& direct,
+                                   const std::vector<ReceiverPoint>& points, uint64_t seed,
+                                   unsigned threads) {
+  std::vector<Rgb> out(points.size());
+  if (points.empty()) return out;
   ThreadPool pool(threads);
   // Stream constant: keeps these keys apart from PatchDirectLight's and every other use of the
   // seed.

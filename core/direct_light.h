@@ -129,5 +129,10 @@ struct ReceiverPoint {
 std::vector<Rgb> PointsDirectLight(const PatchScene& scene,
                                    const std::vector<ReceiverPoint>& points, uint64_t seed,
                                    unsigned threads, bool emitters = true);
+// The same with a DirectLight (kPointShadowRays per point) its caller keeps: for callers that
+// light several sets of points in one scene, built once.
+std::vector<Rgb> PointsDirectLight(const DirectLight& direct,
+                                   const std::vector<ReceiverPoint>& points, uint64_t seed,
+                                   unsigned threads);
 
 }  // namespace radfarm

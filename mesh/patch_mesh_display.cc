@@ -42,7 +42,7 @@ struct PointLight {
 // light at itself plus the rest interpolated between its edge's ends. Returns the number of points
 // added.
 uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
-                               const std::vector<Rgb>& outgoing,
+                               const DirectLight& direct_light, const std::vector<Rgb>& outgoing,
                                const PatchMesh::VertexDirectLight& direct, DisplayMesh* fine,
                                PointLight* light) {
   std::vector<bool>& held = light->held;
@@ -105,7 +105,7 @@ uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
     const std::vector<Rgb> gathered =
         GatherLight(caster, outgoing, points, gathers, seed, direct.threads);
     const std::vector<Rgb> irradiance =
-        PointsDirectLight(scene, points, seed, direct.threads, direct.emitters);
+        PointsDirectLight(direct_light, points, seed, direct.threads);
     held.resize(mesh.positions.size(), false);
     shown_direct.resize(mesh.positions.size());
     light->irradiance.resize(mesh.positions.size());
@@ -282,7 +282,9 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   // (core/point_gather.h): rho times the light gathered from the patches, less the emitters' where
   // the direct light holds it. Such points hold their value: the step toward the patch means
   // below is for averages.
+  // One caster and one DirectLight for every gather and every level's points.
   const RayCaster caster(data_.scene);
+  const DirectLight direct_light(data_.scene, caster, kPointShadowRays, direct.emitters);
   std::vector<bool> gather =
       NearOtherSurfaces(data_.scene, caster, points, kGatherBand * patch_size_, direct.threads);
   for (size_t i = 0; i < points.size(); ++i) gather[i] = gather[i] && may_gather[i];
@@ -303,7 +305,7 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   }
 
   const std::vector<Rgb> irradiance =
-      PointsDirectLight(data_.scene, points, direct.seed, direct.threads, direct.emitters);
+      PointsDirectLight(direct_light, points, direct.seed, direct.threads);
   light.irradiance.resize(groups + midpoints);
   light.shown_direct.resize(groups + midpoints);
   for (size_t n = 0; n < groups + midpoints; ++n) {
@@ -328,7 +330,7 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   }
 
   display_stats_.added =
-      RefineWhereLightBends(data_.scene, caster, outgoing, direct, &fine, &light);
+      RefineWhereLightBends(data_.scene, caster, direct_light, outgoing, direct, &fine, &light);
   // A patch the refinement cut holds a shadow's edge or a steep rise, which three midpoints per
   // triangle miss: its mean is the refined triangles' (each the mean of its corners).
   const uint32_t first_new = static_cast<uint32_t>(groups + midpoints);
