@@ -55,14 +55,6 @@ PatchScene SquareLight() {
   return scene;
 }
 
-// The form factor from a point to a parallel rectangle a x b at height 1 with a corner straight
-// above it: 1/(2 pi) [A/sqrt(1+A^2) atan(B/sqrt(1+A^2)) + B/sqrt(1+B^2) atan(A/sqrt(1+B^2))].
-double CornerRectangle(double a, double b) {
-  return (a / std::sqrt(1 + a * a) * std::atan(b / std::sqrt(1 + a * a)) +
-          b / std::sqrt(1 + b * b) * std::atan(a / std::sqrt(1 + b * b))) /
-         (2 * std::numbers::pi);
-}
-
 TEST(DirectLightTest, PointsMatchTheClosedFormUnoccludedAndIgnoreThreads) {
   const PatchScene scene = SquareLight();
   const std::vector<ReceiverPoint> points = {
@@ -75,9 +67,9 @@ TEST(DirectLightTest, PointsMatchTheClosedFormUnoccludedAndIgnoreThreads) {
   const std::vector<Rgb> three = PointsDirectLight(scene, points, 7, 3);
   EXPECT_TRUE(BitIdentical(one, three));
   ASSERT_EQ(one.size(), points.size());
-  EXPECT_NEAR(one[0].g, 4 * CornerRectangle(0.5, 0.5), 1e-9);
+  EXPECT_NEAR(one[0].g, 4 * testing::CornerRectangle(0.5, 0.5), 1e-9);
   EXPECT_NEAR(one[0].g, 0.2394564705, 1e-9);  // Howell's catalogue, C-11
-  EXPECT_NEAR(one[1].g, CornerRectangle(1, 1), 1e-9);
+  EXPECT_NEAR(one[1].g, testing::CornerRectangle(1, 1), 1e-9);
   EXPECT_EQ(one[2], Rgb{});
   EXPECT_EQ(one[3], Rgb{});
   EXPECT_TRUE(PointsDirectLight(scene, {}, 7, 2).empty());

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 
 #include "tests/core/test_scenes.h"
 
@@ -31,17 +30,9 @@ FloorWallSquare MakeFloorWallSquare() {
   return f;
 }
 
-// Form factor from a point to a parallel rectangle at height 1 with a corner straight above it.
-double CornerRectangle(double a, double b) {
-  const double fa = std::abs(a), fb = std::abs(b);
-  const double f = (fa / std::sqrt(1 + fa * fa) * std::atan(fb / std::sqrt(1 + fa * fa)) +
-                    fb / std::sqrt(1 + fb * fb) * std::atan(fa / std::sqrt(1 + fb * fb))) /
-                   (2 * std::numbers::pi);
-  return (a < 0) != (b < 0) ? -f : f;
-}
-
 // The square's form factor from floor point (x, y, 0).
 double SquareFormFactor(double x, double y) {
+  using testing::CornerRectangle;
   return CornerRectangle(2.5 - x, 2.5 - y) - CornerRectangle(1.5 - x, 2.5 - y) -
          CornerRectangle(2.5 - x, 1.5 - y) + CornerRectangle(1.5 - x, 1.5 - y);
 }
@@ -51,9 +42,8 @@ TEST(PointGatherTest, InsideAClosedBoxEveryRayFindsLight) {
   const RayCaster caster(box);
   const std::vector<Rgb> outgoing(box.patches.size(), Rgb(1, 1, 1));
   // A face's centre, a point by an edge and one in a corner, on three faces.
-  const std::vector<ReceiverPoint> points = {{{0.5, 0, 0.5}, {0, 1, 0}},
-                                             {{0.999, 0.001, 0.3}, {0, 1, 0}},
-                                             {{0, 0.01, 0.01}, {1, 0, 0}}};
+  const std::vector<ReceiverPoint> points = {
+      {{0.5, 0, 0.5}, {0, 1, 0}}, {{0.999, 0.001, 0.3}, {0, 1, 0}}, {{0, 0.01, 0.01}, {1, 0, 0}}};
   const std::vector<Rgb> got = GatherLight(caster, outgoing, points, {true, true, true}, 5, 2);
   for (const Rgb& g : got) EXPECT_EQ(g, Rgb(1, 1, 1));
 }
@@ -142,11 +132,11 @@ TEST(PointGatherTest, NearMeansAnotherPlaneInFrontWithinTheRadius) {
   const RayCaster caster(f.scene);
   const Vec3 up{0, 0, 1};
   const std::vector<ReceiverPoint> points = {
-      {{0.1, 2, 0}, up},     // 0.1 from the wall
-      {{0.6, 2, 0}, up},     // 0.6 from it
-      {{3.5, 3.5, 0}, up},   // nothing but its own floor (and the sheet behind) near
-      {{2, 2, 0}, up},       // 1 under the square
-      {{2, 2, 0.7}, up},     // 0.3 under it, off the floor
+      {{0.1, 2, 0}, up},      // 0.1 from the wall
+      {{0.6, 2, 0}, up},      // 0.6 from it
+      {{3.5, 3.5, 0}, up},    // nothing but its own floor (and the sheet behind) near
+      {{2, 2, 0}, up},        // 1 under the square
+      {{2, 2, 0.7}, up},      // 0.3 under it, off the floor
       {{0, 2, 1}, {1, 0, 0}}  // on the wall: the floor is 1 away
   };
   const std::vector<bool> near = NearOtherSurfaces(f.scene, caster, points, 0.5, 2);
