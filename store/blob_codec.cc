@@ -1,6 +1,8 @@
 #include "store/blob_codec.h"
 
 #include <bit>
+#include <cstddef>
+#include <cstring>
 #include <string>
 
 namespace radfarm::store {
@@ -17,10 +19,20 @@ double GetDouble(const uint8_t* in) {
   return std::bit_cast<double>(bits);
 }
 
+// Rgb is three doubles with nothing between them: on a little-endian host its bytes are the blob's.
+constexpr bool kRgbIsBlob = std::endian::native == std::endian::little &&
+                            sizeof(Rgb) == kRgbBlobBytes && offsetof(Rgb, r) == 0 &&
+                            offsetof(Rgb, g) == 8 && offsetof(Rgb, b) == 16;
+
 }  // namespace
 
 std::vector<uint8_t> EncodeRgbs(std::span<const Rgb> values) {
   std::vector<uint8_t> bytes(values.size() * kRgbBlobBytes);
+  // A checkpoint at 10^6 patches holds 48 MB of these: one copy, not a loop over bytes.
+  if constexpr (kRgbIsBlob) {
+    if (!values.empty()) std::memcpy(bytes.data(), values.data(), bytes.size());
+    return bytes;
+  }
   uint8_t* out = bytes.data();
   for (const Rgb& value : values) {
     PutDouble(value.r, out);
@@ -37,6 +49,10 @@ Result<std::vector<Rgb>> DecodeRgbs(std::span<const uint8_t> bytes) {
                  " bytes is not a whole number of 24-byte RGB entries"};
   }
   std::vector<Rgb> values(bytes.size() / kRgbBlobBytes);
+  if constexpr (kRgbIsBlob) {
+    if (!values.empty()) std::memcpy(values.data(), bytes.data(), bytes.size());
+    return values;
+  }
   const uint8_t* in = bytes.data();
   for (Rgb& value : values) {
     value = Rgb(GetDouble(in), GetDouble(in + 8), GetDouble(in + 16));

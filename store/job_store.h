@@ -94,6 +94,13 @@ struct Checkpoint {
   std::optional<std::string> stop_reason;
 };
 
+// What one SaveCheckpoint cost, for the master's log and the benchmarks.
+struct CheckpointCost {
+  uint64_t bytes = 0;         // the row's blobs and checksum
+  double encode_seconds = 0;  // encoding and checksumming, before the transaction
+  double commit_seconds = 0;  // the transaction, its commit (fsync) and WAL checkpointing
+};
+
 // A checkpoint whose bytes no longer match their checksum (rot on disk: blob_checksum.h).
 struct DamagedCheckpoint {
   uint32_t round = 0;
@@ -177,7 +184,9 @@ class JobStore {
   // Writes the round row and the checkpoint of its results in one transaction: both or neither.
   // checkpoint.job and .round must equal round.job and .round; checkpoint.scene_hash, when set,
   // must be stored. The job's stored round results up to that round go in the same transaction.
-  Status SaveCheckpoint(const RoundRecord& round, const Checkpoint& checkpoint);
+  // `cost`, when given, is filled in.
+  Status SaveCheckpoint(const RoundRecord& round, const Checkpoint& checkpoint,
+                        CheckpointCost* cost = nullptr);
   // The checkpoint with the highest round, with the same bits that were saved, verified against
   // its checksum. A damaged one is an error when `damaged` is null; otherwise it is appended
   // there and the next older checkpoint is tried (none left: nullopt, the job starts over).

@@ -1,4 +1,5 @@
 // JobStore: rounds and checkpoints (the rest is in job_store.cc).
+#include <chrono>
 #include <utility>
 
 #include "base/result.h"
@@ -7,6 +8,13 @@
 #include "store/job_store.h"
 
 namespace radfarm::store {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+}  // namespace
 
 Status JobStore::InsertRound(const RoundRecord& round, int64_t now) {
   Result<Statement> stmt = db_.Prepare(
@@ -53,7 +61,8 @@ Result<std::vector<RoundRecord>> JobStore::ListRounds(JobId job) {
   }
 }
 
-Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& checkpoint) {
+Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& checkpoint,
+                                CheckpointCost* cost) {
   if (checkpoint.job != round.job || checkpoint.round != round.round) {
     return Error{"job store: checkpoint of job " + std::to_string(checkpoint.job) + " round " +
                  std::to_string(checkpoint.round) + " saved with the row of job " +
@@ -65,6 +74,7 @@ Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& chec
                  std::to_string(checkpoint.unshot.size()) + " unshot values"};
   }
   // Encode before taking the write lock: the transaction holds it only for the writes.
+  const auto encode_start = Clock::now();
   std::vector<uint8_t> radiosity = EncodeRgbs(checkpoint.radiosity);
   std::vector<uint8_t> unshot = EncodeRgbs(checkpoint.unshot);
   std::vector<uint8_t> energy = EncodeEnergy(checkpoint.energy);
@@ -73,6 +83,7 @@ Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& chec
        int64_t{checkpoint.refine_points}, radiosity, unshot, energy, &checkpoint.scene_hash,
        &checkpoint.stop_reason});
   int64_t now = now_ms_();
+  const auto commit_start = Clock::now();
 
   Result<Transaction> transaction = Transaction::Begin(db_);
   RADFARM_RETURN_IF_ERROR(transaction);
@@ -104,7 +115,13 @@ Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& chec
     }
   }
   RADFARM_RETURN_IF_ERROR(stmt->Run());
-  return transaction->Commit();
+  RADFARM_RETURN_IF_ERROR(transaction->Commit());
+  if (cost != nullptr) {
+    cost->bytes = radiosity.size() + unshot.size() + energy.size() + checksum.size();
+    cost->encode_seconds = Seconds(commit_start - encode_start);
+    cost->commit_seconds = Seconds(Clock::now() - commit_start);
+  }
+  return Ok{};
 }
 
 Result<std::optional<Checkpoint>> JobStore::LoadLatestCheckpoint(

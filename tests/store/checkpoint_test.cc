@@ -102,6 +102,17 @@ TEST_F(CheckpointTest, SavesRoundRowWithCheckpointAndLoadsLatest) {
   EXPECT_NE(orphan.error().find("SQLITE_CONSTRAINT"), std::string::npos) << orphan.error();
 }
 
+// The master logs it and restart_bench reads it: the bytes are the row's blobs and checksum.
+TEST_F(CheckpointTest, SaveReportsWhatTheCheckpointCost) {
+  const Checkpoint c = Make(job_, 0, 1000);
+  CheckpointCost cost;
+  cost.commit_seconds = -1;
+  ASSERT_TRUE(store_->SaveCheckpoint(RoundOf(c), c, &cost).ok());
+  EXPECT_EQ(cost.bytes, 2 * 24 * 1000u + 32 + 32);
+  EXPECT_GE(cost.encode_seconds, 0);
+  EXPECT_GE(cost.commit_seconds, 0);
+}
+
 TEST_F(CheckpointTest, PruneKeepsExactlyTheLastK) {
   for (uint32_t round = 0; round < 10; ++round) {
     Checkpoint checkpoint = Make(job_, round, 4);
