@@ -21,6 +21,12 @@ std::string Percent(double fraction) {
   return text;
 }
 
+std::string Ms(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", 1000 * seconds);
+  return text;
+}
+
 }  // namespace
 
 scheduler::TimePoint LoopNow(const loop::EventLoop& loop) {
@@ -224,6 +230,10 @@ void JobRounds::OnRoundComplete(store::JobId id) {
 }
 
 bool JobRounds::CheckpointDue(store::JobId id) {
+  if (const auto it = checkpoints_in_flight_.find(id);
+      it != checkpoints_in_flight_.end() && it->second > 0) {
+    return false;  // the round is recorded alone; its results stay kept (if they are) until then
+  }
   const uint64_t now_ms = loop_.NowMs();
   bool due = config_.checkpoint_seconds <= 0;
   auto& last = last_checkpoint_ms_[id];
@@ -253,21 +263,32 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
   auto record = outcome.record;
   if (outcome.checkpoint_due) {
     auto checkpoint = std::make_shared<store::Checkpoint>(std::move(outcome.checkpoint));
+    auto cost = std::make_shared<store::CheckpointCost>();
     const uint64_t queued_ms = loop_.NowMs();
+    ++checkpoints_in_flight_[id];
     store_.Run(
-        [record, checkpoint, keep, scene = outcome.checkpoint_scene](store::JobStore& s) -> Status {
+        [record, checkpoint, keep, cost,
+         scene = outcome.checkpoint_scene](store::JobStore& s) -> Status {
           // The refined scene first: the checkpoint refers to it. A scene left behind by a crash
           // between the two is harmless (scenes are kept by hash).
           if (scene) {
             if (Status st = s.PutScene(*checkpoint->scene_hash, *scene); !st) return st;
           }
-          if (Status st = s.SaveCheckpoint(record, *checkpoint); !st) return st;
+          if (Status st = s.SaveCheckpoint(record, *checkpoint, cost.get()); !st) return st;
           return s.PruneCheckpoints(record.job, static_cast<int>(keep));
         },
-        [this, id, queued_ms](Status s) {
+        [this, id, queued_ms, cost, round = record.round,
+         copy_seconds = outcome.checkpoint_copy_seconds](Status s) {
+          if (--checkpoints_in_flight_[id] <= 0) checkpoints_in_flight_.erase(id);
           if (!s) return HoldOrFail(id, "cannot save the checkpoint: " + s.error());
           // The loop's clock, read at the start of the iteration that delivered the commit.
-          checkpoint_latency_.Record(double(loop_.NowMs() - queued_ms) / 1000);
+          const double latency = double(loop_.NowMs() - queued_ms) / 1000;
+          checkpoint_latency_.Record(latency);
+          // restart_bench reads this line: keep its words.
+          LogLine(LogLevel::kInfo, "job " + std::to_string(id))
+              << "round " << round << " checkpoint: " << cost->bytes << " bytes, copy "
+              << Ms(copy_seconds) << " ms, encode " << Ms(cost->encode_seconds) << " ms, commit "
+              << Ms(cost->commit_seconds) << " ms, queued to committed " << Ms(latency) << " ms";
         });
   } else {
     store_.Run([record](store::JobStore& s) { return s.RecordRound(record); },

@@ -136,7 +136,9 @@ class JobRounds {
   // `work` (Reduce, perhaps after RunLocally) on the compute thread, then OnRoundReduced.
   void ReduceOnComputeThread(const std::shared_ptr<RunningJob>& runner,
                              std::function<RoundOutcome()> work);
-  // Whether the round about to be reduced checkpoints (every round, or every checkpoint_seconds).
+  // Whether the round about to be reduced checkpoints (every round, or every checkpoint_seconds),
+  // never while the job's previous checkpoint is still being written: at 10^6 patches one is
+  // 50 MB and may take longer than a round, and a queue of them would only grow.
   bool CheckpointDue(store::JobId id);
   void OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundOutcome outcome);
   void FinishJob(const std::shared_ptr<RunningJob>& runner);
@@ -160,6 +162,7 @@ class JobRounds {
   BatchTotals retired_;  // the counters of runners that went
   web::LatencyHistogram checkpoint_latency_;
   std::map<store::JobId, uint64_t> last_checkpoint_ms_;  // loop NowMs() of each job's last one
+  std::map<store::JobId, int> checkpoints_in_flight_;  // queued on the store thread, not committed
   std::map<store::JobId, bool> starting_;  // being prepared; true once cancelled meanwhile
   bool start_pending_ = false;             // a StartQueuedJobs query is in flight
   bool start_again_ = false;               // ... and another was asked for meanwhile

@@ -1,5 +1,6 @@
 #include "daemon/running_job.h"
 
+#include <chrono>
 #include <cmath>
 
 #include "base/result.h"
@@ -293,7 +294,10 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
       if (refined_unsaved_) out.checkpoint_scene = refined_blob_;
       refined_unsaved_ = false;
     }
+    const auto copy_start = std::chrono::steady_clock::now();
     out.checkpoint = store::CheckpointOf(id(), driver_->State(), std::move(scene_hash));
+    out.checkpoint_copy_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - copy_start).count();
   }
   return out;
 }

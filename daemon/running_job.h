@@ -60,7 +60,8 @@ struct JobTotals {
 // The result of reducing one round, for the loop thread and the store thread.
 struct RoundOutcome {
   store::RoundRecord record;
-  store::Checkpoint checkpoint;  // filled when `checkpoint_due`
+  store::Checkpoint checkpoint;        // filled when `checkpoint_due`
+  double checkpoint_copy_seconds = 0;  // taking it from the solver, on the compute thread
   bool checkpoint_due = false;
   std::optional<std::string> stop;  // the stop reason: the job is done
   std::optional<RoundPlan> next;    // the next round, unless stopping
