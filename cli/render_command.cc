@@ -17,6 +17,21 @@
 #include "solve/local_solve.h"
 
 namespace radfarm {
+namespace {
+
+// One line a checkpoint written (restart_bench reads them: keep their words).
+void PrintCheckpoints(RenderState& state) {
+  for (const RenderState::Report& r : state.TakeReports()) {
+    std::printf(
+        "--db: round %u checkpoint: %llu bytes in %.1f ms (encode %.1f, commit %.1f; the "
+        "render waited %.1f ms)\n",
+        r.round, static_cast<unsigned long long>(r.cost.bytes), 1000 * r.seconds,
+        1000 * r.cost.encode_seconds, 1000 * r.cost.commit_seconds, 1000 * r.waited_seconds);
+  }
+  std::fflush(stdout);
+}
+
+}  // namespace
 
 CLI::App* AddRenderCommand(CLI::App& app, RenderOptions* options) {
   CLI::App* render = app.add_subcommand(
@@ -95,6 +110,7 @@ int RunRender(const RenderOptions& options) {
     }
     hooks.after_round = [&](const SolveState& c) {
       if (save_status.ok()) save_status = state->SaveRound(c);
+      if (!options.quiet) PrintCheckpoints(*state);
     };
   }
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
@@ -129,6 +145,7 @@ int RunRender(const RenderOptions& options) {
   }
   if (state) {
     if (save_status.ok()) save_status = state->Finish();
+    if (!options.quiet) PrintCheckpoints(*state);
     if (!save_status.ok()) {
       PrintError(save_status.error());
       return kExitFailure;

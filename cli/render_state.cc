@@ -1,5 +1,7 @@
 #include "cli/render_state.h"
 
+#include <chrono>
+
 #include "codec/patch_scene_codec.h"
 #include "protocol/scene_transfer.h"
 #include "store/solve_checkpoint.h"
@@ -8,6 +10,12 @@ namespace radfarm {
 namespace {
 
 constexpr int kCheckpointsKept = 2;
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+Status Prefixed(Status s) { return s ? s : Status{Error{"--db: " + s.error()}}; }
 
 }  // namespace
 
@@ -20,7 +28,7 @@ Result<RenderState> RenderState::Open(const std::string& db_path, const codec::J
   Result<store::JobStore> opened = store::JobStore::Open(db_path);
   if (!opened) return Error{"--db: " + opened.error()};
   RenderState state(std::move(*opened));
-  store::JobStore& s = state.store_;
+  store::JobStore& s = *state.store_;
 
   Result<std::vector<store::JobRecord>> jobs = s.ListJobs();
   if (!jobs) return Error{"--db: " + jobs.error()};
@@ -71,12 +79,16 @@ Result<RenderState> RenderState::Open(const std::string& db_path, const codec::J
 }
 
 Status RenderState::SaveRound(const SolveState& now) {
+  const auto start = Clock::now();
+  if (!writer_) writer_ = std::make_unique<CheckpointWriter>(*store_);
   if (now.refined_scene == nullptr) {
     scene_hash_.reset();
   } else if (!scene_hash_ || now.refinements != scene_refinements_) {
-    const std::vector<uint8_t> blob = codec::EncodePatchScene(*now.refined_scene);
-    const std::string hash = protocol::HashToHex(protocol::HashScene(blob));
-    if (Status s = store_.PutScene(hash, blob); !s) return Error{"--db: " + s.error()};
+    auto blob =
+        std::make_shared<const std::vector<uint8_t>>(codec::EncodePatchScene(*now.refined_scene));
+    const std::string hash = protocol::HashToHex(protocol::HashScene(*blob));
+    RADFARM_RETURN_IF_ERROR(writer_->Submit(
+        [hash, blob](store::JobStore& s) { return Prefixed(s.PutScene(hash, *blob)); }, false));
     scene_hash_ = hash;
     scene_refinements_ = now.refinements;
   }
@@ -91,20 +103,68 @@ Status RenderState::SaveRound(const SolveState& now) {
                                  now.totals.seconds - last_.seconds,
                                  now.totals.escaped_rays - last_.escaped_rays,
                                  now.totals.backface_hits - last_.backface_hits};
-  const store::Checkpoint checkpoint = store::CheckpointOf(job_, now, scene_hash_);
-  if (Status s = store_.SaveCheckpoint(round, checkpoint); !s) return Error{"--db: " + s.error()};
-  if (Status s = store_.PruneCheckpoints(job_, kCheckpointsKept); !s) {
-    return Error{"--db: " + s.error()};
-  }
   last_ = now.totals;
-  return Ok{};
+  if (writer_->checkpoint_pending()) {
+    // The round's row now (resumed totals count rows); its state for Finish, in case it is the
+    // last. Assigning reuses the buffers of the round left out before.
+    unsaved_ = true;
+    unsaved_state_ = now;
+    unsaved_round_ = round;
+    unsaved_scene_hash_ = scene_hash_;
+    return writer_->Submit([round](store::JobStore& s) { return Prefixed(s.RecordRound(round)); },
+                           false);
+  }
+  unsaved_ = false;
+  store::Checkpoint checkpoint = store::CheckpointOf(job_, now, scene_hash_);
+  return QueueCheckpoint(round, std::move(checkpoint), Seconds(Clock::now() - start));
+}
+
+Status RenderState::QueueCheckpoint(const store::RoundRecord& round, store::Checkpoint checkpoint,
+                                    double waited_seconds) {
+  auto shared = std::make_shared<const store::Checkpoint>(std::move(checkpoint));
+  return writer_->Submit(
+      [round, shared, waited_seconds, job = job_,
+       reports = reports_](store::JobStore& s) -> Status {
+        const auto start = Clock::now();
+        Report report{round.round, {}, 0, waited_seconds};
+        RADFARM_RETURN_IF_ERROR(Prefixed(s.SaveCheckpoint(round, *shared, &report.cost)));
+        RADFARM_RETURN_IF_ERROR(Prefixed(s.PruneCheckpoints(job, kCheckpointsKept)));
+        report.seconds = Seconds(Clock::now() - start);
+        std::lock_guard<std::mutex> lock(reports->mu);
+        reports->done.push_back(report);
+        return Status{Ok{}};
+      },
+      true);
+}
+
+std::vector<RenderState::Report> RenderState::TakeReports() {
+  std::lock_guard<std::mutex> lock(reports_->mu);
+  return std::exchange(reports_->done, {});
 }
 
 Status RenderState::Finish() {
-  Result<std::optional<store::JobRecord>> job = store_.GetJob(job_);
+  if (writer_) {
+    Status written = writer_->Drain();
+    if (written && unsaved_) {
+      const auto start = Clock::now();
+      store::Checkpoint checkpoint =
+          store::CheckpointOf(job_, std::move(unsaved_state_), unsaved_scene_hash_);
+      unsaved_ = false;
+      written = QueueCheckpoint(unsaved_round_, std::move(checkpoint), 0);
+      if (written) written = writer_->Drain();
+      // Here the render waits for all of it.
+      std::lock_guard<std::mutex> lock(reports_->mu);
+      if (!reports_->done.empty()) {
+        reports_->done.back().waited_seconds = Seconds(Clock::now() - start);
+      }
+    }
+    writer_.reset();
+    RADFARM_RETURN_IF_ERROR(written);
+  }
+  Result<std::optional<store::JobRecord>> job = store_->GetJob(job_);
   if (!job) return Error{"--db: " + job.error()};
   if (*job && (*job)->state == store::JobState::kRunning) {
-    if (Status s = store_.SetJobState(job_, store::JobState::kDone); !s) {
+    if (Status s = store_->SetJobState(job_, store::JobState::kDone); !s) {
       return Error{"--db: " + s.error()};
     }
   }

@@ -10,11 +10,14 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "base/result.h"
+#include "cli/checkpoint_writer.h"
 #include "codec/job_bundle.h"
 #include "solve/solve_state.h"
 #include "store/job_store.h"
@@ -29,15 +32,38 @@ class RenderState {
   const SolveState* resume() const { return resume_.get(); }
   store::JobId job_id() const { return job_; }
 
-  // Commits one round and its checkpoint (one transaction), keeping the last two checkpoints; a
-  // refined mesh's scene is stored first (once per mesh).
+  // Records one round and its checkpoint (one transaction), keeping the last two checkpoints; a
+  // refined mesh's scene is stored first (once per mesh). They are written on the writer's thread
+  // (checkpoint_writer.h) while the next round runs; while a checkpoint is still being written the
+  // round is recorded without one (a resume from the one before computes the same bits), and the
+  // last round's state, if its checkpoint was left out, is written by Finish. Returns the error of
+  // an earlier write. Do not move this object after the first call.
   Status SaveRound(const SolveState& state);
+  // Writes what is left, then marks the job done.
   Status Finish();
 
- private:
-  RenderState(store::JobStore store) : store_(std::move(store)) {}
+  // A checkpoint written: its cost, and the time the render waited for it (the copy of the state).
+  struct Report {
+    uint32_t round = 0;
+    store::CheckpointCost cost;
+    double seconds = 0;  // on the writer's thread: the checkpoint and pruning
+    double waited_seconds = 0;
+  };
+  // The checkpoints committed since the last call.
+  std::vector<Report> TakeReports();
 
-  store::JobStore store_;
+ private:
+  struct Reports {
+    std::mutex mu;
+    std::vector<Report> done;
+  };
+  explicit RenderState(store::JobStore store)
+      : store_(std::make_unique<store::JobStore>(std::move(store))),
+        reports_(std::make_shared<Reports>()) {}
+  Status QueueCheckpoint(const store::RoundRecord& round, store::Checkpoint checkpoint,
+                         double waited_seconds);
+
+  std::unique_ptr<store::JobStore> store_;  // on the heap: the writer keeps a reference
   store::JobId job_ = 0;
   // On the heap, so that resume_->refined_scene stays valid when the object moves.
   std::unique_ptr<SolveState> resume_;
@@ -46,6 +72,13 @@ class RenderState {
   // The refined scene stored last: its hash and the SolveState::refinements it was for.
   std::optional<std::string> scene_hash_;
   uint32_t scene_refinements_ = 0;
+  // The last round recorded without its checkpoint, which Finish writes (its buffers reused).
+  bool unsaved_ = false;
+  SolveState unsaved_state_;
+  store::RoundRecord unsaved_round_;
+  std::optional<std::string> unsaved_scene_hash_;
+  std::shared_ptr<Reports> reports_;
+  std::unique_ptr<CheckpointWriter> writer_;  // after store_: it goes first
 };
 
 }  // namespace radfarm
