@@ -13,9 +13,12 @@
 // --kill-after results, so it lands mid-round or just after a round, as a crash would.
 // It also measures what the store absorbs: JobStore::SaveRoundResults of results the size of
 // this job's, one per transaction and in groups, against the results per second the farm made.
+// With --big-patch-size it also measures what checkpoints cost a big job and that a master killed
+// on it resumes byte-identical (big_checkpoints.h); --big-only runs that alone.
 // Writes bench/results/restart_bench.json.
 //
 //   restart_bench [--kills 6] [--runs 3] [--agents 2] [--kill-after 1500] [--json PATH]
+//                 [--big-patch-size 1.45 [--big-rays N] [--big-shot-rays N] [--big-only]]
 #include <signal.h>
 
 #include <algorithm>
@@ -25,6 +28,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
@@ -33,6 +37,7 @@
 
 #include "bench/bench_json.h"
 #include "bench/machine_info.h"
+#include "bench/restart/big_checkpoints.h"
 #include "store/job_store.h"
 #include "testing/http_client.h"
 #include "testing/loopback_farm.h"
@@ -49,6 +54,8 @@ struct Options {
   unsigned agents = 2;
   double kill_after = 1500;  // results accepted by the current master before it is killed
   std::string json = DefaultJsonPath("restart_bench");
+  std::optional<BigJobOptions> big;  // --big-patch-size given
+  bool big_only = false;
 };
 
 Options Parse(int argc, char** argv) {
@@ -69,19 +76,39 @@ Options Parse(int argc, char** argv) {
       o.kill_after = std::stod(next());
     } else if (a == "--json") {
       o.json = next();
+    } else if (a == "--big-patch-size") {
+      if (!o.big) o.big.emplace();
+      o.big->patch_size = std::stod(next());
+    } else if (a == "--big-rays") {
+      if (!o.big) o.big.emplace();
+      o.big->rays = std::stoull(next());
+    } else if (a == "--big-shot-rays") {
+      if (!o.big) o.big.emplace();
+      o.big->shot_rays = std::stoull(next());
+    } else if (a == "--big-flags") {
+      if (!o.big) o.big.emplace();
+      o.big->checkpoint_flags = next();
+    } else if (a == "--big-only") {
+      o.big_only = true;
     } else if (a == "-h" || a == "--help") {
       std::printf(
           "restart_bench [--kills N] [--runs N] [--agents N] [--kill-after N] [--json PATH]\n"
           "  A Cornell box job on a loopback farm without kills, and with N master SIGKILLs\n"
           "  (each after the new master accepted --kill-after results), with and without the\n"
           "  round's results kept in the store; medians of --runs runs. Writes\n"
-          "  bench/results/restart_bench.json unless --json says where.\n");
+          "  bench/results/restart_bench.json unless --json says where.\n"
+          "  --big-patch-size MM: also the Cornell box at that patch size (1.45: 1,046,925\n"
+          "  patches) with --big-rays N (default 50000000) and --big-shot-rays N ([solver]\n"
+          "  shot_rays, default automatic), by render --db and by the farm with and without one\n"
+          "  master SIGKILL: each checkpoint's bytes and times against its round's; --big-flags\n"
+          "  'FLAGS' passes radfarmd flags; --big-only skips the Cornell box runs.\n");
       std::exit(0);
     } else {
       throw std::runtime_error("unknown argument " + a + " (see --help)");
     }
   }
   if (o.runs < 1 || o.kills < 0) throw std::runtime_error("--runs >= 1, --kills >= 0");
+  if (o.big_only && !o.big) throw std::runtime_error("--big-only needs --big-patch-size");
   return o;
 }
 
@@ -232,11 +259,12 @@ int main(int argc, char** argv) {
       double keep_after;  // negative: not kept
       bool keep() const { return keep_after >= 0; }
     };
-    const std::vector<Mode> modes = {{"no kills, all kept", 0, 0},
-                                     {"no kills, kept after 5 s", 0, 5},
-                                     {"no kills, not kept", 0, -1},
-                                     {"kills, not kept", o.kills, -1},
-                                     {"kills, all kept", o.kills, 0}};
+    std::vector<Mode> modes = {{"no kills, all kept", 0, 0},
+                               {"no kills, kept after 5 s", 0, 5},
+                               {"no kills, not kept", 0, -1},
+                               {"kills, not kept", o.kills, -1},
+                               {"kills, all kept", o.kills, 0}};
+    if (o.big_only) modes.clear();
     nlohmann::json json{{"machine", MachineJson(machine)},
                         {"kills", o.kills},
                         {"runs", o.runs},
@@ -244,8 +272,9 @@ int main(int argc, char** argv) {
                         {"kill_after", o.kill_after}};
     std::string reference;
     double baseline_accepted = -1, produced_per_second = 0;
-    std::printf("%-24s %8s %10s %10s %14s %10s\n", "mode", "seconds", "leased", "accepted",
-                "computed again", "restored");
+    if (!o.big_only)
+      std::printf("%-24s %8s %10s %10s %14s %10s\n", "mode", "seconds", "leased", "accepted",
+                  "computed again", "restored");
     for (const Mode& mode : modes) {
       std::vector<double> seconds, issued, accepted, restored;
       double kept = 0, writes = 0;
@@ -285,8 +314,10 @@ int main(int argc, char** argv) {
         json["results_per_write"] = kept / writes;
       }
     }
-    std::printf("\n%-10s %22s\n", "group", "store results/s");
+    if (o.big) json["big_job"] = MeasureBigJobCheckpoints(*o.big);
+    if (!o.big_only) std::printf("\n%-10s %22s\n", "group", "store results/s");
     for (size_t group : {size_t{1}, size_t{8}, size_t{32}, size_t{128}}) {
+      if (o.big_only) break;
       const double rate = StoreAbsorbs(group, 400);
       std::printf("%-10zu %22.0f\n", group, rate);
       json["store"].push_back({{"group", group}, {"hits", 400}, {"results_per_second", rate}});
