@@ -43,6 +43,14 @@ std::vector<uint8_t> EncodeRgbs(std::span<const Rgb> values) {
   return bytes;
 }
 
+std::span<const uint8_t> RgbBlob(std::span<const Rgb> values, std::vector<uint8_t>* buffer) {
+  if constexpr (kRgbIsBlob) {
+    return {reinterpret_cast<const uint8_t*>(values.data()), values.size() * kRgbBlobBytes};
+  }
+  *buffer = EncodeRgbs(values);
+  return *buffer;
+}
+
 Result<std::vector<Rgb>> DecodeRgbs(std::span<const uint8_t> bytes) {
   if (bytes.size() % kRgbBlobBytes != 0) {
     return Error{"checkpoint blob of " + std::to_string(bytes.size()) +

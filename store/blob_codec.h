@@ -25,6 +25,9 @@ inline constexpr size_t kRgbBlobBytes = 24;
 inline constexpr size_t kEnergyBlobBytes = 32;
 
 std::vector<uint8_t> EncodeRgbs(std::span<const Rgb> values);
+// The blob of `values` without a copy where the host's bytes are the blob's (little-endian): a
+// view of `values`; elsewhere encoded into `*buffer` and a view of it. Valid while both live.
+std::span<const uint8_t> RgbBlob(std::span<const Rgb> values, std::vector<uint8_t>* buffer);
 // Errors when the size is not a multiple of 24 bytes.
 Result<std::vector<Rgb>> DecodeRgbs(std::span<const uint8_t> bytes);
 

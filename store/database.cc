@@ -135,6 +135,11 @@ Statement& Statement::BindBlob(int index, std::span<const uint8_t> bytes) {
                              : sqlite3_bind_blob64(stmt_, index, bytes.data(), bytes.size(),
                                                    SQLITE_TRANSIENT));
 }
+Statement& Statement::BindBlobNoCopy(int index, std::span<const uint8_t> bytes) {
+  return Check(bytes.empty()
+                   ? sqlite3_bind_zeroblob(stmt_, index, 0)
+                   : sqlite3_bind_blob64(stmt_, index, bytes.data(), bytes.size(), SQLITE_STATIC));
+}
 Statement& Statement::BindNull(int index) { return Check(sqlite3_bind_null(stmt_, index)); }
 
 Result<bool> Statement::Step() {

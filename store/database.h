@@ -79,6 +79,8 @@ class Statement {
   Statement& Bind(int index, double value);
   Statement& Bind(int index, std::string_view text);
   Statement& BindBlob(int index, std::span<const uint8_t> bytes);
+  // Without SQLite's copy: `bytes` must stay alive and unchanged until the statement has run.
+  Statement& BindBlobNoCopy(int index, std::span<const uint8_t> bytes);
   Statement& BindNull(int index);
 
   // true: a row is ready to read; false: the statement is done.

@@ -75,8 +75,10 @@ Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& chec
   }
   // Encode before taking the write lock: the transaction holds it only for the writes.
   const auto encode_start = Clock::now();
-  std::vector<uint8_t> radiosity = EncodeRgbs(checkpoint.radiosity);
-  std::vector<uint8_t> unshot = EncodeRgbs(checkpoint.unshot);
+  // Views of the values themselves on little-endian hosts: 48 MB not copied at 10^6 patches.
+  std::vector<uint8_t> radiosity_buffer, unshot_buffer;
+  const std::span<const uint8_t> radiosity = RgbBlob(checkpoint.radiosity, &radiosity_buffer);
+  const std::span<const uint8_t> unshot = RgbBlob(checkpoint.unshot, &unshot_buffer);
   std::vector<uint8_t> energy = EncodeEnergy(checkpoint.energy);
   const Checksum checksum = CheckpointChecksum(
       {checkpoint.job, int64_t{checkpoint.round}, int64_t{checkpoint.rounds_done},
@@ -100,8 +102,8 @@ Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& chec
       .Bind(2, int64_t{checkpoint.round})
       .Bind(3, int64_t{checkpoint.rounds_done})
       .Bind(4, static_cast<int64_t>(checkpoint.radiosity.size()))
-      .BindBlob(5, radiosity)
-      .BindBlob(6, unshot)
+      .BindBlobNoCopy(5, radiosity)  // both outlive stmt->Run() below
+      .BindBlobNoCopy(6, unshot)
       .BindBlob(7, energy)
       .Bind(8, now)
       .Bind(10, int64_t{checkpoint.refine_points})
