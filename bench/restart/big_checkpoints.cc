@@ -226,7 +226,8 @@ Run RunFarm(const BigJobOptions& o, const std::string& job, const std::string& d
 
 nlohmann::json Summary(const char* name, const Run& run) {
   nlohmann::json rounds = nlohmann::json::array();
-  std::vector<double> bytes, total, critical, share;
+  std::vector<double> bytes, total, critical, share, waited_share;
+  double all_bytes = 0;
   for (const auto& [index, r] : run.rounds) {
     rounds.push_back({{"round", index},
                       {"seconds", r.seconds},
@@ -243,12 +244,15 @@ nlohmann::json Summary(const char* name, const Run& run) {
     // What the solve waits for: the copy of the state (render's main thread, radfarmd's compute
     // thread); the writer's or store thread writes it while the next round runs.
     critical.push_back(r.copy_ms);
+    all_bytes += r.bytes;
     if (r.seconds > 0) share.push_back(r.total_ms / 1000 / r.seconds);
+    if (r.seconds > 0) waited_share.push_back(r.copy_ms / 1000 / r.seconds);
   }
   size_t checkpoints = bytes.size();
-  std::printf("%-22s %8.1f %7zu %12zu %12.1f %12.1f %14.1f %12.1f%%\n", name, run.seconds,
-              run.rounds.size(), checkpoints, Median(bytes) / 1e6, Median(total), Median(critical),
-              100 * Median(share));
+  const double bytes_per_round = run.rounds.empty() ? 0 : all_bytes / run.rounds.size();
+  std::printf("%-22s %8.1f %7zu %12zu %12.1f %12.1f %12.1f%% %14.1f %12.2f%%\n", name, run.seconds,
+              run.rounds.size(), checkpoints, bytes_per_round / 1e6, Median(total),
+              100 * Median(share), Median(critical), 100 * Median(waited_share));
   std::fflush(stdout);
   return {{"name", name},
           {"seconds", run.seconds},
@@ -258,6 +262,8 @@ nlohmann::json Summary(const char* name, const Run& run) {
           {"median_checkpoint_ms", Median(total)},
           {"median_waited_ms", Median(critical)},
           {"median_checkpoint_share_of_round", Median(share)},
+          {"median_waited_share_of_round", Median(waited_share)},
+          {"checkpoint_bytes_per_round", bytes_per_round},
           {"killed_after_round", run.killed_after_round},
           {"resume_prepared_seconds", run.resume_prepared_seconds},
           {"resume_first_round_seconds", run.resume_first_round_seconds}};
@@ -271,8 +277,9 @@ nlohmann::json MeasureBigJobCheckpoints(const BigJobOptions& o) {
   std::printf("\nCornell box at patch size %g mm, %llu rays%s; %u agents x 1 thread\n",
               o.patch_size, static_cast<unsigned long long>(o.rays),
               o.shot_rays ? (", shot_rays " + std::to_string(o.shot_rays)).c_str() : "", o.agents);
-  std::printf("%-22s %8s %7s %12s %12s %12s %14s %13s\n", "run", "seconds", "rounds", "checkpoints",
-              "MB (median)", "ms (median)", "waited ms (med)", "% of round");
+  // Medians over the checkpoints; "waited": what the solve waited for (the state's copy).
+  std::printf("%-22s %8s %7s %12s %12s %12s %13s %14s %13s\n", "run", "seconds", "rounds",
+              "checkpoints", "MB/round", "ms", "% of round", "waited ms", "% of round");
   nlohmann::json runs = nlohmann::json::array();
   const Run render = RunRender(o, job, dir.path());
   runs.push_back(Summary("render --db", render));

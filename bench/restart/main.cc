@@ -60,6 +60,7 @@ struct Options {
 
 Options Parse(int argc, char** argv) {
   Options o;
+  bool json_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -76,6 +77,7 @@ Options Parse(int argc, char** argv) {
       o.kill_after = std::stod(next());
     } else if (a == "--json") {
       o.json = next();
+      json_given = true;
     } else if (a == "--big-patch-size") {
       if (!o.big) o.big.emplace();
       o.big->patch_size = std::stod(next());
@@ -101,7 +103,8 @@ Options Parse(int argc, char** argv) {
           "  patches) with --big-rays N (default 50000000) and --big-shot-rays N ([solver]\n"
           "  shot_rays, default automatic), by render --db and by the farm with and without one\n"
           "  master SIGKILL: each checkpoint's bytes and times against its round's; --big-flags\n"
-          "  'FLAGS' passes radfarmd flags; --big-only skips the Cornell box runs.\n");
+          "  'FLAGS' passes radfarmd flags; --big-only skips the Cornell box runs and writes\n"
+          "  bench/results/restart_bench_big.json.\n");
       std::exit(0);
     } else {
       throw std::runtime_error("unknown argument " + a + " (see --help)");
@@ -109,6 +112,8 @@ Options Parse(int argc, char** argv) {
   }
   if (o.runs < 1 || o.kills < 0) throw std::runtime_error("--runs >= 1, --kills >= 0");
   if (o.big_only && !o.big) throw std::runtime_error("--big-only needs --big-patch-size");
+  // Its own file, so the Cornell box's figures stay.
+  if (o.big_only && !json_given) o.json = DefaultJsonPath("restart_bench_big");
   return o;
 }
 
