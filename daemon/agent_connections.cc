@@ -457,8 +457,9 @@ void AgentConnections::Heartbeat() {
       TakeLeasesAway(*link, "missed its heartbeats");
       continue;
     }
-    // One lookup per agent and job: counters() costs O(batches + agents) and, called per agent,
-    // took most of the loop thread's time with 1000 agents (farm_bench, docs/BENCHMARKS-farm.md).
+    // One lookup per agent and job: counters() costs O(agents) (it was O(batches + agents)) and,
+    // called per agent, took most of the loop thread's time with 1000 agents (farm_bench,
+    // docs/BENCHMARKS-farm.md).
     uint32_t leases = 0;
     for (auto& [job, runner] : jobs_.runners()) leases += runner->scheduler().LeasesHeld(id);
     beat.leases_held = leases;

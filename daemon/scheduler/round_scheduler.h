@@ -194,15 +194,16 @@ class RoundScheduler {
   // Offers to other agents each leased batch whose live attempts are all past their deadline,
   // while it has fewer than max_live_attempts; returns how many were newly offered. Call it about
   // every 100 ms. An agent that heartbeats but never answers keeps its attempt live: declare it
-  // lost (OnAgentLost) if its leases stay far overdue.
+  // lost (OnAgentLost) if its leases stay far overdue. O(live leases), not O(batches).
   size_t Tick(TimePoint now);
 
   // --- Status ---
   // Rays per batch so the slowest measured agent finishes one batch in target_lease_seconds,
   // within [min_batch_rays, max_batch_rays]; default_batch_rays before any measurement.
   uint32_t SuggestedBatchRays() const;
+  // O(agents): the batch counts are kept as batches change state.
   SchedulerCounters counters(TimePoint now) const;
-  // One agent's entry of counters().agents, in O(log agents) rather than O(batches + agents):
+  // One agent's entry of counters().agents, in O(log agents) rather than O(agents):
   // for loops over every agent (heartbeats, the agent list). nullopt for an unknown agent.
   std::optional<AgentCounters> agent_counters(AgentId agent, TimePoint now) const;
 

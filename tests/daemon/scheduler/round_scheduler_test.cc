@@ -237,6 +237,50 @@ TEST(RoundSchedulerTest, OverdueLeaseIsReissuedToAnotherAgentAndBothMayAnswer) {
   EXPECT_EQ(c.agents[1].leases_held, 0u);  // the copy stopped counting when the original won
 }
 
+// Tick looks at the live leases only (a round of 10^6 patches has as many batches): of a big
+// round it offers exactly the leased batches whose live attempts are all past their deadline, each
+// once; the counters follow every change of a batch's state.
+TEST(RoundSchedulerTest, TickOffersOnlyOverdueLeasesOfABigRoundAndCountersFollow) {
+  SchedulerOptions options;
+  options.deadline_floor = seconds(2);
+  options.unmeasured_expected_seconds = 0.1;
+  options.initial_leases = 3;
+  RoundScheduler s(options);
+  s.AddAgent(1);
+  s.AddAgent(2);
+  constexpr uint64_t kBatches = 200000;
+  ASSERT_TRUE(s.StartRound(Plan(0, kBatches), kT0).ok());
+  // Agent 1's three leases at 0 s, agent 2's three at 1 s: deadlines at 2 s and 3 s.
+  std::vector<Assignment> first;
+  while (const auto a = s.NextAssignment(1, kT0)) first.push_back(*a);
+  size_t second = 0;
+  while (s.NextAssignment(2, kT0 + seconds(1))) ++second;
+  ASSERT_EQ(first.size(), 3u);
+  ASSERT_EQ(second, 3u);
+  EXPECT_EQ(s.Tick(kT0 + milliseconds(1999)), 0u);
+  EXPECT_EQ(s.Tick(kT0 + seconds(2)), 3u);
+  EXPECT_EQ(s.Tick(kT0 + seconds(2)), 0u);  // offered once
+  EXPECT_EQ(s.Tick(kT0 + milliseconds(2999)), 0u);
+  EXPECT_EQ(s.Tick(kT0 + seconds(3)), 3u);
+  EXPECT_EQ(s.Tick(kT0 + seconds(10)), 0u);
+  SchedulerCounters c = s.counters(kT0 + seconds(3));
+  EXPECT_EQ(c.batches, kBatches);
+  EXPECT_EQ(c.batches_leased, 6u);
+  EXPECT_EQ(c.batches_queued, kBatches - 6);
+  EXPECT_EQ(c.batches_done, 0u);
+  ASSERT_EQ(s.OnResult(1, first[0].batch_id, first[0].attempt_id, ResultFor(0), kT0 + seconds(3))
+                .disposition,
+            Disposition::kAccepted);
+  c = s.counters(kT0 + seconds(3));
+  EXPECT_EQ(c.batches_done, 1u);
+  EXPECT_EQ(c.batches_leased, 5u);
+  s.OnAgentLost(1);  // its two unanswered batches go back to the queue
+  c = s.counters(kT0 + seconds(3));
+  EXPECT_EQ(c.batches_leased, 3u);
+  EXPECT_EQ(c.batches_queued, kBatches - 4);
+  EXPECT_EQ(c.batches_done, 1u);
+}
+
 TEST(RoundSchedulerTest, LostAndReturnedLeasesAreRequeuedFirst) {
   RoundScheduler s;
   s.AddAgent(1);
