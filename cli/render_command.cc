@@ -82,11 +82,19 @@ int RunRender(const RenderOptions& options) {
   }
 
   if (!options.quiet) {
+    const PatchMesh& mesh = loaded->mesh;
+    char sizes[96];
+    if (mesh.patch_size_min() == mesh.patch_size_max()) {
+      std::snprintf(sizes, sizeof sizes, "target size %g", mesh.patch_size());
+    } else {  // automatic, per face
+      std::snprintf(sizes, sizeof sizes, "target size %g to %g, median %g", mesh.patch_size_min(),
+                    mesh.patch_size_max(), mesh.patch_size());
+    }
     std::printf(
-        "%s: %zu patches (target size %g%s), sampler %s, seed %llu; read and meshed in "
+        "%s: %zu patches (%s%s), sampler %s, seed %llu; read and meshed in "
         "%.1f s\n",
-        job.scene_path.c_str(), loaded->mesh.patch_scene().patches.size(),
-        loaded->mesh.patch_size(), job.refine.enabled ? ", adaptive" : "",
+        job.scene_path.c_str(), mesh.patch_scene().patches.size(), sizes,
+        job.refine.enabled ? ", adaptive" : "",
         std::string(SamplerName(job.solver.sampler)).c_str(),
         static_cast<unsigned long long>(job.solver.seed), seconds_since_start());
     if (announce) std::printf("direct light ...");

@@ -76,6 +76,8 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
         WritePatchesCsv(path("patches.csv"), mesh.patch_scene(), solution.radiosity),
         WriteStatsJson(path("stats.json"), solution.stats,
                        {{"patch_size", mesh.patch_size()},
+                        {"patch_size_min", mesh.patch_size_min()},
+                        {"patch_size_max", mesh.patch_size_max()},
                         {"dropped_degenerate_faces", double(mesh.dropped_degenerate())},
                         {"dropped_hidden_faces", double(mesh.dropped_hidden())},
                         {"patches_before_refinement", patches_before},

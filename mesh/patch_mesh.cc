@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "base/result.h"
+#include "mesh/auto_patch_size.h"
 #include "mesh/clean_faces.h"
 #include "mesh/contact_cut.h"
 #include "mesh/hidden_faces.h"
@@ -122,8 +123,6 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   const double min_area = kAreaTolerance * diagonal * diagonal;
 
   PatchMesh pm;
-  pm.patch_size_ = settings.patch_size > 0 ? settings.patch_size : diagonal / kAutoPatchDivisions;
-
   CleanFaces clean = CleanInputFaces(scene, tol, min_area);
   std::vector<uint32_t> hidden_lines;
   const std::vector<CleanFace> faces = DropHidden(std::move(clean.faces), tol, &hidden_lines);
@@ -134,19 +133,36 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
               "faces hidden inside a coplanar overlap", warnings);
   if (faces.empty()) return Error{scene.path + ": no faces left to mesh"};
 
-  const SurfaceGroups surfaces = GroupSurfaces(faces, tol);
-  const std::vector<std::vector<Footprint>> footprints = FindFootprints(faces, tol);
-  const std::vector<std::vector<Footprint>> sheets = FindCoveringSheets(faces, tol, kSheetReachPatches * pm.patch_size_);
-  pm.surface_count_ = surfaces.count;
-
+  const bool automatic = settings.patch_size == 0;
+  std::vector<double> sizes = automatic ? AutoPatchSizes(faces, tol, diagonal)
+                                        : std::vector<double>(faces.size(), settings.patch_size);
+  const uint64_t memory_limit =
+      settings.max_memory > 0 ? settings.max_memory : PhysicalMemoryBytes();
   std::vector<SplitPlan> plans;
   uint64_t piece_count = 0;
-  for (const CleanFace& face : faces) {
-    plans.push_back(PlanSplit(face.corners, face.normal, pm.patch_size_, tol));
-    const int sides = scene.materials[face.material].two_sided ? 2 : 1;
-    piece_count += sides * std::min(plans.back().PieceCount(), kMaxPatches + 1);  // no overflow
-    if (!plans.back().simple && warnings != nullptr) {
-      warnings->push_back(scene.path + ":" + std::to_string(face.line) +
+  // An automatic mesh too large for the patch limit or the memory is made coarser all over
+  // instead of refused: by the square root of the excess, a few times at most.
+  for (int attempt = 0;; ++attempt) {
+    plans.clear();
+    piece_count = 0;
+    for (size_t f = 0; f < faces.size(); ++f) {
+      const CleanFace& face = faces[f];
+      plans.push_back(PlanSplit(face.corners, face.normal, sizes[f], tol));
+      const int sides = scene.materials[face.material].two_sided ? 2 : 1;
+      piece_count += sides * std::min(plans.back().PieceCount(), kMaxPatches + 1);  // no overflow
+    }
+    uint64_t allowed = kMaxPatches;
+    if (memory_limit > kSolveBaseBytes) {
+      allowed = std::min(allowed, (memory_limit - kSolveBaseBytes) / kSolveBytesPerPatch);
+    }
+    if (!automatic || piece_count <= allowed || attempt == 8 || allowed == 0) break;
+    const double grow = 1.05 * std::sqrt(double(piece_count) / double(allowed));
+    for (double& size : sizes) size *= grow;
+  }
+  pm.SetSizeSummary(plans, sizes);
+  for (size_t f = 0; f < faces.size(); ++f) {
+    if (!plans[f].simple && warnings != nullptr) {
+      warnings->push_back(scene.path + ":" + std::to_string(faces[f].line) +
                           ": face is self-intersecting; its patches may overlap");
     }
   }
@@ -156,8 +172,6 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
         << " patches";
     return Error{out.str()};
   }
-  const uint64_t memory_limit =
-      settings.max_memory > 0 ? settings.max_memory : PhysicalMemoryBytes();
   if (memory_limit > 0 && EstimatedSolveBytes(piece_count) > memory_limit) {
     std::ostringstream out;
     out << scene.path << ": " << piece_count << " patches (patch size " << pm.patch_size_
@@ -167,6 +181,12 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
         << "; use a larger patch size";
     return Error{out.str()};
   }
+
+  const SurfaceGroups surfaces = GroupSurfaces(faces, tol);
+  const std::vector<std::vector<Footprint>> footprints = FindFootprints(faces, tol);
+  const std::vector<std::vector<Footprint>> sheets =
+      FindCoveringSheets(faces, tol, kSheetReachPatches * pm.patch_size_);
+  pm.surface_count_ = surfaces.count;
 
   pm.materials_ = scene.materials;
   pm.objects_ = ObjectsOrDefault(scene);
@@ -211,6 +231,27 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   return pm;
 }
 
+void PatchMesh::SetSizeSummary(const std::vector<SplitPlan>& plans,
+                               const std::vector<double>& sizes) {
+  // The median by pieces: the size most patches were cut to.
+  std::vector<std::pair<double, uint64_t>> by_size;
+  uint64_t total = 0;
+  for (size_t f = 0; f < plans.size(); ++f) {
+    const uint64_t count = std::min(plans[f].PieceCount(), kMaxPatches + 1);
+    by_size.emplace_back(sizes[f], count);
+    total += count;
+  }
+  std::sort(by_size.begin(), by_size.end());
+  patch_size_min_ = by_size.front().first;
+  patch_size_max_ = by_size.back().first;
+  uint64_t seen = 0;
+  for (const auto& [size, count] : by_size) {
+    seen += count;
+    patch_size_ = size;
+    if (2 * seen >= total) break;
+  }
+}
+
 std::vector<PatchMesh::Piece> PatchMesh::PiecesOf(const PatchScene& scene) {
   std::vector<Piece> pieces;
   pieces.reserve(scene.patches.size());
@@ -228,6 +269,8 @@ std::vector<PatchMesh::Piece> PatchMesh::PiecesOf(const PatchScene& scene) {
 PatchMesh PatchMesh::Rebuilt(const std::vector<Piece>& pieces) const {
   PatchMesh pm;
   pm.patch_size_ = patch_size_;
+  pm.patch_size_min_ = patch_size_min_;
+  pm.patch_size_max_ = patch_size_max_;
   pm.dropped_degenerate_ = dropped_degenerate_;
   pm.dropped_hidden_ = dropped_hidden_;
   pm.surface_count_ = surface_count_;

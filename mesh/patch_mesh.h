@@ -6,7 +6,8 @@
 //   1. clean_faces.h     repeated and straight-through corners removed; zero-area faces dropped
 //   2. hidden_faces.h    faces hidden inside a coplanar overlap dropped
 //   3. surfaces.h        faces grouped into smooth surfaces (the units of vertex averaging)
-//   4. polygon_split.h   each face split into patches no longer than the patch size on any edge
+//   4. polygon_split.h   each face split into patches no longer than its patch size on any edge
+//      auto_patch_size.h the automatic size, per face, from the space the face looks into
 //      contact_cut.h     patches cut along the footprints of solids standing on the face
 //   5. patch_assembler.h patches welded into the mesh; T-vertices between differently split faces
 //                        of one surface found
@@ -30,9 +31,8 @@
 
 namespace radfarm {
 
-// With MeshSettings::patch_size == 0 the patch size is D / kAutoPatchDivisions: about 40 patches
-// along the scene's diagonal, a few thousand patches for a room.
-inline constexpr double kAutoPatchDivisions = 40;
+// With MeshSettings::patch_size == 0 every face gets its own size from the space it looks into
+// (mesh/auto_patch_size.h): about a tenth of a room's mean chord, 0.2 m in a 4 x 4 x 3 m office.
 // Build refuses scenes that would need more patches than this (a patch size far too small).
 inline constexpr uint64_t kMaxPatches = uint64_t{1} << 23;
 // How far toward the centres of its patches a vertex's direct light is computed, as a share of
@@ -71,8 +71,13 @@ class PatchMesh {
 
   // Flat copy the solver uses; patch i == OpenMesh face i.
   const PatchScene& patch_scene() const { return data_.scene; }
-  // Target size actually used (automatic when settings.patch_size == 0).
+  // Target size actually used: settings.patch_size, or when automatic (settings.patch_size == 0)
+  // the median over the patches of their faces' sizes; the display's and refinement's lengths
+  // (kGatherBand, min_element_size, the lightmap texel) follow it. Min and max are the smallest
+  // and largest face sizes (equal to patch_size() unless automatic).
   double patch_size() const { return patch_size_; }
+  double patch_size_min() const { return patch_size_min_; }
+  double patch_size_max() const { return patch_size_max_; }
   size_t dropped_degenerate() const { return dropped_degenerate_; }
   size_t dropped_hidden() const { return dropped_hidden_; }
   size_t surface_count() const { return surface_count_; }
@@ -149,6 +154,8 @@ class PatchMesh {
 
  private:
   PatchMesh() = default;
+  // patch_size_ and its range from the faces' plans and target sizes.
+  void SetSizeSummary(const std::vector<SplitPlan>& plans, const std::vector<double>& sizes);
   // Per patch, its display vertices in order: corners and the T-vertices on its edges.
   std::vector<std::vector<uint32_t>> FaceRings() const;
   // The solution into the face properties B and dB (aborts on a size mismatch).
@@ -167,6 +174,8 @@ class PatchMesh {
   std::optional<DisplayMesh> split_display_;
   DisplayStats display_stats_;
   double patch_size_ = 0;
+  double patch_size_min_ = 0;
+  double patch_size_max_ = 0;
   size_t dropped_degenerate_ = 0;
   size_t dropped_hidden_ = 0;
   size_t surface_count_ = 0;

@@ -16,13 +16,6 @@ using testing::TotalArea;
 
 const std::vector<Vec3> kFloor = {{0, 0, 0}, {0, 0, 4}, {4, 0, 4}, {4, 0, 0}};
 
-TEST(PatchMeshTest, AutomaticPatchSizeIsADiagonalOverForty) {
-  Result<PatchMesh> mesh = PatchMesh::Build(SceneOf({kFloor}), {}, nullptr);
-  ASSERT_TRUE(mesh.ok()) << mesh.error();
-  EXPECT_DOUBLE_EQ(mesh->patch_size(), std::sqrt(32.0) / 40);
-  EXPECT_EQ(mesh->patch_scene().patches.size(), 29u * 29u);  // ceil(4 / 0.1414)
-}
-
 TEST(PatchMeshTest, PatchesCarryGeometryAndMaterial) {
   SceneBuilder b;
   b.AddMaterial("white", {0.7, 0.7, 0.7});
