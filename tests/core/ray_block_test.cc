@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <vector>
 
 #include "core/batch_tracer.h"
@@ -121,6 +122,49 @@ TEST(RayBlockTest, BatchesFromTheShapesMatchBatchesFromTheScene) {
       for (const PatchHits& h : expected.hits) two_sided_hits += two_sided[h.patch];
     }
     EXPECT_GT(two_sided_hits, 0u) << SamplerName(kind);  // the two-sided geometry was traced
+  }
+}
+
+// A batch's result counted ray by ray from Sample and Trace: what BatchTracer::Run must give, on
+// either of its ways to sum the hits (a sorted list up to 256 rays, the dense array beyond).
+BatchResult CountRayByRay(const PatchScene& scene, const RayCaster& caster,
+                          const RaySampler& sampler, const Batch& batch) {
+  const Patch& shooter = scene.patches[batch.shooter];
+  const ShotSampler shot =
+      sampler.Shot(shooter, batch.shooter, batch.round, caster.origin_offset());
+  BatchResult result;
+  std::map<uint32_t, uint64_t> weights;
+  for (uint32_t k = 0; k < batch.ray_count; ++k) {
+    const RaySample ray = shot.Sample(batch.first_ray + k);
+    const RayHit hit = caster.Trace(ray.origin, ray.direction, shooter.normal);
+    if (hit.patch == RayHit::kMiss) {
+      result.escaped_weight += ray.weight;
+      ++result.escaped_rays;
+    } else if (!hit.front) {
+      result.back_weight += ray.weight;
+      ++result.back_rays;
+    } else {
+      weights[hit.patch] += ray.weight;
+    }
+  }
+  for (const auto& [patch, weight] : weights) result.hits.push_back({patch, weight});
+  return result;
+}
+
+TEST(RayBlockTest, ShortAndLongBatchesSumTheirHitsAsRayByRay) {
+  const PatchScene scene = MixedScene();
+  const RayCaster caster(scene);
+  for (SamplerKind kind : {SamplerKind::kGrid, SamplerKind::kRandom, SamplerKind::kSobol}) {
+    const RaySampler sampler(kind, 7, 4.0);
+    BatchTracer tracer(scene, caster, sampler);
+    for (uint32_t id = 0; id < scene.patches.size(); id += 5) {
+      // Short and long batches in turn, so each way of summing follows the other's leftovers.
+      for (uint32_t rays : {1u, 13u, 256u, 257u, 40u, 1500u, 200u}) {
+        const Batch batch{3, id, 11, rays};
+        ASSERT_EQ(tracer.Run(batch), CountRayByRay(scene, caster, sampler, batch))
+            << SamplerName(kind) << " patch " << id << ", " << rays << " rays";
+      }
+    }
   }
 }
 
