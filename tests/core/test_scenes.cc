@@ -90,14 +90,6 @@ PatchScene LitBox() {
   return scene;
 }
 
-double CornerRectangle(double a, double b) {
-  const double fa = std::abs(a), fb = std::abs(b);
-  const double f = (fa / std::sqrt(1 + fa * fa) * std::atan(fb / std::sqrt(1 + fa * fa)) +
-                    fb / std::sqrt(1 + fb * fb) * std::atan(fa / std::sqrt(1 + fb * fb))) /
-                   (2 * std::numbers::pi);
-  return (a < 0) != (b < 0) ? -f : f;
-}
-
 bool BitIdentical(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
   // memcmp of two empty vectors' null data pointers is undefined, even for 0 bytes.
   return a.size() == b.size() &&

@@ -6,6 +6,7 @@
 
 #include "core/patch_scene.h"
 #include "core/solver_settings.h"
+#include "tests/core/corner_rectangle.h"  // CornerRectangle, for the tests that use these scenes
 
 namespace radfarm::testing {
 
@@ -31,11 +32,6 @@ PatchScene MakeClosedBox(const Vec3& lo, const Vec3& hi, int n, const Surface& s
 // MakeClosedBox of the unit cube, 4 x 4 patches a face, reflectance (0.7, 0.5, 0.3), one patch of
 // the +y face (the ceiling) emitting 10.
 PatchScene LitBox();
-
-// The form factor from a point to a parallel rectangle a x b at height 1 with a corner straight
-// above it: 1/(2 pi) [A/sqrt(1+A^2) atan(B/sqrt(1+A^2)) + B/sqrt(1+B^2) atan(A/sqrt(1+B^2))];
-// signed (negative when exactly one of a, b is), so rectangles off the point add and subtract.
-double CornerRectangle(double a, double b);
 
 // Whether two solutions are the same to the bit.
 bool BitIdentical(const std::vector<Rgb>& a, const std::vector<Rgb>& b);

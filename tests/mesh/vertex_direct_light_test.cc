@@ -7,12 +7,15 @@
 #include <numbers>
 #include <optional>
 
-#include "solve/local_solve.h"
 #include "mesh/patch_mesh.h"
+#include "solve/local_solve.h"
 #include "test_scenes.h"
+#include "tests/core/corner_rectangle.h"
 
 namespace radfarm {
 namespace {
+
+using testing::CornerRectangle;
 
 constexpr double kRho = 0.5;
 
@@ -28,16 +31,6 @@ InputScene FloorUnderASquareLight() {
   s.AddFace({{1.5, 1, 1.5}, {2.5, 1, 1.5}, {2.5, 1, 2.5}, {1.5, 1, 2.5}}, light);
   s.AddFace({{0, 0, 0}, {0, 2, 0}, {0, 2, 4}, {0, 0, 4}}, black);
   return s.scene();
-}
-
-// Form factor from a point to a parallel rectangle at height 1 with a corner straight above it,
-// sides a and b (signed: the superposition below adds and subtracts such rectangles).
-double CornerRectangle(double a, double b) {
-  const double fa = std::abs(a), fb = std::abs(b);
-  const double f = (fa / std::sqrt(1 + fa * fa) * std::atan(fb / std::sqrt(1 + fa * fa)) +
-                    fb / std::sqrt(1 + fb * fb) * std::atan(fa / std::sqrt(1 + fb * fb))) /
-                   (2 * std::numbers::pi);
-  return (a < 0) != (b < 0) ? -f : f;
 }
 
 // The light's form factor from floor point (x, 0, z).
