@@ -148,6 +148,21 @@ bool HasRoundLine(const std::string& log) {
   return std::regex_search(log, round_line);
 }
 
+}  // namespace
+
+std::string StartMasterAndAgents(testing::LoopbackFarm& farm, const std::vector<std::string>& flags,
+                                 unsigned agents) {
+  farm.StartMaster(flags);
+  if (farm.master_address().empty()) throw std::runtime_error("radfarmd: " + farm.MasterLog());
+  for (unsigned k = 0; k < agents; ++k) farm.StartAgent("a" + std::to_string(k), 1);
+  if (!farm.WaitForAgents(agents, std::chrono::seconds(60))) {
+    throw std::runtime_error("agents did not connect");
+  }
+  return "127.0.0.1:" + farm.master_address().substr(farm.master_address().rfind(':') + 1);
+}
+
+namespace {
+
 Run RunFarm(const BigJobOptions& o, const std::string& job, const std::string& dir, bool kill) {
   const std::string farm_dir = dir + (kill ? "/farm-killed" : "/farm");
   std::filesystem::create_directories(farm_dir);
@@ -155,14 +170,7 @@ Run RunFarm(const BigJobOptions& o, const std::string& job, const std::string& d
   std::vector<std::string> flags = {"--log-level", "info"};
   std::istringstream extra(o.checkpoint_flags);
   for (std::string flag; extra >> flag;) flags.push_back(flag);
-  farm.StartMaster(flags);
-  if (farm.master_address().empty()) throw std::runtime_error("radfarmd: " + farm.MasterLog());
-  const std::string listen =
-      "127.0.0.1:" + farm.master_address().substr(farm.master_address().rfind(':') + 1);
-  for (unsigned k = 0; k < o.agents; ++k) farm.StartAgent("a" + std::to_string(k), 1);
-  if (!farm.WaitForAgents(o.agents, std::chrono::seconds(60))) {
-    throw std::runtime_error("agents did not connect");
-  }
+  const std::string listen = StartMasterAndAgents(farm, flags, o.agents);
   std::string error;
   const auto start = Clock::now();
   const int64_t id = farm.Submit(job, {"--rays", std::to_string(o.rays)}, &error);

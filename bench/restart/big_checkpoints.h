@@ -11,8 +11,17 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
+
+#include "testing/loopback_farm.h"
 
 namespace radfarm::bench {
+
+// Starts `farm`'s master with `flags` and `agents` one-thread agents, waits for them to connect
+// and returns the address a restarted master must listen on to keep its port. Throws
+// std::runtime_error when the master does not start or the agents do not connect.
+std::string StartMasterAndAgents(testing::LoopbackFarm& farm, const std::vector<std::string>& flags,
+                                 unsigned agents);
 
 struct BigJobOptions {
   double patch_size = 1.45;      // mm: 1,046,925 patches

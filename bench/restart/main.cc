@@ -170,14 +170,7 @@ RunResult RunJob(const Options& o, int kills, double keep_after) {
   if (keep_after >= 0) {
     flags.insert(flags.end(), {"--keep-results-after", std::to_string(keep_after)});
   }
-  farm.StartMaster(flags);
-  if (farm.master_address().empty()) throw std::runtime_error("radfarmd: " + farm.MasterLog());
-  const std::string listen =
-      "127.0.0.1:" + farm.master_address().substr(farm.master_address().rfind(':') + 1);
-  for (unsigned k = 0; k < o.agents; ++k) farm.StartAgent("a" + std::to_string(k), 1);
-  if (!farm.WaitForAgents(o.agents, std::chrono::seconds(60))) {
-    throw std::runtime_error("agents did not connect");
-  }
+  const std::string listen = StartMasterAndAgents(farm, flags, o.agents);
   std::string error;
   const auto start = Clock::now();
   const int64_t id =
