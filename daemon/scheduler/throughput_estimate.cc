@@ -17,8 +17,12 @@ void ThroughputEstimate::AddResult(uint64_t rays, TimePoint issued, TimePoint no
   const double seconds =
       std::max(kMinBusySeconds, std::chrono::duration<double>(now - start).count());
   if (!measured()) {
-    rays_ = double(rays);
-    seconds_ = seconds;
+    pending_rays_ += double(rays);
+    pending_seconds_ += seconds;
+    if (pending_rays_ >= double(min_rays) && pending_rays_ > 0) {
+      rays_ = pending_rays_;
+      seconds_ = pending_seconds_;
+    }
   } else if (rays >= min_rays) {
     rays_ += smoothing * (double(rays) - rays_);
     seconds_ += smoothing * (seconds - seconds_);
@@ -32,20 +36,30 @@ double ThroughputEstimate::rays_per_second() const { return measured() ? rays_ /
 uint32_t ThroughputEstimate::LeaseCapacity(double batch_rays,
                                            const SchedulerOptions& options) const {
   const uint32_t cap = std::max<uint32_t>(1, options.max_leases_per_agent);
-  if (!measured()) return std::clamp<uint32_t>(options.initial_leases, 1, cap);
+  const uint32_t floor = MeasurableBatches(batch_rays, options);
+  if (!measured()) return std::clamp<uint32_t>(std::max(options.initial_leases, floor), 1, cap);
   const double want = rays_per_second() * options.target_lease_seconds / std::max(1.0, batch_rays);
   const double fill = std::max(1.0, std::floor(want));
   const double spare =
       double(options.spare_leases) + std::floor(fill * std::max(0.0, options.spare_lease_fraction));
-  return static_cast<uint32_t>(std::clamp(fill + spare, 1.0, double(cap)));
+  const double leases = std::max(fill + spare, double(floor));
+  return static_cast<uint32_t>(std::clamp(leases, 1.0, double(cap)));
 }
 
 uint32_t ThroughputEstimate::LeaseBatches(double batch_rays,
                                           const SchedulerOptions& options) const {
   const uint32_t cap = std::max<uint32_t>(1, options.max_leases_per_agent);
-  if (!measured()) return std::clamp<uint32_t>(options.initial_leases, 1, cap);
+  const uint32_t floor = MeasurableBatches(batch_rays, options);
+  if (!measured()) return std::clamp<uint32_t>(std::max(options.initial_leases, floor), 1, cap);
   const double want = rays_per_second() * options.target_lease_seconds / std::max(1.0, batch_rays);
-  return static_cast<uint32_t>(std::clamp(std::floor(want), 1.0, double(cap)));
+  return static_cast<uint32_t>(
+      std::clamp(std::max(std::floor(want), double(floor)), 1.0, double(cap)));
+}
+
+uint32_t ThroughputEstimate::MeasurableBatches(double batch_rays, const SchedulerOptions& options) {
+  const uint32_t cap = std::max<uint32_t>(1, options.max_leases_per_agent);
+  const double batches = std::ceil(double(options.min_batch_rays) / std::max(1.0, batch_rays));
+  return static_cast<uint32_t>(std::clamp(batches, 1.0, double(cap)));
 }
 
 double ThroughputEstimate::ExpectedSeconds(uint64_t rays, const SchedulerOptions& options) const {

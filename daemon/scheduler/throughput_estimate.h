@@ -22,7 +22,10 @@ class ThroughputEstimate {
   // result of fewer than `min_rays` rays only marks the time: its busy time is mostly the fixed
   // cost of a batch (the round trip, the 1 ms floor), so the shots of a round's last few rays
   // (one or two per shooter) would otherwise measure a fast agent at a few thousand rays/s and
-  // shrink every later batch to the minimum.
+  // shrink every later batch to the minimum. The first measurement needs `min_rays` too: results
+  // below it add up until they reach it (a first lease of two 20-ray batches answered after a
+  // 100 ms stall would read the agent at 400 rays/s, and leases sized from that stay under
+  // `min_rays` and could never correct it).
   void AddResult(uint64_t rays, TimePoint issued, TimePoint now, double smoothing,
                  uint64_t min_rays = 0);
 
@@ -33,12 +36,17 @@ class ThroughputEstimate {
   // Leases to hold so the held work takes about options.target_lease_seconds:
   // max(1, floor(rays/s * target / batch_rays)) + spare_leases, at most max_leases_per_agent;
   // options.initial_leases (capped) before the first result.
-  // Plus floor(that target count * spare_lease_fraction).
+  // Plus floor(that target count * spare_lease_fraction). Never fewer than MeasurableBatches.
   uint32_t LeaseCapacity(double batch_rays, const SchedulerOptions& options) const;
   // Batches for one lease frame: those that fill target_lease_seconds, max(1, floor(rays/s *
   // target / batch_rays)), at most max_leases_per_agent; options.initial_leases before the first
   // result. The agent's own speed: a fast agent gets big leases whatever the slowest one does.
+  // Never fewer than MeasurableBatches.
   uint32_t LeaseBatches(double batch_rays, const SchedulerOptions& options) const;
+  // Batches of `batch_rays` rays that make a result of at least options.min_batch_rays rays, one
+  // that AddResult measures (at most max_leases_per_agent): however low the estimate, a full lease
+  // can correct it.
+  static uint32_t MeasurableBatches(double batch_rays, const SchedulerOptions& options);
   // Seconds the agent needs for `rays` at its measured speed; options.unmeasured_expected_seconds
   // for any work before the first result.
   double ExpectedSeconds(uint64_t rays, const SchedulerOptions& options) const;
@@ -50,6 +58,9 @@ class ThroughputEstimate {
  private:
   double rays_ = 0;     // smoothed rays per result
   double seconds_ = 0;  // smoothed busy seconds per result
+  // Before the first measurement: the results so far, under min_rays together.
+  double pending_rays_ = 0;
+  double pending_seconds_ = 0;
   std::optional<TimePoint> last_result_;
 };
 

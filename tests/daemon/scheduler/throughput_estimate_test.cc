@@ -42,7 +42,7 @@ TEST(ThroughputEstimateTest, BurstOfResultsDoesNotBlowUpTheEstimate) {
 
 // A round's last shots are a ray or two per shooter: measured at the 1 ms floor each, they
 // would read an agent of 1e6 rays/s as 1e3. Once measured, results under min_rays only mark the
-// time; an unmeasured agent still takes its first result, however small.
+// time; an unmeasured agent adds its first results up until they reach min_rays.
 TEST(ThroughputEstimateTest, TinyResultsDoNotShrinkTheEstimate) {
   ThroughputEstimate t;
   TimePoint now = kT0;
@@ -68,7 +68,42 @@ TEST(ThroughputEstimateTest, TinyResultsDoNotShrinkTheEstimate) {
   EXPECT_LT(plain.rays_per_second(), 1e4);
   ThroughputEstimate first_tiny;
   first_tiny.AddResult(2, kT0, kT0 + milliseconds(1), 0.3, 256);
-  EXPECT_TRUE(first_tiny.measured());
+  EXPECT_FALSE(first_tiny.measured());
+  first_tiny.AddResult(254, kT0, kT0 + milliseconds(2), 0.3, 256);
+  ASSERT_TRUE(first_tiny.measured());
+  EXPECT_NEAR(first_tiny.rays_per_second(), 256 / 2e-3, 1e-6);  // both results, both busy times
+}
+
+// A master restarted mid-job meets its agents in a round of 23-ray batches (one shooter's share
+// of a 352,679-patch job). The first lease was answered 430 ms after it went out; read from two
+// batches that made 106 rays/s, and every later lease (1 batch, then 6 held) stayed under
+// min_rays, so the estimate never moved and the rest of the job ran at a round trip per 23 rays
+// (restart_bench: 151.9 s against 54.9 s without the kill). Leases now always carry enough
+// batches to be measured, and the first measurement needs min_rays too.
+TEST(ThroughputEstimateTest, ASlowFirstLeaseOfTinyBatchesDoesNotPinTheEstimate) {
+  SchedulerOptions options;  // target 0.5 s, min_batch_rays 256
+  options.max_leases_per_agent = 1u << 17;
+  const double batch_rays = 23;
+  const double agent_rays_per_second = 1e6;
+  const auto round_trip = milliseconds(20);
+  ThroughputEstimate t;
+  TimePoint now = kT0;
+  EXPECT_EQ(t.LeaseBatches(batch_rays, options), 12u);  // ceil(256 / 23), not initial_leases (2)
+  EXPECT_EQ(t.LeaseCapacity(batch_rays, options), 12u);
+  for (int lease = 0; lease < 60; ++lease) {
+    const uint64_t rays = uint64_t(t.LeaseBatches(batch_rays, options) * batch_rays);
+    EXPECT_GE(rays, options.min_batch_rays);
+    const TimePoint issued = now;
+    const auto stall = lease == 0 ? milliseconds(430) : milliseconds(0);
+    now += stall + round_trip +
+           std::chrono::duration_cast<Duration>(
+               std::chrono::duration<double>(double(rays) / agent_rays_per_second));
+    t.AddResult(rays, issued, now, options.throughput_smoothing, options.min_batch_rays);
+    ASSERT_TRUE(t.measured());
+  }
+  // Leases of 0.5 s at a million rays/s take 20 ms more each: within a few per cent of the speed.
+  EXPECT_GT(t.rays_per_second(), 0.9 * agent_rays_per_second);
+  EXPECT_GT(t.LeaseBatches(batch_rays, options), 18000u);
 }
 
 TEST(ThroughputEstimateTest, FastAgentsHoldMoreLeasesNeverAboveTheCap) {
