@@ -1,0 +1,118 @@
+#include "bench/scaling/scaling_runs.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "bench/memory/peak_rss.h"
+#include "testing/loopback_farm.h"
+
+namespace radfarm::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+nlohmann::json ReadJsonFile(const std::string& path) {
+  return nlohmann::json::parse(ReadFile(path));
+}
+
+// The number after `marker` in `text` ("read and meshed in 1.0 s"), or 0 when absent.
+double NumberAfter(const std::string& text, const std::string& marker) {
+  const size_t at = text.find(marker);
+  return at == std::string::npos ? 0 : std::strtod(text.c_str() + at + marker.size(), nullptr);
+}
+
+uint64_t RoomsOf(const std::string& rooms) {
+  unsigned a = 0, b = 0;
+  if (std::sscanf(rooms.c_str(), "%ux%u", &a, &b) != 2 || a == 0 || b == 0) {
+    throw std::runtime_error("--rooms: " + rooms + " is not AxB");
+  }
+  return uint64_t(a) * b;
+}
+
+}  // namespace
+
+BuildingJob WriteBuildingJob(const std::string& rooms, uint64_t rays_per_room,
+                             const std::string& dir) {
+  BuildingJob job{rooms, dir + "/building.toml", RoomsOf(rooms) * rays_per_room};
+  std::filesystem::create_directories(dir);
+  const MeasuredRun run = RunMeasured(
+      {RADFARM_CLI_PATH, "building", "--rooms", rooms, "--patch-size", "0", "--out", dir},
+      dir + "/building.log");
+  if (run.exit_code != 0) throw std::runtime_error("radfarm building failed: see " + dir);
+  return job;
+}
+
+RenderFigures MeasureRender(const BuildingJob& job, const std::string& dir) {
+  const std::string out = dir + "/render";
+  const std::string log = dir + "/render.log";
+  const MeasuredRun run = RunMeasured({RADFARM_CLI_PATH, "render", job.toml, "--out", out, "--rays",
+                                       std::to_string(job.rays), "--threads", "2"},
+                                      log);
+  if (run.exit_code != 0) throw std::runtime_error("render failed: see " + log);
+  const nlohmann::json stats = ReadJsonFile(out + "/stats.json");
+  RenderFigures r;
+  r.patches = stats.at("patches").get<uint64_t>();
+  r.rays = stats.at("rays").get<uint64_t>();
+  r.wall_seconds = run.seconds;
+  r.mesh_seconds = NumberAfter(ReadFile(log), "read and meshed in ");
+  r.solve_seconds = stats.at("seconds").get<double>();
+  r.display_seconds = stats.value("display_seconds", 0.0);
+  r.rays_per_second = stats.at("rays_per_second").get<double>();
+  r.peak_rss_bytes = run.peak_rss_bytes;
+  r.patches_csv = out + "/patches.csv";
+  return r;
+}
+
+FarmFigures MeasureFarm(const BuildingJob& job, unsigned agents, const RenderFigures& render,
+                        const std::string& dir) {
+  const std::string farm_dir = dir + "/farm";
+  std::filesystem::create_directories(farm_dir);
+  testing::LoopbackFarm farm({RADFARMD_PATH, RADFARM_AGENT_PATH, RADFARM_CLI_PATH}, farm_dir);
+  const pid_t master = farm.StartMaster({"--log-level", "info"}).pid();
+  if (farm.master_address().empty()) throw std::runtime_error("radfarmd: " + farm.MasterLog());
+  std::vector<pid_t> agent_pids;
+  for (unsigned k = 0; k < agents; ++k) {
+    agent_pids.push_back(farm.StartAgent("a" + std::to_string(k), 1).pid());
+  }
+  if (!farm.WaitForAgents(agents, std::chrono::seconds(60))) {
+    throw std::runtime_error("the agents did not connect");
+  }
+  std::string error;
+  const Clock::time_point submitted = Clock::now();
+  const int64_t id = farm.Submit(job.toml, {"--rays", std::to_string(job.rays)}, &error);
+  if (id < 0) throw std::runtime_error("submit failed: " + error);
+  const nlohmann::json done = farm.WaitForJob(id, testing::IsFinished, std::chrono::minutes(120),
+                                              std::chrono::milliseconds(100));
+  FarmFigures f;
+  f.job_seconds = std::chrono::duration<double>(Clock::now() - submitted).count();
+  if (done.is_null() || done.value("state", "") != "done") {
+    throw std::runtime_error("farm job did not finish: " + done.dump());
+  }
+  f.master_peak_rss_bytes = PeakRssOf(master);
+  for (pid_t pid : agent_pids)
+    f.agent_peak_rss_bytes = std::max(f.agent_peak_rss_bytes, PeakRssOf(pid));
+  const std::string out = farm_dir + "/out";
+  if (farm.Fetch(id, out).exit_code != 0) throw std::runtime_error("fetch failed");
+  const nlohmann::json stats = ReadJsonFile(out + "/stats.json");
+  f.solve_seconds = stats.at("seconds").get<double>();
+  f.rays_per_second = stats.at("rays_per_second").get<double>();
+  f.same_as_render = ReadFile(out + "/patches.csv") == ReadFile(render.patches_csv);
+  return f;
+}
+
+}  // namespace radfarm::bench
