@@ -58,6 +58,14 @@ codec::JobSolution SolutionOf(store::StoredSolution stored, const JobSummary& su
   return solution;
 }
 
+// What the compute thread found in a submitted bundle: the job's settings as listed, its seed,
+// and its scene meshed.
+struct CheckedSubmission {
+  SubmittedSettings settings;
+  uint64_t seed = 0;
+  std::shared_ptr<PatchMesh> mesh;
+};
+
 }  // namespace
 
 ControlRequests::ControlRequests(loop::EventLoop& loop, StoreThread& store,
@@ -328,10 +336,12 @@ void ControlRequests::RespondWithJobs(std::optional<store::JobId> id, ControlRes
 }
 
 void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
-  // Decode and mesh on the compute thread: a bundle the agents could not use is refused now.
+  // Decode and mesh on the compute thread: a bundle the agents could not use is refused now. The
+  // mesh goes on to the job's preparation if the job starts at once
+  // (JobRounds::OfferSubmittedMesh).
   auto blob = std::make_shared<std::vector<uint8_t>>(std::move(request.attachment));
   Status s = compute_.Submit(
-      [blob]() -> Result<std::pair<SubmittedSettings, uint64_t>> {
+      [blob]() -> Result<CheckedSubmission> {
         Result<codec::JobBundle> bundle = codec::DecodeJobBundle(*blob);
         RADFARM_RETURN_IF_ERROR(bundle);
         Result<PatchMesh> mesh = PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
@@ -350,21 +360,21 @@ void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
                                    std::string(SamplerName(solver.sampler)),
                                    mesh->patch_scene().patches.size(),
                                    bundle->job.scene_path};
-        return std::pair(settings, solver.seed);
+        return CheckedSubmission{settings, solver.seed,
+                                 std::make_shared<PatchMesh>(std::move(*mesh))};
       },
-      [this, blob, request = std::move(request),
-       respond](Result<std::pair<SubmittedSettings, uint64_t>> checked) {
+      [this, blob, request = std::move(request), respond](Result<CheckedSubmission> checked) {
         if (!checked) return respond(ControlError("bad_request", checked.error()));
         store::JobSpec spec;
         spec.name = request.name;
         if (spec.name.empty()) {
-          const std::string& scene = checked->first.scene;
+          const std::string& scene = checked->settings.scene;
           const size_t slash = scene.find_last_of('/');
           spec.name = scene.substr(slash == std::string::npos ? 0 : slash + 1);
         }
         spec.scene_hash = protocol::HashToHex(protocol::HashScene(*blob));
-        spec.settings = checked->first.ToJson();
-        spec.seed = checked->second;
+        spec.settings = checked->settings.ToJson();
+        spec.seed = checked->seed;
         spec.priority = request.priority;
         store_.Run(
             [blob, spec](store::JobStore& s) -> Result<JobSummary> {
@@ -376,8 +386,9 @@ void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
               if (!job || !*job) return Error{"the new job cannot be read back"};
               return ReadJobSummary(s, **job);
             },
-            [this, respond](Result<JobSummary> summary) {
+            [this, respond, mesh = std::move(checked->mesh)](Result<JobSummary> summary) {
               if (!summary) return respond(ControlError("internal", summary.error()));
+              jobs_.OfferSubmittedMesh(summary->record.id, mesh);
               LogLine(LogLevel::kInfo, "job " + std::to_string(summary->record.id))
                   << "submitted: " << summary->record.spec.name << ", " << summary->settings.patches
                   << " patches, priority " << summary->record.spec.priority;

@@ -50,14 +50,25 @@ RunningJob* JobRounds::FindRunner(uint64_t job_id) {
   return it == runners_.end() ? nullptr : it->second.get();
 }
 
+void JobRounds::OfferSubmittedMesh(store::JobId id, std::shared_ptr<PatchMesh> mesh) {
+  submitted_mesh_job_ = id;
+  submitted_mesh_ = std::move(mesh);
+}
+
 void JobRounds::StartQueuedJobs() {
-  if (stopping_) return;
+  if (stopping_) {
+    submitted_mesh_.reset();
+    return;
+  }
   if (start_pending_) {
     start_again_ = true;
     return;
   }
   const size_t busy = runners_.size() + starting_.size();
-  if (busy >= config_.max_running_jobs) return;
+  if (busy >= config_.max_running_jobs) {
+    submitted_mesh_.reset();  // its job waits in the queue
+    return;
+  }
   start_pending_ = true;
   const int slots = static_cast<int>(config_.max_running_jobs - busy);
   // One step on the store thread: pick the jobs, mark them running, read what they need. The loop
@@ -83,11 +94,15 @@ void JobRounds::StartQueuedJobs() {
                                            : "started");
           auto options = options_;
           auto shared = std::make_shared<store::JobStart>(std::move(start));
+          std::shared_ptr<PatchMesh> meshed;
+          if (submitted_mesh_ && submitted_mesh_job_ == id && !shared->checkpoint) {
+            meshed = std::move(submitted_mesh_);
+          }
           Status s = compute_.Submit(
-              [shared, options] {
+              [shared, options, meshed]() mutable {
                 return RunningJob::Prepare(shared->record, shared->bundle, shared->checkpoint,
                                            shared->checkpoint_scene, shared->rounds, options,
-                                           std::move(shared->round_results));
+                                           std::move(shared->round_results), std::move(meshed));
               },
               [this, id](Result<std::shared_ptr<RunningJob>> runner) {
                 OnJobPrepared(id, std::move(runner));
@@ -97,6 +112,8 @@ void JobRounds::StartQueuedJobs() {
         if (start_again_) {
           start_again_ = false;
           StartQueuedJobs();
+        } else {
+          submitted_mesh_.reset();  // its job was not among those started
         }
       });
 }
@@ -120,9 +137,10 @@ void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob
     return;
   }
   LogLine(LogLevel::kInfo, "job " + std::to_string(id))
-      << r->patch_count() << " patches, scene " << protocol::HashToHex(r->wire_info().scene_hash)
-      << " (" << r->packed_scene()->size << " bytes, " << r->packed_scene()->compressed.size()
-      << " compressed)";
+      << r->patch_count() << " patches"
+      << (r->meshed_at_submission() ? " (meshed at submission)" : "") << ", scene "
+      << protocol::HashToHex(r->wire_info().scene_hash) << " (" << r->packed_scene()->size
+      << " bytes, " << r->packed_scene()->compressed.size() << " compressed)";
   for (uint64_t agent : agents_.available_agents()) r->scheduler().AddAgent(agent);
   BeginRound(r);
 }

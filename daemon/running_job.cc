@@ -58,14 +58,18 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
     const std::optional<store::Checkpoint>& checkpoint,
     const std::optional<std::vector<uint8_t>>& checkpoint_scene,
     const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options,
-    std::vector<store::StoredBatchResult> stored) {
+    std::vector<store::StoredBatchResult> stored, std::shared_ptr<PatchMesh> meshed) {
   const std::string job = "job " + std::to_string(record.id);
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(bundle_blob);
   RADFARM_RETURN_IF_ERROR(bundle);
-  Result<PatchMesh> mesh = PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
+  const bool meshed_at_submission = meshed != nullptr;
+  Result<PatchMesh> mesh = meshed ? Result<PatchMesh>(std::move(*meshed))
+                                  : PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
+  meshed.reset();
   RADFARM_RETURN_IF_ERROR(mesh);
 
   std::shared_ptr<RunningJob> runner(new RunningJob());
+  runner->meshed_at_submission_ = meshed_at_submission;
   runner->record_ = record;
   runner->settings_ = bundle->job.solver;
   runner->estimator_ = ProgressEstimator(runner->settings_.tolerance);

@@ -85,13 +85,16 @@ class RunningJob {
   // to it; `checkpoint_scene` is the blob of the refined scene the checkpoint names (scene_hash).
   // `stored`: accepted results a previous master kept of the rounds after the checkpoint; each of
   // those rounds is planned with their batch size, so the same batches, and the results that
-  // match the plan exactly start done (StartPlannedRound).
+  // match the plan exactly start done (StartPlannedRound). `meshed`, when given, is the bundle's
+  // scene meshed already with the bundle's settings (at submission): it is used instead of meshing
+  // again, the same mesh since meshing is deterministic.
   static Result<std::shared_ptr<RunningJob>> Prepare(
       const store::JobRecord& record, const std::vector<uint8_t>& bundle_blob,
       const std::optional<store::Checkpoint>& checkpoint,
       const std::optional<std::vector<uint8_t>>& checkpoint_scene,
       const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options,
-      std::vector<store::StoredBatchResult> stored = {});
+      std::vector<store::StoredBatchResult> stored = {},
+      std::shared_ptr<PatchMesh> meshed = nullptr);
 
   store::JobId id() const { return record_.id; }
   const store::JobRecord& record() const { return record_; }
@@ -104,6 +107,8 @@ class RunningJob {
   const RaySampler& sampler() const { return driver_->solver().sampler(); }
   const JobTotals& totals() const { return totals_; }
   Phase phase() const { return phase_; }
+  // Whether Prepare took the mesh built at submission rather than meshing the scene again.
+  bool meshed_at_submission() const { return meshed_at_submission_; }
   // Set when Prepare found nothing left to do (the checkpoint already met a stopping rule).
   const std::optional<std::string>& stop_reason() const { return stop_reason_; }
   scheduler::RoundScheduler& scheduler() { return scheduler_; }
@@ -216,6 +221,7 @@ class RunningJob {
   std::optional<std::string> stop_reason_;
   JobTotals totals_;
   Phase phase_ = Phase::kRound;
+  bool meshed_at_submission_ = false;
   scheduler::TimePoint round_started_{};
   // (rays, seconds) of the last rounds, for RaysPerSecond.
   std::vector<std::pair<uint64_t, double>> recent_;

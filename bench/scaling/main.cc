@@ -6,10 +6,12 @@
 // bench/results/scaling_bench.json, which scripts/bench-report draws in docs/SCALING.md.
 //
 //   scaling_bench [--rooms 1x1,2x2,...] [--rays-per-room N] [--agents N] [--no-farm] [--json PATH]
+//                 [--keep DIR]
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -31,6 +33,7 @@ struct Options {
   unsigned agents = 2;
   bool farm = true;
   std::string json = DefaultJsonPath("scaling_bench");
+  std::string keep;  // write the scenes, outputs and logs here instead of a temporary directory
 };
 
 Options Parse(int argc, char** argv) {
@@ -53,16 +56,19 @@ Options Parse(int argc, char** argv) {
       o.farm = false;
     } else if (a == "--json") {
       o.json = next();
+    } else if (a == "--keep") {
+      o.keep = next();
     } else if (a == "-h" || a == "--help") {
       std::printf(
-          "scaling_bench [--rooms LIST] [--rays-per-room N] [--agents N] [--no-farm] [--json "
-          "PATH]\n"
-          "  Time, peak memory and rays/s against patch count for radfarm render (2 threads) and "
-          "a\n"
+          "scaling_bench [--rooms LIST] [--rays-per-room N] [--agents N] [--no-farm]\n"
+          "              [--json PATH] [--keep DIR]\n"
+          "  Time, peak memory and rays/s against patch count for radfarm render (2 threads) and\n"
+          "  a\n"
           "  loopback farm (radfarmd and N agents of 1 thread, default 2), on the procedural\n"
           "  building with rooms AxB from LIST (default 1x1,2x2,4x4,6x6,12x12,18x18: about 3,000\n"
           "  to 920,000 patches), each solved to N rays per room (default 400000). Writes\n"
-          "  bench/results/scaling_bench.json unless --json says where.\n");
+          "  bench/results/scaling_bench.json unless --json says where. --keep DIR: write the\n"
+          "  scenes, outputs and the daemons' logs under DIR and leave them there.\n");
       std::exit(0);
     } else {
       throw std::runtime_error("unknown argument " + a + " (see --help)");
@@ -91,13 +97,15 @@ double LogLogSlope(const nlohmann::json& runs, const char* key) {
 int Main(int argc, char** argv) {
   const Options o = Parse(argc, argv);
   const MachineInfo machine = ReadMachineInfo(argc, argv);
-  testing::TempDir dir;
+  std::optional<testing::TempDir> temp;
+  if (o.keep.empty()) temp.emplace("scaling_bench");
+  const std::string root = o.keep.empty() ? temp->path() : o.keep;
   nlohmann::json runs = nlohmann::json::array();
   std::printf("%7s %9s %11s | %8s %7s %8s %8s %8s %9s | %8s %8s %9s %9s %8s %5s\n", "rooms",
               "patches", "rays", "wall s", "mesh s", "solve s", "disp s", "Mrays/s", "peak MB",
               "job s", "Mrays/s", "master MB", "agent MB", "wall %", "same");
   for (const std::string& rooms : o.rooms) {
-    const std::string here = dir.path() + "/" + rooms;
+    const std::string here = root + "/" + rooms;
     const BuildingJob job = WriteBuildingJob(rooms, o.rays_per_room, here);
     const RenderFigures r = MeasureRender(job, here);
     nlohmann::json run = {{"rooms", rooms},

@@ -69,6 +69,34 @@ TEST_F(FarmTest, RoundsUnderTheLocalLimitAreSolvedByTheMasterAlone) {
   EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml", kShortJob));
 }
 
+// The master meshes a submitted scene to check it; a job that starts at once is prepared with
+// that mesh instead of meshing it again (seconds at 10^5-10^6 patches). A job that waits in the
+// queue does not hold its mesh and is meshed when it starts. Both give render's patches.
+TEST_F(FarmTest, AJobStartedAtOnceKeepsTheMeshItsSubmissionBuiltAndAQueuedOneMeshesAgain) {
+  // No agent yet and no round on the master: the first job waits in round 0, the second queues.
+  StartMaster({"--max-running-jobs", "1", "--local-round-rays", "0"});
+  const int64_t first = Submit("cornell-box.toml", kShortJob);
+  ASSERT_TRUE(WaitUntil([&] {
+    return MasterLog().find("job " + std::to_string(first) + ": ") != std::string::npos &&
+           MasterLog().find(" compressed)") != std::string::npos;
+  })) << MasterLog();
+  const int64_t second = Submit("cornell-box.toml", kShortJob);
+  EXPECT_EQ(Status(second).value("state", ""), "queued");
+  StartAgent("a");
+  ASSERT_TRUE(WaitForState(first, "done"));
+  ASSERT_TRUE(WaitForState(second, "done"));
+  const std::string log = MasterLog();
+  EXPECT_NE(
+      log.find("job " + std::to_string(first) + ": 3849 patches (meshed at submission), scene"),
+      std::string::npos)
+      << log;
+  EXPECT_NE(log.find("job " + std::to_string(second) + ": 3849 patches, scene"), std::string::npos)
+      << log;
+  const std::string reference = ReferencePatches("cornell-box.toml", kShortJob);
+  EXPECT_TRUE(FetchPatches(first) == reference) << "the kept mesh changed the result";
+  EXPECT_TRUE(FetchPatches(second) == reference);
+}
+
 TEST_F(FarmTest, AnAgentKilledMidRoundChangesNothing) {
   StartMaster();
   StartAgent("steady");
