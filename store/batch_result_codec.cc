@@ -1,9 +1,92 @@
 #include "store/batch_result_codec.h"
 
+#include <algorithm>
+#include <optional>
 #include <string>
 
 namespace radfarm::store {
 namespace {
+
+constexpr uint8_t kMagic[4] = {'R', 'F', 'H', '2'};
+constexpr size_t kFormat1HeaderBytes = 40;
+constexpr size_t kFormat1HitBytes = 12;
+
+// --- Format 2: LEB128 varints -------------------------------------------------------------------
+
+void PutVarint(uint64_t value, std::vector<uint8_t>* out) {
+  while (value >= 0x80) {
+    out->push_back(static_cast<uint8_t>(value) | 0x80);
+    value >>= 7;
+  }
+  out->push_back(static_cast<uint8_t>(value));
+}
+
+// The varint at `in`, or nullopt when the bytes end first or it runs over 64 bits.
+std::optional<uint64_t> GetVarint(std::span<const uint8_t> bytes, size_t* in) {
+  uint64_t value = 0;
+  for (int shift = 0; shift < 64; shift += 7) {
+    if (*in >= bytes.size()) return std::nullopt;
+    const uint8_t byte = bytes[(*in)++];
+    const uint64_t bits = byte & 0x7f;
+    if (shift == 63 && bits > 1) return std::nullopt;
+    value |= bits << shift;
+    if ((byte & 0x80) == 0) return value;
+  }
+  return std::nullopt;
+}
+
+Status CheckHit(const BatchResult& result, size_t k) {
+  if (result.hits[k].weight == 0 || (k > 0 && result.hits[k].patch <= result.hits[k - 1].patch)) {
+    return Error{"batch result blob: hit " + std::to_string(k) +
+                 " is out of patch order or has no weight"};
+  }
+  return Ok{};
+}
+
+Result<BatchResult> DecodeFormat2(std::span<const uint8_t> bytes) {
+  size_t in = sizeof kMagic;
+  auto truncated = [&] {
+    return Error{"batch result blob of " + std::to_string(bytes.size()) +
+                 " bytes ends inside a number"};
+  };
+  uint64_t header[5];
+  for (uint64_t& v : header) {
+    const std::optional<uint64_t> value = GetVarint(bytes, &in);
+    if (!value) return truncated();
+    v = *value;
+  }
+  BatchResult result;
+  result.escaped_weight = header[0];
+  result.escaped_rays = header[1];
+  result.back_weight = header[2];
+  result.back_rays = header[3];
+  // Each hit takes at least two bytes: a count beyond that is a lie, refused before allocating.
+  if (header[4] > (bytes.size() - in) / 2) {
+    return Error{"batch result blob of " + std::to_string(bytes.size()) + " bytes cannot hold " +
+                 std::to_string(header[4]) + " hits"};
+  }
+  result.hits.resize(header[4]);
+  uint32_t previous = 0;
+  for (size_t k = 0; k < result.hits.size(); ++k) {
+    const std::optional<uint64_t> delta = GetVarint(bytes, &in);
+    const std::optional<uint64_t> weight = delta ? GetVarint(bytes, &in) : std::nullopt;
+    if (!weight) return truncated();
+    if (*delta > UINT32_MAX)
+      return Error{"batch result blob: hit " + std::to_string(k) + " has no patch id"};
+    PatchHits& hit = result.hits[k];
+    hit.patch = previous + static_cast<uint32_t>(*delta);  // modulo 2^32: out of order is caught
+    hit.weight = *weight;
+    RADFARM_RETURN_IF_ERROR(CheckHit(result, k));
+    previous = hit.patch;
+  }
+  if (in != bytes.size()) {
+    return Error{"batch result blob: " + std::to_string(bytes.size() - in) +
+                 " bytes after its last hit"};
+  }
+  return result;
+}
+
+// --- Format 1: fixed-width little-endian --------------------------------------------------------
 
 template <typename T>
 void Put(T value, uint8_t*& out) {
@@ -17,10 +100,60 @@ T Get(const uint8_t*& in) {
   return static_cast<T>(value);
 }
 
+Result<BatchResult> DecodeFormat1(std::span<const uint8_t> bytes) {
+  if (bytes.size() < kFormat1HeaderBytes) {
+    return Error{"batch result blob of " + std::to_string(bytes.size()) +
+                 " bytes, expected at least " + std::to_string(kFormat1HeaderBytes)};
+  }
+  const uint8_t* in = bytes.data();
+  BatchResult result;
+  result.escaped_weight = Get<uint64_t>(in);
+  result.escaped_rays = Get<uint64_t>(in);
+  result.back_weight = Get<uint64_t>(in);
+  result.back_rays = Get<uint64_t>(in);
+  const uint64_t hits = Get<uint64_t>(in);
+  const size_t room = (bytes.size() - kFormat1HeaderBytes) / kFormat1HitBytes;
+  if (hits != room || (bytes.size() - kFormat1HeaderBytes) % kFormat1HitBytes != 0) {
+    return Error{"batch result blob of " + std::to_string(bytes.size()) + " bytes does not hold " +
+                 std::to_string(hits) + " hits"};
+  }
+  result.hits.resize(hits);
+  for (size_t k = 0; k < hits; ++k) {
+    result.hits[k].patch = Get<uint32_t>(in);
+    result.hits[k].weight = Get<uint64_t>(in);
+    RADFARM_RETURN_IF_ERROR(CheckHit(result, k));
+  }
+  return result;
+}
+
 }  // namespace
 
 std::vector<uint8_t> EncodeBatchResult(const BatchResult& result) {
-  std::vector<uint8_t> bytes(kBatchResultHeaderBytes + kBatchResultHitBytes * result.hits.size());
+  std::vector<uint8_t> bytes(std::begin(kMagic), std::end(kMagic));
+  bytes.reserve(sizeof kMagic + 5 * 10 + 3 * result.hits.size());
+  for (uint64_t v : {result.escaped_weight, result.escaped_rays, result.back_weight,
+                     result.back_rays, uint64_t{result.hits.size()}}) {
+    PutVarint(v, &bytes);
+  }
+  uint32_t previous = 0;
+  for (const PatchHits& hit : result.hits) {
+    PutVarint(static_cast<uint32_t>(hit.patch - previous), &bytes);  // modulo 2^32, as decoded
+    PutVarint(hit.weight, &bytes);
+    previous = hit.patch;
+  }
+  return bytes;
+}
+
+Result<BatchResult> DecodeBatchResult(std::span<const uint8_t> bytes) {
+  if (bytes.size() >= sizeof kMagic &&
+      std::equal(std::begin(kMagic), std::end(kMagic), bytes.begin())) {
+    return DecodeFormat2(bytes);
+  }
+  return DecodeFormat1(bytes);
+}
+
+std::vector<uint8_t> EncodeBatchResultFormat1(const BatchResult& result) {
+  std::vector<uint8_t> bytes(kFormat1HeaderBytes + kFormat1HitBytes * result.hits.size());
   uint8_t* out = bytes.data();
   for (uint64_t v : {result.escaped_weight, result.escaped_rays, result.back_weight,
                      result.back_rays, uint64_t{result.hits.size()}}) {
@@ -31,36 +164,6 @@ std::vector<uint8_t> EncodeBatchResult(const BatchResult& result) {
     Put(hit.weight, out);
   }
   return bytes;
-}
-
-Result<BatchResult> DecodeBatchResult(std::span<const uint8_t> bytes) {
-  if (bytes.size() < kBatchResultHeaderBytes) {
-    return Error{"batch result blob of " + std::to_string(bytes.size()) +
-                 " bytes, expected at least " + std::to_string(kBatchResultHeaderBytes)};
-  }
-  const uint8_t* in = bytes.data();
-  BatchResult result;
-  result.escaped_weight = Get<uint64_t>(in);
-  result.escaped_rays = Get<uint64_t>(in);
-  result.back_weight = Get<uint64_t>(in);
-  result.back_rays = Get<uint64_t>(in);
-  const uint64_t hits = Get<uint64_t>(in);
-  const size_t room = (bytes.size() - kBatchResultHeaderBytes) / kBatchResultHitBytes;
-  if (hits != room || (bytes.size() - kBatchResultHeaderBytes) % kBatchResultHitBytes != 0) {
-    return Error{"batch result blob of " + std::to_string(bytes.size()) + " bytes does not hold " +
-                 std::to_string(hits) + " hits"};
-  }
-  result.hits.resize(hits);
-  for (size_t k = 0; k < hits; ++k) {
-    PatchHits& hit = result.hits[k];
-    hit.patch = Get<uint32_t>(in);
-    hit.weight = Get<uint64_t>(in);
-    if (hit.weight == 0 || (k > 0 && hit.patch <= result.hits[k - 1].patch)) {
-      return Error{"batch result blob: hit " + std::to_string(k) +
-                   " is out of patch order or has no weight"};
-    }
-  }
-  return result;
 }
 
 }  // namespace radfarm::store
