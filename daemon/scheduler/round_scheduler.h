@@ -201,6 +201,8 @@ class RoundScheduler {
   // Rays per batch so the slowest measured agent finishes one batch in target_lease_seconds,
   // within [min_batch_rays, max_batch_rays]; default_batch_rays before any measurement.
   uint32_t SuggestedBatchRays() const;
+  // SuggestedBatchRays with the taper for the agents known now (taper_ways_per_agent each).
+  BatchSizing SuggestedSizing() const;
   // O(agents): the batch counts are kept as batches change state.
   SchedulerCounters counters(TimePoint now) const;
   // One agent's entry of counters().agents, in O(log agents) rather than O(agents):
