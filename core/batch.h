@@ -44,4 +44,26 @@ struct BatchResult {
 void AppendShotBatches(uint32_t round, uint32_t shooter, uint64_t rays, uint32_t batch_rays,
                        std::vector<Batch>* batches);
 
+// How a round's shots are cut into batches: batches of batch_rays, and with taper_ways > 0 the
+// round's last rays cut finer (TaperBatches). The farm's master stores it with each result, so a
+// restarted master plans the same batches (daemon/running_job.h).
+struct BatchSizing {
+  uint32_t batch_rays = 0;
+  uint32_t taper_ways = 0;  // 0: no taper
+  bool operator==(const BatchSizing&) const = default;
+};
+
+// The smallest batch TaperBatches cuts: a sixteenth of `batch_rays` (at least 1 ray).
+uint32_t TaperFloor(uint32_t batch_rays);
+
+// Guided self-scheduling at a round's end: a round is over when its last batch is, so the
+// plan's last batches are cut finer, for agents that take them as they free up to finish close
+// together. Walking back from the plan's end, each batch is cut into pieces of at most
+// max(floor, rays after the piece / ways) rays, the first piece of a batch taking a remainder
+// under `floor`; a batch that fits is left whole. Pieces stay in their batch's shot and in ray
+// order, so the plan still covers every ray once, in shot order (ProgressiveSolver::ApplyRound
+// sums a shot's hits as integers: the cut does not change the result, core/batch.h above).
+// Deterministic in (batches, ways, floor); ways == 0 leaves the batches as they are.
+void TaperBatches(uint32_t ways, uint32_t floor, std::vector<Batch>* batches);
+
 }  // namespace radfarm

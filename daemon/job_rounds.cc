@@ -185,14 +185,14 @@ void JobRounds::RunRoundHere(const std::shared_ptr<RunningJob>& runner) {
     return;
   }
   const bool due = CheckpointDue(runner->id());
-  const uint32_t batch_rays = runner->scheduler().SuggestedBatchRays();
+  const BatchSizing sizing = runner->scheduler().SuggestedSizing();
   auto shared_plan = std::make_shared<RoundPlan>(std::move(*plan));
-  ReduceOnComputeThread(runner, [runner, shared_plan, due, batch_rays] {
+  ReduceOnComputeThread(runner, [runner, shared_plan, due, sizing] {
     const auto start = std::chrono::steady_clock::now();
     const scheduler::CompletedRound round = runner->RunLocally(std::move(*shared_plan));
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return runner->Reduce(round, seconds, due, batch_rays);
+    return runner->Reduce(round, seconds, due, sizing);
   });
 }
 
@@ -239,11 +239,11 @@ void JobRounds::OnRoundComplete(store::JobId id) {
   }
   const double seconds =
       std::chrono::duration<double>(LoopNow(loop_) - runner->round_started()).count();
-  const uint32_t batch_rays = runner->scheduler().SuggestedBatchRays();
+  const BatchSizing sizing = runner->scheduler().SuggestedSizing();
   const bool due = CheckpointDue(runner->id());
   auto shared_round = std::make_shared<scheduler::CompletedRound>(std::move(*round));
-  ReduceOnComputeThread(runner, [runner, shared_round, seconds, due, batch_rays] {
-    return runner->Reduce(*shared_round, seconds, due, batch_rays);
+  ReduceOnComputeThread(runner, [runner, shared_round, seconds, due, sizing] {
+    return runner->Reduce(*shared_round, seconds, due, sizing);
   });
 }
 

@@ -126,34 +126,41 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
 
   // The round the solver plans next, with the batch size its kept results were planned with.
   runner->stored_ = std::move(stored);
-  const uint32_t batch_rays =
-      runner->BatchRaysFor(runner->driver_->solver().rounds_done(), options.default_batch_rays);
-  std::optional<RoundPlan> plan = runner->driver_->PlanNext(batch_rays, runner->totals_.seconds);
+  // No agent is known yet: a round without kept results is not tapered.
+  const BatchSizing sizing =
+      runner->SizingFor(runner->driver_->solver().rounds_done(), {options.default_batch_rays, 0});
+  std::optional<RoundPlan> plan = runner->PlanNext(sizing);
   if (!plan) {
     runner->stop_reason_ = runner->driver_->stop_reason();
     runner->phase_ = Phase::kFinished;
     return runner;
   }
-  runner->RestoreResults(*plan, batch_rays);
+  runner->RestoreResults(*plan, sizing);
   runner->fold_plan_ = std::make_shared<const RoundPlan>(*plan);
   runner->planned_ = std::move(*plan);
-  runner->planned_batch_rays_ = batch_rays;
+  runner->planned_sizing_ = sizing;
   return runner;
 }
 
-uint32_t RunningJob::BatchRaysFor(uint32_t round, uint32_t fallback) const {
+BatchSizing RunningJob::SizingFor(uint32_t round, BatchSizing fallback) const {
   for (const store::StoredBatchResult& r : stored_) {
-    if (r.batch.round == round) return r.batch_rays;
+    if (r.batch.round == round) return {r.batch_rays, r.taper_ways};
   }
   return fallback;
 }
 
-void RunningJob::RestoreResults(const RoundPlan& plan, uint32_t batch_rays) {
+std::optional<RoundPlan> RunningJob::PlanNext(BatchSizing sizing) {
+  std::optional<RoundPlan> plan = driver_->PlanNext(sizing.batch_rays, totals_.seconds);
+  if (plan) TaperBatches(sizing.taper_ways, TaperFloor(sizing.batch_rays), &plan->batches);
+  return plan;
+}
+
+void RunningJob::RestoreResults(const RoundPlan& plan, BatchSizing sizing) {
   restored_.clear();
   restore_mismatches_ = 0;
   for (store::StoredBatchResult& r : stored_) {
     if (r.batch.round != plan.round) continue;
-    if (r.batch_rays == batch_rays && r.index < plan.batches.size() &&
+    if (BatchSizing{r.batch_rays, r.taper_ways} == sizing && r.index < plan.batches.size() &&
         SameBatch(plan.batches[r.index], r.batch)) {
       restored_.emplace_back(r.index, std::move(r.result));
     } else {
@@ -168,7 +175,7 @@ Status RunningJob::StartPlannedRound(scheduler::TimePoint now) {
   if (!planned_) return Error{"job " + std::to_string(id()) + ": no round planned"};
   running_rays_ = planned_->rays;
   running_gather_ = planned_->gather;
-  running_batch_rays_ = planned_batch_rays_;
+  running_sizing_ = planned_sizing_;
   running_round_ = planned_->round;
   std::vector<uint32_t> done;
   done.reserve(restored_.size());
@@ -222,8 +229,8 @@ bool RunningJob::QueueFold(scheduler::BatchId batch, std::vector<store::StoredBa
   std::optional<BatchResult> result = scheduler_.TakeResult(batch);
   if (!result) return false;
   if (keep != nullptr) {
-    keep->push_back(
-        {scheduler::BatchIndex(batch), running_batch_rays_, *scheduler_.FindBatch(batch), *result});
+    keep->push_back({scheduler::BatchIndex(batch), running_sizing_.batch_rays,
+                     running_sizing_.taper_ways, *scheduler_.FindBatch(batch), *result});
   }
   unfolded_.emplace_back(scheduler::BatchIndex(batch), std::move(*result));
   return unfolded_.size() >= kFoldChunk;
@@ -247,7 +254,7 @@ void RunningJob::Fold(std::vector<std::pair<uint32_t, BatchResult>> results) {
 }
 
 RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double round_seconds,
-                                bool checkpoint_due, uint32_t batch_rays) {
+                                bool checkpoint_due, BatchSizing sizing) {
   RoundOutcome out;
   const double seconds = totals_.seconds + round_seconds;
   // The round's verifications are done (the barrier): the caster they built goes before Apply,
@@ -279,13 +286,13 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
     out.new_patch_count = static_cast<uint32_t>(driver_->scene().patches.size());
   }
   UpdateTotals();
-  // A restarted master replays the rounds it kept results of with the batch size they had.
-  const uint32_t rays = BatchRaysFor(driver_->solver().rounds_done(), batch_rays);
-  if (std::optional<RoundPlan> next = driver_->PlanNext(rays, totals_.seconds)) {
-    RestoreResults(*next, rays);
+  // A restarted master replays the rounds it kept results of with the batch sizes they had.
+  const BatchSizing next_sizing = SizingFor(driver_->solver().rounds_done(), sizing);
+  if (std::optional<RoundPlan> next = PlanNext(next_sizing)) {
+    RestoreResults(*next, next_sizing);
     fold_plan_ = std::make_shared<const RoundPlan>(*next);  // the worker's copy, for the fold
     out.next = std::move(*next);
-    out.next_batch_rays = rays;
+    out.next_sizing = next_sizing;
   } else {
     out.stop = driver_->stop_reason();
     stored_.clear();
@@ -339,7 +346,7 @@ bool RunningJob::InstallOutcome(RoundOutcome& outcome) {
     return false;
   }
   planned_ = std::move(outcome.next);
-  planned_batch_rays_ = outcome.next_batch_rays;
+  planned_sizing_ = outcome.next_sizing;
   phase_ = Phase::kRound;
   return true;
 }

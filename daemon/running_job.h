@@ -73,7 +73,7 @@ struct RoundOutcome {
   std::shared_ptr<const protocol::PackedScene> new_scene;
   protocol::SceneHash new_scene_hash{};
   uint32_t new_patch_count = 0;
-  uint32_t next_batch_rays = 0;  // the batch size `next` was planned with
+  BatchSizing next_sizing;  // the batch sizes `next` was planned with
 };
 
 class RunningJob {
@@ -154,10 +154,10 @@ class RunningJob {
 
   // Worker thread, while kReducing: folds the round in and plans the next one.
   // `checkpoint_due`: copy the state for a checkpoint even if the job goes on.
-  // `batch_rays` sizes the next round's batches (the scheduler's suggestion, read on the loop
-  // thread before: the scheduler is not thread-safe).
+  // `sizing` cuts the next round's batches (the scheduler's suggestion, read on the loop thread
+  // before: the scheduler is not thread-safe).
   RoundOutcome Reduce(const scheduler::CompletedRound& round, double round_seconds,
-                      bool checkpoint_due, uint32_t batch_rays);
+                      bool checkpoint_due, BatchSizing sizing);
   // Loop thread: takes Reduce's outcome back (and installs a refined scene). Returns true when the
   // job goes on (a round is planned), false when it is finished.
   bool InstallOutcome(RoundOutcome& outcome);
@@ -174,12 +174,14 @@ class RunningJob {
 
  private:
   RunningJob() = default;
-  // Worker thread (Prepare, Reduce): the batch size the kept results of `round` were planned
+  // Worker thread (Prepare, Reduce): the batch sizes the kept results of `round` were planned
   // with, or `fallback` when none are kept.
-  uint32_t BatchRaysFor(uint32_t round, uint32_t fallback) const;
+  BatchSizing SizingFor(uint32_t round, BatchSizing fallback) const;
+  // Worker thread: the driver's next plan, its batches cut by `sizing` (nullopt: the job stops).
+  std::optional<RoundPlan> PlanNext(BatchSizing sizing);
   // Worker thread: moves the kept results that answer `plan`'s batches exactly to restored_, for
   // StartPlannedRound, and forgets the kept results of its round and those before.
-  void RestoreResults(const RoundPlan& plan, uint32_t batch_rays);
+  void RestoreResults(const RoundPlan& plan, BatchSizing sizing);
   // Worker thread: encodes the driver's refined scene after a step that split.
   void EncodeRefinedScene();
   // The totals and progress figures of the driver's state, for status.
@@ -214,9 +216,9 @@ class RunningJob {
   std::vector<std::pair<uint32_t, BatchResult>> restored_;
   size_t restored_count_ = 0;
   size_t restore_mismatches_ = 0;
-  // The batch size the planned round and the running one were planned with (stored with results).
-  uint32_t planned_batch_rays_ = 0;
-  uint32_t running_batch_rays_ = 0;
+  // The batch sizes the planned round and the running one were planned with (stored with results).
+  BatchSizing planned_sizing_;
+  BatchSizing running_sizing_;
   uint32_t running_round_ = 0;
   std::optional<std::string> stop_reason_;
   JobTotals totals_;

@@ -43,7 +43,7 @@ struct RoundResultFields {
   int64_t shooter = 0;
   int64_t first_ray = 0;
   int64_t ray_count = 0;
-  int64_t batch_rays = 0;
+  int64_t batch_rays = 0;  // as stored: the taper in its high 32 bits
   std::span<const uint8_t> result;
 };
 

@@ -112,6 +112,7 @@ struct DamagedCheckpoint {
 struct StoredBatchResult {
   uint32_t index = 0;       // into the round's plan.batches
   uint32_t batch_rays = 0;  // the batch size the round was planned with
+  uint32_t taper_ways = 0;  // and its taper (core/batch.h BatchSizing): the column's high bits
   Batch batch;              // plan.batches[index] (its round is the result's round)
   BatchResult result;
 };

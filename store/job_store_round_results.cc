@@ -9,10 +9,16 @@
 namespace radfarm::store {
 namespace {
 
+// The batch_rays column holds the taper too, in its high 32 bits: rows written before the taper
+// read as untapered, and the schema is unchanged.
+int64_t SizingColumn(const StoredBatchResult& r) {
+  return static_cast<int64_t>(uint64_t{r.taper_ways} << 32 | r.batch_rays);
+}
+
 Checksum ChecksumOf(JobId job, const StoredBatchResult& r, std::span<const uint8_t> blob) {
   return RoundResultChecksum({job, int64_t{r.batch.round}, int64_t{r.index},
                               int64_t{r.batch.shooter}, static_cast<int64_t>(r.batch.first_ray),
-                              int64_t{r.batch.ray_count}, int64_t{r.batch_rays}, blob});
+                              int64_t{r.batch.ray_count}, SizingColumn(r), blob});
 }
 
 }  // namespace
@@ -41,7 +47,7 @@ Status JobStore::SaveRoundResults(JobId job, std::span<const StoredBatchResult> 
         .Bind(4, int64_t{r.batch.shooter})
         .Bind(5, static_cast<int64_t>(r.batch.first_ray))
         .Bind(6, int64_t{r.batch.ray_count})
-        .Bind(7, int64_t{r.batch_rays})
+        .Bind(7, SizingColumn(r))
         .BindBlob(8, blobs[k])
         .BindBlob(9, checksums[k]);
     RADFARM_RETURN_IF_ERROR(stmt->Run());
@@ -69,7 +75,9 @@ Result<StoredRoundResults> JobStore::LoadRoundResults(JobId job,
     r.batch.shooter = static_cast<uint32_t>(stmt->Int(2));
     r.batch.first_ray = static_cast<uint64_t>(stmt->Int(3));
     r.batch.ray_count = static_cast<uint32_t>(stmt->Int(4));
-    r.batch_rays = static_cast<uint32_t>(stmt->Int(5));
+    const auto sizing = static_cast<uint64_t>(stmt->Int(5));
+    r.batch_rays = static_cast<uint32_t>(sizing);
+    r.taper_ways = static_cast<uint32_t>(sizing >> 32);
     const std::vector<uint8_t> blob = stmt->Blob(6);
     const std::string where = "job store " + path() + ": the stored result of job " +
                               std::to_string(job) + " round " + std::to_string(r.batch.round) +

@@ -40,6 +40,8 @@ json Sample(const ScalingSample& s) {
           {"connect_seconds", s.connect_seconds},
           {"idle_between_rounds", s.idle_between_rounds},
           {"idle_within_rounds", s.idle_within_rounds},
+          {"idle_round_starts", s.idle_round_starts},
+          {"idle_round_tails", s.idle_round_tails},
           {"agent_errors", s.agent_errors},
           {"first_error", s.first_error}};
 }

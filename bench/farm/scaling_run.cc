@@ -109,7 +109,20 @@ ScalingSample RunScalingCase(const FarmPrograms& programs, const std::string& sc
     span_sum += span.last_result - span.first_assignment;
     span_busy += span.busy_seconds;
   }
+  double starts = 0, tails = 0;
+  for (const sim::SimAgentStats& a : report.agents) {
+    for (const auto& [number, span] : a.rounds) {
+      const auto round = report.rounds.find(number);
+      if (round == report.rounds.end() || span.first_assignment < 0 || span.last_result < 0) {
+        continue;
+      }
+      starts += span.first_assignment - round->second.first_assignment;
+      tails += round->second.last_result - span.last_result;
+    }
+  }
   if (s.wall_seconds > 0) {
+    s.idle_round_starts = starts / (double(c.agents) * s.wall_seconds);
+    s.idle_round_tails = tails / (double(c.agents) * s.wall_seconds);
     s.idle_between_rounds = std::max(0.0, s.wall_seconds - span_sum) / s.wall_seconds;
     s.idle_within_rounds =
         (double(c.agents) * span_sum - span_busy) / (double(c.agents) * s.wall_seconds);

@@ -44,6 +44,9 @@ struct ScalingSample {
   // within rounds (from a round's first lease to its last result: waiting for leases, round
   // tails).
   double idle_between_rounds = 0, idle_within_rounds = 0;
+  // Of idle_within_rounds: before an agent's first lease of the round (the round's start) and
+  // after its last result (the round's tail), as fractions of N x wall.
+  double idle_round_starts = 0, idle_round_tails = 0;
   size_t agent_errors = 0;  // agents that closed during the job
   std::string first_error;
 

@@ -1,6 +1,7 @@
 #include "daemon/scheduler/round_scheduler.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <utility>
@@ -343,6 +344,12 @@ uint32_t RoundScheduler::SuggestedBatchRays() const {
   const double rays = slowest * options_.target_lease_seconds;
   return static_cast<uint32_t>(
       std::clamp(rays, double(options_.min_batch_rays), double(options_.max_batch_rays)));
+}
+
+BatchSizing RoundScheduler::SuggestedSizing() const {
+  const double ways = std::round(options_.taper_ways_per_agent * double(agents_.size()));
+  return {SuggestedBatchRays(), static_cast<uint32_t>(std::clamp(
+                                    ways, 0.0, double(std::numeric_limits<uint32_t>::max())))};
 }
 
 SchedulerCounters RoundScheduler::counters(TimePoint now) const {

@@ -16,17 +16,18 @@
 //   when a verdict says round_complete: done = TakeCompletedRound();
 //   solver.ApplyRound(done.plan, done.results); plan the next round.
 // The next round can only be planned after ApplyRound (the plan depends on the unshot radiosity),
-// so rounds do not overlap. The round's tail is cut instead, in three ways. Leases shrink as the
-// queue empties (LeaseSizeOf: at most the queue's share per agent). Once the queue is empty, an
-// agent with room takes over the newest lease of the agent expected to finish last, while it
-// would finish that batch sooner (the daemon tells the old holder with a LeaseRevoke; the newest
-// of its leases is the one it has not started). When nothing is worth taking over, an idle agent
-// gets a copy of a running lease (some agent's oldest) that has taken several times its expected
-// time: the end game.
-// And Tick offers batches past their deadline to agents with room. A daemon with several jobs keeps
-// one scheduler per job and asks them in turn, so agents idle on one job's reduction work on
-// another; when a higher-priority job has batches queued again, the daemon takes the lower jobs'
-// leases off the agent (Preempt) so that it moves at once.
+// so rounds do not overlap. The round's tail is cut instead, in four ways. The plan's last rays
+// are cut finer (SuggestedSizing: core/batch.h TaperBatches, a few ways per agent), so the last
+// leases are short. Leases shrink as the queue empties (LeaseSizeOf: at most the queue's share
+// per agent). Once the queue is empty, an agent with room takes over the newest lease of the
+// agent expected to finish last, while it would finish that batch sooner (the daemon tells the old
+// holder with a LeaseRevoke; the newest of its leases is the one it has not started). When nothing
+// is worth taking over, an idle agent gets a copy of a running lease (some agent's oldest) that has
+// taken several times its expected time: the end game. And Tick offers batches past their deadline
+// to agents with room. A daemon with several jobs keeps one scheduler per job and asks them in
+// turn, so agents idle on one job's reduction work on another; when a higher-priority job has
+// batches queued again, the daemon takes the lower jobs' leases off the agent (Preempt) so that it
+// moves at once.
 //
 // LIFECYCLE OF A BATCH (within a round):
 //
@@ -201,6 +202,8 @@ class RoundScheduler {
   // Rays per batch so the slowest measured agent finishes one batch in target_lease_seconds,
   // within [min_batch_rays, max_batch_rays]; default_batch_rays before any measurement.
   uint32_t SuggestedBatchRays() const;
+  // SuggestedBatchRays with the taper for the agents known now (taper_ways_per_agent each).
+  BatchSizing SuggestedSizing() const;
   // O(agents): the batch counts are kept as batches change state.
   SchedulerCounters counters(TimePoint now) const;
   // One agent's entry of counters().agents, in O(log agents) rather than O(agents):

@@ -37,7 +37,7 @@ TEST(RunningJobLocalRoundTest, RoundsRunHereGiveTheLocalSolveBitForBit) {
     EXPECT_EQ(r.phase(), RunningJob::Phase::kReducing);
     const scheduler::CompletedRound round = r.RunLocally(std::move(*plan));
     ASSERT_EQ(round.results.size(), round.plan.batches.size());
-    RoundOutcome outcome = r.Reduce(round, 0.01, true, 4096);
+    RoundOutcome outcome = r.Reduce(round, 0.01, true, {4096, 0});
     radiosity = outcome.checkpoint.radiosity;
     if (!r.InstallOutcome(outcome)) break;
   }

@@ -17,6 +17,7 @@ StoredBatchResult Kept(uint32_t round, uint32_t index) {
   StoredBatchResult r;
   r.index = index;
   r.batch_rays = 4096;
+  r.taper_ways = index % 2 == 0 ? 3000 : 0;  // kept with batch_rays, in its column's high bits
   r.batch = {round, 7 + index, uint64_t{index} * 4096, 4096};
   r.result.hits = {{3, 1000 + index}, {9, ~uint64_t{0} - index}, {4'000'000'000u, 1}};
   r.result.escaped_weight = 123456789012345ull + index;
@@ -29,6 +30,7 @@ StoredBatchResult Kept(uint32_t round, uint32_t index) {
 void ExpectSame(const StoredBatchResult& a, const StoredBatchResult& b) {
   EXPECT_EQ(a.index, b.index);
   EXPECT_EQ(a.batch_rays, b.batch_rays);
+  EXPECT_EQ(a.taper_ways, b.taper_ways);
   EXPECT_EQ(a.batch.round, b.batch.round);
   EXPECT_EQ(a.batch.shooter, b.batch.shooter);
   EXPECT_EQ(a.batch.first_ray, b.batch.first_ray);

@@ -375,6 +375,23 @@ TEST(RoundSchedulerTest, EmptyPlanIsRefusedAndBatchRaysFollowTheSlowestAgent) {
   EXPECT_EQ(s.SuggestedBatchRays(), 5000u);
 }
 
+// The next round is tapered in taper_ways_per_agent ways per known agent, none without agents.
+TEST(RoundSchedulerTest, SuggestedSizingTapersByTheAgentsKnown) {
+  SchedulerOptions options;
+  options.default_batch_rays = 4096;
+  options.taper_ways_per_agent = 3;
+  RoundScheduler s(options);
+  EXPECT_EQ(s.SuggestedSizing(), (BatchSizing{4096, 0}));
+  for (AgentId a = 1; a <= 10; ++a) s.AddAgent(a);
+  EXPECT_EQ(s.SuggestedSizing(), (BatchSizing{4096, 30}));
+  s.OnAgentLost(4);
+  EXPECT_EQ(s.SuggestedSizing().taper_ways, 27u);
+  options.taper_ways_per_agent = 0;
+  RoundScheduler off(options);
+  off.AddAgent(1);
+  EXPECT_EQ(off.SuggestedSizing().taper_ways, 0u);
+}
+
 // The heartbeat loop asks every agent's counters one agent at a time; they must be the entries of
 // counters().agents (which costs O(batches + agents) per call: with 1000 agents, asking it once
 // per agent took most of the master's loop thread, as farm_bench measured).
