@@ -1,7 +1,7 @@
 #include "core/ray_caster.h"
 
 #include <embree3/rtcore.h>
-#include <sys/mman.h>
+#include <malloc.h>
 
 #include <cmath>
 #include <cstdio>
@@ -37,38 +37,27 @@ inline void SetRay(float ox, float oy, float oz, float dx, float dy, float dz, R
   rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
 }
 
-// A geometry's float corners and index triplets, in anonymous pages of their own so they can be
-// handed back to the system once the BVH is built. Their addresses stay reserved and
-// inaccessible: an Embree that read them after the build would fault instead of tracing wrong.
+// A geometry's float corners and index triplets, from the heap (which reuses what earlier stages
+// freed) and handed back once the BVH is built, its free pages returned to the system.
 struct GeometryBuffers {
   float* vertices = nullptr;
   unsigned* indices = nullptr;
-  void* pages = nullptr;
-  size_t bytes = 0;
 
   GeometryBuffers() = default;
   GeometryBuffers(const GeometryBuffers&) = delete;
   GeometryBuffers& operator=(const GeometryBuffers&) = delete;
-  ~GeometryBuffers() {
-    if (pages) ::munmap(pages, bytes);
-  }
+  ~GeometryBuffers() { Release(); }
   void Allocate(size_t triangle_count, size_t vertex_count) {
     // +1 vertex: Embree may read 16 bytes past the last float3.
-    const size_t vertex_bytes = (vertex_count + 1) * 3 * sizeof(float);
-    bytes = vertex_bytes + triangle_count * 3 * sizeof(unsigned);
-    pages = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (pages == MAP_FAILED) {
-      pages = nullptr;
-      throw std::bad_alloc();
-    }
-    vertices = static_cast<float*>(pages);
-    indices = reinterpret_cast<unsigned*>(static_cast<char*>(pages) + vertex_bytes);
+    vertices = static_cast<float*>(std::malloc((vertex_count + 1) * 3 * sizeof(float)));
+    indices = static_cast<unsigned*>(std::malloc(triangle_count * 3 * sizeof(unsigned)));
+    if (!vertices || !indices) throw std::bad_alloc();
   }
   void Release() {
-    if (!pages) return;
-    void* none = ::mmap(pages, bytes, PROT_NONE,
-                        MAP_PRIVATE | MAP_ANONYMOUS | MAP_FIXED | MAP_NORESERVE, -1, 0);
-    if (none == MAP_FAILED) ::madvise(pages, bytes, MADV_DONTNEED);  // released all the same
+    std::free(vertices);
+    std::free(indices);
+    vertices = nullptr;
+    indices = nullptr;
   }
 };
 
@@ -197,8 +186,10 @@ void RayCaster::Build(size_t count, const PatchStream& patches) {
   }
   rtcCommitScene(embree_->scene);
   ThrowOnEmbreeError(embree_->device, "scene build");
-  // The BVH's leaves hold the triangles' corners: the buffers are no longer read.
+  // The robust BVH's leaves hold copies of the triangles' corners (Embree 3's Triangle4v; only
+  // RTC_SCENE_FLAG_COMPACT's leaves index the buffers): the buffers are no longer read.
   for (GeometryBuffers& b : buffers) b.Release();
+  malloc_trim(0);  // the free pages in the middle of the heap too
 }
 
 bool RayCaster::MeetsFront(const Triangle& triangle, const Vec3& d, const Vec3& ng) const {

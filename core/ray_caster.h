@@ -11,9 +11,8 @@
 // geometry and traces exactly as before. Shadow rays (Unoccluded) take any hit.
 //
 // Memory: Embree's robust BVH keeps its own copy of every triangle's corners in its leaves, so the
-// float vertices and indices handed to it are returned to the system once it is built (their
-// pages are mapped inaccessible: were Embree ever to read them again, it would fault at once
-// rather than trace wrong). What stays is the BVH, 8 bytes a triangle of records, and the normals.
+// float vertices and indices handed to it are freed once it is built. What stays is the BVH, 8
+// bytes a triangle of records, and the normals.
 //
 // Thread safety: Trace() is const and may be called from any number of threads at once.
 #pragma once
