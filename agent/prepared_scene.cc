@@ -5,8 +5,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cstddef>
 #include <exception>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "codec/patch_scene_codec.h"
@@ -14,8 +16,8 @@
 namespace radfarm::agent {
 namespace {
 
-// Patches decoded between two releases of the mapped blob's pages.
-constexpr uint32_t kPatchesPerRelease = 1u << 15;
+// Patches decoded between two releases of the mapped blob's pages (about 1.8 MB of them).
+constexpr uint32_t kPatchesPerRelease = 1u << 13;
 
 // A file mapped read-only. Its pages are the page cache's: MADV_DONTNEED drops them from the
 // process (its resident memory) without losing them; the next read maps them again.
@@ -50,21 +52,23 @@ class MappedFile {
   size_t size_ = 0;
 };
 
-// Decodes `blob` into `prepared`'s shapes and the patches' sides; `each_chunk` runs after every
-// kPatchesPerRelease patches.
-Result<uint32_t> DecodeShapes(std::span<const uint8_t> blob, PreparedScene& prepared,
-                              std::vector<uint8_t>& two_sided,
-                              const std::function<void()>& each_chunk) {
-  std::vector<PatchShape>& shapes = prepared.shapes;
-  return codec::DecodePatches(blob, [&](const Patch& patch, uint32_t index, uint32_t count) {
-    if (index == 0) {
-      shapes.reserve(count);
-      two_sided.reserve(count);
-    }
-    shapes.push_back(patch);
-    two_sided.push_back(patch.two_sided ? 1 : 0);
-    if ((index + 1) % kPatchesPerRelease == 0 && each_chunk) each_chunk();
-  });
+// Decodes every patch of `blob`, which was checked before, for `each`; `each_chunk` runs after
+// every kPatchesPerRelease patches and at the end.
+void Stream(std::span<const uint8_t> blob, const std::function<void()>& each_chunk,
+            const std::function<void(const Patch& patch)>& each) {
+  Result<uint32_t> decoded =
+      codec::DecodeAcceptedPatches(blob, [&](const Patch& patch, uint32_t index, uint32_t) {
+        each(patch);
+        if ((index + 1) % kPatchesPerRelease == 0 && each_chunk) each_chunk();
+      });
+  if (each_chunk) each_chunk();
+  if (!decoded) throw std::runtime_error(decoded.error());
+}
+
+// Where the normals of `shapes` will be, once it holds them: room reserved is enough.
+const Vec3* NormalsOf(const std::vector<PatchShape>& shapes) {
+  return reinterpret_cast<const Vec3*>(reinterpret_cast<const char*>(shapes.data()) +
+                                       offsetof(PatchShape, normal));
 }
 
 }  // namespace
@@ -79,27 +83,52 @@ Result<std::shared_ptr<const PreparedScene>> PrepareScene(
   const std::string file = decoded_callback ? decoded_callback(blob) : std::string();
   auto prepared = std::make_shared<PreparedScene>();
   prepared->hash = hash;
-  std::vector<uint8_t> two_sided;  // for the caster only
   std::optional<MappedFile> mapped;
   if (!file.empty()) mapped.emplace(file);
-  if (mapped && mapped->bytes().size() == blob.size()) {
-    // Decoded from the file the blob is kept in, its pages dropped as the patches are read, so
-    // the blob and the shapes are not both held whole.
+  std::vector<PatchShape>& shapes = prepared->shapes;
+  if (!mapped || mapped->bytes().size() != blob.size()) {
+    // No file: the shapes from the blob, which is freed before the caster is built from them.
+    std::vector<uint8_t> two_sided;  // for the caster only
+    try {
+      shapes.reserve(*checked);
+      two_sided.reserve(*checked);
+      Stream(blob, {}, [&](const Patch& p) {
+        shapes.push_back(p);
+        two_sided.push_back(p.two_sided ? 1 : 0);
+      });
+    } catch (const std::exception& e) {
+      return Error{std::string("cannot decode: ") + e.what()};
+    }
     std::vector<uint8_t>().swap(blob);
-    Result<uint32_t> decoded =
-        DecodeShapes(mapped->bytes(), *prepared, two_sided, [&] { mapped->Release(); });
-    if (!decoded) return Error{"cannot decode " + file + ": " + decoded.error()};
-    mapped.reset();
-  } else {
-    Result<uint32_t> decoded = DecodeShapes(blob, *prepared, two_sided, {});
-    if (!decoded) return Error{"cannot decode: " + decoded.error()};
-    std::vector<uint8_t>().swap(blob);  // not needed for tracing
+    try {
+      prepared->caster = std::make_unique<const RayCaster>(shapes, two_sided);
+    } catch (const std::exception& e) {
+      return Error{std::string("cannot build its ray caster: ") + e.what()};
+    }
+    return std::shared_ptr<const PreparedScene>(std::move(prepared));
   }
+  // From the file the blob is kept in, its pages dropped as the patches are read, so the blob is
+  // never held beside the caster's build or the shapes. The caster first, the shapes' room only
+  // reserved (untouched), so its build's scratch does not sit on top of them; then the shapes.
+  std::vector<uint8_t>().swap(blob);
+  const auto release = [&] { mapped->Release(); };
+  shapes.reserve(*checked);
   try {
-    prepared->caster = std::make_unique<const RayCaster>(prepared->shapes, two_sided);
+    prepared->caster = std::make_unique<const RayCaster>(
+        *checked,
+        [&](const RayCaster::PatchVisitor& each) {
+          Stream(mapped->bytes(), release, [&](const Patch& p) { each(p, p.two_sided); });
+        },
+        NormalsOf(shapes), sizeof(PatchShape));
   } catch (const std::exception& e) {
     return Error{std::string("cannot build its ray caster: ") + e.what()};
   }
+  try {
+    Stream(mapped->bytes(), release, [&](const Patch& p) { shapes.push_back(p); });
+  } catch (const std::exception& e) {
+    return Error{"cannot decode " + file + ": " + e.what()};
+  }
+  if (shapes.size() != *checked) return Error{"changed while it was decoded"};
   return std::shared_ptr<const PreparedScene>(std::move(prepared));
 }
 

@@ -28,11 +28,12 @@ struct PreparedScene {
 
 // Checks every value of a verified blob (codec::DecodePatches), then calls `decoded` with it (to
 // save it), which returns the path of a file holding the same bytes, or "" when there is none.
-// With a file, the blob is freed and the shapes are decoded from the file mapped read-only, its
-// pages dropped as they are read, so the blob (about 220 bytes a patch) and the shapes (152) are
-// never both held whole; without one, from the blob, freed after. Only then is the RayCaster
-// built. Slow for big scenes: call it off the loop thread. Errors say what is wrong; the caller
-// names the scene.
+// With a file, the blob is freed and the file, mapped read-only, is read three times, its pages
+// dropped as they are read: twice for the RayCaster, built while the shapes' room is only
+// reserved, so the build's scratch never sits on top of the shapes (152 bytes a patch), then for
+// the shapes; the blob (about 220 bytes a patch) is never held beside either. Without a file, the
+// shapes come from the blob, which is freed before the caster is built from them. Slow for big
+// scenes: call it off the loop thread. Errors say what is wrong; the caller names the scene.
 Result<std::shared_ptr<const PreparedScene>> PrepareScene(
     const protocol::SceneHash& hash, std::vector<uint8_t> blob,
     const std::function<std::string(std::span<const uint8_t> blob)>& decoded = {});

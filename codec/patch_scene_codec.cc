@@ -98,8 +98,11 @@ void EncodePatchScene(const PatchScene& scene,
   use(std::span<const uint8_t>(fbb.GetBufferPointer(), fbb.GetSize()));
 }
 
-Result<uint32_t> DecodePatches(
-    std::span<const uint8_t> blob,
+namespace {
+
+// DecodePatches, with FlatBuffers' verification of the whole buffer or without.
+Result<uint32_t> Decode(
+    std::span<const uint8_t> blob, bool verify,
     const std::function<void(const Patch& patch, uint32_t index, uint32_t count)>& each,
     PatchScene* rest) {
   RADFARM_RETURN_IF_ERROR(CheckBlobHeader(blob, kKind, "RDPS"));
@@ -109,11 +112,13 @@ Result<uint32_t> DecodePatches(
     aligned.assign(blob.begin(), blob.end());
     blob = aligned;
   }
-  flatbuffers::Verifier::Options options;
-  options.max_tables = 2 * kMaxPatches;
-  flatbuffers::Verifier verifier(blob.data(), blob.size(), options);
-  if (!wire::VerifyPatchSceneBlobBuffer(verifier)) {
-    return Error{std::string(kKind) + ": not a valid FlatBuffer (verification failed)"};
+  if (verify) {
+    flatbuffers::Verifier::Options options;
+    options.max_tables = 2 * kMaxPatches;
+    flatbuffers::Verifier verifier(blob.data(), blob.size(), options);
+    if (!wire::VerifyPatchSceneBlobBuffer(verifier)) {
+      return Error{std::string(kKind) + ": not a valid FlatBuffer (verification failed)"};
+    }
   }
   const wire::PatchSceneBlob* root = wire::GetPatchSceneBlob(blob.data());
   std::vector<std::string> material_names;
@@ -133,6 +138,21 @@ Result<uint32_t> DecodePatches(
     rest->lights = std::move(*lights);
   }
   return patches->size();
+}
+
+}  // namespace
+
+Result<uint32_t> DecodePatches(
+    std::span<const uint8_t> blob,
+    const std::function<void(const Patch& patch, uint32_t index, uint32_t count)>& each,
+    PatchScene* rest) {
+  return Decode(blob, true, each, rest);
+}
+
+Result<uint32_t> DecodeAcceptedPatches(
+    std::span<const uint8_t> blob,
+    const std::function<void(const Patch& patch, uint32_t index, uint32_t count)>& each) {
+  return Decode(blob, false, each, nullptr);
 }
 
 Result<PatchScene> DecodePatchScene(std::span<const uint8_t> blob) {

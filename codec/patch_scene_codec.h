@@ -34,4 +34,12 @@ Result<uint32_t> DecodePatches(
     const std::function<void(const Patch& patch, uint32_t index, uint32_t count)>& each,
     PatchScene* rest = nullptr);
 
+// DecodePatches for bytes it has accepted before (an agent's own copy of a blob it checked, in a
+// file replaced only whole): the same patches and value checks, without FlatBuffers' verification
+// of the whole buffer first, which reads every page of it at once (a mapped file's pages would all
+// be resident together); each patch's bytes are read only when it is decoded.
+Result<uint32_t> DecodeAcceptedPatches(
+    std::span<const uint8_t> blob,
+    const std::function<void(const Patch& patch, uint32_t index, uint32_t count)>& each);
+
 }  // namespace radfarm::codec

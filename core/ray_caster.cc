@@ -1,10 +1,12 @@
 #include "core/ray_caster.h"
 
 #include <embree3/rtcore.h>
+#include <malloc.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <new>
 #include <stdexcept>
 #include <string>
 
@@ -35,13 +37,40 @@ inline void SetRay(float ox, float oy, float oz, float dx, float dy, float dz, R
   rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
 }
 
+// A geometry's float corners and index triplets, from the heap (which reuses what earlier stages
+// freed) and handed back once the BVH is built, its free pages returned to the system.
+struct GeometryBuffers {
+  float* vertices = nullptr;
+  unsigned* indices = nullptr;
+
+  GeometryBuffers() = default;
+  GeometryBuffers(const GeometryBuffers&) = delete;
+  GeometryBuffers& operator=(const GeometryBuffers&) = delete;
+  ~GeometryBuffers() { Release(); }
+  void Allocate(size_t triangle_count, size_t vertex_count) {
+    // +1 vertex: Embree may read 16 bytes past the last float3.
+    vertices = static_cast<float*>(std::malloc((vertex_count + 1) * 3 * sizeof(float)));
+    indices = static_cast<unsigned*>(std::malloc(triangle_count * 3 * sizeof(unsigned)));
+    if (!vertices || !indices) throw std::bad_alloc();
+  }
+  void Release() {
+    std::free(vertices);
+    std::free(indices);
+    vertices = nullptr;
+    indices = nullptr;
+  }
+};
+
 }  // namespace
 
 RayCaster::RayCaster(const PatchScene& scene) : embree_(std::make_unique<Embree>()) {
-  Input input;
-  input.count = scene.patches.size();
-  input.patches = scene.patches.data();
-  Build(input);
+  // A compact copy of the normals: Trace reads one per hit, and a Patch is 224 bytes.
+  patch_normals_.reserve(scene.patches.size());
+  for (const Patch& p : scene.patches) patch_normals_.push_back(p.normal);
+  normals_ = reinterpret_cast<const char*>(patch_normals_.data());
+  Build(scene.patches.size(), [&scene](const PatchVisitor& each) {
+    for (const Patch& p : scene.patches) each(p, p.two_sided);
+  });
 }
 
 RayCaster::RayCaster(std::span<const PatchShape> shapes, std::span<const uint8_t> two_sided)
@@ -49,100 +78,118 @@ RayCaster::RayCaster(std::span<const PatchShape> shapes, std::span<const uint8_t
   if (two_sided.size() != shapes.size()) {
     throw std::invalid_argument("RayCaster: one two-sided flag per shape needed");
   }
-  Input input;
-  input.count = shapes.size();
-  input.shapes = shapes.data();
-  input.two_sided = two_sided.data();
-  Build(input);
+  normals_ = reinterpret_cast<const char*>(&shapes.data()->normal);
+  normal_stride_ = sizeof(PatchShape);
+  Build(shapes.size(), [&](const PatchVisitor& each) {
+    for (size_t i = 0; i < shapes.size(); ++i) each(shapes[i], two_sided[i] != 0);
+  });
 }
 
-void RayCaster::Build(const Input& input) {
+RayCaster::RayCaster(size_t count, const PatchStream& patches, const Vec3* normals,
+                     size_t normal_stride)
+    : embree_(std::make_unique<Embree>()),
+      normals_(reinterpret_cast<const char*>(normals)),
+      normal_stride_(normal_stride) {
+  Build(count, patches);
+}
+
+void RayCaster::Build(size_t count, const PatchStream& patches) {
+  // First pass: the bounds, and each geometry's triangles and corners.
   Bounds3 bounds;
-  for (size_t i = 0; i < input.count; ++i) {
-    const PatchShape& p = input.Shape(i);
+  size_t triangle_count[2] = {0, 0}, vertex_count[2] = {0, 0};
+  size_t seen = 0;
+  patches([&](const PatchShape& p, bool two_sided) {
     for (int k = 0; k < p.corner_count; ++k) bounds.Extend(p.corners[k]);
-  }
+    triangle_count[two_sided] += p.corner_count - 2;
+    vertex_count[two_sided] += p.corner_count;
+    ++seen;
+  });
+  if (seen != count) throw std::invalid_argument("RayCaster: the stream has the wrong count");
   centre_ = bounds.Empty() ? Vec3{} : bounds.Centre();
   // A few thousand float ulps at the scene's scale: far above rounding, far below any feature.
   origin_offset_ = std::max(bounds.Diagonal(), 1e-30) * 1e-6;
+  const double diagonal = bounds.Diagonal();
 
   embree_->device = rtcNewDevice(nullptr);
   if (!embree_->device) throw std::runtime_error("cannot create an Embree device");
   embree_->scene = rtcNewScene(embree_->device);
   // Not RTC_SCENE_FLAG_COMPACT: its leaves (indices into the vertex buffer) would save about 28
-  // bytes a triangle, but it changed block-on-floor's golden render and the farm's bytes.
+  // bytes a triangle, but it changed block-on-floor's golden render and the farm's bytes, and
+  // the vertex buffer could not be released.
   rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);
 
-  const double diagonal = bounds.Diagonal();
-  if (input.patches) {
-    patch_normals_.reserve(input.count);
-    for (size_t i = 0; i < input.count; ++i) patch_normals_.push_back(input.Shape(i).normal);
-  } else {
-    borrowed_shapes_ = input.shapes;
+  // Each geometry's buffers, shared with Embree: ours to release once the BVH is built.
+  GeometryBuffers buffers[2];
+  RTCGeometry geometry[2] = {nullptr, nullptr};
+  for (int side = 0; side < 2; ++side) {
+    if (triangle_count[side] == 0) continue;
+    geometry[side] = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    buffers[side].Allocate(triangle_count[side], vertex_count[side]);
+    rtcSetSharedGeometryBuffer(geometry[side], RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                               buffers[side].vertices, 0, 3 * sizeof(float), vertex_count[side]);
+    rtcSetSharedGeometryBuffer(geometry[side], RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                               buffers[side].indices, 0, 3 * sizeof(unsigned),
+                               triangle_count[side]);
+    ThrowOnEmbreeError(embree_->device, "buffer allocation");
   }
-  AddGeometry(input, false, diagonal);
-  two_sided_first_ = triangles_.size();
-  AddGeometry(input, true, diagonal);
-  rtcCommitScene(embree_->scene);
-  ThrowOnEmbreeError(embree_->device, "scene build");
-}
 
-void RayCaster::AddGeometry(const Input& input, bool two_sided, double diagonal) {
-  size_t triangle_count = 0, vertex_count = 0;
-  for (size_t i = 0; i < input.count; ++i) {
-    if (input.TwoSided(i) != two_sided) continue;
-    const PatchShape& p = input.Shape(i);
-    triangle_count += p.corner_count - 2;
-    vertex_count += p.corner_count;
-  }
-  if (triangle_count == 0) return;
-  RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-      vertex_count + 1));  // +1: Embree may read 16 bytes past the last float3
-  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangle_count));
-  ThrowOnEmbreeError(embree_->device, "buffer allocation");
-
-  // Each patch gets its own corners as vertices, which a quad's two triangles share; identical
-  // input coordinates map to identical floats, which is all watertightness needs.
-  size_t v = 0, t = 0;
-  triangles_.reserve(triangles_.size() + triangle_count);
-  auto emit = [&](size_t a, size_t b, size_t c, uint32_t patch) {
-    const size_t corner[3] = {a, b, c};
-    Vec3 as_float[3];  // the corners as Embree sees them
-    for (int k = 0; k < 3; ++k) {
-      indices[3 * t + k] = static_cast<unsigned>(corner[k]);
-      const float* xyz = vertices + 3 * corner[k];
-      as_float[k] = {xyz[0], xyz[1], xyz[2]};
-    }
-    triangles_.push_back({patch, NgMargin(as_float[0], as_float[1], as_float[2],
-                                          input.Shape(patch).normal, diagonal)});
-    ++t;
-  };
-  for (uint32_t i = 0; i < input.count; ++i) {
-    if (input.TwoSided(i) != two_sided) continue;
-    const PatchShape& p = input.Shape(i);
+  // Second pass: each patch gets its own corners as vertices, which a quad's two triangles share;
+  // identical input coordinates map to identical floats, which is all watertightness needs. The
+  // one-sided geometry's records come first in triangles_, then the two-sided's.
+  two_sided_first_ = triangle_count[0];
+  triangles_.resize(triangle_count[0] + triangle_count[1]);
+  size_t v[2] = {0, 0}, t[2] = {0, 0};
+  uint32_t patch = 0;
+  patches([&](const PatchShape& p, bool two_sided) {
+    float* vertices = buffers[two_sided].vertices;
+    unsigned* indices = buffers[two_sided].indices;
+    const size_t first = v[two_sided];
     for (int k = 0; k < p.corner_count; ++k) {
       const Vec3 corner = p.corners[k] - centre_;
-      vertices[3 * (v + k) + 0] = static_cast<float>(corner.x);
-      vertices[3 * (v + k) + 1] = static_cast<float>(corner.y);
-      vertices[3 * (v + k) + 2] = static_cast<float>(corner.z);
+      vertices[3 * (first + k) + 0] = static_cast<float>(corner.x);
+      vertices[3 * (first + k) + 1] = static_cast<float>(corner.y);
+      vertices[3 * (first + k) + 2] = static_cast<float>(corner.z);
     }
-    emit(v, v + 1, v + 2, i);
-    if (p.corner_count == 4) emit(v, v + 2, v + 3, i);
-    v += p.corner_count;
+    auto emit = [&](size_t a, size_t b, size_t c) {
+      const size_t corner[3] = {a, b, c};
+      Vec3 as_float[3];  // the corners as Embree sees them
+      for (int k = 0; k < 3; ++k) {
+        indices[3 * t[two_sided] + k] = static_cast<unsigned>(corner[k]);
+        const float* xyz = vertices + 3 * corner[k];
+        as_float[k] = {xyz[0], xyz[1], xyz[2]};
+      }
+      triangles_[(two_sided ? two_sided_first_ : 0) + t[two_sided]] = {
+          patch, NgMargin(as_float[0], as_float[1], as_float[2], p.normal, diagonal)};
+      ++t[two_sided];
+    };
+    emit(first, first + 1, first + 2);
+    if (p.corner_count == 4) emit(first, first + 2, first + 3);
+    v[two_sided] += p.corner_count;
+    ++patch;
+  });
+  if (patch != count || t[0] != triangle_count[0] || t[1] != triangle_count[1]) {
+    throw std::invalid_argument("RayCaster: the stream changed between its passes");
   }
-  if (two_sided) {
-    rtcSetGeometryUserData(geometry, this);
-    rtcSetGeometryIntersectFilterFunction(geometry, &RayCaster::FrontOnlyFilter);
+
+  for (unsigned side = 0; side < 2; ++side) {
+    if (!geometry[side]) continue;
+    if (side == 1) {
+      rtcSetGeometryUserData(geometry[side], this);
+      rtcSetGeometryIntersectFilterFunction(geometry[side], &RayCaster::FrontOnlyFilter);
+    }
+    rtcCommitGeometry(geometry[side]);
+    rtcAttachGeometryByID(embree_->scene, geometry[side],
+                          side == 1 ? kTwoSidedGeometry : kOneSidedGeometry);
+    rtcReleaseGeometry(geometry[side]);
+    ThrowOnEmbreeError(embree_->device, "geometry");
   }
-  rtcCommitGeometry(geometry);
-  rtcAttachGeometryByID(embree_->scene, geometry,
-                        two_sided ? kTwoSidedGeometry : kOneSidedGeometry);
-  rtcReleaseGeometry(geometry);
-  ThrowOnEmbreeError(embree_->device, "geometry");
+  rtcCommitScene(embree_->scene);
+  ThrowOnEmbreeError(embree_->device, "scene build");
+  // The robust BVH's leaves hold copies of the triangles' corners (Embree 3's Triangle4v; only
+  // RTC_SCENE_FLAG_COMPACT's leaves index the buffers): the buffers are no longer read.
+  for (GeometryBuffers& b : buffers) b.Release();
+  malloc_trim(0);  // the free pages in the middle of the heap too
 }
 
 bool RayCaster::MeetsFront(const Triangle& triangle, const Vec3& d, const Vec3& ng) const {

@@ -10,10 +10,15 @@
 // that faces it, whichever of the two Embree finds first; a scene without them has the one
 // geometry and traces exactly as before. Shadow rays (Unoccluded) take any hit.
 //
+// Memory: Embree's robust BVH keeps its own copy of every triangle's corners in its leaves, so the
+// float vertices and indices handed to it are freed once it is built. What stays is the BVH, 8
+// bytes a triangle of records, and the normals.
+//
 // Thread safety: Trace() is const and may be called from any number of threads at once.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -42,6 +47,15 @@ class RayCaster {
   // what an agent keeps of a scene (agent/prepared_scene.h). `shapes` must outlive the caster,
   // which reads their normals instead of copying them.
   RayCaster(std::span<const PatchShape> shapes, std::span<const uint8_t> two_sided);
+  // `patches(each)` calls each(shape, two_sided) for every patch, in id order.
+  using PatchVisitor = std::function<void(const PatchShape& shape, bool two_sided)>;
+  using PatchStream = std::function<void(const PatchVisitor& each)>;
+  // The same caster from a stream of `count` patches, read twice (bounds and counts, then Embree's
+  // buffers) and not kept: an agent builds it before it decodes the shapes it keeps, so the
+  // build's scratch never sits on top of them (agent/prepared_scene.h). Tracing reads patch i's
+  // normal at byte offset i * normal_stride from `normals`, which must hold them (bit for bit the
+  // shapes' normals) before the first trace and outlive the caster; they need not exist yet.
+  RayCaster(size_t count, const PatchStream& patches, const Vec3* normals, size_t normal_stride);
   ~RayCaster();
   RayCaster(const RayCaster&) = delete;
   RayCaster& operator=(const RayCaster&) = delete;
@@ -108,28 +122,17 @@ class RayCaster {
   // Embree's intersection filter on the two-sided geometry: drops hits on a patch's back.
   static void FrontOnlyFilter(const RTCFilterFunctionNArguments* args);
 
-  // The patches, from either constructor: patches, or shapes and two_sided.
-  struct Input {
-    size_t count = 0;
-    const Patch* patches = nullptr;
-    const PatchShape* shapes = nullptr;
-    const uint8_t* two_sided = nullptr;
-    const PatchShape& Shape(size_t i) const { return patches ? patches[i] : shapes[i]; }
-    bool TwoSided(size_t i) const { return patches ? patches[i].two_sided : two_sided[i] != 0; }
-  };
-  void Build(const Input& input);
-  // Adds the one-sided patches' triangles, or the two-sided ones', as an Embree geometry (none when
-  // there are none).
-  void AddGeometry(const Input& input, bool two_sided, double diagonal);
+  void Build(size_t count, const PatchStream& patches);
 
   struct Embree;
   std::unique_ptr<Embree> embree_;
   // A patch's normal: a compact copy (Trace reads one per hit), or the borrowed shapes'.
   const Vec3& NormalOf(uint32_t patch) const {
-    return borrowed_shapes_ ? borrowed_shapes_[patch].normal : patch_normals_[patch];
+    return *reinterpret_cast<const Vec3*>(normals_ + patch * normal_stride_);
   }
-  std::vector<Vec3> patch_normals_;
-  const PatchShape* borrowed_shapes_ = nullptr;
+  std::vector<Vec3> patch_normals_;  // from a PatchScene only
+  const char* normals_ = nullptr;
+  size_t normal_stride_ = sizeof(Vec3);
   std::vector<Triangle> triangles_;  // one-sided by primitive id, then two-sided; 8 bytes each
   size_t two_sided_first_ = 0;       // index in triangles_ of the two-sided geometry's first
   Vec3 centre_;                      // subtracted from every coordinate given to Embree

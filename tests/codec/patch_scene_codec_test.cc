@@ -79,6 +79,32 @@ TEST(PatchSceneCodecTest, DecodePatchesVisitsEveryPatchInOrder) {
   EXPECT_FALSE(DecodePatches(truncated, [](const Patch&, uint32_t, uint32_t) {}).ok());
 }
 
+// DecodeAcceptedPatches (an agent's reads of its own copy of a blob it checked) hands over the
+// same patches as DecodePatches, and still checks their values.
+TEST(PatchSceneCodecTest, DecodeAcceptedPatchesVisitsWhatDecodePatchesVisits) {
+  PatchScene scene = CornellPatches();
+  const std::vector<uint8_t> blob = EncodePatchScene(scene);
+  std::vector<Patch> checked, accepted;
+  ASSERT_TRUE(
+      DecodePatches(blob, [&](const Patch& p, uint32_t, uint32_t) { checked.push_back(p); }).ok());
+  Result<uint32_t> count =
+      DecodeAcceptedPatches(blob, [&](const Patch& p, uint32_t index, uint32_t n) {
+        EXPECT_EQ(index, accepted.size());
+        EXPECT_EQ(n, scene.patches.size());
+        accepted.push_back(p);
+      });
+  ASSERT_TRUE(count.ok()) << count.error();
+  EXPECT_EQ(*count, scene.patches.size());
+  PatchScene a, b;
+  a.patches = checked;
+  b.patches = accepted;
+  a.material_names = b.material_names = scene.material_names;
+  EXPECT_EQ(EncodePatchScene(b), EncodePatchScene(a));
+  scene.patches[1].area = -1;
+  const std::vector<uint8_t> bad = EncodePatchScene(scene);
+  EXPECT_FALSE(DecodeAcceptedPatches(bad, [](const Patch&, uint32_t, uint32_t) {}).ok());
+}
+
 TEST(PatchSceneCodecTest, DecodesFromAnUnalignedBuffer) {
   const std::vector<uint8_t> blob = EncodePatchScene(CornellPatches());
   std::vector<uint8_t> shifted(blob.size() + 1);

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <map>
+#include <stdexcept>
 #include <vector>
 
 #include "core/batch_tracer.h"
@@ -123,6 +125,48 @@ TEST(RayBlockTest, BatchesFromTheShapesMatchBatchesFromTheScene) {
     }
     EXPECT_GT(two_sided_hits, 0u) << SamplerName(kind);  // the two-sided geometry was traced
   }
+}
+
+// An agent builds its caster from a stream of the patches before it holds their shapes, which it
+// decodes after into room reserved before (agent/prepared_scene.cc): the caster must trace as the
+// one built from the whole scene, and refuse a stream that does not give the count it was told.
+TEST(RayBlockTest, ACasterStreamedBeforeItsNormalsExistTracesAsTheWholeScene) {
+  PatchScene scene = MixedScene();
+  for (size_t i = 1; i < scene.patches.size(); i += 3) scene.patches[i].two_sided = true;
+  const RayCaster::PatchStream stream = [&scene](const RayCaster::PatchVisitor& each) {
+    for (const Patch& p : scene.patches) each(p, p.two_sided);
+  };
+  std::vector<PatchShape> shapes;
+  shapes.reserve(scene.patches.size());
+  const Vec3* normals = reinterpret_cast<const Vec3*>(reinterpret_cast<const char*>(shapes.data()) +
+                                                      offsetof(PatchShape, normal));
+  const RayCaster streamed(scene.patches.size(), stream, normals, sizeof(PatchShape));
+  shapes.assign(scene.patches.begin(), scene.patches.end());  // the normals, after the build
+  const RayCaster whole(scene);
+  ASSERT_EQ(whole.origin_offset(), streamed.origin_offset());
+  uint64_t hits = 0;
+  for (SamplerKind kind : {SamplerKind::kGrid, SamplerKind::kSobol}) {
+    const RaySampler sampler(kind, 9, 6.0);
+    BatchTracer a(scene, whole, sampler), b(shapes, streamed, sampler);
+    for (uint32_t id = 0; id < scene.patches.size(); ++id) {
+      const Batch batch{2, id, 0, 600};
+      const BatchResult expected = a.Run(batch);
+      EXPECT_EQ(b.Run(batch), expected) << SamplerName(kind) << " patch " << id;
+      hits += expected.hits.size();
+    }
+  }
+  EXPECT_GT(hits, 0u);
+  for (const Patch& p : scene.patches) {  // Trace, which reads a patch's normal on every hit
+    const Vec3 d = Normalize(p.normal + Vec3{0.1, 0.2, -0.05});
+    const RayHit h = whole.Trace(p.centre, d, p.normal), g = streamed.Trace(p.centre, d, p.normal);
+    EXPECT_EQ(g.patch, h.patch);
+    EXPECT_EQ(g.front, h.front);
+  }
+  const RayCaster::PatchStream short_one = [&scene](const RayCaster::PatchVisitor& each) {
+    for (size_t i = 1; i < scene.patches.size(); ++i) each(scene.patches[i], false);
+  };
+  EXPECT_THROW(RayCaster(scene.patches.size(), short_one, normals, sizeof(PatchShape)),
+               std::invalid_argument);
 }
 
 // A batch's result counted ray by ray from Sample and Trace: what BatchTracer::Run must give, on
