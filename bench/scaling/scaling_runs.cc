@@ -3,31 +3,25 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <stdexcept>
 #include <thread>
 #include <vector>
 
 #include "bench/memory/peak_rss.h"
 #include "testing/loopback_farm.h"
+#include "testing/temp_dir.h"
 
 namespace radfarm::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
+// testing::ReadFile gives "" for a file it cannot read.
 nlohmann::json ReadJsonFile(const std::string& path) {
-  return nlohmann::json::parse(ReadFile(path));
+  const std::string text = testing::ReadFile(path);
+  if (text.empty()) throw std::runtime_error(path + ": cannot read");
+  return nlohmann::json::parse(text);
 }
 
 // The number after `marker` in `text` ("read and meshed in 1.0 s"), or 0 when absent.
@@ -69,7 +63,7 @@ RenderFigures MeasureRender(const BuildingJob& job, const std::string& dir) {
   r.patches = stats.at("patches").get<uint64_t>();
   r.rays = stats.at("rays").get<uint64_t>();
   r.wall_seconds = run.seconds;
-  r.mesh_seconds = NumberAfter(ReadFile(log), "read and meshed in ");
+  r.mesh_seconds = NumberAfter(testing::ReadFile(log), "read and meshed in ");
   r.solve_seconds = stats.at("seconds").get<double>();
   r.display_seconds = stats.value("display_seconds", 0.0);
   r.rays_per_second = stats.at("rays_per_second").get<double>();
@@ -111,7 +105,8 @@ FarmFigures MeasureFarm(const BuildingJob& job, unsigned agents, const RenderFig
   const nlohmann::json stats = ReadJsonFile(out + "/stats.json");
   f.solve_seconds = stats.at("seconds").get<double>();
   f.rays_per_second = stats.at("rays_per_second").get<double>();
-  f.same_as_render = ReadFile(out + "/patches.csv") == ReadFile(render.patches_csv);
+  const std::string farm_patches = testing::ReadFile(out + "/patches.csv");
+  f.same_as_render = !farm_patches.empty() && farm_patches == testing::ReadFile(render.patches_csv);
   return f;
 }
 
