@@ -1,5 +1,7 @@
 #include "daemon/running_job.h"
 
+#include <malloc.h>
+
 #include <chrono>
 #include <cmath>
 
@@ -85,15 +87,23 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
     }
     resume = store::ResumeStateOf(c, rounds, refined_scene ? &*refined_scene : nullptr);
   }
-  // Without refinement the solver's scene is the mesh's as it stands: pack it now, before the ray
-  // caster and the solver exist, so the encoder's buffer (about 220 bytes a patch) is not added
-  // to theirs at the master's peak.
-  std::shared_ptr<const protocol::PackedScene> packed;
-  if (!bundle->job.refine.enabled) packed = PackPatchScene(mesh->patch_scene());
   runner->pool_ = std::make_unique<ThreadPool>(1);
-  Result<std::unique_ptr<RoundDriver>> driver =
-      RoundDriver::Start(std::move(*mesh), runner->settings_, bundle->job.refine,
-                         resume ? &*resume : nullptr, *runner->pool_);
+  std::shared_ptr<const protocol::PackedScene> packed;
+  const SolveState* resume_at = resume ? &*resume : nullptr;
+  Result<std::unique_ptr<RoundDriver>> driver = [&]() -> Result<std::unique_ptr<RoundDriver>> {
+    if (bundle->job.refine.enabled) {
+      return RoundDriver::Start(std::move(*mesh), runner->settings_, bundle->job.refine, resume_at,
+                                *runner->pool_);
+    }
+    // Without refinement the master needs the patches alone (agents trace, `radfarm fetch` makes
+    // the display): the mesh (about 300 bytes a patch) goes first, its pages back to the system,
+    // which freeing leaves in the heap. Then the scene is packed before the solver and its ray
+    // caster exist, so the encoder's buffer (about 220 bytes a patch) is not added to theirs.
+    PatchScene scene = std::move(*mesh).TakePatchScene();
+    malloc_trim(0);
+    packed = PackPatchScene(scene);
+    return RoundDriver::StartOwning(std::move(scene), runner->settings_, resume_at);
+  }();
   if (!driver) return Error{job + ": " + driver.error()};
   runner->driver_ = std::move(*driver);
   if (refined_scene) {

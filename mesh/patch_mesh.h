@@ -71,6 +71,12 @@ class PatchMesh {
 
   // Flat copy the solver uses; patch i == OpenMesh face i.
   const PatchScene& patch_scene() const { return data_.scene; }
+  // The flat copy alone, the rest of the mesh freed: for a solve that needs no display or
+  // refinement (the OpenMesh mesh and its properties are about 300 bytes a patch).
+  PatchScene TakePatchScene() && {
+    PatchMesh dropped = std::move(*this);
+    return std::move(dropped.data_.scene);
+  }
   // Target size actually used: settings.patch_size, or when automatic (settings.patch_size == 0)
   // the median over the patches of their faces' sizes; the display's and refinement's lengths
   // (kGatherBand, min_element_size, the lightmap texel) follow it. Min and max are the smallest

@@ -69,6 +69,22 @@ std::unique_ptr<RoundDriver> RoundDriver::Start(const PatchScene& scene,
   return driver;
 }
 
+Result<std::unique_ptr<RoundDriver>> RoundDriver::StartOwning(PatchScene scene,
+                                                              const SolverSettings& settings,
+                                                              const SolveState* resume) {
+  if (resume != nullptr && resume->refined_scene != nullptr) {
+    return Error{"cannot resume an unrefined solve on a refined mesh"};
+  }
+  std::unique_ptr<RoundDriver> driver(new RoundDriver(settings, nullptr));
+  driver->owned_scene_ = std::make_unique<const PatchScene>(std::move(scene));
+  driver->scene_ = driver->owned_scene_.get();
+  driver->RebuildSolver();
+  if (resume != nullptr) {
+    if (Status s = driver->Resume(*resume); !s) return Error{s.error()};
+  }
+  return driver;
+}
+
 Status RoundDriver::Resume(const SolveState& state) {
   if (state.radiosity.size() != scene_->patches.size()) {
     return Error{"the state to resume holds " + std::to_string(state.radiosity.size()) +

@@ -64,6 +64,12 @@ class RoundDriver {
   // A solve of a bare scene, never refined; `scene` must outlive the driver.
   static std::unique_ptr<RoundDriver> Start(const PatchScene& scene, const SolverSettings& settings,
                                             const SolveState* resume);
+  // A solve of `scene`, which the driver keeps, never refined: for a caller that needs no mesh
+  // (the farm master without refinement, which need not hold the OpenMesh mesh, about 300 bytes a
+  // patch, while it solves). Errors: a resume state that does not fit the scene.
+  static Result<std::unique_ptr<RoundDriver>> StartOwning(PatchScene scene,
+                                                          const SolverSettings& settings,
+                                                          const SolveState* resume);
   ~RoundDriver();
   RoundDriver(const RoundDriver&) = delete;
   RoundDriver& operator=(const RoundDriver&) = delete;
@@ -131,10 +137,11 @@ class RoundDriver {
   void RebuildSolver();
 
   SolverSettings settings_;
-  ThreadPool* pool_ = nullptr;                  // null for a bare scene
-  std::unique_ptr<PatchMesh> mesh_;             // stable address: the solver refers to its scene
-  const PatchScene* scene_ = nullptr;           // mesh_'s, or the bare scene
-  std::optional<RefinementSchedule> schedule_;  // refinement on
+  ThreadPool* pool_ = nullptr;                     // null for a bare scene
+  std::unique_ptr<PatchMesh> mesh_;                // stable address: the solver refers to its scene
+  std::unique_ptr<const PatchScene> owned_scene_;  // StartOwning's scene (no mesh)
+  const PatchScene* scene_ = nullptr;              // mesh_'s, or the bare scene
+  std::optional<RefinementSchedule> schedule_;     // refinement on
   std::unique_ptr<ProgressiveSolver> solver_;
   std::unique_ptr<RayCaster> caster_;  // for scene_, built on demand
   SolveTotals totals_;

@@ -65,6 +65,22 @@ TEST(PatchMeshTest, PatchIIsOpenMeshFaceIWithItsCornersAndProperties) {
   }
 }
 
+TEST(PatchMeshTest, TakePatchSceneKeepsEveryPatchAndDropsTheMesh) {
+  Result<PatchMesh> mesh = PatchMesh::Build(testing::CornellBox(), {60}, nullptr);
+  ASSERT_TRUE(mesh.ok()) << mesh.error();
+  const PatchScene before = mesh->patch_scene();
+  const PatchScene taken = std::move(*mesh).TakePatchScene();
+  EXPECT_EQ(taken.material_names, before.material_names);
+  ASSERT_EQ(taken.patches.size(), before.patches.size());
+  for (size_t i = 0; i < taken.patches.size(); ++i) {
+    EXPECT_EQ(taken.patches[i].corners, before.patches[i].corners);
+    EXPECT_EQ(taken.patches[i].area, before.patches[i].area);
+    EXPECT_EQ(taken.patches[i].emission, before.patches[i].emission);
+    EXPECT_EQ(taken.patches[i].surface, before.patches[i].surface);
+  }
+  EXPECT_TRUE(mesh->patch_scene().patches.empty());  // moved out, with the rest of the mesh
+}
+
 TEST(PatchMeshTest, NeighbouringFacesOfOneSurfaceShareOpenMeshVertices) {
   // The floor as two quads: one manifold grid of 4 x 2 cells, 15 vertices.
   const std::vector<Vec3> left = {{0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0}};

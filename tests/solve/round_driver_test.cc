@@ -77,6 +77,35 @@ TEST(RoundDriverTest, ResumesFromEveryRoundBoundary) {
   }
 }
 
+TEST(RoundDriverTest, ADriverOwningItsSceneGivesTheSameBitsAndResumes) {
+  const PatchScene scene = LitBox();
+  std::vector<SolveState> states;
+  std::unique_ptr<RoundDriver> borrowing = RoundDriver::Start(scene, Settings(), nullptr);
+  const SolveResult all = DriveBackwards(*borrowing, &states);
+  Result<std::unique_ptr<RoundDriver>> owning =
+      RoundDriver::StartOwning(PatchScene(scene), Settings(), nullptr);
+  ASSERT_TRUE(owning.ok()) << owning.error();
+  EXPECT_EQ((*owning)->mesh(), nullptr);
+  const SolveResult owned = DriveBackwards(**owning);
+  EXPECT_EQ(owned.radiosity, all.radiosity);
+  EXPECT_EQ(owned.unshot, all.unshot);
+  ASSERT_GE(states.size(), 2u);
+  Result<std::unique_ptr<RoundDriver>> resumed =
+      RoundDriver::StartOwning(PatchScene(scene), Settings(), &states[1]);
+  ASSERT_TRUE(resumed.ok()) << resumed.error();
+  EXPECT_EQ(DriveBackwards(**resumed).radiosity, all.radiosity);
+}
+
+TEST(RoundDriverTest, ADriverOwningItsSceneRefusesAStateOfAnotherSize) {
+  SolveState state;
+  state.radiosity.resize(2);
+  state.unshot.resize(2);
+  Result<std::unique_ptr<RoundDriver>> driver =
+      RoundDriver::StartOwning(LitBox(), Settings(), &state);
+  ASSERT_FALSE(driver.ok());
+  EXPECT_NE(driver.error().find("holds 2 elements"), std::string::npos) << driver.error();
+}
+
 TEST(RoundDriverTest, TheBudgetsStopIt) {
   const PatchScene scene = LitBox();
   SolverSettings settings = Settings();
