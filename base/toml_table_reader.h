@@ -27,6 +27,7 @@ struct Interval {
   static Interval Any() { return {}; }
   static Interval Above(double lo) { return {lo, Interval().hi, true, false}; }
   static Interval AtLeast(double lo) { return {lo, Interval().hi, false, false}; }
+  static Interval Closed(double lo, double hi) { return {lo, hi, false, false}; }
   static Interval Open(double lo, double hi) { return {lo, hi, true, true}; }
   static Interval OpenClosed(double lo, double hi) { return {lo, hi, true, false}; }
   static Interval ClosedOpen(double lo, double hi) { return {lo, hi, false, true}; }

@@ -43,7 +43,8 @@ JobRounds::JobRounds(loop::EventLoop& loop, const MasterConfig& config,
       compute_(compute),
       agents_(std::move(agents)),
       journal_(store),
-      verify_seed_((uint64_t{std::random_device{}()} << 32) ^ std::random_device{}()) {}
+      verify_seed_((uint64_t{std::random_device{}()} << 32) ^ std::random_device{}()),
+      checkpoints_(config.checkpoint_seconds, config.checkpoint_time_share) {}
 
 RunningJob* JobRounds::FindRunner(uint64_t job_id) {
   const auto it = runners_.find(static_cast<store::JobId>(job_id));
@@ -184,7 +185,7 @@ void JobRounds::RunRoundHere(const std::shared_ptr<RunningJob>& runner) {
     FailJob(runner->id(), plan.error());
     return;
   }
-  const bool due = CheckpointDue(runner->id());
+  const bool due = checkpoints_.Due(runner->id(), loop_.NowMs());
   const BatchSizing sizing = runner->scheduler().SuggestedSizing();
   auto shared_plan = std::make_shared<RoundPlan>(std::move(*plan));
   ReduceOnComputeThread(runner, [runner, shared_plan, due, sizing] {
@@ -240,24 +241,11 @@ void JobRounds::OnRoundComplete(store::JobId id) {
   const double seconds =
       std::chrono::duration<double>(LoopNow(loop_) - runner->round_started()).count();
   const BatchSizing sizing = runner->scheduler().SuggestedSizing();
-  const bool due = CheckpointDue(runner->id());
+  const bool due = checkpoints_.Due(runner->id(), loop_.NowMs());
   auto shared_round = std::make_shared<scheduler::CompletedRound>(std::move(*round));
   ReduceOnComputeThread(runner, [runner, shared_round, seconds, due, sizing] {
     return runner->Reduce(*shared_round, seconds, due, sizing);
   });
-}
-
-bool JobRounds::CheckpointDue(store::JobId id) {
-  if (const auto it = checkpoints_in_flight_.find(id);
-      it != checkpoints_in_flight_.end() && it->second > 0) {
-    return false;  // the round is recorded alone; its results stay kept (if they are) until then
-  }
-  const uint64_t now_ms = loop_.NowMs();
-  bool due = config_.checkpoint_seconds <= 0;
-  auto& last = last_checkpoint_ms_[id];
-  if (!due && double(now_ms - last) >= 1000 * config_.checkpoint_seconds) due = true;
-  if (due) last = now_ms;
-  return due;
 }
 
 void JobRounds::ReduceOnComputeThread(const std::shared_ptr<RunningJob>& runner,
@@ -283,21 +271,25 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
     auto checkpoint = std::make_shared<store::Checkpoint>(std::move(outcome.checkpoint));
     auto cost = std::make_shared<store::CheckpointCost>();
     const uint64_t queued_ms = loop_.NowMs();
-    ++checkpoints_in_flight_[id];
+    auto write_seconds = std::make_shared<double>(0);
     store_.Run(
-        [record, checkpoint, keep, cost,
+        [record, checkpoint, keep, cost, write_seconds,
          scene = outcome.checkpoint_scene](store::JobStore& s) -> Status {
+          const auto started = std::chrono::steady_clock::now();
           // The refined scene first: the checkpoint refers to it. A scene left behind by a crash
           // between the two is harmless (scenes are kept by hash).
           if (scene) {
             if (Status st = s.PutScene(*checkpoint->scene_hash, *scene); !st) return st;
           }
           if (Status st = s.SaveCheckpoint(record, *checkpoint, cost.get()); !st) return st;
-          return s.PruneCheckpoints(record.job, static_cast<int>(keep));
+          Status pruned = s.PruneCheckpoints(record.job, static_cast<int>(keep));
+          *write_seconds =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+          return pruned;
         },
-        [this, id, queued_ms, cost, round = record.round,
+        [this, id, queued_ms, cost, write_seconds, round = record.round,
          copy_seconds = outcome.checkpoint_copy_seconds](Status s) {
-          if (--checkpoints_in_flight_[id] <= 0) checkpoints_in_flight_.erase(id);
+          checkpoints_.Written(id, *write_seconds);
           if (!s) return HoldOrFail(id, "cannot save the checkpoint: " + s.error());
           // The loop's clock, read at the start of the iteration that delivered the commit.
           const double latency = double(loop_.NowMs() - queued_ms) / 1000;
@@ -360,7 +352,7 @@ void JobRounds::DropRunner(store::JobId id) {
   if (it == runners_.end()) return;
   retired_.Add(it->second->scheduler().counters(LoopNow(loop_)));
   runners_.erase(it);
-  last_checkpoint_ms_.erase(id);
+  checkpoints_.Forget(id);
   verifiers_.erase(id);
   awaiting_verification_.erase(id);
   journal_.Forget(id);

@@ -28,6 +28,7 @@
 
 #include "daemon/batch_totals.h"
 #include "daemon/batch_verifier.h"
+#include "daemon/checkpoint_pacer.h"
 #include "daemon/master_config.h"
 #include "daemon/result_journal.h"
 #include "daemon/running_job.h"
@@ -141,10 +142,6 @@ class JobRounds {
   // `work` (Reduce, perhaps after RunLocally) on the compute thread, then OnRoundReduced.
   void ReduceOnComputeThread(const std::shared_ptr<RunningJob>& runner,
                              std::function<RoundOutcome()> work);
-  // Whether the round about to be reduced checkpoints (every round, or every checkpoint_seconds),
-  // never while the job's previous checkpoint is still being written: at 10^6 patches one is
-  // 50 MB and may take longer than a round, and a queue of them would only grow.
-  bool CheckpointDue(store::JobId id);
   void OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundOutcome outcome);
   void FinishJob(const std::shared_ptr<RunningJob>& runner);
   // Stops a job's work on every agent (Cancel) and forgets its runner.
@@ -166,8 +163,7 @@ class JobRounds {
   uint64_t batches_restored_ = 0;
   BatchTotals retired_;  // the counters of runners that went
   web::LatencyHistogram checkpoint_latency_;
-  std::map<store::JobId, uint64_t> last_checkpoint_ms_;  // loop NowMs() of each job's last one
-  std::map<store::JobId, int> checkpoints_in_flight_;  // queued on the store thread, not committed
+  CheckpointPacer checkpoints_;            // which rounds write a checkpoint
   std::map<store::JobId, bool> starting_;  // being prepared; true once cancelled meanwhile
   // OfferSubmittedMesh's, until the next start pass takes or drops it.
   store::JobId submitted_mesh_job_ = 0;

@@ -30,8 +30,8 @@ struct Flags {
   std::optional<uint32_t> heartbeat_ms, agent_timeout_ms, handshake_timeout_ms, control_timeout_ms,
       hold_retry_ms, checkpoint_keep, max_running_jobs, max_agents, max_unauthenticated,
       blocklist_seconds;
-  std::optional<double> checkpoint_seconds, lease_seconds, keep_results_after_seconds,
-      verify_fraction;
+  std::optional<double> checkpoint_seconds, checkpoint_time_share, lease_seconds,
+      keep_results_after_seconds, verify_fraction;
   std::optional<uint64_t> local_round_rays, max_store_bytes;
   std::optional<bool> keep_round_results;
   bool detach = false;
@@ -86,6 +86,11 @@ void AddFlags(CLI::App& app, Flags* f) {
   app.add_option("--checkpoint-seconds", f->checkpoint_seconds,
                  "Checkpoint at most this often; 0 = after every round (default 0)")
       ->check(CLI::Range(0.0, 1e9));
+  app.add_option("--checkpoint-time-share", f->checkpoint_time_share,
+                 "Share of a job's time its checkpoints' writing may take at most: the next waits "
+                 "until the job has run 1/share times the last one's write; 0 = no wait "
+                 "(default 0.05)")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--max-running-jobs", f->max_running_jobs, "Jobs solved at once (default 4)")
       ->check(CLI::Range(1u, 1024u));
   app.add_option("--lease-seconds", f->lease_seconds,
@@ -146,6 +151,7 @@ Result<MasterConfig> ResolveConfig(const Flags& f) {
   Override(f.max_store_bytes, &c.max_store_bytes);
   Override(f.checkpoint_keep, &c.checkpoint_keep);
   Override(f.checkpoint_seconds, &c.checkpoint_seconds);
+  Override(f.checkpoint_time_share, &c.checkpoint_time_share);
   Override(f.max_running_jobs, &c.max_running_jobs);
   Override(f.lease_seconds, &c.lease_seconds);
   Override(f.max_agents, &c.max_agents);

@@ -43,6 +43,7 @@ Status ReadMasterConfigFile(const std::string& path, MasterConfig* c) {
         r.String("log_level", &c->log_level),
         r.Integer("checkpoint_keep", 1, 1000000, &c->checkpoint_keep),
         r.Real("checkpoint_seconds", Interval::AtLeast(0), &c->checkpoint_seconds),
+        r.Real("checkpoint_time_share", Interval::Closed(0, 1), &c->checkpoint_time_share),
         r.Integer("max_running_jobs", 1, 1024, &c->max_running_jobs),
         r.Real("lease_seconds", Interval::Open(0, 3600), &c->lease_seconds),
         r.Integer("blocklist_seconds", 1, 7 * 24 * 3600, &c->blocklist_seconds),

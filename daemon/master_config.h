@@ -23,6 +23,10 @@ struct MasterConfig {
   std::string log_level = "info";
   uint32_t checkpoint_keep = 3;   // full checkpoints kept per job
   double checkpoint_seconds = 0;  // 0: checkpoint every round; else at most this often
+  // A job's next checkpoint waits until the job has run 1/share times as long as the store took to
+  // write its last one, so writing them takes at most this share of the time (0: no such wait;
+  // daemon/checkpoint_pacer.h). At 10^6 patches a checkpoint takes 1-2 s to write.
+  double checkpoint_time_share = 0.05;
   uint32_t max_running_jobs = 4;  // jobs solved at once; more wait queued
   double lease_seconds = 0.25;    // the time one batch should take on its agent
   // Rounds of at most this many rays are computed by the master itself (0: never): the last

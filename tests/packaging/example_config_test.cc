@@ -125,6 +125,7 @@ TEST(ExampleConfigTest, RadfarmdReadsItsExampleAndItHoldsTheDefaults) {
   EXPECT_EQ(config.log_level, defaults.log_level);
   EXPECT_EQ(config.checkpoint_keep, defaults.checkpoint_keep);
   EXPECT_EQ(config.checkpoint_seconds, defaults.checkpoint_seconds);
+  EXPECT_EQ(config.checkpoint_time_share, defaults.checkpoint_time_share);
   EXPECT_EQ(config.max_running_jobs, defaults.max_running_jobs);
   EXPECT_EQ(config.lease_seconds, defaults.lease_seconds);
   EXPECT_EQ(config.max_agents, defaults.max_agents);
