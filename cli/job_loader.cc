@@ -7,12 +7,16 @@
 #include "cli/scene_settings.h"
 #include "input/scene_loader.h"
 #include "job/output_budget.h"
+#include "mesh/back_face_warnings.h"
 #include "mesh/refine.h"
 
 namespace radfarm {
 
-Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& overrides,
-                                  std::vector<std::string>* warnings) {
+namespace {
+
+// The job file, the overrides and the scene, read and checked: everything before meshing.
+Result<CheckedJob> LoadJobAndScene(const std::string& path, const JobOverrides& overrides,
+                                   std::vector<std::string>* warnings) {
   Result<Job> job = LoadJob(path);
   RADFARM_RETURN_IF_ERROR(job);
   RADFARM_RETURN_IF_ERROR(ApplyOverrides(overrides, &*job));
@@ -31,18 +35,44 @@ Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& o
   RADFARM_RETURN_IF_ERROR(ApplyTwoSided(path, *job, &*scene));
   if (overrides.camera) job->camera_name = *overrides.camera;
   RADFARM_RETURN_IF_ERROR(ChooseCamera(job->camera_name, *scene, &*job));
-  Result<PatchMesh> mesh = PatchMesh::Build(*scene, job->mesh, warnings);
+  return CheckedJob{std::move(*job), std::move(*scene)};
+}
+
+// The checks that need the mesh's figures (the smallest element against the welding distance).
+Status CheckRefinement(const std::string& path, const Job& job, double patch_size, uint64_t patches,
+                       double weld_tolerance) {
+  if (!job.refine.enabled) return Ok{};
+  Result<ResolvedRefineSettings> refine =
+      ResolveRefineSettings(job.refine, patch_size, patches, weld_tolerance);
+  if (!refine.ok()) return Error{path + ": " + refine.error()};
+  return Ok{};
+}
+
+}  // namespace
+
+Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& overrides,
+                                  std::vector<std::string>* warnings) {
+  Result<CheckedJob> loaded = LoadJobAndScene(path, overrides, warnings);
+  RADFARM_RETURN_IF_ERROR(loaded);
+  Result<PatchMesh> mesh = PatchMesh::Build(loaded->scene, loaded->job.mesh, warnings);
   RADFARM_RETURN_IF_ERROR(mesh);
-  const std::vector<std::string> back = BackFaceWarnings(scene->path, *mesh);
+  const std::vector<std::string> back = BackFaceWarnings(loaded->scene.path, *mesh);
   warnings->insert(warnings->end(), back.begin(), back.end());
-  if (job->refine.enabled) {
-    // The checks that need the mesh (the smallest element against the welding distance).
-    Result<ResolvedRefineSettings> refine =
-        ResolveRefineSettings(job->refine, mesh->patch_size(), mesh->patch_scene().patches.size(),
-                              mesh->weld_tolerance());
-    if (!refine.ok()) return Error{path + ": " + refine.error()};
-  }
-  return LoadedJob{std::move(*job), std::move(*scene), std::move(*mesh)};
+  RADFARM_RETURN_IF_ERROR(CheckRefinement(path, loaded->job, mesh->patch_size(),
+                                          mesh->patch_scene().patches.size(),
+                                          mesh->weld_tolerance()));
+  return LoadedJob{std::move(loaded->job), std::move(loaded->scene), std::move(*mesh)};
+}
+
+Result<CheckedJob> CheckJobForSubmit(const std::string& path, const JobOverrides& overrides,
+                                     std::vector<std::string>* warnings) {
+  Result<CheckedJob> loaded = LoadJobAndScene(path, overrides, warnings);
+  RADFARM_RETURN_IF_ERROR(loaded);
+  Result<MeshCheck> mesh = PatchMesh::Check(loaded->scene, loaded->job.mesh, warnings);
+  RADFARM_RETURN_IF_ERROR(mesh);
+  RADFARM_RETURN_IF_ERROR(
+      CheckRefinement(path, loaded->job, mesh->patch_size, mesh->patches, mesh->weld_tolerance));
+  return loaded;
 }
 
 }  // namespace radfarm

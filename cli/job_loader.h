@@ -1,6 +1,7 @@
 // Loading a job the way `radfarm render` does, shared with `radfarm submit` so that a scene the
 // farm would refuse fails on the submitting machine with the same message: the job file, the
-// command line's overrides, the OBJ/MTL, then meshing (which catches meshing errors early).
+// command line's overrides, the OBJ/MTL, then meshing (render) or the mesh's check (submit: every
+// meshing error without building the patches, which the master does).
 #pragma once
 
 #include <string>
@@ -14,6 +15,11 @@
 
 namespace radfarm {
 
+struct CheckedJob {
+  Job job;           // overrides applied
+  InputScene scene;  // as read, validated
+};
+
 struct LoadedJob {
   Job job;           // overrides applied
   InputScene scene;  // as read, validated
@@ -24,5 +30,9 @@ struct LoadedJob {
 // geometry, ignored statements) are appended to *warnings, also when loading fails.
 Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& overrides,
                                   std::vector<std::string>* warnings);
+// The same errors and warnings without meshing (PatchMesh::Check), except the warnings that need
+// the patches (mesh/back_face_warnings.h): the master finds those when it meshes the job.
+Result<CheckedJob> CheckJobForSubmit(const std::string& path, const JobOverrides& overrides,
+                                     std::vector<std::string>* warnings);
 
 }  // namespace radfarm

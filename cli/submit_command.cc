@@ -35,7 +35,7 @@ int RunSubmit(const SubmitOptions& options, const std::string& control_path) {
     return kExitBadInput;
   }
   std::vector<std::string> warnings;
-  Result<LoadedJob> loaded = LoadJobForSolve(options.scene, options.overrides, &warnings);
+  Result<CheckedJob> loaded = CheckJobForSubmit(options.scene, options.overrides, &warnings);
   PrintMessages(warnings);
   if (!loaded.ok()) {
     PrintError(loaded.error());
@@ -53,6 +53,15 @@ int RunSubmit(const SubmitOptions& options, const std::string& control_path) {
   if (!reply.ok()) return ReportFailure(reply.failure());
   Outcome<JobInfo> job = ReplyJob(*reply, "submit");
   if (!job.ok()) return ReportFailure(job.failure());
+  // The warnings that need the patches, which the master made (strings only: any other value is
+  // not printed).
+  if (const auto it = reply->body.find("warnings"); it != reply->body.end() && it->is_array()) {
+    std::vector<std::string> from_master;
+    for (const auto& w : *it) {
+      if (w.is_string()) from_master.push_back(w.get<std::string>());
+    }
+    PrintMessages(from_master);
+  }
   if (options.json) {
     PrintJson(reply->body["job"]);
   } else {

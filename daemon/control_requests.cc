@@ -9,6 +9,7 @@
 #include "codec/job_solution.h"
 #include "core/solve_control.h"
 #include "loop/log.h"
+#include "mesh/back_face_warnings.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/refine.h"
 #include "protocol/message_checks.h"
@@ -64,6 +65,7 @@ struct CheckedSubmission {
   SubmittedSettings settings;
   uint64_t seed = 0;
   std::shared_ptr<PatchMesh> mesh;
+  std::vector<std::string> warnings;  // about the patches: `radfarm submit` prints them
 };
 
 }  // namespace
@@ -353,6 +355,9 @@ void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
                                     mesh->patch_scene().patches.size(), mesh->weld_tolerance());
           if (!refine) return Error{bundle->job.scene_path + ": " + refine.error()};
         }
+        // The warnings `radfarm render` gives once it has the patches; submit checks the scene
+        // without meshing it and prints these from the reply.
+        std::vector<std::string> warnings = BackFaceWarnings(bundle->scene.path, *mesh);
         const SolverSettings& solver = bundle->job.solver;
         SubmittedSettings settings{solver.tolerance,
                                    solver.max_rays,
@@ -361,7 +366,8 @@ void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
                                    mesh->patch_scene().patches.size(),
                                    bundle->job.scene_path};
         return CheckedSubmission{settings, solver.seed,
-                                 std::make_shared<PatchMesh>(std::move(*mesh))};
+                                 std::make_shared<PatchMesh>(std::move(*mesh)),
+                                 std::move(warnings)};
       },
       [this, blob, request = std::move(request), respond](Result<CheckedSubmission> checked) {
         if (!checked) return respond(ControlError("bad_request", checked.error()));
@@ -386,13 +392,14 @@ void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
               if (!job || !*job) return Error{"the new job cannot be read back"};
               return ReadJobSummary(s, **job);
             },
-            [this, respond, mesh = std::move(checked->mesh)](Result<JobSummary> summary) {
+            [this, respond, mesh = std::move(checked->mesh),
+             warnings = std::move(checked->warnings)](Result<JobSummary> summary) {
               if (!summary) return respond(ControlError("internal", summary.error()));
               jobs_.OfferSubmittedMesh(summary->record.id, mesh);
               LogLine(LogLevel::kInfo, "job " + std::to_string(summary->record.id))
                   << "submitted: " << summary->record.spec.name << ", " << summary->settings.patches
                   << " patches, priority " << summary->record.spec.priority;
-              respond({json{{"ok", true}, {"job", JobJson(*summary)}}, {}});
+              respond({json{{"ok", true}, {"job", JobJson(*summary)}, {"warnings", warnings}}, {}});
               jobs_.StartQueuedJobs();
             });
       });

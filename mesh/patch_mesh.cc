@@ -110,36 +110,79 @@ class BackSurfaces {
   std::map<uint32_t, uint32_t> back_of_;
 };
 
-}  // namespace
+// A mesh's patch sizes, weighted by the patches cut to each (see PatchMesh::patch_size()).
+struct PatchSizeSummary {
+  double median = 0, min = 0, max = 0;
+};
 
-Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& settings,
-                                   std::vector<std::string>* warnings) {
+PatchSizeSummary SummarizePatchSizes(const std::vector<SplitPlan>& plans,
+                                     const std::vector<double>& sizes) {
+  // The median by pieces: the size most patches were cut to.
+  std::vector<std::pair<double, uint64_t>> by_size;
+  uint64_t total = 0;
+  for (size_t f = 0; f < plans.size(); ++f) {
+    const uint64_t count = std::min(plans[f].PieceCount(), kMaxPatches + 1);
+    by_size.emplace_back(sizes[f], count);
+    total += count;
+  }
+  std::sort(by_size.begin(), by_size.end());
+  PatchSizeSummary summary;
+  summary.min = by_size.front().first;
+  summary.max = by_size.back().first;
+  uint64_t seen = 0;
+  for (const auto& [size, count] : by_size) {
+    seen += count;
+    summary.median = size;
+    if (2 * seen >= total) break;
+  }
+  return summary;
+}
+
+// Steps 1-4 as far as planning each face's split: the faces left, their sizes and splits, and every
+// error and warning Build gives (assembling the patches adds none), so Check needs no more.
+struct MeshPlan {
+  double tol = 0;
+  double min_area = 0;
+  std::vector<CleanFace> faces;
+  std::vector<double> sizes;
+  std::vector<SplitPlan> plans;
+  uint64_t piece_count = 0;
+  size_t dropped_degenerate = 0;
+  size_t dropped_hidden = 0;
+  PatchSizeSummary size;
+};
+
+Result<MeshPlan> PlanMesh(const InputScene& scene, const MeshSettings& settings,
+                          std::vector<std::string>* warnings) {
   if (!std::isfinite(settings.patch_size) || settings.patch_size < 0) {
     return Error{scene.path + ": patch size must be a finite number >= 0"};
   }
   RADFARM_RETURN_IF_ERROR(CheckScene(scene));
   const double diagonal = FaceBounds(scene).Diagonal();
-  const double tol = kLengthTolerance * diagonal;
-  const double min_area = kAreaTolerance * diagonal * diagonal;
+  MeshPlan mp;
+  mp.tol = kLengthTolerance * diagonal;
+  mp.min_area = kAreaTolerance * diagonal * diagonal;
+  const double tol = mp.tol;
 
-  PatchMesh pm;
-  CleanFaces clean = CleanInputFaces(scene, tol, min_area);
+  CleanFaces clean = CleanInputFaces(scene, tol, mp.min_area);
   std::vector<uint32_t> hidden_lines;
-  const std::vector<CleanFace> faces = DropHidden(std::move(clean.faces), tol, &hidden_lines);
-  pm.dropped_degenerate_ = clean.degenerate_lines.size();
-  pm.dropped_hidden_ = hidden_lines.size();
+  mp.faces = DropHidden(std::move(clean.faces), tol, &hidden_lines);
+  const std::vector<CleanFace>& faces = mp.faces;
+  mp.dropped_degenerate = clean.degenerate_lines.size();
+  mp.dropped_hidden = hidden_lines.size();
   WarnDropped(scene.path, clean.degenerate_lines, "zero-area face", "zero-area faces", warnings);
   WarnDropped(scene.path, hidden_lines, "face hidden inside a coplanar overlap",
               "faces hidden inside a coplanar overlap", warnings);
   if (faces.empty()) return Error{scene.path + ": no faces left to mesh"};
 
   const bool automatic = settings.patch_size == 0;
-  std::vector<double> sizes = automatic ? AutoPatchSizes(faces, tol, diagonal)
-                                        : std::vector<double>(faces.size(), settings.patch_size);
+  std::vector<double>& sizes = mp.sizes;
+  sizes = automatic ? AutoPatchSizes(faces, tol, diagonal)
+                    : std::vector<double>(faces.size(), settings.patch_size);
   const uint64_t memory_limit =
       settings.max_memory > 0 ? settings.max_memory : PhysicalMemoryBytes();
-  std::vector<SplitPlan> plans;
-  uint64_t piece_count = 0;
+  std::vector<SplitPlan>& plans = mp.plans;
+  uint64_t& piece_count = mp.piece_count;
   // An automatic mesh too large for the patch limit or the memory is made coarser all over
   // instead of refused: by the square root of the excess, a few times at most.
   for (int attempt = 0;; ++attempt) {
@@ -159,7 +202,7 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
     const double grow = 1.05 * std::sqrt(double(piece_count) / double(allowed));
     for (double& size : sizes) size *= grow;
   }
-  pm.SetSizeSummary(plans, sizes);
+  mp.size = SummarizePatchSizes(plans, sizes);
   for (size_t f = 0; f < faces.size(); ++f) {
     if (!plans[f].simple && warnings != nullptr) {
       warnings->push_back(scene.path + ":" + std::to_string(faces[f].line) +
@@ -168,19 +211,46 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   }
   if (piece_count > kMaxPatches) {
     std::ostringstream out;
-    out << scene.path << ": patch size " << pm.patch_size_ << " would make over " << kMaxPatches
+    out << scene.path << ": patch size " << mp.size.median << " would make over " << kMaxPatches
         << " patches";
     return Error{out.str()};
   }
   if (memory_limit > 0 && EstimatedSolveBytes(piece_count) > memory_limit) {
     std::ostringstream out;
-    out << scene.path << ": " << piece_count << " patches (patch size " << pm.patch_size_
+    out << scene.path << ": " << piece_count << " patches (patch size " << mp.size.median
         << ") need about " << FormatMegabytes(EstimatedSolveBytes(piece_count))
         << " of memory, more than the limit of " << FormatMegabytes(memory_limit)
         << (settings.max_memory > 0 ? " (--max-memory)" : " (this machine's memory)")
         << "; use a larger patch size";
     return Error{out.str()};
   }
+  return mp;
+}
+
+}  // namespace
+
+Result<MeshCheck> PatchMesh::Check(const InputScene& scene, const MeshSettings& settings,
+                                   std::vector<std::string>* warnings) {
+  Result<MeshPlan> mp = PlanMesh(scene, settings, warnings);
+  RADFARM_RETURN_IF_ERROR(mp);
+  return MeshCheck{mp->piece_count, mp->size.median, mp->tol};
+}
+
+Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& settings,
+                                   std::vector<std::string>* warnings) {
+  Result<MeshPlan> planned = PlanMesh(scene, settings, warnings);
+  RADFARM_RETURN_IF_ERROR(planned);
+  const MeshPlan& mp = *planned;
+  const double tol = mp.tol;
+  const double min_area = mp.min_area;
+  const std::vector<CleanFace>& faces = mp.faces;
+  const std::vector<SplitPlan>& plans = mp.plans;
+  PatchMesh pm;
+  pm.dropped_degenerate_ = mp.dropped_degenerate;
+  pm.dropped_hidden_ = mp.dropped_hidden;
+  pm.patch_size_ = mp.size.median;
+  pm.patch_size_min_ = mp.size.min;
+  pm.patch_size_max_ = mp.size.max;
 
   const SurfaceGroups surfaces = GroupSurfaces(faces, tol);
   const std::vector<std::vector<Footprint>> footprints = FindFootprints(faces, tol);
@@ -229,27 +299,6 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   pm.data_ = std::move(assembler).Finish();
   pm.data_.scene.lights = scene.lights;
   return pm;
-}
-
-void PatchMesh::SetSizeSummary(const std::vector<SplitPlan>& plans,
-                               const std::vector<double>& sizes) {
-  // The median by pieces: the size most patches were cut to.
-  std::vector<std::pair<double, uint64_t>> by_size;
-  uint64_t total = 0;
-  for (size_t f = 0; f < plans.size(); ++f) {
-    const uint64_t count = std::min(plans[f].PieceCount(), kMaxPatches + 1);
-    by_size.emplace_back(sizes[f], count);
-    total += count;
-  }
-  std::sort(by_size.begin(), by_size.end());
-  patch_size_min_ = by_size.front().first;
-  patch_size_max_ = by_size.back().first;
-  uint64_t seen = 0;
-  for (const auto& [size, count] : by_size) {
-    seen += count;
-    patch_size_ = size;
-    if (2 * seen >= total) break;
-  }
 }
 
 std::vector<PatchMesh::Piece> PatchMesh::PiecesOf(const PatchScene& scene) {

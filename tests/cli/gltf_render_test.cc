@@ -10,11 +10,13 @@
 
 #include "cli/exit_codes.h"
 #include "testing/child_process.h"
+#include "testing/outward_cube.h"
 #include "testing/temp_dir.h"
 
 namespace radfarm {
 namespace {
 
+using testing::OutwardCube;
 using testing::ReadFile;
 using testing::RunCommand;
 using testing::TempDir;
@@ -142,23 +144,6 @@ TEST(GltfRenderTest, AnUnknownCameraNameIsBadInput) {
   EXPECT_NE(r.err.find("cornell-box.glb: no camera named 'nope' (cameras: 'Camera')"),
             std::string::npos)
       << r.err;
-}
-
-// A unit cube with its faces' normals pointing out, as a cube modelled in Blender has.
-std::string OutwardCube(const std::string& material, bool with_lamp) {
-  std::string obj =
-      "mtllib room.mtl\n"
-      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-      "usemtl " +
-      material +
-      "\n"
-      "f 1 2 6 5\nf 4 8 7 3\nf 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\n";
-  if (with_lamp) {
-    obj +=
-        "v 0.4 0.9 0.4\nv 0.6 0.9 0.4\nv 0.6 0.9 0.6\nv 0.4 0.9 0.6\n"
-        "usemtl lamp\nf 9 10 11 12\n";
-  }
-  return obj;
 }
 
 TEST(GltfRenderTest, AnOutwardFacingRoomWarnsAndIsLitWhenTwoSided) {

@@ -7,7 +7,9 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 
+#include "testing/outward_cube.h"
 #include "tests/farm/farm_fixture.h"
 
 namespace radfarm::testing {
@@ -184,6 +186,28 @@ TEST_F(FarmTest, StatusSaysWhenTheJobWaitsForAnAgentAndStopsSayingItWhenOneComes
   ASSERT_TRUE(WaitForState(id, "done"));
   EXPECT_FALSE(Status(id).value("waiting_for_agents", true));
   EXPECT_EQ(Cli({"status", std::to_string(id)}).out.find("no agent connected"), std::string::npos);
+}
+
+// submit checks a scene without meshing it; the warnings that need the patches come from the
+// master, which meshes it, and submit prints them as render does.
+TEST_F(FarmTest, SubmitPrintsTheMastersWarningsAboutThePatches) {
+  StartMaster();
+  std::ofstream(Path("room.mtl"))
+      << "newmtl wall\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\n";
+  std::ofstream(Path("room.obj")) << OutwardCube("wall", true);
+  const CommandResult r = Cli({"submit", Path("room.obj"), "--patch-size", "0.1"});
+  ASSERT_EQ(r.exit_code, 0) << r.err << MasterLog();
+  EXPECT_NE(r.err.find("room.obj: warning: material 'wall' is lit from behind: 100% of the "
+                       "emitters' light"),
+            std::string::npos)
+      << r.err;
+  const CommandResult rendered = RunCommand(
+      {RADFARM_CLI_PATH, "render", Path("room.obj"), "--patch-size", "0.1", "--out", Path("out")});
+  ASSERT_EQ(rendered.exit_code, 0) << rendered.err;
+  EXPECT_EQ(r.err, rendered.err) << "submit and render warn alike";
+  const CommandResult quiet = Cli({"submit", RADFARM_SOURCE_DIR "/scenes/cornell-box.toml"});
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
 }
 
 TEST_F(FarmTest, AMalformedControlRequestCostsOnlyItsConnection) {
