@@ -104,7 +104,14 @@ Status RenderState::SaveRound(const SolveState& now) {
                                  now.totals.escaped_rays - last_.escaped_rays,
                                  now.totals.backface_hits - last_.backface_hits};
   last_ = now.totals;
-  if (writer_->checkpoint_pending()) {
+  {
+    std::lock_guard<std::mutex> lock(reports_->mu);
+    for (double seconds : reports_->written_seconds) pacer_.Written(job_, seconds);
+    reports_->written_seconds.clear();
+  }
+  const auto now_ms = static_cast<uint64_t>(
+      std::chrono::duration_cast<std::chrono::milliseconds>(start.time_since_epoch()).count());
+  if (writer_->checkpoint_pending() || !pacer_.Due(job_, now_ms)) {
     // The round's row now (resumed totals count rows); its state for Finish, in case it is the
     // last. Assigning reuses the buffers of the round left out before.
     unsaved_ = true;
@@ -132,6 +139,7 @@ Status RenderState::QueueCheckpoint(const store::RoundRecord& round, store::Chec
         report.seconds = Seconds(Clock::now() - start);
         std::lock_guard<std::mutex> lock(reports->mu);
         reports->done.push_back(report);
+        reports->written_seconds.push_back(report.seconds);
         return Status{Ok{}};
       },
       true);

@@ -20,6 +20,7 @@
 #include "cli/checkpoint_writer.h"
 #include "codec/job_bundle.h"
 #include "solve/solve_state.h"
+#include "store/checkpoint_pacer.h"
 #include "store/job_store.h"
 
 namespace radfarm {
@@ -34,8 +35,9 @@ class RenderState {
 
   // Records one round and its checkpoint (one transaction), keeping the last two checkpoints; a
   // refined mesh's scene is stored first (once per mesh). They are written on the writer's thread
-  // (checkpoint_writer.h) while the next round runs; while a checkpoint is still being written the
-  // round is recorded without one (a resume from the one before computes the same bits), and the
+  // (checkpoint_writer.h) while the next round runs; while a checkpoint is still being written, or
+  // too soon after the last for its cost (store/checkpoint_pacer.h), the round is recorded
+  // without one (a resume from the one before computes the same bits), and the
   // last round's state, if its checkpoint was left out, is written by Finish. Returns the error of
   // an earlier write. Do not move this object after the first call.
   Status SaveRound(const SolveState& state);
@@ -56,6 +58,7 @@ class RenderState {
   struct Reports {
     std::mutex mu;
     std::vector<Report> done;
+    std::vector<double> written_seconds;  // each checkpoint's, for the pacer
   };
   explicit RenderState(store::JobStore store)
       : store_(std::make_unique<store::JobStore>(std::move(store))),
@@ -78,6 +81,9 @@ class RenderState {
   store::RoundRecord unsaved_round_;
   std::optional<std::string> unsaved_scene_hash_;
   std::shared_ptr<Reports> reports_;
+  // Which rounds write a checkpoint: one is written once the render has run 20 times as long as
+  // the last took to write (at 10^6 patches 0.5-1.2 s on the writer, which shares the CPUs).
+  store::CheckpointPacer pacer_{0, store::kDefaultCheckpointTimeShare};
   std::unique_ptr<CheckpointWriter> writer_;  // after store_: it goes first
 };
 

@@ -28,7 +28,6 @@
 
 #include "daemon/batch_totals.h"
 #include "daemon/batch_verifier.h"
-#include "daemon/checkpoint_pacer.h"
 #include "daemon/master_config.h"
 #include "daemon/result_journal.h"
 #include "daemon/running_job.h"
@@ -37,6 +36,7 @@
 #include "daemon/web/latency_histogram.h"
 #include "loop/event_loop.h"
 #include "loop/work_queue.h"
+#include "store/checkpoint_pacer.h"
 #include "store/job_store.h"
 
 namespace radfarm::daemon {
@@ -163,7 +163,7 @@ class JobRounds {
   uint64_t batches_restored_ = 0;
   BatchTotals retired_;  // the counters of runners that went
   web::LatencyHistogram checkpoint_latency_;
-  CheckpointPacer checkpoints_;            // which rounds write a checkpoint
+  store::CheckpointPacer checkpoints_;     // which rounds write a checkpoint
   std::map<store::JobId, bool> starting_;  // being prepared; true once cancelled meanwhile
   // OfferSubmittedMesh's, until the next start pass takes or drops it.
   store::JobId submitted_mesh_job_ = 0;

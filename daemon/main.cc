@@ -87,9 +87,8 @@ void AddFlags(CLI::App& app, Flags* f) {
                  "Checkpoint at most this often; 0 = after every round (default 0)")
       ->check(CLI::Range(0.0, 1e9));
   app.add_option("--checkpoint-time-share", f->checkpoint_time_share,
-                 "Share of a job's time its checkpoints' writing may take at most: the next waits "
-                 "until the job has run 1/share times the last one's write; 0 = no wait "
-                 "(default 0.05)")
+                 "Share of a job's time its checkpoints (queued to committed) may take at most: "
+                 "the next waits until it fits, priced as the last; 0 = no wait (default 0.05)")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--max-running-jobs", f->max_running_jobs, "Jobs solved at once (default 4)")
       ->check(CLI::Range(1u, 1024u));

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "base/result.h"
+#include "store/checkpoint_pacer.h"
 
 namespace radfarm::daemon {
 
@@ -23,10 +24,10 @@ struct MasterConfig {
   std::string log_level = "info";
   uint32_t checkpoint_keep = 3;   // full checkpoints kept per job
   double checkpoint_seconds = 0;  // 0: checkpoint every round; else at most this often
-  // A job's next checkpoint waits until the job has run 1/share times as long as the store took to
-  // write its last one, so writing them takes at most this share of the time (0: no such wait;
-  // daemon/checkpoint_pacer.h). At 10^6 patches a checkpoint takes 1-2 s to write.
-  double checkpoint_time_share = 0.05;
+  // A job's checkpoints, from queued to committed, take at most this share of its time: the next
+  // waits until it fits (0: no such wait; store/checkpoint_pacer.h). At 10^6 patches one takes
+  // 1-2.5 s on a busy 2-CPU master.
+  double checkpoint_time_share = store::kDefaultCheckpointTimeShare;
   uint32_t max_running_jobs = 4;  // jobs solved at once; more wait queued
   double lease_seconds = 0.25;    // the time one batch should take on its agent
   // Rounds of at most this many rays are computed by the master itself (0: never): the last

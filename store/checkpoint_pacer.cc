@@ -1,26 +1,29 @@
-#include "daemon/checkpoint_pacer.h"
+#include "store/checkpoint_pacer.h"
 
-namespace radfarm::daemon {
+namespace radfarm::store {
 
-bool CheckpointPacer::Due(store::JobId id, uint64_t now_ms) {
+bool CheckpointPacer::Due(JobId id, uint64_t now_ms) {
   Job& job = jobs_[id];
   if (job.in_flight > 0) return false;
   if (!job.any) {
     // The job's first round: the pace starts. With min_seconds the first checkpoint waits too.
     job.any = true;
-    job.queued_ms = now_ms;
+    job.first_ms = job.queued_ms = now_ms;
     if (min_seconds_ > 0) return false;
   } else {
     const double since = double(now_ms - job.queued_ms) / 1000;
     if (min_seconds_ > 0 && since < min_seconds_) return false;
-    if (time_share_ > 0 && since * time_share_ < job.write_seconds) return false;
+    const double running = double(now_ms - job.first_ms) / 1000;
+    if (time_share_ > 0 && running * time_share_ < job.spent_seconds + job.write_seconds) {
+      return false;
+    }
   }
   job.queued_ms = now_ms;
   ++job.in_flight;
   return true;
 }
 
-void CheckpointPacer::Forget(store::JobId id) {
+void CheckpointPacer::Forget(JobId id) {
   const auto it = jobs_.find(id);
   if (it == jobs_.end()) return;
   if (it->second.in_flight > 0) {
@@ -30,15 +33,16 @@ void CheckpointPacer::Forget(store::JobId id) {
   }
 }
 
-void CheckpointPacer::Written(store::JobId id, double write_seconds) {
+void CheckpointPacer::Written(JobId id, double write_seconds) {
   const auto it = jobs_.find(id);
   if (it == jobs_.end()) return;
   if (it->second.in_flight > 0) --it->second.in_flight;
   if (it->second.any) {
     it->second.write_seconds = write_seconds;
+    it->second.spent_seconds += write_seconds;
   } else if (it->second.in_flight == 0) {
     jobs_.erase(it);  // forgotten while it was written
   }
 }
 
-}  // namespace radfarm::daemon
+}  // namespace radfarm::store

@@ -1,11 +1,11 @@
 // CheckpointPacer: every round by default (the first round's too), never two at once, at most
-// every min_seconds (the first too, from the first round), and written only once the job has run
-// 1/share times as long as the last one took to write.
-#include "daemon/checkpoint_pacer.h"
+// every min_seconds (the first too, from the first round), and only while all of a job's
+// checkpoints, the next priced as the last, take at most a share of its time.
+#include "store/checkpoint_pacer.h"
 
 #include <gtest/gtest.h>
 
-namespace radfarm::daemon {
+namespace radfarm::store {
 namespace {
 
 TEST(CheckpointPacerTest, WithoutLimitsEveryRoundCheckpointsOnceTheLastIsWritten) {
@@ -17,16 +17,18 @@ TEST(CheckpointPacerTest, WithoutLimitsEveryRoundCheckpointsOnceTheLastIsWritten
   EXPECT_TRUE(pacer.Due(1, 1002));
 }
 
-TEST(CheckpointPacerTest, ASlowWriteMakesTheNextWaitUntilItIsAShareOfTheTime) {
+TEST(CheckpointPacerTest, SlowWritesWaitUntilAllOfThemAreAShareOfTheJobsTime) {
   CheckpointPacer pacer(0, 0.05);
-  ASSERT_TRUE(pacer.Due(1, 0));
-  pacer.Written(1, 2.0);  // 2 s to write: the next after 40 s of the job
+  ASSERT_TRUE(pacer.Due(1, 0)) << "the first round's, its cost unknown";
+  pacer.Written(1, 2.0);  // 2 s, and the next priced the same: 4 s are 5 % of 80 s
   EXPECT_FALSE(pacer.Due(1, 6000));
-  EXPECT_FALSE(pacer.Due(1, 39999));
-  ASSERT_TRUE(pacer.Due(1, 40000));
-  pacer.Written(1, 0.001);  // a quick one: the next at once (1 ms needs 20 ms)
-  EXPECT_FALSE(pacer.Due(1, 40019));
-  EXPECT_TRUE(pacer.Due(1, 40020));
+  EXPECT_FALSE(pacer.Due(1, 79999));
+  ASSERT_TRUE(pacer.Due(1, 80000));
+  pacer.Written(1, 2.0);  // 4 s spent, 2 more: 120 s
+  EXPECT_FALSE(pacer.Due(1, 119999));
+  ASSERT_TRUE(pacer.Due(1, 120000));
+  pacer.Written(1, 0.001);  // quick now: 4.002 s need 80.04 s of the job, long past
+  EXPECT_TRUE(pacer.Due(1, 120001));
 }
 
 TEST(CheckpointPacerTest, MinSecondsAndTheShareBothHold) {
@@ -34,12 +36,13 @@ TEST(CheckpointPacerTest, MinSecondsAndTheShareBothHold) {
   EXPECT_FALSE(pacer.Due(1, 0)) << "the first round starts the pace";
   EXPECT_FALSE(pacer.Due(1, 9999));
   ASSERT_TRUE(pacer.Due(1, 10000));
-  pacer.Written(1, 1.0);  // the share wants 20 s, min_seconds 10
+  pacer.Written(1, 1.0);  // the share wants 40 s of the job, min_seconds 10 since the last
   EXPECT_FALSE(pacer.Due(1, 20000));
-  EXPECT_TRUE(pacer.Due(1, 30000));
-  pacer.Written(1, 0.1);  // the share wants 2 s, min_seconds 10
-  EXPECT_FALSE(pacer.Due(1, 35000));
-  EXPECT_TRUE(pacer.Due(1, 40000));
+  EXPECT_FALSE(pacer.Due(1, 39999));
+  ASSERT_TRUE(pacer.Due(1, 40000));
+  pacer.Written(1, 0.1);  // the share wants 24 s (met), min_seconds 10 since the last
+  EXPECT_FALSE(pacer.Due(1, 45000));
+  EXPECT_TRUE(pacer.Due(1, 50000));
 }
 
 TEST(CheckpointPacerTest, AFailedWriteDoesNotHoldTheNextBack) {
@@ -62,4 +65,4 @@ TEST(CheckpointPacerTest, AForgottenJobStartsAfreshButWaitsForTheWriteInFlight) 
 }
 
 }  // namespace
-}  // namespace radfarm::daemon
+}  // namespace radfarm::store
