@@ -248,6 +248,7 @@ class RoundScheduler {
     std::deque<uint32_t> fresh;    // batch indices to lease; requeued ones at the front
     std::deque<uint32_t> overdue;  // batch indices offered again by Tick
     double mean_batch_rays = 0;
+    uint64_t rays_left = 0;  // rays of the batches not done
     size_t done = 0;
     size_t queued = 0;  // batches in state kQueued (SetState keeps it)
   };
@@ -263,6 +264,15 @@ class RoundScheduler {
   uint32_t LeaseCapacity(const AgentState& agent) const;
   AgentCounters CountersOf(AgentId id, const AgentState& agent, TimePoint now) const;
   std::optional<uint32_t> PopFresh();
+  // The batch PopFresh would return, left queued (stale entries at the front are dropped).
+  std::optional<uint32_t> PeekFresh();
+  // Whether the round's end leaves room for `agent` to take `rays` more (round_end_share).
+  bool RoundEndAllows(const AgentState& agent, uint32_t rays, TimePoint now) const;
+  // Seconds the round's work not done would take the measured agents together; nullopt when
+  // none is measured.
+  std::optional<double> RoundSecondsLeft() const;
+  // agent.throughput.AddResult, keeping measured_rays_per_second_.
+  void Measure(AgentState& agent, uint64_t rays, TimePoint issued, TimePoint now);
   std::optional<uint32_t> PopOverdueFor(AgentId agent);
   // The queue is empty: the newest live lease of the agent expected to finish last, when `agent`
   // would finish it sooner; returns its batch index and the attempt it replaces.
@@ -301,6 +311,9 @@ class RoundScheduler {
   // expected time: the end game's copies come from the first few of them.
   std::set<std::pair<TimePoint, AgentId>> copy_index_;
   std::unordered_map<AgentId, TimePoint> blocked_until_;
+  // The known agents' summed smoothed rays/s (unmeasured ones count 0), kept as results come in
+  // and agents go; recomputed at each StartRound so rounding cannot drift.
+  double measured_rays_per_second_ = 0;
   AttemptId next_attempt_ = 1;
   SchedulerCounters totals_;  // the since-creation fields only
 };
