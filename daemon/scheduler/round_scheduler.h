@@ -16,18 +16,19 @@
 //   when a verdict says round_complete: done = TakeCompletedRound();
 //   solver.ApplyRound(done.plan, done.results); plan the next round.
 // The next round can only be planned after ApplyRound (the plan depends on the unshot radiosity),
-// so rounds do not overlap. The round's tail is cut instead, in four ways. The plan's last rays
+// so rounds do not overlap. The round's tail is cut instead, in five ways. The plan's last rays
 // are cut finer (SuggestedSizing: core/batch.h TaperBatches, a few ways per agent), so the last
 // leases are short. Leases shrink as the queue empties (LeaseSizeOf: at most the queue's share
-// per agent). Once the queue is empty, an agent with room takes over the newest lease of the
-// agent expected to finish last, while it would finish that batch sooner (the daemon tells the old
-// holder with a LeaseRevoke; the newest of its leases is the one it has not started). When nothing
-// is worth taking over, an idle agent gets a copy of a running lease (some agent's oldest) that has
-// taken several times its expected time: the end game. And Tick offers batches past their deadline
-// to agents with room. A daemon with several jobs keeps one scheduler per job and asks them in
-// turn, so agents idle on one job's reduction work on another; when a higher-priority job has
-// batches queued again, the daemon takes the lower jobs' leases off the agent (Preempt) so that it
-// moves at once.
+// per agent). An agent holds no more than it finishes by the round's predicted end
+// (round_end_share: the rays not done over the agents' summed speed). Once the queue is empty, an
+// agent with room takes over the newest lease of the agent expected to finish last, while it would
+// finish that batch sooner (the daemon tells the old holder with a LeaseRevoke; the newest of its
+// leases is the one it has not started). When nothing is worth taking over, an idle agent gets a
+// copy of a running lease (some agent's oldest) that has taken several times its expected time: the
+// end game. And Tick offers batches past their deadline to agents with room. A daemon with several
+// jobs keeps one scheduler per job and asks them in turn, so agents idle on one job's reduction
+// work on another; when a higher-priority job has batches queued again, the daemon takes the lower
+// jobs' leases off the agent (Preempt) so that it moves at once.
 //
 // LIFECYCLE OF A BATCH (within a round):
 //
@@ -162,7 +163,8 @@ class RoundScheduler {
 
   // --- Work ---
   // The next lease for `agent`, or nothing: no round, unknown or blocklisted agent, agent at its
-  // lease capacity, or nothing to hand out. Requeued and fresh batches come first, in that order;
+  // lease capacity or holding what it finishes by the round's predicted end (round_end_share),
+  // or nothing to hand out. Requeued and fresh batches come first, in that order;
   // when none are left, an overdue batch this agent does not already hold.
   // `leases_elsewhere`: leases the agent holds for other jobs (their schedulers'); they count
   // against its capacity here too, so an agent shared by several jobs is never over-leased.
