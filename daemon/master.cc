@@ -30,6 +30,9 @@ Master::Master(loop::EventLoop& loop, const MasterConfig& config, protocol::Farm
   // little ahead of a higher one.
   scheduler_options_.spare_lease_fraction = 0.25;
   scheduler_options_.max_leases_per_agent = 1u << 17;  // two full frames (kMaxLeaseBatches)
+  // Near a round's end an agent holds no more than it finishes by the round's predicted end
+  // (farm_bench, 1000 agents: the final gather's round took 8 times its work's time).
+  scheduler_options_.round_end_share = 1;
 }
 
 Master::~Master() = default;

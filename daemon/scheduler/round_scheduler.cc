@@ -20,6 +20,8 @@ void RoundScheduler::OnAgentLost(AgentId agent) {
   std::vector<AttemptId> live;
   for (const auto& [id, index] : it->second.live) live.push_back(id);
   for (AttemptId id : live) EndAttempt(id, AttemptState::kLost);
+  measured_rays_per_second_ =
+      std::max(0.0, measured_rays_per_second_ - it->second.throughput.rays_per_second());
   agents_.erase(it);
 }
 
@@ -92,6 +94,11 @@ Status RoundScheduler::StartRound(RoundPlan plan, TimePoint /*now*/,
     round.fresh.push_back(k);
     round.batches[k].in_fresh_queue = true;
     ++round.queued;
+    round.rays_left += plan.batches[k].ray_count;
+  }
+  measured_rays_per_second_ = 0;
+  for (const auto& [id, agent] : agents_) {
+    measured_rays_per_second_ += agent.throughput.rays_per_second();
   }
   round.mean_batch_rays = double(rays) / double(plan.batches.size());
   round.plan = std::move(plan);
@@ -177,7 +184,10 @@ std::optional<Assignment> RoundScheduler::NextAssignment(AgentId agent_id, TimeP
   if (agent.live.size() + leases_elsewhere >= capacity.value_or(LeaseCapacity(agent))) {
     return std::nullopt;
   }
-  if (const auto index = PopFresh()) return Issue(*index, agent_id, agent, now, false);
+  if (const auto next = PeekFresh()) {
+    if (!RoundEndAllows(agent, round_->plan.batches[*next].ray_count, now)) return std::nullopt;
+    return Issue(*PopFresh(), agent_id, agent, now, false);
+  }
   if (const auto index = PopOverdueFor(agent_id)) return Issue(*index, agent_id, agent, now, true);
   if (const auto taken = TakeOverFor(agent_id, agent, now)) {
     const AttemptRecord& old = round_->attempts.at(taken->second);
@@ -203,8 +213,7 @@ ResultVerdict RoundScheduler::OnResult(AgentId agent_id, BatchId batch_id, Attem
       Record(agent_id, batch_id, attempt_id, std::move(result), now, &rays, &issued);
   if (rays > 0) {
     if (const auto agent = agents_.find(agent_id); agent != agents_.end()) {
-      agent->second.throughput.AddResult(rays, issued, now, options_.throughput_smoothing,
-                                         options_.min_batch_rays);
+      Measure(agent->second, rays, issued, now);
     }
   }
   return verdict;
@@ -227,8 +236,7 @@ std::vector<ResultVerdict> RoundScheduler::OnResults(AgentId agent_id,
   }
   if (total_rays > 0) {
     if (const auto agent = agents_.find(agent_id); agent != agents_.end()) {
-      agent->second.throughput.AddResult(total_rays, first_issued, now,
-                                         options_.throughput_smoothing, options_.min_batch_rays);
+      Measure(agent->second, total_rays, first_issued, now);
     }
   }
   // The round may have completed on an earlier result of the frame: say so on every verdict.
@@ -276,6 +284,7 @@ ResultVerdict RoundScheduler::Record(AgentId agent_id, BatchId batch_id, Attempt
                    already_answered ? DropReason::kDuplicate : DropReason::kLate);
   }
   SetState(slot, BatchState::kDone);
+  round_->rays_left -= round_->plan.batches[attempt.batch_index].ray_count;
   slot.winner = attempt_id;
   slot.result = std::move(result);
   ++round_->done;
@@ -398,6 +407,42 @@ std::optional<uint32_t> RoundScheduler::PopFresh() {
     if (slot.state == BatchState::kQueued) return index;
   }
   return std::nullopt;
+}
+
+std::optional<uint32_t> RoundScheduler::PeekFresh() {
+  while (!round_->fresh.empty()) {
+    const uint32_t index = round_->fresh.front();
+    BatchSlot& slot = round_->batches[index];
+    if (slot.state == BatchState::kQueued) return index;
+    round_->fresh.pop_front();
+    slot.in_fresh_queue = false;
+  }
+  return std::nullopt;
+}
+
+std::optional<double> RoundScheduler::RoundSecondsLeft() const {
+  if (measured_rays_per_second_ <= 0) return std::nullopt;
+  return double(round_->rays_left) / measured_rays_per_second_;
+}
+
+bool RoundScheduler::RoundEndAllows(const AgentState& agent, uint32_t rays, TimePoint now) const {
+  // An agent holding nothing always gets work; an unmeasured one has initial_leases for that.
+  if (options_.round_end_share <= 0 || agent.live.empty() || !agent.throughput.measured()) {
+    return true;
+  }
+  const std::optional<double> left = RoundSecondsLeft();
+  if (!left) return true;
+  const double done_after =
+      FinishEstimate(agent, now) + agent.throughput.ExpectedSeconds(rays, options_);
+  return done_after <= options_.round_end_share * *left;
+}
+
+void RoundScheduler::Measure(AgentState& agent, uint64_t rays, TimePoint issued, TimePoint now) {
+  const double before = agent.throughput.rays_per_second();
+  agent.throughput.AddResult(rays, issued, now, options_.throughput_smoothing,
+                             options_.min_batch_rays);
+  measured_rays_per_second_ =
+      std::max(0.0, measured_rays_per_second_ + agent.throughput.rays_per_second() - before);
 }
 
 std::optional<uint32_t> RoundScheduler::PopOverdueFor(AgentId agent) {

@@ -16,18 +16,19 @@
 //   when a verdict says round_complete: done = TakeCompletedRound();
 //   solver.ApplyRound(done.plan, done.results); plan the next round.
 // The next round can only be planned after ApplyRound (the plan depends on the unshot radiosity),
-// so rounds do not overlap. The round's tail is cut instead, in four ways. The plan's last rays
+// so rounds do not overlap. The round's tail is cut instead, in five ways. The plan's last rays
 // are cut finer (SuggestedSizing: core/batch.h TaperBatches, a few ways per agent), so the last
 // leases are short. Leases shrink as the queue empties (LeaseSizeOf: at most the queue's share
-// per agent). Once the queue is empty, an agent with room takes over the newest lease of the
-// agent expected to finish last, while it would finish that batch sooner (the daemon tells the old
-// holder with a LeaseRevoke; the newest of its leases is the one it has not started). When nothing
-// is worth taking over, an idle agent gets a copy of a running lease (some agent's oldest) that has
-// taken several times its expected time: the end game. And Tick offers batches past their deadline
-// to agents with room. A daemon with several jobs keeps one scheduler per job and asks them in
-// turn, so agents idle on one job's reduction work on another; when a higher-priority job has
-// batches queued again, the daemon takes the lower jobs' leases off the agent (Preempt) so that it
-// moves at once.
+// per agent). An agent holds no more than it finishes by the round's predicted end
+// (round_end_share: the rays not done over the agents' summed speed). Once the queue is empty, an
+// agent with room takes over the newest lease of the agent expected to finish last, while it would
+// finish that batch sooner (the daemon tells the old holder with a LeaseRevoke; the newest of its
+// leases is the one it has not started). When nothing is worth taking over, an idle agent gets a
+// copy of a running lease (some agent's oldest) that has taken several times its expected time: the
+// end game. And Tick offers batches past their deadline to agents with room. A daemon with several
+// jobs keeps one scheduler per job and asks them in turn, so agents idle on one job's reduction
+// work on another; when a higher-priority job has batches queued again, the daemon takes the lower
+// jobs' leases off the agent (Preempt) so that it moves at once.
 //
 // LIFECYCLE OF A BATCH (within a round):
 //
@@ -162,7 +163,8 @@ class RoundScheduler {
 
   // --- Work ---
   // The next lease for `agent`, or nothing: no round, unknown or blocklisted agent, agent at its
-  // lease capacity, or nothing to hand out. Requeued and fresh batches come first, in that order;
+  // lease capacity or holding what it finishes by the round's predicted end (round_end_share),
+  // or nothing to hand out. Requeued and fresh batches come first, in that order;
   // when none are left, an overdue batch this agent does not already hold.
   // `leases_elsewhere`: leases the agent holds for other jobs (their schedulers'); they count
   // against its capacity here too, so an agent shared by several jobs is never over-leased.
@@ -248,6 +250,7 @@ class RoundScheduler {
     std::deque<uint32_t> fresh;    // batch indices to lease; requeued ones at the front
     std::deque<uint32_t> overdue;  // batch indices offered again by Tick
     double mean_batch_rays = 0;
+    uint64_t rays_left = 0;  // rays of the batches not done
     size_t done = 0;
     size_t queued = 0;  // batches in state kQueued (SetState keeps it)
   };
@@ -263,6 +266,15 @@ class RoundScheduler {
   uint32_t LeaseCapacity(const AgentState& agent) const;
   AgentCounters CountersOf(AgentId id, const AgentState& agent, TimePoint now) const;
   std::optional<uint32_t> PopFresh();
+  // The batch PopFresh would return, left queued (stale entries at the front are dropped).
+  std::optional<uint32_t> PeekFresh();
+  // Whether the round's end leaves room for `agent` to take `rays` more (round_end_share).
+  bool RoundEndAllows(const AgentState& agent, uint32_t rays, TimePoint now) const;
+  // Seconds the round's work not done would take the measured agents together; nullopt when
+  // none is measured.
+  std::optional<double> RoundSecondsLeft() const;
+  // agent.throughput.AddResult, keeping measured_rays_per_second_.
+  void Measure(AgentState& agent, uint64_t rays, TimePoint issued, TimePoint now);
   std::optional<uint32_t> PopOverdueFor(AgentId agent);
   // The queue is empty: the newest live lease of the agent expected to finish last, when `agent`
   // would finish it sooner; returns its batch index and the attempt it replaces.
@@ -301,6 +313,9 @@ class RoundScheduler {
   // expected time: the end game's copies come from the first few of them.
   std::set<std::pair<TimePoint, AgentId>> copy_index_;
   std::unordered_map<AgentId, TimePoint> blocked_until_;
+  // The known agents' summed smoothed rays/s (unmeasured ones count 0), kept as results come in
+  // and agents go; recomputed at each StartRound so rounding cannot drift.
+  double measured_rays_per_second_ = 0;
   AttemptId next_attempt_ = 1;
   SchedulerCounters totals_;  // the since-creation fields only
 };

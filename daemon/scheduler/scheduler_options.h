@@ -35,6 +35,13 @@ struct SchedulerOptions {
   // The end game (the round's queue empty): an idle agent gets a copy of a running lease that has
   // taken this many times its expected time. 0: no end-game copies (only Tick's overdue ones).
   double end_game_copy_factor = 2;
+  // The round's end: a measured agent that holds work gets another fresh batch only while all it
+  // would then hold is done within this fraction of the time the round is predicted to need (the
+  // rays of its batches not yet done over the measured agents' summed rays/s). Without it the
+  // first agents asked fill their lease capacity, sized for a lease horizon, and a round shorter
+  // than that horizon (a final gather) or its last part waits on them while others idle.
+  // 0: no cap. radfarmd uses 1 (daemon/master.cc).
+  double round_end_share = 0;
   // Live attempts of one batch at most (the original plus speculative copies).
   uint32_t max_live_attempts = 2;
   // How long an agent blocklisted for a job gets none of its work (daemon/job_blocklist.h).

@@ -498,6 +498,84 @@ TEST(RoundSchedulerTest, AnIdleAgentTakesOverTheNewestLeasesOfABusyOneAndEachCou
   EXPECT_EQ(s.counters(kT0).results_accepted, 2u + 8u);  // 2 of round 0, each batch once
 }
 
+// round_end_share: a measured agent that holds work gets another fresh batch only while all it
+// would hold is done by the round's predicted end: the rays not done over the measured agents'
+// summed rays/s.
+TEST(RoundSchedulerTest, AnAgentHoldsNoMoreThanItFinishesByTheRoundsPredictedEnd) {
+  SchedulerOptions options;
+  options.target_lease_seconds = 100;  // the lease capacity alone would allow every batch
+  options.max_leases_per_agent = 100;
+  options.round_end_share = 1;
+  RoundScheduler s(options);
+  s.AddAgent(1);
+  s.AddAgent(2);
+  MeasureAt1000RaysPerSecond(s);
+  // 8 batches of 1000 rays for 2 agents of 1000 rays/s: the round ends in 4 s. Each agent gets
+  // the batches it finishes by then (the first, then while done_after <= 4 s), not all 8.
+  ASSERT_TRUE(s.StartRound(Plan(1, 8), kT0).ok());
+  std::vector<Assignment> one, two;
+  while (auto a = s.NextAssignment(1, kT0)) one.push_back(*a);
+  while (auto a = s.NextAssignment(2, kT0)) two.push_back(*a);
+  EXPECT_EQ(one.size(), 4u);
+  EXPECT_EQ(two.size(), 4u);
+  for (const Assignment& a : two) EXPECT_FALSE(a.taken_from);  // fresh batches, not agent 1's
+}
+
+TEST(RoundSchedulerTest, TheRoundsPredictedEndFollowsResultsAndLostAgents) {
+  SchedulerOptions options;
+  options.target_lease_seconds = 100;
+  options.max_leases_per_agent = 100;
+  options.round_end_share = 1;
+  RoundScheduler s(options);
+  s.AddAgent(1);
+  s.AddAgent(2);
+  MeasureAt1000RaysPerSecond(s);
+  ASSERT_TRUE(s.StartRound(Plan(1, 12), kT0).ok());  // 6 s for the two
+  std::vector<Assignment> held;
+  while (auto a = s.NextAssignment(1, kT0)) held.push_back(*a);
+  ASSERT_EQ(held.size(), 6u);
+  // Two results at 3 s (2000 rays in the 2 s since its last result: still 1000 rays/s): 10
+  // batches not done, 5 s left; agent 1's other 4 are done in 3 s, so it may take one more.
+  std::vector<SubmittedResult> results;
+  for (size_t k = 0; k < 2; ++k) {
+    results.push_back({held[k].batch_id, held[k].attempt_id, ResultFor(uint32_t(k))});
+  }
+  s.OnResults(1, std::move(results), kT0 + seconds(3));
+  ASSERT_DOUBLE_EQ(s.agent_counters(1, kT0)->rays_per_second, 1000);
+  ASSERT_TRUE(s.NextAssignment(1, kT0 + seconds(3)));
+  EXPECT_FALSE(s.NextAssignment(1, kT0 + seconds(3)));
+  // Agent 2 goes: agent 1 alone needs 10 s for what is left, and may hold more of it.
+  s.OnAgentLost(2);
+  EXPECT_TRUE(s.NextAssignment(1, kT0 + seconds(3)));
+  EXPECT_TRUE(s.NextAssignment(1, kT0 + seconds(3)));
+  EXPECT_EQ(s.LeasesHeld(1), 7u);
+}
+
+// A short round (a final gather after long ones): an agent holding nothing always gets a batch,
+// and without round_end_share the first agent asked takes all it has room for.
+TEST(RoundSchedulerTest, AShortRoundIsSpreadOverTheAgentsOnlyWithTheRoundEndShare) {
+  for (const double share : {1.0, 0.0}) {
+    SchedulerOptions options;
+    options.target_lease_seconds = 100;
+    options.max_leases_per_agent = 100;
+    options.round_end_share = share;
+    RoundScheduler s(options);
+    s.AddAgent(1);
+    s.AddAgent(2);
+    MeasureAt1000RaysPerSecond(s);
+    // 5 batches of 100 rays: 0.25 s of work for the two agents; 0.1 s each.
+    ASSERT_TRUE(s.StartRound(Plan(1, 5, 100), kT0).ok());
+    size_t first = 0;
+    while (s.NextAssignment(1, kT0)) ++first;
+    EXPECT_EQ(first, share > 0 ? 2u : 5u) << share;
+    if (share > 0) {
+      const auto a = s.NextAssignment(2, kT0);
+      ASSERT_TRUE(a);
+      EXPECT_FALSE(a->taken_from);
+    }
+  }
+}
+
 TEST(RoundSchedulerTest, TheEndGameCopiesALeaseRunningTwiceItsExpectedTime) {
   SchedulerOptions options;
   RoundScheduler s(options);
