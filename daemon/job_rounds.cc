@@ -261,6 +261,19 @@ void JobRounds::ReduceOnComputeThread(const std::shared_ptr<RunningJob>& runner,
   if (!s) FailJob(runner->id(), s.error());
 }
 
+void JobRounds::PruneKeptResults(store::JobId id, uint32_t round) {
+  const uint64_t queued_ms = loop_.NowMs();
+  store_.Run([id, round](store::JobStore& s) { return s.PruneRoundResults(id, round); },
+             [this, id, round, queued_ms](Status s) {
+               // Harmless if it fails: a restart reads only the rounds after the checkpoint, and
+               // the next checkpoint's pruning takes these rows too.
+               LogLine(s ? LogLevel::kDebug : LogLevel::kWarning, "job " + std::to_string(id))
+                   << "kept results up to round " << round
+                   << (s ? " pruned in " + std::to_string(loop_.NowMs() - queued_ms) + " ms"
+                         : " not pruned: " + s.error());
+             });
+}
+
 void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundOutcome outcome) {
   if (FindRunner(runner->id()) != runner.get()) return;  // cancelled or paused meanwhile
   const store::JobId id = runner->id();
@@ -290,6 +303,7 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
           checkpoints_.Written(id, s ? latency : 0);
           if (!s) return HoldOrFail(id, "cannot save the checkpoint: " + s.error());
           checkpoint_latency_.Record(latency);
+          PruneKeptResults(id, round);
           // restart_bench reads this line: keep its words.
           LogLine(LogLevel::kInfo, "job " + std::to_string(id))
               << "round " << round << " checkpoint: " << cost->bytes << " bytes, copy "
@@ -327,7 +341,11 @@ void JobRounds::FinishJob(const std::shared_ptr<RunningJob>& runner) {
   const std::string reason = runner->stop_reason().value_or("stopped");
   DropRunner(id);
   store_.Run(
-      [id](store::JobStore& s) { return s.SetJobState(id, store::JobState::kDone, std::nullopt); },
+      [id](store::JobStore& s) {
+        // A done job is never resumed: none of its kept results are needed.
+        if (Status pruned = s.PruneRoundResults(id, UINT32_MAX); !pruned) return pruned;
+        return s.SetJobState(id, store::JobState::kDone, std::nullopt);
+      },
       [this, id, reason](Status s) {
         if (!s) {
           LogLine(LogLevel::kError, "store") << "job " << id << ": " << s.error();

@@ -209,6 +209,10 @@ class JobStore {
   // bytes do not match its checksum, or do not decode, is deleted and named in `damaged`.
   Result<StoredRoundResults> LoadRoundResults(JobId job, std::optional<uint32_t> after_round);
   Result<int64_t> CountRoundResults(JobId job, uint32_t round);
+  // Deletes the kept results of round `up_to_round` and before, which its checkpoint made
+  // needless. SaveCheckpoint leaves them (a restart reads only rounds after its checkpoint) so its
+  // commit does not wait for their deletion; call this after it, in a transaction of its own.
+  Status PruneRoundResults(JobId job, uint32_t up_to_round);
   // A liar was caught (daemon/batch_verifier.h): in one transaction, deletes the checkpoints of
   // round `from_round` and later and the kept results of the rounds after it, and of
   // `from_round` itself those of the batches in `discard` (or all of them when `discard_all`).
@@ -237,7 +241,6 @@ class JobStore {
   JobStore(Database db, std::function<int64_t()> now_ms)
       : db_(std::move(db)), now_ms_(std::move(now_ms)) {}
   Status InsertRound(const RoundRecord& round, int64_t now);
-  Status DeleteRoundResults(JobId job, uint32_t up_to_round);
 
   Database db_;
   std::function<int64_t()> now_ms_;

@@ -142,7 +142,7 @@ Status JobStore::RewindJob(JobId job, uint32_t from_round, std::span<const uint3
   return transaction->Commit();
 }
 
-Status JobStore::DeleteRoundResults(JobId job, uint32_t up_to_round) {
+Status JobStore::PruneRoundResults(JobId job, uint32_t up_to_round) {
   Result<Statement> stmt =
       db_.Prepare("DELETE FROM round_results WHERE job_id = ?1 AND round <= ?2");
   RADFARM_RETURN_IF_ERROR(stmt);

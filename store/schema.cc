@@ -102,8 +102,8 @@ ALTER TABLE scenes ADD COLUMN checksum BLOB CHECK (checksum IS NULL OR length(ch
 )sql";
 
 // Version 6: the accepted batch results of a round in progress, so a restarted master re-leases
-// only the batches it had not received. Rows of a round go with its checkpoint (SaveCheckpoint
-// deletes them in the same transaction), so the table holds about one round per running job.
+// only the batches it had not received. Rows of a round go after its checkpoint
+// (PruneRoundResults), so the table holds the rounds since a running job's last checkpoint.
 constexpr std::string_view kV6 = R"sql(
 CREATE TABLE round_results (
   job_id INTEGER NOT NULL REFERENCES jobs(id) ON DELETE CASCADE,

@@ -93,10 +93,17 @@ TEST_F(RoundResultsTest, ResultsReadBackWithTheSameBitsInRoundAndBatchOrder) {
   EXPECT_EQ(*store_->CountRoundResults(job_, 5), 0);
 }
 
-TEST_F(RoundResultsTest, ARoundsCheckpointDeletesItsResultsAndThoseBeforeButNotLaterOnes) {
+TEST_F(RoundResultsTest, PruningAfterARoundsCheckpointDeletesItsResultsAndThoseBefore) {
   Save({Kept(2, 0), Kept(3, 0), Kept(3, 1), Kept(4, 0)});
   ASSERT_TRUE(
       store_->SaveCheckpoint({job_, 3, 1, 100, 0.5, 1, 0.1}, CheckpointOfRound(job_, 3)).ok());
+  // Left to PruneRoundResults, but a restart already reads only the round after the checkpoint.
+  EXPECT_EQ(*store_->CountRoundResults(job_, 3), 2);
+  Result<StoredRoundResults> after = store_->LoadRoundResults(job_, 3);
+  ASSERT_TRUE(after.ok()) << after.error();
+  ASSERT_EQ(after->results.size(), 1u);
+  ExpectSame(after->results[0], Kept(4, 0));
+  ASSERT_TRUE(store_->PruneRoundResults(job_, 3).ok());
   EXPECT_EQ(*store_->CountRoundResults(job_, 2), 0);
   EXPECT_EQ(*store_->CountRoundResults(job_, 3), 0);
   EXPECT_EQ(*store_->CountRoundResults(job_, 4), 1);
@@ -136,8 +143,8 @@ TEST_F(RoundResultsTest, RewindingPastACheckpointDeletesItAndEveryLaterResult) {
 
 TEST_F(RoundResultsTest, ACheckpointThatFailsKeepsTheRoundsResults) {
   Save({Kept(3, 0)});
-  // The checkpoint names a refined scene that is not stored: its row fails after the kept results
-  // were deleted, and the transaction rolls back as a whole.
+  // The checkpoint names a refined scene that is not stored: its row fails, and the transaction
+  // rolls back as a whole.
   Checkpoint c = CheckpointOfRound(job_, 3);
   c.scene_hash = "not stored";
   EXPECT_FALSE(store_->SaveCheckpoint({job_, 3, 1, 100, 0.5, 1, 0.1}, c).ok());
