@@ -14,9 +14,11 @@ namespace radfarm::testing {
 namespace {
 
 // A few rounds, so the user can come back while the desk agent holds leases; long enough that
-// the job still leases after a visit that found none on a loaded machine (at 20M rays the steady
-// agent alone finished it during the desk agent's 2.5 s pause: CI-like load, 1 run in 3).
-const std::vector<std::string> kJob = {"--rays", "60000000"};
+// the job still leases after a visit that found none on a loaded machine. At patch size 25 the job
+// converges after about 9M rays, its final gather 2.2 s: the steady agent alone finished it during
+// the desk agent's 2.5 s pause once a round's end no longer waited for the slow desk agent
+// (round_end_share). Patch size 12.5 makes every round about four times as long.
+const std::vector<std::string> kJob = {"--rays", "60000000", "--patch-size", "12.5"};
 
 size_t CountMatches(const std::string& text, const std::regex& pattern) {
   return static_cast<size_t>(std::distance(std::sregex_iterator(text.begin(), text.end(), pattern),
