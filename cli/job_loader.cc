@@ -56,7 +56,7 @@ Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& o
   RADFARM_RETURN_IF_ERROR(loaded);
   Result<PatchMesh> mesh = PatchMesh::Build(loaded->scene, loaded->job.mesh, warnings);
   RADFARM_RETURN_IF_ERROR(mesh);
-  const std::vector<std::string> back = BackFaceWarnings(loaded->scene.path, *mesh);
+  const std::vector<std::string> back = BackFaceWarnings(loaded->scene.path, mesh->patch_scene());
   warnings->insert(warnings->end(), back.begin(), back.end());
   RADFARM_RETURN_IF_ERROR(CheckRefinement(path, loaded->job, mesh->patch_size(),
                                           mesh->patch_scene().patches.size(),

@@ -1,5 +1,7 @@
 #include "daemon/control_requests.h"
 
+#include <malloc.h>
+
 #include <chrono>
 #include <limits>
 #include <map>
@@ -64,7 +66,7 @@ codec::JobSolution SolutionOf(store::StoredSolution stored, const JobSummary& su
 struct CheckedSubmission {
   SubmittedSettings settings;
   uint64_t seed = 0;
-  std::shared_ptr<PatchMesh> mesh;
+  SubmittedMesh meshed;
   std::vector<std::string> warnings;  // about the patches: `radfarm submit` prints them
 };
 
@@ -355,9 +357,6 @@ void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
                                     mesh->patch_scene().patches.size(), mesh->weld_tolerance());
           if (!refine) return Error{bundle->job.scene_path + ": " + refine.error()};
         }
-        // The warnings `radfarm render` gives once it has the patches; submit checks the scene
-        // without meshing it and prints these from the reply.
-        std::vector<std::string> warnings = BackFaceWarnings(bundle->scene.path, *mesh);
         const SolverSettings& solver = bundle->job.solver;
         SubmittedSettings settings{solver.tolerance,
                                    solver.max_rays,
@@ -365,9 +364,20 @@ void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
                                    std::string(SamplerName(solver.sampler)),
                                    mesh->patch_scene().patches.size(),
                                    bundle->job.scene_path};
-        return CheckedSubmission{settings, solver.seed,
-                                 std::make_shared<PatchMesh>(std::move(*mesh)),
-                                 std::move(warnings)};
+        // A job that does not refine needs only the patches (RunningJob::Prepare): the rest of
+        // the mesh goes before the survey below builds its ray caster.
+        SubmittedMesh meshed;
+        if (bundle->job.refine.enabled) {
+          meshed.mesh = std::make_shared<PatchMesh>(std::move(*mesh));
+        } else {
+          meshed.patches = std::make_shared<PatchScene>(std::move(*mesh).TakePatchScene());
+          malloc_trim(0);  // the freed pages back to the system, which freeing leaves in the heap
+        }
+        // The warnings `radfarm render` gives once it has the patches; submit checks the scene
+        // without meshing it and prints these from the reply.
+        const PatchScene& patches = meshed.mesh ? meshed.mesh->patch_scene() : *meshed.patches;
+        std::vector<std::string> warnings = BackFaceWarnings(bundle->scene.path, patches);
+        return CheckedSubmission{settings, solver.seed, std::move(meshed), std::move(warnings)};
       },
       [this, blob, request = std::move(request), respond](Result<CheckedSubmission> checked) {
         if (!checked) return respond(ControlError("bad_request", checked.error()));
@@ -392,10 +402,10 @@ void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
               if (!job || !*job) return Error{"the new job cannot be read back"};
               return ReadJobSummary(s, **job);
             },
-            [this, respond, mesh = std::move(checked->mesh),
+            [this, respond, meshed = std::move(checked->meshed),
              warnings = std::move(checked->warnings)](Result<JobSummary> summary) {
               if (!summary) return respond(ControlError("internal", summary.error()));
-              jobs_.OfferSubmittedMesh(summary->record.id, mesh);
+              jobs_.OfferSubmittedMesh(summary->record.id, meshed);
               LogLine(LogLevel::kInfo, "job " + std::to_string(summary->record.id))
                   << "submitted: " << summary->record.spec.name << ", " << summary->settings.patches
                   << " patches, priority " << summary->record.spec.priority;

@@ -51,14 +51,14 @@ RunningJob* JobRounds::FindRunner(uint64_t job_id) {
   return it == runners_.end() ? nullptr : it->second.get();
 }
 
-void JobRounds::OfferSubmittedMesh(store::JobId id, std::shared_ptr<PatchMesh> mesh) {
+void JobRounds::OfferSubmittedMesh(store::JobId id, SubmittedMesh mesh) {
   submitted_mesh_job_ = id;
   submitted_mesh_ = std::move(mesh);
 }
 
 void JobRounds::StartQueuedJobs() {
   if (stopping_) {
-    submitted_mesh_.reset();
+    submitted_mesh_ = {};
     return;
   }
   if (start_pending_) {
@@ -67,7 +67,7 @@ void JobRounds::StartQueuedJobs() {
   }
   const size_t busy = runners_.size() + starting_.size();
   if (busy >= config_.max_running_jobs) {
-    submitted_mesh_.reset();  // its job waits in the queue
+    submitted_mesh_ = {};  // its job waits in the queue
     return;
   }
   start_pending_ = true;
@@ -95,8 +95,8 @@ void JobRounds::StartQueuedJobs() {
                                            : "started");
           auto options = options_;
           auto shared = std::make_shared<store::JobStart>(std::move(start));
-          std::shared_ptr<PatchMesh> meshed;
-          if (submitted_mesh_ && submitted_mesh_job_ == id && !shared->checkpoint) {
+          SubmittedMesh meshed;
+          if (!submitted_mesh_.empty() && submitted_mesh_job_ == id && !shared->checkpoint) {
             meshed = std::move(submitted_mesh_);
           }
           Status s = compute_.Submit(
@@ -114,7 +114,7 @@ void JobRounds::StartQueuedJobs() {
           start_again_ = false;
           StartQueuedJobs();
         } else {
-          submitted_mesh_.reset();  // its job was not among those started
+          submitted_mesh_ = {};  // its job was not among those started
         }
       });
 }

@@ -77,7 +77,7 @@ class JobRounds {
   // StartQueuedJobs starts the job, its preparation takes this mesh instead of meshing again (at
   // 10^5-10^6 patches, seconds). Otherwise it is dropped then, so a queued job holds no mesh.
   // One at a time: a newer one replaces it.
-  void OfferSubmittedMesh(store::JobId id, std::shared_ptr<PatchMesh> mesh);
+  void OfferSubmittedMesh(store::JobId id, SubmittedMesh mesh);
   // A batch result of the job's round, computed by the agent called `agent`, was accepted: it
   // goes on to be folded in, and is perhaps verified (batch_verifier.h).
   void OnResultAccepted(store::JobId id, scheduler::BatchId batch, const std::string& agent);
@@ -170,7 +170,7 @@ class JobRounds {
   std::map<store::JobId, bool> starting_;  // being prepared; true once cancelled meanwhile
   // OfferSubmittedMesh's, until the next start pass takes or drops it.
   store::JobId submitted_mesh_job_ = 0;
-  std::shared_ptr<PatchMesh> submitted_mesh_;
+  SubmittedMesh submitted_mesh_;
   bool start_pending_ = false;  // a StartQueuedJobs query is in flight
   bool start_again_ = false;    // ... and another was asked for meanwhile
   size_t dispatch_rotation_ = 0;

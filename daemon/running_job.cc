@@ -60,15 +60,25 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
     const std::optional<store::Checkpoint>& checkpoint,
     const std::optional<std::vector<uint8_t>>& checkpoint_scene,
     const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options,
-    std::vector<store::StoredBatchResult> stored, std::shared_ptr<PatchMesh> meshed) {
+    std::vector<store::StoredBatchResult> stored, SubmittedMesh meshed) {
   const std::string job = "job " + std::to_string(record.id);
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(bundle_blob);
   RADFARM_RETURN_IF_ERROR(bundle);
-  const bool meshed_at_submission = meshed != nullptr;
-  Result<PatchMesh> mesh = meshed ? Result<PatchMesh>(std::move(*meshed))
-                                  : PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
-  meshed.reset();
-  RADFARM_RETURN_IF_ERROR(mesh);
+  const bool meshed_at_submission = !meshed.empty();
+  // The patches alone when that is all the submission kept (a job without refinement); else the
+  // mesh, as submitted or built now.
+  std::optional<PatchScene> patches;
+  std::optional<PatchMesh> mesh;
+  if (meshed.patches && !bundle->job.refine.enabled) {
+    patches.emplace(std::move(*meshed.patches));
+  } else if (meshed.mesh) {
+    mesh.emplace(std::move(*meshed.mesh));
+  } else {
+    Result<PatchMesh> built = PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
+    RADFARM_RETURN_IF_ERROR(built);
+    mesh.emplace(std::move(*built));
+  }
+  meshed = {};
 
   std::shared_ptr<RunningJob> runner(new RunningJob());
   runner->meshed_at_submission_ = meshed_at_submission;
@@ -99,10 +109,13 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
     // the display): the mesh (about 300 bytes a patch) goes first, its pages back to the system,
     // which freeing leaves in the heap. Then the scene is packed before the solver and its ray
     // caster exist, so the encoder's buffer (about 220 bytes a patch) is not added to theirs.
-    PatchScene scene = std::move(*mesh).TakePatchScene();
-    malloc_trim(0);
-    packed = PackPatchScene(scene);
-    return RoundDriver::StartOwning(std::move(scene), runner->settings_, resume_at);
+    if (!patches) {
+      patches.emplace(std::move(*mesh).TakePatchScene());
+      mesh.reset();
+      malloc_trim(0);
+    }
+    packed = PackPatchScene(*patches);
+    return RoundDriver::StartOwning(std::move(*patches), runner->settings_, resume_at);
   }();
   if (!driver) return Error{job + ": " + driver.error()};
   runner->driver_ = std::move(*driver);

@@ -46,6 +46,15 @@
 
 namespace radfarm::daemon {
 
+// A job's scene as its submission's check meshed it (the same patches: meshing is deterministic).
+// A job that refines keeps the mesh; any other keeps its patches alone, the rest of the mesh (about
+// 300 bytes a patch) freed before the check built the ray caster of its back-face survey.
+struct SubmittedMesh {
+  std::shared_ptr<PatchMesh> mesh;
+  std::shared_ptr<PatchScene> patches;
+  bool empty() const { return !mesh && !patches; }
+};
+
 // What a job has spent so far (restored from its rounds after a restart).
 struct JobTotals {
   uint32_t round = 0;  // rounds applied
@@ -85,16 +94,15 @@ class RunningJob {
   // to it; `checkpoint_scene` is the blob of the refined scene the checkpoint names (scene_hash).
   // `stored`: accepted results a previous master kept of the rounds after the checkpoint; each of
   // those rounds is planned with their batch size, so the same batches, and the results that
-  // match the plan exactly start done (StartPlannedRound). `meshed`, when given, is the bundle's
-  // scene meshed already with the bundle's settings (at submission): it is used instead of meshing
-  // again, the same mesh since meshing is deterministic.
+  // match the plan exactly start done (StartPlannedRound). `meshed`, when not empty, is the
+  // bundle's scene meshed already with the bundle's settings (at submission): it is used instead
+  // of meshing again.
   static Result<std::shared_ptr<RunningJob>> Prepare(
       const store::JobRecord& record, const std::vector<uint8_t>& bundle_blob,
       const std::optional<store::Checkpoint>& checkpoint,
       const std::optional<std::vector<uint8_t>>& checkpoint_scene,
       const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options,
-      std::vector<store::StoredBatchResult> stored = {},
-      std::shared_ptr<PatchMesh> meshed = nullptr);
+      std::vector<store::StoredBatchResult> stored = {}, SubmittedMesh meshed = {});
 
   store::JobId id() const { return record_.id; }
   const store::JobRecord& record() const { return record_; }

@@ -17,8 +17,7 @@ bool IsGltf(const std::string& path) {
 
 }  // namespace
 
-std::vector<std::string> BackFaceWarnings(const std::string& scene_path, const PatchMesh& mesh) {
-  const PatchScene& scene = mesh.patch_scene();
+std::vector<std::string> BackFaceWarnings(const std::string& scene_path, const PatchScene& scene) {
   const RayCaster caster(scene);
   const BackFaceCounts counts = SurveyBackFaces(scene, caster, kBackFaceSurveyRays);
   // By name: a textured glTF material is several scene materials under one name.

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/patch_mesh.h"
+#include "core/patch_scene.h"
 
 namespace radfarm {
 
@@ -20,6 +20,6 @@ inline constexpr uint64_t kBackFaceSurveyRays = 1 << 16;
 // One warning per material (by name) that more than kBackFaceWarnShare of the emitters' light
 // reaching it meets from behind: "scene.obj: warning: 'wall' is lit from behind by 97% of the light
 // reaching it (walls facing outward? set two_sided)".
-std::vector<std::string> BackFaceWarnings(const std::string& scene_path, const PatchMesh& mesh);
+std::vector<std::string> BackFaceWarnings(const std::string& scene_path, const PatchScene& scene);
 
 }  // namespace radfarm

@@ -398,21 +398,19 @@ AgentCounters RoundScheduler::CountersOf(AgentId id, const AgentState& agent, Ti
 }
 
 std::optional<uint32_t> RoundScheduler::PopFresh() {
-  while (!round_->fresh.empty()) {
-    const uint32_t index = round_->fresh.front();
+  const std::optional<uint32_t> index = PeekFresh();
+  if (index) {
     round_->fresh.pop_front();
-    BatchSlot& slot = round_->batches[index];
-    slot.in_fresh_queue = false;
-    // A requeued batch may have been answered since by a lease that was given up.
-    if (slot.state == BatchState::kQueued) return index;
+    round_->batches[*index].in_fresh_queue = false;
   }
-  return std::nullopt;
+  return index;
 }
 
 std::optional<uint32_t> RoundScheduler::PeekFresh() {
   while (!round_->fresh.empty()) {
     const uint32_t index = round_->fresh.front();
     BatchSlot& slot = round_->batches[index];
+    // A requeued batch may have been answered since by a lease that was given up.
     if (slot.state == BatchState::kQueued) return index;
     round_->fresh.pop_front();
     slot.in_fresh_queue = false;
