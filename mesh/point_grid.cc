@@ -39,8 +39,32 @@ PointGrid::Cell PointGrid::CellOf(const Vec3& p) const {
 uint32_t PointGrid::Add(const Vec3& p) {
   const uint32_t id = static_cast<uint32_t>(points_.size());
   points_.push_back(p);
-  cells_[CellOf(p)].push_back(id);
+  const auto [it, first] = latest_in_cell_.try_emplace(CellOf(p), id);
+  previous_in_cell_.push_back(first ? kNone : it->second);
+  it->second = id;
   return id;
+}
+
+template <class Take>
+void PointGrid::ForEachInCell(const Cell& c, Take&& take) const {
+  const auto it = latest_in_cell_.find(c);
+  if (it == latest_in_cell_.end()) return;
+  for (uint32_t id = it->second; id != kNone; id = previous_in_cell_[id]) take(id);
+}
+
+uint32_t PointGrid::FirstNear(const Vec3& p, double tol) const {
+  // NearSegment's cells for a == b: those overlapping the box of tol around p.
+  const Vec3 r{tol, tol, tol};
+  const Cell lo = CellOf(p - r), hi = CellOf(p + r);
+  uint32_t first = kNone;
+  for (int64_t x = lo.x; x <= hi.x; ++x)
+    for (int64_t y = lo.y; y <= hi.y; ++y)
+      for (int64_t z = lo.z; z <= hi.z; ++z) {
+        ForEachInCell({x, y, z}, [&](uint32_t id) {
+          if (id < first && DistanceToSegment(points_[id], p, p) <= tol) first = id;
+        });
+      }
+  return first;
 }
 
 std::vector<uint32_t> PointGrid::NearSegment(const Vec3& a, const Vec3& b, double tol) const {
@@ -67,11 +91,9 @@ std::vector<uint32_t> PointGrid::NearSegment(const Vec3& a, const Vec3& b, doubl
 
   std::vector<uint32_t> ids;
   for (const Cell& c : visit) {
-    const auto it = cells_.find(c);
-    if (it == cells_.end()) continue;
-    for (uint32_t id : it->second) {
+    ForEachInCell(c, [&](uint32_t id) {
       if (DistanceToSegment(points_[id], a, b) <= tol) ids.push_back(id);
-    }
+    });
   }
   std::sort(ids.begin(), ids.end());
   return ids;
@@ -79,13 +101,11 @@ std::vector<uint32_t> PointGrid::NearSegment(const Vec3& a, const Vec3& b, doubl
 
 std::vector<uint32_t> PointGrid::InBox(const Bounds3& box) const {
   std::vector<uint32_t> ids;
-  auto take = [&](const std::vector<uint32_t>& cell) {
-    for (uint32_t id : cell) {
-      const Vec3& p = points_[id];
-      if (p.x >= box.lo.x && p.x <= box.hi.x && p.y >= box.lo.y && p.y <= box.hi.y &&
-          p.z >= box.lo.z && p.z <= box.hi.z) {
-        ids.push_back(id);
-      }
+  auto take = [&](uint32_t id) {
+    const Vec3& p = points_[id];
+    if (p.x >= box.lo.x && p.x <= box.hi.x && p.y >= box.lo.y && p.y <= box.hi.y &&
+        p.z >= box.lo.z && p.z <= box.hi.z) {
+      ids.push_back(id);
     }
   };
   const Cell lo = CellOf(box.lo), hi = CellOf(box.hi);
@@ -93,25 +113,17 @@ std::vector<uint32_t> PointGrid::InBox(const Bounds3& box) const {
   // In doubles: the cell count of a huge box overflows any integer.
   const double overlapped =
       (double(hi.x - lo.x) + 1) * (double(hi.y - lo.y) + 1) * (double(hi.z - lo.z) + 1);
-  if (overlapped > double(cells_.size())) {
-    for (const auto& [cell, members] : cells_) take(members);
+  if (overlapped > double(latest_in_cell_.size())) {
+    for (uint32_t id = 0; id < points_.size(); ++id) take(id);
   } else {
     for (int64_t x = lo.x; x <= hi.x; ++x)
       for (int64_t y = lo.y; y <= hi.y; ++y)
-        for (int64_t z = lo.z; z <= hi.z; ++z) {
-          const auto it = cells_.find({x, y, z});
-          if (it != cells_.end()) take(it->second);
-        }
+        for (int64_t z = lo.z; z <= hi.z; ++z) ForEachInCell({x, y, z}, take);
   }
   std::sort(ids.begin(), ids.end());
   return ids;
 }
 
 PointWelder::PointWelder(double tol) : tol_(tol), grid_(4 * tol) {}
-
-uint32_t PointWelder::Weld(const Vec3& p) {
-  const std::vector<uint32_t> near = grid_.NearSegment(p, p, tol_);
-  return near.empty() ? grid_.Add(p) : near.front();
-}
 
 }  // namespace radfarm

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "mesh/point_grid.h"
 
 namespace radfarm {
@@ -87,6 +89,25 @@ TEST(PointGridTest, FindsPointsNearLongSegmentsAcrossManyCells) {
   const std::vector<uint32_t> near = grid.NearSegment({0, 0, 0}, {1, 1, 1}, 0.01);
   EXPECT_EQ(near, (std::vector<uint32_t>{0, 2}));
   EXPECT_EQ(grid.NearSegment({0, 0, 0}, {1, 1, 1}, 0.05).size(), 3u);
+}
+
+// FirstNear is NearSegment(p, p, tol).front() without the list: the lowest id within tol, across
+// the cell borders of a fine grid, several points to a cell, and nothing where none is near.
+TEST(PointGridTest, FirstNearIsTheLowestIdWithinTheTolerance) {
+  PointGrid grid(0.05);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < 4000; ++i) grid.Add({u(rng), u(rng), 0.1 * u(rng)});
+  int found = 0;
+  for (int q = 0; q < 2000; ++q) {
+    const Vec3 p{u(rng), u(rng), 0.1 * u(rng)};
+    const double tol = q % 2 ? 0.01 : 0.12;  // within a cell, and across several
+    const std::vector<uint32_t> near = grid.NearSegment(p, p, tol);
+    ASSERT_EQ(grid.FirstNear(p, tol), near.empty() ? PointGrid::kNone : near.front()) << q;
+    found += !near.empty();
+  }
+  EXPECT_GT(found, 500);
+  EXPECT_LT(found, 2000);
 }
 
 TEST(PointWelderTest, FirstPointOfAClusterStandsForIt) {
