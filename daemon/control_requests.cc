@@ -447,6 +447,8 @@ void ControlRequests::ChangeState(ControlRequest request, ControlRespond respond
           LogLine(LogLevel::kInfo, "job " + std::to_string(id))
               << (command == ControlCommand::kCancel ? "cancelled" : "paused");
           jobs_.StartQueuedJobs();
+          // A paused job resumes with its kept results; a cancelled one never does.
+          if (command == ControlCommand::kCancel) jobs_.PruneKeptResults(id, UINT32_MAX);
         }
         respond({json{{"ok", true}, {"job", JobJson(*lookup->summary)}}, {}});
       });

@@ -89,7 +89,8 @@ class JobRounds {
   // A store fault: hold the job (store/job_state.h); any other error fails it.
   void HoldOrFail(store::JobId id, const std::string& error);
   // After round `round`'s checkpoint committed: its kept results and those before go, in a store
-  // transaction of their own (store/job_store.h PruneRoundResults).
+  // transaction of their own (store/job_store.h PruneRoundResults). UINT32_MAX: all of them, for
+  // a job that ended.
   void PruneKeptResults(store::JobId id, uint32_t round);
   // From a timer: at most every hold_retry_ms, held jobs go back to the queue if the store writes.
   void RetryHeldJobs(uint64_t now_ms);

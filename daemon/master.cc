@@ -58,6 +58,8 @@ Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const Maste
   if (Result<int> requeued = store::RequeueRunningJobs(*store); !requeued) {
     return Error{requeued.error()};
   }
+  // Kept results of jobs that ended just before the last master stopped (JobRounds::FinishJob).
+  RADFARM_RETURN_IF_ERROR(store->PruneEndedJobsRoundResults());
   // Read here, once: from now on the handshake uses the in-memory copy (agent_credentials.h).
   Result<std::vector<store::AgentCredential>> credentials = store->ListAgentCredentials();
   RADFARM_RETURN_IF_ERROR(credentials);

@@ -213,6 +213,10 @@ class JobStore {
   // needless. SaveCheckpoint leaves them (a restart reads only rounds after its checkpoint) so its
   // commit does not wait for their deletion; call this after it, in a transaction of its own.
   Status PruneRoundResults(JobId job, uint32_t up_to_round);
+  // Deletes the kept results of every job that is done, failed or cancelled: an ended job is
+  // never resumed. The master prunes each job as it ends, after saying so; this takes the rows a
+  // master stopped between the two left behind (at its start).
+  Status PruneEndedJobsRoundResults();
   // A liar was caught (daemon/batch_verifier.h): in one transaction, deletes the checkpoints of
   // round `from_round` and later and the kept results of the rounds after it, and of
   // `from_round` itself those of the batches in `discard` (or all of them when `discard_all`).

@@ -150,4 +150,11 @@ Status JobStore::PruneRoundResults(JobId job, uint32_t up_to_round) {
   return stmt->Run();
 }
 
+Status JobStore::PruneEndedJobsRoundResults() {
+  return db_.Exec(
+      "DELETE FROM round_results WHERE job_id IN "
+      "(SELECT id FROM jobs WHERE state IN ('done', 'failed', 'cancelled'))",
+      "delete the kept results of ended jobs");
+}
+
 }  // namespace radfarm::store

@@ -289,5 +289,29 @@ TEST(BatchResultCodecTest, FixedWidthBlobsOfAnOlderMasterStillDecode) {
   EXPECT_FALSE(DecodeBatchResult(EncodeBatchResultFormat1(unordered)).ok());
 }
 
+// A job that ended is never resumed: its kept results go, whichever way it ended; those of jobs
+// that may still run (queued, running, paused) stay.
+TEST_F(RoundResultsTest, JobsThatEndedLoseTheirKeptResults) {
+  std::vector<JobId> jobs = {job_};
+  for (int k = 0; k < 5; ++k) jobs.push_back(*store_->SubmitJob({"job", "scene", "", 1, 0}));
+  for (JobId job : jobs) ASSERT_TRUE(store_->SaveRoundResults(job, {{Kept(2, 0)}}).ok());
+  const JobState states[] = {JobState::kQueued, JobState::kRunning, JobState::kPaused,
+                             JobState::kDone,   JobState::kFailed,  JobState::kCancelled};
+  for (size_t k = 1; k < jobs.size(); ++k) {
+    ASSERT_TRUE(store_->SetJobState(jobs[k], JobState::kRunning).ok());
+    if (states[k] != JobState::kRunning) {
+      const std::optional<std::string> error =
+          states[k] == JobState::kDone ? std::nullopt : std::optional<std::string>("stopped");
+      ASSERT_TRUE(store_->SetJobState(jobs[k], states[k], error).ok()) << k;
+    }
+  }
+  ASSERT_TRUE(store_->PruneEndedJobsRoundResults().ok());
+  for (size_t k = 0; k < jobs.size(); ++k) {
+    const bool ended = states[k] == JobState::kDone || states[k] == JobState::kFailed ||
+                       states[k] == JobState::kCancelled;
+    EXPECT_EQ(*store_->CountRoundResults(jobs[k], 2), ended ? 0 : 1) << JobStateName(states[k]);
+  }
+}
+
 }  // namespace
 }  // namespace radfarm::store
