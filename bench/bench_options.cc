@@ -1,5 +1,6 @@
 #include "bench/bench_options.h"
 
+#include <cstdio>
 #include <string_view>
 
 #include "bench/bench_json.h"
@@ -15,6 +16,25 @@ bool ParseBenchOptions(int argc, char** argv, BenchOptions* options, std::string
       options->quick = true;
     } else if (arg == "--raw-only") {
       options->raw_only = true;
+    } else if (arg == "--raw-buildings" && i + 1 < argc) {
+      std::string_view list = argv[++i];
+      options->raw_buildings.clear();
+      while (!list.empty()) {
+        const size_t comma = list.find(',');
+        const std::string rooms(list.substr(0, comma));
+        unsigned a = 0, b = 0;
+        char rest = 0;
+        if (std::sscanf(rooms.c_str(), "%ux%u%c", &a, &b, &rest) != 2 || a == 0 || b == 0) {
+          *error = "--raw-buildings: '" + rooms + "' is not AxB (rooms along x and z)";
+          return false;
+        }
+        options->raw_buildings.push_back(rooms);
+        list = comma == std::string_view::npos ? "" : list.substr(comma + 1);
+      }
+      if (options->raw_buildings.empty()) {
+        *error = "--raw-buildings: the list is empty";
+        return false;
+      }
     } else if ((arg == "--json" || arg == "--scenes") && i + 1 < argc) {
       (arg == "--json" ? options->json_path : options->scenes_dir) = argv[++i];
     } else if (arg == "-h" || arg == "--help") {

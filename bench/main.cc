@@ -68,6 +68,49 @@ std::vector<RawThroughput> MeasureRayLoop(const BenchScene& cornell, const Bench
   return out;
 }
 
+// At most this many of a building's planned rays are traced (every k-th batch; about 2 GB of
+// stored rays): a default solve's first 3 rounds at 10^6 patches plan several hundred million.
+constexpr uint64_t kRawBuildingMaxRays = 16'000'000;
+
+// --raw-buildings: the first 3 rounds of a default solve (automatic shot_rays, as `radfarm
+// render` would run it) of each building at the automatic patch size, as scaling_bench meshes
+// it; each against raw Embree, and its tracer against the first building's on as many threads.
+int RunRawBuildings(const BenchOptions& options, const MachineInfo& machine) {
+  const Stopwatch total;
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<unsigned> thread_counts{1};
+  if (cores > 1) thread_counts.push_back(cores);
+  const int repetitions = options.quick ? 1 : 3;
+  std::vector<RawThroughput> out;
+  for (const std::string& rooms : options.raw_buildings) {
+    scenegen::BuildingParams params;
+    std::sscanf(rooms.c_str(), "%dx%d", &params.rooms_x, &params.rooms_z);
+    const BenchScene building = LoadBuildingBenchScene("building-" + rooms, params, 0);
+    std::printf("building %s: %zu patches, meshed in %.1f s\n", rooms.c_str(),
+                building.patches().patches.size(), building.load_seconds);
+    for (unsigned threads : thread_counts) {
+      out.push_back(MeasureRawThroughput(building, SolverSettings{}, 3, repetitions, threads,
+                                         kRawBuildingMaxRays));
+    }
+  }
+  std::printf("\n%-16s %9s %7s %11s %11s %9s %9s %8s %12s\n", "scene", "patches", "threads", "rays",
+              "of planned", "raw Mr/s", "tracer", "of raw", "of smallest");
+  for (const RawThroughput& t : out) {
+    const RawThroughput& first = out[t.threads == out.front().threads ? 0 : 1];
+    std::printf("%-16s %9zu %7u %11llu %11llu %9.2f %9.2f %7.1f%% %11.1f%%\n", t.scene.c_str(),
+                t.patches, t.threads, static_cast<unsigned long long>(t.rays),
+                static_cast<unsigned long long>(t.planned_rays), t.raw_rays_per_second / 1e6,
+                t.runner_rays_per_second / 1e6, 100 * t.runner_over_raw,
+                100 * t.runner_rays_per_second / first.runner_rays_per_second);
+  }
+  const std::string path = options.json_path == DefaultJsonPath("solver_bench")
+                               ? DefaultJsonPath("solver_bench_buildings")
+                               : options.json_path;
+  WriteJson(path, RawBuildingsJson(machine, out, total.Seconds(), ReadLoadAverage()));
+  std::printf("wrote %s in %.0f s\n", path.c_str(), total.Seconds());
+  return 0;
+}
+
 std::vector<uint64_t> Ladder(uint64_t first, int rungs) {
   std::vector<uint64_t> ladder;
   for (int i = 0; i < rungs; ++i) ladder.push_back(first << i);
@@ -99,6 +142,7 @@ int Run(int argc, char** argv) {
   report.sweep_config = config;
   const int rungs = options.quick ? 3 : 5;
 
+  if (!options.raw_buildings.empty()) return RunRawBuildings(options, report.machine);
   const BenchScene cornell =
       LoadBenchScene("cornell-box", options.scenes_dir + "/cornell-box.obj", kCornellPatchSize);
   if (options.raw_only) {

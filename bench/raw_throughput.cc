@@ -64,7 +64,8 @@ void GenerateRays(const PatchScene& scene, const RayCaster& caster, const RaySam
     const Batch& b = work->batches[bi];
     const Patch& shooter = scene.patches[b.shooter];
     for (uint32_t k = 0; k < b.ray_count; ++k) {
-      const RaySample s = sampler.Sample(shooter, b.shooter, b.round, caster.origin_offset(), b.first_ray + k);
+      const RaySample s =
+          sampler.Sample(shooter, b.shooter, b.round, caster.origin_offset(), b.first_ray + k);
       caster.PrepareRay(s.origin, s.direction, shooter.normal,
                         &work->rays[work->ray_begin[bi] + k]);
       work->weights[work->ray_begin[bi] + k] = s.weight;
@@ -189,7 +190,8 @@ std::vector<BatchResult> CountHits(const PatchScene& scene, const RayCaster& cas
 }  // namespace
 
 RawThroughput MeasureRawThroughput(const BenchScene& bench_scene, const SolverSettings& settings,
-                                   uint32_t rounds, int repetitions, unsigned threads) {
+                                   uint32_t rounds, int repetitions, unsigned threads,
+                                   uint64_t max_rays) {
   const PatchScene& scene = bench_scene.patches();
   const RayCaster caster(scene);
   ProgressiveSolver solver(scene, settings);
@@ -200,6 +202,15 @@ RawThroughput MeasureRawThroughput(const BenchScene& bench_scene, const SolverSe
   }
   RayWork work;
   work.batches = PlanRounds(rounds, &pool, &runners, &solver);
+  const size_t planned_batches = work.batches.size();
+  uint64_t planned_rays = 0;
+  for (const Batch& b : work.batches) planned_rays += b.ray_count;
+  if (max_rays > 0 && planned_rays > max_rays) {
+    const uint64_t stride = (planned_rays + max_rays - 1) / max_rays;
+    std::vector<Batch> kept;
+    for (size_t b = 0; b < work.batches.size(); b += stride) kept.push_back(work.batches[b]);
+    work.batches = std::move(kept);
+  }
   GenerateRays(scene, caster, solver.sampler(), &work);
   const std::vector<size_t> group = SplitBatches(work, threads);
 
@@ -210,6 +221,8 @@ RawThroughput MeasureRawThroughput(const BenchScene& bench_scene, const SolverSe
   out.rounds = solver.rounds_done();
   out.rays = work.rays.size();
   out.batches = work.batches.size();
+  out.planned_rays = planned_rays;
+  out.planned_batches = planned_batches;
   out.threads = threads;
   out.repetitions = repetitions;
 
@@ -255,9 +268,8 @@ RawThroughput MeasureRawThroughput(const BenchScene& bench_scene, const SolverSe
       RayBlock block;
       for (size_t b = group[t]; b < group[t + 1]; ++b) {
         const Batch& batch = work.batches[b];
-        const ShotSampler shot =
-            solver.sampler().Shot(scene.patches[batch.shooter], batch.shooter, batch.round,
-                                  caster.origin_offset());
+        const ShotSampler shot = solver.sampler().Shot(scene.patches[batch.shooter], batch.shooter,
+                                                       batch.round, caster.origin_offset());
         for (uint32_t done = 0; done < batch.ray_count; done += RayBlock::kSize) {
           const int count =
               static_cast<int>(std::min<uint32_t>(RayBlock::kSize, batch.ray_count - done));

@@ -27,6 +27,10 @@ struct RawThroughput {
   uint32_t rounds = 0;
   uint64_t rays = 0;
   size_t batches = 0;
+  // The rounds' rays and batches before a cap kept every k-th batch (equal to rays and batches
+  // when nothing was dropped).
+  uint64_t planned_rays = 0;
+  size_t planned_batches = 0;
   unsigned threads = 0;
   int repetitions = 0;
   // One per repetition.
@@ -48,8 +52,12 @@ struct RawThroughput {
 };
 
 // Plans and solves `rounds` rounds of `settings` on the scene (untimed) to obtain their batches,
-// then times the loops `repetitions` times each on `threads` threads.
+// then times the loops `repetitions` times each on `threads` threads. With max_rays > 0 and more
+// rays planned, only every k-th batch is traced (k keeping about max_rays): the
+// batches' sizes and shooters stay those of the whole rounds, and the stored rays fit in memory
+// (a default solve's first rounds at 10^6 patches hold several hundred million rays).
 RawThroughput MeasureRawThroughput(const BenchScene& scene, const SolverSettings& settings,
-                                   uint32_t rounds, int repetitions, unsigned threads);
+                                   uint32_t rounds, int repetitions, unsigned threads,
+                                   uint64_t max_rays = 0);
 
 }  // namespace radfarm::bench

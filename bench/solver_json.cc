@@ -59,6 +59,8 @@ json Raw(const RawThroughput& t) {
           {"rounds", t.rounds},
           {"rays", t.rays},
           {"batches", t.batches},
+          {"planned_rays", t.planned_rays},
+          {"planned_batches", t.planned_batches},
           {"threads", t.threads},
           {"repetitions", t.repetitions},
           {"raw_seconds", t.raw_seconds},
@@ -99,6 +101,17 @@ json Seed(const SeedWorkload& s) {
 }
 
 }  // namespace
+
+json RawBuildingsJson(const MachineInfo& machine, const std::vector<RawThroughput>& raw,
+                      double total_seconds, const std::string& load_average_end) {
+  json rows = json::array();
+  for (const RawThroughput& t : raw) rows.push_back(Raw(t));
+  return {{"program", "solver_bench --raw-buildings"},
+          {"machine", MachineJson(machine)},
+          {"load_average_end", load_average_end},
+          {"total_seconds", total_seconds},
+          {"raw", rows}};
+}
 
 json SolverBenchJson(const BenchReport& r) {
   const SweepConfig& c = r.sweep_config;

@@ -9,5 +9,8 @@
 namespace radfarm::bench {
 
 nlohmann::json SolverBenchJson(const BenchReport& report);
+// `solver_bench --raw-buildings`: the ray loop against raw Embree on buildings of each size.
+nlohmann::json RawBuildingsJson(const MachineInfo& machine, const std::vector<RawThroughput>& raw,
+                                double total_seconds, const std::string& load_average_end);
 
 }  // namespace radfarm::bench
