@@ -87,6 +87,12 @@ void AgentSwarm::OnCancel(uint64_t /*job_id*/, double arrival) {
   ended_ = true;
 }
 
+bool AgentSwarm::SceneVerified(const protocol::SceneHash& hash) const {
+  return verified_scenes_.count(hash) > 0;
+}
+
+void AgentSwarm::OnSceneVerified(const protocol::SceneHash& hash) { verified_scenes_.insert(hash); }
+
 void AgentSwarm::OnAgentClosed(const std::string& name, const std::string& reason) {
   std::lock_guard lock(mutex_);
   if (ended_) return;  // closing at the end is expected

@@ -14,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -63,6 +64,8 @@ class AgentSwarm : private SwarmHooks {
   void OnAuthenticated() override;
   void OnCancel(uint64_t job_id, double arrival) override;
   void OnAgentClosed(const std::string& name, const std::string& reason) override;
+  bool SceneVerified(const protocol::SceneHash& hash) const override;
+  void OnSceneVerified(const protocol::SceneHash& hash) override;
   void BeginShutdown();
 
   SwarmConfig config_;
@@ -70,6 +73,7 @@ class AgentSwarm : private SwarmHooks {
   std::thread thread_;
   std::mutex mutex_;
   std::condition_variable changed_;
+  std::set<protocol::SceneHash> verified_scenes_;  // the swarm thread's
   // Shared with the bench thread under mutex_.
   size_t authenticated_ = 0;
   bool ended_ = false;     // the job ended (a Cancel arrived)

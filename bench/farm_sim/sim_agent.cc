@@ -167,13 +167,17 @@ void SimAgent::OnSceneChunk(const protocol::SceneChunkMsg& chunk) {
   stats_.scene_bytes_received += chunk.data.size();
   const auto it = fetching_.find(chunk.scene_hash);
   if (it == fetching_.end()) return;
-  if (Status s = it->second.Add(chunk); !s) {
-    Fail("scene fetch failed: " + s.error());
-    return;
-  }
-  if (!it->second.complete()) {
-    RequestSceneChunks(it->second);
-    return;
+  const bool last = chunk.offset + chunk.data.size() >= chunk.total_size;
+  if (!last || !hooks_.SceneVerified(chunk.scene_hash)) {
+    if (Status s = it->second.Add(chunk); !s) {
+      Fail("scene fetch failed: " + s.error());
+      return;
+    }
+    if (!it->second.complete()) {
+      RequestSceneChunks(it->second);
+      return;
+    }
+    hooks_.OnSceneVerified(chunk.scene_hash);
   }
   scenes_.insert(chunk.scene_hash);
   fetching_.erase(it);

@@ -65,6 +65,11 @@ class SwarmHooks {
   // A Cancel arrived on the socket at `arrival` (before the added latency).
   virtual void OnCancel(uint64_t job_id, double arrival) = 0;
   virtual void OnAgentClosed(const std::string& name, const std::string& reason) = 0;
+  // Scenes an agent of the swarm has decompressed and hashed. The others receive every byte of
+  // such a scene but skip that last step: 1000 real agents take it at once, each on its own
+  // machine, and taken one after another here it held the last of 1000 back by about 0.4 s.
+  virtual bool SceneVerified(const protocol::SceneHash& hash) const = 0;
+  virtual void OnSceneVerified(const protocol::SceneHash& hash) = 0;
 };
 
 class SimAgent {
