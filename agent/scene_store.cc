@@ -99,8 +99,19 @@ SceneStore::Loaded SceneStore::Load(const protocol::SceneHash& hash) const {
 }
 
 Status SceneStore::Save(const protocol::SceneHash& hash, std::span<const uint8_t> blob) const {
-  return WriteFileAtomically(
-      PathFor(hash), std::string_view(reinterpret_cast<const char*>(blob.data()), blob.size()));
+  Result<AtomicFileWriter> written = Write(hash, blob);
+  RADFARM_RETURN_IF_ERROR(written);
+  return written->Commit();
+}
+
+Result<AtomicFileWriter> SceneStore::Write(const protocol::SceneHash& hash,
+                                           std::span<const uint8_t> blob) const {
+  Result<AtomicFileWriter> writer = AtomicFileWriter::Open(PathFor(hash));
+  RADFARM_RETURN_IF_ERROR(writer);
+  RADFARM_RETURN_IF_ERROR(
+      writer->Append(std::string_view(reinterpret_cast<const char*>(blob.data()), blob.size())));
+  RADFARM_RETURN_IF_ERROR(writer->Flush());
+  return writer;
 }
 
 }  // namespace radfarm::agent

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "base/atomic_file.h"
 #include "base/result.h"
 #include "protocol/messages.h"
 
@@ -39,6 +40,12 @@ class SceneStore {
 
   // Writes the blob under its hash (temporary file, fsync, rename, fsync of the directory).
   Status Save(const protocol::SceneHash& hash, std::span<const uint8_t> blob) const;
+  // Save's first half: the blob written to a temporary file (its temporary_path(), readable at
+  // once); the writer's Commit() later makes it durable and puts it in place, and destroying the
+  // writer uncommitted removes it. An agent reads the scene back from the temporary and commits
+  // once the scene is ready, so the fsync is not on the way to the first batch.
+  Result<AtomicFileWriter> Write(const protocol::SceneHash& hash,
+                                 std::span<const uint8_t> blob) const;
 
   std::string PathFor(const protocol::SceneHash& hash) const;
   const std::string& scenes_dir() const { return scenes_dir_; }

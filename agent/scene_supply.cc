@@ -148,13 +148,17 @@ void SceneSupply::PrepareFetched(const protocol::SceneHash& hash, std::vector<ui
   Status submitted = io_.Submit(
       [store, hash, blob = std::move(blob)]() mutable -> Prepared {
         Prepared prepared;
-        // Saved once decoded (an undecodable scene is not kept), before the caster is built.
+        // Written once decoded (an undecodable scene is not kept), before the caster is built
+        // from the file; made durable and put in place only once the scene is ready (OnPrepared).
         auto save = [&](std::span<const uint8_t> decoded) -> std::string {
           if (store == nullptr) return "";
-          Status saved = store->Save(hash, decoded);
-          prepared.detail =
-              saved ? "saved as " + store->PathFor(hash) : "kept in memory only: " + saved.error();
-          return saved ? store->PathFor(hash) : "";
+          Result<AtomicFileWriter> written = store->Write(hash, decoded);
+          if (!written) {
+            prepared.detail = "kept in memory only: " + written.error();
+            return "";
+          }
+          prepared.unsaved = std::make_shared<AtomicFileWriter>(std::move(written).value());
+          return prepared.unsaved->temporary_path();
         };
         Result<std::shared_ptr<const PreparedScene>> scene =
             PrepareScene(hash, std::move(blob), save);
@@ -193,6 +197,7 @@ void SceneSupply::OnPrepared(const protocol::SceneHash& hash, Result<Prepared> p
       pending_.erase(found);
       recent_.Insert(prepared->scene);
       callbacks_.on_ready(prepared->scene);
+      if (prepared->unsaved) Commit(hash, std::move(prepared->unsaved));
       return;
     }
     case Prepared::Kind::kNotOnDisk: {
@@ -210,6 +215,22 @@ void SceneSupply::OnPrepared(const protocol::SceneHash& hash, Result<Prepared> p
       Fail(hash, protocol::LeaseReturnReason::kFailed, prepared->detail);
       return;
   }
+}
+
+void SceneSupply::Commit(const protocol::SceneHash& hash,
+                         std::shared_ptr<AtomicFileWriter> unsaved) {
+  Status submitted =
+      io_.Submit([unsaved]() -> Status { return unsaved->Commit(); },
+                 [this, hash, path = unsaved->path()](Status committed) {
+                   --busy_;
+                   if (committed) {
+                     LogLine(LogLevel::kInfo, "agent") << Name(hash) << ": saved as " << path;
+                   } else {
+                     LogLine(LogLevel::kWarning, "agent")
+                         << Name(hash) << ": kept in memory only: " << committed.error();
+                   }
+                 });
+  if (submitted) ++busy_;
 }
 
 void SceneSupply::Fail(const protocol::SceneHash& hash, protocol::LeaseReturnReason reason,

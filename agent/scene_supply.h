@@ -3,7 +3,8 @@
 //   1. memory: the last 2 prepared scenes (RecentScenes);
 //   2. the state directory, if any (SceneStore): the hash is checked, a damaged file is deleted;
 //   3. the master: SceneRequests through a SceneAssembler, up to kRequestWindow of them in flight
-//      (the master answers in order); the verified blob is then saved to the state directory.
+//      (the master answers in order); the verified blob is then written to a temporary file in
+//      the state directory, which is fsynced and renamed into place only after on_ready.
 // Disk I/O, decoding and the RayCaster build run on the I/O work queue, never on the loop thread.
 //
 // One scene's way (`pending_` holds it until it ends in on_ready or on_failed):
@@ -13,7 +14,8 @@
 //     |                    +--no file, damaged file--+
 //     +--no state dir--------------------------------+--> kFetching --last chunk--> kPreparing
 //   kFetching --SceneUnavailable, bad chunk--> on_failed
-//   kPreparing --decoded, caster built, saved--> on_ready;  --cannot decode--> on_failed
+//   kPreparing --decoded, written, caster built--> on_ready, then the file committed (Commit);
+//              --cannot decode--> on_failed
 //
 // A scene that cannot be decoded is remembered (same hash, same bytes) and refused at once later.
 // A fetch belongs to its connection: OnDisconnected abandons it; loads and builds run on.
@@ -83,7 +85,8 @@ class SceneSupply {
   struct Prepared {
     enum class Kind { kReady, kNotOnDisk, kUndecodable } kind = Kind::kNotOnDisk;
     std::shared_ptr<const PreparedScene> scene;
-    std::string detail;  // a damaged file, a failed save, the decode error
+    std::string detail;                         // a damaged file, a failed save, the decode error
+    std::shared_ptr<AtomicFileWriter> unsaved;  // a fetched scene's file, to commit once ready
   };
 
   Status LoadFromDisk(const protocol::SceneHash& hash);
@@ -91,6 +94,8 @@ class SceneSupply {
   Status RequestMore(Pending& pending);
   void PrepareFetched(const protocol::SceneHash& hash, std::vector<uint8_t> blob);
   void OnPrepared(const protocol::SceneHash& hash, Result<Prepared> prepared);
+  // Makes a fetched scene's file durable and puts it in place, on the I/O queue, after on_ready.
+  void Commit(const protocol::SceneHash& hash, std::shared_ptr<AtomicFileWriter> unsaved);
   // Ends a fetch before its last chunk; the answers still due are skipped when they come.
   void Abandon(const protocol::SceneHash& hash, uint32_t answers_due);
   void Fail(const protocol::SceneHash& hash, protocol::LeaseReturnReason reason,

@@ -29,12 +29,18 @@ class AtomicFileWriter {
   // Queues `bytes`, writing them out whenever the buffer is full. After an error every later call
   // fails with it.
   Status Append(std::string_view bytes);
+  // What Append buffered, written to the temporary file (readable there, not yet on disk for
+  // sure): a reader may then use the bytes before Commit makes them durable.
+  Status Flush();
   // The rest written, flushed to disk and renamed over the target.
   Status Commit();
 
+  const std::string& path() const { return path_; }
+  // The temporary file the bytes go to until Commit; empty once committed.
+  const std::string& temporary_path() const { return temporary_; }
+
  private:
   AtomicFileWriter(std::string path, std::string temporary, UniqueFd fd);
-  Status Flush();
 
   std::string path_;
   std::string temporary_;  // empty once committed or moved from

@@ -38,6 +38,30 @@ TEST(SceneStoreTest, SavesUnderTheHashAndLoadsItBack) {
             1);
 }
 
+// Write's bytes can be read from the temporary at once; the scene is in place only after Commit,
+// and a writer dropped uncommitted leaves nothing.
+TEST(SceneStoreTest, AWrittenSceneIsReadableAtOnceAndInPlaceOnlyOnceCommitted) {
+  ScratchDir dir;
+  const SceneStore store = SceneStore::Open(dir.File("state")).value();
+  const std::vector<uint8_t> blob = Blob("a scene blob");
+  const protocol::SceneHash hash = protocol::HashScene(blob);
+  {
+    Result<AtomicFileWriter> dropped = store.Write(hash, blob);
+    ASSERT_TRUE(dropped.ok()) << dropped.error();
+    EXPECT_EQ(ReadTextFile(dropped->temporary_path()), "a scene blob");
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(store.scenes_dir()));
+  Result<AtomicFileWriter> written = store.Write(hash, blob);
+  ASSERT_TRUE(written.ok()) << written.error();
+  EXPECT_EQ(ReadTextFile(written->temporary_path()), "a scene blob");
+  EXPECT_EQ(store.Load(hash).outcome, SceneStore::LoadOutcome::kMissing);
+  ASSERT_TRUE(written->Commit().ok());
+  EXPECT_EQ(store.Load(hash).blob, blob);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(store.scenes_dir()),
+                          std::filesystem::directory_iterator()),
+            1);
+}
+
 TEST(SceneStoreTest, AFileWhoseHashIsNotItsNameIsDeleted) {
   ScratchDir dir;
   Result<SceneStore> store = SceneStore::Open(dir.path());

@@ -4,6 +4,7 @@
 
 #include <deque>
 #include <filesystem>
+#include <optional>
 
 #include "codec/patch_scene_codec.h"
 #include "protocol/scene_transfer.h"
@@ -24,7 +25,10 @@ struct Harness {
   explicit Harness(std::optional<SceneStore> store) {
     io = loop::WorkQueue::Create(loop, 1, "test-io").value();
     SceneSupply::Callbacks callbacks;
-    callbacks.on_ready = [this](const auto& scene) { ready.push_back(scene); };
+    callbacks.on_ready = [this](const auto& scene) {
+      ready.push_back(scene);
+      if (at_ready) at_ready();
+    };
     callbacks.on_failed = [this](const auto&, auto reason, const std::string& why) {
       failures.emplace_back(reason, why);
     };
@@ -62,6 +66,7 @@ struct Harness {
   size_t max_in_flight = 0;
   int served = 0;
   std::vector<std::shared_ptr<const PreparedScene>> ready;
+  std::function<void()> at_ready;  // runs inside on_ready
   std::vector<std::pair<protocol::LeaseReturnReason, std::string>> failures;
 };
 
@@ -89,8 +94,37 @@ TEST(SceneSupplyTest, FetchesWithPipelinedRequestsSavesAndKeepsTheScene) {
   EXPECT_EQ(h.ready[0]->hash, hash);
   EXPECT_EQ(h.ready[0]->patch_count(), scene.patches.size());
   EXPECT_EQ(h.supply->Find(hash), h.ready[0]);
+  ASSERT_TRUE(RunUntil(h.loop, [&] { return h.supply->busy() == 0; }));  // the file committed
   SceneStore store = SceneStore::Open(dir.path()).value();
   EXPECT_EQ(store.Load(hash).blob, blob);
+}
+
+// The fetched scene is ready before its file is fsynced and renamed into place (the fsync of a
+// big scene is not on the way to its first batch); the file follows, whole.
+TEST(SceneSupplyTest, AFetchedSceneIsReadyBeforeItsFileIsInPlace) {
+  ScratchDir dir;
+  const std::vector<uint8_t> blob = codec::EncodePatchScene(testing::BoxScene(2));
+  const protocol::SceneHash hash = protocol::HashScene(blob);
+  const std::string path = SceneStore::Open(dir.path()).value().PathFor(hash);
+  Harness h(SceneStore::Open(dir.path()).value());
+  std::optional<bool> in_place_when_ready;
+  h.at_ready = [&] { in_place_when_ready = std::filesystem::exists(path); };
+  ASSERT_TRUE(h.supply->Want(hash).ok());
+  ASSERT_TRUE(RunUntil(h.loop, [&] { return !h.requests.empty(); }));
+  h.Serve(blob);
+  ASSERT_TRUE(h.RunUntilSettled());
+  ASSERT_TRUE(h.failures.empty()) << h.failures[0].second;
+  ASSERT_TRUE(in_place_when_ready.has_value());
+  EXPECT_FALSE(*in_place_when_ready);
+  ASSERT_TRUE(RunUntil(h.loop, [&] { return h.supply->busy() == 0; }));
+  EXPECT_EQ(SceneStore::Open(dir.path()).value().Load(hash).blob, blob);
+  // Only the scene's file is left: its temporary was renamed, not copied.
+  size_t files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path() + "/scenes")) {
+    EXPECT_EQ(entry.path().string(), path);
+    ++files;
+  }
+  EXPECT_EQ(files, 1u);
 }
 
 TEST(SceneSupplyTest, AGoodFileIsUsedWithoutAFetch) {
@@ -118,6 +152,7 @@ TEST(SceneSupplyTest, ADamagedFileIsDeletedAndTheSceneFetchedAgain) {
   ASSERT_TRUE(h.RunUntilSettled());
   EXPECT_EQ(h.ready.size(), 1u);
   EXPECT_GE(h.served, 1);
+  ASSERT_TRUE(RunUntil(h.loop, [&] { return h.supply->busy() == 0; }));  // the file committed
   EXPECT_EQ(store.Load(hash).blob, blob);  // the file now holds the real scene
 }
 
