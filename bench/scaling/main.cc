@@ -128,12 +128,18 @@ int Main(int argc, char** argv) {
                   {"farm_rays_per_second", f.rays_per_second},
                   {"master_peak_rss_bytes", f.master_peak_rss_bytes},
                   {"agent_peak_rss_bytes", f.agent_peak_rss_bytes},
+                  {"agent_scene_ready_seconds", f.agent_scene_ready_seconds},
+                  {"agent_first_result_seconds", f.agent_first_result_seconds},
                   {"farm_same_as_render", f.same_as_render}});
       // The farm's job against render's solve and meshing (the display is fetch's, not timed).
       const double embedded = r.mesh_seconds + r.solve_seconds;
       std::printf(" %8.1f %8.2f %9.1f %9.1f %7.1f%% %5s\n", f.job_seconds, f.rays_per_second / 1e6,
                   f.master_peak_rss_bytes / kMiB, f.agent_peak_rss_bytes / kMiB,
                   100 * embedded / f.job_seconds, f.same_as_render ? "yes" : "NO");
+      std::printf(
+          "%7s   first lease to scene ready %.2f s, to first result %.2f s "
+          "(slowest agent)\n",
+          "", f.agent_scene_ready_seconds, f.agent_first_result_seconds);
     } else {
       std::printf("\n");
     }

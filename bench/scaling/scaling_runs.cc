@@ -2,8 +2,10 @@
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -38,7 +40,41 @@ uint64_t RoomsOf(const std::string& rooms) {
   return uint64_t(a) * b;
 }
 
+// Seconds since the epoch of a log line's timestamp ("2026-12-03T17:44:53.488Z ..."), or -1.
+double LineTime(const std::string& line) {
+  std::tm t{};
+  int ms = 0;
+  if (std::sscanf(line.c_str(), "%d-%d-%dT%d:%d:%d.%dZ", &t.tm_year, &t.tm_mon, &t.tm_mday,
+                  &t.tm_hour, &t.tm_min, &t.tm_sec, &ms) != 7) {
+    return -1;
+  }
+  t.tm_year -= 1900;
+  t.tm_mon -= 1;
+  return static_cast<double>(timegm(&t)) + ms / 1000.0;
+}
+
 }  // namespace
+
+AgentStart ReadAgentStart(const std::string& log_text) {
+  double lease = -1, ready = -1, result = -1;
+  std::istringstream lines(log_text);
+  for (std::string line; std::getline(lines, line);) {
+    const double t = LineTime(line);
+    if (t < 0) continue;
+    if (lease < 0 && line.find("agent: received ") != std::string::npos &&
+        line.find(" batches of round ") != std::string::npos) {
+      lease = t;
+    } else if (lease >= 0 && ready < 0 && line.find(": ready, ") != std::string::npos) {
+      ready = t;
+    } else if (lease >= 0 && result < 0 && line.find(" results sent to ") != std::string::npos) {
+      result = t;
+    }
+  }
+  AgentStart start;
+  if (lease >= 0 && ready >= 0) start.scene_ready_seconds = ready - lease;
+  if (lease >= 0 && result >= 0) start.first_result_seconds = result - lease;
+  return start;
+}
 
 BuildingJob WriteBuildingJob(const std::string& rooms, uint64_t rays_per_room,
                              const std::string& dir) {
@@ -81,7 +117,9 @@ FarmFigures MeasureFarm(const BuildingJob& job, unsigned agents, const RenderFig
   if (farm.master_address().empty()) throw std::runtime_error("radfarmd: " + farm.MasterLog());
   std::vector<pid_t> agent_pids;
   for (unsigned k = 0; k < agents; ++k) {
-    agent_pids.push_back(farm.StartAgent("a" + std::to_string(k), 1).pid());
+    // Debug: the lease frames and results sent, for ReadAgentStart (a few lines a lease frame).
+    agent_pids.push_back(
+        farm.StartAgent("a" + std::to_string(k), 1, {"--log-level", "debug"}).pid());
   }
   if (!farm.WaitForAgents(agents, std::chrono::seconds(60))) {
     throw std::runtime_error("the agents did not connect");
@@ -107,6 +145,13 @@ FarmFigures MeasureFarm(const BuildingJob& job, unsigned agents, const RenderFig
   f.rays_per_second = stats.at("rays_per_second").get<double>();
   const std::string farm_patches = testing::ReadFile(out + "/patches.csv");
   f.same_as_render = !farm_patches.empty() && farm_patches == testing::ReadFile(render.patches_csv);
+  for (unsigned k = 0; k < agents; ++k) {
+    const AgentStart start =
+        ReadAgentStart(testing::ReadFile(farm_dir + "/agent-a" + std::to_string(k) + ".log"));
+    f.agent_scene_ready_seconds = std::max(f.agent_scene_ready_seconds, start.scene_ready_seconds);
+    f.agent_first_result_seconds =
+        std::max(f.agent_first_result_seconds, start.first_result_seconds);
+  }
   return f;
 }
 

@@ -39,7 +39,19 @@ struct FarmFigures {
   uint64_t master_peak_rss_bytes = 0;
   uint64_t agent_peak_rss_bytes = 0;  // the largest of the agents'
   bool same_as_render = false;        // patches.csv byte for byte
+  // The slowest agent's start on the job, from its first lease frame (agent debug log): its
+  // scene ready, and its first LeaseResult sent; -1 when its log lacks the lines.
+  double agent_scene_ready_seconds = -1;
+  double agent_first_result_seconds = -1;
 };
+
+// An agent's start on its first job, from its log at debug level: seconds from the first lease
+// frame received to the first "ready" scene and to the first results sent (-1 when absent).
+struct AgentStart {
+  double scene_ready_seconds = -1;
+  double first_result_seconds = -1;
+};
+AgentStart ReadAgentStart(const std::string& log_text);
 
 FarmFigures MeasureFarm(const BuildingJob& job, unsigned agents, const RenderFigures& render,
                         const std::string& dir);
