@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstddef>
 #include <exception>
 #include <optional>
@@ -65,6 +66,14 @@ void Stream(std::span<const uint8_t> blob, const std::function<void()>& each_chu
   if (!decoded) throw std::runtime_error(decoded.error());
 }
 
+// Seconds since `since`, and `since` moved to now.
+double Lap(std::chrono::steady_clock::time_point& since) {
+  const auto now = std::chrono::steady_clock::now();
+  const double seconds = std::chrono::duration<double>(now - since).count();
+  since = now;
+  return seconds;
+}
+
 // Where the normals of `shapes` will be, once it holds them: room reserved is enough.
 const Vec3* NormalsOf(const std::vector<PatchShape>& shapes) {
   return reinterpret_cast<const Vec3*>(reinterpret_cast<const char*>(shapes.data()) +
@@ -75,12 +84,18 @@ const Vec3* NormalsOf(const std::vector<PatchShape>& shapes) {
 
 Result<std::shared_ptr<const PreparedScene>> PrepareScene(
     const protocol::SceneHash& hash, std::vector<uint8_t> blob,
-    const std::function<std::string(std::span<const uint8_t> blob)>& decoded_callback) {
+    const std::function<std::string(std::span<const uint8_t> blob)>& decoded_callback,
+    PrepareTimes* times) {
+  PrepareTimes unused;
+  if (times == nullptr) times = &unused;
+  auto since = std::chrono::steady_clock::now();
   // First every value is checked, keeping nothing, so a bad scene is neither kept nor half built.
   Result<uint32_t> checked = codec::DecodePatches(blob, [](const Patch&, uint32_t, uint32_t) {});
   if (!checked) return Error{"cannot decode: " + checked.error()};
   if (*checked == 0) return Error{"has no patches"};
+  times->check = Lap(since);
   const std::string file = decoded_callback ? decoded_callback(blob) : std::string();
+  times->decoded_callback = Lap(since);
   auto prepared = std::make_shared<PreparedScene>();
   prepared->hash = hash;
   std::optional<MappedFile> mapped;
@@ -100,11 +115,13 @@ Result<std::shared_ptr<const PreparedScene>> PrepareScene(
       return Error{std::string("cannot decode: ") + e.what()};
     }
     std::vector<uint8_t>().swap(blob);
+    times->shapes = Lap(since);
     try {
       prepared->caster = std::make_unique<const RayCaster>(shapes, two_sided);
     } catch (const std::exception& e) {
       return Error{std::string("cannot build its ray caster: ") + e.what()};
     }
+    times->caster = Lap(since);
     return std::shared_ptr<const PreparedScene>(std::move(prepared));
   }
   // From the file the blob is kept in, its pages dropped as the patches are read, so the blob is
@@ -123,11 +140,13 @@ Result<std::shared_ptr<const PreparedScene>> PrepareScene(
   } catch (const std::exception& e) {
     return Error{std::string("cannot build its ray caster: ") + e.what()};
   }
+  times->caster = Lap(since);
   try {
     Stream(mapped->bytes(), release, [&](const Patch& p) { shapes.push_back(p); });
   } catch (const std::exception& e) {
     return Error{"cannot decode " + file + ": " + e.what()};
   }
+  times->shapes = Lap(since);
   if (shapes.size() != *checked) return Error{"changed while it was decoded"};
   return std::shared_ptr<const PreparedScene>(std::move(prepared));
 }

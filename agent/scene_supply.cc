@@ -1,5 +1,8 @@
 #include "agent/scene_supply.h"
 
+#include <chrono>
+#include <cmath>
+
 #include "base/result.h"
 #include "loop/log.h"
 
@@ -10,6 +13,8 @@ using loop::LogLevel;
 using loop::LogLine;
 
 std::string Name(const protocol::SceneHash& hash) { return "scene " + protocol::HashToHex(hash); }
+
+long Ms(double seconds) { return std::lround(seconds * 1000); }
 
 }  // namespace
 
@@ -99,6 +104,7 @@ void SceneSupply::OnChunk(const protocol::SceneChunkMsg& chunk) {
   Pending& pending = found->second;
   --pending.requests_in_flight;
   ++pending.chunks;
+  const auto adding = std::chrono::steady_clock::now();
   if (Status added = pending.assembler->Add(chunk); !added) {
     Abandon(hash, pending.requests_in_flight);
     Fail(hash, protocol::LeaseReturnReason::kFailed,
@@ -109,6 +115,10 @@ void SceneSupply::OnChunk(const protocol::SceneChunkMsg& chunk) {
     std::vector<uint8_t> blob = pending.assembler->TakeBlob();
     LogLine(LogLevel::kInfo, "agent") << Name(hash) << ": fetched " << blob.size() << " bytes in "
                                       << pending.chunks << " chunks from " << master_;
+    LogLine(LogLevel::kDebug, "agent")
+        << Name(hash) << ": decompressed and checked in "
+        << Ms(std::chrono::duration<double>(std::chrono::steady_clock::now() - adding).count())
+        << " ms";
     pending.assembler.reset();
     PrepareFetched(hash, std::move(blob));
     return;
@@ -161,7 +171,7 @@ void SceneSupply::PrepareFetched(const protocol::SceneHash& hash, std::vector<ui
           return prepared.unsaved->temporary_path();
         };
         Result<std::shared_ptr<const PreparedScene>> scene =
-            PrepareScene(hash, std::move(blob), save);
+            PrepareScene(hash, std::move(blob), save, &prepared.times);
         if (!scene) {
           prepared.kind = Prepared::Kind::kUndecodable;
           prepared.detail = scene.error();
@@ -194,6 +204,11 @@ void SceneSupply::OnPrepared(const protocol::SceneHash& hash, Result<Prepared> p
       LogLine(LogLevel::kInfo, "agent")
           << Name(hash) << ": ready, " << prepared->scene->patch_count() << " patches"
           << (prepared->detail.empty() ? "" : "; " + prepared->detail);
+      const PrepareTimes& t = prepared->times;
+      LogLine(LogLevel::kDebug, "agent")
+          << Name(hash) << ": checked in " << Ms(t.check) << " ms, written in "
+          << Ms(t.decoded_callback) << " ms, ray caster built in " << Ms(t.caster)
+          << " ms, shapes decoded in " << Ms(t.shapes) << " ms";
       pending_.erase(found);
       recent_.Insert(prepared->scene);
       callbacks_.on_ready(prepared->scene);

@@ -87,6 +87,7 @@ class SceneSupply {
     std::shared_ptr<const PreparedScene> scene;
     std::string detail;                         // a damaged file, a failed save, the decode error
     std::shared_ptr<AtomicFileWriter> unsaved;  // a fetched scene's file, to commit once ready
+    PrepareTimes times;
   };
 
   Status LoadFromDisk(const protocol::SceneHash& hash);
