@@ -1,6 +1,7 @@
 #include "bench/scaling/scaling_runs.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -70,9 +71,11 @@ AgentStart ReadAgentStart(const std::string& log_text) {
       result = t;
     }
   }
+  // The log's resolution is a millisecond.
+  const auto seconds = [](double from, double to) { return std::round((to - from) * 1000) / 1000; };
   AgentStart start;
-  if (lease >= 0 && ready >= 0) start.scene_ready_seconds = ready - lease;
-  if (lease >= 0 && result >= 0) start.first_result_seconds = result - lease;
+  if (lease >= 0 && ready >= 0) start.scene_ready_seconds = seconds(lease, ready);
+  if (lease >= 0 && result >= 0) start.first_result_seconds = seconds(lease, result);
   return start;
 }
 
