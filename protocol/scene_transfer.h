@@ -20,7 +20,7 @@
 
 namespace radfarm::protocol {
 
-SceneHash HashScene(std::span<const uint8_t> blob);  // SHA-256 (libcrypto)
+SceneHash HashScene(std::span<const uint8_t> blob);  // SHA-256 (libsodium)
 std::string HashToHex(const SceneHash& hash);        // 64 lower-case hex digits
 Result<SceneHash> HashFromHex(std::string_view hex);
 
