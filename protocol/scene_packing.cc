@@ -2,6 +2,7 @@
 
 #include <zstd.h>
 
+#include <future>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -17,8 +18,10 @@ std::string Str(uint64_t v) { return std::to_string(v); }
 
 PackedScene PackScene(std::span<const uint8_t> blob) {
   PackedScene packed;
-  packed.hash = HashScene(blob);
   packed.size = blob.size();
+  // Hashing (libsodium's SHA-256, about 200 MB/s) and compressing read the same blob: side by
+  // side they take the longer of the two, 0.45 s instead of 0.75 s for 93 MB. The agents wait.
+  std::future<SceneHash> hash = std::async(std::launch::async, [blob] { return HashScene(blob); });
   // Room for the worst case, left uninitialised so that only the pages zstd writes are touched.
   const size_t bound = ZSTD_compressBound(blob.size());
   const std::unique_ptr<uint8_t[]> room(new uint8_t[bound]);
@@ -30,6 +33,7 @@ PackedScene PackScene(std::span<const uint8_t> blob) {
                              ZSTD_getErrorName(written));
   }
   packed.compressed.assign(room.get(), room.get() + written);
+  packed.hash = hash.get();
   return packed;
 }
 
