@@ -276,6 +276,8 @@ TEST_F(AgentWorkTest, TheStateDirectoryKeepsTheSceneForARestartedAgent) {
     master_.Send(second);
     ASSERT_TRUE(WaitResult(second.lease, *agent));
     EXPECT_EQ(master_.Snapshot().fetches.at(hash_), 1);
+    // The fetched scene is put in place after it is ready (SceneSupply::OnPrepared).
+    ASSERT_TRUE(agent->WaitForLog("saved as " + file)) << agent->Log();
     agent->Signal(SIGTERM);
     ASSERT_EQ(agent->WaitExit(), 0) << agent->Log();
   }
@@ -308,6 +310,8 @@ TEST_F(AgentWorkTest, ADamagedSceneFileIsDeletedAndFetchedAgain) {
   ASSERT_TRUE(result);
   EXPECT_EQ(protocol::ToBatchResult(*result), RunLocally(scene_, lease));
   EXPECT_EQ(master_.Snapshot().fetches.at(hash_), 1);
+  // The fetched scene is put in place after it is ready (SceneSupply::OnPrepared).
+  ASSERT_TRUE(agent->WaitForLog("saved as " + file)) << agent->Log();
   EXPECT_EQ(ReadTextFile(file), std::string(blob_.begin(), blob_.end()));
   EXPECT_NE(agent->Log().find("damaged file"), std::string::npos) << agent->Log();
   agent->Signal(SIGTERM);
