@@ -3,10 +3,12 @@
 // meshing is mesh/'s job.
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "base/diagnostic.h"
 #include "base/result.h"
@@ -187,6 +189,36 @@ Status CheckSomethingEmits(const std::string& path, const MtlLibraryReader& read
   return ErrorAt(path, 0, why);
 }
 
+// tinyobjloader reads a few numbers that the line index takes for finite as infinite or NaN (it
+// reads 0e999 as 0 times 10^999): such a vertex is refused on its line, as a 'nan' would be.
+Status CheckFinitePositions(const std::string& path, std::string_view text,
+                            const std::vector<Vec3>& positions) {
+  size_t bad = 0;
+  while (bad < positions.size() && IsFinite(positions[bad])) ++bad;
+  if (bad == positions.size()) return Ok{};
+  // Only now, for the message: the line of the bad vertex's `v` statement.
+  uint32_t line = 0;
+  size_t seen = 0;
+  for (size_t start = 0; start < text.size();) {
+    const size_t end = std::min(text.find('\n', start), text.size());
+    ++line;
+    std::string_view statement = text.substr(start, end - start);
+    const size_t first = statement.find_first_not_of(" \t");
+    statement = first == std::string_view::npos ? "" : statement.substr(first);
+    if (statement.size() > 1 && statement[0] == 'v' &&
+        (statement[1] == ' ' || statement[1] == '\t') && seen++ == bad) {
+      while (!statement.empty() && (statement.back() == '\r' || statement.back() == ' ')) {
+        statement.remove_suffix(1);
+      }
+      return ErrorAt(path, line,
+                     "'v': '" + std::string(statement.substr(2)) +
+                         "' is read as a non-finite position; write the coordinates plainly");
+    }
+    start = end + 1;
+  }
+  return ErrorAt(path, 0, "a vertex is read as a non-finite position");
+}
+
 }  // namespace
 
 Result<InputScene> LoadObjScene(const std::string& path, uint64_t max_file_bytes) {
@@ -218,6 +250,7 @@ Result<InputScene> LoadObjScene(const std::string& path, uint64_t max_file_bytes
   if (scene.positions.size() != index->vertex_count) {
     return ErrorAt(path, 0, "internal error: tinyobjloader's vertex count does not match");
   }
+  RADFARM_RETURN_IF_ERROR(CheckFinitePositions(path, *text, scene.positions));
   MaterialTable table(materials, reader.origins());
   RADFARM_RETURN_IF_ERROR(CollectFaces(path, shapes, *index, &table, &scene));
   scene.materials = table.Take();

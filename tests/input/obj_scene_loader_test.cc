@@ -125,6 +125,17 @@ TEST(LoadObjSceneTest, UnparseableNumber) {
   EXPECT_EQ(LoadError(path), path + ":3: 'v': cannot parse 'abc' as a number");
 }
 
+// The line index reads 0e999 as 0, tinyobjloader as 0 * 10^999 (NaN): refused on its line, not
+// passed on as a NaN position (found by obj_scene_fuzzer).
+TEST(LoadObjSceneTest, ANumberTinyobjloaderReadsAsNonFiniteIsRefusedOnItsLine) {
+  const std::string path = WriteScratchFile(
+      "zero_e999.obj", "v 0 0 0\nv 1 0 0\n  v 0.55 0e999 0.45\r\nv 0 1 0\nf 1 2 4\nf 1 3 4\n");
+  EXPECT_EQ(LoadError(path),
+            path +
+                ":3: 'v': '0.55 0e999 0.45' is read as a non-finite position; write the "
+                "coordinates plainly");
+}
+
 TEST(LoadObjSceneTest, UnknownStatement) {
   const std::string path = DataPath("garbage.obj");
   EXPECT_EQ(LoadError(path), path + ":4: unknown statement 'hello'");
