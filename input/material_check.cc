@@ -22,13 +22,24 @@ uint32_t LineOf(uint32_t statement, const MtlMaterialLines& lines) {
 
 Status CheckMaterial(const Material& material, const std::string& mtl_path,
                      const MtlMaterialLines& lines) {
+  // IsFinite first: Min and Max can pass a NaN by (tinyobjloader reads 0e999 as NaN).
   const Rgb& kd = material.diffuse;
-  if (!(kd.Min() >= 0 && kd.Max() < 1)) {  // written so that NaN fails too
+  if (!kd.IsFinite()) {
+    return ErrorAt(
+        mtl_path, LineOf(lines.kd, lines),
+        "material '" + material.name + "': reflectance Kd " + FormatRgb(kd) + " is not finite");
+  }
+  if (!(kd.Min() >= 0 && kd.Max() < 1)) {
     return ErrorAt(mtl_path, LineOf(lines.kd, lines),
                    "material '" + material.name + "': reflectance Kd " + FormatRgb(kd) +
                        " outside [0, 1) (rho >= 1 never converges)");
   }
   const Rgb& ke = material.emission;
+  if (!ke.IsFinite()) {
+    return ErrorAt(
+        mtl_path, LineOf(lines.ke, lines),
+        "material '" + material.name + "': emission Ke " + FormatRgb(ke) + " is not finite");
+  }
   if (!(ke.Min() >= 0)) {
     return ErrorAt(
         mtl_path, LineOf(lines.ke, lines),

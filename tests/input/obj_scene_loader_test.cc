@@ -205,6 +205,23 @@ TEST(LoadObjSceneTest, NegativeEmission) {
             DataPath("negative_ke.mtl") + ":4: material 'sink': emission Ke 1 -1 1 is negative");
 }
 
+// tinyobjloader reads 0e999 as NaN (0 x 10^999), which the MTL's line index takes for 0.
+TEST(LoadObjSceneTest, MtlValuesReadAsNonFiniteAreRefusedOnTheirLines) {
+  const std::string obj = "mtllib nan_values.mtl\nusemtl a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const std::string path = WriteScratchFile("nan_values.obj", obj);
+  const std::string mtl =
+      WriteScratchFile("nan_values.mtl", "newmtl a\nKd 0.5 0e999 0.5\nKe 1 1 1\n");
+  // NaN prints as nan or -nan: the message is checked around it.
+  auto expect = [&](const std::string& start, const std::string& end) {
+    const std::string error = LoadError(path);
+    EXPECT_EQ(error.rfind(start, 0), 0u) << error;
+    EXPECT_TRUE(error.ends_with(end)) << error;
+  };
+  expect(mtl + ":2: material 'a': reflectance Kd 0.5 ", " 0.5 is not finite");
+  WriteScratchFile("nan_values.mtl", "newmtl a\nKd 0.5 0.5 0.5\nKe 1 0e999 1\n");
+  expect(mtl + ":3: material 'a': emission Ke 1 ", " 1 is not finite");
+}
+
 TEST(LoadObjSceneTest, UnparseableMtlValue) {
   EXPECT_EQ(LoadError(DataPath("bad_mtl_number.obj")),
             DataPath("bad_mtl_number.mtl") + ":3: 'Kd': cannot parse 'abc' as a number");
