@@ -1,9 +1,9 @@
 #include "bench/bench_options.h"
 
-#include <cstdio>
 #include <string_view>
 
 #include "bench/bench_json.h"
+#include "scenegen/building_params.h"
 
 namespace radfarm::bench {
 
@@ -22,10 +22,8 @@ bool ParseBenchOptions(int argc, char** argv, BenchOptions* options, std::string
       while (!list.empty()) {
         const size_t comma = list.find(',');
         const std::string rooms(list.substr(0, comma));
-        unsigned a = 0, b = 0;
-        char rest = 0;
-        if (std::sscanf(rooms.c_str(), "%ux%u%c", &a, &b, &rest) != 2 || a == 0 || b == 0) {
-          *error = "--raw-buildings: '" + rooms + "' is not AxB (rooms along x and z)";
+        if (Result<std::pair<int, int>> counts = scenegen::ParseRoomCounts(rooms); !counts) {
+          *error = "--raw-buildings: " + counts.error();
           return false;
         }
         options->raw_buildings.push_back(rooms);

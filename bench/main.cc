@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -84,7 +85,7 @@ int RunRawBuildings(const BenchOptions& options, const MachineInfo& machine) {
   std::vector<RawThroughput> out;
   for (const std::string& rooms : options.raw_buildings) {
     scenegen::BuildingParams params;
-    std::sscanf(rooms.c_str(), "%dx%d", &params.rooms_x, &params.rooms_z);
+    std::tie(params.rooms_x, params.rooms_z) = scenegen::ParseRoomCounts(rooms).value();  // checked
     const BenchScene building = LoadBuildingBenchScene("building-" + rooms, params, 0);
     std::printf("building %s: %zu patches, meshed in %.1f s\n", rooms.c_str(),
                 building.patches().patches.size(), building.load_seconds);

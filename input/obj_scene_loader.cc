@@ -193,28 +193,21 @@ Status CheckSomethingEmits(const std::string& path, const MtlLibraryReader& read
 // reads 0e999 as 0 times 10^999): such a vertex is refused on its line, as a 'nan' would be.
 Status CheckFinitePositions(const std::string& path, std::string_view text,
                             const std::vector<Vec3>& positions) {
-  size_t bad = 0;
-  while (bad < positions.size() && IsFinite(positions[bad])) ++bad;
-  if (bad == positions.size()) return Ok{};
-  // Only now, for the message: the line of the bad vertex's `v` statement.
-  uint32_t line = 0;
-  size_t seen = 0;
-  for (size_t start = 0; start < text.size();) {
-    const size_t end = std::min(text.find('\n', start), text.size());
-    ++line;
-    std::string_view statement = text.substr(start, end - start);
-    const size_t first = statement.find_first_not_of(" \t");
-    statement = first == std::string_view::npos ? "" : statement.substr(first);
-    if (statement.size() > 1 && statement[0] == 'v' &&
-        (statement[1] == ' ' || statement[1] == '\t') && seen++ == bad) {
-      while (!statement.empty() && (statement.back() == '\r' || statement.back() == ' ')) {
-        statement.remove_suffix(1);
-      }
-      return ErrorAt(path, line,
-                     "'v': '" + std::string(statement.substr(2)) +
-                         "' is read as a non-finite position; write the coordinates plainly");
-    }
-    start = end + 1;
+  const auto bad =
+      std::find_if(positions.begin(), positions.end(), [](const Vec3& p) { return !IsFinite(p); });
+  if (bad == positions.end()) return Ok{};
+  // Only now, for the message: the line of the bad vertex's `v` statement, as IndexObjLines
+  // counts lines and words.
+  size_t before = static_cast<size_t>(bad - positions.begin());
+  const std::vector<std::string_view> lines = SplitLines(text);
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const std::vector<std::string_view> words = SplitWords(lines[i]);
+    if (words.empty() || words[0] != "v" || before-- > 0) continue;
+    std::string numbers;
+    for (size_t w = 1; w < words.size(); ++w) numbers += (w > 1 ? " " : "") + std::string(words[w]);
+    return ErrorAt(
+        path, static_cast<uint32_t>(i + 1),
+        "'v': '" + numbers + "' is read as a non-finite position; write the coordinates plainly");
   }
   return ErrorAt(path, 0, "a vertex is read as a non-finite position");
 }

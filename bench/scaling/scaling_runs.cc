@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bench/memory/peak_rss.h"
+#include "scenegen/building_params.h"
 #include "testing/loopback_farm.h"
 #include "testing/temp_dir.h"
 
@@ -34,11 +35,9 @@ double NumberAfter(const std::string& text, const std::string& marker) {
 }
 
 uint64_t RoomsOf(const std::string& rooms) {
-  unsigned a = 0, b = 0;
-  if (std::sscanf(rooms.c_str(), "%ux%u", &a, &b) != 2 || a == 0 || b == 0) {
-    throw std::runtime_error("--rooms: " + rooms + " is not AxB");
-  }
-  return uint64_t(a) * b;
+  const Result<std::pair<int, int>> counts = scenegen::ParseRoomCounts(rooms);
+  if (!counts) throw std::runtime_error("--rooms: " + counts.error());
+  return uint64_t(counts->first) * uint64_t(counts->second);
 }
 
 // Seconds since the epoch of a log line's timestamp ("2026-12-03T17:44:53.488Z ..."), or -1.
