@@ -42,7 +42,8 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
   } else {
     mesh.SetSolution(solution.radiosity, solution.unshot,
                      {direct, job.solver.seed, job.solver.threads,
-                      EmittersInDirectStart(mesh.patch_scene(), job.solver)});
+                      EmittersInDirectStart(mesh.patch_scene(), job.solver),
+                      DirectLightRaysPerLight(mesh.patch_scene(), job.solver)});
   }
   const DisplayMesh display = mesh.MakeDisplayMesh();
   std::vector<bool> emitter_patch;
@@ -54,10 +55,14 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
   std::vector<uint32_t> patch_object(mesh.patch_scene().patches.size());
   for (uint32_t p = 0; p < patch_object.size(); ++p) patch_object[p] = mesh.patch_object(p);
   // Lightmaps of the objects with a second UV set, in that UV: the job's size or texel, else
-  // texels of a quarter patch, about the display's vertex spacing after its midpoint cut.
+  // texels of a quarter patch, about the display's vertex spacing after its midpoint cut, or of a
+  // sixteenth where the display added points where the light bends (near a lamp or a shadow's
+  // edge a quarter patch blurs what the display shows: tests/cli/lightmap_render_test.cc).
   const DisplayLightmapUvs uvs =
       LocateLightmapUvs(display, patch_object, mesh.objects().size(), mesh.lightmap_triangles());
-  const double texel = job.lightmap_texel > 0 ? job.lightmap_texel : mesh.patch_size() / 4;
+  const double texel = job.lightmap_texel > 0           ? job.lightmap_texel
+                       : mesh.display_stats().added > 0 ? mesh.patch_size() / 16
+                                                        : mesh.patch_size() / 4;
   Result<std::vector<Lightmap>> lightmaps =
       WriteLightmaps(dir, display, mesh.objects(), uvs, mesh.lightmap_triangles(), exposed, texel,
                      job.lightmap_size, warnings);

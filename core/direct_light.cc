@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <set>
 #include <utility>
 
 #include "core/counter_rng.h"
@@ -27,8 +28,9 @@ double SceneReach(const PatchScene& scene) {
 }  // namespace
 
 DirectLight::DirectLight(const PatchScene& scene, const RayCaster& caster, uint32_t rays_per_point,
-                         bool emitters, size_t exact_lights, uint32_t light_cut)
-    : scene_(scene), caster_(caster), light_cut_(light_cut) {
+                         bool emitters, size_t exact_lights, uint32_t light_cut,
+                         uint32_t rays_per_light)
+    : scene_(scene), caster_(caster), light_cut_(light_cut), rays_per_light_(rays_per_light) {
   if (!scene.lights.empty()) sun_reach_ = SceneReach(scene);
   std::map<std::pair<uint32_t, std::array<double, 3>>, size_t> light_of;  // (surface, Ke) -> light
   for (uint32_t i = 0; i < scene.patches.size() && emitters; ++i) {
@@ -86,6 +88,30 @@ double DirectLight::Visible(const Vec3& x, const Vec3& n, uint32_t k, uint64_t k
   return double(seen) / double(grid_ * grid_);
 }
 
+double DirectLight::CappedVisible(const Vec3& x, const Vec3& n, const Light& light,
+                                  const std::vector<double>& weight, double sum,
+                                  uint64_t key) const {
+  const uint32_t rays = rays_per_light_;
+  const double step = sum / rays;
+  // One offset for all strata; the light's first patch keeps lights' draws apart.
+  const CounterRng offset(HashWords(key, emitters_[light.members[0]], 0x63617070ull));
+  double target = offset.Uniform(0) * step;
+  size_t m = 0;
+  double running = weight[0];
+  uint32_t seen = 0;
+  for (uint32_t s = 0; s < rays; ++s, target += step) {
+    while (running <= target && m + 1 < weight.size()) running += weight[++m];
+    const uint32_t k = light.members[m];
+    const CounterRng rng(HashWords(key, emitters_[k], s, 0x63617070ull));
+    const Patch& p = scene_.patches[emitters_[k]];
+    if (caster_.Unoccluded(x, SamplePatchPoint(p, sampling_[k], rng.Uniform(0), rng.Uniform(1)),
+                           n)) {
+      ++seen;
+    }
+  }
+  return double(seen) / double(rays);
+}
+
 Rgb DirectLight::Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const {
   if (scene_.lights.empty()) return EmitterIrradiance(x, n, key);
   return EmitterIrradiance(x, n, key) + PunctualIrradiance(x, n, key);
@@ -114,8 +140,10 @@ Rgb DirectLight::PunctualIrradiance(const Vec3& x, const Vec3& n, uint64_t key) 
 
 void DirectLight::AddLight(const Light& light, const Vec3& x, const Vec3& n, uint64_t key,
                            double weight, Rgb* e) const {
+  const bool capped = rays_per_light_ > 0 && light.members.size() > rays_per_light_;
+  const Rgb& emission = scene_.patches[emitters_[light.members[0]]].emission;
   const double whole = PointToOutlineFormFactor(x, n, light.outline);
-  if (whole < 0) {  // patch by patch
+  if (whole < 0 && !capped) {  // patch by patch
     for (uint32_t k : light.members) {
       const Patch& p = scene_.patches[emitters_[k]];
       const double f = PointToPatchFormFactor(x, n, p);
@@ -124,20 +152,34 @@ void DirectLight::AddLight(const Light& light, const Vec3& x, const Vec3& n, uin
     return;
   }
   if (whole == 0) return;
+  // Not planar: each patch's own form factor weighs its visibility. Planar: the small-patch kernel
+  // does, and the outline's form factor is the whole light's.
+  std::vector<double> share;
+  if (capped) share.reserve(light.members.size());
   double sum = 0, visible = 0;
   for (uint32_t k : light.members) {
     const Patch& p = scene_.patches[emitters_[k]];
-    const Vec3 d = p.centre - x;
-    const double r2 = Dot(d, d);
-    const double w =
-        p.area * std::max(0.0, Dot(n, d)) * std::max(0.0, -Dot(p.normal, d)) / (r2 * r2);
-    if (w <= 0) continue;
-    sum += w;
-    visible += w * Visible(x, n, k, key);
+    double w;
+    if (whole < 0) {
+      w = std::max(0.0, PointToPatchFormFactor(x, n, p));
+    } else {
+      const Vec3 d = p.centre - x;
+      const double r2 = Dot(d, d);
+      w = p.area * std::max(0.0, Dot(n, d)) * std::max(0.0, -Dot(p.normal, d)) / (r2 * r2);
+    }
+    if (capped) {
+      share.push_back(w);
+      sum += w;
+    } else if (w > 0) {
+      sum += w;
+      visible += w * Visible(x, n, k, key);
+    }
   }
-  if (sum > 0) {
-    *e += scene_.patches[emitters_[light.members[0]]].emission * (whole * visible / sum * weight);
-  }
+  if (!(sum > 0)) return;
+  if (capped) visible = CappedVisible(x, n, light, share, sum, key) * sum;
+  // Not planar: sum_k f_k V_k. Planar: the outline's form factor times the kernel-weighted share.
+  const double f = whole < 0 ? visible : whole * visible / sum;
+  *e += emission * (f * weight);
 }
 
 Rgb DirectLight::EmitterIrradiance(const Vec3& x, const Vec3& n, uint64_t key,
@@ -157,14 +199,15 @@ Rgb DirectLight::EmitterIrradiance(const Vec3& x, const Vec3& n, uint64_t key,
 }
 
 std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, uint64_t seed,
-                                  unsigned threads, bool emitters, double* punctual_power) {
+                                  unsigned threads, bool emitters, double* punctual_power,
+                                  uint32_t rays_per_light) {
   std::vector<Rgb> out(scene.patches.size());
   if (punctual_power != nullptr) *punctual_power = 0;
   bool any_emitter = false;
   for (const Patch& p : scene.patches) any_emitter = any_emitter || p.emission.Max() > 0;
   if (!(any_emitter && emitters) && scene.lights.empty()) return out;
   const RayCaster caster(scene);
-  const DirectLight direct(scene, caster, 1, emitters);
+  const DirectLight direct(scene, caster, 1, emitters, kExactLights, kLightCut, rays_per_light);
   std::vector<Rgb> punctual(scene.lights.empty() ? 0 : scene.patches.size());
   ThreadPool pool(threads);
   const uint32_t m = std::max(1u, sections);
@@ -208,20 +251,56 @@ uint64_t EmitterPatches(const PatchScene& scene) {
   return emitters;
 }
 
+// The emitter lights: distinct (surface, emission) pairs among the emitter patches, as DirectLight
+// groups them.
+size_t EmitterLights(const PatchScene& scene) {
+  std::set<std::pair<uint32_t, std::array<double, 3>>> lights;
+  for (const Patch& p : scene.patches) {
+    if (p.emission.Max() > 0)
+      lights.insert({p.surface, {p.emission.r, p.emission.g, p.emission.b}});
+  }
+  return lights.size();
+}
+
+// The emitter lights a point evaluates: all, or the light tree's cut.
+uint64_t LightsPerPoint(const PatchScene& scene) {
+  const size_t lights = EmitterLights(scene);
+  return std::max<uint64_t>(1,
+                            lights > kExactLights ? std::min<size_t>(lights, kLightCut) : lights);
+}
+
 }  // namespace
 
 bool EmittersInDirectStart(const PatchScene& scene, const SolverSettings& settings) {
   if (!GatherOn(settings)) return false;
-  // A shadow ray per point and emitter patch: at least 4 x 4 points per patch, worth it while that
-  // is no more than the gather's rays.
+  // A shadow ray per point and emitter patch, at least 4 x 4 points per patch: no more than the
+  // gather's rays. Beyond, the rays per light are capped (DirectLightRaysPerLight), down to one
+  // per light a point evaluates, which serves any scene whose emitters are a small part of it; a
+  // furnace's or a sky's emitters shoot.
   const uint64_t emitters = EmitterPatches(scene);
-  return emitters > 0 && emitters * 16 <= settings.gather_rays;
+  if (emitters == 0) return false;
+  if (emitters * 16 <= settings.gather_rays) return true;
+  return emitters * 4 <= scene.patches.size() && LightsPerPoint(scene) * 16 <= settings.gather_rays;
+}
+
+uint32_t DirectLightRaysPerLight(const PatchScene& scene, const SolverSettings& settings) {
+  if (!EmittersInDirectStart(scene, settings)) return 0;
+  const uint64_t emitters = EmitterPatches(scene);
+  if (emitters * 16 <= settings.gather_rays) return 0;  // every patch its rays, as always
+  return static_cast<uint32_t>(
+      std::max<uint64_t>(1, settings.gather_rays / (16 * LightsPerPoint(scene))));
 }
 
 uint32_t DirectLightSections(const PatchScene& scene, const SolverSettings& settings) {
   // Punctual lights have no surface to shoot from: they are always in the start.
-  const uint64_t sources =
-      (EmittersInDirectStart(scene, settings) ? EmitterPatches(scene) : 0) + scene.lights.size();
+  uint64_t sources = scene.lights.size();
+  if (EmittersInDirectStart(scene, settings)) {
+    const uint64_t emitters = EmitterPatches(scene);
+    const uint32_t per_light = DirectLightRaysPerLight(scene, settings);
+    sources += per_light == 0
+                   ? emitters
+                   : std::min<uint64_t>(emitters, uint64_t(per_light) * LightsPerPoint(scene));
+  }
   if (sources == 0) return 0;
   // Big patches near a light need more points (the irradiance changes across the patch).
   const double rays = GatherOn(settings) ? double(settings.gather_rays) : 512.0;
@@ -235,7 +314,8 @@ std::vector<Rgb> StartingDirectLight(const PatchScene& scene, const SolverSettin
   const uint32_t sections = DirectLightSections(scene, settings);
   if (sections == 0) return {};
   return PatchDirectLight(scene, sections, settings.seed, settings.threads,
-                          EmittersInDirectStart(scene, settings), punctual_power);
+                          EmittersInDirectStart(scene, settings), punctual_power,
+                          DirectLightRaysPerLight(scene, settings));
 }
 
 std::vector<Rgb> PointsDirectLight(const PatchScene& scene,

@@ -38,9 +38,11 @@ class DirectLight {
   // left out (they shoot their light instead) and only the punctual lights count. Above
   // `exact_lights` lights of a kind, those are sampled through a LightTree, with a cut of
   // `light_cut` lights per point.
+  // A light of more patches than `rays_per_light` (0: no limit) gets that many shadow rays in all,
+  // drawn among its patches in proportion to their share of its light (CappedVisible).
   DirectLight(const PatchScene& scene, const RayCaster& caster, uint32_t rays_per_point,
               bool emitters = true, size_t exact_lights = kExactLights,
-              uint32_t light_cut = kLightCut);
+              uint32_t light_cut = kLightCut, uint32_t rays_per_light = 0);
 
   // Irradiance at x (unit normal n) in Ke units; `key` picks the shadow rays' points (and with
   // many lights the lights sampled), so a call is a pure function of its arguments.
@@ -69,6 +71,12 @@ class DirectLight {
   };
   // Shares of patch k's shadow rays that arrive.
   double Visible(const Vec3& x, const Vec3& n, uint32_t k, uint64_t key) const;
+  // For a light of more patches than rays_per_light_: sum_k weight[k] Visible_k over sum_k
+  // weight[k] (weights per member, in members' order), estimated with rays_per_light_ shadow rays
+  // to points of members drawn in proportion to their weights (systematic sampling: one stratum of
+  // the weights' running sum per ray). Unbiased; its cost no longer grows with the light's patches.
+  double CappedVisible(const Vec3& x, const Vec3& n, const Light& light,
+                       const std::vector<double>& weight, double sum, uint64_t key) const;
   // Adds `weight` times the light's irradiance at x to *e (weight 1: as summed without a tree).
   void AddLight(const Light& light, const Vec3& x, const Vec3& n, uint64_t key, double weight,
                 Rgb* e) const;
@@ -86,6 +94,7 @@ class DirectLight {
   uint32_t grid_ = 1;     // grid_ x grid_ stratified shadow rays per emitter patch
   double sun_reach_ = 0;  // beyond the scene from any point in it (ShadowRayTarget)
   uint32_t light_cut_ = kLightCut;
+  uint32_t rays_per_light_ = 0;  // 0: one or more rays per patch of every light
 };
 
 // Per patch, the direct irradiance averaged over the patch (Ke units): DirectLight at
@@ -96,18 +105,26 @@ class DirectLight {
 // (area times channel sum): the power they deliver.
 std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, uint64_t seed,
                                   unsigned threads, bool emitters = true,
-                                  double* punctual_power = nullptr);
+                                  double* punctual_power = nullptr, uint32_t rays_per_light = 0);
 
 // Whether a solve with these settings starts from the emitter patches' direct light rather than
-// letting them shoot: the gather on (GatherOn), some emitter, and no more than gather_rays / 16
-// emitter patches (else, a furnace, the emitters shoot).
+// letting them shoot: the gather on (GatherOn), some emitter, and either no more than
+// gather_rays / 16 emitter patches, or emitter patches no more than a quarter of all and no more
+// than gather_rays / 16 lights a point evaluates (else, a furnace or a sky of emitters, the
+// emitters shoot).
 bool EmittersInDirectStart(const PatchScene& scene, const SolverSettings& settings);
+
+// The shadow rays a light gets at most per point in the direct-light start and the display (0: no
+// limit): the gather's rays over 16 points and the lights a point evaluates (all of them, or the
+// light tree's cut), at least one. So the start costs about the gather, however finely the lights
+// are meshed; a light of no more patches than that is sampled patch by patch, as before.
+uint32_t DirectLightRaysPerLight(const PatchScene& scene, const SolverSettings& settings);
 
 // The points per side of each patch at which a solve with these settings computes the direct
 // light it starts from (ProgressiveSolver), or 0 where it does not start from one: no emitter in
 // it (EmittersInDirectStart) and no punctual light. Within, up to half the gather's rays per
 // patch (512 rays without a gather) go to points, 4 x 4 to 16 x 16; a shadow ray per point and
-// emitter patch or punctual light.
+// emitter patch (up to DirectLightRaysPerLight per light) or punctual light.
 uint32_t DirectLightSections(const PatchScene& scene, const SolverSettings& settings);
 
 // The direct light a solve with these settings starts from: PatchDirectLight at

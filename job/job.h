@@ -31,7 +31,8 @@ struct Job {
   bool two_sided = false;
   std::map<std::string, bool> material_two_sided;
   // The lightmaps' resolution (`[output] lightmap_size` or `lightmap_texel`, `--lightmap-size`;
-  // output/lightmap_writer.h). At most one is nonzero; both 0: texels of a quarter patch.
+  // output/lightmap_writer.h). At most one is nonzero; both 0: texels of a quarter patch
+  // (a sixteenth where the display refined itself).
   uint32_t lightmap_size = 0;  // every lightmap this many texels square
   double lightmap_texel = 0;   // each object's texels about this size, in scene units
 };

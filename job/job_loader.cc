@@ -36,7 +36,8 @@
 //   lightmap_size = 1024          # every lightmap this many texels square, 0 or in [16, 8192]
 //                                 # (absent or 0: automatic, 32 to 2048 by the object's area)
 //   lightmap_texel = 0.01         # automatic size from texels of about this edge, scene units,
-//                                 # > 0 (absent: patch size / 4); not with lightmap_size
+//                                 # > 0 (absent: patch size / 4, or / 16 where the display
+//                                 # refined itself); not with lightmap_size
 //   [materials.NAME]              # per material of the scene, by name
 //   two_sided = true              # this material receives and emits on both sides
 //

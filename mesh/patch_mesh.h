@@ -127,6 +127,9 @@ class PatchMesh {
     // Whether patch_direct holds the emitter patches' light (EmittersInDirectStart) or only the
     // punctual lights' (the emitters shot theirs): the points then compute the same.
     bool emitters = true;
+    // Shadow rays per light at a point at most (DirectLightRaysPerLight; 0: no limit): the
+    // solve's start used the same.
+    uint32_t rays_per_light = 0;
   };
   // As above, but the display is finer than the solution and shows the direct light where it is
   // computed. Every display triangle is cut into four at its edge midpoints (midpoint_split.h), and

@@ -284,7 +284,8 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   // below is for averages.
   // One caster and one DirectLight for every gather and every level's points.
   const RayCaster caster(data_.scene);
-  const DirectLight direct_light(data_.scene, caster, kPointShadowRays, direct.emitters);
+  const DirectLight direct_light(data_.scene, caster, kPointShadowRays, direct.emitters,
+                                 kExactLights, kLightCut, direct.rays_per_light);
   std::vector<bool> gather =
       NearOtherSurfaces(data_.scene, caster, points, kGatherBand * patch_size_, direct.threads);
   for (size_t i = 0; i < points.size(); ++i) gather[i] = gather[i] && may_gather[i];

@@ -6,11 +6,12 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/direct_light.h"
 #include "job/job.h"
 #include "mesh/patch_mesh.h"
-#include "solve/local_solve.h"
 #include "output/png_writer.h"
 #include "output/tone_map.h"
+#include "solve/local_solve.h"
 
 namespace radfarm::bench {
 namespace {
@@ -165,7 +166,9 @@ class Study {
       solved->mesh->SetSolution(solved->solution.radiosity, solved->solution.unshot);
     } else {
       solved->mesh->SetSolution(solved->solution.radiosity, solved->solution.unshot,
-                                {solved->solution.direct_light, solver.seed, solver.threads});
+                                {solved->solution.direct_light, solver.seed, solver.threads,
+                                 EmittersInDirectStart(solved->mesh->patch_scene(), solver),
+                                 DirectLightRaysPerLight(solved->mesh->patch_scene(), solver)});
     }
     const DisplayMesh display = solved->mesh->MakeDisplayMesh();
     row.display_seconds =

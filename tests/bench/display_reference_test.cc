@@ -43,7 +43,8 @@ void SolveAndShow(const std::string& obj, double patch_size, SolvedDisplay* out)
   ASSERT_FALSE(solution.direct_light.empty());
   mesh->SetSolution(solution.radiosity, solution.unshot,
                     {solution.direct_light, settings.seed, 2,
-                     EmittersInDirectStart(mesh->patch_scene(), settings)});
+                     EmittersInDirectStart(mesh->patch_scene(), settings),
+                     DirectLightRaysPerLight(mesh->patch_scene(), settings)});
   out->stats = mesh->display_stats();
   const DisplayMesh display = mesh->MakeDisplayMesh();
   out->lookup.emplace(DisplayPly{display.positions, display.radiance, display.triangles}, 1e-3);

@@ -1,0 +1,106 @@
+// core/direct_light.h: a light of many patches gets a capped number of shadow rays
+// (DirectLightRaysPerLight), drawn among its patches by their share of its light; and the rule
+// that decides when a solve starts from the emitters' direct light.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/direct_light.h"
+#include "core/ray_caster.h"
+#include "tests/core/test_scenes.h"
+
+namespace radfarm {
+namespace {
+
+using testing::Gathering;
+
+// The unit square 1 above z = 0, facing down, emitting 1, as an n x n grid of patches.
+PatchScene GridLight(int n) {
+  PatchScene scene;
+  testing::AddQuadGrid({-0.5, -0.5, 1}, {-0.5, 0.5, 1}, {0.5, 0.5, 1}, {0.5, -0.5, 1}, n,
+                       testing::Surface{{}, {1, 1, 1}, 0}, &scene);
+  return scene;
+}
+
+// A grey floor under it, in n x n patches over [-2, 2]^2.
+void AddFloor(int n, PatchScene* scene) {
+  testing::AddQuadGrid({-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}, n,
+                       testing::Surface{{0.5, 0.5, 0.5}, {}, 1}, scene);
+}
+
+TEST(DirectLightCapTest, AnUnoccludedLightIsExactWithFewRays) {
+  const PatchScene scene = GridLight(8);  // 64 patches, 4 rays
+  const RayCaster caster(scene);
+  const DirectLight all(scene, caster, 1);
+  const DirectLight capped(scene, caster, 1, true, kExactLights, kLightCut, 4);
+  for (const Vec3& x : {Vec3{0, 0, 0}, Vec3{0.5, 0.5, 0}, Vec3{1.3, -0.2, 0.4}}) {
+    const Rgb a = all.EmitterIrradiance(x, {0, 0, 1}, 9);
+    const Rgb c = capped.EmitterIrradiance(x, {0, 0, 1}, 9);
+    EXPECT_GT(a.g, 0);
+    EXPECT_NEAR(c.g, a.g, 1e-12 * a.g) << x.x;
+  }
+}
+
+// Half the light hidden behind a blade: each capped estimate is a multiple of a quarter of the
+// kernel-weighted share, and over many keys the mean meets the patch-by-patch sum.
+TEST(DirectLightCapTest, APenumbraIsEstimatedWithoutBias) {
+  PatchScene scene = GridLight(8);
+  testing::AddQuadGrid({-2, -2, 0.5}, {-2, 2, 0.5}, {0, 2, 0.5}, {0, -2, 0.5}, 1,
+                       testing::Surface{{0.5, 0.5, 0.5}, {}, 2}, &scene);
+  const RayCaster caster(scene);
+  const DirectLight all(scene, caster, 1024);  // 4 x 4 rays per patch
+  const DirectLight capped(scene, caster, 1, true, kExactLights, kLightCut, 4);
+  const Vec3 x{0.1, 0.2, 0}, n{0, 0, 1};
+  double all_sum = 0, capped_sum = 0;
+  bool varied = false;
+  const double first = capped.EmitterIrradiance(x, n, 0).g;
+  constexpr int kKeys = 4000;
+  for (int key = 0; key < kKeys; ++key) {
+    all_sum += all.EmitterIrradiance(x, n, key).g;
+    const double c = capped.EmitterIrradiance(x, n, key).g;
+    capped_sum += c;
+    varied = varied || c != first;
+  }
+  EXPECT_TRUE(varied) << "the blade's edge crosses the light: some rays must be blocked";
+  const double exact = all_sum / kKeys, mean = capped_sum / kKeys;
+  EXPECT_GT(exact, 0);
+  EXPECT_NEAR(mean, exact, 0.01 * exact);
+}
+
+TEST(DirectLightCapTest, TheStartCapsRaysWhenLightsAreFinelyMeshed) {
+  PatchScene scene = GridLight(16);  // 256 emitter patches: more than 2048 / 16
+  AddFloor(40, &scene);              // 1600 receivers
+  const SolverSettings settings = Gathering(2048);
+  EXPECT_TRUE(EmittersInDirectStart(scene, settings));
+  EXPECT_EQ(DirectLightRaysPerLight(scene, settings), 128u) << "one light: 2048 / 16";
+  EXPECT_EQ(DirectLightSections(scene, settings), 4u) << "floor(sqrt(2048 / (2 x 128)))";
+
+  // Lights meshed coarsely enough keep a ray per patch, as before the cap.
+  PatchScene coarse = GridLight(4);
+  AddFloor(40, &coarse);
+  EXPECT_TRUE(EmittersInDirectStart(coarse, settings));
+  EXPECT_EQ(DirectLightRaysPerLight(coarse, settings), 0u);
+
+  // A furnace: every patch emits, and the emitters shoot.
+  PatchScene furnace = GridLight(16);
+  EXPECT_FALSE(EmittersInDirectStart(furnace, settings));
+  EXPECT_EQ(DirectLightRaysPerLight(furnace, settings), 0u);
+  // Too few gather rays for a ray per light and 16 points: the emitters shoot.
+  EXPECT_FALSE(EmittersInDirectStart(scene, Gathering(8)));
+}
+
+TEST(DirectLightCapTest, ThePatchStartWithTheCapIsAPureFunctionAndCloseToTheFullOne) {
+  PatchScene scene = GridLight(16);
+  AddFloor(12, &scene);
+  const std::vector<Rgb> full = PatchDirectLight(scene, 4, 3, 2);
+  const std::vector<Rgb> one = PatchDirectLight(scene, 4, 3, 1, true, nullptr, 8);
+  const std::vector<Rgb> two = PatchDirectLight(scene, 4, 3, 2, true, nullptr, 8);
+  EXPECT_TRUE(testing::BitIdentical(one, two));
+  // Nothing shadows the floor: the cap changes nothing but rounding.
+  for (size_t i = 256; i < scene.patches.size(); ++i) {
+    EXPECT_NEAR(one[i].g, full[i].g, 1e-12 * full[i].g + 1e-300) << i;
+  }
+}
+
+}  // namespace
+}  // namespace radfarm
