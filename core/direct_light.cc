@@ -274,13 +274,15 @@ uint64_t LightsPerPoint(const PatchScene& scene) {
 bool EmittersInDirectStart(const PatchScene& scene, const SolverSettings& settings) {
   if (!GatherOn(settings)) return false;
   // A shadow ray per point and emitter patch, at least 4 x 4 points per patch: no more than the
-  // gather's rays. Beyond, the rays per light are capped (DirectLightRaysPerLight), down to one
-  // per light a point evaluates, which serves any scene whose emitters are a small part of it; a
-  // furnace's or a sky's emitters shoot.
+  // gather's rays. Beyond, the rays per light are capped (DirectLightRaysPerLight) while that
+  // leaves every light kMinCappedLightRays, which serves a few finely meshed lights; a furnace's
+  // or a sky's emitters shoot, and so do many lights (a building of many rooms: there the start
+  // would cost as much as the gather, on the farm master's compute thread).
   const uint64_t emitters = EmitterPatches(scene);
   if (emitters == 0) return false;
   if (emitters * 16 <= settings.gather_rays) return true;
-  return emitters * 4 <= scene.patches.size() && LightsPerPoint(scene) * 16 <= settings.gather_rays;
+  return emitters * 4 <= scene.patches.size() &&
+         LightsPerPoint(scene) * 16 * kMinCappedLightRays <= settings.gather_rays;
 }
 
 uint32_t DirectLightRaysPerLight(const PatchScene& scene, const SolverSettings& settings) {

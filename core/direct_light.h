@@ -107,11 +107,15 @@ std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, ui
                                   unsigned threads, bool emitters = true,
                                   double* punctual_power = nullptr, uint32_t rays_per_light = 0);
 
+// The fewest shadow rays a light gets per point where its rays are capped: a penumbra's estimate
+// from fewer would be too coarse.
+inline constexpr uint32_t kMinCappedLightRays = 16;
+
 // Whether a solve with these settings starts from the emitter patches' direct light rather than
 // letting them shoot: the gather on (GatherOn), some emitter, and either no more than
 // gather_rays / 16 emitter patches, or emitter patches no more than a quarter of all and no more
-// than gather_rays / 16 lights a point evaluates (else, a furnace or a sky of emitters, the
-// emitters shoot).
+// than gather_rays / (16 kMinCappedLightRays) lights (8 at the default 2048 rays); else (a
+// furnace, a sky of emitters, a building of many lights) the emitters shoot.
 bool EmittersInDirectStart(const PatchScene& scene, const SolverSettings& settings);
 
 // The shadow rays a light gets at most per point in the direct-light start and the display (0: no

@@ -127,8 +127,8 @@ class PatchMesh {
     // Whether patch_direct holds the emitter patches' light (EmittersInDirectStart) or only the
     // punctual lights' (the emitters shot theirs): the points then compute the same.
     bool emitters = true;
-    // Shadow rays per light at a point at most (DirectLightRaysPerLight; 0: no limit): the
-    // solve's start used the same.
+    // Shadow rays per light at a point at most (DirectLightRaysPerLight, as the start; 0: no
+    // limit).
     uint32_t rays_per_light = 0;
   };
   // As above, but the display is finer than the solution and shows the direct light where it is

@@ -85,8 +85,35 @@ TEST(DirectLightCapTest, TheStartCapsRaysWhenLightsAreFinelyMeshed) {
   PatchScene furnace = GridLight(16);
   EXPECT_FALSE(EmittersInDirectStart(furnace, settings));
   EXPECT_EQ(DirectLightRaysPerLight(furnace, settings), 0u);
-  // Too few gather rays for a ray per light and 16 points: the emitters shoot.
-  EXPECT_FALSE(EmittersInDirectStart(scene, Gathering(8)));
+  // Too few gather rays for kMinCappedLightRays per light and 16 points: the emitters shoot.
+  EXPECT_FALSE(EmittersInDirectStart(scene, Gathering(128)));
+  EXPECT_TRUE(EmittersInDirectStart(scene, Gathering(256)));
+  EXPECT_EQ(DirectLightRaysPerLight(scene, Gathering(256)), kMinCappedLightRays);
+}
+
+// `count` lights of 36 patches each (distinct surfaces) over a 60 x 60 floor.
+PatchScene FinelyMeshedLights(int count) {
+  PatchScene scene;
+  for (int i = 0; i < count; ++i) {
+    const double x = 2.0 * i;
+    testing::AddQuadGrid({x, 0, 1}, {x, 1, 1}, {x + 1, 1, 1}, {x + 1, 0, 1}, 6,
+                         testing::Surface{{}, {1, 1, 1}, uint32_t(10 + i)}, &scene);
+  }
+  AddFloor(60, &scene);
+  return scene;
+}
+
+// Eight lights get 16 rays each; nine would get fewer, so their emitters shoot, as in a building
+// of many rooms.
+TEST(DirectLightCapTest, ManyFinelyMeshedLightsShoot) {
+  const SolverSettings settings = Gathering(2048);
+  const PatchScene eight = FinelyMeshedLights(8);
+  EXPECT_TRUE(EmittersInDirectStart(eight, settings));
+  EXPECT_EQ(DirectLightRaysPerLight(eight, settings), 16u) << "2048 / (16 x 8)";
+  const PatchScene nine = FinelyMeshedLights(9);
+  EXPECT_FALSE(EmittersInDirectStart(nine, settings));
+  EXPECT_EQ(DirectLightRaysPerLight(nine, settings), 0u);
+  EXPECT_EQ(DirectLightRaysPerLight(nine, Gathering(2304)), 16u) << "2304 / (16 x 9)";
 }
 
 TEST(DirectLightCapTest, ThePatchStartWithTheCapIsAPureFunctionAndCloseToTheFullOne) {
