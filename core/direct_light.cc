@@ -25,6 +25,13 @@ double SceneReach(const PatchScene& scene) {
   return box.Empty() ? 1.0 : 2 * Length(box.hi - box.lo) + 1;
 }
 
+// A light: one surface, one emission (Ke).
+using LightKey = std::pair<uint32_t, std::array<double, 3>>;
+
+LightKey LightKeyOf(const Patch& p) {
+  return {p.surface, {p.emission.r, p.emission.g, p.emission.b}};
+}
+
 }  // namespace
 
 DirectLight::DirectLight(const PatchScene& scene, const RayCaster& caster, uint32_t rays_per_point,
@@ -32,12 +39,11 @@ DirectLight::DirectLight(const PatchScene& scene, const RayCaster& caster, uint3
                          uint32_t rays_per_light)
     : scene_(scene), caster_(caster), light_cut_(light_cut), rays_per_light_(rays_per_light) {
   if (!scene.lights.empty()) sun_reach_ = SceneReach(scene);
-  std::map<std::pair<uint32_t, std::array<double, 3>>, size_t> light_of;  // (surface, Ke) -> light
+  std::map<LightKey, size_t> light_of;
   for (uint32_t i = 0; i < scene.patches.size() && emitters; ++i) {
     const Patch& p = scene.patches[i];
     if (p.emission.Max() <= 0) continue;
-    const auto [it, added] = light_of.try_emplace(
-        {p.surface, {p.emission.r, p.emission.g, p.emission.b}}, lights_.size());
+    const auto [it, added] = light_of.try_emplace(LightKeyOf(p), lights_.size());
     if (added) lights_.emplace_back();
     lights_[it->second].members.push_back(static_cast<uint32_t>(emitters_.size()));
     emitters_.push_back(i);
@@ -251,58 +257,52 @@ uint64_t EmitterPatches(const PatchScene& scene) {
   return emitters;
 }
 
-// The emitter lights: distinct (surface, emission) pairs among the emitter patches, as DirectLight
-// groups them.
-size_t EmitterLights(const PatchScene& scene) {
-  std::set<std::pair<uint32_t, std::array<double, 3>>> lights;
-  for (const Patch& p : scene.patches) {
-    if (p.emission.Max() > 0)
-      lights.insert({p.surface, {p.emission.r, p.emission.g, p.emission.b}});
-  }
-  return lights.size();
-}
-
-// The emitter lights a point evaluates: all, or the light tree's cut.
+// The emitter lights a point evaluates: all of them, or the light tree's cut.
 uint64_t LightsPerPoint(const PatchScene& scene) {
-  const size_t lights = EmitterLights(scene);
-  return std::max<uint64_t>(1,
-                            lights > kExactLights ? std::min<size_t>(lights, kLightCut) : lights);
-}
-
-}  // namespace
-
-bool EmittersInDirectStart(const PatchScene& scene, const SolverSettings& settings) {
-  if (!GatherOn(settings)) return false;
-  // A shadow ray per point and emitter patch, at least 4 x 4 points per patch: no more than the
-  // gather's rays. Beyond, the rays per light are capped (DirectLightRaysPerLight) while that
-  // leaves every light kMinCappedLightRays, which serves a few finely meshed lights; a furnace's
-  // or a sky's emitters shoot, and so do many lights (a building of many rooms: there the start
-  // would cost as much as the gather, on the farm master's compute thread).
-  const uint64_t emitters = EmitterPatches(scene);
-  if (emitters == 0) return false;
-  if (emitters * 16 <= settings.gather_rays) return true;
-  return emitters * 4 <= scene.patches.size() &&
-         LightsPerPoint(scene) * 16 * kMinCappedLightRays <= settings.gather_rays;
-}
-
-uint32_t DirectLightRaysPerLight(const PatchScene& scene, const SolverSettings& settings) {
-  if (!EmittersInDirectStart(scene, settings)) return 0;
-  const uint64_t emitters = EmitterPatches(scene);
-  if (emitters * 16 <= settings.gather_rays) return 0;  // every patch its rays, as always
-  return static_cast<uint32_t>(
-      std::max<uint64_t>(1, settings.gather_rays / (16 * LightsPerPoint(scene))));
-}
-
-uint32_t DirectLightSections(const PatchScene& scene, const SolverSettings& settings) {
-  // Punctual lights have no surface to shoot from: they are always in the start.
-  uint64_t sources = scene.lights.size();
-  if (EmittersInDirectStart(scene, settings)) {
-    const uint64_t emitters = EmitterPatches(scene);
-    const uint32_t per_light = DirectLightRaysPerLight(scene, settings);
-    sources += per_light == 0
-                   ? emitters
-                   : std::min<uint64_t>(emitters, uint64_t(per_light) * LightsPerPoint(scene));
+  std::set<LightKey> lights;
+  for (const Patch& p : scene.patches) {
+    if (p.emission.Max() > 0) lights.insert(LightKeyOf(p));
   }
+  const size_t n = lights.size();
+  return std::max<uint64_t>(1, n > kExactLights ? std::min<size_t>(n, kLightCut) : n);
+}
+
+// How a solve with these settings starts: whether the emitter patches are in the start, each
+// light's cap on shadow rays (0: a ray per patch) and the emitters' shadow rays per point.
+struct StartPlan {
+  bool emitters = false;
+  uint32_t rays_per_light = 0;
+  uint64_t emitter_rays = 0;
+};
+
+StartPlan PlanStart(const PatchScene& scene, const SolverSettings& settings) {
+  StartPlan plan;
+  if (!GatherOn(settings)) return plan;
+  // A shadow ray per point and emitter patch, at least 4 x 4 points per patch: no more than the
+  // gather's rays. Beyond, the rays per light are capped while that leaves every light
+  // kMinCappedLightRays, which serves a few finely meshed lights; a furnace's or a sky's emitters
+  // shoot, and so do many lights (a building of many rooms: there the start would cost as much as
+  // the gather, on the farm master's compute thread).
+  const uint64_t emitters = EmitterPatches(scene);
+  if (emitters == 0) return plan;
+  if (emitters * 16 <= settings.gather_rays) {
+    plan.emitters = true;
+    plan.emitter_rays = emitters;
+    return plan;
+  }
+  if (emitters * 4 > scene.patches.size()) return plan;
+  const uint64_t lights = LightsPerPoint(scene);
+  if (lights * 16 * kMinCappedLightRays > settings.gather_rays) return plan;
+  plan.emitters = true;
+  plan.rays_per_light = static_cast<uint32_t>(settings.gather_rays / (16 * lights));
+  plan.emitter_rays = std::min<uint64_t>(emitters, uint64_t(plan.rays_per_light) * lights);
+  return plan;
+}
+
+uint32_t SectionsOf(const StartPlan& plan, const PatchScene& scene,
+                    const SolverSettings& settings) {
+  // Punctual lights have no surface to shoot from: they are always in the start.
+  const uint64_t sources = scene.lights.size() + plan.emitter_rays;
   if (sources == 0) return 0;
   // Big patches near a light need more points (the irradiance changes across the patch).
   const double rays = GatherOn(settings) ? double(settings.gather_rays) : 512.0;
@@ -310,14 +310,28 @@ uint32_t DirectLightSections(const PatchScene& scene, const SolverSettings& sett
       std::clamp(std::floor(std::sqrt(rays / (2.0 * double(sources)))), 4.0, 16.0));
 }
 
+}  // namespace
+
+bool EmittersInDirectStart(const PatchScene& scene, const SolverSettings& settings) {
+  return PlanStart(scene, settings).emitters;
+}
+
+uint32_t DirectLightRaysPerLight(const PatchScene& scene, const SolverSettings& settings) {
+  return PlanStart(scene, settings).rays_per_light;
+}
+
+uint32_t DirectLightSections(const PatchScene& scene, const SolverSettings& settings) {
+  return SectionsOf(PlanStart(scene, settings), scene, settings);
+}
+
 std::vector<Rgb> StartingDirectLight(const PatchScene& scene, const SolverSettings& settings,
                                      double* punctual_power) {
   if (punctual_power != nullptr) *punctual_power = 0;
-  const uint32_t sections = DirectLightSections(scene, settings);
+  const StartPlan plan = PlanStart(scene, settings);
+  const uint32_t sections = SectionsOf(plan, scene, settings);
   if (sections == 0) return {};
-  return PatchDirectLight(scene, sections, settings.seed, settings.threads,
-                          EmittersInDirectStart(scene, settings), punctual_power,
-                          DirectLightRaysPerLight(scene, settings));
+  return PatchDirectLight(scene, sections, settings.seed, settings.threads, plan.emitters,
+                          punctual_power, plan.rays_per_light);
 }
 
 std::vector<Rgb> PointsDirectLight(const PatchScene& scene,

@@ -120,8 +120,10 @@ bool EmittersInDirectStart(const PatchScene& scene, const SolverSettings& settin
 
 // The shadow rays a light gets at most per point in the direct-light start and the display (0: no
 // limit): the gather's rays over 16 points and the lights a point evaluates (all of them, or the
-// light tree's cut), at least one. So the start costs about the gather, however finely the lights
-// are meshed; a light of no more patches than that is sampled patch by patch, as before.
+// light tree's cut), at least kMinCappedLightRays where the emitter patches are capped at all (0
+// where EmittersInDirectStart is false or every emitter patch fits the gather's rays). So the
+// start costs about the gather, however finely the lights are meshed; a light of no more patches
+// than that is sampled patch by patch, as before.
 uint32_t DirectLightRaysPerLight(const PatchScene& scene, const SolverSettings& settings);
 
 // The points per side of each patch at which a solve with these settings computes the direct
