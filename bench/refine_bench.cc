@@ -1,6 +1,6 @@
 // refine_bench: adaptive refinement against uniform meshes, samplers and solver settings on the
-// Cornell box, the seed paper's room and a hard-shadow scene, each against a fine reference
-// (bench/refine/). It prints a line per row and writes the figures as JSON
+// Cornell box, the seed paper's room, a hard-shadow scene and the 2 x 2 building, each against a
+// fine reference (bench/refine/). It prints a line per row and writes the figures as JSON
 // (bench/results/refine_bench.json; scripts/bench-report makes docs/BENCHMARKS-adaptive.md of it).
 // Every figure is from one run (timings on a shared machine: read ratios, not absolute seconds).
 #include <chrono>
@@ -23,7 +23,7 @@ constexpr char kUsage[] =
     "usage: refine_bench [--quick] [--scene NAME] [--json PATH] [--images DIR]\n"
     "                    [--reference-cache DIR]\n"
     "  --quick       smallest meshes and budgets (a smoke run of a minute or two)\n"
-    "  --scene NAME  only this scene (cornell-box, seed-room, hard-shadow)\n"
+    "  --scene NAME  only this scene (cornell-box, seed-room, hard-shadow, building-2x2)\n"
     "  --json PATH   write the figures there (default: bench/results/refine_bench.json)\n"
     "  --images DIR  also write every row's image and its difference from the reference\n"
     "  --reference-cache DIR  keep the reference solves there and reuse them in later runs\n";

@@ -79,12 +79,11 @@ int RunBuilding(const BuildingOptions& options) {
     PrintError("building: " + model.error());
     return kExitBadInput;
   }
-  // The camera in the first room, looking across it toward its far corner.
-  const scenegen::RoomBox first = scenegen::RoomAt(params, 0, 0, 0);
+  const scenegen::RoomView view = scenegen::FirstRoomView(params);
   scenegen::JobFileSettings job;
   job.patch_size = options.patch_size;
-  job.eye = first.lo + Vec3{0.3, 1.6, 0.3};
-  job.target = {first.hi.x, first.lo.y + 0.8, first.hi.z};
+  job.eye = view.eye;
+  job.target = view.target;
   const Result<std::string> written = scenegen::WriteScene(*model, options.out, options.name, job);
   if (!written.ok()) {
     PrintError(written.error());

@@ -118,6 +118,11 @@ RoomBox RoomAt(const BuildingParams& p, int floor, int i, int k) {
   return r;
 }
 
+RoomView FirstRoomView(const BuildingParams& params) {
+  const RoomBox first = RoomAt(params, 0, 0, 0);
+  return {first.lo + Vec3{0.3, 1.6, 0.3}, {first.hi.x, first.lo.y + 0.8, first.hi.z}};
+}
+
 ShellMaterials AddShellMaterials(SceneModel* model) {
   ShellMaterials m;
   m.floor = model->AddMaterial({"floor", {0.45, 0.4, 0.35}, {}});

@@ -29,6 +29,13 @@ struct RoomBox {
 };
 RoomBox RoomAt(const BuildingParams& params, int floor, int i, int k);
 
+// The view the building's job files get: from near the first room's lo corner at eye height,
+// across the room toward its far corner.
+struct RoomView {
+  Vec3 eye, target;
+};
+RoomView FirstRoomView(const BuildingParams& params);
+
 // Materials of the shell and the lights, added to the model.
 struct ShellMaterials {
   uint32_t floor, wall, ceiling, door_frame, ceiling_light, daylight;

@@ -75,11 +75,11 @@ std::string WriteBuilding(int rooms, const std::string& dir, const std::string& 
   params.rooms_x = params.rooms_z = rooms;
   Result<scenegen::SceneModel> model = scenegen::GenerateBuilding(params);
   if (!model) throw std::runtime_error(model.error());
-  const scenegen::RoomBox first = scenegen::RoomAt(params, 0, 0, 0);
+  const scenegen::RoomView view = scenegen::FirstRoomView(params);
   scenegen::JobFileSettings job;
   job.patch_size = 0.25;  // radfarm building's default
-  job.eye = first.lo + Vec3{0.3, 1.6, 0.3};
-  job.target = {first.hi.x, first.lo.y + 0.8, first.hi.z};
+  job.eye = view.eye;
+  job.target = view.target;
   Result<std::string> written = scenegen::WriteScene(*model, dir, name, job);
   if (!written) throw std::runtime_error(written.error());
   return *written;

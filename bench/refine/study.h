@@ -13,13 +13,19 @@
 namespace radfarm::bench {
 
 struct StudyScene {
-  std::string name;       // file stem under scenes/: NAME.toml is the job
+  // The file stem under scenes/ (NAME.toml is the job), or the name of the generated building.
+  std::string name;
   double default_size;    // the job file's patch size
   double reference_size;  // also the adaptive runs' minimum element size
   uint64_t reference_shot_rays;
   std::vector<double> uniform_sizes;
   std::vector<double> adaptive_starts;
   std::vector<double> tolerances;
+  // Above 0: the procedural building of building_rooms x building_rooms rooms (scenegen/, as
+  // `radfarm building` writes it, its view from the first room) instead of scenes/NAME.toml.
+  int building_rooms = 0;
+  // The samplers', solver settings' and ray budgets' rows beside uniform and adaptive meshes.
+  bool compare_settings = true;
 };
 
 struct Row {
