@@ -13,20 +13,27 @@ double Quantile(std::vector<double> values, double q) {
 }
 
 ErrorSummary ScoreDisplay(std::vector<PointScore>* scores, double dark_fraction) {
-  ErrorSummary s;
-  s.points = uint32_t(scores->size());
   std::vector<double> refs;
   for (const PointScore& p : *scores) refs.push_back(p.reference.radiance.Sum());
   const double dark_below = dark_fraction * Quantile(refs, 0.5);
-  std::vector<double> errors, noise;
-  double bias = 0;
-  for (size_t i = 0; i < scores->size(); ++i) {
-    PointScore& p = (*scores)[i];
+  for (PointScore& p : *scores) {
     const double ref = p.reference.radiance.Sum();
-    p.dark = !(ref > dark_below);
-    p.relative_error = 0;
     // Dark first: the display has no triangles where the mesher dropped covered ground (under a
     // block), and the light there is nothing.
+    p.dark = !(ref > dark_below);
+    p.relative_error = !p.dark && p.display ? (p.display->Sum() - ref) / ref : 0;
+  }
+  return SummarizeScores(*scores);
+}
+
+ErrorSummary SummarizeScores(const std::vector<PointScore>& scores, const std::vector<bool>& keep) {
+  ErrorSummary s;
+  std::vector<double> errors, noise;
+  double bias = 0;
+  for (size_t i = 0; i < scores.size(); ++i) {
+    if (!keep.empty() && !keep[i]) continue;
+    const PointScore& p = scores[i];
+    ++s.points;
     if (p.dark) {
       ++s.dark;
       continue;
@@ -35,7 +42,6 @@ ErrorSummary ScoreDisplay(std::vector<PointScore>* scores, double dark_fraction)
       ++s.unfound;
       continue;
     }
-    p.relative_error = (p.display->Sum() - ref) / ref;
     const double e = std::abs(p.relative_error);
     errors.push_back(e);
     noise.push_back(p.reference.relative_error);

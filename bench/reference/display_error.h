@@ -41,6 +41,11 @@ inline constexpr double kDarkFraction = 0.01;
 // Fills each score's relative_error and dark flag, and summarises.
 ErrorSummary ScoreDisplay(std::vector<PointScore>* scores, double dark_fraction = kDarkFraction);
 
+// The summary of the scores `keep` selects (all of them when it is empty), as ScoreDisplay left
+// them: a subset is judged dark by the whole set's median. worst_point indexes `scores`.
+ErrorSummary SummarizeScores(const std::vector<PointScore>& scores,
+                             const std::vector<bool>& keep = {});
+
 // The q-quantile (0..1) of `values` by the nearest-rank rule; 0 when empty.
 double Quantile(std::vector<double> values, double q);
 

@@ -10,7 +10,8 @@
 // from radiosity.ply, N area-uniform points of the input's surfaces, the reference there to a
 // relative standard error E, and the display's relative error: median, p95, worst, mean bias; then
 // the same on N points area-uniform over the band within W patch sizes of another surface
-// (contact lines, corners, the slit above a hanging lamp), where a display's errors gather.
+// (contact lines, corners, the slit above a hanging lamp), where a display's errors gather, and
+// the band split by how each point's surface meets the nearest (shared edge, junction, gap).
 // Prints a table; writes every point's figures as JSON (default
 // bench/results/reference_bench.json). With --reference-from, a case whose points are those of the
 // same case in that earlier JSON takes their reference from it instead of tracing again: the
@@ -24,6 +25,7 @@
 #include <vector>
 
 #include "bench/bench_json.h"
+#include "bench/reference/band_contact.h"
 #include "bench/reference/display_error.h"
 #include "bench/reference/display_lookup.h"
 #include "bench/reference/path_tracer.h"
@@ -147,6 +149,28 @@ std::vector<PointEstimate> EarlierReference(const Options& o, const std::string&
   return {};
 }
 
+nlohmann::json SummaryJson(const ErrorSummary& s) {
+  return {{"points", s.points},
+          {"scored", s.scored},
+          {"dark", s.dark},
+          {"unfound", s.unfound},
+          {"median", s.median},
+          {"p95", s.p95},
+          {"worst", s.worst},
+          {"worst_point", s.worst_point},
+          {"mean_bias", s.mean_bias},
+          {"reference_median_error", s.reference_median_error},
+          {"reference_p95_error", s.reference_p95_error}};
+}
+
+void PrintSummary(const std::string& name, const std::string& set, long long patches,
+                  double render_seconds, double seconds, const ErrorSummary& s) {
+  std::printf("%-20s %-11s %8lld %8.2f %8.2f %7.2f%% %7.2f%% %7.2f%% %+7.2f%% %7.2f%% %5u %5u\n",
+              name.c_str(), set.c_str(), patches, render_seconds, seconds, 100 * s.median,
+              100 * s.p95, 100 * s.worst, 100 * s.mean_bias, 100 * s.reference_median_error, s.dark,
+              s.unfound);
+}
+
 nlohmann::json RunCase(const Options& o, const std::string& name, const std::string& job_path) {
   Result<Job> job = LoadJob(job_path);
   if (!job) throw std::runtime_error(job.error());
@@ -173,6 +197,7 @@ nlohmann::json RunCase(const Options& o, const std::string& name, const std::str
   // when the job leaves the patch size automatic).
   const double band = job->mesh.patch_size > 0 ? o.band_patches * job->mesh.patch_size
                                                : 0.025 * (*scene)->diagonal();
+  const ContactClassifier classifier(**scene, *input);
   nlohmann::json sets = nlohmann::json::object();
   double trace_seconds = 0;
   const std::pair<const char*, std::vector<SurfacePoint>> point_sets[] = {
@@ -195,19 +220,32 @@ nlohmann::json RunCase(const Options& o, const std::string& name, const std::str
       rays += refs[i].rays;
     }
     const ErrorSummary s = ScoreDisplay(&scores);
-    std::printf("%-20s %-7s %8lld %8.2f %8.2f %7.2f%% %7.2f%% %7.2f%% %+7.2f%% %7.2f%% %5u %5u\n",
-                name.c_str(), set, (long long)stats.value("patches", 0), render_seconds, seconds,
-                100 * s.median, 100 * s.p95, 100 * s.worst, 100 * s.mean_bias,
-                100 * s.reference_median_error, s.dark, s.unfound);
+    const long long patches = stats.value("patches", 0);
+    PrintSummary(name, set, patches, render_seconds, seconds, s);
     if (s.worst_point >= 0) {
       const PointScore& w = scores[size_t(s.worst_point)];
       std::printf("%29s worst at (%g, %g, %g) facing (%g, %g, %g): reference %g, display %g\n", "",
                   w.point.position.x, w.point.position.y, w.point.position.z, w.point.normal.x,
                   w.point.normal.y, w.point.normal.z, w.reference.radiance.Sum(), w.display->Sum());
     }
+    // The band's points by how their surface meets the nearest one (band_contact.h).
+    std::vector<Contact> contact;
+    for (const PointScore& p : scores) contact.push_back(classifier.Classify(p.point, band));
+    nlohmann::json contacts = nlohmann::json::object();
+    if (std::string(set) == "band") {
+      for (Contact c : kContacts) {
+        std::vector<bool> keep;
+        for (Contact pc : contact) keep.push_back(pc == c);
+        const ErrorSummary cs = SummarizeScores(scores, keep);
+        PrintSummary(name, std::string("  ") + ContactName(c), patches, render_seconds, seconds,
+                     cs);
+        contacts[ContactName(c)] = SummaryJson(cs);
+      }
+    }
     std::fflush(stdout);
     nlohmann::json raw = nlohmann::json::array();
-    for (const PointScore& p : scores) {
+    for (size_t i = 0; i < scores.size(); ++i) {
+      const PointScore& p = scores[i];
       const uint32_t material = (*scene)->triangles()[p.point.triangle].material;
       raw.push_back({{"position", VecJson(p.point.position)},
                      {"normal", VecJson(p.point.normal)},
@@ -218,24 +256,15 @@ nlohmann::json RunCase(const Options& o, const std::string& name, const std::str
                      {"samples", p.reference.samples},
                      {"display", p.display ? RgbJson(*p.display) : nlohmann::json()},
                      {"relative_error", p.relative_error},
-                     {"dark", p.dark}});
+                     {"dark", p.dark},
+                     {"contact", ContactName(contact[i])}});
     }
     sets[set] = {{"reference_seconds", seconds},
                  {"reference_reused", reused},
                  {"reference_samples", samples},
                  {"reference_rays", rays},
-                 {"summary",
-                  {{"points", s.points},
-                   {"scored", s.scored},
-                   {"dark", s.dark},
-                   {"unfound", s.unfound},
-                   {"median", s.median},
-                   {"p95", s.p95},
-                   {"worst", s.worst},
-                   {"worst_point", s.worst_point},
-                   {"mean_bias", s.mean_bias},
-                   {"reference_median_error", s.reference_median_error},
-                   {"reference_p95_error", s.reference_p95_error}}},
+                 {"summary", SummaryJson(s)},
+                 {"contacts", contacts},
                  {"points", raw}};
   }
   return {{"name", name},
@@ -253,7 +282,7 @@ int Main(int argc, char** argv) {
   Options o;
   if (!ParseOptions(argc, argv, &o)) return 2;
   const bench::MachineInfo machine = bench::ReadMachineInfo(argc, argv);
-  std::printf("%-20s %-7s %8s %8s %8s %8s %8s %8s %8s %8s %5s %5s\n", "scene", "points", "patches",
+  std::printf("%-20s %-11s %8s %8s %8s %8s %8s %8s %8s %8s %5s %5s\n", "scene", "points", "patches",
               "render s", "ref s", "median", "p95", "worst", "bias", "ref err", "dark", "miss");
   nlohmann::json cases = nlohmann::json::array();
   const auto start = std::chrono::steady_clock::now();

@@ -36,9 +36,12 @@ class AreaSampler {
 
 }  // namespace
 
-bool NearAnotherSurface(const ReferenceScene& scene, const SurfacePoint& point, double band) {
+SurfaceHit NearestSurfaceWithin(const ReferenceScene& scene, const SurfacePoint& point,
+                                double band) {
   Vec3 t, b;
   OrthonormalBasis(point.normal, &t, &b);
+  SurfaceHit nearest;
+  double nearest_distance = band;
   for (uint32_t k = 0; k < kBandProbes; ++k) {
     // A fixed, evenly spread set: a spiral over the hemisphere, uniform in solid angle.
     const double z = 1 - (k + 0.5) / kBandProbes;
@@ -46,11 +49,18 @@ bool NearAnotherSurface(const ReferenceScene& scene, const SurfacePoint& point, 
     const double phi = 2.399963229728653 * k;  // the golden angle
     const Vec3 d = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + point.normal * z;
     const SurfaceHit hit = scene.Trace(point.position, d, point.normal);
-    if (hit.triangle != SurfaceHit::kMiss && Length(hit.position - point.position) < band) {
-      return true;
+    if (hit.triangle == SurfaceHit::kMiss) continue;
+    const double distance = Length(hit.position - point.position);
+    if (distance < nearest_distance) {
+      nearest = hit;
+      nearest_distance = distance;
     }
   }
-  return false;
+  return nearest;
+}
+
+bool NearAnotherSurface(const ReferenceScene& scene, const SurfacePoint& point, double band) {
+  return NearestSurfaceWithin(scene, point, band).triangle != SurfaceHit::kMiss;
 }
 
 std::vector<SurfacePoint> SampleBandPoints(const ReferenceScene& scene, uint32_t count,

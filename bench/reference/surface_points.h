@@ -20,6 +20,9 @@ std::vector<SurfacePoint> SampleSurfacePoints(const ReferenceScene& scene, uint3
 // Contact lines, corners, the slit above a hanging lamp and the ground beside a block are near.
 bool NearAnotherSurface(const ReferenceScene& scene, const SurfacePoint& point, double band);
 inline constexpr uint32_t kBandProbes = 64;
+// The nearest of those probes' hits closer than `band`; a miss (SurfaceHit::kMiss) when none is.
+SurfaceHit NearestSurfaceWithin(const ReferenceScene& scene, const SurfacePoint& point,
+                                double band);
 
 // `count` points area-uniform over the part of the surfaces near another (NearAnotherSurface):
 // area-uniform candidates (seeded apart from SampleSurfacePoints') kept when near, up to

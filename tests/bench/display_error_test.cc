@@ -79,5 +79,28 @@ TEST(DisplayErrorTest, SummaryLeavesOutDarkAndUnfoundPoints) {
   EXPECT_TRUE(scores[20].dark);
 }
 
+TEST(DisplayErrorTest, ASubsetIsSummarisedByTheWholeSetsDarkness) {
+  std::vector<PointScore> scores;
+  for (int i = 0; i < 10; ++i) scores.push_back(Score(1, 1 + 0.01 * i));  // 0% .. 9%
+  scores.push_back(Score(1e-4, 1));  // dark against the whole set's median
+  scores.push_back(Score(1, 0.7));   // -30%
+  ScoreDisplay(&scores);
+  // The odd ones: 1%, 3%, 5%, 7%, 9%, and the last two.
+  std::vector<bool> keep(scores.size(), false);
+  for (size_t i = 1; i < scores.size(); i += 2) keep[i] = true;
+  const ErrorSummary s = SummarizeScores(scores, keep);
+  EXPECT_EQ(s.points, 6u);
+  EXPECT_EQ(s.scored, 6u);  // the dark point is index 10: not kept
+  EXPECT_EQ(s.dark, 0u);
+  EXPECT_NEAR(s.median, 0.05, 1e-12);
+  EXPECT_NEAR(s.worst, 0.3, 1e-12);
+  EXPECT_EQ(s.worst_point, 11);
+  EXPECT_NEAR(s.mean_bias, (0.01 + 0.03 + 0.05 + 0.07 + 0.09 - 0.3) / 6, 1e-12);
+  keep.assign(scores.size(), false);
+  keep[10] = true;
+  EXPECT_EQ(SummarizeScores(scores, keep).dark, 1u);
+  EXPECT_EQ(SummarizeScores(scores, keep).scored, 0u);
+}
+
 }  // namespace
 }  // namespace radfarm::reference
