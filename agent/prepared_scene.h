@@ -28,6 +28,7 @@ struct PreparedScene {
 
 // Where PrepareScene's time went, in seconds (for the agent's debug log).
 struct PrepareTimes {
+  double unpack = 0;            // a fetched scene decompressed and its SHA-256 checked
   double check = 0;             // every value checked
   double decoded_callback = 0;  // `decoded` (the agent writes the file)
   double caster = 0;            // the RayCaster built

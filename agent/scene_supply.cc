@@ -104,7 +104,6 @@ void SceneSupply::OnChunk(const protocol::SceneChunkMsg& chunk) {
   Pending& pending = found->second;
   --pending.requests_in_flight;
   ++pending.chunks;
-  const auto adding = std::chrono::steady_clock::now();
   if (Status added = pending.assembler->Add(chunk); !added) {
     Abandon(hash, pending.requests_in_flight);
     Fail(hash, protocol::LeaseReturnReason::kFailed,
@@ -112,15 +111,12 @@ void SceneSupply::OnChunk(const protocol::SceneChunkMsg& chunk) {
     return;
   }
   if (pending.assembler->complete()) {
-    std::vector<uint8_t> blob = pending.assembler->TakeBlob();
-    LogLine(LogLevel::kInfo, "agent") << Name(hash) << ": fetched " << blob.size() << " bytes in "
-                                      << pending.chunks << " chunks from " << master_;
-    LogLine(LogLevel::kDebug, "agent")
-        << Name(hash) << ": decompressed and checked in "
-        << Ms(std::chrono::duration<double>(std::chrono::steady_clock::now() - adding).count())
-        << " ms";
+    protocol::ReceivedScene received = pending.assembler->TakeReceived();
+    LogLine(LogLevel::kInfo, "agent")
+        << Name(hash) << ": fetched " << received.compressed.size() << " bytes in "
+        << pending.chunks << " chunks from " << master_;
     pending.assembler.reset();
-    PrepareFetched(hash, std::move(blob));
+    PrepareFetched(hash, std::move(received));
     return;
   }
   if (Status more = RequestMore(pending); !more) {
@@ -152,11 +148,12 @@ void SceneSupply::Abandon(const protocol::SceneHash& hash, uint32_t answers_due)
   pending_.erase(hash);
 }
 
-void SceneSupply::PrepareFetched(const protocol::SceneHash& hash, std::vector<uint8_t> blob) {
+void SceneSupply::PrepareFetched(const protocol::SceneHash& hash,
+                                 protocol::ReceivedScene received) {
   pending_[hash].stage = Stage::kPreparing;
   const SceneStore* store = store_ ? &*store_ : nullptr;
   Status submitted = io_.Submit(
-      [store, hash, blob = std::move(blob)]() mutable -> Prepared {
+      [store, hash, received = std::move(received)]() mutable -> Prepared {
         Prepared prepared;
         // Written once decoded (an undecodable scene is not kept), before the caster is built
         // from the file; made durable and put in place only once the scene is ready (OnPrepared).
@@ -170,8 +167,18 @@ void SceneSupply::PrepareFetched(const protocol::SceneHash& hash, std::vector<ui
           prepared.unsaved = std::make_shared<AtomicFileWriter>(std::move(written).value());
           return prepared.unsaved->temporary_path();
         };
+        const auto unpacking = std::chrono::steady_clock::now();
+        Result<std::vector<uint8_t>> blob = protocol::UnpackReceived(received);
+        received.compressed = {};
+        prepared.times.unpack =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - unpacking).count();
+        if (!blob) {
+          prepared.kind = Prepared::Kind::kBadTransfer;
+          prepared.detail = blob.error();
+          return prepared;
+        }
         Result<std::shared_ptr<const PreparedScene>> scene =
-            PrepareScene(hash, std::move(blob), save, &prepared.times);
+            PrepareScene(hash, std::move(blob).value(), save, &prepared.times);
         if (!scene) {
           prepared.kind = Prepared::Kind::kUndecodable;
           prepared.detail = scene.error();
@@ -206,9 +213,10 @@ void SceneSupply::OnPrepared(const protocol::SceneHash& hash, Result<Prepared> p
           << (prepared->detail.empty() ? "" : "; " + prepared->detail);
       const PrepareTimes& t = prepared->times;
       LogLine(LogLevel::kDebug, "agent")
-          << Name(hash) << ": checked in " << Ms(t.check) << " ms, written in "
-          << Ms(t.decoded_callback) << " ms, ray caster built in " << Ms(t.caster)
-          << " ms, shapes decoded in " << Ms(t.shapes) << " ms";
+          << Name(hash) << ": decompressed and its SHA-256 checked in " << Ms(t.unpack)
+          << " ms, checked in " << Ms(t.check) << " ms, written in " << Ms(t.decoded_callback)
+          << " ms, ray caster built in " << Ms(t.caster) << " ms, shapes decoded in "
+          << Ms(t.shapes) << " ms";
       pending_.erase(found);
       recent_.Insert(prepared->scene);
       callbacks_.on_ready(prepared->scene);
@@ -225,6 +233,10 @@ void SceneSupply::OnPrepared(const protocol::SceneHash& hash, Result<Prepared> p
       }
       return;
     }
+    case Prepared::Kind::kBadTransfer:
+      Fail(hash, protocol::LeaseReturnReason::kFailed,
+           "fetch from " + master_ + " failed: " + prepared->detail);
+      return;
     case Prepared::Kind::kUndecodable:
       undecodable_.insert(hash);
       Fail(hash, protocol::LeaseReturnReason::kFailed, prepared->detail);

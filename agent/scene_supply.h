@@ -5,7 +5,8 @@
 //   3. the master: SceneRequests through a SceneAssembler, up to kRequestWindow of them in flight
 //      (the master answers in order); the verified blob is then written to a temporary file in
 //      the state directory, which is fsynced and renamed into place only after on_ready.
-// Disk I/O, decoding and the RayCaster build run on the I/O work queue, never on the loop thread.
+// Disk I/O, decompression and the hash check, decoding and the RayCaster build run on the I/O work
+// queue, never on the loop thread.
 //
 // One scene's way (`pending_` holds it until it ends in on_ready or on_failed):
 //
@@ -14,8 +15,8 @@
 //     |                    +--no file, damaged file--+
 //     +--no state dir--------------------------------+--> kFetching --last chunk--> kPreparing
 //   kFetching --SceneUnavailable, bad chunk--> on_failed
-//   kPreparing --decoded, written, caster built--> on_ready, then the file committed (Commit);
-//              --cannot decode--> on_failed
+//   kPreparing --unpacked and checked, decoded, written, caster built--> on_ready, then the file
+//              committed (Commit); --bytes not the scene asked for, cannot decode--> on_failed
 //
 // A scene that cannot be decoded is remembered (same hash, same bytes) and refused at once later.
 // A fetch belongs to its connection: OnDisconnected abandons it; loads and builds run on.
@@ -83,7 +84,9 @@ class SceneSupply {
   };
   // What a work item found: a prepared scene, or why not.
   struct Prepared {
-    enum class Kind { kReady, kNotOnDisk, kUndecodable } kind = Kind::kNotOnDisk;
+    // kBadTransfer: the fetched bytes did not unpack to the scene asked for (a fault of that
+    // transfer, not of the scene: it may be fetched again).
+    enum class Kind { kReady, kNotOnDisk, kUndecodable, kBadTransfer } kind = Kind::kNotOnDisk;
     std::shared_ptr<const PreparedScene> scene;
     std::string detail;                         // a damaged file, a failed save, the decode error
     std::shared_ptr<AtomicFileWriter> unsaved;  // a fetched scene's file, to commit once ready
@@ -93,7 +96,7 @@ class SceneSupply {
   Status LoadFromDisk(const protocol::SceneHash& hash);
   Status StartFetch(const protocol::SceneHash& hash, Pending& pending);
   Status RequestMore(Pending& pending);
-  void PrepareFetched(const protocol::SceneHash& hash, std::vector<uint8_t> blob);
+  void PrepareFetched(const protocol::SceneHash& hash, protocol::ReceivedScene received);
   void OnPrepared(const protocol::SceneHash& hash, Result<Prepared> prepared);
   // Makes a fetched scene's file durable and puts it in place, on the I/O queue, after on_ready.
   void Commit(const protocol::SceneHash& hash, std::shared_ptr<AtomicFileWriter> unsaved);

@@ -97,25 +97,36 @@ Status SceneAssembler::Add(const SceneChunkMsg& chunk) {
   // The first request was sent before the size was known; never ask past the end.
   requested_ = std::min(std::max(requested_, received_), *total_size_);
   compressed_.insert(compressed_.end(), chunk.data.begin(), chunk.data.end());
-  if (received_ < *total_size_) return Ok{};
-  Result<std::vector<uint8_t>> blob = UnpackScene(compressed_, scene_size_, max_scene_bytes_);
-  compressed_.clear();
-  compressed_.shrink_to_fit();
-  if (!blob) return Fail(where + blob.error());
-  if (HashScene(*blob) != hash_) {
-    return Fail(where + "SHA-256 of the decompressed bytes does not match");
-  }
-  blob_ = std::move(blob).value();
-  complete_ = true;
+  complete_ = received_ >= *total_size_;
   return Ok{};
+}
+
+ReceivedScene SceneAssembler::TakeReceived() {
+  ReceivedScene received;
+  if (!complete_) return received;
+  received.hash = hash_;
+  received.scene_size = scene_size_;
+  received.max_scene_bytes = max_scene_bytes_;
+  received.compressed = std::move(compressed_);
+  compressed_.clear();
+  return received;
+}
+
+Result<std::vector<uint8_t>> UnpackReceived(const ReceivedScene& received) {
+  const std::string where = "scene " + HashToHex(received.hash).substr(0, 16) + ": ";
+  Result<std::vector<uint8_t>> blob =
+      UnpackScene(received.compressed, received.scene_size, received.max_scene_bytes);
+  if (!blob) return Error{where + blob.error()};
+  if (HashScene(*blob) != received.hash) {
+    return Error{where + "SHA-256 of the decompressed bytes does not match"};
+  }
+  return blob;
 }
 
 Status SceneAssembler::Fail(std::string reason) {
   failed_ = true;
   compressed_.clear();
   compressed_.shrink_to_fit();
-  blob_.clear();
-  blob_.shrink_to_fit();
   return Error{std::move(reason)};
 }
 

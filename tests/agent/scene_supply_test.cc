@@ -194,6 +194,39 @@ TEST(SceneSupplyTest, AnUndecodableSceneFailsAndIsNotFetchedAgain) {
   EXPECT_TRUE(h.requests.empty());
 }
 
+TEST(SceneSupplyTest, BytesThatAreNotTheSceneFailTheFetchOffTheLoopAndMayBeFetchedAgain) {
+  const std::vector<uint8_t> blob =
+      codec::EncodePatchScene(testing::VariedBoxScene(testing::kBigBox));
+  const protocol::SceneHash hash = protocol::HashScene(blob);
+  std::vector<uint8_t> tampered = blob;
+  tampered[tampered.size() / 2] ^= 1;  // the same size, another SHA-256
+  Harness h(std::nullopt);
+  ASSERT_TRUE(h.supply->Want(hash).ok());
+  // Served as the scene asked for: the chunks are in order, so the fetch completes and the
+  // unpacking, on the I/O queue, finds the hash wrong.
+  const protocol::PackedScene packed = protocol::PackScene(tampered);
+  while (!h.requests.empty()) {
+    protocol::SceneChunkMsg chunk = protocol::MakeSceneChunk(packed, h.requests.front()).value();
+    h.requests.pop_front();
+    chunk.scene_hash = hash;
+    h.supply->OnChunk(chunk);
+  }
+  EXPECT_TRUE(h.failures.empty());  // not on the loop thread, inside OnChunk
+  EXPECT_EQ(h.supply->busy(), 1u);
+  ASSERT_TRUE(h.RunUntilSettled());
+  ASSERT_EQ(h.failures.size(), 1u);
+  EXPECT_EQ(h.failures[0].first, protocol::LeaseReturnReason::kFailed);
+  EXPECT_NE(h.failures[0].second.find("SHA-256 of the decompressed bytes does not match"),
+            std::string::npos)
+      << h.failures[0].second;
+  EXPECT_NE(h.failures[0].second.find("test-master"), std::string::npos) << h.failures[0].second;
+  // A fault of that transfer, not of the scene: the next Want fetches it again.
+  ASSERT_TRUE(h.supply->Want(hash).ok());
+  h.Serve(blob);
+  ASSERT_TRUE(RunUntil(h.loop, [&] { return !h.ready.empty(); }));
+  EXPECT_EQ(h.failures.size(), 1u);
+}
+
 TEST(SceneSupplyTest, ABadChunkFailsTheFetchAndItsLateAnswersAreSkipped) {
   const std::vector<uint8_t> blob =
       codec::EncodePatchScene(testing::VariedBoxScene(testing::kBigBox));

@@ -21,8 +21,10 @@ std::vector<uint8_t> Blob(size_t size) {
   return b;
 }
 
-// Serves `scene` to `assembler` with up to `window` requests in flight, through the wire.
-Status Fetch(const PackedScene& scene, SceneAssembler* assembler, int window) {
+// Serves `scene` to `assembler` with up to `window` requests in flight, through the wire, then
+// unpacks what came (as the agent does on its work queue).
+Result<std::vector<uint8_t>> Fetch(const PackedScene& scene, SceneAssembler* assembler,
+                                   int window) {
   std::vector<SceneRequestMsg> in_flight;
   while (!assembler->complete()) {
     while (static_cast<int>(in_flight.size()) < window) {
@@ -38,7 +40,7 @@ Status Fetch(const PackedScene& scene, SceneAssembler* assembler, int window) {
     RADFARM_RETURN_IF_ERROR(wire);
     RADFARM_RETURN_IF_ERROR(assembler->Add(std::get<SceneChunkMsg>(wire->message)));
   }
-  return Ok{};
+  return UnpackReceived(assembler->TakeReceived());
 }
 
 TEST(ProtocolSceneTest, Sha256KnownAnswer) {
@@ -60,11 +62,13 @@ TEST(ProtocolSceneTest, ChunkedFetchReassemblesAndVerifies) {
       EXPECT_EQ(packed.hash, HashScene(blob));
       EXPECT_EQ(packed.size, size);
       SceneAssembler assembler(HashScene(blob), 1 << 20, 1000);
-      ASSERT_TRUE(Fetch(packed, &assembler, window)) << size;
+      Result<std::vector<uint8_t>> fetched = Fetch(packed, &assembler, window);
+      ASSERT_TRUE(fetched) << size << ": " << fetched.error();
       EXPECT_TRUE(assembler.complete());
       EXPECT_EQ(assembler.received_bytes(), packed.compressed.size());
-      EXPECT_EQ(assembler.TakeBlob(), blob);
+      EXPECT_EQ(*fetched, blob);
       EXPECT_FALSE(assembler.NextRequest());
+      EXPECT_TRUE(assembler.TakeReceived().compressed.empty());  // taken once
     }
   }
 }
@@ -74,12 +78,14 @@ TEST(ProtocolSceneTest, WrongContentFailsTheHashCheck) {
   std::vector<uint8_t> evil = blob;
   evil[4321] ^= 1;
   SceneAssembler assembler(HashScene(blob), 1 << 20, 1000);
-  Status s = Fetch(PackScene(evil), &assembler, 2);
+  Result<std::vector<uint8_t>> s = Fetch(PackScene(evil), &assembler, 2);
   ASSERT_FALSE(s);
   EXPECT_NE(s.error().find("SHA-256"), std::string::npos) << s.error();
-  EXPECT_FALSE(assembler.complete());
-  EXPECT_TRUE(assembler.failed());
-  EXPECT_TRUE(assembler.TakeBlob().empty());
+  EXPECT_NE(s.error().find(HashToHex(HashScene(blob)).substr(0, 16)), std::string::npos)
+      << s.error();
+  // Every byte came as asked: the transfer is complete, its content is what failed.
+  EXPECT_TRUE(assembler.complete());
+  EXPECT_FALSE(assembler.failed());
 }
 
 TEST(ProtocolSceneTest, BadChunksAreRejected) {
@@ -124,12 +130,12 @@ TEST(ProtocolSceneTest, AFrameExpandingBeyondItsDeclaredSizeIsRefused) {
   ASSERT_LT(bomb.compressed.size(), 10000u);  // 64 MiB in a few KB
   bomb.size = 1000;                           // what the chunks declare
   SceneAssembler assembler(bomb.hash, 1 << 20);
-  Status s = Fetch(bomb, &assembler, 1);
+  Result<std::vector<uint8_t>> s = Fetch(bomb, &assembler, 1);
   ASSERT_FALSE(s);
   EXPECT_NE(s.error().find("zstd frame holds 67108864 bytes, the chunks declared 1000"),
             std::string::npos)
       << s.error();
-  EXPECT_TRUE(assembler.failed());
+  EXPECT_TRUE(assembler.complete());  // the chunks were in order; the unpacking refused them
   // Declared as it is, it is over the agent's limit, refused at the first chunk.
   bomb.size = zeros.size();
   SceneAssembler limited(bomb.hash, 1 << 20);
@@ -137,6 +143,7 @@ TEST(ProtocolSceneTest, AFrameExpandingBeyondItsDeclaredSizeIsRefused) {
   ASSERT_FALSE(s);
   EXPECT_NE(s.error().find("size 67108864 ("), std::string::npos) << s.error();
   EXPECT_NE(s.error().find("exceeds the limit of 1048576 bytes"), std::string::npos) << s.error();
+  EXPECT_TRUE(limited.failed());
 }
 
 TEST(ProtocolSceneTest, MakeSceneChunkRejectsOffsetsPastTheEnd) {
