@@ -177,6 +177,12 @@ void SimAgent::OnSceneChunk(const protocol::SceneChunkMsg& chunk) {
       RequestSceneChunks(it->second);
       return;
     }
+    // As a real agent's I/O queue does (once per scene in the swarm: SceneVerified).
+    if (Result<std::vector<uint8_t>> unpacked = protocol::UnpackReceived(it->second.TakeReceived());
+        !unpacked) {
+      Fail("scene fetch failed: " + unpacked.error());
+      return;
+    }
     hooks_.OnSceneVerified(chunk.scene_hash);
   }
   scenes_.insert(chunk.scene_hash);

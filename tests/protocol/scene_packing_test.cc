@@ -57,7 +57,7 @@ TEST(ScenePackingTest, BrokenFramesAreRefused) {
   streamed.resize(out.pos);
   ExpectRefused(UnpackScene(streamed, 5000, 5000), "zstd frame without its content size");
   // A frame cut short. (A flipped byte inside may still decompress: the SHA-256 of the result,
-  // checked by SceneAssembler, is what catches that.)
+  // checked by UnpackReceived, is what catches that.)
   const std::vector<uint8_t> packed = PackScene(blob).compressed;
   ExpectRefused(UnpackScene(std::span(packed).first(packed.size() - 3), 5000, 5000),
                 "cannot decompress");
