@@ -11,6 +11,7 @@
 #include "input/input_scene.h"
 #include "scenegen/building.h"
 #include "scenegen/obj_writer.h"
+#include "scenegen/room_layout.h"
 
 namespace radfarm::bench {
 
@@ -30,6 +31,20 @@ BenchScene LoadBenchScene(const std::string& name, const std::string& path, doub
   scene.mesh = std::make_unique<PatchMesh>(std::move(mesh).value());
   scene.load_seconds = clock.Seconds();
   return scene;
+}
+
+std::string WriteBuildingJob(const scenegen::BuildingParams& params, double patch_size,
+                             const std::string& dir, const std::string& name) {
+  Result<scenegen::SceneModel> model = scenegen::GenerateBuilding(params);
+  if (!model.ok()) throw std::runtime_error(model.error());
+  const scenegen::RoomView view = scenegen::FirstRoomView(params);
+  scenegen::JobFileSettings job;
+  job.patch_size = patch_size;
+  job.eye = view.eye;
+  job.target = view.target;
+  Result<std::string> written = scenegen::WriteScene(*model, dir, name, job);
+  if (!written.ok()) throw std::runtime_error(written.error());
+  return *written;
 }
 
 BenchScene LoadBuildingBenchScene(const std::string& name, const scenegen::BuildingParams& params,

@@ -24,6 +24,12 @@ struct BenchScene {
 // the loader's or mesher's message on failure.
 BenchScene LoadBenchScene(const std::string& name, const std::string& path, double patch_size);
 
+// The procedural building as `radfarm building` writes it (its job file with `patch_size`, 0 for
+// automatic, and the camera in the first room), as DIR/NAME.obj, .mtl and .toml: the job file's
+// path. Throws std::runtime_error with the generator's or writer's message on failure.
+std::string WriteBuildingJob(const scenegen::BuildingParams& params, double patch_size,
+                             const std::string& dir, const std::string& name);
+
 // The procedural building (scenegen/) as `radfarm building` writes it: generated, written to a
 // temporary directory, loaded and meshed like any OBJ; the files are removed afterwards.
 BenchScene LoadBuildingBenchScene(const std::string& name, const scenegen::BuildingParams& params,

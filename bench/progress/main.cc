@@ -18,12 +18,10 @@
 #include <vector>
 
 #include "bench/bench_json.h"
+#include "bench/bench_scene.h"
 #include "bench/machine_info.h"
 #include "bench/progress/eta_trace.h"
 #include "bench/stopwatch.h"
-#include "scenegen/building.h"
-#include "scenegen/obj_writer.h"
-#include "scenegen/room_layout.h"
 
 namespace radfarm::bench {
 namespace {
@@ -73,16 +71,7 @@ Options Parse(int argc, char** argv) {
 std::string WriteBuilding(int rooms, const std::string& dir, const std::string& name) {
   scenegen::BuildingParams params;
   params.rooms_x = params.rooms_z = rooms;
-  Result<scenegen::SceneModel> model = scenegen::GenerateBuilding(params);
-  if (!model) throw std::runtime_error(model.error());
-  const scenegen::RoomView view = scenegen::FirstRoomView(params);
-  scenegen::JobFileSettings job;
-  job.patch_size = 0.25;  // radfarm building's default
-  job.eye = view.eye;
-  job.target = view.target;
-  Result<std::string> written = scenegen::WriteScene(*model, dir, name, job);
-  if (!written) throw std::runtime_error(written.error());
-  return *written;
+  return WriteBuildingJob(params, 0.25, dir, name);  // radfarm building's default patch size
 }
 
 // |predicted / actual - 1| of the judged points; a "?" counts as infinitely wrong.

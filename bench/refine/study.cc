@@ -1,23 +1,19 @@
 #include "bench/refine/study.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <stdexcept>
 #include <utility>
 
+#include "bench/bench_scene.h"
 #include "core/direct_light.h"
 #include "job/job.h"
 #include "mesh/patch_mesh.h"
 #include "output/png_writer.h"
 #include "output/tone_map.h"
-#include "scenegen/building.h"
-#include "scenegen/obj_writer.h"
-#include "scenegen/room_layout.h"
 #include "solve/local_solve.h"
+#include "testing/temp_dir.h"
 
 namespace radfarm::bench {
 namespace {
@@ -55,27 +51,8 @@ class Study {
   void LoadBuilding(const StudyScene& scene) {
     scenegen::BuildingParams params;
     params.rooms_x = params.rooms_z = scene.building_rooms;
-    Result<scenegen::SceneModel> model = scenegen::GenerateBuilding(params);
-    if (!model.ok()) throw std::runtime_error(model.error());
-    const scenegen::RoomView view = scenegen::FirstRoomView(params);
-    scenegen::JobFileSettings settings;
-    settings.patch_size = scene.default_size;
-    settings.eye = view.eye;
-    settings.target = view.target;
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() /
-        ("radfarm-refine-bench-" + scene.name + "-" + std::to_string(::getpid()));
-    const Result<std::string> written =
-        scenegen::WriteScene(*model, dir.string(), scene.name, settings);
-    if (!written.ok()) throw std::runtime_error(written.error());
-    struct RemoveDir {
-      std::filesystem::path dir;
-      ~RemoveDir() {
-        std::error_code ignored;
-        std::filesystem::remove_all(dir, ignored);
-      }
-    } remove{dir};
-    Load(*written);
+    const testing::TempDir dir("radfarm-refine-bench");
+    Load(WriteBuildingJob(params, scene.default_size, dir.path(), scene.name));
   }
 
   StudyResult Run() {
