@@ -13,6 +13,7 @@
 #include "mesh/contact_cut.h"
 #include "mesh/hidden_faces.h"
 #include "mesh/memory_estimate.h"
+#include "mesh/narrow_space.h"
 #include "mesh/polygon_split.h"
 #include "mesh/surfaces.h"
 
@@ -138,6 +139,28 @@ PatchSizeSummary SummarizePatchSizes(const std::vector<SplitPlan>& plans,
   return summary;
 }
 
+// A face's front pieces in Build's order: its split cut along the footprints on it; the parts under
+// each sheet apart (contact_cut.h), one list per sheet; then what is left (open).
+struct FacePieces {
+  std::vector<PieceCorners> open;
+  std::vector<std::vector<PieceCorners>> covered;
+
+  // The lists in Build's order: each sheet's covered pieces, then the open ones.
+  std::vector<PieceCorners>& List(size_t i) { return i < covered.size() ? covered[i] : open; }
+  size_t ListCount() const { return covered.size() + 1; }
+};
+
+void CutFace(const SplitPlan& plan, const CleanFace& face, const std::vector<Footprint>& footprints,
+             const std::vector<Footprint>& sheets, double tol, double min_area, FacePieces* out) {
+  out->open.clear();
+  out->covered.assign(sheets.size(), {});
+  EmitPieces(plan, &out->open);
+  if (!footprints.empty()) CutFootprints(footprints, face.normal, tol, min_area, &out->open);
+  for (size_t i = 0; i < sheets.size(); ++i) {
+    CutFootprints({sheets[i]}, face.normal, tol, min_area, &out->open, &out->covered[i]);
+  }
+}
+
 // Steps 1-4 as far as planning each face's split: the faces left, their sizes and splits, and every
 // error and warning Build gives (assembling the patches adds none), so Check needs no more.
 struct MeshPlan {
@@ -146,6 +169,11 @@ struct MeshPlan {
   std::vector<CleanFace> faces;
   std::vector<double> sizes;
   std::vector<SplitPlan> plans;
+  std::vector<std::vector<Footprint>> footprints;  // per face: what stands on it
+  std::vector<std::vector<Footprint>> sheets;      // per face: the sheets covering it
+  // Per face, per list of FacePieces (each sheet's covered pieces, then the open ones): the pieces
+  // a narrow space splits again; empty when none.
+  std::vector<std::vector<std::vector<NarrowPiece>>> narrow;
   uint64_t piece_count = 0;
   size_t dropped_degenerate = 0;
   size_t dropped_hidden = 0;
@@ -183,6 +211,9 @@ Result<MeshPlan> PlanMesh(const InputScene& scene, const MeshSettings& settings,
       settings.max_memory > 0 ? settings.max_memory : PhysicalMemoryBytes();
   std::vector<SplitPlan>& plans = mp.plans;
   uint64_t& piece_count = mp.piece_count;
+  mp.footprints = FindFootprints(faces, tol);
+  const FreePathProbe probe(faces, tol, diagonal);
+  FacePieces cut;
   // An automatic mesh too large for the patch limit or the memory is made coarser all over
   // instead of refused: by the square root of the excess, a few times at most.
   for (int attempt = 0;; ++attempt) {
@@ -198,11 +229,33 @@ Result<MeshPlan> PlanMesh(const InputScene& scene, const MeshSettings& settings,
     if (memory_limit > kSolveBaseBytes) {
       allowed = std::min(allowed, (memory_limit - kSolveBaseBytes) / kSolveBytesPerPatch);
     }
+    mp.size = SummarizePatchSizes(plans, sizes);
+    mp.sheets.assign(faces.size(), {});
+    mp.narrow.assign(faces.size(), {});
+    if (piece_count <= allowed) {
+      // Within the limits before the cuts: count what Build makes, narrow spaces split again.
+      mp.sheets = FindCoveringSheets(faces, tol, kSheetReachPatches * mp.size.median);
+      piece_count = 0;
+      for (size_t f = 0; f < faces.size(); ++f) {
+        const CleanFace& face = faces[f];
+        CutFace(plans[f], face, mp.footprints[f], mp.sheets[f], tol, mp.min_area, &cut);
+        for (size_t i = 0; i < cut.ListCount(); ++i) {
+          const std::vector<PieceCorners>& list = cut.List(i);
+          std::vector<NarrowPiece> narrow =
+              FindNarrowPieces(probe, list, face.normal, sizes[f], tol);
+          piece_count += list.size() + NarrowExtraPieces(list, face.normal, narrow, tol);
+          if (narrow.empty()) continue;
+          mp.narrow[f].resize(cut.ListCount());
+          mp.narrow[f][i] = std::move(narrow);
+        }
+        // The back is not cut or split again (AddBackSide).
+        if (scene.materials[face.material].two_sided) piece_count += plans[f].PieceCount();
+      }
+    }
     if (!automatic || piece_count <= allowed || attempt == 8 || allowed == 0) break;
     const double grow = 1.05 * std::sqrt(double(piece_count) / double(allowed));
     for (double& size : sizes) size *= grow;
   }
-  mp.size = SummarizePatchSizes(plans, sizes);
   for (size_t f = 0; f < faces.size(); ++f) {
     if (!plans[f].simple && warnings != nullptr) {
       warnings->push_back(scene.path + ":" + std::to_string(faces[f].line) +
@@ -253,9 +306,6 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   pm.patch_size_max_ = mp.size.max;
 
   const SurfaceGroups surfaces = GroupSurfaces(faces, tol);
-  const std::vector<std::vector<Footprint>> footprints = FindFootprints(faces, tol);
-  const std::vector<std::vector<Footprint>> sheets =
-      FindCoveringSheets(faces, tol, kSheetReachPatches * pm.patch_size_);
   pm.surface_count_ = surfaces.count;
 
   pm.materials_ = scene.materials;
@@ -269,23 +319,20 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   pm.min_area_ = min_area;
   PatchAssembler assembler(tol, min_area, pm.materials_);
   BackSurfaces back_surface(&pm.surface_count_);
-  std::vector<PieceCorners> pieces;
+  FacePieces cut;
   for (size_t f = 0; f < faces.size(); ++f) {
-    pieces.clear();
-    EmitPieces(plans[f], &pieces);
-    if (!footprints[f].empty()) {
-      CutFootprints(footprints[f], faces[f].normal, tol, min_area, &pieces);
+    CutFace(plans[f], faces[f], mp.footprints[f], mp.sheets[f], tol, min_area, &cut);
+    for (size_t i = 0; i < mp.narrow[f].size(); ++i) {
+      SplitNarrowPieces(mp.narrow[f][i], faces[f].normal, tol, &cut.List(i));
     }
-    for (const Footprint& sheet : sheets[f]) {
+    for (const std::vector<PieceCorners>& covered : cut.covered) {
       // The part under a sheet becomes a surface of its own (contact_cut.h).
-      std::vector<PieceCorners> covered;
-      CutFootprints({sheet}, faces[f].normal, tol, min_area, &pieces, &covered);
       const auto surface = static_cast<uint32_t>(pm.surface_count_++);
       pm.covered_surfaces_.push_back(surface);
       set_object(surface, faces[f].object);
       for (const PieceCorners& piece : covered) assembler.Add(piece, surface, faces[f].material);
     }
-    for (const PieceCorners& piece : pieces) {
+    for (const PieceCorners& piece : cut.open) {
       assembler.Add(piece, surfaces.surface[f], faces[f].material);
     }
     set_object(surfaces.surface[f], faces[f].object);

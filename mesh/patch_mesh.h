@@ -9,6 +9,7 @@
 //   4. polygon_split.h   each face split into patches no longer than its patch size on any edge
 //      auto_patch_size.h the automatic size, per face, from the space the face looks into
 //      contact_cut.h     patches cut along the footprints of solids standing on the face
+//      narrow_space.h    pieces looking into a gap much narrower than they are split again
 //   5. patch_assembler.h patches welded into the mesh; T-vertices between differently split faces
 //                        of one surface found
 // Tolerances scale with the bounding-box diagonal D of the faces: lengths 1e-6 D, areas 1e-12 D².
@@ -47,7 +48,7 @@ inline constexpr double kGatherBand = 1.5;
 
 // What Check finds out without building the mesh.
 struct MeshCheck {
-  uint64_t patches = 0;   // before contact cuts and welding: Build's count may differ a little
+  uint64_t patches = 0;   // before welding: Build's count may differ a little
   double patch_size = 0;  // as PatchMesh::patch_size()
   double weld_tolerance = 0;
 };

@@ -87,10 +87,10 @@ TEST_F(FarmTest, AJobStartedAtOnceKeepsTheMeshItsSubmissionBuiltAndAQueuedOneMes
   ASSERT_TRUE(WaitForState(second, "done"));
   const std::string log = MasterLog();
   EXPECT_NE(
-      log.find("job " + std::to_string(first) + ": 3849 patches (meshed at submission), scene"),
+      log.find("job " + std::to_string(first) + ": 3852 patches (meshed at submission), scene"),
       std::string::npos)
       << log;
-  EXPECT_NE(log.find("job " + std::to_string(second) + ": 3849 patches, scene"), std::string::npos)
+  EXPECT_NE(log.find("job " + std::to_string(second) + ": 3852 patches, scene"), std::string::npos)
       << log;
   const std::string reference = ReferencePatches("cornell-box.toml", kShortJob);
   EXPECT_TRUE(FetchPatches(first) == reference) << "the kept mesh changed the result";

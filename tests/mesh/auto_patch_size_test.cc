@@ -94,7 +94,9 @@ TEST(AutoPatchSizeTest, AFaceInANarrowGapIsNotCutFinerThanAThirtySecondOfItsSize
   ASSERT_TRUE(mesh.ok()) << mesh.error();
   const double floor_size = LadderSize(std::sqrt(8.0) / kAutoMaxFaceDivisions);
   EXPECT_DOUBLE_EQ(mesh->patch_size_min(), floor_size);
-  EXPECT_LE(mesh->patch_scene().patches.size(), 2u * 25u * 25u);  // ceil(2 / 0.081) at most
+  // ceil(2 / 0.081) a side at most, and a few pieces at the slit's mouth split again
+  // (narrow_space.h); the slit's inside, too narrow to resolve, is left alone.
+  EXPECT_LE(mesh->patch_scene().patches.size(), 2u * 25u * 25u * 5 / 4);
 }
 
 // An automatic mesh over the memory limit is made coarser, not refused; an explicit size is
