@@ -2,6 +2,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -97,10 +98,26 @@ std::vector<bool> NearOtherSurfaces(const PatchScene& scene, const RayCaster& ca
   return out;
 }
 
+Rgb InterpolateCornerOffsets(const Patch& p, const std::array<Rgb, 4>& offsets, const Vec3& x) {
+  // A quad's triangle: (0, 1, 2) on corner 1's side of the diagonal 0-2, else (0, 2, 3).
+  const Vec3& a = p.corners[0];
+  int j = 1, k = 2;
+  if (p.corner_count == 4 && Dot(Cross(p.corners[2] - a, x - a), p.normal) > 0) j = 2, k = 3;
+  // Barycentric weights in it, clamped so a hit a hair outside (rounding) stays bounded.
+  const Vec3 e1 = p.corners[j] - a, e2 = p.corners[k] - a, d = x - a;
+  const Vec3 n = Cross(e1, e2);
+  const double n2 = Dot(n, n);
+  if (!(n2 > 0)) return {};
+  const double wj = std::max(0.0, Dot(Cross(d, e2), n) / n2);
+  const double wk = std::max(0.0, Dot(Cross(e1, d), n) / n2);
+  const double wa = std::max(0.0, 1 - wj - wk), total = wa + wj + wk;
+  return (offsets[0] * wa + offsets[j] * wj + offsets[k] * wk) * (1 / total);
+}
+
 std::vector<Rgb> GatherLight(const RayCaster& caster, const std::vector<Rgb>& outgoing,
                              const std::vector<ReceiverPoint>& points,
                              const std::vector<bool>& gather, uint64_t seed, unsigned threads,
-                             uint32_t rays) {
+                             uint32_t rays, const PatchCornerOffsets* corners) {
   std::vector<Rgb> out(points.size());
   if (points.empty() || rays == 0) return out;
   ThreadPool pool(threads);
@@ -115,9 +132,17 @@ std::vector<Rgb> GatherLight(const RayCaster& caster, const std::vector<Rgb>& ou
     Rgb sum;
     for (uint32_t k = 0; k < rays; ++k) {
       const std::array<double, 4> u = sobol.Point(k);
-      const RayHit hit = caster.Trace(
-          point.position, SampleCosineDirection(t, b, point.normal, u[0], u[1]), point.normal);
-      if (hit.patch != RayHit::kMiss && hit.front) sum += outgoing[hit.patch];
+      const Vec3 d = SampleCosineDirection(t, b, point.normal, u[0], u[1]);
+      const RayHit hit = caster.Trace(point.position, d, point.normal);
+      if (hit.patch == RayHit::kMiss || !hit.front) continue;
+      sum += outgoing[hit.patch];
+      if (corners != nullptr) {
+        const Patch& p = corners->scene->patches[hit.patch];
+        const double cos = Dot(d, p.normal);
+        if (!(std::fabs(cos) > 1e-12)) continue;
+        const Vec3 x = point.position + d * (Dot(p.corners[0] - point.position, p.normal) / cos);
+        sum += InterpolateCornerOffsets(p, corners->offsets[hit.patch], x);
+      }
     }
     out[i] = sum / double(rays);
   });

@@ -11,6 +11,7 @@
 // back of a one-sided patch). Points in open space keep their average, smooth there and noiseless.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -32,13 +33,30 @@ std::vector<bool> NearOtherSurfaces(const PatchScene& scene, const RayCaster& ca
                                     const std::vector<ReceiverPoint>& points, double radius,
                                     unsigned threads);
 
+// How the light leaving each patch varies across it: at each of its corners (Patch::corners'
+// order), the light leaving there less the patch's mean. A patch's mean is what the solution
+// holds, but a gathering point near it sees mostly the part of it nearest: the top of a wall
+// below a ceiling, where the lamps hanging under the ceiling send no direct light, is darker
+// than the wall's top patch on average, and a ceiling point beside it gathering the mean was drawn
+// too bright. With these offsets a ray that meets the patch counts its mean plus the offsets
+// interpolated at the hit (linearly over the triangles (0, 1, 2) and (0, 2, 3)).
+struct PatchCornerOffsets {
+  const PatchScene* scene = nullptr;        // the patches the caster was built from
+  std::vector<std::array<Rgb, 4>> offsets;  // per patch
+};
+
+// The offsets interpolated at `x`, a point in the plane of patch p.
+Rgb InterpolateCornerOffsets(const Patch& p, const std::array<Rgb, 4>& offsets, const Vec3& x);
+
 // For each point with gather[i] set, the mean over `rays` cosine-weighted rays of `outgoing` (one
-// value per patch: the light leaving it that the point should count) at the patch each meets;
-// zero elsewhere; `outgoing` follows the patches of the scene `caster` was built from. A pure
-// function of its arguments, whatever the thread count; `seed` keys the rays of point i with i.
+// value per patch: the light leaving it that the point should count, plus `corners`' offsets at
+// the hit when given) at the patch each meets; zero elsewhere; `outgoing` follows the patches of
+// the scene `caster` was built from. A pure function of its arguments, whatever the thread count;
+// `seed` keys the rays of point i with i.
 std::vector<Rgb> GatherLight(const RayCaster& caster, const std::vector<Rgb>& outgoing,
                              const std::vector<ReceiverPoint>& points,
                              const std::vector<bool>& gather, uint64_t seed, unsigned threads,
-                             uint32_t rays = kPointGatherRays);
+                             uint32_t rays = kPointGatherRays,
+                             const PatchCornerOffsets* corners = nullptr);
 
 }  // namespace radfarm

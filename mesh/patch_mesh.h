@@ -24,6 +24,7 @@
 
 #include "base/result.h"
 #include "core/patch_scene.h"
+#include "core/point_gather.h"
 #include "core/rgb.h"
 #include "input/input_scene.h"
 #include "mesh/display_mesh.h"
@@ -185,6 +186,12 @@ class PatchMesh {
   void ForEachVertexPatch(Visit&& visit) const;
   // Per display vertex, the area-weighted average of a per-patch value over its patches.
   std::vector<Rgb> VertexAverages(const std::vector<Rgb>& per_patch) const;
+  // Per patch corner, the direct light it reflects there (rho times `irradiance` at the corner's
+  // display vertex, whose point is point_of[vertex]) less the patch's mean (rho times
+  // patch_direct): what gathering rays add where they meet the patch (core/point_gather.h).
+  PatchCornerOffsets CornerDirectOffsets(const std::vector<Rgb>& irradiance,
+                                         const std::vector<uint32_t>& point_of,
+                                         const std::vector<Rgb>& patch_direct) const;
   void SetVertexRadiance(const std::vector<Rgb>& value);
   // The display triangles of the patches, at the vertices' radiance.
   DisplayMesh PatchDisplayMesh() const;

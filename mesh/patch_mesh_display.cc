@@ -43,6 +43,7 @@ struct PointLight {
 // added.
 uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
                                const DirectLight& direct_light, const std::vector<Rgb>& outgoing,
+                               const PatchCornerOffsets& corners,
                                const PatchMesh::VertexDirectLight& direct, DisplayMesh* fine,
                                PointLight* light) {
   std::vector<bool>& held = light->held;
@@ -102,8 +103,8 @@ uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
       gathers[k] = held[split.edge_ends[k][0]] && held[split.edge_ends[k][1]];
     }
     const uint64_t seed = HashWords(direct.seed, uint64_t(level));
-    const std::vector<Rgb> gathered =
-        GatherLight(caster, outgoing, points, gathers, seed, direct.threads);
+    const std::vector<Rgb> gathered = GatherLight(caster, outgoing, points, gathers, seed,
+                                                  direct.threads, kPointGatherRays, &corners);
     const std::vector<Rgb> irradiance =
         PointsDirectLight(direct_light, points, seed, direct.threads);
     held.resize(mesh.positions.size(), false);
@@ -184,6 +185,42 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   std::vector<Rgb> value = VertexAverages(radiosity);
   ExtrapolateBorders(FaceRings(), &value);
   SetVertexRadiance(value);
+}
+
+PatchCornerOffsets PatchMesh::CornerDirectOffsets(const std::vector<Rgb>& irradiance,
+                                                  const std::vector<uint32_t>& point_of,
+                                                  const std::vector<Rgb>& patch_direct) const {
+  const OmMesh& mesh = *data_.mesh;
+  const std::vector<Patch>& patches = data_.scene.patches;
+  PatchCornerOffsets corners;
+  corners.scene = &data_.scene;
+  corners.offsets.resize(patches.size());
+  for (uint32_t f = 0; f < patches.size(); ++f) {
+    const Patch& p = patches[f];
+    for (OmMesh::VertexHandle vh : mesh.fv_range(mesh.face_handle(f))) {
+      const uint32_t point = point_of[mesh.property(data_.props.group, vh)];
+      if (point >= irradiance.size()) continue;  // no point: the offset stays 0
+      // The patch's corner at this vertex (welding may have moved it by a tolerance).
+      const Vec3 at = FromOm(mesh.point(vh));
+      int corner = 0;
+      for (int k = 1; k < p.corner_count; ++k) {
+        if (Length(p.corners[k] - at) < Length(p.corners[corner] - at)) corner = k;
+      }
+      corners.offsets[f][corner] = p.reflectance * (irradiance[point] - patch_direct[f]);
+    }
+    // The offsets shape the light over the patch but keep its mean, the solution's: their
+    // interpolation's mean (over the triangles InterpolateCornerOffsets uses) is taken off.
+    std::array<Rgb, 4>& o = corners.offsets[f];
+    const double a1 = Length(Cross(p.corners[1] - p.corners[0], p.corners[2] - p.corners[0]));
+    const double a2 = p.corner_count == 4
+                          ? Length(Cross(p.corners[2] - p.corners[0], p.corners[3] - p.corners[0]))
+                          : 0.0;
+    if (!(a1 + a2 > 0)) continue;
+    const Rgb mean =
+        ((o[0] + o[1] + o[2]) * a1 + (o[0] + o[2] + o[3]) * a2) * (1 / (3 * (a1 + a2)));
+    for (int k = 0; k < p.corner_count; ++k) o[k] = o[k] - mean;
+  }
+  return corners;
 }
 
 void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot,
@@ -293,8 +330,11 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   if (direct.emitters) {
     for (size_t f = 0; f < patches.size(); ++f) outgoing[f] = outgoing[f] - patches[f].emission;
   }
-  const std::vector<Rgb> gathered =
-      GatherLight(caster, outgoing, points, gather, direct.seed, direct.threads);
+  const std::vector<Rgb> irradiance =
+      PointsDirectLight(direct_light, points, direct.seed, direct.threads);
+  const PatchCornerOffsets corners = CornerDirectOffsets(irradiance, point_of, direct.patch_direct);
+  const std::vector<Rgb> gathered = GatherLight(caster, outgoing, points, gather, direct.seed,
+                                                direct.threads, kPointGatherRays, &corners);
   PointLight light;
   light.held.assign(groups + midpoints, false);
   for (size_t n = 0; n < groups + midpoints; ++n) {
@@ -305,8 +345,6 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
     }
   }
 
-  const std::vector<Rgb> irradiance =
-      PointsDirectLight(direct_light, points, direct.seed, direct.threads);
   light.irradiance.resize(groups + midpoints);
   light.shown_direct.resize(groups + midpoints);
   for (size_t n = 0; n < groups + midpoints; ++n) {
@@ -330,8 +368,8 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
     area[f] += twice_area;
   }
 
-  display_stats_.added =
-      RefineWhereLightBends(data_.scene, caster, direct_light, outgoing, direct, &fine, &light);
+  display_stats_.added = RefineWhereLightBends(data_.scene, caster, direct_light, outgoing, corners,
+                                               direct, &fine, &light);
   // A patch the refinement cut holds a shadow's edge or a steep rise, which three midpoints per
   // triangle miss: its mean is the refined triangles' (each the mean of its corners).
   const uint32_t first_new = static_cast<uint32_t>(groups + midpoints);
