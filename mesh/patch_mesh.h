@@ -62,9 +62,10 @@ class PatchMesh {
   // invalid patch size, an index out of range, no face left to mesh, too many patches.
   static Result<PatchMesh> Build(const InputScene& scene, const MeshSettings& settings,
                                  std::vector<std::string>* warnings);
-  // Build's errors and warnings, all of them, without building: the faces are cleaned and each
-  // one's split planned, but no patch is made (a small share of Build's time and memory at
-  // 10^5-10^6 patches; `radfarm submit` checks a scene so before the master meshes it).
+  // Build's errors and warnings, all of them, and its patch count, without building: each face's
+  // pieces are made, cut and probed for narrow spaces one face at a time and then dropped, so no
+  // mesh is assembled (a small share of Build's memory at 10^5-10^6 patches, most of its
+  // meshing time; `radfarm submit` checks a scene so before the master meshes it).
   static Result<MeshCheck> Check(const InputScene& scene, const MeshSettings& settings,
                                  std::vector<std::string>* warnings);
 
