@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "mesh/free_path_probe.h"
 #include "mesh/polygon.h"
 #include "mesh/polygon_split.h"
 
@@ -34,19 +33,19 @@ std::vector<Vec3> ProbePoints(const CleanFace& face, double tol) {
 
 }  // namespace
 
-std::vector<double> MeanFreePaths(const std::vector<CleanFace>& faces, double tol,
-                                  double diagonal) {
-  const FreePathProbe probe(faces, tol, diagonal);
+std::vector<double> MeanFreePaths(const std::vector<CleanFace>& faces, const FreePathProbe& probe,
+                                  double tol) {
+  const double diagonal = probe.diagonal();
+  std::vector<double> lengths;
   std::vector<double> paths(faces.size(), diagonal);
   if (probe.empty()) return paths;
   for (size_t f = 0; f < faces.size(); ++f) {
     const std::vector<Vec3> points = ProbePoints(faces[f], tol);
     double sum = 0;
     for (size_t p = 0; p < points.size(); ++p) {
-      for (double length : probe.FreePaths(points[p], faces[f].normal, static_cast<uint32_t>(p),
-                                           kAutoProbeDirections, diagonal, false)) {
-        sum += length;  // ray by ray, in one fixed order
-      }
+      probe.FreePaths(points[p], faces[f].normal, static_cast<uint32_t>(p), kAutoProbeDirections,
+                      diagonal, false, &lengths);
+      for (double length : lengths) sum += length;  // ray by ray, in one fixed order
     }
     if (!points.empty()) paths[f] = sum / static_cast<double>(points.size() * kAutoProbeDirections);
   }
@@ -57,9 +56,9 @@ double LadderSize(double size) {
   return std::exp2(std::floor(kAutoSizeSteps * std::log2(size) + 1e-9) / kAutoSizeSteps);
 }
 
-std::vector<double> AutoPatchSizes(const std::vector<CleanFace>& faces, double tol,
-                                   double diagonal) {
-  std::vector<double> sizes = MeanFreePaths(faces, tol, diagonal);
+std::vector<double> AutoPatchSizes(const std::vector<CleanFace>& faces, const FreePathProbe& probe,
+                                   double tol) {
+  std::vector<double> sizes = MeanFreePaths(faces, probe, tol);
   for (size_t f = 0; f < faces.size(); ++f) {
     const double floor_size = Extent(faces[f]) / kAutoMaxFaceDivisions;
     sizes[f] = LadderSize(std::max(sizes[f] / kAutoChordDivisions, floor_size));

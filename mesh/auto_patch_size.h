@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "mesh/clean_faces.h"
+#include "mesh/free_path_probe.h"
 
 namespace radfarm {
 
@@ -26,12 +27,14 @@ inline constexpr size_t kAutoProbePoints = 9;
 inline constexpr double kAutoMaxFaceDivisions = 32;
 inline constexpr double kAutoSizeSteps = 8;
 
-// Per face, its mean free path L (see above); `diagonal` is the scene's bounding-box diagonal.
-std::vector<double> MeanFreePaths(const std::vector<CleanFace>& faces, double tol, double diagonal);
+// Per face, its mean free path L (see above), measured on `probe`, a probe of these faces (the one
+// the mesher keeps for narrow spaces too); a miss counts as the probe's diagonal.
+std::vector<double> MeanFreePaths(const std::vector<CleanFace>& faces, const FreePathProbe& probe,
+                                  double tol);
 
 // Per face, its automatic target patch size from its mean free path.
-std::vector<double> AutoPatchSizes(const std::vector<CleanFace>& faces, double tol,
-                                   double diagonal);
+std::vector<double> AutoPatchSizes(const std::vector<CleanFace>& faces, const FreePathProbe& probe,
+                                   double tol);
 
 // The largest ladder size 2^(i / kAutoSizeSteps) (integer i) not above `size` (> 0).
 double LadderSize(double size);

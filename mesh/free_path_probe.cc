@@ -58,11 +58,10 @@ double HitDistance(const Patch& hit, const Vec3& origin, const Vec3& d, double c
 FreePathProbe::FreePathProbe(const std::vector<CleanFace>& faces, double tol, double diagonal)
     : diagonal_(diagonal), probe_(ProbeScene(faces, tol, diagonal)), caster_(probe_) {}
 
-std::vector<double> FreePathProbe::FreePaths(const Vec3& point, const Vec3& normal, uint32_t shift,
-                                             int directions, double cap,
-                                             bool backs_count_as_open) const {
-  std::vector<double> lengths;
-  lengths.reserve(directions);
+void FreePathProbe::FreePaths(const Vec3& point, const Vec3& normal, uint32_t shift, int directions,
+                              double cap, bool backs_count_as_open,
+                              std::vector<double>* lengths) const {
+  lengths->clear();
   Vec3 t, b;
   OrthonormalBasis(normal, &t, &b);
   // The same Hammersley set at every point, shifted by a fixed per-point offset.
@@ -75,14 +74,13 @@ std::vector<double> FreePathProbe::FreePaths(const Vec3& point, const Vec3& norm
     const Vec3 d = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) +
                    normal * std::sqrt(std::max(0.0, 1 - u));
     if (empty()) {
-      lengths.push_back(cap);
+      lengths->push_back(cap);
       continue;
     }
     const RayHit hit = caster_.Trace(point, d, normal);
     const bool open = hit.patch == RayHit::kMiss || (backs_count_as_open && !hit.front);
-    lengths.push_back(open ? cap : HitDistance(probe_.patches[hit.patch], point, d, cap));
+    lengths->push_back(open ? cap : HitDistance(probe_.patches[hit.patch], point, d, cap));
   }
-  return lengths;
 }
 
 }  // namespace radfarm

@@ -24,12 +24,13 @@ class FreePathProbe {
   FreePathProbe(const FreePathProbe&) = delete;
   FreePathProbe& operator=(const FreePathProbe&) = delete;
 
-  // The lengths of `directions` rays from `point`, cosine-distributed about `normal` (the set
-  // shifted by point number `shift`), in the set's order, each at most `cap` (a miss counts as
+  // Into *lengths (replacing what it held; a buffer the caller reuses, as the mesher probes every
+  // piece): the lengths of `directions` rays from `point`, cosine-distributed about `normal` (the
+  // set shifted by point number `shift`), in the set's order, each at most `cap` (a miss counts as
   // `cap`, and so does a hit on a face's back when `backs_count_as_open`: it sends no light this
   // way).
-  std::vector<double> FreePaths(const Vec3& point, const Vec3& normal, uint32_t shift,
-                                int directions, double cap, bool backs_count_as_open) const;
+  void FreePaths(const Vec3& point, const Vec3& normal, uint32_t shift, int directions, double cap,
+                 bool backs_count_as_open, std::vector<double>* lengths) const;
 
   double diagonal() const { return diagonal_; }
   bool empty() const { return probe_.patches.empty(); }

@@ -22,11 +22,10 @@ std::vector<NarrowPiece> FindNarrowPieces(const FreePathProbe& probe,
                                           const Vec3& normal, double size, double tol) {
   std::vector<NarrowPiece> narrow;
   const double cap = kNarrowProbeCap * size;
+  std::vector<double> lengths;
   for (size_t i = 0; i < pieces.size(); ++i) {
-    const std::vector<Vec3> corners = CornersOf(pieces[i]);
-    const std::vector<double> lengths =
-        probe.FreePaths(AreaCentroid(corners), normal, static_cast<uint32_t>(i),
-                        kNarrowProbeDirections, cap, /*backs_count_as_open=*/true);
+    probe.FreePaths(AreaCentroid(CornersOf(pieces[i])), normal, static_cast<uint32_t>(i),
+                    kNarrowProbeDirections, cap, /*backs_count_as_open=*/true, &lengths);
     double sum = 0;
     int near = 0;
     for (double length : lengths) {

@@ -205,14 +205,15 @@ Result<MeshPlan> PlanMesh(const InputScene& scene, const MeshSettings& settings,
 
   const bool automatic = settings.patch_size == 0;
   std::vector<double>& sizes = mp.sizes;
-  sizes = automatic ? AutoPatchSizes(faces, tol, diagonal)
+  // One probe of the faces for the automatic size and for narrow spaces.
+  const FreePathProbe probe(faces, tol, diagonal);
+  sizes = automatic ? AutoPatchSizes(faces, probe, tol)
                     : std::vector<double>(faces.size(), settings.patch_size);
   const uint64_t memory_limit =
       settings.max_memory > 0 ? settings.max_memory : PhysicalMemoryBytes();
   std::vector<SplitPlan>& plans = mp.plans;
   uint64_t& piece_count = mp.piece_count;
   mp.footprints = FindFootprints(faces, tol);
-  const FreePathProbe probe(faces, tol, diagonal);
   FacePieces cut;
   // An automatic mesh too large for the patch limit or the memory is made coarser all over
   // instead of refused: by the square root of the excess, a few times at most.

@@ -38,7 +38,8 @@ TEST(AutoPatchSizeTest, MeanFreePathInAClosedCubeIsTheMeanChord) {
   b.AddBox({0, 0, 0}, {3, 3, 3}, 0, /*normals_in=*/true);
   const CleanFaces clean = CleanInputFaces(b.scene(), 1e-9, 1e-18);
   ASSERT_EQ(clean.faces.size(), 6u);
-  const std::vector<double> paths = MeanFreePaths(clean.faces, 1e-9, std::sqrt(27.0));
+  const FreePathProbe probe(clean.faces, 1e-9, std::sqrt(27.0));
+  const std::vector<double> paths = MeanFreePaths(clean.faces, probe, 1e-9);
   for (double path : paths) EXPECT_NEAR(path, 2.0, 0.1);
 }
 

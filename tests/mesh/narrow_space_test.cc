@@ -48,10 +48,13 @@ TEST(FreePathProbeTest, BetweenParallelPlatesTheMeanFreePathIsTwiceTheGap) {
   ASSERT_EQ(clean.faces.size(), 2u);
   const FreePathProbe probe(clean.faces, 1e-9, 200);
   double sum = 0;
-  for (double length : probe.FreePaths({0, 0, 0}, {0, 0, 1}, 0, 1024, 200, false)) sum += length;
+  std::vector<double> lengths;
+  probe.FreePaths({0, 0, 0}, {0, 0, 1}, 0, 1024, 200, false, &lengths);
+  for (double length : lengths) sum += length;
   EXPECT_NEAR(sum / 1024, 0.2, 0.01);
   // Seen from the back of a sheet nothing comes: with backs open every ray counts the cap.
-  for (double length : probe.FreePaths({0, 0, 0.2}, {0, 0, -1}, 0, 16, 3, true)) {
+  probe.FreePaths({0, 0, 0.2}, {0, 0, -1}, 0, 16, 3, true, &lengths);
+  for (double length : lengths) {
     EXPECT_EQ(length, 3.0);
   }
 }
