@@ -296,9 +296,10 @@ void ProgressiveSolver::EndRound(const RoundPlan& plan) {
   } else {
     energy_.unshot = TotalUnshotPower();
   }
-  // The round's scratch goes: between rounds the solver holds its state only.
-  hit_weight_ = {};
-  shot_light_ = {};
+  // The round's scratch goes: between rounds the solver holds its state only. (Swapped with
+  // empty vectors: `= {}` would empty them and keep their memory.)
+  std::vector<uint64_t>().swap(hit_weight_);
+  std::vector<Rgb>().swap(shot_light_);
   rounds_done_ = plan.round + 1;
 }
 
