@@ -112,10 +112,11 @@ ReceivedScene SceneAssembler::TakeReceived() {
   return received;
 }
 
-Result<std::vector<uint8_t>> UnpackReceived(const ReceivedScene& received) {
+Result<std::vector<uint8_t>> UnpackReceived(ReceivedScene received) {
   const std::string where = "scene " + HashToHex(received.hash).substr(0, 16) + ": ";
   Result<std::vector<uint8_t>> blob =
       UnpackScene(received.compressed, received.scene_size, received.max_scene_bytes);
+  std::vector<uint8_t>().swap(received.compressed);
   if (!blob) return Error{where + blob.error()};
   if (HashScene(*blob) != received.hash) {
     return Error{where + "SHA-256 of the decompressed bytes does not match"};
