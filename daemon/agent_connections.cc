@@ -343,6 +343,8 @@ void AgentConnections::Dispatch(AgentLink& link) {
   const std::vector<RunningJob*> order = jobs_.RunnersByPriority();
   uint32_t held = 0, capacity = 0;
   for (RunningJob* runner : order) {
+    // Until a job has measured the agent, its own last reported speed sizes its leases there.
+    runner->scheduler().ReportSpeed(link.id(), link.last_heartbeat().rays_per_second);
     held += runner->scheduler().LeasesHeld(link.id());
     capacity = std::max(capacity, runner->scheduler().LeaseCapacityOf(link.id()));
   }

@@ -80,6 +80,7 @@ void SimAgent::Process(const std::vector<uint8_t>& payload) {
     return;
   }
   if (!was_authenticated && session_.authenticated()) {
+    SendHeartbeat();  // as a real agent does on its welcome (agent/agent.cc)
     hooks_.OnAuthenticated();
     return;
   }

@@ -14,6 +14,12 @@ RoundScheduler::RoundScheduler(const SchedulerOptions& options) : options_(optio
 
 void RoundScheduler::AddAgent(AgentId agent) { agents_.try_emplace(agent); }
 
+void RoundScheduler::ReportSpeed(AgentId agent, double rays_per_second) {
+  if (const auto it = agents_.find(agent); it != agents_.end()) {
+    it->second.throughput.SetReportedSpeed(rays_per_second);
+  }
+}
+
 void RoundScheduler::OnAgentLost(AgentId agent) {
   const auto it = agents_.find(agent);
   if (it == agents_.end()) return;

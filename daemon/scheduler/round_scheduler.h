@@ -117,6 +117,9 @@ class RoundScheduler {
   // --- Agents ---
   // Makes an agent known (idempotent). It starts with options.initial_leases and no measurement.
   void AddAgent(AgentId agent);
+  // The speed the agent reports of itself (its last heartbeat's rays/s): sizes its leases until
+  // this job has measured it (ThroughputEstimate::SetReportedSpeed). Unknown agents are ignored.
+  void ReportSpeed(AgentId agent, double rays_per_second);
   // The agent disconnected or missed its heartbeats: its live leases go back to the queue at once
   // and it is forgotten (a blocklisting is kept). Unknown agents are ignored.
   void OnAgentLost(AgentId agent);

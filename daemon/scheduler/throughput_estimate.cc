@@ -33,16 +33,27 @@ void ThroughputEstimate::AddResult(uint64_t rays, TimePoint issued, TimePoint no
 
 double ThroughputEstimate::rays_per_second() const { return measured() ? rays_ / seconds_ : 0; }
 
+void ThroughputEstimate::SetReportedSpeed(double rays_per_second) {
+  reported_rays_per_second_ =
+      std::isfinite(rays_per_second) && rays_per_second > 0 ? rays_per_second : 0;
+}
+
+double ThroughputEstimate::SizingSpeed() const {
+  return measured() ? rays_per_second() : reported_rays_per_second_;
+}
+
 uint32_t ThroughputEstimate::LeaseCapacity(double batch_rays,
                                            const SchedulerOptions& options) const {
   const uint32_t cap = std::max<uint32_t>(1, options.max_leases_per_agent);
   const uint32_t floor = MeasurableBatches(batch_rays, options);
-  if (!measured()) return std::clamp<uint32_t>(std::max(options.initial_leases, floor), 1, cap);
-  const double want = rays_per_second() * options.target_lease_seconds / std::max(1.0, batch_rays);
+  const uint32_t initial = std::clamp<uint32_t>(std::max(options.initial_leases, floor), 1, cap);
+  if (SizingSpeed() <= 0) return initial;
+  const double want = SizingSpeed() * options.target_lease_seconds / std::max(1.0, batch_rays);
   const double fill = std::max(1.0, std::floor(want));
   const double spare =
       double(options.spare_leases) + std::floor(fill * std::max(0.0, options.spare_lease_fraction));
-  const double leases = std::max(fill + spare, double(floor));
+  double leases = std::max(fill + spare, double(floor));
+  if (!measured()) leases = std::max(leases, double(initial));
   return static_cast<uint32_t>(std::clamp(leases, 1.0, double(cap)));
 }
 
@@ -50,10 +61,12 @@ uint32_t ThroughputEstimate::LeaseBatches(double batch_rays,
                                           const SchedulerOptions& options) const {
   const uint32_t cap = std::max<uint32_t>(1, options.max_leases_per_agent);
   const uint32_t floor = MeasurableBatches(batch_rays, options);
-  if (!measured()) return std::clamp<uint32_t>(std::max(options.initial_leases, floor), 1, cap);
-  const double want = rays_per_second() * options.target_lease_seconds / std::max(1.0, batch_rays);
-  return static_cast<uint32_t>(
-      std::clamp(std::max(std::floor(want), double(floor)), 1.0, double(cap)));
+  const uint32_t initial = std::clamp<uint32_t>(std::max(options.initial_leases, floor), 1, cap);
+  if (SizingSpeed() <= 0) return initial;
+  const double want = SizingSpeed() * options.target_lease_seconds / std::max(1.0, batch_rays);
+  double batches = std::max(std::floor(want), double(floor));
+  if (!measured()) batches = std::max(batches, double(initial));
+  return static_cast<uint32_t>(std::clamp(batches, 1.0, double(cap)));
 }
 
 uint32_t ThroughputEstimate::MeasurableBatches(double batch_rays, const SchedulerOptions& options) {

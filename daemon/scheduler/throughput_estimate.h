@@ -32,15 +32,24 @@ class ThroughputEstimate {
   bool measured() const { return rays_ > 0; }
   // Smoothed rays per second; 0 before the first result.
   double rays_per_second() const;
+  // The speed the agent reports of itself (its heartbeats: what it measured on its recent
+  // batches, of an earlier job or round). Until the first result is measured, it sizes the
+  // agent's leases (LeaseCapacity, LeaseBatches) instead of options.initial_leases, so that an
+  // agent the farm already knows gets a full lease at once rather than two batches and a round
+  // trip. It never replaces a measurement, and the expected times and deadlines of an unmeasured
+  // agent stay options.unmeasured_expected_seconds: its first lease may wait on a scene fetch.
+  // Not finite or not positive: no report.
+  void SetReportedSpeed(double rays_per_second);
 
   // Leases to hold so the held work takes about options.target_lease_seconds:
   // max(1, floor(rays/s * target / batch_rays)) + spare_leases, at most max_leases_per_agent;
-  // options.initial_leases (capped) before the first result.
+  // options.initial_leases (capped) before the first result, or at least that many sized by the
+  // reported speed (SetReportedSpeed).
   // Plus floor(that target count * spare_lease_fraction). Never fewer than MeasurableBatches.
   uint32_t LeaseCapacity(double batch_rays, const SchedulerOptions& options) const;
   // Batches for one lease frame: those that fill target_lease_seconds, max(1, floor(rays/s *
   // target / batch_rays)), at most max_leases_per_agent; options.initial_leases before the first
-  // result. The agent's own speed: a fast agent gets big leases whatever the slowest one does.
+  // result (or at least that many sized by the reported speed). The agent's own speed: a fast agent gets big leases whatever the slowest one does.
   // Never fewer than MeasurableBatches.
   uint32_t LeaseBatches(double batch_rays, const SchedulerOptions& options) const;
   // Batches of `batch_rays` rays that make a result of at least options.min_batch_rays rays, one
@@ -62,6 +71,9 @@ class ThroughputEstimate {
   double pending_rays_ = 0;
   double pending_seconds_ = 0;
   std::optional<TimePoint> last_result_;
+  double reported_rays_per_second_ = 0;
+  // The speed leases are sized by: the measured one, else the reported one (0: neither).
+  double SizingSpeed() const;
 };
 
 }  // namespace radfarm::scheduler

@@ -450,6 +450,34 @@ TEST(RoundSchedulerTest, LeaseSizeIsTheAgentsOwnAndShrinksToTheQueuesShare) {
   EXPECT_EQ(s.LeaseSizeOf(9), 0u);  // unknown agent
 }
 
+TEST(RoundSchedulerTest, AnAgentsReportedSpeedSizesItsFirstLeaseOnly) {
+  SchedulerOptions options;
+  options.target_lease_seconds = 4;
+  options.max_leases_per_agent = 1000;
+  options.initial_leases = 2;
+  RoundScheduler s(options);
+  s.AddAgent(1);
+  s.AddAgent(2);
+  s.ReportSpeed(1, 2000);  // agent 1 worked before: 2000 rays/s; agent 2 says nothing
+  s.ReportSpeed(9, 2000);  // unknown: ignored
+  ASSERT_TRUE(s.StartRound(Plan(1, 100), kT0).ok());
+  EXPECT_EQ(s.LeaseSizeOf(1), 8u);  // 2000 rays/s x 4 s / 1000 rays
+  EXPECT_EQ(s.LeaseSizeOf(2), 2u);  // the initial leases
+  EXPECT_EQ(s.LeaseCapacityOf(1), 8u);
+  std::vector<Assignment> leases;
+  while (auto a = s.NextAssignment(1, kT0)) leases.push_back(*a);
+  EXPECT_EQ(leases.size(), 8u);
+  // No measurement yet: the round's predicted end and the agents' summed speed ignore the report.
+  EXPECT_EQ(s.agent_counters(1, kT0)->rays_per_second, 0);
+  // Its results measure it at 1000 rays/s (8000 rays in 8 s): the report is no longer used.
+  for (size_t k = 0; k < leases.size(); ++k) {
+    s.OnResult(1, leases[k].batch_id, leases[k].attempt_id, ResultFor(uint32_t(k)),
+               kT0 + seconds(1 + k));
+  }
+  EXPECT_DOUBLE_EQ(s.agent_counters(1, kT0 + seconds(8))->rays_per_second, 1000);
+  EXPECT_EQ(s.LeaseSizeOf(1), 4u);
+}
+
 TEST(RoundSchedulerTest, AnIdleAgentTakesOverTheNewestLeasesOfABusyOneAndEachCountsOnce) {
   SchedulerOptions options;
   options.target_lease_seconds = 8;  // agent 1 may hold all 8 batches

@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "tests/daemon/scheduler/fake_clock.h"
 
 namespace radfarm::scheduler {
@@ -133,6 +136,38 @@ TEST(ThroughputEstimateTest, SpareLeasesComeOnTopOfTheTargetOnceMeasured) {
   EXPECT_EQ(slow.LeaseCapacity(4096, options), 2u);            // the one it runs + a spare
   EXPECT_EQ(fast.LeaseCapacity(4096, options), 13u);           // 12 + 1
   EXPECT_EQ(very_fast.LeaseCapacity(4096, options), 16u);      // the cap holds
+}
+
+TEST(ThroughputEstimateTest, AReportedSpeedSizesLeasesUntilTheFirstMeasurement) {
+  SchedulerOptions options;
+  options.target_lease_seconds = 0.5;
+  options.initial_leases = 2;
+  options.max_leases_per_agent = 64;
+  options.spare_leases = 1;
+  ThroughputEstimate t;
+  t.SetReportedSpeed(1e5);  // its heartbeat: 1e5 rays/s on its recent batches
+  EXPECT_FALSE(t.measured());
+  EXPECT_EQ(t.rays_per_second(), 0);               // a report is no measurement
+  EXPECT_EQ(t.LeaseBatches(4096, options), 12u);   // 1e5 * 0.5 / 4096
+  EXPECT_EQ(t.LeaseCapacity(4096, options), 13u);  // + the spare
+  // The first lease may wait on a scene fetch: expected times and deadlines stay unmeasured's.
+  EXPECT_EQ(t.ExpectedSeconds(4096, options), options.unmeasured_expected_seconds);
+  EXPECT_EQ(t.Deadline(4096, kT0, options), kT0 + seconds(8));
+  // A slow report never gives fewer than the initial leases.
+  t.SetReportedSpeed(10);
+  EXPECT_EQ(t.LeaseBatches(4096, options), 2u);
+  EXPECT_EQ(t.LeaseCapacity(4096, options), 2u);
+  // Nonsense is no report.
+  for (double bad : {-1.0, 0.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    t.SetReportedSpeed(bad);
+    EXPECT_EQ(t.LeaseBatches(4096, options), 2u) << bad;
+  }
+  // The first measurement replaces the report: 1000 rays/s measured, 1e5 reported.
+  t.SetReportedSpeed(1e5);
+  t.AddResult(1000, kT0, kT0 + seconds(1), 0.3);
+  EXPECT_TRUE(t.measured());
+  EXPECT_EQ(t.LeaseBatches(4096, options), 1u);
+  EXPECT_EQ(t.LeaseCapacity(4096, options), 2u);
 }
 
 TEST(ThroughputEstimateTest, DeadlineIsAMultipleOfTheHeldWorkWithAFloor) {
