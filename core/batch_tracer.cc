@@ -1,6 +1,7 @@
 #include "core/batch_tracer.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstdlib>
 #include <new>
 
@@ -33,20 +34,71 @@ uint64_t* BatchTracer::WeightByPatch() {
   return weight_by_patch_.get();
 }
 
+BatchTracer::HitSum BatchTracer::HitSumFor(uint32_t ray_count) const {
+  if (ray_count <= kListRays) return HitSum::kListed;
+  if (patch_count_ <= kDenseMaxPatches) return HitSum::kDense;
+  // The table: 12 bytes a slot, at most 4 slots a ray; the dense array: 8 bytes a patch.
+  return uint64_t{48} * ray_count <= uint64_t{8} * patch_count_ ? HitSum::kHashed : HitSum::kDense;
+}
+
+void BatchTracer::PrepareTable(uint32_t ray_count) {
+  size_t size = 64;
+  while (size < 2 * size_t{ray_count}) size *= 2;
+  if (slot_patch_.size() < size) {
+    slot_patch_.assign(size, kEmptySlot);
+    slot_weight_.assign(size, 0);
+    slot_shift_ = 32 - static_cast<uint32_t>(std::countr_zero(size));
+  }
+}
+
+void BatchTracer::AddHashed(uint32_t patch, uint64_t weight) {
+  const size_t mask = slot_patch_.size() - 1;
+  size_t slot = (patch * 0x9E3779B1u) >> slot_shift_;  // Fibonacci hashing
+  while (true) {
+    const uint32_t held = slot_patch_[slot];
+    if (held == patch) {
+      slot_weight_[slot] += weight;
+      return;
+    }
+    if (held == kEmptySlot) {
+      slot_patch_[slot] = patch;
+      slot_weight_[slot] = weight;
+      used_slots_.push_back(static_cast<uint32_t>(slot));
+      return;
+    }
+    slot = (slot + 1) & mask;
+  }
+}
+
+void BatchTracer::SumHashed(BatchResult* result) {
+  // Sorted as (patch, slot) keys, plain integers, rather than as (patch, weight) records.
+  slot_keys_.clear();
+  for (uint32_t slot : used_slots_) slot_keys_.push_back(uint64_t{slot_patch_[slot]} << 32 | slot);
+  std::sort(slot_keys_.begin(), slot_keys_.end());
+  result->hits.reserve(slot_keys_.size());
+  for (uint64_t key : slot_keys_) {
+    const auto slot = static_cast<uint32_t>(key);
+    result->hits.push_back({slot_patch_[slot], slot_weight_[slot]});
+    slot_patch_[slot] = kEmptySlot;
+  }
+  used_slots_.clear();
+}
+
 BatchResult BatchTracer::Run(const Batch& batch) {
   BatchResult result;
   const PatchShape& shooter = Shape(batch.shooter);
   const ShotSampler shot =
       sampler_.Shot(shooter, batch.shooter, batch.round, caster_.origin_offset());
-  const bool listed = batch.ray_count <= kListRays;
-  uint64_t* const weight_by_patch = listed ? nullptr : WeightByPatch();
+  const HitSum sum = HitSumFor(batch.ray_count);
+  uint64_t* const weight_by_patch = sum == HitSum::kDense ? WeightByPatch() : nullptr;
+  if (sum == HitSum::kHashed) PrepareTable(batch.ray_count);
   RayBlock& block = *block_;
   RayHit hits[RayBlock::kSize];
   for (uint32_t done = 0; done < batch.ray_count; done += RayBlock::kSize) {
     const int count = static_cast<int>(std::min<uint32_t>(RayBlock::kSize, batch.ray_count - done));
     shot.SampleBlock(batch.first_ray + done, count, &block);
     caster_.TraceBlock(block, shooter.normal, hits);
-    if (!listed) {
+    if (sum == HitSum::kDense) {
       // Start the loads of the hit patches' weights before the loop below needs them.
       for (int i = 0; i < count; ++i) {
         if (hits[i].patch != RayHit::kMiss) __builtin_prefetch(&weight_by_patch[hits[i].patch]);
@@ -61,18 +113,28 @@ BatchResult BatchTracer::Run(const Batch& batch) {
       } else if (!hit.front) {
         result.back_weight += weight;
         ++result.back_rays;
-      } else if (listed) {
+      } else if (sum == HitSum::kListed) {
         if (weight != 0) listed_.push_back({hit.patch, weight});
+      } else if (sum == HitSum::kHashed) {
+        if (weight != 0) AddHashed(hit.patch, weight);
       } else {
         if (weight_by_patch[hit.patch] == 0) touched_.push_back(hit.patch);
         weight_by_patch[hit.patch] += weight;
       }
     }
   }
-  if (listed) {
-    SumListed(&result);
-  } else {
-    SumDense(weight_by_patch, &result);
+  switch (sum) {
+    case HitSum::kListed:
+      SumListed(&result);
+      break;
+    case HitSum::kHashed:
+      SumHashed(&result);
+      break;
+    case HitSum::kDense:
+      SumDense(weight_by_patch, &result);
+      // In a big scene only a batch too long for the table comes here: the array is not kept.
+      if (patch_count_ > kDenseMaxPatches) weight_by_patch_.reset();
+      break;
   }
   return result;
 }

@@ -1,5 +1,6 @@
 // Computes batches: casts their rays and counts hits. Holds per-thread scratch (a block of rays, a
-// list of a short batch's hits, and a dense weight array made at the first long batch), so use one
+// list of a short batch's hits, and a dense weight array made at the first long batch of a small
+// scene or a hash table sized to the batches of a big one), so use one
 // BatchTracer per thread; the caster, sampler and scene are
 // shared read-only. A batch's rays are made and traced a RayBlock at a time (ray_sampler.h,
 // ray_caster.h); the result is bit for bit that of sampling and tracing them one by one.
@@ -30,13 +31,27 @@ class BatchTracer {
   // The shooter's shape: patches_[id] or shapes_[id], whichever was given.
   const PatchShape& Shape(uint32_t id) const { return patches_ ? patches_[id] : shapes_[id]; }
 
-  // A batch of up to kListRays rays lists its front hits, (patch, weight) in ray order, and sums
-  // them per patch after a sort: a list that stays in cache. A longer one adds into a dense array
-  // of every patch, cheaper than sorting its many hits but a cache miss a hit in a big scene.
+  // How a batch's front hits are summed per patch (all three give the same result):
+  //  - kListed: a batch of up to kListRays rays lists them, (patch, weight) in ray order, and sums
+  //    them after a sort: a list that stays in cache.
+  //  - kDense: a longer one adds into a dense array of every patch, cheaper than sorting its many
+  //    hits, in a scene of at most kDenseMaxPatches patches (the array stays in cache).
+  //  - kHashed: in a bigger scene the dense array would cost a cache miss a hit and 8 bytes a
+  //    patch for each tracer (an agent's budget is about 300 bytes a patch, threads included), so
+  //    the hits are summed in a small open-addressing table sized to the batch, whose distinct
+  //    patches are sorted at the end. A batch whose table would outgrow the dense array uses the
+  //    dense array after all, made for it and freed after it.
+  enum class HitSum { kListed, kDense, kHashed };
   static constexpr uint32_t kListRays = 256;
+  static constexpr size_t kDenseMaxPatches = size_t{1} << 16;
+  HitSum HitSumFor(uint32_t ray_count) const;
   uint64_t* WeightByPatch();  // the dense array, made (zeroed) on first use
   void SumDense(uint64_t* weight_by_patch, BatchResult* result);
   void SumListed(BatchResult* result);
+  // The hash table: slots for at least twice `ray_count` distinct patches, all empty.
+  void PrepareTable(uint32_t ray_count);
+  void AddHashed(uint32_t patch, uint64_t weight);
+  void SumHashed(BatchResult* result);
 
   struct FreeDeleter {
     void operator()(uint64_t* p) const { std::free(p); }
@@ -51,6 +66,14 @@ class BatchTracer {
   std::unique_ptr<uint64_t[], FreeDeleter> weight_by_patch_;  // all zero between calls
   std::vector<uint32_t> touched_;
   std::vector<PatchHits> listed_;  // empty between calls
+  // kHashed: slot_patch_ kEmptySlot where free (all free between calls), the slots in use in
+  // used_slots_; a power-of-two size, grown as batches need and kept.
+  static constexpr uint32_t kEmptySlot = 0xFFFFFFFFu;
+  std::vector<uint32_t> slot_patch_;
+  std::vector<uint64_t> slot_weight_;
+  std::vector<uint32_t> used_slots_;
+  std::vector<uint64_t> slot_keys_;  // SumHashed's scratch
+  uint32_t slot_shift_ = 32;         // 32 - log2(table size)
 };
 
 }  // namespace radfarm

@@ -49,8 +49,8 @@ class ThroughputEstimate {
   uint32_t LeaseCapacity(double batch_rays, const SchedulerOptions& options) const;
   // Batches for one lease frame: those that fill target_lease_seconds, max(1, floor(rays/s *
   // target / batch_rays)), at most max_leases_per_agent; options.initial_leases before the first
-  // result (or at least that many sized by the reported speed). The agent's own speed: a fast agent gets big leases whatever the slowest one does.
-  // Never fewer than MeasurableBatches.
+  // result (or at least that many sized by the reported speed). The agent's own speed: a fast agent
+  // gets big leases whatever the slowest one does. Never fewer than MeasurableBatches.
   uint32_t LeaseBatches(double batch_rays, const SchedulerOptions& options) const;
   // Batches of `batch_rays` rays that make a result of at least options.min_batch_rays rays, one
   // that AddResult measures (at most max_leases_per_agent): however low the estimate, a full lease

@@ -218,5 +218,24 @@ TEST(RayBlockTest, ShortAndLongBatchesSumTheirHitsAsRayByRay) {
   }
 }
 
+// A scene of more than BatchTracer's kDenseMaxPatches (65,536) patches: long batches are summed
+// in the hash table, and a batch too long for the table in a dense array made for it alone.
+TEST(RayBlockTest, BigScenesSumHashedAndDenseBatchesAsRayByRay) {
+  const PatchScene scene =
+      testing::MakeClosedBox({-1, -1, -1}, {1, 2, 3}, 105, {{0.5, 0.5, 0.5}, {}});
+  ASSERT_GT(scene.patches.size(), size_t{1} << 16);
+  const RayCaster caster(scene);
+  const RaySampler sampler(SamplerKind::kSobol, 7, 4.0);
+  BatchTracer tracer(scene, caster, sampler);
+  // 66,150 patches: the table takes batches of up to 11,025 rays; 12,000 go to the dense array.
+  for (uint32_t id = 0; id < scene.patches.size(); id += 6007) {
+    for (uint32_t rays : {13u, 3000u, 257u, 12000u, 40u, 11025u, 1u}) {
+      const Batch batch{2, id, 5, rays};
+      ASSERT_EQ(tracer.Run(batch), CountRayByRay(scene, caster, sampler, batch))
+          << "patch " << id << ", " << rays << " rays";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace radfarm
