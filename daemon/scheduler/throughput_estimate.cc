@@ -42,31 +42,42 @@ double ThroughputEstimate::SizingSpeed() const {
   return measured() ? rays_per_second() : reported_rays_per_second_;
 }
 
+uint32_t ThroughputEstimate::InitialLeases(double batch_rays, const SchedulerOptions& options) {
+  const uint32_t cap = std::max<uint32_t>(1, options.max_leases_per_agent);
+  return std::clamp<uint32_t>(
+      std::max(options.initial_leases, MeasurableBatches(batch_rays, options)), 1, cap);
+}
+
+std::optional<double> ThroughputEstimate::FilledBatches(double batch_rays,
+                                                        const SchedulerOptions& options) const {
+  if (SizingSpeed() <= 0) return std::nullopt;
+  return std::floor(SizingSpeed() * options.target_lease_seconds / std::max(1.0, batch_rays));
+}
+
+uint32_t ThroughputEstimate::SizedLeases(double leases, double batch_rays,
+                                         const SchedulerOptions& options) const {
+  leases = std::max(leases, double(MeasurableBatches(batch_rays, options)));
+  // A reported speed only adds to the initial leases; a measured one decides alone.
+  if (!measured()) leases = std::max(leases, double(InitialLeases(batch_rays, options)));
+  return static_cast<uint32_t>(
+      std::clamp(leases, 1.0, double(std::max<uint32_t>(1, options.max_leases_per_agent))));
+}
+
 uint32_t ThroughputEstimate::LeaseCapacity(double batch_rays,
                                            const SchedulerOptions& options) const {
-  const uint32_t cap = std::max<uint32_t>(1, options.max_leases_per_agent);
-  const uint32_t floor = MeasurableBatches(batch_rays, options);
-  const uint32_t initial = std::clamp<uint32_t>(std::max(options.initial_leases, floor), 1, cap);
-  if (SizingSpeed() <= 0) return initial;
-  const double want = SizingSpeed() * options.target_lease_seconds / std::max(1.0, batch_rays);
-  const double fill = std::max(1.0, std::floor(want));
+  const std::optional<double> filled = FilledBatches(batch_rays, options);
+  if (!filled) return InitialLeases(batch_rays, options);
+  const double fill = std::max(1.0, *filled);
   const double spare =
       double(options.spare_leases) + std::floor(fill * std::max(0.0, options.spare_lease_fraction));
-  double leases = std::max(fill + spare, double(floor));
-  if (!measured()) leases = std::max(leases, double(initial));
-  return static_cast<uint32_t>(std::clamp(leases, 1.0, double(cap)));
+  return SizedLeases(fill + spare, batch_rays, options);
 }
 
 uint32_t ThroughputEstimate::LeaseBatches(double batch_rays,
                                           const SchedulerOptions& options) const {
-  const uint32_t cap = std::max<uint32_t>(1, options.max_leases_per_agent);
-  const uint32_t floor = MeasurableBatches(batch_rays, options);
-  const uint32_t initial = std::clamp<uint32_t>(std::max(options.initial_leases, floor), 1, cap);
-  if (SizingSpeed() <= 0) return initial;
-  const double want = SizingSpeed() * options.target_lease_seconds / std::max(1.0, batch_rays);
-  double batches = std::max(std::floor(want), double(floor));
-  if (!measured()) batches = std::max(batches, double(initial));
-  return static_cast<uint32_t>(std::clamp(batches, 1.0, double(cap)));
+  const std::optional<double> filled = FilledBatches(batch_rays, options);
+  if (!filled) return InitialLeases(batch_rays, options);
+  return SizedLeases(*filled, batch_rays, options);
 }
 
 uint32_t ThroughputEstimate::MeasurableBatches(double batch_rays, const SchedulerOptions& options) {

@@ -74,6 +74,12 @@ class ThroughputEstimate {
   double reported_rays_per_second_ = 0;
   // The speed leases are sized by: the measured one, else the reported one (0: neither).
   double SizingSpeed() const;
+  // options.initial_leases, at least MeasurableBatches, within [1, max_leases_per_agent].
+  static uint32_t InitialLeases(double batch_rays, const SchedulerOptions& options);
+  // floor(SizingSpeed() * target_lease_seconds / batch_rays); nullopt without a speed.
+  std::optional<double> FilledBatches(double batch_rays, const SchedulerOptions& options) const;
+  // `leases` at least MeasurableBatches (and, unmeasured, the initial leases), within the cap.
+  uint32_t SizedLeases(double leases, double batch_rays, const SchedulerOptions& options) const;
 };
 
 }  // namespace radfarm::scheduler
