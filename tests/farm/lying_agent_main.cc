@@ -4,8 +4,11 @@
 // patch: the ray and weight totals still add up, so the result passes ValidateBatchResult and
 // only exact validation (daemon/batch_verifier.h) can tell. RADFARM_TEST_LIE_FRACTION (0..1,
 // default 1) says on which share of batches, chosen from the batch itself, so it is reproducible;
-// RADFARM_TEST_LIE_FROM_ROUND (default 0), from which round on: an agent honest at first.
+// RADFARM_TEST_LIE_LATER=1 makes it honest in the first round it traces and lying in every later
+// one: an agent whose honest results were already reduced when it is caught. (A fixed round would
+// not do: which rounds an agent gets work in depends on how fast the others take the leases.)
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <cstdlib>
 #include <string>
@@ -28,8 +31,11 @@ uint64_t Mix(uint64_t x) {
 
 void Perturb(const radfarm::Batch& batch, radfarm::BatchResult& result) {
   static const double fraction = EnvNumber("RADFARM_TEST_LIE_FRACTION", 1);
-  static const double from_round = EnvNumber("RADFARM_TEST_LIE_FROM_ROUND", 0);
-  if (batch.round < from_round) return;
+  static const bool later = EnvNumber("RADFARM_TEST_LIE_LATER", 0) != 0;
+  static std::atomic<int64_t> first_round{-1};
+  int64_t expected = -1;
+  first_round.compare_exchange_strong(expected, int64_t{batch.round});
+  if (later && int64_t{batch.round} <= first_round.load()) return;
   const uint64_t h = Mix(Mix(Mix(batch.round) ^ batch.shooter) ^ batch.first_ray);
   if (double(h >> 11) * 0x1.0p-53 >= fraction) return;
   if (result.hits.size() < 2) return;  // nothing to move weight between: an honest answer
