@@ -430,9 +430,14 @@ std::optional<double> RoundScheduler::RoundSecondsLeft() const {
 }
 
 bool RoundScheduler::RoundEndAllows(const AgentState& agent, uint32_t rays, TimePoint now) const {
-  // An agent holding nothing always gets work; an unmeasured one has initial_leases for that.
-  if (options_.round_end_share <= 0 || agent.live.empty() || !agent.throughput.measured()) {
-    return true;
+  // An agent holding nothing always gets work.
+  if (options_.round_end_share <= 0 || agent.live.empty()) return true;
+  if (!agent.throughput.measured()) {
+    // Not measured here (at most its reported speed sizes its leases): its equal share of the
+    // round's batches not done. Otherwise the first agents asked fill a capacity sized for a lease
+    // horizon and a short round waits on them, or is taken back from them, while others idle.
+    const size_t not_done = round_->batches.size() - round_->done;
+    return agent.live.size() < (not_done + agents_.size() - 1) / agents_.size();
   }
   const std::optional<double> left = RoundSecondsLeft();
   if (!left) return true;

@@ -39,8 +39,9 @@ struct SchedulerOptions {
   // would then hold is done within this fraction of the time the round is predicted to need (the
   // rays of its batches not yet done over the measured agents' summed rays/s). Without it the
   // first agents asked fill their lease capacity, sized for a lease horizon, and a round shorter
-  // than that horizon (a final gather) or its last part waits on them while others idle.
-  // 0: no cap. radfarmd uses 1 (daemon/master.cc).
+  // than that horizon (a final gather) or its last part waits on them while others idle. An
+  // agent the job has not measured yet holds at most its equal share of the round's batches not
+  // done. 0: no cap. radfarmd uses 1 (daemon/master.cc).
   double round_end_share = 0;
   // Live attempts of one batch at most (the original plus speculative copies).
   uint32_t max_live_attempts = 2;

@@ -604,6 +604,31 @@ TEST(RoundSchedulerTest, AShortRoundIsSpreadOverTheAgentsOnlyWithTheRoundEndShar
   }
 }
 
+// Agents that report a speed but are not measured in this job (a job's first round): each holds
+// at most its equal share of the round's batches not done, so the first ones asked do not take a
+// short round from the others (their reported speed alone allows a lease horizon's worth).
+TEST(RoundSchedulerTest, UnmeasuredAgentsHoldTheirEqualShareOfTheRound) {
+  SchedulerOptions options;
+  options.target_lease_seconds = 100;
+  options.max_leases_per_agent = 100;
+  options.round_end_share = 1;
+  RoundScheduler s(options);
+  for (AgentId agent : {1u, 2u, 3u}) {
+    s.AddAgent(agent);
+    s.ReportSpeed(agent, 1e6);
+  }
+  ASSERT_TRUE(s.StartRound(Plan(1, 10), kT0).ok());
+  ASSERT_EQ(s.LeaseCapacityOf(1), 100u);  // the reported speed alone would allow all 10
+  std::vector<Assignment> one;
+  while (auto a = s.NextAssignment(1, kT0)) one.push_back(*a);
+  EXPECT_EQ(one.size(), 4u);  // ceil(10 / 3)
+  size_t two = 0, three = 0;
+  while (s.NextAssignment(2, kT0)) ++two;
+  while (s.NextAssignment(3, kT0)) ++three;
+  EXPECT_EQ(two, 4u);
+  EXPECT_EQ(three, 2u);  // what is left, none taken from the others
+}
+
 TEST(RoundSchedulerTest, TheEndGameCopiesALeaseRunningTwiceItsExpectedTime) {
   SchedulerOptions options;
   RoundScheduler s(options);
