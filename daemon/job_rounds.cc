@@ -99,11 +99,13 @@ void JobRounds::StartQueuedJobs() {
           if (!submitted_mesh_.empty() && submitted_mesh_job_ == id && !shared->checkpoint) {
             meshed = std::move(submitted_mesh_);
           }
+          const size_t agents = agents_.available_agents().size();
           Status s = compute_.Submit(
-              [shared, options, meshed]() mutable {
+              [shared, options, meshed, agents]() mutable {
                 return RunningJob::Prepare(shared->record, shared->bundle, shared->checkpoint,
                                            shared->checkpoint_scene, shared->rounds, options,
-                                           std::move(shared->round_results), std::move(meshed));
+                                           std::move(shared->round_results), std::move(meshed),
+                                           agents);
               },
               [this, id](Result<std::shared_ptr<RunningJob>> runner) {
                 OnJobPrepared(id, std::move(runner));

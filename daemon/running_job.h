@@ -96,13 +96,14 @@ class RunningJob {
   // those rounds is planned with their batch size, so the same batches, and the results that
   // match the plan exactly start done (StartPlannedRound). `meshed`, when not empty, is the
   // bundle's scene meshed already with the bundle's settings (at submission): it is used instead
-  // of meshing again.
+  // of meshing again. `agents`: those known when the job started, for the first round's taper.
   static Result<std::shared_ptr<RunningJob>> Prepare(
       const store::JobRecord& record, const std::vector<uint8_t>& bundle_blob,
       const std::optional<store::Checkpoint>& checkpoint,
       const std::optional<std::vector<uint8_t>>& checkpoint_scene,
       const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options,
-      std::vector<store::StoredBatchResult> stored = {}, SubmittedMesh meshed = {});
+      std::vector<store::StoredBatchResult> stored = {}, SubmittedMesh meshed = {},
+      size_t agents = 0);
 
   store::JobId id() const { return record_.id; }
   const store::JobRecord& record() const { return record_; }

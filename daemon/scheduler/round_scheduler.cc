@@ -362,9 +362,7 @@ uint32_t RoundScheduler::SuggestedBatchRays() const {
 }
 
 BatchSizing RoundScheduler::SuggestedSizing() const {
-  const double ways = std::round(options_.taper_ways_per_agent * double(agents_.size()));
-  return {SuggestedBatchRays(), static_cast<uint32_t>(std::clamp(
-                                    ways, 0.0, double(std::numeric_limits<uint32_t>::max())))};
+  return {SuggestedBatchRays(), TaperWays(options_, agents_.size())};
 }
 
 SchedulerCounters RoundScheduler::counters(TimePoint now) const {

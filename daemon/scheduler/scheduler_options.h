@@ -1,8 +1,11 @@
 // Tuning of the scheduler. Every field has a working default; times are wall-clock.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "daemon/scheduler/scheduler_types.h"
 
@@ -57,5 +60,11 @@ struct SchedulerOptions {
   uint32_t max_batch_rays = 1 << 20;
   uint32_t default_batch_rays = 4096;
 };
+
+// The taper a round planned for `agents` agents gets: taper_ways_per_agent ways each.
+inline uint32_t TaperWays(const SchedulerOptions& options, size_t agents) {
+  const double ways = std::round(options.taper_ways_per_agent * double(agents));
+  return static_cast<uint32_t>(std::clamp(ways, 0.0, double(std::numeric_limits<uint32_t>::max())));
+}
 
 }  // namespace radfarm::scheduler

@@ -1,7 +1,9 @@
 // RunningJob::RunLocally: a job whose every round the master computes itself ends with the
 // radiosity `radfarm render` gives, to the bit (core/batch.h: a batch's result does not depend on
-// where it runs).
+// where it runs). And RunningJob::Prepare plans the first round tapered for the agents known.
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include "codec/job_bundle.h"
 #include "daemon/running_job.h"
@@ -51,6 +53,43 @@ TEST(RunningJobLocalRoundTest, RoundsRunHereGiveTheLocalSolveBitForBit) {
   ASSERT_EQ(radiosity.size(), local.radiosity.size());
   for (size_t i = 0; i < radiosity.size(); ++i) ASSERT_EQ(radiosity[i], local.radiosity[i]) << i;
   EXPECT_EQ(r.totals().rays, local.stats.rays);
+}
+
+// The first round is planned before any agent is measured: batches of the default size, its end
+// cut finer for the agents known when the job started (none known: not cut), the same rays.
+TEST(RunningJobLocalRoundTest, TheFirstRoundIsTaperedForTheAgentsKnownAtTheStart) {
+  Result<Job> job = LoadJob(RADFARM_SOURCE_DIR "/scenes/cornell-box.toml");
+  ASSERT_TRUE(job.ok()) << job.error();
+  Result<InputScene> scene = LoadObjScene(job->scene_path);
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  job->mesh.patch_size = 100;
+  job->solver.shot_rays = 50'000'000;  // shots of many default batches: only planned, not traced
+  const std::vector<uint8_t> blob = codec::EncodeJobBundle(codec::JobBundle{*job, *scene});
+  store::JobRecord record;
+  record.id = 1;
+  const scheduler::SchedulerOptions options;
+  std::vector<RoundPlan> plans;
+  for (size_t agents : {size_t{0}, size_t{4}}) {
+    Result<std::shared_ptr<RunningJob>> runner =
+        RunningJob::Prepare(record, blob, std::nullopt, std::nullopt, {}, options, {}, {}, agents);
+    ASSERT_TRUE(runner.ok()) << runner.error();
+    Result<RoundPlan> plan = (*runner)->TakePlannedRound();
+    ASSERT_TRUE(plan.ok()) << plan.error();
+    plans.push_back(std::move(*plan));
+  }
+  const RoundPlan& untapered = plans[0];
+  const RoundPlan& tapered = plans[1];
+  EXPECT_EQ(untapered.rays, tapered.rays);
+  for (const Batch& b : untapered.batches) EXPECT_LE(b.ray_count, options.default_batch_rays);
+  // 4 agents x taper_ways_per_agent = 12 ways: batches near the plan's end hold at most the rays
+  // after them over 12, down to the floor, so the tapered plan ends in at least 12 more batches
+  // under the default size, the last at most the floor.
+  const auto short_batches = [&](const RoundPlan& plan) {
+    return std::count_if(plan.batches.begin(), plan.batches.end(),
+                         [&](const Batch& b) { return b.ray_count < options.default_batch_rays; });
+  };
+  EXPECT_GE(short_batches(tapered), short_batches(untapered) + 12);
+  EXPECT_LE(tapered.batches.back().ray_count, TaperFloor(options.default_batch_rays));
 }
 
 }  // namespace
