@@ -20,7 +20,8 @@
 // are cut finer (SuggestedSizing: core/batch.h TaperBatches, a few ways per agent), so the last
 // leases are short. Leases shrink as the queue empties (LeaseSizeOf: at most the queue's share
 // per agent). An agent holds no more than it finishes by the round's predicted end
-// (round_end_share: the rays not done over the agents' summed speed). Once the queue is empty, an
+// (round_end_share: the rays not done over the agents' summed speed), and one not measured yet no
+// more than its equal share of the batches not done. Once the queue is empty, an
 // agent with room takes over the newest lease of the agent expected to finish last, while it would
 // finish that batch sooner (the daemon tells the old holder with a LeaseRevoke; the newest of its
 // leases is the one it has not started). When nothing is worth taking over, an idle agent gets a
