@@ -170,7 +170,7 @@ uint32_t RoundScheduler::LeaseSizeOf(AgentId agent) const {
   const double batch_rays = round_ ? round_->mean_batch_rays : options_.default_batch_rays;
   uint32_t size = it->second.throughput.LeaseBatches(batch_rays, options_);
   if (round_ && !round_->fresh.empty()) {
-    const size_t share = (round_->fresh.size() + agents_.size() - 1) / agents_.size();
+    const size_t share = EqualShare(round_->fresh.size());
     size = static_cast<uint32_t>(std::min<size_t>(size, std::max<size_t>(1, share)));
   }
   return size;
@@ -427,6 +427,11 @@ std::optional<double> RoundScheduler::RoundSecondsLeft() const {
   return double(round_->rays_left) / measured_rays_per_second_;
 }
 
+size_t RoundScheduler::EqualShare(size_t batches) const {
+  const size_t agents = std::max<size_t>(1, agents_.size());
+  return (batches + agents - 1) / agents;
+}
+
 bool RoundScheduler::RoundEndAllows(const AgentState& agent, uint32_t rays, TimePoint now) const {
   // An agent holding nothing always gets work.
   if (options_.round_end_share <= 0 || agent.live.empty()) return true;
@@ -434,8 +439,7 @@ bool RoundScheduler::RoundEndAllows(const AgentState& agent, uint32_t rays, Time
     // Not measured here (at most its reported speed sizes its leases): its equal share of the
     // round's batches not done. Otherwise the first agents asked fill a capacity sized for a lease
     // horizon and a short round waits on them, or is taken back from them, while others idle.
-    const size_t not_done = round_->batches.size() - round_->done;
-    return agent.live.size() < (not_done + agents_.size() - 1) / agents_.size();
+    return agent.live.size() < EqualShare(round_->batches.size() - round_->done);
   }
   const std::optional<double> left = RoundSecondsLeft();
   if (!left) return true;

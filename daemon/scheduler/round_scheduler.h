@@ -272,6 +272,8 @@ class RoundScheduler {
   std::optional<uint32_t> PopFresh();
   // The batch PopFresh would return, left queued (stale entries at the front are dropped).
   std::optional<uint32_t> PeekFresh();
+  // ceil(batches / known agents): one agent's equal share of them.
+  size_t EqualShare(size_t batches) const;
   // Whether the round's end leaves room for `agent` to take `rays` more (round_end_share).
   bool RoundEndAllows(const AgentState& agent, uint32_t rays, TimePoint now) const;
   // Seconds the round's work not done would take the measured agents together; nullopt when
