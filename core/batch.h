@@ -11,6 +11,9 @@
 //     weights. Integer sums are exact in any order, so the reduction of a round (sum per shooter,
 //     then the Southwell update in increasing shooter order, hits in increasing patch order) gives
 //     bit-identical radiosity however the batches were scheduled.
+//  4. The final gather's rays are keyed by kGatherRound, not by the round it runs in: its plan
+//     depends on the mesh alone, so its batches can be traced before the round that folds them
+//     is planned (the master leases them to idle agents during the shooting rounds).
 #pragma once
 
 #include <cstdint>
@@ -18,8 +21,11 @@
 
 namespace radfarm {
 
+// The round key of every final-gather batch (Batch::round): no shooting round reaches it.
+inline constexpr uint32_t kGatherRound = UINT32_MAX;
+
 struct Batch {
-  uint32_t round = 0;
+  uint32_t round = 0;  // the rays' key: the round's number, or kGatherRound for the gather
   uint32_t shooter = 0;  // patch id
   uint64_t first_ray = 0;
   uint32_t ray_count = 0;

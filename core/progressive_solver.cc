@@ -138,6 +138,10 @@ uint64_t ProgressiveSolver::PendingGatherRays() const {
   return GatherPending() ? GatheringPatches() * settings_.gather_rays : 0;
 }
 
+RoundPlan ProgressiveSolver::PlanPendingGather(uint32_t batch_rays) const {
+  return GatherPending() ? PlanGather(batch_rays, 0) : RoundPlan{};
+}
+
 RoundPlan ProgressiveSolver::PlanGather(uint32_t batch_rays, uint64_t ray_cap) const {
   RoundPlan plan;
   plan.round = rounds_done_;
@@ -158,7 +162,7 @@ RoundPlan ProgressiveSolver::PlanGather(uint32_t batch_rays, uint64_t ray_cap) c
     plan.capped = true;
   }
   for (const Shot& shot : plan.shots) {
-    AppendShotBatches(plan.round, shot.shooter, shot.rays, batch_rays, &plan.batches);
+    AppendShotBatches(kGatherRound, shot.shooter, shot.rays, batch_rays, &plan.batches);
   }
   return plan;
 }

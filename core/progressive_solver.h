@@ -108,6 +108,11 @@ class ProgressiveSolver {
   uint64_t GatheringPatches() const;
   // The rays the final gather will cast (before any ray budget cuts it): 0 when none is pending.
   uint64_t PendingGatherRays() const;
+  // The gather round PlanRound will plan when the gather comes (uncut by a ray budget), planned
+  // now: its batches depend on the scene and settings alone (core/batch.h: keyed by
+  // kGatherRound), so they can be traced before the shooting rounds end. Empty when no gather is
+  // pending.
+  RoundPlan PlanPendingGather(uint32_t batch_rays) const;
   // The direct light of every patch the solve started from: the punctual lights' (always), and
   // the emitter patches' where EmittersInDirectStart (else they shoot as usual). Empty when
   // neither is in it.

@@ -27,7 +27,7 @@ RayCostSamples SampleRayCosts(const PatchScene& scene, const RoundPlan& shooting
   for (uint32_t i = 0; i < scene.patches.size(); ++i) {
     if (scene.patches[i].reflectance.Max() <= 0) continue;  // as PlanGather skips it
     if (seen++ % every != 0) continue;
-    AppendShotBatches(shooting.round, i, gather_rays, batch_rays, &s.gather);
+    AppendShotBatches(kGatherRound, i, gather_rays, batch_rays, &s.gather);
     s.gather_rays += gather_rays;
   }
   return s;

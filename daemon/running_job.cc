@@ -48,9 +48,10 @@ std::shared_ptr<const protocol::PackedScene> PackPatchScene(const PatchScene& sc
   return packed;
 }
 
-bool SameBatch(const Batch& a, const Batch& b) {
-  return a.round == b.round && a.shooter == b.shooter && a.first_ray == b.first_ray &&
-         a.ray_count == b.ray_count;
+// The same rays of the same shooter. (A kept result's round is the round it was folded in,
+// matched first; a gather batch's own key is kGatherRound, core/batch.h.)
+bool SameRays(const Batch& a, const Batch& b) {
+  return a.shooter == b.shooter && a.first_ray == b.first_ray && a.ray_count == b.ray_count;
 }
 
 }  // namespace
@@ -187,7 +188,7 @@ void RunningJob::RestoreResults(const RoundPlan& plan, BatchSizing sizing) {
   for (store::StoredBatchResult& r : stored_) {
     if (r.batch.round != plan.round) continue;
     if (BatchSizing{r.batch_rays, r.taper_ways} == sizing && r.index < plan.batches.size() &&
-        SameBatch(plan.batches[r.index], r.batch)) {
+        SameRays(plan.batches[r.index], r.batch)) {
       restored_.emplace_back(r.index, std::move(r.result));
     } else {
       ++restore_mismatches_;
@@ -255,8 +256,11 @@ bool RunningJob::QueueFold(scheduler::BatchId batch, std::vector<store::StoredBa
   std::optional<BatchResult> result = scheduler_.TakeResult(batch);
   if (!result) return false;
   if (keep != nullptr) {
+    // Kept under the round it is folded in (a gather batch's key is kGatherRound: core/batch.h).
+    Batch kept = *scheduler_.FindBatch(batch);
+    kept.round = running_round_;
     keep->push_back({scheduler::BatchIndex(batch), running_sizing_.batch_rays,
-                     running_sizing_.taper_ways, *scheduler_.FindBatch(batch), *result});
+                     running_sizing_.taper_ways, kept, *result});
   }
   unfolded_.emplace_back(scheduler::BatchIndex(batch), std::move(*result));
   return unfolded_.size() >= kFoldChunk;

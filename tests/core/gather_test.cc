@@ -5,6 +5,8 @@
 #include <cmath>
 #include <optional>
 
+#include "core/batch_tracer.h"
+#include "core/ray_caster.h"
 #include "core/solve_control.h"
 #include "solve/local_solve.h"
 #include "tests/core/test_scenes.h"
@@ -64,6 +66,47 @@ TEST(GatherTest, PendingGatherRaysUntilTheGatherRuns) {
   EXPECT_EQ(rounds.back().second, 0u);
   settings.gather_rays = 0;
   EXPECT_EQ(ProgressiveSolver(scene, settings).PendingGatherRays(), 0u);
+}
+
+// The gather's batches are keyed by kGatherRound, not by the round it runs in, and planned ahead
+// they are the ones the gather round has: a solve that needs more shooting rounds to reach its
+// tolerance gathers with the same rays, and a farm may trace them before it gets there.
+TEST(GatherTest, TheGatherRoundIsTheOnePlannedAheadWhicheverRoundItRunsIn) {
+  const PatchScene scene = LitBox();
+  const RayCaster caster(scene);
+  std::vector<RoundPlan> gathers;
+  for (double tolerance : {0.2, 0.01}) {
+    SolverSettings settings = Gathering(64, kShotRays);
+    settings.tolerance = tolerance;
+    ProgressiveSolver solver(scene, settings);
+    const RoundPlan ahead = solver.PlanPendingGather(100);
+    ASSERT_FALSE(ahead.batches.empty());
+    BatchTracer tracer(scene, caster, solver.sampler());
+    for (;;) {
+      const RoundPlan plan = solver.PlanRound(100);
+      ASSERT_FALSE(plan.batches.empty());
+      if (plan.gather) {
+        EXPECT_EQ(plan.round, solver.rounds_done());
+        ASSERT_EQ(plan.batches.size(), ahead.batches.size());
+        for (size_t k = 0; k < plan.batches.size(); ++k) {
+          EXPECT_EQ(plan.batches[k].round, kGatherRound);
+          EXPECT_EQ(plan.batches[k].shooter, ahead.batches[k].shooter);
+          EXPECT_EQ(plan.batches[k].first_ray, ahead.batches[k].first_ray);
+          EXPECT_EQ(plan.batches[k].ray_count, ahead.batches[k].ray_count);
+        }
+        gathers.push_back(plan);
+      } else {
+        for (const Batch& b : plan.batches) EXPECT_EQ(b.round, plan.round);
+      }
+      std::vector<BatchResult> results;
+      for (const Batch& b : plan.batches) results.push_back(tracer.Run(b));
+      solver.ApplyRound(plan, results);
+      if (plan.gather) break;
+    }
+    EXPECT_TRUE(solver.PlanPendingGather(100).batches.empty()) << "the gather ran";
+  }
+  ASSERT_EQ(gathers.size(), 2u);
+  EXPECT_LT(gathers[0].round, gathers[1].round) << "the tighter tolerance shoots more rounds";
 }
 
 TEST(GatherTest, TwoFacingSquaresInOpenSpace) {
