@@ -30,12 +30,18 @@ struct Overloaded : Ts... {
 uint32_t PreemptLowerPriority(const std::vector<RunningJob*>& order, size_t k, uint64_t agent,
                               std::vector<protocol::LeaseRef>& refs) {
   uint32_t taken = 0;
-  for (size_t j = k + 1; j < order.size(); ++j) {
-    if (order[j]->priority() >= order[k]->priority()) continue;
-    for (const scheduler::Takeover& t : order[j]->scheduler().Preempt(agent)) {
-      refs.push_back({static_cast<uint64_t>(order[j]->id()), t.batch_id, t.attempt_id});
+  auto take = [&](const RunningJob& job, scheduler::RoundScheduler& s) {
+    for (const scheduler::Takeover& t : s.Preempt(agent)) {
+      refs.push_back({static_cast<uint64_t>(job.id()), t.batch_id, t.attempt_id});
       ++taken;
     }
+  };
+  for (size_t j = k + 1; j < order.size(); ++j) {
+    if (order[j]->priority() < order[k]->priority()) take(*order[j], order[j]->scheduler());
+  }
+  // Any job's gather ahead is below every round's work (gather_ahead.h).
+  for (RunningJob* job : order) {
+    if (GatherAhead* ahead = job->gather_ahead()) take(*job, ahead->scheduler());
   }
   return taken;
 }
@@ -141,7 +147,9 @@ void AgentConnections::OnAuthenticated(AgentLink& link) {
              [](Status s) {
                if (!s) LogLine(LogLevel::kError, "store") << s.error();
              });
-  for (auto& [job, runner] : jobs_.runners()) runner->scheduler().AddAgent(link.id());
+  for (auto& [job, runner] : jobs_.runners()) {
+    runner->ForEachScheduler([&](scheduler::RoundScheduler& s) { s.AddAgent(link.id()); });
+  }
   Dispatch(link);
 }
 
@@ -149,7 +157,9 @@ void AgentConnections::OnAgentClosed(AgentLink& link, const std::string& reason)
   const uint64_t id = link.id();
   if (link.was_authenticated()) {
     LogLine(LogLevel::kInfo, "agents") << link.Describe() << " disconnected: " << reason;
-    for (auto& [job, runner] : jobs_.runners()) runner->scheduler().OnAgentLost(id);
+    for (auto& [job, runner] : jobs_.runners()) {
+      runner->ForEachScheduler([&](scheduler::RoundScheduler& s) { s.OnAgentLost(id); });
+    }
   } else if (doors_.ClosedBeforeAuth(id)) {
     LogAtDoor(link.address() + ": closed before authentication: " + reason);
   }
@@ -160,8 +170,10 @@ void AgentConnections::OnAgentClosed(AgentLink& link, const std::string& reason)
 void AgentConnections::TakeLeasesAway(AgentLink& link, const char* why) {
   size_t held = 0;
   for (auto& [job, runner] : jobs_.runners()) {
-    held += runner->scheduler().LeasesHeld(link.id());
-    runner->scheduler().OnAgentLost(link.id());
+    runner->ForEachScheduler([&](scheduler::RoundScheduler& s) {
+      held += s.LeasesHeld(link.id());
+      s.OnAgentLost(link.id());
+    });
   }
   LogLine(LogLevel::kWarning, "agents")
       << link.Describe() << " " << why << ": its " << held << " leases go back to the queue";
@@ -171,7 +183,9 @@ void AgentConnections::OnAgentMessage(AgentLink& link, protocol::Message& messag
   if (link.Revive()) {
     // Heard from again after missing its heartbeats: back in the pool.
     LogLine(LogLevel::kInfo, "agents") << link.Describe() << " is back";
-    for (auto& [job, runner] : jobs_.runners()) runner->scheduler().AddAgent(link.id());
+    for (auto& [job, runner] : jobs_.runners()) {
+      runner->ForEachScheduler([&](scheduler::RoundScheduler& s) { s.AddAgent(link.id()); });
+    }
   }
   std::visit(Overloaded{
                  [&](const protocol::HeartbeatMsg& h) { link.set_last_heartbeat(h); },
@@ -194,6 +208,17 @@ void AgentConnections::OnLeaseResult(AgentLink& link, const protocol::LeaseResul
   for (const protocol::BatchResultMsg& r : message.results) by_job[r.lease.job_id].push_back(&r);
   for (auto& [job_id, results] : by_job) {
     RunningJob* runner = jobs_.FindRunner(job_id);
+    if (runner != nullptr && runner->gather_ahead() != nullptr) {
+      // The gather's batches leased ahead of its round, in any phase of the job.
+      std::vector<const protocol::BatchResultMsg*> ahead;
+      std::erase_if(results, [&](const protocol::BatchResultMsg* r) {
+        if (!GatherAhead::Names(r->lease.batch_id)) return false;
+        ahead.push_back(r);
+        return true;
+      });
+      if (!ahead.empty() && !OnGatherAheadResults(link, *runner, ahead)) return;
+      if (results.empty()) continue;
+    }
     if (runner == nullptr || runner->phase() != RunningJob::Phase::kRound) {
       LogLine(LogLevel::kDebug, "agents")
           << link.Describe() << ": " << results.size() << " results for job " << job_id
@@ -228,6 +253,39 @@ void AgentConnections::OnLeaseResult(AgentLink& link, const protocol::LeaseResul
   }
 }
 
+bool AgentConnections::OnGatherAheadResults(
+    AgentLink& link, RunningJob& runner,
+    const std::vector<const protocol::BatchResultMsg*>& results) {
+  GatherAhead& ahead = *runner.gather_ahead();
+  const scheduler::LeaseIntake intake =
+      scheduler::SubmitLeaseResults(ahead.scheduler(), link.id(), results, runner.sampler(),
+                                    runner.patch_count(), LoopNow(loop_));
+  bool round_complete = false;
+  for (scheduler::BatchId batch : intake.accepted_batches) {
+    if (!ahead.adopted()) {
+      ahead.NoteAccepted(batch, link.name());
+      continue;
+    }
+    // A lease still out when the gather round started: its result is the round's now.
+    std::optional<BatchResult> result = ahead.scheduler().TakeResult(batch);
+    if (!result || runner.phase() != RunningJob::Phase::kRound) continue;
+    const uint32_t index = scheduler::BatchIndex(batch);
+    const scheduler::ResultVerdict v =
+        runner.scheduler().OnComputedResult(index, std::move(*result));
+    if (v.disposition != scheduler::Disposition::kAccepted) continue;
+    jobs_.OnResultAccepted(runner.id(), scheduler::MakeBatchId(runner.running_round(), index),
+                           link.name());
+    round_complete = runner.scheduler().RoundComplete();
+  }
+  if (intake.last.verdict.reason == scheduler::DropReason::kInvalid) {
+    OnInvalidResult(link, runner, intake.last.detail);
+  }
+  // A verification may have failed meanwhile: the job was rewound, its runner dropped.
+  if (round_complete && jobs_.FindRunner(runner.id()) == &runner)
+    jobs_.OnRoundComplete(runner.id());
+  return !link.closing();
+}
+
 void AgentConnections::OnInvalidResult(AgentLink& link, RunningJob& runner,
                                        const std::string& why) {
   // The frame authenticated, so the agent computed (or made up) this result itself: its fault.
@@ -254,7 +312,7 @@ void AgentConnections::OnInvalidResult(AgentLink& link, RunningJob& runner,
                       " of its results failed validation (last: " + why + ")");
   for (auto& [id, other] : links_) {
     if (other->was_authenticated() && other->name() == link.name()) {
-      runner.scheduler().Blocklist(id, *until);
+      runner.ForEachScheduler([&](scheduler::RoundScheduler& s) { s.Blocklist(id, *until); });
     }
   }
   link.Close(protocol::CloseCode::kBlocklisted, reason);
@@ -276,7 +334,9 @@ void AgentConnections::Convict(store::JobId job, const std::string& name, const 
   RunningJob* runner = jobs_.FindRunner(job);
   for (auto& [id, link] : links_) {
     if (!link->was_authenticated() || link->name() != name) continue;
-    if (runner != nullptr) runner->scheduler().Blocklist(id, until);
+    if (runner != nullptr) {
+      runner->ForEachScheduler([&](scheduler::RoundScheduler& s) { s.Blocklist(id, until); });
+    }
     if (!link->closing()) link->Close(protocol::CloseCode::kBlocklisted, reason);
   }
 }
@@ -284,7 +344,9 @@ void AgentConnections::Convict(store::JobId job, const std::string& name, const 
 bool AgentConnections::Blocklisted(AgentLink& link, RunningJob& runner, scheduler::TimePoint now) {
   const std::optional<scheduler::TimePoint> until =
       blocklist_.BlockedUntil(runner.id(), link.name(), now);
-  if (until) runner.scheduler().Blocklist(link.id(), *until);
+  if (until) {
+    runner.ForEachScheduler([&](scheduler::RoundScheduler& s) { s.Blocklist(link.id(), *until); });
+  }
   return until.has_value();
 }
 
@@ -295,7 +357,9 @@ void AgentConnections::OnLeaseReturn(AgentLink& link, const protocol::LeaseRetur
   size_t returned = 0;
   for (auto& [job, batches] : by_job) {
     if (RunningJob* runner = jobs_.FindRunner(job)) {
-      returned += runner->scheduler().ReturnLeases(link.id(), batches);
+      // Each scheduler takes back the batches of its own round.
+      runner->ForEachScheduler(
+          [&](scheduler::RoundScheduler& s) { returned += s.ReturnLeases(link.id(), batches); });
     }
   }
   const char* why = message.reason == protocol::LeaseReturnReason::kDraining     ? "draining"
@@ -344,30 +408,20 @@ void AgentConnections::Dispatch(AgentLink& link) {
   uint32_t held = 0, capacity = 0;
   for (RunningJob* runner : order) {
     // Until a job has measured the agent, its own last reported speed sizes its leases there.
-    runner->scheduler().ReportSpeed(link.id(), link.last_heartbeat().rays_per_second);
-    held += runner->scheduler().LeasesHeld(link.id());
-    capacity = std::max(capacity, runner->scheduler().LeaseCapacityOf(link.id()));
+    runner->ForEachScheduler([&](scheduler::RoundScheduler& s) {
+      s.ReportSpeed(link.id(), link.last_heartbeat().rays_per_second);
+      held += s.LeasesHeld(link.id());
+      capacity = std::max(capacity, s.LeaseCapacityOf(link.id()));
+    });
   }
   // The highest-priority job with work fills the agent first; a lower one gets what is left of
-  // its capacity (the tail of a round, a job between rounds). Each job's new leases go out as
+  // its capacity (the tail of a round, a job between rounds), and the jobs' gathers ahead what is
+  // left after every round (gather_ahead.h). Each scheduler's new leases go out as
   // LeaseAssignment frames of at most LeaseSizeOf() batches; leases taken over from another agent
   // are revoked there in one LeaseRevoke per agent. A job with batches queued takes the agent's
-  // leases of lower-priority jobs back first.
+  // leases of lower-priority jobs and of the gathers ahead back first.
   std::map<uint64_t, std::vector<protocol::LeaseRef>> revoked;
-  for (size_t k = 0; k < order.size(); ++k) {
-    RunningJob* runner = order[k];
-    scheduler::RoundScheduler& s = runner->scheduler();
-    if (Blocklisted(link, *runner, now)) continue;
-    if (s.WantsAgent(link.id(), now)) {
-      std::vector<protocol::LeaseRef> preempted;
-      held -= PreemptLowerPriority(order, k, link.id(), preempted);
-      // Before the new leases, so that the agent drops the old ones first.
-      for (size_t i = 0; i < preempted.size(); i += protocol::kMaxLeaseBatches) {
-        const auto end =
-            preempted.begin() + std::min(preempted.size(), i + protocol::kMaxLeaseBatches);
-        (void)link.Send(protocol::LeaseRevokeMsg{{preempted.begin() + i, end}});
-      }
-    }
+  auto lease_from = [&](RunningJob& runner, scheduler::RoundScheduler& s) {
     bool more = true;
     while (more) {
       const uint32_t size = std::min<uint32_t>(s.LeaseSizeOf(link.id()),
@@ -385,7 +439,7 @@ void AgentConnections::Dispatch(AgentLink& link) {
         deadline = std::max(deadline, a->deadline);
         lease.push_back({a->batch_id, a->attempt_id, a->batch});
         if (a->taken_from) {
-          revoked[a->taken_from->agent].push_back({static_cast<uint64_t>(runner->id()),
+          revoked[a->taken_from->agent].push_back({static_cast<uint64_t>(runner.id()),
                                                    a->taken_from->batch_id,
                                                    a->taken_from->attempt_id});
         }
@@ -393,12 +447,34 @@ void AgentConnections::Dispatch(AgentLink& link) {
       if (lease.empty()) break;
       const auto lease_ms = std::max<int64_t>(
           1, std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now).count());
-      if (Status st = link.Send(protocol::MakeLeaseAssignment(runner->wire_info(), lease,
+      if (Status st = link.Send(protocol::MakeLeaseAssignment(runner.wire_info(), lease,
                                                               static_cast<uint32_t>(lease_ms)));
           !st) {
         LogLine(LogLevel::kWarning, "agents") << link.Describe() << ": " << st.error();
         more = false;
       }
+    }
+  };
+  for (size_t k = 0; k < order.size(); ++k) {
+    RunningJob* runner = order[k];
+    scheduler::RoundScheduler& s = runner->scheduler();
+    if (Blocklisted(link, *runner, now)) continue;
+    if (s.WantsAgent(link.id(), now)) {
+      std::vector<protocol::LeaseRef> preempted;
+      held -= PreemptLowerPriority(order, k, link.id(), preempted);
+      // Before the new leases, so that the agent drops the old ones first.
+      for (size_t i = 0; i < preempted.size(); i += protocol::kMaxLeaseBatches) {
+        const auto end =
+            preempted.begin() + std::min(preempted.size(), i + protocol::kMaxLeaseBatches);
+        (void)link.Send(protocol::LeaseRevokeMsg{{preempted.begin() + i, end}});
+      }
+    }
+    lease_from(*runner, s);
+  }
+  for (RunningJob* runner : order) {
+    GatherAhead* ahead = runner->gather_ahead();
+    if (ahead != nullptr && !ahead->adopted() && !Blocklisted(link, *runner, now)) {
+      lease_from(*runner, ahead->scheduler());
     }
   }
   for (auto& [agent_id, leases] : revoked) {
@@ -463,7 +539,9 @@ void AgentConnections::Heartbeat() {
     // called per agent, took most of the loop thread's time with 1000 agents (farm_bench,
     // docs/BENCHMARKS-farm.md).
     uint32_t leases = 0;
-    for (auto& [job, runner] : jobs_.runners()) leases += runner->scheduler().LeasesHeld(id);
+    for (auto& [job, runner] : jobs_.runners()) {
+      runner->ForEachScheduler([&](scheduler::RoundScheduler& s) { leases += s.LeasesHeld(id); });
+    }
     beat.leases_held = leases;
     (void)link->Send(beat);
   }

@@ -96,6 +96,10 @@ class AgentConnections {
   void OnInvalidResult(AgentLink& link, RunningJob& runner, const std::string& why);
   // Whether `link`'s agent is blocklisted for `runner`'s job; if so, its scheduler is told.
   bool Blocklisted(AgentLink& link, RunningJob& runner, scheduler::TimePoint now);
+  // Results of the job's gather ahead (gather_ahead.h): validated and kept there. False when the
+  // link is closing (an invalid result, as for a round's).
+  bool OnGatherAheadResults(AgentLink& link, RunningJob& runner,
+                            const std::vector<const protocol::BatchResultMsg*>& results);
   // A refused or pre-authentication close, through the rate limiter.
   void LogAtDoor(const std::string& line);
   // Hands leases to one agent.

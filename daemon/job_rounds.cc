@@ -144,7 +144,15 @@ void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob
       << (r->meshed_at_submission() ? " (meshed at submission)" : "") << ", scene "
       << protocol::HashToHex(r->wire_info().scene_hash) << " (" << r->packed_scene()->size
       << " bytes, " << r->packed_scene()->compressed.size() << " compressed)";
-  for (uint64_t agent : agents_.available_agents()) r->scheduler().AddAgent(agent);
+  const std::vector<uint64_t> agents = agents_.available_agents();
+  for (uint64_t agent : agents) r->scheduler().AddAgent(agent);
+  // The final gather goes to idle agents from now on, unless this master will compute it itself.
+  if (r->totals().gather_rays_left > config_.local_round_rays) {
+    if (Status s = r->StartGatherAhead(LoopNow(loop_), agents); !s) {
+      FailJob(id, s.error());
+      return;
+    }
+  }
   BeginRound(r);
 }
 
@@ -159,6 +167,24 @@ void JobRounds::BeginRound(const std::shared_ptr<RunningJob>& runner) {
     return;
   }
   StartVerifying(runner);
+  if (const auto adopted = runner->TakeAdoptedResults(); !adopted.empty()) {
+    // The gather's batches computed ahead: accepted now, as if they had just come in.
+    for (const auto& [index, agent] : adopted) {
+      OnResultAccepted(runner->id(), scheduler::MakeBatchId(runner->running_round(), index), agent);
+    }
+    const scheduler::SchedulerCounters c = runner->scheduler().counters(LoopNow(loop_));
+    LogLine(LogLevel::kInfo, "job " + std::to_string(runner->id()))
+        << "round " << c.round << " (the final gather): " << adopted.size() << " of " << c.batches
+        << " batches computed ahead, " << c.batches - c.batches_done << " to lease";
+    gather_ahead_adopted_ += adopted.size();
+    if (runner->restored_batches() == 0) {
+      SendFolds(runner);
+      if (runner->scheduler().RoundComplete()) {
+        OnRoundComplete(runner->id());
+        return;
+      }
+    }
+  }
   if (const size_t restored = runner->restored_batches(); restored > 0) {
     // Results a previous master received and kept: folded in first, their batches not leased.
     batches_restored_ += restored;
@@ -391,7 +417,11 @@ void JobRounds::FailJob(store::JobId id, const std::string& error) {
 std::vector<RunningJob*> JobRounds::RunnersByPriority() {
   std::vector<RunningJob*> order;
   for (auto& [id, runner] : runners_) {
-    if (runner->phase() == RunningJob::Phase::kRound) order.push_back(runner.get());
+    // Between rounds a job's gather ahead still has batches for agents (gather_ahead.h).
+    if (runner->phase() == RunningJob::Phase::kRound ||
+        (runner->phase() == RunningJob::Phase::kReducing && runner->gather_ahead() != nullptr)) {
+      order.push_back(runner.get());
+    }
   }
   // Equal priorities take turns being first, so they share the agents.
   if (!order.empty()) {
@@ -414,6 +444,8 @@ size_t JobRounds::Tick(scheduler::TimePoint now) {
   size_t offered = 0;
   for (auto& [job, runner] : runners_) {
     if (runner->phase() == RunningJob::Phase::kRound) offered += runner->scheduler().Tick(now);
+    GatherAhead* ahead = runner->gather_ahead();
+    if (ahead != nullptr && !ahead->adopted()) offered += ahead->scheduler().Tick(now);
   }
   return offered;
 }

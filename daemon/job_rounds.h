@@ -98,7 +98,8 @@ class JobRounds {
   // The running jobs (not those being prepared), by id.
   const Runners& runners() const { return runners_; }
   RunningJob* FindRunner(uint64_t job_id);
-  // The jobs in a round, highest priority first; equal priorities take turns being first.
+  // The jobs in a round, and those between rounds with a gather ahead (gather_ahead.h), highest
+  // priority first; equal priorities take turns being first.
   std::vector<RunningJob*> RunnersByPriority();
   size_t starting() const { return starting_.size(); }
   // The batch counters of every job since the master started: the finished runners' and the
@@ -108,6 +109,8 @@ class JobRounds {
   const JournalCounters& journal() const { return journal_.counters(); }
   const VerifyCounters& verification() const { return verify_counters_; }
   uint64_t batches_restored() const { return batches_restored_; }
+  // Results of final gathers computed ahead of their rounds and accepted there (gather_ahead.h).
+  uint64_t gather_ahead_adopted() const { return gather_ahead_adopted_; }
   // Seconds from queueing each checkpoint on the store thread to its commit.
   const web::LatencyHistogram& checkpoint_latency() const { return checkpoint_latency_; }
   // Offers overdue leases again (RoundScheduler::Tick); returns how many.
@@ -165,6 +168,7 @@ class JobRounds {
   std::set<store::JobId> awaiting_verification_;     // complete rounds held at the barrier
   VerifyCounters verify_counters_;
   uint64_t batches_restored_ = 0;
+  uint64_t gather_ahead_adopted_ = 0;
   BatchTotals retired_;  // the counters of runners that went
   web::LatencyHistogram checkpoint_latency_;
   store::CheckpointPacer checkpoints_;     // which rounds write a checkpoint

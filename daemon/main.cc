@@ -32,7 +32,7 @@ struct Flags {
       blocklist_seconds;
   std::optional<double> checkpoint_seconds, checkpoint_time_share, lease_seconds,
       keep_results_after_seconds, verify_fraction;
-  std::optional<uint64_t> local_round_rays, max_store_bytes;
+  std::optional<uint64_t> local_round_rays, gather_ahead_rays, max_store_bytes;
   std::optional<bool> keep_round_results;
   bool detach = false;
 };
@@ -106,6 +106,10 @@ void AddFlags(CLI::App& app, Flags* f) {
                  "Rounds of at most this many rays are computed by the master, not leased to "
                  "agents; 0 = never (default 262144)")
       ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 40));
+  app.add_option("--gather-ahead-rays", f->gather_ahead_rays,
+                 "The final gather's first rays, at most this many, go to agents that idle between "
+                 "and at the ends of the shooting rounds; 0 = off (default 8388608)")
+      ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 40));
   app.add_option("--keep-round-results", f->keep_round_results,
                  "Keep each accepted batch result in the store until its round's checkpoint, so "
                  "a restarted master leases only the batches it had not received (default true)");
@@ -158,6 +162,7 @@ Result<MasterConfig> ResolveConfig(const Flags& f) {
   Override(f.verify_fraction, &c.verify_fraction);
   Override(f.max_unauthenticated, &c.max_unauthenticated);
   Override(f.local_round_rays, &c.local_round_rays);
+  Override(f.gather_ahead_rays, &c.gather_ahead_rays);
   Override(f.keep_round_results, &c.keep_round_results);
   Override(f.keep_results_after_seconds, &c.keep_results_after_seconds);
   Override(f.http, &c.http);

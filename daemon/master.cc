@@ -33,6 +33,7 @@ Master::Master(loop::EventLoop& loop, const MasterConfig& config, protocol::Farm
   // Near a round's end an agent holds no more than it finishes by the round's predicted end
   // (farm_bench, 1000 agents: the final gather's round took 8 times its work's time).
   scheduler_options_.round_end_share = 1;
+  scheduler_options_.gather_ahead_rays = config.gather_ahead_rays;
 }
 
 Master::~Master() = default;

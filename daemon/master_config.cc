@@ -52,6 +52,7 @@ Status ReadMasterConfigFile(const std::string& path, MasterConfig* c) {
         r.Integer("max_unauthenticated", 1, 1000000, &c->max_unauthenticated),
         r.Bool("allow_shared_secret", &c->allow_shared_secret),
         r.Integer("local_round_rays", 0, kMaxLocalRoundRays, &c->local_round_rays),
+        r.Integer("gather_ahead_rays", 0, kMaxLocalRoundRays, &c->gather_ahead_rays),
         r.Bool("keep_round_results", &c->keep_round_results),
         r.Real("keep_results_after_seconds", Interval::AtLeast(0), &c->keep_results_after_seconds),
         r.String("http", &c->http),

@@ -33,6 +33,10 @@ struct MasterConfig {
   // Rounds of at most this many rays are computed by the master itself (0: never): the last
   // rounds of a solve are a few rays per patch, which cost agents a round trip per batch.
   uint64_t local_round_rays = 262144;
+  // The final gather's first rays, at most this many, go to agents idle between and at the ends
+  // of the shooting rounds (daemon/gather_ahead.h); their results wait on the master until the
+  // gather round (at most about 16 bytes a ray). 0: off.
+  uint64_t gather_ahead_rays = uint64_t{1} << 23;
   // Keep each accepted batch result in the store until its round's checkpoint, so a restarted
   // master leases only the batches it had not received (daemon/result_journal.h). Off: a restart
   // computes the whole round again, as before.

@@ -164,9 +164,39 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   }
   runner->RestoreResults(*plan, sizing);
   runner->fold_plan_ = std::make_shared<const RoundPlan>(*plan);
+  const bool gather_now = plan->gather;
   runner->planned_ = std::move(*plan);
   runner->planned_sizing_ = sizing;
+  runner->options_ = options;
+  if (!gather_now) runner->PlanGatherAhead(sizing, options);
   return runner;
+}
+
+void RunningJob::PlanGatherAhead(BatchSizing sizing, const scheduler::SchedulerOptions& options) {
+  // A budget may cut or drop the gather, and a refinement step replaces the mesh its batches
+  // trace: then the batches traced ahead would not be the round's.
+  const SolverSettings& s = driver_->settings();
+  if (options.gather_ahead_rays == 0 || s.max_rays > 0 || s.max_seconds > 0 || driver_->refines()) {
+    return;
+  }
+  ahead_plan_ = GatherAhead::Plan(driver_->solver(), sizing, options.gather_ahead_rays);
+  if (ahead_plan_) ahead_sizing_ = sizing;
+}
+
+bool RunningJob::GatherIsNext() const {
+  // As ProgressiveSolver::PlanRound decides.
+  const ProgressiveSolver& solver = driver_->solver();
+  return solver.GatherPending() && solver.UnshotFraction() <= driver_->settings().tolerance;
+}
+
+Status RunningJob::StartGatherAhead(scheduler::TimePoint now, std::span<const uint64_t> agents) {
+  if (!ahead_plan_) return Ok{};
+  Result<std::unique_ptr<GatherAhead>> ahead =
+      GatherAhead::Start(std::move(*ahead_plan_), *ahead_sizing_, options_, now, agents);
+  ahead_plan_.reset();
+  RADFARM_RETURN_IF_ERROR(ahead);
+  ahead_ = std::move(*ahead);
+  return Ok{};
 }
 
 BatchSizing RunningJob::SizingFor(uint32_t round, BatchSizing fallback) const {
@@ -207,7 +237,17 @@ Status RunningJob::StartPlannedRound(scheduler::TimePoint now) {
   std::vector<uint32_t> done;
   done.reserve(restored_.size());
   for (const auto& [index, result] : restored_) done.push_back(index);
-  Status s = scheduler_.StartRound(std::move(*planned_), now, done);
+  std::vector<std::pair<uint32_t, BatchResult>> computed;
+  std::vector<uint32_t> in_flight;
+  if (ahead_ && planned_->gather) {
+    // The gather's round: the batches computed ahead start done (JobRounds accepts them), and
+    // those still out are leased last, as their results will likely have come by then.
+    GatherAhead::Adopted adopted = ahead_->Adopt(*planned_, done);
+    computed = std::move(adopted.results);
+    adopted_ = std::move(adopted.agents);
+    in_flight = std::move(adopted.in_flight);
+  }
+  Status s = scheduler_.StartRound(std::move(*planned_), now, done, std::move(computed), in_flight);
   planned_.reset();
   // The restored results are folded in as accepted ones are, first.
   unfolded_ = std::exchange(restored_, {});
@@ -224,6 +264,7 @@ Result<RoundPlan> RunningJob::TakePlannedRound() {
   RoundPlan plan = std::move(*planned_);
   planned_.reset();
   restored_.clear();  // computed here anyway: cheaper than the hand-over
+  if (plan.gather) ahead_.reset();  // likewise
   phase_ = Phase::kReducing;
   running_rays_ = 0;  // computed here: shown from Reduce's result
   return plan;
@@ -239,6 +280,7 @@ scheduler::CompletedRound RunningJob::RunLocally(RoundPlan plan) {
 Result<scheduler::CompletedRound> RunningJob::TakeRound() {
   Result<scheduler::CompletedRound> done = scheduler_.TakeCompletedRound();
   if (!done.ok()) return done;
+  if (ahead_ && ahead_->adopted()) ahead_.reset();  // the gather round is over
   // Results taken out for folding but not sent yet go back in: Reduce adds them.
   for (auto& [index, result] : unfolded_) done->results[index] = std::move(result);
   unfolded_.clear();
@@ -317,7 +359,9 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
   }
   UpdateTotals();
   // A restarted master replays the rounds it kept results of with the batch sizes they had.
-  const BatchSizing next_sizing = SizingFor(driver_->solver().rounds_done(), sizing);
+  // The gather round is planned with the batch sizes of the batches traced ahead.
+  const BatchSizing next_sizing = SizingFor(
+      driver_->solver().rounds_done(), ahead_sizing_ && GatherIsNext() ? *ahead_sizing_ : sizing);
   if (std::optional<RoundPlan> next = PlanNext(next_sizing)) {
     RestoreResults(*next, next_sizing);
     fold_plan_ = std::make_shared<const RoundPlan>(*next);  // the worker's copy, for the fold

@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,6 +38,7 @@
 #include "core/progressive_solver.h"
 #include "core/thread_pool.h"
 #include "daemon/batch_verifier.h"
+#include "daemon/gather_ahead.h"
 #include "daemon/scheduler/round_scheduler.h"
 #include "protocol/batch_convert.h"
 #include "protocol/messages.h"
@@ -122,6 +124,27 @@ class RunningJob {
   const std::optional<std::string>& stop_reason() const { return stop_reason_; }
   scheduler::RoundScheduler& scheduler() { return scheduler_; }
   const scheduler::RoundScheduler& scheduler() const { return scheduler_; }
+  // Loop thread: the final gather leased ahead of its round (gather_ahead.h); null when there is
+  // none (off, no gather, budgets, refinement, or its round has ended). Once its round started
+  // (adopted()) it leases nothing more and passes its late results on to the round.
+  GatherAhead* gather_ahead() { return ahead_.get(); }
+  // Loop thread: every scheduler that leases this job's batches to agents: the round's, then the
+  // gather's ahead if any. What happens to an agent (it comes, goes, is blocklisted) happens in
+  // all.
+  template <class F>
+  void ForEachScheduler(F&& f) {
+    f(scheduler_);
+    if (ahead_) f(ahead_->scheduler());
+  }
+  // Loop thread: leases the gather ahead (Prepare planned it when the job may: gather on, no ray
+  // or time budget, no refinement, options.gather_ahead_rays > 0) to `agents` from now on. Does
+  // nothing when none was planned; an error fails the job.
+  Status StartGatherAhead(scheduler::TimePoint now, std::span<const uint64_t> agents);
+  // Loop thread, after StartPlannedRound: the batches whose results the gather ahead computed
+  // (done at the round's start), with their agents, for JobRounds to accept; emptied here.
+  std::vector<std::pair<uint32_t, std::string>> TakeAdoptedResults() {
+    return std::exchange(adopted_, {});
+  }
 
   // Loop thread: starts the planned round. Fails if there is none. Results restored from the
   // store start done and are queued for the fold (TakeFolds); the round may be complete at once.
@@ -191,6 +214,11 @@ class RunningJob {
   // Worker thread: moves the kept results that answer `plan`'s batches exactly to restored_, for
   // StartPlannedRound, and forgets the kept results of its round and those before.
   void RestoreResults(const RoundPlan& plan, BatchSizing sizing);
+  // Worker thread: the gather ahead's plan (GatherAhead::Plan with `sizing`) when the job may
+  // lease it early, and the sizing the gather round must then be planned with.
+  void PlanGatherAhead(BatchSizing sizing, const scheduler::SchedulerOptions& options);
+  // Worker thread: the round after the one just applied is the final gather.
+  bool GatherIsNext() const;
   // Worker thread: encodes the driver's refined scene after a step that split.
   void EncodeRefinedScene();
   // The totals and progress figures of the driver's state, for status.
@@ -229,6 +257,13 @@ class RunningJob {
   BatchSizing planned_sizing_;
   BatchSizing running_sizing_;
   uint32_t running_round_ = 0;
+  // The gather ahead: planned on the worker (Prepare), leased from the loop thread until the
+  // gather round starts; the sizing is the worker's (Reduce plans the gather round with it).
+  std::optional<RoundPlan> ahead_plan_;
+  std::optional<BatchSizing> ahead_sizing_;
+  std::unique_ptr<GatherAhead> ahead_;
+  scheduler::SchedulerOptions options_;
+  std::vector<std::pair<uint32_t, std::string>> adopted_;
   std::optional<std::string> stop_reason_;
   JobTotals totals_;
   Phase phase_ = Phase::kRound;

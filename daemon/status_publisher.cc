@@ -78,6 +78,7 @@ void StatusPublisher::Publish(const json& jobs, const json& agents, const json& 
   metrics.round_results_kept = jobs_.journal().results_written;
   metrics.round_result_writes = jobs_.journal().writes;
   metrics.batches_restored = jobs_.batches_restored();
+  metrics.gather_ahead_batches = jobs_.gather_ahead_adopted();
   snapshot.metrics_text = web::FormatMetrics(metrics);
   board_.Publish(std::move(snapshot));
 }

@@ -117,6 +117,8 @@ class RoundDriver {
   // Steps that split (or restarted) since Start.
   uint32_t refinements() const { return refinements_; }
   bool refined() const { return refined_; }
+  // Whether refinement is on: the mesh may still change at a refinement point.
+  bool refines() const { return schedule_.has_value(); }
   const ProgressiveSolver& solver() const { return *solver_; }
   const SolverSettings& settings() const { return settings_; }
   const SolveTotals& totals() const { return totals_; }

@@ -77,7 +77,9 @@ bool RoundScheduler::IsBlocklisted(AgentId agent, TimePoint now) const {
 // --- Rounds ---
 
 Status RoundScheduler::StartRound(RoundPlan plan, TimePoint /*now*/,
-                                  std::span<const uint32_t> restored) {
+                                  std::span<const uint32_t> restored,
+                                  std::vector<std::pair<uint32_t, BatchResult>> computed,
+                                  std::span<const uint32_t> later) {
   if (round_) {
     return Error{"round " + std::to_string(round_->plan.round) + " is still active"};
   }
@@ -94,13 +96,29 @@ Status RoundScheduler::StartRound(RoundPlan plan, TimePoint /*now*/,
     round.batches[k].result_taken = true;
     ++round.done;
   }
-  for (uint32_t k = 0; k < plan.batches.size(); ++k) {
-    rays += plan.batches[k].ray_count;
-    if (round.batches[k].state == BatchState::kDone) continue;
+  for (auto& [k, result] : computed) {
+    if (k >= plan.batches.size() || round.batches[k].state == BatchState::kDone) continue;
+    round.batches[k].state = BatchState::kDone;
+    round.batches[k].result = std::move(result);
+    ++round.done;
+  }
+  std::vector<bool> last(later.empty() ? 0 : plan.batches.size());
+  for (uint32_t k : later) {
+    if (k < last.size()) last[k] = true;
+  }
+  auto enqueue = [&](uint32_t k) {
     round.fresh.push_back(k);
     round.batches[k].in_fresh_queue = true;
     ++round.queued;
     round.rays_left += plan.batches[k].ray_count;
+  };
+  for (uint32_t k = 0; k < plan.batches.size(); ++k) {
+    rays += plan.batches[k].ray_count;
+    if (round.batches[k].state == BatchState::kDone || (!last.empty() && last[k])) continue;
+    enqueue(k);
+  }
+  for (uint32_t k = 0; k < last.size(); ++k) {
+    if (last[k] && round.batches[k].state != BatchState::kDone) enqueue(k);
   }
   measured_rays_per_second_ = 0;
   for (const auto& [id, agent] : agents_) {
@@ -149,6 +167,12 @@ const BatchResult* RoundScheduler::PeekResult(BatchId batch_id) const {
   const BatchSlot& slot = round_->batches[index];
   if (slot.state != BatchState::kDone || slot.result_taken) return nullptr;
   return &slot.result;
+}
+
+bool RoundScheduler::HasLiveLease(BatchId batch_id) const {
+  if (!round_ || BatchRound(batch_id) != round_->plan.round) return false;
+  const uint32_t index = BatchIndex(batch_id);
+  return index < round_->batches.size() && LiveAttempts(round_->batches[index]) > 0;
 }
 
 const Batch* RoundScheduler::FindBatch(BatchId batch_id) const {
@@ -300,6 +324,21 @@ ResultVerdict RoundScheduler::Record(AgentId agent_id, BatchId batch_id, Attempt
   if (const auto agent = agents_.find(agent_id); agent != agents_.end()) {
     ++agent->second.results_accepted;
   }
+  return Verdict(Disposition::kAccepted, DropReason::kNone);
+}
+
+ResultVerdict RoundScheduler::OnComputedResult(uint32_t index, BatchResult result) {
+  if (!round_ || index >= round_->batches.size()) {
+    return Verdict(Disposition::kDropped, DropReason::kStaleRound);
+  }
+  BatchSlot& slot = round_->batches[index];
+  if (slot.state == BatchState::kDone) return Verdict(Disposition::kDropped, DropReason::kLate);
+  SetState(slot, BatchState::kDone);
+  round_->rays_left -= round_->plan.batches[index].ray_count;
+  slot.result = std::move(result);
+  ++round_->done;
+  const std::vector<AttemptId> attempts = slot.attempts;
+  for (AttemptId other : attempts) EndAttempt(other, AttemptState::kSuperseded);
   return Verdict(Disposition::kAccepted, DropReason::kNone);
 }
 

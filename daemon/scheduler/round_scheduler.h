@@ -143,7 +143,18 @@ class RoundScheduler {
   // The batches in `restored` (indices into plan.batches) start done with their results taken:
   // a restarted master had them from its store and folds them in itself; out-of-range or repeated
   // indices are ignored. The round may then be complete at once.
-  Status StartRound(RoundPlan plan, TimePoint now, std::span<const uint32_t> restored = {});
+  // `computed`: results of batches of the plan traced before the round started (the final gather
+  // planned ahead: daemon/gather_ahead.h), by index; they start done with their results in place,
+  // for TakeResult as accepted results are. Indices out of range or done already are ignored.
+  // `later`: batches still being computed elsewhere (the gather ahead's leases out), leased after
+  // all the others, by when their results have likely come (OnComputedResult).
+  Status StartRound(RoundPlan plan, TimePoint now, std::span<const uint32_t> restored = {},
+                    std::vector<std::pair<uint32_t, BatchResult>> computed = {},
+                    std::span<const uint32_t> later = {});
+  // A valid result of batch `index` of this round computed outside its leases (a lease of the
+  // gather ahead that was still out when the round started): the batch is done with it unless it
+  // is done already (kLate); live attempts of it are superseded.
+  ResultVerdict OnComputedResult(uint32_t index, BatchResult result);
   bool round_active() const { return round_.has_value(); }
   bool RoundComplete() const;
   // The round's queue is empty but some batches have no result yet: idle agents may take over or
@@ -164,6 +175,8 @@ class RoundScheduler {
   // The batch a batch id names in the current round, to validate a result against; nullptr when
   // the id is not in the current round.
   const Batch* FindBatch(BatchId batch_id) const;
+  // Whether an agent holds a live lease of the batch (false for one not in the current round).
+  bool HasLiveLease(BatchId batch_id) const;
 
   // --- Work ---
   // The next lease for `agent`, or nothing: no round, unknown or blocklisted agent, agent at its

@@ -55,6 +55,10 @@ struct SchedulerOptions {
   // agents' last leases finish close together. 3 beat 1 and 8 in farm_bench (1000 agents: 1 cut
   // too late to even out the agents' held work; 8 cost frames for nothing). 0: no taper.
   double taper_ways_per_agent = 3;
+  // The final gather's first rays, at most this many, are leased to agents with nothing else to
+  // do while the shooting rounds run (daemon/gather_ahead.h). 0: off. radfarmd: MasterConfig's
+  // gather_ahead_rays.
+  uint64_t gather_ahead_rays = 0;
   // SuggestedBatchRays() bounds.
   uint32_t min_batch_rays = 256;
   uint32_t max_batch_rays = 1 << 20;

@@ -131,6 +131,10 @@ std::string FormatMetrics(const FarmMetrics& m) {
   e.Family("radfarm_batches_restored_total", "counter",
            "Batches whose stored result a restarted master folded in instead of leasing them.");
   e.Sample("radfarm_batches_restored_total", double(m.batches_restored));
+  e.Family("radfarm_gather_ahead_batches_total", "counter",
+           "Final-gather batches agents computed while the shooting rounds ran, accepted when the "
+           "gather round started.");
+  e.Sample("radfarm_gather_ahead_batches_total", double(m.gather_ahead_batches));
   return e.Take();
 }
 

@@ -33,6 +33,8 @@ struct FarmMetrics {
   uint64_t round_results_kept = 0;
   uint64_t round_result_writes = 0;
   uint64_t batches_restored = 0;
+  // Final-gather batches computed ahead of their round and accepted there (daemon/gather_ahead.h).
+  uint64_t gather_ahead_batches = 0;
 };
 
 // The exposition text; series in a fixed order, labels sorted, numbers in their shortest exact

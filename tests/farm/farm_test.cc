@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <regex>
 
 #include "tests/farm/farm_fixture.h"
 #include "tests/farm/kept_results.h"
@@ -67,6 +68,40 @@ TEST_F(FarmTest, RoundsUnderTheLocalLimitAreSolvedByTheMasterAlone) {
   const int64_t id = Submit("cornell-box.toml", kShortJob);
   ASSERT_TRUE(WaitForState(id, "done"));
   EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml", kShortJob));
+}
+
+// The final gather's batches depend on the scene alone, so agents idle at the ends of and between
+// the shooting rounds compute them ahead (daemon/gather_ahead.h); the gather round starts with
+// those done. The patches are render's to the byte, with it and without it (--gather-ahead-rays 0).
+const std::regex& AdoptedLine() {
+  static const std::regex line(R"(\(the final gather\): (\d+) of (\d+) batches computed ahead)");
+  return line;
+}
+
+TEST_F(FarmTest, TheFinalGatherComputedAheadGivesRendersPatches) {
+  StartMaster();
+  StartAgent("a1");
+  StartAgent("a2");
+  const int64_t id = Submit("cornell-box.toml");
+  ASSERT_TRUE(WaitForState(id, "done"));
+  EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml")) << "farm and render differ";
+  const std::string log = MasterLog();
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(log, m, AdoptedLine())) << log;
+  EXPECT_GE(std::stoul(m[1].str()), 1u);
+  EXPECT_LE(std::stoul(m[1].str()), std::stoul(m[2].str()));
+}
+
+TEST_F(FarmTest, WithoutTheGatherAheadThePatchesAreTheSame) {
+  StartMaster({"--gather-ahead-rays", "0"});
+  StartAgent("a1");
+  StartAgent("a2");
+  const int64_t id = Submit("cornell-box.toml");
+  ASSERT_TRUE(WaitForState(id, "done"));
+  EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml")) << "farm and render differ";
+  std::smatch m;
+  const std::string log = MasterLog();
+  EXPECT_FALSE(std::regex_search(log, m, AdoptedLine()));
 }
 
 // The master meshes a submitted scene to check it; a job that starts at once is prepared with

@@ -111,6 +111,61 @@ TEST(RoundSchedulerTest, RestoredBatchesStartDoneAndOnlyTheOthersAreLeased) {
   EXPECT_TRUE(s.TakeCompletedRound().ok());
 }
 
+// The final gather planned ahead (daemon/gather_ahead.h): batches computed before the round start
+// done with their results in place (taken like accepted ones), batches still out elsewhere are
+// leased after all the others, and a result computed elsewhere completes its batch once,
+// superseding a lease of it.
+TEST(RoundSchedulerTest, BatchesComputedAheadStartDoneAndThoseStillOutAreLeasedLast) {
+  SchedulerOptions options;
+  options.initial_leases = 10;
+  RoundScheduler s(options);
+  s.AddAgent(1);
+  std::vector<std::pair<uint32_t, BatchResult>> computed;
+  computed.emplace_back(1, ResultFor(11));
+  computed.emplace_back(3, ResultFor(13));
+  computed.emplace_back(9, ResultFor(19));  // out of range: ignored
+  const std::vector<uint32_t> later = {0, 2, 7};
+  ASSERT_TRUE(s.StartRound(Plan(4, 6), kT0, {}, std::move(computed), later).ok());
+  SchedulerCounters c = s.counters(kT0);
+  EXPECT_EQ(c.batches_done, 2u);
+  EXPECT_EQ(c.batches_queued, 4u);
+  ASSERT_TRUE(s.PeekResult(MakeBatchId(4, 1)));
+  EXPECT_EQ(*s.TakeResult(MakeBatchId(4, 3)), ResultFor(13));
+
+  // Batch 0's result comes from elsewhere before it is leased: done, never leased.
+  EXPECT_EQ(s.OnComputedResult(0, ResultFor(10)).disposition, Disposition::kAccepted);
+  EXPECT_EQ(s.OnComputedResult(0, ResultFor(10)).reason, DropReason::kLate);
+  EXPECT_EQ(s.OnComputedResult(1, ResultFor(11)).reason, DropReason::kLate);  // computed ahead
+  EXPECT_EQ(s.OnComputedResult(6, ResultFor(16)).reason, DropReason::kStaleRound);  // no such
+  std::vector<uint32_t> leased;
+  std::vector<Assignment> held;
+  while (const auto a = s.NextAssignment(1, kT0)) {
+    leased.push_back(BatchIndex(a->batch_id));
+    held.push_back(*a);
+  }
+  EXPECT_EQ(leased, (std::vector<uint32_t>{4, 5, 2}));
+  // Batch 2 comes from elsewhere while leased here: done, and the lease is superseded.
+  EXPECT_EQ(s.LeasesHeld(1), 3u);
+  EXPECT_EQ(s.OnComputedResult(2, ResultFor(12)).disposition, Disposition::kAccepted);
+  EXPECT_FALSE(s.HasLiveLease(MakeBatchId(4, 2)));
+  EXPECT_TRUE(s.HasLiveLease(MakeBatchId(4, 4)));
+  EXPECT_EQ(s.LeasesHeld(1), 2u);
+  EXPECT_EQ(s.OnResult(1, held[2].batch_id, held[2].attempt_id, ResultFor(2), kT0).reason,
+            DropReason::kLate);
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(s.OnResult(1, held[k].batch_id, held[k].attempt_id, ResultFor(1), kT0).disposition,
+              Disposition::kAccepted);
+  }
+  ASSERT_TRUE(s.RoundComplete());
+  Result<CompletedRound> done = s.TakeCompletedRound();
+  ASSERT_TRUE(done.ok());
+  EXPECT_EQ(done->results[0], ResultFor(10));
+  EXPECT_EQ(done->results[1], ResultFor(11));
+  EXPECT_EQ(done->results[2], ResultFor(12));
+  EXPECT_EQ(done->results[3], BatchResult{});  // taken out before
+  EXPECT_EQ(s.OnComputedResult(0, ResultFor(10)).reason, DropReason::kStaleRound);  // no round
+}
+
 TEST(RoundSchedulerTest, LeasesHeldForOtherJobsCountAgainstTheCapacity) {
   SchedulerOptions options;
   options.initial_leases = 3;
