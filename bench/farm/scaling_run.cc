@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "bench/farm_sim/agent_swarm.h"
+#include "core/batch.h"
 #include "testing/child_process.h"
 
 namespace radfarm::bench {
@@ -103,8 +104,12 @@ ScalingSample RunScalingCase(const FarmPrograms& programs, const std::string& sc
     busy += u;
     s.utilisation_min = std::min(s.utilisation_min, u);
   }
+  // The final gather's batches leased ahead (round kGatherRound, daemon/gather_ahead.h) run
+  // across the rounds: no span of their own. Agents' time on them counts in utilisation, and as
+  // idle for the round it falls in ("idle within rounds": waiting on that round's work).
   double span_sum = 0, span_busy = 0;
   for (const auto& [number, span] : report.rounds) {
+    if (number == kGatherRound) continue;
     if (span.first_assignment < 0 || span.last_result < 0) continue;
     span_sum += span.last_result - span.first_assignment;
     span_busy += span.busy_seconds;
@@ -113,7 +118,8 @@ ScalingSample RunScalingCase(const FarmPrograms& programs, const std::string& sc
   for (const sim::SimAgentStats& a : report.agents) {
     for (const auto& [number, span] : a.rounds) {
       const auto round = report.rounds.find(number);
-      if (round == report.rounds.end() || span.first_assignment < 0 || span.last_result < 0) {
+      if (number == kGatherRound || round == report.rounds.end() || span.first_assignment < 0 ||
+          span.last_result < 0) {
         continue;
       }
       starts += span.first_assignment - round->second.first_assignment;
