@@ -358,6 +358,14 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
                         protocol::HashToHex(outcome.new_scene_hash));
   }
   if (runner->InstallOutcome(outcome)) {
+    // A job started with no agent known plans its gather ahead after round 0 (RunningJob::Reduce).
+    if (runner->gather_ahead() == nullptr &&
+        runner->totals().gather_rays_left > config_.local_round_rays) {
+      if (Status s = runner->StartGatherAhead(LoopNow(loop_), agents_.available_agents()); !s) {
+        FailJob(runner->id(), s.error());
+        return;
+      }
+    }
     BeginRound(runner);
   } else {
     FinishJob(runner);

@@ -168,11 +168,14 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   runner->planned_ = std::move(*plan);
   runner->planned_sizing_ = sizing;
   runner->options_ = options;
-  if (!gather_now) runner->PlanGatherAhead(sizing, options);
+  // With no agent known yet the gather round would be planned untapered: then after round 0,
+  // with the sizing the agents' measurements give (Reduce).
+  if (!gather_now && agents > 0) runner->PlanGatherAhead(sizing, options);
   return runner;
 }
 
 void RunningJob::PlanGatherAhead(BatchSizing sizing, const scheduler::SchedulerOptions& options) {
+  ahead_planned_ = true;
   // A budget may cut or drop the gather, and a refinement step replaces the mesh its batches
   // trace: then the batches traced ahead would not be the round's.
   const SolverSettings& s = driver_->settings();
@@ -363,6 +366,7 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
   const BatchSizing next_sizing = SizingFor(
       driver_->solver().rounds_done(), ahead_sizing_ && GatherIsNext() ? *ahead_sizing_ : sizing);
   if (std::optional<RoundPlan> next = PlanNext(next_sizing)) {
+    if (!ahead_planned_ && !next->gather) PlanGatherAhead(next_sizing, options_);
     RestoreResults(*next, next_sizing);
     fold_plan_ = std::make_shared<const RoundPlan>(*next);  // the worker's copy, for the fold
     out.next = std::move(*next);

@@ -261,6 +261,7 @@ class RunningJob {
   // gather round starts; the sizing is the worker's (Reduce plans the gather round with it).
   std::optional<RoundPlan> ahead_plan_;
   std::optional<BatchSizing> ahead_sizing_;
+  bool ahead_planned_ = false;  // PlanGatherAhead ran (it runs once a job)
   std::unique_ptr<GatherAhead> ahead_;
   scheduler::SchedulerOptions options_;
   std::vector<std::pair<uint32_t, std::string>> adopted_;
