@@ -108,7 +108,8 @@ void AddFlags(CLI::App& app, Flags* f) {
       ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 40));
   app.add_option("--gather-ahead-rays", f->gather_ahead_rays,
                  "The final gather's first rays, at most this many, go to agents that idle between "
-                 "and at the ends of the shooting rounds; 0 = off (default 8388608)")
+                 "and at the ends of the shooting rounds; their results wait on the master, at "
+                 "most about 16 bytes a ray; 0 = off (default 1048576)")
       ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 40));
   app.add_option("--keep-round-results", f->keep_round_results,
                  "Keep each accepted batch result in the store until its round's checkpoint, so "

@@ -35,8 +35,9 @@ struct MasterConfig {
   uint64_t local_round_rays = 262144;
   // The final gather's first rays, at most this many, go to agents idle between and at the ends
   // of the shooting rounds (daemon/gather_ahead.h); their results wait on the master until the
-  // gather round (at most about 16 bytes a ray). 0: off.
-  uint64_t gather_ahead_rays = uint64_t{1} << 23;
+  // gather round: at most about 16 bytes a ray (16 MB by default, a fixed cost whatever the
+  // scene's size, within docs/MEMORY.md's budget per patch). 0: off.
+  uint64_t gather_ahead_rays = uint64_t{1} << 20;
   // Keep each accepted batch result in the store until its round's checkpoint, so a restarted
   // master leases only the batches it had not received (daemon/result_journal.h). Off: a restart
   // computes the whole round again, as before.
