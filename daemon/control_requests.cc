@@ -5,6 +5,7 @@
 #include <chrono>
 #include <limits>
 #include <map>
+#include <set>
 
 #include "base/result.h"
 #include "codec/job_bundle.h"
@@ -234,10 +235,14 @@ json ControlRequests::JobJson(const JobSummary& s) {
     job["rays"] = t.rays;
     job["unshot_fraction"] = t.unshot_fraction;
     job["rays_per_second"] = runner->RaysPerSecond();
-    uint32_t agents = 0;
-    for (const auto& a : runner->scheduler().counters(LoopNow(loop_)).agents)
-      agents += a.leases_held > 0;
-    job["agents"] = agents;
+    // Agents holding its leases: the round's, or its final gather's leased ahead (gather_ahead.h).
+    std::set<scheduler::AgentId> working;
+    runner->ForEachScheduler([&](const scheduler::RoundScheduler& s) {
+      for (const auto& a : s.counters(LoopNow(loop_)).agents) {
+        if (a.leases_held > 0) working.insert(a.agent);
+      }
+    });
+    job["agents"] = working.size();
     const ProgressEstimate estimate = runner->Progress(LoopNow(loop_));
     if (estimate.seconds_left) job["eta_seconds"] = *estimate.seconds_left;
     progress = estimate.fraction;
@@ -288,11 +293,13 @@ json ControlRequests::AgentJson(const AgentLink& link) const {
   uint64_t results = 0;
   const auto now = LoopNow(loop_);
   for (const auto& [job, runner] : jobs_.runners()) {
-    if (const auto a = runner->scheduler().agent_counters(link.id(), now)) {
-      leases += a->leases_held;
-      rays_per_second = std::max(rays_per_second, a->rays_per_second);
-      results += a->results_accepted;
-    }
+    runner->ForEachScheduler([&](const scheduler::RoundScheduler& s) {
+      if (const auto a = s.agent_counters(link.id(), now)) {
+        leases += a->leases_held;
+        rays_per_second = std::max(rays_per_second, a->rays_per_second);
+        results += a->results_accepted;
+      }
+    });
   }
   return json{{"id", link.id()},
               {"name", link.name()},
