@@ -29,6 +29,7 @@ struct Batch {
   uint32_t shooter = 0;  // patch id
   uint64_t first_ray = 0;
   uint32_t ray_count = 0;
+  bool operator==(const Batch&) const = default;
 };
 
 struct PatchHits {

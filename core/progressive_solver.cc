@@ -168,7 +168,7 @@ RoundPlan ProgressiveSolver::PlanGather(uint32_t batch_rays, uint64_t ray_cap) c
 }
 
 RoundPlan ProgressiveSolver::PlanRound(uint32_t batch_rays, uint64_t ray_cap) const {
-  if (UnshotFraction() <= settings_.tolerance && GatherPending()) {
+  if (GatherNext()) {
     return PlanGather(batch_rays, ray_cap);
   }
   RoundPlan plan;

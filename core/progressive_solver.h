@@ -104,6 +104,9 @@ class ProgressiveSolver {
   const EnergyAccount& energy() const { return energy_; }
   // True while the final gather is on and has not run: some unshot radiosity is not zero.
   bool GatherPending() const;
+  // The next round PlanRound plans is the gather: one is pending and the unshot fraction is at or
+  // below the tolerance.
+  bool GatherNext() const { return GatherPending() && UnshotFraction() <= settings_.tolerance; }
   // Patches a gather round gathers for: those that reflect.
   uint64_t GatheringPatches() const;
   // The rays the final gather will cast (before any ray budget cuts it): 0 when none is pending.

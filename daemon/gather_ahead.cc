@@ -56,10 +56,8 @@ GatherAhead::Adopted GatherAhead::Adopt(const RoundPlan& round, std::span<const 
     if (std::binary_search(done.begin(), done.end(), index)) continue;
     const scheduler::BatchId id = scheduler::MakeBatchId(kGatherRound, index);
     const Batch* mine = scheduler_.FindBatch(id);
-    const Batch& theirs = round.batches[index];
-    if (mine == nullptr || mine->round != theirs.round || mine->shooter != theirs.shooter ||
-        mine->first_ray != theirs.first_ray || mine->ray_count != theirs.ray_count) {
-      continue;  // planned differently (a budget cut the gather): computed again
+    if (mine == nullptr || !(*mine == round.batches[index])) {
+      continue;  // planned differently (other batch sizes): computed again
     }
     std::optional<BatchResult> result = scheduler_.TakeResult(id);
     if (!result) continue;

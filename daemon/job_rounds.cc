@@ -144,16 +144,22 @@ void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob
       << (r->meshed_at_submission() ? " (meshed at submission)" : "") << ", scene "
       << protocol::HashToHex(r->wire_info().scene_hash) << " (" << r->packed_scene()->size
       << " bytes, " << r->packed_scene()->compressed.size() << " compressed)";
-  const std::vector<uint64_t> agents = agents_.available_agents();
-  for (uint64_t agent : agents) r->scheduler().AddAgent(agent);
-  // The final gather goes to idle agents from now on, unless this master will compute it itself.
-  if (r->totals().gather_rays_left > config_.local_round_rays) {
-    if (Status s = r->StartGatherAhead(LoopNow(loop_), agents); !s) {
-      FailJob(id, s.error());
-      return;
-    }
-  }
+  for (uint64_t agent : agents_.available_agents()) r->scheduler().AddAgent(agent);
+  if (!StartGatherAhead(r)) return;
   BeginRound(r);
+}
+
+bool JobRounds::StartGatherAhead(const std::shared_ptr<RunningJob>& runner) {
+  // Not when this master will compute the gather itself (local_round_rays).
+  if (runner->gather_ahead() != nullptr ||
+      runner->totals().gather_rays_left <= config_.local_round_rays) {
+    return true;
+  }
+  if (Status s = runner->StartGatherAhead(LoopNow(loop_), agents_.available_agents()); !s) {
+    FailJob(runner->id(), s.error());
+    return false;
+  }
+  return true;
 }
 
 void JobRounds::BeginRound(const std::shared_ptr<RunningJob>& runner) {
@@ -167,7 +173,8 @@ void JobRounds::BeginRound(const std::shared_ptr<RunningJob>& runner) {
     return;
   }
   StartVerifying(runner);
-  if (const auto adopted = runner->TakeAdoptedResults(); !adopted.empty()) {
+  const auto adopted = runner->TakeAdoptedResults();
+  if (!adopted.empty()) {
     // The gather's batches computed ahead: accepted now, as if they had just come in.
     for (const auto& [index, agent] : adopted) {
       OnResultAccepted(runner->id(), scheduler::MakeBatchId(runner->running_round(), index), agent);
@@ -177,15 +184,9 @@ void JobRounds::BeginRound(const std::shared_ptr<RunningJob>& runner) {
         << "round " << c.round << " (the final gather): " << adopted.size() << " of " << c.batches
         << " batches computed ahead, " << c.batches - c.batches_done << " to lease";
     gather_ahead_adopted_ += adopted.size();
-    if (runner->restored_batches() == 0) {
-      SendFolds(runner);
-      if (runner->scheduler().RoundComplete()) {
-        OnRoundComplete(runner->id());
-        return;
-      }
-    }
   }
-  if (const size_t restored = runner->restored_batches(); restored > 0) {
+  const size_t restored = runner->restored_batches();
+  if (restored > 0) {
     // Results a previous master received and kept: folded in first, their batches not leased.
     batches_restored_ += restored;
     const scheduler::SchedulerCounters c = runner->scheduler().counters(LoopNow(loop_));
@@ -195,6 +196,9 @@ void JobRounds::BeginRound(const std::shared_ptr<RunningJob>& runner) {
         << (runner->restore_mismatches() > 0 ? " (" + std::to_string(runner->restore_mismatches()) +
                                                    " stored results did not match the plan)"
                                              : std::string());
+  }
+  if (restored > 0 || !adopted.empty()) {
+    // Their results are folded in first; the round may be complete already.
     SendFolds(runner);
     if (runner->scheduler().RoundComplete()) {
       OnRoundComplete(runner->id());
@@ -359,13 +363,7 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
   }
   if (runner->InstallOutcome(outcome)) {
     // A job started with no agent known plans its gather ahead after round 0 (RunningJob::Reduce).
-    if (runner->gather_ahead() == nullptr &&
-        runner->totals().gather_rays_left > config_.local_round_rays) {
-      if (Status s = runner->StartGatherAhead(LoopNow(loop_), agents_.available_agents()); !s) {
-        FailJob(runner->id(), s.error());
-        return;
-      }
-    }
+    if (!StartGatherAhead(runner)) return;
     BeginRound(runner);
   } else {
     FinishJob(runner);

@@ -126,6 +126,10 @@ class JobRounds {
 
  private:
   void OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob>> runner);
+  // Leases the job's final gather ahead (gather_ahead.h) if its preparation or last reduction
+  // planned one and the agents, not this master, will compute the gather. False when it failed
+  // the job.
+  bool StartGatherAhead(const std::shared_ptr<RunningJob>& runner);
   // Starts the planned round on the agents, or computes it here when it is small
   // (MasterConfig::local_round_rays).
   void BeginRound(const std::shared_ptr<RunningJob>& runner);

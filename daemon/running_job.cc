@@ -186,12 +186,6 @@ void RunningJob::PlanGatherAhead(BatchSizing sizing, const scheduler::SchedulerO
   if (ahead_plan_) ahead_sizing_ = sizing;
 }
 
-bool RunningJob::GatherIsNext() const {
-  // As ProgressiveSolver::PlanRound decides.
-  const ProgressiveSolver& solver = driver_->solver();
-  return solver.GatherPending() && solver.UnshotFraction() <= driver_->settings().tolerance;
-}
-
 Status RunningJob::StartGatherAhead(scheduler::TimePoint now, std::span<const uint64_t> agents) {
   if (!ahead_plan_) return Ok{};
   Result<std::unique_ptr<GatherAhead>> ahead =
@@ -364,7 +358,7 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
   // A restarted master replays the rounds it kept results of with the batch sizes they had.
   // The gather round is planned with the batch sizes of the batches traced ahead.
   const BatchSizing next_sizing = SizingFor(
-      driver_->solver().rounds_done(), ahead_sizing_ && GatherIsNext() ? *ahead_sizing_ : sizing);
+      driver_->solver().rounds_done(), ahead_sizing_ && driver_->solver().GatherNext() ? *ahead_sizing_ : sizing);
   if (std::optional<RoundPlan> next = PlanNext(next_sizing)) {
     if (!ahead_planned_ && !next->gather) PlanGatherAhead(next_sizing, options_);
     RestoreResults(*next, next_sizing);

@@ -217,8 +217,6 @@ class RunningJob {
   // Worker thread: the gather ahead's plan (GatherAhead::Plan with `sizing`) when the job may
   // lease it early, and the sizing the gather round must then be planned with.
   void PlanGatherAhead(BatchSizing sizing, const scheduler::SchedulerOptions& options);
-  // Worker thread: the round after the one just applied is the final gather.
-  bool GatherIsNext() const;
   // Worker thread: encodes the driver's refined scene after a step that split.
   void EncodeRefinedScene();
   // The totals and progress figures of the driver's state, for status.

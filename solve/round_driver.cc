@@ -105,8 +105,7 @@ std::optional<RoundPlan> RoundDriver::PlanNext(uint32_t batch_rays, double secon
   if (stop_) return std::nullopt;
   uint64_t cap = NextRoundRayCap(settings_, totals_.rays);
   // The pace is the shooting rounds'; a gather ray costs MeasureGatherRayCost's ratio of one.
-  const bool gather_next =
-      solver_->UnshotFraction() <= settings_.tolerance && solver_->GatherPending();
+  const bool gather_next = solver_->GatherNext();
   if (gather_next && gather_ray_cost_ && *gather_ray_cost_ > 0) {
     rays_per_second /= *gather_ray_cost_;
   }
