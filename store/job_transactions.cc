@@ -53,6 +53,11 @@ Result<std::vector<JobStart>> StartQueuedJobs(JobStore& store, int slots) {
     Result<std::vector<RoundRecord>> rounds = store.ListRounds(record.id);
     RADFARM_RETURN_IF_ERROR(rounds);
     start.rounds = std::move(*rounds);
+    // A master killed between a checkpoint and the pruning of its round's results left those
+    // rows behind: nothing reads them again, so they go now rather than at the next checkpoint.
+    if (start.checkpoint) {
+      RADFARM_RETURN_IF_ERROR(store.PruneRoundResults(record.id, start.checkpoint->round));
+    }
     // Results of the rounds after the checkpoint a previous master had received; damaged ones
     // are dropped (and deleted) and their batches leased again.
     Result<StoredRoundResults> kept = store.LoadRoundResults(

@@ -195,6 +195,22 @@ TEST_F(RoundResultsTest, AJobStartsWithTheResultsAfterItsCheckpointAndWarnsOfDam
   EXPECT_EQ(events->back().text, start.warnings[0]);
 }
 
+// A master killed after a checkpoint but before it pruned the round's results: the restart
+// prunes them, as nothing reads them again.
+TEST_F(RoundResultsTest, AJobStartDeletesTheResultsItsCheckpointLeftBehind) {
+  Save({Kept(3, 0), Kept(3, 1), Kept(4, 0)});
+  ASSERT_TRUE(
+      store_->SaveCheckpoint({job_, 3, 1, 100, 0.5, 1, 0.1}, CheckpointOfRound(job_, 3)).ok());
+  ASSERT_EQ(*store_->CountRoundResults(job_, 3), 2);
+  Result<std::vector<JobStart>> starts = StartQueuedJobs(*store_, 1);
+  ASSERT_TRUE(starts.ok()) << starts.error();
+  ASSERT_EQ(starts->size(), 1u);
+  ASSERT_EQ((*starts)[0].round_results.size(), 1u);
+  ExpectSame((*starts)[0].round_results[0], Kept(4, 0));
+  EXPECT_EQ(*store_->CountRoundResults(job_, 3), 0);
+  EXPECT_EQ(*store_->CountRoundResults(job_, 4), 1);
+}
+
 TEST_F(RoundResultsTest, AFullStoreRefusesTheWriteAsAWhole) {
   store_.reset();
   JobStoreOptions options;
