@@ -39,9 +39,11 @@ uint32_t PreemptLowerPriority(const std::vector<RunningJob*>& order, size_t k, u
   for (size_t j = k + 1; j < order.size(); ++j) {
     if (order[j]->priority() < order[k]->priority()) take(*order[j], order[j]->scheduler());
   }
-  // Any job's gather ahead is below every round's work (gather_ahead.h).
+  // Any job's gather ahead is below every round's work (gather_ahead.h); once its round adopted
+  // it, its leases are that round's work.
   for (RunningJob* job : order) {
-    if (GatherAhead* ahead = job->gather_ahead()) take(*job, ahead->scheduler());
+    GatherAhead* ahead = job->gather_ahead();
+    if (ahead != nullptr && !ahead->adopted()) take(*job, ahead->scheduler());
   }
   return taken;
 }
@@ -461,6 +463,7 @@ void AgentConnections::Dispatch(AgentLink& link) {
   for (size_t k = 0; k < order.size(); ++k) {
     RunningJob* runner = order[k];
     scheduler::RoundScheduler& s = runner->scheduler();
+    runner->LeaseReturnedAheadFirst();
     if (Blocklisted(link, *runner, now)) continue;
     if (s.WantsAgent(link.id(), now)) {
       std::vector<protocol::LeaseRef> preempted;

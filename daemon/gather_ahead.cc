@@ -71,8 +71,15 @@ GatherAhead::Adopted GatherAhead::Adopt(const RoundPlan& round, std::span<const 
       adopted.in_flight.push_back(index);
     }
   }
+  // Those never leased are the round's to lease, in its own order.
+  (void)scheduler_.TakeQueued();
   adopted_ = true;
   return adopted;
+}
+
+std::vector<uint32_t> GatherAhead::TakeReturned() {
+  if (!adopted_) return {};
+  return scheduler_.TakeQueued();
 }
 
 }  // namespace radfarm::daemon

@@ -15,8 +15,10 @@
 // batches computed here (same index, same rays): the round starts with them done, and the daemon
 // passes each through JobRounds::OnResultAccepted with the agent that computed it, so it is
 // folded, kept in the store and sampled for exact validation as any result. The leases still out
-// are forgotten; their answers are dropped as an old round's. Nothing is stored: a restarted
-// master computes them again.
+// go on: their results are passed to the round, and a lease that ends without one hands its batch
+// to the round to lease first (TakeReturned), since the round folds its results in batch order and
+// holds every later one until that batch is in. Nothing is stored: a restarted master computes
+// them again.
 //
 // Loop thread only, apart from Plan (the compute thread, with the solver).
 #pragma once
@@ -75,6 +77,10 @@ class GatherAhead {
   // index and rays), moved out, except those of `skip` (already done: restored from the store).
   // From then on it leases nothing; results of its leases still out go on to the round.
   Adopted Adopt(const RoundPlan& round, std::span<const uint32_t> skip);
+  // After Adopt: the batches of leases still out then that ended without a result since (the
+  // agent returned them or was lost), for the round to lease first (RoundScheduler::LeaseFirst).
+  // Its leases are not preempted for the round's work: they are the round's work.
+  std::vector<uint32_t> TakeReturned();
 
  private:
   GatherAhead(BatchSizing sizing, const scheduler::SchedulerOptions& options)

@@ -354,7 +354,8 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
       << Percent(record.unshot_fraction) << ", " << record.duration_seconds << " s"
       << (v != verifiers_.end() && v->second.enabled()
               ? "; " + std::to_string(v->second.verified()) + " batches verified so far"
-              : std::string());
+              : std::string())
+      << "; at most " << outcome.results_held_peak << " results held for the fold";
   if (outcome.new_scene) {
     store_.LogEvent(id, store::EventLevel::kInfo,
                     "refined after round " + std::to_string(record.round) + ": " +

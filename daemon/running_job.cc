@@ -225,6 +225,11 @@ void RunningJob::RestoreResults(const RoundPlan& plan, BatchSizing sizing) {
                 [&](const store::StoredBatchResult& r) { return r.batch.round <= plan.round; });
 }
 
+void RunningJob::LeaseReturnedAheadFirst() {
+  if (!ahead_ || !ahead_->adopted() || phase_ != Phase::kRound) return;
+  for (uint32_t index : ahead_->TakeReturned()) scheduler_.LeaseFirst(index);
+}
+
 Status RunningJob::StartPlannedRound(scheduler::TimePoint now) {
   if (!planned_) return Error{"job " + std::to_string(id()) + ": no round planned"};
   running_rays_ = planned_->rays;
@@ -334,6 +339,7 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
   if (!fold_) fold_ = driver_->Reduction(*fold_plan_);
   for (size_t k = 0; k < round.results.size(); ++k) fold_->Add(k, round.results[k]);
   const AppliedRound applied = driver_->Apply(*fold_plan_, *fold_, seconds);
+  out.results_held_peak = fold_->peak_held();
   fold_.reset();
   recent_.push_back({round.plan.rays, round_seconds});
   estimator_.AddRound({round.plan.rays, round_seconds, totals_.unshot_fraction,

@@ -85,6 +85,9 @@ struct RoundOutcome {
   protocol::SceneHash new_scene_hash{};
   uint32_t new_patch_count = 0;
   BatchSizing next_sizing;  // the batch sizes `next` was planned with
+  // The most results the fold held at once, waiting for an earlier batch's (RoundReduction):
+  // the master's memory for results, which stays small while batches come back in plan order.
+  size_t results_held_peak = 0;
 };
 
 class RunningJob {
@@ -145,6 +148,10 @@ class RunningJob {
   std::vector<std::pair<uint32_t, std::string>> TakeAdoptedResults() {
     return std::exchange(adopted_, {});
   }
+  // Loop thread, in the gather's round: the batches whose gather-ahead leases ended without a
+  // result since the round adopted them go to the front of the round's queue
+  // (GatherAhead::TakeReturned). Cheap when there are none; call it before leasing.
+  void LeaseReturnedAheadFirst();
 
   // Loop thread: starts the planned round. Fails if there is none. Results restored from the
   // store start done and are queued for the fold (TakeFolds); the round may be complete at once.

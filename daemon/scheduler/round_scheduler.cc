@@ -342,6 +342,22 @@ ResultVerdict RoundScheduler::OnComputedResult(uint32_t index, BatchResult resul
   return Verdict(Disposition::kAccepted, DropReason::kNone);
 }
 
+void RoundScheduler::LeaseFirst(uint32_t index) {
+  if (!round_ || index >= round_->batches.size()) return;
+  BatchSlot& slot = round_->batches[index];
+  if (slot.state != BatchState::kQueued) return;
+  // Its place further back, if any, is dropped by PeekFresh once it is leased from here.
+  slot.in_fresh_queue = true;
+  round_->fresh.push_front(index);
+}
+
+std::vector<uint32_t> RoundScheduler::TakeQueued() {
+  std::vector<uint32_t> queued;
+  if (!round_) return queued;
+  while (const std::optional<uint32_t> index = PopFresh()) queued.push_back(*index);
+  return queued;
+}
+
 ResultVerdict RoundScheduler::OnInvalidResult(AgentId agent_id, BatchId /*batch_id*/,
                                               AttemptId /*attempt_id*/, TimePoint /*now*/) {
   if (const auto it = agents_.find(agent_id); it != agents_.end()) {

@@ -155,6 +155,13 @@ class RoundScheduler {
   // gather ahead that was still out when the round started): the batch is done with it unless it
   // is done already (kLate); live attempts of it are superseded.
   ResultVerdict OnComputedResult(uint32_t index, BatchResult result);
+  // A queued batch goes to the front of the queue: one StartRound put `later` whose computation
+  // elsewhere ended without a result (the agent returned its lease, or was lost), so that the
+  // round's in-order fold does not wait for it until the round's end. Ignored unless queued.
+  void LeaseFirst(uint32_t index);
+  // Empties the queue and returns the batches that were in it, in queue order, still queued: for
+  // a scheduler that leases nothing more and hands them to another (GatherAhead once adopted).
+  std::vector<uint32_t> TakeQueued();
   bool round_active() const { return round_.has_value(); }
   bool RoundComplete() const;
   // The round's queue is empty but some batches have no result yet: idle agents may take over or

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "tests/core/test_scenes.h"
 
 namespace radfarm::daemon {
@@ -101,6 +103,17 @@ TEST(GatherAheadTest, TheGatherRoundAdoptsTheResultsOfItsOwnBatches) {
   }
   EXPECT_EQ(adopted.in_flight, (std::vector<uint32_t>{4, 5, 6, 7}));
   EXPECT_EQ(ahead.accepted(), 0u);
+  // Batches never leased ahead are the round's to lease as it plans; those of leases still out
+  // come back here when the leases end without a result, for the round to lease first.
+  EXPECT_TRUE(ahead.TakeReturned().empty());
+  ASSERT_EQ(ahead.scheduler().ReturnLeases(2, std::vector<BatchId>{MakeBatchId(kGatherRound, 5)}),
+            1u);
+  EXPECT_EQ(ahead.TakeReturned(), (std::vector<uint32_t>{5}));
+  ahead.scheduler().OnAgentLost(2);
+  std::vector<uint32_t> lost = ahead.TakeReturned();
+  std::sort(lost.begin(), lost.end());
+  EXPECT_EQ(lost, (std::vector<uint32_t>{4, 6, 7}));
+  EXPECT_TRUE(ahead.TakeReturned().empty());
 
   // Planned with another batch size, the round has other batches: nothing is adopted.
   Result<std::unique_ptr<GatherAhead>> other =

@@ -92,6 +92,26 @@ TEST_F(FarmTest, TheFinalGatherComputedAheadGivesRendersPatches) {
   EXPECT_LE(std::stoul(m[1].str()), std::stoul(m[2].str()));
 }
 
+// The gather round folds its results as they come (in batch order): the gather-ahead leases an
+// agent still held when the round began are computed first, not taken back and leased last. They
+// were, and the fold then held nearly every result of the round until its end (3,349 of 3,860
+// batches with one agent, 36 MB on the master).
+TEST_F(FarmTest, TheGatherRoundFoldsItsResultsAsTheyCome) {
+  StartMaster();
+  StartAgent("a1");
+  const int64_t id = Submit("cornell-box.toml");
+  ASSERT_TRUE(WaitForState(id, "done"));
+  const std::string log = MasterLog();
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(log, m, AdoptedLine())) << log;
+  const unsigned long batches = std::stoul(m[2].str());
+  static const std::regex gather_round(
+      R"(round \d+: \d+ rays, unshot 0\.0000%.*; at most (\d+) results held for the fold)");
+  ASSERT_TRUE(std::regex_search(log, m, gather_round)) << log;
+  EXPECT_LT(std::stoul(m[1].str()), batches / 4) << log;
+  EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml")) << "farm and render differ";
+}
+
 TEST_F(FarmTest, WithoutTheGatherAheadThePatchesAreTheSame) {
   StartMaster({"--gather-ahead-rays", "0"});
   StartAgent("a1");

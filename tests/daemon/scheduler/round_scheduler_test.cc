@@ -166,6 +166,39 @@ TEST(RoundSchedulerTest, BatchesComputedAheadStartDoneAndThoseStillOutAreLeasedL
   EXPECT_EQ(s.OnComputedResult(0, ResultFor(10)).reason, DropReason::kStaleRound);  // no round
 }
 
+// A batch put last because it was being computed elsewhere, whose computation there ended
+// without a result, is leased first (the fold waits for it), once; TakeQueued empties a queue.
+TEST(RoundSchedulerTest, ABatchLeasedLastWhoseResultWillNotComeIsLeasedFirst) {
+  SchedulerOptions options;
+  options.initial_leases = 10;
+  RoundScheduler s(options);
+  s.AddAgent(1);
+  const std::vector<uint32_t> later = {1, 2};
+  ASSERT_TRUE(s.StartRound(Plan(4, 5), kT0, {}, {}, later).ok());
+  s.LeaseFirst(2);
+  s.LeaseFirst(9);  // no such batch: ignored
+  std::vector<uint32_t> leased;
+  std::vector<Assignment> held;
+  while (const auto a = s.NextAssignment(1, kT0)) {
+    leased.push_back(BatchIndex(a->batch_id));
+    held.push_back(*a);
+  }
+  EXPECT_EQ(leased, (std::vector<uint32_t>{2, 0, 3, 4, 1}));
+  s.LeaseFirst(0);  // leased, not queued: ignored
+  EXPECT_FALSE(s.NextAssignment(1, kT0));
+  EXPECT_EQ(s.counters(kT0).batches_queued, 0u);
+
+  RoundScheduler other(options);
+  other.AddAgent(1);
+  ASSERT_TRUE(other.StartRound(Plan(4, 4), kT0, {}, {}, later).ok());
+  ASSERT_TRUE(other.NextAssignment(1, kT0));  // batch 0
+  EXPECT_EQ(other.TakeQueued(), (std::vector<uint32_t>{3, 1, 2}));
+  EXPECT_TRUE(other.TakeQueued().empty());
+  EXPECT_FALSE(other.NextAssignment(1, kT0));
+  ASSERT_EQ(other.ReturnLeases(1, std::vector<BatchId>{MakeBatchId(4, 0)}), 1u);
+  EXPECT_EQ(other.TakeQueued(), (std::vector<uint32_t>{0}));
+}
+
 TEST(RoundSchedulerTest, LeasesHeldForOtherJobsCountAgainstTheCapacity) {
   SchedulerOptions options;
   options.initial_leases = 3;
