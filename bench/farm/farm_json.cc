@@ -16,6 +16,8 @@ json Setup(const RealComputeSetup& s) {
           {"rays_per_second", s.rays_per_second},
           {"solve_seconds", s.solve_seconds},
           {"wall_seconds", s.wall_seconds},
+          {"cpu_seconds", s.cpu_seconds},
+          {"agents_cpu_seconds", s.agents_cpu_seconds},
           {"patches_identical", s.patches_identical}};
 }
 

@@ -24,17 +24,23 @@ namespace {
 void PrintRealSummary(const FarmBenchReport& report) {
   if (!report.has_real) return;
   const RealComputeSetup& embedded = report.real.setups[0];
-  std::printf("\n%-28s %8s %8s %s\n", "setup", "Mrays/s", "ratio", "patches.csv");
+  std::printf("\n%-28s %8s %8s %-11s %s\n", "setup", "Mrays/s", "ratio", "patches.csv",
+              "CPU s (render; radfarmd + agents)");
   for (const RealComputeSetup& s : report.real.setups) {
     std::vector<double> ratios;
     for (size_t i = 0; i < s.rays_per_second.size() && i < embedded.rays_per_second.size(); ++i) {
       ratios.push_back(s.rays_per_second[i] / embedded.rays_per_second[i]);
     }
-    std::printf("%-28s %8.2f %7.1f%% %s\n", s.name.c_str(), Median(s.rays_per_second) / 1e6,
+    std::printf("%-28s %8.2f %7.1f%% %-11s ", s.name.c_str(), Median(s.rays_per_second) / 1e6,
                 ratios.empty() ? 0 : 100 * Median(ratios),
                 &s == &embedded       ? "reference"
                 : s.patches_identical ? "identical"
                                       : "DIFFERENT");
+    if (&s == &embedded) {
+      std::printf("%.2f\n", Median(s.cpu_seconds));
+    } else {
+      std::printf("%.2f + %.2f\n", Median(s.cpu_seconds), Median(s.agents_cpu_seconds));
+    }
   }
   // What encryption costs: the sealed farm against the same farm with frames in clear (but
   // authenticated), paired by repetition (docs/PROTOCOL.md, "Sealed frames").

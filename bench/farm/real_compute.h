@@ -29,6 +29,11 @@ struct RealComputeSetup {
   uint64_t rays = 0;                    // the job's rays (the same every run: determinism)
   uint32_t rounds = 0;
   bool patches_identical = true;  // every run's patches.csv equals render's (farm only)
+  // CPU seconds, one per repetition: embedded, the render process's whole run; a farm,
+  // radfarmd's and the agents' from the submission to the job's end (on loopback the farm's
+  // processes share the machine's CPUs: docs/BENCHMARKS-farm.md, "Where the CPU goes").
+  std::vector<double> cpu_seconds;         // embedded: radfarm render; a farm: radfarmd
+  std::vector<double> agents_cpu_seconds;  // a farm's agents together
 };
 
 struct RealComputeResult {
