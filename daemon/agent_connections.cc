@@ -37,10 +37,13 @@ uint32_t PreemptLowerPriority(const std::vector<RunningJob*>& order, size_t k, u
     }
   };
   for (size_t j = k + 1; j < order.size(); ++j) {
-    if (order[j]->priority() < order[k]->priority()) take(*order[j], order[j]->scheduler());
+    if (order[j]->priority() >= order[k]->priority()) continue;
+    take(*order[j], order[j]->scheduler());
+    // Once its round adopted it, a gather ahead's leases are that round's work (gather_ahead.h).
+    GatherAhead* ahead = order[j]->gather_ahead();
+    if (ahead != nullptr && ahead->adopted()) take(*order[j], ahead->scheduler());
   }
-  // Any job's gather ahead is below every round's work (gather_ahead.h); once its round adopted
-  // it, its leases are that round's work.
+  // Before, any job's gather ahead is below every round's work.
   for (RunningJob* job : order) {
     GatherAhead* ahead = job->gather_ahead();
     if (ahead != nullptr && !ahead->adopted()) take(*job, ahead->scheduler());
