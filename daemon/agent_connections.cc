@@ -43,7 +43,7 @@ uint32_t PreemptLowerPriority(const std::vector<RunningJob*>& order, size_t k, u
     GatherAhead* ahead = order[j]->gather_ahead();
     if (ahead != nullptr && ahead->adopted()) take(*order[j], ahead->scheduler());
   }
-  // Before, any job's gather ahead is below every round's work.
+  // Until then, any job's gather ahead is below every round's work.
   for (RunningJob* job : order) {
     GatherAhead* ahead = job->gather_ahead();
     if (ahead != nullptr && !ahead->adopted()) take(*job, ahead->scheduler());

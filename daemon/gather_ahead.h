@@ -9,7 +9,8 @@
 // when the job starts (the first max_rays rays' worth, cut with the batch sizes the gather round
 // will be planned with) and leases them through a RoundScheduler of their own, below every
 // round's work: an agent gets them only when no round has work for it, and loses those it has
-// not started when a round has (the daemon's Preempt). Their results wait here.
+// not started when a round has (the daemon's Preempt), until the gather round adopts them. Their
+// results wait here.
 //
 // When the gather round starts, planned with sizing(), Adopt hands over the results of its
 // batches computed here (same index, same rays): the round starts with them done, and the daemon
@@ -79,7 +80,8 @@ class GatherAhead {
   Adopted Adopt(const RoundPlan& round, std::span<const uint32_t> skip);
   // After Adopt: the batches of leases still out then that ended without a result since (the
   // agent returned them or was lost), for the round to lease first (RoundScheduler::LeaseFirst).
-  // Its leases are not preempted for the round's work: they are the round's work.
+  // Its leases are the round's work now: taken back only as the round's own are (for a
+  // higher-priority job).
   std::vector<uint32_t> TakeReturned();
 
  private:
