@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "bench/farm_sim/agent_swarm.h"
-#include "core/batch.h"
+#include "bench/farm_sim/idle_split.h"
 #include "testing/child_process.h"
 
 namespace radfarm::bench {
@@ -104,35 +104,11 @@ ScalingSample RunScalingCase(const FarmPrograms& programs, const std::string& sc
     busy += u;
     s.utilisation_min = std::min(s.utilisation_min, u);
   }
-  // The final gather's batches leased ahead (round kGatherRound, daemon/gather_ahead.h) run
-  // across the rounds: no span of their own. Agents' time on them counts in utilisation, and as
-  // idle for the round it falls in ("idle within rounds": waiting on that round's work).
-  double span_sum = 0, span_busy = 0;
-  for (const auto& [number, span] : report.rounds) {
-    if (number == kGatherRound) continue;
-    if (span.first_assignment < 0 || span.last_result < 0) continue;
-    span_sum += span.last_result - span.first_assignment;
-    span_busy += span.busy_seconds;
-  }
-  double starts = 0, tails = 0;
-  for (const sim::SimAgentStats& a : report.agents) {
-    for (const auto& [number, span] : a.rounds) {
-      const auto round = report.rounds.find(number);
-      if (number == kGatherRound || round == report.rounds.end() || span.first_assignment < 0 ||
-          span.last_result < 0) {
-        continue;
-      }
-      starts += span.first_assignment - round->second.first_assignment;
-      tails += round->second.last_result - span.last_result;
-    }
-  }
-  if (s.wall_seconds > 0) {
-    s.idle_round_starts = starts / (double(c.agents) * s.wall_seconds);
-    s.idle_round_tails = tails / (double(c.agents) * s.wall_seconds);
-    s.idle_between_rounds = std::max(0.0, s.wall_seconds - span_sum) / s.wall_seconds;
-    s.idle_within_rounds =
-        (double(c.agents) * span_sum - span_busy) / (double(c.agents) * s.wall_seconds);
-  }
+  const sim::IdleSplit idle = sim::SplitIdleTime(report, c.agents, s.wall_seconds);
+  s.idle_between_rounds = idle.between_rounds;
+  s.idle_within_rounds = idle.within_rounds;
+  s.idle_round_starts = idle.round_starts;
+  s.idle_round_tails = idle.round_tails;
   s.utilisation_mean = report.agents.empty() ? 0 : busy / double(report.agents.size());
   s.efficiency = s.wall_seconds > 0 ? (double(s.job_rays) / c.rays_per_second) /
                                           (double(c.agents) * s.wall_seconds)

@@ -42,10 +42,11 @@ struct ScalingSample {
   // Where the agents' idle time went, as fractions of N x wall: between rounds (from a round's
   // last result to the next round's first lease: reduction, planning, the lease's way out) and
   // within rounds (from a round's first lease to its last result: waiting for leases, round
-  // tails).
+  // tails). Time on the final gather's batches leased ahead is busy, not idle, wherever it falls.
   double idle_between_rounds = 0, idle_within_rounds = 0;
-  // Of idle_within_rounds: before an agent's first lease of the round (the round's start) and
-  // after its last result (the round's tail), as fractions of N x wall.
+  // Of the time within rounds: before an agent's first lease of the round (the round's start) and
+  // after its last result (the round's tail), as fractions of N x wall; an agent may have spent
+  // some of it on the gather ahead.
   double idle_round_starts = 0, idle_round_tails = 0;
   size_t agent_errors = 0;  // agents that closed during the job
   std::string first_error;

@@ -4,6 +4,7 @@
 
 #include "base/result.h"
 #include "bench/farm_sim/simulated_result.h"
+#include "core/batch.h"
 #include "protocol/batch_convert.h"
 #include "protocol/limits.h"
 
@@ -242,6 +243,9 @@ void SimAgent::Finish(uint64_t generation) {
   RoundSpan& round = stats_.rounds[current_.batch.round];
   round.busy_seconds += seconds;
   ++round.batches;
+  if (current_.batch.round == kGatherRound) {
+    stats_.ahead_compute.emplace_back(busy_until_ - seconds, busy_until_);
+  }
   // The lease frame's results go out together once all its batches are done.
   if (const auto it = groups_.find(current_.group); it != groups_.end()) {
     it->second.results.push_back(std::move(*result));

@@ -23,6 +23,7 @@
 #include <set>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "bench/farm_sim/delay_line.h"
@@ -58,6 +59,10 @@ struct SimAgentStats {
   double first_assignment = -1;          // arrival on the socket (before the added latency)
   double last_result = -1;               // when the last result went to the socket
   std::map<uint32_t, RoundSpan> rounds;  // by round number
+  // When it computed the final gather's batches leased ahead of their round (round kGatherRound,
+  // daemon/gather_ahead.h), (start, end): they run across the other rounds, and the report tells
+  // the time within those from the time between them.
+  std::vector<std::pair<double, double>> ahead_compute;
 };
 
 class SwarmHooks {
