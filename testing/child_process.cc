@@ -131,8 +131,11 @@ bool WaitUntil(const std::function<bool()>& done, std::chrono::milliseconds time
   return true;
 }
 
-std::optional<double> ProcessCpuSeconds(pid_t pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+namespace {
+
+// User + system CPU seconds from a /proc stat file (a process's or one of its threads').
+std::optional<double> StatCpuSeconds(const std::string& path) {
+  std::ifstream in(path);
   std::string text;
   if (!std::getline(in, text)) return std::nullopt;
   // Fields after the parenthesised command name: state is field 3, utime 14, stime 15.
@@ -149,6 +152,17 @@ std::optional<double> ProcessCpuSeconds(pid_t pid) {
     }
   }
   return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<double> ProcessCpuSeconds(pid_t pid) {
+  return StatCpuSeconds("/proc/" + std::to_string(pid) + "/stat");
+}
+
+std::optional<double> MainThreadCpuSeconds(pid_t pid) {
+  const std::string id = std::to_string(pid);
+  return StatCpuSeconds("/proc/" + id + "/task/" + id + "/stat");
 }
 
 }  // namespace radfarm::testing

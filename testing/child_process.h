@@ -65,5 +65,7 @@ bool WaitUntil(const std::function<bool()>& done,
 
 // CPU seconds (user + system) a process has used so far, from /proc/PID/stat; nullopt if gone.
 std::optional<double> ProcessCpuSeconds(pid_t pid);
+// The same for the process's main thread alone (radfarmd's event loop), /proc/PID/task/PID/stat.
+std::optional<double> MainThreadCpuSeconds(pid_t pid);
 
 }  // namespace radfarm::testing

@@ -35,6 +35,8 @@ json Sample(const ScalingSample& s) {
           {"efficiency", s.efficiency},
           {"master_cpu_seconds", s.master_cpu_seconds},
           {"master_connect_cpu_seconds", s.master_connect_cpu_seconds},
+          {"master_loop_cpu_seconds", s.master_loop_cpu_seconds},
+          {"master_loop_connect_cpu_seconds", s.master_loop_connect_cpu_seconds},
           {"frames", s.frames},
           {"swarm_cpu_seconds", s.swarm_cpu_seconds},
           {"mean_lateness", s.mean_lateness},

@@ -64,6 +64,7 @@ ScalingSample RunScalingCase(const FarmPrograms& programs, const std::string& sc
   StartMaster(farm, flags);
   const pid_t master_pid = farm.master()->pid();
   const double master_cpu_start = testing::ProcessCpuSeconds(master_pid).value_or(0);
+  const double loop_cpu_start = testing::MainThreadCpuSeconds(master_pid).value_or(0);
 
   sim::SwarmConfig config;
   config.master_address = farm.master_address();
@@ -74,10 +75,12 @@ ScalingSample RunScalingCase(const FarmPrograms& programs, const std::string& sc
   sim::AgentSwarm swarm(config);
   swarm.Start();
   const double master_cpu_connected = testing::ProcessCpuSeconds(master_pid).value_or(0);
+  const double loop_cpu_connected = testing::MainThreadCpuSeconds(master_pid).value_or(0);
   const int64_t id = Submit(farm, job_file);
   const sim::SwarmReport report = swarm.Finish(std::chrono::seconds(600));
   const nlohmann::json job = WaitDone(farm, id, std::chrono::seconds(60));
   const double master_cpu_end = testing::ProcessCpuSeconds(master_pid).value_or(0);
+  const double loop_cpu_end = testing::MainThreadCpuSeconds(master_pid).value_or(0);
 
   ScalingSample s;
   s.job_rays = job.at("rays").get<uint64_t>();
@@ -85,6 +88,8 @@ ScalingSample RunScalingCase(const FarmPrograms& programs, const std::string& sc
   s.wall_seconds = report.job_end - report.job_start;
   s.master_cpu_seconds = master_cpu_end - master_cpu_start;
   s.master_connect_cpu_seconds = master_cpu_connected - master_cpu_start;
+  s.master_loop_cpu_seconds = loop_cpu_end - loop_cpu_start;
+  s.master_loop_connect_cpu_seconds = loop_cpu_connected - loop_cpu_start;
   s.swarm_cpu_seconds = report.cpu_seconds;
   s.mean_lateness = report.mean_lateness;
   s.max_lateness = report.max_lateness;

@@ -35,6 +35,9 @@ struct ScalingSample {
   double efficiency = 0;                                       // (job rays / R) / (N * wall)
   double master_cpu_seconds = 0;               // radfarmd's CPU time over the whole run
   double master_connect_cpu_seconds = 0;       // of it: until every agent had authenticated
+  // The same two for radfarmd's event-loop thread alone (its main thread: leases, results,
+  // frames), without the compute and store threads' reductions, planning and SQLite.
+  double master_loop_cpu_seconds = 0, master_loop_connect_cpu_seconds = 0;
   uint64_t frames = 0;                         // frames the agents sent and received
   double swarm_cpu_seconds = 0;                // the simulator's
   double mean_lateness = 0, max_lateness = 0;  // the simulator's timers

@@ -72,7 +72,8 @@ void RunSuite(SuitePlan& plan, const FarmPrograms& programs, const std::string& 
           "  %-8s N=%-4zu L=%2.0f ms: %7.2f s, %u rounds, %6.0f batches/s, efficiency %5.1f%%, "
           "utilisation %5.1f%% (min %5.1f%%), idle between/within rounds %4.1f%%/%4.1f%% "
           "(starts %4.1f%%, tails %4.1f%%), "
-          "%.3f B/ray, master CPU %.2f s (%.2f s connecting, %.1f us/batch), %.2f frames/batch, "
+          "%.3f B/ray, master CPU %.2f s (%.2f s connecting, %.1f us/batch; loop thread %.2f s, "
+          "%.2f s connecting), %.2f frames/batch, "
           "sim CPU %.2f s%s\n",
           row.group.c_str(), c.agents, c.latency_ms, s.wall_seconds, s.rounds,
           s.batches_per_second(), 100 * s.efficiency, 100 * s.utilisation_mean,
@@ -80,6 +81,7 @@ void RunSuite(SuitePlan& plan, const FarmPrograms& programs, const std::string& 
           100 * s.idle_round_starts, 100 * s.idle_round_tails, s.bytes_per_ray(),
           s.master_cpu_seconds, s.master_connect_cpu_seconds,
           s.batches ? 1e6 * s.master_cpu_seconds / double(s.batches) : 0.0,
+          s.master_loop_cpu_seconds, s.master_loop_connect_cpu_seconds,
           s.batches ? double(s.frames) / double(s.batches) : 0.0, s.swarm_cpu_seconds,
           s.agent_errors ? (", agent errors: " + s.first_error).c_str() : "");
       std::fflush(stdout);

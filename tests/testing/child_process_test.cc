@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <fstream>
+#include <thread>
 
 #include "testing/temp_dir.h"
 
@@ -106,6 +108,24 @@ TEST(ProcessCpuSecondsTest, ReadsThisProcessAndNotAMissingOne) {
   ChildProcess child({"/bin/true"}, dir.File("log"));
   ASSERT_TRUE(child.WaitExit(seconds(30)).has_value());
   EXPECT_EQ(ProcessCpuSeconds(child.pid()), std::nullopt);
+}
+
+TEST(MainThreadCpuSecondsTest, LeavesOutTheOtherThreads) {
+  const double process_before = ProcessCpuSeconds(getpid()).value();
+  const double main_before = MainThreadCpuSeconds(getpid()).value();
+  // Another thread spins for 0.2 CPU seconds of its own while this one waits.
+  std::thread spinner([] {
+    timespec t{};
+    do {
+      clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    } while (t.tv_sec == 0 && t.tv_nsec < 200'000'000);
+  });
+  spinner.join();
+  const double process_spent = ProcessCpuSeconds(getpid()).value() - process_before;
+  const double main_spent = MainThreadCpuSeconds(getpid()).value() - main_before;
+  // /proc counts in clock ticks (10 ms here): the process saw the spin, the main thread did not.
+  EXPECT_GE(process_spent, 0.15);
+  EXPECT_LT(main_spent, 0.1);
 }
 
 }  // namespace
