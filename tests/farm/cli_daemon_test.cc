@@ -227,7 +227,8 @@ namespace {
 
 TEST_F(FarmTest, AHigherPriorityJobGetsTheAgentsFirst) {
   // Every round on the agent: the master traces small rounds itself, beside the agent, and the
-  // low job could end its last rounds there first on a slow build (under ASan it did once).
+  // low job could end its last rounds there first on a slow build (the likeliest reason this
+  // test failed once under ASan).
   StartMaster({"--local-round-rays", "0"});
   StartAgent("only", {"--slowdown", "2"});
   const int64_t low = Submit("cornell-box.toml", {"--rays", "3000000", "--name", "low"});
