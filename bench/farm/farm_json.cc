@@ -42,10 +42,10 @@ json Sample(const ScalingSample& s) {
           {"mean_lateness", s.mean_lateness},
           {"max_lateness", s.max_lateness},
           {"connect_seconds", s.connect_seconds},
-          {"idle_between_rounds", s.idle_between_rounds},
-          {"idle_within_rounds", s.idle_within_rounds},
-          {"idle_round_starts", s.idle_round_starts},
-          {"idle_round_tails", s.idle_round_tails},
+          {"idle_between_rounds", s.idle.between_rounds},
+          {"idle_within_rounds", s.idle.within_rounds},
+          {"idle_round_starts", s.idle.round_starts},
+          {"idle_round_tails", s.idle.round_tails},
           {"agent_errors", s.agent_errors},
           {"first_error", s.first_error}};
 }

@@ -109,11 +109,7 @@ ScalingSample RunScalingCase(const FarmPrograms& programs, const std::string& sc
     busy += u;
     s.utilisation_min = std::min(s.utilisation_min, u);
   }
-  const sim::IdleSplit idle = sim::SplitIdleTime(report, c.agents, s.wall_seconds);
-  s.idle_between_rounds = idle.between_rounds;
-  s.idle_within_rounds = idle.within_rounds;
-  s.idle_round_starts = idle.round_starts;
-  s.idle_round_tails = idle.round_tails;
+  s.idle = sim::SplitIdleTime(report, c.agents, s.wall_seconds);
   s.utilisation_mean = report.agents.empty() ? 0 : busy / double(report.agents.size());
   s.efficiency = s.wall_seconds > 0 ? (double(s.job_rays) / c.rays_per_second) /
                                           (double(c.agents) * s.wall_seconds)

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bench/farm/farm_checks.h"
+#include "bench/farm_sim/idle_split.h"
 
 namespace radfarm::bench {
 
@@ -42,15 +43,10 @@ struct ScalingSample {
   double swarm_cpu_seconds = 0;                // the simulator's
   double mean_lateness = 0, max_lateness = 0;  // the simulator's timers
   double connect_seconds = 0;
-  // Where the agents' idle time went, as fractions of N x wall: between rounds (from a round's
-  // last result to the next round's first lease: reduction, planning, the lease's way out) and
-  // within rounds (from a round's first lease to its last result: waiting for leases, round
-  // tails). Time on the final gather's batches leased ahead is busy, not idle, wherever it falls.
-  double idle_between_rounds = 0, idle_within_rounds = 0;
-  // Of the time within rounds: before an agent's first lease of the round (the round's start) and
-  // after its last result (the round's tail), as fractions of N x wall; an agent may have spent
-  // some of it on the gather ahead.
-  double idle_round_starts = 0, idle_round_tails = 0;
+  // Where the agents' idle time went (bench/farm_sim/idle_split.h): between rounds (from a
+  // round's last result to the next round's first lease: reduction, planning, the lease's way
+  // out) and within rounds (waiting for leases, round starts and tails).
+  sim::IdleSplit idle;
   size_t agent_errors = 0;  // agents that closed during the job
   std::string first_error;
 
