@@ -211,9 +211,9 @@ std::optional<Assignment> RoundScheduler::NextAssignment(AgentId agent_id, TimeP
   const auto it = agents_.find(agent_id);
   if (!round_ || it == agents_.end() || IsBlocklisted(agent_id, now)) return std::nullopt;
   AgentState& agent = it->second;
-  if (agent.live.size() + leases_elsewhere >= capacity.value_or(LeaseCapacity(agent))) {
-    return std::nullopt;
-  }
+  const bool full = agent.live.size() + leases_elsewhere >= capacity.value_or(LeaseCapacity(agent));
+  // A full agent below min_held_seconds of work may still take fresh batches, nothing else.
+  if (full && !(HoldsTooLittle(agent) && PeekFresh())) return std::nullopt;
   if (const auto next = PeekFresh()) {
     if (!RoundEndAllows(agent, round_->plan.batches[*next].ray_count, now)) return std::nullopt;
     return Issue(*PopFresh(), agent_id, agent, now, false);
@@ -485,6 +485,11 @@ std::optional<double> RoundScheduler::RoundSecondsLeft() const {
 size_t RoundScheduler::EqualShare(size_t batches) const {
   const size_t agents = std::max<size_t>(1, agents_.size());
   return (batches + agents - 1) / agents;
+}
+
+bool RoundScheduler::HoldsTooLittle(const AgentState& agent) const {
+  if (options_.min_held_seconds <= 0 || !agent.throughput.measured()) return false;
+  return double(agent.live_rays) < options_.min_held_seconds * agent.throughput.rays_per_second();
 }
 
 bool RoundScheduler::RoundEndAllows(const AgentState& agent, uint32_t rays, TimePoint now) const {

@@ -188,7 +188,8 @@ class RoundScheduler {
   // --- Work ---
   // The next lease for `agent`, or nothing: no round, unknown or blocklisted agent, agent at its
   // lease capacity or holding what it finishes by the round's predicted end (round_end_share),
-  // or nothing to hand out. Requeued and fresh batches come first, in that order;
+  // or nothing to hand out (an agent at capacity that holds under min_held_seconds of work may
+  // still take fresh batches). Requeued and fresh batches come first, in that order;
   // when none are left, an overdue batch this agent does not already hold.
   // `leases_elsewhere`: leases the agent holds for other jobs (their schedulers'); they count
   // against its capacity here too, so an agent shared by several jobs is never over-leased.
@@ -294,6 +295,8 @@ class RoundScheduler {
   std::optional<uint32_t> PeekFresh();
   // ceil(batches / known agents): one agent's equal share of them.
   size_t EqualShare(size_t batches) const;
+  // The agent is measured and holds less work than options.min_held_seconds of it.
+  bool HoldsTooLittle(const AgentState& agent) const;
   // Whether the round's end leaves room for `agent` to take `rays` more (round_end_share).
   bool RoundEndAllows(const AgentState& agent, uint32_t rays, TimePoint now) const;
   // Seconds the round's work not done would take the measured agents together; nullopt when

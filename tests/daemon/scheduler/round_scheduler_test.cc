@@ -667,6 +667,34 @@ TEST(RoundSchedulerTest, TheRoundsPredictedEndFollowsResultsAndLostAgents) {
   EXPECT_EQ(s.LeasesHeld(1), 7u);
 }
 
+// min_held_seconds: the lease capacity counts batches of the round's mean size; an agent at its
+// capacity of small pieces (a round's tapered end) may take fresh ones until it holds that much
+// work; one that holds more gets nothing beyond its capacity.
+TEST(RoundSchedulerTest, AnAgentHoldingTooLittleWorkTakesFreshBatchesBeyondItsCapacity) {
+  for (const double min_held : {0.0, 0.1}) {
+    SchedulerOptions options;
+    options.target_lease_seconds = 0.5;
+    options.min_held_seconds = min_held;
+    RoundScheduler s(options);
+    s.AddAgent(1);
+    s.AddAgent(2);
+    MeasureAt1000RaysPerSecond(s);
+    // One batch of 4000 rays, then 20 of 10: 200 rays a batch on average, so a capacity of
+    // floor(1000 * 0.5 / 200) = 2 batches; 0.1 s of work is 100 rays.
+    RoundPlan plan = Plan(1, 21, 10);
+    plan.batches[0].ray_count = 4000;
+    plan.rays += 3990;
+    ASSERT_TRUE(s.StartRound(plan, kT0).ok());
+    ASSERT_EQ(s.LeaseCapacityOf(1), 2u);
+    ASSERT_TRUE(s.NextAssignment(2, kT0));  // the 4000 rays
+    ASSERT_TRUE(s.NextAssignment(2, kT0));
+    EXPECT_FALSE(s.NextAssignment(2, kT0)) << min_held;  // full, and 4 s of work
+    size_t one = 0;
+    while (s.NextAssignment(1, kT0)) ++one;
+    EXPECT_EQ(one, min_held > 0 ? 10u : 2u) << min_held;
+  }
+}
+
 // A short round (a final gather after long ones): an agent holding nothing always gets a batch,
 // and without round_end_share the first agent asked takes all it has room for.
 TEST(RoundSchedulerTest, AShortRoundIsSpreadOverTheAgentsOnlyWithTheRoundEndShare) {
