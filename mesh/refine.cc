@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "mesh/element_split.h"
+#include "mesh/memory_estimate.h"
 #include "mesh/polygon.h"
 #include "mesh/refine_criteria.h"
 
@@ -74,6 +75,14 @@ bool Splittable(const Patch& p, double min_element_size) {
 
 }  // namespace
 
+uint64_t AutomaticElementBudget(size_t initial_patches) {
+  const uint64_t budget = kElementBudgetFactor * uint64_t(initial_patches);
+  const uint64_t memory = PhysicalMemoryBytes();
+  if (memory <= kSolveBaseBytes) return budget;
+  const uint64_t fit = (memory - kSolveBaseBytes) / kSolveBytesPerPatch;
+  return std::min(budget, std::max<uint64_t>(initial_patches, fit));
+}
+
 Result<ResolvedRefineSettings> ResolveRefineSettings(const RefineSettings& settings,
                                                      double patch_size, size_t initial_patches,
                                                      double weld_tolerance) {
@@ -90,8 +99,8 @@ Result<ResolvedRefineSettings> ResolveRefineSettings(const RefineSettings& setti
         << kMinElementInWelds * weld_tolerance << " (1e-4 of the scene's diagonal)";
     return Error{msg.str()};
   }
-  out.max_elements = settings.max_elements > 0 ? settings.max_elements
-                                               : kElementBudgetFactor * uint64_t(initial_patches);
+  out.max_elements =
+      settings.max_elements > 0 ? settings.max_elements : AutomaticElementBudget(initial_patches);
   return out;
 }
 

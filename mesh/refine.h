@@ -61,6 +61,11 @@ const RefinePoint* PassedRefinePoint(double unshot_fraction, size_t* next);
 inline constexpr double kMinElementDivisions = 4;    // min_element_size = patch_size / 4
 inline constexpr uint64_t kElementBudgetFactor = 8;  // max_elements = 8 x initial patches
 
+// The automatic max_elements: kElementBudgetFactor x the initial patches, but no more elements than
+// this machine's memory holds at EstimatedSolveBytes (mesh/memory_estimate.h), so that a refined
+// big job stops splitting rather than be killed by the kernel; never below the initial patches.
+uint64_t AutomaticElementBudget(size_t initial_patches);
+
 // RefineSettings with its automatic values resolved for a mesh of `initial_patches` patches of
 // size `patch_size`. Errors name the setting (the job file's key).
 struct ResolvedRefineSettings {

@@ -9,10 +9,11 @@
 #include <cmath>
 
 #include "core/ray_caster.h"
-#include "solve/local_solve.h"
 #include "core/thread_pool.h"
 #include "mesh/locate_patches.h"
+#include "mesh/memory_estimate.h"
 #include "mesh/patch_mesh.h"
+#include "solve/local_solve.h"
 #include "test_scenes.h"
 
 namespace radfarm {
@@ -304,6 +305,20 @@ TEST(RefineTest, SettingsOutOfRangeNameTheKey) {
   ASSERT_TRUE(a.ok());
   EXPECT_EQ(a->min_element_size, 0.5 / 4);
   EXPECT_EQ(a->max_elements, 800u);
+}
+
+// The automatic element budget stops at what this machine's memory holds.
+TEST(RefineTest, TheAutomaticElementBudgetFitsInMemory) {
+  const uint64_t memory = PhysicalMemoryBytes();
+  ASSERT_GT(memory, kSolveBaseBytes);
+  const uint64_t fit = (memory - kSolveBaseBytes) / kSolveBytesPerPatch;
+  EXPECT_EQ(AutomaticElementBudget(100), 800u);
+  EXPECT_EQ(AutomaticElementBudget(fit / 4), fit);      // 8 x would be twice the memory
+  EXPECT_EQ(AutomaticElementBudget(fit * 2), fit * 2);  // never below the initial patches
+  RefineSettings automatic;
+  Result<ResolvedRefineSettings> r = ResolveRefineSettings(automatic, 0.5, fit / 4, 1e-6);
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r->max_elements, fit);
 }
 
 }  // namespace
