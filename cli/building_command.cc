@@ -43,6 +43,11 @@ CLI::App* AddBuildingCommand(CLI::App& app, BuildingOptions* options) {
       ->add_option("--patch-size", options->patch_size,
                    "Patch size the job file asks for, in metres; 0: automatic (default: 0.25)")
       ->check(RealInRange(0, 1e6));
+  command
+      ->add_option("--refine-tolerance", options->refine_tolerance,
+                   "Adaptive refinement tolerance the job file asks for (the relative error "
+                   "that splits an element); 0: a uniform mesh, no refinement (default: 0.05)")
+      ->check(RealInRange(0, 1e6));
   return command;
 }
 
@@ -82,6 +87,7 @@ int RunBuilding(const BuildingOptions& options) {
   const scenegen::RoomView view = scenegen::FirstRoomView(params);
   scenegen::JobFileSettings job;
   job.patch_size = options.patch_size;
+  job.refine_tolerance = options.refine_tolerance;
   job.eye = view.eye;
   job.target = view.target;
   const Result<std::string> written = scenegen::WriteScene(*model, options.out, options.name, job);

@@ -18,6 +18,8 @@ std::string MtlText(const SceneModel& model);
 struct JobFileSettings {
   std::string obj_name;   // relative to the job file
   double patch_size = 0;  // 0: absent (automatic)
+  // > 0: `refine = true` with this `refine_tolerance`; 0: absent (no refinement).
+  double refine_tolerance = 0;
   Vec3 eye, target;       // camera
   double fov = 70;
 };

@@ -82,9 +82,10 @@ BuildingJob WriteBuildingJob(const std::string& rooms, uint64_t rays_per_room,
                              const std::string& dir) {
   BuildingJob job{rooms, dir + "/building.toml", RoomsOf(rooms) * rays_per_room};
   std::filesystem::create_directories(dir);
-  const MeasuredRun run = RunMeasured(
-      {RADFARM_CLI_PATH, "building", "--rooms", rooms, "--patch-size", "0", "--out", dir},
-      dir + "/building.log");
+  const MeasuredRun run =
+      RunMeasured({RADFARM_CLI_PATH, "building", "--rooms", rooms, "--patch-size", "0",
+                   "--refine-tolerance", "0", "--out", dir},
+                  dir + "/building.log");
   if (run.exit_code != 0) throw std::runtime_error("radfarm building failed: see " + dir);
   return job;
 }

@@ -40,6 +40,32 @@ TEST(BuildingCommandTest, WritesAJobThatRendersClosed) {
   EXPECT_GT(StatsValue(stats, "rays"), 1e6) << stats;
   EXPECT_EQ(StatsValue(stats, "escaped_rays"), 0) << stats;
   EXPECT_EQ(StatsValue(stats, "patch_size"), 0.5) << stats;
+  // Refined by default, where the light asks for it.
+  EXPECT_GT(StatsValue(stats, "patches_after_refinement"),
+            StatsValue(stats, "patches_before_refinement"))
+      << stats;
+}
+
+// The job file asks for adaptive refinement at 0.05 unless told otherwise; 0 leaves it out.
+TEST(BuildingCommandTest, TheJobRefinesUnlessToldNotTo) {
+  TempDir refined, uniform, automatic;
+  ASSERT_EQ(RunBuildingCommand({"--out", refined.path()}).exit_code, kExitOk);
+  ASSERT_EQ(RunBuildingCommand({"--out", uniform.path(), "--refine-tolerance", "0"}).exit_code,
+            kExitOk);
+  ASSERT_EQ(RunBuildingCommand(
+                {"--out", automatic.path(), "--patch-size", "0", "--refine-tolerance", "0.1"})
+                .exit_code,
+            kExitOk);
+  const std::string a = ReadFile(refined.File("building.toml"));
+  EXPECT_NE(a.find("[mesh]\npatch_size = 0.25\nrefine = true\nrefine_tolerance = 0.05\n"),
+            std::string::npos)
+      << a;
+  const std::string b = ReadFile(uniform.File("building.toml"));
+  EXPECT_NE(b.find("[mesh]\npatch_size = 0.25\n\n"), std::string::npos) << b;
+  EXPECT_EQ(b.find("refine"), std::string::npos) << b;
+  const std::string c = ReadFile(automatic.File("building.toml"));
+  EXPECT_NE(c.find("[mesh]\nrefine = true\nrefine_tolerance = 0.1\n"), std::string::npos) << c;
+  EXPECT_EQ(c.find("patch_size"), std::string::npos) << c;
 }
 
 TEST(BuildingCommandTest, SameArgumentsSameFiles) {
@@ -66,6 +92,7 @@ TEST(BuildingCommandTest, RefusesBadArgumentsNamingThem) {
       {{"--name", "a/b"}, "name"},
       {{"--lights", "0x3"}, "lights"},
       {{"--lights", "101x1"}, "lights"},
+      {{"--refine-tolerance", "-0.1"}, "refine-tolerance"},
   };
   for (const auto& [extra, word] : cases) {
     std::vector<std::string> args = {"--out", dir.path()};
