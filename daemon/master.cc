@@ -35,7 +35,8 @@ Master::Master(loop::EventLoop& loop, const MasterConfig& config, protocol::Farm
   scheduler_options_.round_end_share = 1;
   // An agent holds at least 0.1 s of work where it can, so that the tapered end of a round (pieces
   // too small for a lease capacity of them to cover the round trip) does not idle it for a round
-  // trip after each lease (farm_bench, 1000 agents at 20 ms: 91.3-92.4 % became 91.8-93.6 %).
+  // trip after each lease (farm_bench, 1000 agents at 20 ms, medians of 3 runs: 91.3 % became
+  // 93.3 %; docs/BENCHMARKS-farm.md).
   scheduler_options_.min_held_seconds = 0.1;
   scheduler_options_.gather_ahead_rays = config.gather_ahead_rays;
 }
