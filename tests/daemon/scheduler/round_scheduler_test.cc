@@ -495,6 +495,15 @@ void MeasureAt1000RaysPerSecond(RoundScheduler& s) {
   ASSERT_TRUE(s.TakeCompletedRound().ok());
 }
 
+// A scheduler of `options` with agents 1 and 2, both measured at 1000 rays/s (round 0 taken).
+RoundScheduler TwoMeasuredAgents(const SchedulerOptions& options) {
+  RoundScheduler s(options);
+  s.AddAgent(1);
+  s.AddAgent(2);
+  MeasureAt1000RaysPerSecond(s);
+  return s;
+}
+
 TEST(RoundSchedulerTest, ALeaseFrameOfResultsMeasuresTheAgentOnceOverAllItsRays) {
   SchedulerOptions options;
   options.initial_leases = 4;
@@ -521,10 +530,7 @@ TEST(RoundSchedulerTest, LeaseSizeIsTheAgentsOwnAndShrinksToTheQueuesShare) {
   SchedulerOptions options;
   options.target_lease_seconds = 4;
   options.max_leases_per_agent = 1000;
-  RoundScheduler s(options);
-  s.AddAgent(1);
-  s.AddAgent(2);
-  MeasureAt1000RaysPerSecond(s);
+  RoundScheduler s = TwoMeasuredAgents(options);
   // Agent 2 gets twice as fast: its leases grow, agent 1's do not.
   ASSERT_TRUE(s.StartRound(Plan(1, 100), kT0).ok());
   const auto b = s.NextAssignment(2, kT0);
@@ -570,10 +576,7 @@ TEST(RoundSchedulerTest, AnIdleAgentTakesOverTheNewestLeasesOfABusyOneAndEachCou
   SchedulerOptions options;
   options.target_lease_seconds = 8;  // agent 1 may hold all 8 batches
   options.max_leases_per_agent = 8;
-  RoundScheduler s(options);
-  s.AddAgent(1);
-  s.AddAgent(2);
-  MeasureAt1000RaysPerSecond(s);
+  RoundScheduler s = TwoMeasuredAgents(options);
   ASSERT_TRUE(s.StartRound(Plan(1, 8), kT0).ok());
   std::vector<Assignment> held;
   for (int k = 0; k < 8; ++k) held.push_back(*s.NextAssignment(1, kT0));
@@ -622,10 +625,7 @@ TEST(RoundSchedulerTest, AnAgentHoldsNoMoreThanItFinishesByTheRoundsPredictedEnd
   options.target_lease_seconds = 100;  // the lease capacity alone would allow every batch
   options.max_leases_per_agent = 100;
   options.round_end_share = 1;
-  RoundScheduler s(options);
-  s.AddAgent(1);
-  s.AddAgent(2);
-  MeasureAt1000RaysPerSecond(s);
+  RoundScheduler s = TwoMeasuredAgents(options);
   // 8 batches of 1000 rays for 2 agents of 1000 rays/s: the round ends in 4 s. Each agent gets
   // the batches it finishes by then (the first, then while done_after <= 4 s), not all 8.
   ASSERT_TRUE(s.StartRound(Plan(1, 8), kT0).ok());
@@ -642,10 +642,7 @@ TEST(RoundSchedulerTest, TheRoundsPredictedEndFollowsResultsAndLostAgents) {
   options.target_lease_seconds = 100;
   options.max_leases_per_agent = 100;
   options.round_end_share = 1;
-  RoundScheduler s(options);
-  s.AddAgent(1);
-  s.AddAgent(2);
-  MeasureAt1000RaysPerSecond(s);
+  RoundScheduler s = TwoMeasuredAgents(options);
   ASSERT_TRUE(s.StartRound(Plan(1, 12), kT0).ok());  // 6 s for the two
   std::vector<Assignment> held;
   while (auto a = s.NextAssignment(1, kT0)) held.push_back(*a);
@@ -675,10 +672,7 @@ TEST(RoundSchedulerTest, AnAgentHoldingTooLittleWorkTakesFreshBatchesBeyondItsCa
     SchedulerOptions options;
     options.target_lease_seconds = 0.5;
     options.min_held_seconds = min_held;
-    RoundScheduler s(options);
-    s.AddAgent(1);
-    s.AddAgent(2);
-    MeasureAt1000RaysPerSecond(s);
+    RoundScheduler s = TwoMeasuredAgents(options);
     // One batch of 4000 rays, then 20 of 10: 200 rays a batch on average, so a capacity of
     // floor(1000 * 0.5 / 200) = 2 batches; 0.1 s of work is 100 rays.
     RoundPlan plan = Plan(1, 21, 10);
@@ -703,10 +697,7 @@ TEST(RoundSchedulerTest, AShortRoundIsSpreadOverTheAgentsOnlyWithTheRoundEndShar
     options.target_lease_seconds = 100;
     options.max_leases_per_agent = 100;
     options.round_end_share = share;
-    RoundScheduler s(options);
-    s.AddAgent(1);
-    s.AddAgent(2);
-    MeasureAt1000RaysPerSecond(s);
+    RoundScheduler s = TwoMeasuredAgents(options);
     // 5 batches of 100 rays: 0.25 s of work for the two agents; 0.1 s each.
     ASSERT_TRUE(s.StartRound(Plan(1, 5, 100), kT0).ok());
     size_t first = 0;
@@ -747,10 +738,7 @@ TEST(RoundSchedulerTest, UnmeasuredAgentsHoldTheirEqualShareOfTheRound) {
 
 TEST(RoundSchedulerTest, TheEndGameCopiesALeaseRunningTwiceItsExpectedTime) {
   SchedulerOptions options;
-  RoundScheduler s(options);
-  s.AddAgent(1);
-  s.AddAgent(2);
-  MeasureAt1000RaysPerSecond(s);
+  RoundScheduler s = TwoMeasuredAgents(options);
   ASSERT_TRUE(s.StartRound(Plan(1, 1), kT0).ok());
   const auto a = s.NextAssignment(1, kT0);  // expected to take 1 s
   ASSERT_TRUE(a);
