@@ -212,8 +212,12 @@ std::optional<Assignment> RoundScheduler::NextAssignment(AgentId agent_id, TimeP
   if (!round_ || it == agents_.end() || IsBlocklisted(agent_id, now)) return std::nullopt;
   AgentState& agent = it->second;
   const bool full = agent.live.size() + leases_elsewhere >= capacity.value_or(LeaseCapacity(agent));
-  // A full agent below min_held_seconds of work may still take fresh batches, nothing else.
-  if (full && !(HoldsTooLittle(agent) && PeekFresh())) return std::nullopt;
+  // A full agent below min_held_seconds of work may still take fresh batches, nothing else; one
+  // holding other jobs' leases is left to them (their work may be what keeps it busy, and a
+  // lower-priority job must not queue work beyond the capacity behind a higher one's).
+  if (full && !(leases_elsewhere == 0 && HoldsTooLittle(agent) && PeekFresh())) {
+    return std::nullopt;
+  }
   if (const auto next = PeekFresh()) {
     if (!RoundEndAllows(agent, round_->plan.batches[*next].ray_count, now)) return std::nullopt;
     return Issue(*PopFresh(), agent_id, agent, now, false);

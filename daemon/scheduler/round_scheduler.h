@@ -188,8 +188,8 @@ class RoundScheduler {
   // --- Work ---
   // The next lease for `agent`, or nothing: no round, unknown or blocklisted agent, agent at its
   // lease capacity or holding what it finishes by the round's predicted end (round_end_share),
-  // or nothing to hand out (an agent at capacity that holds under min_held_seconds of work may
-  // still take fresh batches). Requeued and fresh batches come first, in that order;
+  // or nothing to hand out (an agent at capacity that holds under min_held_seconds of work here
+  // and no leases elsewhere may still take fresh batches). Requeued and fresh batches come first;
   // when none are left, an overdue batch this agent does not already hold.
   // `leases_elsewhere`: leases the agent holds for other jobs (their schedulers'); they count
   // against its capacity here too, so an agent shared by several jobs is never over-leased.

@@ -46,12 +46,13 @@ struct SchedulerOptions {
   // agent the job has not measured yet holds at most its equal share of the round's batches not
   // done. 0: no cap. radfarmd uses 1 (daemon/master.cc).
   double round_end_share = 0;
-  // An agent measured here that holds less than this much work (its measured rays/s times it) may
-  // take fresh batches beyond its lease capacity (round_end_share still applies). The capacity
-  // counts batches of the round's mean size, while a round's tapered end is cut into pieces of a
-  // sixteenth of that: a capacity of them is less work than the round trip to the master, so an
-  // agent ran dry for a round trip after each lease there (farm_bench, 1000 agents at 20 ms).
-  // 0: off. radfarmd uses 0.1 (daemon/master.cc); the gather ahead 0 (daemon/gather_ahead.cc).
+  // An agent measured here that holds less than this much work (its measured rays/s times it), and
+  // no leases of other schedulers, may take fresh batches beyond its lease capacity
+  // (round_end_share still applies). The capacity counts batches of the round's mean size, while a
+  // round's tapered end is cut into pieces of a sixteenth of that: a capacity of them is less work
+  // than the round trip to the master, so an agent ran dry for a round trip after each lease there
+  // (farm_bench, 1000 agents at 20 ms). 0: off. radfarmd uses 0.1 (daemon/master.cc); the gather
+  // ahead 0 (daemon/gather_ahead.cc).
   double min_held_seconds = 0;
   // Live attempts of one batch at most (the original plus speculative copies).
   uint32_t max_live_attempts = 2;
