@@ -8,6 +8,11 @@ uint64_t EstimatedSolveBytes(uint64_t patches) {
   return kSolveBaseBytes + kSolveBytesPerPatch * patches;
 }
 
+std::optional<uint64_t> PatchesThatFit(uint64_t memory_bytes) {
+  if (memory_bytes <= kSolveBaseBytes) return std::nullopt;
+  return (memory_bytes - kSolveBaseBytes) / kSolveBytesPerPatch;
+}
+
 uint64_t PhysicalMemoryBytes() {
   const long pages = sysconf(_SC_PHYS_PAGES);
   const long page_size = sysconf(_SC_PAGESIZE);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace radfarm {
@@ -15,6 +16,9 @@ inline constexpr uint64_t kSolveBaseBytes = uint64_t{96} << 20;
 inline constexpr uint64_t kSolveBytesPerPatch = 1152;
 
 uint64_t EstimatedSolveBytes(uint64_t patches);
+// The most patches whose EstimatedSolveBytes fit in `memory_bytes`; nullopt when it is no more
+// than the base (unknown, or too little for any: EstimatedSolveBytes against it refuses that).
+std::optional<uint64_t> PatchesThatFit(uint64_t memory_bytes);
 
 // This machine's physical memory (the default limit), 0 if unknown.
 uint64_t PhysicalMemoryBytes();

@@ -226,10 +226,7 @@ Result<MeshPlan> PlanMesh(const InputScene& scene, const MeshSettings& settings,
       const int sides = scene.materials[face.material].two_sided ? 2 : 1;
       piece_count += sides * std::min(plans.back().PieceCount(), kMaxPatches + 1);  // no overflow
     }
-    uint64_t allowed = kMaxPatches;
-    if (memory_limit > kSolveBaseBytes) {
-      allowed = std::min(allowed, (memory_limit - kSolveBaseBytes) / kSolveBytesPerPatch);
-    }
+    const uint64_t allowed = std::min(kMaxPatches, PatchesThatFit(memory_limit).value_or(kMaxPatches));
     mp.size = SummarizePatchSizes(plans, sizes);
     mp.sheets.assign(faces.size(), {});
     mp.narrow.assign(faces.size(), {});

@@ -77,10 +77,9 @@ bool Splittable(const Patch& p, double min_element_size) {
 
 uint64_t AutomaticElementBudget(size_t initial_patches) {
   const uint64_t budget = kElementBudgetFactor * uint64_t(initial_patches);
-  const uint64_t memory = PhysicalMemoryBytes();
-  if (memory <= kSolveBaseBytes) return budget;
-  const uint64_t fit = (memory - kSolveBaseBytes) / kSolveBytesPerPatch;
-  return std::min(budget, std::max<uint64_t>(initial_patches, fit));
+  const std::optional<uint64_t> fit = PatchesThatFit(PhysicalMemoryBytes());
+  if (!fit) return budget;
+  return std::min(budget, std::max<uint64_t>(initial_patches, *fit));
 }
 
 Result<ResolvedRefineSettings> ResolveRefineSettings(const RefineSettings& settings,
