@@ -39,11 +39,10 @@ Result<CheckedJob> LoadJobAndScene(const std::string& path, const JobOverrides& 
 }
 
 // The checks that need the mesh's figures (the smallest element against the welding distance).
-Status CheckRefinement(const std::string& path, const Job& job, double patch_size, uint64_t patches,
-                       double weld_tolerance) {
+Status CheckRefinement(const std::string& path, const Job& job, const MeshCheck& mesh) {
   if (!job.refine.enabled) return Ok{};
-  Result<ResolvedRefineSettings> refine =
-      ResolveRefineSettings(job.refine, patch_size, patches, weld_tolerance);
+  Result<ResolvedRefineSettings> refine = ResolveRefineSettings(
+      job.refine, mesh.patch_size, mesh.patches, mesh.weld_tolerance, mesh.memory_limit);
   if (!refine.ok()) return Error{path + ": " + refine.error()};
   return Ok{};
 }
@@ -58,9 +57,10 @@ Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& o
   RADFARM_RETURN_IF_ERROR(mesh);
   const std::vector<std::string> back = BackFaceWarnings(loaded->scene.path, mesh->patch_scene());
   warnings->insert(warnings->end(), back.begin(), back.end());
-  RADFARM_RETURN_IF_ERROR(CheckRefinement(path, loaded->job, mesh->patch_size(),
-                                          mesh->patch_scene().patches.size(),
-                                          mesh->weld_tolerance()));
+  RADFARM_RETURN_IF_ERROR(
+      CheckRefinement(path, loaded->job,
+                      MeshCheck{mesh->patch_scene().patches.size(), mesh->patch_size(),
+                                mesh->weld_tolerance(), mesh->memory_limit()}));
   return LoadedJob{std::move(loaded->job), std::move(loaded->scene), std::move(*mesh)};
 }
 
@@ -70,8 +70,7 @@ Result<CheckedJob> CheckJobForSubmit(const std::string& path, const JobOverrides
   RADFARM_RETURN_IF_ERROR(loaded);
   Result<MeshCheck> mesh = PatchMesh::Check(loaded->scene, loaded->job.mesh, warnings);
   RADFARM_RETURN_IF_ERROR(mesh);
-  RADFARM_RETURN_IF_ERROR(
-      CheckRefinement(path, loaded->job, mesh->patch_size, mesh->patches, mesh->weld_tolerance));
+  RADFARM_RETURN_IF_ERROR(CheckRefinement(path, loaded->job, *mesh));
   return loaded;
 }
 

@@ -360,9 +360,9 @@ void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
         RADFARM_RETURN_IF_ERROR(mesh);
         if (bundle->job.refine.enabled) {
           // The checks that need the mesh, as LoadJobForSolve makes them before a local render.
-          Result<ResolvedRefineSettings> refine =
-              ResolveRefineSettings(bundle->job.refine, mesh->patch_size(),
-                                    mesh->patch_scene().patches.size(), mesh->weld_tolerance());
+          Result<ResolvedRefineSettings> refine = ResolveRefineSettings(
+              bundle->job.refine, mesh->patch_size(), mesh->patch_scene().patches.size(),
+              mesh->weld_tolerance(), mesh->memory_limit());
           if (!refine) return Error{bundle->job.scene_path + ": " + refine.error()};
         }
         const SolverSettings& solver = bundle->job.solver;

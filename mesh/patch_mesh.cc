@@ -165,6 +165,7 @@ void CutFace(const SplitPlan& plan, const CleanFace& face, const std::vector<Foo
 // error and warning Build gives (assembling the patches adds none), so Check needs no more.
 struct MeshPlan {
   double tol = 0;
+  uint64_t memory_limit = 0;  // bytes: MeshSettings::max_memory, or this machine's
   double min_area = 0;
   std::vector<CleanFace> faces;
   std::vector<double> sizes;
@@ -209,7 +210,7 @@ Result<MeshPlan> PlanMesh(const InputScene& scene, const MeshSettings& settings,
   const FreePathProbe probe(faces, tol, diagonal);
   sizes = automatic ? AutoPatchSizes(faces, probe, tol)
                     : std::vector<double>(faces.size(), settings.patch_size);
-  const uint64_t memory_limit =
+  const uint64_t memory_limit = mp.memory_limit =
       settings.max_memory > 0 ? settings.max_memory : PhysicalMemoryBytes();
   std::vector<SplitPlan>& plans = mp.plans;
   uint64_t& piece_count = mp.piece_count;
@@ -284,7 +285,7 @@ Result<MeshCheck> PatchMesh::Check(const InputScene& scene, const MeshSettings& 
                                    std::vector<std::string>* warnings) {
   Result<MeshPlan> mp = PlanMesh(scene, settings, warnings);
   RADFARM_RETURN_IF_ERROR(mp);
-  return MeshCheck{mp->piece_count, mp->size.median, mp->tol};
+  return MeshCheck{mp->piece_count, mp->size.median, mp->tol, mp->memory_limit};
 }
 
 Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& settings,
@@ -314,6 +315,7 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
     pm.surface_object_[surface] = object;
   };
   pm.tol_ = tol;
+  pm.memory_limit_ = mp.memory_limit;
   pm.min_area_ = min_area;
   PatchAssembler assembler(tol, min_area, pm.materials_);
   BackSurfaces back_surface(&pm.surface_count_);
@@ -374,6 +376,7 @@ PatchMesh PatchMesh::Rebuilt(const std::vector<Piece>& pieces) const {
   pm.lightmap_triangles_ = lightmap_triangles_;
   pm.materials_ = materials_;
   pm.tol_ = tol_;
+  pm.memory_limit_ = memory_limit_;
   pm.min_area_ = min_area_;
   PatchAssembler assembler(tol_, min_area_, pm.materials_);
   for (const Piece& piece : pieces) assembler.Add(piece.corners, piece.surface, piece.material);

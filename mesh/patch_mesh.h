@@ -52,6 +52,7 @@ struct MeshCheck {
   uint64_t patches = 0;   // before welding: Build's count may differ a little
   double patch_size = 0;  // as PatchMesh::patch_size()
   double weld_tolerance = 0;
+  uint64_t memory_limit = 0;  // as PatchMesh::memory_limit()
 };
 
 // Move-only: a copy of a large mesh is never wanted by accident.
@@ -83,6 +84,9 @@ class PatchMesh {
   static std::vector<Piece> PiecesOf(const PatchScene& scene);
   // Welding distance of this mesh (1e-6 of the scene's diagonal).
   double weld_tolerance() const { return tol_; }
+  // The memory the mesh was sized to hold in (MeshSettings::max_memory, or this machine's when
+  // unset): refinement's automatic element budget stays within it too.
+  uint64_t memory_limit() const { return memory_limit_; }
 
   // Flat copy the solver uses; patch i == OpenMesh face i.
   const PatchScene& patch_scene() const { return data_.scene; }
@@ -213,6 +217,7 @@ class PatchMesh {
   std::vector<LightmapTriangle> lightmap_triangles_;
   std::vector<Material> materials_;
   double tol_ = 0;
+  uint64_t memory_limit_ = 0;
   double min_area_ = 0;
 };
 

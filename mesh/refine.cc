@@ -75,16 +75,16 @@ bool Splittable(const Patch& p, double min_element_size) {
 
 }  // namespace
 
-uint64_t AutomaticElementBudget(size_t initial_patches) {
+uint64_t AutomaticElementBudget(size_t initial_patches, uint64_t memory_limit) {
   const uint64_t budget = kElementBudgetFactor * uint64_t(initial_patches);
-  const std::optional<uint64_t> fit = PatchesThatFit(PhysicalMemoryBytes());
+  const std::optional<uint64_t> fit = PatchesThatFit(memory_limit);
   if (!fit) return budget;
   return std::min(budget, std::max<uint64_t>(initial_patches, *fit));
 }
 
 Result<ResolvedRefineSettings> ResolveRefineSettings(const RefineSettings& settings,
                                                      double patch_size, size_t initial_patches,
-                                                     double weld_tolerance) {
+                                                     double weld_tolerance, uint64_t memory_limit) {
   ResolvedRefineSettings out;
   if (!(settings.tolerance > 0) || !std::isfinite(settings.tolerance)) {
     return Error{"mesh.refine_tolerance must be a finite number > 0"};
@@ -98,8 +98,9 @@ Result<ResolvedRefineSettings> ResolveRefineSettings(const RefineSettings& setti
         << kMinElementInWelds * weld_tolerance << " (1e-4 of the scene's diagonal)";
     return Error{msg.str()};
   }
-  out.max_elements =
-      settings.max_elements > 0 ? settings.max_elements : AutomaticElementBudget(initial_patches);
+  out.max_elements = settings.max_elements > 0
+                         ? settings.max_elements
+                         : AutomaticElementBudget(initial_patches, memory_limit);
   return out;
 }
 

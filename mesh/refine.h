@@ -62,9 +62,10 @@ inline constexpr double kMinElementDivisions = 4;    // min_element_size = patch
 inline constexpr uint64_t kElementBudgetFactor = 8;  // max_elements = 8 x initial patches
 
 // The automatic max_elements: kElementBudgetFactor x the initial patches, but no more elements than
-// this machine's memory holds at EstimatedSolveBytes (mesh/memory_estimate.h), so that a refined
-// big job stops splitting rather than be killed by the kernel; never below the initial patches.
-uint64_t AutomaticElementBudget(size_t initial_patches);
+// `memory_limit` bytes hold at EstimatedSolveBytes (mesh/memory_estimate.h; the mesh's
+// PatchMesh::memory_limit(): --max-memory, or this machine's memory), so that a refined big job
+// stops splitting rather than be killed by the kernel; never below the initial patches.
+uint64_t AutomaticElementBudget(size_t initial_patches, uint64_t memory_limit);
 
 // RefineSettings with its automatic values resolved for a mesh of `initial_patches` patches of
 // size `patch_size`. Errors name the setting (the job file's key).
@@ -75,7 +76,7 @@ struct ResolvedRefineSettings {
 };
 Result<ResolvedRefineSettings> ResolveRefineSettings(const RefineSettings& settings,
                                                      double patch_size, size_t initial_patches,
-                                                     double weld_tolerance);
+                                                     double weld_tolerance, uint64_t memory_limit);
 
 struct RefinedMesh {
   PatchMesh mesh;

@@ -27,7 +27,7 @@ Result<RefinementSchedule> RefinementSchedule::Create(const RefineSettings& sett
   }
   Result<ResolvedRefineSettings> resolved =
       ResolveRefineSettings(settings, initial.patch_size(), initial.patch_scene().patches.size(),
-                            initial.weld_tolerance());
+                            initial.weld_tolerance(), initial.memory_limit());
   RADFARM_RETURN_IF_ERROR(resolved);
   return RefinementSchedule(*resolved, shot_rays, next_point);
 }

@@ -297,28 +297,49 @@ TEST(RefineTest, SettingsOutOfRangeNameTheKey) {
   RefineSettings bad;
   bad.enabled = true;
   bad.min_element_size = 1e-9;
-  Result<ResolvedRefineSettings> r = ResolveRefineSettings(bad, 0.5, 100, 1e-6);
+  Result<ResolvedRefineSettings> r =
+      ResolveRefineSettings(bad, 0.5, 100, 1e-6, PhysicalMemoryBytes());
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().find("mesh.min_element_size"), std::string::npos) << r.error();
   RefineSettings automatic;
-  Result<ResolvedRefineSettings> a = ResolveRefineSettings(automatic, 0.5, 100, 1e-6);
+  Result<ResolvedRefineSettings> a =
+      ResolveRefineSettings(automatic, 0.5, 100, 1e-6, PhysicalMemoryBytes());
   ASSERT_TRUE(a.ok());
   EXPECT_EQ(a->min_element_size, 0.5 / 4);
   EXPECT_EQ(a->max_elements, 800u);
 }
 
-// The automatic element budget stops at what this machine's memory holds.
-TEST(RefineTest, TheAutomaticElementBudgetFitsInMemory) {
-  const uint64_t memory = PhysicalMemoryBytes();
-  ASSERT_GT(memory, kSolveBaseBytes);
-  const uint64_t fit = (memory - kSolveBaseBytes) / kSolveBytesPerPatch;
-  EXPECT_EQ(AutomaticElementBudget(100), 800u);
-  EXPECT_EQ(AutomaticElementBudget(fit / 4), fit);      // 8 x would be twice the memory
-  EXPECT_EQ(AutomaticElementBudget(fit * 2), fit * 2);  // never below the initial patches
+// The automatic element budget stops at what the memory limit holds.
+TEST(RefineTest, TheAutomaticElementBudgetFitsInTheMemoryLimit) {
+  const uint64_t memory = kSolveBaseBytes + 100000 * kSolveBytesPerPatch;
+  const uint64_t fit = 100000;
+  EXPECT_EQ(AutomaticElementBudget(100, memory), 800u);
+  EXPECT_EQ(AutomaticElementBudget(fit / 4, memory), fit);      // 8 x would be twice the memory
+  EXPECT_EQ(AutomaticElementBudget(fit * 2, memory), fit * 2);  // never below the initial patches
   RefineSettings automatic;
-  Result<ResolvedRefineSettings> r = ResolveRefineSettings(automatic, 0.5, fit / 4, 1e-6);
+  Result<ResolvedRefineSettings> r = ResolveRefineSettings(automatic, 0.5, fit / 4, 1e-6, memory);
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r->max_elements, fit);
+}
+
+// A mesh built under --max-memory (MeshSettings::max_memory) carries the limit to refinement's
+// budget; without one, this machine's memory.
+TEST(RefineTest, TheMeshCarriesItsMemoryLimitToRefinement) {
+  const InputScene scene = OccluderScene();
+  MeshSettings settings;
+  settings.patch_size = 0.5;
+  Result<PatchMesh> unlimited = PatchMesh::Build(scene, settings, nullptr);
+  ASSERT_TRUE(unlimited.ok()) << unlimited.error();
+  EXPECT_EQ(unlimited->memory_limit(), PhysicalMemoryBytes());
+  settings.max_memory = kSolveBaseBytes + 1000 * kSolveBytesPerPatch;
+  Result<PatchMesh> limited = PatchMesh::Build(scene, settings, nullptr);
+  ASSERT_TRUE(limited.ok()) << limited.error();
+  EXPECT_EQ(limited->memory_limit(), settings.max_memory);
+  EXPECT_EQ(limited->Rebuilt(PatchMesh::PiecesOf(limited->patch_scene())).memory_limit(),
+            settings.max_memory);
+  Result<MeshCheck> check = PatchMesh::Check(scene, settings, nullptr);
+  ASSERT_TRUE(check.ok()) << check.error();
+  EXPECT_EQ(check->memory_limit, settings.max_memory);
 }
 
 }  // namespace
