@@ -117,12 +117,24 @@ Rgb InterpolateCornerOffsets(const Patch& p, const std::array<Rgb, 4>& offsets, 
 std::vector<Rgb> GatherLight(const RayCaster& caster, const std::vector<Rgb>& outgoing,
                              const std::vector<ReceiverPoint>& points,
                              const std::vector<bool>& gather, uint64_t seed, unsigned threads,
-                             uint32_t rays, const PatchCornerOffsets* corners) {
+                             uint32_t rays, const PatchCornerOffsets* corners,
+                             const SecondBounce* second) {
   std::vector<Rgb> out(points.size());
   if (points.empty() || rays == 0) return out;
   ThreadPool pool(threads);
   // Stream constant: keeps these keys apart from every other use of the seed.
   const uint64_t stream = HashWords(seed, 0x6761746865726eull);
+  const PatchScene* scene = corners != nullptr ? corners->scene : nullptr;
+  if (second != nullptr) scene = second->scene;
+  // Where a ray from `origin` along `d` meets patch f's plane (false when it runs along it).
+  const auto meet = [&](uint32_t f, const Vec3& origin, const Vec3& d, Vec3* at, double* distance) {
+    const Patch& p = scene->patches[f];
+    const double cos = Dot(d, p.normal);
+    if (!(std::fabs(cos) > 1e-12)) return false;
+    *distance = Dot(p.corners[0] - origin, p.normal) / cos;
+    *at = origin + d * *distance;
+    return true;
+  };
   pool.ParallelFor(points.size(), [&](unsigned, size_t i) {
     if (!gather[i]) return;
     const ReceiverPoint& point = points[i];
@@ -136,13 +148,30 @@ std::vector<Rgb> GatherLight(const RayCaster& caster, const std::vector<Rgb>& ou
       const RayHit hit = caster.Trace(point.position, d, point.normal);
       if (hit.patch == RayHit::kMiss || !hit.front) continue;
       sum += outgoing[hit.patch];
-      if (corners != nullptr) {
-        const Patch& p = corners->scene->patches[hit.patch];
-        const double cos = Dot(d, p.normal);
-        if (!(std::fabs(cos) > 1e-12)) continue;
-        const Vec3 x = point.position + d * (Dot(p.corners[0] - point.position, p.normal) / cos);
-        sum += InterpolateCornerOffsets(p, corners->offsets[hit.patch], x);
+      if (scene == nullptr) continue;
+      Vec3 at;
+      double distance;
+      if (!meet(hit.patch, point.position, d, &at, &distance)) continue;
+      const Patch& p = scene->patches[hit.patch];
+      if (corners != nullptr) sum += InterpolateCornerOffsets(p, corners->offsets[hit.patch], at);
+      if (second == nullptr || !(distance < second->reach * std::sqrt(p.area))) continue;
+      // The patch's mean bounced light gives way to one ray's worth gathered at the hit, along
+      // the Sobol point's two other dimensions.
+      Vec3 t2, b2;
+      OrthonormalBasis(p.normal, &t2, &b2);
+      const Vec3 d2 = SampleCosineDirection(t2, b2, p.normal, u[2], u[3]);
+      const RayHit hit2 = caster.Trace(at, d2, p.normal);
+      Rgb gathered;
+      Vec3 at2;
+      double distance2;
+      if (hit2.patch != RayHit::kMiss && hit2.front) {
+        gathered = outgoing[hit2.patch];
+        if (corners != nullptr && meet(hit2.patch, at, d2, &at2, &distance2)) {
+          gathered += InterpolateCornerOffsets(scene->patches[hit2.patch],
+                                               corners->offsets[hit2.patch], at2);
+        }
       }
+      sum += p.reflectance * gathered - second->bounced[hit.patch];
     }
     out[i] = sum / double(rays);
   });

@@ -43,7 +43,7 @@ struct PointLight {
 // added.
 uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
                                const DirectLight& direct_light, const std::vector<Rgb>& outgoing,
-                               const PatchCornerOffsets& corners,
+                               const PatchCornerOffsets& corners, const SecondBounce& second,
                                const PatchMesh::VertexDirectLight& direct, DisplayMesh* fine,
                                PointLight* light) {
   std::vector<bool>& held = light->held;
@@ -103,8 +103,9 @@ uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
       gathers[k] = held[split.edge_ends[k][0]] && held[split.edge_ends[k][1]];
     }
     const uint64_t seed = HashWords(direct.seed, uint64_t(level));
-    const std::vector<Rgb> gathered = GatherLight(caster, outgoing, points, gathers, seed,
-                                                  direct.threads, kPointGatherRays, &corners);
+    const std::vector<Rgb> gathered =
+        GatherLight(caster, outgoing, points, gathers, seed, direct.threads, kPointGatherRays,
+                    &corners, &second);
     const std::vector<Rgb> irradiance =
         PointsDirectLight(direct_light, points, seed, direct.threads);
     held.resize(mesh.positions.size(), false);
@@ -333,8 +334,18 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   const std::vector<Rgb> irradiance =
       PointsDirectLight(direct_light, points, direct.seed, direct.threads);
   const PatchCornerOffsets corners = CornerDirectOffsets(irradiance, point_of, direct.patch_direct);
-  const std::vector<Rgb> gathered = GatherLight(caster, outgoing, points, gather, direct.seed,
-                                                direct.threads, kPointGatherRays, &corners);
+  // What of each patch's light a gathering ray that meets it near gathers again instead: its
+  // bounced part (core/point_gather.h).
+  SecondBounce second;
+  second.scene = &data_.scene;
+  second.bounced.resize(patches.size());
+  for (size_t f = 0; f < patches.size(); ++f) {
+    second.bounced[f] = outgoing[f] - patches[f].reflectance * direct.patch_direct[f];
+    if (!direct.emitters) second.bounced[f] = second.bounced[f] - patches[f].emission;
+  }
+  const std::vector<Rgb> gathered =
+      GatherLight(caster, outgoing, points, gather, direct.seed, direct.threads, kPointGatherRays,
+                  &corners, &second);
   PointLight light;
   light.held.assign(groups + midpoints, false);
   for (size_t n = 0; n < groups + midpoints; ++n) {
@@ -369,7 +380,7 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   }
 
   display_stats_.added = RefineWhereLightBends(data_.scene, caster, direct_light, outgoing, corners,
-                                               direct, &fine, &light);
+                                               second, direct, &fine, &light);
   // A patch the refinement cut holds a shadow's edge or a steep rise, which three midpoints per
   // triangle miss: its mean is the refined triangles' (each the mean of its corners).
   const uint32_t first_new = static_cast<uint32_t>(groups + midpoints);
