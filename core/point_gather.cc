@@ -142,36 +142,57 @@ std::vector<Rgb> GatherLight(const RayCaster& caster, const std::vector<Rgb>& ou
     OrthonormalBasis(point.normal, &t, &b);
     const ScrambledSobol4 sobol(HashWords(stream, i));
     Rgb sum;
-    for (uint32_t k = 0; k < rays; ++k) {
-      const std::array<double, 4> u = sobol.Point(k);
-      const Vec3 d = SampleCosineDirection(t, b, point.normal, u[0], u[1]);
-      const RayHit hit = caster.Trace(point.position, d, point.normal);
-      if (hit.patch == RayHit::kMiss || !hit.front) continue;
-      sum += outgoing[hit.patch];
-      if (scene == nullptr) continue;
-      Vec3 at;
-      double distance;
-      if (!meet(hit.patch, point.position, d, &at, &distance)) continue;
-      const Patch& p = scene->patches[hit.patch];
-      if (corners != nullptr) sum += InterpolateCornerOffsets(p, corners->offsets[hit.patch], at);
-      if (second == nullptr || !(distance < second->reach * std::sqrt(p.area))) continue;
-      // The patch's mean bounced light gives way to one ray's worth gathered at the hit, along
-      // the Sobol point's two other dimensions.
-      Vec3 t2, b2;
-      OrthonormalBasis(p.normal, &t2, &b2);
-      const Vec3 d2 = SampleCosineDirection(t2, b2, p.normal, u[2], u[3]);
-      const RayHit hit2 = caster.Trace(at, d2, p.normal);
-      Rgb gathered;
-      Vec3 at2;
-      double distance2;
-      if (hit2.patch != RayHit::kMiss && hit2.front) {
-        gathered = outgoing[hit2.patch];
-        if (corners != nullptr && meet(hit2.patch, at, d2, &at2, &distance2)) {
-          gathered += InterpolateCornerOffsets(scene->patches[hit2.patch],
-                                               corners->offsets[hit2.patch], at2);
-        }
+    // The rays a block at a time (RayCaster::TraceBlock: the same hits as Trace's, their cache
+    // misses overlapped), counted in order.
+    RayBlock block;
+    RayHit hits[RayBlock::kSize];
+    std::array<double, 2> second_u[RayBlock::kSize];
+    for (uint32_t first = 0; first < rays; first += RayBlock::kSize) {
+      block.count = int(std::min<uint32_t>(RayBlock::kSize, rays - first));
+      for (int j = 0; j < block.count; ++j) {
+        const std::array<double, 4> u = sobol.Point(first + uint32_t(j));
+        const Vec3 d = SampleCosineDirection(t, b, point.normal, u[0], u[1]);
+        block.origin_x[j] = point.position.x;
+        block.origin_y[j] = point.position.y;
+        block.origin_z[j] = point.position.z;
+        block.direction_x[j] = d.x;
+        block.direction_y[j] = d.y;
+        block.direction_z[j] = d.z;
+        second_u[j] = {u[2], u[3]};
       }
-      sum += p.reflectance * gathered - second->bounced[hit.patch];
+      caster.TraceBlock(block, point.normal, hits);
+      for (int j = 0; j < block.count; ++j) {
+        const RayHit& hit = hits[j];
+        if (hit.patch == RayHit::kMiss || !hit.front) continue;
+        sum += outgoing[hit.patch];
+        if (scene == nullptr) continue;
+        const Vec3 d{block.direction_x[j], block.direction_y[j], block.direction_z[j]};
+        Vec3 at;
+        double distance;
+        if (!meet(hit.patch, point.position, d, &at, &distance)) continue;
+        const Patch& p = scene->patches[hit.patch];
+        if (corners != nullptr) {
+          sum += InterpolateCornerOffsets(p, corners->offsets[hit.patch], at);
+        }
+        if (second == nullptr || !(distance < second->reach * std::sqrt(p.area))) continue;
+        // The patch's mean bounced light gives way to one ray's worth gathered at the hit, along
+        // the Sobol point's two other dimensions.
+        Vec3 t2, b2;
+        OrthonormalBasis(p.normal, &t2, &b2);
+        const Vec3 d2 = SampleCosineDirection(t2, b2, p.normal, second_u[j][0], second_u[j][1]);
+        const RayHit hit2 = caster.Trace(at, d2, p.normal);
+        Rgb gathered;
+        Vec3 at2;
+        double distance2;
+        if (hit2.patch != RayHit::kMiss && hit2.front) {
+          gathered = outgoing[hit2.patch];
+          if (corners != nullptr && meet(hit2.patch, at, d2, &at2, &distance2)) {
+            gathered += InterpolateCornerOffsets(scene->patches[hit2.patch],
+                                                 corners->offsets[hit2.patch], at2);
+          }
+        }
+        sum += p.reflectance * gathered - second->bounced[hit.patch];
+      }
     }
     out[i] = sum / double(rays);
   });
