@@ -1,5 +1,7 @@
 #include "cli/fetch_command.h"
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
@@ -8,6 +10,7 @@
 #include "base/result.h"
 #include "cli/exit_codes.h"
 #include "cli/farm_command.h"
+#include "cli/progress_reporter.h"
 #include "cli/render_outputs.h"
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
@@ -18,7 +21,8 @@ namespace {
 
 // Turns the master's solution into the output files. Every error is the master's data being
 // wrong or the directory unwritable: exit 1.
-Status WriteSolution(const std::vector<uint8_t>& blob, const std::string& out_dir) {
+Status WriteSolution(const std::vector<uint8_t>& blob, const std::string& out_dir,
+                     const PatchMesh::DisplayProgress& display_progress) {
   Result<codec::JobSolution> solution = codec::DecodeJobSolution(blob);
   if (!solution.ok()) return Error{"the job solution from the master: " + solution.error()};
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(solution->bundle);
@@ -30,7 +34,8 @@ Status WriteSolution(const std::vector<uint8_t>& blob, const std::string& out_di
       std::move(solution->radiosity), std::move(solution->unshot), std::move(solution->stats), {}};
   // As `radfarm render`: stats.json names the initial patch count of a refining job.
   return WriteOutputs(out_dir, solved->mesh, result, bundle->job,
-                      bundle->job.refine.enabled ? solved->initial_patches : 0);
+                      bundle->job.refine.enabled ? solved->initial_patches : 0, nullptr,
+                      display_progress);
 }
 
 }  // namespace
@@ -55,8 +60,18 @@ int RunFetch(const FetchOptions& options, const std::string& control_path) {
     return ReportFailure(
         MalformedResponse("fetch", "missing key 'attachment_bytes' (the job solution)"));
   }
-  if (Status s = WriteSolution(reply->attachment, options.out_dir); !s.ok()) {
-    return ReportFailure({kExitFailure, "job " + std::to_string(options.id) + ": " + s.error()});
+  // The display is computed here, from the solution (as `radfarm render` does after its solve):
+  // on a big job it takes a while, so its steps show unless the output is JSON.
+  ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
+  PatchMesh::DisplayProgress display_progress;
+  if (!options.json) {
+    display_progress = [&](const PatchMesh::DisplayStep& step) { reporter.OnDisplayStep(step); };
+  }
+  const Status written = WriteSolution(reply->attachment, options.out_dir, display_progress);
+  reporter.ClearLine();
+  if (!written.ok()) {
+    return ReportFailure(
+        {kExitFailure, "job " + std::to_string(options.id) + ": " + written.error()});
   }
   if (options.json) {
     PrintJson(reply->body["job"]);

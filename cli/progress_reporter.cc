@@ -30,6 +30,31 @@ void ProgressReporter::Bar(double fraction, const std::string& text) {
   drew_ = true;
 }
 
+void ProgressReporter::OnDisplayStep(const PatchMesh::DisplayStep& step) {
+  std::lock_guard lock(mutex_);
+  const std::string points = std::to_string(step.points);
+  std::string text;
+  switch (step.kind) {
+    case PatchMesh::DisplayStep::kDirectLight:
+      text = "display: direct light at " + points + " points";
+      break;
+    case PatchMesh::DisplayStep::kGathering:
+      text = "display: gathering light at " + points + " points near other surfaces";
+      break;
+    case PatchMesh::DisplayStep::kRefining:
+      text = "display: " + points + " points added where the light bends (level " +
+             std::to_string(step.level) + " of " + std::to_string(kDisplayRefineLevels) + ")";
+      break;
+  }
+  if (interactive_) {
+    std::fprintf(out_, "\r\033[K%s", text.c_str());
+    drew_ = true;
+  } else if (step.points >= kDisplayLogPoints) {
+    std::fprintf(out_, "%s\n", text.c_str());
+  }
+  std::fflush(out_);
+}
+
 void ProgressReporter::OnRound(const RoundProgress& p) {
   std::lock_guard lock(mutex_);
   if (!estimator_) estimator_.emplace(p.tolerance);
@@ -90,6 +115,13 @@ void ProgressReporter::OnRoundRunning(const RoundRunning& r) {
   } else {
     std::fprintf(out_, "%s\n", text);
   }
+  std::fflush(out_);
+}
+
+void ProgressReporter::ClearLine() {
+  std::lock_guard lock(mutex_);
+  if (interactive_ && drew_) std::fputs("\r\033[K", out_);
+  drew_ = false;
   std::fflush(out_);
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/progress_estimator.h"
+#include "mesh/patch_mesh.h"
 #include "solve/solve_state.h"
 
 namespace radfarm {
@@ -26,8 +27,15 @@ class ProgressReporter {
   // a time). Shows a long round's progress (the final gather, a big scene's first rounds); a
   // round shorter than a redraw (a log line) shows none.
   void OnRoundRunning(const RoundRunning& running);
+  // As each step of the display starts (PatchMesh::VertexDirectLight::progress): on a terminal the
+  // line shows it; a log gets a line for steps of at least kDisplayLogPoints points, the ones
+  // that take a while (a count, not a clock, so a log is the same every run).
+  void OnDisplayStep(const PatchMesh::DisplayStep& step);
+  static constexpr uint64_t kDisplayLogPoints = 20000;
   // Ends the bar's line (interactive) so later output starts on a fresh line.
   void Finish();
+  // Erases the line drawn last (interactive), for output that replaces it.
+  void ClearLine();
 
  private:
   // "ETA 12s", or "ETA ?" before anything is known.

@@ -164,8 +164,13 @@ int RunRender(const RenderOptions& options) {
   const SolveResult& solution = solved->solution;
   const uint64_t patches_before = job.refine.enabled ? solved->patches_before : 0;
   std::vector<std::string> output_warnings;
-  const Status written =
-      WriteOutputs(options.out_dir, mesh, solution, job, patches_before, &output_warnings);
+  PatchMesh::DisplayProgress display_progress;
+  if (!options.quiet) {
+    display_progress = [&](const PatchMesh::DisplayStep& step) { reporter.OnDisplayStep(step); };
+  }
+  const Status written = WriteOutputs(options.out_dir, mesh, solution, job, patches_before,
+                                      &output_warnings, display_progress);
+  reporter.ClearLine();
   PrintMessages(output_warnings);
   if (Status s = written; !s.ok()) {
     PrintError(s.error());

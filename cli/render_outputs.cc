@@ -27,7 +27,8 @@ Status CreateOutputDirectory(const std::string& dir) {
 
 Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& solution,
                     const Job& job, uint64_t patches_before_refinement,
-                    std::vector<std::string>* warnings) {
+                    std::vector<std::string>* warnings,
+                    const PatchMesh::DisplayProgress& display_progress) {
   const double patches_after = double(mesh.patch_scene().patches.size());
   const double patches_before =
       patches_before_refinement > 0 ? double(patches_before_refinement) : patches_after;
@@ -43,7 +44,8 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
     mesh.SetSolution(solution.radiosity, solution.unshot,
                      {direct, job.solver.seed, job.solver.threads,
                       EmittersInDirectStart(mesh.patch_scene(), job.solver),
-                      DirectLightRaysPerLight(mesh.patch_scene(), job.solver)});
+                      DirectLightRaysPerLight(mesh.patch_scene(), job.solver)},
+                     display_progress);
   }
   const DisplayMesh display = mesh.MakeDisplayMesh();
   std::vector<bool> emitter_patch;

@@ -27,8 +27,10 @@ Status CreateOutputDirectory(const std::string& dir);
 // Objects with a second UV set (glTF TEXCOORD_1) also get lightmaps/<object>.exr and .png
 // (output/lightmap_writer.h), referenced from lit.glb; their warnings (overlapping UVs) are
 // appended to *warnings when it is not null.
-Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& solution,
-                    const Job& job, uint64_t patches_before_refinement = 0,
-                    std::vector<std::string>* warnings = nullptr);
+// `display_progress`, when set, is told as each step of the display starts.
+Status WriteOutputs(
+    const std::string& dir, PatchMesh& mesh, const SolveResult& solution, const Job& job,
+    uint64_t patches_before_refinement = 0, std::vector<std::string>* warnings = nullptr,
+    const PatchMesh::DisplayProgress& display_progress = nullptr);
 
 }  // namespace radfarm

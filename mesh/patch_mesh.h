@@ -18,6 +18,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,6 +55,9 @@ struct MeshCheck {
   double weld_tolerance = 0;
   uint64_t memory_limit = 0;  // as PatchMesh::memory_limit()
 };
+
+// How many times the display cuts its triangles where the light bends (patch_mesh_display.cc).
+inline constexpr int kDisplayRefineLevels = 3;
 
 // Move-only: a copy of a large mesh is never wanted by accident.
 class PatchMesh {
@@ -127,6 +131,11 @@ class PatchMesh {
 
   // The direct light a solve started from (SolveResult::direct_light, one value per patch), and
   // the keys and threads for the vertices' own shadow rays.
+  struct DisplayStep {
+    enum Kind { kDirectLight, kGathering, kRefining } kind = kDirectLight;
+    uint64_t points = 0;  // the direct light's and gathering's points, or those a level adds
+    int level = 0;        // kRefining: 1 to kDisplayRefineLevels
+  };
   struct VertexDirectLight {
     const std::vector<Rgb>& patch_direct;
     uint64_t seed = 0;
@@ -157,8 +166,11 @@ class PatchMesh {
   // such points differ by more than a fifth, or the direct light at the corners of any other does
   // (a hard shadow's edge), it is cut (mesh/selective_split.h) and its new points computed the
   // same way, up to three levels deep (patch_mesh_display.cc).
+  // `progress`, when set, is told on the calling thread as each step of the display starts (a big
+  // scene's display can take longer than its solve): what it does, at how many points.
+  using DisplayProgress = std::function<void(const DisplayStep&)>;
   void SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot,
-                   const VertexDirectLight& direct);
+                   const VertexDirectLight& direct, const DisplayProgress& progress = nullptr);
   // What the last SetSolution with VertexDirectLight computed: display points (vertices and
   // midpoints), those that gathered their own light near another surface, and those added where
   // the light bends; and its wall time.

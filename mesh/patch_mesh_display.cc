@@ -23,9 +23,8 @@ namespace {
 // Where a display triangle's corners differ by more than this share of the brightest, the light
 // bends within it faster than the display shows: the ceiling just outside a hanging lamp's outline
 // rises from the slit's shadow within centimetres, a hard shadow's edge crosses it. It is cut into
-// four, up to kDisplayRefineLevels times, each new point at its own light.
+// four, up to kDisplayRefineLevels times (mesh/patch_mesh.h), each new point at its own light.
 constexpr double kRefineContrast = 0.2;
-constexpr int kDisplayRefineLevels = 3;
 
 // What the display knows of each of its points besides the radiance it shows.
 struct PointLight {
@@ -44,7 +43,8 @@ struct PointLight {
 uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
                                const DirectLight& direct_light, const std::vector<Rgb>& outgoing,
                                const PatchCornerOffsets& corners, const SecondBounce& second,
-                               const PatchMesh::VertexDirectLight& direct, DisplayMesh* fine,
+                               const PatchMesh::VertexDirectLight& direct,
+                               const PatchMesh::DisplayProgress& progress, DisplayMesh* fine,
                                PointLight* light) {
   std::vector<bool>& held = light->held;
   std::vector<Rgb>& shown_direct = light->shown_direct;
@@ -98,6 +98,7 @@ uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
                    normals[k] / Length(normals[k])};
       rho[k] = rho[k] / weight[k];
     }
+    if (progress) progress({PatchMesh::DisplayStep::kRefining, added, level});
     std::vector<bool> gathers(added);
     for (size_t k = 0; k < added; ++k) {
       gathers[k] = held[split.edge_ends[k][0]] && held[split.edge_ends[k][1]];
@@ -225,7 +226,7 @@ PatchCornerOffsets PatchMesh::CornerDirectOffsets(const std::vector<Rgb>& irradi
 }
 
 void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot,
-                            const VertexDirectLight& direct) {
+                            const VertexDirectLight& direct, const DisplayProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   split_display_.reset();
   display_stats_ = {};
@@ -331,6 +332,7 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   if (direct.emitters) {
     for (size_t f = 0; f < patches.size(); ++f) outgoing[f] = outgoing[f] - patches[f].emission;
   }
+  if (progress) progress({DisplayStep::kDirectLight, points.size(), 0});
   const std::vector<Rgb> irradiance =
       PointsDirectLight(direct_light, points, direct.seed, direct.threads);
   const PatchCornerOffsets corners = CornerDirectOffsets(irradiance, point_of, direct.patch_direct);
@@ -342,6 +344,9 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   for (size_t f = 0; f < patches.size(); ++f) {
     second.bounced[f] = outgoing[f] - patches[f].reflectance * direct.patch_direct[f];
     if (!direct.emitters) second.bounced[f] = second.bounced[f] - patches[f].emission;
+  }
+  if (progress) {
+    progress({DisplayStep::kGathering, uint64_t(std::count(gather.begin(), gather.end(), true)), 0});
   }
   const std::vector<Rgb> gathered =
       GatherLight(caster, outgoing, points, gather, direct.seed, direct.threads, kPointGatherRays,
@@ -380,7 +385,7 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   }
 
   display_stats_.added = RefineWhereLightBends(data_.scene, caster, direct_light, outgoing, corners,
-                                               second, direct, &fine, &light);
+                                               second, direct, progress, &fine, &light);
   // A patch the refinement cut holds a shadow's edge or a steep rise, which three midpoints per
   // triangle miss: its mean is the refined triangles' (each the mean of its corners).
   const uint32_t first_new = static_cast<uint32_t>(groups + midpoints);

@@ -41,6 +41,37 @@ TEST(ProgressTest, TerminalRedrawsOneLine) {
   EXPECT_NE(s.find("ETA"), std::string::npos);
 }
 
+// A terminal sees every step of the display on its line, erased when done; a log gets the steps
+// of many points only (a count, so the log is the same every run).
+TEST(ProgressTest, TheDisplaysStepsShow) {
+  for (bool interactive : {true, false}) {
+    char* text = nullptr;
+    size_t size = 0;
+    FILE* f = open_memstream(&text, &size);
+    ProgressReporter reporter(f, interactive);
+    const uint64_t many = ProgressReporter::kDisplayLogPoints;
+    reporter.OnDisplayStep({PatchMesh::DisplayStep::kDirectLight, many, 0});
+    reporter.OnDisplayStep({PatchMesh::DisplayStep::kGathering, many - 1, 0});
+    reporter.OnDisplayStep({PatchMesh::DisplayStep::kRefining, many + 5, 2});
+    reporter.ClearLine();
+    fclose(f);
+    const std::string s(text, size);
+    free(text);
+    const std::string direct = "display: direct light at " + std::to_string(many) + " points";
+    const std::string refining = "display: " + std::to_string(many + 5) +
+                                 " points added where the light bends (level 2 of 3)";
+    EXPECT_NE(s.find(direct), std::string::npos) << s;
+    EXPECT_NE(s.find(refining), std::string::npos) << s;
+    if (interactive) {
+      EXPECT_NE(s.find("gathering light at " + std::to_string(many - 1)), std::string::npos) << s;
+      EXPECT_EQ(std::count(s.begin(), s.end(), '\n'), 0) << s;
+      EXPECT_EQ(s.substr(s.size() - 4), "\r\033[K") << "the last line erased";
+    } else {
+      EXPECT_EQ(s, direct + "\n" + refining + "\n");
+    }
+  }
+}
+
 TEST(ProgressTest, PipeGetsLogLines) {
   const std::string s = Capture(false, 3);
   EXPECT_EQ(s.find('\r'), std::string::npos);

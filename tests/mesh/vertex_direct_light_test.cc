@@ -147,6 +147,29 @@ TEST_F(VertexDirectLightTest, SameBitsWithAnyThreadCount) {
   for (size_t v = 0; v < one.radiance.size(); ++v) EXPECT_EQ(one.radiance[v], three.radiance[v]);
 }
 
+// The display tells each step as it starts, with the counts display_stats() then reports: the
+// direct light at every point before refinement, the gathering points, and each level's added
+// points, levels in order.
+TEST_F(VertexDirectLightTest, TheDisplayTellsItsStepsWithTheirPoints) {
+  std::vector<PatchMesh::DisplayStep> steps;
+  mesh_->SetSolution(solution_.radiosity, solution_.unshot, {solution_.direct_light, 1, 2},
+                     [&](const PatchMesh::DisplayStep& step) { steps.push_back(step); });
+  const PatchMesh::DisplayStats& stats = mesh_->display_stats();
+  ASSERT_GE(steps.size(), 3u) << "this floor's light bends: the display refines";
+  EXPECT_EQ(steps[0].kind, PatchMesh::DisplayStep::kDirectLight);
+  EXPECT_EQ(steps[0].points, stats.points - stats.added);
+  EXPECT_EQ(steps[1].kind, PatchMesh::DisplayStep::kGathering);
+  EXPECT_LE(steps[1].points, stats.gathered);  // refined points between gathering ones gather too
+  uint64_t added = 0;
+  for (size_t i = 2; i < steps.size(); ++i) {
+    EXPECT_EQ(steps[i].kind, PatchMesh::DisplayStep::kRefining);
+    EXPECT_EQ(steps[i].level, int(i - 1));
+    added += steps[i].points;
+  }
+  EXPECT_LE(steps.size(), size_t(2 + kDisplayRefineLevels));
+  EXPECT_EQ(added, stats.added);
+}
+
 // The light's own vertices show its emission: it receives nothing and reflects nothing.
 TEST_F(VertexDirectLightTest, EmittersShowTheirEmission) {
   mesh_->SetSolution(solution_.radiosity, solution_.unshot, {solution_.direct_light, 1, 2});
