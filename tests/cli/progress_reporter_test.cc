@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <string>
 
 #include "core/solve_control.h"
@@ -18,20 +19,43 @@ TEST(ProgressTest, ConvergenceFractionIsLogarithmic) {
   EXPECT_DOUBLE_EQ(ConvergenceFraction(1e-4, 1e-3), 1.0);
 }
 
-std::string Capture(bool interactive, int rounds) {
-  char* text = nullptr;
-  size_t size = 0;
-  FILE* f = open_memstream(&text, &size);
-  ProgressReporter reporter(f, interactive);
-  EnergyAccount energy;
-  for (int i = 1; i <= rounds; ++i) {
-    reporter.OnRound({uint32_t(i), uint64_t(i) * 1000, i * 2.0, std::pow(0.5, i), 1e-3, &energy});
+// What a memstream received.
+class Captured {
+ public:
+  Captured() : file_(open_memstream(&text_, &size_)) {}
+  ~Captured() {
+    if (file_ != nullptr) fclose(file_);
+    free(text_);
   }
-  reporter.Finish();
-  fclose(f);
-  std::string s(text, size);
-  free(text);
-  return s;
+  FILE* file() { return file_; }
+  std::string Text() {
+    fflush(file_);
+    return std::string(text_, size_);
+  }
+
+ private:
+  char* text_ = nullptr;
+  size_t size_ = 0;
+  FILE* file_;
+};
+
+// What `report` makes a reporter write.
+std::string Written(bool interactive, const std::function<void(ProgressReporter&)>& report) {
+  Captured out;
+  ProgressReporter reporter(out.file(), interactive);
+  report(reporter);
+  return out.Text();
+}
+
+std::string Capture(bool interactive, int rounds) {
+  return Written(interactive, [&](ProgressReporter& reporter) {
+    EnergyAccount energy;
+    for (int i = 1; i <= rounds; ++i) {
+      reporter.OnRound(
+          {uint32_t(i), uint64_t(i) * 1000, i * 2.0, std::pow(0.5, i), 1e-3, &energy});
+    }
+    reporter.Finish();
+  });
 }
 
 TEST(ProgressTest, TerminalRedrawsOneLine) {
@@ -45,18 +69,13 @@ TEST(ProgressTest, TerminalRedrawsOneLine) {
 // of many points only (a count, so the log is the same every run).
 TEST(ProgressTest, TheDisplaysStepsShow) {
   for (bool interactive : {true, false}) {
-    char* text = nullptr;
-    size_t size = 0;
-    FILE* f = open_memstream(&text, &size);
-    ProgressReporter reporter(f, interactive);
     const uint64_t many = ProgressReporter::kDisplayLogPoints;
-    reporter.OnDisplayStep({PatchMesh::DisplayStep::kDirectLight, many, 0});
-    reporter.OnDisplayStep({PatchMesh::DisplayStep::kGathering, many - 1, 0});
-    reporter.OnDisplayStep({PatchMesh::DisplayStep::kRefining, many + 5, 2});
-    reporter.ClearLine();
-    fclose(f);
-    const std::string s(text, size);
-    free(text);
+    const std::string s = Written(interactive, [&](ProgressReporter& reporter) {
+      reporter.OnDisplayStep({PatchMesh::DisplayStep::kDirectLight, many, 0});
+      reporter.OnDisplayStep({PatchMesh::DisplayStep::kGathering, many - 1, 0});
+      reporter.OnDisplayStep({PatchMesh::DisplayStep::kRefining, many + 5, 2});
+      reporter.ClearLine();
+    });
     const std::string direct = "display: direct light at " + std::to_string(many) + " points";
     const std::string refining = "display: " + std::to_string(many + 5) +
                                  " points added where the light bends (level 2 of 3)";
@@ -82,42 +101,17 @@ TEST(ProgressTest, PipeGetsLogLines) {
 // The final gather gets its own line, after the bar's or the log's last round.
 TEST(ProgressTest, TheFinalGatherIsNamed) {
   for (bool interactive : {true, false}) {
-    char* text = nullptr;
-    size_t size = 0;
-    FILE* f = open_memstream(&text, &size);
-    ProgressReporter reporter(f, interactive);
-    EnergyAccount energy;
-    reporter.OnRound({1, 1000, 1.0, 1e-4, 1e-3, &energy});
-    reporter.OnRound({2, 5000, 2.0, 0, 1e-3, &energy, true});
-    reporter.Finish();
-    fclose(f);
-    const std::string s(text, size);
-    free(text);
+    const std::string s = Written(interactive, [](ProgressReporter& reporter) {
+      EnergyAccount energy;
+      reporter.OnRound({1, 1000, 1.0, 1e-4, 1e-3, &energy});
+      reporter.OnRound({2, 5000, 2.0, 0, 1e-3, &energy, true});
+      reporter.Finish();
+    });
     EXPECT_NE(s.find("\nfinal gather: 5000 rays in all"), std::string::npos) << s;
     EXPECT_EQ(s.back(), '\n') << s;
     EXPECT_EQ(s.find("\n\n"), std::string::npos) << s;
   }
 }
-
-// What a memstream received.
-class Captured {
- public:
-  Captured() : file_(open_memstream(&text_, &size_)) {}
-  ~Captured() {
-    if (file_ != nullptr) fclose(file_);
-    free(text_);
-  }
-  FILE* file() { return file_; }
-  std::string Text() {
-    fflush(file_);
-    return std::string(text_, size_);
-  }
-
- private:
-  char* text_ = nullptr;
-  size_t size_ = 0;
-  FILE* file_;
-};
 
 // A shooting round that reaches the tolerance with the gather still to come, then the gather.
 RoundProgress Shooting(uint32_t round, double before, double after, uint64_t rays_total) {
