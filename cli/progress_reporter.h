@@ -27,7 +27,7 @@ class ProgressReporter {
   // a time). Shows a long round's progress (the final gather, a big scene's first rounds); a
   // round shorter than a redraw (a log line) shows none.
   void OnRoundRunning(const RoundRunning& running);
-  // As each step of the display starts (PatchMesh::VertexDirectLight::progress): on a terminal the
+  // As each step of the display starts (PatchMesh::SetSolution's progress): on a terminal the
   // line shows it; a log gets a line for steps of at least kDisplayLogPoints points, the ones
   // that take a while (a count, not a clock, so a log is the same every run).
   void OnDisplayStep(const PatchMesh::DisplayStep& step);
