@@ -129,13 +129,15 @@ class PatchMesh {
   // border are then extrapolated from the inside (mesh/border_extrapolation.h).
   void SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot);
 
-  // The direct light a solve started from (SolveResult::direct_light, one value per patch), and
-  // the keys and threads for the vertices' own shadow rays.
+  // A step of SetSolution's display as it starts: the direct light at its points, gathering at
+  // those near other surfaces, or a level of cutting where the light bends.
   struct DisplayStep {
     enum Kind { kDirectLight, kGathering, kRefining } kind = kDirectLight;
     uint64_t points = 0;  // the direct light's and gathering's points, or those a level adds
     int level = 0;        // kRefining: 1 to kDisplayRefineLevels
   };
+  // The direct light a solve started from (SolveResult::direct_light, one value per patch), and
+  // the keys and threads for the vertices' own shadow rays.
   struct VertexDirectLight {
     const std::vector<Rgb>& patch_direct;
     uint64_t seed = 0;
