@@ -337,14 +337,11 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
       PointsDirectLight(direct_light, points, direct.seed, direct.threads);
   const PatchCornerOffsets corners = CornerDirectOffsets(irradiance, point_of, direct.patch_direct);
   // What of each patch's light a gathering ray that meets it near gathers again instead: its
-  // bounced part (core/point_gather.h).
+  // bounced part, the rest less emission (core/point_gather.h).
   SecondBounce second;
   second.scene = &data_.scene;
   second.bounced.resize(patches.size());
-  for (size_t f = 0; f < patches.size(); ++f) {
-    second.bounced[f] = outgoing[f] - patches[f].reflectance * direct.patch_direct[f];
-    if (!direct.emitters) second.bounced[f] = second.bounced[f] - patches[f].emission;
-  }
+  for (size_t f = 0; f < patches.size(); ++f) second.bounced[f] = rest[f] - patches[f].emission;
   if (progress) {
     progress({DisplayStep::kGathering, uint64_t(std::count(gather.begin(), gather.end(), true)), 0});
   }
