@@ -1,5 +1,6 @@
 #include "bench/reference/band_contact.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "bench/reference/surface_points.h"
@@ -23,8 +24,10 @@ const char* ContactName(Contact contact) {
 ContactClassifier::ContactClassifier(const ReferenceScene& scene, const InputScene& input)
     : scene_(scene), input_(input), tolerance_(1e-6 * scene.diagonal()) {
   face_triangles_.resize(input.faces.size());
+  face_area_.resize(input.faces.size(), 0.0);
   for (uint32_t t = 0; t < scene.triangles().size(); ++t) {
     face_triangles_[scene.triangles()[t].face].push_back(t);
+    face_area_[scene.triangles()[t].face] += scene.triangles()[t].area;
   }
 }
 
@@ -76,10 +79,21 @@ Contact ContactClassifier::Between(uint32_t face_a, uint32_t face_b) const {
   return Contact::kGap;
 }
 
-Contact ContactClassifier::Classify(const SurfacePoint& point, double band) const {
+double ContactClassifier::FaceWidth(uint32_t face) const {
+  const std::vector<uint32_t>& f = input_.faces[face].indices;
+  double perimeter = 0;
+  for (size_t i = 0; i < f.size(); ++i) {
+    perimeter += Length(input_.positions[f[(i + 1) % f.size()]] - input_.positions[f[i]]);
+  }
+  return perimeter > 0 ? 2 * face_area_[face] / perimeter : 0;
+}
+
+BandContact ContactClassifier::Classify(const SurfacePoint& point, double band) const {
   const SurfaceHit near = NearestSurfaceWithin(scene_, point, band);
-  if (near.triangle == SurfaceHit::kMiss) return Contact::kNone;
-  return Between(scene_.triangles()[point.triangle].face, scene_.triangles()[near.triangle].face);
+  if (near.triangle == SurfaceHit::kMiss) return {};
+  const uint32_t own = scene_.triangles()[point.triangle].face;
+  const uint32_t other = scene_.triangles()[near.triangle].face;
+  return {Between(own, other), std::min(FaceWidth(own), FaceWidth(other))};
 }
 
 }  // namespace radfarm::reference

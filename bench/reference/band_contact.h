@@ -1,7 +1,9 @@
 // How a band point's surface meets the surface beside it. The big-jobs issue asks that junctions
 // (surfaces that touch without sharing an edge: a wall standing on a floor, a box on a table, a
 // wall ending against another) be scored as well as shared corners (two faces along one edge, as
-// in the Cornell box), so the band's points are split by what lies nearest them.
+// in the Cornell box), so the band's points are split by what lies nearest them, and by how narrow
+// the faces that meet there are: a desk's 5 cm leg on a floor of 0.25 m patches is a different
+// problem from a wall on that floor, whichever way the two are modelled.
 #pragma once
 
 #include <cstdint>
@@ -22,6 +24,13 @@ enum class Contact {
 inline constexpr Contact kContacts[] = {Contact::kSharedEdge, Contact::kJunction, Contact::kGap};
 const char* ContactName(Contact contact);  // "shared_edge", "junction", "gap", "none"
 
+// What a band point's surface meets: the kind of contact, and the width (FaceWidth) of the
+// narrower of the two faces (0 for kNone).
+struct BandContact {
+  Contact kind = Contact::kNone;
+  double width = 0;
+};
+
 class ContactClassifier {
  public:
   // `input` is the scene `scene` was built from. Positions closer than 1e-6 of the scene's
@@ -30,9 +39,12 @@ class ContactClassifier {
 
   // The nearest surface within `band` on the point's side (NearestSurfaceWithin), against the
   // point's own face.
-  Contact Classify(const SurfacePoint& point, double band) const;
+  BandContact Classify(const SurfacePoint& point, double band) const;
   // Two input faces.
   Contact Between(uint32_t face_a, uint32_t face_b) const;
+  // An input face's width: twice its area over its perimeter (a long thin rectangle's shorter
+  // side, a square's side, a disc's radius).
+  double FaceWidth(uint32_t face) const;
 
  private:
   bool SameCorner(const Vec3& a, const Vec3& b) const;
@@ -42,6 +54,7 @@ class ContactClassifier {
   const InputScene& input_;
   double tolerance_ = 0;
   std::vector<std::vector<uint32_t>> face_triangles_;  // per input face, its triangles
+  std::vector<double> face_area_;                      // per input face, its triangles' area
 };
 
 }  // namespace radfarm::reference

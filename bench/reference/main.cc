@@ -11,11 +11,13 @@
 // relative standard error E, and the display's relative error: median, p95, worst, mean bias; then
 // the same on N points area-uniform over the band within W patch sizes of another surface
 // (contact lines, corners, the slit above a hanging lamp), where a display's errors gather, and
-// the band split by how each point's surface meets the nearest (shared edge, junction, gap).
+// the band split by how each point's surface meets the nearest (shared edge, junction, gap), and
+// a kind whose faces there include one narrower than a patch (a leg) split again, narrow and wide.
 // Prints a table; writes every point's figures as JSON (default
 // bench/results/reference_bench.json). With --reference-from, a case whose points are those of the
 // same case in that earlier JSON takes their reference from it instead of tracing again: the
 // display of a changed solver is scored against the very reference its predecessor was.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -228,18 +230,33 @@ nlohmann::json RunCase(const Options& o, const std::string& name, const std::str
                   w.point.position.x, w.point.position.y, w.point.position.z, w.point.normal.x,
                   w.point.normal.y, w.point.normal.z, w.reference.radiance.Sum(), w.display->Sum());
     }
-    // The band's points by how their surface meets the nearest one (band_contact.h).
-    std::vector<Contact> contact;
+    // The band's points by how their surface meets the nearest one (band_contact.h), and those
+    // kinds with faces narrower than a patch (a table's leg) apart from the rest.
+    std::vector<BandContact> contact;
     for (const PointScore& p : scores) contact.push_back(classifier.Classify(p.point, band));
+    const double patch = band / o.band_patches;
     nlohmann::json contacts = nlohmann::json::object();
     if (std::string(set) == "band") {
-      for (Contact c : kContacts) {
+      auto summarize = [&](const std::string& label, auto&& in) {
         std::vector<bool> keep;
-        for (Contact pc : contact) keep.push_back(pc == c);
+        for (const BandContact& pc : contact) keep.push_back(in(pc));
         const ErrorSummary cs = SummarizeScores(scores, keep);
-        PrintSummary(name, std::string("  ") + ContactName(c), patches, render_seconds, seconds,
-                     cs);
-        contacts[ContactName(c)] = SummaryJson(cs);
+        PrintSummary(name, "  " + label, patches, render_seconds, seconds, cs);
+        return SummaryJson(cs);
+      };
+      for (Contact c : kContacts) {
+        const std::string kind = ContactName(c);
+        contacts[kind] = summarize(kind, [&](const BandContact& pc) { return pc.kind == c; });
+        const bool any_narrow = std::any_of(contact.begin(), contact.end(), [&](const BandContact& pc) {
+          return pc.kind == c && pc.width < patch;
+        });
+        if (!any_narrow) continue;
+        contacts[kind + "_narrow"] = summarize(kind + " narrow", [&](const BandContact& pc) {
+          return pc.kind == c && pc.width < patch;
+        });
+        contacts[kind + "_wide"] = summarize(kind + " wide", [&](const BandContact& pc) {
+          return pc.kind == c && pc.width >= patch;
+        });
       }
     }
     std::fflush(stdout);
@@ -257,7 +274,8 @@ nlohmann::json RunCase(const Options& o, const std::string& name, const std::str
                      {"display", p.display ? RgbJson(*p.display) : nlohmann::json()},
                      {"relative_error", p.relative_error},
                      {"dark", p.dark},
-                     {"contact", ContactName(contact[i])}});
+                     {"contact", ContactName(contact[i].kind)},
+                     {"contact_width", contact[i].width}});
     }
     sets[set] = {{"reference_seconds", seconds},
                  {"reference_reused", reused},
