@@ -247,9 +247,9 @@ nlohmann::json RunCase(const Options& o, const std::string& name, const std::str
       for (Contact c : kContacts) {
         const std::string kind = ContactName(c);
         contacts[kind] = summarize(kind, [&](const BandContact& pc) { return pc.kind == c; });
-        const bool any_narrow = std::any_of(contact.begin(), contact.end(), [&](const BandContact& pc) {
-          return pc.kind == c && pc.width < patch;
-        });
+        const bool any_narrow =
+            std::any_of(contact.begin(), contact.end(),
+                        [&](const BandContact& pc) { return pc.kind == c && pc.width < patch; });
         if (!any_narrow) continue;
         contacts[kind + "_narrow"] = summarize(kind + " narrow", [&](const BandContact& pc) {
           return pc.kind == c && pc.width < patch;

@@ -73,9 +73,9 @@ TEST(BandContactTest, AContactIsAsWideAsTheNarrowerFace) {
   auto scene = ReferenceScene::Build(input);
   ASSERT_TRUE(scene);
   const ContactClassifier classifier(**scene, input);
-  EXPECT_DOUBLE_EQ(classifier.FaceWidth(0), 5.0);              // 2 * 100 / 40
-  EXPECT_DOUBLE_EQ(classifier.FaceWidth(2), 2.0);              // 2 * 18 / 18
-  EXPECT_NEAR(classifier.FaceWidth(4), 0.1 / 2.1, 1e-12);      // 2 * 0.05 / 2.1
+  EXPECT_DOUBLE_EQ(classifier.FaceWidth(0), 5.0);          // 2 * 100 / 40
+  EXPECT_DOUBLE_EQ(classifier.FaceWidth(2), 2.0);          // 2 * 18 / 18
+  EXPECT_NEAR(classifier.FaceWidth(4), 0.1 / 2.1, 1e-12);  // 2 * 0.05 / 2.1
   auto floor_point = [&](double x, double y) {
     Result<SurfacePoint> p = LocatePoint(**scene, {x, y, 0}, {0, 0, 1});
     EXPECT_TRUE(p) << x << ", " << y;
