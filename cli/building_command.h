@@ -25,7 +25,7 @@ struct BuildingOptions {
   bool no_furniture = false;
   double patch_size = 0.25;  // written to the job file; 0: automatic
   // Written to the job file; 0: no refinement. Refined, the 2x2 building's display p95 error is
-  // 1.66-1.92 % against 2.00-3.15 % uniform, for twice the render time (three sets of reference
+  // 1.64-1.89 % against 1.98-2.61 % uniform, for twice the render time (three sets of reference
   // points, docs/BENCHMARKS-accuracy.md).
   double refine_tolerance = 0.05;
 };
