@@ -165,9 +165,10 @@ class PatchMesh {
   // Near another surface (within kGatherBand patch sizes: corners, the ceiling beside a hanging
   // lamp, the floor around a block) the rest is not smooth across a patch: such points gather it
   // themselves (core/point_gather.h) and keep their values. Where the corners of a triangle of
-  // such points differ by more than a fifth, or the direct light at the corners of any other does
-  // (a hard shadow's edge), it is cut (mesh/selective_split.h) and its new points computed the
-  // same way, up to three levels deep (patch_mesh_display.cc).
+  // such points differ by more than a fifth (a tenth for a sliver), or the direct light at the
+  // corners of any other does (a hard shadow's edge), it is cut (mesh/display_cut.h,
+  // mesh/selective_split.h) and its new points computed the same way, up to three levels deep
+  // (patch_mesh_display.cc).
   // `progress`, when set, is told on the calling thread as each step of the display starts (a big
   // scene's display can take longer than its solve): what it does, at how many points.
   using DisplayProgress = std::function<void(const DisplayStep&)>;

@@ -10,6 +10,7 @@
 #include "core/direct_light.h"
 #include "core/point_gather.h"
 #include "mesh/border_extrapolation.h"
+#include "mesh/display_cut.h"
 #include "mesh/ear_clip.h"
 #include "mesh/gouraud_means.h"
 #include "mesh/midpoint_split.h"
@@ -20,26 +21,6 @@
 namespace radfarm {
 namespace {
 
-// Where a display triangle's corners differ by more than this share of the brightest, the light
-// bends within it faster than the display shows: the ceiling just outside a hanging lamp's outline
-// rises from the slit's shadow within centimetres, a hard shadow's edge crosses it. It is cut into
-// four, up to kDisplayRefineLevels times (mesh/patch_mesh.h), each new point at its own light.
-constexpr double kRefineContrast = 0.2;
-
-// The cuts leave slivers beside them (a triangle with one cut edge is halved, selective_split.h),
-// some reaching from a leg's foot 10 cm out across where the light recovers beside it: such a
-// triangle's corners show the light along its long edges only, so between gathered corners it is
-// cut at half the contrast (on the building: junctions' p95 2.60 -> 2.12 %, for 9 % more points).
-constexpr double kSliverQuality = 0.3;  // TriangleQuality below this is a sliver
-constexpr double kSliverContrast = 0.1;
-
-// 1 for an equilateral triangle, falling to 0 as it flattens: 4 sqrt(3) area over the sum of the
-// squared edges.
-double TriangleQuality(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double edges = Dot(b - a, b - a) + Dot(c - b, c - b) + Dot(a - c, a - c);
-  return edges > 0 ? 2 * std::sqrt(3.0) * Length(Cross(b - a, c - a)) / edges : 0;
-}
-
 // What the display knows of each of its points besides the radiance it shows.
 struct PointLight {
   std::vector<bool> held;         // gathered: its value is its own, not a stand-in for a mean
@@ -49,11 +30,11 @@ struct PointLight {
 
 // Cuts the triangles of `fine` where the light bends, and sets each new point to its own light.
 // A triangle whose corners all hold their own light (held: gathered) is cut where their light
-// differs by more than kRefineContrast of the brightest (kSliverContrast if it is a sliver); any
-// other where the direct light shown at its corners does, a shadow's edge or a lamp's fall-off. A
-// new point between two held ones gathers (rho times the direct and the gathered light) and is
-// held; any other shows the direct light at itself plus the rest interpolated between its edge's
-// ends. Returns the number of points added.
+// differs by more than CutContrast (display_cut.h) of the brightest; any other where the direct
+// light shown at its corners does, a shadow's edge or a lamp's fall-off. A new point between two
+// held ones gathers (rho times the direct and the gathered light) and is held; any other shows the
+// direct light at itself plus the rest interpolated between its edge's ends. Returns the number of
+// points added.
 uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
                                const DirectLight& direct_light, const std::vector<Rgb>& outgoing,
                                const PatchCornerOffsets& corners, const SecondBounce& second,
@@ -77,9 +58,8 @@ uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
         direct_lo = std::min(direct_lo, shown_direct[n].Sum());
         direct_hi = std::max(direct_hi, shown_direct[n].Sum());
       }
-      const bool sliver = all_held && TriangleQuality(fine->positions[v[0]], fine->positions[v[1]],
-                                                      fine->positions[v[2]]) < kSliverQuality;
-      const double contrast = sliver ? kSliverContrast : kRefineContrast;
+      const double contrast = CutContrast(fine->positions[v[0]], fine->positions[v[1]],
+                                          fine->positions[v[2]], all_held);
       marked[t] = (all_held ? hi - lo : direct_hi - direct_lo) > contrast * hi;
       any = any || marked[t];
     }
