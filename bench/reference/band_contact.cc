@@ -24,10 +24,19 @@ const char* ContactName(Contact contact) {
 ContactClassifier::ContactClassifier(const ReferenceScene& scene, const InputScene& input)
     : scene_(scene), input_(input), tolerance_(1e-6 * scene.diagonal()) {
   face_triangles_.resize(input.faces.size());
-  face_area_.resize(input.faces.size(), 0.0);
+  std::vector<double> area(input.faces.size(), 0.0);
   for (uint32_t t = 0; t < scene.triangles().size(); ++t) {
     face_triangles_[scene.triangles()[t].face].push_back(t);
-    face_area_[scene.triangles()[t].face] += scene.triangles()[t].area;
+    area[scene.triangles()[t].face] += scene.triangles()[t].area;
+  }
+  face_width_.resize(input.faces.size(), 0.0);
+  for (uint32_t face = 0; face < input.faces.size(); ++face) {
+    const std::vector<uint32_t>& f = input.faces[face].indices;
+    double perimeter = 0;
+    for (size_t i = 0; i < f.size(); ++i) {
+      perimeter += Length(input.positions[f[(i + 1) % f.size()]] - input.positions[f[i]]);
+    }
+    if (perimeter > 0) face_width_[face] = 2 * area[face] / perimeter;
   }
 }
 
@@ -77,15 +86,6 @@ Contact ContactClassifier::Between(uint32_t face_a, uint32_t face_b) const {
     if (OnFace(input_.positions[j], face_a)) return Contact::kJunction;
   }
   return Contact::kGap;
-}
-
-double ContactClassifier::FaceWidth(uint32_t face) const {
-  const std::vector<uint32_t>& f = input_.faces[face].indices;
-  double perimeter = 0;
-  for (size_t i = 0; i < f.size(); ++i) {
-    perimeter += Length(input_.positions[f[(i + 1) % f.size()]] - input_.positions[f[i]]);
-  }
-  return perimeter > 0 ? 2 * face_area_[face] / perimeter : 0;
 }
 
 BandContact ContactClassifier::Classify(const SurfacePoint& point, double band) const {

@@ -44,7 +44,7 @@ class ContactClassifier {
   Contact Between(uint32_t face_a, uint32_t face_b) const;
   // An input face's width: twice its area over its perimeter (a long thin rectangle's shorter
   // side, a square's side, a disc's radius).
-  double FaceWidth(uint32_t face) const;
+  double FaceWidth(uint32_t face) const { return face_width_[face]; }
 
  private:
   bool SameCorner(const Vec3& a, const Vec3& b) const;
@@ -54,7 +54,7 @@ class ContactClassifier {
   const InputScene& input_;
   double tolerance_ = 0;
   std::vector<std::vector<uint32_t>> face_triangles_;  // per input face, its triangles
-  std::vector<double> face_area_;                      // per input face, its triangles' area
+  std::vector<double> face_width_;                     // per input face, FaceWidth
 };
 
 }  // namespace radfarm::reference

@@ -246,17 +246,12 @@ nlohmann::json RunCase(const Options& o, const std::string& name, const std::str
       };
       for (Contact c : kContacts) {
         const std::string kind = ContactName(c);
+        auto narrow = [&](const BandContact& pc) { return pc.kind == c && pc.width < patch; };
+        auto wide = [&](const BandContact& pc) { return pc.kind == c && pc.width >= patch; };
         contacts[kind] = summarize(kind, [&](const BandContact& pc) { return pc.kind == c; });
-        const bool any_narrow =
-            std::any_of(contact.begin(), contact.end(),
-                        [&](const BandContact& pc) { return pc.kind == c && pc.width < patch; });
-        if (!any_narrow) continue;
-        contacts[kind + "_narrow"] = summarize(kind + " narrow", [&](const BandContact& pc) {
-          return pc.kind == c && pc.width < patch;
-        });
-        contacts[kind + "_wide"] = summarize(kind + " wide", [&](const BandContact& pc) {
-          return pc.kind == c && pc.width >= patch;
-        });
+        if (std::none_of(contact.begin(), contact.end(), narrow)) continue;
+        contacts[kind + "_narrow"] = summarize(kind + " narrow", narrow);
+        contacts[kind + "_wide"] = summarize(kind + " wide", wide);
       }
     }
     std::fflush(stdout);
