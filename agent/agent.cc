@@ -10,6 +10,7 @@
 #include "agent/master_address.h"
 #include "base/result.h"
 #include "loop/log.h"
+#include "protocol/limits.h"
 #include "protocol/messages.h"
 
 namespace radfarm::agent {
@@ -68,6 +69,9 @@ Status Agent::Start() {
 
   LeaseWorker::Callbacks callbacks;
   callbacks.send = [this](const protocol::Message& message) { return Send(message); };
+  callbacks.packs_hits = [this] {
+    return !link_ || link_->version() >= protocol::kPackedHitsVersion;
+  };
   callbacks.on_leases_changed = [this] { OnLeasesChanged(); };
   runner_ = std::make_unique<LeaseWorker>(loop_, settings_, *batches_, *io_, std::move(store_),
                                           master_, std::move(callbacks));

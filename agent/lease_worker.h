@@ -42,6 +42,9 @@ class LeaseWorker {
   struct Callbacks {
     // Sends a message to the master; fails when there is no connection.
     std::function<Status(const protocol::Message& message)> send;
+    // Whether the connection packs a LeaseResult's hits (protocol version 5 on): what sizes the
+    // result frames. Unset: packed.
+    std::function<bool()> packs_hits;
     // The leases held changed (one finished, was returned or dropped): drain and idle checks.
     std::function<void()> on_leases_changed;
   };

@@ -73,6 +73,7 @@ class MasterLink {
   void Disconnect(const std::string& reason);
 
   bool authenticated() const { return session_.authenticated(); }
+  uint16_t version() const { return session_.version(); }  // the negotiated protocol version
   const protocol::WelcomeMsg& welcome() const { return session_.welcome(); }
   const std::string& peer() const { return peer_; }
 

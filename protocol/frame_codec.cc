@@ -40,7 +40,7 @@ Result<DecodedFrame> DecodeAligned(const uint8_t* data, size_t size) {
 std::vector<uint8_t> EncodeFrame(const Message& message, uint16_t version) {
   flatbuffers::FlatBufferBuilder fbb(256);
   wire::Payload type = wire::Payload::NONE;
-  const flatbuffers::Offset<void> payload = BuildPayload(fbb, message, &type);
+  const flatbuffers::Offset<void> payload = BuildPayload(fbb, message, version, &type);
   wire::FinishFrameBuffer(fbb, wire::CreateFrame(fbb, version, type, payload));
   const uint32_t size = fbb.GetSize();
   std::vector<uint8_t> out(kLengthPrefixBytes + size);

@@ -10,10 +10,13 @@ namespace radfarm::protocol {
 // The version this build writes, and the oldest one it still accepts in a Hello. Version 2 leases
 // many batches in one LeaseAssignment and answers them in one LeaseResult; version 3 sends scenes
 // zstd-compressed (SceneChunk.scene_size, protocol/scene_packing.h); version 4 seals every frame
-// after the handshake (frame_seal.h) and adds Close code Blocklisted. A version-3 peer would send
-// and expect clear frames, so it is turned away at the handshake.
-inline constexpr uint16_t kProtocolVersion = 4;
+// after the handshake (frame_seal.h) and adds Close code Blocklisted; version 5 packs a
+// LeaseResult's hits (core/packed_hits.h: 2-3 bytes a hit instead of 16). A version-4 peer still
+// works (a frame's own version says how its hits are written), so agents and master can be
+// upgraded one at a time.
+inline constexpr uint16_t kProtocolVersion = 5;
 inline constexpr uint16_t kMinProtocolVersion = 4;
+inline constexpr uint16_t kPackedHitsVersion = 5;
 
 // Frame: a 4-byte little-endian length prefix, then that many bytes of FlatBuffer.
 inline constexpr size_t kLengthPrefixBytes = 4;

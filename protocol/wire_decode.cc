@@ -2,9 +2,12 @@
 // guarantees every offset and length is inside the buffer; this adds what it does not check.
 #include <cstdint>
 #include <cstring>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "core/packed_hits.h"
+#include "protocol/limits.h"
 #include "protocol/wire_convert.h"
 
 namespace radfarm::protocol {
@@ -143,28 +146,51 @@ Result<Message> Read(const wire::LeaseAssignment& t) {
   return Message{std::move(m)};
 }
 
-Result<Message> Read(const wire::LeaseResult& t) {
+// The batches' counts, with their hits read from `t.hits()` (versions 2-4) or `packed` (5 on).
+Result<Message> ReadLeaseResult(const wire::LeaseResult& t, uint16_t version) {
   if (!t.batches()) return Missing("LeaseResult", "batches");
   if (!t.hits()) return Missing("LeaseResult", "hits");
   if (!IsAligned(*t.batches())) return Error{"LeaseResult: misaligned batches"};
   if (!IsAligned(*t.hits())) return Error{"LeaseResult: misaligned hits"};
-  // The hit counts must slice `hits` exactly: check the sum before reading any slice.
+  const bool packed = version >= kPackedHitsVersion;
+  if (packed && !t.packed_hits()) return Missing("LeaseResult", "packed_hits (version 5 on)");
+  if (packed && t.hits()->size() != 0) {
+    return Error{"LeaseResult: hits in version-4 form in a version-" + std::to_string(version) +
+                 " frame (version 5 on packs them in packed_hits)"};
+  }
+  if (!packed && t.packed_hits()) {
+    return Error{"LeaseResult: packed_hits in a version-" + std::to_string(version) +
+                 " frame (they exist from version 5)"};
+  }
+  // The hit counts must slice the hits exactly: check the sum before reading any slice.
   uint64_t total = 0;
   for (const wire::BatchTally* b : *t.batches()) total += b->hit_count();
-  if (total != t.hits()->size()) {
+  if (!packed && total != t.hits()->size()) {
     return Error{"LeaseResult: hit counts add up to " + std::to_string(total) + ", not the " +
                  std::to_string(t.hits()->size()) + " hits sent"};
   }
+  const std::span<const uint8_t> bytes =
+      packed ? std::span<const uint8_t>(t.packed_hits()->data(), t.packed_hits()->size())
+             : std::span<const uint8_t>();
+  size_t at = 0;
   LeaseResultMsg m;
   m.results.reserve(t.batches()->size());
   uint32_t next = 0;
   for (const wire::BatchTally* b : *t.batches()) {
     BatchResultMsg r;
     r.lease = FromWire(b->lease());
-    r.hits.reserve(b->hit_count());
-    for (uint32_t k = 0; k < b->hit_count(); ++k, ++next) {
-      const wire::PatchHit* h = t.hits()->Get(next);
-      r.hits.push_back({h->patch(), h->weight()});
+    if (packed) {
+      const std::string wrong = ReadPackedHits(bytes, &at, b->hit_count(), &r.hits);
+      if (!wrong.empty()) {
+        return Error{"LeaseResult: batch " + std::to_string(m.results.size()) +
+                     "'s packed hits: " + wrong};
+      }
+    } else {
+      r.hits.reserve(b->hit_count());
+      for (uint32_t k = 0; k < b->hit_count(); ++k, ++next) {
+        const wire::PatchHit* h = t.hits()->Get(next);
+        r.hits.push_back({h->patch(), h->weight()});
+      }
     }
     r.escaped_weight = b->escaped_weight();
     r.escaped_rays = b->escaped_rays();
@@ -172,6 +198,10 @@ Result<Message> Read(const wire::LeaseResult& t) {
     r.back_rays = b->back_rays();
     r.compute_seconds = b->compute_seconds();
     m.results.push_back(std::move(r));
+  }
+  if (at != bytes.size()) {
+    return Error{"LeaseResult: " + std::to_string(bytes.size() - at) +
+                 " bytes of packed hits after the last batch's"};
   }
   return Message{std::move(m)};
 }
@@ -256,8 +286,11 @@ Result<Message> ReadPayload(const wire::Frame& frame) {
       return ReadAs<wire::Close>(frame);
     case P::LeaseAssignment:
       return ReadAs<wire::LeaseAssignment>(frame);
-    case P::LeaseResult:
-      return ReadAs<wire::LeaseResult>(frame);
+    case P::LeaseResult: {
+      const wire::LeaseResult* table = frame.payload_as<wire::LeaseResult>();
+      if (!table) return Error{"frame: missing payload"};
+      return ReadLeaseResult(*table, frame.version());
+    }
     case P::LeaseRevoke:
       return ReadAs<wire::LeaseRevoke>(frame);
     default:

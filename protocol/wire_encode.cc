@@ -1,7 +1,10 @@
 // C++ messages -> FlatBuffers tables. Enum values are mapped one by one rather than cast, so the
 // wire values stay fixed whatever happens to core's enums.
+#include <type_traits>
 #include <vector>
 
+#include "core/packed_hits.h"
+#include "protocol/limits.h"
 #include "protocol/wire_convert.h"
 
 namespace radfarm::protocol {
@@ -129,16 +132,25 @@ Offset<void> Build(FlatBufferBuilder& fbb, const LeaseAssignmentMsg& m) {
       .Union();
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const LeaseResultMsg& m) {
+Offset<void> Build(FlatBufferBuilder& fbb, const LeaseResultMsg& m, uint16_t version) {
   std::vector<wire::BatchTally> tallies;
-  std::vector<wire::PatchHit> wire_hits;
   tallies.reserve(m.results.size());
   for (const BatchResultMsg& r : m.results) {
     tallies.emplace_back(ToWire(r.lease), r.escaped_weight, r.escaped_rays, r.back_weight,
                          r.back_rays, r.compute_seconds, static_cast<uint32_t>(r.hits.size()));
-    for (const PatchHits& h : r.hits) wire_hits.emplace_back(h.patch, h.weight);
   }
   const auto batches = fbb.CreateVectorOfStructs(tallies.data(), tallies.size());
+  std::vector<wire::PatchHit> wire_hits;
+  if (version >= kPackedHitsVersion) {
+    std::vector<uint8_t> packed;
+    for (const BatchResultMsg& r : m.results) AppendPackedHits(r.hits, &packed);
+    const auto packed_hits = fbb.CreateVector(packed);
+    const auto hits = fbb.CreateVectorOfStructs(wire_hits.data(), 0);
+    return wire::CreateLeaseResult(fbb, batches, hits, packed_hits).Union();
+  }
+  for (const BatchResultMsg& r : m.results) {
+    for (const PatchHits& h : r.hits) wire_hits.emplace_back(h.patch, h.weight);
+  }
   const auto hits = fbb.CreateVectorOfStructs(wire_hits.data(), wire_hits.size());
   return wire::CreateLeaseResult(fbb, batches, hits).Union();
 }
@@ -153,10 +165,19 @@ Offset<void> Build(FlatBufferBuilder& fbb, const LeaseRevokeMsg& m) {
 
 }  // namespace
 
-Offset<void> BuildPayload(FlatBufferBuilder& fbb, const Message& message, wire::Payload* type) {
+Offset<void> BuildPayload(FlatBufferBuilder& fbb, const Message& message, uint16_t version,
+                          wire::Payload* type) {
   // Message alternatives are in Payload order, starting after NONE.
   *type = static_cast<wire::Payload>(message.index() + 1);
-  return std::visit([&fbb](const auto& m) { return Build(fbb, m); }, message);
+  return std::visit(
+      [&fbb, version](const auto& m) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(m)>, LeaseResultMsg>) {
+          return Build(fbb, m, version);
+        } else {
+          return Build(fbb, m);
+        }
+      },
+      message);
 }
 
 }  // namespace radfarm::protocol

@@ -4,6 +4,8 @@
 #include <optional>
 #include <string>
 
+#include "core/packed_hits.h"
+
 namespace radfarm::store {
 namespace {
 
@@ -11,29 +13,7 @@ constexpr uint8_t kMagic[4] = {'R', 'F', 'H', '2'};
 constexpr size_t kFormat1HeaderBytes = 40;
 constexpr size_t kFormat1HitBytes = 12;
 
-// --- Format 2: LEB128 varints -------------------------------------------------------------------
-
-void PutVarint(uint64_t value, std::vector<uint8_t>* out) {
-  while (value >= 0x80) {
-    out->push_back(static_cast<uint8_t>(value) | 0x80);
-    value >>= 7;
-  }
-  out->push_back(static_cast<uint8_t>(value));
-}
-
-// The varint at `in`, or nullopt when the bytes end first or it runs over 64 bits.
-std::optional<uint64_t> GetVarint(std::span<const uint8_t> bytes, size_t* in) {
-  uint64_t value = 0;
-  for (int shift = 0; shift < 64; shift += 7) {
-    if (*in >= bytes.size()) return std::nullopt;
-    const uint8_t byte = bytes[(*in)++];
-    const uint64_t bits = byte & 0x7f;
-    if (shift == 63 && bits > 1) return std::nullopt;
-    value |= bits << shift;
-    if ((byte & 0x80) == 0) return value;
-  }
-  return std::nullopt;
-}
+// --- Format 2: LEB128 varints (core/packed_hits.h) ---------------------------------------------
 
 Status CheckHit(const BatchResult& result, size_t k) {
   if (result.hits[k].weight == 0 || (k > 0 && result.hits[k].patch <= result.hits[k - 1].patch)) {
@@ -45,14 +25,13 @@ Status CheckHit(const BatchResult& result, size_t k) {
 
 Result<BatchResult> DecodeFormat2(std::span<const uint8_t> bytes) {
   size_t in = sizeof kMagic;
-  auto truncated = [&] {
-    return Error{"batch result blob of " + std::to_string(bytes.size()) +
-                 " bytes ends inside a number"};
-  };
   uint64_t header[5];
   for (uint64_t& v : header) {
-    const std::optional<uint64_t> value = GetVarint(bytes, &in);
-    if (!value) return truncated();
+    const std::optional<uint64_t> value = ReadVarint(bytes, &in);
+    if (!value) {
+      return Error{"batch result blob of " + std::to_string(bytes.size()) +
+                   " bytes ends inside a number"};
+    }
     v = *value;
   }
   BatchResult result;
@@ -60,24 +39,9 @@ Result<BatchResult> DecodeFormat2(std::span<const uint8_t> bytes) {
   result.escaped_rays = header[1];
   result.back_weight = header[2];
   result.back_rays = header[3];
-  // Each hit takes at least two bytes: a count beyond that is a lie, refused before allocating.
-  if (header[4] > (bytes.size() - in) / 2) {
-    return Error{"batch result blob of " + std::to_string(bytes.size()) + " bytes cannot hold " +
-                 std::to_string(header[4]) + " hits"};
-  }
-  result.hits.resize(header[4]);
-  uint32_t previous = 0;
-  for (size_t k = 0; k < result.hits.size(); ++k) {
-    const std::optional<uint64_t> delta = GetVarint(bytes, &in);
-    const std::optional<uint64_t> weight = delta ? GetVarint(bytes, &in) : std::nullopt;
-    if (!weight) return truncated();
-    if (*delta > UINT32_MAX)
-      return Error{"batch result blob: hit " + std::to_string(k) + " has no patch id"};
-    PatchHits& hit = result.hits[k];
-    hit.patch = previous + static_cast<uint32_t>(*delta);  // modulo 2^32: out of order is caught
-    hit.weight = *weight;
-    RADFARM_RETURN_IF_ERROR(CheckHit(result, k));
-    previous = hit.patch;
+  const std::string wrong = ReadPackedHits(bytes, &in, header[4], &result.hits);
+  if (!wrong.empty()) {
+    return Error{"batch result blob of " + std::to_string(bytes.size()) + " bytes: " + wrong};
   }
   if (in != bytes.size()) {
     return Error{"batch result blob: " + std::to_string(bytes.size() - in) +
@@ -133,14 +97,9 @@ std::vector<uint8_t> EncodeBatchResult(const BatchResult& result) {
   bytes.reserve(sizeof kMagic + 5 * 10 + 3 * result.hits.size());
   for (uint64_t v : {result.escaped_weight, result.escaped_rays, result.back_weight,
                      result.back_rays, uint64_t{result.hits.size()}}) {
-    PutVarint(v, &bytes);
+    AppendVarint(v, &bytes);
   }
-  uint32_t previous = 0;
-  for (const PatchHits& hit : result.hits) {
-    PutVarint(static_cast<uint32_t>(hit.patch - previous), &bytes);  // modulo 2^32, as decoded
-    PutVarint(hit.weight, &bytes);
-    previous = hit.patch;
-  }
+  AppendPackedHits(result.hits, &bytes);
   return bytes;
 }
 

@@ -205,6 +205,48 @@ TEST(ProtocolMalformedTest, PayloadOfTheWrongTableTypeIsRejected) {
   EXPECT_FALSE(DecodeFrame(Finish(fbb, frame)));
 }
 
+// A LeaseResult's hits are structs up to version 4 and packed from version 5 (core/packed_hits.h):
+// the frame's own version says which, and the other form is refused by name.
+std::vector<uint8_t> HandMadeLeaseResult(uint16_t version, uint32_t hit_count,
+                                         const std::vector<wire::PatchHit>& hits,
+                                         const std::vector<uint8_t>* packed) {
+  flatbuffers::FlatBufferBuilder fbb;
+  const wire::BatchTally tally(wire::LeaseRef(1, 2, 3), 0, 0, 0, 0, 0.5, hit_count);
+  const auto batches = fbb.CreateVectorOfStructs(&tally, 1);
+  const auto structs = fbb.CreateVectorOfStructs(hits.data(), hits.size());
+  const auto packed_hits = packed != nullptr ? fbb.CreateVector(*packed) : 0;
+  const auto result = wire::CreateLeaseResult(fbb, batches, structs, packed_hits).Union();
+  return Finish(fbb, wire::CreateFrame(fbb, version, wire::Payload::LeaseResult, result));
+}
+
+TEST(ProtocolMalformedTest, ALeaseResultsHitsMustBeInItsVersionsForm) {
+  const std::vector<wire::PatchHit> structs = {{4, 1}, {9, 2}};
+  const std::vector<uint8_t> packed = {4, 1, 5, 2};  // the same two hits
+  const std::vector<uint8_t> none;
+  EXPECT_TRUE(DecodeFrame(HandMadeLeaseResult(4, 2, structs, nullptr)));
+  EXPECT_TRUE(DecodeFrame(HandMadeLeaseResult(5, 2, {}, &packed)));
+  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 2, structs, nullptr)),
+                            "LeaseResult: missing packed_hits (version 5 on)"));
+  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 2, structs, &packed)),
+                            "hits in version-4 form in a version-5 frame"));
+  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(4, 2, structs, &packed)),
+                            "packed_hits in a version-4 frame"));
+  // Packed hits must hold exactly the batches' counts, in patch order, with weights.
+  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 1, {}, &packed)),
+                            "2 bytes of packed hits after the last batch's"));
+  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 3, {}, &packed)),
+                            "batch 0's packed hits: 4 bytes cannot hold 3 hits"));
+  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 1, {}, &none)),
+                            "0 bytes cannot hold 1 hits"));
+  const std::vector<uint8_t> repeated = {4, 1, 0, 2}, weightless = {4, 0}, cut = {4, 0x81};
+  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 2, {}, &repeated)),
+                            "hit 1 is out of patch order or has no weight"));
+  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 1, {}, &weightless)),
+                            "hit 0 is out of patch order or has no weight"));
+  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 1, {}, &cut)),
+                            "hit 0 ends inside a number"));
+}
+
 TEST(ProtocolMalformedTest, DeeplyNestedOrHugeVectorsAreBounded) {
   // A BatchResult whose hits vector claims more elements than the buffer holds.
   std::vector<uint8_t> frame = EncodeFrame(BatchResultMsg{{}, {{1, 1}, {2, 1}}, 0, 0, 0, 0, 0});

@@ -193,19 +193,19 @@ TEST(ProtocolSessionTest, TamperedHelloFailsAuthentication) {
 }
 
 TEST(ProtocolSessionTest, VersionNegotiation) {
-  // An agent that speaks 2..5 gets version 4 from this master.
+  // An agent that speaks 2..6 gets version 5 from this master.
   Session master = Master();
-  Session agent = Session::ForAgent(Secret(1), AgentConfig{"new-agent", 2, 2, 5});
+  Session agent = Session::ForAgent(Secret(1), AgentConfig{"new-agent", 2, 2, 6});
   const std::vector<uint8_t> hello = *agent.Start();
-  EXPECT_EQ(Decode(hello).version, 5);
+  EXPECT_EQ(Decode(hello).version, 6);
   Result<Session::Accepted> a = master.Accept(Decode(hello));
   ASSERT_TRUE(a) << a.error();
-  EXPECT_EQ(master.version(), 4);
+  EXPECT_EQ(master.version(), 5);
   ASSERT_TRUE(agent.Accept(Decode(a->reply)));
-  EXPECT_EQ(agent.version(), 4);
-  // One that only speaks 5..6 is turned away.
+  EXPECT_EQ(agent.version(), 5);
+  // One that only speaks 6..7 is turned away.
   Session old_master = Master();
-  Session newer = Session::ForAgent(Secret(1), AgentConfig{"newer", 2, 5, 6});
+  Session newer = Session::ForAgent(Secret(1), AgentConfig{"newer", 2, 6, 7});
   EXPECT_FALSE(old_master.Accept(Decode(*newer.Start())));
   EXPECT_EQ(CloseOf(old_master.CloseFrame()).code, CloseCode::kVersionMismatch);
 }
@@ -222,7 +222,7 @@ TEST(ProtocolSessionTest, AVersionOneAgentIsRefusedWithAMessageNamingBothVersion
   const CloseMsg close = CloseOf(master.CloseFrame());
   EXPECT_EQ(close.code, CloseCode::kVersionMismatch);
   EXPECT_NE(close.detail.find("the agent speaks 1..1"), std::string::npos) << close.detail;
-  EXPECT_NE(close.detail.find("this master 4..4"), std::string::npos) << close.detail;
+  EXPECT_NE(close.detail.find("this master 4..5"), std::string::npos) << close.detail;
   // The old agent reads that Close (a Close is accepted in any version, in any state).
   Result<Session::Accepted> read = old_agent.Accept(Decode(master.CloseFrame()));
   ASSERT_TRUE(read) << read.error();
@@ -237,7 +237,7 @@ TEST(ProtocolSessionTest, AVersionTwoAgentIsRefusedBeforeItFetchesACompressedSce
   ASSERT_FALSE(master.Accept(Decode(*old_agent.Start())));
   const CloseMsg close = CloseOf(master.CloseFrame());
   EXPECT_EQ(close.code, CloseCode::kVersionMismatch);
-  EXPECT_NE(close.detail.find("the agent speaks 2..2, this master 4..4"), std::string::npos)
+  EXPECT_NE(close.detail.find("the agent speaks 2..2, this master 4..5"), std::string::npos)
       << close.detail;
   // And a version-4 agent refuses a master that chooses version 2.
   Session agent = Agent();
@@ -252,7 +252,7 @@ TEST(ProtocolSessionTest, AVersionThreeAgentIsRefusedBeforeItSendsAClearFrame) {
   Session master = Master();
   Session old_agent = Session::ForAgent(Secret(1), AgentConfig{"v3-agent", 2, 3, 3});
   ASSERT_FALSE(master.Accept(Decode(*old_agent.Start())));
-  EXPECT_NE(CloseOf(master.CloseFrame()).detail.find("the agent speaks 3..3, this master 4..4"),
+  EXPECT_NE(CloseOf(master.CloseFrame()).detail.find("the agent speaks 3..3, this master 4..5"),
             std::string::npos);
   ASSERT_TRUE(old_agent.Accept(Decode(master.CloseFrame())));
   EXPECT_EQ(old_agent.peer_close()->code, CloseCode::kVersionMismatch);
@@ -265,18 +265,18 @@ TEST(ProtocolSessionTest, AVersionThreeAgentIsRefusedBeforeItSendsAClearFrame) {
 TEST(ProtocolSessionTest, VersionOneBatchMessagesAreRefusedInTheCurrentVersion) {
   Session master = Master(), agent = Agent();
   RunHandshake(master, agent);
-  ASSERT_EQ(master.version(), 4);
+  ASSERT_EQ(master.version(), 5);
   BatchAssignmentMsg one;
   one.ray_count = 1;
   one.patch_count = 1;
   one.lease_ms = 1;
   Result<std::vector<uint8_t>> out = master.Encode(one);
   ASSERT_FALSE(out);
-  EXPECT_NE(out.error().find("not a message of protocol version 4"), std::string::npos);
+  EXPECT_NE(out.error().find("not a message of protocol version 5"), std::string::npos);
   Result<Session::Accepted> in =
-      master.Accept(Decode(EncodeFrame(BatchResultMsg{{}, {}, 0, 0, 0, 0, 0}, 4)));
+      master.Accept(Decode(EncodeFrame(BatchResultMsg{{}, {}, 0, 0, 0, 0, 0}, 5)));
   ASSERT_FALSE(in);
-  EXPECT_NE(in.error().find("BatchResult is not a message of protocol version 4"),
+  EXPECT_NE(in.error().find("BatchResult is not a message of protocol version 5"),
             std::string::npos)
       << in.error();
   // Authenticated: the Close is sealed, for the agent.
@@ -289,7 +289,7 @@ TEST(ProtocolSessionTest, VersionOneBatchMessagesAreRefusedInTheCurrentVersion) 
 TEST(ProtocolSessionTest, AgentRejectsAVersionItDoesNotSpeak) {
   Session agent = Agent();
   ASSERT_TRUE(agent.Start());
-  EXPECT_FALSE(agent.Accept(Decode(EncodeFrame(ChallengeMsg{5, testing::Pattern(1)}, 5))));
+  EXPECT_FALSE(agent.Accept(Decode(EncodeFrame(ChallengeMsg{6, testing::Pattern(1)}, 6))));
   EXPECT_EQ(CloseOf(agent.CloseFrame()).code, CloseCode::kVersionMismatch);
 }
 
@@ -350,7 +350,8 @@ TEST(ProtocolSessionTest, AgentWillNotSendAFrameAboveTheMastersLimit) {
   RunHandshake(master, agent);
   ASSERT_TRUE(agent.authenticated());
   BatchResultMsg big;
-  for (uint32_t p = 0; p < kMinPeerFrameBytes / 16 + 10; ++p) big.hits.push_back({p, 1});
+  // Packed (version 5), a hit of consecutive ids and weight 1 takes 2 bytes.
+  for (uint32_t p = 0; p < kMinPeerFrameBytes / 2 + 10; ++p) big.hits.push_back({p, 1});
   Result<std::vector<uint8_t>> frame = agent.Encode(LeaseResultMsg{{big}});
   ASSERT_FALSE(frame);
   EXPECT_NE(frame.error().find("exceeds the master's limit"), std::string::npos);

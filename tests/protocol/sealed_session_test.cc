@@ -20,11 +20,14 @@ FarmSecret Secret() { return *FarmSecret::FromBytes(std::vector<uint8_t>(32, 7))
 
 DecodedFrame Clear(const std::vector<uint8_t>& frame) { return DecodeFrame(frame).value(); }
 
-// A master and an agent session after a complete handshake.
+// A master and an agent session after a complete handshake (the agent speaking up to
+// `agent_max_version`).
 struct Pair {
   Session master = Session::ForMaster(Secret(), MasterConfig{3, 1000, kDefaultMaxFrameBytes, {}});
-  Session agent = Session::ForAgent(Secret(), AgentConfig{"node-1", 2});
-  Pair() {
+  Session agent;
+  explicit Pair(uint16_t agent_max_version = kProtocolVersion)
+      : agent(Session::ForAgent(Secret(),
+                                AgentConfig{"node-1", 2, kMinProtocolVersion, agent_max_version})) {
     Result<Session::Accepted> a = master.Accept(Clear(*agent.Start()));
     a = agent.Accept(Clear(a->reply));
     a = master.Accept(Clear(a->reply));
@@ -96,6 +99,23 @@ TEST(SealedSessionTest, ReorderedFramesFailAuthentication) {
   const std::vector<uint8_t> second = *p.master.Encode(CancelMsg{2});
   ExpectUnauthentic(p.agent, second);
   (void)first;
+}
+
+// Version 5 packs a LeaseResult's hits; an agent of the release before (version 4) sends them as
+// structs, and this master still reads them: agents can be upgraded one at a time.
+TEST(SealedSessionTest, AVersionFourAgentsResultsStillReachTheMaster) {
+  const LeaseResultMsg result{{BatchResultMsg{{1, 2, 3}, {{4, 1}, {900, 2}}, 1, 1, 0, 0, 0.5}}};
+  for (uint16_t version : {uint16_t{4}, uint16_t{5}}) {
+    Pair p(version);
+    ASSERT_TRUE(p.agent.authenticated()) << version;
+    EXPECT_EQ(p.master.version(), version);
+    const std::vector<uint8_t> frame = *p.agent.Encode(result);
+    Result<DecodedFrame> at_master = p.master.Decode(Body(frame));
+    ASSERT_TRUE(at_master) << at_master.error();
+    EXPECT_EQ(at_master->version, version);
+    EXPECT_TRUE(at_master->message == Message{result});
+    EXPECT_TRUE(p.master.Accept(*at_master));
+  }
 }
 
 TEST(SealedSessionTest, AReplayedFrameFailsAuthentication) {
