@@ -225,26 +225,31 @@ TEST(ProtocolMalformedTest, ALeaseResultsHitsMustBeInItsVersionsForm) {
   const std::vector<uint8_t> none;
   EXPECT_TRUE(DecodeFrame(HandMadeLeaseResult(4, 2, structs, nullptr)));
   EXPECT_TRUE(DecodeFrame(HandMadeLeaseResult(5, 2, {}, &packed)));
-  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 2, structs, nullptr)),
-                            "LeaseResult: missing packed_hits (version 5 on)"));
-  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 2, structs, &packed)),
-                            "hits in version-4 form in a version-5 frame"));
-  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(4, 2, structs, &packed)),
-                            "packed_hits in a version-4 frame"));
-  // Packed hits must hold exactly the batches' counts, in patch order, with weights.
-  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 1, {}, &packed)),
-                            "2 bytes of packed hits after the last batch's"));
-  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 3, {}, &packed)),
-                            "batch 0's packed hits: 4 bytes cannot hold 3 hits"));
-  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 1, {}, &none)),
-                            "0 bytes cannot hold 1 hits"));
   const std::vector<uint8_t> repeated = {4, 1, 0, 2}, weightless = {4, 0}, cut = {4, 0x81};
-  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 2, {}, &repeated)),
-                            "hit 1 is out of patch order or has no weight"));
-  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 1, {}, &weightless)),
-                            "hit 0 is out of patch order or has no weight"));
-  EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(5, 1, {}, &cut)),
-                            "hit 0 ends inside a number"));
+  struct Refused {
+    uint16_t version;
+    uint32_t hit_count;
+    bool structs;
+    const std::vector<uint8_t>* packed;
+    const char* error;
+  };
+  for (const Refused& r : std::vector<Refused>{
+           {5, 2, true, nullptr, "LeaseResult: missing packed_hits (version 5 on)"},
+           {5, 2, true, &packed, "hits in version-4 form in a version-5 frame"},
+           {4, 2, true, &packed, "packed_hits in a version-4 frame"},
+           // Packed hits must hold exactly the batches' counts, in patch order, with weights.
+           {5, 1, false, &packed, "2 bytes of packed hits after the last batch's"},
+           {5, 3, false, &packed, "batch 0's packed hits: 4 bytes cannot hold 3 hits"},
+           {5, 1, false, &none, "0 bytes cannot hold 1 hits"},
+           {5, 2, false, &repeated, "hit 1 is out of patch order or has no weight"},
+           {5, 1, false, &weightless, "hit 0 is out of patch order or has no weight"},
+           {5, 1, false, &cut, "hit 0 ends inside a number"},
+       }) {
+    const std::vector<wire::PatchHit> hits = r.structs ? structs : std::vector<wire::PatchHit>{};
+    EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(r.version, r.hit_count, hits, r.packed)),
+                              r.error))
+        << r.error;
+  }
 }
 
 TEST(ProtocolMalformedTest, DeeplyNestedOrHugeVectorsAreBounded) {
