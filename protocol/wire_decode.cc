@@ -146,7 +146,7 @@ Result<Message> Read(const wire::LeaseAssignment& t) {
   return Message{std::move(m)};
 }
 
-// The batches' counts, with their hits read from `t.hits()` (versions 2-4) or `packed` (5 on).
+// The batches' counts, with their hits read from `hits` (versions 2-4) or `packed_hits` (5 on).
 Result<Message> ReadLeaseResult(const wire::LeaseResult& t, uint16_t version) {
   if (!t.batches()) return Missing("LeaseResult", "batches");
   if (!t.hits()) return Missing("LeaseResult", "hits");
