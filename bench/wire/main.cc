@@ -3,8 +3,8 @@
 // spends encoding and sealing a job's results and the master opening and decoding them, through
 // the real ProtocolSession on one thread. The batches are synthetic, as a shooting round makes
 // them: `rays` Sobol rays (weight 1 each) of one shooter landing on patches drawn uniformly from
-// `patches`, summed per patch and sorted; results go 50 batches a frame until a job's worth of
-// hits. Prints a table and writes bench/results/wire_bench.json.
+// `patches`, summed per patch and sorted, until a job's worth of hits; they go in frames of about
+// 60 KiB, cut as the agent cuts them in each version. Prints a table and writes bench/results/wire_bench.json.
 //
 //   wire_bench [--json PATH] [--repetitions N]
 #include <algorithm>
@@ -19,6 +19,7 @@
 #include "bench/bench_json.h"
 #include "bench/machine_info.h"
 #include "bench/stopwatch.h"
+#include "core/packed_hits.h"
 #include "protocol/frame_codec.h"
 #include "protocol/limits.h"
 #include "protocol/protocol_session.h"
@@ -36,31 +37,46 @@ struct Case {
 
 // The Cornell job's loopback farm moved 3.4 million hits (55.9 MB of version-4 frames).
 constexpr uint64_t kJobHits = 3'400'000;
-constexpr size_t kBatchesPerFrame = 50;
+// The agent's cut of a lease's results into frames (agent/lease_worker.cc SendGroup).
+constexpr size_t kResultFrameBytes = 60 * 1024;
 
-std::vector<protocol::LeaseResultMsg> MakeResults(const Case& c) {
+std::vector<protocol::BatchResultMsg> MakeBatches(const Case& c) {
   std::mt19937_64 rng(c.patches * 7919ull + c.rays);
   std::uniform_int_distribution<uint32_t> patch(0, c.patches - 1);
-  std::vector<protocol::LeaseResultMsg> frames;
-  uint64_t hits = 0, batch_id = 0;
+  std::vector<protocol::BatchResultMsg> batches;
+  uint64_t hits = 0;
   std::vector<uint32_t> landed(c.rays);
   while (hits < kJobHits) {
-    protocol::LeaseResultMsg frame;
-    for (size_t b = 0; b < kBatchesPerFrame && hits < kJobHits; ++b) {
-      protocol::BatchResultMsg r{{1, ++batch_id, 1}, {}, 0, 0, 0, 0, 0.01};
-      for (uint32_t& p : landed) p = patch(rng);
-      std::sort(landed.begin(), landed.end());
-      for (uint32_t p : landed) {
-        if (!r.hits.empty() && r.hits.back().patch == p) {
-          ++r.hits.back().weight;
-        } else {
-          r.hits.push_back({p, 1});
-        }
+    protocol::BatchResultMsg r{{1, batches.size() + 1, 1}, {}, 0, 0, 0, 0, 0.01};
+    for (uint32_t& p : landed) p = patch(rng);
+    std::sort(landed.begin(), landed.end());
+    for (uint32_t p : landed) {
+      if (!r.hits.empty() && r.hits.back().patch == p) {
+        ++r.hits.back().weight;
+      } else {
+        r.hits.push_back({p, 1});
       }
-      hits += r.hits.size();
-      frame.results.push_back(std::move(r));
     }
-    frames.push_back(std::move(frame));
+    hits += r.hits.size();
+    batches.push_back(std::move(r));
+  }
+  return batches;
+}
+
+// The frames an agent speaking `version` sends: about kResultFrameBytes each, by its estimate.
+std::vector<protocol::LeaseResultMsg> Frames(const std::vector<protocol::BatchResultMsg>& batches,
+                                             uint16_t version) {
+  std::vector<protocol::LeaseResultMsg> frames(1);
+  size_t bytes = 0;
+  for (const protocol::BatchResultMsg& r : batches) {
+    const size_t cost = 96 + (version >= protocol::kPackedHitsVersion ? PackedHitsBytes(r.hits)
+                                                                      : 16 * r.hits.size());
+    if (bytes + cost > kResultFrameBytes && !frames.back().results.empty()) {
+      frames.emplace_back();
+      bytes = 0;
+    }
+    frames.back().results.push_back(r);
+    bytes += cost;
   }
   return frames;
 }
@@ -90,24 +106,25 @@ struct Timing {
   double bytes = 0, encode_seconds = 0, decode_seconds = 0;
 };
 
+// Frame by frame, as an agent sends and a master receives them: each sealed frame is opened and
+// dropped before the next is made, so the allocator reuses the same memory (keeping a whole job's
+// frames measured the kernel's page faults on 56 MB of fresh memory instead).
 Timing Measure(const std::vector<protocol::LeaseResultMsg>& frames, uint16_t version) {
   Pair p = Connected(version);
   Timing t;
-  std::vector<std::vector<uint8_t>> sealed;
-  sealed.reserve(frames.size());
-  const Stopwatch encode;
-  for (const protocol::LeaseResultMsg& m : frames) sealed.push_back(*p.agent.Encode(m));
-  t.encode_seconds = encode.Seconds();
-  const Stopwatch decode;
-  for (const std::vector<uint8_t>& f : sealed) {
-    Result<protocol::DecodedFrame> d = p.master.Decode(std::span(f).subspan(4));
+  for (const protocol::LeaseResultMsg& m : frames) {
+    const Stopwatch encode;
+    const std::vector<uint8_t> sealed = *p.agent.Encode(m);
+    t.encode_seconds += encode.Seconds();
+    const Stopwatch decode;
+    Result<protocol::DecodedFrame> d = p.master.Decode(std::span(sealed).subspan(4));
+    t.decode_seconds += decode.Seconds();
     if (!d) {
       std::fprintf(stderr, "wire_bench: %s\n", d.error().c_str());
       std::exit(1);
     }
+    t.bytes += double(sealed.size());
   }
-  t.decode_seconds = decode.Seconds();
-  for (const std::vector<uint8_t>& f : sealed) t.bytes += double(f.size());
   return t;
 }
 
@@ -144,17 +161,16 @@ int Main(int argc, char** argv) {
               "agent v4 ms", "agent v5 ms", "master v4 ms", "master v5 ms");
   nlohmann::json runs = nlohmann::json::array();
   for (const Case& c : cases) {
-    const std::vector<protocol::LeaseResultMsg> frames = MakeResults(c);
+    const std::vector<protocol::BatchResultMsg> batches = MakeBatches(c);
+    const std::vector<protocol::LeaseResultMsg> frames[2] = {Frames(batches, 4), Frames(batches, 5)};
     uint64_t hits = 0;
-    for (const auto& f : frames) {
-      for (const auto& r : f.results) hits += r.hits.size();
-    }
+    for (const auto& r : batches) hits += r.hits.size();
     std::vector<double> encode[2], decode[2];
     double bytes[2] = {0, 0};
     for (int rep = 0; rep < repetitions; ++rep) {
       for (int v = 0; v < 2; ++v) {
         const int which = rep % 2 == 0 ? v : 1 - v;  // alternate the order
-        const Timing t = Measure(frames, uint16_t(4 + which));
+        const Timing t = Measure(frames[which], uint16_t(4 + which));
         encode[which].push_back(t.encode_seconds);
         decode[which].push_back(t.decode_seconds);
         bytes[which] = t.bytes;
@@ -170,6 +186,7 @@ int Main(int argc, char** argv) {
       versions.push_back({{"version", 4 + v},
                           {"bytes", bytes[v]},
                           {"bytes_per_hit", bytes[v] / h},
+                          {"frames", frames[v].size()},
                           {"agent_encode_seal_seconds", encode[v]},
                           {"master_open_decode_seconds", decode[v]},
                           {"agent_seconds_median", Median(encode[v])},
@@ -179,12 +196,12 @@ int Main(int argc, char** argv) {
                     {"patches", c.patches},
                     {"rays_per_batch", c.rays},
                     {"hits", hits},
-                    {"frames", frames.size()},
+                    {"batches", batches.size()},
                     {"versions", versions}});
   }
   nlohmann::json out{{"machine", MachineJson(machine)},
                      {"repetitions", repetitions},
-                     {"batches_per_frame", kBatchesPerFrame},
+                     {"result_frame_bytes", kResultFrameBytes},
                      {"runs", runs},
                      {"total_seconds", total.Seconds()}};
   out["load_average_end"] = ReadLoadAverage();
