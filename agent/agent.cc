@@ -69,8 +69,8 @@ Status Agent::Start() {
 
   LeaseWorker::Callbacks callbacks;
   callbacks.send = [this](const protocol::Message& message) { return Send(message); };
-  callbacks.packs_hits = [this] {
-    return !link_ || link_->version() >= protocol::kPackedHitsVersion;
+  callbacks.protocol_version = [this] {
+    return link_ ? link_->version() : protocol::kProtocolVersion;
   };
   callbacks.on_leases_changed = [this] { OnLeasesChanged(); };
   runner_ = std::make_unique<LeaseWorker>(loop_, settings_, *batches_, *io_, std::move(store_),

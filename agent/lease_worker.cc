@@ -5,9 +5,9 @@
 #include <cmath>
 #include <sstream>
 
-#include "core/packed_hits.h"
 #include "loop/log.h"
 #include "protocol/batch_convert.h"
+#include "protocol/frame_codec.h"
 #include "protocol/limits.h"
 #include "protocol/scene_transfer.h"
 
@@ -305,12 +305,7 @@ void LeaseWorker::MaybeFinishGroup(uint64_t group_id) {
 void LeaseWorker::SendGroup(uint64_t group_id) {
   const auto it = groups_.find(group_id);
   if (it == groups_.end()) return;
-  // Results go out in frames of at most about kResultFrameBytes (~72 bytes a batch, 2-3 a hit
-  // packed, 16 in version 4):
-  // the master's connection reads a frame that size without growing its buffer past what it keeps
-  // between frames (loop/frame_splitter.cc), where 1 MiB frames cost it a fresh, page-faulting
-  // buffer each (20% of the master's CPU on the Cornell job, perf).
-  constexpr size_t kResultFrameBytes = 60 * 1024;
+  // Results go out in frames of at most about protocol::kResultFrameBytes (frame_codec.h).
   std::vector<uint64_t> sent_ids;
   protocol::LeaseResultMsg message;
   size_t bytes = 0;
@@ -321,13 +316,14 @@ void LeaseWorker::SendGroup(uint64_t group_id) {
     message.results.clear();
     bytes = 0;
   };
-  const bool packed = !callbacks_.packs_hits || callbacks_.packs_hits();
+  const uint16_t version =
+      callbacks_.protocol_version ? callbacks_.protocol_version() : protocol::kProtocolVersion;
   for (uint64_t id : it->second.ids) {
     HeldLease* lease = book_.Find(id);
     if (lease == nullptr || lease->stage != LeaseStage::kDone) continue;
-    const std::vector<PatchHits>& hits = lease->result->hits;
-    const size_t cost = 96 + (packed ? PackedHitsBytes(hits) : 16 * hits.size());
-    if (bytes + cost > kResultFrameBytes || message.results.size() == protocol::kMaxLeaseBatches) {
+    const size_t cost = protocol::ResultFrameCost(*lease->result, version);
+    if (bytes + cost > protocol::kResultFrameBytes ||
+        message.results.size() == protocol::kMaxLeaseBatches) {
       flush();
     }
     message.results.push_back(std::move(*lease->result));

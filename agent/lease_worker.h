@@ -42,9 +42,8 @@ class LeaseWorker {
   struct Callbacks {
     // Sends a message to the master; fails when there is no connection.
     std::function<Status(const protocol::Message& message)> send;
-    // Whether the connection packs a LeaseResult's hits (protocol version 5 on): what sizes the
-    // result frames. Unset: packed.
-    std::function<bool()> packs_hits;
+    // The connection's protocol version, which sizes the result frames. Unset: kProtocolVersion.
+    std::function<uint16_t()> protocol_version;
     // The leases held changed (one finished, was returned or dropped): drain and idle checks.
     std::function<void()> on_leases_changed;
   };

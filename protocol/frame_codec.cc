@@ -4,6 +4,7 @@
 #include <string>
 
 #include "base/result.h"
+#include "core/packed_hits.h"
 #include "protocol/message_checks.h"
 #include "protocol/wire_convert.h"
 
@@ -47,6 +48,11 @@ std::vector<uint8_t> EncodeFrame(const Message& message, uint16_t version) {
   for (size_t i = 0; i < kLengthPrefixBytes; ++i) out[i] = static_cast<uint8_t>(size >> (8 * i));
   std::memcpy(out.data() + kLengthPrefixBytes, fbb.GetBufferPointer(), size);
   return out;
+}
+
+size_t ResultFrameCost(const BatchResultMsg& result, uint16_t version) {
+  return 96 + (version >= kPackedHitsVersion ? PackedHitsBytes(result.hits)
+                                             : 16 * result.hits.size());
 }
 
 uint32_t ReadLengthPrefix(const uint8_t* bytes) {

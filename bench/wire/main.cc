@@ -19,7 +19,6 @@
 #include "bench/bench_json.h"
 #include "bench/machine_info.h"
 #include "bench/stopwatch.h"
-#include "core/packed_hits.h"
 #include "protocol/frame_codec.h"
 #include "protocol/limits.h"
 #include "protocol/protocol_session.h"
@@ -37,8 +36,6 @@ struct Case {
 
 // The Cornell job's loopback farm moved 3.4 million hits (55.9 MB of version-4 frames).
 constexpr uint64_t kJobHits = 3'400'000;
-// The agent's cut of a lease's results into frames (agent/lease_worker.cc SendGroup).
-constexpr size_t kResultFrameBytes = 60 * 1024;
 
 std::vector<protocol::BatchResultMsg> MakeBatches(const Case& c) {
   std::mt19937_64 rng(c.patches * 7919ull + c.rays);
@@ -63,15 +60,15 @@ std::vector<protocol::BatchResultMsg> MakeBatches(const Case& c) {
   return batches;
 }
 
-// The frames an agent speaking `version` sends: about kResultFrameBytes each, by its estimate.
+// The frames an agent speaking `version` sends: about kResultFrameBytes each, by its estimate
+// (agent/lease_worker.cc SendGroup).
 std::vector<protocol::LeaseResultMsg> Frames(const std::vector<protocol::BatchResultMsg>& batches,
                                              uint16_t version) {
   std::vector<protocol::LeaseResultMsg> frames(1);
   size_t bytes = 0;
   for (const protocol::BatchResultMsg& r : batches) {
-    const size_t cost = 96 + (version >= protocol::kPackedHitsVersion ? PackedHitsBytes(r.hits)
-                                                                      : 16 * r.hits.size());
-    if (bytes + cost > kResultFrameBytes && !frames.back().results.empty()) {
+    const size_t cost = protocol::ResultFrameCost(r, version);
+    if (bytes + cost > protocol::kResultFrameBytes && !frames.back().results.empty()) {
       frames.emplace_back();
       bytes = 0;
     }
@@ -201,7 +198,7 @@ int Main(int argc, char** argv) {
   }
   nlohmann::json out{{"machine", MachineJson(machine)},
                      {"repetitions", repetitions},
-                     {"result_frame_bytes", kResultFrameBytes},
+                     {"result_frame_bytes", protocol::kResultFrameBytes},
                      {"runs", runs},
                      {"total_seconds", total.Seconds()}};
   out["load_average_end"] = ReadLoadAverage();
