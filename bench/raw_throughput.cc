@@ -291,12 +291,17 @@ RawThroughput MeasureRawThroughput(const BenchScene& bench_scene, const SolverSe
   // Warm-up (untimed): page in the arrays, and check that the raw loop finds the solver's hits.
   raw();
   runner();
-  out.same_hits = CountHits(scene, caster, work, traced) == results;
+  const bool same_as_single_rays = CountHits(scene, caster, work, traced) == results;
   packet();
   for (unsigned t = 0; t < threads; ++t) {
     UnpackHits(packets[t], RayIndex(work, group[t]), RayIndex(work, group[t + 1]), &traced);
   }
-  out.same_hits = out.same_hits && CountHits(scene, caster, work, traced) == results;
+  const bool same_as_packets = CountHits(scene, caster, work, traced) == results;
+  out.same_hits = same_as_single_rays && same_as_packets;
+  std::printf("%s (%zu patches) on %u threads: the tracer's hits %s the raw rtcIntersect1 loop's, %s "
+              "the rtcIntersect16 loop's\n",
+              out.scene.c_str(), out.patches, threads, same_as_single_rays ? "equal" : "DIFFER from",
+              same_as_packets ? "equal" : "DIFFER from");
   for (const BatchResult& r : results) {
     out.escaped_rays += r.escaped_rays;
     out.back_rays += r.back_rays;

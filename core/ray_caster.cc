@@ -260,42 +260,76 @@ RayHit RayCaster::Trace(const Vec3& origin, const Vec3& direction,
 
 void RayCaster::TraceBlock(const RayBlock& block, const Vec3& surface_normal, RayHit* hits) const {
   const int n = block.count;
-  // Embree's records for the block, on the stack: no allocation per ray or per block.
-  RTCRayHit rays[RayBlock::kSize];
+  const int packed = n - n % kPacket;  // rays in whole packets; the rest are traced one by one
   const Vec3 lift = surface_normal * origin_offset_;  // as PrepareRay adds it
-  for (int i = 0; i < n; ++i) {
-    SetRay(static_cast<float>((block.origin_x[i] - centre_.x) + lift.x),
-           static_cast<float>((block.origin_y[i] - centre_.y) + lift.y),
-           static_cast<float>((block.origin_z[i] - centre_.z) + lift.z),
-           static_cast<float>(block.direction_x[i]), static_cast<float>(block.direction_y[i]),
-           static_cast<float>(block.direction_z[i]), &rays[i]);
-  }
+  const auto origin = [&](const double* coordinate, double centre, double lift_along, int i) {
+    return static_cast<float>((coordinate[i] - centre) + lift_along);
+  };
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  for (int i = 0; i < n; ++i) {
-    rtcIntersect1(embree_->scene, &context, &rays[i]);
-    // The hit's triangle record is read after the block: fetch it while the next rays trace.
-    if (rays[i].hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-      __builtin_prefetch(&TriangleOf(rays[i].hit.geomID, rays[i].hit.primID));
+  for (int first = 0; first < packed; first += kPacket) {
+    // Embree's records for 16 rays as structure of arrays, on the stack.
+    alignas(64) RTCRayHit16 packet;
+    alignas(64) int valid[kPacket];
+    for (int l = 0; l < kPacket; ++l) {
+      const int i = first + l;
+      valid[l] = -1;
+      packet.ray.org_x[l] = origin(block.origin_x, centre_.x, lift.x, i);
+      packet.ray.org_y[l] = origin(block.origin_y, centre_.y, lift.y, i);
+      packet.ray.org_z[l] = origin(block.origin_z, centre_.z, lift.z, i);
+      packet.ray.dir_x[l] = static_cast<float>(block.direction_x[i]);
+      packet.ray.dir_y[l] = static_cast<float>(block.direction_y[i]);
+      packet.ray.dir_z[l] = static_cast<float>(block.direction_z[i]);
+      packet.ray.tnear[l] = 0.0f;
+      packet.ray.tfar[l] = INFINITY;
+      packet.ray.time[l] = 0.0f;
+      packet.ray.mask[l] = 0xffffffffu;
+      packet.ray.id[l] = 0;
+      packet.ray.flags[l] = 0;
+      packet.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(valid, embree_->scene, &context, &packet);
+    for (int l = 0; l < kPacket; ++l) {
+      if (packet.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID) {
+        __builtin_prefetch(&TriangleOf(packet.hit.geomID[l], packet.hit.primID[l]));
+      }
+    }
+    for (int l = 0; l < kPacket; ++l) {
+      hits[first + l] = HitOf(block, first + l, packet.hit.geomID[l], packet.hit.primID[l],
+                              {packet.hit.Ng_x[l], packet.hit.Ng_y[l], packet.hit.Ng_z[l]});
     }
   }
-  // The hits' patches and sides after the whole block, so the triangle loads overlap. The side
-  // comes from Embree's Ng unless the ray is too close to grazing for its sign to be certain
-  // (rarely: for a flat patch the margin is about 2^-15 scene size / patch size, a few
-  // thousandths of a cosine on the 50 mm Cornell box); then, as in Trace, from the patch normal.
-  for (int i = 0; i < n; ++i) {
-    const RTCHit& h = rays[i].hit;
-    if (h.geomID == RTC_INVALID_GEOMETRY_ID) {
-      hits[i] = RayHit{};
-      continue;
-    }
-    const Triangle triangle = TriangleOf(h.geomID, h.primID);
-    const Vec3 d{block.direction_x[i], block.direction_y[i], block.direction_z[i]};
-    hits[i].patch = triangle.patch;
-    // The filter let only the front of a two-sided patch through.
-    hits[i].front =
-        h.geomID == kTwoSidedGeometry || MeetsFront(triangle, d, {h.Ng_x, h.Ng_y, h.Ng_z});
+  // The last rays (fewer than a packet) one by one: a packet of a few rays costs about a full one.
+  RTCRayHit rays[kPacket];
+  for (int i = packed; i < n; ++i) {
+    SetRay(origin(block.origin_x, centre_.x, lift.x, i), origin(block.origin_y, centre_.y, lift.y, i),
+           origin(block.origin_z, centre_.z, lift.z, i), static_cast<float>(block.direction_x[i]),
+           static_cast<float>(block.direction_y[i]), static_cast<float>(block.direction_z[i]),
+           &rays[i - packed]);
   }
+  for (int i = packed; i < n; ++i) {
+    RTCRayHit& ray = rays[i - packed];
+    rtcIntersect1(embree_->scene, &context, &ray);
+    if (ray.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+      __builtin_prefetch(&TriangleOf(ray.hit.geomID, ray.hit.primID));
+    }
+  }
+  for (int i = packed; i < n; ++i) {
+    const RTCHit& h = rays[i - packed].hit;
+    hits[i] = HitOf(block, i, h.geomID, h.primID, {h.Ng_x, h.Ng_y, h.Ng_z});
+  }
+}
+
+RayHit RayCaster::HitOf(const RayBlock& block, int i, unsigned geometry, unsigned primitive,
+                        const Vec3& ng) const {
+  if (geometry == RTC_INVALID_GEOMETRY_ID) return RayHit{};
+  const Triangle& triangle = TriangleOf(geometry, primitive);
+  const Vec3 d{block.direction_x[i], block.direction_y[i], block.direction_z[i]};
+  RayHit hit;
+  hit.patch = triangle.patch;
+  // The filter let only the front of a two-sided patch through.
+  hit.front = geometry == kTwoSidedGeometry || MeetsFront(triangle, d, ng);
+  return hit;
 }
 
 bool RayCaster::Unoccluded(const Vec3& origin, const Vec3& target,

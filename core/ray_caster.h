@@ -66,9 +66,11 @@ class RayCaster {
   RayHit Trace(const Vec3& origin, const Vec3& direction, const Vec3& surface_normal) const;
 
   // Trace for each ray of `block` (all leaving a surface with `surface_normal`): hits[i] is bit
-  // for bit Trace(origin i, direction i, surface_normal). The rays are traced back to back, each
-  // hit's triangle record fetched while the next ray traces, and the hits' patches and sides are
-  // worked out after the whole block, so the cache misses overlap instead of following each trace.
+  // for bit Trace(origin i, direction i, surface_normal). The rays are traced 16 at a time as
+  // Embree packets (rtcIntersect16, about 5-7 % faster than one by one on these incoherent rays
+  // with AVX-512), the last fewer than 16 one by one; each hit's triangle record is fetched while
+  // the next rays trace, and the hits' patches and sides are worked out after them, so the cache
+  // misses overlap instead of following each trace.
   // A hit's side comes from Embree's Ng where its sign is certain to be that of the patch normal's
   // (Triangle::ng_margin), otherwise from the patch normal as in Trace.
   void TraceBlock(const RayBlock& block, const Vec3& surface_normal, RayHit* hits) const;
@@ -112,6 +114,11 @@ class RayCaster {
   };
   static float NgMargin(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& patch_normal,
                         double scene_diagonal);
+  // Rays TraceBlock gives Embree at once (rtcIntersect16).
+  static constexpr int kPacket = 16;
+  // TraceBlock's hit of ray i of `block` on Embree's (geometry, primitive) with normal ng.
+  RayHit HitOf(const RayBlock& block, int i, unsigned geometry, unsigned primitive,
+               const Vec3& ng) const;
   // Whether direction d meets the front of `triangle`, given Embree's Ng for the hit: TraceBlock's
   // rule, which the two-sided filter applies too.
   bool MeetsFront(const Triangle& triangle, const Vec3& d, const Vec3& ng) const;

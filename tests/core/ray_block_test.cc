@@ -69,7 +69,10 @@ PatchScene MixedScene() {
 }
 
 TEST(RayBlockTest, SampleBlockAndTraceBlockMatchSampleAndTrace) {
-  const PatchScene scene = MixedScene();
+  // Some patches two-sided: TraceBlock's packets (16 rays) and its last rays one by one must both
+  // go through the front-only filter as Trace does.
+  PatchScene scene = MixedScene();
+  for (size_t i = 1; i < scene.patches.size(); i += 5) scene.patches[i].two_sided = true;
   const RayCaster caster(scene);
   for (SamplerKind kind : {SamplerKind::kGrid, SamplerKind::kRandom, SamplerKind::kSobol}) {
     const RaySampler sampler(kind, 11, 4.0);
@@ -85,7 +88,7 @@ TEST(RayBlockTest, SampleBlockAndTraceBlockMatchSampleAndTrace) {
                                 : uint64_t{3000};
       ASSERT_GT(late, 37u);
       for (uint64_t first : {uint64_t{0}, uint64_t{37}, late}) {
-        for (int count : {1, 17, RayBlock::kSize}) {
+        for (int count : {1, 16, 17, 47, RayBlock::kSize}) {
           shot.SampleBlock(first, count, &block);
           caster.TraceBlock(block, patch.normal, hits);
           ASSERT_EQ(block.count, count);
