@@ -65,10 +65,12 @@ inline void UnitCircle(double v, double* c, double* s) {
 
 // The block versions of SamplePatchPoint and SampleCosineDirection: the same operations in the same
 // order on each ray (so the same bits), written as branch-free loops over arrays that GCC
-// vectorises, in AVX2 where the CPU has it (no FMA: contracting a*b+c would change the bits).
-// RADFARM_CLONES picks the vector width at load time.
+// vectorises, in AVX-512 or AVX2 where the CPU has them (8 or 4 doubles a vector; add, multiply,
+// divide and sqrt round alike at every width, and the file is built with -ffp-contract=off since
+// contracting a*b+c into an FMA would change the bits). RADFARM_CLONES picks the width at load
+// time; tests/core/ray_block_test.cc holds the width the machine picks to the one-ray path.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define RADFARM_CLONES __attribute__((target_clones("avx2", "default")))
+#define RADFARM_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define RADFARM_CLONES
 #endif
