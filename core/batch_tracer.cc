@@ -91,6 +91,9 @@ BatchResult BatchTracer::Run(const Batch& batch) {
       sampler_.Shot(shooter, batch.shooter, batch.round, caster_.origin_offset());
   const HitSum sum = HitSumFor(batch.ray_count);
   uint64_t* const weight_by_patch = sum == HitSum::kDense ? WeightByPatch() : nullptr;
+  // A long batch for the scene's patches is summed by a pass over the whole dense array
+  // (SumDense), so it need not note the patches it touches.
+  const bool note_touched = uint64_t{batch.ray_count} * 16 < patch_count_;
   if (sum == HitSum::kHashed) PrepareTable(batch.ray_count);
   RayBlock& block = *block_;
   RayHit hits[RayBlock::kSize];
@@ -98,7 +101,7 @@ BatchResult BatchTracer::Run(const Batch& batch) {
     const int count = static_cast<int>(std::min<uint32_t>(RayBlock::kSize, batch.ray_count - done));
     shot.SampleBlock(batch.first_ray + done, count, &block);
     caster_.TraceBlock(block, shooter.normal, hits);
-    if (sum == HitSum::kDense) {
+    if (sum == HitSum::kDense && patch_count_ > kPrefetchMinPatches) {
       // Start the loads of the hit patches' weights before the loop below needs them.
       for (int i = 0; i < count; ++i) {
         if (hits[i].patch != RayHit::kMiss) __builtin_prefetch(&weight_by_patch[hits[i].patch]);
@@ -118,7 +121,7 @@ BatchResult BatchTracer::Run(const Batch& batch) {
       } else if (sum == HitSum::kHashed) {
         if (weight != 0) AddHashed(hit.patch, weight);
       } else {
-        if (weight_by_patch[hit.patch] == 0) touched_.push_back(hit.patch);
+        if (note_touched && weight_by_patch[hit.patch] == 0) touched_.push_back(hit.patch);
         weight_by_patch[hit.patch] += weight;
       }
     }
@@ -131,7 +134,7 @@ BatchResult BatchTracer::Run(const Batch& batch) {
       SumHashed(&result);
       break;
     case HitSum::kDense:
-      SumDense(weight_by_patch, &result);
+      SumDense(weight_by_patch, !note_touched, &result);
       // In a big scene only a batch too long for the table comes here: the array is not kept.
       if (patch_count_ > kDenseMaxPatches) weight_by_patch_.reset();
       break;
@@ -139,18 +142,21 @@ BatchResult BatchTracer::Run(const Batch& batch) {
   return result;
 }
 
-void BatchTracer::SumDense(uint64_t* weight_by_patch, BatchResult* result) {
-  result->hits.reserve(touched_.size());
-  // The hits in patch order: a sort of the touched patches, or, when they are many against the
-  // scene's patches (a long batch in a small scene), one pass over the dense array, which is
-  // cheaper than sorting them.
-  if (touched_.size() * 16 >= patch_count_) {
+void BatchTracer::SumDense(uint64_t* weight_by_patch, bool scan, BatchResult* result) {
+  // The hits in patch order: one pass over the dense array when the batch is long against the
+  // scene's patches (cheaper than sorting its many hits; it did not note them), else a sort of
+  // the patches it touched.
+  if (scan || touched_.size() * 16 >= patch_count_) {
+    size_t distinct = 0;
+    for (uint32_t patch = 0; patch < patch_count_; ++patch) distinct += weight_by_patch[patch] != 0;
+    result->hits.reserve(distinct);
     for (uint32_t patch = 0; patch < patch_count_; ++patch) {
       if (weight_by_patch[patch] == 0) continue;
       result->hits.push_back({patch, weight_by_patch[patch]});
       weight_by_patch[patch] = 0;
     }
   } else {
+    result->hits.reserve(touched_.size());
     std::sort(touched_.begin(), touched_.end());
     for (uint32_t patch : touched_) {
       result->hits.push_back({patch, weight_by_patch[patch]});

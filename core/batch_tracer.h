@@ -44,9 +44,12 @@ class BatchTracer {
   enum class HitSum { kListed, kDense, kHashed };
   static constexpr uint32_t kListRays = 256;
   static constexpr size_t kDenseMaxPatches = size_t{1} << 16;
+  // Below this many patches the dense array (8 bytes a patch) stays in L1: prefetching its
+  // entries before adding to them only costs.
+  static constexpr size_t kPrefetchMinPatches = 4096;
   HitSum HitSumFor(uint32_t ray_count) const;
   uint64_t* WeightByPatch();  // the dense array, made (zeroed) on first use
-  void SumDense(uint64_t* weight_by_patch, BatchResult* result);
+  void SumDense(uint64_t* weight_by_patch, bool scan, BatchResult* result);
   void SumListed(BatchResult* result);
   // The hash table: slots for at least twice `ray_count` distinct patches, all empty.
   void PrepareTable(uint32_t ray_count);

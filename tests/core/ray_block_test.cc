@@ -221,6 +221,24 @@ TEST(RayBlockTest, ShortAndLongBatchesSumTheirHitsAsRayByRay) {
   }
 }
 
+// A scene of 5,400 patches: a batch of 257-337 rays notes the patches it touches in the dense
+// array and sorts them; a longer one (16 rays a patch or more) scans the array; and the array is
+// big enough to be prefetched.
+TEST(RayBlockTest, MidSizedScenesSumDenseBatchesFromTheTouchedPatchesOrAScan) {
+  const PatchScene scene = testing::MakeClosedBox({-1, -1, -1}, {1, 2, 3}, 30, {{0.5, 0.5, 0.5}, {}});
+  ASSERT_EQ(scene.patches.size(), 5400u);
+  const RayCaster caster(scene);
+  const RaySampler sampler(SamplerKind::kSobol, 9, 4.0);
+  BatchTracer tracer(scene, caster, sampler);
+  for (uint32_t id = 0; id < scene.patches.size(); id += 997) {
+    for (uint32_t rays : {300u, 2000u, 257u, 337u, 338u, 20u, 5000u, 290u}) {
+      const Batch batch{4, id, 3, rays};
+      ASSERT_EQ(tracer.Run(batch), CountRayByRay(scene, caster, sampler, batch))
+          << "patch " << id << ", " << rays << " rays";
+    }
+  }
+}
+
 // A scene of more than BatchTracer's kDenseMaxPatches (65,536) patches: long batches are summed
 // in the hash table, and a batch too long for the table in a dense array made for it alone.
 TEST(RayBlockTest, BigScenesSumHashedAndDenseBatchesAsRayByRay) {
