@@ -75,7 +75,8 @@ class BatchTracer {
   std::vector<uint32_t> slot_patch_;
   std::vector<uint64_t> slot_weight_;
   std::vector<uint32_t> used_slots_;
-  std::vector<uint64_t> slot_keys_;  // SumHashed's scratch
+  std::vector<uint64_t> slot_keys_;     // SumHashed's scratch
+  std::vector<uint64_t> sort_scratch_;  // and its sort's
   uint32_t slot_shift_ = 32;         // 32 - log2(table size)
 };
 
