@@ -298,10 +298,11 @@ RawThroughput MeasureRawThroughput(const BenchScene& bench_scene, const SolverSe
   }
   const bool same_as_packets = CountHits(scene, caster, work, traced) == results;
   out.same_hits = same_as_single_rays && same_as_packets;
-  std::printf("%s (%zu patches) on %u threads: the tracer's hits %s the raw rtcIntersect1 loop's, %s "
-              "the rtcIntersect16 loop's\n",
-              out.scene.c_str(), out.patches, threads, same_as_single_rays ? "equal" : "DIFFER from",
-              same_as_packets ? "equal" : "DIFFER from");
+  std::printf(
+      "%s (%zu patches) on %u threads: the tracer's hits %s the raw rtcIntersect1 loop's, %s "
+      "the rtcIntersect16 loop's\n",
+      out.scene.c_str(), out.patches, threads, same_as_single_rays ? "equal" : "DIFFER from",
+      same_as_packets ? "equal" : "DIFFER from");
   for (const BatchResult& r : results) {
     out.escaped_rays += r.escaped_rays;
     out.back_rays += r.back_rays;

@@ -225,7 +225,8 @@ TEST(RayBlockTest, ShortAndLongBatchesSumTheirHitsAsRayByRay) {
 // array and sorts them; a longer one (16 rays a patch or more) scans the array; and the array is
 // big enough to be prefetched.
 TEST(RayBlockTest, MidSizedScenesSumDenseBatchesFromTheTouchedPatchesOrAScan) {
-  const PatchScene scene = testing::MakeClosedBox({-1, -1, -1}, {1, 2, 3}, 30, {{0.5, 0.5, 0.5}, {}});
+  const PatchScene scene =
+      testing::MakeClosedBox({-1, -1, -1}, {1, 2, 3}, 30, {{0.5, 0.5, 0.5}, {}});
   ASSERT_EQ(scene.patches.size(), 5400u);
   const RayCaster caster(scene);
   const RaySampler sampler(SamplerKind::kSobol, 9, 4.0);
