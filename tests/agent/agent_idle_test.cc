@@ -105,7 +105,7 @@ TEST_F(AgentIdleTest, AReturningUserGetsEveryLeaseBackAndNoResultIsSent) {
   AgentProcess agent(IdleArgs(kUserOnlyPolicy));
   ASSERT_TRUE(WaitConnected(1, agent));
   // One batch long enough to be running when the user comes back, two queued behind it.
-  const auto running = Assign(Job(1), 1, 2, 0, 5000000);
+  const auto running = Assign(Job(1), 1, 2, 0, kLongBatchRays);
   const auto queued_a = Assign(Job(1), 2, 3, 0, 1000);
   const auto queued_b = Assign(Job(1), 3, 4, 0, 1000);
   master_.Send({running, queued_a, queued_b});
@@ -159,8 +159,8 @@ TEST_F(AgentIdleTest, TheMastersLeasesReturnEachTimeTheUserComesBack) {
   AgentProcess agent(IdleArgs(kUserOnlyPolicy, 2));
   for (int visit = 1; visit <= 2; ++visit) {
     ASSERT_TRUE(WaitConnected(visit, agent));
-    const auto a = Assign(Job(10 + visit), 1, 1, 0, 5000000);
-    const auto b = Assign(Job(10 + visit), 2, 2, 0, 5000000);
+    const auto a = Assign(Job(10 + visit), 1, 1, 0, kLongBatchRays);
+    const auto b = Assign(Job(10 + visit), 2, 2, 0, kLongBatchRays);
     master_.Send({a, b});
     // Both leases are held (the scene is fetched on the first visit only).
     ASSERT_TRUE(agent.WaitForLog("lease job " + std::to_string(10 + visit) + " batch 2 attempt"))

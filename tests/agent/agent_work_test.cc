@@ -193,7 +193,7 @@ TEST_F(AgentWorkTest, CancelDropsTheJobsQueuedAndRunningWork) {
 TEST_F(AgentWorkTest, ALostConnectionDropsEveryLeaseAndDiscardsTheirResults) {
   std::unique_ptr<AgentProcess> agent = StartAgent(1);
   // One batch long enough to be still running when the connection goes, one queued behind it.
-  const auto running = Assign(Job(1), 1, 2, 0, 5000000);
+  const auto running = Assign(Job(1), 1, 2, 0, kLongBatchRays);
   const auto queued = Assign(Job(1), 2, 3, 0, 1000);
   master_.Send({running, queued});
   ASSERT_TRUE(agent->WaitForLog("ready, ")) << agent->Log();
