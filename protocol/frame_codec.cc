@@ -51,8 +51,8 @@ std::vector<uint8_t> EncodeFrame(const Message& message, uint16_t version) {
 }
 
 size_t ResultFrameCost(const BatchResultMsg& result, uint16_t version) {
-  return 96 + (version >= kPackedHitsVersion ? PackedHitsBytes(result.hits)
-                                             : 16 * result.hits.size());
+  return 96 +
+         (version >= kPackedHitsVersion ? PackedHitsBytes(result.hits) : 16 * result.hits.size());
 }
 
 uint32_t ReadLengthPrefix(const uint8_t* bytes) {

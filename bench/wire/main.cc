@@ -4,7 +4,8 @@
 // the real ProtocolSession on one thread. The batches are synthetic, as a shooting round makes
 // them: `rays` Sobol rays (weight 1 each) of one shooter landing on patches drawn uniformly from
 // `patches`, summed per patch and sorted, until a job's worth of hits; they go in frames of about
-// 60 KiB, cut as the agent cuts them in each version. Prints a table and writes bench/results/wire_bench.json.
+// 60 KiB, cut as the agent cuts them in each version. Prints a table and writes
+// bench/results/wire_bench.json.
 //
 //   wire_bench [--json PATH] [--repetitions N]
 #include <algorithm>
@@ -159,7 +160,8 @@ int Main(int argc, char** argv) {
   nlohmann::json runs = nlohmann::json::array();
   for (const Case& c : cases) {
     const std::vector<protocol::BatchResultMsg> batches = MakeBatches(c);
-    const std::vector<protocol::LeaseResultMsg> frames[2] = {Frames(batches, 4), Frames(batches, 5)};
+    const std::vector<protocol::LeaseResultMsg> frames[2] = {Frames(batches, 4),
+                                                             Frames(batches, 5)};
     uint64_t hits = 0;
     for (const auto& r : batches) hits += r.hits.size();
     std::vector<double> encode[2], decode[2];
