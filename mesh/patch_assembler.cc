@@ -42,22 +42,39 @@ double Perimeter(const std::vector<Vec3>& corners) {
 
 }  // namespace
 
-PatchAssembler::PatchAssembler(double tol, double min_area, const std::vector<Material>& materials)
+PatchAssembler::PatchAssembler(double tol, double min_area, const std::vector<Material>& materials,
+                               size_t expected_pieces)
     : tol_(tol), min_area_(min_area), materials_(materials), welder_(tol) {
   data_.props.AddTo(data_.mesh.get());
   for (const Material& m : materials) data_.scene.material_names.push_back(m.name);
+  if (expected_pieces > 0) {
+    // A grid of quads has about as many vertices as faces and twice the edges; triangles fewer
+    // vertices, surface borders their own copies: generous bounds, paid in address space only.
+    const size_t n = expected_pieces;
+    data_.mesh->reserve(n + n / 2, 2 * n + n / 2, n);
+    data_.scene.patches.reserve(n);
+    data_.group_vertex.reserve(n + n / 2);
+    group_surface_.reserve(n + n / 2);
+    first_group_of_weld_.reserve(n + n / 2);
+  }
+}
+
+uint32_t PatchAssembler::NewGroup(uint32_t surface, uint32_t weld) {
+  const auto group = static_cast<uint32_t>(group_surface_.size());
+  const OmMesh::VertexHandle vh = data_.mesh->add_vertex(ToOm(welder_.point(weld)));
+  data_.mesh->property(data_.props.group, vh) = group;
+  data_.group_vertex.push_back(vh);
+  group_surface_.push_back(surface);
+  return group;
 }
 
 uint32_t PatchAssembler::GroupOf(uint32_t surface, uint32_t weld) {
-  const uint64_t key = uint64_t{surface} << 32 | weld;
-  const auto [it, inserted] =
-      group_of_key_.try_emplace(key, static_cast<uint32_t>(group_surface_.size()));
-  if (inserted) {
-    const OmMesh::VertexHandle vh = data_.mesh->add_vertex(ToOm(welder_.point(weld)));
-    data_.mesh->property(data_.props.group, vh) = it->second;
-    data_.group_vertex.push_back(vh);
-    group_surface_.push_back(surface);
-  }
+  if (weld >= first_group_of_weld_.size()) first_group_of_weld_.resize(weld + 1, kNoGroup);
+  uint32_t& first = first_group_of_weld_[weld];
+  if (first == kNoGroup) return first = NewGroup(surface, weld);
+  if (group_surface_[first] == surface) return first;
+  const auto [it, inserted] = other_group_of_key_.try_emplace(uint64_t{surface} << 32 | weld, 0);
+  if (inserted) it->second = NewGroup(surface, weld);
   return it->second;
 }
 

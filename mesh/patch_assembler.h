@@ -41,7 +41,11 @@ struct PatchMeshData {
 class PatchAssembler {
  public:
   // tol: welding distance; min_area: pieces smaller than this after welding are skipped.
-  PatchAssembler(double tol, double min_area, const std::vector<Material>& materials);
+  // expected_pieces: about how many pieces will be added (0: unknown). The mesh's arrays are
+  // reserved for them, so they do not grow by copying (address space only: pages are touched as
+  // they fill).
+  PatchAssembler(double tol, double min_area, const std::vector<Material>& materials,
+                 size_t expected_pieces = 0);
 
   // Adds one piece as the next patch. Returns false when welding left it degenerate.
   bool Add(const PieceCorners& piece, uint32_t surface, uint32_t material);
@@ -50,6 +54,7 @@ class PatchAssembler {
 
  private:
   uint32_t GroupOf(uint32_t surface, uint32_t weld);
+  uint32_t NewGroup(uint32_t surface, uint32_t weld);
   std::vector<OmMesh::VertexHandle> ConnectableVertices(const std::vector<uint32_t>& groups);
   void FindEdgePoints();
 
@@ -57,7 +62,11 @@ class PatchAssembler {
   double min_area_;
   const std::vector<Material>& materials_;
   PointWelder welder_;
-  std::unordered_map<uint64_t, uint32_t> group_of_key_;  // surface << 32 | weld id
+  // A weld's group on the first surface that used it, by weld id (kNoGroup: none yet); the
+  // groups of the surfaces after it (the welds on surface borders) by surface << 32 | weld id.
+  static constexpr uint32_t kNoGroup = UINT32_MAX;
+  std::vector<uint32_t> first_group_of_weld_;
+  std::unordered_map<uint64_t, uint32_t> other_group_of_key_;
   std::vector<uint32_t> group_surface_;
   double edge_length_sum_ = 0;
   PatchMeshData data_;

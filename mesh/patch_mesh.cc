@@ -317,7 +317,7 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   pm.tol_ = tol;
   pm.memory_limit_ = mp.memory_limit;
   pm.min_area_ = min_area;
-  PatchAssembler assembler(tol, min_area, pm.materials_);
+  PatchAssembler assembler(tol, min_area, pm.materials_, mp.piece_count);
   BackSurfaces back_surface(&pm.surface_count_);
   FacePieces cut;
   for (size_t f = 0; f < faces.size(); ++f) {
@@ -378,7 +378,7 @@ PatchMesh PatchMesh::Rebuilt(const std::vector<Piece>& pieces) const {
   pm.tol_ = tol_;
   pm.memory_limit_ = memory_limit_;
   pm.min_area_ = min_area_;
-  PatchAssembler assembler(tol_, min_area_, pm.materials_);
+  PatchAssembler assembler(tol_, min_area_, pm.materials_, pieces.size());
   for (const Piece& piece : pieces) assembler.Add(piece.corners, piece.surface, piece.material);
   pm.data_ = std::move(assembler).Finish();
   pm.data_.scene.lights = data_.scene.lights;

@@ -8,9 +8,16 @@
 namespace radfarm {
 namespace {
 
-// Keeps cell coordinates of absurd inputs inside int64 range.
+// Cell coordinates of absurd inputs clamped into int32's range: points beyond share the border
+// cells, which stay correct (CellOf is monotonic), only slower.
 int64_t CellCoordinate(double v) {
-  return static_cast<int64_t>(std::clamp(std::floor(v), -1e18, 1e18));
+  return static_cast<int64_t>(std::clamp(std::floor(v), -2147483647.0, 2147483647.0));
+}
+
+uint64_t Mix(uint64_t z) {  // splitmix64's finaliser
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
 }
 
 }  // namespace
@@ -18,38 +25,53 @@ int64_t CellCoordinate(double v) {
 PointGrid::PointGrid(double cell_size)
     : cell_size_(cell_size > 0 && std::isfinite(cell_size) ? cell_size : 1.0) {}
 
-size_t PointGrid::CellHash::operator()(const Cell& c) const {
-  // splitmix64's finaliser over a combination of the three: lattice-like cell coordinates (grids
-  // of patch corners) must not collide in the table's buckets.
-  auto mix = [](uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  };
-  return static_cast<size_t>(
-      mix(static_cast<uint64_t>(c.x) +
-          mix(static_cast<uint64_t>(c.y) + mix(static_cast<uint64_t>(c.z)))));
+PointGrid::Cell PointGrid::CellOf(const Vec3& p) const {
+  const Vec3 d = p - origin_;
+  return {CellCoordinate(d.x / cell_size_), CellCoordinate(d.y / cell_size_),
+          CellCoordinate(d.z / cell_size_)};
 }
 
-PointGrid::Cell PointGrid::CellOf(const Vec3& p) const {
-  return {CellCoordinate(p.x / cell_size_), CellCoordinate(p.y / cell_size_),
-          CellCoordinate(p.z / cell_size_)};
+size_t PointGrid::SlotOf(const Cell& c) const {
+  // Lattice-like cell coordinates (grids of patch corners) must not collide in the table.
+  const size_t mask = slots_.size() - 1;
+  size_t slot = Mix(static_cast<uint64_t>(c.x) +
+                    Mix(static_cast<uint64_t>(c.y) + Mix(static_cast<uint64_t>(c.z)))) &
+                mask;
+  while (true) {
+    const Slot& s = slots_[slot];
+    if (s.latest == kNone || (s.x == c.x && s.y == c.y && s.z == c.z)) return slot;
+    slot = (slot + 1) & mask;
+  }
+}
+
+void PointGrid::Grow() {
+  std::vector<Slot> old(std::max<size_t>(64, 2 * slots_.size()), Slot{0, 0, 0, kNone});
+  old.swap(slots_);
+  for (const Slot& s : old) {
+    if (s.latest != kNone) slots_[SlotOf({s.x, s.y, s.z})] = s;
+  }
 }
 
 uint32_t PointGrid::Add(const Vec3& p) {
   const uint32_t id = static_cast<uint32_t>(points_.size());
+  if (points_.empty()) origin_ = p;
   points_.push_back(p);
-  const auto [it, first] = latest_in_cell_.try_emplace(CellOf(p), id);
-  previous_in_cell_.push_back(first ? kNone : it->second);
-  it->second = id;
+  if (2 * (occupied_cells_ + 1) > slots_.size()) Grow();
+  const Cell c = CellOf(p);
+  Slot& slot = slots_[SlotOf(c)];
+  if (slot.latest == kNone) {
+    slot = {static_cast<int32_t>(c.x), static_cast<int32_t>(c.y), static_cast<int32_t>(c.z), kNone};
+    ++occupied_cells_;
+  }
+  previous_in_cell_.push_back(slot.latest);
+  slot.latest = id;
   return id;
 }
 
 template <class Take>
 void PointGrid::ForEachInCell(const Cell& c, Take&& take) const {
-  const auto it = latest_in_cell_.find(c);
-  if (it == latest_in_cell_.end()) return;
-  for (uint32_t id = it->second; id != kNone; id = previous_in_cell_[id]) take(id);
+  if (slots_.empty()) return;
+  for (uint32_t id = slots_[SlotOf(c)].latest; id != kNone; id = previous_in_cell_[id]) take(id);
 }
 
 uint32_t PointGrid::FirstNear(const Vec3& p, double tol) const {
@@ -113,7 +135,7 @@ std::vector<uint32_t> PointGrid::InBox(const Bounds3& box) const {
   // In doubles: the cell count of a huge box overflows any integer.
   const double overlapped =
       (double(hi.x - lo.x) + 1) * (double(hi.y - lo.y) + 1) * (double(hi.z - lo.z) + 1);
-  if (overlapped > double(latest_in_cell_.size())) {
+  if (overlapped > double(occupied_cells_)) {
     for (uint32_t id = 0; id < points_.size(); ++id) take(id);
   } else {
     for (int64_t x = lo.x; x <= hi.x; ++x)
@@ -124,6 +146,9 @@ std::vector<uint32_t> PointGrid::InBox(const Bounds3& box) const {
   return ids;
 }
 
-PointWelder::PointWelder(double tol) : tol_(tol), grid_(4 * tol) {}
+// Cells of 32 tolerances: a query's box of +-tol then lies in one cell in most axes (a cell of 4
+// visited 3.4 cells a query on average), while patch corners, hundreds of tolerances apart, still
+// fall one to a cell.
+PointWelder::PointWelder(double tol) : tol_(tol), grid_(32 * tol) {}
 
 }  // namespace radfarm

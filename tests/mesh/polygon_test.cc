@@ -110,6 +110,31 @@ TEST(PointGridTest, FirstNearIsTheLowestIdWithinTheTolerance) {
   EXPECT_LT(found, 2000);
 }
 
+// Cells are counted from the first point in 32 bits: points a trillion cells away share the
+// clamped border cells, and every query still finds what a brute-force search finds.
+TEST(PointGridTest, FarPointsShareBorderCellsAndAreStillFound) {
+  PointGrid grid(1e-3);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3 base = i % 3 == 0   ? Vec3{0, 0, 0}
+                      : i % 3 == 1 ? Vec3{1e9, -1e9, 5}
+                                   : Vec3{-1e9, 0, 1e9};
+    points.push_back(base + Vec3{u(rng), u(rng), u(rng)} * 0.05);
+    grid.Add(points.back());
+  }
+  for (int q = 0; q < 600; ++q) {
+    const Vec3 p = points[q * 5] + Vec3{u(rng), u(rng), u(rng)} * 0.004;
+    const double tol = 0.005;
+    uint32_t brute = PointGrid::kNone;
+    for (uint32_t id = 0; id < points.size() && brute == PointGrid::kNone; ++id) {
+      if (DistanceToSegment(points[id], p, p) <= tol) brute = id;
+    }
+    ASSERT_EQ(grid.FirstNear(p, tol), brute) << q;
+  }
+}
+
 TEST(PointWelderTest, FirstPointOfAClusterStandsForIt) {
   PointWelder welder(1e-6);
   EXPECT_EQ(welder.Weld({1, 2, 3}), 0u);
