@@ -72,6 +72,7 @@ void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
 Status ApplyOverrides(const JobOverrides& overrides, Job* job) {
   SolverSettings& s = job->solver;
   if (overrides.threads) s.threads = *overrides.threads;
+  job->mesh.threads = s.threads;  // meshing uses the solve's threads (0: one per core)
   if (overrides.seed) s.seed = *overrides.seed;
   if (overrides.tolerance) s.tolerance = *overrides.tolerance;
   if (overrides.rays) s.max_rays = *overrides.rays;

@@ -34,20 +34,25 @@ std::vector<Vec3> ProbePoints(const CleanFace& face, double tol) {
 }  // namespace
 
 std::vector<double> MeanFreePaths(const std::vector<CleanFace>& faces, const FreePathProbe& probe,
-                                  double tol) {
+                                  double tol, ThreadPool* pool) {
   const double diagonal = probe.diagonal();
-  std::vector<double> lengths;
   std::vector<double> paths(faces.size(), diagonal);
   if (probe.empty()) return paths;
-  for (size_t f = 0; f < faces.size(); ++f) {
+  std::vector<std::vector<double>> lengths(pool != nullptr ? pool->size() : 1);  // per worker
+  const auto face_path = [&](unsigned worker, size_t f) {
     const std::vector<Vec3> points = ProbePoints(faces[f], tol);
     double sum = 0;
     for (size_t p = 0; p < points.size(); ++p) {
       probe.FreePaths(points[p], faces[f].normal, static_cast<uint32_t>(p), kAutoProbeDirections,
-                      diagonal, false, &lengths);
-      for (double length : lengths) sum += length;  // ray by ray, in one fixed order
+                      diagonal, false, &lengths[worker]);
+      for (double length : lengths[worker]) sum += length;  // ray by ray, in one fixed order
     }
     if (!points.empty()) paths[f] = sum / static_cast<double>(points.size() * kAutoProbeDirections);
+  };
+  if (pool != nullptr) {
+    pool->ParallelFor(faces.size(), face_path);
+  } else {
+    for (size_t f = 0; f < faces.size(); ++f) face_path(0, f);
   }
   return paths;
 }
@@ -57,8 +62,8 @@ double LadderSize(double size) {
 }
 
 std::vector<double> AutoPatchSizes(const std::vector<CleanFace>& faces, const FreePathProbe& probe,
-                                   double tol) {
-  std::vector<double> sizes = MeanFreePaths(faces, probe, tol);
+                                   double tol, ThreadPool* pool) {
+  std::vector<double> sizes = MeanFreePaths(faces, probe, tol, pool);
   for (size_t f = 0; f < faces.size(); ++f) {
     const double floor_size = Extent(faces[f]) / kAutoMaxFaceDivisions;
     sizes[f] = LadderSize(std::max(sizes[f] / kAutoChordDivisions, floor_size));

@@ -10,12 +10,13 @@
 // a ray that leaves the scene counts as the scene's diagonal. A face in a narrow gap (a
 // cabinet's back against a wall) is cut no finer than its bounding box's diagonal /
 // kAutoMaxFaceDivisions. Sizes are rounded down to a ladder of kAutoSizeSteps per octave, so faces
-// in alike rooms get the same size despite rounding in the rays. Deterministic: one thread, fixed
-// directions.
+// in alike rooms get the same size despite rounding in the rays. Deterministic: fixed directions,
+// each face's rays summed in one order whatever thread probes it.
 #pragma once
 
 #include <vector>
 
+#include "core/thread_pool.h"
 #include "mesh/clean_faces.h"
 #include "mesh/free_path_probe.h"
 
@@ -28,13 +29,14 @@ inline constexpr double kAutoMaxFaceDivisions = 32;
 inline constexpr double kAutoSizeSteps = 8;
 
 // Per face, its mean free path L (see above), measured on `probe`, a probe of these faces (the one
-// the mesher keeps for narrow spaces too); a miss counts as the probe's diagonal.
+// the mesher keeps for narrow spaces too); a miss counts as the probe's diagonal. The faces are
+// spread over `pool` when given.
 std::vector<double> MeanFreePaths(const std::vector<CleanFace>& faces, const FreePathProbe& probe,
-                                  double tol);
+                                  double tol, ThreadPool* pool = nullptr);
 
 // Per face, its automatic target patch size from its mean free path.
 std::vector<double> AutoPatchSizes(const std::vector<CleanFace>& faces, const FreePathProbe& probe,
-                                   double tol);
+                                   double tol, ThreadPool* pool = nullptr);
 
 // The largest ladder size 2^(i / kAutoSizeSteps) (integer i) not above `size` (> 0).
 double LadderSize(double size);

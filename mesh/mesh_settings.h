@@ -11,6 +11,9 @@ struct MeshSettings {
   // Refuse a mesh whose solve would need more memory than this, in bytes (memory_estimate.h);
   // 0: this machine's physical memory. Not a job file key: it belongs to the machine that solves.
   uint64_t max_memory = 0;
+  // Threads that mesh (the probes, the narrow-space search, the T-vertex search); 0: one per
+  // core. The mesh is the same bits for any count. Not a job file key either.
+  unsigned threads = 0;
 };
 
 }  // namespace radfarm

@@ -139,7 +139,7 @@ bool PatchAssembler::Add(const PieceCorners& piece, uint32_t surface, uint32_t m
   return true;
 }
 
-void PatchAssembler::FindEdgePoints() {
+void PatchAssembler::FindEdgePoints(ThreadPool* pool) {
   const OmMesh& mesh = *data_.mesh;
   const size_t faces = data_.scene.patches.size();
   const double mean_edge = faces > 0 ? edge_length_sum_ / (3.0 * static_cast<double>(faces)) : 0;
@@ -147,24 +147,40 @@ void PatchAssembler::FindEdgePoints() {
   for (OmMesh::VertexHandle vh : data_.group_vertex) grid.Add(FromOm(mesh.point(vh)));
 
   // Only a boundary edge can have another patch's corner on it: an edge with patches on both sides
-  // is matched end to end.
-  for (uint32_t f = 0; f < faces; ++f) {
-    std::array<OmMesh::VertexHandle, 4> vhs;
-    const int n = FaceCorners(mesh, mesh.face_handle(f), &vhs);
-    for (int j = 0; j < n; ++j) {
-      const OmMesh::VertexHandle va = vhs[j], vb = vhs[(j + 1) % n];
-      if (!mesh.is_boundary(mesh.opposite_halfedge_handle(mesh.find_halfedge(va, vb)))) continue;
-      const uint32_t ga = mesh.property(data_.props.group, va);
-      const uint32_t gb = mesh.property(data_.props.group, vb);
-      const Vec3 a = FromOm(mesh.point(va)), b = FromOm(mesh.point(vb));
-      const double length = Length(b - a);
-      for (uint32_t g : grid.NearSegment(a, b, tol_)) {
-        if (g == ga || g == gb || group_surface_[g] != data_.scene.patches[f].surface) continue;
-        const double t = Dot(grid.point(g) - a, b - a) / (length * length);
-        if (t * length <= tol_ || (1 - t) * length <= tol_) continue;
-        data_.edge_points.push_back({f, static_cast<uint32_t>(j), t, g});
+  // is matched end to end. Read-only queries, in chunks of faces spread over the pool; the sort
+  // below orders the points whichever chunk found them.
+  constexpr size_t kChunkFaces = 4096;
+  const size_t chunks = (faces + kChunkFaces - 1) / kChunkFaces;
+  std::vector<std::vector<EdgePoint>> found(chunks);
+  const auto search = [&](unsigned, size_t chunk) {
+    const auto first = static_cast<uint32_t>(chunk * kChunkFaces);
+    const auto end = static_cast<uint32_t>(std::min(faces, (chunk + 1) * kChunkFaces));
+    for (uint32_t f = first; f < end; ++f) {
+      std::array<OmMesh::VertexHandle, 4> vhs;
+      const int n = FaceCorners(mesh, mesh.face_handle(f), &vhs);
+      for (int j = 0; j < n; ++j) {
+        const OmMesh::VertexHandle va = vhs[j], vb = vhs[(j + 1) % n];
+        if (!mesh.is_boundary(mesh.opposite_halfedge_handle(mesh.find_halfedge(va, vb)))) continue;
+        const uint32_t ga = mesh.property(data_.props.group, va);
+        const uint32_t gb = mesh.property(data_.props.group, vb);
+        const Vec3 a = FromOm(mesh.point(va)), b = FromOm(mesh.point(vb));
+        const double length = Length(b - a);
+        for (uint32_t g : grid.NearSegment(a, b, tol_)) {
+          if (g == ga || g == gb || group_surface_[g] != data_.scene.patches[f].surface) continue;
+          const double t = Dot(grid.point(g) - a, b - a) / (length * length);
+          if (t * length <= tol_ || (1 - t) * length <= tol_) continue;
+          found[chunk].push_back({f, static_cast<uint32_t>(j), t, g});
+        }
       }
     }
+  };
+  if (pool != nullptr) {
+    pool->ParallelFor(chunks, search);
+  } else {
+    for (size_t chunk = 0; chunk < chunks; ++chunk) search(0, chunk);
+  }
+  for (const std::vector<EdgePoint>& points : found) {
+    data_.edge_points.insert(data_.edge_points.end(), points.begin(), points.end());
   }
   std::sort(data_.edge_points.begin(), data_.edge_points.end(),
             [](const EdgePoint& x, const EdgePoint& y) {
@@ -173,8 +189,8 @@ void PatchAssembler::FindEdgePoints() {
             });
 }
 
-PatchMeshData PatchAssembler::Finish() && {
-  FindEdgePoints();
+PatchMeshData PatchAssembler::Finish(ThreadPool* pool) && {
+  FindEdgePoints(pool);
   return std::move(data_);
 }
 

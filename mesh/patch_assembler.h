@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/patch_scene.h"
+#include "core/thread_pool.h"
 #include "input/input_scene.h"
 #include "mesh/om_mesh.h"
 #include "mesh/point_grid.h"
@@ -50,13 +51,14 @@ class PatchAssembler {
   // Adds one piece as the next patch. Returns false when welding left it degenerate.
   bool Add(const PieceCorners& piece, uint32_t surface, uint32_t material);
 
-  PatchMeshData Finish() &&;
+  // Finds the T-vertices (spread over `pool` when given) and hands the mesh over.
+  PatchMeshData Finish(ThreadPool* pool = nullptr) &&;
 
  private:
   uint32_t GroupOf(uint32_t surface, uint32_t weld);
   uint32_t NewGroup(uint32_t surface, uint32_t weld);
   std::vector<OmMesh::VertexHandle> ConnectableVertices(const std::vector<uint32_t>& groups);
-  void FindEdgePoints();
+  void FindEdgePoints(ThreadPool* pool);
 
   double tol_;
   double min_area_;

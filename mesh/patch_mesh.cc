@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "base/result.h"
+#include "core/thread_pool.h"
 #include "mesh/auto_patch_size.h"
 #include "mesh/clean_faces.h"
 #include "mesh/contact_cut.h"
@@ -182,7 +183,7 @@ struct MeshPlan {
 };
 
 Result<MeshPlan> PlanMesh(const InputScene& scene, const MeshSettings& settings,
-                          std::vector<std::string>* warnings) {
+                          std::vector<std::string>* warnings, ThreadPool& pool) {
   if (!std::isfinite(settings.patch_size) || settings.patch_size < 0) {
     return Error{scene.path + ": patch size must be a finite number >= 0"};
   }
@@ -208,14 +209,15 @@ Result<MeshPlan> PlanMesh(const InputScene& scene, const MeshSettings& settings,
   std::vector<double>& sizes = mp.sizes;
   // One probe of the faces for the automatic size and for narrow spaces.
   const FreePathProbe probe(faces, tol, diagonal);
-  sizes = automatic ? AutoPatchSizes(faces, probe, tol)
+  sizes = automatic ? AutoPatchSizes(faces, probe, tol, &pool)
                     : std::vector<double>(faces.size(), settings.patch_size);
   const uint64_t memory_limit = mp.memory_limit =
       settings.max_memory > 0 ? settings.max_memory : PhysicalMemoryBytes();
   std::vector<SplitPlan>& plans = mp.plans;
   uint64_t& piece_count = mp.piece_count;
   mp.footprints = FindFootprints(faces, tol);
-  FacePieces cut;
+  std::vector<FacePieces> cuts(pool.size());  // a worker's scratch
+  std::vector<uint64_t> face_pieces(faces.size());
   // An automatic mesh too large for the patch limit or the memory is made coarser all over
   // instead of refused: by the square root of the excess, a few times at most.
   for (int attempt = 0;; ++attempt) {
@@ -234,22 +236,27 @@ Result<MeshPlan> PlanMesh(const InputScene& scene, const MeshSettings& settings,
     if (piece_count <= allowed) {
       // Within the limits before the cuts: count what Build makes, narrow spaces split again.
       mp.sheets = FindCoveringSheets(faces, tol, kSheetReachPatches * mp.size.median);
-      piece_count = 0;
-      for (size_t f = 0; f < faces.size(); ++f) {
+      // Face by face on the pool: each writes only its own entries.
+      pool.ParallelFor(faces.size(), [&](unsigned worker, size_t f) {
         const CleanFace& face = faces[f];
+        FacePieces& cut = cuts[worker];
         CutFace(plans[f], face, mp.footprints[f], mp.sheets[f], tol, mp.min_area, &cut);
+        uint64_t pieces = 0;
         for (size_t i = 0; i < cut.ListCount(); ++i) {
           const std::vector<PieceCorners>& list = cut.List(i);
           std::vector<NarrowPiece> narrow =
               FindNarrowPieces(probe, list, face.normal, sizes[f], tol);
-          piece_count += list.size() + NarrowExtraPieces(list, face.normal, narrow, tol);
+          pieces += list.size() + NarrowExtraPieces(list, face.normal, narrow, tol);
           if (narrow.empty()) continue;
           mp.narrow[f].resize(cut.ListCount());
           mp.narrow[f][i] = std::move(narrow);
         }
         // The back is not cut or split again (AddBackSide).
-        if (scene.materials[face.material].two_sided) piece_count += plans[f].PieceCount();
-      }
+        if (scene.materials[face.material].two_sided) pieces += plans[f].PieceCount();
+        face_pieces[f] = pieces;
+      });
+      piece_count = 0;
+      for (uint64_t pieces : face_pieces) piece_count += pieces;
     }
     if (!automatic || piece_count <= allowed || attempt == 8 || allowed == 0) break;
     const double grow = 1.05 * std::sqrt(double(piece_count) / double(allowed));
@@ -283,14 +290,16 @@ Result<MeshPlan> PlanMesh(const InputScene& scene, const MeshSettings& settings,
 
 Result<MeshCheck> PatchMesh::Check(const InputScene& scene, const MeshSettings& settings,
                                    std::vector<std::string>* warnings) {
-  Result<MeshPlan> mp = PlanMesh(scene, settings, warnings);
+  ThreadPool pool(settings.threads);
+  Result<MeshPlan> mp = PlanMesh(scene, settings, warnings, pool);
   RADFARM_RETURN_IF_ERROR(mp);
   return MeshCheck{mp->piece_count, mp->size.median, mp->tol, mp->memory_limit};
 }
 
 Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& settings,
                                    std::vector<std::string>* warnings) {
-  Result<MeshPlan> planned = PlanMesh(scene, settings, warnings);
+  ThreadPool pool(settings.threads);
+  Result<MeshPlan> planned = PlanMesh(scene, settings, warnings, pool);
   RADFARM_RETURN_IF_ERROR(planned);
   const MeshPlan& mp = *planned;
   const double tol = mp.tol;
@@ -343,7 +352,7 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
     }
   }
   pm.surface_object_.resize(pm.surface_count_);
-  pm.data_ = std::move(assembler).Finish();
+  pm.data_ = std::move(assembler).Finish(&pool);
   pm.data_.scene.lights = scene.lights;
   return pm;
 }

@@ -17,7 +17,7 @@ namespace {
 
 using scenegen::BuildingParams;
 
-Result<PatchMesh> AutomaticMesh(const BuildingParams& params) {
+Result<PatchMesh> AutomaticMesh(const BuildingParams& params, unsigned threads = 0) {
   testing::TempDir dir;
   Result<scenegen::SceneModel> model = scenegen::GenerateBuilding(params);
   if (!model.ok()) return Error{model.error()};
@@ -28,7 +28,9 @@ Result<PatchMesh> AutomaticMesh(const BuildingParams& params) {
   if (!written.ok()) return Error{written.error()};
   Result<InputScene> input = LoadObjScene(dir.File("b.obj"));
   if (!input.ok()) return Error{input.error()};
-  return PatchMesh::Build(*input, {}, nullptr);  // patch size 0: automatic
+  MeshSettings settings;  // patch size 0: automatic
+  settings.threads = threads;
+  return PatchMesh::Build(*input, settings, nullptr);
 }
 
 bool Inside(const Bounds3& box, const Vec3& p) {
@@ -46,6 +48,30 @@ size_t PatchesInRoom(const PatchMesh& mesh, const BuildingParams& params, int i,
   size_t count = 0;
   for (const Patch& p : mesh.patch_scene().patches) count += Inside(box, p.centre);
   return count;
+}
+
+// Meshing spreads the probes, the narrow-space search and the T-vertex search over threads: the
+// mesh, its display vertices included, must be the same bits on one thread as on three.
+TEST(BuildingAutoMesh, OneThreadAndThreeMeshTheSameBits) {
+  const BuildingParams params{.rooms_x = 2, .rooms_z = 2};
+  Result<PatchMesh> one = AutomaticMesh(params, 1);
+  Result<PatchMesh> three = AutomaticMesh(params, 3);
+  ASSERT_TRUE(one.ok()) << one.error();
+  ASSERT_TRUE(three.ok()) << three.error();
+  const std::vector<Patch>& a = one->patch_scene().patches;
+  const std::vector<Patch>& b = three->patch_scene().patches;
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GT(a.size(), 4096u);  // more than one chunk of the T-vertex search
+  for (size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].corner_count, b[i].corner_count) << i;
+    for (int c = 0; c < a[i].corner_count; ++c) ASSERT_EQ(a[i].corners[c], b[i].corners[c]) << i;
+    ASSERT_EQ(a[i].surface, b[i].surface) << i;
+  }
+  const DisplayMesh da = one->MakeDisplayMesh(), db = three->MakeDisplayMesh();
+  EXPECT_GT(da.positions.size(), 0u);
+  EXPECT_EQ(da.positions, db.positions);
+  EXPECT_EQ(da.triangles, db.triangles);
+  EXPECT_EQ(da.triangle_patch, db.triangle_patch);
 }
 
 TEST(BuildingAutoMesh, ARoomGetsTheSamePatchesOnA2x2AndA6x6Floor) {
