@@ -276,11 +276,26 @@ void LeaseWorker::MaybeFinishGroup(uint64_t group_id) {
   Group& group = it->second;
   if (group.hold_timer) return;  // already held, on its way out
   bool any = false;
+  bool all_done = true;
+  size_t done_bytes = 0;
+  const uint16_t version = ProtocolVersion();
   for (uint64_t id : group.ids) {
     const HeldLease* lease = book_.Find(id);
     if (lease == nullptr) continue;
-    if (lease->stage != LeaseStage::kDone) return;  // still waiting for this one
+    if (lease->stage != LeaseStage::kDone) {
+      all_done = false;
+      continue;
+    }
     any = true;
+    done_bytes += protocol::ResultFrameCost(*lease->result, version);
+  }
+  if (!all_done) {
+    // A frame's worth already done goes out now (not under --slowdown, which holds a frame's
+    // results on purpose).
+    if (settings_.slowdown <= 1 && done_bytes >= protocol::kResultFrameBytes) {
+      SendDone(group_id, /*finish=*/false);
+    }
+    return;
   }
   if (!any) {  // every batch was returned, revoked or cancelled
     groups_.erase(it);
@@ -302,7 +317,13 @@ void LeaseWorker::MaybeFinishGroup(uint64_t group_id) {
   SendGroup(group_id);
 }
 
-void LeaseWorker::SendGroup(uint64_t group_id) {
+uint16_t LeaseWorker::ProtocolVersion() const {
+  return callbacks_.protocol_version ? callbacks_.protocol_version() : protocol::kProtocolVersion;
+}
+
+void LeaseWorker::SendGroup(uint64_t group_id) { SendDone(group_id, /*finish=*/true); }
+
+void LeaseWorker::SendDone(uint64_t group_id, bool finish) {
   const auto it = groups_.find(group_id);
   if (it == groups_.end()) return;
   // Results go out in frames of at most about protocol::kResultFrameBytes (frame_codec.h).
@@ -316,8 +337,7 @@ void LeaseWorker::SendGroup(uint64_t group_id) {
     message.results.clear();
     bytes = 0;
   };
-  const uint16_t version =
-      callbacks_.protocol_version ? callbacks_.protocol_version() : protocol::kProtocolVersion;
+  const uint16_t version = ProtocolVersion();
   for (uint64_t id : it->second.ids) {
     HeldLease* lease = book_.Find(id);
     if (lease == nullptr || lease->stage != LeaseStage::kDone) continue;
@@ -331,7 +351,7 @@ void LeaseWorker::SendGroup(uint64_t group_id) {
     sent_ids.push_back(id);
   }
   flush();
-  groups_.erase(it);
+  if (finish) groups_.erase(it);
   if (!sent) {
     LogLine(LogLevel::kError, "agent")
         << "cannot send " << sent_ids.size() << " results to " << master_ << ": " << sent.error();

@@ -83,8 +83,12 @@ class LeaseWorker {
   void Dispatch();
   void OnBatchesDone(const std::vector<uint64_t>& ids, Result<std::vector<BatchOutcome>> outcomes);
   // Once every batch of the frame still held is computed: holds (--slowdown) and sends them.
+  // Before that, sends the done ones early once they fill a result frame.
   void MaybeFinishGroup(uint64_t group);
   void SendGroup(uint64_t group);
+  // Sends the group's done results in frames and forgets them; `finish`: and the group.
+  void SendDone(uint64_t group, bool finish);
+  uint16_t ProtocolVersion() const;
   void Return(std::vector<protocol::LeaseRef> leases, protocol::LeaseReturnReason reason,
               const std::string& why);
   void ReturnOne(uint64_t id, protocol::LeaseReturnReason reason, const std::string& why);
@@ -101,7 +105,10 @@ class LeaseWorker {
   std::unique_ptr<SceneSupply> scenes_;
   size_t tasks_in_flight_ = 0;
 
-  // One lease frame's batches (LeaseBook ids), answered together.
+  // One lease frame's batches (LeaseBook ids), answered together, except that results filling a
+  // frame go out as soon as they are done: a big scene's long batches have results of hundreds
+  // of KB, which held for a whole lease piled up in the agent's memory (15 MB at 424,518
+  // patches, 5 % of its budget).
   struct Group {
     uint64_t job_id = 0;
     std::vector<uint64_t> ids;

@@ -7,6 +7,7 @@
 
 #include "codec/patch_scene_codec.h"
 #include "protocol/batch_convert.h"
+#include "protocol/frame_codec.h"
 #include "protocol/scene_transfer.h"
 #include "tests/agent/agent_process.h"
 #include "tests/agent/fake_master.h"
@@ -343,6 +344,39 @@ TEST_F(AgentBigSceneTest, ASceneOfSeveralChunksIsFetchedOnce) {
   EXPECT_EQ(seen.fetches.at(hash_), 1);
   EXPECT_EQ(static_cast<uint64_t>(seen.scene_requests),
             (compressed + protocol::kMaxSceneChunkBytes - 1) / protocol::kMaxSceneChunkBytes);
+  agent->Signal(SIGTERM);
+  EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
+}
+
+// A lease frame's results go out together, except that results filling a frame go out as soon as
+// they are done: a big scene's long batch has a result of hundreds of KB, and holding them for the
+// frame's last batch piled them up in the agent's memory. Here the first batch's result must
+// reach the master while the second, 50 million rays, still runs: the job is then cancelled, and
+// the second's result never comes (held for the frame, both would come together after it).
+class AgentManyPatchesTest : public AgentWorkTest {
+ protected:
+  AgentManyPatchesTest() : AgentWorkTest(BoxScene(110)) {}  // 72,600 patches
+};
+
+TEST_F(AgentManyPatchesTest, AResultFillingAFrameGoesOutBeforeTheLeasesLastBatch) {
+  std::unique_ptr<AgentProcess> agent = StartAgent(1);
+  const TestJob job = Job(3);
+  const auto first = Assign(job, 1, /*shooter=*/100, 0, 4'000'000);
+  const auto last = Assign(job, 2, /*shooter=*/200, 0, kLongBatchRays);
+  master_.Send(LeaseOf({first, last}));
+  std::optional<protocol::BatchResultMsg> result = WaitResult(first.lease, *agent);
+  ASSERT_TRUE(result);
+  ASSERT_GT(protocol::ResultFrameCost(*result, protocol::kProtocolVersion),
+            protocol::kResultFrameBytes);  // it fills a frame alone
+  EXPECT_EQ(protocol::ToBatchResult(*result), RunLocally(scene_, first));
+  master_.Send(protocol::CancelMsg{job.job_id});
+  ASSERT_TRUE(agent->WaitForLog("cancel of job 3 from " + master_.address() + ": dropped 1"))
+      << agent->Log();
+  // The running batch finishes, and its result is dropped rather than sent.
+  ASSERT_TRUE(agent->WaitForLog("discarded the result of a lease no longer held")) << agent->Log();
+  for (const auto& sent : master_.Snapshot().All<protocol::BatchResultMsg>()) {
+    EXPECT_NE(sent.lease, last.lease) << agent->Log();
+  }
   agent->Signal(SIGTERM);
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
 }
