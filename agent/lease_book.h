@@ -34,6 +34,7 @@ struct HeldLease {
   LeaseStage stage = LeaseStage::kAwaitingScene;
   std::shared_ptr<const PreparedScene> scene;      // set from kQueued on
   std::optional<protocol::BatchResultMsg> result;  // kDone
+  size_t result_cost = 0;  // kDone: its share of a LeaseResult frame (protocol::ResultFrameCost)
 };
 
 class LeaseBook {

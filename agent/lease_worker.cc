@@ -245,6 +245,7 @@ void LeaseWorker::OnBatchesDone(const std::vector<uint64_t>& ids,
                                 Result<std::vector<BatchOutcome>> outcomes) {
   --tasks_in_flight_;
   std::vector<uint64_t> touched;
+  const uint16_t version = ProtocolVersion();  // a lease lives on one connection
   for (size_t k = 0; k < ids.size(); ++k) {
     HeldLease* lease = book_.Find(ids[k]);
     if (lease == nullptr) {
@@ -262,6 +263,7 @@ void LeaseWorker::OnBatchesDone(const std::vector<uint64_t>& ids,
     meter_.Add(lease->assignment.ray_count, outcome.compute_seconds);
     lease->result =
         protocol::MakeBatchResult(lease->assignment.lease, outcome.result, outcome.compute_seconds);
+    lease->result_cost = protocol::ResultFrameCost(*lease->result, version);
     lease->stage = LeaseStage::kDone;
   }
   std::sort(touched.begin(), touched.end());
@@ -278,7 +280,6 @@ void LeaseWorker::MaybeFinishGroup(uint64_t group_id) {
   bool any = false;
   bool all_done = true;
   size_t done_bytes = 0;
-  const uint16_t version = ProtocolVersion();
   for (uint64_t id : group.ids) {
     const HeldLease* lease = book_.Find(id);
     if (lease == nullptr) continue;
@@ -287,7 +288,7 @@ void LeaseWorker::MaybeFinishGroup(uint64_t group_id) {
       continue;
     }
     any = true;
-    done_bytes += protocol::ResultFrameCost(*lease->result, version);
+    done_bytes += lease->result_cost;
   }
   if (!all_done) {
     // A frame's worth already done goes out now (not under --slowdown, which holds a frame's
@@ -337,11 +338,10 @@ void LeaseWorker::SendDone(uint64_t group_id, bool finish) {
     message.results.clear();
     bytes = 0;
   };
-  const uint16_t version = ProtocolVersion();
   for (uint64_t id : it->second.ids) {
     HeldLease* lease = book_.Find(id);
     if (lease == nullptr || lease->stage != LeaseStage::kDone) continue;
-    const size_t cost = protocol::ResultFrameCost(*lease->result, version);
+    const size_t cost = lease->result_cost;
     if (bytes + cost > protocol::kResultFrameBytes ||
         message.results.size() == protocol::kMaxLeaseBatches) {
       flush();
