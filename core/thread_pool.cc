@@ -50,6 +50,17 @@ void ThreadPool::WorkerLoop(unsigned worker) {
   }
 }
 
+void ParallelForOrInline(ThreadPool* pool, size_t count,
+                         const std::function<void(unsigned worker, size_t index)>& body) {
+  if (pool != nullptr) {
+    pool->ParallelFor(count, body);
+    return;
+  }
+  for (size_t i = 0; i < count; ++i) body(0, i);
+}
+
+unsigned WorkersOf(const ThreadPool* pool) { return pool != nullptr ? pool->size() : 1; }
+
 void ThreadPool::ParallelFor(size_t count,
                              const std::function<void(unsigned worker, size_t index)>& body) {
   {

@@ -13,6 +13,15 @@
 
 namespace radfarm {
 
+class ThreadPool;
+
+// body(worker, index) for every index in [0, count): on `pool`'s threads, or in order on the
+// calling thread as worker 0 when `pool` is null (for callers whose pool is optional).
+void ParallelForOrInline(ThreadPool* pool, size_t count,
+                         const std::function<void(unsigned worker, size_t index)>& body);
+// The workers ParallelForOrInline may name: pool->size(), or 1 without a pool.
+unsigned WorkersOf(const ThreadPool* pool);
+
 class ThreadPool {
  public:
   // threads == 0 means one per core.

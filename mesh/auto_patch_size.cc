@@ -38,7 +38,7 @@ std::vector<double> MeanFreePaths(const std::vector<CleanFace>& faces, const Fre
   const double diagonal = probe.diagonal();
   std::vector<double> paths(faces.size(), diagonal);
   if (probe.empty()) return paths;
-  std::vector<std::vector<double>> lengths(pool != nullptr ? pool->size() : 1);  // per worker
+  std::vector<std::vector<double>> lengths(WorkersOf(pool));  // per worker
   const auto face_path = [&](unsigned worker, size_t f) {
     const std::vector<Vec3> points = ProbePoints(faces[f], tol);
     double sum = 0;
@@ -49,11 +49,7 @@ std::vector<double> MeanFreePaths(const std::vector<CleanFace>& faces, const Fre
     }
     if (!points.empty()) paths[f] = sum / static_cast<double>(points.size() * kAutoProbeDirections);
   };
-  if (pool != nullptr) {
-    pool->ParallelFor(faces.size(), face_path);
-  } else {
-    for (size_t f = 0; f < faces.size(); ++f) face_path(0, f);
-  }
+  ParallelForOrInline(pool, faces.size(), face_path);
   return paths;
 }
 

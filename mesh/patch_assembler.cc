@@ -174,11 +174,7 @@ void PatchAssembler::FindEdgePoints(ThreadPool* pool) {
       }
     }
   };
-  if (pool != nullptr) {
-    pool->ParallelFor(chunks, search);
-  } else {
-    for (size_t chunk = 0; chunk < chunks; ++chunk) search(0, chunk);
-  }
+  ParallelForOrInline(pool, chunks, search);
   for (const std::vector<EdgePoint>& points : found) {
     data_.edge_points.insert(data_.edge_points.end(), points.begin(), points.end());
   }

@@ -371,7 +371,7 @@ std::vector<PatchMesh::Piece> PatchMesh::PiecesOf(const PatchScene& scene) {
   return pieces;
 }
 
-PatchMesh PatchMesh::Rebuilt(const std::vector<Piece>& pieces) const {
+PatchMesh PatchMesh::Rebuilt(const std::vector<Piece>& pieces, ThreadPool* pool) const {
   PatchMesh pm;
   pm.patch_size_ = patch_size_;
   pm.patch_size_min_ = patch_size_min_;
@@ -389,7 +389,7 @@ PatchMesh PatchMesh::Rebuilt(const std::vector<Piece>& pieces) const {
   pm.min_area_ = min_area_;
   PatchAssembler assembler(tol_, min_area_, pm.materials_, pieces.size());
   for (const Piece& piece : pieces) assembler.Add(piece.corners, piece.surface, piece.material);
-  pm.data_ = std::move(assembler).Finish();
+  pm.data_ = std::move(assembler).Finish(pool);
   pm.data_.scene.lights = data_.scene.lights;
   return pm;
 }

@@ -82,7 +82,8 @@ class PatchMesh {
     uint32_t surface = 0;
     uint32_t material = 0;
   };
-  PatchMesh Rebuilt(const std::vector<Piece>& pieces) const;
+  // The T-vertex search runs on `pool` when given (the same mesh on any thread count).
+  PatchMesh Rebuilt(const std::vector<Piece>& pieces, ThreadPool* pool = nullptr) const;
   // The pieces that rebuild a mesh with these patches: with Rebuilt, on the mesh Build made, this
   // recovers a refined mesh from its PatchScene alone (a farm checkpoint's scene blob).
   static std::vector<Piece> PiecesOf(const PatchScene& scene);

@@ -186,7 +186,7 @@ RefinedMesh Refine(PatchMesh& mesh, const std::vector<Rgb>& radiosity,
     corners.count = e.patch.corner_count;
     pieces.push_back({corners, e.patch.surface, e.patch.material});
   }
-  RefinedMesh out{mesh.Rebuilt(pieces), {}, {}, {}, total_splits};
+  RefinedMesh out{mesh.Rebuilt(pieces, &pool), {}, {}, {}, total_splits};
   if (out.mesh.patch_scene().patches.size() != elements.size()) {
     // ResolveRefineSettings keeps elements far larger than the welding distance, so this is a bug.
     std::fprintf(stderr, "Refine: %zu elements became %zu patches\n", elements.size(),

@@ -35,7 +35,7 @@ Result<std::unique_ptr<RoundDriver>> RoundDriver::Start(PatchMesh mesh,
   }
   if (resume != nullptr && resume->refined_scene != nullptr) {
     const PatchScene& stored = *resume->refined_scene;
-    PatchMesh rebuilt = driver->mesh_->Rebuilt(PatchMesh::PiecesOf(stored));
+    PatchMesh rebuilt = driver->mesh_->Rebuilt(PatchMesh::PiecesOf(stored), &pool);
     if (rebuilt.patch_scene().patches.size() != stored.patches.size()) {
       return Error{"the refined mesh to resume on has " + std::to_string(stored.patches.size()) +
                    " elements, rebuilt it has " +

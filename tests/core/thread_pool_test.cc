@@ -22,6 +22,25 @@ TEST(ThreadPoolTest, EveryIndexRunsExactlyOnce) {
   }
 }
 
+TEST(ThreadPoolTest, ParallelForOrInlineRunsInOrderWithoutAPool) {
+  std::vector<size_t> order;
+  ParallelForOrInline(nullptr, 5, [&](unsigned worker, size_t i) {
+    EXPECT_EQ(worker, 0u);
+    order.push_back(i);
+  });
+  EXPECT_EQ(order, (std::vector<size_t>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(WorkersOf(nullptr), 1u);
+
+  ThreadPool pool(3);
+  EXPECT_EQ(WorkersOf(&pool), 3u);
+  std::vector<std::atomic<int>> calls(500);
+  ParallelForOrInline(&pool, calls.size(), [&](unsigned worker, size_t i) {
+    EXPECT_LT(worker, 3u);
+    calls[i]++;
+  });
+  for (auto& c : calls) EXPECT_EQ(c.load(), 1);
+}
+
 TEST(ThreadPoolTest, EmptyLoopReturns) {
   ThreadPool pool(3);
   pool.ParallelFor(0, [](unsigned, size_t) { FAIL(); });

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "core/thread_pool.h"
 #include "input/input_scene.h"
 #include "mesh/patch_mesh.h"
 #include "scenegen/building.h"
@@ -69,6 +70,23 @@ TEST(BuildingAutoMesh, OneThreadAndThreeMeshTheSameBits) {
   }
   const DisplayMesh da = one->MakeDisplayMesh(), db = three->MakeDisplayMesh();
   EXPECT_GT(da.positions.size(), 0u);
+  EXPECT_EQ(da.positions, db.positions);
+  EXPECT_EQ(da.triangles, db.triangles);
+  EXPECT_EQ(da.triangle_patch, db.triangle_patch);
+}
+
+// Refinement's re-mesh searches its T-vertices on the solver's pool: the same mesh as without one.
+TEST(BuildingAutoMesh, RebuiltOnAPoolIsTheSameMesh) {
+  Result<PatchMesh> mesh = AutomaticMesh({.rooms_x = 2, .rooms_z = 2}, 1);
+  ASSERT_TRUE(mesh.ok()) << mesh.error();
+  const std::vector<PatchMesh::Piece> pieces = PatchMesh::PiecesOf(mesh->patch_scene());
+  ThreadPool pool(3);
+  const PatchMesh alone = mesh->Rebuilt(pieces);
+  const PatchMesh pooled = mesh->Rebuilt(pieces, &pool);
+  ASSERT_EQ(alone.patch_scene().patches.size(), pooled.patch_scene().patches.size());
+  ASSERT_GT(alone.patch_scene().patches.size(), 4096u);  // more than one chunk of the search
+  const DisplayMesh da = alone.MakeDisplayMesh(), db = pooled.MakeDisplayMesh();
+  EXPECT_GT(da.positions.size(), alone.patch_scene().patches.size());
   EXPECT_EQ(da.positions, db.positions);
   EXPECT_EQ(da.triangles, db.triangles);
   EXPECT_EQ(da.triangle_patch, db.triangle_patch);
