@@ -1,6 +1,7 @@
 #include "agent/tracer_pool.h"
 
 #include <chrono>
+#include <span>
 
 namespace radfarm::agent {
 namespace {
@@ -20,17 +21,28 @@ std::vector<BatchOutcome> TracerPool::RunAll(const std::shared_ptr<const Prepare
                                              const std::shared_ptr<const RaySampler>& sampler,
                                              const std::vector<Batch>& batches) {
   std::unique_ptr<Slot> slot = Borrow(scene, sampler);
-  std::vector<BatchOutcome> outcomes;
-  outcomes.reserve(batches.size());
+  std::vector<BatchOutcome> outcomes(batches.size());
+  std::vector<BatchResult> results;
   auto start = std::chrono::steady_clock::now();
-  for (const Batch& batch : batches) {
-    BatchOutcome outcome;
-    outcome.result = slot->runner->Run(batch);
-    if (tamper_for_testing != nullptr) tamper_for_testing(batch, outcome.result);
-    const auto end = std::chrono::steady_clock::now();
-    outcome.compute_seconds = std::chrono::duration<double>(end - start).count();
-    start = end;
-    outcomes.push_back(std::move(outcome));
+  // A group of short batches is traced together (BatchTracer::RunMany) and timed as one; each
+  // of its batches is given the group's time in proportion to its rays.
+  for (size_t begin = 0; begin < batches.size();) {
+    const size_t end = BatchTracer::GroupEnd(batches, begin);
+    results.resize(end - begin);
+    slot->runner->RunMany(std::span(batches).subspan(begin, end - begin), results.data());
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - start).count();
+    start = now;
+    uint64_t rays = 0;
+    for (size_t k = begin; k < end; ++k) rays += batches[k].ray_count;
+    for (size_t k = begin; k < end; ++k) {
+      BatchOutcome& outcome = outcomes[k];
+      outcome.result = std::move(results[k - begin]);
+      if (tamper_for_testing != nullptr) tamper_for_testing(batches[k], outcome.result);
+      outcome.compute_seconds = rays > 0 ? seconds * double(batches[k].ray_count) / double(rays)
+                                         : seconds / double(end - begin);
+    }
+    begin = end;
   }
   GiveBack(std::move(slot));
   return outcomes;

@@ -5,9 +5,10 @@
 //           yardstick of issue 17: the solver's loop should reach 90% of it);
 //   packet: the same stored rays as packets of 16 consecutive rays (rtcIntersect16, converted to
 //           Embree's packet layout untimed): what Embree's packet query alone gives on these rays;
-//   runner: BatchTracer::Run over the same batches, the same chunks per thread (ray generation,
-//           tracing and hit counting: the solver's whole per-ray work);
-//   pool:   the same batches through ThreadPool::ParallelFor, as Solve() schedules them;
+//   runner: BatchTracer::RunMany over the same batches, the same chunks per thread (ray
+//           generation, tracing and hit counting: the solver's whole per-ray work);
+//   pool:   the same batches through ThreadPool::ParallelFor, in groups of short batches as
+//           Solve() schedules them (BatchTracer::GroupStarts);
 // and, to show where the difference goes, the sampling alone (ShotSampler::SampleBlock, as
 // BatchTracer calls it, no tracing) over the same batches and chunks.
 #pragma once

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cstdlib>
 #include <new>
+#include <optional>
 
 namespace radfarm {
 namespace {
@@ -46,7 +47,8 @@ BatchTracer::BatchTracer(const PatchScene& scene, const RayCaster& caster,
       patch_count_(scene.patches.size()),
       caster_(caster),
       sampler_(sampler),
-      block_(std::make_unique<RayBlock>()) {}
+      block_(std::make_unique<RayBlock>()),
+      shot_block_(std::make_unique<RayBlock>()) {}
 
 BatchTracer::BatchTracer(std::span<const PatchShape> shapes, const RayCaster& caster,
                          const RaySampler& sampler)
@@ -54,7 +56,8 @@ BatchTracer::BatchTracer(std::span<const PatchShape> shapes, const RayCaster& ca
       patch_count_(shapes.size()),
       caster_(caster),
       sampler_(sampler),
-      block_(std::make_unique<RayBlock>()) {}
+      block_(std::make_unique<RayBlock>()),
+      shot_block_(std::make_unique<RayBlock>()) {}
 
 uint64_t* BatchTracer::WeightByPatch() {
   if (!weight_by_patch_) {
@@ -175,6 +178,101 @@ BatchResult BatchTracer::Run(const Batch& batch) {
       break;
   }
   return result;
+}
+
+size_t BatchTracer::GroupEnd(std::span<const Batch> batches, size_t begin) {
+  size_t end = begin + 1;
+  if (batches[begin].ray_count > kListRays) return end;
+  uint64_t rays = batches[begin].ray_count;
+  while (end < batches.size() && batches[end].ray_count <= kListRays &&
+         rays + batches[end].ray_count <= kGroupRays) {
+    rays += batches[end].ray_count;
+    ++end;
+  }
+  return end;
+}
+
+std::vector<size_t> BatchTracer::GroupStarts(std::span<const Batch> batches) {
+  std::vector<size_t> starts = {0};
+  while (starts.back() < batches.size()) starts.push_back(GroupEnd(batches, starts.back()));
+  return starts;
+}
+
+void BatchTracer::RunMany(std::span<const Batch> batches, BatchResult* results) {
+  size_t k = 0;
+  while (k < batches.size()) {
+    if (HitSumFor(batches[k].ray_count) != HitSum::kListed) {
+      results[k] = Run(batches[k]);
+      ++k;
+      continue;
+    }
+    size_t end = k + 1;
+    while (end < batches.size() && HitSumFor(batches[end].ray_count) == HitSum::kListed) ++end;
+    RunShort(batches.subspan(k, end - k), results + k);
+    k = end;
+  }
+}
+
+void BatchTracer::RunShort(std::span<const Batch> batches, BatchResult* results) {
+  for (size_t k = 0; k < batches.size(); ++k) results[k] = BatchResult{};
+  RayBlock& block = *block_;
+  RayBlock& part = *shot_block_;
+  Vec3 normals[RayBlock::kSize];    // of each ray's shooter, which lifts its origin
+  uint32_t owner[RayBlock::kSize];  // each ray's batch
+  RayHit hits[RayBlock::kSize];
+  std::optional<ShotSampler> shot;
+  size_t next = 0;       // the batch whose rays are sampled next
+  uint32_t sampled = 0;  // of its rays
+  size_t summing = 0;    // the first batch whose hits are not all summed
+  while (next < batches.size()) {
+    // A block of the next rays in batch order, a batch's rays as Run samples them.
+    int filled = 0;
+    while (filled < RayBlock::kSize && next < batches.size()) {
+      const Batch& batch = batches[next];
+      if (sampled == batch.ray_count) {  // done (or no rays at all)
+        ++next;
+        sampled = 0;
+        continue;
+      }
+      const PatchShape& shooter = Shape(batch.shooter);
+      if (sampled == 0)
+        shot.emplace(sampler_.Shot(shooter, batch.shooter, batch.round, caster_.origin_offset()));
+      const int take =
+          static_cast<int>(std::min<uint32_t>(RayBlock::kSize - filled, batch.ray_count - sampled));
+      shot->SampleBlock(batch.first_ray + sampled, take, &part);
+      std::copy_n(part.origin_x, take, block.origin_x + filled);
+      std::copy_n(part.origin_y, take, block.origin_y + filled);
+      std::copy_n(part.origin_z, take, block.origin_z + filled);
+      std::copy_n(part.direction_x, take, block.direction_x + filled);
+      std::copy_n(part.direction_y, take, block.direction_y + filled);
+      std::copy_n(part.direction_z, take, block.direction_z + filled);
+      std::copy_n(part.weight, take, block.weight + filled);
+      std::fill_n(normals + filled, take, shooter.normal);
+      std::fill_n(owner + filled, take, static_cast<uint32_t>(next));
+      filled += take;
+      sampled += take;
+    }
+    if (filled == 0) break;
+    block.count = filled;
+    caster_.TraceBlock(block, normals, hits);
+    for (int i = 0; i < filled; ++i) {
+      // Batches before this ray's have all their rays summed: their lists are complete.
+      for (; summing < owner[i]; ++summing) SumListed(&results[summing]);
+      BatchResult& result = results[owner[i]];
+      const RayHit hit = hits[i];
+      const uint64_t weight = block.weight[i];
+      if (hit.patch == RayHit::kMiss) {
+        result.escaped_weight += weight;
+        ++result.escaped_rays;
+      } else if (!hit.front) {
+        result.back_weight += weight;
+        ++result.back_rays;
+      } else if (weight != 0) {
+        listed_.push_back({hit.patch, weight});
+      }
+    }
+  }
+  for (; summing < batches.size(); ++summing) SumListed(&results[summing]);
 }
 
 void BatchTracer::SumDense(uint64_t* weight_by_patch, bool scan, BatchResult* result) {

@@ -26,6 +26,19 @@ class BatchTracer {
               const RaySampler& sampler);
 
   BatchResult Run(const Batch& batch);
+  // results[k] = Run(batches[k]) for every k, bit for bit (`results` holds batches.size()).
+  // Consecutive short batches (a big scene's weak shooters cast a dozen rays each) share blocks
+  // of rays, so their rays fill Embree's packets and a block's fixed costs are paid once for
+  // several of them.
+  void RunMany(std::span<const Batch> batches, BatchResult* results);
+
+  // Where the group of batches that starts at batches[begin] ends, for callers that hand work
+  // to threads a group at a time and call RunMany on each: a run of short batches of at most
+  // kGroupRays rays in all, or one longer batch alone.
+  static size_t GroupEnd(std::span<const Batch> batches, size_t begin);
+  // The first batch of every group, in order, then batches.size().
+  static std::vector<size_t> GroupStarts(std::span<const Batch> batches);
+  static constexpr uint32_t kGroupRays = 256;
 
  private:
   // The shooter's shape: patches_[id] or shapes_[id], whichever was given.
@@ -48,6 +61,8 @@ class BatchTracer {
   // entries before adding to them only costs.
   static constexpr size_t kPrefetchMinPatches = 4096;
   HitSum HitSumFor(uint32_t ray_count) const;
+  // RunMany's run of consecutive kListed batches.
+  void RunShort(std::span<const Batch> batches, BatchResult* results);
   uint64_t* WeightByPatch();  // the dense array, made (zeroed) on first use
   void SumDense(uint64_t* weight_by_patch, bool scan, BatchResult* result);
   void SumListed(BatchResult* result);
@@ -66,6 +81,7 @@ class BatchTracer {
   const RayCaster& caster_;
   const RaySampler& sampler_;
   std::unique_ptr<RayBlock> block_;                           // scratch: the rays being traced
+  std::unique_ptr<RayBlock> shot_block_;  // RunShort's scratch: one shot's part of block_
   std::unique_ptr<uint64_t[], FreeDeleter> weight_by_patch_;  // all zero between calls
   std::vector<uint32_t> touched_;
   std::vector<PatchHits> listed_;  // empty between calls

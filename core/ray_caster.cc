@@ -258,10 +258,10 @@ RayHit RayCaster::Trace(const Vec3& origin, const Vec3& direction,
   return hit;
 }
 
-void RayCaster::TraceBlock(const RayBlock& block, const Vec3& surface_normal, RayHit* hits) const {
+template <typename LiftOf>
+void RayCaster::TraceLifted(const RayBlock& block, const LiftOf& lift_of, RayHit* hits) const {
   const int n = block.count;
   const int packed = n - n % kPacket;  // rays in whole packets; the rest are traced one by one
-  const Vec3 lift = surface_normal * origin_offset_;  // as PrepareRay adds it
   const auto origin = [&](const double* coordinate, double centre, double lift_along, int i) {
     return static_cast<float>((coordinate[i] - centre) + lift_along);
   };
@@ -273,6 +273,7 @@ void RayCaster::TraceBlock(const RayBlock& block, const Vec3& surface_normal, Ra
     alignas(64) int valid[kPacket];
     for (int l = 0; l < kPacket; ++l) {
       const int i = first + l;
+      const Vec3 lift = lift_of(i);
       valid[l] = -1;
       packet.ray.org_x[l] = origin(block.origin_x, centre_.x, lift.x, i);
       packet.ray.org_y[l] = origin(block.origin_y, centre_.y, lift.y, i);
@@ -302,6 +303,7 @@ void RayCaster::TraceBlock(const RayBlock& block, const Vec3& surface_normal, Ra
   // The last rays (fewer than a packet) one by one: a packet of a few rays costs about a full one.
   RTCRayHit rays[kPacket];
   for (int i = packed; i < n; ++i) {
+    const Vec3 lift = lift_of(i);
     SetRay(origin(block.origin_x, centre_.x, lift.x, i),
            origin(block.origin_y, centre_.y, lift.y, i),
            origin(block.origin_z, centre_.z, lift.z, i), static_cast<float>(block.direction_x[i]),
@@ -319,6 +321,17 @@ void RayCaster::TraceBlock(const RayBlock& block, const Vec3& surface_normal, Ra
     const RTCHit& h = rays[i - packed].hit;
     hits[i] = HitOf(block, i, h.geomID, h.primID, {h.Ng_x, h.Ng_y, h.Ng_z});
   }
+}
+
+void RayCaster::TraceBlock(const RayBlock& block, const Vec3& surface_normal, RayHit* hits) const {
+  const Vec3 lift = surface_normal * origin_offset_;  // as PrepareRay adds it
+  TraceLifted(
+      block, [&lift](int) { return lift; }, hits);
+}
+
+void RayCaster::TraceBlock(const RayBlock& block, const Vec3* surface_normals, RayHit* hits) const {
+  TraceLifted(
+      block, [&](int i) { return surface_normals[i] * origin_offset_; }, hits);
 }
 
 // The side comes from Embree's Ng unless the ray is too close to grazing for its sign to be

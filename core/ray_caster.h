@@ -74,6 +74,9 @@ class RayCaster {
   // A hit's side comes from Embree's Ng where its sign is certain to be that of the patch normal's
   // (Triangle::ng_margin), otherwise from the patch normal as in Trace.
   void TraceBlock(const RayBlock& block, const Vec3& surface_normal, RayHit* hits) const;
+  // The same for a block of rays of several shooters: ray i leaves the surface with normal
+  // surface_normals[i].
+  void TraceBlock(const RayBlock& block, const Vec3* surface_normals, RayHit* hits) const;
 
   // Whether nothing lies between origin (lifted as by Trace) and `target`: a shadow ray. It stops
   // kShadowRayMargin of the way short of the target, so the surface the target lies on does not
@@ -114,6 +117,9 @@ class RayCaster {
   };
   static float NgMargin(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& patch_normal,
                         double scene_diagonal);
+  // TraceBlock for rays lifted off their surfaces by lift_of(i) (the normal times origin_offset_).
+  template <typename LiftOf>
+  void TraceLifted(const RayBlock& block, const LiftOf& lift_of, RayHit* hits) const;
   // Rays TraceBlock gives Embree at once (rtcIntersect16).
   static constexpr int kPacket = 16;
   // TraceBlock's hit of ray i of `block` on Embree's (geometry, primitive) with normal ng.

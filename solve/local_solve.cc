@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <mutex>
+#include <span>
 #include <utility>
 
 namespace radfarm {
@@ -87,6 +88,12 @@ double RunRounds(RoundDriver& driver, ThreadPool& pool,
   return elapsed();
 }
 
+// Group g of `batches` as BatchTracer::GroupStarts cut them.
+std::span<const Batch> GroupOf(const std::vector<Batch>& batches, const std::vector<size_t>& starts,
+                               size_t g) {
+  return std::span(batches).subspan(starts[g], starts[g + 1] - starts[g]);
+}
+
 }  // namespace
 
 void LocalBatches::Prepare(RoundDriver& driver) {
@@ -103,31 +110,39 @@ void LocalBatches::Prepare(RoundDriver& driver) {
 std::vector<BatchResult> LocalBatches::Run(RoundDriver& driver, const RoundPlan& plan) {
   Prepare(driver);
   std::vector<BatchResult> results(plan.batches.size());
-  pool_.ParallelFor(plan.batches.size(), [&](unsigned worker, size_t b) {
-    results[b] = tracers_[worker]->Run(plan.batches[b]);
+  const std::vector<size_t> starts = BatchTracer::GroupStarts(plan.batches);
+  pool_.ParallelFor(starts.size() - 1, [&](unsigned worker, size_t g) {
+    tracers_[worker]->RunMany(GroupOf(plan.batches, starts, g), results.data() + starts[g]);
   });
   return results;
 }
 
 void LocalBatches::TraceOnly(RoundDriver& driver, const std::vector<Batch>& batches) {
   Prepare(driver);
-  pool_.ParallelFor(batches.size(),
-                    [&](unsigned worker, size_t b) { tracers_[worker]->Run(batches[b]); });
+  const std::vector<size_t> starts = BatchTracer::GroupStarts(batches);
+  pool_.ParallelFor(starts.size() - 1, [&](unsigned worker, size_t g) {
+    std::vector<BatchResult> results(starts[g + 1] - starts[g]);
+    tracers_[worker]->RunMany(GroupOf(batches, starts, g), results.data());
+  });
 }
 
 void LocalBatches::Reduce(RoundDriver& driver, const RoundPlan& plan, RoundReduction& reduction,
                           const std::function<void(uint64_t rays_done)>& on_batch) {
   Prepare(driver);
-  // The pool hands out batches in increasing order, so the reduction's frontier trails the
-  // newest batch by about one batch per thread, and that is all it holds.
+  // The pool hands out groups of batches in increasing order, so the reduction's frontier trails
+  // the newest batch by about one group per thread, and that is all it holds.
   std::mutex mutex;
   uint64_t rays_done = 0;
-  pool_.ParallelFor(plan.batches.size(), [&](unsigned worker, size_t b) {
-    BatchResult result = tracers_[worker]->Run(plan.batches[b]);
+  const std::vector<size_t> starts = BatchTracer::GroupStarts(plan.batches);
+  pool_.ParallelFor(starts.size() - 1, [&](unsigned worker, size_t g) {
+    std::vector<BatchResult> results(starts[g + 1] - starts[g]);
+    tracers_[worker]->RunMany(GroupOf(plan.batches, starts, g), results.data());
     std::lock_guard lock(mutex);
-    reduction.Add(b, std::move(result));
-    rays_done += plan.batches[b].ray_count;
-    if (on_batch) on_batch(rays_done);
+    for (size_t b = starts[g]; b < starts[g + 1]; ++b) {
+      reduction.Add(b, std::move(results[b - starts[g]]));
+      rays_done += plan.batches[b].ray_count;
+      if (on_batch) on_batch(rays_done);
+    }
   });
 }
 
