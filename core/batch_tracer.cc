@@ -39,6 +39,22 @@ void SortByHighWord(std::vector<uint64_t>* keys, std::vector<uint64_t>* scratch,
   }
 }
 
+// A ray that left the scene or met a back face is counted in the result's escaped or back
+// totals; false when it hit a front face (its weight is then the caller's to sum).
+inline bool CountedAway(const RayHit& hit, uint64_t weight, BatchResult* result) {
+  if (hit.patch == RayHit::kMiss) {
+    result->escaped_weight += weight;
+    ++result->escaped_rays;
+    return true;
+  }
+  if (!hit.front) {
+    result->back_weight += weight;
+    ++result->back_rays;
+    return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 BatchTracer::BatchTracer(const PatchScene& scene, const RayCaster& caster,
@@ -148,13 +164,8 @@ BatchResult BatchTracer::Run(const Batch& batch) {
     for (int i = 0; i < count; ++i) {
       const RayHit hit = hits[i];
       const uint64_t weight = block.weight[i];
-      if (hit.patch == RayHit::kMiss) {
-        result.escaped_weight += weight;
-        ++result.escaped_rays;
-      } else if (!hit.front) {
-        result.back_weight += weight;
-        ++result.back_rays;
-      } else if (sum == HitSum::kListed) {
+      if (CountedAway(hit, weight, &result)) continue;
+      if (sum == HitSum::kListed) {
         if (weight != 0) listed_.push_back({hit.patch, weight});
       } else if (sum == HitSum::kHashed) {
         if (weight != 0) AddHashed(hit.patch, weight);
@@ -258,17 +269,9 @@ void BatchTracer::RunShort(std::span<const Batch> batches, BatchResult* results)
     for (int i = 0; i < filled; ++i) {
       // Batches before this ray's have all their rays summed: their lists are complete.
       for (; summing < owner[i]; ++summing) SumListed(&results[summing]);
-      BatchResult& result = results[owner[i]];
-      const RayHit hit = hits[i];
       const uint64_t weight = block.weight[i];
-      if (hit.patch == RayHit::kMiss) {
-        result.escaped_weight += weight;
-        ++result.escaped_rays;
-      } else if (!hit.front) {
-        result.back_weight += weight;
-        ++result.back_rays;
-      } else if (weight != 0) {
-        listed_.push_back({hit.patch, weight});
+      if (!CountedAway(hits[i], weight, &results[owner[i]]) && weight != 0) {
+        listed_.push_back({hits[i].patch, weight});
       }
     }
   }
