@@ -87,7 +87,7 @@ uint64_t* BatchTracer::WeightByPatch() {
 }
 
 BatchTracer::HitSum BatchTracer::HitSumFor(uint32_t ray_count) const {
-  if (ray_count <= kListRays) return HitSum::kListed;
+  if (IsShort(ray_count)) return HitSum::kListed;
   if (patch_count_ <= kDenseMaxPatches) return HitSum::kDense;
   // The table: 12 bytes a slot, at most 4 slots a ray; the dense array: 8 bytes a patch.
   return uint64_t{48} * ray_count <= uint64_t{8} * patch_count_ ? HitSum::kHashed : HitSum::kDense;
@@ -193,9 +193,9 @@ BatchResult BatchTracer::Run(const Batch& batch) {
 
 size_t BatchTracer::GroupEnd(std::span<const Batch> batches, size_t begin) {
   size_t end = begin + 1;
-  if (batches[begin].ray_count > kListRays) return end;
+  if (!IsShort(batches[begin].ray_count)) return end;
   uint64_t rays = batches[begin].ray_count;
-  while (end < batches.size() && batches[end].ray_count <= kListRays &&
+  while (end < batches.size() && IsShort(batches[end].ray_count) &&
          rays + batches[end].ray_count <= kGroupRays) {
     rays += batches[end].ray_count;
     ++end;
@@ -212,13 +212,13 @@ std::vector<size_t> BatchTracer::GroupStarts(std::span<const Batch> batches) {
 void BatchTracer::RunMany(std::span<const Batch> batches, BatchResult* results) {
   size_t k = 0;
   while (k < batches.size()) {
-    if (HitSumFor(batches[k].ray_count) != HitSum::kListed) {
+    if (!IsShort(batches[k].ray_count)) {
       results[k] = Run(batches[k]);
       ++k;
       continue;
     }
     size_t end = k + 1;
-    while (end < batches.size() && HitSumFor(batches[end].ray_count) == HitSum::kListed) ++end;
+    while (end < batches.size() && IsShort(batches[end].ray_count)) ++end;
     RunShort(batches.subspan(k, end - k), results + k);
     k = end;
   }

@@ -56,6 +56,8 @@ class BatchTracer {
   //    dense array after all, made for it and freed after it.
   enum class HitSum { kListed, kDense, kHashed };
   static constexpr uint32_t kListRays = 256;
+  // A batch summed as a list (kListed), which RunMany traces with its neighbours.
+  static bool IsShort(uint32_t ray_count) { return ray_count <= kListRays; }
   static constexpr size_t kDenseMaxPatches = size_t{1} << 16;
   // Below this many patches the dense array (8 bytes a patch) stays in L1: prefetching its
   // entries before adding to them only costs.
