@@ -122,12 +122,16 @@ int RunRender(const RenderOptions& options) {
     };
   }
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
+  uint64_t start_rays = 0;  // the direct light's shadow rays, spent from the same ray budget
   if (!options.quiet) {
     hooks.during_round = [&](const RoundRunning& r) { reporter.OnRoundRunning(r); };
-    hooks.after_start = [announce](double seconds) {
+    hooks.after_start = [announce, &start_rays](double seconds, uint64_t shadow_rays) {
+      start_rays = shadow_rays;
       if (announce) std::printf("\r\033[K");
       // Most scenes start in a blink; say it when it was worth waiting for.
-      if (seconds >= 0.5) std::printf("direct light in %.1f s\n", seconds);
+      if (seconds >= 0.5) {
+        std::printf("direct light in %.1f s (%.1f M shadow rays)\n", seconds, shadow_rays / 1e6);
+      }
       std::fflush(stdout);
     };
   }
@@ -185,11 +189,16 @@ int RunRender(const RenderOptions& options) {
   }
   if (!options.quiet) {
     const SolveStats& st = solution.stats;
-    std::printf("%s after %llu %s: unshot %.4f%%, %llu rays in %.2f s (%.2f Mrays/s); wrote %s\n",
+    char shadow[64] = "";
+    if (start_rays > 0) {
+      std::snprintf(shadow, sizeof shadow, " (and %llu shadow rays of the direct light)",
+                    static_cast<unsigned long long>(start_rays));
+    }
+    std::printf("%s after %llu %s: unshot %.4f%%, %llu rays%s in %.2f s (%.2f Mrays/s); wrote %s\n",
                 st.stop_reason.c_str(), static_cast<unsigned long long>(st.rounds),
                 st.rounds == 1 ? "round" : "rounds", 100 * st.unshot_fraction,
-                static_cast<unsigned long long>(st.rays), st.seconds, st.rays_per_second / 1e6,
-                options.out_dir.c_str());
+                static_cast<unsigned long long>(st.rays), shadow, st.seconds,
+                st.rays_per_second / 1e6, options.out_dir.c_str());
   }
   return kExitOk;
 }

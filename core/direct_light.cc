@@ -123,29 +123,33 @@ Rgb DirectLight::Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const {
   return EmitterIrradiance(x, n, key) + PunctualIrradiance(x, n, key);
 }
 
-void DirectLight::AddPunctual(uint32_t i, const Vec3& x, const Vec3& n, double weight,
-                              Rgb* e) const {
+void DirectLight::AddPunctual(uint32_t i, const Vec3& x, const Vec3& n, double weight, Rgb* e,
+                              uint64_t* rays) const {
   const PunctualLight& light = scene_.lights[i];
   const Rgb lit = UnshadowedIrradiance(light, x, n);
   if (lit.Max() <= 0) return;
+  if (rays != nullptr) ++*rays;
   if (caster_.Unoccluded(x, ShadowRayTarget(light, x, sun_reach_), n)) *e += lit * weight;
 }
 
-Rgb DirectLight::PunctualIrradiance(const Vec3& x, const Vec3& n, uint64_t key) const {
+Rgb DirectLight::PunctualIrradiance(const Vec3& x, const Vec3& n, uint64_t key,
+                                    uint64_t* rays) const {
   Rgb e;
   if (punctual_tree_ == nullptr) {
-    for (uint32_t i = 0; i < scene_.lights.size(); ++i) AddPunctual(i, x, n, 1.0, &e);
+    for (uint32_t i = 0; i < scene_.lights.size(); ++i) AddPunctual(i, x, n, 1.0, &e, rays);
     return e;
   }
-  for (uint32_t i : suns_) AddPunctual(i, x, n, 1.0, &e);
+  for (uint32_t i : suns_) AddPunctual(i, x, n, 1.0, &e, rays);
   std::vector<LightPick> picks;
   punctual_tree_->Pick(x, n, HashWords(key, 0x70756e6374ull), light_cut_, &picks);
-  for (const LightPick& pick : picks) AddPunctual(positional_[pick.light], x, n, pick.weight, &e);
+  for (const LightPick& pick : picks) {
+    AddPunctual(positional_[pick.light], x, n, pick.weight, &e, rays);
+  }
   return e;
 }
 
 void DirectLight::AddLight(const Light& light, const Vec3& x, const Vec3& n, uint64_t key,
-                           double weight, Rgb* e) const {
+                           double weight, Rgb* e, uint64_t* rays) const {
   const bool capped = rays_per_light_ > 0 && light.members.size() > rays_per_light_;
   const Rgb& emission = scene_.patches[emitters_[light.members[0]]].emission;
   const double whole = PointToOutlineFormFactor(x, n, light.outline);
@@ -154,6 +158,7 @@ void DirectLight::AddLight(const Light& light, const Vec3& x, const Vec3& n, uin
       const Patch& p = scene_.patches[emitters_[k]];
       const double f = PointToPatchFormFactor(x, n, p);
       if (f > 0) *e += p.emission * (f * Visible(x, n, k, key) * weight);
+      if (f > 0 && rays != nullptr) *rays += grid_ * grid_;
     }
     return;
   }
@@ -179,42 +184,51 @@ void DirectLight::AddLight(const Light& light, const Vec3& x, const Vec3& n, uin
     } else if (w > 0) {
       sum += w;
       visible += w * Visible(x, n, k, key);
+      if (rays != nullptr) *rays += grid_ * grid_;
     }
   }
   if (!(sum > 0)) return;
-  if (capped) visible = CappedVisible(x, n, light, share, sum, key) * sum;
+  if (capped) {
+    visible = CappedVisible(x, n, light, share, sum, key) * sum;
+    if (rays != nullptr) *rays += rays_per_light_;
+  }
   // Not planar: sum_k f_k V_k. Planar: the outline's form factor times the kernel-weighted share.
   const double f = whole < 0 ? visible : whole * visible / sum;
   *e += emission * (f * weight);
 }
 
-Rgb DirectLight::EmitterIrradiance(const Vec3& x, const Vec3& n, uint64_t key,
-                                   uint32_t* evaluated) const {
+Rgb DirectLight::EmitterIrradiance(const Vec3& x, const Vec3& n, uint64_t key, uint32_t* evaluated,
+                                   uint64_t* rays) const {
   Rgb e;
   if (emitter_tree_ == nullptr) {
-    for (const Light& light : lights_) AddLight(light, x, n, key, 1.0, &e);
+    for (const Light& light : lights_) AddLight(light, x, n, key, 1.0, &e, rays);
     if (evaluated != nullptr) *evaluated = static_cast<uint32_t>(lights_.size());
     return e;
   }
   std::vector<LightPick> picks;
   // Its own stream: the pick's random numbers are apart from the shadow rays' (Visible).
   emitter_tree_->Pick(x, n, HashWords(key, 0x656d6974ull), light_cut_, &picks);
-  for (const LightPick& pick : picks) AddLight(lights_[pick.light], x, n, key, pick.weight, &e);
+  for (const LightPick& pick : picks) {
+    AddLight(lights_[pick.light], x, n, key, pick.weight, &e, rays);
+  }
   if (evaluated != nullptr) *evaluated = static_cast<uint32_t>(picks.size());
   return e;
 }
 
 std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, uint64_t seed,
                                   unsigned threads, bool emitters, double* punctual_power,
-                                  uint32_t rays_per_light) {
+                                  uint32_t rays_per_light, uint64_t* shadow_rays) {
   std::vector<Rgb> out(scene.patches.size());
   if (punctual_power != nullptr) *punctual_power = 0;
+  if (shadow_rays != nullptr) *shadow_rays = 0;
   bool any_emitter = false;
   for (const Patch& p : scene.patches) any_emitter = any_emitter || p.emission.Max() > 0;
   if (!(any_emitter && emitters) && scene.lights.empty()) return out;
   const RayCaster caster(scene);
   const DirectLight direct(scene, caster, 1, emitters, kExactLights, kLightCut, rays_per_light);
   std::vector<Rgb> punctual(scene.lights.empty() ? 0 : scene.patches.size());
+  // Per patch, so that the count is a sum of integers in a fixed order whatever the threads.
+  std::vector<uint32_t> rays(shadow_rays != nullptr ? scene.patches.size() : 0);
   ThreadPool pool(threads);
   const uint32_t m = std::max(1u, sections);
   // Stream constant: keeps these keys apart from every other use of the seed.
@@ -223,17 +237,22 @@ std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, ui
     const Patch& p = scene.patches[i];
     const PatchSampling sampling = PreparePatchSampling(p, caster.origin_offset());
     Rgb sum, lamps;
+    uint64_t cast = 0;
+    uint64_t* counted = rays.empty() ? nullptr : &cast;
     for (uint32_t a = 0; a < m; ++a) {
       for (uint32_t b = 0; b < m; ++b) {
         const CounterRng rng(HashWords(stream, i, a * m + b));
         const Vec3 x =
             SamplePatchPoint(p, sampling, (a + rng.Uniform(0)) / m, (b + rng.Uniform(1)) / m);
-        sum += direct.EmitterIrradiance(x, p.normal, HashWords(stream, i, a * m + b, 1));
+        sum += direct.EmitterIrradiance(x, p.normal, HashWords(stream, i, a * m + b, 1), nullptr,
+                                        counted);
         if (!punctual.empty()) {
-          lamps += direct.PunctualIrradiance(x, p.normal, HashWords(stream, i, a * m + b, 2));
+          lamps +=
+              direct.PunctualIrradiance(x, p.normal, HashWords(stream, i, a * m + b, 2), counted);
         }
       }
     }
+    if (!rays.empty()) rays[i] = static_cast<uint32_t>(std::min<uint64_t>(cast, UINT32_MAX));
     if (punctual.empty()) {
       out[i] = sum / double(m * m);
     } else {
@@ -241,6 +260,7 @@ std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, ui
       out[i] = (sum + lamps) / double(m * m);
     }
   });
+  for (uint32_t r : rays) *shadow_rays += r;
   if (punctual_power != nullptr) {
     for (size_t i = 0; i < punctual.size(); ++i) {
       *punctual_power += scene.patches[i].area * punctual[i].Sum();
@@ -267,15 +287,24 @@ uint64_t LightsPerPoint(const PatchScene& scene) {
   return std::max<uint64_t>(1, n > kExactLights ? std::min<size_t>(n, kLightCut) : n);
 }
 
+// Shadow rays a point casts to the punctual lights at most: one per lamp, or the light tree's cut
+// of them.
+uint64_t LampRaysPerPoint(const PatchScene& scene) {
+  const size_t n = scene.lights.size();
+  return n > kExactLights ? std::min<size_t>(n, kLightCut) : n;
+}
+
 // How a solve with these settings starts: whether the emitter patches are in the start, each
-// light's cap on shadow rays (0: a ray per patch) and the emitters' shadow rays per point.
+// light's cap on shadow rays (0: a ray per patch), the emitters' shadow rays per point and the
+// points per side of each patch (0: no start).
 struct StartPlan {
   bool emitters = false;
   uint32_t rays_per_light = 0;
   uint64_t emitter_rays = 0;
+  uint32_t sections = 0;
 };
 
-StartPlan PlanStart(const PatchScene& scene, const SolverSettings& settings) {
+StartPlan PlanEmitters(const PatchScene& scene, const SolverSettings& settings) {
   StartPlan plan;
   if (!GatherOn(settings)) return plan;
   // A shadow ray per point and emitter patch, at least 4 x 4 points per patch: no more than the
@@ -310,7 +339,59 @@ uint32_t SectionsOf(const StartPlan& plan, const PatchScene& scene,
       std::clamp(std::floor(std::sqrt(rays / (2.0 * double(sources)))), 4.0, 16.0));
 }
 
+// Fits the plan within `allowance` shadow rays: fewer points per patch, down to one; then fewer
+// rays per light, down to kMinCappedLightRays; then the emitters shoot and only the lamps, a ray
+// each per point, stay in the start (they have no surface to shoot from).
+void FitStart(const PatchScene& scene, const SolverSettings& settings, uint64_t allowance,
+              StartPlan* plan) {
+  const uint64_t patches = std::max<uint64_t>(1, scene.patches.size());
+  const uint64_t lamps = LampRaysPerPoint(scene);
+  const auto fewer_sections = [&] {
+    const uint64_t per_point = lamps + plan->emitter_rays;
+    while (plan->sections > 1 &&
+           patches * plan->sections * plan->sections * per_point > allowance) {
+      --plan->sections;
+    }
+    return patches * per_point <= allowance;
+  };
+  if (plan->sections == 0 || fewer_sections() || !plan->emitters) return;
+  const uint64_t per_point = allowance / patches;
+  const uint64_t lights = LightsPerPoint(scene);
+  const uint64_t per_light = per_point > lamps ? (per_point - lamps) / lights : 0;
+  if (per_light >= kMinCappedLightRays) {
+    plan->rays_per_light = static_cast<uint32_t>(
+        plan->rays_per_light > 0 ? std::min<uint64_t>(plan->rays_per_light, per_light) : per_light);
+    plan->emitter_rays = std::min(plan->emitter_rays, uint64_t(plan->rays_per_light) * lights);
+    return;
+  }
+  plan->emitters = false;
+  plan->rays_per_light = 0;
+  plan->emitter_rays = 0;
+  plan->sections = SectionsOf(*plan, scene, settings);
+  fewer_sections();
+}
+
+StartPlan PlanStart(const PatchScene& scene, const SolverSettings& settings) {
+  StartPlan plan = PlanEmitters(scene, settings);
+  plan.sections = SectionsOf(plan, scene, settings);
+  if (const uint64_t allowance = StartRayAllowance(settings); allowance > 0) {
+    FitStart(scene, settings, allowance, &plan);
+  }
+  return plan;
+}
+
 }  // namespace
+
+uint64_t StartRayAllowance(const SolverSettings& settings) {
+  uint64_t allowance = 0;
+  if (settings.max_rays > 0) allowance = settings.max_rays / kStartBudgetShare;
+  if (settings.max_seconds > 0) {
+    const double rays = settings.max_seconds * kStartShadowRaysPerSecond / kStartBudgetShare;
+    const uint64_t by_time = static_cast<uint64_t>(std::clamp(rays, 1.0, 1e18));
+    allowance = allowance > 0 ? std::min(allowance, by_time) : by_time;
+  }
+  return allowance;
+}
 
 bool EmittersInDirectStart(const PatchScene& scene, const SolverSettings& settings) {
   return PlanStart(scene, settings).emitters;
@@ -321,17 +402,17 @@ uint32_t DirectLightRaysPerLight(const PatchScene& scene, const SolverSettings& 
 }
 
 uint32_t DirectLightSections(const PatchScene& scene, const SolverSettings& settings) {
-  return SectionsOf(PlanStart(scene, settings), scene, settings);
+  return PlanStart(scene, settings).sections;
 }
 
 std::vector<Rgb> StartingDirectLight(const PatchScene& scene, const SolverSettings& settings,
-                                     double* punctual_power) {
+                                     double* punctual_power, uint64_t* shadow_rays) {
   if (punctual_power != nullptr) *punctual_power = 0;
+  if (shadow_rays != nullptr) *shadow_rays = 0;
   const StartPlan plan = PlanStart(scene, settings);
-  const uint32_t sections = SectionsOf(plan, scene, settings);
-  if (sections == 0) return {};
-  return PatchDirectLight(scene, sections, settings.seed, settings.threads, plan.emitters,
-                          punctual_power, plan.rays_per_light);
+  if (plan.sections == 0) return {};
+  return PatchDirectLight(scene, plan.sections, settings.seed, settings.threads, plan.emitters,
+                          punctual_power, plan.rays_per_light, shadow_rays);
 }
 
 std::vector<Rgb> PointsDirectLight(const PatchScene& scene,

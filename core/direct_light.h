@@ -49,12 +49,14 @@ class DirectLight {
   // EmitterIrradiance + PunctualIrradiance.
   Rgb Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const;
   // From the emitter patches alone (zero without `emitters`). `evaluated`, if not null, receives
-  // how many lights (emitters of one surface and emission) were evaluated.
-  Rgb EmitterIrradiance(const Vec3& x, const Vec3& n, uint64_t key,
-                        uint32_t* evaluated = nullptr) const;
+  // how many lights (emitters of one surface and emission) were evaluated; `rays`, if not null,
+  // is increased by the shadow rays cast.
+  Rgb EmitterIrradiance(const Vec3& x, const Vec3& n, uint64_t key, uint32_t* evaluated = nullptr,
+                        uint64_t* rays = nullptr) const;
   // From the punctual lights alone: each light's UnshadowedIrradiance where its shadow ray arrives.
-  // `key` picks the lights sampled when there are many; with few, it is unused.
-  Rgb PunctualIrradiance(const Vec3& x, const Vec3& n, uint64_t key = 0) const;
+  // `key` picks the lights sampled when there are many; with few, it is unused. `rays` as above.
+  Rgb PunctualIrradiance(const Vec3& x, const Vec3& n, uint64_t key = 0,
+                         uint64_t* rays = nullptr) const;
   // The emitter lights (surfaces), and whether they are sampled through a LightTree.
   size_t emitter_lights() const { return lights_.size(); }
   bool emitters_sampled() const { return emitter_tree_ != nullptr; }
@@ -77,11 +79,13 @@ class DirectLight {
   // the weights' running sum per ray). Unbiased; its cost no longer grows with the light's patches.
   double CappedVisible(const Vec3& x, const Vec3& n, const Light& light,
                        const std::vector<double>& weight, double sum, uint64_t key) const;
-  // Adds `weight` times the light's irradiance at x to *e (weight 1: as summed without a tree).
+  // Adds `weight` times the light's irradiance at x to *e (weight 1: as summed without a tree),
+  // and the shadow rays cast to *rays (if not null).
   void AddLight(const Light& light, const Vec3& x, const Vec3& n, uint64_t key, double weight,
-                Rgb* e) const;
-  // Adds `weight` times scene_.lights[i]'s irradiance (one shadow ray) to *e.
-  void AddPunctual(uint32_t i, const Vec3& x, const Vec3& n, double weight, Rgb* e) const;
+                Rgb* e, uint64_t* rays) const;
+  // Adds `weight` times scene_.lights[i]'s irradiance (one shadow ray) to *e, the ray to *rays.
+  void AddPunctual(uint32_t i, const Vec3& x, const Vec3& n, double weight, Rgb* e,
+                   uint64_t* rays) const;
 
   const PatchScene& scene_;
   const RayCaster& caster_;
@@ -102,20 +106,34 @@ class DirectLight {
 // (with `emitters`) and per punctual light per point (of those the light tree picks, with many). A
 // pure function of the scene, `sections`, `seed` and `emitters`, whatever `threads` (0: all cores).
 // If `punctual_power` is not null it receives the punctual lights' share summed over the patches
-// (area times channel sum): the power they deliver.
+// (area times channel sum): the power they deliver; `shadow_rays`, if not null, the shadow rays
+// cast (as the result, the same whatever `threads`).
 std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, uint64_t seed,
                                   unsigned threads, bool emitters = true,
-                                  double* punctual_power = nullptr, uint32_t rays_per_light = 0);
+                                  double* punctual_power = nullptr, uint32_t rays_per_light = 0,
+                                  uint64_t* shadow_rays = nullptr);
 
 // The fewest shadow rays a light gets per point where its rays are capped: a penumbra's estimate
 // from fewer would be too coarse.
 inline constexpr uint32_t kMinCappedLightRays = 16;
 
+// A budgeted solve's start spends at most this share of the budget on its shadow rays (issue 21:
+// the budget holds from the first second): a quarter of max_rays, and a quarter of max_seconds
+// at kStartShadowRaysPerSecond. The shadow rays count against max_rays (the solver's
+// start_rays()); the seconds count as any other.
+inline constexpr uint64_t kStartBudgetShare = 4;
+// The shadow-ray rate the start is planned at under a time budget: about a third of what two
+// cores of a 2020s desktop cast (10 M/s on the Cornell box at 88,750 patches), so that a time
+// budget plans the same start on every machine and a slow one still keeps it to a small share.
+inline constexpr double kStartShadowRaysPerSecond = 4e6;
+
 // Whether a solve with these settings starts from the emitter patches' direct light rather than
 // letting them shoot: the gather on (GatherOn), some emitter, and either no more than
 // gather_rays / 16 emitter patches, or emitter patches no more than a quarter of all and no more
-// than gather_rays / (16 kMinCappedLightRays) lights (8 at the default 2048 rays); else (a
-// furnace, a sky of emitters, a building of many lights) the emitters shoot.
+// than gather_rays / (16 kMinCappedLightRays) lights (8 at the default 2048 rays); and, under a
+// budget, a point per patch with kMinCappedLightRays rays per light within StartRayAllowance.
+// Else (a furnace, a sky of emitters, a building of many lights, a budget too small for both) the
+// emitters shoot.
 bool EmittersInDirectStart(const PatchScene& scene, const SolverSettings& settings);
 
 // The shadow rays a light gets at most per point in the direct-light start and the display (0: no
@@ -123,20 +141,28 @@ bool EmittersInDirectStart(const PatchScene& scene, const SolverSettings& settin
 // light tree's cut), at least kMinCappedLightRays where the emitter patches are capped at all (0
 // where EmittersInDirectStart is false or every emitter patch fits the gather's rays). So the
 // start costs about the gather, however finely the lights are meshed; a light of no more patches
-// than that is sampled patch by patch, as before.
+// than that is sampled patch by patch, as before. Under a budget, lower where one point per
+// patch would still exceed StartRayAllowance.
 uint32_t DirectLightRaysPerLight(const PatchScene& scene, const SolverSettings& settings);
 
 // The points per side of each patch at which a solve with these settings computes the direct
 // light it starts from (ProgressiveSolver), or 0 where it does not start from one: no emitter in
 // it (EmittersInDirectStart) and no punctual light. Within, up to half the gather's rays per
 // patch (512 rays without a gather) go to points, 4 x 4 to 16 x 16; a shadow ray per point and
-// emitter patch (up to DirectLightRaysPerLight per light) or punctual light.
+// emitter patch (up to DirectLightRaysPerLight per light) or punctual light. Under a budget, fewer
+// (down to one) where the start would cast more than StartRayAllowance.
 uint32_t DirectLightSections(const PatchScene& scene, const SolverSettings& settings);
 
+// The shadow rays a start may cast under the settings' budgets (0: no budget): max_rays and
+// max_seconds x kStartShadowRaysPerSecond, each over kStartBudgetShare, the smaller of the two.
+uint64_t StartRayAllowance(const SolverSettings& settings);
+
 // The direct light a solve with these settings starts from: PatchDirectLight at
-// DirectLightSections with EmittersInDirectStart, or empty where that is 0.
+// DirectLightSections with EmittersInDirectStart, or empty where that is 0. `shadow_rays`, if not
+// null, receives the shadow rays it cast.
 std::vector<Rgb> StartingDirectLight(const PatchScene& scene, const SolverSettings& settings,
-                                     double* punctual_power = nullptr);
+                                     double* punctual_power = nullptr,
+                                     uint64_t* shadow_rays = nullptr);
 
 // Shadow rays per point (about) for PointsDirectLight.
 inline constexpr uint32_t kPointShadowRays = 64;

@@ -61,7 +61,7 @@ ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettin
   // in the start (they have no surface to shoot from); what they deliver counts as their emitted
   // power (a sun's whole power has no bound).
   double punctual_power = 0;
-  direct_ = StartingDirectLight(scene, settings_, &punctual_power);
+  direct_ = StartingDirectLight(scene, settings_, &punctual_power, &start_rays_);
   if (direct_.empty()) return;
   emitters_direct_ = EmittersInDirectStart(scene, settings_);
   const double emitter_power = energy_.emitted;

@@ -120,6 +120,9 @@ class ProgressiveSolver {
   // the emitter patches' where EmittersInDirectStart (else they shoot as usual). Empty when
   // neither is in it.
   const std::vector<Rgb>& direct_light() const { return direct_; }
+  // The shadow rays the direct light above cast: they count against the ray budget
+  // (core/solve_control.h), and are the same whatever the threads.
+  uint64_t start_rays() const { return start_rays_; }
   // Unshot power (magnitudes) over emitted power: the convergence measure.
   double UnshotFraction() const;
   // Sum over patches of A_i times the unshot radiosity's channel sum, with its sign: the term of
@@ -149,6 +152,7 @@ class ProgressiveSolver {
   // The emitter patches' light is in direct_ (EmittersInDirectStart): they do not shoot, and the
   // gather takes only bounced light. Otherwise direct_ holds the punctual lights' alone, if any.
   bool emitters_direct_ = false;
+  uint64_t start_rays_ = 0;
   EnergyAccount energy_;
   uint32_t rounds_done_ = 0;
   // Within a round (BeginRound to EndRound): hit weights per patch, zero between shots, and per

@@ -19,6 +19,9 @@ struct SolveTotals {
 
 struct SolveStats {
   uint64_t rays = 0;
+  // Shadow rays of the direct light the solve started from (ProgressiveSolver::start_rays): with
+  // `rays`, what the ray budget counts. 0 where unknown (a solution fetched from the master).
+  uint64_t start_rays = 0;
   uint64_t rounds = 0;
   double seconds = 0;
   double rays_per_second = 0;

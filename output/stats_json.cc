@@ -121,6 +121,7 @@ Result<std::string> FormatStatsJson(const SolveStats& stats, const JsonNumbers& 
   ObjectWriter object;
   // The field list mirrors core/solve_stats.h in declaration order.
   object.Add("rays", FormatUnsigned(stats.rays));
+  if (stats.start_rays > 0) object.Add("start_rays", FormatUnsigned(stats.start_rays));
   object.Add("rounds", FormatUnsigned(stats.rounds));
   object.Add("seconds", JsonNumber(stats.seconds));
   object.Add("rays_per_second", JsonNumber(stats.rays_per_second));

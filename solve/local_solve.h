@@ -40,10 +40,11 @@ class LocalBatches {
               const std::function<void(uint64_t rays_done)>& on_batch = {});
   // Traces `batches` on the pool and throws their results away (RoundDriver::MeasureGatherRayCost).
   void TraceOnly(RoundDriver& driver, const std::vector<Batch>& batches);
+  // The tracers of the driver's current scene (and its ray caster's BVH), if not made yet: the
+  // calls above make them; a caller that times a trace makes them first.
+  void Prepare(RoundDriver& driver);
 
  private:
-  // The tracers of the driver's current scene, if not made yet.
-  void Prepare(RoundDriver& driver);
   ThreadPool& pool_;
   const RoundDriver* driver_ = nullptr;
   uint32_t generation_ = 0;
@@ -70,8 +71,9 @@ struct RefiningHooks {
   // count toward the time budget (max_seconds), not toward the solve's own seconds.
   double seconds_spent_before = 0;
   // Once the solver has started (the direct light computed, or the resumed state restored), with
-  // the seconds that took.
-  std::function<void(double seconds)> after_start;
+  // the seconds that took and the shadow rays the direct light cast (ProgressiveSolver::
+  // start_rays: they count against the ray budget).
+  std::function<void(double seconds, uint64_t shadow_rays)> after_start;
 };
 
 // Solves `mesh` with adaptive refinement as `refine` says (off: the mesh as given) until a

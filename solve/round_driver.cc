@@ -101,9 +101,11 @@ Status RoundDriver::Resume(const SolveState& state) {
 std::optional<RoundPlan> RoundDriver::PlanNext(uint32_t batch_rays, double seconds,
                                                double rays_per_second) {
   if (stop_) return std::nullopt;
-  stop_ = StopBeforeRound(*solver_, settings_, totals_.rays, seconds);
+  // The start's shadow rays are spent from the same budget as the rounds' rays.
+  const uint64_t spent = totals_.rays + solver_->start_rays();
+  stop_ = StopBeforeRound(*solver_, settings_, spent, seconds);
   if (stop_) return std::nullopt;
-  uint64_t cap = NextRoundRayCap(settings_, totals_.rays);
+  uint64_t cap = NextRoundRayCap(settings_, spent);
   // The pace is the shooting rounds'; a gather ray costs MeasureGatherRayCost's ratio of one.
   const bool gather_next = solver_->GatherNext();
   if (gather_next && gather_ray_cost_ && *gather_ray_cost_ > 0) {
@@ -192,6 +194,7 @@ SolveResult RoundDriver::Finish(double seconds, uint32_t threads) const {
   totals.seconds = seconds;
   SolveResult out;
   out.stats = StatsOf(totals, solver_->energy());
+  out.stats.start_rays = solver_->start_rays();
   out.stats.rounds = solver_->rounds_done();
   out.stats.patches = scene_->patches.size();
   out.stats.unshot_fraction = solver_->UnshotFraction();

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
+#include <vector>
 
 #include "core/direct_light.h"
 #include "core/ray_caster.h"
@@ -89,6 +91,53 @@ TEST(DirectLightCapTest, TheStartCapsRaysWhenLightsAreFinelyMeshed) {
   EXPECT_FALSE(EmittersInDirectStart(scene, Gathering(128)));
   EXPECT_TRUE(EmittersInDirectStart(scene, Gathering(256)));
   EXPECT_EQ(DirectLightRaysPerLight(scene, Gathering(256)), kMinCappedLightRays);
+}
+
+// Under a budget the start fits a quarter of it (issue 21: the budget holds from the first second):
+// fewer points per patch first, then fewer rays per light, then the emitters shoot.
+TEST(DirectLightCapTest, ABudgetFitsTheStartToAQuarterOfIt) {
+  PatchScene scene = GridLight(16);  // one light of 256 patches
+  AddFloor(40, &scene);
+  const uint64_t patches = scene.patches.size();
+  SolverSettings settings = Gathering(2048);
+  const auto plan = [&](uint64_t max_rays) {
+    settings.max_rays = max_rays;
+    return std::tuple(EmittersInDirectStart(scene, settings), DirectLightSections(scene, settings),
+                      DirectLightRaysPerLight(scene, settings));
+  };
+  EXPECT_EQ(StartRayAllowance(settings), 0u) << "no budget";
+  // 4 x 4 points of 128 rays a patch fit a quarter: as without a budget.
+  EXPECT_EQ(plan(4 * patches * 16 * 128), std::tuple(true, 4u, 128u));
+  EXPECT_EQ(StartRayAllowance(settings), patches * 16 * 128);
+  EXPECT_EQ(plan(4 * patches * 16 * 128 - 4), std::tuple(true, 3u, 128u));
+  EXPECT_EQ(plan(4 * patches * 4 * 128), std::tuple(true, 2u, 128u));
+  EXPECT_EQ(plan(4 * patches * 128), std::tuple(true, 1u, 128u));
+  EXPECT_EQ(plan(4 * patches * 64), std::tuple(true, 1u, 64u)) << "one point, fewer rays";
+  EXPECT_EQ(plan(4 * patches * kMinCappedLightRays), std::tuple(true, 1u, kMinCappedLightRays));
+  EXPECT_EQ(plan(4 * patches * kMinCappedLightRays - 4), std::tuple(false, 0u, 0u))
+      << "too little for 16 rays a point: the emitters shoot";
+  // A time budget plans at kStartShadowRaysPerSecond: the same on every machine.
+  settings.max_rays = 0;
+  settings.max_seconds = double(patches * 64) * kStartBudgetShare / kStartShadowRaysPerSecond;
+  EXPECT_EQ(StartRayAllowance(settings), patches * 64);
+  EXPECT_EQ(DirectLightRaysPerLight(scene, settings), 64u);
+  settings.max_rays = 4 * patches * 32;  // both: the smaller allowance
+  EXPECT_EQ(DirectLightRaysPerLight(scene, settings), 32u);
+
+  // The start casts what its plan says at most, counted the same whatever the threads.
+  settings.max_seconds = 0;
+  settings.max_rays = 4 * patches * 4 * 128;
+  for (unsigned threads : {1u, 3u}) {
+    settings.threads = threads;
+    uint64_t rays = 0;
+    const std::vector<Rgb> start = StartingDirectLight(scene, settings, nullptr, &rays);
+    EXPECT_EQ(start.size(), patches);
+    EXPECT_GT(rays, patches * 4 * 128 / 2) << "most floor points see the light";
+    EXPECT_LE(rays, StartRayAllowance(settings));
+    uint64_t again = 0;
+    EXPECT_EQ(PatchDirectLight(scene, 2, settings.seed, 2, true, nullptr, 128, &again), start);
+    EXPECT_EQ(again, rays) << threads;
+  }
 }
 
 // `count` lights of 36 patches each (distinct surfaces) over a 60 x 60 floor.

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "core/batch_tracer.h"
+#include "core/direct_light.h"
 #include "core/ray_caster.h"
 #include "core/solve_control.h"
 #include "solve/local_solve.h"
@@ -189,13 +190,18 @@ TEST(GatherTest, RayBudgetCutsTheGatherRound) {
   const SolveResult unlimited = Solve(scene, settings);
   const uint64_t gather_rays = uint64_t{settings.gather_rays} * scene.patches.size();
   const uint64_t shooting_rays = unlimited.stats.rays - gather_rays;
+  // The start's shadow rays count against the budget too (so a budget also plans a cheaper start:
+  // the start's rays differ between the budgets, each within a quarter of its budget).
   settings.max_rays = shooting_rays + gather_rays / 3;
   const SolveResult cut = Solve(scene, settings);
-  EXPECT_EQ(cut.stats.rays, settings.max_rays);
+  EXPECT_GT(cut.stats.start_rays, 0u);
+  EXPECT_LE(cut.stats.start_rays, settings.max_rays / kStartBudgetShare);
+  EXPECT_EQ(cut.stats.rays + cut.stats.start_rays, settings.max_rays);
   EXPECT_EQ(cut.stats.stop_reason, kStopRayBudget);
   EXPECT_EQ(cut.unshot, std::vector<Rgb>(scene.patches.size()));
-  settings.max_rays = shooting_rays + 5;
+  settings.max_rays = cut.stats.start_rays + shooting_rays + 5;
   const SolveResult skipped = Solve(scene, settings);
+  EXPECT_EQ(skipped.stats.start_rays, cut.stats.start_rays);
   EXPECT_EQ(skipped.stats.rays, shooting_rays);
   EXPECT_EQ(skipped.stats.stop_reason, kStopRayBudget);
   EXPECT_FALSE(skipped.unshot == std::vector<Rgb>(scene.patches.size()));

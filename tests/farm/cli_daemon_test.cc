@@ -119,7 +119,10 @@ TEST_F(FarmTest, EveryQueueCommandAgainstARunningMaster) {
   ExpectJobKeys(done);
   EXPECT_EQ(done["state"], "done");
   EXPECT_EQ(done["stop_reason"], "ray budget");
-  EXPECT_EQ(done["rays"], 3000000);
+  // The rounds' rays: the direct light the master started from spent the rest of the 3M budget,
+  // at most a quarter of it (core/direct_light.h, StartRayAllowance).
+  EXPECT_LT(done["rays"], 3000000);
+  EXPECT_GE(done["rays"], 3000000 - 3000000 / 4);
   EXPECT_TRUE(FetchPatches(alpha) == ReferencePatches("cornell-box.toml", kShortJob));
 
   // log: the job's events and the farm-wide ones.
