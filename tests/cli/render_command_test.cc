@@ -93,6 +93,20 @@ TEST(RenderCommandTest, CornellBoxWritesEveryOutput) {
   }
 }
 
+// A ray budget covers the direct light too (issue 21): the start's shadow rays (stats.json
+// start_rays) are planned to a quarter of it and the rounds get the rest, exactly.
+TEST(RenderCommandTest, ARayBudgetCountsTheDirectLightsShadowRays) {
+  TempDir out;
+  const auto r = Render("cornell-box.toml", out.path(), {"--rays", "400000", "-q"});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  const std::string stats = ReadFile(out.File("stats.json"));
+  const double start = JsonNumber(stats, "start_rays");
+  EXPECT_GT(start, 0) << stats;
+  EXPECT_LE(start, 400000 / 4) << stats;
+  EXPECT_EQ(JsonNumber(stats, "rays") + start, 400000) << stats;
+  EXPECT_NE(stats.find("\"stop_reason\": \"ray budget\""), std::string::npos) << stats;
+}
+
 // The determinism contract end to end: thread count never changes a byte of patches.csv.
 TEST(RenderCommandTest, ThreadCountGivesByteIdenticalPatches) {
   std::string reference;
