@@ -152,7 +152,11 @@ void DirectLight::AddLight(const Light& light, const Vec3& x, const Vec3& n, uin
                            double weight, Rgb* e, uint64_t* rays) const {
   const bool capped = rays_per_light_ > 0 && light.members.size() > rays_per_light_;
   const Rgb& emission = scene_.patches[emitters_[light.members[0]]].emission;
-  const double whole = PointToOutlineFormFactor(x, n, light.outline);
+  double whole = PointToOutlineFormFactor(x, n, light.outline);
+  // A finely meshed light that x's tangent plane cuts (or x behind it): its outline clipped, one
+  // contour, rather than a clipped form factor per patch as weights (at 88,750 patches of the
+  // Cornell box, whose light is 546, those took a tenth of render's CPU).
+  if (whole < 0 && capped) whole = PointToClippedOutlineFormFactor(x, n, light.outline);
   if (whole < 0 && !capped) {  // patch by patch
     for (uint32_t k : light.members) {
       const Patch& p = scene_.patches[emitters_[k]];

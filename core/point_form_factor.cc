@@ -24,6 +24,19 @@ constexpr double kHorizon = 1e-9;
 // How far above the plane through x with unit normal n the point x + a is, less the tolerance.
 double AboveHorizon(const Vec3& a, const Vec3& n) { return Dot(a, n) - kHorizon * Length(a); }
 
+// One edge's term of the contour integral from x (unit normal n), the edge's ends relative to x:
+// the angle it subtends times the cosine of its plane's normal with n.
+double EdgeTerm(const Vec3& ra, const Vec3& rb, const Vec3& n) {
+  // A corner at x itself (x on the patch's corner, in its plane to rounding) has no direction.
+  if (Length(ra) == 0 || Length(rb) == 0) return 0;
+  const Vec3 a = Normalize(ra);
+  const Vec3 b = Normalize(rb);
+  const Vec3 c = Cross(a, b);
+  const double s = Length(c);
+  if (s == 0) return 0;  // an edge through or pointing at x subtends no angle
+  return std::atan2(s, Dot(a, b)) * Dot(c / s, n);
+}
+
 }  // namespace
 
 double PointToPatchFormFactor(const Vec3& x, const Vec3& n, const Patch& patch) {
@@ -41,19 +54,7 @@ double PointToPatchFormFactor(const Vec3& x, const Vec3& n, const Patch& patch) 
   }
   if (count < 3) return 0;
   double sum = 0;
-  for (int i = 0; i < count; ++i) {
-    const Vec3& ra = clipped[i];
-    const Vec3& rb = clipped[(i + 1) % count];
-    // A corner at x itself (x on the patch's corner, in its plane to rounding) has no direction.
-    if (Length(ra) == 0 || Length(rb) == 0) continue;
-    const Vec3 a = Normalize(ra);
-    const Vec3 b = Normalize(rb);
-    const Vec3 c = Cross(a, b);
-    const double s = Length(c);
-    if (s == 0) continue;  // an edge through or pointing at x subtends no angle
-    const double angle = std::atan2(s, Dot(a, b));
-    sum += angle * Dot(c / s, n);
-  }
+  for (int i = 0; i < count; ++i) sum += EdgeTerm(clipped[i], clipped[(i + 1) % count], n);
   // The sign of the sum follows the corners' winding as seen from x; every edge shares it.
   return std::abs(sum) / (2 * std::numbers::pi);
 }
@@ -96,6 +97,58 @@ double PointToOutlineFormFactor(const Vec3& x, const Vec3& n, const PlanarOutlin
     const double s = Length(c);
     if (s == 0) continue;
     sum += std::atan2(s, Dot(a, b)) * Dot(c / s, n);
+  }
+  return std::abs(sum) / (2 * std::numbers::pi);
+}
+
+double PointToClippedOutlineFormFactor(const Vec3& x, const Vec3& n, const PlanarOutline& outline) {
+  if (outline.edges.empty()) return -1;
+  if (AboveHorizon(x - outline.point, outline.normal) <= 0) return 0;  // only the front emits
+  // Where the clipped boundary meets the horizon line, with its place along the line.
+  struct Crossing {
+    double along;
+    Vec3 at;    // relative to x
+    bool exit;  // the outline leaves the upper half-space here
+  };
+  std::vector<Crossing> crossings;
+  const Vec3 line = Cross(outline.normal, n);
+  double sum = 0;
+  for (const auto& [from, to] : outline.edges) {
+    const Vec3 a = from - x, b = to - x;
+    const double da = AboveHorizon(a, n), db = AboveHorizon(b, n);
+    if (da < 0 && db < 0) continue;
+    if ((da >= 0) == (db >= 0)) {
+      sum += EdgeTerm(a, b, n);
+      continue;
+    }
+    const Vec3 p = a + (b - a) * (da / (da - db));
+    crossings.push_back({Dot(p, line), p, da >= 0});
+    sum += da >= 0 ? EdgeTerm(a, p, n) : EdgeTerm(p, b, n);
+  }
+  // Sorted along the line, the crossings bound the stretches of the light on it two by two; the
+  // clipped boundary runs along each from where the outline left the half-space to where it came
+  // back.
+  if (crossings.size() % 2 != 0 || (!crossings.empty() && !(Length(line) > 0))) return -1;
+  std::sort(crossings.begin(), crossings.end(), [](const Crossing& l, const Crossing& r) {
+    return l.along < r.along || (l.along == r.along && l.exit < r.exit);
+  });
+  // An exit and an entry at the same point (two edges run both ways across the line: a slit the
+  // patches' shared edges left) bound nothing.
+  size_t kept = 0;
+  for (size_t k = 0; k < crossings.size(); ++k) {
+    if (k + 1 < crossings.size() && crossings[k].along == crossings[k + 1].along &&
+        crossings[k].exit != crossings[k + 1].exit) {
+      ++k;
+      continue;
+    }
+    crossings[kept++] = crossings[k];
+  }
+  crossings.resize(kept);
+  for (size_t k = 0; k < crossings.size(); k += 2) {
+    const Crossing& first = crossings[k];
+    const Crossing& second = crossings[k + 1];
+    if (first.exit == second.exit) return -1;
+    sum += first.exit ? EdgeTerm(first.at, second.at, n) : EdgeTerm(second.at, first.at, n);
   }
   return std::abs(sum) / (2 * std::numbers::pi);
 }

@@ -35,4 +35,13 @@ PlanarOutline OutlineOf(const std::vector<const Patch*>& patches, double tol);
 // Elsewhere returns a negative value: the caller sums PointToPatchFormFactor over the patches.
 double PointToOutlineFormFactor(const Vec3& x, const Vec3& n, const PlanarOutline& outline);
 
+// The same where the light needs clipping: the outline's edges clipped to x's upper half-space
+// (as PointToPatchFormFactor clips a patch), closed along the line where the light's plane meets
+// x's tangent plane (the crossings, sorted along it, pair up into the stretches of the light it
+// crosses). Zero where x is not in front of the light's plane; negative where there is no outline
+// or the crossings do not pair up (a T-vertex's unpaired pieces on the line): the caller sums
+// PointToPatchFormFactor over the patches. Equal to that sum up to rounding, at the cost of one
+// contour instead of one per patch (tests/core/point_form_factor_test.cc).
+double PointToClippedOutlineFormFactor(const Vec3& x, const Vec3& n, const PlanarOutline& outline);
+
 }  // namespace radfarm

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace radfarm {
 namespace {
@@ -168,6 +171,86 @@ TEST(PointFormFactorTest, AnOutlineNeedingClippingOrBehindDefersToThePatches) {
   std::vector<const Patch*> bent_pointers;
   for (const Patch& p : bent) bent_pointers.push_back(&p);
   EXPECT_TRUE(OutlineOf(bent_pointers, 1e-6).edges.empty());
+}
+
+// A 6 x 6 grid of 0.2 squares 1 above the origin, facing down, less the cells `hole` says: an L, a
+// ring, a light with a notch.
+std::vector<Patch> GridLightWithout(bool (*hole)(int, int)) {
+  // Corners shared to the bit, as the mesher welds them: the shared edges cancel in the outline.
+  std::array<double, 7> at;
+  for (int i = 0; i <= 6; ++i) at[i] = -0.6 + 0.2 * i;
+  std::vector<Patch> out;
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j) {
+      if (hole(i, j)) continue;
+      out.push_back(Quad({at[i], at[j], 1}, {at[i], at[j + 1], 1}, {at[i + 1], at[j + 1], 1},
+                         {at[i + 1], at[j], 1}));
+    }
+  }
+  return out;
+}
+
+// Where the light crosses the point's tangent plane, its outline clipped and closed along the
+// crossing line gives the sum of its patches' clipped form factors: on convex, concave and holed
+// lights, for points and normals all around.
+TEST(PointFormFactorTest, AClippedOutlineIsItsPatchesSum) {
+  const std::vector<std::vector<Patch>> lights = {
+      GridLightWithout([](int, int) { return false; }),
+      GridLightWithout([](int i, int j) { return i >= 3 && j >= 3; }),  // an L
+      GridLightWithout(
+          [](int i, int j) { return i >= 2 && i <= 3 && j >= 2 && j <= 3; }),  // a ring
+      GridLightWithout(
+          [](int i, int j) { return j == 2 && i <= 4; }),  // a notch cut nearly through
+  };
+  int clipped = 0;
+  for (const std::vector<Patch>& patches : lights) {
+    std::vector<const Patch*> pointers;
+    for (const Patch& p : patches) pointers.push_back(&p);
+    const PlanarOutline outline = OutlineOf(pointers, 1e-12);
+    ASSERT_FALSE(outline.edges.empty());
+    for (const Vec3& x : {Vec3{0, 0, 0}, Vec3{0.05, -0.1, 0.6}, Vec3{-0.7, 0.3, 0.95},
+                          Vec3{0.25, 0.15, 0.9}, Vec3{1.5, -1, 0.2}}) {
+      for (int k = 0; k < 24; ++k) {
+        // Normals on a spiral over the sphere: some see the whole light, most cut it.
+        const double z = 1 - (k + 0.5) / 12.0, r = std::sqrt(std::max(0.0, 1 - z * z));
+        const double phi = 2.399963 * k;
+        const Vec3 n{r * std::cos(phi), r * std::sin(phi), z};
+        double sum = 0;
+        for (const Patch& p : patches) sum += PointToPatchFormFactor(x, n, p);
+        const double whole = PointToClippedOutlineFormFactor(x, n, outline);
+        EXPECT_NEAR(whole, sum, 1e-12)
+            << x.x << " " << x.y << " " << x.z << " n " << n.x << " " << n.y << " " << n.z;
+        if (PointToOutlineFormFactor(x, n, outline) < 0 && sum > 0) ++clipped;
+      }
+    }
+  }
+  EXPECT_GT(clipped, 100) << "most of the cases must need clipping";
+  // Behind the light: nothing.
+  const std::vector<Patch> square = GridLightWithout([](int, int) { return false; });
+  std::vector<const Patch*> pointers;
+  for (const Patch& p : square) pointers.push_back(&p);
+  const PlanarOutline outline = OutlineOf(pointers, 1e-12);
+  EXPECT_EQ(PointToClippedOutlineFormFactor({0, 0, 2}, Normalize(Vec3{0.3, 0, -1}), outline), 0);
+  // No outline: the caller sums the patches.
+  EXPECT_LT(PointToClippedOutlineFormFactor({0, 0, 0}, {0, 0, 1}, PlanarOutline{}), 0);
+}
+
+// A T-vertex leaves pieces of edges on the crossing line that do not pair up as the outline's own:
+// the result is then the patches' sum, or negative (the caller sums the patches).
+TEST(PointFormFactorTest, AClippedOutlineWithATVertexIsItsSumOrDefers) {
+  const std::vector<Patch> patches = SplitSquareAbove();
+  std::vector<const Patch*> pointers;
+  for (const Patch& p : patches) pointers.push_back(&p);
+  const PlanarOutline outline = OutlineOf(pointers, 1e-12);
+  for (const Vec3& n :
+       {Normalize(Vec3{1, 0, 0.3}), Normalize(Vec3{0, 1, 0.2}), Normalize(Vec3{-1, 0.5, 0.1})}) {
+    double sum = 0;
+    for (const Patch& p : patches) sum += PointToPatchFormFactor({0, 0, 0}, n, p);
+    const double whole = PointToClippedOutlineFormFactor({0, 0, 0}, n, outline);
+    if (whole >= 0) {
+      EXPECT_NEAR(whole, sum, 1e-12) << n.x << " " << n.y;
+    }
+  }
 }
 
 }  // namespace
