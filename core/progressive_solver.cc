@@ -134,6 +134,10 @@ uint64_t ProgressiveSolver::GatheringPatches() const {
   return n;
 }
 
+uint64_t ProgressiveSolver::MinGatherRays() const {
+  return GatheringPatches() * std::max<uint64_t>(1, settings_.gather_rays / kMinGatherShare);
+}
+
 uint64_t ProgressiveSolver::PendingGatherRays() const {
   return GatherPending() ? GatheringPatches() * settings_.gather_rays : 0;
 }
@@ -153,9 +157,9 @@ RoundPlan ProgressiveSolver::PlanGather(uint32_t batch_rays, uint64_t ray_cap) c
   }
   if (ray_cap > 0 && plan.rays > ray_cap) {
     // The last round of a ray budget: the budget's rays spread evenly over the gathering patches
-    // (the first ones one more), unless it cannot give each one ray.
+    // (the first ones one more), unless it cannot give each its share (MinGatherRays).
     const uint64_t patches = plan.shots.size();
-    if (ray_cap < patches) return RoundPlan{};
+    if (ray_cap < MinGatherRays()) return RoundPlan{};
     for (size_t s = 0; s < patches; ++s)
       plan.shots[s].rays = ray_cap / patches + (s < ray_cap % patches);
     plan.rays = ray_cap;

@@ -10,9 +10,9 @@ std::optional<std::string> StopBeforeRound(const ProgressiveSolver& solver,
                                            double seconds) {
   if (solver.UnshotFraction() <= settings.tolerance) {
     if (!solver.GatherPending()) return kStopConverged;
-    // A gather needs a ray per gathering patch at least (PlanRound).
+    // A gather needs its share of rays per gathering patch at least (PlanRound).
     if (settings.max_rays > 0 &&
-        settings.max_rays - std::min(rays, settings.max_rays) < solver.GatheringPatches()) {
+        settings.max_rays - std::min(rays, settings.max_rays) < solver.MinGatherRays()) {
       return kStopRayBudget;
     }
   }

@@ -183,7 +183,7 @@ TEST(GatherTest, ResumesBeforeAndAfterTheGatherRound) {
 }
 
 // A ray budget that runs out at the gather cuts it to the budget exactly and says so; one too
-// small for a ray per patch skips it.
+// small for its share of rays per patch (kMinGatherShare) skips it.
 TEST(GatherTest, RayBudgetCutsTheGatherRound) {
   const PatchScene scene = LitBox();
   SolverSettings settings = Gathering(1024, kShotRays);
@@ -199,12 +199,19 @@ TEST(GatherTest, RayBudgetCutsTheGatherRound) {
   EXPECT_EQ(cut.stats.rays + cut.stats.start_rays, settings.max_rays);
   EXPECT_EQ(cut.stats.stop_reason, kStopRayBudget);
   EXPECT_EQ(cut.unshot, std::vector<Rgb>(scene.patches.size()));
-  settings.max_rays = cut.stats.start_rays + shooting_rays + 5;
+  // A gather needs gather_rays / kMinGatherShare rays per patch: one ray short, it is skipped;
+  // with them, it runs, each patch with its share.
+  const uint64_t least = scene.patches.size() * (settings.gather_rays / kMinGatherShare);
+  settings.max_rays = cut.stats.start_rays + shooting_rays + least - 1;
   const SolveResult skipped = Solve(scene, settings);
   EXPECT_EQ(skipped.stats.start_rays, cut.stats.start_rays);
   EXPECT_EQ(skipped.stats.rays, shooting_rays);
   EXPECT_EQ(skipped.stats.stop_reason, kStopRayBudget);
   EXPECT_FALSE(skipped.unshot == std::vector<Rgb>(scene.patches.size()));
+  settings.max_rays += 1;
+  const SolveResult least_gather = Solve(scene, settings);
+  EXPECT_EQ(least_gather.stats.rays, shooting_rays + least);
+  EXPECT_EQ(least_gather.unshot, std::vector<Rgb>(scene.patches.size()));
 }
 
 // The energy account balances after every round, the gather round included.
