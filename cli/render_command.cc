@@ -122,11 +122,9 @@ int RunRender(const RenderOptions& options) {
     };
   }
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
-  uint64_t start_rays = 0;  // the direct light's shadow rays, spent from the same ray budget
   if (!options.quiet) {
     hooks.during_round = [&](const RoundRunning& r) { reporter.OnRoundRunning(r); };
-    hooks.after_start = [announce, &start_rays](double seconds, uint64_t shadow_rays) {
-      start_rays = shadow_rays;
+    hooks.after_start = [announce](double seconds, uint64_t shadow_rays) {
       if (announce) std::printf("\r\033[K");
       // Most scenes start in a blink; say it when it was worth waiting for.
       if (seconds >= 0.5) {
@@ -190,9 +188,9 @@ int RunRender(const RenderOptions& options) {
   if (!options.quiet) {
     const SolveStats& st = solution.stats;
     char shadow[64] = "";
-    if (start_rays > 0) {
+    if (st.start_rays > 0) {  // spent from the same ray budget
       std::snprintf(shadow, sizeof shadow, " (and %llu shadow rays of the direct light)",
-                    static_cast<unsigned long long>(start_rays));
+                    static_cast<unsigned long long>(st.start_rays));
     }
     std::printf("%s after %llu %s: unshot %.4f%%, %llu rays%s in %.2f s (%.2f Mrays/s); wrote %s\n",
                 st.stop_reason.c_str(), static_cast<unsigned long long>(st.rounds),

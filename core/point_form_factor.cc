@@ -90,14 +90,7 @@ double PointToOutlineFormFactor(const Vec3& x, const Vec3& n, const PlanarOutlin
     if (AboveHorizon(e.first - x, n) <= 0) return -1;  // would need clipping
   }
   double sum = 0;
-  for (const auto& [from, to] : outline.edges) {
-    const Vec3 a = Normalize(from - x);
-    const Vec3 b = Normalize(to - x);
-    const Vec3 c = Cross(a, b);
-    const double s = Length(c);
-    if (s == 0) continue;
-    sum += std::atan2(s, Dot(a, b)) * Dot(c / s, n);
-  }
+  for (const auto& [from, to] : outline.edges) sum += EdgeTerm(from - x, to - x, n);
   return std::abs(sum) / (2 * std::numbers::pi);
 }
 

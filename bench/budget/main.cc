@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -92,12 +91,11 @@ double NumberAfter(const std::string& text, const std::string& marker) {
   return at == std::string::npos ? 0 : std::strtod(text.c_str() + at + marker.size(), nullptr);
 }
 
+// testing::ReadFile gives "" for a file it cannot read.
 std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot read");
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+  std::string text = testing::ReadFile(path);
+  if (text.empty()) throw std::runtime_error(path + ": cannot read");
+  return text;
 }
 
 // Per patch of patches.csv: area and the radiosity's channel sum.
