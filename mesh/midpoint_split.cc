@@ -1,7 +1,6 @@
 #include "mesh/midpoint_split.h"
 
-#include <algorithm>
-#include <unordered_map>
+#include "mesh/triangle_edges.h"
 
 namespace radfarm {
 
@@ -16,22 +15,22 @@ MidpointSplit SplitAtMidpoints(const DisplayMesh& coarse) {
   fine.triangles.reserve(4 * coarse.triangles.size());
   fine.triangle_patch.reserve(4 * coarse.triangles.size());
   out.triangle_midpoints.reserve(coarse.triangles.size());
-  std::unordered_map<uint64_t, uint32_t> midpoint_of_edge;
-  midpoint_of_edge.reserve(2 * coarse.triangles.size());
+  const TriangleEdges edges = IndexEdges(coarse.triangles, coarse.positions.size());
+  constexpr uint32_t kNone = ~uint32_t{0};
+  std::vector<uint32_t> midpoint_of_edge(edges.edges(), kNone);
   for (size_t t = 0; t < coarse.triangles.size(); ++t) {
     const std::array<uint32_t, 3>& v = coarse.triangles[t];
     std::array<uint32_t, 3> m{};
     for (int k = 0; k < 3; ++k) {
       const uint32_t a = v[k], b = v[(k + 1) % 3];
-      const uint64_t key = uint64_t{std::min(a, b)} << 32 | std::max(a, b);
-      const auto [it, added] =
-          midpoint_of_edge.try_emplace(key, static_cast<uint32_t>(fine.positions.size()));
-      if (added) {
+      uint32_t& midpoint = midpoint_of_edge[edges.edge_of[3 * t + k]];
+      if (midpoint == kNone) {
+        midpoint = static_cast<uint32_t>(fine.positions.size());
         fine.positions.push_back((coarse.positions[a] + coarse.positions[b]) * 0.5);
         fine.radiance.push_back((fine.radiance[a] + fine.radiance[b]) * 0.5);
         out.edge_ends.push_back({a, b});
       }
-      m[k] = it->second;
+      m[k] = midpoint;
     }
     out.triangle_midpoints.push_back(m);
     const uint32_t patch = coarse.triangle_patch[t];
