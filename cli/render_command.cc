@@ -14,6 +14,7 @@
 #include "cli/progress_reporter.h"
 #include "cli/render_outputs.h"
 #include "cli/render_state.h"
+#include "core/display_budget.h"
 #include "solve/local_solve.h"
 
 namespace radfarm {
@@ -178,12 +179,24 @@ int RunRender(const RenderOptions& options) {
     PrintError(s.error());
     return kExitFailure;
   }
-  if (const PatchMesh::DisplayStats& d = mesh.display_stats(); !options.quiet && d.seconds >= 0.5) {
+  if (const PatchMesh::DisplayStats& d = mesh.display_stats(); !options.quiet && d.averaged) {
+    std::printf("display: the patches' averages (the budget left no shadow rays for its points)\n");
+  } else if (!options.quiet && d.seconds >= 0.5) {
     std::printf(
         "display: %llu points, %llu gathering their own light near other surfaces, %llu "
-        "added where it bends, in %.1f s\n",
+        "added where it bends, %.1f M rays, in %.1f s\n",
         static_cast<unsigned long long>(d.points), static_cast<unsigned long long>(d.gathered),
-        static_cast<unsigned long long>(d.added), d.seconds);
+        static_cast<unsigned long long>(d.added), d.rays / 1e6, d.seconds);
+    if (const uint64_t allowance = DisplayRayAllowance(job.solver); allowance > 0) {
+      char per_light[48] = "every light patch sampled";
+      if (d.rays_per_light > 0) {
+        std::snprintf(per_light, sizeof per_light, "%u shadow rays per light", d.rays_per_light);
+      }
+      std::printf(
+          "display within its share of the budget (%.1f M rays): %s, %u gathering rays per "
+          "point, %d of %d levels where the light bends\n",
+          allowance / 1e6, per_light, d.gather_rays, d.levels, kDisplayRefineLevels);
+    }
   }
   if (!options.quiet) {
     const SolveStats& st = solution.stats;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/direct_light.h"
+#include "core/display_budget.h"
 #include "output/exposure_meter.h"
 #include "output/exr_writer.h"
 #include "output/image.h"
@@ -41,11 +42,12 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
   if (direct.empty()) {
     mesh.SetSolution(solution.radiosity, solution.unshot);
   } else {
-    mesh.SetSolution(solution.radiosity, solution.unshot,
-                     {direct, job.solver.seed, job.solver.threads,
-                      EmittersInDirectStart(mesh.patch_scene(), job.solver),
-                      DirectLightRaysPerLight(mesh.patch_scene(), job.solver)},
-                     display_progress);
+    mesh.SetSolution(
+        solution.radiosity, solution.unshot,
+        {direct, job.solver.seed, job.solver.threads,
+         EmittersInDirectStart(mesh.patch_scene(), job.solver),
+         DirectLightRaysPerLight(mesh.patch_scene(), job.solver), DisplayRayAllowance(job.solver)},
+        display_progress);
   }
   const DisplayMesh display = mesh.MakeDisplayMesh();
   std::vector<bool> emitter_patch;
@@ -93,7 +95,11 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
                         {"display_points", double(mesh.display_stats().points)},
                         {"display_points_gathered", double(mesh.display_stats().gathered)},
                         {"display_points_added", double(mesh.display_stats().added)},
-                        {"display_seconds", mesh.display_stats().seconds}})}) {
+                        {"display_seconds", mesh.display_stats().seconds},
+                        {"display_rays", double(mesh.display_stats().rays)},
+                        {"display_rays_per_light", double(mesh.display_stats().rays_per_light)},
+                        {"display_gather_rays", double(mesh.display_stats().gather_rays)},
+                        {"display_levels", double(mesh.display_stats().levels)}})}) {
     RADFARM_RETURN_IF_ERROR(s);
   }
   return Ok{};

@@ -118,9 +118,9 @@ double DirectLight::CappedVisible(const Vec3& x, const Vec3& n, const Light& lig
   return double(seen) / double(rays);
 }
 
-Rgb DirectLight::Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const {
-  if (scene_.lights.empty()) return EmitterIrradiance(x, n, key);
-  return EmitterIrradiance(x, n, key) + PunctualIrradiance(x, n, key);
+Rgb DirectLight::Irradiance(const Vec3& x, const Vec3& n, uint64_t key, uint64_t* rays) const {
+  if (scene_.lights.empty()) return EmitterIrradiance(x, n, key, nullptr, rays);
+  return EmitterIrradiance(x, n, key, nullptr, rays) + PunctualIrradiance(x, n, key, rays);
 }
 
 void DirectLight::AddPunctual(uint32_t i, const Vec3& x, const Vec3& n, double weight, Rgb* e,
@@ -430,16 +430,24 @@ std::vector<Rgb> PointsDirectLight(const PatchScene& scene,
 
 std::vector<Rgb> PointsDirectLight(const DirectLight& direct,
                                    const std::vector<ReceiverPoint>& points, uint64_t seed,
-                                   unsigned threads) {
+                                   unsigned threads, uint64_t* rays) {
   std::vector<Rgb> out(points.size());
   if (points.empty()) return out;
   ThreadPool pool(threads);
   // Stream constant: keeps these keys apart from PatchDirectLight's and every other use of the
   // seed.
   const uint64_t stream = HashWords(seed, 0x706f696e74646cull);
-  pool.ParallelFor(points.size(), [&](unsigned, size_t i) {
-    out[i] = direct.Irradiance(points[i].position, points[i].normal, HashWords(stream, i));
+  // Per worker: an integer sum is the same in any order.
+  std::vector<uint64_t> cast(pool.size(), 0);
+  pool.ParallelFor(points.size(), [&](unsigned worker, size_t i) {
+    uint64_t point_rays = 0;
+    out[i] =
+        direct.Irradiance(points[i].position, points[i].normal, HashWords(stream, i), &point_rays);
+    cast[worker] += point_rays;
   });
+  if (rays != nullptr) {
+    for (uint64_t c : cast) *rays += c;
+  }
   return out;
 }
 

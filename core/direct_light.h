@@ -46,8 +46,8 @@ class DirectLight {
 
   // Irradiance at x (unit normal n) in Ke units; `key` picks the shadow rays' points (and with
   // many lights the lights sampled), so a call is a pure function of its arguments.
-  // EmitterIrradiance + PunctualIrradiance.
-  Rgb Irradiance(const Vec3& x, const Vec3& n, uint64_t key) const;
+  // EmitterIrradiance + PunctualIrradiance; `rays`, if not null, is increased by the shadow rays.
+  Rgb Irradiance(const Vec3& x, const Vec3& n, uint64_t key, uint64_t* rays = nullptr) const;
   // From the emitter patches alone (zero without `emitters`). `evaluated`, if not null, receives
   // how many lights (emitters of one surface and emission) were evaluated; `rays`, if not null,
   // is increased by the shadow rays cast.
@@ -179,9 +179,10 @@ std::vector<Rgb> PointsDirectLight(const PatchScene& scene,
                                    const std::vector<ReceiverPoint>& points, uint64_t seed,
                                    unsigned threads, bool emitters = true);
 // The same with a DirectLight (kPointShadowRays per point) its caller keeps: for callers that
-// light several sets of points in one scene, built once.
+// light several sets of points in one scene, built once. `rays`, if not null, is increased by
+// the shadow rays cast (the same whatever `threads`).
 std::vector<Rgb> PointsDirectLight(const DirectLight& direct,
                                    const std::vector<ReceiverPoint>& points, uint64_t seed,
-                                   unsigned threads);
+                                   unsigned threads, uint64_t* rays = nullptr);
 
 }  // namespace radfarm

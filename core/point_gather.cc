@@ -118,7 +118,7 @@ std::vector<Rgb> GatherLight(const RayCaster& caster, const std::vector<Rgb>& ou
                              const std::vector<ReceiverPoint>& points,
                              const std::vector<bool>& gather, uint64_t seed, unsigned threads,
                              uint32_t rays, const PatchCornerOffsets* corners,
-                             const SecondBounce* second) {
+                             const SecondBounce* second, uint64_t* rays_cast) {
   std::vector<Rgb> out(points.size());
   if (points.empty() || rays == 0) return out;
   ThreadPool pool(threads);
@@ -135,9 +135,11 @@ std::vector<Rgb> GatherLight(const RayCaster& caster, const std::vector<Rgb>& ou
     *at = origin + d * *distance;
     return true;
   };
-  pool.ParallelFor(points.size(), [&](unsigned, size_t i) {
+  std::vector<uint64_t> seconds_cast(pool.size(), 0);  // per worker: the same sum in any order
+  pool.ParallelFor(points.size(), [&](unsigned worker, size_t i) {
     if (!gather[i]) return;
     const ReceiverPoint& point = points[i];
+    uint64_t second_rays = 0;
     Vec3 t, b;
     OrthonormalBasis(point.normal, &t, &b);
     const ScrambledSobol4 sobol(HashWords(stream, i));
@@ -181,6 +183,7 @@ std::vector<Rgb> GatherLight(const RayCaster& caster, const std::vector<Rgb>& ou
         OrthonormalBasis(p.normal, &t2, &b2);
         const Vec3 d2 = SampleCosineDirection(t2, b2, p.normal, second_u[j][0], second_u[j][1]);
         const RayHit hit2 = caster.Trace(at, d2, p.normal);
+        ++second_rays;
         Rgb gathered;
         Vec3 at2;
         double distance2;
@@ -195,7 +198,12 @@ std::vector<Rgb> GatherLight(const RayCaster& caster, const std::vector<Rgb>& ou
       }
     }
     out[i] = sum / double(rays);
+    seconds_cast[worker] += second_rays;
   });
+  if (rays_cast != nullptr) {
+    *rays_cast += uint64_t(std::count(gather.begin(), gather.end(), true)) * rays;
+    for (uint64_t c : seconds_cast) *rays_cast += c;
+  }
   return out;
 }
 

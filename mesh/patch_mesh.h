@@ -149,6 +149,12 @@ class PatchMesh {
     // Shadow rays per light at a point at most (DirectLightRaysPerLight, as the start; 0: no
     // limit).
     uint32_t rays_per_light = 0;
+    // The rays the display may cast (DisplayRayAllowance: a share of the job's budget; 0: no
+    // limit). Within it, in this order and only as far as needed: fewer shadow rays per light
+    // (down to kMinCappedLightRays), fewer gathering rays (down to kMinDisplayGatherRays, else no
+    // point gathers), fewer levels of cutting where the light bends; where even the fewest shadow
+    // rays at every point would exceed it, the display averages the patches (no ray).
+    uint64_t ray_allowance = 0;
   };
   // As above, but the display is finer than the solution and shows the direct light where it is
   // computed. Every display triangle is cut into four at its edge midpoints (midpoint_split.h), and
@@ -178,11 +184,17 @@ class PatchMesh {
   // What the last SetSolution with VertexDirectLight computed: display points (vertices and
   // midpoints), those that gathered their own light near another surface, and those added where
   // the light bends; and its wall time.
+  // And the rays it cast and what it spent them on.
   struct DisplayStats {
     uint64_t points = 0;
     uint64_t gathered = 0;
     uint64_t added = 0;
     double seconds = 0;
+    uint64_t rays = 0;            // shadow and gathering rays, second bounces and probes included
+    uint32_t rays_per_light = 0;  // as VertexDirectLight's, or fewer under an allowance
+    uint32_t gather_rays = 0;     // per gathering point (0: none gathered)
+    int levels = 0;               // of cutting where the light bends, at most kDisplayRefineLevels
+    bool averaged = false;        // the allowance did not cover one point's direct light: averages
   };
   const DisplayStats& display_stats() const { return display_stats_; }
 

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 
 #include "core/counter_rng.h"
 #include "core/direct_light.h"
 #include "core/point_gather.h"
 #include "mesh/border_extrapolation.h"
 #include "mesh/display_cut.h"
+#include "mesh/display_ray_plan.h"
 #include "mesh/ear_clip.h"
 #include "mesh/gouraud_means.h"
 #include "mesh/midpoint_split.h"
@@ -35,12 +37,23 @@ struct PointLight {
 // held ones gathers (rho times the direct and the gathered light) and is held; any other shows the
 // direct light at itself plus the rest interpolated between its edge's ends. Returns the number of
 // points added.
+// What a level's points will cost under an allowance (display_ray_plan.h): each point's shadow
+// rays and each gathering point's rays as the display's points spent them on average.
+struct LevelRays {
+  std::optional<uint64_t> allowance;
+  double direct_per_point = 0;
+  double gather_per_point = 0;
+  uint32_t gather_rays = kPointGatherRays;
+};
+
+// Returns the number of points added; *levels the levels cut, *rays increased by their rays. A
+// level whose points would take the rays past the allowance is not cut, nor any after it.
 uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
                                const DirectLight& direct_light, const std::vector<Rgb>& outgoing,
                                const PatchCornerOffsets& corners, const SecondBounce& second,
-                               const PatchMesh::VertexDirectLight& direct,
+                               const PatchMesh::VertexDirectLight& direct, const LevelRays& budget,
                                const PatchMesh::DisplayProgress& progress, DisplayMesh* fine,
-                               PointLight* light) {
+                               PointLight* light, int* levels, uint64_t* rays) {
   std::vector<bool>& held = light->held;
   std::vector<Rgb>& shown_direct = light->shown_direct;
   uint64_t points_added = 0;
@@ -95,17 +108,23 @@ uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
                    normals[k] / Length(normals[k])};
       rho[k] = rho[k] / weight[k];
     }
-    if (progress) progress({PatchMesh::DisplayStep::kRefining, added, level});
     std::vector<bool> gathers(added);
     for (size_t k = 0; k < added; ++k) {
       gathers[k] = held[split.edge_ends[k][0]] && held[split.edge_ends[k][1]];
     }
+    if (budget.allowance) {
+      const double cost =
+          double(added) * budget.direct_per_point +
+          double(std::count(gathers.begin(), gathers.end(), true)) * budget.gather_per_point;
+      if (double(*rays) + cost > double(*budget.allowance)) break;
+    }
+    if (progress) progress({PatchMesh::DisplayStep::kRefining, added, level});
     const uint64_t seed = HashWords(direct.seed, uint64_t(level));
     const std::vector<Rgb> gathered =
-        GatherLight(caster, outgoing, points, gathers, seed, direct.threads, kPointGatherRays,
-                    &corners, &second);
+        GatherLight(caster, outgoing, points, gathers, seed, direct.threads, budget.gather_rays,
+                    &corners, &second, rays);
     const std::vector<Rgb> irradiance =
-        PointsDirectLight(direct_light, points, seed, direct.threads);
+        PointsDirectLight(direct_light, points, seed, direct.threads, rays);
     held.resize(mesh.positions.size(), false);
     shown_direct.resize(mesh.positions.size());
     light->irradiance.resize(mesh.positions.size());
@@ -125,6 +144,7 @@ uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
     }
     *fine = std::move(mesh);
     points_added += added;
+    *levels = level;
   }
   return points_added;
 }
@@ -320,8 +340,25 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   // below is for averages.
   // One caster and one DirectLight for every gather and every level's points.
   const RayCaster caster(data_.scene);
-  const DirectLight direct_light(data_.scene, caster, kPointShadowRays, direct.emitters,
-                                 kExactLights, kLightCut, direct.rays_per_light);
+  const std::optional<uint64_t> allowance =
+      direct.ray_allowance > 0 ? std::optional<uint64_t>(direct.ray_allowance) : std::nullopt;
+  uint64_t& rays = display_stats_.rays;
+  DisplayDirectChoice fitted =
+      FitDisplayDirectLight(data_.scene, caster, points, direct.emitters, direct.rays_per_light,
+                            allowance, direct.seed, direct.threads);
+  rays += fitted.probe_rays;
+  if (!fitted.light) {
+    // Not even the fewest shadow rays at every point fit: the patches' averages, for free.
+    const DisplayStats stats = display_stats_;
+    SetSolution(radiosity, unshot);
+    display_stats_ = stats;
+    display_stats_.averaged = true;
+    display_stats_.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return;
+  }
+  const DirectLight& direct_light = *fitted.light;
+  display_stats_.rays_per_light = fitted.rays_per_light;
   std::vector<bool> gather =
       NearOtherSurfaces(data_.scene, caster, points, kGatherBand * patch_size_, direct.threads);
   for (size_t i = 0; i < points.size(); ++i) gather[i] = gather[i] && may_gather[i];
@@ -330,8 +367,13 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
     for (size_t f = 0; f < patches.size(); ++f) outgoing[f] = outgoing[f] - patches[f].emission;
   }
   if (progress) progress({DisplayStep::kDirectLight, points.size(), 0});
+  const uint64_t before_direct = rays;
   const std::vector<Rgb> irradiance =
-      PointsDirectLight(direct_light, points, direct.seed, direct.threads);
+      PointsDirectLight(direct_light, points, direct.seed, direct.threads, &rays);
+  LevelRays level_rays;
+  level_rays.allowance = allowance;
+  level_rays.direct_per_point =
+      points.empty() ? 0.0 : double(rays - before_direct) / double(points.size());
   const PatchCornerOffsets corners = CornerDirectOffsets(irradiance, point_of, direct.patch_direct);
   // What of each patch's light a gathering ray that meets it near gathers again instead: its
   // bounced part, the rest less emission (core/point_gather.h).
@@ -339,12 +381,23 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
   second.scene = &data_.scene;
   second.bounced.resize(patches.size());
   for (size_t f = 0; f < patches.size(); ++f) second.bounced[f] = rest[f] - patches[f].emission;
-  if (progress) {
-    progress({DisplayStep::kGathering, uint64_t(std::count(gather.begin(), gather.end(), true)), 0});
-  }
+  // What the direct light left of the allowance.
+  const std::optional<uint64_t> left =
+      allowance ? std::optional<uint64_t>(*allowance - std::min(*allowance, rays)) : std::nullopt;
+  const DisplayGatherChoice gathering = FitDisplayGather(caster, outgoing, points, gather, corners,
+                                                         second, left, direct.seed, direct.threads);
+  rays += gathering.probe_rays;
+  if (gathering.rays == 0) gather.assign(gather.size(), false);
+  const uint64_t gathering_points = uint64_t(std::count(gather.begin(), gather.end(), true));
+  if (progress) progress({DisplayStep::kGathering, gathering_points, 0});
+  const uint64_t before_gather = rays;
   const std::vector<Rgb> gathered =
-      GatherLight(caster, outgoing, points, gather, direct.seed, direct.threads, kPointGatherRays,
-                  &corners, &second);
+      GatherLight(caster, outgoing, points, gather, direct.seed, direct.threads, gathering.rays,
+                  &corners, &second, &rays);
+  display_stats_.gather_rays = gathering_points > 0 ? gathering.rays : 0;
+  level_rays.gather_rays = gathering.rays;
+  level_rays.gather_per_point =
+      gathering_points > 0 ? double(rays - before_gather) / double(gathering_points) : 0.0;
   PointLight light;
   light.held.assign(groups + midpoints, false);
   for (size_t n = 0; n < groups + midpoints; ++n) {
@@ -378,8 +431,9 @@ void PatchMesh::SetSolution(const std::vector<Rgb>& radiosity, const std::vector
     area[f] += twice_area;
   }
 
-  display_stats_.added = RefineWhereLightBends(data_.scene, caster, direct_light, outgoing, corners,
-                                               second, direct, progress, &fine, &light);
+  display_stats_.added =
+      RefineWhereLightBends(data_.scene, caster, direct_light, outgoing, corners, second, direct,
+                            level_rays, progress, &fine, &light, &display_stats_.levels, &rays);
   // A patch the refinement cut holds a shadow's edge or a steep rise, which three midpoints per
   // triangle miss: its mean is the refined triangles' (each the mean of its corners).
   const uint32_t first_new = static_cast<uint32_t>(groups + midpoints);

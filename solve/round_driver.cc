@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/display_budget.h"
 #include "core/solve_control.h"
 
 namespace radfarm {
@@ -103,15 +104,15 @@ std::optional<RoundPlan> RoundDriver::PlanNext(uint32_t batch_rays, double secon
   if (stop_) return std::nullopt;
   // The start's shadow rays are spent from the same budget as the rounds' rays.
   const uint64_t spent = totals_.rays + solver_->start_rays();
-  stop_ = StopBeforeRound(*solver_, settings_, spent, seconds);
+  stop_ = StopBeforeRound(*solver_, budget_, spent, seconds);
   if (stop_) return std::nullopt;
-  uint64_t cap = NextRoundRayCap(settings_, spent);
+  uint64_t cap = NextRoundRayCap(budget_, spent);
   // The pace is the shooting rounds'; a gather ray costs MeasureGatherRayCost's ratio of one.
   const bool gather_next = solver_->GatherNext();
   if (gather_next && gather_ray_cost_ && *gather_ray_cost_ > 0) {
     rays_per_second /= *gather_ray_cost_;
   }
-  const uint64_t time_cap = TimeRayCap(settings_, seconds, rays_per_second);
+  const uint64_t time_cap = TimeRayCap(budget_, seconds, rays_per_second);
   time_capped_ = time_cap > 0 && (cap == 0 || time_cap < cap);
   if (time_capped_) cap = time_cap;
   RoundPlan plan = solver_->PlanRound(batch_rays, cap);
@@ -157,7 +158,7 @@ AppliedRound RoundDriver::AfterApply(const RoundPlan& plan, uint64_t escaped_ray
   applied.unshot_fraction = solver_->UnshotFraction();
   applied.unshot_power = solver_->energy().unshot;
   applied.gather_rays_left = solver_->PendingGatherRays();
-  stop_ = StopAfterRound(plan, *solver_, settings_);
+  stop_ = StopAfterRound(plan, *solver_, budget_);
   if (stop_ && time_capped_) stop_ = kStopTimeBudget;
   // Refinement between rounds: only when the solve goes on.
   if (!stop_ && schedule_ && schedule_->PointPassed(*solver_)) {
@@ -252,6 +253,7 @@ SolverSettings RoundDriver::PhaseSettings() const {
 
 void RoundDriver::RebuildSolver() {
   solver_ = std::make_unique<ProgressiveSolver>(*scene_, PhaseSettings());
+  budget_ = SolveBudget(*scene_, settings_);
 }
 
 }  // namespace radfarm

@@ -121,6 +121,8 @@ class RoundDriver {
   bool refines() const { return schedule_.has_value(); }
   const ProgressiveSolver& solver() const { return *solver_; }
   const SolverSettings& settings() const { return settings_; }
+  // The budgets the rounds stop at (SolveBudget): the display after the solve spends the rest.
+  const SolverSettings& budget() const { return budget_; }
   const SolveTotals& totals() const { return totals_; }
   // The ray caster of the current scene, built on first use.
   const RayCaster& caster();
@@ -139,6 +141,8 @@ class RoundDriver {
   void RebuildSolver();
 
   SolverSettings settings_;
+  // The budgets the rounds stop at: settings_'s less the display's share (core/display_budget.h).
+  SolverSettings budget_;
   ThreadPool* pool_ = nullptr;                     // null for a bare scene
   std::unique_ptr<PatchMesh> mesh_;                // stable address: the solver refers to its scene
   std::unique_ptr<const PatchScene> owned_scene_;  // StartOwning's scene (no mesh)

@@ -183,6 +183,7 @@ nlohmann::json RenderWith(const Budget& budget, const Options& o, const std::str
           {"unshot_fraction", stats.at("unshot_fraction")},
           {"stop_reason", stats.at("stop_reason")},
           {"display_seconds", stats.value("display_seconds", 0.0)},
+          {"display_rays", stats.value("display_rays", 0.0)},
           {"patches_csv", out + "/patches.csv"}};
 }
 
@@ -215,17 +216,18 @@ int Main(int argc, char** argv) {
                 reference_run.at("start_rays").get<unsigned long long>(),
                 reference_run.at("wall_seconds").get<double>());
   }
-  std::printf("%-16s %7s %6s %7s %9s %8s %7s %11s %8s %8s | %7s %7s %8s\n", "budget", "wall s",
-              "mesh s", "start s", "start Mr", "solve s", "disp s", "rays", "rounds", "unshot",
-              "median", "p95", "bias");
+  std::printf("%-16s %7s %6s %7s %9s %8s %7s %7s %11s %8s %8s | %7s %7s %8s\n", "budget", "wall s",
+              "mesh s", "start s", "start Mr", "solve s", "disp s", "disp Mr", "rays", "rounds",
+              "unshot", "median", "p95", "bias");
   nlohmann::json runs = nlohmann::json::array();
   for (const Budget& budget : budgets) {
     nlohmann::json run = RenderWith(budget, o, root);
-    std::printf("%-16s %7.1f %6.1f %7.1f %9.2f %8.1f %7.1f %11llu %8llu %7.3f%% |",
+    std::printf("%-16s %7.1f %6.1f %7.1f %9.2f %8.1f %7.1f %7.2f %11llu %8llu %7.3f%% |",
                 budget.name.c_str(), run.at("wall_seconds").get<double>(),
                 run.at("mesh_seconds").get<double>(), run.at("start_seconds").get<double>(),
                 run.at("start_rays").get<double>() / 1e6, run.at("solve_seconds").get<double>(),
-                run.at("display_seconds").get<double>(), run.at("rays").get<unsigned long long>(),
+                run.at("display_seconds").get<double>(), run.at("display_rays").get<double>() / 1e6,
+                run.at("rays").get<unsigned long long>(),
                 run.at("rounds").get<unsigned long long>(),
                 100 * run.at("unshot_fraction").get<double>());
     if (reference) {

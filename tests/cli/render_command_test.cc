@@ -93,8 +93,9 @@ TEST(RenderCommandTest, CornellBoxWritesEveryOutput) {
   }
 }
 
-// A ray budget covers the direct light too (issue 21): the start's shadow rays (stats.json
-// start_rays) are planned to a quarter of it and the rounds get the rest, exactly.
+// A ray budget covers the direct light and the display too (issue 21): the start's shadow rays
+// (stats.json start_rays) are planned to a quarter of it, the display's rays (display_rays) to
+// another, and the rounds get the rest less the display's quarter, exactly.
 TEST(RenderCommandTest, ARayBudgetCountsTheDirectLightsShadowRays) {
   TempDir out;
   const auto r = Render("cornell-box.toml", out.path(), {"--rays", "400000", "-q"});
@@ -103,7 +104,10 @@ TEST(RenderCommandTest, ARayBudgetCountsTheDirectLightsShadowRays) {
   const double start = JsonNumber(stats, "start_rays");
   EXPECT_GT(start, 0) << stats;
   EXPECT_LE(start, 400000 / 4) << stats;
-  EXPECT_EQ(JsonNumber(stats, "rays") + start, 400000) << stats;
+  EXPECT_EQ(JsonNumber(stats, "rays") + start, 400000 - 400000 / 4) << stats;
+  const double display = JsonNumber(stats, "display_rays");
+  EXPECT_GT(display, 0) << stats;
+  EXPECT_LE(display, 400000 / 4) << stats;
   EXPECT_NE(stats.find("\"stop_reason\": \"ray budget\""), std::string::npos) << stats;
 }
 

@@ -3,11 +3,13 @@
 // that decides when a solve starts from the emitters' direct light.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <tuple>
 #include <vector>
 
 #include "core/direct_light.h"
+#include "core/display_budget.h"
 #include "core/ray_caster.h"
 #include "tests/core/test_scenes.h"
 
@@ -138,6 +140,30 @@ TEST(DirectLightCapTest, ABudgetFitsTheStartToAQuarterOfIt) {
     EXPECT_EQ(PatchDirectLight(scene, 2, settings.seed, 2, true, nullptr, 128, &again), start);
     EXPECT_EQ(again, rays) << threads;
   }
+}
+
+// A budget keeps a quarter for the display after the solve (core/display_budget.h), where a
+// display with rays follows (a direct light to start from); the rounds stop at the rest.
+TEST(DirectLightCapTest, ABudgetKeepsAQuarterForTheDisplay) {
+  PatchScene scene = GridLight(16);
+  AddFloor(40, &scene);
+  SolverSettings settings = Gathering(2048);
+  EXPECT_EQ(DisplayRayAllowance(settings), 0u) << "no budget";
+  EXPECT_EQ(SolveBudget(scene, settings).max_rays, 0u);
+  settings.max_rays = 4000002;
+  EXPECT_TRUE(DisplayCastsRays(scene, settings));
+  EXPECT_EQ(DisplayRayAllowance(settings), 1000000u);
+  EXPECT_EQ(SolveBudget(scene, settings).max_rays, 3000002u);
+  settings.max_seconds = 8;  // both: the smaller allowance; the solve's time three quarters
+  EXPECT_EQ(DisplayRayAllowance(settings),
+            std::min<uint64_t>(1000000, uint64_t(8 * kDisplayRaysPerSecond / 4)));
+  EXPECT_EQ(SolveBudget(scene, settings).max_seconds, 6);
+  // No direct light to start from (the emitters shoot: a furnace): the display averages, the
+  // solve keeps the whole budget.
+  const PatchScene furnace = GridLight(16);
+  EXPECT_FALSE(DisplayCastsRays(furnace, settings));
+  EXPECT_EQ(SolveBudget(furnace, settings).max_rays, 4000002u);
+  EXPECT_EQ(SolveBudget(furnace, settings).max_seconds, 8);
 }
 
 // `count` lights of 36 patches each (distinct surfaces) over a 60 x 60 floor.

@@ -7,6 +7,7 @@
 
 #include "core/batch_tracer.h"
 #include "core/direct_light.h"
+#include "core/display_budget.h"
 #include "core/ray_caster.h"
 #include "core/solve_control.h"
 #include "solve/local_solve.h"
@@ -182,8 +183,18 @@ TEST(GatherTest, ResumesBeforeAndAfterTheGatherRound) {
   }
 }
 
-// A ray budget that runs out at the gather cuts it to the budget exactly and says so; one too
-// small for its share of rays per patch (kMinGatherShare) skips it.
+// The max_rays whose solve keeps `solve_rays` (SolveBudget: the display after the solve keeps a
+// quarter of max_rays).
+uint64_t MaxRaysForSolve(const PatchScene& scene, SolverSettings settings, uint64_t solve_rays) {
+  settings.max_rays = solve_rays + solve_rays / 3;
+  while (SolveBudget(scene, settings).max_rays < solve_rays) ++settings.max_rays;
+  while (SolveBudget(scene, settings).max_rays > solve_rays) --settings.max_rays;
+  EXPECT_EQ(SolveBudget(scene, settings).max_rays, solve_rays);
+  return settings.max_rays;
+}
+
+// A ray budget that runs out at the gather cuts it to the budget exactly (the solve's share of
+// it) and says so; one too small for its share of rays per patch (kMinGatherShare) skips it.
 TEST(GatherTest, RayBudgetCutsTheGatherRound) {
   const PatchScene scene = LitBox();
   SolverSettings settings = Gathering(1024, kShotRays);
@@ -192,23 +203,28 @@ TEST(GatherTest, RayBudgetCutsTheGatherRound) {
   const uint64_t shooting_rays = unlimited.stats.rays - gather_rays;
   // The start's shadow rays count against the budget too (so a budget also plans a cheaper start:
   // the start's rays differ between the budgets, each within a quarter of its budget).
-  settings.max_rays = shooting_rays + gather_rays / 3;
+  settings.max_rays = MaxRaysForSolve(scene, settings, shooting_rays + gather_rays / 3);
   const SolveResult cut = Solve(scene, settings);
   EXPECT_GT(cut.stats.start_rays, 0u);
   EXPECT_LE(cut.stats.start_rays, settings.max_rays / kStartBudgetShare);
-  EXPECT_EQ(cut.stats.rays + cut.stats.start_rays, settings.max_rays);
+  // The display after the solve keeps a quarter (core/display_budget.h).
+  ASSERT_TRUE(DisplayCastsRays(scene, settings));
+  EXPECT_EQ(cut.stats.rays + cut.stats.start_rays,
+            settings.max_rays - settings.max_rays / kDisplayBudgetShare);
   EXPECT_EQ(cut.stats.stop_reason, kStopRayBudget);
   EXPECT_EQ(cut.unshot, std::vector<Rgb>(scene.patches.size()));
   // A gather needs gather_rays / kMinGatherShare rays per patch: one ray short, it is skipped;
   // with them, it runs, each patch with its share.
   const uint64_t least = scene.patches.size() * (settings.gather_rays / kMinGatherShare);
-  settings.max_rays = cut.stats.start_rays + shooting_rays + least - 1;
+  settings.max_rays =
+      MaxRaysForSolve(scene, settings, cut.stats.start_rays + shooting_rays + least - 1);
   const SolveResult skipped = Solve(scene, settings);
   EXPECT_EQ(skipped.stats.start_rays, cut.stats.start_rays);
   EXPECT_EQ(skipped.stats.rays, shooting_rays);
   EXPECT_EQ(skipped.stats.stop_reason, kStopRayBudget);
   EXPECT_FALSE(skipped.unshot == std::vector<Rgb>(scene.patches.size()));
-  settings.max_rays += 1;
+  settings.max_rays =
+      MaxRaysForSolve(scene, settings, cut.stats.start_rays + shooting_rays + least);
   const SolveResult least_gather = Solve(scene, settings);
   EXPECT_EQ(least_gather.stats.rays, shooting_rays + least);
   EXPECT_EQ(least_gather.unshot, std::vector<Rgb>(scene.patches.size()));

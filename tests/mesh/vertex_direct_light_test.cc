@@ -186,5 +186,47 @@ TEST_F(VertexDirectLightTest, EmittersShowTheirEmission) {
   EXPECT_GT(lit, 0u);
 }
 
+// A ray allowance (a budget's share, core/display_budget.h) bounds the display's rays: fewer
+// shadow rays per light, gathering rays and levels, as far as needed, the same on any thread
+// count; the image stays close to the closed form. An allowance below one point's direct light
+// at every point leaves the patches' averages.
+TEST_F(VertexDirectLightTest, ARayAllowanceBoundsTheDisplaysRays) {
+  const PatchScene& scene = mesh_->patch_scene();
+  const std::vector<Rgb>& direct = solution_.direct_light;
+  mesh_->SetSolution(solution_.radiosity, solution_.unshot, {direct, 1, 2});
+  const PatchMesh::DisplayStats full = mesh_->display_stats();
+  const double full_error = FloorImageError(mesh_->MakeDisplayMesh(), scene, false, 2048);
+  EXPECT_GT(full.rays, 0u);
+  EXPECT_EQ(full.gather_rays, kPointGatherRays);
+  EXPECT_GE(full.levels, 1);
+  EXPECT_FALSE(full.averaged);
+  for (const uint64_t allowance : {full.rays / 2, full.rays / 6}) {
+    PatchMesh::VertexDirectLight budgeted{direct, 1, 2};
+    budgeted.ray_allowance = allowance;
+    mesh_->SetSolution(solution_.radiosity, solution_.unshot, budgeted);
+    const PatchMesh::DisplayStats stats = mesh_->display_stats();
+    const DisplayMesh shown = mesh_->MakeDisplayMesh();
+    EXPECT_LE(stats.rays, allowance) << stats.rays_per_light << " " << stats.gather_rays;
+    EXPECT_FALSE(stats.averaged);
+    EXPECT_TRUE(stats.gather_rays < full.gather_rays || stats.levels < full.levels ||
+                stats.rays_per_light > 0)
+        << allowance;
+    const double error = FloorImageError(shown, scene, false, 2048);
+    EXPECT_LT(error, 3 * full_error + 0.005)
+        << allowance << ": " << error << " against " << full_error;
+    budgeted.threads = 1;
+    mesh_->SetSolution(solution_.radiosity, solution_.unshot, budgeted);
+    EXPECT_EQ(mesh_->display_stats().rays, stats.rays);
+    EXPECT_EQ(mesh_->MakeDisplayMesh().radiance, shown.radiance) << allowance;
+  }
+  PatchMesh::VertexDirectLight tiny{direct, 1, 2};
+  tiny.ray_allowance = 10;
+  mesh_->SetSolution(solution_.radiosity, solution_.unshot, tiny);
+  EXPECT_TRUE(mesh_->display_stats().averaged);
+  const DisplayMesh averaged = mesh_->MakeDisplayMesh();
+  mesh_->SetSolution(solution_.radiosity, solution_.unshot);
+  EXPECT_EQ(averaged.radiance, mesh_->MakeDisplayMesh().radiance);
+}
+
 }  // namespace
 }  // namespace radfarm
