@@ -241,7 +241,7 @@ int Main(int argc, char** argv) {
     run.erase("patches_csv");
     runs.push_back(std::move(run));
   }
-  reference_run.erase("patches_csv");
+  if (o.reference) reference_run.erase("patches_csv");
   WriteJson(o.json, {{"machine", MachineJson(machine)},
                      {"scene", "scenes/cornell-box.toml"},
                      {"patch_size", o.patch_size},
