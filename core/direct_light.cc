@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <set>
 #include <utility>
 
@@ -94,6 +95,38 @@ double DirectLight::Visible(const Vec3& x, const Vec3& n, uint32_t k, uint64_t k
   return double(seen) / double(grid_ * grid_);
 }
 
+void DirectLight::VisibleShares(const Vec3& x, const Vec3& n, const std::vector<uint32_t>& members,
+                                uint64_t key, std::vector<double>* shares) const {
+  const uint32_t per_patch = grid_ * grid_;
+  // Per thread, reused: a point's lights come one after another.
+  thread_local std::vector<Vec3> targets;
+  thread_local std::unique_ptr<bool[]> clear;
+  thread_local size_t clear_size = 0;
+  targets.clear();
+  for (uint32_t k : members) {
+    const Patch& p = scene_.patches[emitters_[k]];
+    // As Visible: the centres of a grid_ x grid_ jittered stratification of the patch.
+    for (uint32_t i = 0; i < grid_; ++i) {
+      for (uint32_t j = 0; j < grid_; ++j) {
+        const CounterRng rng(HashWords(key, emitters_[k], i * grid_ + j));
+        const double u = (i + rng.Uniform(0)) / grid_, v = (j + rng.Uniform(1)) / grid_;
+        targets.push_back(SamplePatchPoint(p, sampling_[k], u, v));
+      }
+    }
+  }
+  if (clear_size < targets.size()) {
+    clear_size = targets.size();
+    clear = std::make_unique<bool[]>(clear_size);
+  }
+  caster_.UnoccludedBlock(x, n, targets.data(), int(targets.size()), clear.get());
+  shares->clear();
+  for (size_t m = 0; m < members.size(); ++m) {
+    uint32_t seen = 0;
+    for (uint32_t r = 0; r < per_patch; ++r) seen += clear[m * per_patch + r] ? 1 : 0;
+    shares->push_back(double(seen) / double(per_patch));
+  }
+}
+
 double DirectLight::CappedVisible(const Vec3& x, const Vec3& n, const Light& light,
                                   const std::vector<double>& weight, double sum,
                                   uint64_t key) const {
@@ -105,15 +138,22 @@ double DirectLight::CappedVisible(const Vec3& x, const Vec3& n, const Light& lig
   size_t m = 0;
   double running = weight[0];
   uint32_t seen = 0;
-  for (uint32_t s = 0; s < rays; ++s, target += step) {
-    while (running <= target && m + 1 < weight.size()) running += weight[++m];
-    const uint32_t k = light.members[m];
-    const CounterRng rng(HashWords(key, emitters_[k], s, 0x63617070ull));
-    const Patch& p = scene_.patches[emitters_[k]];
-    if (caster_.Unoccluded(x, SamplePatchPoint(p, sampling_[k], rng.Uniform(0), rng.Uniform(1)),
-                           n)) {
-      ++seen;
+  // The rays a block at a time (RayCaster::UnoccludedBlock: from one point toward one light, they
+  // trace well as packets).
+  constexpr uint32_t kBlock = 64;
+  Vec3 targets[kBlock];
+  bool clear[kBlock];
+  for (uint32_t first = 0; first < rays; first += kBlock) {
+    const uint32_t count = std::min(kBlock, rays - first);
+    for (uint32_t j = 0; j < count; ++j, target += step) {
+      while (running <= target && m + 1 < weight.size()) running += weight[++m];
+      const uint32_t k = light.members[m];
+      const CounterRng rng(HashWords(key, emitters_[k], first + j, 0x63617070ull));
+      targets[j] = SamplePatchPoint(scene_.patches[emitters_[k]], sampling_[k], rng.Uniform(0),
+                                    rng.Uniform(1));
     }
+    caster_.UnoccludedBlock(x, n, targets, int(count), clear);
+    for (uint32_t j = 0; j < count; ++j) seen += clear[j] ? 1 : 0;
   }
   return double(seen) / double(rays);
 }
@@ -171,6 +211,8 @@ void DirectLight::AddLight(const Light& light, const Vec3& x, const Vec3& n, uin
   // does, and the outline's form factor is the whole light's.
   std::vector<double> share;
   if (capped) share.reserve(light.members.size());
+  std::vector<uint32_t> lit;  // uncapped: the members with weight, and their weights
+  std::vector<double> lit_weight;
   double sum = 0, visible = 0;
   for (uint32_t k : light.members) {
     const Patch& p = scene_.patches[emitters_[k]];
@@ -187,9 +229,16 @@ void DirectLight::AddLight(const Light& light, const Vec3& x, const Vec3& n, uin
       sum += w;
     } else if (w > 0) {
       sum += w;
-      visible += w * Visible(x, n, k, key);
+      lit.push_back(k);
+      lit_weight.push_back(w);
       if (rays != nullptr) *rays += grid_ * grid_;
     }
+  }
+  if (!lit.empty()) {
+    // sum_k w_k Visible_k in the members' order, the shadow rays traced as one block.
+    std::vector<double> shares;
+    VisibleShares(x, n, lit, key, &shares);
+    for (size_t m = 0; m < lit.size(); ++m) visible += lit_weight[m] * shares[m];
   }
   if (!(sum > 0)) return;
   if (capped) {

@@ -365,4 +365,50 @@ bool RayCaster::Unoccluded(const Vec3& origin, const Vec3& target,
   return ray.tfar >= 0;
 }
 
+void RayCaster::UnoccludedBlock(const Vec3& origin, const Vec3& surface_normal, const Vec3* targets,
+                                int count, bool* unoccluded) const {
+  const int packed = count - count % kPacket;
+  // As Unoccluded and PrepareRay compute them.
+  const Vec3 lifted = origin + surface_normal * origin_offset_;
+  const Vec3 o = origin - centre_ + surface_normal * origin_offset_;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (int first = 0; first < packed; first += kPacket) {
+    alignas(64) RTCRay16 packet;
+    alignas(64) int valid[kPacket];
+    bool any = false;
+    for (int l = 0; l < kPacket; ++l) {
+      const int i = first + l;
+      const double distance = Length(targets[i] - lifted);
+      valid[l] = 0;
+      if (!(distance > 0)) {
+        unoccluded[i] = true;
+        continue;
+      }
+      const Vec3 d = (targets[i] - lifted) / distance;
+      valid[l] = -1;
+      any = true;
+      packet.org_x[l] = static_cast<float>(o.x);
+      packet.org_y[l] = static_cast<float>(o.y);
+      packet.org_z[l] = static_cast<float>(o.z);
+      packet.dir_x[l] = static_cast<float>(d.x);
+      packet.dir_y[l] = static_cast<float>(d.y);
+      packet.dir_z[l] = static_cast<float>(d.z);
+      packet.tnear[l] = 0.0f;
+      packet.tfar[l] = static_cast<float>(distance * (1 - kShadowRayMargin));
+      packet.time[l] = 0.0f;
+      packet.mask[l] = 0xffffffffu;
+      packet.id[l] = 0;
+      packet.flags[l] = 0;
+    }
+    if (!any) continue;
+    rtcOccluded16(valid, embree_->scene, &context, &packet);
+    for (int l = 0; l < kPacket; ++l) {
+      if (valid[l] != 0) unoccluded[first + l] = packet.tfar[l] >= 0;
+    }
+  }
+  for (int i = packed; i < count; ++i)
+    unoccluded[i] = Unoccluded(origin, targets[i], surface_normal);
+}
+
 }  // namespace radfarm

@@ -83,6 +83,12 @@ class RayCaster {
   // count as an occluder. Cheaper than Trace: any hit ends the search.
   bool Unoccluded(const Vec3& origin, const Vec3& target, const Vec3& surface_normal) const;
   static constexpr double kShadowRayMargin = 1e-4;
+  // Unoccluded for shadow rays from one origin to each of `count` targets: unoccluded[i] is
+  // Unoccluded(origin, targets[i], surface_normal). Traced 16 at a time as Embree packets
+  // (rtcOccluded16): a point's shadow rays toward one light run nearly parallel and share most of
+  // their BVH nodes. The last fewer than 16 go one by one.
+  void UnoccludedBlock(const Vec3& origin, const Vec3& surface_normal, const Vec3* targets,
+                       int count, bool* unoccluded) const;
 
   // The origin offset used by Trace, in scene units (useful for tests and diagnostics).
   double origin_offset() const { return origin_offset_; }

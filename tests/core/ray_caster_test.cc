@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "tests/core/test_scenes.h"
 
 namespace radfarm {
@@ -43,6 +45,33 @@ TEST(RayCasterTest, UnoccludedSeesPastTheTargetsOwnSurfaceButNotAnOccluder) {
       const RayHit hit = caster.Trace(from, Normalize(to - from), up);
       ASSERT_NE(hit.patch, RayHit::kMiss);
       EXPECT_EQ(caster.Unoccluded(from, to, up), hit.patch >= 5) << x;  // patches 5.. are the light
+    }
+  }
+}
+
+// The block of shadow rays gives each ray's Unoccluded exactly: whole packets of 16, the rest one
+// by one, targets on the light's patches' edges, on the occluder's shadow line, at the origin.
+TEST(RayCasterTest, UnoccludedBlockIsUnoccludedRayByRay) {
+  for (const Vec3& offset : {Vec3{}, Vec3{1e6, -2e6, 5e5}}) {
+    const RayCaster caster(FloorOccluderLight(offset));
+    const Vec3 up{0, 0, 1};
+    for (const Vec3& at : {Vec3{0.5, 0.5, 0}, Vec3{-0.5, 0.5, 0}, Vec3{1.2, -0.3, 0}}) {
+      const Vec3 from = offset + at;
+      std::vector<Vec3> targets;
+      for (int i = 0; i < 16 * 12 + 7; ++i) {
+        const double u = (i % 19) / 18.0, v = (i / 19) / 10.0;
+        targets.push_back(offset + Vec3{-2 + 5 * u, -2 + 5 * v, 1});
+      }
+      targets[3] = from;  // no length: clear, as Unoccluded says
+      bool clear[16 * 12 + 7];
+      caster.UnoccludedBlock(from, up, targets.data(), int(targets.size()), clear);
+      int blocked = 0;
+      for (size_t i = 0; i < targets.size(); ++i) {
+        EXPECT_EQ(clear[i], caster.Unoccluded(from, targets[i], up)) << i;
+        blocked += clear[i] ? 0 : 1;
+      }
+      EXPECT_GT(blocked, 0);
+      EXPECT_LT(blocked, int(targets.size()));
     }
   }
 }
