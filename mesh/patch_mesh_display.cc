@@ -77,6 +77,13 @@ uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
       any = any || marked[t];
     }
     if (!any) break;
+    if (budget.allowance) {
+      // A marked triangle's three edges each get a point, shared by two triangles at most: when
+      // even that many points' direct light would not fit, the split is not worth making.
+      const double at_least =
+          1.5 * double(std::count(marked.begin(), marked.end(), true)) * budget.direct_per_point;
+      if (double(*rays) + at_least > double(*budget.allowance)) break;
+    }
     SelectiveSplit split = SplitMarked(*fine, std::move(marked));
     DisplayMesh& mesh = split.mesh;
     const size_t added = split.edge_ends.size();
