@@ -436,14 +436,7 @@ StartPlan PlanStart(const PatchScene& scene, const SolverSettings& settings) {
 }  // namespace
 
 uint64_t StartRayAllowance(const SolverSettings& settings) {
-  uint64_t allowance = 0;
-  if (settings.max_rays > 0) allowance = settings.max_rays / kStartBudgetShare;
-  if (settings.max_seconds > 0) {
-    const double rays = settings.max_seconds * kStartShadowRaysPerSecond / kStartBudgetShare;
-    const uint64_t by_time = static_cast<uint64_t>(std::clamp(rays, 1.0, 1e18));
-    allowance = allowance > 0 ? std::min(allowance, by_time) : by_time;
-  }
-  return allowance;
+  return BudgetShare(settings, kStartBudgetShare, kStartShadowRaysPerSecond);
 }
 
 bool EmittersInDirectStart(const PatchScene& scene, const SolverSettings& settings) {

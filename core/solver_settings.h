@@ -87,4 +87,10 @@ constexpr uint64_t ResolvedShotRays(const SolverSettings& settings, uint64_t pat
   return automatic > kMinAutoShotRays ? automatic : kMinAutoShotRays;
 }
 
+// The rays a part of a budgeted solve may cast (0: no budget): a `share`-th of max_rays, and of
+// max_seconds at `rays_per_second` (a rate fixed in the code, so the plan is the same on every
+// machine), the smaller of the two, at least one. The direct-light start (StartRayAllowance) and
+// the display (DisplayRayAllowance) each get a quarter.
+uint64_t BudgetShare(const SolverSettings& settings, uint64_t share, double rays_per_second);
+
 }  // namespace radfarm

@@ -30,13 +30,6 @@ struct PointLight {
   std::vector<Rgb> shown_direct;  // rho times that
 };
 
-// Cuts the triangles of `fine` where the light bends, and sets each new point to its own light.
-// A triangle whose corners all hold their own light (held: gathered) is cut where their light
-// differs by more than CutContrast (display_cut.h) of the brightest; any other where the direct
-// light shown at its corners does, a shadow's edge or a lamp's fall-off. A new point between two
-// held ones gathers (rho times the direct and the gathered light) and is held; any other shows the
-// direct light at itself plus the rest interpolated between its edge's ends. Returns the number of
-// points added.
 // What a level's points will cost under an allowance (display_ray_plan.h): each point's shadow
 // rays and each gathering point's rays as the display's points spent them on average.
 struct LevelRays {
@@ -46,8 +39,14 @@ struct LevelRays {
   uint32_t gather_rays = kPointGatherRays;
 };
 
-// Returns the number of points added; *levels the levels cut, *rays increased by their rays. A
-// level whose points would take the rays past the allowance is not cut, nor any after it.
+// Cuts the triangles of `fine` where the light bends, and sets each new point to its own light.
+// A triangle whose corners all hold their own light (held: gathered) is cut where their light
+// differs by more than CutContrast (display_cut.h) of the brightest; any other where the direct
+// light shown at its corners does, a shadow's edge or a lamp's fall-off. A new point between two
+// held ones gathers (rho times the direct and the gathered light) and is held; any other shows the
+// direct light at itself plus the rest interpolated between its edge's ends. Returns the number of
+// points added; *levels the levels cut, *rays increased by their rays. A level whose points would
+// take the rays past the allowance is not cut, nor any after it.
 uint64_t RefineWhereLightBends(const PatchScene& scene, const RayCaster& caster,
                                const DirectLight& direct_light, const std::vector<Rgb>& outgoing,
                                const PatchCornerOffsets& corners, const SecondBounce& second,

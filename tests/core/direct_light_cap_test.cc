@@ -154,6 +154,11 @@ TEST(DirectLightCapTest, ABudgetKeepsAQuarterForTheDisplay) {
   EXPECT_TRUE(DisplayCastsRays(scene, settings));
   EXPECT_EQ(DisplayRayAllowance(settings), 1000000u);
   EXPECT_EQ(SolveBudget(scene, settings).max_rays, 3000002u);
+  // A budget of fewer rays than the share is still a budget: one ray each, not none.
+  settings.max_rays = 3;
+  EXPECT_EQ(DisplayRayAllowance(settings), 1u);
+  EXPECT_EQ(StartRayAllowance(settings), 1u);
+  settings.max_rays = 4000002;
   settings.max_seconds = 8;  // both: the smaller allowance; the solve's time three quarters
   EXPECT_EQ(DisplayRayAllowance(settings),
             std::min<uint64_t>(1000000, uint64_t(8 * kDisplayRaysPerSecond / 4)));
