@@ -95,8 +95,9 @@ double DirectLight::Visible(const Vec3& x, const Vec3& n, uint32_t k, uint64_t k
   return double(seen) / double(grid_ * grid_);
 }
 
-void DirectLight::VisibleShares(const Vec3& x, const Vec3& n, const std::vector<uint32_t>& members,
-                                uint64_t key, std::vector<double>* shares) const {
+double DirectLight::WeightedVisible(const Vec3& x, const Vec3& n,
+                                    const std::vector<uint32_t>& members,
+                                    const std::vector<double>& weights, uint64_t key) const {
   const uint32_t per_patch = grid_ * grid_;
   // Per thread, reused: a point's lights come one after another.
   thread_local std::vector<Vec3> targets;
@@ -119,12 +120,13 @@ void DirectLight::VisibleShares(const Vec3& x, const Vec3& n, const std::vector<
     clear = std::make_unique<bool[]>(clear_size);
   }
   caster_.UnoccludedBlock(x, n, targets.data(), int(targets.size()), clear.get());
-  shares->clear();
+  double visible = 0;
   for (size_t m = 0; m < members.size(); ++m) {
     uint32_t seen = 0;
     for (uint32_t r = 0; r < per_patch; ++r) seen += clear[m * per_patch + r] ? 1 : 0;
-    shares->push_back(double(seen) / double(per_patch));
+    visible += weights[m] * (double(seen) / double(per_patch));
   }
+  return visible;
 }
 
 double DirectLight::CappedVisible(const Vec3& x, const Vec3& n, const Light& light,
@@ -211,8 +213,12 @@ void DirectLight::AddLight(const Light& light, const Vec3& x, const Vec3& n, uin
   // does, and the outline's form factor is the whole light's.
   std::vector<double> share;
   if (capped) share.reserve(light.members.size());
-  std::vector<uint32_t> lit;  // uncapped: the members with weight, and their weights
-  std::vector<double> lit_weight;
+  // Uncapped: the members with weight, and their weights (per thread, reused: this runs for
+  // every point and light).
+  thread_local std::vector<uint32_t> lit;
+  thread_local std::vector<double> lit_weight;
+  lit.clear();
+  lit_weight.clear();
   double sum = 0, visible = 0;
   for (uint32_t k : light.members) {
     const Patch& p = scene_.patches[emitters_[k]];
@@ -234,12 +240,7 @@ void DirectLight::AddLight(const Light& light, const Vec3& x, const Vec3& n, uin
       if (rays != nullptr) *rays += grid_ * grid_;
     }
   }
-  if (!lit.empty()) {
-    // sum_k w_k Visible_k in the members' order, the shadow rays traced as one block.
-    std::vector<double> shares;
-    VisibleShares(x, n, lit, key, &shares);
-    for (size_t m = 0; m < lit.size(); ++m) visible += lit_weight[m] * shares[m];
-  }
+  if (!lit.empty()) visible = WeightedVisible(x, n, lit, lit_weight, key);
   if (!(sum > 0)) return;
   if (capped) {
     visible = CappedVisible(x, n, light, share, sum, key) * sum;

@@ -73,10 +73,10 @@ class DirectLight {
   };
   // Shares of patch k's shadow rays that arrive.
   double Visible(const Vec3& x, const Vec3& n, uint32_t k, uint64_t key) const;
-  // Visible for each of `members` (in order) into *shares, the same values, their shadow rays
-  // traced as blocks (RayCaster::UnoccludedBlock) rather than patch by patch.
-  void VisibleShares(const Vec3& x, const Vec3& n, const std::vector<uint32_t>& members,
-                     uint64_t key, std::vector<double>* shares) const;
+  // sum_m weights[m] Visible(members[m]), added in the members' order, their shadow rays traced
+  // as one block (RayCaster::UnoccludedBlock) rather than patch by patch.
+  double WeightedVisible(const Vec3& x, const Vec3& n, const std::vector<uint32_t>& members,
+                         const std::vector<double>& weights, uint64_t key) const;
   // For a light of more patches than rays_per_light_: sum_k weight[k] Visible_k over sum_k
   // weight[k] (weights per member, in members' order), estimated with rays_per_light_ shadow rays
   // to points of members drawn in proportion to their weights (systematic sampling: one stratum of
