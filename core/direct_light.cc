@@ -46,7 +46,11 @@ DirectLight::DirectLight(const PatchScene& scene, const RayCaster& caster, uint3
     if (p.emission.Max() <= 0) continue;
     const auto [it, added] = light_of.try_emplace(LightKeyOf(p), lights_.size());
     if (added) lights_.emplace_back();
-    lights_[it->second].members.push_back(static_cast<uint32_t>(emitters_.size()));
+    Light& light = lights_[it->second];
+    light.members.push_back(static_cast<uint32_t>(emitters_.size()));
+    light.centres.push_back(p.centre);
+    light.normals.push_back(p.normal);
+    light.areas.push_back(p.area);
     emitters_.push_back(i);
     sampling_.push_back(PreparePatchSampling(p, caster.origin_offset()));
   }
@@ -210,32 +214,40 @@ void DirectLight::AddLight(const Light& light, const Vec3& x, const Vec3& n, uin
   }
   if (whole == 0) return;
   // Not planar: each patch's own form factor weighs its visibility. Planar: the small-patch kernel
-  // does, and the outline's form factor is the whole light's.
-  std::vector<double> share;
-  if (capped) share.reserve(light.members.size());
-  // Uncapped: the members with weight, and their weights (per thread, reused: this runs for
-  // every point and light).
+  // does, and the outline's form factor is the whole light's. Per thread, reused: this runs for
+  // every point and light.
+  thread_local std::vector<double> kernel;
+  const size_t count = light.members.size();
+  kernel.resize(count);
+  if (whole < 0) {
+    for (size_t m = 0; m < count; ++m) {
+      kernel[m] =
+          std::max(0.0, PointToPatchFormFactor(x, n, scene_.patches[emitters_[light.members[m]]]));
+    }
+  } else {
+    const Vec3* centre = light.centres.data();
+    const Vec3* normal = light.normals.data();
+    const double* area = light.areas.data();
+    for (size_t m = 0; m < count; ++m) {
+      const Vec3 d = centre[m] - x;
+      const double r2 = Dot(d, d);
+      kernel[m] =
+          area[m] * std::max(0.0, Dot(n, d)) * std::max(0.0, -Dot(normal[m], d)) / (r2 * r2);
+    }
+  }
+  // Uncapped: the members with weight, and their weights.
   thread_local std::vector<uint32_t> lit;
   thread_local std::vector<double> lit_weight;
   lit.clear();
   lit_weight.clear();
   double sum = 0, visible = 0;
-  for (uint32_t k : light.members) {
-    const Patch& p = scene_.patches[emitters_[k]];
-    double w;
-    if (whole < 0) {
-      w = std::max(0.0, PointToPatchFormFactor(x, n, p));
-    } else {
-      const Vec3 d = p.centre - x;
-      const double r2 = Dot(d, d);
-      w = p.area * std::max(0.0, Dot(n, d)) * std::max(0.0, -Dot(p.normal, d)) / (r2 * r2);
-    }
+  for (size_t m = 0; m < count; ++m) {
+    const double w = kernel[m];
     if (capped) {
-      share.push_back(w);
       sum += w;
     } else if (w > 0) {
       sum += w;
-      lit.push_back(k);
+      lit.push_back(light.members[m]);
       lit_weight.push_back(w);
       if (rays != nullptr) *rays += grid_ * grid_;
     }
@@ -243,7 +255,7 @@ void DirectLight::AddLight(const Light& light, const Vec3& x, const Vec3& n, uin
   if (!lit.empty()) visible = WeightedVisible(x, n, lit, lit_weight, key);
   if (!(sum > 0)) return;
   if (capped) {
-    visible = CappedVisible(x, n, light, share, sum, key) * sum;
+    visible = CappedVisible(x, n, light, kernel, sum, key) * sum;
     if (rays != nullptr) *rays += rays_per_light_;
   }
   // Not planar: sum_k f_k V_k. Planar: the outline's form factor times the kernel-weighted share.

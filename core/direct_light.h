@@ -70,6 +70,10 @@ class DirectLight {
   struct Light {
     std::vector<uint32_t> members;  // indices into emitters_
     PlanarOutline outline;          // no edges: not planar, every patch on its own
+    // The members' centres, normals and areas, in members' order: the kernel's inputs side by
+    // side, where every point of the start and the display reads them all.
+    std::vector<Vec3> centres, normals;
+    std::vector<double> areas;
   };
   // Shares of patch k's shadow rays that arrive.
   double Visible(const Vec3& x, const Vec3& n, uint32_t k, uint64_t key) const;

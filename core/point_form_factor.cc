@@ -5,6 +5,8 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 namespace radfarm {
 namespace {
@@ -37,6 +39,67 @@ double EdgeTerm(const Vec3& ra, const Vec3& rb, const Vec3& n) {
   return std::atan2(s, Dot(a, b)) * Dot(c / s, n);
 }
 
+using OutlineEdge = std::pair<Vec3, Vec3>;
+using CornerKey = std::array<double, 3>;
+
+CornerKey KeyOf(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+// Keeps of each directed edge only its surplus over the same edge run the other way: the edges two
+// patches share cancel. In the order of their corners' coordinates.
+std::vector<OutlineEdge> Surplus(const std::vector<OutlineEdge>& edges) {
+  using Key = std::array<double, 6>;
+  std::map<Key, int> count;  // directed edge -> times seen
+  for (const auto& [a, b] : edges) ++count[{a.x, a.y, a.z, b.x, b.y, b.z}];
+  std::vector<OutlineEdge> out;
+  for (const auto& [k, n] : count) {
+    const auto back = count.find({k[3], k[4], k[5], k[0], k[1], k[2]});
+    const int surplus = n - (back == count.end() ? 0 : back->second);
+    for (int i = 0; i < surplus; ++i) out.push_back({{k[0], k[1], k[2]}, {k[3], k[4], k[5]}});
+  }
+  return out;
+}
+
+// Whether b continues a in a's direction: their directions parallel to within a sine of 1e-9.
+bool Straight(const OutlineEdge& a, const OutlineEdge& b) {
+  const Vec3 da = a.second - a.first, db = b.second - b.first;
+  return Dot(da, db) > 0 && Length(Cross(da, db)) <= 1e-9 * Length(da) * Length(db);
+}
+
+// Joins the pieces of one straight side that meet end to end at a corner no other edge touches
+// into one edge, and cancels what then runs both ways (a whole edge against the pieces a
+// T-vertex left on the other side): a finely meshed light's outline is hundreds of pieces, and a
+// point's form factor costs an arc tangent each. The contour integral is the same: the pieces of
+// a side subtend the side's angle, in the same plane through x.
+std::vector<OutlineEdge> JoinStraightRuns(std::vector<OutlineEdge> edges) {
+  for (bool joined = true; joined;) {
+    joined = false;
+    std::map<CornerKey, std::pair<int, int>> ends;  // corner -> (edges ending, edges starting)
+    std::map<CornerKey, size_t> starting;           // corner -> an edge starting there
+    for (size_t i = 0; i < edges.size(); ++i) {
+      ++ends[KeyOf(edges[i].second)].first;
+      ++ends[KeyOf(edges[i].first)].second;
+      starting[KeyOf(edges[i].first)] = i;
+    }
+    // One pass joins disjoint pairs (each edge at most once); the next pass joins the joined.
+    std::vector<bool> touched(edges.size(), false), gone(edges.size(), false);
+    for (size_t i = 0; i < edges.size(); ++i) {
+      const CornerKey end = KeyOf(edges[i].second);
+      if (touched[i] || ends[end] != std::pair<int, int>{1, 1}) continue;
+      const size_t next = starting[end];
+      if (next == i || touched[next] || !Straight(edges[i], edges[next])) continue;
+      edges[i].second = edges[next].second;
+      touched[i] = touched[next] = gone[next] = true;
+      joined = true;
+    }
+    std::vector<OutlineEdge> kept;
+    for (size_t i = 0; i < edges.size(); ++i) {
+      if (!gone[i]) kept.push_back(edges[i]);
+    }
+    edges = Surplus(kept);
+  }
+  return edges;
+}
+
 }  // namespace
 
 double PointToPatchFormFactor(const Vec3& x, const Vec3& n, const Patch& patch) {
@@ -64,23 +127,17 @@ PlanarOutline OutlineOf(const std::vector<const Patch*>& patches, double tol) {
   if (patches.empty()) return out;
   out.normal = patches[0]->normal;
   out.point = patches[0]->corners[0];
-  using Key = std::array<double, 6>;
-  std::map<Key, int> count;  // directed edge -> times seen
+  std::vector<OutlineEdge> edges;
   for (const Patch* p : patches) {
     if (Dot(p->normal, out.normal) < 1 - 1e-12) return {};
     for (int i = 0; i < p->corner_count; ++i) {
       const Vec3& a = p->corners[i];
       const Vec3& b = p->corners[(i + 1) % p->corner_count];
       if (std::fabs(Dot(a - out.point, out.normal)) > tol) return {};
-      ++count[{a.x, a.y, a.z, b.x, b.y, b.z}];
+      edges.push_back({a, b});
     }
   }
-  for (const auto& [k, n] : count) {
-    // An edge run both ways by two patches cancels: keep only the surplus of one direction.
-    const auto back = count.find({k[3], k[4], k[5], k[0], k[1], k[2]});
-    const int surplus = n - (back == count.end() ? 0 : back->second);
-    for (int i = 0; i < surplus; ++i) out.edges.push_back({{k[0], k[1], k[2]}, {k[3], k[4], k[5]}});
-  }
+  out.edges = JoinStraightRuns(Surplus(edges));
   return out;
 }
 

@@ -19,7 +19,8 @@ double PointToPatchFormFactor(const Vec3& x, const Vec3& n, const Patch& patch);
 
 // A planar light made of patches, as the edges of its outline: the contour integral over the
 // patches' edges, where the edges two patches share run both ways and cancel, so only these are
-// summed (a T-vertex leaves collinear pieces that do not pair up; they still sum correctly).
+// summed, and the pieces of a straight side, end to end, are one edge (a T-vertex's pieces then
+// cancel the whole edge they run against; where they cannot be joined they still sum correctly).
 struct PlanarOutline {
   std::vector<std::pair<Vec3, Vec3>> edges;  // directed as the patches wind about `normal`
   Vec3 normal;                               // unit, the patches' common normal

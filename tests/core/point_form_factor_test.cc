@@ -143,9 +143,10 @@ TEST(PointFormFactorTest, AnOutlineIsItsPatchesSum) {
   std::vector<const Patch*> pointers;
   for (const Patch& p : patches) pointers.push_back(&p);
   const PlanarOutline outline = OutlineOf(pointers, 1e-12);
-  // The square's sides in nine pieces (three along the split quarter), plus the split quarter's two
-  // halves' edges at the T-vertex and the whole edge they run against, which do not pair up.
-  EXPECT_EQ(outline.edges.size(), 9u + 3u);
+  // The square's sides came in nine pieces (three along the split quarter), and the split
+  // quarter's two halves' edges at the T-vertex ran against a whole edge: joined, the halves
+  // cancel it and the sides are four edges.
+  EXPECT_EQ(outline.edges.size(), 4u);
   for (const Vec3& x : {Vec3{0, 0, 0}, Vec3{0.3, -0.2, 0.4}, Vec3{2, 1, -3}}) {
     for (const Vec3& n : {Vec3{0, 0, 1}, Normalize(Vec3{0.1, -0.2, 1})}) {
       double sum = 0;
@@ -251,6 +252,31 @@ TEST(PointFormFactorTest, AClippedOutlineWithATVertexIsItsSumOrDefers) {
       EXPECT_NEAR(whole, sum, 1e-12) << n.x << " " << n.y;
     }
   }
+}
+
+// A finely meshed light's outline is its shape's sides, however many pieces the mesh cut them
+// into: a 6 x 6 grid is a square of 4 edges, an L 6, a ring 8 (its hole wound the other way).
+TEST(PointFormFactorTest, AnOutlineJoinsTheStraightPiecesOfASide) {
+  const auto edges = [](bool (*hole)(int, int)) {
+    const std::vector<Patch> patches = GridLightWithout(hole);
+    std::vector<const Patch*> pointers;
+    for (const Patch& p : patches) pointers.push_back(&p);
+    return OutlineOf(pointers, 1e-12).edges.size();
+  };
+  EXPECT_EQ(edges([](int, int) { return false; }), 4u);
+  EXPECT_EQ(edges([](int i, int j) { return i >= 3 && j >= 3; }), 6u);
+  EXPECT_EQ(edges([](int i, int j) { return i >= 2 && i <= 3 && j >= 2 && j <= 3; }), 8u);
+  // Two squares touching at one corner: that corner has two edges in and two out, so nothing is
+  // joined through it, and the outline stays closed.
+  const std::vector<Patch> patches =
+      GridLightWithout([](int i, int j) { return !((i < 3 && j < 3) || (i >= 3 && j >= 3)); });
+  std::vector<const Patch*> pointers;
+  for (const Patch& p : patches) pointers.push_back(&p);
+  const PlanarOutline outline = OutlineOf(pointers, 1e-12);
+  EXPECT_EQ(outline.edges.size(), 8u);
+  double sum = 0;
+  for (const Patch& p : patches) sum += PointToPatchFormFactor({0.1, 0.2, 0}, {0, 0, 1}, p);
+  EXPECT_NEAR(PointToOutlineFormFactor({0.1, 0.2, 0}, {0, 0, 1}, outline), sum, 1e-12);
 }
 
 }  // namespace
