@@ -22,6 +22,9 @@ struct SolveStats {
   // Shadow rays of the direct light the solve started from (ProgressiveSolver::start_rays): with
   // `rays`, what the ray budget counts. 0 where unknown (a solution fetched from the master).
   uint64_t start_rays = 0;
+  // Seconds from the solve's start to its first round: the direct-light start and the solver's
+  // set-up (0 where unknown: a solution fetched from the master).
+  double start_seconds = 0;
   uint64_t rounds = 0;
   double seconds = 0;
   double rays_per_second = 0;

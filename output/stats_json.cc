@@ -122,6 +122,7 @@ Result<std::string> FormatStatsJson(const SolveStats& stats, const JsonNumbers& 
   // The field list mirrors core/solve_stats.h in declaration order.
   object.Add("rays", FormatUnsigned(stats.rays));
   if (stats.start_rays > 0) object.Add("start_rays", FormatUnsigned(stats.start_rays));
+  if (stats.start_seconds > 0) object.Add("start_seconds", JsonNumber(stats.start_seconds));
   object.Add("rounds", FormatUnsigned(stats.rounds));
   object.Add("seconds", JsonNumber(stats.seconds));
   object.Add("rays_per_second", JsonNumber(stats.rays_per_second));

@@ -169,14 +169,13 @@ Result<RefiningSolveResult> SolveRefining(PatchMesh mesh, const SolverSettings& 
   Result<std::unique_ptr<RoundDriver>> driver =
       RoundDriver::Start(std::move(mesh), settings, refine, hooks.resume, pool);
   if (!driver) return Error{driver.error()};
-  if (hooks.after_start) {
-    hooks.after_start(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-        (*driver)->solver().start_rays());
-  }
+  const double start_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (hooks.after_start) hooks.after_start(start_seconds, (*driver)->solver().start_rays());
   const double seconds = RunRounds(**driver, pool, on_round, hooks.after_round, hooks.during_round,
                                    seconds_before, start, hooks.seconds_spent_before);
   out.solution = (*driver)->Finish(seconds, pool.size());
+  out.solution.stats.start_seconds = start_seconds;
   out.refinements = (*driver)->refinements();
   out.mesh = (*driver)->TakeMesh();
   return out;

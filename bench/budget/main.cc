@@ -175,7 +175,7 @@ nlohmann::json RenderWith(const Budget& budget, const Options& o, const std::str
           {"wall_seconds", run.seconds},
           {"mesh_seconds", NumberAfter(text, "read and meshed in ")},
           // Printed from half a second on; the solve's seconds include it either way.
-          {"start_seconds", NumberAfter(text, "direct light in ")},
+          {"start_seconds", stats.value("start_seconds", 0.0)},
           {"start_rays", stats.value("start_rays", uint64_t{0})},
           {"solve_seconds", stats.at("seconds")},
           {"rays", stats.at("rays")},

@@ -105,6 +105,9 @@ TEST(RenderCommandTest, ARayBudgetCountsTheDirectLightsShadowRays) {
   EXPECT_GT(start, 0) << stats;
   EXPECT_LE(start, 400000 / 4) << stats;
   EXPECT_EQ(JsonNumber(stats, "rays") + start, 400000 - 400000 / 4) << stats;
+  // The start's time, apart from the rounds' (bench/budget reads it).
+  EXPECT_GT(JsonNumber(stats, "start_seconds"), 0) << stats;
+  EXPECT_LE(JsonNumber(stats, "start_seconds"), JsonNumber(stats, "seconds")) << stats;
   const double display = JsonNumber(stats, "display_rays");
   EXPECT_GT(display, 0) << stats;
   EXPECT_LE(display, 400000 / 4) << stats;

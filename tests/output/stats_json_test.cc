@@ -12,6 +12,8 @@ namespace {
 SolveStats SomeStats() {
   SolveStats stats;
   stats.rays = 18446744073709551615ull;
+  stats.start_rays = 7;
+  stats.start_seconds = 0.75;
   stats.rounds = 12;
   stats.seconds = 1.25;
   stats.rays_per_second = 0.1;
@@ -39,13 +41,14 @@ TEST(StatsJsonTest, EveryFieldAndExtra) {
   ASSERT_TRUE(WriteStatsJson(path, SomeStats(), {{"mesh_seconds", 0.5}, {"big", INFINITY}}).ok());
   const std::string text = ReadFileBytes(path);
   for (const char* key :
-       {"rays", "rounds", "seconds", "rays_per_second", "patches", "unshot_fraction",
-        "escaped_rays", "backface_hits", "threads", "seed", "sampler", "stop_reason",
-        "emitted_power", "absorbed_power", "escaped_power", "mesh_seconds", "big"}) {
+       {"rays", "start_rays", "start_seconds", "rounds", "seconds", "rays_per_second", "patches",
+        "unshot_fraction", "escaped_rays", "backface_hits", "threads", "seed", "sampler",
+        "stop_reason", "emitted_power", "absorbed_power", "escaped_power", "mesh_seconds", "big"}) {
     EXPECT_TRUE(Contains(text, "\"" + std::string(key) + "\": ")) << key << "\n" << text;
   }
   EXPECT_TRUE(Contains(text, "\"rays\": 18446744073709551615,")) << text;
   EXPECT_TRUE(Contains(text, "\"rays_per_second\": 0.1,")) << text;
+  EXPECT_TRUE(Contains(text, "\"start_seconds\": 0.75,")) << text;
   EXPECT_TRUE(Contains(text, "\"unshot_fraction\": 0.00095,")) << text;
   EXPECT_TRUE(Contains(text, "\"sampler\": \"sobol\",")) << text;
   EXPECT_TRUE(Contains(text, "\"escaped_power\": null,")) << text;
