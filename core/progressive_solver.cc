@@ -46,12 +46,16 @@ ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettin
       radiosity_(scene.patches.size()),
       unshot_(scene.patches.size()) {
   settings_.shot_rays = ResolvedShotRays(settings_, scene.patches.size());
+  double area = 0;
   for (size_t i = 0; i < scene.patches.size(); ++i) {
     const Patch& p = scene.patches[i];
     radiosity_[i] = p.emission;
     unshot_[i] = p.emission;
     energy_.emitted += p.area * p.emission.Sum();
+    area += p.area;
+    mean_reflectance_ += p.area * p.reflectance.Sum() / 3;
   }
+  if (area > 0) mean_reflectance_ /= area;
   energy_.unshot = energy_.emitted;
   gather_ = GatherOn(settings_);
   // Start from the direct light where DirectLightSections says it pays. Elsewhere (a furnace, a
@@ -171,12 +175,8 @@ RoundPlan ProgressiveSolver::PlanGather(uint32_t batch_rays, uint64_t ray_cap) c
   return plan;
 }
 
-RoundPlan ProgressiveSolver::PlanRound(uint32_t batch_rays, uint64_t ray_cap) const {
-  if (GatherNext()) {
-    return PlanGather(batch_rays, ray_cap);
-  }
-  RoundPlan plan;
-  plan.round = rounds_done_;
+std::vector<Shot> ProgressiveSolver::PlanShots(uint64_t ray_cap, double* power_shot,
+                                               bool* capped) const {
   const auto power = [this](uint32_t patch) { return UnshotPower(patch); };
   std::vector<uint32_t> candidates;
   for (uint32_t i = 0; i < scene_.patches.size(); ++i) {
@@ -188,21 +188,64 @@ RoundPlan ProgressiveSolver::PlanRound(uint32_t batch_rays, uint64_t ray_cap) co
   if (fixed > 0 && ray_cap > 0 && candidates.size() * fixed > ray_cap) {
     // A fixed-size shot cannot be cut: shoot from fewer patches (at least one).
     KeepStrongest(std::max<uint64_t>(1, ray_cap / fixed), power, &candidates);
-    plan.capped = true;
+    *capped = true;
   }
+  if (fixed == 0 && ray_cap > 0 && candidates.size() > ray_cap) {
+    // Fewer rays left than shooters (a paced budget's last round): a ray each from the strongest,
+    // so the round casts the rays left and no more.
+    KeepStrongest(ray_cap, power, &candidates);
+    *capped = true;
+  }
+  std::vector<Shot> shots;
+  shots.reserve(candidates.size());
+  *power_shot = 0;
   for (uint32_t shooter : candidates) {
     uint64_t rays = fixed;
+    const double share = settings_.overrelaxation * UnshotPower(shooter) / energy_.emitted;
+    *power_shot += share;
     if (rays == 0) {
       // Rays in proportion to the power shot (omega times the unshot), so every unit of power is
       // carried by the same number of rays whichever round it is shot in and whatever omega.
-      const double share = settings_.overrelaxation * UnshotPower(shooter) / energy_.emitted;
       const double wanted = std::ceil(double(settings_.shot_rays) * share);
       rays = std::clamp<uint64_t>(static_cast<uint64_t>(std::min(wanted, 1e18)),
                                   settings_.min_shooter_rays, kMaxRaysPerShot);
     }
-    plan.shots.push_back({shooter, rays});
-    plan.rays += rays;
+    shots.push_back({shooter, rays});
   }
+  return shots;
+}
+
+ProgressiveSolver::RoundSize ProgressiveSolver::NextShootingRound() const {
+  if (GatherNext() || sampler_.FixedRaysPerShot() > 0) return {};
+  RoundSize size;
+  bool capped = false;
+  for (const Shot& shot : PlanShots(0, &size.power, &capped)) size.rays += shot.rays;
+  return size;
+}
+
+double ProgressiveSolver::EstimatedCarry() const {
+  // A shot's rays escape (share e), or land and reflect rho of their power. The account holds
+  // escaped = e S and absorbed = (1 - rho)(1 - e) S for the power S shot so far (the direct
+  // start's absorbed light, which nothing escaped from, makes e read low: the pacing then plans
+  // for more rounds than come, and the budget's last rays are left unspent rather than short).
+  const double rho = mean_reflectance_;
+  double escape = 0;
+  if (energy_.escaped > 0) {
+    escape = (1 - rho) * energy_.escaped / (energy_.absorbed + (1 - rho) * energy_.escaped);
+  }
+  return std::clamp(rho * (1 - escape), 0.0, 0.95);
+}
+
+RoundPlan ProgressiveSolver::PlanRound(uint32_t batch_rays, uint64_t ray_cap) const {
+  if (GatherNext()) {
+    return PlanGather(batch_rays, ray_cap);
+  }
+  RoundPlan plan;
+  plan.round = rounds_done_;
+  double power = 0;
+  plan.shots = PlanShots(ray_cap, &power, &plan.capped);
+  for (const Shot& shot : plan.shots) plan.rays += shot.rays;
+  const uint64_t fixed = sampler_.FixedRaysPerShot();
   if (fixed == 0 && ray_cap > 0 && plan.rays > ray_cap) {
     // The last round of a ray budget: fewer rays for every shot, in proportion (at least one each).
     const double scale = double(ray_cap) / double(plan.rays);
@@ -218,6 +261,12 @@ RoundPlan ProgressiveSolver::PlanRound(uint32_t batch_rays, uint64_t ray_cap) co
         ++plan.shots[s].rays;
         ++plan.rays;
       }
+    }
+    // Or the ray each shot keeps made it more: taken back from the last shots that have more.
+    for (size_t s = plan.shots.size(); s-- > 0 && plan.rays > ray_cap;) {
+      const uint64_t back = std::min(plan.shots[s].rays - 1, plan.rays - ray_cap);
+      plan.shots[s].rays -= back;
+      plan.rays -= back;
     }
     plan.capped = true;
   }

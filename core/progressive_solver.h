@@ -90,9 +90,23 @@ class ProgressiveSolver {
   // pending and the unshot fraction is at or below the tolerance (cut to `ray_cap` if set and
   // smaller, and marked capped; empty if that is less than a ray per patch: the solve then ends
   // ungathered). Empty when nothing is left to shoot.
-  // With ray_cap > 0 the round casts at most about that many rays (every proportional shot keeps at
-  // least one ray; the grid drops its weakest shots, keeping at least one) and is marked capped.
+  // With ray_cap > 0 the round casts at most that many rays (every proportional shot keeps at least
+  // one ray, and with fewer rays than shooters only the strongest shoot, one ray each; the grid
+  // drops its weakest shots, keeping at least one) and is marked capped.
   RoundPlan PlanRound(uint32_t batch_rays, uint64_t ray_cap = 0) const;
+
+  // The shooting round PlanRound would plan next without a cap, as totals: its rays and the
+  // power it shoots over the emitted power. Zeros where the next round is the gather, nothing is
+  // left to shoot, or shots have a fixed size (the grid sampler).
+  struct RoundSize {
+    uint64_t rays = 0;
+    double power = 0;
+  };
+  RoundSize NextShootingRound() const;
+  // The share of a shot's power that comes back as unshot, estimated for pacing a budget
+  // (core/solve_control.h PacedRoundCap): the patches' area-weighted mean reflectance, less the
+  // rays that escaped so far (from the energy account), in [0, 0.95].
+  double EstimatedCarry() const;
 
   // Folds the round's results into the solution. `results[k]` is the result of plan.batches[k].
   void ApplyRound(const RoundPlan& plan, const std::vector<BatchResult>& results);
@@ -151,6 +165,9 @@ class ProgressiveSolver {
   double UnshotPower(uint32_t patch) const;
   double TotalUnshotPower() const;
   RoundPlan PlanGather(uint32_t batch_rays, uint64_t ray_cap) const;
+  // The next shooting round's shots, uncut by any cap, and the power they shoot (fraction of the
+  // emitted power). `capped` is set where a fixed-size shot made it drop shooters for `ray_cap`.
+  std::vector<Shot> PlanShots(uint64_t ray_cap, double* power, bool* capped) const;
 
   const PatchScene& scene_;
   SolverSettings settings_;  // shot_rays resolved (never 0)
@@ -163,6 +180,7 @@ class ProgressiveSolver {
   // gather takes only bounced light. Otherwise direct_ holds the punctual lights' alone, if any.
   bool emitters_direct_ = false;
   uint64_t start_rays_ = 0;
+  double mean_reflectance_ = 0;  // area-weighted, channel mean (EstimatedCarry)
   EnergyAccount energy_;
   uint32_t rounds_done_ = 0;
   // Within a round (BeginRound to EndRound): hit weights per patch, zero between shots, and per

@@ -31,6 +31,18 @@ uint64_t TimeRayCap(const SolverSettings& settings, double seconds, double rays_
   return rays >= 1 ? static_cast<uint64_t>(std::min(rays, 1e18)) : 1;
 }
 
+uint64_t PacedRoundCap(uint64_t rays, double power, double unshot, double tolerance, double carry,
+                       uint64_t left) {
+  if (rays == 0 || left == 0 || !(power > 0) || !(unshot > tolerance)) return 0;
+  // Every shot from now on: the unshot down to the tolerance, and what it carries back, again and
+  // again (a geometric series), at this round's rays per unit of power.
+  const double to_shoot = (unshot - tolerance) / (1 - std::clamp(carry, 0.0, 0.95));
+  const double needed = double(rays) * std::max(to_shoot, power) / power;
+  if (needed <= double(left)) return 0;
+  const double cap = double(rays) * double(left) / needed;
+  return static_cast<uint64_t>(std::clamp(cap, 1.0, double(rays)));
+}
+
 std::optional<std::string> StopAfterRound(const RoundPlan& plan, const ProgressiveSolver& solver,
                                           const SolverSettings& settings) {
   // A capped gather has converged but gathered with fewer rays than asked: the budget stopped it.

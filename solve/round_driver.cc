@@ -115,7 +115,23 @@ std::optional<RoundPlan> RoundDriver::PlanNext(uint32_t batch_rays, double secon
   const uint64_t time_cap = TimeRayCap(budget_, seconds, rays_per_second);
   time_capped_ = time_cap > 0 && (cap == 0 || time_cap < cap);
   if (time_capped_) cap = time_cap;
+  // Under a budget, a shooting round gets its share of what is left (PacedRoundCap) where the
+  // rounds to come would not fit at full strength.
+  const uint64_t left = cap;
+  if (left > 0 && !gather_next) {
+    const ProgressiveSolver::RoundSize next = solver_->NextShootingRound();
+    const uint64_t paced = PacedRoundCap(next.rays, next.power, solver_->UnshotFraction(),
+                                         budget_.tolerance, solver_->EstimatedCarry(), left);
+    if (paced > 0) cap = std::min(cap, paced);
+  }
   RoundPlan plan = solver_->PlanRound(batch_rays, cap);
+  if (cap < left) {
+    if (plan.rays < left) {
+      plan.capped = false;  // paced: not the budget's last round, the solve goes on after it
+    } else {
+      plan = solver_->PlanRound(batch_rays, left);  // a ray a shot at least: the last round
+    }
+  }
   if (plan.batches.empty()) {
     // Nothing left to shoot, or a gather that cannot give each patch a ray in the time left.
     stop_ = time_capped_ ? kStopTimeBudget : kStopConverged;

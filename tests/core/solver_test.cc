@@ -141,29 +141,45 @@ TEST(HardCaseTest, FarFromOriginMatchesOrigin) {
   EXPECT_LE(worst, 5e-3);
 }
 
-TEST(SolverTest, RayBudgetStopsTheSolve) {
+// A budget far below what the rounds cast at full strength (the furnace at rho 0.9 takes about
+// 2.6 M rays; at full strength 100,000 would not finish the first round, leaving 90 % of the light
+// unshot): the rounds are paced to it, each casting the same share of its rays, and the solve
+// converges within it or stops having spent it exactly.
+TEST(SolverTest, RayBudgetPacesTheRounds) {
   const PatchScene scene =
       MakeClosedBox({0, 0, 0}, {1, 1, 1}, 2, Surface{{0.9, 0.9, 0.9}, {1, 1, 1}, 0});
   SolverSettings settings = FastSettings();
+  const SolveResult full = Solve(scene, settings);
   settings.max_rays = 100000;
+  ASSERT_GT(full.stats.rays, 20 * settings.max_rays);
   const SolveResult r = Solve(scene, settings);
-  EXPECT_EQ(r.stats.stop_reason, "ray budget");
-  // The last round is trimmed to spend the budget exactly (each shot rounded down, then the rays
-  // left over handed out one per shot).
-  EXPECT_EQ(r.stats.rays, settings.max_rays);
-  EXPECT_GT(r.stats.unshot_fraction, settings.tolerance);
+  EXPECT_LE(r.stats.rays, settings.max_rays);
+  if (r.stats.stop_reason == "ray budget") {
+    EXPECT_EQ(r.stats.rays, settings.max_rays);
+  }
+  EXPECT_GT(r.stats.rounds, full.stats.rounds / 2);
+  EXPECT_LT(r.stats.unshot_fraction, 0.01);
+  // No light left unshot to darken it: the mean radiosity is the furnace's E / (1 - rho) = 10
+  // within the noise of 100,000 rays.
+  double mean = 0;
+  for (const Rgb& b : r.radiosity) mean += b.r / double(r.radiosity.size());
+  EXPECT_NEAR(mean, 10.0, 0.3);
 }
 
-// A budget smaller than one round still stops after that (trimmed) first round.
-TEST(SolverTest, RayBudgetBelowOneRoundTrimsTheFirstRound) {
+// A budget smaller than one round: the rounds pace down to a ray a shooter, and the last casts
+// what is left and no more (only the strongest shooters shoot when fewer rays are left than
+// shooters).
+TEST(SolverTest, RayBudgetBelowOneRoundSpendsTheBudgetAtMost) {
   const PatchScene scene =
       MakeClosedBox({0, 0, 0}, {1, 1, 1}, 2, Surface{{0.9, 0.9, 0.9}, {1, 1, 1}, 0});
   SolverSettings settings = FastSettings();
   settings.max_rays = 1000;
   const SolveResult r = Solve(scene, settings);
-  EXPECT_EQ(r.stats.rounds, 1u);
-  EXPECT_LE(r.stats.rays, settings.max_rays + r.stats.patches);
-  EXPECT_EQ(r.stats.stop_reason, "ray budget");
+  EXPECT_GT(r.stats.rounds, 1u);
+  EXPECT_LE(r.stats.rays, settings.max_rays);
+  if (r.stats.stop_reason == "ray budget") {
+    EXPECT_EQ(r.stats.rays, settings.max_rays);
+  }
   // The grid cannot cut a shot: it shoots from fewer patches, at least one.
   settings.sampler = SamplerKind::kGrid;
   settings.grid_step_degrees = 10;  // 9 x 36 = 324 rays a shot

@@ -77,6 +77,30 @@ TEST(RoundDriverTest, ResumesFromEveryRoundBoundary) {
   }
 }
 
+// Paced rounds (a ray budget far below what the rounds need at full strength) are planned from
+// the state alone: a solve resumed at any round boundary paces, stops and ends as one run through.
+TEST(RoundDriverTest, APacedBudgetResumesFromEveryRoundBoundary) {
+  const PatchScene scene = LitBox();
+  SolverSettings settings = Settings();
+  settings.max_rays = 1500;
+  std::vector<SolveState> states;
+  std::unique_ptr<RoundDriver> whole = RoundDriver::Start(scene, settings, nullptr);
+  const SolveResult all = DriveBackwards(*whole, &states);
+  const SolveResult full = DriveBackwards(*RoundDriver::Start(scene, Settings(), nullptr));
+  ASSERT_GT(full.stats.rays, 5 * settings.max_rays);
+  EXPECT_LE(all.stats.rays, settings.max_rays);
+  ASSERT_GE(states.size(), 3u);
+  for (const SolveState& state : states) {
+    SCOPED_TRACE("round " + std::to_string(state.round));
+    std::unique_ptr<RoundDriver> resumed = RoundDriver::Start(scene, settings, &state);
+    const SolveResult rest = DriveBackwards(*resumed);
+    EXPECT_EQ(rest.radiosity, all.radiosity);
+    EXPECT_EQ(rest.stats.rays, all.stats.rays);
+    EXPECT_EQ(rest.stats.rounds, all.stats.rounds);
+    EXPECT_EQ(rest.stats.stop_reason, all.stats.stop_reason);
+  }
+}
+
 TEST(RoundDriverTest, ADriverOwningItsSceneGivesTheSameBitsAndResumes) {
   const PatchScene scene = LitBox();
   std::vector<SolveState> states;
@@ -125,7 +149,7 @@ TEST(RoundDriverTest, TheBudgetsStopIt) {
 
 // Issue 21: a 10 s budget ran a 23 s first round. With the caller's pace the round is trimmed to
 // the rays that fit in the seconds left, and it ends the solve with the time budget's reason.
-TEST(RoundDriverTest, ARoundIsTrimmedToTheTimeLeftAtTheCallersPace) {
+TEST(RoundDriverTest, ARoundIsPacedToTheTimeLeftAtTheCallersPace) {
   const PatchScene scene = LitBox();
   SolverSettings settings = Settings();
   settings.tolerance = 1e-6;
@@ -135,17 +159,22 @@ TEST(RoundDriverTest, ARoundIsTrimmedToTheTimeLeftAtTheCallersPace) {
   ASSERT_TRUE(whole.has_value());
   EXPECT_FALSE(whole->capped);
   ASSERT_GT(whole->rays, 1000u);
-  // 2 s left at 300 rays/s: 600 rays.
-  const std::optional<RoundPlan> trimmed = driver->PlanNext(97, 8, 300);
-  ASSERT_TRUE(trimmed.has_value());
-  EXPECT_TRUE(trimmed->capped);
-  EXPECT_EQ(trimmed->rays, 600u);
+  // 2 s left at 300 rays/s: 600 rays, less than this round and the rounds after it need at full
+  // strength, so the round gets its share of them (PacedRoundCap) and the solve goes on; when the
+  // time is up, it stops.
+  const std::optional<RoundPlan> paced = driver->PlanNext(97, 8, 300);
+  ASSERT_TRUE(paced.has_value());
+  EXPECT_FALSE(paced->capped);
+  EXPECT_GT(paced->rays, 0u);
+  EXPECT_LT(paced->rays, 600u);
   BatchTracer runner(driver->scene(), driver->caster(), driver->solver().sampler());
   std::vector<BatchResult> results;
-  for (const Batch& b : trimmed->batches) results.push_back(runner.Run(b));
-  driver->Apply(*trimmed, results, 9.5);
+  for (const Batch& b : paced->batches) results.push_back(runner.Run(b));
+  driver->Apply(*paced, results, 9.5);
+  EXPECT_EQ(driver->stop_reason(), std::nullopt);
+  EXPECT_FALSE(driver->PlanNext(97, 10, 300).has_value());
   EXPECT_EQ(driver->stop_reason(), std::optional<std::string>(kStopTimeBudget));
-  EXPECT_EQ(driver->totals().rays, 600u);
+  EXPECT_EQ(driver->totals().rays, paced->rays);
 
   // A pace that fits the whole round trims nothing and the solve goes on.
   driver = RoundDriver::Start(scene, settings, nullptr);
@@ -153,17 +182,19 @@ TEST(RoundDriverTest, ARoundIsTrimmedToTheTimeLeftAtTheCallersPace) {
   ASSERT_TRUE(fits.has_value());
   EXPECT_FALSE(fits->capped);
   EXPECT_EQ(fits->rays, whole->rays);
-  // A ray budget smaller than the time's cap stays a ray budget.
+  // A ray budget smaller than the time's cap stays a ray budget: its rounds are paced to it, and
+  // the last spends it exactly.
   settings.max_rays = 100;
   driver = RoundDriver::Start(scene, settings, nullptr);
-  const std::optional<RoundPlan> rays = driver->PlanNext(97, 1, 1e9);
-  ASSERT_TRUE(rays.has_value());
-  EXPECT_EQ(rays->rays, 100u);
   BatchTracer rays_runner(driver->scene(), driver->caster(), driver->solver().sampler());
-  results.clear();
-  for (const Batch& b : rays->batches) results.push_back(rays_runner.Run(b));
-  driver->Apply(*rays, results, 1.5);
+  while (const std::optional<RoundPlan> rays = driver->PlanNext(97, 1, 1e9)) {
+    EXPECT_LE(driver->totals().rays + rays->rays, 100u);
+    results.clear();
+    for (const Batch& b : rays->batches) results.push_back(rays_runner.Run(b));
+    driver->Apply(*rays, results, 1.5);
+  }
   EXPECT_EQ(driver->stop_reason(), std::optional<std::string>(kStopRayBudget));
+  EXPECT_EQ(driver->totals().rays, 100u);
 }
 
 TEST(RoundDriverTest, AStateOfAnotherSizeIsRefused) {
