@@ -1,6 +1,7 @@
 #include "cli/render_outputs.h"
 
 #include <filesystem>
+#include <functional>
 #include <system_error>
 #include <vector>
 
@@ -54,7 +55,8 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
   for (const Patch& p : mesh.patch_scene().patches) emitter_patch.push_back(p.emission.Max() > 0);
   // One exposure, metered on the lit surfaces, for the PNG and the PLY's colours.
   const Camera exposed = MeterExposure(display, emitter_patch, ResolveCamera(display, job.camera));
-  const Image image = RenderImage(display, exposed);
+  ThreadPool pool(job.solver.threads);
+  const Image image = RenderImage(display, exposed, {}, &pool);
   const auto path = [&](const char* name) { return (fs::path(dir) / name).string(); };
   std::vector<uint32_t> patch_object(mesh.patch_scene().patches.size());
   for (uint32_t p = 0; p < patch_object.size(); ++p) patch_object[p] = mesh.patch_object(p);
@@ -77,31 +79,39 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
     lit_lightmaps.png[map.object] = map.png;
     lit_lightmaps.exr[map.object] = map.exr;
   }
-  for (const Status& s :
-       {WritePng(path("image.png"), image, exposed), WriteExr(path("image.exr"), image),
-        WritePly(path("radiosity.ply"), display, exposed),
-        WriteLitGlb(path("lit.glb"), display, {mesh.objects(), patch_object}, exposed.exposure,
-                    lit_lightmaps),
-        WritePatchesCsv(path("patches.csv"), mesh.patch_scene(), solution.radiosity),
-        WriteStatsJson(path("stats.json"), solution.stats,
-                       {{"patch_size", mesh.patch_size()},
-                        {"patch_size_min", mesh.patch_size_min()},
-                        {"patch_size_max", mesh.patch_size_max()},
-                        {"dropped_degenerate_faces", double(mesh.dropped_degenerate())},
-                        {"dropped_hidden_faces", double(mesh.dropped_hidden())},
-                        {"patches_before_refinement", patches_before},
-                        {"patches_after_refinement", patches_after},
-                        {"exposure_stops", exposed.exposure},
-                        {"display_points", double(mesh.display_stats().points)},
-                        {"display_points_gathered", double(mesh.display_stats().gathered)},
-                        {"display_points_added", double(mesh.display_stats().added)},
-                        {"display_seconds", mesh.display_stats().seconds},
-                        {"display_rays", double(mesh.display_stats().rays)},
-                        {"display_rays_per_light", double(mesh.display_stats().rays_per_light)},
-                        {"display_gather_rays", double(mesh.display_stats().gather_rays)},
-                        {"display_levels", double(mesh.display_stats().levels)}})}) {
-    RADFARM_RETURN_IF_ERROR(s);
-  }
+  // The files are independent: written side by side, the first failure (in this order) reported.
+  const std::vector<std::function<Status()>> writers = {
+      [&] { return WritePng(path("image.png"), image, exposed); },
+      [&] { return WriteExr(path("image.exr"), image); },
+      [&] { return WritePly(path("radiosity.ply"), display, exposed); },
+      [&] {
+        return WriteLitGlb(path("lit.glb"), display, {mesh.objects(), patch_object},
+                           exposed.exposure, lit_lightmaps);
+      },
+      [&] { return WritePatchesCsv(path("patches.csv"), mesh.patch_scene(), solution.radiosity); },
+      [&] {
+        const PatchMesh::DisplayStats& d = mesh.display_stats();
+        return WriteStatsJson(path("stats.json"), solution.stats,
+                              {{"patch_size", mesh.patch_size()},
+                               {"patch_size_min", mesh.patch_size_min()},
+                               {"patch_size_max", mesh.patch_size_max()},
+                               {"dropped_degenerate_faces", double(mesh.dropped_degenerate())},
+                               {"dropped_hidden_faces", double(mesh.dropped_hidden())},
+                               {"patches_before_refinement", patches_before},
+                               {"patches_after_refinement", patches_after},
+                               {"exposure_stops", exposed.exposure},
+                               {"display_points", double(d.points)},
+                               {"display_points_gathered", double(d.gathered)},
+                               {"display_points_added", double(d.added)},
+                               {"display_seconds", d.seconds},
+                               {"display_rays", double(d.rays)},
+                               {"display_rays_per_light", double(d.rays_per_light)},
+                               {"display_gather_rays", double(d.gather_rays)},
+                               {"display_levels", double(d.levels)}});
+      }};
+  std::vector<Status> written(writers.size(), Ok{});
+  pool.ParallelFor(writers.size(), [&](unsigned, size_t i) { written[i] = writers[i](); });
+  for (const Status& s : written) RADFARM_RETURN_IF_ERROR(s);
   return Ok{};
 }
 

@@ -214,7 +214,7 @@ Camera ResolveCamera(const DisplayMesh& mesh, const Camera& camera) {
 }
 
 Image RenderImage(const DisplayMesh& mesh, const Camera& camera_in,
-                  const std::vector<bool>& black_patch) {
+                  const std::vector<bool>& black_patch, ThreadPool* pool) {
   const Camera camera = ResolveCamera(mesh, camera_in);
   Image image;
   image.width = camera.width;
@@ -246,11 +246,12 @@ Image RenderImage(const DisplayMesh& mesh, const Camera& camera_in,
     for (size_t first = 0; first < mesh.triangles.size(); first += kChunkTriangles) {
       const size_t last = std::min(mesh.triangles.size(), first + kChunkTriangles);
       SetUpTriangles(mesh, view, clip, black_patch, first, last, &triangles);
-      for (size_t g = 0; g < count; ++g) {
+      // Each stratum into buffers of its own: in any order, on any thread.
+      ParallelForOrInline(pool, count, [&](unsigned, size_t g) {
         const size_t stratum = first_stratum + g;
         const double ox = (stratum % n + 0.5) / n, oy = (stratum / n + 0.5) / n;
         RasterisePass(triangles, ox, oy, camera.width, camera.height, &depth[g], &colour[g]);
-      }
+      });
     }
     for (size_t g = 0; g < count; ++g) {
       for (size_t i = 0; i < pixel_count; ++i) image.pixels[i] += colour[g][i];

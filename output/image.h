@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/rgb.h"
+#include "core/thread_pool.h"
 #include "core/vec3.h"
 #include "mesh/display_mesh.h"
 #include "output/camera.h"
@@ -36,7 +37,8 @@ Camera ResolveCamera(const DisplayMesh& mesh, const Camera& camera);
 // skipped; a vertex without radiance (radiance shorter than positions) is black, and so are the
 // triangles of patches `black_patch` marks (they still hide what is behind them). Memory does not
 // grow with the mesh: a fixed chunk of set-up triangles and at most 64 MB of subpixel buffers.
+// With a `pool`, the subpixel strata are drawn on its threads (the same image, to the bit).
 Image RenderImage(const DisplayMesh& mesh, const Camera& camera,
-                  const std::vector<bool>& black_patch = {});
+                  const std::vector<bool>& black_patch = {}, ThreadPool* pool = nullptr);
 
 }  // namespace radfarm

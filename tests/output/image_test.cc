@@ -58,6 +58,32 @@ double SumRed(const Image& image) {
   return sum;
 }
 
+// The subpixel strata drawn on a pool's threads make the same image, to the bit: overlapping
+// triangles at several depths, a ramp of radiance, 16 samples a pixel.
+TEST(RenderImageTest, APoolDrawsTheSameBits) {
+  DisplayMesh mesh;
+  AddQuad(
+      0.8, [](double x) { return 2 + 0.3 * x; },
+      [](const Vec3& p) {
+        return Rgb{p.x + 1, p.y + 1, 0.5};
+      },
+      &mesh);
+  AddQuad(
+      0.4, [](double) { return 1.7; }, Constant({0.2, 0.9, 0.4}), &mesh);
+  AddTriangle({-1, -1, 1.5}, {0.5, -0.2, 2.5}, {0, 1, 1.9}, Constant({0.7, 0.1, 0.3}), &mesh);
+  const Camera camera = FrontCamera(64, 48, 16);
+  const Image alone = RenderImage(mesh, camera);
+  ThreadPool pool(3);
+  const Image pooled = RenderImage(mesh, camera, {}, &pool);
+  ASSERT_EQ(alone.pixels.size(), pooled.pixels.size());
+  EXPECT_GT(SumRed(alone), 0);
+  for (size_t i = 0; i < alone.pixels.size(); ++i) {
+    ASSERT_EQ(alone.pixels[i].r, pooled.pixels[i].r) << i;
+    ASSERT_EQ(alone.pixels[i].g, pooled.pixels[i].g) << i;
+    ASSERT_EQ(alone.pixels[i].b, pooled.pixels[i].b) << i;
+  }
+}
+
 TEST(RenderImageTest, SingleTriangleCoversItsArea) {
   DisplayMesh mesh;
   AddTriangle({-0.5, -0.5, 1}, {0.5, -0.5, 1}, {0, 0.5, 1}, Constant({2, 2, 2}), &mesh);
