@@ -61,6 +61,22 @@ TEST_F(FarmTest, ALampLitGltfSceneRendersLikeRadfarmRender) {
       << "farm and render differ";
 }
 
+// A ray budget far below what the rounds take at full strength paces them (core/solve_control.h
+// PacedRoundCap: 11 rounds instead of one on the Cornell box at 600,000 rays): the master plans
+// them from the same state as render, so the agents' job gives render's patches to the byte.
+TEST_F(FarmTest, PacedRoundsOfARayBudgetGiveRendersPatches) {
+  StartMaster({"--local-round-rays", "0"});
+  StartAgent("a1");
+  StartAgent("a2");
+  const std::vector<std::string> flags = {"--rays", "600000"};
+  const int64_t id = Submit("cornell-box.toml", flags);
+  ASSERT_TRUE(WaitForState(id, "done")) << MasterLog();
+  const nlohmann::json done = Status(id);
+  EXPECT_GT(JobRound(done), 3) << done.dump();
+  EXPECT_TRUE(FetchPatches(id) == ReferencePatches("cornell-box.toml", flags))
+      << "farm and render differ";
+}
+
 // Rounds of at most --local-round-rays rays are computed by the master itself: with the limit
 // above every round of the job, it is solved with no agent at all, and gives render's patches.
 TEST_F(FarmTest, RoundsUnderTheLocalLimitAreSolvedByTheMasterAlone) {
