@@ -14,18 +14,22 @@ uint64_t DisplayRayAllowance(const SolverSettings& settings) {
   return BudgetShare(settings, kDisplayBudgetShare, kDisplayRaysPerSecond);
 }
 
+double AfterSolveSeconds(const PatchScene& scene, const SolverSettings& settings) {
+  const double display_rays =
+      DisplayCastsRays(scene, settings) ? double(DisplayRayAllowance(settings)) : 0.0;
+  return display_rays / kDisplayReserveRaysPerSecond + kAfterSolveSeconds +
+         kAfterSolveSecondsPerPatch * double(scene.patches.size());
+}
+
 SolverSettings SolveBudget(const PatchScene& scene, const SolverSettings& settings) {
   SolverSettings budget = settings;
-  if ((settings.max_rays == 0 && !(settings.max_seconds > 0)) ||
-      !DisplayCastsRays(scene, settings)) {
-    return budget;
-  }
-  if (settings.max_rays > 0) {
+  if (settings.max_rays > 0 && DisplayCastsRays(scene, settings)) {
     budget.max_rays =
         std::max<uint64_t>(1, settings.max_rays - settings.max_rays / kDisplayBudgetShare);
   }
   if (settings.max_seconds > 0) {
-    budget.max_seconds = settings.max_seconds * (1 - 1.0 / kDisplayBudgetShare);
+    budget.max_seconds =
+        std::max(kMinSolveSeconds, settings.max_seconds - AfterSolveSeconds(scene, settings));
   }
   return budget;
 }

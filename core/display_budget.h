@@ -20,6 +20,19 @@ inline constexpr uint64_t kDisplayBudgetShare = 4;
 // the plan is the same on every machine; about a third of what two cores of a 2020s desktop cast.
 inline constexpr double kDisplayRaysPerSecond = 4e6;
 
+// A time budget stops the rounds early enough for what follows them (AfterSolveSeconds): the
+// display's rays, priced at kDisplayReserveRaysPerSecond, what two cores cast of them on a big
+// scene, not at the allowance's cautious rate; and kAfterSolveSeconds plus
+// kAfterSolveSecondsPerPatch a patch for the rest: the display's work at its points (the midpoint
+// split, the contrast tests and cuts where the light bends, a capped light's kernel at each point)
+// and the outputs (the image's strata, the PNG's deflate, the files). Fixed in the code, as
+// kDisplayRaysPerSecond, from bench/budget on two cores (at 88,750 patches the display took
+// 1.65 s with 4.2 M rays and 3.3 s with 16.7 M, the outputs 0.4-0.6 s; 0.3-0.4 s after a
+// 3,852-patch display): a slower machine runs over by the ratio.
+inline constexpr double kDisplayReserveRaysPerSecond = 7e6;
+inline constexpr double kAfterSolveSeconds = 0.3;
+inline constexpr double kAfterSolveSecondsPerPatch = 16e-6;
+
 // Whether a display with rays of its own follows the solve: it has a direct light to start from
 // (DirectLightSections > 0); else the display averages the patches, for free.
 bool DisplayCastsRays(const PatchScene& scene, const SolverSettings& settings);
@@ -28,8 +41,15 @@ bool DisplayCastsRays(const PatchScene& scene, const SolverSettings& settings);
 // max_seconds x kDisplayRaysPerSecond, each over kDisplayBudgetShare, the smaller of the two.
 uint64_t DisplayRayAllowance(const SolverSettings& settings);
 
-// The budgets the solve's rounds stop at: the settings' less the display's share where a display
-// with rays follows (DisplayCastsRays), else the settings' own.
+// The seconds a time budget keeps for what follows the solve: the display's allowance at
+// kDisplayReserveRaysPerSecond where a display with rays follows (DisplayCastsRays), and
+// kAfterSolveSeconds + kAfterSolveSecondsPerPatch x the scene's patches.
+double AfterSolveSeconds(const PatchScene& scene, const SolverSettings& settings);
+
+// The budgets the solve's rounds stop at: max_rays less the display's share where a display with
+// rays follows (DisplayCastsRays), max_seconds less AfterSolveSeconds. A time budget that leaves
+// the rounds nothing stays a budget (kMinSolveSeconds): the solve is its start.
 SolverSettings SolveBudget(const PatchScene& scene, const SolverSettings& settings);
+inline constexpr double kMinSolveSeconds = 1e-3;
 
 }  // namespace radfarm

@@ -159,16 +159,48 @@ TEST(DirectLightCapTest, ABudgetKeepsAQuarterForTheDisplay) {
   EXPECT_EQ(DisplayRayAllowance(settings), 1u);
   EXPECT_EQ(StartRayAllowance(settings), 1u);
   settings.max_rays = 4000002;
-  settings.max_seconds = 8;  // both: the smaller allowance; the solve's time three quarters
+  settings.max_seconds = 8;  // both: the smaller allowance; the solve's time less what follows
   EXPECT_EQ(DisplayRayAllowance(settings),
             std::min<uint64_t>(1000000, uint64_t(8 * kDisplayRaysPerSecond / 4)));
-  EXPECT_EQ(SolveBudget(scene, settings).max_seconds, 6);
+  EXPECT_DOUBLE_EQ(SolveBudget(scene, settings).max_seconds,
+                   8 - AfterSolveSeconds(scene, settings));
   // No direct light to start from (the emitters shoot: a furnace): the display averages, the
-  // solve keeps the whole budget.
+  // solve keeps every ray, and the time but for the outputs.
   const PatchScene furnace = GridLight(16);
   EXPECT_FALSE(DisplayCastsRays(furnace, settings));
   EXPECT_EQ(SolveBudget(furnace, settings).max_rays, 4000002u);
-  EXPECT_EQ(SolveBudget(furnace, settings).max_seconds, 8);
+  EXPECT_DOUBLE_EQ(SolveBudget(furnace, settings).max_seconds,
+                   8 - AfterSolveSeconds(furnace, settings));
+}
+
+// A time budget keeps the time what follows the solve takes (on a big scene `--seconds 5` ended
+// after 6.3 s): the display's rays, where it casts any, and the display's work at its points and
+// the outputs, growing with the patches. One that leaves the rounds nothing is still a budget: the
+// solve is its start.
+TEST(DirectLightCapTest, ATimeBudgetKeepsTheTimeAfterTheSolve) {
+  PatchScene small = GridLight(4);
+  AddFloor(10, &small);
+  PatchScene big = GridLight(16);
+  AddFloor(300, &big);
+  ASSERT_GT(big.patches.size(), 50 * small.patches.size());
+  SolverSettings settings = Gathering(2048);
+  settings.max_seconds = 5;
+  ASSERT_TRUE(DisplayCastsRays(small, settings));
+  EXPECT_DOUBLE_EQ(AfterSolveSeconds(small, settings),
+                   double(DisplayRayAllowance(settings)) / kDisplayReserveRaysPerSecond +
+                       kAfterSolveSeconds +
+                       kAfterSolveSecondsPerPatch * double(small.patches.size()));
+  EXPECT_GT(AfterSolveSeconds(big, settings), AfterSolveSeconds(small, settings) + 1);
+  EXPECT_LT(SolveBudget(big, settings).max_seconds, SolveBudget(small, settings).max_seconds);
+  EXPECT_EQ(SolveBudget(big, settings).max_rays, 0u) << "a time budget only";
+  // No display rays (the furnace: the emitters shoot), no time for them.
+  const PatchScene furnace = GridLight(16);
+  EXPECT_DOUBLE_EQ(
+      AfterSolveSeconds(furnace, settings),
+      kAfterSolveSeconds + kAfterSolveSecondsPerPatch * double(furnace.patches.size()));
+  settings.max_seconds = 0.5;
+  EXPECT_EQ(SolveBudget(big, settings).max_seconds, kMinSolveSeconds);
+  EXPECT_GT(SolveBudget(big, settings).max_seconds, 0) << "still a budget";
 }
 
 // `count` lights of 36 patches each (distinct surfaces) over a 60 x 60 floor.

@@ -159,10 +159,14 @@ TEST(RoundDriverTest, ARoundIsPacedToTheTimeLeftAtTheCallersPace) {
   ASSERT_TRUE(whole.has_value());
   EXPECT_FALSE(whole->capped);
   ASSERT_GT(whole->rays, 1000u);
+  // The rounds stop at the solve's share of the 10 s (SolveBudget).
+  const double solve_seconds = driver->budget().max_seconds;
+  ASSERT_GT(solve_seconds, 2.5);
+  ASSERT_LT(solve_seconds, 10);
   // 2 s left at 300 rays/s: 600 rays, less than this round and the rounds after it need at full
   // strength, so the round gets its share of them (PacedRoundCap) and the solve goes on; when the
   // time is up, it stops.
-  const std::optional<RoundPlan> paced = driver->PlanNext(97, 8, 300);
+  const std::optional<RoundPlan> paced = driver->PlanNext(97, solve_seconds - 2, 300);
   ASSERT_TRUE(paced.has_value());
   EXPECT_FALSE(paced->capped);
   EXPECT_GT(paced->rays, 0u);
@@ -170,9 +174,9 @@ TEST(RoundDriverTest, ARoundIsPacedToTheTimeLeftAtTheCallersPace) {
   BatchTracer runner(driver->scene(), driver->caster(), driver->solver().sampler());
   std::vector<BatchResult> results;
   for (const Batch& b : paced->batches) results.push_back(runner.Run(b));
-  driver->Apply(*paced, results, 9.5);
+  driver->Apply(*paced, results, solve_seconds - 0.5);
   EXPECT_EQ(driver->stop_reason(), std::nullopt);
-  EXPECT_FALSE(driver->PlanNext(97, 10, 300).has_value());
+  EXPECT_FALSE(driver->PlanNext(97, solve_seconds, 300).has_value());
   EXPECT_EQ(driver->stop_reason(), std::optional<std::string>(kStopTimeBudget));
   EXPECT_EQ(driver->totals().rays, paced->rays);
 
