@@ -62,6 +62,8 @@ void ProgressReporter::OnRound(const RoundProgress& p) {
   estimator_->AddRound(
       {p.round_rays, p.round_seconds, p.unshot_before, p.unshot_fraction, p.gather});
   position_ = {p.rays, p.unshot_fraction, p.gather_rays_left};
+  position_.budget_rays_left = p.budget_rays_left;
+  position_.budget_seconds_left = p.budget_seconds_left;
   const ProgressEstimate e = estimator_->Estimate(position_);
   const double rate = p.seconds > 0 ? double(p.rays) / p.seconds : 0;
   char text[160];
@@ -101,6 +103,11 @@ void ProgressReporter::OnRoundRunning(const RoundRunning& r) {
   now.round_rays_done = r.round_rays_done;
   now.round_seconds = r.round_seconds;
   now.round_gather = r.gather;
+  if (now.budget_rays_left) {
+    now.budget_rays_left =
+        *now.budget_rays_left - std::min(*now.budget_rays_left, r.round_rays_done);
+  }
+  now.budget_seconds_left = r.budget_seconds_left;
   // Before the first round ends there is no estimator: no ETA yet.
   const ProgressEstimate e = estimator_ ? estimator_->Estimate(now) : ProgressEstimate{};
   const double part = double(r.round_rays_done) / double(r.round_rays);

@@ -95,6 +95,28 @@ std::optional<double> ProgressEstimator::Seconds(double rays, double rounds) con
   return line.slope * rays + line.intercept * rounds;
 }
 
+namespace {
+
+// `e` cut to what the budget leaves (SolvePosition::budget_*): the rays and seconds still to come
+// scaled down together to the first the budget runs out of; `done` the rays done.
+ProgressEstimate WithinBudget(ProgressEstimate e, const SolvePosition& now, double done) {
+  const double rays_left = double(e.rays_left);
+  double scale = 1;
+  if (now.budget_rays_left && rays_left > 0) {
+    scale = std::min(scale, double(*now.budget_rays_left) / rays_left);
+  }
+  if (now.budget_seconds_left && e.seconds_left && *e.seconds_left > 0) {
+    scale = std::min(scale, std::max(0.0, *now.budget_seconds_left) / *e.seconds_left);
+  }
+  if (!(scale < 1)) return e;
+  e.rays_left = uint64_t(std::llround(rays_left * scale));
+  e.fraction = done + rays_left * scale > 0 ? done / (done + rays_left * scale) : 1;
+  if (e.seconds_left) *e.seconds_left *= scale;
+  return e;
+}
+
+}  // namespace
+
 ProgressEstimate ProgressEstimator::Estimate(const SolvePosition& now) const {
   ProgressEstimate out;
   const bool running = now.round_rays > 0;
@@ -119,11 +141,12 @@ ProgressEstimate ProgressEstimator::Estimate(const SolvePosition& now) const {
   out.rays_left = uint64_t(std::llround(rays_left));
   const double done = double(now.rays_done + std::min(now.round_rays, now.round_rays_done));
   out.fraction = done + rays_left > 0 ? done / (done + rays_left) : 0;
-  if (!shooting) return out;  // the shooting still to come cannot be sized yet
+  // The shooting still to come cannot be sized yet.
+  if (!shooting) return WithinBudget(out, now, done);
 
   const double later_cost = (shooting ? shooting->rays : 0) + gather_rays * gather_ray_cost_;
   std::optional<double> later = Seconds(later_cost, shooting->rounds + gather_rounds);
-  if (!later) return out;
+  if (!later) return WithinBudget(out, now, done);
   double rest = 0;
   if (running) {
     // The running round at the fitted pace, trusting its own pace more as it goes: its first
@@ -138,7 +161,7 @@ ProgressEstimate ProgressEstimator::Estimate(const SolvePosition& now) const {
     }
   }
   out.seconds_left = rest + *later;
-  return out;
+  return WithinBudget(out, now, done);
 }
 
 }  // namespace radfarm

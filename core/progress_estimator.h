@@ -42,6 +42,10 @@ struct SolvePosition {
   uint64_t round_rays_done = 0;
   double round_seconds = 0;   // spent in it so far
   bool round_gather = false;  // it is the final gather
+  // What a budget leaves from now (nullopt: no such budget): the solve ends there if the rays and
+  // seconds to convergence would run past it, so the estimate stops there too.
+  std::optional<uint64_t> budget_rays_left{};
+  std::optional<double> budget_seconds_left{};
 };
 
 struct ProgressEstimate {

@@ -2,6 +2,7 @@
 
 #include <malloc.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -265,7 +266,7 @@ Result<RoundPlan> RunningJob::TakePlannedRound() {
   if (!planned_) return Error{"job " + std::to_string(id()) + ": no round planned"};
   RoundPlan plan = std::move(*planned_);
   planned_.reset();
-  restored_.clear();  // computed here anyway: cheaper than the hand-over
+  restored_.clear();                // computed here anyway: cheaper than the hand-over
   if (plan.gather) ahead_.reset();  // likewise
   phase_ = Phase::kReducing;
   running_rays_ = 0;  // computed here: shown from Reduce's result
@@ -363,8 +364,9 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
   UpdateTotals();
   // A restarted master replays the rounds it kept results of with the batch sizes they had.
   // The gather round is planned with the batch sizes of the batches traced ahead.
-  const BatchSizing next_sizing = SizingFor(
-      driver_->solver().rounds_done(), ahead_sizing_ && driver_->solver().GatherNext() ? *ahead_sizing_ : sizing);
+  const BatchSizing next_sizing =
+      SizingFor(driver_->solver().rounds_done(),
+                ahead_sizing_ && driver_->solver().GatherNext() ? *ahead_sizing_ : sizing);
   if (std::optional<RoundPlan> next = PlanNext(next_sizing)) {
     if (!ahead_planned_ && !next->gather) PlanGatherAhead(next_sizing, options_);
     RestoreResults(*next, next_sizing);
@@ -449,6 +451,16 @@ ProgressEstimate RunningJob::Progress(scheduler::TimePoint now) const {
     at.round_rays_done = running_rays_ * counters.batches_done / counters.batches;
     at.round_seconds = std::chrono::duration<double>(now - round_started_).count();
     at.round_gather = running_gather_;
+  }
+  // The job's budgets end it where the rounds to convergence would run past them: so does the ETA.
+  const SolverSettings& budget = driver_->budget();
+  if (budget.max_rays > 0) {
+    const uint64_t spent = totals_.rays + driver_->solver().start_rays() + at.round_rays_done;
+    at.budget_rays_left = budget.max_rays - std::min(budget.max_rays, spent);
+  }
+  if (budget.max_seconds > 0) {
+    at.budget_seconds_left =
+        std::max(0.0, budget.max_seconds - (totals_.seconds + at.round_seconds));
   }
   last_progress_ = estimator_.Estimate(at);
   return last_progress_;

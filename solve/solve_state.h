@@ -53,6 +53,9 @@ struct RoundProgress {
   // Seconds per ray of the final gather over those of a shooting round, as measured on this
   // machine (RoundDriver::MeasureGatherRayCost); 0 when not measured.
   double gather_ray_cost = 0;
+  // What the rounds' budgets (RoundDriver::budget) leave after the round; nullopt: no such budget.
+  std::optional<uint64_t> budget_rays_left{};
+  std::optional<double> budget_seconds_left{};
 };
 
 // While a round of a local solve runs (RefiningHooks::during_round), after each of its batches.
@@ -62,6 +65,7 @@ struct RoundRunning {
   uint64_t round_rays_done = 0;  // computed so far
   double round_seconds = 0;      // since the round started
   bool gather = false;
+  std::optional<double> budget_seconds_left{};  // as RoundProgress's, now
 };
 
 struct SolveResult {

@@ -51,8 +51,7 @@ std::string Capture(bool interactive, int rounds) {
   return Written(interactive, [&](ProgressReporter& reporter) {
     EnergyAccount energy;
     for (int i = 1; i <= rounds; ++i) {
-      reporter.OnRound(
-          {uint32_t(i), uint64_t(i) * 1000, i * 2.0, std::pow(0.5, i), 1e-3, &energy});
+      reporter.OnRound({uint32_t(i), uint64_t(i) * 1000, i * 2.0, std::pow(0.5, i), 1e-3, &energy});
     }
     reporter.Finish();
   });
@@ -178,6 +177,23 @@ TEST(ProgressTest, ALongShootingRoundShowsItsProgressBeforeItsEnd) {
   // The next round starts its own count: its first second prints nothing.
   reporter.OnRoundRunning({1, 1'000'000, 500'000, 0.5, false});
   EXPECT_EQ(out.Text().find("round 2 "), std::string::npos) << out.Text();
+}
+
+// Under a time budget the ETA is at most the time the budget leaves the rounds, after a round and
+// while one runs (a --seconds 5 render on 88,750 patches showed "ETA 36s").
+TEST(ProgressTest, TheEtaKeepsWithinTheBudget) {
+  Captured out;
+  ProgressReporter reporter(out.file(), false);
+  RoundProgress first = Shooting(1, 0.01, 5e-4, 1'000'000);
+  first.budget_seconds_left = 3.2;
+  reporter.OnRound(first);
+  EXPECT_NE(out.Text().find("ETA 4s\n"), std::string::npos) << out.Text();  // not 8 s
+  RoundRunning gather{2, 8'000'000, 2'000'000, 1.5, true};
+  gather.budget_seconds_left = 1.7;
+  reporter.OnRoundRunning(gather);
+  EXPECT_NE(out.Text().find("final gather 25% of 8000000 rays  1.33 Mrays/s  ETA 2s\n"),
+            std::string::npos)
+      << out.Text();
 }
 
 TEST(ProgressTest, AShortGatherPrintsNoProgressLines) {

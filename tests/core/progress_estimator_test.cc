@@ -198,5 +198,46 @@ TEST(ProgressEstimatorTest, DoneWhenNothingIsLeft) {
   EXPECT_DOUBLE_EQ(*e.seconds_left, 0.0);
 }
 
+// A budget ends the solve where the rounds to convergence would run past it: the estimate ends
+// there too (a --seconds 5 render on 88,750 patches showed "ETA 36s").
+TEST(ProgressEstimatorTest, ABudgetEndsTheEstimateWhereItEndsTheSolve) {
+  const FakeSolve solve;
+  const std::vector<RoundSample> rounds = solve.Rounds();
+  ProgressEstimator estimator(solve.tolerance);
+  estimator.AddRound(rounds[0]);
+  estimator.AddRound(rounds[1]);
+  SolvePosition at = After(rounds, 2, solve.gather_rays);
+  const ProgressEstimate free = estimator.Estimate(at);
+  ASSERT_TRUE(free.seconds_left.has_value());
+  ASSERT_GT(*free.seconds_left, 2.0);
+  // A budget larger than the rest changes nothing.
+  at.budget_seconds_left = 2 * *free.seconds_left;
+  at.budget_rays_left = 2 * free.rays_left;
+  const ProgressEstimate roomy = estimator.Estimate(at);
+  EXPECT_EQ(roomy.rays_left, free.rays_left);
+  EXPECT_DOUBLE_EQ(*roomy.seconds_left, *free.seconds_left);
+  EXPECT_DOUBLE_EQ(roomy.fraction, free.fraction);
+  // A second left: the ETA is that second, the rays and the bar in proportion.
+  at.budget_seconds_left = 1.0;
+  const ProgressEstimate timed = estimator.Estimate(at);
+  EXPECT_DOUBLE_EQ(*timed.seconds_left, 1.0);
+  EXPECT_NEAR(double(timed.rays_left), double(free.rays_left) / *free.seconds_left, 1.0);
+  EXPECT_GT(timed.fraction, free.fraction);
+  // Rays left fewer than the rest needs (and than the second's): the rays end it first.
+  at.budget_rays_left = free.rays_left / 10;
+  const ProgressEstimate rayed = estimator.Estimate(at);
+  EXPECT_EQ(rayed.rays_left, free.rays_left / 10);
+  EXPECT_DOUBLE_EQ(*rayed.seconds_left,
+                   *free.seconds_left * double(free.rays_left / 10) / double(free.rays_left));
+  const double done = double(at.rays_done);
+  EXPECT_DOUBLE_EQ(rayed.fraction, done / (done + double(free.rays_left / 10)));
+  // Spent: nothing left, done.
+  at.budget_rays_left = 0;
+  const ProgressEstimate spent = estimator.Estimate(at);
+  EXPECT_EQ(spent.rays_left, 0u);
+  EXPECT_DOUBLE_EQ(*spent.seconds_left, 0.0);
+  EXPECT_DOUBLE_EQ(spent.fraction, 1.0);
+}
+
 }  // namespace
 }  // namespace radfarm

@@ -92,5 +92,50 @@ TEST(RunningJobLocalRoundTest, TheFirstRoundIsTaperedForTheAgentsKnownAtTheStart
   EXPECT_LE(tapered.batches.back().ray_count, TaperFloor(options.default_batch_rays));
 }
 
+// The master's ETA keeps within the job's budgets as render's does: the rays and seconds still to
+// come are at most what the budget leaves (a budgeted job showed the time to convergence).
+TEST(RunningJobLocalRoundTest, TheProgressKeepsWithinTheJobsBudget) {
+  Result<Job> job = LoadJob(RADFARM_SOURCE_DIR "/scenes/cornell-box.toml");
+  ASSERT_TRUE(job.ok()) << job.error();
+  Result<InputScene> scene = LoadObjScene(job->scene_path);
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  job->mesh.patch_size = 100;
+  job->solver.shot_rays = 200000;
+  job->solver.gather_rays = 256;
+  // After the first round, reported as taking `round_seconds`.
+  auto after_first_round = [&](uint64_t max_rays, double max_seconds, double round_seconds) {
+    job->solver.max_rays = max_rays;
+    job->solver.max_seconds = max_seconds;
+    store::JobRecord record;
+    record.id = 1;
+    Result<std::shared_ptr<RunningJob>> runner = RunningJob::Prepare(
+        record, codec::EncodeJobBundle({*job, *scene}), std::nullopt, std::nullopt, {}, {});
+    EXPECT_TRUE(runner.ok()) << runner.error();
+    RunningJob& r = **runner;
+    Result<RoundPlan> plan = r.TakePlannedRound();
+    EXPECT_TRUE(plan.ok()) << plan.error();
+    const scheduler::CompletedRound round = r.RunLocally(std::move(*plan));
+    RoundOutcome outcome = r.Reduce(round, round_seconds, false, {4096, 0});
+    EXPECT_TRUE(r.InstallOutcome(outcome));
+    return std::pair(r.Progress(scheduler::Clock::now()), r.totals().rays);
+  };
+  const auto [free, first_rays] = after_first_round(0, 0, 1.0);
+  ASSERT_TRUE(free.seconds_left.has_value());
+  ASSERT_GT(free.rays_left, 100'000u);
+  // A ray budget of a third of what is left: the rays to come are within it.
+  const uint64_t max_rays = first_rays + free.rays_left / 3;
+  const auto [rayed, rayed_first] = after_first_round(max_rays, 0, 1.0);
+  EXPECT_LT(rayed.rays_left, free.rays_left);
+  EXPECT_LE(rayed.rays_left, max_rays - rayed_first);
+  EXPECT_GT(rayed.fraction, free.fraction);
+  // A time budget of 1.5 s (the rounds' share of it under a second: SolveBudget) after a round of
+  // 0.1 s: the ETA is what is left of the share, not the 2 s to convergence.
+  const auto [timed, timed_first] = after_first_round(0, 1.5, 0.1);
+  ASSERT_TRUE(timed.seconds_left.has_value());
+  EXPECT_GT(*timed.seconds_left, 0);
+  EXPECT_LE(*timed.seconds_left, 1.5 - 0.1);
+  EXPECT_LT(*timed.seconds_left, *free.seconds_left);
+}
+
 }  // namespace
 }  // namespace radfarm::daemon
