@@ -205,7 +205,10 @@ BatchSizing RunningJob::SizingFor(uint32_t round, BatchSizing fallback) const {
 }
 
 std::optional<RoundPlan> RunningJob::PlanNext(BatchSizing sizing) {
-  std::optional<RoundPlan> plan = driver_->PlanNext(sizing.batch_rays, totals_.seconds);
+  // Under a time budget a round is trimmed to the time left and paced (RoundDriver::PlanNext) at
+  // the recent rounds' pace, as render's are at its rounds'; the first round, unmeasured, is not.
+  const double pace = driver_->settings().max_seconds > 0 ? RaysPerSecond() : 0;
+  std::optional<RoundPlan> plan = driver_->PlanNext(sizing.batch_rays, totals_.seconds, pace);
   if (plan) TaperBatches(sizing.taper_ways, TaperFloor(sizing.batch_rays), &plan->batches);
   return plan;
 }

@@ -137,5 +137,46 @@ TEST(RunningJobLocalRoundTest, TheProgressKeepsWithinTheJobsBudget) {
   EXPECT_LT(*timed.seconds_left, *free.seconds_left);
 }
 
+// A time budget paces the master's rounds as render's: after a round that took most of the
+// rounds' share, the next is cut to what fits in the rest at its pace (before, a farm job's time
+// budget only stopped the rounds, after however long the last one ran).
+TEST(RunningJobLocalRoundTest, ATimeBudgetPacesTheRounds) {
+  Result<Job> job = LoadJob(RADFARM_SOURCE_DIR "/scenes/cornell-box.toml");
+  ASSERT_TRUE(job.ok()) << job.error();
+  Result<InputScene> scene = LoadObjScene(job->scene_path);
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  job->mesh.patch_size = 100;
+  job->solver.shot_rays = 200000;
+  job->solver.gather_rays = 256;
+  // The rays of the first round and those planned after it, reported as taking `round_seconds`.
+  auto after_first_round = [&](double max_seconds, double round_seconds) {
+    job->solver.max_seconds = max_seconds;
+    store::JobRecord record;
+    record.id = 1;
+    Result<std::shared_ptr<RunningJob>> runner = RunningJob::Prepare(
+        record, codec::EncodeJobBundle({*job, *scene}), std::nullopt, std::nullopt, {}, {});
+    EXPECT_TRUE(runner.ok()) << runner.error();
+    RunningJob& r = **runner;
+    Result<RoundPlan> plan = r.TakePlannedRound();
+    EXPECT_TRUE(plan.ok()) << plan.error();
+    const uint64_t first = plan->rays;
+    const scheduler::CompletedRound round = r.RunLocally(std::move(*plan));
+    RoundOutcome outcome = r.Reduce(round, round_seconds, false, {4096, 0});
+    EXPECT_TRUE(r.InstallOutcome(outcome));
+    return std::pair(first, r.planned_rays());
+  };
+  const auto [first, next] = after_first_round(0, 0.9);
+  ASSERT_GT(next, 1000u);
+  // 1.5 s: the rounds' share is under a second (SolveBudget), of which the first round took 0.9:
+  // at its pace, what is left is under a tenth of its rays.
+  const auto [paced_first, paced_next] = after_first_round(1.5, 0.9);
+  EXPECT_EQ(paced_first, first) << "the first round, unmeasured, is not paced";
+  EXPECT_GT(paced_next, 0u);
+  EXPECT_LT(paced_next, next);
+  EXPECT_LE(paced_next, first / 10);
+  // A roomy budget leaves the round as it was.
+  EXPECT_EQ(after_first_round(1000, 0.9).second, next);
+}
+
 }  // namespace
 }  // namespace radfarm::daemon
