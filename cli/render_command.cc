@@ -15,6 +15,7 @@
 #include "cli/render_outputs.h"
 #include "cli/render_state.h"
 #include "core/display_budget.h"
+#include "core/solve_control.h"
 #include "solve/local_solve.h"
 
 namespace radfarm {
@@ -165,6 +166,17 @@ int RunRender(const RenderOptions& options) {
 
   PatchMesh& mesh = *solved->mesh;
   const SolveResult& solution = solved->solution;
+  if (solution.stats.rounds == 0 && solution.stats.stop_reason == kStopTimeBudget) {
+    // Not an error, but not what a budget is for: say what took the time.
+    char note[320];
+    std::snprintf(note, sizeof note,
+                  "warning: --seconds %g left no time for a round (%.1f s kept for the display and "
+                  "the outputs of %zu patches): the outputs hold the direct light, no bounced "
+                  "light; allow more seconds",
+                  job.solver.max_seconds, AfterSolveSeconds(mesh.patch_scene(), job.solver),
+                  mesh.patch_scene().patches.size());
+    PrintMessages({note});
+  }
   const uint64_t patches_before = job.refine.enabled ? solved->patches_before : 0;
   std::vector<std::string> output_warnings;
   PatchMesh::DisplayProgress display_progress;

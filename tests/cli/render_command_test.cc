@@ -114,6 +114,24 @@ TEST(RenderCommandTest, ARayBudgetCountsTheDirectLightsShadowRays) {
   EXPECT_NE(stats.find("\"stop_reason\": \"ray budget\""), std::string::npos) << stats;
 }
 
+// A time budget that leaves no time for a round after what follows the solve still writes the
+// outputs (the direct light), and says why there is no bounced light.
+TEST(RenderCommandTest, ATimeBudgetTooSmallForARoundSaysSo) {
+  TempDir out;
+  const auto r = Render("cornell-box.toml", out.path(), {"--seconds", "0.2", "-q"});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_NE(r.err.find("--seconds 0.2 left no time for a round"), std::string::npos) << r.err;
+  const std::string stats = ReadFile(out.File("stats.json"));
+  EXPECT_EQ(JsonNumber(stats, "rounds"), 0) << stats;
+  EXPECT_NE(stats.find("\"stop_reason\": \"time budget\""), std::string::npos) << stats;
+  EXPECT_TRUE(std::filesystem::exists(out.File("image.png")));
+  // A budget with room for rounds says nothing of the kind.
+  TempDir roomy;
+  const auto ok = Render("cornell-box.toml", roomy.path(), {"--seconds", "30", "-q"});
+  ASSERT_EQ(ok.exit_code, kExitOk) << ok.err;
+  EXPECT_EQ(ok.err.find("left no time"), std::string::npos) << ok.err;
+}
+
 // The determinism contract end to end: thread count never changes a byte of patches.csv.
 TEST(RenderCommandTest, ThreadCountGivesByteIdenticalPatches) {
   std::string reference;
