@@ -515,6 +515,14 @@ std::vector<uint64_t> AgentConnections::Available() const {
   return ids;
 }
 
+double AgentConnections::ReportedRaysPerSecond() const {
+  double sum = 0;
+  for (const auto& [id, link] : links_) {
+    if (link->authenticated() && !link->stale()) sum += link->last_heartbeat().rays_per_second;
+  }
+  return sum;
+}
+
 std::vector<const AgentLink*> AgentConnections::Authenticated() const {
   std::vector<const AgentLink*> links;
   for (const auto& [id, link] : links_) {

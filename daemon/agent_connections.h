@@ -58,6 +58,8 @@ class AgentConnections {
   void CancelJob(store::JobId id);
   // Agents that get work when a job starts: authenticated and not stale, by id.
   std::vector<uint64_t> Available() const;
+  // The available agents' last reported rays/s (their heartbeats), summed.
+  double ReportedRaysPerSecond() const;
   // The heartbeat: marks agents silent past agent_timeout_ms stale (their leases go back),
   // sends the others a heartbeat, then dispatches.
   void Heartbeat();

@@ -74,51 +74,53 @@ void JobRounds::StartQueuedJobs() {
   const int slots = static_cast<int>(config_.max_running_jobs - busy);
   // One step on the store thread: pick the jobs, mark them running, read what they need. The loop
   // thread then prepares them on the compute thread.
-  store_.Run(
-      [slots](store::JobStore& s) { return store::StartQueuedJobs(s, slots); },
-      [this](Result<std::vector<store::JobStart>> starts) {
-        start_pending_ = false;
-        if (stopping_) return;
-        if (!starts) {
-          LogLine(LogLevel::kError, "store") << "cannot start queued jobs: " << starts.error();
-          return;
-        }
-        for (store::JobStart& start : *starts) {
-          const store::JobId id = start.record.id;
-          starting_[id] = false;
-          for (const std::string& w : start.warnings) {
-            LogLine(LogLevel::kWarning, "job " + std::to_string(id)) << w;
-          }
-          store_.LogEvent(id, store::EventLevel::kInfo,
-                          start.checkpoint ? "started, resuming after round " +
-                                                 std::to_string(start.checkpoint->round)
-                                           : "started");
-          auto options = options_;
-          auto shared = std::make_shared<store::JobStart>(std::move(start));
-          SubmittedMesh meshed;
-          if (!submitted_mesh_.empty() && submitted_mesh_job_ == id && !shared->checkpoint) {
-            meshed = std::move(submitted_mesh_);
-          }
-          const size_t agents = agents_.available_agents().size();
-          Status s = compute_.Submit(
-              [shared, options, meshed, agents]() mutable {
-                return RunningJob::Prepare(shared->record, shared->bundle, shared->checkpoint,
-                                           shared->checkpoint_scene, shared->rounds, options,
-                                           std::move(shared->round_results), std::move(meshed),
-                                           agents);
-              },
-              [this, id](Result<std::shared_ptr<RunningJob>> runner) {
-                OnJobPrepared(id, std::move(runner));
-              });
-          if (!s) LogLine(LogLevel::kError, "master") << s.error();
-        }
-        if (start_again_) {
-          start_again_ = false;
-          StartQueuedJobs();
-        } else {
-          submitted_mesh_ = {};  // its job was not among those started
-        }
-      });
+  store_.Run([slots](store::JobStore& s) { return store::StartQueuedJobs(s, slots); },
+             [this](Result<std::vector<store::JobStart>> starts) {
+               start_pending_ = false;
+               if (stopping_) return;
+               if (!starts) {
+                 LogLine(LogLevel::kError, "store")
+                     << "cannot start queued jobs: " << starts.error();
+                 return;
+               }
+               for (store::JobStart& start : *starts) {
+                 const store::JobId id = start.record.id;
+                 starting_[id] = false;
+                 for (const std::string& w : start.warnings) {
+                   LogLine(LogLevel::kWarning, "job " + std::to_string(id)) << w;
+                 }
+                 store_.LogEvent(id, store::EventLevel::kInfo,
+                                 start.checkpoint ? "started, resuming after round " +
+                                                        std::to_string(start.checkpoint->round)
+                                                  : "started");
+                 auto options = options_;
+                 auto shared = std::make_shared<store::JobStart>(std::move(start));
+                 SubmittedMesh meshed;
+                 if (!submitted_mesh_.empty() && submitted_mesh_job_ == id && !shared->checkpoint) {
+                   meshed = std::move(submitted_mesh_);
+                 }
+                 const size_t agents = agents_.available_agents().size();
+                 const double speed =
+                     agents_.reported_rays_per_second ? agents_.reported_rays_per_second() : 0.0;
+                 Status s = compute_.Submit(
+                     [shared, options, meshed, agents, speed]() mutable {
+                       return RunningJob::Prepare(
+                           shared->record, shared->bundle, shared->checkpoint,
+                           shared->checkpoint_scene, shared->rounds, options,
+                           std::move(shared->round_results), std::move(meshed), agents, speed);
+                     },
+                     [this, id](Result<std::shared_ptr<RunningJob>> runner) {
+                       OnJobPrepared(id, std::move(runner));
+                     });
+                 if (!s) LogLine(LogLevel::kError, "master") << s.error();
+               }
+               if (start_again_) {
+                 start_again_ = false;
+                 StartQueuedJobs();
+               } else {
+                 submitted_mesh_ = {};  // its job was not among those started
+               }
+             });
 }
 
 void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob>> runner) {

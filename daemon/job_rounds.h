@@ -49,6 +49,8 @@ struct AgentHooks {
   std::function<void()> dispatch_all;            // hand leases to every agent with room
   std::function<void(store::JobId)> cancel_job;  // tell every agent to drop the job's batches
   std::function<std::vector<uint64_t>()> available_agents;  // authenticated and not stale
+  // Their last reported rays/s, summed (0: none measured yet).
+  std::function<double()> reported_rays_per_second;
   // A result of `agent` failed exact validation (`why` names the batch and both digests):
   // blocklist it for the job and close its connections.
   std::function<void(store::JobId, const std::string& agent, const std::string& why)> convict;

@@ -89,12 +89,12 @@ Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const Maste
 
 Status Master::Wire(const std::vector<store::AgentCredential>& credentials) {
   // JobRounds reaches the agents only through these hooks (agents_ is made right after it).
-  AgentHooks hooks{[this] { agents_->DispatchAll(); },
-                   [this](store::JobId id) { agents_->CancelJob(id); },
-                   [this] { return agents_->Available(); },
-                   [this](store::JobId id, const std::string& agent, const std::string& why) {
-                     agents_->Convict(id, agent, why);
-                   }};
+  AgentHooks hooks{
+      [this] { agents_->DispatchAll(); }, [this](store::JobId id) { agents_->CancelJob(id); },
+      [this] { return agents_->Available(); }, [this] { return agents_->ReportedRaysPerSecond(); },
+      [this](store::JobId id, const std::string& agent, const std::string& why) {
+        agents_->Convict(id, agent, why);
+      }};
   jobs_ = std::make_unique<JobRounds>(loop_, config_, scheduler_options_, *store_, *compute_,
                                       std::move(hooks));
   agents_ = std::make_unique<AgentConnections>(loop_, config_, secret_, scheduler_options_, *store_,

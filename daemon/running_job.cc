@@ -18,6 +18,11 @@
 namespace radfarm::daemon {
 namespace {
 
+// The share of the agents' reported rays/s a time budget's first round is planned at: they report
+// their tracing alone, and a round also pays the wire, the master's fold and its tail (render
+// plans its first round at half its sample's pace for the same reason).
+constexpr double kReportedPaceShare = 0.5;
+
 constexpr size_t kRecentRounds = 8;
 // Accepted results sent to the worker together: one hand-over per few dozen batches.
 constexpr size_t kFoldChunk = 32;
@@ -62,7 +67,8 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
     const std::optional<store::Checkpoint>& checkpoint,
     const std::optional<std::vector<uint8_t>>& checkpoint_scene,
     const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options,
-    std::vector<store::StoredBatchResult> stored, SubmittedMesh meshed, size_t agents) {
+    std::vector<store::StoredBatchResult> stored, SubmittedMesh meshed, size_t agents,
+    double agents_rays_per_second) {
   const std::string job = "job " + std::to_string(record.id);
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(bundle_blob);
   RADFARM_RETURN_IF_ERROR(bundle);
@@ -87,6 +93,7 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   runner->record_ = record;
   runner->settings_ = bundle->job.solver;
   runner->estimator_ = ProgressEstimator(runner->settings_.tolerance);
+  runner->reported_pace_ = kReportedPaceShare * std::max(0.0, agents_rays_per_second);
   // The checkpoint as the driver resumes it; a refined mesh's scene checked against its hash.
   std::optional<SolveState> resume;
   std::optional<PatchScene> refined_scene;
@@ -206,8 +213,11 @@ BatchSizing RunningJob::SizingFor(uint32_t round, BatchSizing fallback) const {
 
 std::optional<RoundPlan> RunningJob::PlanNext(BatchSizing sizing) {
   // Under a time budget a round is trimmed to the time left and paced (RoundDriver::PlanNext) at
-  // the recent rounds' pace, as render's are at its rounds'; the first round, unmeasured, is not.
-  const double pace = driver_->settings().max_seconds > 0 ? RaysPerSecond() : 0;
+  // the recent rounds' pace, as render's are at its rounds'; before a round has been timed, at the
+  // agents' reported speed (reported_pace_), and not at all when none has reported one.
+  double pace = 0;
+  if (driver_->settings().max_seconds > 0)
+    pace = recent_.empty() ? reported_pace_ : RaysPerSecond();
   std::optional<RoundPlan> plan = driver_->PlanNext(sizing.batch_rays, totals_.seconds, pace);
   if (plan) TaperBatches(sizing.taper_ways, TaperFloor(sizing.batch_rays), &plan->batches);
   return plan;

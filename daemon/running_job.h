@@ -101,14 +101,16 @@ class RunningJob {
   // those rounds is planned with their batch size, so the same batches, and the results that
   // match the plan exactly start done (StartPlannedRound). `meshed`, when not empty, is the
   // bundle's scene meshed already with the bundle's settings (at submission): it is used instead
-  // of meshing again. `agents`: those known when the job started, for the first round's taper.
+  // of meshing again. `agents`: those known when the job started, for the first round's taper;
+  // `agents_rays_per_second`: their last reported speeds summed (0: none measured), the pace of a
+  // time budget's first round (kReportedPaceShare of it) until a round has been timed.
   static Result<std::shared_ptr<RunningJob>> Prepare(
       const store::JobRecord& record, const std::vector<uint8_t>& bundle_blob,
       const std::optional<store::Checkpoint>& checkpoint,
       const std::optional<std::vector<uint8_t>>& checkpoint_scene,
       const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options,
       std::vector<store::StoredBatchResult> stored = {}, SubmittedMesh meshed = {},
-      size_t agents = 0);
+      size_t agents = 0, double agents_rays_per_second = 0);
 
   store::JobId id() const { return record_.id; }
   const store::JobRecord& record() const { return record_; }
@@ -277,6 +279,9 @@ class RunningJob {
   scheduler::TimePoint round_started_{};
   // (rays, seconds) of the last rounds, for RaysPerSecond.
   std::vector<std::pair<uint64_t, double>> recent_;
+  // A time budget's pace before a round has been timed: the agents' reported speed at the start
+  // times kReportedPaceShare (Prepare); 0: unknown, the round is not paced.
+  double reported_pace_ = 0;
   // Fed by Reduce (worker), read on the loop thread outside kReducing.
   ProgressEstimator estimator_{0.001};
   // Loop side: the round the scheduler or this machine runs (rays, final gather), and the last

@@ -178,5 +178,35 @@ TEST(RunningJobLocalRoundTest, ATimeBudgetPacesTheRounds) {
   EXPECT_EQ(after_first_round(1000, 0.9).second, next);
 }
 
+// Before any round has been timed, a time budget's first round is paced at the agents' reported
+// speed (half of it: kReportedPaceShare); with none reported, or without a time budget, it is not.
+TEST(RunningJobLocalRoundTest, ATimeBudgetsFirstRoundIsPacedAtTheAgentsReportedSpeed) {
+  Result<Job> job = LoadJob(RADFARM_SOURCE_DIR "/scenes/cornell-box.toml");
+  ASSERT_TRUE(job.ok()) << job.error();
+  Result<InputScene> scene = LoadObjScene(job->scene_path);
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  job->mesh.patch_size = 100;
+  job->solver.shot_rays = 200000;
+  job->solver.gather_rays = 256;
+  auto first_round = [&](double max_seconds, double reported_rays_per_second) {
+    job->solver.max_seconds = max_seconds;
+    store::JobRecord record;
+    record.id = 1;
+    Result<std::shared_ptr<RunningJob>> runner =
+        RunningJob::Prepare(record, codec::EncodeJobBundle({*job, *scene}), std::nullopt,
+                            std::nullopt, {}, {}, {}, {}, 1, reported_rays_per_second);
+    EXPECT_TRUE(runner.ok()) << runner.error();
+    return runner.ok() ? (*runner)->planned_rays() : 0;
+  };
+  const uint64_t full = first_round(0, 5e4);
+  ASSERT_GT(full, 50'000u);
+  EXPECT_EQ(first_round(1.5, 0), full) << "no speed reported: not paced";
+  EXPECT_EQ(first_round(1000, 5e4), full) << "a roomy budget";
+  // 1.5 s, the rounds' share under a second, at half of 50,000 rays/s: under 37,500 rays.
+  const uint64_t paced = first_round(1.5, 5e4);
+  EXPECT_GT(paced, 0u);
+  EXPECT_LT(paced, uint64_t(1.5 * 0.5 * 5e4));
+}
+
 }  // namespace
 }  // namespace radfarm::daemon
