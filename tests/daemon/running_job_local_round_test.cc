@@ -92,32 +92,48 @@ TEST(RunningJobLocalRoundTest, TheFirstRoundIsTaperedForTheAgentsKnownAtTheStart
   EXPECT_LE(tapered.batches.back().ray_count, TaperFloor(options.default_batch_rays));
 }
 
-// The master's ETA keeps within the job's budgets as render's does: the rays and seconds still to
-// come are at most what the budget leaves (a budgeted job showed the time to convergence).
-TEST(RunningJobLocalRoundTest, TheProgressKeepsWithinTheJobsBudget) {
+// The Cornell box at 307 patches, with the budgets given, as the master prepares it (no agents
+// known unless said, each reporting `reported_rays_per_second` in all).
+std::shared_ptr<RunningJob> SmallBudgetedJob(uint64_t max_rays, double max_seconds,
+                                             size_t agents = 0,
+                                             double reported_rays_per_second = 0) {
   Result<Job> job = LoadJob(RADFARM_SOURCE_DIR "/scenes/cornell-box.toml");
-  ASSERT_TRUE(job.ok()) << job.error();
+  EXPECT_TRUE(job.ok()) << job.error();
   Result<InputScene> scene = LoadObjScene(job->scene_path);
-  ASSERT_TRUE(scene.ok()) << scene.error();
+  EXPECT_TRUE(scene.ok()) << scene.error();
   job->mesh.patch_size = 100;
   job->solver.shot_rays = 200000;
   job->solver.gather_rays = 256;
+  job->solver.max_rays = max_rays;
+  job->solver.max_seconds = max_seconds;
+  store::JobRecord record;
+  record.id = 1;
+  Result<std::shared_ptr<RunningJob>> runner =
+      RunningJob::Prepare(record, codec::EncodeJobBundle({*job, *scene}), std::nullopt,
+                          std::nullopt, {}, {}, {}, {}, agents, reported_rays_per_second);
+  EXPECT_TRUE(runner.ok()) << runner.error();
+  return runner.ok() ? *runner : nullptr;
+}
+
+// Runs `r`'s planned round here and folds it in as if it took `round_seconds`; its rays.
+uint64_t RunOneRound(RunningJob& r, double round_seconds) {
+  Result<RoundPlan> plan = r.TakePlannedRound();
+  EXPECT_TRUE(plan.ok()) << plan.error();
+  const uint64_t rays = plan->rays;
+  const scheduler::CompletedRound round = r.RunLocally(std::move(*plan));
+  RoundOutcome outcome = r.Reduce(round, round_seconds, false, {4096, 0});
+  EXPECT_TRUE(r.InstallOutcome(outcome));
+  return rays;
+}
+
+// The master's ETA keeps within the job's budgets as render's does: the rays and seconds still to
+// come are at most what the budget leaves (a budgeted job showed the time to convergence).
+TEST(RunningJobLocalRoundTest, TheProgressKeepsWithinTheJobsBudget) {
   // After the first round, reported as taking `round_seconds`.
   auto after_first_round = [&](uint64_t max_rays, double max_seconds, double round_seconds) {
-    job->solver.max_rays = max_rays;
-    job->solver.max_seconds = max_seconds;
-    store::JobRecord record;
-    record.id = 1;
-    Result<std::shared_ptr<RunningJob>> runner = RunningJob::Prepare(
-        record, codec::EncodeJobBundle({*job, *scene}), std::nullopt, std::nullopt, {}, {});
-    EXPECT_TRUE(runner.ok()) << runner.error();
-    RunningJob& r = **runner;
-    Result<RoundPlan> plan = r.TakePlannedRound();
-    EXPECT_TRUE(plan.ok()) << plan.error();
-    const scheduler::CompletedRound round = r.RunLocally(std::move(*plan));
-    RoundOutcome outcome = r.Reduce(round, round_seconds, false, {4096, 0});
-    EXPECT_TRUE(r.InstallOutcome(outcome));
-    return std::pair(r.Progress(scheduler::Clock::now()), r.totals().rays);
+    std::shared_ptr<RunningJob> r = SmallBudgetedJob(max_rays, max_seconds);
+    const uint64_t rays = RunOneRound(*r, round_seconds);
+    return std::pair(r->Progress(scheduler::Clock::now()), rays);
   };
   const auto [free, first_rays] = after_first_round(0, 0, 1.0);
   ASSERT_TRUE(free.seconds_left.has_value());
@@ -141,62 +157,30 @@ TEST(RunningJobLocalRoundTest, TheProgressKeepsWithinTheJobsBudget) {
 // rounds' share, the next is cut to what fits in the rest at its pace (before, a farm job's time
 // budget only stopped the rounds, after however long the last one ran).
 TEST(RunningJobLocalRoundTest, ATimeBudgetPacesTheRounds) {
-  Result<Job> job = LoadJob(RADFARM_SOURCE_DIR "/scenes/cornell-box.toml");
-  ASSERT_TRUE(job.ok()) << job.error();
-  Result<InputScene> scene = LoadObjScene(job->scene_path);
-  ASSERT_TRUE(scene.ok()) << scene.error();
-  job->mesh.patch_size = 100;
-  job->solver.shot_rays = 200000;
-  job->solver.gather_rays = 256;
-  // The rays of the first round and those planned after it, reported as taking `round_seconds`.
-  auto after_first_round = [&](double max_seconds, double round_seconds) {
-    job->solver.max_seconds = max_seconds;
-    store::JobRecord record;
-    record.id = 1;
-    Result<std::shared_ptr<RunningJob>> runner = RunningJob::Prepare(
-        record, codec::EncodeJobBundle({*job, *scene}), std::nullopt, std::nullopt, {}, {});
-    EXPECT_TRUE(runner.ok()) << runner.error();
-    RunningJob& r = **runner;
-    Result<RoundPlan> plan = r.TakePlannedRound();
-    EXPECT_TRUE(plan.ok()) << plan.error();
-    const uint64_t first = plan->rays;
-    const scheduler::CompletedRound round = r.RunLocally(std::move(*plan));
-    RoundOutcome outcome = r.Reduce(round, round_seconds, false, {4096, 0});
-    EXPECT_TRUE(r.InstallOutcome(outcome));
-    return std::pair(first, r.planned_rays());
+  // The rays of the first round and those planned after it, reported as taking 0.9 s.
+  auto after_first_round = [&](double max_seconds) {
+    std::shared_ptr<RunningJob> r = SmallBudgetedJob(0, max_seconds);
+    const uint64_t first = RunOneRound(*r, 0.9);
+    return std::pair(first, r->planned_rays());
   };
-  const auto [first, next] = after_first_round(0, 0.9);
+  const auto [first, next] = after_first_round(0);
   ASSERT_GT(next, 1000u);
   // 1.5 s: the rounds' share is under a second (SolveBudget), of which the first round took 0.9:
   // at its pace, what is left is under a tenth of its rays.
-  const auto [paced_first, paced_next] = after_first_round(1.5, 0.9);
+  const auto [paced_first, paced_next] = after_first_round(1.5);
   EXPECT_EQ(paced_first, first) << "the first round, unmeasured, is not paced";
   EXPECT_GT(paced_next, 0u);
   EXPECT_LT(paced_next, next);
   EXPECT_LE(paced_next, first / 10);
   // A roomy budget leaves the round as it was.
-  EXPECT_EQ(after_first_round(1000, 0.9).second, next);
+  EXPECT_EQ(after_first_round(1000).second, next);
 }
 
 // Before any round has been timed, a time budget's first round is paced at the agents' reported
 // speed (half of it: kReportedPaceShare); with none reported, or without a time budget, it is not.
 TEST(RunningJobLocalRoundTest, ATimeBudgetsFirstRoundIsPacedAtTheAgentsReportedSpeed) {
-  Result<Job> job = LoadJob(RADFARM_SOURCE_DIR "/scenes/cornell-box.toml");
-  ASSERT_TRUE(job.ok()) << job.error();
-  Result<InputScene> scene = LoadObjScene(job->scene_path);
-  ASSERT_TRUE(scene.ok()) << scene.error();
-  job->mesh.patch_size = 100;
-  job->solver.shot_rays = 200000;
-  job->solver.gather_rays = 256;
   auto first_round = [&](double max_seconds, double reported_rays_per_second) {
-    job->solver.max_seconds = max_seconds;
-    store::JobRecord record;
-    record.id = 1;
-    Result<std::shared_ptr<RunningJob>> runner =
-        RunningJob::Prepare(record, codec::EncodeJobBundle({*job, *scene}), std::nullopt,
-                            std::nullopt, {}, {}, {}, {}, 1, reported_rays_per_second);
-    EXPECT_TRUE(runner.ok()) << runner.error();
-    return runner.ok() ? (*runner)->planned_rays() : 0;
+    return SmallBudgetedJob(0, max_seconds, 1, reported_rays_per_second)->planned_rays();
   };
   const uint64_t full = first_round(0, 5e4);
   ASSERT_GT(full, 50'000u);
