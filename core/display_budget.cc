@@ -1,6 +1,7 @@
 #include "core/display_budget.h"
 
 #include <algorithm>
+#include <thread>
 
 #include "core/direct_light.h"
 
@@ -17,8 +18,11 @@ uint64_t DisplayRayAllowance(const SolverSettings& settings) {
 double AfterSolveSeconds(const PatchScene& scene, const SolverSettings& settings) {
   const double display_rays =
       DisplayCastsRays(scene, settings) ? double(DisplayRayAllowance(settings)) : 0.0;
-  return display_rays / kDisplayReserveRaysPerSecond + kAfterSolveSeconds +
-         kAfterSolveSecondsPerPatch * double(scene.patches.size());
+  const unsigned threads =
+      settings.threads != 0 ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
+  const double slower = double(kAfterSolveThreads) / std::min(threads, kAfterSolveThreads);
+  return kAfterSolveSeconds + slower * (display_rays / kDisplayReserveRaysPerSecond +
+                                        kAfterSolveSecondsPerPatch * double(scene.patches.size()));
 }
 
 SolverSettings SolveBudget(const PatchScene& scene, const SolverSettings& settings) {

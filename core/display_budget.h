@@ -28,7 +28,10 @@ inline constexpr double kDisplayRaysPerSecond = 4e6;
 // and the outputs (the image's strata, the PNG's deflate, the files). Fixed in the code, as
 // kDisplayRaysPerSecond, from bench/budget on two cores (at 88,750 patches the display took
 // 1.65 s with 4.2 M rays and 3.3 s with 16.7 M, the outputs 0.4-0.6 s; 0.3-0.4 s after a
-// 3,852-patch display): a slower machine runs over by the ratio.
+// 3,852-patch display): a slower machine runs over by the ratio. On fewer threads than that the
+// display's rays and its work at its points take as much longer (one thread: the display 4.4 s
+// against 2.7 s at `--seconds 10`, the command 12.3 s), and are priced so.
+inline constexpr unsigned kAfterSolveThreads = 2;
 inline constexpr double kDisplayReserveRaysPerSecond = 7e6;
 inline constexpr double kAfterSolveSeconds = 0.3;
 inline constexpr double kAfterSolveSecondsPerPatch = 16e-6;
@@ -43,7 +46,8 @@ uint64_t DisplayRayAllowance(const SolverSettings& settings);
 
 // The seconds a time budget keeps for what follows the solve: the display's allowance at
 // kDisplayReserveRaysPerSecond where a display with rays follows (DisplayCastsRays), and
-// kAfterSolveSeconds + kAfterSolveSecondsPerPatch x the scene's patches.
+// kAfterSolveSeconds + kAfterSolveSecondsPerPatch x the scene's patches; all but the fixed
+// seconds times kAfterSolveThreads over the settings' threads where those are fewer.
 double AfterSolveSeconds(const PatchScene& scene, const SolverSettings& settings);
 
 // The budgets the solve's rounds stop at: max_rays less the display's share where a display with

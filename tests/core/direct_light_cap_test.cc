@@ -185,6 +185,7 @@ TEST(DirectLightCapTest, ATimeBudgetKeepsTheTimeAfterTheSolve) {
   ASSERT_GT(big.patches.size(), 50 * small.patches.size());
   SolverSettings settings = Gathering(2048);
   settings.max_seconds = 5;
+  settings.threads = kAfterSolveThreads;
   ASSERT_TRUE(DisplayCastsRays(small, settings));
   EXPECT_DOUBLE_EQ(AfterSolveSeconds(small, settings),
                    double(DisplayRayAllowance(settings)) / kDisplayReserveRaysPerSecond +
@@ -198,6 +199,13 @@ TEST(DirectLightCapTest, ATimeBudgetKeepsTheTimeAfterTheSolve) {
   EXPECT_DOUBLE_EQ(
       AfterSolveSeconds(furnace, settings),
       kAfterSolveSeconds + kAfterSolveSecondsPerPatch * double(furnace.patches.size()));
+  // One thread: what runs on the threads takes twice as long; more threads are not counted on.
+  SolverSettings one = settings, many = settings;
+  one.threads = 1;
+  many.threads = 4 * kAfterSolveThreads;
+  EXPECT_DOUBLE_EQ(AfterSolveSeconds(big, one) - kAfterSolveSeconds,
+                   2 * (AfterSolveSeconds(big, settings) - kAfterSolveSeconds));
+  EXPECT_DOUBLE_EQ(AfterSolveSeconds(big, many), AfterSolveSeconds(big, settings));
   settings.max_seconds = 0.5;
   EXPECT_EQ(SolveBudget(big, settings).max_seconds, kMinSolveSeconds);
   EXPECT_GT(SolveBudget(big, settings).max_seconds, 0) << "still a budget";
