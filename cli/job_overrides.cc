@@ -36,7 +36,11 @@ void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
       ->check(RealIn(ToleranceRange()));
   command->add_option("--rays", overrides->rays, "Stop after N rays (default: no limit)")
       ->check(PositiveInteger());
-  command->add_option("--seconds", overrides->seconds, "Stop after S seconds (default: no limit)")
+  command
+      ->add_option(
+          "--seconds", overrides->seconds,
+          "Time budget in seconds: reading the scene, the solve, the display and the outputs "
+          "(default: no limit)")
       ->check(PositiveReal());
   command->add_option("--sampler", overrides->sampler, "grid, random or sobol (default sobol)")
       ->check(CLI::IsMember({"grid", "random", "sobol"}));
