@@ -165,8 +165,9 @@ class ProgressiveSolver {
   double UnshotPower(uint32_t patch) const;
   double TotalUnshotPower() const;
   RoundPlan PlanGather(uint32_t batch_rays, uint64_t ray_cap) const;
-  // The next shooting round's shots, uncut by any cap, and the power they shoot (fraction of the
-  // emitted power). `capped` is set where a fixed-size shot made it drop shooters for `ray_cap`.
+  // The next shooting round's shots at their full rays, and the power they shoot (fraction of the
+  // emitted power). With `ray_cap`, only as many shooters as it gives a shot each (the grid's
+  // fixed shots) or a ray each (fewer rays than shooters), the strongest, and `capped` set.
   std::vector<Shot> PlanShots(uint64_t ray_cap, double* power, bool* capped) const;
 
   const PatchScene& scene_;

@@ -466,15 +466,11 @@ ProgressEstimate RunningJob::Progress(scheduler::TimePoint now) const {
     at.round_gather = running_gather_;
   }
   // The job's budgets end it where the rounds to convergence would run past them: so does the ETA.
-  const SolverSettings& budget = driver_->budget();
-  if (budget.max_rays > 0) {
-    const uint64_t spent = totals_.rays + driver_->solver().start_rays() + at.round_rays_done;
-    at.budget_rays_left = budget.max_rays - std::min(budget.max_rays, spent);
+  at.budget_rays_left = driver_->BudgetRaysLeft();
+  if (at.budget_rays_left) {
+    *at.budget_rays_left -= std::min(*at.budget_rays_left, at.round_rays_done);
   }
-  if (budget.max_seconds > 0) {
-    at.budget_seconds_left =
-        std::max(0.0, budget.max_seconds - (totals_.seconds + at.round_seconds));
-  }
+  at.budget_seconds_left = driver_->BudgetSecondsLeft(totals_.seconds + at.round_seconds);
   last_progress_ = estimator_.Estimate(at);
   return last_progress_;
 }

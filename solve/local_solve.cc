@@ -49,16 +49,6 @@ double RunRounds(RoundDriver& driver, ThreadPool& pool,
   };
   auto budget_elapsed = [&] { return elapsed() + spent_before; };
   const bool time_budget = driver.settings().max_seconds > 0;
-  // What the rounds' budgets leave now, for the ETA.
-  auto seconds_left = [&]() -> std::optional<double> {
-    if (!time_budget) return std::nullopt;
-    return std::max(0.0, driver.budget().max_seconds - budget_elapsed());
-  };
-  auto rays_left = [&]() -> std::optional<uint64_t> {
-    const uint64_t budget = driver.budget().max_rays;
-    if (budget == 0) return std::nullopt;
-    return budget - std::min(budget, driver.totals().rays + driver.solver().start_rays());
-  };
   double rays_per_second = 0;  // the pace of the rounds, to keep the next within the budget
   bool round_timed = false;    // rays_per_second is a round's, not the first round's sample
   LocalBatches batches(pool);
@@ -89,7 +79,7 @@ double RunRounds(RoundDriver& driver, ThreadPool& pool,
     if (during_round) {
       on_batch = [&](uint64_t rays_done) {
         during_round({plan->round, plan->rays, rays_done, elapsed() - round_start, plan->gather,
-                      seconds_left()});
+                      driver.BudgetSecondsLeft(budget_elapsed())});
       };
     }
     batches.Reduce(driver, *plan, *reduction, on_batch);
@@ -111,8 +101,8 @@ double RunRounds(RoundDriver& driver, ThreadPool& pool,
       // A refinement step is no part of a round's pace: it comes once, when it comes.
       progress.round_seconds = elapsed() - round_start - applied.refine_seconds;
       progress.unshot_before = unshot_before;
-      progress.budget_rays_left = rays_left();
-      progress.budget_seconds_left = seconds_left();
+      progress.budget_rays_left = driver.BudgetRaysLeft();
+      progress.budget_seconds_left = driver.BudgetSecondsLeft(budget_elapsed());
       on_round(progress);
     }
     if (after_round) after_round(driver.State());

@@ -99,11 +99,21 @@ Status RoundDriver::Resume(const SolveState& state) {
   return Ok{};
 }
 
+std::optional<uint64_t> RoundDriver::BudgetRaysLeft() const {
+  if (budget_.max_rays == 0) return std::nullopt;
+  return budget_.max_rays - std::min(budget_.max_rays, RaysSpent());
+}
+
+std::optional<double> RoundDriver::BudgetSecondsLeft(double seconds) const {
+  if (!(budget_.max_seconds > 0)) return std::nullopt;
+  return std::max(0.0, budget_.max_seconds - seconds);
+}
+
 std::optional<RoundPlan> RoundDriver::PlanNext(uint32_t batch_rays, double seconds,
                                                double rays_per_second) {
   if (stop_) return std::nullopt;
   // The start's shadow rays are spent from the same budget as the rounds' rays.
-  const uint64_t spent = totals_.rays + solver_->start_rays();
+  const uint64_t spent = RaysSpent();
   stop_ = StopBeforeRound(*solver_, budget_, spent, seconds);
   if (stop_) return std::nullopt;
   uint64_t cap = NextRoundRayCap(budget_, spent);

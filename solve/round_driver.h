@@ -123,6 +123,10 @@ class RoundDriver {
   const SolverSettings& settings() const { return settings_; }
   // The budgets the rounds stop at (SolveBudget): the display after the solve spends the rest.
   const SolverSettings& budget() const { return budget_; }
+  // What budget() leaves: the rays (the start's shadow rays count) and the seconds after `seconds`
+  // spent in all; nullopt where there is no such budget. For progress estimates.
+  std::optional<uint64_t> BudgetRaysLeft() const;
+  std::optional<double> BudgetSecondsLeft(double seconds) const;
   const SolveTotals& totals() const { return totals_; }
   // The ray caster of the current scene, built on first use.
   const RayCaster& caster();
@@ -136,6 +140,8 @@ class RoundDriver {
   AppliedRound AfterApply(const RoundPlan& plan, uint64_t escaped_rays, uint64_t back_rays,
                           double seconds);
   void Install(RefinementStep step);
+  // The rays the budget has counted so far: the rounds' and the start's shadow rays.
+  uint64_t RaysSpent() const { return totals_.rays + solver_->start_rays(); }
   // The solver's settings for the current phase of the schedule (fewer rays before a restart).
   SolverSettings PhaseSettings() const;
   void RebuildSolver();
