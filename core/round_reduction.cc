@@ -7,7 +7,7 @@
 namespace radfarm {
 
 RoundReduction::RoundReduction(ProgressiveSolver& solver, const RoundPlan& plan)
-    : solver_(solver), plan_(plan), results_(plan.batches.size()) {
+    : solver_(solver), plan_(plan), in_(plan.batches.size(), false) {
   // plan.batches holds every shot's batches in shot order (ProgressiveSolver::PlanRound).
   shot_first_batch_.reserve(plan.shots.size() + 1);
   missing_.reserve(plan.shots.size());
@@ -23,14 +23,15 @@ RoundReduction::RoundReduction(ProgressiveSolver& solver, const RoundPlan& plan)
 }
 
 bool RoundReduction::Add(size_t batch, BatchResult result) {
-  if (batch >= results_.size() || results_[batch].has_value()) return false;
+  if (batch >= in_.size() || in_[batch]) return false;
+  in_[batch] = true;
   const size_t shot = static_cast<size_t>(std::upper_bound(shot_first_batch_.begin(),
                                                            shot_first_batch_.end(), batch) -
                                           shot_first_batch_.begin()) -
                       1;
   escaped_rays_ += result.escaped_rays;
   back_rays_ += result.back_rays;
-  results_[batch] = std::move(result);
+  held_results_.emplace(batch, std::move(result));
   --missing_[shot];
   peak_held_ = std::max(peak_held_, ++held_);
   ApplyReadyShots();
@@ -43,10 +44,11 @@ void RoundReduction::ApplyReadyShots() {
     const size_t first = shot_first_batch_[next_shot_];
     const size_t last = shot_first_batch_[next_shot_ + 1];
     shot_results.clear();
-    for (size_t b = first; b < last; ++b) shot_results.push_back(std::move(*results_[b]));
+    for (size_t b = first; b < last; ++b) {
+      shot_results.push_back(std::move(held_results_.extract(b).mapped()));
+    }
+    // Applied: the results go; in_ keeps them marked against a repeat.
     solver_.ApplyShot(plan_, next_shot_, shot_results);
-    // Applied: the results go, the slots stay marked as in (an empty result) against a repeat.
-    for (size_t b = first; b < last; ++b) results_[b].emplace();
     held_ -= last - first;
     ++next_shot_;
   }

@@ -10,7 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "core/batch.h"
@@ -45,7 +45,10 @@ class RoundReduction {
   ProgressiveSolver& solver_;
   const RoundPlan& plan_;
   std::vector<size_t> shot_first_batch_;  // shot s's batches: [first[s], first[s + 1])
-  std::vector<std::optional<BatchResult>> results_;
+  // A bit a batch for the batches in (a round at 10^6 patches has about a million), and the
+  // results held, by batch.
+  std::vector<bool> in_;
+  std::unordered_map<size_t, BatchResult> held_results_;
   std::vector<uint32_t> missing_;  // per shot: batches not yet in
   size_t next_shot_ = 0;
   size_t held_ = 0;

@@ -3,12 +3,23 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
 namespace radfarm::scheduler {
 
-RoundScheduler::RoundScheduler(const SchedulerOptions& options) : options_(options) {}
+RoundScheduler::RoundScheduler(const SchedulerOptions& options)
+    : options_(options), next_attempt_(std::max<AttemptId>(1, options.first_attempt_id)) {}
+
+template <typename Visit>
+void RoundScheduler::ForEachAttempt(const BatchSlot& slot, const Visit& visit) const {
+  for (AttemptId id = slot.newest_attempt; id != 0;) {
+    const AttemptRecord& attempt = *FindAttempt(id);
+    visit(id, attempt);
+    id = attempt.earlier;
+  }
+}
 
 // --- Agents ---
 
@@ -56,7 +67,7 @@ std::vector<Takeover> RoundScheduler::Preempt(AgentId agent) {
   for (const auto& [id, index] : it->second.live) live.push_back(id);
   // Newest first: EndAttempt puts each batch at the queue's front, so they end up in lease order.
   for (auto id = live.rbegin(); id != live.rend(); ++id) {
-    const uint32_t index = round_->attempts.at(*id).batch_index;
+    const uint32_t index = AttemptAt(*id).batch_index;
     taken.push_back({agent, MakeBatchId(round_->plan.round, index), *id});
     EndAttempt(*id, AttemptState::kPreempted);
   }
@@ -89,6 +100,7 @@ Status RoundScheduler::StartRound(RoundPlan plan, TimePoint /*now*/,
   }
   Round& round = round_.emplace();
   round.batches.resize(plan.batches.size());
+  round.first_attempt = next_attempt_;
   uint64_t rays = 0;
   for (uint32_t k : restored) {
     if (k >= plan.batches.size() || round.batches[k].state == BatchState::kDone) continue;
@@ -99,7 +111,7 @@ Status RoundScheduler::StartRound(RoundPlan plan, TimePoint /*now*/,
   for (auto& [k, result] : computed) {
     if (k >= plan.batches.size() || round.batches[k].state == BatchState::kDone) continue;
     round.batches[k].state = BatchState::kDone;
-    round.batches[k].result = std::move(result);
+    round.results[k] = std::move(result);
     ++round.done;
   }
   std::vector<bool> last(later.empty() ? 0 : plan.batches.size());
@@ -146,8 +158,8 @@ Result<CompletedRound> RoundScheduler::TakeCompletedRound() {
                  std::to_string(round_->batches.size() - round_->done) + " batches left"};
   }
   CompletedRound done;
-  done.results.reserve(round_->batches.size());
-  for (BatchSlot& slot : round_->batches) done.results.push_back(std::move(slot.result));
+  done.results.resize(round_->batches.size());
+  for (auto& [k, result] : round_->results) done.results[k] = std::move(result);
   done.plan = std::move(round_->plan);
   round_.reset();
   return done;
@@ -155,9 +167,10 @@ Result<CompletedRound> RoundScheduler::TakeCompletedRound() {
 
 std::optional<BatchResult> RoundScheduler::TakeResult(BatchId batch_id) {
   if (PeekResult(batch_id) == nullptr) return std::nullopt;
-  BatchSlot& slot = round_->batches[BatchIndex(batch_id)];
-  slot.result_taken = true;
-  return std::exchange(slot.result, BatchResult{});
+  const uint32_t index = BatchIndex(batch_id);
+  round_->batches[index].result_taken = true;
+  auto entry = round_->results.extract(index);
+  return std::move(entry.mapped());
 }
 
 const BatchResult* RoundScheduler::PeekResult(BatchId batch_id) const {
@@ -166,7 +179,8 @@ const BatchResult* RoundScheduler::PeekResult(BatchId batch_id) const {
   if (index >= round_->batches.size()) return nullptr;
   const BatchSlot& slot = round_->batches[index];
   if (slot.state != BatchState::kDone || slot.result_taken) return nullptr;
-  return &slot.result;
+  const auto found = round_->results.find(index);
+  return found == round_->results.end() ? nullptr : &found->second;
 }
 
 bool RoundScheduler::HasLiveLease(BatchId batch_id) const {
@@ -224,7 +238,7 @@ std::optional<Assignment> RoundScheduler::NextAssignment(AgentId agent_id, TimeP
   }
   if (const auto index = PopOverdueFor(agent_id)) return Issue(*index, agent_id, agent, now, true);
   if (const auto taken = TakeOverFor(agent_id, agent, now)) {
-    const AttemptRecord& old = round_->attempts.at(taken->second);
+    const AttemptRecord& old = AttemptAt(taken->second);
     const Takeover from{old.agent, MakeBatchId(round_->plan.round, taken->first), taken->second};
     Assignment a = Issue(taken->first, agent_id, agent, now, false);
     EndAttempt(taken->second, AttemptState::kTakenOver);
@@ -285,11 +299,9 @@ ResultVerdict RoundScheduler::Record(AgentId agent_id, BatchId batch_id, Attempt
   if (!round_ || BatchRound(batch_id) != round_->plan.round) {
     return Verdict(Disposition::kDropped, DropReason::kStaleRound);
   }
-  const auto found = round_->attempts.find(attempt_id);
-  if (found == round_->attempts.end()) {
-    return Verdict(Disposition::kDropped, DropReason::kUnknownAttempt);
-  }
-  AttemptRecord& attempt = found->second;
+  AttemptRecord* const found = FindAttempt(attempt_id);
+  if (found == nullptr) return Verdict(Disposition::kDropped, DropReason::kUnknownAttempt);
+  AttemptRecord& attempt = *found;
   if (attempt.batch_index != BatchIndex(batch_id)) {
     return Verdict(Disposition::kRejected, DropReason::kWrongBatch);
   }
@@ -319,12 +331,11 @@ ResultVerdict RoundScheduler::Record(AgentId agent_id, BatchId batch_id, Attempt
   }
   SetState(slot, BatchState::kDone);
   round_->rays_left -= round_->plan.batches[attempt.batch_index].ray_count;
-  slot.winner = attempt_id;
-  slot.result = std::move(result);
+  round_->results[attempt.batch_index] = std::move(result);
   ++round_->done;
-  for (AttemptId other : slot.attempts) {
+  ForEachAttempt(slot, [&](AttemptId other, const AttemptRecord&) {
     if (other != attempt_id) EndAttempt(other, AttemptState::kSuperseded);
-  }
+  });
   if (const auto agent = agents_.find(agent_id); agent != agents_.end()) {
     ++agent->second.results_accepted;
   }
@@ -339,10 +350,11 @@ ResultVerdict RoundScheduler::OnComputedResult(uint32_t index, BatchResult resul
   if (slot.state == BatchState::kDone) return Verdict(Disposition::kDropped, DropReason::kLate);
   SetState(slot, BatchState::kDone);
   round_->rays_left -= round_->plan.batches[index].ray_count;
-  slot.result = std::move(result);
+  round_->results[index] = std::move(result);
   ++round_->done;
-  const std::vector<AttemptId> attempts = slot.attempts;
-  for (AttemptId other : attempts) EndAttempt(other, AttemptState::kSuperseded);
+  ForEachAttempt(slot, [&](AttemptId other, const AttemptRecord&) {
+    EndAttempt(other, AttemptState::kSuperseded);
+  });
   return Verdict(Disposition::kAccepted, DropReason::kNone);
 }
 
@@ -380,7 +392,7 @@ size_t RoundScheduler::Tick(TimePoint now) {
   std::vector<uint32_t> candidates;
   for (const auto& [agent_id, agent] : agents_) {
     for (const auto& [attempt_id, index] : agent.live) {
-      if (now >= round_->attempts.at(attempt_id).deadline) candidates.push_back(index);
+      if (now >= AttemptAt(attempt_id).deadline) candidates.push_back(index);
     }
   }
   std::sort(candidates.begin(), candidates.end());
@@ -391,12 +403,11 @@ size_t RoundScheduler::Tick(TimePoint now) {
     if (slot.state != BatchState::kLeased || slot.in_overdue_queue) continue;
     size_t live = 0;
     bool all_overdue = true;
-    for (AttemptId id : slot.attempts) {
-      const AttemptRecord& attempt = round_->attempts.at(id);
-      if (attempt.state != AttemptState::kLive) continue;
+    ForEachAttempt(slot, [&](AttemptId, const AttemptRecord& attempt) {
+      if (attempt.state != AttemptState::kLive) return;
       ++live;
       all_overdue = all_overdue && now >= attempt.deadline;
-    }
+    });
     if (live == 0 || !all_overdue || live >= options_.max_live_attempts) continue;
     slot.in_overdue_queue = true;
     round_->overdue.push_back(k);
@@ -530,9 +541,9 @@ std::optional<uint32_t> RoundScheduler::PopOverdueFor(AgentId agent) {
       it = queue.erase(it);
       continue;
     }
-    const bool holds = std::any_of(slot.attempts.begin(), slot.attempts.end(), [&](AttemptId id) {
-      const AttemptRecord& a = round_->attempts.at(id);
-      return a.state == AttemptState::kLive && a.agent == agent;
+    bool holds = false;
+    ForEachAttempt(slot, [&](AttemptId, const AttemptRecord& a) {
+      holds = holds || (a.state == AttemptState::kLive && a.agent == agent);
     });
     if (holds) {
       ++it;
@@ -564,9 +575,9 @@ void MoveKey(std::set<std::pair<TimePoint, AgentId>>& index, AgentId id,
 void RoundScheduler::Reindex(AgentId id, AgentState& agent) {
   std::optional<TimePoint> finish, copy;
   if (!agent.live.empty() && round_) {
-    finish = round_->attempts.at(agent.live.rbegin()->first).expected_done;
+    finish = AttemptAt(agent.live.rbegin()->first).expected_done;
     if (options_.end_game_copy_factor > 0) {
-      const AttemptRecord& oldest = round_->attempts.at(agent.live.begin()->first);
+      const AttemptRecord& oldest = AttemptAt(agent.live.begin()->first);
       // At least 1 ms of expected time, as EndGameCopyFor counts it.
       const auto expected =
           std::max<Duration>(std::chrono::milliseconds(1), oldest.expected_done - oldest.issued);
@@ -584,7 +595,7 @@ double RoundScheduler::FinishEstimate(const AgentState& agent, TimePoint now) co
   // work, but an agent running late still needs at least that batch's time.
   const auto& [attempt_id, index] = *agent.live.rbegin();
   const double left =
-      std::chrono::duration<double>(round_->attempts.at(attempt_id).expected_done - now).count();
+      std::chrono::duration<double>(AttemptAt(attempt_id).expected_done - now).count();
   return std::max(
       left, agent.throughput.ExpectedSeconds(round_->plan.batches[index].ray_count, options_));
 }
@@ -639,7 +650,7 @@ std::optional<uint32_t> RoundScheduler::EndGameCopyFor(AgentId agent_id, const A
     if (it->second == agent_id) continue;
     const AgentState& other = agents_.at(it->second);
     const auto& [attempt_id, index] = *other.live.begin();
-    const AttemptRecord& attempt = round_->attempts.at(attempt_id);
+    const AttemptRecord& attempt = AttemptAt(attempt_id);
     const double expected = std::max(
         1e-3, std::chrono::duration<double>(attempt.expected_done - attempt.issued).count());
     const double taken = std::chrono::duration<double>(now - attempt.issued).count();
@@ -662,20 +673,49 @@ Assignment RoundScheduler::Issue(uint32_t index, AgentId agent_id, AgentState& a
   const TimePoint expected_done =
       now + std::chrono::duration_cast<Duration>(std::chrono::duration<double>(
                 agent.throughput.ExpectedSeconds(agent.live_rays, options_)));
-  round_->attempts[id] = {agent_id, index, now, deadline, expected_done, AttemptState::kLive};
-  Reindex(agent_id, agent);
   BatchSlot& slot = round_->batches[index];
+  // Ids skip 0 where they wrap: a record that no id finds keeps attempts[id - first_attempt].
+  while (AttemptId(round_->first_attempt + round_->attempts.size()) != id) {
+    AttemptRecord unused;
+    unused.state = AttemptState::kLost;
+    round_->attempts.push_back(unused);
+  }
+  round_->attempts.push_back(
+      {agent_id, index, slot.newest_attempt, now, deadline, expected_done, AttemptState::kLive});
+  slot.newest_attempt = id;
+  Reindex(agent_id, agent);
   SetState(slot, BatchState::kLeased);
-  slot.attempts.push_back(id);
   ++totals_.attempts_issued;
   if (speculative) ++totals_.speculative_attempts;
   return {MakeBatchId(round_->plan.round, index), id, batch, deadline, speculative, std::nullopt};
 }
 
 size_t RoundScheduler::LiveAttempts(const BatchSlot& slot) const {
-  return std::count_if(slot.attempts.begin(), slot.attempts.end(), [&](AttemptId id) {
-    return round_->attempts.at(id).state == AttemptState::kLive;
+  size_t live = 0;
+  ForEachAttempt(slot, [&](AttemptId, const AttemptRecord& attempt) {
+    live += attempt.state == AttemptState::kLive;
   });
+  return live;
+}
+
+const RoundScheduler::AttemptRecord* RoundScheduler::FindAttempt(AttemptId id) const {
+  if (!round_ || id == 0) return nullptr;
+  const AttemptId k = id - round_->first_attempt;  // modulo 2^32, as ids wrap
+  return k < round_->attempts.size() ? &round_->attempts[k] : nullptr;
+}
+
+RoundScheduler::AttemptRecord* RoundScheduler::FindAttempt(AttemptId id) {
+  return const_cast<AttemptRecord*>(std::as_const(*this).FindAttempt(id));
+}
+
+const RoundScheduler::AttemptRecord& RoundScheduler::AttemptAt(AttemptId id) const {
+  const AttemptRecord* attempt = FindAttempt(id);
+  if (attempt == nullptr) throw std::out_of_range("no attempt " + std::to_string(id));
+  return *attempt;
+}
+
+RoundScheduler::AttemptRecord& RoundScheduler::AttemptAt(AttemptId id) {
+  return const_cast<AttemptRecord&>(std::as_const(*this).AttemptAt(id));
 }
 
 void RoundScheduler::SetState(BatchSlot& slot, BatchState state) {
@@ -685,7 +725,7 @@ void RoundScheduler::SetState(BatchSlot& slot, BatchState state) {
 }
 
 void RoundScheduler::EndAttempt(AttemptId id, AttemptState how) {
-  AttemptRecord& attempt = round_->attempts.at(id);
+  AttemptRecord& attempt = AttemptAt(id);
   if (attempt.state != AttemptState::kLive) return;
   attempt.state = how;
   const uint32_t rays = round_->plan.batches[attempt.batch_index].ray_count;

@@ -253,25 +253,31 @@ class RoundScheduler {
   struct AttemptRecord {
     AgentId agent = 0;
     uint32_t batch_index = 0;
+    AttemptId earlier = 0;  // the same batch's attempt issued before this one; 0 for its first
     TimePoint issued;
     TimePoint deadline;
     TimePoint expected_done;  // issued + the agent's expected time for its work then held
     AttemptState state = AttemptState::kLive;
   };
+  // 12 bytes: a round at 10^6 patches holds about a million of them. The batch's attempts chain
+  // back from newest_attempt through AttemptRecord::earlier; its accepted result waits in
+  // Round::results until it is taken.
   struct BatchSlot {
     BatchState state = BatchState::kQueued;
     bool in_fresh_queue = false;
     bool in_overdue_queue = false;
-    bool taken_over = false;          // moved once already: never again, so takeovers cannot cycle
-    std::vector<AttemptId> attempts;  // every attempt issued for it, oldest first
-    std::optional<AttemptId> winner;
-    BatchResult result;
+    bool taken_over = false;    // moved once already: never again, so takeovers cannot cycle
     bool result_taken = false;  // TakeResult moved it out
+    AttemptId newest_attempt = 0;
   };
   struct Round {
     RoundPlan plan;
     std::vector<BatchSlot> batches;
-    std::unordered_map<AttemptId, AttemptRecord> attempts;
+    // The round's attempts in the order they were issued: attempt id first_attempt + k (modulo
+    // 2^32) is attempts[k]. A deque: it grows without copying what it holds.
+    AttemptId first_attempt = 1;
+    std::deque<AttemptRecord> attempts;
+    std::unordered_map<uint32_t, BatchResult> results;  // accepted and not taken, by batch index
     std::deque<uint32_t> fresh;    // batch indices to lease; requeued ones at the front
     std::deque<uint32_t> overdue;  // batch indices offered again by Tick
     double mean_batch_rays = 0;
@@ -325,6 +331,15 @@ class RoundScheduler {
   Assignment Issue(uint32_t index, AgentId agent_id, AgentState& agent, TimePoint now,
                    bool speculative);
   size_t LiveAttempts(const BatchSlot& slot) const;
+  // The current round's attempt `id`; null when the round issued none of that id.
+  const AttemptRecord* FindAttempt(AttemptId id) const;
+  AttemptRecord* FindAttempt(AttemptId id);
+  // The same for an id the round issued (throws std::out_of_range otherwise).
+  const AttemptRecord& AttemptAt(AttemptId id) const;
+  AttemptRecord& AttemptAt(AttemptId id);
+  // visit(id, record) for every attempt issued for the batch, newest first.
+  template <typename Visit>
+  void ForEachAttempt(const BatchSlot& slot, const Visit& visit) const;
   // Changes a batch's state, keeping Round::queued.
   void SetState(BatchSlot& slot, BatchState state);
   // Ends a live attempt without a result; requeues its batch if no live attempt is left.

@@ -56,6 +56,8 @@ struct SchedulerOptions {
   double min_held_seconds = 0;
   // Live attempts of one batch at most (the original plus speculative copies).
   uint32_t max_live_attempts = 2;
+  // The first attempt id issued (ids then count up, wrap and skip 0): tests start near 2^32.
+  uint32_t first_attempt_id = 1;
   // How long an agent blocklisted for a job gets none of its work (daemon/job_blocklist.h).
   Duration blocklist_duration = std::chrono::minutes(10);  // MasterConfig::blocklist_seconds
   // The next round's last rays cut finer (core/batch.h TaperBatches) in this many ways per known

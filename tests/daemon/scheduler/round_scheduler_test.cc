@@ -77,6 +77,42 @@ TEST(RoundSchedulerTest, AcceptedResultsCanBeTakenOutOnce) {
   EXPECT_EQ(done->results[1], ResultFor(8));
 }
 
+// Attempt ids wrap at 2^32 and skip 0 in the middle of a round: every attempt is still found by
+// its id, an id the round never issued (0, one of the round before, one not issued yet) is unknown.
+TEST(RoundSchedulerTest, AttemptIdsThatWrapInARoundAreAllFound) {
+  SchedulerOptions options;
+  options.initial_leases = 8;
+  options.first_attempt_id = 0xFFFFFFFDu;
+  RoundScheduler s(options);
+  s.AddAgent(1);
+  ASSERT_TRUE(s.StartRound(Plan(1, 1), kT0).ok());
+  const auto before = s.NextAssignment(1, kT0);
+  ASSERT_TRUE(before);
+  ASSERT_EQ(s.OnResult(1, before->batch_id, before->attempt_id, ResultFor(0), kT0).disposition,
+            Disposition::kAccepted);
+  ASSERT_TRUE(s.TakeCompletedRound().ok());
+  ASSERT_TRUE(s.StartRound(Plan(2, 5), kT0).ok());
+  std::vector<Assignment> leases;
+  while (const auto a = s.NextAssignment(1, kT0)) leases.push_back(*a);
+  ASSERT_EQ(leases.size(), 5u);
+  const std::vector<AttemptId> ids = {0xFFFFFFFEu, 0xFFFFFFFFu, 1, 2, 3};
+  for (size_t k = 0; k < ids.size(); ++k) EXPECT_EQ(leases[k].attempt_id, ids[k]);
+  for (AttemptId unknown : {AttemptId{0}, before->attempt_id, AttemptId{4}}) {
+    EXPECT_EQ(s.OnResult(1, leases[0].batch_id, unknown, ResultFor(0), kT0).reason,
+              DropReason::kUnknownAttempt);
+  }
+  // Answered newest first; each is its batch's.
+  for (size_t k = leases.size(); k-- > 0;) {
+    const uint32_t index = BatchIndex(leases[k].batch_id);
+    ASSERT_EQ(
+        s.OnResult(1, leases[k].batch_id, leases[k].attempt_id, ResultFor(index), kT0).disposition,
+        Disposition::kAccepted);
+  }
+  Result<CompletedRound> done = s.TakeCompletedRound();
+  ASSERT_TRUE(done.ok());
+  for (uint32_t k = 0; k < 5; ++k) EXPECT_EQ(done->results[k], ResultFor(k));
+}
+
 // A restarted master had some batches' results from its store: they start done and are never
 // leased; only the others are. Bad indices are ignored; all restored, the round is complete.
 TEST(RoundSchedulerTest, RestoredBatchesStartDoneAndOnlyTheOthersAreLeased) {
