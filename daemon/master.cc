@@ -29,7 +29,10 @@ Master::Master(loop::EventLoop& loop, const MasterConfig& config, protocol::Farm
   // ends (a lease is answered when all its batches are done) but a lower-priority job queues
   // little ahead of a higher one.
   scheduler_options_.spare_lease_fraction = 0.25;
-  scheduler_options_.max_leases_per_agent = 1u << 17;  // two full frames (kMaxLeaseBatches)
+  // At most half a lease frame (kMaxLeaseBatches) held: an agent keeps about 190 bytes a held
+  // batch, and a budget's paced rounds of shots of a few rays filled its lease time with 131,072
+  // of them (24 MB at 10^5 patches, a third of its peak; docs/SCALING.md).
+  scheduler_options_.max_leases_per_agent = 1u << 15;
   // Near a round's end an agent holds no more than it finishes by the round's predicted end
   // (farm_bench, 1000 agents: the final gather's round took 8 times its work's time).
   scheduler_options_.round_end_share = 1;
