@@ -104,8 +104,7 @@ Status RoundScheduler::StartRound(RoundPlan plan, TimePoint /*now*/,
   uint64_t rays = 0;
   for (uint32_t k : restored) {
     if (k >= plan.batches.size() || round.batches[k].state == BatchState::kDone) continue;
-    round.batches[k].state = BatchState::kDone;
-    round.batches[k].result_taken = true;
+    round.batches[k].state = BatchState::kDone;  // its result is the store's: none here
     ++round.done;
   }
   for (auto& [k, result] : computed) {
@@ -167,19 +166,13 @@ Result<CompletedRound> RoundScheduler::TakeCompletedRound() {
 
 std::optional<BatchResult> RoundScheduler::TakeResult(BatchId batch_id) {
   if (PeekResult(batch_id) == nullptr) return std::nullopt;
-  const uint32_t index = BatchIndex(batch_id);
-  round_->batches[index].result_taken = true;
-  auto entry = round_->results.extract(index);
-  return std::move(entry.mapped());
+  return std::move(round_->results.extract(BatchIndex(batch_id)).mapped());
 }
 
 const BatchResult* RoundScheduler::PeekResult(BatchId batch_id) const {
   if (!round_ || BatchRound(batch_id) != round_->plan.round) return nullptr;
-  const uint32_t index = BatchIndex(batch_id);
-  if (index >= round_->batches.size()) return nullptr;
-  const BatchSlot& slot = round_->batches[index];
-  if (slot.state != BatchState::kDone || slot.result_taken) return nullptr;
-  const auto found = round_->results.find(index);
+  // Only a done batch whose result is not taken yet has one there.
+  const auto found = round_->results.find(BatchIndex(batch_id));
   return found == round_->results.end() ? nullptr : &found->second;
 }
 

@@ -261,13 +261,12 @@ class RoundScheduler {
   };
   // 12 bytes: a round at 10^6 patches holds about a million of them. The batch's attempts chain
   // back from newest_attempt through AttemptRecord::earlier; its accepted result waits in
-  // Round::results until it is taken.
+  // Round::results until it is taken (TakeResult, TakeCompletedRound).
   struct BatchSlot {
     BatchState state = BatchState::kQueued;
     bool in_fresh_queue = false;
     bool in_overdue_queue = false;
-    bool taken_over = false;    // moved once already: never again, so takeovers cannot cycle
-    bool result_taken = false;  // TakeResult moved it out
+    bool taken_over = false;  // moved once already: never again, so takeovers cannot cycle
     AttemptId newest_attempt = 0;
   };
   struct Round {
