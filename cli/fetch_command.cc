@@ -15,6 +15,7 @@
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
 #include "codec/solution_mesh.h"
+#include "display/solved_display.h"
 
 namespace radfarm {
 namespace {
@@ -22,7 +23,7 @@ namespace {
 // Turns the master's solution into the output files. Every error is the master's data being
 // wrong or the directory unwritable: exit 1.
 Status WriteSolution(const std::vector<uint8_t>& blob, const std::string& out_dir,
-                     const PatchMesh::DisplayProgress& display_progress) {
+                     const DisplayProgress& display_progress) {
   Result<codec::JobSolution> solution = codec::DecodeJobSolution(blob);
   if (!solution.ok()) return Error{"the job solution from the master: " + solution.error()};
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(solution->bundle);
@@ -33,9 +34,10 @@ Status WriteSolution(const std::vector<uint8_t>& blob, const std::string& out_di
   const SolveResult result{
       std::move(solution->radiosity), std::move(solution->unshot), std::move(solution->stats), {}};
   // As `radfarm render`: stats.json names the initial patch count of a refining job.
-  return WriteOutputs(out_dir, solved->mesh, result, bundle->job,
-                      bundle->job.refine.enabled ? solved->initial_patches : 0, nullptr,
-                      display_progress);
+  const Display display = SolvedDisplay(solved->mesh, result.radiosity, result.direct_light,
+                                        bundle->job.solver, display_progress);
+  return WriteOutputs(out_dir, solved->mesh, display, result, bundle->job,
+                      bundle->job.refine.enabled ? solved->initial_patches : 0);
 }
 
 }  // namespace
@@ -63,9 +65,9 @@ int RunFetch(const FetchOptions& options, const std::string& control_path) {
   // The display is computed here, from the solution (as `radfarm render` does after its solve):
   // on a big job it takes a while, so its steps show unless the output is JSON.
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
-  PatchMesh::DisplayProgress display_progress;
+  DisplayProgress display_progress;
   if (!options.json) {
-    display_progress = [&](const PatchMesh::DisplayStep& step) { reporter.OnDisplayStep(step); };
+    display_progress = [&](const DisplayStep& step) { reporter.OnDisplayStep(step); };
   }
   const Status written = WriteSolution(reply->attachment, options.out_dir, display_progress);
   reporter.ClearLine();

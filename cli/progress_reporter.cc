@@ -30,18 +30,18 @@ void ProgressReporter::Bar(double fraction, const std::string& text) {
   drew_ = true;
 }
 
-void ProgressReporter::OnDisplayStep(const PatchMesh::DisplayStep& step) {
+void ProgressReporter::OnDisplayStep(const DisplayStep& step) {
   std::lock_guard lock(mutex_);
   const std::string points = std::to_string(step.points);
   std::string text;
   switch (step.kind) {
-    case PatchMesh::DisplayStep::kDirectLight:
+    case DisplayStep::kDirectLight:
       text = "display: direct light at " + points + " points";
       break;
-    case PatchMesh::DisplayStep::kGathering:
+    case DisplayStep::kGathering:
       text = "display: gathering light at " + points + " points near other surfaces";
       break;
-    case PatchMesh::DisplayStep::kRefining:
+    case DisplayStep::kRefining:
       text = "display: " + points + " points added where the light bends (level " +
              std::to_string(step.level) + " of " + std::to_string(kDisplayRefineLevels) + ")";
       break;

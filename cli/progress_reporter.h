@@ -11,7 +11,7 @@
 #include <string>
 
 #include "core/progress_estimator.h"
-#include "mesh/patch_mesh.h"
+#include "display/display_settings.h"
 #include "solve/solve_state.h"
 
 namespace radfarm {
@@ -27,10 +27,10 @@ class ProgressReporter {
   // a time). Shows a long round's progress (the final gather, a big scene's first rounds); a
   // round shorter than a redraw (a log line) shows none.
   void OnRoundRunning(const RoundRunning& running);
-  // As each step of the display starts (PatchMesh::SetSolution's progress): on a terminal the
+  // As each step of the display starts (display/display_settings.h): on a terminal the
   // line shows it; a log gets a line for steps of at least kDisplayLogPoints points, the ones
   // that take a while (a count, not a clock, so a log is the same every run).
-  void OnDisplayStep(const PatchMesh::DisplayStep& step);
+  void OnDisplayStep(const DisplayStep& step);
   static constexpr uint64_t kDisplayLogPoints = 20000;
   // Ends the bar's line (interactive) so later output starts on a fresh line.
   void Finish();

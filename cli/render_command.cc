@@ -16,6 +16,7 @@
 #include "cli/render_state.h"
 #include "core/display_budget.h"
 #include "core/solve_control.h"
+#include "display/solved_display.h"
 #include "solve/local_solve.h"
 
 namespace radfarm {
@@ -179,19 +180,21 @@ int RunRender(const RenderOptions& options) {
   }
   const uint64_t patches_before = job.refine.enabled ? solved->patches_before : 0;
   std::vector<std::string> output_warnings;
-  PatchMesh::DisplayProgress display_progress;
+  DisplayProgress display_progress;
   if (!options.quiet) {
-    display_progress = [&](const PatchMesh::DisplayStep& step) { reporter.OnDisplayStep(step); };
+    display_progress = [&](const DisplayStep& step) { reporter.OnDisplayStep(step); };
   }
-  const Status written = WriteOutputs(options.out_dir, mesh, solution, job, patches_before,
-                                      &output_warnings, display_progress);
+  const Display display =
+      SolvedDisplay(mesh, solution.radiosity, solution.direct_light, job.solver, display_progress);
+  const Status written =
+      WriteOutputs(options.out_dir, mesh, display, solution, job, patches_before, &output_warnings);
   reporter.ClearLine();
   PrintMessages(output_warnings);
   if (Status s = written; !s.ok()) {
     PrintError(s.error());
     return kExitFailure;
   }
-  if (const PatchMesh::DisplayStats& d = mesh.display_stats(); !options.quiet && d.averaged) {
+  if (const DisplayStats& d = display.stats; !options.quiet && d.averaged) {
     std::printf("display: the patches' averages (the budget left no shadow rays for its points)\n");
   } else if (!options.quiet && d.seconds >= 0.5) {
     std::printf(

@@ -5,8 +5,6 @@
 #include <system_error>
 #include <vector>
 
-#include "core/direct_light.h"
-#include "core/display_budget.h"
 #include "output/exposure_meter.h"
 #include "output/exr_writer.h"
 #include "output/image.h"
@@ -27,30 +25,14 @@ Status CreateOutputDirectory(const std::string& dir) {
   return Ok{};
 }
 
-Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& solution,
-                    const Job& job, uint64_t patches_before_refinement,
-                    std::vector<std::string>* warnings,
-                    const PatchMesh::DisplayProgress& display_progress) {
+Status WriteOutputs(const std::string& dir, const PatchMesh& mesh, const Display& shown,
+                    const SolveResult& solution, const Job& job, uint64_t patches_before_refinement,
+                    std::vector<std::string>* warnings) {
   const double patches_after = double(mesh.patch_scene().patches.size());
   const double patches_before =
       patches_before_refinement > 0 ? double(patches_before_refinement) : patches_after;
   namespace fs = std::filesystem;
-  // The direct light the solve started from, or, where it had not started from it yet (a refining
-  // solve stopped before its restart point, or `radfarm fetch`, which has only the values), the
-  // same pure function of the scene and the job's settings.
-  std::vector<Rgb> direct = solution.direct_light;
-  if (direct.empty()) direct = StartingDirectLight(mesh.patch_scene(), job.solver);
-  if (direct.empty()) {
-    mesh.SetSolution(solution.radiosity, solution.unshot);
-  } else {
-    mesh.SetSolution(
-        solution.radiosity, solution.unshot,
-        {direct, job.solver.seed, job.solver.threads,
-         EmittersInDirectStart(mesh.patch_scene(), job.solver),
-         DirectLightRaysPerLight(mesh.patch_scene(), job.solver), DisplayRayAllowance(job.solver)},
-        display_progress);
-  }
-  const DisplayMesh display = mesh.MakeDisplayMesh();
+  const DisplayMesh& display = shown.mesh;
   std::vector<bool> emitter_patch;
   for (const Patch& p : mesh.patch_scene().patches) emitter_patch.push_back(p.emission.Max() > 0);
   // One exposure, metered on the lit surfaces, for the PNG and the PLY's colours.
@@ -66,9 +48,9 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
   // edge a quarter patch blurs what the display shows: tests/cli/lightmap_render_test.cc).
   const DisplayLightmapUvs uvs =
       LocateLightmapUvs(display, patch_object, mesh.objects().size(), mesh.lightmap_triangles());
-  const double texel = job.lightmap_texel > 0           ? job.lightmap_texel
-                       : mesh.display_stats().added > 0 ? mesh.patch_size() / 16
-                                                        : mesh.patch_size() / 4;
+  const double texel = job.lightmap_texel > 0  ? job.lightmap_texel
+                       : shown.stats.added > 0 ? mesh.patch_size() / 16
+                                               : mesh.patch_size() / 4;
   Result<std::vector<Lightmap>> lightmaps =
       WriteLightmaps(dir, display, mesh.objects(), uvs, mesh.lightmap_triangles(), exposed, texel,
                      job.lightmap_size, warnings);
@@ -90,7 +72,7 @@ Status WriteOutputs(const std::string& dir, PatchMesh& mesh, const SolveResult& 
       },
       [&] { return WritePatchesCsv(path("patches.csv"), mesh.patch_scene(), solution.radiosity); },
       [&] {
-        const PatchMesh::DisplayStats& d = mesh.display_stats();
+        const DisplayStats& d = shown.stats;
         return WriteStatsJson(path("stats.json"), solution.stats,
                               {{"patch_size", mesh.patch_size()},
                                {"patch_size_min", mesh.patch_size_min()},

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "base/result.h"
+#include "display/display_stage.h"
 #include "job/job.h"
 #include "mesh/patch_mesh.h"
 #include "solve/solve_state.h"
@@ -18,19 +19,16 @@ namespace radfarm {
 // Creates `dir` and its parents when missing.
 Status CreateOutputDirectory(const std::string& dir);
 
-// `dir` must exist. Stores the solution in `mesh` (PatchMesh::SetSolution) to shade the image and
-// the PLY; `solution` must hold one value per patch of `mesh`. Where the job's solve starts from
-// the direct light (core/direct_light.h: the final gather on), the vertices show the direct light
-// computed at each vertex. Each file is written atomically.
+// `dir` must exist. `display` is the display of `solution` on `mesh` (display/solved_display.h);
+// `solution` must hold one value per patch of `mesh`. Each file is written atomically.
 // stats.json reports `patches_before_refinement` (0: the mesh was not refined, so the same as
-// `patches_after_refinement`, which is the patch count of `mesh`).
+// `patches_after_refinement`, which is the patch count of `mesh`) and the display's figures.
 // Objects with a second UV set (glTF TEXCOORD_1) also get lightmaps/<object>.exr and .png
 // (output/lightmap_writer.h), referenced from lit.glb; their warnings (overlapping UVs) are
 // appended to *warnings when it is not null.
-// `display_progress`, when set, is told as each step of the display starts.
-Status WriteOutputs(
-    const std::string& dir, PatchMesh& mesh, const SolveResult& solution, const Job& job,
-    uint64_t patches_before_refinement = 0, std::vector<std::string>* warnings = nullptr,
-    const PatchMesh::DisplayProgress& display_progress = nullptr);
+Status WriteOutputs(const std::string& dir, const PatchMesh& mesh, const Display& display,
+                    const SolveResult& solution, const Job& job,
+                    uint64_t patches_before_refinement = 0,
+                    std::vector<std::string>* warnings = nullptr);
 
 }  // namespace radfarm

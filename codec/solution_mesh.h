@@ -1,7 +1,7 @@
 // The mesh a job solution's values belong to, for `radfarm fetch` and the master's previews: the
 // bundle's scene meshed as its job says (as the master meshed it), then, for a refining job, the
 // checkpoint's refined elements rebuilt on it (as the master resumes one). The sizes are checked
-// against the solution's values, so a caller may SetSolution at once.
+// against the solution's values, so a caller may draw its display at once.
 #pragma once
 
 #include <cstddef>

@@ -485,7 +485,7 @@ std::vector<Rgb> PointsDirectLight(const PatchScene& scene,
 
 std::vector<Rgb> PointsDirectLight(const DirectLight& direct,
                                    const std::vector<ReceiverPoint>& points, uint64_t seed,
-                                   unsigned threads, uint64_t* rays) {
+                                   unsigned threads, uint64_t* rays, uint64_t first_index) {
   std::vector<Rgb> out(points.size());
   if (points.empty()) return out;
   ThreadPool pool(threads);
@@ -496,8 +496,8 @@ std::vector<Rgb> PointsDirectLight(const DirectLight& direct,
   std::vector<uint64_t> cast(pool.size(), 0);
   pool.ParallelFor(points.size(), [&](unsigned worker, size_t i) {
     uint64_t point_rays = 0;
-    out[i] =
-        direct.Irradiance(points[i].position, points[i].normal, HashWords(stream, i), &point_rays);
+    out[i] = direct.Irradiance(points[i].position, points[i].normal,
+                               HashWords(stream, first_index + i), &point_rays);
     cast[worker] += point_rays;
   });
   if (rays != nullptr) {

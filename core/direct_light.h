@@ -188,9 +188,11 @@ std::vector<Rgb> PointsDirectLight(const PatchScene& scene,
                                    unsigned threads, bool emitters = true);
 // The same with a DirectLight (kPointShadowRays per point) its caller keeps: for callers that
 // light several sets of points in one scene, built once. `rays`, if not null, is increased by
-// the shadow rays cast (the same whatever `threads`).
+// the shadow rays cast (the same whatever `threads`). Point i is keyed with first_index + i, as
+// GatherLight's (core/point_gather.h): a list traced in pieces gets the whole list's values.
 std::vector<Rgb> PointsDirectLight(const DirectLight& direct,
                                    const std::vector<ReceiverPoint>& points, uint64_t seed,
-                                   unsigned threads, uint64_t* rays = nullptr);
+                                   unsigned threads, uint64_t* rays = nullptr,
+                                   uint64_t first_index = 0);
 
 }  // namespace radfarm

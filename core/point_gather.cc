@@ -118,7 +118,8 @@ std::vector<Rgb> GatherLight(const RayCaster& caster, const std::vector<Rgb>& ou
                              const std::vector<ReceiverPoint>& points,
                              const std::vector<bool>& gather, uint64_t seed, unsigned threads,
                              uint32_t rays, const PatchCornerOffsets* corners,
-                             const SecondBounce* second, uint64_t* rays_cast) {
+                             const SecondBounce* second, uint64_t* rays_cast,
+                             uint64_t first_index) {
   std::vector<Rgb> out(points.size());
   if (points.empty() || rays == 0) return out;
   ThreadPool pool(threads);
@@ -142,7 +143,7 @@ std::vector<Rgb> GatherLight(const RayCaster& caster, const std::vector<Rgb>& ou
     uint64_t second_rays = 0;
     Vec3 t, b;
     OrthonormalBasis(point.normal, &t, &b);
-    const ScrambledSobol4 sobol(HashWords(stream, i));
+    const ScrambledSobol4 sobol(HashWords(stream, first_index + i));
     Rgb sum;
     // The rays a block at a time (RayCaster::TraceBlock: the same hits as Trace's, their cache
     // misses overlapped), counted in order.

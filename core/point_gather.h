@@ -74,13 +74,15 @@ struct SecondBounce {
 // the hit when given, its bounced part gathered again at a near hit when `second` is given) at
 // the patch each meets; zero elsewhere; `outgoing` follows the patches of the scene `caster` was
 // built from. A pure function of its arguments, whatever the thread count; `seed` keys the rays
-// of point i with i. `rays_cast`, if not null, is increased by the rays cast, second bounces
-// included (the same whatever the thread count).
+// of point i with first_index + i, so the points of a longer list traced in pieces, each with
+// its first point's index there, get the whole list's values. `rays_cast`, if not null, is
+// increased by the rays cast, second bounces included (the same whatever the thread count).
 std::vector<Rgb> GatherLight(const RayCaster& caster, const std::vector<Rgb>& outgoing,
                              const std::vector<ReceiverPoint>& points,
                              const std::vector<bool>& gather, uint64_t seed, unsigned threads,
                              uint32_t rays = kPointGatherRays,
                              const PatchCornerOffsets* corners = nullptr,
-                             const SecondBounce* second = nullptr, uint64_t* rays_cast = nullptr);
+                             const SecondBounce* second = nullptr, uint64_t* rays_cast = nullptr,
+                             uint64_t first_index = 0);
 
 }  // namespace radfarm

@@ -6,6 +6,7 @@
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
 #include "codec/solution_mesh.h"
+#include "display/display_stage.h"
 #include "mesh/patch_mesh.h"
 #include "output/exposure_meter.h"
 #include "output/image.h"
@@ -20,9 +21,9 @@ Result<std::string> RenderPreviewPng(std::span<const uint8_t> blob) {
   RADFARM_RETURN_IF_ERROR(bundle);
   Result<codec::SolutionMesh> solved = codec::MeshOfSolution(*solution, *bundle);
   RADFARM_RETURN_IF_ERROR(solved);
-  PatchMesh& mesh = solved->mesh;
-  mesh.SetSolution(solution->radiosity, solution->unshot);
-  const DisplayMesh display = mesh.MakeDisplayMesh();
+  const PatchMesh& mesh = solved->mesh;
+  const DisplayMesh display =
+      AveragedDisplay(mesh.display_topology(), mesh.patch_scene(), solution->radiosity);
   std::vector<bool> emitter_patch;
   for (const Patch& p : mesh.patch_scene().patches) emitter_patch.push_back(p.emission.Max() > 0);
   Camera camera = ResolveCamera(display, bundle->job.camera);

@@ -42,9 +42,6 @@ struct PatchProperties {
   OpenMesh::FPropHandleT<Rgb> emission;
   OpenMesh::FPropHandleT<double> area;
   OpenMesh::FPropHandleT<Vec3> normal;
-  OpenMesh::FPropHandleT<Rgb> radiosity;  // "B", set by SetSolution
-  OpenMesh::FPropHandleT<Rgb> unshot;     // "dB", set by SetSolution
-  OpenMesh::VPropHandleT<Rgb> radiance;   // area-weighted average over the vertex's surface
   OpenMesh::VPropHandleT<uint32_t> group;
 
   // Property handles are indices, so they stay valid in copies and moves of the mesh.
@@ -55,9 +52,6 @@ struct PatchProperties {
     mesh->add_property(emission, "emission");
     mesh->add_property(area, "area");
     mesh->add_property(normal, "normal");
-    mesh->add_property(radiosity, "B");
-    mesh->add_property(unshot, "dB");
-    mesh->add_property(radiance, "radiance");
     mesh->add_property(group, "group");
   }
 };

@@ -1,6 +1,6 @@
 // PatchMesh: the scene split into radiosity patches, held in an OpenMesh polygon mesh (om_mesh.h)
-// with a flat PatchScene copy for the solver; after the solve it turns patch radiosities into
-// per-vertex radiance for display.
+// with a flat PatchScene copy for the solver, and its display topology (mesh/display_topology.h)
+// for the display that follows the solve (display/).
 //
 // Build, in order (each step in its own file):
 //   1. clean_faces.h     repeated and straight-through corners removed; zero-area faces dropped
@@ -18,17 +18,14 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <functional>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "base/result.h"
 #include "core/patch_scene.h"
-#include "core/point_gather.h"
 #include "core/rgb.h"
 #include "input/input_scene.h"
-#include "mesh/display_mesh.h"
+#include "mesh/display_topology.h"
 #include "mesh/mesh_settings.h"
 #include "mesh/patch_assembler.h"
 
@@ -38,15 +35,9 @@ namespace radfarm {
 // (mesh/auto_patch_size.h): about a tenth of a room's mean chord, 0.2 m in a 4 x 4 x 3 m office.
 // Build refuses scenes that would need more patches than this (a patch size far too small).
 inline constexpr uint64_t kMaxPatches = uint64_t{1} << 23;
-// How far toward the centres of its patches a vertex's direct light is computed, as a share of
-// the distance: far enough off a crease for its shadow rays, near enough to be the vertex's value.
-inline constexpr double kVertexInset = 1e-4;
 // A sheet hanging within this many patch sizes of a face covers it (mesh/contact_cut.h): any gap
 // a patch could straddle.
 inline constexpr double kSheetReachPatches = 2;
-// A display point gathers its bounced light itself (core/point_gather.h) when a surface lies
-// within this many patch sizes.
-inline constexpr double kGatherBand = 1.5;
 
 // What Check finds out without building the mesh.
 struct MeshCheck {
@@ -55,9 +46,6 @@ struct MeshCheck {
   double weld_tolerance = 0;
   uint64_t memory_limit = 0;  // as PatchMesh::memory_limit()
 };
-
-// How many times the display cuts its triangles where the light bends (patch_mesh_display.cc).
-inline constexpr int kDisplayRefineLevels = 3;
 
 // Move-only: a copy of a large mesh is never wanted by accident.
 class PatchMesh {
@@ -103,8 +91,8 @@ class PatchMesh {
   }
   // Target size actually used: settings.patch_size, or when automatic (settings.patch_size == 0)
   // the median over the patches of their faces' sizes; the display's and refinement's lengths
-  // (kGatherBand, min_element_size, the lightmap texel) follow it. Min and max are the smallest
-  // and largest face sizes (equal to patch_size() unless automatic).
+  // (the display's gather band, min_element_size, the lightmap texel) follow it. Min and max are
+  // the smallest and largest face sizes (equal to patch_size() unless automatic).
   double patch_size() const { return patch_size_; }
   double patch_size_min() const { return patch_size_min_; }
   double patch_size_max() const { return patch_size_max_; }
@@ -123,86 +111,8 @@ class PatchMesh {
     return surface_object_[data_.scene.patches[patch].surface];
   }
 
-  // Stores the solution (one value per patch, in the solver's units: those of the emission) in the
-  // face properties B and dB, and sets each vertex's radiance to the area-weighted average of B
-  // over the patches of its surface that touch it: as a corner, or with the vertex on an edge (a
-  // T-vertex). Values never mix across surfaces, so creases stay sharp. Vertices on a surface's
-  // border are then extrapolated from the inside (mesh/border_extrapolation.h).
-  void SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot);
-
-  // A step of SetSolution's display as it starts: the direct light at its points, gathering at
-  // those near other surfaces, or a level of cutting where the light bends.
-  struct DisplayStep {
-    enum Kind { kDirectLight, kGathering, kRefining } kind = kDirectLight;
-    uint64_t points = 0;  // the direct light's and gathering's points, or those a level adds
-    int level = 0;        // kRefining: 1 to kDisplayRefineLevels
-  };
-  // The direct light a solve started from (SolveResult::direct_light, one value per patch), and
-  // the keys and threads for the vertices' own shadow rays.
-  struct VertexDirectLight {
-    const std::vector<Rgb>& patch_direct;
-    uint64_t seed = 0;
-    unsigned threads = 0;  // 0: all cores
-    // Whether patch_direct holds the emitter patches' light (EmittersInDirectStart) or only the
-    // punctual lights' (the emitters shot theirs): the points then compute the same.
-    bool emitters = true;
-    // Shadow rays per light at a point at most (DirectLightRaysPerLight, as the start; 0: no
-    // limit).
-    uint32_t rays_per_light = 0;
-    // The rays the display may cast (DisplayRayAllowance: a share of the job's budget; 0: no
-    // limit). Within it, in this order and only as far as needed: fewer shadow rays per light
-    // (down to kMinCappedLightRays), fewer gathering rays (down to kMinDisplayGatherRays, else no
-    // point gathers), fewer levels of cutting where the light bends; where even the fewest shadow
-    // rays at every point would exceed it, the display averages the patches (no ray).
-    uint64_t ray_allowance = 0;
-  };
-  // As above, but the display is finer than the solution and shows the direct light where it is
-  // computed. Every display triangle is cut into four at its edge midpoints (midpoint_split.h), and
-  // every display point, vertex or midpoint, shows rho times DirectLight at the point itself
-  // (core/direct_light.h) plus the rest of the solution (radiosity less rho times the patch's
-  // direct light: emission and bounced light, which is smooth) averaged over the patches around
-  // it, linearly between a midpoint's two ends. Averages put a vertex at the mean of its patches:
-  // where the direct light bends (the fall-off near a light, a penumbra) that is not its value
-  // there, and the Gouraud image would show every patch's outline; the direct light at the point
-  // is exact outside shadows. Then one step (StepTowardPatchMeans) moves every point by its
-  // patches' shortfall of Gouraud mean against mean light (the rest as solved plus rho times the
-  // direct light's mean over the patch by the midpoint rule, exact for quadratics): point values
-  // interpolated linearly run below a concave light between points (h^2 f'' / 12 on every
-  // triangle). Costs a point of shadow rays (kPointShadowRays) per display vertex and midpoint.
-  // Near another surface (within kGatherBand patch sizes: corners, the ceiling beside a hanging
-  // lamp, the floor around a block) the rest is not smooth across a patch: such points gather it
-  // themselves (core/point_gather.h) and keep their values. Where the corners of a triangle of
-  // such points differ by more than a fifth (a tenth for a sliver), or the direct light at the
-  // corners of any other does (a hard shadow's edge), it is cut (mesh/display_cut.h,
-  // mesh/selective_split.h) and its new points computed the same way, up to three levels deep
-  // (patch_mesh_display.cc).
-  // `progress`, when set, is told on the calling thread as each step of the display starts (a big
-  // scene's display can take longer than its solve): what it does, at how many points.
-  using DisplayProgress = std::function<void(const DisplayStep&)>;
-  void SetSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot,
-                   const VertexDirectLight& direct, const DisplayProgress& progress = nullptr);
-  // What the last SetSolution with VertexDirectLight computed: display points (vertices and
-  // midpoints), those that gathered their own light near another surface, and those added where
-  // the light bends; and its wall time.
-  // And the rays it cast and what it spent them on.
-  struct DisplayStats {
-    uint64_t points = 0;
-    uint64_t gathered = 0;
-    uint64_t added = 0;
-    double seconds = 0;
-    uint64_t rays = 0;            // shadow and gathering rays, second bounces and probes included
-    uint32_t rays_per_light = 0;  // as VertexDirectLight's, or fewer under an allowance
-    uint32_t gather_rays = 0;     // per gathering point (0: none gathered)
-    int levels = 0;               // of cutting where the light bends, at most kDisplayRefineLevels
-    bool averaged = false;        // the allowance did not cover one point's direct light: averages
-  };
-  const DisplayStats& display_stats() const { return display_stats_; }
-
-  // Triangles with per-vertex radiance for the image and the PLY: one vertex per surface and
-  // position, patches with T-vertices on their edges triangulated through them, so Gouraud shading
-  // is continuous within a surface; after SetSolution with VertexDirectLight, those triangles cut
-  // at their midpoints. Radiance is zero before SetSolution.
-  DisplayMesh MakeDisplayMesh() const;
+  // The display vertices, which patches touch them, and each patch's outline through them.
+  DisplayTopology display_topology() const;
 
   // The OpenMesh mesh and its property handles, for inspection and tests.
   const OmMesh& mesh() const { return *data_.mesh; }
@@ -210,29 +120,8 @@ class PatchMesh {
 
  private:
   PatchMesh() = default;
-  // Per patch, its display vertices in order: corners and the T-vertices on its edges.
-  std::vector<std::vector<uint32_t>> FaceRings() const;
-  // The solution into the face properties B and dB (aborts on a size mismatch).
-  void StoreSolution(const std::vector<Rgb>& radiosity, const std::vector<Rgb>& unshot);
-  // visit(display vertex, patch) for every patch touching a display vertex (corner or T-vertex).
-  template <typename Visit>
-  void ForEachVertexPatch(Visit&& visit) const;
-  // Per display vertex, the area-weighted average of a per-patch value over its patches.
-  std::vector<Rgb> VertexAverages(const std::vector<Rgb>& per_patch) const;
-  // Per patch corner, the direct light it reflects there (rho times `irradiance` at the corner's
-  // display vertex, whose point is point_of[vertex]) less the patch's mean (rho times
-  // patch_direct): what gathering rays add where they meet the patch (core/point_gather.h).
-  PatchCornerOffsets CornerDirectOffsets(const std::vector<Rgb>& irradiance,
-                                         const std::vector<uint32_t>& point_of,
-                                         const std::vector<Rgb>& patch_direct) const;
-  void SetVertexRadiance(const std::vector<Rgb>& value);
-  // The display triangles of the patches, at the vertices' radiance.
-  DisplayMesh PatchDisplayMesh() const;
 
   PatchMeshData data_;
-  // The display cut at its midpoints by SetSolution with VertexDirectLight; empty otherwise.
-  std::optional<DisplayMesh> split_display_;
-  DisplayStats display_stats_;
   double patch_size_ = 0;
   double patch_size_min_ = 0;
   double patch_size_max_ = 0;

@@ -12,6 +12,7 @@
 #include "mesh/memory_estimate.h"
 #include "mesh/polygon.h"
 #include "mesh/refine_criteria.h"
+#include "mesh/vertex_averages.h"
 
 namespace radfarm {
 namespace {
@@ -136,12 +137,19 @@ CarriedState CarryOver(RefinedMesh& refined, const EnergyAccount& energy, bool r
   return out;
 }
 
-RefinedMesh Refine(PatchMesh& mesh, const std::vector<Rgb>& radiosity,
+RefinedMesh Refine(const PatchMesh& mesh, const std::vector<Rgb>& radiosity,
                    const std::vector<Rgb>& unshot, double ray_power,
                    const ResolvedRefineSettings& settings, const RayCaster& caster,
                    ThreadPool& pool) {
-  mesh.SetSolution(radiosity, unshot);  // checks the sizes; vertex radiance for GradientScore
   const PatchScene& scene = mesh.patch_scene();
+  if (radiosity.size() != scene.patches.size() || unshot.size() != scene.patches.size()) {
+    std::fprintf(stderr, "Refine: %zu radiosities, %zu unshot values, %zu patches\n",
+                 radiosity.size(), unshot.size(), scene.patches.size());
+    std::abort();
+  }
+  // The solution at the display vertices, as Gouraud shading shows it, for GradientScore.
+  const std::vector<Rgb> vertex_value =
+      SmoothVertexValues(mesh.display_topology(), scene, radiosity);
   const OmMesh& om = mesh.mesh();
   std::vector<uint32_t> surface_of;
   for (const Patch& p : scene.patches) surface_of.push_back(p.surface);
@@ -159,7 +167,7 @@ RefinedMesh Refine(PatchMesh& mesh, const std::vector<Rgb>& radiosity,
     const int n = FaceCorners(om, om.face_handle(static_cast<int>(i)), &corners);
     std::vector<Rgb> vertex_radiance;
     for (int k = 0; k < n; ++k) {
-      vertex_radiance.push_back(om.property(mesh.properties().radiance, corners[k]));
+      vertex_radiance.push_back(vertex_value[om.property(mesh.properties().group, corners[k])]);
     }
     score[i] = std::max(
         LightScore(e.patch, e.radiosity, sources, surface_of, caster, settings.tolerance),

@@ -86,11 +86,11 @@ struct RefinedMesh {
   uint64_t split = 0;            // splits made (each adds three elements)
 };
 
-// One refinement step. `mesh` receives the solution (SetSolution) for its vertex radiance.
-// `ray_power` is emitted power / shot_rays of the rounds so far (0 before the first round).
-// `caster` is a RayCaster of `mesh`'s scene. Evaluations run on `pool`; the
+// One refinement step; its gradient test reads the solution at the vertices
+// (mesh/vertex_averages.h). `ray_power` is emitted power / shot_rays of the rounds so far (0 before
+// the first round). `caster` is a RayCaster of `mesh`'s scene. Evaluations run on `pool`; the
 // result does not depend on its size.
-RefinedMesh Refine(PatchMesh& mesh, const std::vector<Rgb>& radiosity,
+RefinedMesh Refine(const PatchMesh& mesh, const std::vector<Rgb>& radiosity,
                    const std::vector<Rgb>& unshot, double ray_power,
                    const ResolvedRefineSettings& settings, const RayCaster& caster,
                    ThreadPool& pool);

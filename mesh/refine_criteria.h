@@ -13,7 +13,7 @@
 //    linear interpolation from the corners. The score is the largest difference over
 //    tolerance * (B + mean gain). It needs no solution, so it refines before anything is shot.
 //  - GradientScore: the solution so far. The element's radiance against the mean of its vertices'
-//    (the averages over its neighbours, PatchMesh::SetSolution): for a linear variation they agree,
+//    (the averages over its neighbours, mesh/vertex_averages.h): for a linear variation they agree,
 //    a bend or an edge sets them apart. Over tolerance * B, but zero unless the difference also
 //    exceeds kNoiseSigmas times the element's ray noise: a patch that received n rays of power
 //    P_emitted / shot_rays has a relative standard deviation of about 1 / sqrt(n), so noise never

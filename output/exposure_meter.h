@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "mesh/display_mesh.h"
+#include "display/display_mesh.h"
 #include "output/camera.h"
 
 namespace radfarm {

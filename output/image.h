@@ -8,7 +8,7 @@
 #include "core/rgb.h"
 #include "core/thread_pool.h"
 #include "core/vec3.h"
-#include "mesh/display_mesh.h"
+#include "display/display_mesh.h"
 #include "output/camera.h"
 
 namespace radfarm {

@@ -11,8 +11,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "display/display_mesh.h"
 #include "input/input_scene.h"
-#include "mesh/display_mesh.h"
 #include "output/uv_raster.h"
 
 namespace radfarm {

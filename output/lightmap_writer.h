@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "base/result.h"
+#include "display/display_mesh.h"
 #include "input/input_scene.h"
-#include "mesh/display_mesh.h"
 #include "output/camera.h"
 #include "output/lightmap_uvs.h"
 #include "output/uv_raster.h"

@@ -1,6 +1,6 @@
 // lit.glb: the solution on the user's own objects, as a glTF 2.0 binary for Blender and other
 // glTF clients. One node per object (OBJ `o`/`g` names; glTF node names with their hierarchy and
-// transforms), each with a mesh of its display triangles (mesh/display_mesh.h) in the node's own
+// transforms), each with a mesh of its display triangles (display/display_mesh.h) in the node's own
 // frame. Every vertex carries its linear radiance (MTL Ke units) as COLOR_0, VEC3 FLOAT, so a
 // vertex is shared wherever the display shares it and split only where the display splits the
 // light (creases, materials, contact lines, sheet outlines). The material is KHR_materials_unlit
@@ -29,8 +29,8 @@
 #include <vector>
 
 #include "base/result.h"
+#include "display/display_mesh.h"
 #include "input/input_scene.h"
-#include "mesh/display_mesh.h"
 #include "output/lightmap_uvs.h"
 
 namespace radfarm {

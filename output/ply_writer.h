@@ -7,7 +7,7 @@
 #include <string>
 
 #include "base/result.h"
-#include "mesh/display_mesh.h"
+#include "display/display_mesh.h"
 #include "output/camera.h"
 
 namespace radfarm {

@@ -73,7 +73,7 @@ struct SolveResult {
   std::vector<Rgb> unshot;
   SolveStats stats;
   // The direct light per patch the solve started from (ProgressiveSolver::direct_light()); empty
-  // where it did not. The display uses it (PatchMesh::SetSolution).
+  // where it did not. The display uses it (display/solved_display.h).
   std::vector<Rgb> direct_light;
 };
 

@@ -8,6 +8,7 @@
 #include "core/direct_light.h"
 #include "core/ray_caster.h"
 #include "core/thread_pool.h"
+#include "display/display_stage.h"
 
 namespace radfarm::bench {
 namespace {
@@ -47,8 +48,7 @@ std::vector<Rgb> BouncedRadiosity(const PatchScene& scene, const std::vector<Rgb
   return rest;
 }
 
-Image RenderReferenceImage(PatchMesh& mesh, const std::vector<Rgb>& radiosity,
-                           const std::vector<Rgb>& rest, const std::vector<Rgb>& unshot,
+Image RenderReferenceImage(const PatchMesh& mesh, const std::vector<Rgb>& rest,
                            const Camera& camera, Image* bounced_image) {
   const PatchScene& scene = mesh.patch_scene();
   const RayCaster caster(scene);
@@ -56,9 +56,7 @@ Image RenderReferenceImage(PatchMesh& mesh, const std::vector<Rgb>& radiosity,
   ThreadPool pool(std::max(1u, std::thread::hardware_concurrency()));
 
   // The bounced part, Gouraud-shaded.
-  mesh.SetSolution(rest, unshot);
-  const DisplayMesh display = mesh.MakeDisplayMesh();
-  mesh.SetSolution(radiosity, unshot);
+  const DisplayMesh display = AveragedDisplay(mesh.display_topology(), scene, rest);
 
   // One sample per pixel of an image n times larger: the rasteriser's n x n subpixel samples.
   uint32_t n = 1;

@@ -25,11 +25,10 @@ inline constexpr uint32_t kShadowRaysPerPoint = 64;
 // bounced) is smooth: the reference image Gouraud-shades it and the patch error looks it up.
 std::vector<Rgb> BouncedRadiosity(const PatchScene& scene, const std::vector<Rgb>& radiosity);
 
-// `mesh` is the reference mesh, `radiosity` its solution (one value per patch) and `bounced`
-// BouncedRadiosity of it; `camera` is resolved (not automatic). `*bounced_image` gets the
-// Gouraud-shaded part alone (what the image shows besides the direct light).
-Image RenderReferenceImage(PatchMesh& mesh, const std::vector<Rgb>& radiosity,
-                           const std::vector<Rgb>& bounced, const std::vector<Rgb>& unshot,
+// `mesh` is the reference mesh and `bounced` BouncedRadiosity of its solution; `camera` is resolved
+// (not automatic). `*bounced_image` gets the Gouraud-shaded part alone (what the image shows
+// besides the direct light).
+Image RenderReferenceImage(const PatchMesh& mesh, const std::vector<Rgb>& bounced,
                            const Camera& camera, Image* bounced_image);
 
 }  // namespace radfarm::bench

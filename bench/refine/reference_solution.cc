@@ -7,8 +7,9 @@
 #include <string>
 
 #include "bench/refine/reference_image.h"
-#include "solve/local_solve.h"
+#include "display/display_stage.h"
 #include "mesh/patch_mesh.h"
+#include "solve/local_solve.h"
 
 namespace radfarm::bench {
 namespace {
@@ -16,8 +17,7 @@ namespace {
 // Seeds no row uses (rows run seed 1): a shared seed would share their first rays.
 constexpr uint64_t kSeeds[2] = {1000003, 2000003};
 
-ReferenceSolution Finish(PatchMesh& mesh, const std::vector<Rgb>& mean,
-                         const std::vector<Rgb>& unshot, const Camera& camera,
+ReferenceSolution Finish(const PatchMesh& mesh, const std::vector<Rgb>& mean, const Camera& camera,
                          ReferenceSolution ref) {
   std::vector<double> positive;
   for (double b : ref.mean) {
@@ -29,9 +29,9 @@ ReferenceSolution Finish(PatchMesh& mesh, const std::vector<Rgb>& mean,
   }
   const std::vector<Rgb> bounced = BouncedRadiosity(mesh.patch_scene(), mean);
   for (const Rgb& b : bounced) ref.bounced.push_back(b.Sum());
-  const DisplayMesh display = mesh.MakeDisplayMesh();
-  ref.image = RenderReferenceImage(mesh, mean, bounced, unshot, ResolveCamera(display, camera),
-                                   &ref.bounced_image);
+  const DisplayMesh display = AveragedDisplay(mesh.display_topology(), mesh.patch_scene(), mean);
+  ref.image =
+      RenderReferenceImage(mesh, bounced, ResolveCamera(display, camera), &ref.bounced_image);
   for (const Rgb& p : ref.image.pixels) ref.image_mean += p.Sum();
   ref.image_mean /= double(ref.image.pixels.size());
   return ref;
@@ -100,8 +100,7 @@ ReferenceSolution SolveReference(const InputScene& scene, const std::string& nam
                                       std::to_string(shot_rays) + "-" +
                                       std::to_string(camera.width) + ".ref";
   if (!cache.empty() && ReadCache(cache, n, &ref, &mean, &mean_unshot)) {
-    mesh->SetSolution(mean, mean_unshot);
-    return Finish(*mesh, mean, mean_unshot, camera, std::move(ref));
+    return Finish(*mesh, mean, camera, std::move(ref));
   }
   for (int k = 0; k < 2; ++k) {
     SolverSettings s;
@@ -121,8 +120,7 @@ ReferenceSolution SolveReference(const InputScene& scene, const std::string& nam
     }
   }
   if (!cache.empty()) WriteCache(cache, ref, mean, mean_unshot);
-  mesh->SetSolution(mean, mean_unshot);
-  return Finish(*mesh, mean, mean_unshot, camera, std::move(ref));
+  return Finish(*mesh, mean, camera, std::move(ref));
 }
 
 }  // namespace radfarm::bench

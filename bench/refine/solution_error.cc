@@ -11,6 +11,7 @@
 #include "core/ray_caster.h"
 #include "core/ray_sampler.h"
 #include "core/thread_pool.h"
+#include "display/display_stage.h"
 #include "mesh/locate_patches.h"
 
 namespace radfarm::bench {
@@ -105,12 +106,14 @@ ImagePartErrors MeasureImagePartErrors(PatchMesh& mesh, const SolveResult& solut
     direct[f] = patches[f].reflectance * solution.direct_light[f];
     rest[f] = solution.radiosity[f] - direct[f];
   }
-  // The rest alone: averaged over patches and extrapolated at borders, as SetSolution does.
-  mesh.SetSolution(rest, solution.unshot);
-  const Image bounced = RenderImage(mesh.MakeDisplayMesh(), camera);
+  // The rest alone: averaged over patches and extrapolated at borders, as the display does.
+  const DisplayTopology topology = mesh.display_topology();
+  const Image bounced = RenderImage(AveragedDisplay(topology, mesh.patch_scene(), rest), camera);
   // The direct light alone: a radiosity of rho times the patch's direct light leaves no rest.
-  mesh.SetSolution(direct, solution.unshot, {solution.direct_light, solver.seed, solver.threads});
-  const Image lit = RenderImage(mesh.MakeDisplayMesh(), camera);
+  const Display lit_display =
+      ShadeDisplay({topology, mesh.patch_scene(), mesh.patch_size(), direct, solution.direct_light},
+                   {solver.seed, solver.threads});
+  const Image lit = RenderImage(lit_display.mesh, camera);
   ImagePartErrors out;
   for (size_t i = 0; i < lit.pixels.size(); ++i) {
     const double ref_bounced = ref.bounced_image.pixels[i].Sum();
@@ -145,9 +148,11 @@ double MeasureDisplayError(PatchMesh& mesh, const SolveResult& solution,
     radiosity[e] =
         found > 0 && own > 0 ? direct + rest * (sum / found / own) : solution.radiosity[e];
   }
-  mesh.SetSolution(radiosity, solution.unshot,
-                   {solution.direct_light, solver.seed, solver.threads});
-  return MeasureImageError(RenderImage(mesh.MakeDisplayMesh(), camera), ref);
+  const DisplayTopology topology = mesh.display_topology();
+  const Display display = ShadeDisplay(
+      {topology, mesh.patch_scene(), mesh.patch_size(), radiosity, solution.direct_light},
+      {solver.seed, solver.threads});
+  return MeasureImageError(RenderImage(display.mesh, camera), ref);
 }
 
 }  // namespace radfarm::bench

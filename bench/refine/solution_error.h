@@ -27,10 +27,10 @@
 #include "bench/refine/reference_solution.h"
 #include "core/patch_scene.h"
 #include "core/rgb.h"
-#include "solve/local_solve.h"
 #include "mesh/patch_mesh.h"
 #include "output/camera.h"
 #include "output/image.h"
+#include "solve/local_solve.h"
 
 namespace radfarm::bench {
 
@@ -47,8 +47,8 @@ double MeasureImageError(const Image& image, const ReferenceSolution& ref);
 
 // The image error split into the display's two parts, for a solve that started from the direct
 // light (SolveResult::direct_light set), each shaded alone and compared with the same part of
-// Iref: the direct light as PatchMesh::SetSolution shades it (computed at the vertices, moved to
-// the elements' mean direct light), and the rest (radiosity less rho times the patch's direct
+// Iref: the direct light as the display (ShadeDisplay) shades it (computed at the vertices, moved
+// to the elements' mean direct light), and the rest (radiosity less rho times the patch's direct
 // light) averaged over patches without that move. Both are over the mean of the whole Iref, so
 // they compare with the image error. The mesh keeps the last part's vertex radiance: the caller
 // sets its solution again.

@@ -8,6 +8,7 @@
 
 #include "bench/bench_scene.h"
 #include "core/direct_light.h"
+#include "display/display_stage.h"
 #include "job/job.h"
 #include "mesh/patch_mesh.h"
 #include "output/png_writer.h"
@@ -181,15 +182,17 @@ class Study {
         MeasurePatchError(solved->mesh->patch_scene(), solved->solution.radiosity, ref_);
     // As `radfarm render` shades it (cli/render_outputs.cc).
     const auto display_start = std::chrono::steady_clock::now();
-    if (solved->solution.direct_light.empty()) {
-      solved->mesh->SetSolution(solved->solution.radiosity, solved->solution.unshot);
-    } else {
-      solved->mesh->SetSolution(solved->solution.radiosity, solved->solution.unshot,
-                                {solved->solution.direct_light, solver.seed, solver.threads,
-                                 EmittersInDirectStart(solved->mesh->patch_scene(), solver),
-                                 DirectLightRaysPerLight(solved->mesh->patch_scene(), solver)});
-    }
-    const DisplayMesh display = solved->mesh->MakeDisplayMesh();
+    const PatchMesh& mesh = *solved->mesh;
+    const DisplayTopology topology = mesh.display_topology();
+    const DisplayMesh display =
+        solved->solution.direct_light.empty()
+            ? AveragedDisplay(topology, mesh.patch_scene(), solved->solution.radiosity)
+            : ShadeDisplay(
+                  {topology, mesh.patch_scene(), mesh.patch_size(), solved->solution.radiosity,
+                   solved->solution.direct_light},
+                  {solver.seed, solver.threads, EmittersInDirectStart(mesh.patch_scene(), solver),
+                   DirectLightRaysPerLight(mesh.patch_scene(), solver)})
+                  .mesh;
     row.display_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - display_start).count();
     const Camera camera = ResolveCamera(display, camera_);

@@ -39,7 +39,7 @@ struct Row {
   uint64_t patches = 0;
   uint64_t rays = 0;
   double seconds = 0;
-  // Vertex radiance and the display mesh (PatchMesh::SetSolution, MakeDisplayMesh) of the last
+  // Vertex radiance and the display mesh (display/display_stage.h) of the last
   // run, not in `seconds`: with the direct light at each vertex it casts shadow rays too.
   double display_seconds = 0;
   PatchError patch_error;

@@ -1,10 +1,10 @@
-// The whole display path (mesh, solve, SetSolution with the direct light, MakeDisplayMesh) against
-// the path-traced reference where patch averages used to fail: the ceiling just outside a lamp
-// panel hanging 2 cm under it (the slit above the panel is dark, the ceiling beside it lit), and a
-// room's corners. Averages of the patches around those points, or extrapolations from inside,
-// were 22-29% dark beside the panel; gathering points and refining where the light bends
-// (core/point_gather.h, mesh/selective_split.h) bring them to the reference. And the lit floor just
-// outside a hard shadow, whose edge a 0.25 m patch straddles.
+// The whole display path (mesh, solve, ShadeDisplay) against the path-traced reference where patch
+// averages used to fail: the ceiling just outside a lamp panel hanging 2 cm under it (the slit
+// above the panel is dark, the ceiling beside it lit), and a room's corners. Averages of the
+// patches around those points, or extrapolations from inside, were 22-29% dark beside the panel;
+// gathering points and refining where the light bends (core/point_gather.h,
+// display/selective_split.h) bring them to the reference. And the lit floor just outside a hard
+// shadow, whose edge a 0.25 m patch straddles.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -17,6 +17,7 @@
 #include "bench/reference/path_tracer.h"
 #include "bench/reference/reference_scene.h"
 #include "core/direct_light.h"
+#include "display/display_stage.h"
 #include "input/scene_loader.h"
 #include "mesh/patch_mesh.h"
 #include "solve/local_solve.h"
@@ -28,7 +29,7 @@ namespace {
 struct SolvedDisplay {
   std::unique_ptr<ReferenceScene> scene;
   std::optional<DisplayLookup> lookup;
-  PatchMesh::DisplayStats stats;
+  DisplayStats stats;
 };
 
 void SolveAndShow(const std::string& obj, double patch_size, SolvedDisplay* out) {
@@ -41,12 +42,14 @@ void SolveAndShow(const std::string& obj, double patch_size, SolvedDisplay* out)
   settings.seed = 1;
   const SolveResult solution = Solve(mesh->patch_scene(), settings);
   ASSERT_FALSE(solution.direct_light.empty());
-  mesh->SetSolution(solution.radiosity, solution.unshot,
-                    {solution.direct_light, settings.seed, 2,
-                     EmittersInDirectStart(mesh->patch_scene(), settings),
-                     DirectLightRaysPerLight(mesh->patch_scene(), settings)});
-  out->stats = mesh->display_stats();
-  const DisplayMesh display = mesh->MakeDisplayMesh();
+  const DisplayTopology topology = mesh->display_topology();
+  const Display shown =
+      ShadeDisplay({topology, mesh->patch_scene(), mesh->patch_size(), solution.radiosity,
+                    solution.direct_light},
+                   {settings.seed, 2, EmittersInDirectStart(mesh->patch_scene(), settings),
+                    DirectLightRaysPerLight(mesh->patch_scene(), settings)});
+  out->stats = shown.stats;
+  const DisplayMesh& display = shown.mesh;
   out->lookup.emplace(DisplayPly{display.positions, display.radiance, display.triangles}, 1e-3);
   auto scene = ReferenceScene::Build(*input);
   ASSERT_TRUE(scene);

@@ -70,9 +70,9 @@ TEST(ProgressTest, TheDisplaysStepsShow) {
   for (bool interactive : {true, false}) {
     const uint64_t many = ProgressReporter::kDisplayLogPoints;
     const std::string s = Written(interactive, [&](ProgressReporter& reporter) {
-      reporter.OnDisplayStep({PatchMesh::DisplayStep::kDirectLight, many, 0});
-      reporter.OnDisplayStep({PatchMesh::DisplayStep::kGathering, many - 1, 0});
-      reporter.OnDisplayStep({PatchMesh::DisplayStep::kRefining, many + 5, 2});
+      reporter.OnDisplayStep({DisplayStep::kDirectLight, many, 0});
+      reporter.OnDisplayStep({DisplayStep::kGathering, many - 1, 0});
+      reporter.OnDisplayStep({DisplayStep::kRefining, many + 5, 2});
       reporter.ClearLine();
     });
     const std::string direct = "display: direct light at " + std::to_string(many) + " points";

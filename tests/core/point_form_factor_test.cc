@@ -72,7 +72,7 @@ TEST(PointFormFactorTest, APointAtACornerOfThePatchIsFinite) {
 
 // A point on a light, in the plane of the light's other patches to rounding, facing as they do:
 // they lie in its tangent plane and send nothing, whichever side of it rounding puts their
-// corners (the light's display vertices: PatchMesh::SetSolution with the direct light).
+// corners (the light's display vertices: display/display_stage.h).
 TEST(PointFormFactorTest, APatchInTheTangentPlaneToRoundingSendsNothing) {
   // A tilted light: its plane is not axis-aligned, so points made in it round off it.
   const Vec3 o{0.3, 1.7, -0.2}, u = Normalize(Vec3{1, 0.3, 0.2}),

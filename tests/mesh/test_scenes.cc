@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "display/display_stage.h"
 #include "mesh/polygon.h"
 
 namespace radfarm::testing {
@@ -172,6 +173,11 @@ std::vector<std::string> FindCracks(const DisplayMesh& mesh, const PatchScene& s
     }
   }
   return cracks;
+}
+
+DisplayMesh AveragedOf(const PatchMesh& mesh, std::vector<Rgb> values) {
+  if (values.empty()) values.resize(mesh.patch_scene().patches.size());
+  return AveragedDisplay(mesh.display_topology(), mesh.patch_scene(), values);
 }
 
 }  // namespace radfarm::testing

@@ -9,8 +9,9 @@
 #include "core/patch_scene.h"
 #include "core/rgb.h"
 #include "core/vec3.h"
+#include "display/display_mesh.h"
 #include "input/input_scene.h"
-#include "mesh/display_mesh.h"
+#include "mesh/patch_mesh.h"
 
 namespace radfarm::testing {
 
@@ -55,5 +56,8 @@ bool Contains(const DisplayMesh& mesh, size_t t, const Vec3& p, double tol);
 // triangle of the same surface (that triangle's shading does not pass through the vertex's value).
 // One line per crack.
 std::vector<std::string> FindCracks(const DisplayMesh& mesh, const PatchScene& scene);
+// The patch triangles of `mesh` shaded with the averages of `values` (one per patch; zeros when
+// empty): display/display_stage.h's AveragedDisplay.
+DisplayMesh AveragedOf(const PatchMesh& mesh, std::vector<Rgb> values = {});
 
 }  // namespace radfarm::testing

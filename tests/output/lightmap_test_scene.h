@@ -5,8 +5,8 @@
 
 #include <vector>
 
+#include "display/display_mesh.h"
 #include "input/input_scene.h"
-#include "mesh/display_mesh.h"
 
 namespace radfarm {
 

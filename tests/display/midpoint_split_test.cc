@@ -1,5 +1,5 @@
 // SplitAtMidpoints: every display triangle cut into four, midpoints shared across edges.
-#include "mesh/midpoint_split.h"
+#include "display/midpoint_split.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "mesh/selective_split.h"
+#include "display/selective_split.h"
 
 #include "mesh/triangle_edges.h"
 

@@ -1,5 +1,5 @@
 // GouraudPatchMeans: the mean of linearly interpolated radiance over each patch's triangles.
-#include "mesh/gouraud_means.h"
+#include "display/gouraud_means.h"
 
 #include <gtest/gtest.h>
 

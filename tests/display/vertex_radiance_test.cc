@@ -6,9 +6,10 @@
 #include <map>
 #include <tuple>
 
+#include "display/display_stage.h"
 #include "mesh/border_extrapolation.h"
 #include "mesh/patch_mesh.h"
-#include "test_scenes.h"
+#include "tests/mesh/test_scenes.h"
 
 namespace radfarm {
 namespace {
@@ -19,11 +20,14 @@ std::vector<Rgb> Uniform(const PatchMesh& mesh, Rgb value) {
   return std::vector<Rgb>(mesh.patch_scene().patches.size(), value);
 }
 
+DisplayMesh Averaged(const PatchMesh& mesh, const std::vector<Rgb>& radiosity) {
+  return AveragedDisplay(mesh.display_topology(), mesh.patch_scene(), radiosity);
+}
+
 TEST(VertexRadianceTest, UniformRadianceStaysUniform) {
   Result<PatchMesh> mesh = PatchMesh::Build(testing::CornellBox(true), {40}, nullptr);
   ASSERT_TRUE(mesh.ok());
-  mesh->SetSolution(Uniform(*mesh, {0.25, 0.5, 0.75}), Uniform(*mesh, {}));
-  const DisplayMesh d = mesh->MakeDisplayMesh();
+  const DisplayMesh d = Averaged(*mesh, Uniform(*mesh, {0.25, 0.5, 0.75}));
   ASSERT_FALSE(d.positions.empty());
   ASSERT_EQ(d.positions.size(), d.radiance.size());
   ASSERT_EQ(d.triangles.size(), d.triangle_patch.size());
@@ -31,24 +35,6 @@ TEST(VertexRadianceTest, UniformRadianceStaysUniform) {
     EXPECT_NEAR(r.r, 0.25, 1e-14);
     EXPECT_NEAR(r.g, 0.5, 1e-14);
     EXPECT_NEAR(r.b, 0.75, 1e-14);
-  }
-}
-
-TEST(VertexRadianceTest, SolutionIsStoredOnTheOpenMeshFaces) {
-  Result<PatchMesh> mesh =
-      PatchMesh::Build(testing::SceneOf({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}), {0.5}, nullptr);
-  ASSERT_TRUE(mesh.ok());
-  const size_t n = mesh->patch_scene().patches.size();
-  std::vector<Rgb> b, db;
-  for (size_t i = 0; i < n; ++i) {
-    b.push_back({static_cast<double>(i), 0, 0});
-    db.push_back({0, static_cast<double>(i), 0});
-  }
-  mesh->SetSolution(b, db);
-  const OmMesh& om = mesh->mesh();
-  for (uint32_t i = 0; i < n; ++i) {
-    EXPECT_EQ(om.property(mesh->properties().radiosity, om.face_handle(i)), b[i]);
-    EXPECT_EQ(om.property(mesh->properties().unshot, om.face_handle(i)), db[i]);
   }
 }
 
@@ -63,8 +49,7 @@ TEST(VertexRadianceTest, CreaseKeepsTwoValues) {
   std::vector<Rgb> b;
   for (const Patch& p : mesh->patch_scene().patches)
     b.push_back(p.normal.y > 0.5 ? Rgb(1, 1, 1) : Rgb(3, 3, 3));
-  mesh->SetSolution(b, Uniform(*mesh, {}));
-  const DisplayMesh d = mesh->MakeDisplayMesh();
+  const DisplayMesh d = Averaged(*mesh, b);
   EXPECT_EQ(d.positions.size(), 9u + 9u);  // each surface keeps its own corner vertices
   std::map<std::tuple<double, double, double>, std::vector<double>> at_position;
   for (size_t v = 0; v < d.positions.size(); ++v) {
@@ -80,21 +65,24 @@ TEST(VertexRadianceTest, CreaseKeepsTwoValues) {
 
 Rgb Field(const Vec3& p) { return {1 + 2 * p.x + 3 * p.y, 2 - p.y, 5 + p.x}; }
 
-// Builds the scene with patch size h and gives each patch the field's value at its centre.
-std::unique_ptr<PatchMesh> WithLinearField(const InputScene& scene, double h) {
+// Builds the scene with patch size h.
+std::unique_ptr<PatchMesh> MeshOf(const InputScene& scene, double h) {
   Result<PatchMesh> built = PatchMesh::Build(scene, {h}, nullptr);
   EXPECT_TRUE(built.ok());
   if (!built.ok()) return nullptr;
-  auto mesh = std::make_unique<PatchMesh>(std::move(built).value());
+  return std::make_unique<PatchMesh>(std::move(built).value());
+}
+
+// The display of each patch given the field's value at its centre.
+DisplayMesh LinearFieldDisplay(const PatchMesh& mesh) {
   std::vector<Rgb> b;
-  for (const Patch& p : mesh->patch_scene().patches) b.push_back(Field(p.centre));
-  mesh->SetSolution(b, Uniform(*mesh, {}));
-  return mesh;
+  for (const Patch& p : mesh.patch_scene().patches) b.push_back(Field(p.centre));
+  return Averaged(mesh, b);
 }
 
 // Interpolated values along the segment x = 1, y in (0, y_max) (z = 0) agree from both sides.
 void ExpectContinuousAtXEqualsOne(const PatchMesh& mesh, double y_max) {
-  const DisplayMesh display = mesh.MakeDisplayMesh();
+  const DisplayMesh display = LinearFieldDisplay(mesh);
   for (int i = 1; i < 200; ++i) {
     const Vec3 p{1, y_max * i / 200.0, 0};
     std::vector<Rgb> left, right;
@@ -122,11 +110,11 @@ class TVertexTest : public ::testing::Test {
     s.AddMaterial("white", {0.5, 0.5, 0.5}, {1, 1, 1});
     s.AddFace({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
     s.AddFace({{1, 0, 0}, {2, -0.25, 0}, {2, 1.25, 0}, {1, 1, 0}});
-    mesh_ = WithLinearField(s.scene(), 0.5);
+    mesh_ = MeshOf(s.scene(), 0.5);
     ASSERT_NE(mesh_, nullptr);
     ASSERT_EQ(mesh_->surface_count(), 1u);
     ASSERT_EQ(mesh_->patch_scene().patches.size(), 4u + 9u);
-    display_ = mesh_->MakeDisplayMesh();
+    display_ = LinearFieldDisplay(*mesh_);
   }
 
   std::unique_ptr<PatchMesh> mesh_;
@@ -145,7 +133,7 @@ TEST(VertexRadianceTest, ShadingIsContinuousAcrossAnInputTJunction) {
   s.AddFace({{0, 0, 0}, {1, 0, 0}, {1, 2, 0}, {0, 2, 0}});
   s.AddFace({{1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}});
   s.AddFace({{1, 1, 0}, {2, 1, 0}, {1, 2, 0}});
-  const std::unique_ptr<PatchMesh> mesh = WithLinearField(s.scene(), 0.3);
+  const std::unique_ptr<PatchMesh> mesh = MeshOf(s.scene(), 0.3);
   ASSERT_NE(mesh, nullptr);
   ASSERT_EQ(mesh->surface_count(), 1u);
   ExpectContinuousAtXEqualsOne(*mesh, 2);
@@ -175,10 +163,10 @@ TEST(VertexRadianceTest, BorderVerticesContinueALinearField) {
   SceneBuilder s;
   s.AddMaterial("white", {0.5, 0.5, 0.5}, {1, 1, 1});
   s.AddFace({{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}});
-  const std::unique_ptr<PatchMesh> mesh = WithLinearField(s.scene(), 0.5);
+  const std::unique_ptr<PatchMesh> mesh = MeshOf(s.scene(), 0.5);
   ASSERT_NE(mesh, nullptr);
   ASSERT_EQ(mesh->patch_scene().patches.size(), 16u);
-  const DisplayMesh display = mesh->MakeDisplayMesh();
+  const DisplayMesh display = LinearFieldDisplay(*mesh);
   int borders = 0, corners = 0;
   for (size_t v = 0; v < display.positions.size(); ++v) {
     const Vec3& p = display.positions[v];
@@ -227,6 +215,31 @@ TEST_F(TVertexTest, PatchesWithTVerticesAreTriangulatedThroughThem) {
   // Left edge vertices: y = 1/3 and 2/3 lie on the two left patches' edges; y = 1/2 on the middle
   // right patch's edge.
   EXPECT_EQ(display_.triangles.size(), 2 * quads + 2 + 1);
+}
+
+// The topology the display reads: every patch's corners once, the three T-vertices on the shared
+// edge, and each ring its patch's corners with the T-vertices on its edges.
+TEST_F(TVertexTest, TheTopologyListsCornersAndTVertices) {
+  const DisplayTopology topology = mesh_->display_topology();
+  const std::vector<Patch>& patches = mesh_->patch_scene().patches;
+  ASSERT_EQ(topology.patch_count(), patches.size());
+  ASSERT_EQ(topology.corner_begin.size(), patches.size() + 1);
+  EXPECT_EQ(topology.vertex_count(), display_.positions.size());
+  ASSERT_EQ(topology.edge_vertices.size(), 3u);
+  std::vector<size_t> on_edges(patches.size(), 0);
+  for (const DisplayTopology::EdgeVertex& e : topology.edge_vertices) {
+    EXPECT_NEAR(topology.positions[e.vertex].x, 1, 1e-12);
+    ++on_edges[e.patch];
+  }
+  for (uint32_t f = 0; f < patches.size(); ++f) {
+    const uint32_t corners = topology.corner_begin[f + 1] - topology.corner_begin[f];
+    EXPECT_EQ(corners, uint32_t(patches[f].corner_count)) << f;
+    EXPECT_EQ(topology.rings[f].size(), corners + on_edges[f]) << f;
+    for (uint32_t c = topology.corner_begin[f]; c < topology.corner_begin[f + 1]; ++c) {
+      EXPECT_LT(Length(topology.corner_position[c] - topology.positions[topology.corner_vertex[c]]),
+                1e-9);
+    }
+  }
 }
 
 }  // namespace

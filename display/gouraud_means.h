@@ -1,13 +1,13 @@
 // What the Gouraud image shows of each patch on average: the area-weighted mean of the radiance
-// interpolated linearly over the patch's display triangles; and the step PatchMesh::SetSolution
-// takes so that it matches the patch's mean light.
+// interpolated linearly over the patch's display triangles; and the step the display
+// (display/display_stage.h) takes so that it matches the patch's mean light.
 #pragma once
 
 #include <cstddef>
 #include <vector>
 
 #include "core/rgb.h"
-#include "mesh/display_mesh.h"
+#include "display/display_mesh.h"
 
 namespace radfarm {
 

@@ -1,5 +1,5 @@
-// Vertex radiance with the direct light computed at each vertex (PatchMesh::SetSolution with
-// VertexDirectLight), against the closed form of a point under a parallel square light.
+// The display with the direct light computed at each point (ShadeDisplay), against the closed form
+// of a point under a parallel square light.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,10 +7,12 @@
 #include <numbers>
 #include <optional>
 
+#include "display/display_plan.h"
+#include "display/display_stage.h"
 #include "mesh/patch_mesh.h"
 #include "solve/local_solve.h"
-#include "test_scenes.h"
 #include "tests/core/corner_rectangle.h"
+#include "tests/mesh/test_scenes.h"
 
 namespace radfarm {
 namespace {
@@ -104,10 +106,21 @@ class VertexDirectLightTest : public ::testing::Test {
     settings.threads = 2;
     solution_ = Solve(mesh_->patch_scene(), settings);
     ASSERT_FALSE(solution_.direct_light.empty()) << "the solve starts from the direct light";
+    topology_ = mesh_->display_topology();
+  }
+
+  Display Shade(const DisplaySettings& settings, const DisplayProgress& progress = nullptr) const {
+    return ShadeDisplay({topology_, mesh_->patch_scene(), mesh_->patch_size(), solution_.radiosity,
+                         solution_.direct_light},
+                        settings, progress);
+  }
+  DisplayMesh Averaged() const {
+    return AveragedDisplay(topology_, mesh_->patch_scene(), solution_.radiosity);
   }
 
   std::optional<PatchMesh> mesh_;
   SolveResult solution_;
+  DisplayTopology topology_;
 };
 
 // The floor's image against the closed form. The display is cut at the patches' edge midpoints and
@@ -121,14 +134,12 @@ class VertexDirectLightTest : public ::testing::Test {
 // averages), worst point 0.65%; since the display refines where the direct light bends by a fifth
 // (the light's edge, the crease), 0.11%, 0.13%, 1.14%, 3.2% and 0.57%.
 TEST_F(VertexDirectLightTest, TheFloorsImageIsCloserToTheClosedFormThanExactVertexValues) {
-  mesh_->SetSolution(solution_.radiosity, solution_.unshot, {solution_.direct_light, 1, 2});
-  const DisplayMesh shown = mesh_->MakeDisplayMesh();
+  const DisplayMesh shown = Shade({1, 2}).mesh;
   const PatchScene& scene = mesh_->patch_scene();
   const double corrected = FloorImageError(shown, scene, false, 2048);
   const double split_point_values = FloorImageError(shown, scene, true, 2048);
   const double worst_point = WorstFloorVertex(shown, scene);
-  mesh_->SetSolution(solution_.radiosity, solution_.unshot);
-  const DisplayMesh patches = mesh_->MakeDisplayMesh();
+  const DisplayMesh patches = Averaged();
   const double point_values = FloorImageError(patches, scene, true, 512);
   const double averaged = FloorImageError(patches, scene, false, 512);
   EXPECT_LT(corrected, split_point_values) << corrected << " against " << split_point_values;
@@ -139,30 +150,27 @@ TEST_F(VertexDirectLightTest, TheFloorsImageIsCloserToTheClosedFormThanExactVert
 }
 
 TEST_F(VertexDirectLightTest, SameBitsWithAnyThreadCount) {
-  mesh_->SetSolution(solution_.radiosity, solution_.unshot, {solution_.direct_light, 1, 1});
-  const DisplayMesh one = mesh_->MakeDisplayMesh();
-  mesh_->SetSolution(solution_.radiosity, solution_.unshot, {solution_.direct_light, 1, 3});
-  const DisplayMesh three = mesh_->MakeDisplayMesh();
+  const DisplayMesh one = Shade({1, 1}).mesh;
+  const DisplayMesh three = Shade({1, 3}).mesh;
   ASSERT_EQ(one.radiance.size(), three.radiance.size());
   for (size_t v = 0; v < one.radiance.size(); ++v) EXPECT_EQ(one.radiance[v], three.radiance[v]);
 }
 
-// The display tells each step as it starts, with the counts display_stats() then reports: the
+// The display tells each step as it starts, with the counts its stats then report: the
 // direct light at every point before refinement, the gathering points, and each level's added
 // points, levels in order.
 TEST_F(VertexDirectLightTest, TheDisplayTellsItsStepsWithTheirPoints) {
-  std::vector<PatchMesh::DisplayStep> steps;
-  mesh_->SetSolution(solution_.radiosity, solution_.unshot, {solution_.direct_light, 1, 2},
-                     [&](const PatchMesh::DisplayStep& step) { steps.push_back(step); });
-  const PatchMesh::DisplayStats& stats = mesh_->display_stats();
+  std::vector<DisplayStep> steps;
+  const DisplayStats stats =
+      Shade({1, 2}, [&](const DisplayStep& step) { steps.push_back(step); }).stats;
   ASSERT_GE(steps.size(), 3u) << "this floor's light bends: the display refines";
-  EXPECT_EQ(steps[0].kind, PatchMesh::DisplayStep::kDirectLight);
+  EXPECT_EQ(steps[0].kind, DisplayStep::kDirectLight);
   EXPECT_EQ(steps[0].points, stats.points - stats.added);
-  EXPECT_EQ(steps[1].kind, PatchMesh::DisplayStep::kGathering);
+  EXPECT_EQ(steps[1].kind, DisplayStep::kGathering);
   EXPECT_LE(steps[1].points, stats.gathered);  // refined points between gathering ones gather too
   uint64_t added = 0;
   for (size_t i = 2; i < steps.size(); ++i) {
-    EXPECT_EQ(steps[i].kind, PatchMesh::DisplayStep::kRefining);
+    EXPECT_EQ(steps[i].kind, DisplayStep::kRefining);
     EXPECT_EQ(steps[i].level, int(i - 1));
     added += steps[i].points;
   }
@@ -172,8 +180,7 @@ TEST_F(VertexDirectLightTest, TheDisplayTellsItsStepsWithTheirPoints) {
 
 // The light's own vertices show its emission: it receives nothing and reflects nothing.
 TEST_F(VertexDirectLightTest, EmittersShowTheirEmission) {
-  mesh_->SetSolution(solution_.radiosity, solution_.unshot, {solution_.direct_light, 1, 2});
-  const DisplayMesh d = mesh_->MakeDisplayMesh();
+  const DisplayMesh d = Shade({1, 2}).mesh;
   const PatchScene& scene = mesh_->patch_scene();
   size_t lit = 0;
   for (size_t t = 0; t < d.triangles.size(); ++t) {
@@ -192,40 +199,78 @@ TEST_F(VertexDirectLightTest, EmittersShowTheirEmission) {
 // at every point leaves the patches' averages.
 TEST_F(VertexDirectLightTest, ARayAllowanceBoundsTheDisplaysRays) {
   const PatchScene& scene = mesh_->patch_scene();
-  const std::vector<Rgb>& direct = solution_.direct_light;
-  mesh_->SetSolution(solution_.radiosity, solution_.unshot, {direct, 1, 2});
-  const PatchMesh::DisplayStats full = mesh_->display_stats();
-  const double full_error = FloorImageError(mesh_->MakeDisplayMesh(), scene, false, 2048);
-  EXPECT_GT(full.rays, 0u);
-  EXPECT_EQ(full.gather_rays, kPointGatherRays);
-  EXPECT_GE(full.levels, 1);
-  EXPECT_FALSE(full.averaged);
-  for (const uint64_t allowance : {full.rays / 2, full.rays / 6}) {
-    PatchMesh::VertexDirectLight budgeted{direct, 1, 2};
+  const Display full = Shade({1, 2});
+  const double full_error = FloorImageError(full.mesh, scene, false, 2048);
+  EXPECT_GT(full.stats.rays, 0u);
+  EXPECT_EQ(full.stats.gather_rays, kPointGatherRays);
+  EXPECT_GE(full.stats.levels, 1);
+  EXPECT_FALSE(full.stats.averaged);
+  for (const uint64_t allowance : {full.stats.rays / 2, full.stats.rays / 6}) {
+    DisplaySettings budgeted{1, 2};
     budgeted.ray_allowance = allowance;
-    mesh_->SetSolution(solution_.radiosity, solution_.unshot, budgeted);
-    const PatchMesh::DisplayStats stats = mesh_->display_stats();
-    const DisplayMesh shown = mesh_->MakeDisplayMesh();
+    const Display shown = Shade(budgeted);
+    const DisplayStats& stats = shown.stats;
     EXPECT_LE(stats.rays, allowance) << stats.rays_per_light << " " << stats.gather_rays;
     EXPECT_FALSE(stats.averaged);
-    EXPECT_TRUE(stats.gather_rays < full.gather_rays || stats.levels < full.levels ||
+    EXPECT_TRUE(stats.gather_rays < full.stats.gather_rays || stats.levels < full.stats.levels ||
                 stats.rays_per_light > 0)
         << allowance;
-    const double error = FloorImageError(shown, scene, false, 2048);
+    const double error = FloorImageError(shown.mesh, scene, false, 2048);
     EXPECT_LT(error, 3 * full_error + 0.005)
         << allowance << ": " << error << " against " << full_error;
     budgeted.threads = 1;
-    mesh_->SetSolution(solution_.radiosity, solution_.unshot, budgeted);
-    EXPECT_EQ(mesh_->display_stats().rays, stats.rays);
-    EXPECT_EQ(mesh_->MakeDisplayMesh().radiance, shown.radiance) << allowance;
+    const Display again = Shade(budgeted);
+    EXPECT_EQ(again.stats.rays, stats.rays);
+    EXPECT_EQ(again.mesh.radiance, shown.mesh.radiance) << allowance;
   }
-  PatchMesh::VertexDirectLight tiny{direct, 1, 2};
+  DisplaySettings tiny{1, 2};
   tiny.ray_allowance = 10;
-  mesh_->SetSolution(solution_.radiosity, solution_.unshot, tiny);
-  EXPECT_TRUE(mesh_->display_stats().averaged);
-  const DisplayMesh averaged = mesh_->MakeDisplayMesh();
-  mesh_->SetSolution(solution_.radiosity, solution_.unshot);
-  EXPECT_EQ(averaged.radiance, mesh_->MakeDisplayMesh().radiance);
+  const Display averaged = Shade(tiny);
+  EXPECT_TRUE(averaged.stats.averaged);
+  EXPECT_EQ(averaged.mesh.radiance, Averaged().radiance);
+}
+
+// The display's ray work traced in pieces of any size, on any threads (as agents would trace it),
+// gives the bits of the display traced at once: the rounds' contract.
+TEST_F(VertexDirectLightTest, WorkTracedInPiecesGivesTheSameDisplay) {
+  const DisplaySettings settings{1, 2};
+  const Display whole = Shade(settings);
+  ASSERT_GT(whole.stats.levels, 0) << "the floor's light bends: the plan has levels of work";
+  for (const size_t piece : {size_t{1}, size_t{7}, size_t{1000}}) {
+    DisplayPlan plan({topology_, mesh_->patch_scene(), mesh_->patch_size(), solution_.radiosity,
+                      solution_.direct_light},
+                     settings);
+    int works = 0;
+    while (const PointWork* work = plan.work()) {
+      PointValues values;
+      for (size_t begin = 0; begin < work->points.size(); begin += piece) {
+        const size_t end = std::min(work->points.size(), begin + piece);
+        AppendPointValues(TracePoints(plan.lights(), *work, begin, end, 1 + begin % 3), &values);
+      }
+      plan.Apply(std::move(values));
+      ++works;
+    }
+    EXPECT_EQ(works, 2 + whole.stats.levels) << piece;
+    const Display pieced = std::move(plan).Finish();
+    EXPECT_EQ(pieced.mesh.positions, whole.mesh.positions) << piece;
+    EXPECT_EQ(pieced.mesh.triangles, whole.mesh.triangles) << piece;
+    EXPECT_EQ(pieced.mesh.radiance, whole.mesh.radiance) << piece;
+    EXPECT_EQ(pieced.stats.rays, whole.stats.rays) << piece;
+    EXPECT_EQ(pieced.stats.added, whole.stats.added) << piece;
+    EXPECT_EQ(pieced.stats.gathered, whole.stats.gathered) << piece;
+  }
+}
+
+// Values that do not match the work (a lost piece) are refused, never shaded.
+TEST_F(VertexDirectLightTest, APlanRefusesValuesOfTheWrongLength) {
+  DisplayPlan plan({topology_, mesh_->patch_scene(), mesh_->patch_size(), solution_.radiosity,
+                    solution_.direct_light},
+                   {1, 2});
+  const PointWork* work = plan.work();
+  ASSERT_NE(work, nullptr);
+  ASSERT_GT(work->points.size(), 1u);
+  PointValues short_values = TracePoints(plan.lights(), *work, 0, work->points.size() - 1, 1);
+  EXPECT_DEATH(plan.Apply(std::move(short_values)), "values for");
 }
 
 }  // namespace

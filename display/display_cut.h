@@ -1,4 +1,4 @@
-// When the display cuts a triangle where the light bends (patch_mesh_display.cc): the contrast
+// When the display cuts a triangle where the light bends (display/light_bends.h): the contrast
 // between its corners' light above which it is cut into four.
 #pragma once
 

@@ -1,4 +1,4 @@
-#include "mesh/display_ray_plan.h"
+#include "display/display_ray_plan.h"
 
 #include <algorithm>
 

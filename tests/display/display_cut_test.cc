@@ -1,5 +1,5 @@
 // The display's cut threshold: slivers between gathered corners are cut at half the contrast.
-#include "mesh/display_cut.h"
+#include "display/display_cut.h"
 
 #include <gtest/gtest.h>
 

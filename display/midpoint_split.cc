@@ -1,4 +1,4 @@
-#include "mesh/midpoint_split.h"
+#include "display/midpoint_split.h"
 
 #include "mesh/triangle_edges.h"
 

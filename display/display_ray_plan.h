@@ -1,5 +1,5 @@
-// How the display (PatchMesh::SetSolution with the direct light, patch_mesh_display.cc) fits its
-// rays into an allowance (VertexDirectLight::ray_allowance, a share of the job's budget:
+// How the display (ShadeDisplay, display/display_stage.h) fits its
+// rays into an allowance (DisplaySettings::ray_allowance, a share of the job's budget:
 // core/display_budget.h). What the rays will cost is counted, not timed: a probe at a fixed,
 // evenly spread sample of the points casts their rays and counts them (and its rays count against
 // the allowance too), so the plan is a pure function of the mesh, the solution and the settings,

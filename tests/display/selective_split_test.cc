@@ -1,5 +1,5 @@
 // SplitMarked: the marked triangles cut into four, their neighbours cut as conformity needs.
-#include "mesh/selective_split.h"
+#include "display/selective_split.h"
 
 #include <gtest/gtest.h>
 
@@ -30,9 +30,8 @@ std::map<uint32_t, double> PatchAreas(const DisplayMesh& d) {
   std::map<uint32_t, double> areas;
   for (size_t t = 0; t < d.triangles.size(); ++t) {
     const auto& v = d.triangles[t];
-    areas[d.triangle_patch[t]] += 0.5 * Cross(d.positions[v[1]] - d.positions[v[0]],
-                                              d.positions[v[2]] - d.positions[v[0]])
-                                            .z;
+    areas[d.triangle_patch[t]] +=
+        0.5 * Cross(d.positions[v[1]] - d.positions[v[0]], d.positions[v[2]] - d.positions[v[0]]).z;
   }
   return areas;
 }

@@ -1,14 +1,14 @@
 // A display mesh with every triangle cut into four at its edge midpoints, so the display can show
-// light at twice the solution's resolution (PatchMesh::SetSolution computes the direct light at
-// each midpoint). A midpoint is shared by the triangles on both sides of its edge, so a conforming
-// display stays conforming: no crack opens where a coarse edge was.
+// light at twice the solution's resolution (the display, display/display_stage.h, computes the
+// direct light at each midpoint). A midpoint is shared by the triangles on both sides of its edge,
+// so a conforming display stays conforming: no crack opens where a coarse edge was.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <vector>
 
-#include "mesh/display_mesh.h"
+#include "display/display_mesh.h"
 
 namespace radfarm {
 

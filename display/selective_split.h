@@ -1,5 +1,5 @@
 // A display mesh with chosen triangles cut into four at their edge midpoints, where the light bends
-// faster than the display's spacing (PatchMesh::SetSolution: the ceiling just outside a hanging
+// faster than the display's spacing (display/display_stage.h: the ceiling just outside a hanging
 // lamp's outline, whose light rises within a few centimetres). A triangle beside a cut one that has
 // one cut edge is cut in two through that edge's midpoint; one with two or three is cut into four
 // as well. So the display stays conforming: no crack opens along a cut edge.
@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "mesh/display_mesh.h"
+#include "display/display_mesh.h"
 
 namespace radfarm {
 

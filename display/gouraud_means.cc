@@ -1,4 +1,4 @@
-#include "mesh/gouraud_means.h"
+#include "display/gouraud_means.h"
 
 #include <algorithm>
 #include <array>

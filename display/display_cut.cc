@@ -1,4 +1,4 @@
-#include "mesh/display_cut.h"
+#include "display/display_cut.h"
 
 #include <cmath>
 

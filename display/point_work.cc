@@ -1,0 +1,37 @@
+#include "display/point_work.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace radfarm {
+
+PointValues TracePoints(const PointLights& lights, const PointWork& work, size_t begin, size_t end,
+                        unsigned threads) {
+  if (begin > end || end > work.points.size()) {
+    std::fprintf(stderr, "TracePoints: points [%zu, %zu) of %zu\n", begin, end, work.points.size());
+    std::abort();
+  }
+  const std::vector<ReceiverPoint> points(work.points.begin() + begin, work.points.begin() + end);
+  PointValues out;
+  if (work.near_radius > 0) {
+    out.near = NearOtherSurfaces(lights.scene, lights.caster, points, work.near_radius, threads);
+  }
+  if (!work.gather.empty()) {
+    const std::vector<bool> gather(work.gather.begin() + begin, work.gather.begin() + end);
+    out.gathered = GatherLight(lights.caster, *lights.outgoing, points, gather, work.seed, threads,
+                               work.gather_rays, lights.corners, lights.second, &out.rays, begin);
+  }
+  if (work.direct) {
+    out.direct = PointsDirectLight(*lights.direct, points, work.seed, threads, &out.rays, begin);
+  }
+  return out;
+}
+
+void AppendPointValues(PointValues piece, PointValues* whole) {
+  whole->near.insert(whole->near.end(), piece.near.begin(), piece.near.end());
+  whole->direct.insert(whole->direct.end(), piece.direct.begin(), piece.direct.end());
+  whole->gathered.insert(whole->gathered.end(), piece.gathered.begin(), piece.gathered.end());
+  whole->rays += piece.rays;
+}
+
+}  // namespace radfarm

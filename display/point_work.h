@@ -1,0 +1,59 @@
+// The display's ray work: the light at a list of points, planned by the display
+// (display/display_plan.h) and traced anywhere, on this machine's threads or elsewhere, in pieces
+// of any size. A point's values are a pure function of the work, the lights it is traced against
+// and the point's index in the work's list, so the values of every piece put together are the
+// bits of the whole list traced at once: the contract the rounds' batches keep.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/direct_light.h"
+#include "core/point_gather.h"
+#include "core/ray_caster.h"
+#include "core/rgb.h"
+
+namespace radfarm {
+
+struct PointWork {
+  std::vector<ReceiverPoint> points;
+  uint64_t seed = 0;  // keys the shadow and gathering rays of point i with i
+  // Whether each point lies within near_radius of another surface (a point query, no ray;
+  // core/point_gather.h's NearOtherSurfaces); 0: not asked.
+  double near_radius = 0;
+  // The direct light at every point (core/direct_light.h's PointsDirectLight).
+  bool direct = false;
+  // The points that gather (GatherLight), with gather_rays each; empty: none.
+  std::vector<bool> gather;
+  uint32_t gather_rays = 0;
+};
+
+// The values of points [begin, end) of a PointWork, in order; an empty vector where the work did
+// not ask for it.
+struct PointValues {
+  std::vector<bool> near;
+  std::vector<Rgb> direct;
+  std::vector<Rgb> gathered;
+  uint64_t rays = 0;  // shadow and gathering rays cast, second bounces included
+};
+
+// What the points are traced against: the display's lights, the same for all its work. All must
+// outlive the tracing.
+struct PointLights {
+  const PatchScene& scene;
+  const RayCaster& caster;
+  const DirectLight* direct = nullptr;         // for work with `direct`
+  const std::vector<Rgb>* outgoing = nullptr;  // for work that gathers: GatherLight's arguments
+  const PatchCornerOffsets* corners = nullptr;
+  const SecondBounce* second = nullptr;
+};
+
+// Traces points [begin, end) of `work` on `threads` (0: all cores).
+PointValues TracePoints(const PointLights& lights, const PointWork& work, size_t begin, size_t end,
+                        unsigned threads);
+
+// Appends `piece`, the values of the points that follow those in `*whole`, to `*whole`.
+void AppendPointValues(PointValues piece, PointValues* whole);
+
+}  // namespace radfarm
