@@ -34,6 +34,99 @@ void PrintCheckpoints(RenderState& state) {
   std::fflush(stdout);
 }
 
+// The mesh the solve runs on: its patches, their sizes, the sampler and seed.
+void PrintMeshSummary(const Job& job, const PatchMesh& mesh, double seconds) {
+  char sizes[96];
+  if (mesh.patch_size_min() == mesh.patch_size_max()) {
+    std::snprintf(sizes, sizeof sizes, "target size %g", mesh.patch_size());
+  } else {  // automatic, per face
+    std::snprintf(sizes, sizeof sizes, "target size %g to %g, median %g", mesh.patch_size_min(),
+                  mesh.patch_size_max(), mesh.patch_size());
+  }
+  std::printf("%s: %zu patches (%s%s), sampler %s, seed %llu; read and meshed in %.1f s\n",
+              job.scene_path.c_str(), mesh.patch_scene().patches.size(), sizes,
+              job.refine.enabled ? ", adaptive" : "",
+              std::string(SamplerName(job.solver.sampler)).c_str(),
+              static_cast<unsigned long long>(job.solver.seed), seconds);
+}
+
+// A time budget spent before any round: not an error, but not what a budget is for.
+void WarnOfNoRound(const Job& job, const PatchScene& scene) {
+  char note[320];
+  std::snprintf(note, sizeof note,
+                "warning: --seconds %g left no time for a round (%.1f s kept for the display and "
+                "the outputs of %zu patches): the outputs hold the direct light, no bounced "
+                "light; allow more seconds",
+                job.solver.max_seconds, AfterSolveSeconds(scene, job.solver), scene.patches.size());
+  PrintMessages({note});
+}
+
+// What the display did, when it was worth waiting for or a budget cut it.
+void PrintDisplaySummary(const DisplayStats& d, const SolverSettings& solver) {
+  if (d.averaged) {
+    std::printf("display: the patches' averages (the budget left no shadow rays for its points)\n");
+    return;
+  }
+  if (d.seconds < 0.5) return;
+  std::printf(
+      "display: %llu points, %llu gathering their own light near other surfaces, %llu "
+      "added where it bends, %.1f M rays, in %.1f s\n",
+      static_cast<unsigned long long>(d.points), static_cast<unsigned long long>(d.gathered),
+      static_cast<unsigned long long>(d.added), d.rays / 1e6, d.seconds);
+  if (const uint64_t allowance = DisplayRayAllowance(solver); allowance > 0) {
+    char per_light[48] = "every light patch sampled";
+    if (d.rays_per_light > 0) {
+      std::snprintf(per_light, sizeof per_light, "%u shadow rays per light", d.rays_per_light);
+    }
+    std::printf(
+        "display within its share of the budget (%.1f M rays): %s, %u gathering rays per "
+        "point, %d of %d levels where the light bends\n",
+        allowance / 1e6, per_light, d.gather_rays, d.levels, kDisplayRefineLevels);
+  }
+}
+
+// The solve's closing line.
+void PrintSolveSummary(const SolveStats& st, const std::string& out_dir) {
+  char shadow[64] = "";
+  if (st.start_rays > 0) {  // spent from the same ray budget
+    std::snprintf(shadow, sizeof shadow, " (and %llu shadow rays of the direct light)",
+                  static_cast<unsigned long long>(st.start_rays));
+  }
+  std::printf("%s after %llu %s: unshot %.4f%%, %llu rays%s in %.2f s (%.2f Mrays/s); wrote %s\n",
+              st.stop_reason.c_str(), static_cast<unsigned long long>(st.rounds),
+              st.rounds == 1 ? "round" : "rounds", 100 * st.unshot_fraction,
+              static_cast<unsigned long long>(st.rays), shadow, st.seconds,
+              st.rays_per_second / 1e6, out_dir.c_str());
+}
+
+// With --db: the solve resumes where the state's rounds end, and each round is saved (the first
+// failure kept in *save_status). `state` and `save_status` must outlive the solve.
+void KeepRounds(const RenderOptions& options, RenderState* state, Status* save_status,
+                RefiningHooks* hooks) {
+  hooks->resume = state->resume();
+  if (hooks->resume && !options.quiet) {
+    std::printf("%s: continuing job %lld after round %u (%llu rays done)\n", options.db.c_str(),
+                static_cast<long long>(state->job_id()), hooks->resume->round,
+                static_cast<unsigned long long>(hooks->resume->totals.rays));
+  }
+  hooks->after_round = [&options, state, save_status](const SolveState& c) {
+    if (save_status->ok()) *save_status = state->SaveRound(c);
+    if (!options.quiet) PrintCheckpoints(*state);
+  };
+}
+
+// The rounds on `reporter`, and the direct light's time when it was worth waiting for.
+void ReportProgress(bool announce, ProgressReporter* reporter, RefiningHooks* hooks) {
+  hooks->during_round = [reporter](const RoundRunning& r) { reporter->OnRoundRunning(r); };
+  hooks->after_start = [announce](double seconds, uint64_t shadow_rays) {
+    if (announce) std::printf("\r\033[K");
+    if (seconds >= 0.5) {
+      std::printf("direct light in %.1f s (%.1f M shadow rays)\n", seconds, shadow_rays / 1e6);
+    }
+    std::fflush(stdout);
+  };
+}
+
 }  // namespace
 
 CLI::App* AddRenderCommand(CLI::App& app, RenderOptions* options) {
@@ -85,21 +178,7 @@ int RunRender(const RenderOptions& options) {
   }
 
   if (!options.quiet) {
-    const PatchMesh& mesh = loaded->mesh;
-    char sizes[96];
-    if (mesh.patch_size_min() == mesh.patch_size_max()) {
-      std::snprintf(sizes, sizeof sizes, "target size %g", mesh.patch_size());
-    } else {  // automatic, per face
-      std::snprintf(sizes, sizeof sizes, "target size %g to %g, median %g", mesh.patch_size_min(),
-                    mesh.patch_size_max(), mesh.patch_size());
-    }
-    std::printf(
-        "%s: %zu patches (%s%s), sampler %s, seed %llu; read and meshed in "
-        "%.1f s\n",
-        job.scene_path.c_str(), mesh.patch_scene().patches.size(), sizes,
-        job.refine.enabled ? ", adaptive" : "",
-        std::string(SamplerName(job.solver.sampler)).c_str(),
-        static_cast<unsigned long long>(job.solver.seed), seconds_since_start());
+    PrintMeshSummary(job, loaded->mesh, seconds_since_start());
     if (announce) std::printf("direct light ...");
     std::fflush(stdout);
   }
@@ -113,29 +192,10 @@ int RunRender(const RenderOptions& options) {
       return kExitFailure;
     }
     state.emplace(std::move(*opened));
-    hooks.resume = state->resume();
-    if (hooks.resume && !options.quiet) {
-      std::printf("%s: continuing job %lld after round %u (%llu rays done)\n", options.db.c_str(),
-                  static_cast<long long>(state->job_id()), hooks.resume->round,
-                  static_cast<unsigned long long>(hooks.resume->totals.rays));
-    }
-    hooks.after_round = [&](const SolveState& c) {
-      if (save_status.ok()) save_status = state->SaveRound(c);
-      if (!options.quiet) PrintCheckpoints(*state);
-    };
+    KeepRounds(options, &*state, &save_status, &hooks);
   }
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
-  if (!options.quiet) {
-    hooks.during_round = [&](const RoundRunning& r) { reporter.OnRoundRunning(r); };
-    hooks.after_start = [announce](double seconds, uint64_t shadow_rays) {
-      if (announce) std::printf("\r\033[K");
-      // Most scenes start in a blink; say it when it was worth waiting for.
-      if (seconds >= 0.5) {
-        std::printf("direct light in %.1f s (%.1f M shadow rays)\n", seconds, shadow_rays / 1e6);
-      }
-      std::fflush(stdout);
-    };
-  }
+  if (!options.quiet) ReportProgress(announce, &reporter, &hooks);
   hooks.seconds_spent_before = seconds_since_start();
   Result<RefiningSolveResult> solved = Error{"not solved"};
   try {
@@ -168,15 +228,7 @@ int RunRender(const RenderOptions& options) {
   PatchMesh& mesh = *solved->mesh;
   const SolveResult& solution = solved->solution;
   if (solution.stats.rounds == 0 && solution.stats.stop_reason == kStopTimeBudget) {
-    // Not an error, but not what a budget is for: say what took the time.
-    char note[320];
-    std::snprintf(note, sizeof note,
-                  "warning: --seconds %g left no time for a round (%.1f s kept for the display and "
-                  "the outputs of %zu patches): the outputs hold the direct light, no bounced "
-                  "light; allow more seconds",
-                  job.solver.max_seconds, AfterSolveSeconds(mesh.patch_scene(), job.solver),
-                  mesh.patch_scene().patches.size());
-    PrintMessages({note});
+    WarnOfNoRound(job, mesh.patch_scene());
   }
   const uint64_t patches_before = job.refine.enabled ? solved->patches_before : 0;
   std::vector<std::string> output_warnings;
@@ -194,37 +246,9 @@ int RunRender(const RenderOptions& options) {
     PrintError(s.error());
     return kExitFailure;
   }
-  if (const DisplayStats& d = display.stats; !options.quiet && d.averaged) {
-    std::printf("display: the patches' averages (the budget left no shadow rays for its points)\n");
-  } else if (!options.quiet && d.seconds >= 0.5) {
-    std::printf(
-        "display: %llu points, %llu gathering their own light near other surfaces, %llu "
-        "added where it bends, %.1f M rays, in %.1f s\n",
-        static_cast<unsigned long long>(d.points), static_cast<unsigned long long>(d.gathered),
-        static_cast<unsigned long long>(d.added), d.rays / 1e6, d.seconds);
-    if (const uint64_t allowance = DisplayRayAllowance(job.solver); allowance > 0) {
-      char per_light[48] = "every light patch sampled";
-      if (d.rays_per_light > 0) {
-        std::snprintf(per_light, sizeof per_light, "%u shadow rays per light", d.rays_per_light);
-      }
-      std::printf(
-          "display within its share of the budget (%.1f M rays): %s, %u gathering rays per "
-          "point, %d of %d levels where the light bends\n",
-          allowance / 1e6, per_light, d.gather_rays, d.levels, kDisplayRefineLevels);
-    }
-  }
   if (!options.quiet) {
-    const SolveStats& st = solution.stats;
-    char shadow[64] = "";
-    if (st.start_rays > 0) {  // spent from the same ray budget
-      std::snprintf(shadow, sizeof shadow, " (and %llu shadow rays of the direct light)",
-                    static_cast<unsigned long long>(st.start_rays));
-    }
-    std::printf("%s after %llu %s: unshot %.4f%%, %llu rays%s in %.2f s (%.2f Mrays/s); wrote %s\n",
-                st.stop_reason.c_str(), static_cast<unsigned long long>(st.rounds),
-                st.rounds == 1 ? "round" : "rounds", 100 * st.unshot_fraction,
-                static_cast<unsigned long long>(st.rays), shadow, st.seconds,
-                st.rays_per_second / 1e6, options.out_dir.c_str());
+    PrintDisplaySummary(display.stats, job.solver);
+    PrintSolveSummary(solution.stats, options.out_dir);
   }
   return kExitOk;
 }
