@@ -130,9 +130,9 @@ inline constexpr uint32_t kMinCappedLightRays = 16;
 // at kStartShadowRaysPerSecond. The shadow rays count against max_rays (the solver's
 // start_rays()); the seconds count as any other.
 inline constexpr uint64_t kStartBudgetShare = 4;
-// The shadow-ray rate the start is planned at under a time budget: about a third of what two
-// cores of a 2020s desktop cast (10 M/s on the Cornell box at 88,750 patches), so that a time
-// budget plans the same start on every machine and a slow one still keeps it to a small share.
+// The shadow-ray rate the start is planned at under a time budget: a fraction of what two cores of
+// a desktop cast, so that a time budget plans the same start on every machine and a slow one still
+// keeps it to a small share.
 inline constexpr double kStartShadowRaysPerSecond = 4e6;
 
 // Whether a solve with these settings starts from the emitter patches' direct light rather than

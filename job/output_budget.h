@@ -23,11 +23,10 @@ inline constexpr uint64_t kImageBytesPerPixel = 80;
 uint64_t EstimatedImageBytes(const Camera& camera);
 
 // lit.glb (output/lit_glb_writer.h) per patch, with headroom: 24 bytes per vertex (position and
-// COLOR_0) and 12 per triangle; the densest display (cut at its midpoints when the final gather
-// is on) measured 171 bytes per patch on the Cornell box (3,849 patches, 661,256 bytes), a room
-// without the gather 54. Its writer keeps 12 bytes per vertex and 4 per triangle besides the
-// display mesh, inside kSolveBytesPerPatch (mesh/memory_estimate.h): `radfarm render` of a 3x3
-// `radfarm building` (15,309 patches) peaked at 86.4 MB with lit.glb, 85.3 MB without.
+// COLOR_0) and 12 per triangle, over the densest display measured (cut at its midpoints when the
+// final gather is on). Its writer keeps 12 bytes per vertex and 4 per triangle besides the display
+// mesh, inside kSolveBytesPerPatch (mesh/memory_estimate.h): lit.glb adds little to a render's
+// peak.
 inline constexpr uint64_t kLitGlbBytesPerPatch = 256;
 // So at the patch limit lit.glb stays well inside glTF's 32-bit binary container, and no job is
 // refused for it before solving; WriteLitGlb checks the exact size before it writes (a display
