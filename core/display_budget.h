@@ -1,4 +1,4 @@
-// A budget holds to the last output (issue 21): under --rays or --seconds the display, the direct
+// A budget holds to the last output: under --rays or --seconds the display, the direct
 // and gathered light at the display's own points (PatchMesh::SetSolution, after the solve, where
 // the outputs are written: `radfarm render` and `radfarm fetch`), gets a share of the budget, and
 // the solve keeps the rest. The display's plan is a pure function of the job's settings and the

@@ -1,5 +1,5 @@
 // A bounding volume hierarchy over lights, so that a point's direct light costs about kLightCut
-// light evaluations however many lights there are (issue 21). DirectLight (core/direct_light.h)
+// light evaluations however many lights there are. DirectLight (core/direct_light.h)
 // uses it above kExactLights lights; below, it sums every light as it always did.
 //
 // Each node bounds, for any receiving point x with unit normal n, the unoccluded irradiance all

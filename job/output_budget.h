@@ -1,7 +1,7 @@
 // What the image a job asks for costs, checked before anything is meshed or solved: a
-// 16384 x 16384 image at 1024 samples per pixel was accepted and grew past 14 GB with no progress
-// (issue 20, F6). Memory grows with the pixels (RenderImage keeps the image and at least one
-// stratum of depth and colour, then the PNG and EXR rows); time with pixels x samples, since every
+// 16384 x 16384 image at 1024 samples per pixel would grow past 14 GB with no progress. Memory
+// grows with the pixels (RenderImage keeps the image and at least one stratum of depth and
+// colour, then the PNG and EXR rows); time with pixels x samples, since every
 // sample of the n x n grid is a pass over the display mesh.
 #pragma once
 
