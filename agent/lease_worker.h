@@ -107,8 +107,7 @@ class LeaseWorker {
 
   // One lease frame's batches (LeaseBook ids), answered together, except that results filling a
   // frame go out as soon as they are done: a big scene's long batches have results of hundreds
-  // of KB, which held for a whole lease piled up in the agent's memory (15 MB at 424,518
-  // patches, 5 % of its budget).
+  // of KB, which held for a whole lease would pile up in the agent's memory.
   struct Group {
     uint64_t job_id = 0;
     std::vector<uint64_t> ids;

@@ -33,7 +33,7 @@ namespace {
 // on a small machine, and the samplers compare the same way.
 constexpr double kCornellPatchSize = 50;
 constexpr double kSeedRoomPatchSize = 0.5;
-// The ray loop's big scene: the Cornell box at 5 mm, about 10^5 patches (issue 17's size).
+// The ray loop's big scene: the Cornell box at 5 mm, about 10^5 patches.
 constexpr double kBigCornellPatchSize = 5;
 // Its rays: a fixed shot_rays keeps the stored rays of its first 3 rounds near the small box's
 // (the automatic 1024 rays per patch would store 10^8 rays), in batches of a few rays from round 1

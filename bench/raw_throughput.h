@@ -2,7 +2,7 @@
 // The rays of the first rounds of a solve are generated once, stored as RTCRayHit exactly as
 // RayCaster would hand them to Embree, and then traced on the same threads:
 //   raw:    a bare rtcIntersect1 loop over the stored rays, one contiguous chunk per thread (the
-//           yardstick of issue 17: the solver's loop should reach 90% of it);
+//           yardstick: the solver's loop should come close to it);
 //   packet: the same stored rays as packets of 16 consecutive rays (rtcIntersect16, converted to
 //           Embree's packet layout untimed): what Embree's packet query alone gives on these rays;
 //   runner: BatchTracer::RunMany over the same batches, the same chunks per thread (ray

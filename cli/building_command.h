@@ -24,9 +24,8 @@ struct BuildingOptions {
   bool windows = false;
   bool no_furniture = false;
   double patch_size = 0.25;  // written to the job file; 0: automatic
-  // Written to the job file; 0: no refinement. Refined, the 2x2 building's display p95 error is
-  // 1.64-1.89 % against 1.98-2.61 % uniform, for twice the render time (three sets of reference
-  // points, docs/BENCHMARKS-accuracy.md).
+  // Written to the job file; 0: no refinement. Refinement lowers the building's display error
+  // against uniform patches, for about twice the render time (docs/BENCHMARKS-accuracy.md).
   double refine_tolerance = 0.05;
 };
 

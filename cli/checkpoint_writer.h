@@ -1,7 +1,6 @@
 // CheckpointWriter: `radfarm render --db` writes its rounds and checkpoints on a thread of its own
-// while the next round runs. At 10^6 patches a checkpoint is 50 MB and took 0.5-1.2 s on the
-// render's thread, as long as a short round (issue 21); here the render waits only for the copy of
-// the state it hands over.
+// while the next round runs. A big scene's checkpoint takes as long to write as a short round;
+// here the render waits only for the copy of the state it hands over.
 //
 // Threads and ownership: the writer borrows the JobStore, which only its thread touches from
 // Submit to Drain (or the destructor); the caller touches it again only after Drain. Submit and

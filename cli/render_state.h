@@ -82,7 +82,7 @@ class RenderState {
   std::optional<std::string> unsaved_scene_hash_;
   std::shared_ptr<Reports> reports_;
   // Which rounds write a checkpoint: one is written once the render has run 20 times as long as
-  // the last took to write (at 10^6 patches 0.5-1.2 s on the writer, which shares the CPUs).
+  // the last took to write (the writer shares the CPUs with the render).
   store::CheckpointPacer pacer_{0, store::kDefaultCheckpointTimeShare};
   std::unique_ptr<CheckpointWriter> writer_;  // after store_: it goes first
 };

@@ -10,7 +10,7 @@
 // Punctual lights (PatchScene::lights, core/punctual_light.h) add their closed-form irradiance
 // times one shadow ray each.
 //
-// Many lights (issue 21): above kExactLights emitter lights (or point and spot lights), a
+// Many lights: above kExactLights emitter lights (or point and spot lights), a
 // LightTree (core/light_tree.h) picks about kLightCut of them per point, the strong ones exactly
 // and the rest sampled by their bounds with weight 1 / p: unbiased, and a point's cost no longer
 // grows with the number of lights. Up to kExactLights, every light is summed as before.
@@ -125,14 +125,14 @@ std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, ui
 // from fewer would be too coarse.
 inline constexpr uint32_t kMinCappedLightRays = 16;
 
-// A budgeted solve's start spends at most this share of the budget on its shadow rays (issue 21:
-// the budget holds from the first second): a quarter of max_rays, and a quarter of max_seconds
+// A budgeted solve's start spends at most this share of the budget on its shadow rays (the
+// budget holds from the first second): a quarter of max_rays, and a quarter of max_seconds
 // at kStartShadowRaysPerSecond. The shadow rays count against max_rays (the solver's
 // start_rays()); the seconds count as any other.
 inline constexpr uint64_t kStartBudgetShare = 4;
-// The shadow-ray rate the start is planned at under a time budget: about a third of what two
-// cores of a 2020s desktop cast (10 M/s on the Cornell box at 88,750 patches), so that a time
-// budget plans the same start on every machine and a slow one still keeps it to a small share.
+// The shadow-ray rate the start is planned at under a time budget: a fraction of what two cores of
+// a desktop cast, so that a time budget plans the same start on every machine and a slow one still
+// keeps it to a small share.
 inline constexpr double kStartShadowRaysPerSecond = 4e6;
 
 // Whether a solve with these settings starts from the emitter patches' direct light rather than

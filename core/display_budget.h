@@ -1,5 +1,5 @@
-// A budget holds to the last output (issue 21): under --rays or --seconds the display, the direct
-// and gathered light at the display's own points (display/display_stage.h, after the solve, where
+// A budget holds to the last output: under --rays or --seconds the display, the direct and
+// gathered light at the display's own points (display/display_stage.h, after the solve, where
 // the outputs are written: `radfarm render` and `radfarm fetch`), gets a share of the budget, and
 // the solve keeps the rest. The display's plan is a pure function of the job's settings and the
 // mesh, so that `render` and `fetch` draw the same display from the same solution.
@@ -17,7 +17,7 @@ namespace radfarm {
 inline constexpr uint64_t kDisplayBudgetShare = 4;
 // The rate a time budget's display is planned at, in its rays (shadow rays and gathering rays
 // with their second bounces): fixed in the code, as the start's (kStartShadowRaysPerSecond), so
-// the plan is the same on every machine; about a third of what two cores of a 2020s desktop cast.
+// the plan is the same on every machine; a fraction of what two cores of a desktop cast.
 inline constexpr double kDisplayRaysPerSecond = 4e6;
 
 // A time budget stops the rounds early enough for what follows them (AfterSolveSeconds): the
@@ -26,11 +26,9 @@ inline constexpr double kDisplayRaysPerSecond = 4e6;
 // kAfterSolveSecondsPerPatch a patch for the rest: the display's work at its points (the midpoint
 // split, the contrast tests and cuts where the light bends, a capped light's kernel at each point)
 // and the outputs (the image's strata, the PNG's deflate, the files). Fixed in the code, as
-// kDisplayRaysPerSecond, from bench/budget on two cores (at 88,750 patches the display took
-// 1.65 s with 4.2 M rays and 3.3 s with 16.7 M, the outputs 0.4-0.6 s; 0.3-0.4 s after a
-// 3,852-patch display): a slower machine runs over by the ratio. On fewer threads than that the
-// display's rays and its work at its points take as much longer (one thread: the display 4.4 s
-// against 2.7 s at `--seconds 10`, the command 12.3 s), and are priced so.
+// kDisplayRaysPerSecond, from bench/budget on two cores: a slower machine runs over by the ratio.
+// On fewer threads than that the display's rays and its work at its points take as much longer,
+// and are priced so.
 inline constexpr unsigned kAfterSolveThreads = 2;
 inline constexpr double kDisplayReserveRaysPerSecond = 7e6;
 inline constexpr double kAfterSolveSeconds = 0.3;

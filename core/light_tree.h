@@ -1,5 +1,5 @@
 // A bounding volume hierarchy over lights, so that a point's direct light costs about kLightCut
-// light evaluations however many lights there are (issue 21). DirectLight (core/direct_light.h)
+// light evaluations however many lights there are. DirectLight (core/direct_light.h)
 // uses it above kExactLights lights; below, it sums every light as it always did.
 //
 // Each node bounds, for any receiving point x with unit normal n, the unoccluded irradiance all
@@ -27,8 +27,8 @@ namespace radfarm {
 // Above this many lights DirectLight samples through a LightTree; up to it, the exact sum.
 inline constexpr size_t kExactLights = 64;
 // The cut's size: lights evaluated per point, at most. The bounds cannot see slabs and walls, so
-// far more lights look strong than are: on the building (bench/lights/, docs/BENCHMARKS.md) a cut
-// of 32 leaves several times the error of 64 at 10^4 lights.
+// far more lights look strong than are: on the building with many lights (bench/lights/) a
+// smaller cut leaves several times the error.
 inline constexpr uint32_t kLightCut = 64;
 
 // What the tree knows of one light: where it is, which way it faces, how strong it is.

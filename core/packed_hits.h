@@ -4,9 +4,8 @@
 // top bit set on every byte but the last).
 //
 // Hits are in increasing patch order and a Sobol or random ray weighs 1, so a hit takes 2-3 bytes
-// instead of the 16 of a FlatBuffers struct of a uint32 and a uint64. On the Cornell box's loopback
-// farm the results were 55 MB a job in structs, encrypted and decrypted, copied and allocated on
-// both sides (docs/BENCHMARKS-farm.md).
+// instead of the 16 of a FlatBuffers struct of a uint32 and a uint64: results are most of a job's
+// bytes on the wire, encrypted and decrypted, copied and allocated on both sides.
 #pragma once
 
 #include <cstddef>

@@ -54,10 +54,9 @@ Rgb InterpolateCornerOffsets(const Patch& p, const std::array<Rgb, 4>& offsets, 
 // the top of a wall right under a ceiling meets a ceiling that is darker beside the wall than its
 // patch's mean. Such a ray gathers once more where it meets: one cosine-weighted ray from the hit
 // takes the place of the patch's mean bounced light. Near: closer than kSecondBounceReach times
-// sqrt(area) of the patch met. Scored against the path-traced reference on the 2 x 2-room building
-// (three sets of 500 points, docs/BENCHMARKS-accuracy.md), reach 1, 2, 3 and 4 gave p95 errors of
-// at most 2.01, 1.92, 1.97 and 2.01 % against 2.32 % without: a longer reach gathers again where
-// the patch's mean was good enough, and each second ray adds noise.
+// sqrt(area) of the patch met. Scored against the path-traced reference on the building
+// (docs/BENCHMARKS-accuracy.md), a reach of 2 did best: any reach beats none, and a longer one
+// gathers again where the patch's mean was good enough, and each second ray adds noise.
 inline constexpr double kSecondBounceReach = 2;
 
 struct SecondBounce {

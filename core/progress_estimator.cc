@@ -88,9 +88,9 @@ std::optional<double> ProgressEstimator::Seconds(double rays, double rounds) con
     most = std::max(most, x.back());
   }
   // A round's fixed cost shows only beside rounds of far fewer rays. Between big rounds alone, a
-  // ray's cost differs from round to round (other shooters), and a line through two of them put
-  // the 4x4 building's fixed cost at 0.55 s a round (a real one is a few ms): the ETA after round
-  // 2 was 31-45% too high (progress_bench). Until then, seconds are in proportion to the rays.
+  // ray's cost differs from round to round (other shooters), and a line through two of them can
+  // put a round's fixed cost at hundreds of times a real one (a few ms) and the ETA far too high.
+  // Until then, seconds are in proportion to the rays.
   const Line line = FitNonNegative(x, y, /*intercept=*/most >= kOverheadSpread * fewest);
   return line.slope * rays + line.intercept * rounds;
 }
@@ -150,8 +150,7 @@ ProgressEstimate ProgressEstimator::Estimate(const SolvePosition& now) const {
   double rest = 0;
   if (running) {
     // The running round at the fitted pace, trusting its own pace more as it goes: its first
-    // tenth runs while threads start and caches fill (the 2x2 building's gather looked 31% slower
-    // than it was after its first tenth).
+    // tenth runs while threads start and caches fill, and looks slower than the rest.
     const double cost = double(now.round_rays) * (now.round_gather ? gather_ray_cost_ : 1.0);
     rest = std::max(0.0, *Seconds(cost, 1) - now.round_seconds);
     if (now.round_rays_done > 0 && now.round_seconds > 0) {

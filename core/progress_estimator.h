@@ -12,9 +12,9 @@
 //     a shooting ray's cost times the ratio the caller measured (SetGatherRayCost).
 // Time is seconds = overhead + rays / rate per round, fitted the same way (overhead 0 until two
 // rounds differ), so rounds that shrink to a few rays still cost their fixed part.
-// The earlier estimate extrapolated elapsed time in log(unshot), as if every round cost the same:
-// 2-5x too high, since the first rounds cast most of the shooting rays, and its progress reached
-// 100% before the gather, which is most of a job's rays (issue 19).
+// Elapsed time extrapolated in log(unshot), as if every round cost the same, would be several times
+// too high, since the first rounds cast most of the shooting rays, and would reach 100% before the
+// gather, which is most of a job's rays.
 #pragma once
 
 #include <cstdint>
@@ -81,7 +81,7 @@ class ProgressEstimator {
   // The rounds the fits use: the last kWindow shooting rounds for rays (older ones describe a
   // solve that has moved on); up to kTimedWindow rounds for time, so the big early rounds anchor
   // the rate: the last rounds cast a few rays each, and a rate fitted to them alone is mostly
-  // their fixed cost (progress_bench: the 4x4 building's ETA was 8x too high at the last rounds).
+  // their fixed cost, and the ETA it gives far too high.
   static constexpr size_t kWindow = 4;
   static constexpr size_t kTimedWindow = 64;
 

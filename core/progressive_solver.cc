@@ -226,9 +226,9 @@ ProgressiveSolver::RoundSize ProgressiveSolver::NextShootingRound() const {
 double ProgressiveSolver::EstimatedCarry() const {
   // A shot's rays escape (share e), or land and reflect rho of their power. The account holds
   // escaped = e S and absorbed = (1 - rho)(1 - e) S for the power S shot so far (and the direct
-  // start's light, absorbed where it landed). An estimate: 0.45-0.46 on the Cornell box against
-  // 0.49-0.51 measured round to round. Too low, and the last paced round is trimmed to what is
-  // left; too high, and the solve converges with some of the budget unspent.
+  // start's light, absorbed where it landed). An estimate, a little under the carry measured round
+  // to round. Too low, and the last paced round is trimmed to what is left; too high, and the
+  // solve converges with some of the budget unspent.
   const double rho = mean_reflectance_;
   double escape = 0;
   if (energy_.escaped > 0) {

@@ -73,10 +73,9 @@ struct EnergyAccount {
   double unshot = 0;  // sum over patches of A_i * (|r| + |g| + |b|) of the unshot radiosity
 };
 
-// A gather cut by a budget gets at least gather_rays / kMinGatherShare rays per patch, or none.
-// On the Cornell box at 88,750 patches, --seconds 5 left the gather 1.5 rays a patch: median patch
-// error 20.7 % against an unbudgeted render, where the gather at 479 rays a patch made 0.56 %
-// (about 12 % / sqrt(rays)) and the rounds alone a few per cent (docs/SOLVER.md).
+// A gather cut by a budget gets at least gather_rays / kMinGatherShare rays per patch, or none:
+// its error goes as 1 / sqrt(rays), so a gather of a ray or two a patch is far noisier than the
+// rounds alone (docs/SOLVER.md).
 inline constexpr uint32_t kMinGatherShare = 16;
 
 class ProgressiveSolver {

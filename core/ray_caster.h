@@ -67,7 +67,7 @@ class RayCaster {
 
   // Trace for each ray of `block` (all leaving a surface with `surface_normal`): hits[i] is bit
   // for bit Trace(origin i, direction i, surface_normal). The rays are traced 16 at a time as
-  // Embree packets (rtcIntersect16, 2-7 % faster than one by one on these incoherent rays
+  // Embree packets (rtcIntersect16, a little faster than one by one on these incoherent rays
   // with AVX-512), the last fewer than 16 one by one; each hit's triangle record is fetched while
   // the next rays trace, and the hits' patches and sides are worked out after them, so the cache
   // misses overlap instead of following each trace.

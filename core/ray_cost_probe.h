@@ -2,8 +2,8 @@
 // the ETA (core/progress_estimator.h) prices the gather, most of a job's rays, at the shooting
 // rounds' measured rate times this ratio. The two kinds differ by where their rays start: a
 // shooting round's rays leave the brightest patches in proportion to their power, the gather's
-// leave every reflecting patch alike. On the 2x2 building of progress_bench a gather ray took
-// about 0.6 of a first-round ray (its ETA was 35-43% too high); on the 4x4, about as long.
+// leave every reflecting patch alike, and one can cost well under the other on one scene and as
+// much on another: priced alike, the ETA is far off.
 //
 // The probe: a sample of each kind (every k-th batch of the shooting plan, every k-th
 // reflecting patch's gather shot), traced by the caller as it traces rounds (on the same threads,

@@ -5,9 +5,9 @@
 //
 // Randomisation: a random digital shift (each coordinate XORed with a per-shot 32-bit key). It
 // keeps every power-of-two prefix a (0, m, 2)-net in the first two dimensions. Owen scrambling
-// (Burley 2020) was measured against it: the same RMS form-factor error over 16 seeds (3.9e-4
-// vs 4.0e-4 at 2^16 rays, tests/core/form_factor_test.cc) at about four times the cost per point,
-// because visibility makes the integrands discontinuous and Owen's faster rate needs smooth ones.
+// (Burley 2020) gives no lower form-factor error (tests/core/form_factor_test.cc) at several times
+// the cost per point, because visibility makes the integrands discontinuous and Owen's faster rate
+// needs smooth ones.
 #pragma once
 
 #include <array>

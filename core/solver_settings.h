@@ -50,8 +50,8 @@ struct SolverSettings {
   // stays about the same whatever the mesh size.
   uint64_t shot_rays = 0;
   // 1 by default: then no ray carries more than emitted / shot_rays power and none less than half
-  // of that, except the single ray of a shooter too weak for more (measured in docs/BENCHMARKS.md:
-  // a floor of 64 spent most of a late round's rays on patches that hardly matter).
+  // of that, except the single ray of a shooter too weak for more (a higher floor spends most of a
+  // late round's rays on patches that hardly matter).
   uint32_t min_shooter_rays = 1;
   // Upper bound on shooters per round (0: every patch with unshot power).
   uint32_t shooters_per_round = 0;

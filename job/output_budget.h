@@ -1,7 +1,7 @@
 // What the image a job asks for costs, checked before anything is meshed or solved: a
-// 16384 x 16384 image at 1024 samples per pixel was accepted and grew past 14 GB with no progress
-// (issue 20, F6). Memory grows with the pixels (RenderImage keeps the image and at least one
-// stratum of depth and colour, then the PNG and EXR rows); time with pixels x samples, since every
+// 16384 x 16384 image at 1024 samples per pixel would grow past 14 GB with no progress. Memory
+// grows with the pixels (RenderImage keeps the image and at least one stratum of depth and
+// colour, then the PNG and EXR rows); time with pixels x samples, since every
 // sample of the n x n grid is a pass over the display mesh.
 #pragma once
 
@@ -23,11 +23,10 @@ inline constexpr uint64_t kImageBytesPerPixel = 80;
 uint64_t EstimatedImageBytes(const Camera& camera);
 
 // lit.glb (output/lit_glb_writer.h) per patch, with headroom: 24 bytes per vertex (position and
-// COLOR_0) and 12 per triangle; the densest display (cut at its midpoints when the final gather
-// is on) measured 171 bytes per patch on the Cornell box (3,849 patches, 661,256 bytes), a room
-// without the gather 54. Its writer keeps 12 bytes per vertex and 4 per triangle besides the
-// display mesh, inside kSolveBytesPerPatch (mesh/memory_estimate.h): `radfarm render` of a 3x3
-// `radfarm building` (15,309 patches) peaked at 86.4 MB with lit.glb, 85.3 MB without.
+// COLOR_0) and 12 per triangle, over the densest display measured (cut at its midpoints when the
+// final gather is on). Its writer keeps 12 bytes per vertex and 4 per triangle besides the display
+// mesh, inside kSolveBytesPerPatch (mesh/memory_estimate.h): lit.glb adds little to a render's
+// peak.
 inline constexpr uint64_t kLitGlbBytesPerPatch = 256;
 // So at the patch limit lit.glb stays well inside glTF's 32-bit binary container, and no job is
 // refused for it before solving; WriteLitGlb checks the exact size before it writes (a display

@@ -16,8 +16,8 @@ constexpr size_t kReadBufferBytes = 64 * 1024;
 
 // The buffer every connection of this thread's loop reads into. OnRead consumes it before it
 // returns (FrameSplitter copies a partial frame), and libuv reads one stream at a time, so one
-// buffer serves all: 64 KiB a connection, zeroed and paged in at its first read, cost a master
-// with 1000 agents 64 MiB and a tenth of its CPU (farm_bench's capacity case).
+// buffer serves all: a buffer a connection, zeroed and paged in at its first read, costs a master
+// with many agents memory and CPU in proportion to them.
 char* ThreadReadBuffer() {
   thread_local const std::unique_ptr<char[]> buffer(new char[kReadBufferBytes]);
   return buffer.get();

@@ -21,8 +21,8 @@ std::vector<uint8_t> EncodeFrame(const Message& message, uint16_t version = kPro
 
 // An agent cuts a lease's results into LeaseResult frames of about this many bytes: the master's
 // connection reads a frame that size without growing its buffer past what it keeps between frames
-// (loop/frame_splitter.cc), where 1 MiB frames cost it a fresh, page-faulting buffer each (20% of
-// the master's CPU on the Cornell job, perf).
+// (loop/frame_splitter.cc), where frames of a MiB cost it a fresh, page-faulting buffer each, a
+// large share of the master's CPU.
 inline constexpr size_t kResultFrameBytes = 60 * 1024;
 
 // About what one batch's result adds to a LeaseResult frame of `version`: its counts (~72 bytes)

@@ -122,12 +122,12 @@ def write(stem, header, build, floor_hole=None, floor_holes=None):
 write("lamp-under-ceiling", [
     "A closed 4 x 3 x 4 m room (y up, faces toward the inside) with one lamp panel 0.6 x 1.2 m",
     "hanging 2 cm under the ceiling, facing down: the ceiling around the panel's outline is lit",
-    "while the slit above it is dark (issue 18). Written for reference_bench (bench/reference/)."],
+    "while the slit above it is dark. Written for reference_bench (bench/reference/)."],
       lambda out, v: lamp(out, v, 1.7, 2.3, 1.4, 2.6, 2.98))
 write("block-on-floor", [
     "A closed 4 x 3 x 4 m room (y up, faces toward the inside), a 0.6 x 0.6 m lamp panel 1 cm",
     "under the ceiling, and a 0.8 m block standing on the floor beside it (no bottom face): contact",
-    "lines and a penumbra on the floor (issue 18). Written for reference_bench (bench/reference/)."],
+    "lines and a penumbra on the floor. Written for reference_bench (bench/reference/)."],
       lambda out, v: block(out, lamp(out, v, 2.2, 2.8, 1.7, 2.3, 2.99), 0.8, 1.6, 1.6, 2.4, 0.8))
 write("block-on-floor-shared", [
     "block-on-floor with the floor cut around the block's foot: the block shares its bottom edges",

@@ -86,9 +86,8 @@ double RunRounds(RoundDriver& driver, ThreadPool& pool,
     // The best pace seen: a short round's fixed costs make it look slow, and its pace would trim
     // a long round (the gather) far short of the budget.
     const double traced = elapsed() - round_start;
-    // The sample is tracing alone; a round also folds its results (at 88,750 patches the sample
-    // read 11.9 M rays/s, the first round 6.7, and the gather planned at the sample's pace ran
-    // 2.4 s over a 10 s budget): a timed round replaces it.
+    // The sample is tracing alone; a round also folds its results, so the sample's pace is too
+    // fast and a gather planned at it overruns the budget: a timed round replaces it.
     if (traced > 0) {
       const double pace = double(plan->rays) / traced;
       rays_per_second = round_timed ? std::max(rays_per_second, pace) : pace;

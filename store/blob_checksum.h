@@ -1,6 +1,6 @@
 // Checksums of what the store keeps (schema version 5), so that rot the file's own checks cannot
 // see is noticed: one bit flipped in a checkpoint blob passes `PRAGMA integrity_check`, and the job
-// would read `done` and fetch a different solution without a word (issue 20, F2).
+// would read `done` and fetch a different solution without a word.
 //
 //   checkpoints.checksum: BLAKE2b-256 (libsodium crypto_generichash, no key) over, in order, the
 //     job id, round, rounds_done and refine_points (each 8 bytes little-endian), then each of the

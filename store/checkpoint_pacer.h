@@ -1,8 +1,8 @@
 // CheckpointPacer: decides which rounds of a job write a checkpoint. A checkpoint is written
 //   - at most every `min_seconds` (0: every round), the first `min_seconds` after the job's first
 //     round (0: after its first round),
-//   - never while the job's previous one is still being written (at 10^6 patches one is 50 MB and
-//     may take longer than a round; a queue of them would only grow), and
+//   - never while the job's previous one is still being written (a big scene's is large and may
+//     take longer than a round; a queue of them would only grow), and
 //   - only while the job's checkpoints, this one included (priced as the last), have taken at
 //     most `time_share` of the time since its first round (0: no such limit). A checkpoint's
 //     time is from its queueing to its commit, as Written is told. The first round's is always

@@ -91,8 +91,8 @@ Status JobStore::SaveCheckpoint(const RoundRecord& round, const Checkpoint& chec
   RADFARM_RETURN_IF_ERROR(transaction);
   RADFARM_RETURN_IF_ERROR(InsertRound(round, now));
   // The rows kept for a restart of this round and those before stay: a restart reads only rounds
-  // after its checkpoint, and PruneRoundResults deletes them in a transaction of their own (at
-  // 10^6 patches, deleting several rounds' rows took most of a 3-5 s commit).
+  // after its checkpoint, and PruneRoundResults deletes them in a transaction of their own (on a
+  // big scene, deleting several rounds' rows took most of a checkpoint's commit).
   Result<Statement> stmt = db_.Prepare(
       "INSERT OR REPLACE INTO checkpoints (job_id, round, rounds_done, patches, radiosity, unshot,"
       " energy, created_at_ms, scene_hash, refine_points, stop_reason, checksum)"

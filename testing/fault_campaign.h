@@ -1,11 +1,12 @@
-// A fault campaign as code (issue 20): a seeded random schedule of faults against a loopback farm
+// A fault campaign as code: a seeded random schedule of faults against a loopback farm
 // (testing/loopback_farm.h) while jobs run, then a check of every job. The faults: agents
 // SIGKILLed and restarted, SIGSTOPped and SIGCONTed, stopped (SIGTERM) and restarted; the master
 // SIGKILLed and restarted on the same state directory and port; the state directory (a small
 // tmpfs the campaign mounts) filled to ENOSPC and freed; the store file damaged before the first
 // start; the master SIGKILLed and its store file cut short at a random byte before its restart
-// (refused and restored from a copy, as an operator restores a backup, or taken if intact). The invariants: every job ends byte-identical to the reference (`radfarm render`) or
-// failed with a message; every job submitted is listed once, none more.
+// (refused and restored from a copy, as an operator restores a backup, or taken if intact).
+// The invariants: every job ends byte-identical to the reference (`radfarm render`) or failed
+// with a message; every job submitted is listed once, none more.
 //
 // Shared by tests/farm/fault_campaign_test.cc (a small campaign in CI) and bench/faults (the long
 // one behind docs/BENCHMARKS-faults.md). The same seed gives the same schedule of fault kinds,

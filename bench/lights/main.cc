@@ -1,4 +1,4 @@
-// light_bench: does a point's direct light still cost the same with 10^4 lights (issue 21)? On the
+// light_bench: does a point's direct light still cost the same with 10^4 lights? On the
 // procedural building with 10, 100, 1000 and 10^4 ceiling panels, two per room in more rooms and
 // floors, or all in one open-plan room (`--lights AxB`), the direct light at area-uniform points of
 // its surfaces through the light tree (DirectLight above kExactLights lights, core/light_tree.h)

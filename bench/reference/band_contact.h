@@ -1,7 +1,7 @@
-// How a band point's surface meets the surface beside it. The big-jobs issue asks that junctions
-// (surfaces that touch without sharing an edge: a wall standing on a floor, a box on a table, a
-// wall ending against another) be scored as well as shared corners (two faces along one edge, as
-// in the Cornell box), so the band's points are split by what lies nearest them, and by how narrow
+// How a band point's surface meets the surface beside it. Junctions (surfaces that touch without
+// sharing an edge: a wall standing on a floor, a box on a table, a wall ending against another)
+// should score as well as shared corners (two faces along one edge, as in the Cornell box), so
+// the band's points are split by what lies nearest them, and by how narrow
 // the faces that meet there are: a desk's 5 cm leg on a floor of 0.25 m patches is a different
 // problem from a wall on that floor, whichever way the two are modelled.
 #pragma once

@@ -272,7 +272,7 @@ std::vector<StudyScene> StudyScenes(bool quick) {
        {0.5, 0.25, 0.125, 0.0833},
        {0.25, 0.125},
        {0.1, 0.05, 0.02, 0.01, 0.005}},
-      // The office floor of issue 21 (2 x 2 rooms, furniture, 8 ceiling panels): contact shadows
+      // An office floor (2 x 2 rooms, furniture, 8 ceiling panels): contact shadows
       // under desks and chairs, penumbrae of panels 1 cm below the ceiling. Meshes and refinement
       // only: the samplers and budgets compare alike on the rooms above.
       {"building-2x2",

@@ -1,4 +1,4 @@
-// What checkpoints cost a big job (issue 21: at 10^6 patches less than 5% of a round, and a
+// What checkpoints cost a big job (at 10^6 patches less than 5% of a round, and a
 // SIGKILLed master resumes byte-identical). The Cornell box meshed at `patch_size` is solved
 //   - by `radfarm render --db` (checkpoints on its main thread, between rounds),
 //   - by a loopback farm (radfarmd, 2 one-thread agents) without kills,

@@ -1,4 +1,4 @@
-// restart_bench: what a master crash costs a job (issue 20: a job whose master was killed 12
+// restart_bench: what a master crash costs a job (a job whose master was killed 12
 // times took 22 s instead of 4-9 s). A loopback farm (radfarmd and agents) solves the same job
 //   - without kills,
 //   - with the master SIGKILLed and restarted --kills times mid-round, keeping no round results

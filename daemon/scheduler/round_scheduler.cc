@@ -554,7 +554,7 @@ namespace {
 
 // Moves `id`'s entry in `index` from `*key` to `next` (either may be absent). An unchanged key
 // is left alone: a lease issued behind others keeps the agent's oldest, a result for any but the
-// newest its newest, and the two tree updates a batch were a tenth of dispatch (farm_bench).
+// newest its newest, and two tree updates a batch are a noticeable share of dispatch.
 void MoveKey(std::set<std::pair<TimePoint, AgentId>>& index, AgentId id,
              std::optional<TimePoint>& key, std::optional<TimePoint> next) {
   if (key == next) return;

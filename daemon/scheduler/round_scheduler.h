@@ -350,7 +350,7 @@ class RoundScheduler {
   std::map<AgentId, AgentState> agents_;
   // Agents holding leases, by their newest lease's expected_done (when all they hold is done):
   // the takeover's victim is found among the last few, not by a pass over every agent, which cost
-  // O(agents) per lease in a round's end game (farm_bench, 1000 agents).
+  // O(agents) per lease in a round's end game.
   std::set<std::pair<TimePoint, AgentId>> finish_index_;
   // Agents holding leases, by when their oldest lease has run end_game_copy_factor times its
   // expected time: the end game's copies come from the first few of them.

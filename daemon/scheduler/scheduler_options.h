@@ -23,10 +23,10 @@ struct SchedulerOptions {
   uint32_t max_leases_per_agent = 64;
   // Leases a measured agent holds beyond those that fill target_lease_seconds, so that its next
   // batch is already there when one finishes and it never idles for the round trip to the master
-  // (result out, next lease back). radfarmd uses 1 (daemon/master.cc).
+  // (result out, next lease back). radfarmd sets its own (daemon/master.cc).
   uint32_t spare_leases = 0;
   // Beyond spare_leases: this fraction of the target's leases again, so that an agent working
-  // through one multi-batch lease already holds the next (radfarmd: 1, a second lease's worth).
+  // through one multi-batch lease already holds the next (radfarmd sets its own: daemon/master.cc).
   double spare_lease_fraction = 0;
   // Weight of the newest result in the smoothed throughput (exponential moving average).
   double throughput_smoothing = 0.3;
@@ -44,15 +44,15 @@ struct SchedulerOptions {
   // first agents asked fill their lease capacity, sized for a lease horizon, and a round shorter
   // than that horizon (a final gather) or its last part waits on them while others idle. An
   // agent the job has not measured yet holds at most its equal share of the round's batches not
-  // done. 0: no cap. radfarmd uses 1 (daemon/master.cc).
+  // done. 0: no cap. radfarmd sets its own (daemon/master.cc).
   double round_end_share = 0;
   // An agent measured here that holds less than this much work (its measured rays/s times it), and
   // no leases of other schedulers, may take fresh batches beyond its lease capacity
   // (round_end_share still applies). The capacity counts batches of the round's mean size, while a
   // round's tapered end is cut into pieces of a sixteenth of that: a capacity of them is less work
-  // than the round trip to the master, so an agent ran dry for a round trip after each lease there
-  // (farm_bench, 1000 agents at 20 ms). 0: off. radfarmd uses 0.1 (daemon/master.cc); the gather
-  // ahead 0 (daemon/gather_ahead.cc).
+  // than the round trip to the master, so an agent ran dry for a round trip after each lease
+  // there. 0: off. radfarmd sets its own (daemon/master.cc); the gather ahead leaves it off
+  // (daemon/gather_ahead.cc).
   double min_held_seconds = 0;
   // Live attempts of one batch at most (the original plus speculative copies).
   uint32_t max_live_attempts = 2;
@@ -62,8 +62,8 @@ struct SchedulerOptions {
   Duration blocklist_duration = std::chrono::minutes(10);  // MasterConfig::blocklist_seconds
   // The next round's last rays cut finer (core/batch.h TaperBatches) in this many ways per known
   // agent: near the round's end a batch holds at most the rays after it over that many, so the
-  // agents' last leases finish close together. 3 beat 1 and 8 in farm_bench (1000 agents: 1 cut
-  // too late to even out the agents' held work; 8 cost frames for nothing). 0: no taper.
+  // agents' last leases finish close together. One way cuts too late to even out the agents' held
+  // work; many more cost frames for nothing. 0: no taper.
   double taper_ways_per_agent = 3;
   // The final gather's first rays, at most this many, are leased to agents with nothing else to
   // do while the shooting rounds run (daemon/gather_ahead.h). 0: off. radfarmd: MasterConfig's

@@ -196,7 +196,7 @@ TEST_F(AgentShutdownTest, ExitWhenIdleWaitsForHeldLeases) {
   ExpectClosedWithShutdown();
 }
 
-// Issue 19: `--exit-when-idle 2` against an unreachable master still ran after 8 s, so a batch
+// `--exit-when-idle 2` against an unreachable master still ran after 8 s, so a batch
 // agent held its allocation until the walltime. Without a master the idle period runs too.
 TEST_F(AgentShutdownTest, ExitWhenIdleExitsWhenNoMasterIsReachable) {
   const std::string gone = master_->address();

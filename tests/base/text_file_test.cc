@@ -70,7 +70,7 @@ TEST(ReadTextFileTest, NamesTheFileItCannotOpen) {
   EXPECT_FALSE(ReadTextFile("/").ok());
 }
 
-// Issue 20, F6: /dev/zero and /dev/urandom never end, a FIFO blocks; only regular files are read.
+// /dev/zero and /dev/urandom never end, a FIFO blocks; only regular files are read.
 TEST(ReadTextFileTest, RefusesWhatIsNotARegularFile) {
   Result<std::string> text = ReadTextFile("/dev/zero");
   ASSERT_FALSE(text.ok());

@@ -122,7 +122,7 @@ RoundProgress Shooting(uint32_t round, double before, double after, uint64_t ray
   return p;
 }
 
-// Issue 19: the bar reached 100% before the final gather, which casts most of a job's rays.
+// The bar reached 100% before the final gather, which casts most of a job's rays.
 TEST(ProgressTest, TheBarLeavesRoomForTheGather) {
   Captured out;
   ProgressReporter reporter(out.file(), true);
@@ -136,7 +136,7 @@ TEST(ProgressTest, TheBarLeavesRoomForTheGather) {
   EXPECT_NE(s.find("ETA 8s"), std::string::npos) << s;  // 8 M rays at 1 M rays/s
 }
 
-// Issue 19: the gather showed no progress.
+// The gather showed no progress.
 TEST(ProgressTest, TheFinalGatherShowsItsProgressOncePerSecondInALog) {
   Captured out;
   ProgressReporter reporter(out.file(), false);
@@ -162,7 +162,7 @@ TEST(ProgressTest, TheFinalGatherShowsItsProgressOncePerSecondInALog) {
   EXPECT_NE(s.find("\nfinal gather: 9000000 rays in all"), std::string::npos) << s;
 }
 
-// Issue 21: a big scene's first round ran 23 s without a line.
+// A big scene's first round ran 23 s without a line.
 TEST(ProgressTest, ALongShootingRoundShowsItsProgressBeforeItsEnd) {
   Captured out;
   ProgressReporter reporter(out.file(), false);

@@ -1,4 +1,4 @@
-// Bounds on what a job may ask for (issue 20, F6): only regular files as scene inputs, sizes
+// Bounds on what a job may ask for: only regular files as scene inputs, sizes
 // checked before reading, and the image's cost (pixels x samples, memory) before anything is
 // meshed. Before, `mtllib /dev/zero` or `scene = "/dev/urandom"` ran out of memory, a FIFO hung,
 // a 2 GB file cost 66 s and 8.4 GB before its error, and 16384 x 16384 at 1024 samples per pixel

@@ -93,7 +93,7 @@ TEST(RenderCommandTest, CornellBoxWritesEveryOutput) {
   }
 }
 
-// A ray budget covers the direct light and the display too (issue 21): the start's shadow rays
+// A ray budget covers the direct light and the display too: the start's shadow rays
 // (stats.json start_rays) are planned to a quarter of it, the display's rays (display_rays) to
 // another, and the rounds get the rest less the display's quarter, exactly.
 TEST(RenderCommandTest, ARayBudgetCountsTheDirectLightsShadowRays) {

@@ -83,7 +83,7 @@ TEST(SecretCommandTest, DashPrintsTheSecret) {
   EXPECT_EQ(r.err, "");
 }
 
-// Issue 19: the README's `radfarm secret new /tmp/farm/secret` failed because /tmp/farm did not
+// The README's `radfarm secret new /tmp/farm/secret` failed because /tmp/farm did not
 // exist.
 TEST(SecretCommandTest, MissingFoldersAreMadeWithMode0700) {
   TempDir dir;

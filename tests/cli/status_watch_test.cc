@@ -76,7 +76,7 @@ json Waiting(json job, bool waiting) {
   return job;
 }
 
-// Issue 19: a watch sat at "round 0, ... 0 agents, ETA ?" with no hint that no agent was there.
+// A watch sat at "round 0, ... 0 agents, ETA ?" with no hint that no agent was there.
 TEST(StatusWatchTest, SaysPlainlyWhenNoAgentIsConnectedAndWhenOneComes) {
   FakeControlServer server(
       Script({Waiting(JobObject(3, "running", 0), true), Waiting(JobObject(3, "running", 0), true),

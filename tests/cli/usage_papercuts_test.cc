@@ -1,4 +1,4 @@
-// The command-line papercuts of issue 19: each message names what is wrong, and the CLI refuses
+// Command-line papercuts: each message names what is wrong, and the CLI refuses
 // what the job file refuses in the same words. Runs the real binary.
 #include <gtest/gtest.h>
 

@@ -95,7 +95,7 @@ TEST(DirectLightCapTest, TheStartCapsRaysWhenLightsAreFinelyMeshed) {
   EXPECT_EQ(DirectLightRaysPerLight(scene, Gathering(256)), kMinCappedLightRays);
 }
 
-// Under a budget the start fits a quarter of it (issue 21: the budget holds from the first second):
+// Under a budget the start fits a quarter of it (the budget holds from the first second):
 // fewer points per patch first, then fewer rays per light, then the emitters shoot.
 TEST(DirectLightCapTest, ABudgetFitsTheStartToAQuarterOfIt) {
   PatchScene scene = GridLight(16);  // one light of 256 patches

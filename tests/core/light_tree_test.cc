@@ -1,4 +1,4 @@
-// core/light_tree.h and DirectLight's many-light path (issue 21): the bounds never fall below a
+// core/light_tree.h and DirectLight's many-light path: the bounds never fall below a
 // light's true unoccluded irradiance, the sampled estimate averages to the exact sum, it is the
 // same whatever the threads, and up to kExactLights lights the exact sum is kept to the bit.
 #include "core/light_tree.h"

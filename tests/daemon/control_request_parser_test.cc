@@ -46,7 +46,7 @@ TEST(ControlRequestParserTest, AnIdIsAnyUnsigned64BitNumber) {
   EXPECT_EQ(ParseError(R"({"command": "status", "id": -1})"), "'id' must not be negative");
 }
 
-// Issue 20, F1: any bytes are answered with an error, never an exception that ends the daemon.
+// Any bytes are answered with an error, never an exception that ends the daemon.
 TEST(ControlRequestParserTest, BytesThatAreNotUtf8OrNotJsonAreAnError) {
   EXPECT_EQ(ParseError("{\"command\": \"submit\", \"name\": \"caf\xe9\", \"attachment_bytes\": 8}"),
             "the request is not valid JSON");

@@ -176,7 +176,7 @@ std::string RawControlExchange(const std::string& socket_path, const std::string
   return answer;
 }
 
-// Issue 19: `status` said "0 agents, ETA ?" forever with no hint that no agent was connected.
+// `status` said "0 agents, ETA ?" forever with no hint that no agent was connected.
 TEST_F(FarmTest, StatusSaysWhenTheJobWaitsForAnAgentAndStopsSayingItWhenOneComes) {
   StartMaster();
   const int64_t id = Submit("cornell-box.toml", kShortJob);

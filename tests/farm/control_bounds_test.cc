@@ -1,4 +1,4 @@
-// The control socket against whatever bytes a client sends (issue 20, F1 and F6): paths and names
+// The control socket against whatever bytes a client sends: paths and names
 // that are not UTF-8, job ids beyond int64, a JSON frame announced at 1 GiB, an attachment that is
 // announced and never sent, an idle client. Each is answered with an error or closed with a log
 // line; radfarmd stays up and keeps serving.

@@ -1,4 +1,4 @@
-// The agents' port against strangers (issue 20, F3 and F4): connections that never authenticate
+// The agents' port against strangers: connections that never authenticate
 // must neither keep a real agent out nor make the master hold memory. Before the fix a 16 MiB
 // frame limit applied before the handshake (128 such connections took radfarmd to 1.48 GB) and
 // unauthenticated sockets counted toward --max-agents (with 64 slots a real agent waited 20 s).

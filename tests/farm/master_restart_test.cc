@@ -1,4 +1,4 @@
-// A master restart keeps the round's work (issue 20): radfarmd keeps each accepted batch result in
+// A master restart keeps the round's work: radfarmd keeps each accepted batch result in
 // its store until the round's checkpoint, so a master SIGKILLed mid-round and restarted leases
 // again only the batches it had not received, and the job still ends byte-identical to `radfarm
 // render`. A stored result damaged meanwhile is noticed, named in the log and computed again.

@@ -1,4 +1,4 @@
-// Daemons started in any order (issue 19: the README's agent read listen.addr before radfarmd had
+// Daemons started in any order (the README's agent read listen.addr before radfarmd had
 // written it and exited, and agents retried a restarted master's old port forever):
 // radfarm-agent --master-file reads the master's listen.addr before every connection attempt, and
 // radfarmd --detach returns only once the master is ready.

@@ -1,4 +1,4 @@
-// The job store against rot and faults, with a real radfarmd (issue 20, F2 and F5): a bit flipped
+// The job store against rot and faults, with a real radfarmd: a bit flipped
 // in a stored checkpoint is noticed and the job recomputes from the checkpoint before, ending
 // byte-identical to `radfarm render`; a full store holds a running job (paused, "held: ...")
 // instead of failing it, and the job resumes by itself once the store has room again.

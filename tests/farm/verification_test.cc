@@ -1,4 +1,4 @@
-// Exact validation of authenticated results (issue 20): the master computes a seeded share of
+// Exact validation of authenticated results: the master computes a seeded share of
 // every agent's batches again (and at least one per agent and round) and compares the bits. A
 // real agent that traces correctly and then moves a millionth of a hit weight to another patch
 // (radfarm-lying-agent: totals consistent, so structural validation passes) is caught in the

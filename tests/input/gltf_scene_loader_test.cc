@@ -232,7 +232,7 @@ TEST(LoadGltfSceneTest, RefusesLinesNamingTheMesh) {
                                      "supported; export triangles");
 }
 
-// Issue 20, F6: a .gltf's buffers and images were read whole by tinygltf, however large; a 2 GiB
+// A .gltf's buffers and images were read whole by tinygltf, however large; a 2 GiB
 // buffer is now refused from its size (a sparse file: nothing is read, nothing is allocated).
 TEST(LoadGltfSceneTest, RefusesAnExternalBufferOverTheLimitFromItsSize) {
   TempDir dir;
@@ -264,7 +264,7 @@ TEST(LoadGltfSceneTest, ReferencedFilesShareTheSceneFilesLimit) {
       << over.error();
 }
 
-// Issue 20, F6: a buffer that is a device would never end, and tinygltf's check that a file exists
+// A buffer that is a device would never end, and tinygltf's check that a file exists
 // opened it, so a FIFO hung the reader; both are refused as not regular files, before any read.
 TEST(LoadGltfSceneTest, RefusesABufferThatIsADeviceOrAFifoWithoutReadingIt) {
   TempDir dir;

@@ -54,7 +54,7 @@ TEST(LoadJobTest, MissingJobFile) {
             DataPath("jobs/none.toml") + ": cannot open: No such file or directory");
 }
 
-// Issue 20, F6: a job file is refused from its size before it is read (a sparse 2 GiB file: nothing
+// A job file is refused from its size before it is read (a sparse 2 GiB file: nothing
 // is read or allocated), and a FIFO named like a job file is refused without waiting for a writer.
 TEST(LoadJobTest, AJobFileOverTheLimitOrNotARegularFileIsRefusedBeforeReading) {
   const std::string big = WriteScratchFile("big.toml", "");

@@ -188,7 +188,7 @@ void ExpectScriptsCreateTheUserAndStartNothing(const Package& package) {
 }
 
 // `radfarm render` shipped only in radfarm-master, so a single-machine user had to install the
-// master (issue 19). The CLI is its own package now, which the master depends on.
+// master. The CLI is its own package now, which the master depends on.
 void ExpectTheCommandLineInAPackageOfItsOwn(const std::vector<Package>& packages) {
   if (PackagedBinaries().count("radfarm")) {
     EXPECT_EQ(Contents(packages[0].deb).count("/usr/bin/radfarm"), 1u) << packages[0].deb;
@@ -221,7 +221,7 @@ void ExpectTheManualPageDocumentsTheSubcommands(const Package& cli) {
 }
 
 // lintian reported 6 errors (no copyright file, no changelog, a maintainer at localhost) and
-// no-manual-page for every program (issue 19). Every error and warning is now fixed, or
+// no-manual-page for every program. Every error and warning is now fixed, or
 // overridden in packaging/debian/PACKAGE/lintian-overrides with the reason beside it.
 void ExpectLintianFindsNoErrorOrWarning(const std::vector<Package>& packages) {
   ASSERT_TRUE(HaveTool("lintian")) << "lintian is not installed (scripts/install-deps installs it)";

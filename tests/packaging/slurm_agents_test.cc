@@ -1,4 +1,4 @@
-// Agents as Slurm batch jobs, for real (issue 19): a one-node Slurm cluster from Debian's
+// Agents as Slurm batch jobs, for real: a one-node Slurm cluster from Debian's
 // slurm-wlm and munge on this machine (slurm_cluster.h), a radfarmd on loopback, and
 // `sbatch --array` of the shipped packaging/scheduler/radfarm-agent.slurm.sh with the config its
 // comments document. The agents connect, do every round of the job (the master computes none

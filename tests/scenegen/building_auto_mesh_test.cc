@@ -1,4 +1,4 @@
-// The automatic patch size on generated buildings (issue 21): a room is meshed alike whether its
+// The automatic patch size on generated buildings: a room is meshed alike whether its
 // floor holds 2 x 2 rooms or 6 x 6. The old size, the scene's diagonal / 40, made a 6 x 6 floor's
 // patches three times the size of a 2 x 2 floor's (and 144 rooms' 1.7 m).
 #include <gtest/gtest.h>

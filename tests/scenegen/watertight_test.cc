@@ -214,7 +214,7 @@ TEST(Watertight, TableAndBoxOnAFloorAtTJunctionsLeakNoRays) {
   ExpectNoEscapes(dir.File("room.obj"), 0.17, 256);
 }
 
-// The layout of the office floors that leaked (issue 21): one floor and one ceiling for the whole
+// The layout of the office floors that leaked: one floor and one ceiling for the whole
 // storey, an inner wall of solids standing on the floor up to the ceiling, a door in it with a
 // lintel between the wall's two parts. On the ceiling the parts' and the lintel's sides meet at the
 // door's edges; footprints were found on the floor but not on the ceiling, so the ceiling inside

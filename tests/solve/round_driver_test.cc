@@ -147,7 +147,7 @@ TEST(RoundDriverTest, TheBudgetsStopIt) {
   EXPECT_EQ(driver->stop_reason(), std::optional<std::string>(kStopTimeBudget));
 }
 
-// Issue 21: a 10 s budget ran a 23 s first round. With the caller's pace the round is trimmed to
+// A 10 s budget ran a 23 s first round. With the caller's pace the round is trimmed to
 // the rays that fit in the seconds left, and it ends the solve with the time budget's reason.
 TEST(RoundDriverTest, ARoundIsPacedToTheTimeLeftAtTheCallersPace) {
   const PatchScene scene = LitBox();

@@ -1,4 +1,4 @@
-// The store notices rot (issue 20, F2): one bit flipped in a checkpoint passed `PRAGMA
+// The store notices rot: one bit flipped in a checkpoint passed `PRAGMA
 // integrity_check`, the job read `done` and `fetch` returned a different solution without a word;
 // a 0-byte radfarm.db started as an empty store, every job gone. Checksums (schema version 5) are
 // verified on load: a damaged checkpoint gives way to the one before it, a damaged scene is an
