@@ -14,8 +14,8 @@ inline constexpr double kRefineContrast = 0.2;
 // The cuts leave slivers beside them (a triangle with one cut edge is halved, selective_split.h),
 // some reaching from a leg's foot 10 cm out across where the light recovers beside it: such a
 // triangle's corners show the light along its long edges only, so between gathered corners it is
-// cut at half the contrast (on the building: junctions' p95 2.60 -> 2.12 %, for 9 % more points;
-// docs/BENCHMARKS-accuracy.md).
+// cut at half the contrast: the walls' junctions then show their light for a few more points
+// (docs/BENCHMARKS-accuracy.md).
 inline constexpr double kSliverQuality = 0.3;  // TriangleQuality below this is a sliver
 inline constexpr double kSliverContrast = 0.1;
 

@@ -26,8 +26,8 @@
 
 namespace radfarm {
 
-// The fewest rays a gathering display point gets under an allowance: its noise is then about
-// 0.7 % in a room's corner (2.8 times kPointGatherRays'); with fewer it shows as speckle.
+// The fewest rays a gathering display point gets under an allowance: with fewer its noise shows
+// as speckle in a room's corners.
 inline constexpr uint32_t kMinDisplayGatherRays = 64;
 // The points a probe casts the rays of (at most).
 inline constexpr size_t kDisplayProbePoints = 64;

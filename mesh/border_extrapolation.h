@@ -7,8 +7,8 @@
 // equal patches carrying a linear field this is the field's value at the border exactly (A is the
 // field half a patch in, I one patch in). A border vertex with no neighbour inside the surface (the
 // corner of a grid) keeps its average; extrapolated channels are clamped at 0. The price is noise:
-// a border vertex's value combines fewer, differently weighted patches (measured in
-// docs/BENCHMARKS-adaptive.md: the image error drops on every mesh of all three scenes).
+// a border vertex's value combines fewer, differently weighted patches; the image's error drops
+// all the same (docs/BENCHMARKS-adaptive.md).
 #pragma once
 
 #include <cstdint>

@@ -2,8 +2,8 @@
 // along the solid's footprint and the pieces under it dropped. Without the cut a patch straddling
 // the footprint spreads the light it receives on its visible part over its whole area, the part
 // under the block included: the visible part is drawn too dark (a shadow leak along the block's
-// base) and its light too weak. Measured on the Cornell box (docs/BENCHMARKS-adaptive.md): such
-// patches carried most of the floor's discretisation error.
+// base) and its light too weak: such patches carry most of a floor's discretisation
+// error (docs/BENCHMARKS-adaptive.md).
 //
 // A footprint on face F is a closed loop of edges of other faces lying in F's plane, inside F's
 // outline and not along it (the walls of a room stand on its floor along the floor's outline:
@@ -23,8 +23,8 @@
 // its own (PatchMesh::Build): rays through the slit must still meet the ceiling, and its own
 // surface keeps its darkness out of the vertices around. A sheet facing F (a light shining on it, a
 // cabinet's back 10 cm from a wall) covers nothing: cutting the wall behind a cabinet along its
-// outline was measured (docs/BENCHMARKS-accuracy.md) and did not help, the error there being the
-// coarse solution's in the crevice.
+// outline did not help (docs/BENCHMARKS-accuracy.md): the error there is the coarse solution's in
+// the crevice.
 #pragma once
 
 #include <cstddef>

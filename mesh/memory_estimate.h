@@ -1,7 +1,7 @@
 // What a solve needs in memory, estimated from its patch count before anything large is allocated,
 // so a job too big for the machine is refused with the figures instead of killed by the kernel.
-// The constants are measured peaks (`radfarm render`, Cornell box from 3,849 to 860,235 patches:
-// docs/MEMORY.md) with some headroom; the farm master's peak per patch is below render's.
+// The constants are measured peaks of `radfarm render` over a wide range of patch counts
+// (docs/MEMORY.md) with some headroom; the farm master's peak per patch is below render's.
 #pragma once
 
 #include <cstdint>

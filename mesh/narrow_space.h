@@ -2,10 +2,10 @@
 // rule the automatic patch size applies per face, auto_patch_size.h). Where part of a face looks
 // into a narrow space (the wall behind a cabinet 10 cm from it, the cabinet's back, the floor
 // between them), its light falls off over a few centimetres; a patch the
-// face's size averages that fall-off away, and display points there gather from those averages.
-// Measured on the 2 x 2 office floor (docs/BENCHMARKS-accuracy.md): the crevices behind the
-// cabinets held most of the display's worst points at 0.25 m patches, and 0.0625 m patches all
-// over fixed them at 13 times the patches.
+// face's size averages that fall-off away, and display points there gather from those averages:
+// the crevices behind cabinets hold most of the display's worst points
+// (docs/BENCHMARKS-accuracy.md), and a finer mesh all over would fix them at many times the
+// patches.
 //
 // So each piece of a face is probed from its centre (FreePathProbe, kNarrowProbeDirections rays,
 // each counted at most kNarrowProbeCap piece sizes; the back of a sheet, a lamp's above a ceiling,
@@ -16,10 +16,8 @@
 // sends most rays across the room). A gap so narrow that the split would go past kNarrowMaxSplit
 // along an edge (a cabinet 1 cm from a wall) is left alone: its light dies within a few widths of
 // its mouth, a band no such split resolves, and splitting would multiply the piece's patches.
-// Measured on the 2 x 2 office floor (0.25 m patches, 6,915 unsplit): the crevices' worst display
-// error fell from 34.5 % to 10.7 % with 8,443 patches. Dividing L by 3 or 4 leaves more of the
-// crevices to the narrow-gap rule (8,191 and 7,833 patches) and was worse there; a quarter of L
-// without that rule took 13,184 patches to reach 5.0 %, with p95 over the floor no better.
+// Splitting finer, or leaving more of the crevices to the narrow-gap rule, was measured worse for
+// the patches it costs (docs/BENCHMARKS-accuracy.md).
 // Deterministic like the probe: every machine that meshes the scene splits the same pieces.
 #pragma once
 

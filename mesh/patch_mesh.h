@@ -84,7 +84,7 @@ class PatchMesh {
   // Flat copy the solver uses; patch i == OpenMesh face i.
   const PatchScene& patch_scene() const { return data_.scene; }
   // The flat copy alone, the rest of the mesh freed: for a solve that needs no display or
-  // refinement (the OpenMesh mesh and its properties are about 300 bytes a patch).
+  // refinement (the OpenMesh mesh and its properties cost more than the flat copy).
   PatchScene TakePatchScene() && {
     PatchMesh dropped = std::move(*this);
     return std::move(dropped.data_.scene);

@@ -51,7 +51,7 @@ struct RefinePoint {
 // The point follows the first round of most rooms (the lights shoot their power at once, a room
 // with reflectance below 0.6 keeps less than 60% of it). There is no later point: a split without a
 // restart leaves the children the parent's average of the light already shot, a blocky image that
-// more elements do not improve (measured: docs/BENCHMARKS-adaptive.md's history).
+// more elements do not improve.
 inline constexpr RefinePoint kRefinePoints[] = {{0.6, true}};
 
 // The refinement point a round that left `unshot_fraction` reaches: advances *next past every point

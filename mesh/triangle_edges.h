@@ -1,6 +1,6 @@
 // The edges of a triangle list and the triangles on each, for the display's splits
 // (midpoint_split.h, selective_split.h): flat arrays built in linear time, where a hash map of
-// edges cost most of a split at 10^6 triangles (0.9 s of a 1.2 M-triangle display's level).
+// edges cost most of a split on a big display.
 #pragma once
 
 #include <array>
