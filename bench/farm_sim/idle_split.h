@@ -3,8 +3,8 @@
 // agent's first lease of a round (the round's start) and after its last result (its tail).
 //
 // A round's span runs from its first lease to its last result over all agents. The final
-// gather's batches leased ahead of their round (round kGatherRound, daemon/gather_ahead.h) have
-// no span: they run across the others, and an agent's time on them is busy time, within a
+// gather's batches leased ahead of their round (round kGatherRound, daemon/jobs/gather_ahead.h)
+// have no span: they run across the others, and an agent's time on them is busy time, within a
 // round's span or between rounds, wherever it falls.
 #pragma once
 

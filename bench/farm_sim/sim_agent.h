@@ -60,8 +60,8 @@ struct SimAgentStats {
   double last_result = -1;               // when the last result went to the socket
   std::map<uint32_t, RoundSpan> rounds;  // by round number
   // When it computed the final gather's batches leased ahead of their round (round kGatherRound,
-  // daemon/gather_ahead.h), (start, end): they run across the other rounds, and the report tells
-  // the time within those from the time between them.
+  // daemon/jobs/gather_ahead.h), (start, end): they run across the other rounds, and the report
+  // tells the time within those from the time between them.
   std::vector<std::pair<double, double>> ahead_compute;
 };
 
