@@ -53,12 +53,13 @@ uint32_t PreemptLowerPriority(const std::vector<RunningJob*>& order, size_t k, u
 
 }  // namespace
 
-AgentConnections::AgentConnections(loop::EventLoop& loop, const MasterConfig& config,
-                                   const protocol::FarmSecret& secret,
+AgentConnections::AgentConnections(loop::EventLoop& loop, const Clock& clock,
+                                   const MasterConfig& config, const protocol::FarmSecret& secret,
                                    const scheduler::SchedulerOptions& options, StoreThread& store,
                                    JobRounds& jobs,
                                    const std::vector<store::AgentCredential>& credentials)
     : loop_(loop),
+      clock_(clock),
       config_(config),
       secret_(secret),
       options_(options),
@@ -70,7 +71,7 @@ AgentConnections::AgentConnections(loop::EventLoop& loop, const MasterConfig& co
       door_log_(kDoorLogLines, kDoorLogWindow) {}
 
 void AgentConnections::LogAtDoor(const std::string& line) {
-  if (door_log_.Allow(LoopNow(loop_))) LogLine(LogLevel::kWarning, "agents") << line;
+  if (door_log_.Allow(clock_.Now())) LogLine(LogLevel::kWarning, "agents") << line;
 }
 
 void AgentConnections::OnConnection(std::unique_ptr<loop::FramedConnection> connection) {
@@ -87,8 +88,8 @@ void AgentConnections::OnConnection(std::unique_ptr<loop::FramedConnection> conn
       [this](AgentLink& link) { OnAuthenticated(link); },
       [this](AgentLink& link, protocol::Message& m) { OnAgentMessage(link, m); },
       [this](AgentLink& link, const std::string& reason) { OnAgentClosed(link, reason); }};
-  auto link = std::make_unique<AgentLink>(loop_, std::move(connection), secret_, session, options,
-                                          std::move(callbacks));
+  auto link = std::make_unique<AgentLink>(loop_, clock_, std::move(connection), secret_, session,
+                                          options, std::move(callbacks));
   AgentLink& ref = *link;
   links_[id] = std::move(link);
   ref.Start();
@@ -232,7 +233,7 @@ void AgentConnections::OnLeaseResult(AgentLink& link, const protocol::LeaseResul
     }
     const scheduler::LeaseIntake intake =
         scheduler::SubmitLeaseResults(runner->scheduler(), link.id(), results, runner->sampler(),
-                                      runner->patch_count(), LoopNow(loop_));
+                                      runner->patch_count(), clock_.Now());
     const scheduler::ResultVerdict& v = intake.last.verdict;
     if (v.reason == scheduler::DropReason::kInvalid) {
       for (scheduler::BatchId batch : intake.accepted_batches) {
@@ -262,9 +263,8 @@ bool AgentConnections::OnGatherAheadResults(
     AgentLink& link, RunningJob& runner,
     const std::vector<const protocol::BatchResultMsg*>& results) {
   GatherAhead& ahead = *runner.gather_ahead();
-  const scheduler::LeaseIntake intake =
-      scheduler::SubmitLeaseResults(ahead.scheduler(), link.id(), results, runner.sampler(),
-                                    runner.patch_count(), LoopNow(loop_));
+  const scheduler::LeaseIntake intake = scheduler::SubmitLeaseResults(
+      ahead.scheduler(), link.id(), results, runner.sampler(), runner.patch_count(), clock_.Now());
   bool round_complete = false;
   for (scheduler::BatchId batch : intake.accepted_batches) {
     if (!ahead.adopted()) {
@@ -294,7 +294,7 @@ bool AgentConnections::OnGatherAheadResults(
 void AgentConnections::OnInvalidResult(AgentLink& link, RunningJob& runner,
                                        const std::string& why) {
   // The frame authenticated, so the agent computed (or made up) this result itself: its fault.
-  const auto now = LoopNow(loop_);
+  const auto now = clock_.Now();
   const std::optional<scheduler::TimePoint> until =
       blocklist_.Strike(runner.id(), link.name(), now);
   const uint32_t strikes =
@@ -324,7 +324,7 @@ void AgentConnections::OnInvalidResult(AgentLink& link, RunningJob& runner,
 }
 
 void AgentConnections::Convict(store::JobId job, const std::string& name, const std::string& why) {
-  const auto now = LoopNow(loop_);
+  const auto now = clock_.Now();
   const scheduler::TimePoint until = blocklist_.Block(job, name, now);
   const auto seconds = std::chrono::duration_cast<std::chrono::seconds>(until - now).count();
   LogLine(LogLevel::kWarning, "agents")
@@ -408,7 +408,7 @@ void AgentConnections::Dispatch(AgentLink& link) {
   if (!link.TakesWork() || stopping_) return;
   // Don't queue work behind a slow socket.
   if (link.queued_bytes() > (4u << 20)) return;
-  const auto now = LoopNow(loop_);
+  const auto now = clock_.Now();
   const std::vector<RunningJob*> order = jobs_.RunnersByPriority();
   uint32_t held = 0, capacity = 0;
   for (RunningJob* runner : order) {
@@ -538,13 +538,13 @@ size_t AgentConnections::active() const {
 }
 
 void AgentConnections::Heartbeat() {
-  if (const std::optional<uint64_t> held_back = door_log_.TakeSuppressed(LoopNow(loop_))) {
+  if (const std::optional<uint64_t> held_back = door_log_.TakeSuppressed(clock_.Now())) {
     LogLine(LogLevel::kWarning, "agents")
         << *held_back << " more connections refused or closed before authentication were not "
         << "logged (at most " << kDoorLogLines << " lines per "
         << std::chrono::seconds(kDoorLogWindow).count() << " s)";
   }
-  const uint64_t now_ms = loop_.NowMs();
+  const uint64_t now_ms = clock_.NowMs();
   protocol::HeartbeatMsg beat;
   for (auto& [job, runner] : jobs_.runners()) beat.rays_per_second += runner->RaysPerSecond();
   for (auto& [id, link] : links_) {

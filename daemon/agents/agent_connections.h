@@ -30,6 +30,7 @@
 #include "daemon/agents/job_blocklist.h"
 #include "daemon/agents/log_rate_limiter.h"
 #include "daemon/config/master_config.h"
+#include "daemon/jobs/clock.h"
 #include "daemon/jobs/job_rounds.h"
 #include "daemon/jobs/store_thread.h"
 #include "loop/event_loop.h"
@@ -40,7 +41,7 @@ namespace radfarm::daemon {
 
 class AgentConnections {
  public:
-  AgentConnections(loop::EventLoop& loop, const MasterConfig& config,
+  AgentConnections(loop::EventLoop& loop, const Clock& clock, const MasterConfig& config,
                    const protocol::FarmSecret& secret, const scheduler::SchedulerOptions& options,
                    StoreThread& store, JobRounds& jobs,
                    const std::vector<store::AgentCredential>& credentials);
@@ -108,6 +109,7 @@ class AgentConnections {
   void Dispatch(AgentLink& link);
 
   loop::EventLoop& loop_;
+  const Clock& clock_;
   const MasterConfig& config_;
   const protocol::FarmSecret& secret_;
   const scheduler::SchedulerOptions& options_;

@@ -16,11 +16,12 @@ int64_t UnixMs() {
 
 }  // namespace
 
-AgentLink::AgentLink(loop::EventLoop& loop, std::unique_ptr<loop::FramedConnection> connection,
+AgentLink::AgentLink(loop::EventLoop& loop, const Clock& clock,
+                     std::unique_ptr<loop::FramedConnection> connection,
                      const protocol::FarmSecret& secret,
                      const protocol::MasterConfig& session_config, const AgentLinkOptions& options,
                      Callbacks callbacks)
-    : loop_(loop),
+    : clock_(clock),
       connection_(std::move(connection)),
       session_(protocol::ProtocolSession::ForMaster(secret, session_config)),
       options_(options),
@@ -35,7 +36,7 @@ std::string AgentLink::Describe() const {
 }
 
 void AgentLink::Start() {
-  last_heard_ms_ = loop_.NowMs();
+  last_heard_ms_ = clock_.NowMs();
   loop::ConnectionOptions options;
   options.max_frame_bytes = options_.max_frame_bytes;
   connection_->Start(
@@ -85,7 +86,7 @@ void AgentLink::Fail(const std::string& reason) {
 
 void AgentLink::OnFrame(std::span<const uint8_t> payload) {
   if (closing_) return;
-  last_heard_ms_ = loop_.NowMs();
+  last_heard_ms_ = clock_.NowMs();
   // Decode opens sealed frames: a frame that fails authentication is the wire's fault (or an
   // attacker's), not the agent's, so it only ends this connection; the agent may reconnect.
   Result<protocol::DecodedFrame> frame = session_.Decode(payload);

@@ -18,6 +18,7 @@
 #include <string>
 #include <utility>
 
+#include "daemon/jobs/clock.h"
 #include "loop/event_loop.h"
 #include "loop/framed_connection.h"
 #include "loop/timer.h"
@@ -43,9 +44,10 @@ class AgentLink {
     std::function<void(AgentLink&, const std::string& reason)> on_closed;
   };
 
-  AgentLink(loop::EventLoop& loop, std::unique_ptr<loop::FramedConnection> connection,
-            const protocol::FarmSecret& secret, const protocol::MasterConfig& session_config,
-            const AgentLinkOptions& options, Callbacks callbacks);
+  AgentLink(loop::EventLoop& loop, const Clock& clock,
+            std::unique_ptr<loop::FramedConnection> connection, const protocol::FarmSecret& secret,
+            const protocol::MasterConfig& session_config, const AgentLinkOptions& options,
+            Callbacks callbacks);
   AgentLink(const AgentLink&) = delete;
   AgentLink& operator=(const AgentLink&) = delete;
 
@@ -93,7 +95,7 @@ class AgentLink {
   void OnFrame(std::span<const uint8_t> payload);
   void Fail(const std::string& reason);
 
-  loop::EventLoop& loop_;
+  const Clock& clock_;
   std::unique_ptr<loop::FramedConnection> connection_;
   protocol::ProtocolSession session_;
   AgentLinkOptions options_;

@@ -5,6 +5,7 @@
 
 #include "daemon/console/farm_metrics.h"
 #include "daemon/console/web/metrics_text.h"
+#include "daemon/jobs/clock.h"
 #include "store/job_store.h"
 
 namespace radfarm::daemon {
@@ -73,7 +74,7 @@ void StatusPublisher::Publish(const json& jobs, const json& agents, const json& 
   snapshot.status_json =
       json{{"time_ms", UnixMs()}, {"jobs", jobs}, {"agents", agents}, {"events", events}}.dump(
           -1, ' ', false, json::error_handler_t::replace);  // never throw on bad UTF-8
-  web::FarmMetrics metrics = FarmMetricsOf(jobs, agents, jobs_.batch_totals(LoopNow(loop_)),
+  web::FarmMetrics metrics = FarmMetricsOf(jobs, agents, jobs_.batch_totals(LoopClock(loop_).Now()),
                                            jobs_.checkpoint_latency(), store_.queued());
   metrics.round_results_kept = jobs_.journal().results_written;
   metrics.round_result_writes = jobs_.journal().writes;

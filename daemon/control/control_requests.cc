@@ -74,10 +74,9 @@ struct CheckedSubmission {
 
 }  // namespace
 
-ControlRequests::ControlRequests(loop::EventLoop& loop, StoreThread& store,
-                                 loop::WorkQueue& compute, JobRounds& jobs,
-                                 AgentConnections& agents)
-    : loop_(loop), store_(store), compute_(compute), jobs_(jobs), agents_(agents) {}
+ControlRequests::ControlRequests(const Clock& clock, StoreThread& store, loop::WorkQueue& compute,
+                                 JobRounds& jobs, AgentConnections& agents)
+    : clock_(clock), store_(store), compute_(compute), jobs_(jobs), agents_(agents) {}
 
 void ControlRequests::Handle(ControlRequest request, ControlRespond respond) {
   if (stopping_) {
@@ -238,12 +237,12 @@ json ControlRequests::JobJson(const JobSummary& s) {
     // Agents holding its leases: the round's, or its final gather's leased ahead (gather_ahead.h).
     std::set<scheduler::AgentId> working;
     runner->ForEachScheduler([&](const scheduler::RoundScheduler& s) {
-      for (const auto& a : s.counters(LoopNow(loop_)).agents) {
+      for (const auto& a : s.counters(clock_.Now()).agents) {
         if (a.leases_held > 0) working.insert(a.agent);
       }
     });
     job["agents"] = working.size();
-    const ProgressEstimate estimate = runner->Progress(LoopNow(loop_));
+    const ProgressEstimate estimate = runner->Progress(clock_.Now());
     if (estimate.seconds_left) job["eta_seconds"] = *estimate.seconds_left;
     progress = estimate.fraction;
     // Its round is leased out (a round computed here, a reduction or the end run on the compute
@@ -291,7 +290,7 @@ json ControlRequests::AgentJson(const AgentLink& link) const {
   uint32_t leases = 0;
   double rays_per_second = 0;
   uint64_t results = 0;
-  const auto now = LoopNow(loop_);
+  const auto now = clock_.Now();
   for (const auto& [job, runner] : jobs_.runners()) {
     runner->ForEachScheduler([&](const scheduler::RoundScheduler& s) {
       if (const auto a = s.agent_counters(link.id(), now)) {
@@ -309,7 +308,7 @@ json ControlRequests::AgentJson(const AgentLink& link) const {
               {"load", link.last_heartbeat().load},
               {"leases", leases},
               {"connected_ms", link.connected_unix_ms()},
-              {"last_heartbeat_ms_ago", loop_.NowMs() - link.last_heard_ms()},
+              {"last_heartbeat_ms_ago", clock_.NowMs() - link.last_heard_ms()},
               {"results", results},
               {"stale", link.stale()}};
 }

@@ -14,6 +14,7 @@
 #include "daemon/agents/agent_connections.h"
 #include "daemon/control/control_types.h"
 #include "daemon/control/job_summary.h"
+#include "daemon/jobs/clock.h"
 #include "daemon/jobs/job_rounds.h"
 #include "daemon/jobs/store_thread.h"
 #include "loop/event_loop.h"
@@ -23,8 +24,8 @@ namespace radfarm::daemon {
 
 class ControlRequests {
  public:
-  ControlRequests(loop::EventLoop& loop, StoreThread& store, loop::WorkQueue& compute,
-                  JobRounds& jobs, AgentConnections& agents);
+  ControlRequests(const Clock& clock, StoreThread& store, loop::WorkQueue& compute, JobRounds& jobs,
+                  AgentConnections& agents);
   ControlRequests(const ControlRequests&) = delete;
   ControlRequests& operator=(const ControlRequests&) = delete;
 
@@ -50,7 +51,7 @@ class ControlRequests {
   // Answers with the job object of `id` (all jobs when nullopt) read from the store.
   void RespondWithJobs(std::optional<store::JobId> id, ControlRespond respond);
 
-  loop::EventLoop& loop_;
+  const Clock& clock_;
   StoreThread& store_;
   loop::WorkQueue& compute_;
   JobRounds& jobs_;

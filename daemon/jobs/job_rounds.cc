@@ -29,14 +29,10 @@ std::string Ms(double seconds) {
 
 }  // namespace
 
-scheduler::TimePoint LoopNow(const loop::EventLoop& loop) {
-  return scheduler::TimePoint(std::chrono::milliseconds(loop.NowMs()));
-}
-
-JobRounds::JobRounds(loop::EventLoop& loop, const MasterConfig& config,
+JobRounds::JobRounds(const Clock& clock, const MasterConfig& config,
                      const scheduler::SchedulerOptions& options, StoreThread& store,
                      loop::WorkQueue& compute, AgentHooks agents)
-    : loop_(loop),
+    : clock_(clock),
       config_(config),
       options_(options),
       store_(store),
@@ -157,7 +153,7 @@ bool JobRounds::StartGatherAhead(const std::shared_ptr<RunningJob>& runner) {
       runner->totals().gather_rays_left <= config_.local_round_rays) {
     return true;
   }
-  if (Status s = runner->StartGatherAhead(LoopNow(loop_), agents_.available_agents()); !s) {
+  if (Status s = runner->StartGatherAhead(clock_.Now(), agents_.available_agents()); !s) {
     FailJob(runner->id(), s.error());
     return false;
   }
@@ -170,7 +166,7 @@ void JobRounds::BeginRound(const std::shared_ptr<RunningJob>& runner) {
     RunRoundHere(runner);
     return;
   }
-  if (Status s = runner->StartPlannedRound(LoopNow(loop_)); !s) {
+  if (Status s = runner->StartPlannedRound(clock_.Now()); !s) {
     FailJob(runner->id(), s.error());
     return;
   }
@@ -181,7 +177,7 @@ void JobRounds::BeginRound(const std::shared_ptr<RunningJob>& runner) {
     for (const auto& [index, agent] : adopted) {
       OnResultAccepted(runner->id(), scheduler::MakeBatchId(runner->running_round(), index), agent);
     }
-    const scheduler::SchedulerCounters c = runner->scheduler().counters(LoopNow(loop_));
+    const scheduler::SchedulerCounters c = runner->scheduler().counters(clock_.Now());
     LogLine(LogLevel::kInfo, "job " + std::to_string(runner->id()))
         << "round " << c.round << " (the final gather): " << adopted.size() << " of " << c.batches
         << " batches computed ahead, " << c.batches - c.batches_done << " to lease";
@@ -191,7 +187,7 @@ void JobRounds::BeginRound(const std::shared_ptr<RunningJob>& runner) {
   if (restored > 0) {
     // Results a previous master received and kept: folded in first, their batches not leased.
     batches_restored_ += restored;
-    const scheduler::SchedulerCounters c = runner->scheduler().counters(LoopNow(loop_));
+    const scheduler::SchedulerCounters c = runner->scheduler().counters(clock_.Now());
     LogLine(LogLevel::kInfo, "job " + std::to_string(runner->id()))
         << "round " << c.round << ": " << restored << " of " << c.batches
         << " batches restored from the store, " << c.batches - restored << " to lease"
@@ -219,7 +215,7 @@ void JobRounds::RunRoundHere(const std::shared_ptr<RunningJob>& runner) {
     FailJob(runner->id(), plan.error());
     return;
   }
-  const bool due = checkpoints_.Due(runner->id(), loop_.NowMs());
+  const bool due = checkpoints_.Due(runner->id(), clock_.NowMs());
   const BatchSizing sizing = runner->scheduler().SuggestedSizing();
   auto shared_plan = std::make_shared<RoundPlan>(std::move(*plan));
   ReduceOnComputeThread(runner, [runner, shared_plan, due, sizing] {
@@ -236,7 +232,7 @@ void JobRounds::OnResultAccepted(store::JobId id, scheduler::BatchId batch,
   const std::shared_ptr<RunningJob> runner = runners_.at(id);
   std::vector<store::StoredBatchResult> keep;
   const double round_seconds =
-      std::chrono::duration<double>(LoopNow(loop_) - runner->round_started()).count();
+      std::chrono::duration<double>(clock_.Now() - runner->round_started()).count();
   const auto v = verifiers_.find(id);
   BatchVerifier* verifier = v != verifiers_.end() && v->second.enabled() ? &v->second : nullptr;
   // Before QueueFold moves the result on: the verifier digests it if it needs to.
@@ -273,9 +269,9 @@ void JobRounds::OnRoundComplete(store::JobId id) {
     return;
   }
   const double seconds =
-      std::chrono::duration<double>(LoopNow(loop_) - runner->round_started()).count();
+      std::chrono::duration<double>(clock_.Now() - runner->round_started()).count();
   const BatchSizing sizing = runner->scheduler().SuggestedSizing();
-  const bool due = checkpoints_.Due(runner->id(), loop_.NowMs());
+  const bool due = checkpoints_.Due(runner->id(), clock_.NowMs());
   auto shared_round = std::make_shared<scheduler::CompletedRound>(std::move(*round));
   ReduceOnComputeThread(runner, [runner, shared_round, seconds, due, sizing] {
     return runner->Reduce(*shared_round, seconds, due, sizing);
@@ -296,14 +292,14 @@ void JobRounds::ReduceOnComputeThread(const std::shared_ptr<RunningJob>& runner,
 }
 
 void JobRounds::PruneKeptResults(store::JobId id, uint32_t round) {
-  const uint64_t queued_ms = loop_.NowMs();
+  const uint64_t queued_ms = clock_.NowMs();
   store_.Run([id, round](store::JobStore& s) { return s.PruneRoundResults(id, round); },
              [this, id, round, queued_ms](Status s) {
                // Harmless if it fails: a restart reads only the rounds after the checkpoint, and
                // the next checkpoint's pruning takes these rows too.
                LogLine(s ? LogLevel::kDebug : LogLevel::kWarning, "job " + std::to_string(id))
                    << "kept results up to round " << round
-                   << (s ? " pruned in " + std::to_string(loop_.NowMs() - queued_ms) + " ms"
+                   << (s ? " pruned in " + std::to_string(clock_.NowMs() - queued_ms) + " ms"
                          : " not pruned: " + s.error());
              });
 }
@@ -317,7 +313,7 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
   if (outcome.checkpoint_due) {
     auto checkpoint = std::make_shared<store::Checkpoint>(std::move(outcome.checkpoint));
     auto cost = std::make_shared<store::CheckpointCost>();
-    const uint64_t queued_ms = loop_.NowMs();
+    const uint64_t queued_ms = clock_.NowMs();
     store_.Run(
         [record, checkpoint, keep, cost,
          scene = outcome.checkpoint_scene](store::JobStore& s) -> Status {
@@ -333,7 +329,7 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
          copy_seconds = outcome.checkpoint_copy_seconds](Status s) {
           // The loop's clock, read at the start of the iteration that delivered the commit. The
           // pace counts the waiting behind other store work too: what restart_bench reports.
-          const double latency = double(loop_.NowMs() - queued_ms) / 1000;
+          const double latency = double(clock_.NowMs() - queued_ms) / 1000;
           checkpoints_.Written(id, s ? latency : 0);
           if (!s) return HoldOrFail(id, "cannot save the checkpoint: " + s.error());
           checkpoint_latency_.Record(latency);
@@ -399,7 +395,7 @@ void JobRounds::DropJob(store::JobId id) {
 void JobRounds::DropRunner(store::JobId id) {
   const auto it = runners_.find(id);
   if (it == runners_.end()) return;
-  retired_.Add(it->second->scheduler().counters(LoopNow(loop_)));
+  retired_.Add(it->second->scheduler().counters(clock_.Now()));
   runners_.erase(it);
   checkpoints_.Forget(id);
   verifiers_.erase(id);

@@ -30,6 +30,7 @@
 #include "daemon/console/web/latency_histogram.h"
 #include "daemon/jobs/batch_totals.h"
 #include "daemon/jobs/batch_verifier.h"
+#include "daemon/jobs/clock.h"
 #include "daemon/jobs/result_journal.h"
 #include "daemon/jobs/running_job.h"
 #include "daemon/jobs/store_thread.h"
@@ -40,9 +41,6 @@
 #include "store/job_store.h"
 
 namespace radfarm::daemon {
-
-// The loop's clock as the schedulers read it.
-scheduler::TimePoint LoopNow(const loop::EventLoop& loop);
 
 // What JobRounds asks of the agent side.
 struct AgentHooks {
@@ -67,7 +65,7 @@ class JobRounds {
  public:
   using Runners = std::map<store::JobId, std::shared_ptr<RunningJob>>;
 
-  JobRounds(loop::EventLoop& loop, const MasterConfig& config,
+  JobRounds(const Clock& clock, const MasterConfig& config,
             const scheduler::SchedulerOptions& options, StoreThread& store,
             loop::WorkQueue& compute, AgentHooks agents);
   JobRounds(const JobRounds&) = delete;
@@ -160,7 +158,7 @@ class JobRounds {
   // Stops a job's work on every agent (Cancel) and forgets its runner.
   void DropRunner(store::JobId id);
 
-  loop::EventLoop& loop_;
+  const Clock& clock_;
   const MasterConfig& config_;
   const scheduler::SchedulerOptions& options_;
   StoreThread& store_;
