@@ -98,5 +98,22 @@ TEST(AgentConnectionsTest, AnAgentSilentPastTheTimeoutLosesItsLeasesOnTheClocksW
   EXPECT_FALSE(silent.closed());  // stale, not closed: it gets work again once it speaks
 }
 
+TEST(AgentConnectionsTest, AStaleAgentThatSpeaksAgainGetsWorkAgain) {
+  MasterParts master;
+  const uint64_t job = master.Submit(0);
+  FakeAgent agent(master.loop(), master.agent_address(), master.secret(), "box-1", false);
+  ASSERT_TRUE(agent.Connect().ok());
+  ASSERT_TRUE(master.RunUntil([&] { return !agent.held().empty(); }));
+  master.clock().Advance(std::chrono::milliseconds(master.config().agent_timeout_ms + 1));
+  master.agents().Heartbeat();
+  ASSERT_EQ(master.agents().active(), 0u);
+  const uint64_t received = agent.batches_received();
+
+  agent.SendHeartbeat();
+  ASSERT_TRUE(master.RunUntil([&] { return agent.batches_received() > received; }));
+  EXPECT_EQ(master.agents().active(), 1u);
+  EXPECT_GT(CountersOf(master, job).batches_leased, 0u);
+}
+
 }  // namespace
 }  // namespace radfarm::daemon::fakes

@@ -41,6 +41,10 @@ void FakeAgent::Drop() {
   }
 }
 
+void FakeAgent::SendHeartbeat() {
+  Send(protocol::HeartbeatMsg{0, 1e6, static_cast<uint32_t>(held_.size())});
+}
+
 void FakeAgent::OnFrame(std::span<const uint8_t> payload) {
   Result<protocol::DecodedFrame> frame = session_.Decode(payload);
   if (!frame) return Fail("bad frame from the master: " + frame.error());
@@ -54,7 +58,7 @@ void FakeAgent::OnFrame(std::span<const uint8_t> payload) {
     return;
   }
   if (!was_authenticated && session_.authenticated()) {
-    Send(protocol::HeartbeatMsg{0, 1e6, 0});  // as radfarm-agent on its welcome
+    SendHeartbeat();  // as radfarm-agent on its welcome
     return;
   }
   if (!accepted->deliver) return;

@@ -40,6 +40,8 @@ class FakeAgent {
   Status Connect();
   // Drops the connection without a word, as a crashed agent or a cut cable does.
   void Drop();
+  // Speaks: a heartbeat reporting its speed and the leases it holds.
+  void SendHeartbeat();
 
   bool authenticated() const { return session_.authenticated(); }
   bool closed() const { return closed_reason_.has_value(); }
