@@ -25,7 +25,7 @@ namespace radfarm {
 inline constexpr uint32_t kGatherRound = UINT32_MAX;
 
 struct Batch {
-  uint32_t round = 0;  // the rays' key: the round's number, or kGatherRound for the gather
+  uint32_t round = 0;    // the rays' key: the round's number, or kGatherRound for the gather
   uint32_t shooter = 0;  // patch id
   uint64_t first_ray = 0;
   uint32_t ray_count = 0;
@@ -53,7 +53,7 @@ void AppendShotBatches(uint32_t round, uint32_t shooter, uint64_t rays, uint32_t
 
 // How a round's shots are cut into batches: batches of batch_rays, and with taper_ways > 0 the
 // round's last rays cut finer (TaperBatches). The farm's master stores it with each result, so a
-// restarted master plans the same batches (daemon/running_job.h).
+// restarted master plans the same batches (daemon/jobs/running_job.h).
 struct BatchSizing {
   uint32_t batch_rays = 0;
   uint32_t taper_ways = 0;  // 0: no taper

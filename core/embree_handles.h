@@ -1,6 +1,6 @@
 // An Embree device and scene, owned together and released in reverse order of creation, and the
 // check of the device's error state. Shared by the solver's RayCaster and the reference bench's
-// casters (bench/reference/), each of which keeps one behind its own pimpl.
+// casters (reference/), each of which keeps one behind its own pimpl.
 #pragma once
 
 #include <embree3/rtcore.h>

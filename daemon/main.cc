@@ -11,9 +11,9 @@
 
 #include "base/result.h"
 #include "base/text_file.h"
+#include "daemon/config/master_config.h"
 #include "daemon/detach.h"
 #include "daemon/master.h"
-#include "daemon/master_config.h"
 #include "loop/event_loop.h"
 #include "loop/log.h"
 

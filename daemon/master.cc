@@ -14,7 +14,7 @@
 namespace radfarm::daemon {
 
 Master::Master(loop::EventLoop& loop, const MasterConfig& config, protocol::FarmSecret secret)
-    : loop_(loop), config_(config), secret_(std::move(secret)) {
+    : loop_(loop), config_(config), secret_(std::move(secret)), clock_(loop) {
   scheduler_options_.target_lease_seconds = config.lease_seconds;
   // A lease is overdue (offered to another agent too) once it takes several times its expected
   // time, but never sooner than the time an agent may stay silent.
@@ -98,11 +98,11 @@ Status Master::Wire(const std::vector<store::AgentCredential>& credentials) {
       [this](store::JobId id, const std::string& agent, const std::string& why) {
         agents_->Convict(id, agent, why);
       }};
-  jobs_ = std::make_unique<JobRounds>(loop_, config_, scheduler_options_, *store_, *compute_,
+  jobs_ = std::make_unique<JobRounds>(clock_, config_, scheduler_options_, *store_, *compute_,
                                       std::move(hooks));
-  agents_ = std::make_unique<AgentConnections>(loop_, config_, secret_, scheduler_options_, *store_,
-                                               *jobs_, credentials);
-  control_ = std::make_unique<ControlRequests>(loop_, *store_, *compute_, *jobs_, *agents_);
+  agents_ = std::make_unique<AgentConnections>(loop_, clock_, config_, secret_, scheduler_options_,
+                                               *store_, *jobs_, credentials);
+  control_ = std::make_unique<ControlRequests>(clock_, *store_, *compute_, *jobs_, *agents_);
 
   Result<loop::HostPort> listen = loop::ParseHostPort(config_.listen, "--listen");
   RADFARM_RETURN_IF_ERROR(listen);
@@ -180,8 +180,8 @@ void Master::OnHeartbeatTimer() {
 }
 
 void Master::OnTickTimer() {
-  if (jobs_->Tick(LoopNow(loop_)) > 0 || jobs_->InEndGame()) agents_->DispatchAll();
-  jobs_->RetryHeldJobs(loop_.NowMs());
+  if (jobs_->Tick(clock_.Now()) > 0 || jobs_->InEndGame()) agents_->DispatchAll();
+  jobs_->RetryHeldJobs(clock_.NowMs());
 }
 
 void Master::ReportStatus() {

@@ -1,13 +1,15 @@
 // Master: the radfarmd daemon. It wires its parts together and owns the event loop's handles and
-// the threads; each part has one job:
+// the threads; each part has one job, in its room (README.md of each folder):
 //
-//   AgentConnections (agent_connections.h)  agent links, handshake, leases out, results in,
-//                                           heartbeats, stale and blocklisted agents
-//   JobRounds (job_rounds.h)                queued jobs started, rounds run, reduced and
-//                                           checkpointed, jobs finished or failed
-//   ControlRequests (control_requests.h)    the control socket's requests
-//   StoreThread (store_thread.h)            the job store and the thread it runs on
-//   WebConsole (web_console.h)              --http: status page, events, /metrics, actions
+//   AgentConnections (agents/)   agent links, handshake, leases out, results in, heartbeats,
+//                                stale and blocklisted agents
+//   JobRounds (jobs/)            queued jobs started, rounds run, reduced and checkpointed, jobs
+//                                finished or failed
+//   StoreThread (jobs/)          the job store and the thread it runs on
+//   ControlRequests (control/)   the control socket's requests
+//   WebConsole (console/)        --http: status page, events, /metrics, actions
+//
+// They read the time through a Clock (jobs/clock.h): here the loop's, in tests a fake one.
 //
 // Threads. One event loop (the loop thread) runs the agent listener, the control socket, the
 // heartbeat and lease timers and every job's RoundScheduler; every part lives on it. SQLite runs
@@ -25,14 +27,15 @@
 #include <string>
 
 #include "base/result.h"
-#include "daemon/agent_connections.h"
-#include "daemon/control_requests.h"
-#include "daemon/control_server.h"
-#include "daemon/job_rounds.h"
-#include "daemon/master_config.h"
+#include "daemon/agents/agent_connections.h"
+#include "daemon/config/master_config.h"
+#include "daemon/console/web_console.h"
+#include "daemon/control/control_requests.h"
+#include "daemon/control/control_server.h"
+#include "daemon/jobs/clock.h"
+#include "daemon/jobs/job_rounds.h"
+#include "daemon/jobs/store_thread.h"
 #include "daemon/scheduler/round_scheduler.h"
-#include "daemon/store_thread.h"
-#include "daemon/web_console.h"
 #include "loop/event_loop.h"
 #include "loop/os_signal.h"
 #include "loop/tcp_listener.h"
@@ -70,6 +73,7 @@ class Master {
   loop::EventLoop& loop_;
   const MasterConfig config_;
   const protocol::FarmSecret secret_;
+  const LoopClock clock_;  // the rooms' time: the loop's
   scheduler::SchedulerOptions scheduler_options_;
   // The threads, then the parts that use them, then the handles that call the parts.
   std::unique_ptr<StoreThread> store_;

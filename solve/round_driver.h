@@ -1,7 +1,8 @@
 // RoundDriver: the one loop of a radiosity solve, as a state machine that does not cast rays
 // itself. `radfarm render` runs it on its thread pool (local_solve.h); the farm master runs it
-// through its scheduler, with agents computing the batches (daemon/running_job.h). Both therefore
-// plan, apply, stop and refine at the same rounds with the same inputs, and get the same bits.
+// through its scheduler, with agents computing the batches (daemon/jobs/running_job.h). Both
+// therefore plan, apply, stop and refine at the same rounds with the same inputs, and get the same
+// bits.
 //
 //   Start       build the solver on the mesh (the direct light of a gathering solve), or rebuild a
 //               checkpoint's state on it; refine before round 0 when refinement is on

@@ -8,8 +8,8 @@
 //     time is from its queueing to its commit, as Written is told. The first round's is always
 //     written; after it, a job whose checkpoints take 2 s writes one every 40 s at 5 %.
 // A round without a checkpoint is still recorded, and its kept results let a restart replay it
-// (daemon/result_journal.h), so skipping one costs a restart at most the rounds since the last.
-// radfarmd paces each job's checkpoints so, and `radfarm render --db` its one job's. Pure
+// (daemon/jobs/result_journal.h), so skipping one costs a restart at most the rounds since the
+// last. radfarmd paces each job's checkpoints so, and `radfarm render --db` its one job's. Pure
 // bookkeeping: one thread calls it (radfarmd's loop thread, the render's), with its clock.
 #pragma once
 

@@ -217,8 +217,8 @@ class JobStore {
   // never resumed. The master prunes each job as it ends, after saying so; this takes the rows a
   // master stopped between the two left behind (at its start).
   Status PruneEndedJobsRoundResults();
-  // A liar was caught (daemon/batch_verifier.h): in one transaction, deletes the checkpoints of
-  // round `from_round` and later and the kept results of the rounds after it, and of
+  // A liar was caught (daemon/jobs/batch_verifier.h): in one transaction, deletes the checkpoints
+  // of round `from_round` and later and the kept results of the rounds after it, and of
   // `from_round` itself those of the batches in `discard` (or all of them when `discard_all`).
   // A master that restarts then resumes before the lie, as the running one does.
   Status RewindJob(JobId job, uint32_t from_round, std::span<const uint32_t> discard,

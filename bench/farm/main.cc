@@ -1,6 +1,6 @@
 // farm_bench: the farm's scaling benchmark. Part 1 solves the Cornell box with `radfarm render`
 // and with radfarmd plus real radfarm-agent processes on loopback; part 2 runs radfarmd with 10,
-// 100 and 1000 simulated agents (bench/farm_sim/). Prints the figures and writes them as JSON
+// 100 and 1000 simulated agents (farmsim/). Prints the figures and writes them as JSON
 // (bench/results/farm_bench.json; scripts/bench-report makes docs/BENCHMARKS-farm.md of it). See
 // farm_bench_options.h.
 #include <cstdio>

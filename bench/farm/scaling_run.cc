@@ -8,8 +8,8 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "bench/farm_sim/agent_swarm.h"
-#include "bench/farm_sim/idle_split.h"
+#include "farmsim/agent_swarm.h"
+#include "farmsim/idle_split.h"
 #include "testing/child_process.h"
 
 namespace radfarm::bench {

@@ -1,5 +1,5 @@
 // One scaling measurement: a real radfarmd (a process, started fresh), N simulated agents
-// (bench/farm_sim/) connected to it, one job submitted with the real CLI and run to its end.
+// (farmsim/) connected to it, one job submitted with the real CLI and run to its end.
 //
 // The job: scenes/furnace.obj (a closed cube, every face emitting with reflectance 0.9) meshed
 // into 384 patches, Sobol, with shot_rays and a tolerance that stop it after exactly `rounds`
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "bench/farm/farm_checks.h"
-#include "bench/farm_sim/idle_split.h"
+#include "farmsim/idle_split.h"
 
 namespace radfarm::bench {
 
@@ -34,8 +34,8 @@ struct ScalingSample {
   double bytes_sent = 0, bytes_received = 0, scene_bytes = 0;  // by the agents, all frames
   double utilisation_mean = 0, utilisation_min = 0;            // busy / wall, over agents
   double efficiency = 0;                                       // (job rays / R) / (N * wall)
-  double master_cpu_seconds = 0;               // radfarmd's CPU time over the whole run
-  double master_connect_cpu_seconds = 0;       // of it: until every agent had authenticated
+  double master_cpu_seconds = 0;          // radfarmd's CPU time over the whole run
+  double master_connect_cpu_seconds = 0;  // of it: until every agent had authenticated
   // The same two for radfarmd's event-loop thread alone (its main thread: leases, results,
   // frames), without the compute and store threads' reductions, planning and SQLite.
   double master_loop_cpu_seconds = 0, master_loop_connect_cpu_seconds = 0;
@@ -43,7 +43,7 @@ struct ScalingSample {
   double swarm_cpu_seconds = 0;                // the simulator's
   double mean_lateness = 0, max_lateness = 0;  // the simulator's timers
   double connect_seconds = 0;
-  // Where the agents' idle time went (bench/farm_sim/idle_split.h): between rounds (from a
+  // Where the agents' idle time went (farmsim/idle_split.h): between rounds (from a
   // round's last result to the next round's first lease: reduction, planning, the lease's way
   // out) and within rounds (waiting for leases, round starts and tails).
   sim::IdleSplit idle;

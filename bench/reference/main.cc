@@ -1,4 +1,4 @@
-// reference_bench: the display's error against the path-traced reference (bench/reference/) on
+// reference_bench: the display's error against the path-traced reference (reference/) on
 // scenes rendered by `radfarm render`, with the render's time beside it.
 //
 //   reference_bench [--points N] [--band-points N] [--band-patches W] [--seed S] [--relative-error
@@ -27,14 +27,14 @@
 #include <vector>
 
 #include "bench/bench_json.h"
-#include "bench/reference/band_contact.h"
-#include "bench/reference/display_error.h"
-#include "bench/reference/display_lookup.h"
-#include "bench/reference/path_tracer.h"
-#include "bench/reference/reference_scene.h"
-#include "bench/reference/surface_points.h"
 #include "input/scene_loader.h"
 #include "job/job.h"
+#include "reference/band_contact.h"
+#include "reference/display_error.h"
+#include "reference/display_lookup.h"
+#include "reference/path_tracer.h"
+#include "reference/reference_scene.h"
+#include "reference/surface_points.h"
 
 namespace radfarm::reference {
 namespace {

@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <span>
 
-#include "daemon/control_request_parser.h"
+#include "daemon/control/control_request_parser.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace radfarm::daemon;

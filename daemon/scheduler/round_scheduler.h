@@ -133,7 +133,7 @@ class RoundScheduler {
   // agent had started still counts when it answers first (as a returned lease would).
   std::vector<Takeover> Preempt(AgentId agent);
   // No leases for `agent` until `until`, and its results are rejected (kBlocklisted). The daemon
-  // decides who is blocklisted (daemon/job_blocklist.h, by the agent's name) and tells every
+  // decides who is blocklisted (daemon/agents/job_blocklist.h, by the agent's name) and tells every
   // connection of that agent here; it outlives OnAgentLost.
   void Blocklist(AgentId agent, TimePoint until);
   bool IsBlocklisted(AgentId agent, TimePoint now) const;
@@ -144,10 +144,10 @@ class RoundScheduler {
   // a restarted master had them from its store and folds them in itself; out-of-range or repeated
   // indices are ignored. The round may then be complete at once.
   // `computed`: results of batches of the plan traced before the round started (the final gather
-  // planned ahead: daemon/gather_ahead.h), by index; they start done with their results in place,
-  // for TakeResult as accepted results are. Indices out of range or done already are ignored.
-  // `later`: batches still being computed elsewhere (the gather ahead's leases out), leased after
-  // all the others, by when their results have likely come (OnComputedResult).
+  // planned ahead: daemon/jobs/gather_ahead.h), by index; they start done with their results in
+  // place, for TakeResult as accepted results are. Indices out of range or done already are
+  // ignored. `later`: batches still being computed elsewhere (the gather ahead's leases out),
+  // leased after all the others, by when their results have likely come (OnComputedResult).
   Status StartRound(RoundPlan plan, TimePoint now, std::span<const uint32_t> restored = {},
                     std::vector<std::pair<uint32_t, BatchResult>> computed = {},
                     std::span<const uint32_t> later = {});

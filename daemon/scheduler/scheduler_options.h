@@ -52,13 +52,13 @@ struct SchedulerOptions {
   // round's tapered end is cut into pieces of a sixteenth of that: a capacity of them is less work
   // than the round trip to the master, so an agent ran dry for a round trip after each lease
   // there. 0: off. radfarmd sets its own (daemon/master.cc); the gather ahead leaves it off
-  // (daemon/gather_ahead.cc).
+  // (daemon/jobs/gather_ahead.cc).
   double min_held_seconds = 0;
   // Live attempts of one batch at most (the original plus speculative copies).
   uint32_t max_live_attempts = 2;
   // The first attempt id issued (ids then count up, wrap and skip 0): tests start near 2^32.
   uint32_t first_attempt_id = 1;
-  // How long an agent blocklisted for a job gets none of its work (daemon/job_blocklist.h).
+  // How long an agent blocklisted for a job gets none of its work (daemon/agents/job_blocklist.h).
   Duration blocklist_duration = std::chrono::minutes(10);  // MasterConfig::blocklist_seconds
   // The next round's last rays cut finer (core/batch.h TaperBatches) in this many ways per known
   // agent: near the round's end a batch holds at most the rays after it over that many, so the
@@ -66,7 +66,7 @@ struct SchedulerOptions {
   // work; many more cost frames for nothing. 0: no taper.
   double taper_ways_per_agent = 3;
   // The final gather's first rays, at most this many, are leased to agents with nothing else to
-  // do while the shooting rounds run (daemon/gather_ahead.h). 0: off. radfarmd: MasterConfig's
+  // do while the shooting rounds run (daemon/jobs/gather_ahead.h). 0: off. radfarmd: MasterConfig's
   // gather_ahead_rays.
   uint64_t gather_ahead_rays = 0;
   // SuggestedBatchRays() bounds.

@@ -87,7 +87,7 @@ TEST_F(FarmTest, RoundsUnderTheLocalLimitAreSolvedByTheMasterAlone) {
 }
 
 // The final gather's batches depend on the scene alone, so agents idle at the ends of and between
-// the shooting rounds compute them ahead (daemon/gather_ahead.h); the gather round starts with
+// the shooting rounds compute them ahead (daemon/jobs/gather_ahead.h); the gather round starts with
 // those done. The patches are render's to the byte, with it and without it (--gather-ahead-rays 0).
 const std::regex& AdoptedLine() {
   static const std::regex line(R"(\(the final gather\): (\d+) of (\d+) batches computed ahead)");

@@ -14,7 +14,7 @@
 #include "shell.h"
 
 #ifdef RADFARM_HAVE_MASTER_CONFIG
-#include "daemon/master_config.h"
+#include "daemon/config/master_config.h"
 #endif
 #ifdef RADFARM_HAVE_AGENT_CONFIG
 #include "agent/config_file.h"

@@ -147,9 +147,9 @@ TEST(RoundSchedulerTest, RestoredBatchesStartDoneAndOnlyTheOthersAreLeased) {
   EXPECT_TRUE(s.TakeCompletedRound().ok());
 }
 
-// The final gather planned ahead (daemon/gather_ahead.h): batches computed before the round start
-// done with their results in place (taken like accepted ones), batches still out elsewhere are
-// leased after all the others, and a result computed elsewhere completes its batch once,
+// The final gather planned ahead (daemon/jobs/gather_ahead.h): batches computed before the round
+// start done with their results in place (taken like accepted ones), batches still out elsewhere
+// are leased after all the others, and a result computed elsewhere completes its batch once,
 // superseding a lease of it.
 TEST(RoundSchedulerTest, BatchesComputedAheadStartDoneAndThoseStillOutAreLeasedLast) {
   SchedulerOptions options;
@@ -456,7 +456,7 @@ TEST(RoundSchedulerTest, PreemptedLeasesAreRequeuedInOrderAndMayStillAnswer) {
 }
 
 // An invalid result revokes the agent's leases; blocklisting it is the daemon's call
-// (daemon/job_blocklist.h), which then keeps it from work and its results out until it ends.
+// (daemon/agents/job_blocklist.h), which then keeps it from work and its results out until it ends.
 TEST(RoundSchedulerTest, AnInvalidResultRevokesLeasesAndABlocklistedAgentGetsNoWorkUntilItEnds) {
   RoundScheduler s;
   s.AddAgent(1);

@@ -1,0 +1,132 @@
+#include "daemon/console/web/web_routes.h"
+
+#include <charconv>
+#include <nlohmann/json.hpp>
+
+#include "daemon/console/web/status_page.h"
+
+namespace radfarm::web {
+namespace {
+
+using nlohmann::json;
+
+WebResponse Reply(WebReply reply) { return WebResponse{std::move(reply), {}, false}; }
+
+WebResponse Error(unsigned status, const std::string& message) {
+  return Reply(JsonError(status, message));
+}
+
+WebResponse Unauthorized() {
+  WebResponse r = Error(401, "this needs the farm's web token (docs/OPERATIONS.md)");
+  r.headers.emplace_back("WWW-Authenticate", "Bearer realm=\"radfarm\"");
+  return r;
+}
+
+WebResponse Asset(std::string_view body, const char* type) {
+  return Reply({200, type, std::string(body)});
+}
+
+// "12" -> 12; anything else (signs, spaces, overflow, beyond 2^53) -> -1.
+int64_t ParseId(std::string_view text) {
+  int64_t id = -1;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), id);
+  if (ec != std::errc() || end != text.data() + text.size() || text.empty() || id < 0 ||
+      id > (int64_t{1} << 53)) {
+    return -1;
+  }
+  return id;
+}
+
+}  // namespace
+
+WebRoutes::WebRoutes(WebAccess access, const StatusBoard& board, WebHandlers handlers)
+    : access_(std::move(access)), board_(board), handlers_(std::move(handlers)) {}
+
+WebResponse WebRoutes::Handle(const WebRequest& request) const {
+  if (!access_.HostAllowed(request.host)) {
+    return Error(403, "the Host header must name a loopback address");
+  }
+  const bool bearer = access_.BearerValid(request.authorization);
+  const bool authenticated = bearer || access_.SessionValid(request.cookie);
+  const std::string_view path = request.path;
+  const bool get = request.method == "GET" || request.method == "HEAD";
+  if (get && (path == "/" || path == "/index.html")) {
+    return Asset(StatusPageHtml(), "text/html; charset=utf-8");
+  }
+  if (get && path == "/status.js") return Asset(StatusPageJs(), "text/javascript; charset=utf-8");
+  if (get && path == "/status.css") return Asset(StatusPageCss(), "text/css; charset=utf-8");
+  if (path == "/api/session") {
+    if (request.method == "POST") return Login(request);
+    if (get) return Session(request, authenticated);
+    return Error(405, "GET or POST");
+  }
+  constexpr std::string_view kJobs = "/api/jobs/";
+  if (path.substr(0, kJobs.size()) == kJobs) {
+    return JobRoute(request, path.substr(kJobs.size()), authenticated);
+  }
+  const bool data = path == "/api/status" || path == "/api/events" || path == "/metrics";
+  if (!data) return Error(404, "no such page");
+  if (!get) return Error(405, "GET only");
+  if (!access_.MayRead(authenticated)) return Unauthorized();
+  if (path == "/api/events") return WebResponse{{200, "text/event-stream", ""}, {}, true};
+  const auto snapshot = board_.Latest();
+  if (!snapshot) return Error(503, "no status yet: the master is starting");
+  if (path == "/metrics") {
+    return Reply({200, "text/plain; version=0.0.4; charset=utf-8", snapshot->metrics_text});
+  }
+  return Reply({200, "application/json", snapshot->status_json});
+}
+
+WebResponse WebRoutes::Session(const WebRequest&, bool authenticated) const {
+  return Reply({200, "application/json",
+                json{{"ok", true},
+                     {"authenticated", authenticated},
+                     {"read", access_.MayRead(authenticated)},
+                     {"act", access_.MayAct(authenticated)},
+                     {"token", access_.has_token()},
+                     {"loopback", access_.loopback()}}
+                    .dump()});
+}
+
+WebResponse WebRoutes::Login(const WebRequest& request) const {
+  if (!access_.has_token()) {
+    return Error(403, "this master has no web token: start radfarmd with --http-token-file");
+  }
+  // Only the page (or a script) sends the header; a form on another site cannot.
+  if (!request.marked) return Error(403, "the X-Radfarm-Request header is missing");
+  const json body = json::parse(request.body, nullptr, false);
+  if (body.is_discarded() || !body.is_object() || !body.contains("token") ||
+      !body["token"].is_string()) {
+    return Error(400, "expected {\"token\": \"...\"}");
+  }
+  if (!access_.TokenMatches(body["token"].get<std::string>())) {
+    return Error(401, "wrong token");
+  }
+  WebResponse r = Reply({200, "application/json", json{{"ok", true}}.dump()});
+  r.headers.emplace_back("Set-Cookie", access_.SessionCookie());
+  return r;
+}
+
+WebResponse WebRoutes::JobRoute(const WebRequest& request, std::string_view rest,
+                                bool authenticated) const {
+  const size_t slash = rest.find('/');
+  const int64_t id = ParseId(rest.substr(0, slash));
+  if (slash == std::string_view::npos || id < 0) return Error(404, "no such page");
+  const std::string_view what = rest.substr(slash + 1);
+  if (what == "preview.png") {
+    if (request.method != "GET" && request.method != "HEAD") return Error(405, "GET only");
+    if (!access_.MayRead(authenticated)) return Unauthorized();
+    return Reply(handlers_.preview(id));
+  }
+  if (what != "pause" && what != "resume" && what != "cancel") return Error(404, "no such page");
+  if (request.method != "POST") return Error(405, "POST only");
+  if (!access_.has_token()) {
+    return Error(403, "actions need a web token: start radfarmd with --http-token-file");
+  }
+  if (!authenticated) return Unauthorized();
+  const bool bearer = access_.BearerValid(request.authorization);
+  if (!bearer && !request.marked) return Error(403, "the X-Radfarm-Request header is missing");
+  return Reply(handlers_.act(what, id));
+}
+
+}  // namespace radfarm::web

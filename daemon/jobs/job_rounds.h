@@ -1,0 +1,195 @@
+// JobRounds: the master's running jobs. It starts queued jobs (up to max_running_jobs, by
+// priority, then age), prepares each on the compute thread, runs its rounds (leased to agents
+// through its RunningJob's RoundScheduler, or computed here when small: local_round_rays), reduces
+// each round on the compute thread and commits the round and its checkpoint on the store thread
+// while the next round already runs; then it finishes or fails the job.
+//
+// Job lifecycle here (store/job_state.h has the store's side):
+//   queued --StartQueuedJobs--> starting --OnJobPrepared--> rounds: BeginRound --OnRoundComplete
+//     (or RunRoundHere)--> reducing --OnRoundReduced--> BeginRound ... --> FinishJob / FailJob
+//   DropJob (cancel, pause) forgets a running job at any point; a job still starting is dropped
+//   when its preparation ends.
+//   A store fault (disk full, I/O error) while a round is committed holds the job instead of
+//   failing it (HoldJob, job_holds.cc): paused with a "held: " reason, and RetryHeldJobs puts it
+//   back in the queue every hold_retry_ms until the store writes again.
+//
+// It knows nothing of connections: what it needs of the agents comes through AgentHooks.
+// Loop thread only (the compute and store threads hand their results back to it).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "daemon/config/master_config.h"
+#include "daemon/console/web/latency_histogram.h"
+#include "daemon/jobs/batch_totals.h"
+#include "daemon/jobs/batch_verifier.h"
+#include "daemon/jobs/clock.h"
+#include "daemon/jobs/result_journal.h"
+#include "daemon/jobs/running_job.h"
+#include "daemon/jobs/store_thread.h"
+#include "daemon/scheduler/round_scheduler.h"
+#include "loop/event_loop.h"
+#include "loop/work_queue.h"
+#include "store/checkpoint_pacer.h"
+#include "store/job_store.h"
+
+namespace radfarm::daemon {
+
+// What JobRounds asks of the agent side.
+struct AgentHooks {
+  std::function<void()> dispatch_all;            // hand leases to every agent with room
+  std::function<void(store::JobId)> cancel_job;  // tell every agent to drop the job's batches
+  std::function<std::vector<uint64_t>()> available_agents;  // authenticated and not stale
+  // Their last reported rays/s, summed (0: none measured yet).
+  std::function<double()> reported_rays_per_second;
+  // A result of `agent` failed exact validation (`why` names the batch and both digests):
+  // blocklist it for the job and close its connections.
+  std::function<void(store::JobId, const std::string& agent, const std::string& why)> convict;
+};
+
+// Exact validation since the master started (job_verification.cc).
+struct VerifyCounters {
+  uint64_t verified = 0;    // batches computed again here and compared
+  uint64_t mismatched = 0;  // of verified: the agent's bits differed
+  uint64_t rewinds = 0;     // jobs sent back before a liar's first result
+};
+
+class JobRounds {
+ public:
+  using Runners = std::map<store::JobId, std::shared_ptr<RunningJob>>;
+
+  JobRounds(const Clock& clock, const MasterConfig& config,
+            const scheduler::SchedulerOptions& options, StoreThread& store,
+            loop::WorkQueue& compute, AgentHooks agents);
+  JobRounds(const JobRounds&) = delete;
+  JobRounds& operator=(const JobRounds&) = delete;
+
+  // Starts queued jobs while there are free slots (after a submit, a resume, a job's end).
+  void StartQueuedJobs();
+  // The scene of job `id`, just submitted, as the submission's check meshed it: if the next
+  // StartQueuedJobs starts the job, its preparation takes this mesh instead of meshing again (at
+  // 10^5-10^6 patches, seconds). Otherwise it is dropped then, so a queued job holds no mesh.
+  // One at a time: a newer one replaces it.
+  void OfferSubmittedMesh(store::JobId id, SubmittedMesh mesh);
+  // A batch result of the job's round, computed by the agent called `agent`, was accepted: it
+  // goes on to be folded in, and is perhaps verified (batch_verifier.h).
+  void OnResultAccepted(store::JobId id, scheduler::BatchId batch, const std::string& agent);
+  // The last batch of the job's round is in: reduce it.
+  void OnRoundComplete(store::JobId id);
+  // Forgets a job the operator cancelled or paused (the store knows already).
+  void DropJob(store::JobId id);
+  void FailJob(store::JobId id, const std::string& error);
+  // A store fault: hold the job (store/job_state.h); any other error fails it.
+  void HoldOrFail(store::JobId id, const std::string& error);
+  // After round `round`'s checkpoint committed: its kept results and those before go, in a store
+  // transaction of their own (store/job_store.h PruneRoundResults). UINT32_MAX: all of them, for
+  // a job that ended.
+  void PruneKeptResults(store::JobId id, uint32_t round);
+  // From a timer: at most every hold_retry_ms, held jobs go back to the queue if the store writes.
+  void RetryHeldJobs(uint64_t now_ms);
+
+  // The running jobs (not those being prepared), by id.
+  const Runners& runners() const { return runners_; }
+  RunningJob* FindRunner(uint64_t job_id);
+  // The jobs in a round, and those between rounds with a gather ahead (gather_ahead.h), highest
+  // priority first; equal priorities take turns being first.
+  std::vector<RunningJob*> RunnersByPriority();
+  size_t starting() const { return starting_.size(); }
+  // The batch counters of every job since the master started: the finished runners' and the
+  // running ones' (for /metrics).
+  BatchTotals batch_totals(scheduler::TimePoint now) const;
+  // What the store kept of the rounds in progress, and what restarts found there.
+  const JournalCounters& journal() const { return journal_.counters(); }
+  const VerifyCounters& verification() const { return verify_counters_; }
+  uint64_t batches_restored() const { return batches_restored_; }
+  // Results of final gathers computed ahead of their rounds and accepted there (gather_ahead.h).
+  uint64_t gather_ahead_adopted() const { return gather_ahead_adopted_; }
+  // Seconds from queueing each checkpoint on the store thread to its commit.
+  const web::LatencyHistogram& checkpoint_latency() const { return checkpoint_latency_; }
+  // Offers overdue leases again (RoundScheduler::Tick); returns how many.
+  size_t Tick(scheduler::TimePoint now);
+  // Whether some job's round is in its end game (RoundScheduler::InEndGame): idle agents should be
+  // offered work on every tick, not only when they speak.
+  bool InEndGame() const;
+
+  // Shutdown: no new work starts, results coming back are dropped.
+  void Stop() { stopping_ = true; }
+  // After the store thread drained: the runners go.
+  void Clear() { runners_.clear(); }
+
+ private:
+  void OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob>> runner);
+  // Leases the job's final gather ahead (gather_ahead.h) if its preparation or last reduction
+  // planned one and the agents, not this master, will compute the gather. False when it failed
+  // the job.
+  bool StartGatherAhead(const std::shared_ptr<RunningJob>& runner);
+  // Starts the planned round on the agents, or computes it here when it is small
+  // (MasterConfig::local_round_rays).
+  void BeginRound(const std::shared_ptr<RunningJob>& runner);
+  // Exact validation (job_verification.cc). The round just started gets a fresh verifier round.
+  void StartVerifying(const std::shared_ptr<RunningJob>& runner);
+  // Computes the digests of the round's batches `indices` on the compute thread and compares them.
+  void VerifyOnComputeThread(const std::shared_ptr<RunningJob>& runner,
+                             std::vector<uint32_t> indices);
+  void OnBatchesVerified(const std::shared_ptr<RunningJob>& runner, uint32_t round,
+                         const std::vector<uint32_t>& indices,
+                         const std::vector<ResultDigest>& digests);
+  // The round is complete: true when every verification of it agreed; otherwise the end-of-round
+  // picks are sent to be verified and OnRoundComplete runs again after the last one (the barrier).
+  bool RoundVerified(const std::shared_ptr<RunningJob>& runner);
+  // A result failed verification: the agent is convicted, the runner dropped, and the job goes
+  // back in the store to before the agent's first result (RewindJob) and is queued again.
+  void Rewind(const std::shared_ptr<RunningJob>& runner, const Mismatch& mismatch);
+  void RunRoundHere(const std::shared_ptr<RunningJob>& runner);
+  // Sends the runner's queued results (TakeFolds) to the compute thread to be folded in.
+  void SendFolds(const std::shared_ptr<RunningJob>& runner);
+  // `work` (Reduce, perhaps after RunLocally) on the compute thread, then OnRoundReduced.
+  void ReduceOnComputeThread(const std::shared_ptr<RunningJob>& runner,
+                             std::function<RoundOutcome()> work);
+  void OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundOutcome outcome);
+  void FinishJob(const std::shared_ptr<RunningJob>& runner);
+  // Stops a job's work on every agent (Cancel) and forgets its runner.
+  void DropRunner(store::JobId id);
+
+  const Clock& clock_;
+  const MasterConfig& config_;
+  const scheduler::SchedulerOptions& options_;
+  StoreThread& store_;
+  loop::WorkQueue& compute_;
+  AgentHooks agents_;
+
+  Runners runners_;
+  ResultJournal journal_;
+  uint64_t verify_seed_;                             // secret: agents cannot predict samples
+  std::map<store::JobId, BatchVerifier> verifiers_;  // of the running jobs
+  std::set<store::JobId> awaiting_verification_;     // complete rounds held at the barrier
+  VerifyCounters verify_counters_;
+  uint64_t batches_restored_ = 0;
+  uint64_t gather_ahead_adopted_ = 0;
+  BatchTotals retired_;  // the counters of runners that went
+  web::LatencyHistogram checkpoint_latency_;
+  store::CheckpointPacer checkpoints_;     // which rounds write a checkpoint
+  std::map<store::JobId, bool> starting_;  // being prepared; true once cancelled meanwhile
+  // OfferSubmittedMesh's, until the next start pass takes or drops it.
+  store::JobId submitted_mesh_job_ = 0;
+  SubmittedMesh submitted_mesh_;
+  bool start_pending_ = false;  // a StartQueuedJobs query is in flight
+  bool start_again_ = false;    // ... and another was asked for meanwhile
+  size_t dispatch_rotation_ = 0;
+  bool stopping_ = false;
+  // Held jobs: some were held (perhaps by an earlier master) and wait for RetryHeldJobs; those
+  // whose hold could not be written are still "running" in the store.
+  bool holds_waiting_ = true;  // a master starts by looking for holds left from before
+  std::vector<store::JobId> unrecorded_holds_;
+  uint64_t next_hold_retry_ms_ = 0;
+  bool hold_retry_pending_ = false;
+};
+
+}  // namespace radfarm::daemon

@@ -1,0 +1,93 @@
+// JobRounds in-process (tests/daemon/master_parts.h): rounds advance as an agent's results arrive,
+// a budgeted job ends done, max_running_jobs holds the rest in the queue, and pause and resume
+// take a running job off its agents and back.
+#include "daemon/jobs/job_rounds.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "tests/daemon/agents/fake_agent.h"
+#include "tests/daemon/master_parts.h"
+
+namespace radfarm::daemon::fakes {
+namespace {
+
+uint32_t RoundsOf(MasterParts& master, uint64_t job) {
+  RunningJob* runner = master.jobs().FindRunner(job);
+  return runner ? runner->totals().round : 0;
+}
+
+TEST(JobRoundsTest, RoundsAdvanceAsAnAgentsResultsArrive) {
+  MasterParts master;
+  const uint64_t job = master.Submit(0);
+  FakeAgent agent(master.loop(), master.agent_address(), master.secret(), "box-1", true);
+  ASSERT_TRUE(agent.Connect().ok());
+  ASSERT_TRUE(master.RunUntil([&] { return RoundsOf(master, job) >= 3; }));
+  const RunningJob& runner = *master.jobs().FindRunner(job);
+  EXPECT_GT(runner.totals().rays, 0u);
+  EXPECT_LT(runner.totals().unshot_fraction, 1.0);
+  EXPECT_GE(agent.results_sent(), agent.leased().size());
+  EXPECT_EQ(master.StateOf(job), "running");
+}
+
+TEST(JobRoundsTest, AJobWithARayBudgetEndsDoneAndLeavesNoRunner) {
+  MasterParts master;
+  const uint64_t job = master.Submit(200000);
+  FakeAgent agent(master.loop(), master.agent_address(), master.secret(), "box-1", true);
+  ASSERT_TRUE(agent.Connect().ok());
+  // Results were taken, and the runner is gone: the job ended.
+  ASSERT_TRUE(master.RunUntil([&] {
+    return agent.results_sent() > 0 && master.jobs().FindRunner(job) == nullptr &&
+           master.jobs().starting() == 0;
+  }));
+  EXPECT_EQ(master.StateOf(job), "done");
+  EXPECT_GT(agent.results_sent(), 0u);
+  EXPECT_TRUE(master.jobs().runners().empty());
+}
+
+TEST(JobRoundsTest, NoMoreJobsRunThanMaxRunningJobs) {
+  MasterConfig config = TestMasterConfig();
+  config.max_running_jobs = 1;
+  MasterParts master(config);
+  const uint64_t first = master.Submit(0);
+  const uint64_t second = master.Submit(0);
+  ASSERT_TRUE(master.RunUntil(
+      [&] { return master.jobs().FindRunner(first) != nullptr && master.jobs().starting() == 0; }));
+  EXPECT_EQ(master.jobs().runners().size(), 1u);
+  EXPECT_EQ(master.StateOf(second), "queued");
+
+  // The slot the first job leaves goes to the second.
+  ASSERT_TRUE(master.Request(ControlCommand::kCancel, first).body["ok"].get<bool>());
+  ASSERT_TRUE(master.RunUntil([&] { return master.jobs().FindRunner(second) != nullptr; }));
+  EXPECT_EQ(master.jobs().FindRunner(first), nullptr);
+  EXPECT_EQ(master.StateOf(first), "cancelled");
+  EXPECT_EQ(master.StateOf(second), "running");
+}
+
+TEST(JobRoundsTest, APausedJobLeavesItsAgentsAndAResumedOneRunsAgain) {
+  MasterParts master;
+  const uint64_t job = master.Submit(0);
+  FakeAgent agent(master.loop(), master.agent_address(), master.secret(), "box-1", false);
+  ASSERT_TRUE(agent.Connect().ok());
+  ASSERT_TRUE(master.RunUntil([&] { return !agent.held().empty(); }));
+
+  ASSERT_TRUE(master.Request(ControlCommand::kPause, job).body["ok"].get<bool>());
+  EXPECT_EQ(master.jobs().FindRunner(job), nullptr);
+  ASSERT_TRUE(master.RunUntil([&] {
+    return std::count(agent.cancelled_jobs().begin(), agent.cancelled_jobs().end(), job) == 1;
+  }));
+  EXPECT_TRUE(agent.held().empty());
+  EXPECT_EQ(master.StateOf(job), "paused");
+
+  const uint64_t received = agent.batches_received();
+  ASSERT_TRUE(master.Request(ControlCommand::kResume, job).body["ok"].get<bool>());
+  ASSERT_TRUE(master.RunUntil([&] { return master.jobs().FindRunner(job) != nullptr; }));
+  EXPECT_EQ(master.StateOf(job), "running");
+  // Its batches go out again: the agent dropped them with the Cancel.
+  ASSERT_TRUE(master.RunUntil([&] { return agent.batches_received() > received; }));
+  EXPECT_FALSE(agent.held().empty());
+}
+
+}  // namespace
+}  // namespace radfarm::daemon::fakes
