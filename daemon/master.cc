@@ -21,25 +21,24 @@ Master::Master(loop::EventLoop& loop, const MasterConfig& config, protocol::Farm
   scheduler_options_.deadline_floor = std::chrono::milliseconds(config.agent_timeout_ms);
   scheduler_options_.blocklist_duration = std::chrono::seconds(config.blocklist_seconds);
   // One lease queued behind the running ones: an agent holding only what fills lease_seconds
-  // (usually one batch) idles for a round trip after every batch. farm_bench measured it with 1000
-  // simulated agents: 38 % of their time idle mid-round on loopback, 68 % with 20 ms latency.
+  // (usually one batch) idles for a round trip after every batch, most of its time under latency
+  // (farm_bench's simulated agents).
   scheduler_options_.spare_leases = 1;
   // Leases go out many batches to a frame (protocol version 2): an agent holds what fills
   // lease_seconds at its own speed, and a quarter more, so that the next lease is there when one
   // ends (a lease is answered when all its batches are done) but a lower-priority job queues
   // little ahead of a higher one.
   scheduler_options_.spare_lease_fraction = 0.25;
-  // At most half a lease frame (kMaxLeaseBatches) held: an agent keeps about 190 bytes a held
-  // batch, and a budget's paced rounds of shots of a few rays filled its lease time with 131,072
-  // of them (24 MB at 10^5 patches, a third of its peak; docs/SCALING.md).
+  // At most half a lease frame (kMaxLeaseBatches) held: an agent keeps a record of every held
+  // batch, and a budget's paced rounds of shots of a few rays would fill its lease time with a
+  // frame's worth of them, a large share of its peak memory (docs/SCALING.md).
   scheduler_options_.max_leases_per_agent = 1u << 15;
-  // Near a round's end an agent holds no more than it finishes by the round's predicted end
-  // (farm_bench, 1000 agents: the final gather's round took 8 times its work's time).
+  // Near a round's end an agent holds no more than it finishes by the round's predicted end: the
+  // first agents asked would otherwise hold the final gather's round long past its work's time.
   scheduler_options_.round_end_share = 1;
   // An agent holds at least 0.1 s of work where it can, so that the tapered end of a round (pieces
   // too small for a lease capacity of them to cover the round trip) does not idle it for a round
-  // trip after each lease (farm_bench, 1000 agents at 20 ms, medians of 3 runs: 91.3 % became
-  // 93.3 %; docs/BENCHMARKS-farm.md).
+  // trip after each lease (docs/BENCHMARKS-farm.md).
   scheduler_options_.min_held_seconds = 0.1;
   scheduler_options_.gather_ahead_rays = config.gather_ahead_rays;
 }

@@ -25,8 +25,8 @@ struct MasterConfig {
   uint32_t checkpoint_keep = 3;   // full checkpoints kept per job
   double checkpoint_seconds = 0;  // 0: checkpoint every round; else at most this often
   // A job's checkpoints, from queued to committed, take at most this share of its time: the next
-  // waits until it fits (0: no such wait; store/checkpoint_pacer.h). At 10^6 patches one takes
-  // 1-2.5 s on a busy 2-CPU master.
+  // waits until it fits (0: no such wait; store/checkpoint_pacer.h): a big job's checkpoint takes
+  // seconds.
   double checkpoint_time_share = store::kDefaultCheckpointTimeShare;
   uint32_t max_running_jobs = 4;  // jobs solved at once; more wait queued
   double lease_seconds = 0.25;    // the time one batch should take on its agent
@@ -35,16 +35,16 @@ struct MasterConfig {
   uint64_t local_round_rays = 262144;
   // The final gather's first rays, at most this many, go to agents idle between and at the ends
   // of the shooting rounds (daemon/jobs/gather_ahead.h); their results wait on the master until the
-  // gather round: at most about 16 bytes a ray (16 MB by default, a fixed cost whatever the
-  // scene's size, within docs/MEMORY.md's budget per patch). 0: off.
+  // gather round: a few bytes a ray, a fixed cost whatever the scene's size (docs/MEMORY.md).
+  // 0: off.
   uint64_t gather_ahead_rays = uint64_t{1} << 20;
   // Keep each accepted batch result in the store until its round's checkpoint, so a restarted
   // master leases only the batches it had not received (daemon/jobs/result_journal.h). Off: a
-  // restart computes the whole round again, as before.
+  // restart computes the whole round again.
   bool keep_round_results = true;
   // ... but only the results accepted once a round has run this long: a short round is cheaper to
-  // compute again than to write (on a loopback farm keeping every result of the Cornell box's
-  // 1-2 s rounds cost 20% of its time), and a kill loses at most this much of a round's work.
+  // compute again than to write (keeping every result of a small job's short rounds costs a good
+  // share of its time), and a kill loses at most this much of a round's work.
   double keep_results_after_seconds = 5;
   // A job that meets a store fault (disk full, I/O error) is held and tried again this often.
   uint32_t hold_retry_ms = 10000;

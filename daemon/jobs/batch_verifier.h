@@ -1,4 +1,4 @@
-// BatchVerifier: exact validation of one job's accepted results (issue 20). A batch's result
+// BatchVerifier: exact validation of one job's accepted results. A batch's result
 // depends only on (seed, round, batch, scene) (core/batch.h), so the master computing a batch
 // again must get the agent's bits; an agent whose results authenticate but differ lied or is
 // broken.

@@ -1,6 +1,6 @@
 // GatherAhead: a job's final gather, leased to agents that have nothing else to do while the
-// shooting rounds still run (issue 17: the next round planned while the last results arrive,
-// where the plan does not depend on them).
+// shooting rounds still run (the next work planned while the last results arrive, where the plan
+// does not depend on them).
 //
 // Each shooting round is planned from the last one's results, so rounds cannot overlap: every
 // agent idles from its last result of a round until its first lease of the next (the tail of

@@ -1,4 +1,4 @@
-// JobRounds: exact validation of accepted results (issue 20; batch_verifier.h says which are
+// JobRounds: exact validation of accepted results (batch_verifier.h says which are
 // checked). The master computes the chosen batches again on its compute thread, between the
 // folds, and compares the SHA-256 of the bits. A round is reduced only once every verification
 // of it agreed (OnRoundComplete waits here), so a caught lie never reaches the solver or a

@@ -159,8 +159,8 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   // The round the solver plans next, with the batch size its kept results were planned with.
   runner->stored_ = std::move(stored);
   // No agent is measured yet: a round without kept results gets the default batch size, tapered
-  // for the agents known when the job started (untapered, a first round of batches of a quarter
-  // second ended with most of 1000 agents idle for 180 ms, farm_bench).
+  // for the agents known when the job started (untapered, the end of a first round of
+  // quarter-second batches leaves most agents idle).
   const BatchSizing sizing =
       runner->SizingFor(runner->driver_->solver().rounds_done(),
                         {options.default_batch_rays, scheduler::TaperWays(options, agents)});
@@ -347,9 +347,7 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
   const double seconds = totals_.seconds + round_seconds;
   // The round's verifications are done (the barrier). A refining job's caster goes before Apply,
   // whose refinement step builds its own for a new mesh. Any other job keeps it for its rounds:
-  // built again each round it cost more time and, in pages freed and filled again, more memory
-  // (18 x 18 building, 950,654 patches, 17 paced rounds: 72.8 s and 904 MB against 60.0 s and
-  // 870 MB kept).
+  // built again each round it cost more time and, in pages freed and filled again, more memory.
   if (driver_->refines() && driver_->scene().patches.size() > kKeepCasterPatches) {
     driver_->ReleaseCaster();
   }
