@@ -10,8 +10,8 @@
 //   DropJob (cancel, pause) forgets a running job at any point; a job still starting is dropped
 //   when its preparation ends.
 //   A store fault (disk full, I/O error) while a round is committed holds the job instead of
-//   failing it (HoldJob, job_holds.cc): paused with a "held: " reason, and RetryHeldJobs puts it
-//   back in the queue every hold_retry_ms until the store writes again.
+//   failing it (HoldJob, job_holds.cc): `held` with the error as its reason, and RetryHeldJobs puts
+//   it back in the queue every hold_retry_ms until the store writes again.
 //
 // It knows nothing of connections: what it needs of the agents comes through AgentHooks.
 // Loop thread only (the compute and store threads hand their results back to it).
