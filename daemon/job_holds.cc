@@ -15,16 +15,16 @@ namespace radfarm::daemon {
 using loop::LogLevel;
 using loop::LogLine;
 
-void JobRounds::HoldOrFail(store::JobId id, const std::string& error) {
-  if (!store::IsStoreFault(error)) {
-    FailJob(id, error);
+void JobRounds::HoldOrFail(store::JobId id, const Error& error) {
+  if (!store::IsStoreFault(error.kind)) {
+    FailJob(id, error.message);
     return;
   }
   if (stopping_) return;
   DropRunner(id);
   starting_.erase(id);
   holds_waiting_ = true;
-  const std::string why = error +
+  const std::string why = error.message +
                           "; it resumes by itself once the store can write again (or: "
                           "radfarm resume " +
                           std::to_string(id) + ")";

@@ -335,7 +335,10 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
           // pace counts the waiting behind other store work too: what restart_bench reports.
           const double latency = double(loop_.NowMs() - queued_ms) / 1000;
           checkpoints_.Written(id, s ? latency : 0);
-          if (!s) return HoldOrFail(id, "cannot save the checkpoint: " + s.error());
+          if (!s) {
+            return HoldOrFail(id,
+                              Error{"cannot save the checkpoint: " + s.error(), s.error_kind()});
+          }
           checkpoint_latency_.Record(latency);
           PruneKeptResults(id, round);
           // restart_bench reads this line: keep its words.
@@ -347,7 +350,8 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
   } else {
     store_.Run([record](store::JobStore& s) { return s.RecordRound(record); },
                [this, id](Status s) {
-                 if (!s) HoldOrFail(id, "cannot record the round: " + s.error());
+                 if (!s)
+                   HoldOrFail(id, Error{"cannot record the round: " + s.error(), s.error_kind()});
                });
   }
   const auto v = verifiers_.find(id);

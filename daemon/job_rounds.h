@@ -88,8 +88,9 @@ class JobRounds {
   // Forgets a job the operator cancelled or paused (the store knows already).
   void DropJob(store::JobId id);
   void FailJob(store::JobId id, const std::string& error);
-  // A store fault: hold the job (store/job_state.h); any other error fails it.
-  void HoldOrFail(store::JobId id, const std::string& error);
+  // An error of a store fault's kind (store::IsStoreFault): hold the job (store/job_state.h); any
+  // other error fails it.
+  void HoldOrFail(store::JobId id, const Error& error);
   // After round `round`'s checkpoint committed: its kept results and those before go, in a store
   // transaction of their own (store/job_store.h PruneRoundResults). UINT32_MAX: all of them, for
   // a job that ended.

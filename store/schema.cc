@@ -198,9 +198,10 @@ Status CheckIntegrity(Database& db, const SchemaCheckOptions& options) {
     problems += line;
   }
   if (problems.empty()) return Ok{};
-  return Error{"job store " + db.path() +
-               ": SQLITE_CORRUPT: " + (full ? "integrity_check" : "quick_check") +
-               " failed; the file was left untouched: restore it from a backup (" + problems + ")"};
+  return Error{
+      "job store " + db.path() + ": SQLITE_CORRUPT: " + (full ? "integrity_check" : "quick_check") +
+          " failed; the file was left untouched: restore it from a backup (" + problems + ")",
+      ErrorKind::kCorrupt};
 }
 
 // One migration and its user_version bump in one IMMEDIATE transaction.

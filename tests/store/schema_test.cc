@@ -35,10 +35,12 @@ int64_t UserVersion(const std::string& path) {
   return *db.QueryInt("PRAGMA user_version");
 }
 
-void ExpectRefused(const std::string& path, const std::string& expected) {
+void ExpectRefused(const std::string& path, const std::string& expected,
+                   ErrorKind kind = ErrorKind::kOther) {
   std::vector<uint8_t> before = ReadBytes(path);
   Result<JobStore> store = JobStore::Open(path);
   ASSERT_FALSE(store.ok());
+  EXPECT_EQ(store.error_kind(), kind) << store.error();
   std::printf("refused as expected: %s\n", store.error().c_str());
   EXPECT_NE(store.error().find(expected), std::string::npos) << store.error();
   EXPECT_NE(store.error().find(path), std::string::npos) << store.error();
@@ -174,6 +176,7 @@ TEST(SchemaTest, UpgradesVersion3CheckpointsToVersion4) {
   Status missing = store->SaveCheckpoint(round, refined);
   ASSERT_FALSE(missing.ok());  // the refined scene is not stored: nothing is written
   EXPECT_NE(missing.error().find("SQLITE_CONSTRAINT"), std::string::npos) << missing.error();
+  EXPECT_EQ(missing.error_kind(), ErrorKind::kConstraint);
   EXPECT_EQ(store->ListRounds(1)->size(), 1u);
   ASSERT_TRUE(store->PutScene("refined", std::vector<uint8_t>{9, 9}).ok());
   ASSERT_TRUE(store->SaveCheckpoint(round, refined).ok());
@@ -291,7 +294,7 @@ TEST(SchemaTest, RefusesFileThatIsNotSqlite) {
   std::string text;
   for (int i = 0; i < 200; ++i) text += "radfarm render scenes/cornell-box.toml --out out/\n";
   WriteBytes(path, std::vector<uint8_t>(text.begin(), text.end()));
-  ExpectRefused(path, "SQLITE_NOTADB");
+  ExpectRefused(path, "SQLITE_NOTADB", ErrorKind::kCorrupt);
 }
 
 TEST(SchemaTest, RefusesSqliteDatabaseOfAnotherProgram) {
@@ -330,7 +333,7 @@ TEST(SchemaTest, RefusesCorruptFile) {
     bytes[i] = static_cast<uint8_t>(state >> 16);
   }
   WriteBytes(path, bytes);
-  ExpectRefused(path, "SQLITE_CORRUPT");
+  ExpectRefused(path, "SQLITE_CORRUPT", ErrorKind::kCorrupt);
 }
 
 }  // namespace
