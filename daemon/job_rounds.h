@@ -24,6 +24,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "daemon/batch_totals.h"
@@ -61,6 +62,17 @@ struct VerifyCounters {
   uint64_t verified = 0;    // batches computed again here and compared
   uint64_t mismatched = 0;  // of verified: the agent's bits differed
   uint64_t rewinds = 0;     // jobs sent back before a liar's first result
+};
+
+// What the last checkpoint the master committed for a job cost.
+struct CheckpointReport {
+  uint32_t round = 0;
+  uint64_t bytes = 0;      // its blobs and checksums (store::CheckpointCost)
+  double copy_ms = 0;      // copying the state from the solver, on the compute thread
+  double encode_ms = 0;    // encoding it, on the store thread
+  double commit_ms = 0;    // committing it
+  double queued_ms = 0;    // from queueing on the store thread to the commit, waiting included
+  uint64_t committed = 0;  // checkpoints this master committed for the job
 };
 
 class JobRounds {
@@ -116,6 +128,13 @@ class JobRounds {
   uint64_t gather_ahead_adopted() const { return gather_ahead_adopted_; }
   // Seconds from queueing each checkpoint on the store thread to its commit.
   const web::LatencyHistogram& checkpoint_latency() const { return checkpoint_latency_; }
+  // The last checkpoint this master committed for job `id`, or null: kept for the
+  // kKeptCheckpointReports most recent jobs, finished ones included (the control socket's
+  // last_checkpoint).
+  const CheckpointReport* LastCheckpoint(store::JobId id) const;
+  // "preparing" (being meshed and loaded), "round", "reducing" or "finishing" for a job this
+  // master runs; empty for any other.
+  std::string_view PhaseOf(store::JobId id) const;
   // Offers overdue leases again (RoundScheduler::Tick); returns how many.
   size_t Tick(scheduler::TimePoint now);
   // Whether some job's round is in its end game (RoundScheduler::InEndGame): idle agents should be
@@ -158,6 +177,9 @@ class JobRounds {
                              std::function<RoundOutcome()> work);
   void OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundOutcome outcome);
   void FinishJob(const std::shared_ptr<RunningJob>& runner);
+  // Keeps `report` as job `id`'s last checkpoint, its count one more; forgets the oldest job's
+  // beyond kKeptCheckpointReports.
+  void RecordCheckpoint(store::JobId id, CheckpointReport report);
   // Stops a job's work on every agent (Cancel) and forgets its runner.
   void DropRunner(store::JobId id);
 
@@ -178,7 +200,9 @@ class JobRounds {
   uint64_t gather_ahead_adopted_ = 0;
   BatchTotals retired_;  // the counters of runners that went
   web::LatencyHistogram checkpoint_latency_;
-  store::CheckpointPacer checkpoints_;     // which rounds write a checkpoint
+  static constexpr size_t kKeptCheckpointReports = 256;
+  std::map<store::JobId, CheckpointReport> checkpoint_reports_;  // by id: oldest job first
+  store::CheckpointPacer checkpoints_;                           // which rounds write a checkpoint
   std::map<store::JobId, bool> starting_;  // being prepared; true once cancelled meanwhile
   // OfferSubmittedMesh's, until the next start pass takes or drops it.
   store::JobId submitted_mesh_job_ = 0;
