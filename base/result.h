@@ -11,9 +11,15 @@
 //   }
 //
 // It is the one early-return helper: an error that gains words on the way up ("job 3: " + ...) is
-// written out as `if (!x) return Error{"job 3: " + x.error()};`.
+// written out as `if (!x) return Error{"job 3: " + x.error(), x.error_kind()};`.
+//
+// An error's kind says what failed, for the few callers that decide by it rather than print it
+// (the master holds a job on a store fault that may pass and fails it on any other error). It is
+// set where the error is made (store/sqlite_error.cc classifies SQLite's result codes) and kept on
+// the way up by RADFARM_RETURN_IF_ERROR.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -21,8 +27,18 @@
 
 namespace radfarm {
 
+enum class ErrorKind : uint8_t {
+  kOther,       // nothing to decide by: a message for a person
+  kDiskFull,    // storage full or at its size limit
+  kIo,          // an I/O error reading or writing storage
+  kBusy,        // storage locked by another user past the wait
+  kCorrupt,     // stored data damaged, or not the format expected
+  kConstraint,  // a write broke a rule of the stored data (a key, a reference, a check)
+};
+
 struct Error {
   std::string message;
+  ErrorKind kind = ErrorKind::kOther;
 };
 
 template <typename T>
@@ -41,6 +57,7 @@ class [[nodiscard]] Result {
   const T& operator*() const& { return value(); }
   T& operator*() & { return value(); }
   const std::string& error() const { return std::get<Error>(state_).message; }
+  ErrorKind error_kind() const { return std::get<Error>(state_).kind; }
 
  private:
   std::variant<T, Error> state_;
@@ -52,11 +69,11 @@ using Status = Result<Ok>;
 
 }  // namespace radfarm
 
-// If `expr` (a Status or Result<T>, evaluated once) holds an error, returns Error{its message} from
-// the enclosing function, whose return type is then any Result<U> or Status.
-#define RADFARM_RETURN_IF_ERROR(expr)                                  \
-  do {                                                                 \
-    if (const auto& radfarm_status_ = (expr); !radfarm_status_.ok()) { \
-      return ::radfarm::Error{radfarm_status_.error()};                \
-    }                                                                  \
+// If `expr` (a Status or Result<T>, evaluated once) holds an error, returns Error{its message, its
+// kind} from the enclosing function, whose return type is then any Result<U> or Status.
+#define RADFARM_RETURN_IF_ERROR(expr)                                                 \
+  do {                                                                                \
+    if (const auto& radfarm_status_ = (expr); !radfarm_status_.ok()) {                \
+      return ::radfarm::Error{radfarm_status_.error(), radfarm_status_.error_kind()}; \
+    }                                                                                 \
   } while (false)

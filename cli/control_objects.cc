@@ -14,7 +14,8 @@ Result<JobInfo> ParseJob(const nlohmann::json& object, const std::string& where)
   JobInfo job;
   job.id = r.Int("id");
   job.name = r.String("name");
-  job.state = r.OneOf("state", {"queued", "running", "paused", "done", "failed", "cancelled"});
+  job.state =
+      r.OneOf("state", {"queued", "running", "paused", "held", "done", "failed", "cancelled"});
   job.priority = r.Int("priority");
   job.seed = r.Count("seed");
   job.scene_hash = r.String("scene_hash");

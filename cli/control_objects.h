@@ -16,7 +16,7 @@ namespace radfarm {
 struct JobInfo {
   int64_t id = 0;
   std::string name;
-  std::string state;  // queued, running, paused, done, failed, cancelled
+  std::string state;  // queued, running, paused, held, done, failed, cancelled
   int64_t priority = 0;
   uint64_t seed = 0;
   std::string scene_hash;

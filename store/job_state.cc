@@ -5,10 +5,11 @@
 namespace radfarm::store {
 namespace {
 
-constexpr std::array<std::pair<JobState, std::string_view>, 6> kNames = {{
+constexpr std::array<std::pair<JobState, std::string_view>, 7> kNames = {{
     {JobState::kQueued, "queued"},
     {JobState::kRunning, "running"},
     {JobState::kPaused, "paused"},
+    {JobState::kHeld, "held"},
     {JobState::kDone, "done"},
     {JobState::kFailed, "failed"},
     {JobState::kCancelled, "cancelled"},
@@ -40,9 +41,12 @@ bool IsAllowedTransition(JobState from, JobState to) {
     case kQueued:
       return to == kRunning || to == kPaused || to == kCancelled;
     case kRunning:
-      return to == kQueued || to == kPaused || to == kDone || to == kFailed || to == kCancelled;
+      return to == kQueued || to == kPaused || to == kHeld || to == kDone || to == kFailed ||
+             to == kCancelled;
     case kPaused:
       return to == kQueued || to == kCancelled;
+    case kHeld:
+      return to == kQueued || to == kPaused || to == kCancelled;
     case kDone:
     case kFailed:
     case kCancelled:
@@ -88,7 +92,7 @@ JobState CommandTarget(JobCommand command) {
 }
 
 bool IsAllowedCommand(JobState from, JobCommand command) {
-  if (command == JobCommand::kResume) return from == JobState::kPaused;
+  if (command == JobCommand::kResume) return from == JobState::kPaused || from == JobState::kHeld;
   return IsAllowedTransition(from, CommandTarget(command));
 }
 

@@ -11,19 +11,23 @@
 //                   v  |                                                  |  |
 //                  paused <------------- kPaused ------------------------+  +--kFailed, error-->
 //                                                                                        failed
-//   queued, running, paused ---------- kCancelled (reason optional) ----------------> cancelled
+//   running --kHeld: a store fault, reason--> held --kQueued: released or resumed--> queued
+//                                               +----kPaused: an operator's pause--> paused
 //
-// done, failed and cancelled are terminal: a retry is a new SubmitJob(). kFailed requires an error
-// text, kCancelled and kPaused take an optional reason, other transitions take none (and clear
-// it). A job paused with a reason starting "held: " was held by the master after a store fault
-// (disk full, I/O error: HoldJob in job_transactions.h), not by an operator; it goes back to the
-// queue by itself once the store writes again (ReleaseHeldJobs), or with `radfarm resume`.
+//   queued, running, paused, held ---------- kCancelled (reason optional) ----------> cancelled
+//
+// done, failed and cancelled are terminal: a retry is a new SubmitJob(). kFailed and kHeld require
+// an error text (the reason), kCancelled and kPaused take an optional one, other transitions take
+// none (and clear it). A held job was stopped by the master after a store fault (disk full, I/O
+// error: HoldJob in job_transactions.h), not by an operator; it goes back to the queue by itself
+// once the store writes again (ReleaseHeldJobs), or with `radfarm resume`; `radfarm pause` makes
+// it an operator's pause, which waits for `resume`.
 // Times: started_at is set on the first entry to running; finished_at on entry to a terminal state.
 //
 // An operator's command (`radfarm cancel|pause|resume`, ChangeJobState in job_transactions.h)
 // takes these edges, and fewer: cancel -> kCancelled and pause -> kPaused wherever the diagram
-// allows them; resume -> kQueued from paused only (a running job goes back to the queue only when
-// the master restarts).
+// allows them; resume -> kQueued from paused or held only (a running job goes back to the queue
+// only when the master restarts).
 #pragma once
 
 #include <optional>
@@ -31,9 +35,9 @@
 
 namespace radfarm::store {
 
-enum class JobState { kQueued, kRunning, kPaused, kDone, kFailed, kCancelled };
+enum class JobState { kQueued, kRunning, kPaused, kHeld, kDone, kFailed, kCancelled };
 
-// The name stored in the jobs.state column: "queued", "running", ...
+// The name stored in the jobs.state column and shown to operators: "queued", "running", ...
 std::string_view JobStateName(JobState state);
 std::optional<JobState> ParseJobState(std::string_view name);
 

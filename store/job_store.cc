@@ -163,12 +163,14 @@ Result<std::optional<JobRecord>> JobStore::GetJob(JobId id) {
 
 Status JobStore::SetJobState(JobId id, JobState to, std::optional<std::string> error) {
   std::string job_name = "job " + std::to_string(id);
-  if (to == JobState::kFailed && !error) {
-    return Error{"job store: " + job_name + ": failing a job needs an error text"};
+  if ((to == JobState::kFailed || to == JobState::kHeld) && !error) {
+    return Error{"job store: " + job_name + ": a " + std::string(JobStateName(to)) +
+                 " job needs an error text"};
   }
-  if (error && to != JobState::kFailed && to != JobState::kCancelled && to != JobState::kPaused) {
+  if (error && to != JobState::kFailed && to != JobState::kHeld && to != JobState::kCancelled &&
+      to != JobState::kPaused) {
     return Error{"job store: " + job_name +
-                 ": an error text only goes with failed, cancelled or paused (held)"};
+                 ": an error text only goes with failed, held, cancelled or paused"};
   }
   Result<Transaction> transaction = Transaction::Begin(db_);
   RADFARM_RETURN_IF_ERROR(transaction);

@@ -155,8 +155,8 @@ Result<std::optional<StoredSolution>> LoadSolution(JobStore& store, JobId id) {
 }
 
 Status HoldJob(JobStore& store, JobId id, const std::string& why) {
-  RADFARM_RETURN_IF_ERROR(store.SetJobState(id, JobState::kPaused, std::string(kHeldPrefix) + why));
-  (void)store.AppendEvent(id, EventLevel::kWarning, std::string(kHeldPrefix) + why);
+  RADFARM_RETURN_IF_ERROR(store.SetJobState(id, JobState::kHeld, why));
+  (void)store.AppendEvent(id, EventLevel::kWarning, "held: " + why);
   return Ok{};
 }
 
@@ -165,8 +165,7 @@ Result<std::vector<JobId>> ReleaseHeldJobs(JobStore& store, const std::vector<Jo
   RADFARM_RETURN_IF_ERROR(jobs);
   std::vector<JobId> released;
   for (const JobRecord& job : *jobs) {
-    const bool held = job.state == JobState::kPaused && job.error &&
-                      std::string_view(*job.error).starts_with(kHeldPrefix);
+    const bool held = job.state == JobState::kHeld;
     const bool unrecorded_hold =
         job.state == JobState::kRunning &&
         std::find(unrecorded.begin(), unrecorded.end(), job.id) != unrecorded.end();

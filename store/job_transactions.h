@@ -82,16 +82,14 @@ struct StoredSolution {
 // missing ("job N: scene missing", "job N: refined scene H missing"), any store error.
 Result<std::optional<StoredSolution>> LoadSolution(JobStore& store, JobId id);
 
-// A held job's reason starts with this (job_state.h).
-inline constexpr std::string_view kHeldPrefix = "held: ";
-
-// Holds a running job after a store fault: paused, with "held: " + `why` as its reason, and an
-// event. A failed job would be final; a held one resumes from its checkpoints, which are intact.
+// Holds a running job after a store fault: `held`, with `why` as its reason, and an event
+// ("held: " + why). A failed job would be final; a held one resumes from its checkpoints, which
+// are intact.
 Status HoldJob(JobStore& store, JobId id, const std::string& why);
 
-// Puts held jobs back in the queue: every paused job whose reason starts with kHeldPrefix, and the
-// jobs of `unrecorded` still marked running (their hold could not be written: the store was
-// failing). Returns the ids queued; an error when the store still cannot write (they stay held).
+// Puts held jobs back in the queue: every `held` job, and the jobs of `unrecorded` still marked
+// running (their hold could not be written: the store was failing). Returns the ids queued; an
+// error when the store still cannot write (they stay held).
 Result<std::vector<JobId>> ReleaseHeldJobs(JobStore& store, const std::vector<JobId>& unrecorded);
 
 }  // namespace radfarm::store

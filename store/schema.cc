@@ -131,8 +131,45 @@ CREATE TABLE agent_credentials (
 );
 )sql";
 
-constexpr std::array<Migration, 7> kMigrations = {
-    {{1, kV1}, {2, kV2}, {3, kV3}, {4, kV4}, {5, kV5}, {6, kV6}, {7, kV7}}};
+// Version 8: `held` a job state of its own (job_state.h). Before it a held job was `paused` with
+// a reason starting "held: "; such rows become `held` with the rest of the reason. SQLite cannot
+// change a CHECK constraint in place, so the jobs table is rebuilt (with its index).
+constexpr std::string_view kV8 = R"sql(
+CREATE TABLE jobs_v8 (
+  id INTEGER PRIMARY KEY,
+  name TEXT NOT NULL,
+  scene_hash TEXT NOT NULL REFERENCES scenes(hash),
+  settings TEXT NOT NULL,
+  seed INTEGER NOT NULL,
+  priority INTEGER NOT NULL,
+  state TEXT NOT NULL
+    CHECK (state IN ('queued', 'running', 'paused', 'held', 'done', 'failed', 'cancelled')),
+  submitted_at_ms INTEGER NOT NULL,
+  started_at_ms INTEGER,
+  finished_at_ms INTEGER,
+  error TEXT
+);
+INSERT INTO jobs_v8 (id, name, scene_hash, settings, seed, priority, state, submitted_at_ms,
+                     started_at_ms, finished_at_ms, error)
+  SELECT id, name, scene_hash, settings, seed, priority,
+         CASE WHEN state = 'paused' AND substr(error, 1, 6) = 'held: ' THEN 'held' ELSE state END,
+         submitted_at_ms, started_at_ms, finished_at_ms,
+         CASE WHEN state = 'paused' AND substr(error, 1, 6) = 'held: ' THEN substr(error, 7)
+              ELSE error END
+  FROM jobs;
+DROP TABLE jobs;
+ALTER TABLE jobs_v8 RENAME TO jobs;
+CREATE INDEX jobs_runnable ON jobs (state, priority DESC, submitted_at_ms, id);
+)sql";
+
+constexpr std::array<Migration, 8> kMigrations = {{{1, kV1},
+                                                   {2, kV2},
+                                                   {3, kV3},
+                                                   {4, kV4},
+                                                   {5, kV5},
+                                                   {6, kV6},
+                                                   {7, kV7},
+                                                   {8, kV8, /*rebuilds_referenced_table=*/true}}};
 
 Result<int64_t> FileBytes(Database& db) {
   Result<int64_t> pages = db.QueryInt("PRAGMA page_count");
@@ -161,9 +198,44 @@ Status CheckIntegrity(Database& db, const SchemaCheckOptions& options) {
     problems += line;
   }
   if (problems.empty()) return Ok{};
-  return Error{"job store " + db.path() +
-               ": SQLITE_CORRUPT: " + (full ? "integrity_check" : "quick_check") +
-               " failed; the file was left untouched: restore it from a backup (" + problems + ")"};
+  return Error{
+      "job store " + db.path() + ": SQLITE_CORRUPT: " + (full ? "integrity_check" : "quick_check") +
+          " failed; the file was left untouched: restore it from a backup (" + problems + ")",
+      ErrorKind::kCorrupt};
+}
+
+// One migration and its user_version bump in one IMMEDIATE transaction.
+Status ApplyMigration(Database& db, const Migration& migration) {
+  Result<Transaction> transaction = Transaction::Begin(db);
+  RADFARM_RETURN_IF_ERROR(transaction);
+  // Read again under the write lock: another process opening the same new file (`radfarm
+  // render --db` and a reader of its store) may have migrated it since the caller's read.
+  Result<int64_t> locked = db.QueryInt("PRAGMA user_version");
+  RADFARM_RETURN_IF_ERROR(locked);
+  if (*locked >= migration.version) return Ok{};  // the transaction rolls back: nothing written
+  std::string what = "migration to schema version " + std::to_string(migration.version);
+  Status applied = db.Exec(migration.sql, what);
+  RADFARM_RETURN_IF_ERROR(applied);
+  if (migration.rebuilds_referenced_table) {
+    // With foreign keys off nothing checked the copied rows; a dangling reference fails here.
+    Result<Statement> check = db.Prepare("PRAGMA foreign_key_check");
+    RADFARM_RETURN_IF_ERROR(check);
+    Result<bool> dangling = check->Step();
+    RADFARM_RETURN_IF_ERROR(dangling);
+    if (*dangling) {
+      return Error{"job store " + db.path() + ": " + what + ": table " + check->Text(0) +
+                   " holds a reference to a missing row of " + check->Text(2) +
+                   "; the file was left untouched"};
+    }
+  }
+  // PRAGMAs take no bound parameters; both values are this build's own constants.
+  std::string pragmas = "PRAGMA user_version = " + std::to_string(migration.version) + ";";
+  if (migration.version == 1) {
+    pragmas += "PRAGMA application_id = " + std::to_string(kApplicationId) + ";";
+  }
+  Status bumped = db.Exec(pragmas, what);
+  RADFARM_RETURN_IF_ERROR(bumped);
+  return transaction->Commit();
 }
 
 }  // namespace
@@ -201,25 +273,20 @@ Status Migrate(Database& db, int target) {
   RADFARM_RETURN_IF_ERROR(current);
   for (const Migration& migration : kMigrations) {
     if (migration.version <= *current || migration.version > target) continue;
-    Result<Transaction> transaction = Transaction::Begin(db);
-    RADFARM_RETURN_IF_ERROR(transaction);
-    // Read again under the write lock: another process opening the same new file (`radfarm
-    // render --db` and a reader of its store) may have migrated it since the read above.
-    Result<int64_t> locked = db.QueryInt("PRAGMA user_version");
-    RADFARM_RETURN_IF_ERROR(locked);
-    if (*locked >= migration.version) continue;  // the transaction rolls back: nothing written
-    std::string what = "migration to schema version " + std::to_string(migration.version);
-    Status applied = db.Exec(migration.sql, what);
-    RADFARM_RETURN_IF_ERROR(applied);
-    // PRAGMAs take no bound parameters; both values are this build's own constants.
-    std::string pragmas = "PRAGMA user_version = " + std::to_string(migration.version) + ";";
-    if (migration.version == 1) {
-      pragmas += "PRAGMA application_id = " + std::to_string(kApplicationId) + ";";
+    if (!migration.rebuilds_referenced_table) {
+      RADFARM_RETURN_IF_ERROR(ApplyMigration(db, migration));
+      continue;
     }
-    Status bumped = db.Exec(pragmas, what);
-    RADFARM_RETURN_IF_ERROR(bumped);
-    Status committed = transaction->Commit();
-    RADFARM_RETURN_IF_ERROR(committed);
+    // PRAGMA foreign_keys is a no-op inside a transaction: it is turned off around it.
+    Result<int64_t> foreign_keys = db.QueryInt("PRAGMA foreign_keys");
+    RADFARM_RETURN_IF_ERROR(foreign_keys);
+    RADFARM_RETURN_IF_ERROR(db.Exec("PRAGMA foreign_keys = OFF", "disable foreign keys"));
+    const Status applied = ApplyMigration(db, migration);
+    const Status restored =
+        db.Exec(*foreign_keys != 0 ? "PRAGMA foreign_keys = ON" : "PRAGMA foreign_keys = OFF",
+                "restore foreign keys");
+    RADFARM_RETURN_IF_ERROR(applied);
+    RADFARM_RETURN_IF_ERROR(restored);
   }
   return Ok{};
 }

@@ -29,6 +29,10 @@ inline constexpr int32_t kApplicationId = 0x52414431;
 struct Migration {
   int version;           // user_version after this migration
   std::string_view sql;  // fixed SQL, one or more statements
+  // It rebuilds a table that others reference (SQLite's way to change a column's constraint: a
+  // new table, the rows copied, the old one dropped, the new one renamed). Foreign keys are off
+  // around it, so the drop cascades to nothing, and checked (foreign_key_check) before the commit.
+  bool rebuilds_referenced_table = false;
 };
 
 std::span<const Migration> Migrations();

@@ -95,6 +95,26 @@ std::string SqliteCodeName(int code) {
   return name;
 }
 
+ErrorKind SqliteErrorKind(int code) {
+  if (code == SQLITE_IOERR_NOMEM) return ErrorKind::kOther;  // memory, not the disk
+  switch (code & 0xff) {
+    case SQLITE_FULL:
+      return ErrorKind::kDiskFull;
+    case SQLITE_IOERR:
+      return ErrorKind::kIo;
+    case SQLITE_BUSY:
+    case SQLITE_LOCKED:
+      return ErrorKind::kBusy;
+    case SQLITE_CORRUPT:
+    case SQLITE_NOTADB:
+      return ErrorKind::kCorrupt;
+    case SQLITE_CONSTRAINT:
+      return ErrorKind::kConstraint;
+    default:
+      return ErrorKind::kOther;
+  }
+}
+
 Error SqliteError(std::string_view path, std::string_view what, int code, sqlite3* db) {
   std::string message = "job store ";
   message += path;
@@ -110,12 +130,23 @@ Error SqliteError(std::string_view path, std::string_view what, int code, sqlite
   message += " (";
   message += db != nullptr ? sqlite3_errmsg(db) : sqlite3_errstr(code);
   message += ")";
-  return Error{std::move(message)};
+  return Error{std::move(message), SqliteErrorKind(code)};
 }
 
-bool IsStoreFault(std::string_view message) {
-  return message.find("SQLITE_FULL") != std::string_view::npos ||
-         message.find("SQLITE_IOERR") != std::string_view::npos;
+bool IsStoreFault(ErrorKind kind) {
+  switch (kind) {
+    case ErrorKind::kDiskFull:
+    case ErrorKind::kIo:
+      return true;
+    // A lock held by another connection, damage and broken rules do not pass by waiting; the
+    // job fails with the error.
+    case ErrorKind::kBusy:
+    case ErrorKind::kCorrupt:
+    case ErrorKind::kConstraint:
+    case ErrorKind::kOther:
+      return false;
+  }
+  return false;
 }
 
 }  // namespace radfarm::store

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -63,29 +64,40 @@ struct Round {
   double bytes = 0, copy_ms = 0, encode_ms = 0, commit_ms = 0, total_ms = 0;
 };
 
-// The rounds radfarmd logged: "round R: N rays, unshot U%, S s" and
-// "round R checkpoint: B bytes, copy C ms, encode E ms, commit M ms, queued to committed Q ms".
-void ParseMasterLog(const std::string& log, std::map<uint32_t, Round>* rounds) {
-  static const std::regex round_line(R"(round (\d+): (\d+) rays, unshot [0-9.]+%, ([0-9.e+-]+) s)");
-  static const std::regex checkpoint_line(
-      R"(round (\d+) checkpoint: (\d+) bytes, copy ([0-9.]+) ms, encode ([0-9.]+) ms, commit )"
-      R"(([0-9.]+) ms, queued to committed ([0-9.]+) ms)");
-  std::istringstream lines(log);
-  for (std::string line; std::getline(lines, line);) {
-    std::smatch m;
-    if (std::regex_search(line, m, round_line)) {
-      Round& r = (*rounds)[std::stoul(m[1])];
-      r.rays = std::stoull(m[2]);
-      r.seconds = std::stod(m[3]);
-    } else if (std::regex_search(line, m, checkpoint_line)) {
-      Round& r = (*rounds)[std::stoul(m[1])];
-      r.checkpoint = true;
-      r.bytes = std::stod(m[2]);
-      r.copy_ms = std::stod(m[3]);
-      r.encode_ms = std::stod(m[4]);
-      r.commit_ms = std::stod(m[5]);
-      r.total_ms = std::stod(m[6]);
-    }
+// The last checkpoint in a job object of radfarmd (`radfarm status --json`, docs/CONTROL.md):
+// its figures go to its round. `committed` counts the master's checkpoints of the job, so one
+// committed between two looks is counted as missed rather than lost without a word.
+struct CheckpointWatch {
+  uint64_t committed = 0;  // the current master's count at the last look
+  uint64_t missed = 0;
+
+  void Take(const nlohmann::json& job, std::map<uint32_t, Round>* rounds) {
+    const nlohmann::json& c = job.value("last_checkpoint", nlohmann::json());
+    if (!c.is_object()) return;
+    const uint64_t now = c.value("committed", uint64_t{0});
+    if (now == committed) return;
+    // A restarted master counts from 1 again.
+    missed += now > committed ? now - committed - 1 : now - 1;
+    committed = now;
+    Round& r = (*rounds)[c.value("round", 0u)];
+    r.checkpoint = true;
+    r.bytes = c.value("bytes", 0.0);
+    r.copy_ms = c.value("copy_ms", 0.0);
+    r.encode_ms = c.value("encode_ms", 0.0);
+    r.commit_ms = c.value("commit_ms", 0.0);
+    r.total_ms = c.value("queued_ms", 0.0);
+  }
+};
+
+// The rounds' wall times and rays, from job `id`'s rows in the store at `db`.
+void AddStoreRounds(const std::string& db, int64_t id, std::map<uint32_t, Round>* rounds) {
+  Result<store::JobStore> s = store::JobStore::Open(db);
+  if (!s) throw std::runtime_error(s.error());
+  Result<std::vector<store::RoundRecord>> rows = s->ListRounds(store::JobId(id));
+  if (!rows) throw std::runtime_error(rows.error());
+  for (const store::RoundRecord& row : *rows) {
+    (*rounds)[row.round].seconds = row.duration_seconds;
+    (*rounds)[row.round].rays = row.rays;
   }
 }
 
@@ -108,14 +120,7 @@ std::map<uint32_t, Round> RenderRounds(const std::string& out, const std::string
     r.commit_ms = std::stod(m[5]);
     r.copy_ms = std::stod(m[6]);
   }
-  Result<store::JobStore> s = store::JobStore::Open(db);
-  if (!s) throw std::runtime_error(s.error());
-  Result<std::vector<store::RoundRecord>> rows = s->ListRounds(1);
-  if (!rows) throw std::runtime_error(rows.error());
-  for (const store::RoundRecord& row : *rows) {
-    rounds[row.round].seconds = row.duration_seconds;
-    rounds[row.round].rays = row.rays;
-  }
+  AddStoreRounds(db, 1, &rounds);
   return rounds;
 }
 
@@ -127,6 +132,7 @@ struct Run {
   // to the job prepared again (meshed, state loaded) and to its first round's end.
   int64_t killed_after_round = -1;
   double resume_prepared_seconds = 0, resume_first_round_seconds = 0;
+  uint64_t checkpoints_missed = 0;  // committed between two looks at the job (CheckpointWatch)
 };
 
 Run RunRender(const BigJobOptions& o, const std::string& job, const std::string& dir) {
@@ -141,11 +147,6 @@ Run RunRender(const BigJobOptions& o, const std::string& job, const std::string&
   run.rounds = RenderRounds(r.out, db);
   run.patches = ReadFile(out + "/patches.csv");
   return run;
-}
-
-bool HasRoundLine(const std::string& log) {
-  static const std::regex round_line(R"(round \d+: \d+ rays)");
-  return std::regex_search(log, round_line);
 }
 
 }  // namespace
@@ -176,56 +177,57 @@ Run RunFarm(const BigJobOptions& o, const std::string& job, const std::string& d
   const int64_t id = farm.Submit(job, {"--rays", std::to_string(o.rays)}, &error);
   if (id < 0) throw std::runtime_error("submit: " + error);
   Run run;
+  CheckpointWatch watch;
+  // Looks at the job through `radfarm status --json` until `until` holds or the job ends.
+  auto wait = [&](const std::function<bool(const nlohmann::json&)>& until,
+                  std::chrono::minutes timeout) {
+    return farm.WaitForJob(
+        id,
+        [&](const nlohmann::json& j) {
+          watch.Take(j, &run.rounds);
+          return testing::IsFinished(j) || until(j);
+        },
+        timeout, std::chrono::milliseconds(100));
+  };
   if (kill) {
     // Kill once the first checkpoint after round 0 is committed: mid-job, a round running.
-    std::map<uint32_t, Round> seen;
-    const auto give_up = Clock::now() + std::chrono::minutes(30);
-    while (true) {
-      seen.clear();
-      ParseMasterLog(farm.MasterLog(), &seen);
-      const auto it = std::find_if(seen.begin(), seen.end(), [](const auto& r) {
-        return r.first >= 1 && r.second.checkpoint;
-      });
-      if (it != seen.end()) {
-        run.killed_after_round = it->first;
-        break;
-      }
-      if (Clock::now() > give_up) throw std::runtime_error("no checkpoint after round 0");
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));  // polling the log
-    }
+    const nlohmann::json at = wait(
+        [](const nlohmann::json& j) {
+          const nlohmann::json& c = j.value("last_checkpoint", nlohmann::json());
+          return c.is_object() && c.value("round", 0u) >= 1;
+        },
+        std::chrono::minutes(30));
+    if (testing::IsFinished(at)) throw std::runtime_error("no checkpoint after round 0");
+    run.killed_after_round = at["last_checkpoint"].value("round", 0u);
     farm.master()->Signal(SIGKILL);
     if (!farm.master()->WaitExit(std::chrono::seconds(30))) throw std::runtime_error("no exit");
-    ParseMasterLog(farm.MasterLog(), &run.rounds);
     std::filesystem::remove(farm.state_dir() + "/http.addr");
     std::vector<std::string> again = flags;
     again.insert(again.end(), {"--listen", listen});
-    // The new master's lines only (it appends to the old one's log).
-    const size_t old_log = farm.MasterLog().size();
-    auto new_log = [&] {
-      const std::string log = farm.MasterLog();
-      return log.size() > old_log ? log.substr(old_log) : std::string();
-    };
     const auto restarted = Clock::now();
     farm.StartMaster(again);
     if (farm.master_address().empty()) throw std::runtime_error("restart: " + farm.MasterLog());
-    while (new_log().find(" compressed)") == std::string::npos) {
-      if (Clock::now() > give_up) throw std::runtime_error("the job never started again");
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
+    // Prepared again (meshed, its state loaded): its phase is past "preparing".
+    const nlohmann::json prepared = wait(
+        [](const nlohmann::json& j) {
+          const nlohmann::json& phase = j.value("phase", nlohmann::json());
+          return phase.is_string() && phase != "preparing";
+        },
+        std::chrono::minutes(30));
     run.resume_prepared_seconds = Since(restarted);
-    while (!HasRoundLine(new_log())) {
-      if (Clock::now() > give_up) throw std::runtime_error("no round after the restart");
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
+    const uint32_t resumed_at = prepared.value("round", 0u);
+    wait([&](const nlohmann::json& j) { return j.value("round", 0u) > resumed_at; },
+         std::chrono::minutes(30));
     run.resume_first_round_seconds = Since(restarted);
   }
-  const nlohmann::json done = farm.WaitForJob(id, testing::IsFinished, std::chrono::minutes(60),
-                                              std::chrono::milliseconds(200));
+  const nlohmann::json done =
+      wait([](const nlohmann::json&) { return false; }, std::chrono::minutes(60));
   run.seconds = Since(start);
   if (done.value("state", std::string()) != "done") {
     throw std::runtime_error("job ended " + done.dump() + "\n" + farm.MasterLog());
   }
-  ParseMasterLog(farm.MasterLog(), &run.rounds);
+  run.checkpoints_missed = watch.missed;
+  AddStoreRounds(farm.state_dir() + "/radfarm.db", id, &run.rounds);
   const std::string out = farm.File("out");
   if (farm.Fetch(id, out).exit_code != 0) throw std::runtime_error("fetch failed");
   run.patches = ReadFile(out + "/patches.csv");
@@ -282,7 +284,8 @@ nlohmann::json Summary(const char* name, const Run& run) {
           {"checkpoint_share_of_all_rounds", share_of_rounds},
           {"killed_after_round", run.killed_after_round},
           {"resume_prepared_seconds", run.resume_prepared_seconds},
-          {"resume_first_round_seconds", run.resume_first_round_seconds}};
+          {"resume_first_round_seconds", run.resume_first_round_seconds},
+          {"checkpoints_missed", run.checkpoints_missed}};
 }
 
 }  // namespace

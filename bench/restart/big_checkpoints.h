@@ -3,9 +3,11 @@
 //   - by `radfarm render --db` (checkpoints on its main thread, between rounds),
 //   - by a loopback farm (radfarmd, 2 one-thread agents) without kills,
 //   - by the same farm with the master SIGKILLed once after its first checkpoint, and restarted,
-// and each round's wall time is set beside its checkpoint's bytes and times, read from the lines
-// radfarmd and render print for each checkpoint, and the rounds' rows in the job store. The killed
-// run must end with the same patches.csv as the farm run without kills and as render.
+// and each round's wall time is set beside its checkpoint's bytes and times: radfarmd's from the
+// job object of its control socket (`radfarm status --json`: last_checkpoint, looked at every
+// 100 ms), render's from the line it prints for each checkpoint, the rounds' from their rows in the
+// job store. The killed run must end with the same patches.csv as the farm run without kills and
+// as render.
 #pragma once
 
 #include <cstdint>

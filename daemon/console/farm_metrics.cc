@@ -27,8 +27,8 @@ web::FarmMetrics FarmMetricsOf(const nlohmann::json& jobs, const nlohmann::json&
                                size_t store_queue_depth) {
   web::FarmMetrics m;
   using store::JobState;
-  for (JobState s : {JobState::kQueued, JobState::kRunning, JobState::kPaused, JobState::kDone,
-                     JobState::kFailed, JobState::kCancelled}) {
+  for (JobState s : {JobState::kQueued, JobState::kRunning, JobState::kPaused, JobState::kHeld,
+                     JobState::kDone, JobState::kFailed, JobState::kCancelled}) {
     m.jobs_by_state[std::string(store::JobStateName(s))] = 0;
   }
   for (const auto& job : jobs) {

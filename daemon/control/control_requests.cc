@@ -224,7 +224,17 @@ json ControlRequests::JobJson(const JobSummary& s) {
            {"agents", 0},
            {"eta_seconds", nullptr},
            {"stop_reason", nullptr},
-           {"waiting_for_agents", false}};
+           {"waiting_for_agents", false},
+           {"phase", nullptr},
+           {"last_checkpoint", nullptr}};
+  const std::string_view phase = jobs_.PhaseOf(r.id);
+  if (!phase.empty()) job["phase"] = std::string(phase);
+  if (const CheckpointReport* c = jobs_.LastCheckpoint(r.id)) {
+    job["last_checkpoint"] =
+        json{{"round", c->round},         {"bytes", c->bytes},         {"copy_ms", c->copy_ms},
+             {"encode_ms", c->encode_ms}, {"commit_ms", c->commit_ms}, {"queued_ms", c->queued_ms},
+             {"committed", c->committed}};
+  }
   // A job not running: how far its convergence came, in log space (no rays to count it by).
   double progress = ConvergenceFraction(s.unshot_fraction, s.settings.tolerance);
   if (RunningJob* runner = jobs_.FindRunner(static_cast<uint64_t>(r.id))) {

@@ -1,8 +1,7 @@
-// JobRounds: holding jobs after store faults and releasing them (issue 20, F5). A brief disk-full
-// used to turn running jobs `failed` ("cannot save the checkpoint ... SQLITE_FULL"), and `resume`
-// refused a failed job although its checkpoints were intact. Now the job is paused with a "held: "
-// reason and tried again every hold_retry_ms: once the store can write, it goes back to the queue
-// and resumes from its latest checkpoint, computing the same bits.
+// JobRounds: holding jobs after store faults and releasing them. A brief disk-full must not fail a
+// running job whose checkpoints are intact: the job is `held` (store/job_state.h) with the error as
+// its reason and tried again every hold_retry_ms: once the store can write, it goes back to the
+// queue and resumes from its latest checkpoint, computing the same bits.
 #include <algorithm>
 #include <memory>
 
@@ -16,20 +15,20 @@ namespace radfarm::daemon {
 using loop::LogLevel;
 using loop::LogLine;
 
-void JobRounds::HoldOrFail(store::JobId id, const std::string& error) {
-  if (!store::IsStoreFault(error)) {
-    FailJob(id, error);
+void JobRounds::HoldOrFail(store::JobId id, const Error& error) {
+  if (!store::IsStoreFault(error.kind)) {
+    FailJob(id, error.message);
     return;
   }
   if (stopping_) return;
   DropRunner(id);
   starting_.erase(id);
   holds_waiting_ = true;
-  const std::string why = error +
+  const std::string why = error.message +
                           "; it resumes by itself once the store can write again (or: "
                           "radfarm resume " +
                           std::to_string(id) + ")";
-  LogLine(LogLevel::kWarning, "job " + std::to_string(id)) << store::kHeldPrefix << why;
+  LogLine(LogLevel::kWarning, "job " + std::to_string(id)) << "held: " << why;
   store_.Run([id, why](store::JobStore& s) { return store::HoldJob(s, id, why); },
              [this, id](Status s) {
                if (s) return;

@@ -47,6 +47,36 @@ RunningJob* JobRounds::FindRunner(uint64_t job_id) {
   return it == runners_.end() ? nullptr : it->second.get();
 }
 
+const CheckpointReport* JobRounds::LastCheckpoint(store::JobId id) const {
+  const auto it = checkpoint_reports_.find(id);
+  return it == checkpoint_reports_.end() ? nullptr : &it->second;
+}
+
+void JobRounds::RecordCheckpoint(store::JobId id, CheckpointReport report) {
+  CheckpointReport& kept = checkpoint_reports_[id];
+  report.committed = kept.committed + 1;
+  kept = report;
+  // Job ids grow: the first entry is the oldest job's.
+  if (checkpoint_reports_.size() > kKeptCheckpointReports) {
+    checkpoint_reports_.erase(checkpoint_reports_.begin());
+  }
+}
+
+std::string_view JobRounds::PhaseOf(store::JobId id) const {
+  if (starting_.count(id)) return "preparing";
+  const auto it = runners_.find(id);
+  if (it == runners_.end()) return {};
+  switch (it->second->phase()) {
+    case RunningJob::Phase::kRound:
+      return "round";
+    case RunningJob::Phase::kReducing:
+      return "reducing";
+    case RunningJob::Phase::kFinished:
+      return "finishing";
+  }
+  return {};
+}
+
 void JobRounds::OfferSubmittedMesh(store::JobId id, SubmittedMesh mesh) {
   submitted_mesh_job_ = id;
   submitted_mesh_ = std::move(mesh);
@@ -328,13 +358,18 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
         [this, id, queued_ms, cost, round = record.round,
          copy_seconds = outcome.checkpoint_copy_seconds](Status s) {
           // The loop's clock, read at the start of the iteration that delivered the commit. The
-          // pace counts the waiting behind other store work too: what restart_bench reports.
+          // pace counts the waiting behind other store work too.
           const double latency = double(clock_.NowMs() - queued_ms) / 1000;
           checkpoints_.Written(id, s ? latency : 0);
-          if (!s) return HoldOrFail(id, "cannot save the checkpoint: " + s.error());
+          if (!s) {
+            return HoldOrFail(id,
+                              Error{"cannot save the checkpoint: " + s.error(), s.error_kind()});
+          }
           checkpoint_latency_.Record(latency);
           PruneKeptResults(id, round);
-          // restart_bench reads this line: keep its words.
+          RecordCheckpoint(id,
+                           {round, cost->bytes, 1000 * copy_seconds, 1000 * cost->encode_seconds,
+                            1000 * cost->commit_seconds, 1000 * latency});
           LogLine(LogLevel::kInfo, "job " + std::to_string(id))
               << "round " << round << " checkpoint: " << cost->bytes << " bytes, copy "
               << Ms(copy_seconds) << " ms, encode " << Ms(cost->encode_seconds) << " ms, commit "
@@ -343,7 +378,8 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
   } else {
     store_.Run([record](store::JobStore& s) { return s.RecordRound(record); },
                [this, id](Status s) {
-                 if (!s) HoldOrFail(id, "cannot record the round: " + s.error());
+                 if (!s)
+                   HoldOrFail(id, Error{"cannot record the round: " + s.error(), s.error_kind()});
                });
   }
   const auto v = verifiers_.find(id);

@@ -10,8 +10,8 @@
 //   DropJob (cancel, pause) forgets a running job at any point; a job still starting is dropped
 //   when its preparation ends.
 //   A store fault (disk full, I/O error) while a round is committed holds the job instead of
-//   failing it (HoldJob, job_holds.cc): paused with a "held: " reason, and RetryHeldJobs puts it
-//   back in the queue every hold_retry_ms until the store writes again.
+//   failing it (HoldJob, job_holds.cc): `held` with the error as its reason, and RetryHeldJobs puts
+//   it back in the queue every hold_retry_ms until the store writes again.
 //
 // It knows nothing of connections: what it needs of the agents comes through AgentHooks.
 // Loop thread only (the compute and store threads hand their results back to it).
@@ -24,6 +24,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "daemon/config/master_config.h"
@@ -61,6 +62,17 @@ struct VerifyCounters {
   uint64_t rewinds = 0;     // jobs sent back before a liar's first result
 };
 
+// What the last checkpoint the master committed for a job cost.
+struct CheckpointReport {
+  uint32_t round = 0;
+  uint64_t bytes = 0;      // its blobs and checksums (store::CheckpointCost)
+  double copy_ms = 0;      // copying the state from the solver, on the compute thread
+  double encode_ms = 0;    // encoding it, on the store thread
+  double commit_ms = 0;    // committing it
+  double queued_ms = 0;    // from queueing on the store thread to the commit, waiting included
+  uint64_t committed = 0;  // checkpoints this master committed for the job
+};
+
 class JobRounds {
  public:
   using Runners = std::map<store::JobId, std::shared_ptr<RunningJob>>;
@@ -86,8 +98,9 @@ class JobRounds {
   // Forgets a job the operator cancelled or paused (the store knows already).
   void DropJob(store::JobId id);
   void FailJob(store::JobId id, const std::string& error);
-  // A store fault: hold the job (store/job_state.h); any other error fails it.
-  void HoldOrFail(store::JobId id, const std::string& error);
+  // An error of a store fault's kind (store::IsStoreFault): hold the job (store/job_state.h); any
+  // other error fails it.
+  void HoldOrFail(store::JobId id, const Error& error);
   // After round `round`'s checkpoint committed: its kept results and those before go, in a store
   // transaction of their own (store/job_store.h PruneRoundResults). UINT32_MAX: all of them, for
   // a job that ended.
@@ -113,6 +126,13 @@ class JobRounds {
   uint64_t gather_ahead_adopted() const { return gather_ahead_adopted_; }
   // Seconds from queueing each checkpoint on the store thread to its commit.
   const web::LatencyHistogram& checkpoint_latency() const { return checkpoint_latency_; }
+  // The last checkpoint this master committed for job `id`, or null: kept for the
+  // kKeptCheckpointReports most recent jobs, finished ones included (the control socket's
+  // last_checkpoint).
+  const CheckpointReport* LastCheckpoint(store::JobId id) const;
+  // "preparing" (being meshed and loaded), "round", "reducing" or "finishing" for a job this
+  // master runs; empty for any other.
+  std::string_view PhaseOf(store::JobId id) const;
   // Offers overdue leases again (RoundScheduler::Tick); returns how many.
   size_t Tick(scheduler::TimePoint now);
   // Whether some job's round is in its end game (RoundScheduler::InEndGame): idle agents should be
@@ -155,6 +175,9 @@ class JobRounds {
                              std::function<RoundOutcome()> work);
   void OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundOutcome outcome);
   void FinishJob(const std::shared_ptr<RunningJob>& runner);
+  // Keeps `report` as job `id`'s last checkpoint, its count one more; forgets the oldest job's
+  // beyond kKeptCheckpointReports.
+  void RecordCheckpoint(store::JobId id, CheckpointReport report);
   // Stops a job's work on every agent (Cancel) and forgets its runner.
   void DropRunner(store::JobId id);
 
@@ -175,7 +198,9 @@ class JobRounds {
   uint64_t gather_ahead_adopted_ = 0;
   BatchTotals retired_;  // the counters of runners that went
   web::LatencyHistogram checkpoint_latency_;
-  store::CheckpointPacer checkpoints_;     // which rounds write a checkpoint
+  static constexpr size_t kKeptCheckpointReports = 256;
+  std::map<store::JobId, CheckpointReport> checkpoint_reports_;  // by id: oldest job first
+  store::CheckpointPacer checkpoints_;                           // which rounds write a checkpoint
   std::map<store::JobId, bool> starting_;  // being prepared; true once cancelled meanwhile
   // OfferSubmittedMesh's, until the next start pass takes or drops it.
   store::JobId submitted_mesh_job_ = 0;

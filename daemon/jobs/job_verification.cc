@@ -120,7 +120,10 @@ void JobRounds::Rewind(const std::shared_ptr<RunningJob>& runner, const Mismatch
         return Ok{};
       },
       [this, id](Status s) {
-        if (!s) return HoldOrFail(id, "cannot rewind after a failed verification: " + s.error());
+        if (!s) {
+          return HoldOrFail(
+              id, Error{"cannot rewind after a failed verification: " + s.error(), s.error_kind()});
+        }
         StartQueuedJobs();
       });
 }

@@ -63,6 +63,23 @@ TEST(ReturnIfErrorTest, ReturnsTheErrorOfAResultAndGoesOnOnSuccess) {
   EXPECT_EQ(*good, 3.5);
 }
 
+Status FailsWithKind(ErrorKind kind) { return Error{"no room", kind}; }
+Result<int> PassesKindUp(ErrorKind kind) {
+  RADFARM_RETURN_IF_ERROR(FailsWithKind(kind));
+  return 1;
+}
+
+TEST(ReturnIfErrorTest, KeepsTheErrorsKind) {
+  EXPECT_EQ(Status(Error{"plain"}).error_kind(), ErrorKind::kOther);
+  for (ErrorKind kind : {ErrorKind::kOther, ErrorKind::kDiskFull, ErrorKind::kIo, ErrorKind::kBusy,
+                         ErrorKind::kCorrupt, ErrorKind::kConstraint}) {
+    Result<int> r = PassesKindUp(kind);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error(), "no room");
+    EXPECT_EQ(r.error_kind(), kind);
+  }
+}
+
 TEST(ReturnIfErrorTest, EvaluatesItsArgumentOnce) {
   int calls = 0;
   Status failed = RunsOn(&calls, false);

@@ -24,7 +24,9 @@ const std::vector<std::string> kJobKeys = {"id",
                                            "agents",
                                            "eta_seconds",
                                            "stop_reason",
-                                           "waiting_for_agents"};
+                                           "waiting_for_agents",
+                                           "phase",
+                                           "last_checkpoint"};
 const std::vector<std::string> kAgentKeys = {"id",
                                              "name",
                                              "address",
@@ -61,7 +63,9 @@ nlohmann::json JobObject(int64_t id, const std::string& state, uint64_t round) {
           {"agents", state == "running" ? 2 : 0},
           {"eta_seconds", state == "running" ? nlohmann::json(42.0) : nlohmann::json()},
           {"stop_reason", state == "done" ? nlohmann::json("converged") : nlohmann::json()},
-          {"waiting_for_agents", false}};
+          {"waiting_for_agents", false},
+          {"phase", state == "running" ? nlohmann::json("round") : nlohmann::json()},
+          {"last_checkpoint", nlohmann::json()}};
 }
 
 nlohmann::json AgentObject(int64_t id, const std::string& name) {

@@ -100,6 +100,20 @@ TEST(QueueCommandsTest, FailedJobStatusShowsItsError) {
   EXPECT_NE(r.out.find("error:      agent lost the scene"), std::string::npos) << r.out;
 }
 
+TEST(QueueCommandsTest, AHeldJobShowsItsStateAndWhyInStatusAndList) {
+  json job = JobObject(7, "held", 4);
+  job["error"] = "cannot save the checkpoint: SQLITE_FULL";
+  FakeControlServer server(Always(OkAnswer({{"job", job}, {"jobs", json::array({job})}})));
+  const auto r = RunFarm(server.socket_path(), {"status", "7"});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("state:      held\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("reason:     cannot save the checkpoint: SQLITE_FULL"), std::string::npos)
+      << r.out;
+  const auto list = RunFarm(server.socket_path(), {"list"});
+  ASSERT_EQ(list.exit_code, kExitOk) << list.err;
+  EXPECT_NE(list.out.find("job-7  held"), std::string::npos) << list.out;
+}
+
 TEST(QueueCommandsTest, CancelPauseResumeSendTheirCommandWithTheId) {
   for (const auto& [command, state] :
        {std::pair("cancel", "cancelled"), std::pair("pause", "paused"),

@@ -42,7 +42,9 @@ void ExpectJobKeys(const nlohmann::json& job) {
                           "agents",
                           "eta_seconds",
                           "stop_reason",
-                          "waiting_for_agents"}) {
+                          "waiting_for_agents",
+                          "phase",
+                          "last_checkpoint"}) {
     EXPECT_TRUE(job.contains(key)) << key << " missing from " << job.dump();
   }
 }
@@ -64,6 +66,8 @@ TEST_F(FarmTest, EveryQueueCommandAgainstARunningMaster) {
   EXPECT_EQ(jobs[0]["name"], "alpha");
   EXPECT_EQ(jobs[0]["priority"], 5);
   EXPECT_EQ(jobs[1]["state"], "queued");
+  EXPECT_TRUE(jobs[1]["phase"].is_null()) << jobs[1].dump();  // not this master's to run yet
+  EXPECT_TRUE(jobs[1]["last_checkpoint"].is_null()) << jobs[1].dump();
   r = Cli({"list"});
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.out.find("beta"), std::string::npos) << r.out;
@@ -119,6 +123,17 @@ TEST_F(FarmTest, EveryQueueCommandAgainstARunningMaster) {
   ExpectJobKeys(done);
   EXPECT_EQ(done["state"], "done");
   EXPECT_EQ(done["stop_reason"], "ray budget");
+  // What its last checkpoint cost, kept after the job ended (a stopping round always writes one).
+  EXPECT_TRUE(done["phase"].is_null()) << done.dump();
+  const nlohmann::json& checkpoint = done["last_checkpoint"];
+  ASSERT_TRUE(checkpoint.is_object()) << done.dump();
+  EXPECT_LT(checkpoint["round"].get<uint64_t>(), done["round"].get<uint64_t>()) << done.dump();
+  EXPECT_GT(checkpoint["bytes"].get<uint64_t>(), done["patches"].get<uint64_t>() * 48)
+      << done.dump();
+  EXPECT_GE(checkpoint["committed"].get<uint64_t>(), 1u) << done.dump();
+  for (const char* ms : {"copy_ms", "encode_ms", "commit_ms", "queued_ms"}) {
+    EXPECT_GE(checkpoint[ms].get<double>(), 0.0) << ms << " in " << done.dump();
+  }
   // The rounds' rays: a quarter of the 3M budget is kept for the display (core/display_budget.h)
   // and the direct light the master started from spent at most another (core/direct_light.h,
   // StartRayAllowance).

@@ -1,6 +1,6 @@
 // The job store against rot and faults, with a real radfarmd: a bit flipped
 // in a stored checkpoint is noticed and the job recomputes from the checkpoint before, ending
-// byte-identical to `radfarm render`; a full store holds a running job (paused, "held: ...")
+// byte-identical to `radfarm render`; a full store holds a running job (`held`)
 // instead of failing it, and the job resumes by itself once the store has room again.
 #include <signal.h>
 
@@ -86,7 +86,7 @@ TEST_F(FarmTest, AFullStoreHoldsTheJobAndItResumesByItselfOnceThereIsRoom) {
       {"--local-round-rays", "100000000", "--max-store-bytes", "128K", "--hold-retry-ms", "1000"});
   const std::string listen = "127.0.0.1:" + Port(master_address());
   const int64_t id = Submit("cornell-box.toml", kShortJob);
-  ASSERT_TRUE(WaitForState(id, "paused"));
+  ASSERT_TRUE(WaitForState(id, "held"));
   // The reason, from the job's log (the retry every second may already have released it again).
   const CommandResult log = Cli({"log", std::to_string(id)});
   EXPECT_NE(log.out.find("held: cannot save the checkpoint"), std::string::npos) << log.out;
@@ -94,7 +94,7 @@ TEST_F(FarmTest, AFullStoreHoldsTheJobAndItResumesByItselfOnceThereIsRoom) {
   // Still full: each retry (and `resume`) runs the job again and holds it again; never failed.
   ASSERT_TRUE(WaitUntil([&] { return CountLines(MasterLog(), "released: the store") >= 1; }))
       << MasterLog();
-  ASSERT_TRUE(WaitForState(id, "paused"));
+  ASSERT_TRUE(WaitForState(id, "held"));
   EXPECT_NE(Status(id)["state"], "failed");
   EXPECT_TRUE(master().running());
 

@@ -7,6 +7,7 @@
 
 #include "store/database.h"
 #include "store/job_store.h"
+#include "store/sqlite_error.h"
 #include "tests/store/faulty_vfs.h"
 #include "tests/store/temp_dir.h"
 
@@ -28,10 +29,12 @@ RoundRecord RoundOf(const Checkpoint& checkpoint) {
   return {checkpoint.job, checkpoint.round, 4, 4096, 0.5, 2.0, 0.1};
 }
 
-void ExpectErrorNames(const Status& status, const std::string& code) {
+// The message names the code, and the kind (what the master decides by) is the code's class.
+void ExpectErrorNames(const Status& status, const std::string& code, ErrorKind kind) {
   ASSERT_FALSE(status.ok()) << "expected " << code;
   std::printf("failed as expected: %s\n", status.error().c_str());
   EXPECT_NE(status.error().find(code), std::string::npos) << status.error();
+  EXPECT_EQ(status.error_kind(), kind) << status.error();
 }
 
 // Opens a store with one job, returning its id.
@@ -59,7 +62,7 @@ TEST(TransactionTest, RollsBackUnlessCommitted) {
     ASSERT_TRUE(db->Exec("INSERT INTO t VALUES (1)", "first insert").ok());
     // The injected failure mid-transaction: the caller returns early with its error.
     Status failed = db->Exec("INSERT INTO t VALUES (NULL)", "failing insert");
-    ExpectErrorNames(failed, "SQLITE_CONSTRAINT");
+    ExpectErrorNames(failed, "SQLITE_CONSTRAINT", ErrorKind::kConstraint);
     EXPECT_TRUE(db->InTransaction());
   }
   EXPECT_FALSE(db->InTransaction());
@@ -91,7 +94,9 @@ TEST(FaultTest, SaveCheckpointIsAllOrNothing) {
                          "add trigger")
                   .ok());
   Checkpoint second = Make(job, 1, 8);
-  ExpectErrorNames(store->SaveCheckpoint(RoundOf(second), second), "injected failure");
+  // RAISE(ABORT) is SQLITE_CONSTRAINT_TRIGGER: a rule of the data, not a fault of the disk.
+  ExpectErrorNames(store->SaveCheckpoint(RoundOf(second), second), "injected failure",
+                   ErrorKind::kConstraint);
   EXPECT_EQ(store->ListRounds(job)->size(), 1u);  // round 1's row was rolled back
   EXPECT_EQ((*store->LoadLatestCheckpoint(job))->round, 0u);
   EXPECT_EQ(Count(*other, "rounds"), 1);
@@ -116,7 +121,8 @@ TEST(FaultTest, FullDiskIsAStatusAndLosesNothingCommitted) {
     if (!status.ok()) break;
   }
   ASSERT_GT(round, 0u);
-  ExpectErrorNames(status, "SQLITE_FULL");
+  ExpectErrorNames(status, "SQLITE_FULL", ErrorKind::kDiskFull);
+  EXPECT_TRUE(IsStoreFault(status.error_kind()));
   EXPECT_EQ((*store->LoadLatestCheckpoint(job))->round, round - 1);
   EXPECT_EQ(store->ListRounds(job)->size(), round);  // the failed round left no row
   // Pruning frees pages; the next checkpoint fits again.
@@ -137,7 +143,9 @@ TEST(FaultTest, WriteErrorIsAStatusAndStoreRecovers) {
   Checkpoint second = Make(job, 1, 100);
   for (int writes_before_failure : {0, 1, 3}) {
     FaultyVfsArm arm(writes_before_failure);
-    ExpectErrorNames(store->SaveCheckpoint(RoundOf(second), second), "SQLITE_IOERR");
+    const Status failed = store->SaveCheckpoint(RoundOf(second), second);
+    ExpectErrorNames(failed, "SQLITE_IOERR", ErrorKind::kIo);
+    EXPECT_TRUE(IsStoreFault(failed.error_kind()));
     EXPECT_GT(arm.failures(), 0);
   }
   // Disarmed: what was committed is intact and writing works again.
@@ -151,9 +159,10 @@ TEST(FaultTest, DirectoryPathIsAnOpenError) {
   TempDir dir;
   Result<JobStore> store = JobStore::Open(dir.path().string());
   ASSERT_FALSE(store.ok());
-  ExpectErrorNames(Error{store.error()}, "SQLITE_CANTOPEN");
+  ExpectErrorNames(Error{store.error(), store.error_kind()}, "SQLITE_CANTOPEN", ErrorKind::kOther);
   Result<JobStore> missing = JobStore::Open(dir.File("no/such/dir/jobs.db"));
-  ExpectErrorNames(Error{missing.error()}, "SQLITE_CANTOPEN");
+  ExpectErrorNames(Error{missing.error(), missing.error_kind()}, "SQLITE_CANTOPEN",
+                   ErrorKind::kOther);
 }
 
 TEST(FaultTest, LockedDatabaseIsBusyAfterTheTimeout) {
@@ -168,7 +177,9 @@ TEST(FaultTest, LockedDatabaseIsBusyAfterTheTimeout) {
   Result<Transaction> held = Transaction::Begin(*other);  // another writer holds the lock
   ASSERT_TRUE(held.ok());
   Result<JobId> id = store->SubmitJob({"second", "scene", "", 1, 0});
-  ExpectErrorNames(id.ok() ? Status(Ok{}) : Status(Error{id.error()}), "SQLITE_BUSY");
+  ASSERT_FALSE(id.ok());
+  ExpectErrorNames(Error{id.error(), id.error_kind()}, "SQLITE_BUSY", ErrorKind::kBusy);
+  EXPECT_FALSE(IsStoreFault(id.error_kind()));
   ASSERT_TRUE(held->Commit().ok());
   EXPECT_TRUE(store->SubmitJob({"second", "scene", "", 1, 0}).ok());
 }

@@ -92,17 +92,21 @@ TEST_F(JobStoreTest, RejectsIllegalTransitions) {
       {{kRunning, kDone}, kQueued},
       {{kCancelled}, kQueued},
       {{kRunning, kDone}, kCancelled},
+      {{}, kHeld},                    // only a running job is held
+      {{kPaused}, kHeld},             // ... not one an operator paused
+      {{kRunning, kHeld}, kRunning},  // a held job goes back through the queue
+      {{kRunning, kHeld}, kDone},
   };
   for (const Case& c : cases) {
     JobId id = Submit("job", 0);
     for (JobState step : c.path) {
       std::optional<std::string> error;
-      if (step == kFailed) error = "x";
+      if (step == kFailed || step == kHeld) error = "x";
       ASSERT_TRUE(store_->SetJobState(id, step, error).ok());
     }
     JobState before = StateOf(id);
     std::optional<std::string> error;
-    if (c.illegal == kFailed) error = "x";
+    if (c.illegal == kFailed || c.illegal == kHeld) error = "x";
     Status status = store_->SetJobState(id, c.illegal, error);
     ASSERT_FALSE(status.ok()) << JobStateName(before) << " -> " << JobStateName(c.illegal);
     EXPECT_NE(status.error().find("illegal state transition " + std::string(JobStateName(before)) +
@@ -115,7 +119,7 @@ TEST_F(JobStoreTest, RejectsIllegalTransitions) {
 
 TEST_F(JobStoreTest, TransitionTableMatchesDiagram) {
   using enum JobState;
-  const std::vector<JobState> all = {kQueued, kRunning, kPaused, kDone, kFailed, kCancelled};
+  const std::vector<JobState> all = {kQueued, kRunning, kPaused, kHeld, kDone, kFailed, kCancelled};
   int allowed = 0;
   for (JobState from : all) {
     for (JobState to : all) allowed += IsAllowedTransition(from, to) ? 1 : 0;
@@ -123,13 +127,15 @@ TEST_F(JobStoreTest, TransitionTableMatchesDiagram) {
       for (JobState to : all) EXPECT_FALSE(IsAllowedTransition(from, to));
     }
   }
-  EXPECT_EQ(allowed, 10);  // the ten arrows of job_state.h
+  EXPECT_EQ(allowed, 14);  // the fourteen arrows of job_state.h
+  for (JobState state : all) EXPECT_EQ(ParseJobState(JobStateName(state)), state);
 }
 
 TEST_F(JobStoreTest, ErrorTextRules) {
   JobId id = Submit("job", 0);
   ASSERT_TRUE(store_->SetJobState(id, JobState::kRunning).ok());
   EXPECT_FALSE(store_->SetJobState(id, JobState::kFailed).ok());        // needs a reason
+  EXPECT_FALSE(store_->SetJobState(id, JobState::kHeld).ok());          // needs a reason
   EXPECT_FALSE(store_->SetJobState(id, JobState::kDone, "why").ok());   // takes none
   EXPECT_FALSE(store_->SetJobState(id + 50, JobState::kRunning).ok());  // no such job
   EXPECT_TRUE(store_->SetJobState(id, JobState::kCancelled, "operator").ok());

@@ -262,9 +262,10 @@ TEST_F(JobTransactionsTest, CommandsOnEveryStateMatchTheTable) {
   const struct {
     JobState from;
     bool cancel, pause, resume;
-  } rules[] = {{kQueued, true, true, false},   {kRunning, true, true, false},
-               {kPaused, true, false, true},   {kDone, false, false, false},
-               {kFailed, false, false, false}, {kCancelled, false, false, false}};
+  } rules[] = {{kQueued, true, true, false},     {kRunning, true, true, false},
+               {kPaused, true, false, true},     {kHeld, true, true, true},
+               {kDone, false, false, false},     {kFailed, false, false, false},
+               {kCancelled, false, false, false}};
   for (const auto& rule : rules) {
     SCOPED_TRACE(std::string(JobStateName(rule.from)));
     EXPECT_EQ(IsAllowedCommand(rule.from, JobCommand::kCancel), rule.cancel);
@@ -356,6 +357,60 @@ TEST_F(JobTransactionsTest, LoadSolutionErrors) {
   Result<std::optional<StoredSolution>> no_bundle = LoadSolution(*store_, job);
   ASSERT_FALSE(no_bundle.ok());
   EXPECT_EQ(no_bundle.error(), "job " + std::to_string(job) + ": scene missing");
+}
+
+// --- holds after store faults ---
+
+TEST_F(JobTransactionsTest, HoldJobMakesARunningJobHeldWithItsReason) {
+  const JobId job = Submit("job");
+  Move(job, JobState::kRunning);
+  ASSERT_TRUE(HoldJob(*store_, job, "cannot save the checkpoint: SQLITE_FULL").ok());
+  const JobRecord held = **store_->GetJob(job);
+  EXPECT_EQ(held.state, JobState::kHeld);
+  EXPECT_EQ(held.error, "cannot save the checkpoint: SQLITE_FULL");
+  EXPECT_EQ(EventsOf(job),
+            std::vector<std::string>{"held: cannot save the checkpoint: SQLITE_FULL"});
+  // Not a job to start: only the release or an operator queues it again.
+  EXPECT_TRUE(StartQueuedJobs(*store_, 4)->empty());
+}
+
+TEST_F(JobTransactionsTest, ReleaseHeldJobsQueuesHeldAndUnrecordedJobsOnly) {
+  const JobId held = Submit("held");
+  const JobId paused = Submit("paused");
+  const JobId unrecorded = Submit("unrecorded");
+  const JobId running = Submit("running");
+  for (JobId id : {held, unrecorded, running}) Move(id, JobState::kRunning);
+  ASSERT_TRUE(HoldJob(*store_, held, "disk full").ok());
+  // An operator's pause with a reason that reads like a hold stays an operator's pause.
+  ASSERT_TRUE(store_->SetJobState(paused, JobState::kPaused, "held: by hand").ok());
+  Result<std::vector<JobId>> released = ReleaseHeldJobs(*store_, {unrecorded});
+  ASSERT_TRUE(released.ok()) << released.error();
+  EXPECT_EQ(*released, (std::vector<JobId>{held, unrecorded}));
+  EXPECT_EQ(StateOf(held), JobState::kQueued);
+  EXPECT_FALSE((*store_->GetJob(held))->error.has_value());
+  EXPECT_EQ(StateOf(unrecorded), JobState::kQueued);
+  EXPECT_EQ(StateOf(paused), JobState::kPaused);
+  EXPECT_EQ(StateOf(running), JobState::kRunning);
+}
+
+TEST_F(JobTransactionsTest, AHeldJobResumesLikeAPausedOneAndAPauseKeepsItFromRelease) {
+  const JobId job = Submit("job");
+  Move(job, JobState::kRunning);
+  ASSERT_TRUE(HoldJob(*store_, job, "disk full").ok());
+  Result<StateChange> resumed = ChangeJobState(*store_, job, JobCommand::kResume);
+  ASSERT_TRUE(resumed.ok()) << resumed.error();
+  EXPECT_TRUE(resumed->refused.empty()) << resumed->refused;
+  EXPECT_EQ(resumed->job->state, JobState::kQueued);
+
+  Move(job, JobState::kRunning);
+  ASSERT_TRUE(HoldJob(*store_, job, "disk full").ok());
+  Result<StateChange> paused = ChangeJobState(*store_, job, JobCommand::kPause);
+  ASSERT_TRUE(paused.ok()) << paused.error();
+  EXPECT_EQ(paused->job->state, JobState::kPaused);
+  Result<std::vector<JobId>> released = ReleaseHeldJobs(*store_, {});
+  ASSERT_TRUE(released.ok()) << released.error();
+  EXPECT_TRUE(released->empty());
+  EXPECT_EQ(StateOf(job), JobState::kPaused);
 }
 
 }  // namespace

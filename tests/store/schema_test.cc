@@ -35,10 +35,12 @@ int64_t UserVersion(const std::string& path) {
   return *db.QueryInt("PRAGMA user_version");
 }
 
-void ExpectRefused(const std::string& path, const std::string& expected) {
+void ExpectRefused(const std::string& path, const std::string& expected,
+                   ErrorKind kind = ErrorKind::kOther) {
   std::vector<uint8_t> before = ReadBytes(path);
   Result<JobStore> store = JobStore::Open(path);
   ASSERT_FALSE(store.ok());
+  EXPECT_EQ(store.error_kind(), kind) << store.error();
   std::printf("refused as expected: %s\n", store.error().c_str());
   EXPECT_NE(store.error().find(expected), std::string::npos) << store.error();
   EXPECT_NE(store.error().find(path), std::string::npos) << store.error();
@@ -174,6 +176,7 @@ TEST(SchemaTest, UpgradesVersion3CheckpointsToVersion4) {
   Status missing = store->SaveCheckpoint(round, refined);
   ASSERT_FALSE(missing.ok());  // the refined scene is not stored: nothing is written
   EXPECT_NE(missing.error().find("SQLITE_CONSTRAINT"), std::string::npos) << missing.error();
+  EXPECT_EQ(missing.error_kind(), ErrorKind::kConstraint);
   EXPECT_EQ(store->ListRounds(1)->size(), 1u);
   ASSERT_TRUE(store->PutScene("refined", std::vector<uint8_t>{9, 9}).ok());
   ASSERT_TRUE(store->SaveCheckpoint(round, refined).ok());
@@ -184,6 +187,76 @@ TEST(SchemaTest, UpgradesVersion3CheckpointsToVersion4) {
   EXPECT_EQ((*now)->refine_points, 2u);
   EXPECT_EQ((*now)->stop_reason, std::optional<std::string>("ray budget"));
   EXPECT_EQ((*now)->radiosity, (*old)->radiosity);
+}
+
+// Version 7 -> 8: a job held before `held` was a state of its own was `paused` with a reason
+// starting "held: "; it comes out `held` with the rest of the reason. Every other row keeps its
+// state and reason, and the rebuilt jobs table takes none of the rows referencing it along.
+TEST(SchemaTest, UpgradesVersion7HeldJobsToTheHeldState) {
+  TempDir dir;
+  std::string path = dir.File("v7.db");
+  {
+    Database db = OpenRaw(path);
+    ASSERT_TRUE(db.Exec("PRAGMA foreign_keys = ON", "foreign keys").ok());  // as JobStore opens
+    ASSERT_TRUE(Migrate(db, 7).ok());
+    ASSERT_TRUE(db.Exec("INSERT INTO scenes VALUES ('bundle', x'0102', 2, 1, NULL);"
+                        "INSERT INTO jobs (name, scene_hash, settings, seed, priority, state,"
+                        " submitted_at_ms, error) VALUES"
+                        " ('held', 'bundle', '{}', 7, 3, 'paused', 1,"
+                        "  'held: cannot save the checkpoint: SQLITE_FULL'),"
+                        " ('paused', 'bundle', '{}', 8, 0, 'paused', 2, 'by the operator'),"
+                        " ('plain', 'bundle', '{}', 9, 0, 'paused', 3, NULL),"
+                        " ('failed', 'bundle', '{}', 10, 0, 'failed', 4, 'held: not a hold'),"
+                        " ('queued', 'bundle', '{}', 11, 0, 'queued', 5, NULL);"
+                        "INSERT INTO rounds (job_id, round, shooters, rays, unshot_fraction,"
+                        " unshot_power, duration_seconds, recorded_at_ms)"
+                        " VALUES (1, 0, 3, 1000, 0.5, 1.0, 0.25, 6);"
+                        "INSERT INTO events (job_id, time_ms, level, text)"
+                        " VALUES (1, 7, 'warning', 'held: cannot save the checkpoint');",
+                        "version 7 data")
+                    .ok());
+  }
+  Result<JobStore> store = JobStore::Open(path);
+  ASSERT_TRUE(store.ok()) << store.error();
+  EXPECT_EQ(UserVersion(path), LatestSchemaVersion());
+
+  Result<std::vector<JobRecord>> jobs = store->ListJobs();
+  ASSERT_TRUE(jobs.ok()) << jobs.error();
+  ASSERT_EQ(jobs->size(), 5u);
+  const std::vector<std::pair<JobState, std::optional<std::string>>> expected = {
+      {JobState::kHeld, "cannot save the checkpoint: SQLITE_FULL"},
+      {JobState::kPaused, "by the operator"},
+      {JobState::kPaused, std::nullopt},
+      {JobState::kFailed, "held: not a hold"},
+      {JobState::kQueued, std::nullopt},
+  };
+  for (size_t i = 0; i < expected.size(); ++i) {
+    SCOPED_TRACE((*jobs)[i].spec.name);
+    EXPECT_EQ((*jobs)[i].id, JobId(i + 1));
+    EXPECT_EQ((*jobs)[i].state, expected[i].first);
+    EXPECT_EQ((*jobs)[i].error, expected[i].second);
+  }
+  EXPECT_EQ((*jobs)[0].spec.priority, 3);
+  EXPECT_EQ((*jobs)[0].spec.seed, 7u);
+  EXPECT_EQ(store->ListRounds(1)->size(), 1u);
+  EXPECT_EQ(store->ListEvents(1, 10)->size(), 1u);
+  // The runnable index came back with the table: the queued job is the one to start.
+  Result<std::vector<JobRecord>> runnable = store->NextRunnableJobs(10);
+  ASSERT_TRUE(runnable.ok()) << runnable.error();
+  ASSERT_EQ(runnable->size(), 1u);
+  EXPECT_EQ(runnable->front().id, 5);
+}
+
+// The rebuild runs with foreign keys off; the connection gets its setting back either way.
+TEST(SchemaTest, ARebuildingMigrationRestoresTheConnectionsForeignKeys) {
+  TempDir dir;
+  for (int setting : {0, 1}) {
+    SCOPED_TRACE("foreign_keys " + std::to_string(setting));
+    Database db = OpenRaw(dir.File("fk" + std::to_string(setting) + ".db"));
+    ASSERT_TRUE(db.Exec("PRAGMA foreign_keys = " + std::to_string(setting), "set").ok());
+    ASSERT_TRUE(Migrate(db).ok());
+    EXPECT_EQ(*db.QueryInt("PRAGMA foreign_keys"), setting);
+  }
 }
 
 // `radfarm render --db` creating its store while a reader opens it: whoever migrates second finds
@@ -221,7 +294,7 @@ TEST(SchemaTest, RefusesFileThatIsNotSqlite) {
   std::string text;
   for (int i = 0; i < 200; ++i) text += "radfarm render scenes/cornell-box.toml --out out/\n";
   WriteBytes(path, std::vector<uint8_t>(text.begin(), text.end()));
-  ExpectRefused(path, "SQLITE_NOTADB");
+  ExpectRefused(path, "SQLITE_NOTADB", ErrorKind::kCorrupt);
 }
 
 TEST(SchemaTest, RefusesSqliteDatabaseOfAnotherProgram) {
@@ -260,7 +333,7 @@ TEST(SchemaTest, RefusesCorruptFile) {
     bytes[i] = static_cast<uint8_t>(state >> 16);
   }
   WriteBytes(path, bytes);
-  ExpectRefused(path, "SQLITE_CORRUPT");
+  ExpectRefused(path, "SQLITE_CORRUPT", ErrorKind::kCorrupt);
 }
 
 }  // namespace

@@ -66,9 +66,10 @@ function act(id, action) {
 function drawActions(cell, job) {
   const wanted = [];
   if (session.act) {
-    if (job.state === "running" || job.state === "queued") wanted.push("pause");
-    if (job.state === "paused") wanted.push("resume");
-    if (["running", "queued", "paused"].includes(job.state)) wanted.push("cancel");
+    // A held job (a store fault) resumes by itself; pause makes it wait for the operator.
+    if (["running", "queued", "held"].includes(job.state)) wanted.push("pause");
+    if (["paused", "held"].includes(job.state)) wanted.push("resume");
+    if (["running", "queued", "paused", "held"].includes(job.state)) wanted.push("cancel");
   }
   const have = Array.from(cell.querySelectorAll("button")).map((b) => b.dataset.action);
   if (have.join() === wanted.join()) return;
