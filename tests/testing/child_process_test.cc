@@ -47,6 +47,26 @@ TEST(RunCommandTest, ThrowsWhenTheProgramIsMissing) {
   EXPECT_THROW(RunCommand({"/nonexistent/program"}), std::runtime_error);
 }
 
+TEST(RunCommandTest, KillsACommandThatOutlivesItsTimeout) {
+  const CommandResult r =
+      RunCommandWith({"/bin/sh", "-c", "exec sleep 60"}, {.timeout = milliseconds(100)});
+  EXPECT_TRUE(r.timed_out);
+  EXPECT_EQ(r.exit_code, 128 + SIGKILL);
+}
+
+TEST(RunCommandTest, ReportsTheCommandsCpuSeconds) {
+  // A busy loop that runs until it has used a tenth of a CPU second by its own account.
+  const CommandResult r = RunCommandWith(
+      {"/bin/sh", "-c", "while [ $(cut -d' ' -f14 /proc/$$/stat) -lt 10 ]; do :; done"}, {});
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_GE(r.cpu_seconds, 0.09);
+}
+
+TEST(RunCommandTest, ThrowsWhenTheChildCannotJoinItsCgroup) {
+  EXPECT_THROW(RunCommandWith({"/bin/true"}, {.cgroup_procs = "/nonexistent/cgroup.procs"}),
+               std::runtime_error);
+}
+
 TEST(ChildProcessTest, LogsBothStreamsAndReportsTheExitCode) {
   const TempDir dir;
   ChildProcess child({"/bin/sh", "-c", "echo out; echo err >&2; exit 7"}, dir.File("log"));
