@@ -26,9 +26,10 @@ struct CommandResult {
 // removes it. `cgroup_procs`, when not empty, is a group's `cgroup.procs` (testing/cpu_cap.h) the
 // child writes its pid to before it execs. `timeout` (RunCommandWith only; zero: none) bounds a
 // command's run: it is SIGKILLed after it.
+// Every member has an initializer, so designated initializers may leave any of them out.
 struct ChildOptions {
-  std::vector<std::string> env_changes;
-  std::string cgroup_procs;
+  std::vector<std::string> env_changes = {};
+  std::string cgroup_procs = {};
   std::chrono::milliseconds timeout{0};
 };
 

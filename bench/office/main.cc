@@ -146,7 +146,8 @@ int Main(int argc, char** argv) {
   for (size_t i = 0; i < o.jobs.size(); ++i) {
     const OfficeSetup setup{*cpu,      {RADFARMD_PATH, RADFARM_AGENT_PATH, RADFARM_CLI_PATH},
                             o.share,   o.timeout,
-                            o.jobs[i], o.flags};
+                            o.jobs[i], o.flags,
+                            {}};
     jobs.push_back(RunJob(setup, sizes, root + "/job-" + std::to_string(i + 1), &mismatches));
   }
   const nlohmann::json out = {

@@ -80,7 +80,9 @@ FarmRun RunFarm(const OfficeSetup& setup, size_t agents, const std::string& dir,
     return it == procs.end() ? std::string() : it->second;
   });
   farm.set_command_timeout(setup.timeout);
-  testing::ChildProcess& master = farm.StartMaster({"--log-level", "warning"});
+  std::vector<std::string> master_flags = {"--log-level", "warning"};
+  master_flags.insert(master_flags.end(), setup.master_flags.begin(), setup.master_flags.end());
+  testing::ChildProcess& master = farm.StartMaster(master_flags);
   if (farm.master_address().empty()) Fail(farm, "radfarmd wrote no listen.addr");
   std::vector<testing::ChildProcess*> agent_processes;
   for (const std::string& name : names) agent_processes.push_back(&farm.StartAgent(name, 1));

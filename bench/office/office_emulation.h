@@ -23,10 +23,11 @@ inline const std::vector<std::string> kComparedOutputs = {"image.png", "radiosit
 struct OfficeSetup {
   testing::CpuController cpu;
   testing::FarmPrograms programs;
-  double share = 0.3;                  // of one core, for every process
-  std::chrono::seconds timeout{3600};  // for any one command or job
-  std::string job_file;                // a job (.toml) or scene file
-  std::vector<std::string> flags;      // given to both render and submit
+  double share = 0.3;                          // of one core, for every process
+  std::chrono::seconds timeout{3600};          // for any one command or job
+  std::string job_file;                        // a job (.toml) or scene file
+  std::vector<std::string> flags;              // given to both render and submit
+  std::vector<std::string> master_flags = {};  // radfarmd's, after `--log-level warning`
 };
 
 // `radfarm render JOB --threads 1 --out OUT_DIR FLAGS` in a group of its own.
