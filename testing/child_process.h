@@ -18,6 +18,19 @@ struct CommandResult {
   int exit_code = -1;  // 128 + signal when killed by one
   std::string out;
   std::string err;
+  double cpu_seconds = 0;  // user + system, its threads and the children it waited for
+  bool timed_out = false;  // killed for outliving ChildOptions::timeout
+};
+
+// How a child starts. `env_changes` edit the environment: "NAME=value" sets a variable, "NAME"
+// removes it. `cgroup_procs`, when not empty, is a group's `cgroup.procs` (testing/cpu_cap.h) the
+// child writes its pid to before it execs. `timeout` (RunCommandWith only; zero: none) bounds a
+// command's run: it is SIGKILLed after it.
+// Every member has an initializer, so designated initializers may leave any of them out.
+struct ChildOptions {
+  std::vector<std::string> env_changes = {};
+  std::string cgroup_procs = {};
+  std::chrono::milliseconds timeout{0};
 };
 
 // Runs `args` (args[0] is the program path) and waits for it to finish. `env_changes` edit the
@@ -25,14 +38,17 @@ struct CommandResult {
 // program cannot be started.
 CommandResult RunCommand(const std::vector<std::string>& args,
                          const std::vector<std::string>& env_changes = {});
+// RunCommand with every option of ChildOptions.
+CommandResult RunCommandWith(const std::vector<std::string>& args, const ChildOptions& options);
 
 // A daemon: started at construction, SIGKILLed and reaped by the destructor, so a failing test or
 // benchmark leaves no stray process behind. One thread drives it.
 class ChildProcess {
  public:
   // Starts `args` (args[0] is the program path); stdout and stderr append to `log_path`. Throws
-  // std::runtime_error when the program cannot be started.
-  ChildProcess(const std::vector<std::string>& args, const std::string& log_path);
+  // std::runtime_error when the program cannot be started (or moved into options.cgroup_procs).
+  ChildProcess(const std::vector<std::string>& args, const std::string& log_path,
+               const ChildOptions& options = {});
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;

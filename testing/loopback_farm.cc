@@ -61,7 +61,7 @@ ChildProcess& LoopbackFarm::StartMaster(const std::vector<std::string>& flags,
   }
   args.insert(args.end(), flags.begin(), flags.end());
   master_.reset();  // a restart: the old master has been stopped or killed by the caller
-  master_ = std::make_unique<ChildProcess>(args, File("master.log"));
+  master_ = std::make_unique<ChildProcess>(args, File("master.log"), OptionsFor("master"));
   // The file is renamed into place or written at once; an empty read means "not yet".
   WaitUntil(
       [&] {
@@ -100,14 +100,25 @@ ChildProcess& LoopbackFarm::StartAgentAs(const std::string& program, const std::
                                    "--name",
                                    name};
   args.insert(args.end(), extra.begin(), extra.end());
-  agents_.push_back(std::make_unique<ChildProcess>(args, File("agent-" + name + ".log")));
+  agents_.push_back(std::make_unique<ChildProcess>(args, File("agent-" + name + ".log"),
+                                                   OptionsFor("agent-" + name)));
   return *agents_.back();
 }
 
 CommandResult LoopbackFarm::Cli(const std::vector<std::string>& args) const {
   std::vector<std::string> full = {programs_.cli, "--control", control_};
   full.insert(full.end(), args.begin(), args.end());
-  return RunCommand(full);
+  ChildOptions options = OptionsFor("client");
+  options.timeout = command_timeout_;
+  CommandResult result = RunCommandWith(full, options);
+  client_cpu_seconds_ += result.cpu_seconds;
+  return result;
+}
+
+ChildOptions LoopbackFarm::OptionsFor(const std::string& role) const {
+  ChildOptions options;
+  if (cgroups_) options.cgroup_procs = cgroups_(role);
+  return options;
 }
 
 int64_t LoopbackFarm::Submit(const std::string& job_file, const std::vector<std::string>& flags,

@@ -79,6 +79,17 @@ class LoopbackFarm {
                             std::chrono::milliseconds timeout,
                             std::chrono::milliseconds poll = std::chrono::milliseconds(20)) const;
 
+  // Runs each process the farm starts from now on in a cgroup (testing/cpu_cap.h): `procs(role)`
+  // gives the `cgroup.procs` file for "master", "agent-NAME" or "client" (every radfarm command),
+  // or "" for this process's own group.
+  void set_cgroups(std::function<std::string(const std::string& role)> procs) {
+    cgroups_ = std::move(procs);
+  }
+  // Each radfarm command is SIGKILLed after `timeout` (zero, the default: none).
+  void set_command_timeout(std::chrono::milliseconds timeout) { command_timeout_ = timeout; }
+  // CPU seconds (user + system) of every radfarm command run so far: the client's work.
+  double client_cpu_seconds() const { return client_cpu_seconds_; }
+
   const std::string& dir() const { return dir_; }
   std::string File(const std::string& name) const { return dir_ + "/" + name; }
   const std::string& state_dir() const { return state_dir_; }
@@ -94,7 +105,11 @@ class LoopbackFarm {
   ChildProcess& StartAgentAs(const std::string& program, const std::string& name, unsigned threads,
                              const std::vector<std::string>& extra, const std::string& secret_file,
                              const std::string& master);
+  ChildOptions OptionsFor(const std::string& role) const;
   FarmPrograms programs_;
+  std::function<std::string(const std::string&)> cgroups_;
+  std::chrono::milliseconds command_timeout_{0};
+  mutable double client_cpu_seconds_ = 0;  // summed by the const Cli
   std::string dir_, state_dir_, secret_file_, secret_hex_, control_;
   std::string master_address_;
   std::unique_ptr<ChildProcess> master_;

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "testing/temp_dir.h"
@@ -45,6 +46,33 @@ TEST(RunCommandTest, ReportsAKillingSignal) {
 
 TEST(RunCommandTest, ThrowsWhenTheProgramIsMissing) {
   EXPECT_THROW(RunCommand({"/nonexistent/program"}), std::runtime_error);
+}
+
+TEST(RunCommandTest, KillsACommandThatOutlivesItsTimeout) {
+  const CommandResult r =
+      RunCommandWith({"/bin/sh", "-c", "exec sleep 60"}, {.timeout = milliseconds(100)});
+  EXPECT_TRUE(r.timed_out);
+  EXPECT_EQ(r.exit_code, 128 + SIGKILL);
+}
+
+TEST(RunCommandTest, ReportsTheCommandsCpuSeconds) {
+  // A shell counting to 300,000 uses a few tenths of a CPU second; it reports what /proc says
+  // it used, which the command's own figure must not fall below.
+  const CommandResult r = RunCommandWith(
+      {"/bin/sh", "-c",
+       "i=0; while [ $i -lt 300000 ]; do i=$((i+1)); done; cut -d' ' -f14,15 /proc/$$/stat"},
+      {});
+  EXPECT_EQ(r.exit_code, 0);
+  std::istringstream ticks(r.out);
+  long user = 0, system = 0;
+  ASSERT_TRUE(ticks >> user >> system) << r.out;
+  EXPECT_GT(user + system, 0);
+  EXPECT_GE(r.cpu_seconds, double(user + system) / double(sysconf(_SC_CLK_TCK)));
+}
+
+TEST(RunCommandTest, ThrowsWhenTheChildCannotJoinItsCgroup) {
+  EXPECT_THROW(RunCommandWith({"/bin/true"}, {.cgroup_procs = "/nonexistent/cgroup.procs"}),
+               std::runtime_error);
 }
 
 TEST(ChildProcessTest, LogsBothStreamsAndReportsTheExitCode) {
