@@ -19,7 +19,8 @@ TEST(FarmMetricsTest, JobsAndAgentsAreCountedByStateWithEveryStateListed) {
   EXPECT_EQ(m.jobs_by_state.at("done"), 1u);
   EXPECT_EQ(m.jobs_by_state.at("queued"), 0u);
   EXPECT_EQ(m.jobs_by_state.at("cancelled"), 0u);
-  EXPECT_EQ(m.jobs_by_state.size(), 6u);
+  EXPECT_EQ(m.jobs_by_state.at("held"), 0u);
+  EXPECT_EQ(m.jobs_by_state.size(), 7u);
   EXPECT_EQ(m.agents_by_state.at("busy"), 1u);
   EXPECT_EQ(m.agents_by_state.at("idle"), 1u);
   EXPECT_EQ(m.agents_by_state.at("stale"), 1u);
