@@ -27,7 +27,7 @@ std::vector<Rgb> FromWire(const flatbuffers::Vector<const wire::SolutionColour*>
 
 std::vector<uint8_t> EncodeJobSolution(const JobSolution& solution) {
   flatbuffers::FlatBufferBuilder fbb(1024 + solution.bundle.size() + solution.scene.size() +
-                                     solution.radiosity.size() * 48);
+                                     solution.display.size() + solution.radiosity.size() * 48);
   const auto bundle = fbb.CreateVector(solution.bundle);
   std::vector<wire::SolutionColour> colours;
   colours.reserve(solution.radiosity.size());
@@ -43,7 +43,10 @@ std::vector<uint8_t> EncodeJobSolution(const JobSolution& solution) {
       fbb.CreateString(s.stop_reason), s.emitted_power, s.absorbed_power, s.escaped_power);
   flatbuffers::Offset<flatbuffers::Vector<uint8_t>> scene = 0;
   if (!solution.scene.empty()) scene = fbb.CreateVector(solution.scene);
-  fbb.Finish(wire::CreateJobSolutionBlob(fbb, bundle, radiosity, unshot, stats, scene), "RDJS");
+  flatbuffers::Offset<flatbuffers::Vector<uint8_t>> display = 0;
+  if (!solution.display.empty()) display = fbb.CreateVector(solution.display);
+  fbb.Finish(wire::CreateJobSolutionBlob(fbb, bundle, radiosity, unshot, stats, scene, display),
+             "RDJS");
   return {fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()};
 }
 
@@ -63,6 +66,7 @@ Result<JobSolution> DecodeJobSolution(std::span<const uint8_t> blob) {
   JobSolution solution;
   solution.bundle.assign(root->bundle()->begin(), root->bundle()->end());
   if (root->scene()) solution.scene.assign(root->scene()->begin(), root->scene()->end());
+  if (root->display()) solution.display.assign(root->display()->begin(), root->display()->end());
   solution.radiosity = FromWire(*root->radiosity());
   solution.unshot = FromWire(*root->unshot());
   if (solution.radiosity.size() != solution.unshot.size()) {

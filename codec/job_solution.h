@@ -1,7 +1,8 @@
 // A job solution: what `radfarm fetch` receives. The job bundle it was solved from, radiosity and
 // unshot radiosity per patch (exact bits, from the job's latest checkpoint) and the solve's
-// statistics, and the refined mesh's scene when the job refined; with them the CLI meshes the
-// bundle again and writes the same files as `radfarm render` (cli/render_outputs.h).
+// statistics, the refined mesh's scene when the job refined, and a finished job's display; with
+// them the CLI meshes the bundle again and writes the same files as `radfarm render`
+// (cli/render_outputs.h).
 #pragma once
 
 #include <cstdint>
@@ -22,6 +23,9 @@ struct JobSolution {
   // Adaptive refinement: the EncodePatchScene bytes of the refined mesh the values belong to (the
   // CLI rebuilds it with PatchMesh::Rebuilt); empty: the mesh the bundle makes.
   std::vector<uint8_t> scene;
+  // A finished job's display as the master computed it (codec/display_blob.h's bytes, decoded
+  // against the mesh's patch count); empty: the caller draws it from the values.
+  std::vector<uint8_t> display;
 };
 
 std::vector<uint8_t> EncodeJobSolution(const JobSolution& solution);

@@ -10,6 +10,7 @@
 //   round_results.checksum (version 6): BLAKE2b-256 over the job id, round, batch index, shooter,
 //     first_ray, ray_count and batch_rays (each 8 bytes little-endian), then the result blob as an
 //     8-byte little-endian length and its bytes.
+//   displays.checksum (version 9): BLAKE2b-256 over the display blob.
 //
 // A row written before version 5 has a NULL checksum: it is read unverified, as before.
 #pragma once

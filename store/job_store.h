@@ -124,6 +124,12 @@ struct StoredRoundResults {
   std::vector<std::string> damaged;
 };
 
+// A finished job's display (codec/display_blob.h's bytes) and the checkpoint round it was drawn from.
+struct StoredDisplay {
+  uint32_t round = 0;
+  std::vector<uint8_t> display;
+};
+
 enum class EventLevel { kInfo, kWarning, kError };
 
 struct Event {
@@ -223,6 +229,12 @@ class JobStore {
   // A master that restarts then resumes before the lie, as the running one does.
   Status RewindJob(JobId job, uint32_t from_round, std::span<const uint32_t> discard,
                    bool discard_all);
+
+  // --- displays (a finished job's, drawn from its checkpoint of round `round`) ---
+  // Replaces the job's display, if it had one.
+  Status PutDisplay(JobId job, uint32_t round, std::span<const uint8_t> display);
+  // Verified against its checksum: damaged bytes are an error naming the job.
+  Result<std::optional<StoredDisplay>> GetDisplay(JobId job);
 
   // --- agents and events ---
   Status RecordAgentSeen(const std::string& name, const std::string& address, uint32_t threads);

@@ -151,6 +151,10 @@ Result<std::optional<StoredSolution>> LoadSolution(JobStore& store, JobId id) {
   Result<std::vector<RoundRecord>> rounds = store.ListRounds(id);
   RADFARM_RETURN_IF_ERROR(rounds);
   solution.totals = TotalsUpToRound(*rounds, solution.checkpoint.round);
+  Result<std::optional<StoredDisplay>> display = store.GetDisplay(id);
+  if (display && *display && (*display)->round == solution.checkpoint.round) {
+    solution.display = std::move((*display)->display);
+  }
   return std::optional(std::move(solution));
 }
 

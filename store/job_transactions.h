@@ -75,6 +75,9 @@ struct StoredSolution {
   // nullopt when they belong to the bundle's mesh.
   std::optional<std::vector<uint8_t>> refined_scene;
   RoundTotals totals;  // the rounds up to the checkpoint's
+  // The display drawn from this checkpoint (a finished job's), or empty: none was stored, it was
+  // drawn from another round, or it is damaged (whoever needs it draws it again, the same bits).
+  std::vector<uint8_t> display;
 };
 
 // Loads job `id`'s latest checkpoint with its bundle, refined scene and totals; nullopt when the

@@ -162,14 +162,26 @@ ALTER TABLE jobs_v8 RENAME TO jobs;
 CREATE INDEX jobs_runnable ON jobs (state, priority DESC, submitted_at_ms, id);
 )sql";
 
-constexpr std::array<Migration, 8> kMigrations = {{{1, kV1},
+// Version 9: a finished job's display (codec/display_blob.h), drawn by the master from the
+// checkpoint of round `round`, so `radfarm fetch` only writes files.
+constexpr std::string_view kV9 = R"sql(
+CREATE TABLE displays (
+  job_id INTEGER PRIMARY KEY REFERENCES jobs(id) ON DELETE CASCADE,
+  round INTEGER NOT NULL CHECK (round >= 0),
+  display BLOB NOT NULL,
+  checksum BLOB NOT NULL CHECK (length(checksum) = 32)
+);
+)sql";
+
+constexpr std::array<Migration, 9> kMigrations = {{{1, kV1},
                                                    {2, kV2},
                                                    {3, kV3},
                                                    {4, kV4},
                                                    {5, kV5},
                                                    {6, kV6},
                                                    {7, kV7},
-                                                   {8, kV8, /*rebuilds_referenced_table=*/true}}};
+                                                   {8, kV8, /*rebuilds_referenced_table=*/true},
+                                                   {9, kV9}}};
 
 Result<int64_t> FileBytes(Database& db) {
   Result<int64_t> pages = db.QueryInt("PRAGMA page_count");

@@ -176,6 +176,21 @@ TEST_F(JobStoreTest, ScenesAreIdempotentByHash) {
   EXPECT_TRUE(store_->GetScene("empty")->has_value());
 }
 
+TEST_F(JobStoreTest, DisplaysAreKeptPerJobAndReplaced) {
+  const JobId id = Submit("drawn", 0);
+  Result<std::optional<StoredDisplay>> none = store_->GetDisplay(id);
+  ASSERT_TRUE(none.ok()) << none.error();
+  EXPECT_FALSE(none->has_value());
+  ASSERT_TRUE(store_->PutDisplay(id, 3, std::vector<uint8_t>{1, 2}).ok());
+  ASSERT_TRUE(store_->PutDisplay(id, 4, std::vector<uint8_t>{3, 4, 5}).ok());
+  Result<std::optional<StoredDisplay>> got = store_->GetDisplay(id);
+  ASSERT_TRUE(got.ok() && got->has_value()) << got.error();
+  EXPECT_EQ((*got)->round, 4u);
+  EXPECT_EQ((*got)->display, (std::vector<uint8_t>{3, 4, 5}));
+  // The display goes with its job.
+  EXPECT_FALSE(store_->PutDisplay(id + 1, 0, std::vector<uint8_t>{1}).ok());
+}
+
 TEST_F(JobStoreTest, AgentsKeepFirstSeen) {
   ASSERT_TRUE(store_->RecordAgentSeen("a1", "10.0.0.1:7000", 8).ok());
   int64_t first = *clock_.now;

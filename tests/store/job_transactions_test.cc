@@ -331,6 +331,23 @@ TEST_F(JobTransactionsTest, LoadSolutionBringsTheRefinedScene) {
   EXPECT_EQ((*loaded)->refined_scene, (std::vector<uint8_t>{5, 6}));
 }
 
+TEST_F(JobTransactionsTest, LoadSolutionBringsTheDisplayDrawnFromItsCheckpoint) {
+  const JobId job = Submit("drawn");
+  Move(job, JobState::kRunning);
+  SaveCheckpoint(CheckpointAt(job, 0));
+  SaveCheckpoint(CheckpointAt(job, 1));
+  ASSERT_TRUE(store_->PutDisplay(job, 1, std::vector<uint8_t>{7, 8, 9}).ok());
+  Result<std::optional<StoredSolution>> loaded = LoadSolution(*store_, job);
+  ASSERT_TRUE(loaded.ok() && loaded->has_value()) << loaded.error();
+  EXPECT_EQ((*loaded)->display, (std::vector<uint8_t>{7, 8, 9}));
+
+  // Drawn from another round than the latest checkpoint's: not this solution's display.
+  ASSERT_TRUE(store_->PutDisplay(job, 0, std::vector<uint8_t>{1}).ok());
+  loaded = LoadSolution(*store_, job);
+  ASSERT_TRUE(loaded.ok() && loaded->has_value()) << loaded.error();
+  EXPECT_TRUE((*loaded)->display.empty());
+}
+
 TEST_F(JobTransactionsTest, LoadSolutionWithoutACheckpointIsEmpty) {
   const JobId job = Submit("young");
   Result<std::optional<StoredSolution>> loaded = LoadSolution(*store_, job);

@@ -116,5 +116,21 @@ TEST(StoreFileTest, AnEmptyDatabaseFileIsRefusedAndLeftUntouched) {
   EXPECT_TRUE(ReadBytes(path).empty());
 }
 
+TEST_F(RotTest, ABitFlippedInADisplayIsNoticedAndTheSolutionComesWithout) {
+  ASSERT_TRUE(store_->PutDisplay(job_, 2, std::vector<uint8_t>(64, 0x5a)).ok());
+  store_.reset();
+  FlipBit(path_, "displays", "display", "job_id = " + std::to_string(job_));
+  Reopen();
+  Result<std::optional<StoredDisplay>> display = store_->GetDisplay(job_);
+  ASSERT_FALSE(display.ok());
+  EXPECT_NE(display.error().find("the display of job " + std::to_string(job_) + " is damaged"),
+            std::string::npos)
+      << display.error();
+  // Fetch draws it again from the checkpoint: the same bits as the display that rotted.
+  Result<std::optional<StoredSolution>> solution = LoadSolution(*store_, job_);
+  ASSERT_TRUE(solution.ok() && solution->has_value()) << solution.error();
+  EXPECT_TRUE((*solution)->display.empty());
+}
+
 }  // namespace
 }  // namespace radfarm::store
