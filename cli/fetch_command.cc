@@ -12,10 +12,11 @@
 #include "cli/farm_command.h"
 #include "cli/progress_reporter.h"
 #include "cli/render_outputs.h"
+#include "codec/display_blob.h"
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
+#include "codec/solution_display.h"
 #include "codec/solution_mesh.h"
-#include "display/solved_display.h"
 
 namespace radfarm {
 namespace {
@@ -31,11 +32,18 @@ Status WriteSolution(const std::vector<uint8_t>& blob, const std::string& out_di
   Result<codec::SolutionMesh> solved = codec::MeshOfSolution(*solution, *bundle);
   RADFARM_RETURN_IF_ERROR(solved);
   RADFARM_RETURN_IF_ERROR(CreateOutputDirectory(out_dir));
+  // A finished job's display comes drawn by the master; a running job's is drawn here.
+  Display display;
+  if (!solution->display.empty()) {
+    Result<Display> decoded = codec::DecodeDisplay(solution->display, solution->radiosity.size());
+    if (!decoded.ok()) return Error{"the display in the solution: " + decoded.error()};
+    display = std::move(*decoded);
+  } else {
+    display = codec::DrawSolutionDisplay(*solution, *bundle, *solved, display_progress);
+  }
   const SolveResult result{
       std::move(solution->radiosity), std::move(solution->unshot), std::move(solution->stats), {}};
   // As `radfarm render`: stats.json names the initial patch count of a refining job.
-  const Display display = SolvedDisplay(solved->mesh, result.radiosity, result.direct_light,
-                                        bundle->job.solver, display_progress);
   return WriteOutputs(out_dir, solved->mesh, display, result, bundle->job,
                       bundle->job.refine.enabled ? solved->initial_patches : 0);
 }
@@ -62,8 +70,8 @@ int RunFetch(const FetchOptions& options, const std::string& control_path) {
     return ReportFailure(
         MalformedResponse("fetch", "missing key 'attachment_bytes' (the job solution)"));
   }
-  // The display is computed here, from the solution (as `radfarm render` does after its solve):
-  // on a big job it takes a while, so its steps show unless the output is JSON.
+  // A running job's display is drawn here from its checkpoint (a finished job's comes drawn by the
+  // master): on a big job it takes a while, so its steps show unless the output is JSON.
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
   DisplayProgress display_progress;
   if (!options.json) {

@@ -44,6 +44,7 @@ codec::JobSolution SolutionOf(store::StoredSolution stored, const JobSummary& su
   codec::JobSolution solution;
   solution.bundle = std::move(stored.bundle);
   if (stored.refined_scene) solution.scene = std::move(*stored.refined_scene);
+  solution.display = std::move(stored.display);
   solution.radiosity = c.radiosity;
   solution.unshot = c.unshot;
   SolveStats& st = solution.stats;

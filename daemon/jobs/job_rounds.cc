@@ -64,6 +64,7 @@ void JobRounds::RecordCheckpoint(store::JobId id, CheckpointReport report) {
 
 std::string_view JobRounds::PhaseOf(store::JobId id) const {
   if (starting_.count(id)) return "preparing";
+  if (displaying_.count(id)) return "display";
   const auto it = runners_.find(id);
   if (it == runners_.end()) return {};
   switch (it->second->phase()) {
@@ -91,7 +92,7 @@ void JobRounds::StartQueuedJobs() {
     start_again_ = true;
     return;
   }
-  const size_t busy = runners_.size() + starting_.size();
+  const size_t busy = runners_.size() + starting_.size() + displaying_.size();
   if (busy >= config_.max_running_jobs) {
     submitted_mesh_ = {};  // its job waits in the queue
     return;
@@ -405,26 +406,9 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
   }
 }
 
-void JobRounds::FinishJob(const std::shared_ptr<RunningJob>& runner) {
-  const store::JobId id = runner->id();
-  const std::string reason = runner->stop_reason().value_or("stopped");
-  DropRunner(id);
-  store_.Run([id](store::JobStore& s) { return s.SetJobState(id, store::JobState::kDone); },
-             [this, id, reason](Status s) {
-               if (!s) {
-                 LogLine(LogLevel::kError, "store") << "job " << id << ": " << s.error();
-                 return;
-               }
-               store_.LogEvent(id, store::EventLevel::kInfo, "done: " + reason);
-               StartQueuedJobs();
-               // After the job is done, not before: deleting a big round's kept results took
-               // half a second at 10^6 patches. A master stopped in between prunes at its start.
-               PruneKeptResults(id, UINT32_MAX);
-             });
-}
-
 void JobRounds::DropJob(store::JobId id) {
   if (starting_.count(id)) starting_[id] = true;
+  displaying_.erase(id);
   DropRunner(id);
 }
 

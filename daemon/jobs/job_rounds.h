@@ -6,7 +6,8 @@
 //
 // Job lifecycle here (store/job_state.h has the store's side):
 //   queued --StartQueuedJobs--> starting --OnJobPrepared--> rounds: BeginRound --OnRoundComplete
-//     (or RunRoundHere)--> reducing --OnRoundReduced--> BeginRound ... --> FinishJob / FailJob
+//     (or RunRoundHere)--> reducing --OnRoundReduced--> BeginRound ... --> FinishJob --> display
+//     --> done; or FailJob
 //   DropJob (cancel, pause) forgets a running job at any point; a job still starting is dropped
 //   when its preparation ends.
 //   A store fault (disk full, I/O error) while a round is committed holds the job instead of
@@ -40,6 +41,7 @@
 #include "loop/work_queue.h"
 #include "store/checkpoint_pacer.h"
 #include "store/job_store.h"
+#include "store/job_transactions.h"
 
 namespace radfarm::daemon {
 
@@ -130,8 +132,8 @@ class JobRounds {
   // kKeptCheckpointReports most recent jobs, finished ones included (the control socket's
   // last_checkpoint).
   const CheckpointReport* LastCheckpoint(store::JobId id) const;
-  // "preparing" (being meshed and loaded), "round", "reducing" or "finishing" for a job this
-  // master runs; empty for any other.
+  // "preparing" (being meshed and loaded), "round", "reducing", "finishing" or "display" (its
+  // display being drawn, job_display.cc) for a job this master runs; empty for any other.
   std::string_view PhaseOf(store::JobId id) const;
   // Offers overdue leases again (RoundScheduler::Tick); returns how many.
   size_t Tick(scheduler::TimePoint now);
@@ -174,7 +176,12 @@ class JobRounds {
   void ReduceOnComputeThread(const std::shared_ptr<RunningJob>& runner,
                              std::function<RoundOutcome()> work);
   void OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundOutcome outcome);
+  // The job's rounds are over: its display is drawn from its last checkpoint and stored with it
+  // (job_display.cc), then the job is done.
   void FinishJob(const std::shared_ptr<RunningJob>& runner);
+  void DrawDisplay(store::JobId id, const std::string& reason, store::StoredSolution solution);
+  void MarkDone(store::JobId id, const std::string& reason,
+                std::optional<store::StoredDisplay> display);
   // Keeps `report` as job `id`'s last checkpoint, its count one more; forgets the oldest job's
   // beyond kKeptCheckpointReports.
   void RecordCheckpoint(store::JobId id, CheckpointReport report);
@@ -189,6 +196,7 @@ class JobRounds {
   AgentHooks agents_;
 
   Runners runners_;
+  std::set<store::JobId> displaying_;  // finished jobs whose display is being drawn and stored
   ResultJournal journal_;
   uint64_t verify_seed_;                             // secret: agents cannot predict samples
   std::map<store::JobId, BatchVerifier> verifiers_;  // of the running jobs

@@ -14,6 +14,7 @@
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
 #include "codec/patch_scene_codec.h"
+#include "codec/solution_display.h"
 #include "mesh/patch_mesh.h"
 #include "solve/local_solve.h"
 #include "tests/cli/control_fixtures.h"
@@ -55,6 +56,7 @@ class FetchCommandTest : public ::testing::Test {
                                 solved.radiosity,
                                 solved.unshot,
                                 solved.stats,
+                                {},
                                 {}};
     }();
     return solution;
@@ -124,6 +126,7 @@ TEST_F(FetchCommandTest, WritesTheLightmapsRenderWrites) {
                                       solved.radiosity,
                                       solved.unshot,
                                       solved.stats,
+                                      {},
                                       {}};
     const std::string fetched = dir_.File("fetched" + std::to_string(size));
     const auto r = Fetch(Serve(solution), fetched);
@@ -154,6 +157,46 @@ TEST_F(FetchCommandTest, WritesTheLightmapsRenderWrites) {
       EXPECT_EQ(side, size) << "at byte " << at;
     }
   }
+}
+
+TEST_F(FetchCommandTest, WritesTheDisplayTheMasterDrewWithoutDrawingIt) {
+  // The master's display of the same solution: the files of the test above, and no display
+  // progress, since nothing is drawn here.
+  codec::JobSolution drawn = Solution();
+  Result<std::vector<uint8_t>> display = codec::DrawEncodedDisplay(drawn);
+  ASSERT_TRUE(display.ok()) << display.error();
+  drawn.display = std::move(*display);
+  const std::string with = dir_.File("with"), without = dir_.File("without");
+  auto r = Fetch(Serve(drawn), with);
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_EQ(r.out, "job 5 (job-5, done, round 7): wrote " + with + "\n");
+  r = Fetch(Serve(Solution()), without);
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  for (const char* file : {"patches.csv", "image.png", "image.exr", "radiosity.ply", "lit.glb"}) {
+    EXPECT_TRUE(ReadFile(with + "/" + file) == ReadFile(without + "/" + file)) << file;
+  }
+
+  // The carried display is the one written: drawn from twice the light, the image differs.
+  codec::JobSolution brighter = Solution();
+  for (Rgb& b : brighter.radiosity) b = b * 2.0;
+  Result<std::vector<uint8_t>> other = codec::DrawEncodedDisplay(brighter);
+  ASSERT_TRUE(other.ok()) << other.error();
+  codec::JobSolution carried = Solution();
+  carried.display = std::move(*other);
+  const std::string bright = dir_.File("bright");
+  r = Fetch(Serve(carried), bright);
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_FALSE(ReadFile(bright + "/image.png") == ReadFile(without + "/image.png"));
+  EXPECT_TRUE(ReadFile(bright + "/patches.csv") == ReadFile(without + "/patches.csv"));
+}
+
+TEST_F(FetchCommandTest, DamagedDisplayFails) {
+  codec::JobSolution damaged = Solution();
+  damaged.display = {1, 2, 3, 4, 5, 6, 7, 8};
+  const auto r = Fetch(Serve(damaged), dir_.File("out"));
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  EXPECT_NE(r.err.find("radfarm: job 5: the display in the solution: "), std::string::npos)
+      << r.err;
 }
 
 TEST_F(FetchCommandTest, JsonPrintsTheJob) {

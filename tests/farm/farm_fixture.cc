@@ -59,8 +59,21 @@ std::string FarmTest::FetchPatches(int64_t id) {
 
 std::string FarmTest::ReferencePatches(const std::string& scene,
                                        const std::vector<std::string>& flags) {
+  return ReferenceOutputs(scene, flags).at("patches.csv");
+}
+
+std::map<std::string, std::string> FarmTest::FetchOutputs(int64_t id, const std::string& out) {
+  const CommandResult r = farm_.Fetch(id, dir_.File(out));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::map<std::string, std::string> files;
+  for (const std::string& f : kComparedOutputs) files[f] = ReadFile(dir_.File(out) + "/" + f);
+  return files;
+}
+
+const std::map<std::string, std::string>& FarmTest::ReferenceOutputs(
+    const std::string& scene, const std::vector<std::string>& flags) {
   static std::mutex mutex;
-  static std::map<std::string, std::string> cache;
+  static std::map<std::string, std::map<std::string, std::string>> cache;
   std::string key = scene;
   for (const std::string& f : flags) key += " " + f;
   std::lock_guard lock(mutex);
@@ -72,7 +85,9 @@ std::string FarmTest::ReferencePatches(const std::string& scene,
   args.insert(args.end(), flags.begin(), flags.end());
   const CommandResult r = RunCommand(args);
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  return cache[key] = ReadFile(out.File("patches.csv"));
+  std::map<std::string, std::string>& files = cache[key];
+  for (const std::string& f : kComparedOutputs) files[f] = ReadFile(out.File(f));
+  return files;
 }
 
 size_t FarmTest::CountLines(const std::string& log, const std::string& text) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -21,6 +22,10 @@ inline constexpr auto kJobTimeout = std::chrono::seconds(240);
 
 // A job shorter than the default Cornell box: a ray budget of a few rounds.
 inline const std::vector<std::string> kShortJob = {"--rays", "3000000"};
+
+// The files `radfarm render` and `radfarm fetch` write alike, byte for byte.
+inline const std::vector<std::string> kComparedOutputs = {"patches.csv", "image.png", "image.exr",
+                                                          "radiosity.ply", "lit.glb"};
 
 // The round of a `Status` job object, or -1 when it has none.
 int64_t JobRound(const nlohmann::json& job);
@@ -53,6 +58,11 @@ class FarmTest : public ::testing::Test {
   // `radfarm render` of the same scene and flags, run once per test binary and remembered.
   static std::string ReferencePatches(const std::string& scene,
                                       const std::vector<std::string>& flags = {});
+  // The files both write (kComparedOutputs, stats.json aside: it holds times), by name:
+  // `radfarm fetch ID`'s into DIR (`out`, relative to the test's directory) and render's.
+  std::map<std::string, std::string> FetchOutputs(int64_t id, const std::string& out);
+  static const std::map<std::string, std::string>& ReferenceOutputs(
+      const std::string& scene, const std::vector<std::string>& flags = {});
 
   std::string Path(const std::string& name) const { return dir_.File(name); }
   std::string MasterLog() const { return farm_.MasterLog(); }
