@@ -224,7 +224,8 @@ void ExpectTheManualPageDocumentsTheSubcommands(const Package& cli) {
 // no-manual-page for every program. Every error and warning is now fixed, or
 // overridden in packaging/debian/PACKAGE/lintian-overrides with the reason beside it.
 void ExpectLintianFindsNoErrorOrWarning(const std::vector<Package>& packages) {
-  ASSERT_TRUE(HaveTool("lintian")) << "lintian is not installed (scripts/install-deps installs it)";
+  ASSERT_TRUE(HaveTool("lintian"))
+      << "lintian is not installed (scripts/install-deps --tests installs it)";
   std::string debs;
   for (const Package& package : packages) debs += " " + Quote(package.deb);
   const testing::CommandResult lintian = RunCommand(
