@@ -237,7 +237,9 @@ void Agent::OnMessage(const protocol::Message& message) {
     runner_->Revoke(*revoke);
   } else if (const auto* cancel = std::get_if<protocol::CancelMsg>(&message)) {
     const size_t dropped = runner_->Cancel(cancel->job_id);
-    LogLine(LogLevel::kInfo, "agent") << "cancel of job " << cancel->job_id << " from " << master_
+    // The master sends Cancel whenever a job stops running there (done, cancelled, paused or
+    // failed) and says not which, so the log says only that it ended.
+    LogLine(LogLevel::kInfo, "agent") << "job " << cancel->job_id << " ended on " << master_
                                       << ": dropped " << dropped << " leases";
   } else if (const auto* chunk = std::get_if<protocol::SceneChunkMsg>(&message)) {
     runner_->scenes().OnChunk(*chunk);

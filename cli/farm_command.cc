@@ -73,7 +73,7 @@ void PrintJson(const json& value) {
 
 void AddJsonFlag(CLI::App* command, bool* json) {
   command->add_flag("--json", *json,
-                    "Print the master's objects as JSON (shapes in docs/CONTROL.md)");
+                    "Print the master's objects as JSON (their fields: CONTROL.md)");
 }
 
 void AddJobIdArgument(CLI::App* command, uint64_t* id) {

@@ -48,7 +48,7 @@ void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
       ->add_option(
           "--patch-size", overrides->patch_size,
           "Largest patch edge in scene units; triangles up to sqrt(2) times it (default: per "
-          "face, a tenth of its mean free path; docs/MESHING.md)")
+          "face, a tenth of its mean free path)")
       ->check(PositiveReal());
   command
       ->add_option("--max-memory", overrides->max_memory,

@@ -133,8 +133,11 @@ CLI::App* AddRenderCommand(CLI::App& app, RenderOptions* options) {
   CLI::App* render = app.add_subcommand(
       "render",
       "Solve a scene on this machine and write image.png, image.exr, radiosity.ply, lit.glb, "
-      "patches.csv and stats.json");
-  render->add_option("SCENE", options->scene, "Wavefront .obj scene or .toml job file")->required();
+      "lightmaps/ (objects with a second UV set), patches.csv and stats.json");
+  render
+      ->add_option("SCENE", options->scene,
+                   "Scene: Wavefront .obj (with its .mtl), glTF .gltf or .glb, or .toml job file")
+      ->required();
   render->add_option("--out", options->out_dir, "Output directory (created if missing)")
       ->required();
   render->add_option("--threads", options->overrides.threads, "Worker threads (default: all cores)")

@@ -1,5 +1,10 @@
 #include "cli/render_outputs.h"
 
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <system_error>
@@ -22,6 +27,15 @@ Status CreateOutputDirectory(const std::string& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) return Error{dir + ": cannot create the output directory: " + ec.message()};
+  // A file made and removed: the mode bits alone do not say (root ignores them, and a read-only
+  // mount or /proc refuses whatever they say).
+  std::string probe = (std::filesystem::path(dir) / ".radfarm-write-check-XXXXXX").string();
+  const int fd = mkstemp(probe.data());
+  if (fd < 0) {
+    return Error{dir + ": cannot write to the output directory: " + std::strerror(errno)};
+  }
+  close(fd);
+  unlink(probe.c_str());
   return Ok{};
 }
 

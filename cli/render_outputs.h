@@ -16,7 +16,8 @@
 
 namespace radfarm {
 
-// Creates `dir` and its parents when missing.
+// Creates `dir` and its parents when missing, and checks that files can be created in it, so that
+// an unwritable directory is found before a solve rather than after it.
 Status CreateOutputDirectory(const std::string& dir);
 
 // `dir` must exist. `display` is the display of `solution` on `mesh` (display/solved_display.h);

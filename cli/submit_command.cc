@@ -17,9 +17,13 @@ namespace radfarm {
 CLI::App* AddSubmitCommand(CLI::App& app, SubmitOptions* options) {
   CLI::App* submit = app.add_subcommand(
       "submit", "Check a scene as `render` would and queue it on the master; prints the job id");
-  submit->add_option("SCENE", options->scene, "Wavefront .obj scene or .toml job file")->required();
+  submit
+      ->add_option("SCENE", options->scene,
+                   "Scene: Wavefront .obj (with its .mtl), glTF .gltf or .glb, or .toml job file")
+      ->required();
   submit->add_option("--name", options->name,
-                     "Job name (default: the file name of the scene's OBJ, e.g. cornell-box.obj)");
+                     "Job name (default: the scene file's name, a job file's scene for a .toml, "
+                     "e.g. cornell-box.obj)");
   submit->add_option("--priority", options->priority, "Higher runs first (default 0)");
   AddJobOverrideOptions(submit, &options->overrides);
   AddJsonFlag(submit, &options->json);

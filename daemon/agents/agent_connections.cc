@@ -234,6 +234,7 @@ void AgentConnections::OnLeaseResult(AgentLink& link, const protocol::LeaseResul
     const scheduler::LeaseIntake intake =
         scheduler::SubmitLeaseResults(runner->scheduler(), link.id(), results, runner->sampler(),
                                       runner->patch_count(), clock_.Now());
+    link.CountAccepted(intake.accepted_batches.size());
     const scheduler::ResultVerdict& v = intake.last.verdict;
     if (v.reason == scheduler::DropReason::kInvalid) {
       for (scheduler::BatchId batch : intake.accepted_batches) {
@@ -265,6 +266,7 @@ bool AgentConnections::OnGatherAheadResults(
   GatherAhead& ahead = *runner.gather_ahead();
   const scheduler::LeaseIntake intake = scheduler::SubmitLeaseResults(
       ahead.scheduler(), link.id(), results, runner.sampler(), runner.patch_count(), clock_.Now());
+  link.CountAccepted(intake.accepted_batches.size());
   bool round_complete = false;
   for (scheduler::BatchId batch : intake.accepted_batches) {
     if (!ahead.adopted()) {

@@ -90,6 +90,10 @@ class AgentLink {
   void Decline() { declining_ = true; }
   // Whether new leases may go to it: authenticated, not closing, not stale, not declining.
   bool TakesWork() const { return authenticated() && !closing_ && !stale_ && !declining_; }
+  // Results accepted from this connection, of every job: kept here because a job's scheduler,
+  // which accepts them, goes when the job stops running.
+  uint64_t results_accepted() const { return results_accepted_; }
+  void CountAccepted(uint64_t results) { results_accepted_ += results; }
 
  private:
   void OnFrame(std::span<const uint8_t> payload);
@@ -110,6 +114,7 @@ class AgentLink {
   bool was_authenticated_ = false;
   bool stale_ = false;
   bool declining_ = false;
+  uint64_t results_accepted_ = 0;
 };
 
 }  // namespace radfarm::daemon

@@ -300,14 +300,12 @@ json ControlRequests::EnrolledJson() const {
 json ControlRequests::AgentJson(const AgentLink& link) const {
   uint32_t leases = 0;
   double rays_per_second = 0;
-  uint64_t results = 0;
   const auto now = clock_.Now();
   for (const auto& [job, runner] : jobs_.runners()) {
     runner->ForEachScheduler([&](const scheduler::RoundScheduler& s) {
       if (const auto a = s.agent_counters(link.id(), now)) {
         leases += a->leases_held;
         rays_per_second = std::max(rays_per_second, a->rays_per_second);
-        results += a->results_accepted;
       }
     });
   }
@@ -320,7 +318,7 @@ json ControlRequests::AgentJson(const AgentLink& link) const {
               {"leases", leases},
               {"connected_ms", link.connected_unix_ms()},
               {"last_heartbeat_ms_ago", clock_.NowMs() - link.last_heard_ms()},
-              {"results", results},
+              {"results", link.results_accepted()},
               {"stale", link.stale()}};
 }
 

@@ -176,7 +176,7 @@ TEST_F(AgentWorkTest, CancelDropsTheJobsQueuedAndRunningWork) {
 
   // Without the cancel, job 1's twenty batches would all run, and be answered, before job 2's.
   ASSERT_TRUE(WaitResult(after.lease, *agent));
-  ASSERT_TRUE(agent->WaitForLog("cancel of job 1 from " + master_.address() + ": dropped 20"))
+  ASSERT_TRUE(agent->WaitForLog("job 1 ended on " + master_.address() + ": dropped 20"))
       << agent->Log();
   // Heartbeats confirm nothing is held any more; no result of job 1 ever came.
   ASSERT_TRUE(master_.WaitFor([](const Record& r) {
@@ -370,7 +370,7 @@ TEST_F(AgentManyPatchesTest, AResultFillingAFrameGoesOutBeforeTheLeasesLastBatch
             protocol::kResultFrameBytes);  // it fills a frame alone
   EXPECT_EQ(protocol::ToBatchResult(*result), RunLocally(scene_, first));
   master_.Send(protocol::CancelMsg{job.job_id});
-  ASSERT_TRUE(agent->WaitForLog("cancel of job 3 from " + master_.address() + ": dropped 1"))
+  ASSERT_TRUE(agent->WaitForLog("job 3 ended on " + master_.address() + ": dropped 1"))
       << agent->Log();
   // The running batch finishes, and its result is dropped rather than sent.
   ASSERT_TRUE(agent->WaitForLog("discarded the result of a lease no longer held")) << agent->Log();

@@ -8,7 +8,7 @@ radfarm=$1 scene=$2 out=$3
 shift 3
 if ! command -v blender >/dev/null; then
   echo "SKIPPED: blender is not installed (Debian package blender, with python3-numpy for its" \
-       "glTF add-on; scripts/install-deps installs both, so CI runs this test)"
+       "glTF add-on; scripts/install-deps --tests installs both, so CI runs this test)"
   exit 77
 fi
 rm -rf "$out"

@@ -1,5 +1,6 @@
 // Bad input to `radfarm render`: a one-line error naming the file and the line or key, exit code 2.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 
@@ -105,6 +106,25 @@ TEST(RenderUsageTest, UnwritableOutputDirectoryIsAFailure) {
                              "--out", blocker + "/sub", "-q"});
   EXPECT_EQ(r.exit_code, kExitFailure);
   EXPECT_NE(r.err.find(blocker), std::string::npos) << r.err;
+}
+
+// An existing --out directory that could not be written was found only after the solve, when its
+// first file failed: it is checked before the solve, and before the mesh summary is printed.
+TEST(RenderUsageTest, AnExistingUnwritableOutputDirectoryFailsBeforeTheSolve) {
+  TempDir dir;
+  std::string out = dir.File("locked");
+  if (geteuid() == 0) {
+    out = "/proc";  // root writes whatever the mode bits say; no one creates files in /proc
+  } else {
+    std::filesystem::create_directory(out);
+    std::filesystem::permissions(
+        out, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+  }
+  const auto r = RunCommand(
+      {RADFARM_CLI_PATH, "render", RADFARM_SOURCE_DIR "/scenes/cornell-box.obj", "--out", out});
+  EXPECT_EQ(r.exit_code, kExitFailure) << r.err;
+  EXPECT_NE(r.err.find(out + ": cannot write to the output directory"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
 }
 
 }  // namespace

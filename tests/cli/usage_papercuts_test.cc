@@ -89,7 +89,24 @@ TEST(UsagePapercutsTest, SubmitHelpSaysWhatTheDefaultNameIs) {
   const auto r = RunCommand({RADFARM_CLI_PATH, "submit", "--help"});
   EXPECT_EQ(r.exit_code, kExitOk);
   EXPECT_FALSE(Mentions(r.out, "job-ID")) << r.out;
-  EXPECT_TRUE(Mentions(r.out, "the file name of the scene's OBJ")) << r.out;
+  EXPECT_TRUE(Mentions(r.out, "default: the scene file's name")) << r.out;
+}
+
+// Was: SCENE "Wavefront .obj scene or .toml job file", though both read glTF too; and render's
+// list of what it writes left out lightmaps/.
+TEST(UsagePapercutsTest, RenderAndSubmitHelpNameEveryInputAndOutput) {
+  for (const char* command : {"render", "submit"}) {
+    const auto r = RunCommand({RADFARM_CLI_PATH, command, "--help"});
+    EXPECT_EQ(r.exit_code, kExitOk) << command;
+    for (const char* input : {".obj", ".mtl", ".gltf", ".glb", ".toml"}) {
+      EXPECT_TRUE(Mentions(r.out, input)) << command << " " << input << ": " << r.out;
+    }
+  }
+  const auto render = RunCommand({RADFARM_CLI_PATH, "render", "--help"});
+  for (const char* output : {"image.png", "image.exr", "radiosity.ply", "lit.glb", "lightmaps/",
+                             "patches.csv", "stats.json"}) {
+    EXPECT_TRUE(Mentions(render.out, output)) << output << ": " << render.out;
+  }
 }
 
 // Was: "ray budget after 1 rounds".

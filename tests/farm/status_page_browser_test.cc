@@ -3,7 +3,7 @@
 // appears, its progress moves, pause and resume from the page, done, the agent listed) and saves
 // the screenshot docs/OPERATIONS.md shows (written to the build directory, or to
 // $RADFARM_SCREENSHOT). Chromium, chromedriver and python3-selenium come from
-// scripts/install-deps; without them this test fails, it does not skip.
+// scripts/install-deps --tests; without them this test fails, it does not skip.
 #include <gtest/gtest.h>
 
 #include <cstdlib>

@@ -1,10 +1,12 @@
-// packaging/etc/*.conf: every key is there, commented out; uncommented, each file is valid TOML
-// and the agent's [idle] table passes the idle policy's own parser.
+// packaging/etc/*.conf: every key is there, commented out but for the agent's idle policy, which is
+// on as shipped; uncommented, each file is valid TOML and the agent's [idle] table passes the idle
+// policy's own parser.
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -59,8 +61,6 @@ std::string WriteFile(const fs::path& dir, const std::string& name, const std::s
 toml::table ParseExample(const std::string& name) {
   const std::string text = ReadExample(name);
   EXPECT_FALSE(text.empty()) << name;
-  // Shipped as is, nothing is set.
-  EXPECT_TRUE(toml::parse(text, std::string_view(name)).empty()) << name;
   try {
     return toml::parse(Uncomment(text), std::string_view(name));
   } catch (const toml::parse_error& error) {
@@ -70,6 +70,8 @@ toml::table ParseExample(const std::string& name) {
 }
 
 TEST(ExampleConfigTest, MasterConfigNamesEveryKey) {
+  // Shipped as is, nothing is set.
+  EXPECT_TRUE(toml::parse(ReadExample("radfarmd.conf"), std::string_view("radfarmd.conf")).empty());
   const toml::table config = ParseExample("radfarmd.conf");
   const std::set<std::string> keys = Keys(config);
   for (const char* key : {"listen", "state_dir", "secret_file", "control", "heartbeat_ms",
@@ -79,6 +81,18 @@ TEST(ExampleConfigTest, MasterConfigNamesEveryKey) {
   EXPECT_EQ(config["listen"].value_or(std::string()), "0.0.0.0:7878");
   EXPECT_EQ(config["secret_file"].value_or(std::string()), "/etc/radfarm/secret");
   EXPECT_EQ(config["state_dir"].value_or(std::string()), "/var/lib/radfarm");
+}
+
+// An office desktop's agent computes only while its machine is idle: the shipped file sets the idle
+// policy on and nothing else.
+TEST(ExampleConfigTest, ShippedAgentConfigSetsOnlyTheIdlePolicyOn) {
+  const toml::table shipped =
+      toml::parse(ReadExample("agent.conf"), std::string_view("agent.conf"));
+  EXPECT_EQ(shipped.size(), 1u);
+  const toml::table* idle = shipped["idle"].as_table();
+  ASSERT_NE(idle, nullptr);
+  EXPECT_EQ(Keys(*idle), (std::set<std::string>{"enabled"}));
+  EXPECT_EQ((*idle)["enabled"].value<bool>(), std::optional<bool>(true));
 }
 
 TEST(ExampleConfigTest, AgentConfigNamesEveryKeyAndItsIdleTableParses) {
@@ -139,6 +153,22 @@ TEST(ExampleConfigTest, RadfarmdReadsItsExampleAndItHoldsTheDefaults) {
 #endif
 
 #ifdef RADFARM_HAVE_AGENT_CONFIG
+// The agent's own reader finds the idle policy on in the file as shipped.
+TEST(ExampleConfigTest, RadfarmAgentReadsTheShippedFileAsIdleOnly) {
+  testing::TempDir dir;
+  const std::string path = WriteFile(dir.path(), "agent.conf", ReadExample("agent.conf"));
+  Result<agent::AgentOptions> options = agent::LoadConfigFile(path);
+  ASSERT_TRUE(options.ok()) << options.error();
+  ASSERT_TRUE(options->idle.has_value());
+  EXPECT_TRUE(options->idle->enabled);
+  // The rest of the policy keeps its defaults.
+  const idle::IdleConfig defaults;
+  EXPECT_EQ(options->idle->user_idle_minutes, defaults.user_idle_minutes);
+  EXPECT_EQ(options->idle->max_other_cpu, defaults.max_other_cpu);
+  EXPECT_EQ(options->idle->schedule, defaults.schedule);
+  EXPECT_EQ(options->idle->poll_seconds, defaults.poll_seconds);
+}
+
 // The agent's reader takes every top-level key of the example. (The [idle] table is read by
 // idle::ParseIdleConfig, tested above; it is cut here.)
 TEST(ExampleConfigTest, RadfarmAgentReadsItsExample) {

@@ -4,6 +4,8 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -61,7 +63,9 @@ std::vector<Package> Packages(const std::filesystem::path& out) {
        (out / ("radfarm" + suffix)).string(),
        {"radfarm"},
        {"/usr/share/doc/radfarm/copyright", "/usr/share/doc/radfarm/changelog.Debian.gz",
-        "/usr/share/lintian/overrides/radfarm"},
+        "/usr/share/doc/radfarm/USAGE.md", "/usr/share/doc/radfarm/examples/cornell-box.toml",
+        "/usr/share/doc/radfarm/examples/cornell-box.obj",
+        "/usr/share/doc/radfarm/examples/cornell-box.mtl", "/usr/share/lintian/overrides/radfarm"},
        "",
        ""},
       {"radfarm-master",
@@ -220,11 +224,57 @@ void ExpectTheManualPageDocumentsTheSubcommands(const Package& cli) {
   EXPECT_EQ(page.output.find(RADFARM_BINARY_DIR), std::string::npos) << "the build path leaked";
 }
 
+// Relative paths with a folder in `page` ("docs/USAGE.md"): the repository's, meaningless to a user
+// of the packages. Installed paths are absolute; bare names ("CONTROL.md") are fine.
+std::vector<std::string> RepositoryPaths(std::string page) {
+  page = std::regex_replace(page, std::regex(R"(\\-)"), "-");  // roff's "\-" is a hyphen
+  // Folders in lower case, as the repository's are ("OUT/NAME.obj" is a placeholder).
+  const std::regex path(
+      R"([a-z0-9_.-]+(/[a-z0-9_.-]+)*/[A-Za-z0-9_.-]+\.(md|h|cc|toml|obj|mtl|gltf|glb|sh|sub))");
+  std::vector<std::string> found;
+  for (auto it = std::sregex_iterator(page.begin(), page.end(), path); it != std::sregex_iterator();
+       ++it) {
+    const std::string before = it->prefix().str();
+    if (!before.empty() && before.back() == '/') continue;  // an installed, absolute path
+    found.push_back(it->str());
+  }
+  return found;
+}
+
+// A manual page was --help reformatted, pointing into the repository. Each has sections a user
+// can live by (from packaging/man/PROGRAM.h2m) and names only installed files.
+void ExpectManualPagesAUserCanLiveBy(const std::vector<Package>& packages) {
+  const std::map<std::string, std::vector<std::string>> sections = {
+      {"radfarm",
+       {".SH \"SCENES AND JOB FILES\"", ".SH OUTPUTS", ".SH \"EXIT STATUS\"", ".SH ENVIRONMENT",
+        ".SH FILES", "/usr/share/doc/radfarm/USAGE.md",
+        "/usr/share/doc/radfarm/examples/cornell\\-box.toml"}},
+      {"radfarmd", {".SH \"EXIT STATUS\"", ".SH FILES", ".SH EXAMPLES"}},
+      {"radfarm-agent", {".SH \"IDLE POLICY\"", ".SH \"EXIT STATUS\"", ".SH FILES"}}};
+  for (const Package& package : packages) {
+    for (const std::string& binary : package.binaries) {
+      if (!PackagedBinaries().count(binary)) continue;
+      SCOPED_TRACE(binary);
+      TempDir root;
+      ASSERT_EQ(
+          RunCommand("dpkg-deb -x " + Quote(package.deb) + " " + Quote(root.path())).exit_code, 0);
+      const testing::CommandResult page = RunCommand(
+          "gzip -dc " + Quote((root.path() / ("usr/share/man/man1/" + binary + ".1.gz")).string()));
+      ASSERT_EQ(page.exit_code, 0) << page.output;
+      for (const std::string& text : sections.at(binary)) {
+        EXPECT_NE(page.output.find(text), std::string::npos) << text;
+      }
+      EXPECT_EQ(RepositoryPaths(page.output), std::vector<std::string>{});
+    }
+  }
+}
+
 // lintian reported 6 errors (no copyright file, no changelog, a maintainer at localhost) and
 // no-manual-page for every program. Every error and warning is now fixed, or
 // overridden in packaging/debian/PACKAGE/lintian-overrides with the reason beside it.
 void ExpectLintianFindsNoErrorOrWarning(const std::vector<Package>& packages) {
-  ASSERT_TRUE(HaveTool("lintian")) << "lintian is not installed (scripts/install-deps installs it)";
+  ASSERT_TRUE(HaveTool("lintian"))
+      << "lintian is not installed (scripts/install-deps --tests installs it)";
   std::string debs;
   for (const Package& package : packages) debs += " " + Quote(package.deb);
   const testing::CommandResult lintian = RunCommand(
@@ -260,6 +310,7 @@ TEST(PackageTest, CpackBuildsThreePackagesThatLintianPasses) {
   }
   ExpectTheCommandLineInAPackageOfItsOwn(packages);
   ExpectTheManualPageDocumentsTheSubcommands(packages[0]);
+  ExpectManualPagesAUserCanLiveBy(packages);
   ExpectLintianFindsNoErrorOrWarning(packages);
 }
 

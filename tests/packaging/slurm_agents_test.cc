@@ -7,7 +7,7 @@
 // left running.
 //
 // It needs root (slurmd starts job steps as the submitting user) and the Debian packages
-// slurm-wlm and munge (scripts/install-deps): without them it fails, since CI has both.
+// slurm-wlm and munge (scripts/install-deps --tests): without them it fails, since CI has both.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -45,7 +45,7 @@ TEST_F(SlurmAgentsTest, AnArrayOfAgentsFinishesAJobLikeRenderAndExits) {
                     "tests as root (CI does)";
   }
   ASSERT_EQ(SlurmCluster::MissingPrograms(), "")
-      << "install the Debian packages slurm-wlm and munge (scripts/install-deps)";
+      << "install the Debian packages slurm-wlm and munge (scripts/install-deps --tests)";
   TempDir slurm_dir("radfarm-slurm");
   SlurmCluster slurm(slurm_dir.path());
   const std::string started = slurm.Start();

@@ -89,6 +89,39 @@ TEST(UnitTest, SystemdAnalyzeVerifiesTheInstalledUnits) {
   }
 }
 
+// The value of the unit file line `key=VALUE` ("" when there is none).
+std::string UnitSetting(const std::string& text, const std::string& key) {
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind(key + "=", 0) == 0) return line.substr(key.size() + 1);
+  }
+  return "";
+}
+
+// A daemon's exit status for a config file it cannot read.
+int ExitStatusOnMissingConfig(const std::string& binary) {
+  TempDir dir;
+  return RunCommand(Quote(binary) + " --config " + Quote(dir.path() / "missing.conf")).exit_code;
+}
+
+// A config error is bad input (exit status 2 in both daemons), which a restart cannot fix: each
+// unit restarts on failure but not on that status, so a typo does not restart-loop forever.
+TEST(UnitTest, UnitsDoNotRestartOnBadInput) {
+  constexpr int kExitBadInput = 2;  // agent/exit_codes.h, daemon/main.cc
+  for (const char* unit : kUnits) {
+    SCOPED_TRACE(unit);
+    const std::string text = ReadFile(fs::path(RADFARM_SOURCE_DIR) / "systemd" / unit);
+    EXPECT_EQ(UnitSetting(text, "Restart"), "on-failure");
+    EXPECT_EQ(UnitSetting(text, "RestartPreventExitStatus"), std::to_string(kExitBadInput));
+  }
+#ifdef RADFARMD_PATH
+  EXPECT_EQ(ExitStatusOnMissingConfig(RADFARMD_PATH), kExitBadInput);
+#endif
+#ifdef RADFARM_AGENT_PATH
+  EXPECT_EQ(ExitStatusOnMissingConfig(RADFARM_AGENT_PATH), kExitBadInput);
+#endif
+}
+
 // "→ Overall exposure level for radfarmd.service: 1.1 OK 🙂" -> "1.1"
 std::string Exposure(const std::string& output, const std::string& unit) {
   std::smatch match;

@@ -36,6 +36,29 @@ TEST(AgentConnectionsTest, AnAgentWithTheFarmSecretIsAdmittedAndListed) {
   EXPECT_EQ(answer.body["agents"][0]["name"], "box-1");
 }
 
+// `agents` listed 0 results for the agent that had computed a whole job: the count came from the
+// running jobs' schedulers, which go when their job ends. It is the connection's now.
+TEST(AgentConnectionsTest, AgentsCountsTheResultsOfAJobThatHasEnded) {
+  MasterParts master;
+  const uint64_t job = master.Submit(200000);
+  FakeAgent agent(master.loop(), master.agent_address(), master.secret(), "box-1", true);
+  ASSERT_TRUE(agent.Connect().ok());
+  ASSERT_TRUE(master.RunUntil([&] {
+    return agent.results_sent() > 0 && master.jobs().FindRunner(job) == nullptr &&
+           master.jobs().starting() == 0;
+  }));
+  ASSERT_EQ(master.StateOf(job), "done");
+
+  ControlRequest list;
+  list.command = ControlCommand::kAgents;
+  const ControlResponse answer = master.Request(list);
+  ASSERT_EQ(answer.body["agents"].size(), 1u) << answer.body.dump();
+  const uint64_t results = answer.body["agents"][0]["results"].get<uint64_t>();
+  // The one agent computed every batch the job accepted.
+  EXPECT_GT(results, 0u);
+  EXPECT_EQ(results, master.jobs().batch_totals(master.clock().Now()).accepted);
+}
+
 TEST(AgentConnectionsTest, AnAgentWithAnotherSecretIsRefused) {
   MasterParts master;
   const protocol::FarmSecret other = protocol::FarmSecret::Generate().value();
