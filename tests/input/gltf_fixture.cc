@@ -25,7 +25,9 @@ void Put32(std::vector<uint8_t>* out, uint32_t v) {
   for (int k = 0; k < 4; ++k) out->push_back(static_cast<uint8_t>(v >> (8 * k)));
 }
 
-std::vector<uint8_t> Bmp(int width, int height, const std::vector<uint8_t>& rgb) {
+}  // namespace
+
+std::vector<uint8_t> BmpImage(int width, int height, const std::vector<uint8_t>& rgb) {
   const int row = (3 * width + 3) / 4 * 4;
   std::vector<uint8_t> out = {'B', 'M'};
   Put32(&out, 54 + row * height);
@@ -45,8 +47,6 @@ std::vector<uint8_t> Bmp(int width, int height, const std::vector<uint8_t>& rgb)
   }
   return out;
 }
-
-}  // namespace
 
 GltfFixture::GltfFixture() {
   json_ = {{"asset", {{"version", "2.0"}}},
@@ -114,7 +114,8 @@ int GltfFixture::AddNode(const nlohmann::json& node, bool root) {
 }
 
 int GltfFixture::AddTexture(int width, int height, const std::vector<uint8_t>& rgb) {
-  json_["images"].push_back({{"uri", "data:image/bmp;base64," + Base64(Bmp(width, height, rgb))}});
+  json_["images"].push_back(
+      {{"uri", "data:image/bmp;base64," + Base64(BmpImage(width, height, rgb))}});
   json_["textures"].push_back({{"source", json_["images"].size() - 1}});
   return static_cast<int>(json_["textures"].size()) - 1;
 }

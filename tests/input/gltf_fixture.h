@@ -37,6 +37,9 @@ class GltfFixture {
   std::vector<uint8_t> buffer_;
 };
 
+// A 24-bit BMP file of width x height pixels (RGB bytes, top row first).
+std::vector<uint8_t> BmpImage(int width, int height, const std::vector<uint8_t>& rgb);
+
 // A floor quad (y = 0, 1 m square, facing +y) and a small emissive quad above it facing down, as
 // two meshes under their own nodes: the smallest scene that loads.
 GltfFixture FloorAndLight();
