@@ -19,7 +19,18 @@ namespace radfarm {
 // relative uri; otherwise the load fails naming the scene, the field and the uri
 // ("scene.gltf: buffers[2].uri '../secret' leads outside the scene's directory ..."), whether
 // the file is a buffer or an image. tinygltf's warnings are appended to *warnings.
+//
+// Images (PNG, JPEG, or BMP) are bounded from their headers before they are decoded: with
+// `max_texture_bytes` 0, each may have at most kDefaultMaxTexturePixels pixels; otherwise all
+// images together may decode to at most `max_texture_bytes` (--max-memory). The error names the
+// scene, the image, its size and the limit. Images decode to RGBA, 8- or 16-bit (a 16-bit PNG);
+// decoding needs about twice an image's decoded bytes for a moment (stb_image's buffer, then
+// tinygltf's copy of it), and the model keeps the copy.
 Result<tinygltf::Model> ReadGltfModel(const std::string& path, uint64_t max_file_bytes,
+                                      uint64_t max_texture_bytes,
                                       std::vector<std::string>* warnings);
+
+// The most pixels a texture may have when no memory limit is given: 512 MB of 16-bit RGBA.
+inline constexpr uint64_t kDefaultMaxTexturePixels = uint64_t{8192} * 8192;
 
 }  // namespace radfarm

@@ -22,7 +22,10 @@ namespace radfarm {
 // The scene file and the buffer and image files it names are read as gltf_model_reader.h says:
 // only regular files inside the scene's own directory tree, named by relative uris, together at
 // most `max_file_bytes` ("path: the file is N bytes, over the limit of M bytes", M what is left).
+// Images are bounded before they are decoded, by `max_texture_bytes` for all of them together or,
+// when it is 0, by kDefaultMaxTexturePixels each (gltf_model_reader.h).
 Result<InputScene> LoadGltfScene(const std::string& path,
-                                 uint64_t max_file_bytes = kDefaultMaxInputFileBytes);
+                                 uint64_t max_file_bytes = kDefaultMaxInputFileBytes,
+                                 uint64_t max_texture_bytes = 0);
 
 }  // namespace radfarm

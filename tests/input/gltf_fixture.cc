@@ -48,6 +48,18 @@ std::vector<uint8_t> BmpImage(int width, int height, const std::vector<uint8_t>&
   return out;
 }
 
+std::vector<uint8_t> PngHeaderOnly(uint32_t width, uint32_t height, int bit_depth,
+                                   int colour_type) {
+  std::vector<uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n',
+                              0,    0,   0,   13,  'I',  'H',  'D',  'R'};
+  for (uint32_t v : {width, height}) {
+    for (int k = 3; k >= 0; --k) out.push_back(static_cast<uint8_t>(v >> (8 * k)));
+  }
+  out.insert(out.end(), {static_cast<uint8_t>(bit_depth), static_cast<uint8_t>(colour_type), 0, 0,
+                         0, 0, 0, 0, 0});  // compression, filter, interlace, CRC (unchecked)
+  return out;
+}
+
 GltfFixture::GltfFixture() {
   json_ = {{"asset", {{"version", "2.0"}}},
            {"scene", 0},
