@@ -6,14 +6,10 @@
 #include <tiny_gltf.h>
 
 #include <cmath>
-#include <filesystem>
 #include <optional>
 #include <set>
-#include <sstream>
 
 #include "base/diagnostic.h"
-#include "base/file_extension.h"
-#include "base/text_file.h"
 #include "input/gltf_accessor.h"
 #include "input/gltf_light.h"
 #include "input/gltf_material.h"

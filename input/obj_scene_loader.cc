@@ -4,7 +4,6 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
-#include <filesystem>
 #include <map>
 #include <set>
 #include <sstream>
