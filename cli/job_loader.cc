@@ -28,8 +28,10 @@ Result<CheckedJob> LoadJobAndScene(const std::string& path, const JobOverrides& 
   if (Status budget = CheckLightmapBudget(job->lightmap_size, job->mesh.max_memory); !budget) {
     return Error{path + ": " + budget.error()};
   }
+  // Textures are decoded, averaged and freed before meshing: --max-memory bounds them alone.
   Result<InputScene> scene =
-      LoadScene(job->scene_path, overrides.max_scene_bytes.value_or(kDefaultMaxInputFileBytes));
+      LoadScene(job->scene_path, overrides.max_scene_bytes.value_or(kDefaultMaxInputFileBytes),
+                job->mesh.max_memory);
   RADFARM_RETURN_IF_ERROR(scene);
   warnings->insert(warnings->end(), scene->warnings.begin(), scene->warnings.end());
   RADFARM_RETURN_IF_ERROR(ApplyTwoSided(path, *job, &*scene));

@@ -133,10 +133,14 @@ Result<const LinearTexture*> GltfMaterials::Texture(int texture, const std::stri
   if (image.width <= 0 || image.height <= 0 || image.image.empty()) {
     return ErrorAt(path_, 0, image_what + " was not decoded (PNG and JPEG are supported)");
   }
-  LinearTexture decoded =
-      DecodeSrgbTexture(image.image, static_cast<uint32_t>(image.width),
-                        static_cast<uint32_t>(image.height), image.component, image.bits);
-  if (decoded.width == 0) {
+  // A view of the decoded image the model holds, not a copy: a big texture is held once.
+  LinearTexture decoded;
+  decoded.width = static_cast<uint32_t>(image.width);
+  decoded.height = static_cast<uint32_t>(image.height);
+  decoded.channels = image.component;
+  decoded.bits = image.bits;
+  decoded.pixels = image.image;
+  if (!decoded.Readable()) {
     return ErrorAt(path_, 0,
                    image_what + ": unsupported pixel layout (" + std::to_string(image.component) +
                        " channels of " + std::to_string(image.bits) + " bits)");

@@ -25,7 +25,8 @@ inline constexpr double kMaxGltfReflectance = 0.99;
 
 class GltfMaterials {
  public:
-  // `path` prefixes warnings and errors; warnings go to *warnings.
+  // `path` prefixes warnings and errors; warnings go to *warnings. Textures view the model's
+  // decoded images: `model` must outlive this.
   GltfMaterials(const tinygltf::Model& model, std::string path, std::vector<std::string>* warnings);
 
   // The TEXCOORD set a triangle of this glTF material (-1: none, the default material) needs for

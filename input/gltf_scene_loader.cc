@@ -1,21 +1,19 @@
-// LoadGltfScene: tinygltf parses and decodes images; the accessors are read through
-// gltf_accessor.h, the hierarchy through gltf_node_walk.h, the materials through gltf_material.h.
+// LoadGltfScene: tinygltf parses and decodes images (read through gltf_model_reader.h); the
+// accessors are read through gltf_accessor.h, the hierarchy through gltf_node_walk.h, the materials
+// through gltf_material.h.
 #include "input/gltf_scene_loader.h"
 
 #include <tiny_gltf.h>
 
 #include <cmath>
-#include <filesystem>
 #include <optional>
 #include <set>
-#include <sstream>
 
 #include "base/diagnostic.h"
-#include "base/file_extension.h"
-#include "base/text_file.h"
 #include "input/gltf_accessor.h"
 #include "input/gltf_light.h"
 #include "input/gltf_material.h"
+#include "input/gltf_model_reader.h"
 #include "input/gltf_node_walk.h"
 
 namespace radfarm {
@@ -26,75 +24,6 @@ constexpr uint64_t kMaxTriangles = uint64_t{1} << 26;  // the job bundle's face 
 // Extensions read here; others in extensionsUsed give a warning, in extensionsRequired an error.
 const std::set<std::string> kReadExtensions = {"KHR_materials_emissive_strength",
                                                "KHR_lights_punctual"};
-
-std::string FirstLine(const std::string& text) {
-  std::string line = text.substr(0, text.find('\n'));
-  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-  return line;
-}
-
-bool IsBinary(const std::string& path) { return LowercaseExtension(path) == ".glb"; }
-
-// tinygltf reads the scene file and every buffer and image file a .gltf references through this
-// callback: each read goes through ReadTextFile (regular files only, size checked before reading)
-// against what is left of the scene's byte budget, so no file, and no number of references to
-// files, makes the reader hold more than the budget.
-struct BoundedReads {
-  uint64_t remaining_bytes;
-  std::optional<Error> error;  // the first refused read, reported as it is
-};
-
-bool ReadWithinBudget(std::vector<unsigned char>* out, std::string* err,
-                      const std::string& filepath, void* user_data) {
-  auto* reads = static_cast<BoundedReads*>(user_data);
-  Result<std::string> bytes = ReadTextFile(filepath, reads->remaining_bytes);
-  if (!bytes) {
-    if (!reads->error) reads->error = Error{bytes.error()};
-    *err += bytes.error() + "\n";
-    return false;
-  }
-  reads->remaining_bytes -= bytes->size();
-  out->assign(bytes->begin(), bytes->end());
-  return true;
-}
-
-// tinygltf's own check opens the file, which waits forever for a FIFO's writer: stat instead, and
-// let ReadWithinBudget refuse what is not a regular file.
-bool ExistsWithoutOpening(const std::string& path, void*) {
-  std::error_code ec;
-  return std::filesystem::exists(path, ec);
-}
-
-Result<tinygltf::Model> ReadModel(const std::string& path, uint64_t max_file_bytes,
-                                  std::vector<std::string>* warnings) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return ErrorAt(path, 0, "cannot open: no such file");
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    return ErrorAt(path, 0, "cannot open: not a regular file");
-  }
-  tinygltf::TinyGLTF loader;
-  BoundedReads reads{max_file_bytes, std::nullopt};
-  loader.SetFsCallbacks({&ExistsWithoutOpening, &tinygltf::ExpandFilePath, &ReadWithinBudget,
-                         &tinygltf::WriteWholeFile, &reads});
-  tinygltf::Model model;
-  std::string err, warn;
-  const bool ok = IsBinary(path) ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                                 : loader.LoadASCIIFromFile(&model, &err, &warn, path);
-  std::istringstream lines(warn);
-  for (std::string line; std::getline(lines, line);) {
-    if (!line.empty()) warnings->push_back(WarningAt(path, 0, line));
-  }
-  if (!ok) {
-    if (reads.error) {
-      // The scene file itself names its own size; a referenced file is named after the scene.
-      if (reads.error->message.rfind(path + ":", 0) == 0) return *reads.error;
-      return ErrorAt(path, 0, "cannot read a referenced file: " + reads.error->message);
-    }
-    const std::string why = FirstLine(err);
-    return ErrorAt(path, 0, "not a valid glTF file: " + (why.empty() ? "unreadable" : why));
-  }
-  return model;
-}
 
 Status CheckExtensions(const std::string& path, const tinygltf::Model& model,
                        std::vector<std::string>* warnings) {
@@ -371,10 +300,12 @@ Status CheckSomethingEmits(const std::string& path, const tinygltf::Model& model
 
 }  // namespace
 
-Result<InputScene> LoadGltfScene(const std::string& path, uint64_t max_file_bytes) {
+Result<InputScene> LoadGltfScene(const std::string& path, uint64_t max_file_bytes,
+                                 uint64_t max_texture_bytes) {
   InputScene scene;
   scene.path = path;
-  Result<tinygltf::Model> model = ReadModel(path, max_file_bytes, &scene.warnings);
+  Result<tinygltf::Model> model =
+      ReadGltfModel(path, max_file_bytes, max_texture_bytes, &scene.warnings);
   RADFARM_RETURN_IF_ERROR(model);
   RADFARM_RETURN_IF_ERROR(CheckExtensions(path, *model, &scene.warnings));
   if (model->scenes.empty()) return ErrorAt(path, 0, "no scene");

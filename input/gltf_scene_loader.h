@@ -19,11 +19,13 @@ namespace radfarm {
 // range, non-finite coordinates, bad factors, "nothing to light". Unsupported features that
 // change little (alphaMode, skins, KHR_lights_punctual lamps) give warnings.
 //
-// The scene file and the buffer and image files a .gltf references are read only if they are
-// regular files, and together they may hold at most `max_file_bytes`: each is refused from its size
-// before it is read once the files before it have used up the rest ("path: the file is N bytes,
-// over the limit of M bytes", M what is left).
+// The scene file and the buffer and image files it names are read as gltf_model_reader.h says:
+// only regular files inside the scene's own directory tree, named by relative uris, together at
+// most `max_file_bytes` ("path: the file is N bytes, over the limit of M bytes", M what is left).
+// Images are bounded before they are decoded, by `max_texture_bytes` for all of them together or,
+// when it is 0, by kDefaultMaxTexturePixels each (gltf_model_reader.h).
 Result<InputScene> LoadGltfScene(const std::string& path,
-                                 uint64_t max_file_bytes = kDefaultMaxInputFileBytes);
+                                 uint64_t max_file_bytes = kDefaultMaxInputFileBytes,
+                                 uint64_t max_texture_bytes = 0);
 
 }  // namespace radfarm

@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "base/diagnostic.h"
 #include "base/text_file.h"
 
 namespace radfarm {
@@ -24,28 +25,64 @@ void TrimNames(size_t first, std::vector<tinyobj::material_t>* materials,
 
 }  // namespace
 
+MtlLibraryReader::MtlLibraryReader(const std::string& obj_path, std::vector<ObjNamedLine> libraries,
+                                   uint64_t max_file_bytes)
+    : obj_path_(obj_path),
+      directory_(std::filesystem::path(obj_path).parent_path()),
+      scene_(obj_path),
+      libraries_(std::move(libraries)),
+      max_file_bytes_(max_file_bytes) {}
+
+uint32_t MtlLibraryReader::LibraryLine(const std::string& name) const {
+  for (const ObjNamedLine& library : libraries_) {
+    if (library.name == name) return library.line;
+  }
+  return 0;  // a name tinyobjloader unescaped ("a\ b.mtl")
+}
+
+Status MtlLibraryReader::CheckTextureFiles(const std::string& mtl_path,
+                                           const std::filesystem::path& mtl_file,
+                                           const MtlLineIndex& index) const {
+  for (const MtlFileReference& file : index.files) {
+    Result<std::filesystem::path> target = scene_.Resolve(file.name, mtl_file.parent_path());
+    if (!target) {
+      return ErrorAt(mtl_path, file.line, file.keyword + " '" + file.name + "' " + target.error());
+    }
+  }
+  return Ok{};
+}
+
 bool MtlLibraryReader::operator()(const std::string& name,
                                   std::vector<tinyobj::material_t>* materials,
                                   std::map<std::string, int>* material_map, std::string* /*warn*/,
                                   std::string* /*err*/) {
   // tinyobjloader's own messages carry no file name; ours come from IndexMtlLines and the loader.
   if (error_ || !requested_.insert(name).second) return false;
+  Result<std::filesystem::path> target = scene_.Resolve(name);
+  if (!target) {
+    error_ = ErrorAt(obj_path_, LibraryLine(name), "mtllib '" + name + "' " + target.error());
+    return false;
+  }
   const std::string path = (directory_ / name).string();
-  Result<std::string> text = ReadTextFile(path, max_file_bytes_);
+  std::error_code ec;
+  // A missing library is a warning (the scene may still light); a FIFO or device is an error.
+  if (!std::filesystem::exists(*target, ec)) {
+    missing_.push_back(name);
+    return false;
+  }
+  Result<std::string> text = ReadTextFile(target->string(), max_file_bytes_);
   if (!text) {
-    std::error_code ec;
-    // A missing library is a warning (the scene may still light); `mtllib /dev/zero` is an error.
-    if (!std::filesystem::exists(path, ec)) {
-      missing_.push_back(name);
-    } else {
-      error_ = Error{text.error()};
-    }
+    error_ = Error{text.error()};
     return false;
   }
   BlankComments(&*text);
   Result<MtlLineIndex> index = IndexMtlLines(path, *text);
   if (!index) {
     error_ = Error{index.error()};
+    return false;
+  }
+  if (Status files = CheckTextureFiles(path, *target, *index); !files) {
+    error_ = Error{files.error()};
     return false;
   }
   warnings_.insert(warnings_.end(), index->warnings.begin(), index->warnings.end());

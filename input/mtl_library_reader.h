@@ -1,6 +1,7 @@
 // Supplies tinyobjloader with the MTL files an OBJ names (`mtllib`), read from the OBJ's directory
 // through ReadTextFile and IndexMtlLines, and remembers where each material came from so that
-// material errors can name the MTL file and line.
+// material errors can name the MTL file and line. The MTL files, and the texture maps they name,
+// must lie inside the OBJ's directory tree (scene_directory.h); one that does not is an error.
 #pragma once
 
 #include <tiny_obj_loader.h>
@@ -14,6 +15,8 @@
 
 #include "base/result.h"
 #include "input/mtl_line_index.h"
+#include "input/obj_line_index.h"
+#include "input/scene_directory.h"
 
 namespace radfarm {
 
@@ -24,9 +27,10 @@ struct MaterialOrigin {
 
 class MtlLibraryReader : public tinyobj::MaterialReader {
  public:
-  // Each MTL file may be at most `max_file_bytes` (ReadTextFile).
-  MtlLibraryReader(std::filesystem::path directory, uint64_t max_file_bytes)
-      : directory_(std::move(directory)), max_file_bytes_(max_file_bytes) {}
+  // `obj_path`: the OBJ, as given; `libraries`: its `mtllib` names and lines, for messages
+  // (ObjLineIndex). Each MTL file may be at most `max_file_bytes` (ReadTextFile).
+  MtlLibraryReader(const std::string& obj_path, std::vector<ObjNamedLine> libraries,
+                   uint64_t max_file_bytes);
 
   // Called by tinyobjloader once per file named by `mtllib`. Always returns false: tinyobjloader
   // stops at the first file of a `mtllib` line that loads, but the OBJ specification loads them
@@ -38,7 +42,9 @@ class MtlLibraryReader : public tinyobj::MaterialReader {
   // Where each of tinyobjloader's materials was defined, by material id.
   const std::vector<MaterialOrigin>& origins() const { return origins_; }
   // `mtllib` names that do not exist, as written in the OBJ. One that exists but cannot be used
-  // (not a regular file, over the size limit, unreadable) is an error().
+  // (outside the OBJ's directory tree, not a regular file, over the size limit, unreadable) is an
+  // error(), as is a texture map outside the tree ("a.mtl:3: map_Kd '/etc/passwd' is an absolute
+  // path; ...").
   const std::vector<std::string>& missing() const { return missing_; }
   // Warnings from the MTL files, already prefixed with their names.
   const std::vector<std::string>& warnings() const { return warnings_; }
@@ -46,7 +52,14 @@ class MtlLibraryReader : public tinyobj::MaterialReader {
   const std::optional<Error>& error() const { return error_; }
 
  private:
-  std::filesystem::path directory_;
+  Status CheckTextureFiles(const std::string& mtl_path, const std::filesystem::path& mtl_file,
+                           const MtlLineIndex& index) const;
+  uint32_t LibraryLine(const std::string& name) const;
+
+  std::string obj_path_;
+  std::filesystem::path directory_;  // the OBJ's, as given: MTL paths in messages
+  SceneDirectory scene_;
+  std::vector<ObjNamedLine> libraries_;
   uint64_t max_file_bytes_;
   std::set<std::string> requested_;
   std::vector<MaterialOrigin> origins_;

@@ -4,7 +4,6 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
-#include <filesystem>
 #include <map>
 #include <set>
 #include <sstream>
@@ -225,7 +224,7 @@ Result<InputScene> LoadObjScene(const std::string& path, uint64_t max_file_bytes
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
   std::string warn, err;
-  MtlLibraryReader reader(std::filesystem::path(path).parent_path(), max_file_bytes);
+  MtlLibraryReader reader(path, index->material_libraries, max_file_bytes);
   std::istringstream stream(*text);
   const bool parsed = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &stream, &reader,
                                        /*triangulate=*/false, /*default_vcols_fallback=*/false);

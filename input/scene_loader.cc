@@ -13,7 +13,8 @@ bool IsSceneFile(const std::string& path) {
   return ext == ".obj" || ext == ".gltf" || ext == ".glb";
 }
 
-Result<InputScene> LoadScene(const std::string& path, uint64_t max_file_bytes) {
+Result<InputScene> LoadScene(const std::string& path, uint64_t max_file_bytes,
+                             uint64_t max_texture_bytes) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   // A device, FIFO or directory: ReadTextFile names what it is without reading a byte.
@@ -24,7 +25,8 @@ Result<InputScene> LoadScene(const std::string& path, uint64_t max_file_bytes) {
   if (ext == ".obj") return LoadObjScene(path, max_file_bytes);
   // tinygltf reads through LoadGltfScene's bounded reads, which refuse an oversized file (and
   // oversized buffers and images it references) from their size first.
-  if (ext == ".gltf" || ext == ".glb") return LoadGltfScene(path, max_file_bytes);
+  if (ext == ".gltf" || ext == ".glb")
+    return LoadGltfScene(path, max_file_bytes, max_texture_bytes);
   return ErrorAt(path, 0, "not a scene: expected a .obj, .gltf or .glb file");
 }
 

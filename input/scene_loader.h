@@ -15,7 +15,10 @@ bool IsSceneFile(const std::string& path);
 
 // LoadObjScene or LoadGltfScene; any other extension is an error naming the file. The scene file
 // must be a regular file of at most `max_file_bytes` (decided from its size, before reading).
+// `max_texture_bytes` bounds a glTF's decoded images together (--max-memory; 0: each image at
+// most kDefaultMaxTexturePixels pixels); OBJ scenes read no images.
 Result<InputScene> LoadScene(const std::string& path,
-                             uint64_t max_file_bytes = kDefaultMaxInputFileBytes);
+                             uint64_t max_file_bytes = kDefaultMaxInputFileBytes,
+                             uint64_t max_texture_bytes = 0);
 
 }  // namespace radfarm

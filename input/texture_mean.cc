@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace radfarm {
 namespace {
@@ -31,48 +32,51 @@ uint32_t Wrap(double u, uint32_t size, TextureWrap wrap) {
   return static_cast<uint32_t>(std::clamp<int64_t>(i, 0, int64_t{size} - 1));
 }
 
-const Rgb& Texel(const LinearTexture& t, double u, double v) {
-  const uint32_t x = Wrap(u, t.width, t.wrap_s);
-  const uint32_t y = Wrap(v, t.height, t.wrap_t);
-  return t.texels[static_cast<size_t>(y) * t.width + x];
+// sRGB code value to linear, one table per bit depth: 65536 pow() calls at most, once.
+const std::vector<double>& LinearTable(int bits) {
+  static const auto make = [](int levels) {
+    std::vector<double> table(levels);
+    for (int i = 0; i < levels; ++i) table[i] = SrgbToLinear(i / double(levels - 1));
+    return table;
+  };
+  static const std::vector<double> eight = make(256);
+  static const std::vector<double> sixteen = make(65536);
+  return bits == 8 ? eight : sixteen;
+}
+
+Rgb TexelAt(const LinearTexture& t, double u, double v) {
+  return t.Texel(Wrap(u, t.width, t.wrap_s), Wrap(v, t.height, t.wrap_t));
 }
 
 }  // namespace
 
-LinearTexture DecodeSrgbTexture(const std::vector<unsigned char>& bytes, uint32_t width,
-                                uint32_t height, int channels, int bits) {
-  LinearTexture out;
-  out.width = width;
-  out.height = height;
-  const size_t count = static_cast<size_t>(width) * height;
-  const size_t step = static_cast<size_t>(channels) * (bits / 8);
-  if (channels < 1 || channels > 4 || (bits != 8 && bits != 16) || bytes.size() < count * step) {
-    out.width = out.height = 0;
-    return out;
+bool LinearTexture::Readable() const {
+  if (width == 0 || height == 0 || channels < 1 || channels > 4 || (bits != 8 && bits != 16)) {
+    return false;
   }
-  // A table per possible value: 65536 pow() calls at most, instead of one per texel channel.
-  const int levels = bits == 8 ? 256 : 65536;
-  std::vector<double> linear(levels);
-  for (int i = 0; i < levels; ++i) linear[i] = SrgbToLinear(i / double(levels - 1));
-  auto channel = [&](size_t texel, int k) {
-    const unsigned char* p = bytes.data() + texel * step + static_cast<size_t>(k) * (bits / 8);
-    return linear[bits == 8 ? p[0] : (p[0] | p[1] << 8)];  // 16-bit: little-endian from stb
+  const uint64_t needed = uint64_t{width} * height * static_cast<uint64_t>(channels) * (bits / 8);
+  return pixels.size() >= needed;
+}
+
+Rgb LinearTexture::Texel(uint32_t x, uint32_t y) const {
+  const std::vector<double>& linear = LinearTable(bits);
+  const size_t bytes = static_cast<size_t>(bits / 8);
+  const unsigned char* p =
+      pixels.data() + (static_cast<size_t>(y) * width + x) * static_cast<size_t>(channels) * bytes;
+  auto channel = [&](int k) {
+    const unsigned char* c = p + static_cast<size_t>(k) * bytes;
+    return linear[bits == 8 ? c[0] : (c[0] | c[1] << 8)];  // 16-bit: little-endian from stb
   };
-  out.texels.resize(count);
-  for (size_t i = 0; i < count; ++i) {
-    if (channels < 3) {
-      const double g = channel(i, 0);
-      out.texels[i] = Rgb(g, g, g);
-    } else {
-      out.texels[i] = Rgb(channel(i, 0), channel(i, 1), channel(i, 2));
-    }
+  if (channels < 3) {
+    const double g = channel(0);
+    return Rgb(g, g, g);
   }
-  return out;
+  return Rgb(channel(0), channel(1), channel(2));
 }
 
 Rgb MeanOverTriangle(const LinearTexture& texture, const std::array<double, 2>& a,
                      const std::array<double, 2>& b, const std::array<double, 2>& c) {
-  if (texture.width == 0 || texture.height == 0) return Rgb(0, 0, 0);
+  if (!texture.Readable()) return Rgb(0, 0, 0);
   // The triangle's area in texels decides n: n^2 samples for about that many texels.
   const double area = 0.5 *
                       std::fabs((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])) *
@@ -87,7 +91,7 @@ Rgb MeanOverTriangle(const LinearTexture& texture, const std::array<double, 2>& 
   auto add = [&](double s, double t) {  // s, t: barycentric weights of b and c
     const double u = a[0] + s * (b[0] - a[0]) + t * (c[0] - a[0]);
     const double v = a[1] + s * (b[1] - a[1]) + t * (c[1] - a[1]);
-    sum += Texel(texture, u, v);
+    sum += TexelAt(texture, u, v);
     ++samples;
   };
   for (uint32_t i = 0; i < n; ++i) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 namespace radfarm {
@@ -86,6 +87,17 @@ TEST(ReadTextFileTest, RefusesAFileOverTheLimitFromItsSize) {
   ASSERT_FALSE(text.ok());
   EXPECT_EQ(text.error(), path + ": the file is 10 bytes, over the limit of 9 bytes");
   std::remove(path.c_str());
+}
+
+// /proc/self/status is a regular file whose size reads 0, yet holds hundreds of bytes: the limit
+// holds for the bytes actually read, not for the size.
+TEST(ReadTextFileTest, HoldsTheLimitOnTheBytesReadWhenTheSizeReadsZero) {
+  const std::string path = "/proc/self/status";
+  ASSERT_EQ(std::filesystem::file_size(path), 0u);
+  Result<std::string> text = ReadTextFile(path, 16);
+  ASSERT_FALSE(text.ok());
+  EXPECT_EQ(text.error(), path + ": the file grew past the limit of 16 bytes while it was read");
+  EXPECT_GT(ReadTextFile(path, 1 << 20)->size(), 16u);
 }
 
 }  // namespace

@@ -25,7 +25,9 @@ void Put32(std::vector<uint8_t>* out, uint32_t v) {
   for (int k = 0; k < 4; ++k) out->push_back(static_cast<uint8_t>(v >> (8 * k)));
 }
 
-std::vector<uint8_t> Bmp(int width, int height, const std::vector<uint8_t>& rgb) {
+}  // namespace
+
+std::vector<uint8_t> BmpImage(int width, int height, const std::vector<uint8_t>& rgb) {
   const int row = (3 * width + 3) / 4 * 4;
   std::vector<uint8_t> out = {'B', 'M'};
   Put32(&out, 54 + row * height);
@@ -46,7 +48,17 @@ std::vector<uint8_t> Bmp(int width, int height, const std::vector<uint8_t>& rgb)
   return out;
 }
 
-}  // namespace
+std::vector<uint8_t> PngHeaderOnly(uint32_t width, uint32_t height, int bit_depth,
+                                   int colour_type) {
+  std::vector<uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n',
+                              0,    0,   0,   13,  'I',  'H',  'D',  'R'};
+  for (uint32_t v : {width, height}) {
+    for (int k = 3; k >= 0; --k) out.push_back(static_cast<uint8_t>(v >> (8 * k)));
+  }
+  out.insert(out.end(), {static_cast<uint8_t>(bit_depth), static_cast<uint8_t>(colour_type), 0, 0,
+                         0, 0, 0, 0, 0});  // compression, filter, interlace, CRC (unchecked)
+  return out;
+}
 
 GltfFixture::GltfFixture() {
   json_ = {{"asset", {{"version", "2.0"}}},
@@ -114,7 +126,8 @@ int GltfFixture::AddNode(const nlohmann::json& node, bool root) {
 }
 
 int GltfFixture::AddTexture(int width, int height, const std::vector<uint8_t>& rgb) {
-  json_["images"].push_back({{"uri", "data:image/bmp;base64," + Base64(Bmp(width, height, rgb))}});
+  json_["images"].push_back(
+      {{"uri", "data:image/bmp;base64," + Base64(BmpImage(width, height, rgb))}});
   json_["textures"].push_back({{"source", json_["images"].size() - 1}});
   return static_cast<int>(json_["textures"].size()) - 1;
 }

@@ -37,6 +37,13 @@ class GltfFixture {
   std::vector<uint8_t> buffer_;
 };
 
+// A 24-bit BMP file of width x height pixels (RGB bytes, top row first).
+std::vector<uint8_t> BmpImage(int width, int height, const std::vector<uint8_t>& rgb);
+
+// A PNG of its header alone (signature and IHDR chunk), declaring width x height pixels of
+// `bit_depth` bits and PNG colour type `colour_type` (6: RGBA): a few bytes that claim any size.
+std::vector<uint8_t> PngHeaderOnly(uint32_t width, uint32_t height, int bit_depth, int colour_type);
+
 // A floor quad (y = 0, 1 m square, facing +y) and a small emissive quad above it facing down, as
 // two meshes under their own nodes: the smallest scene that loads.
 GltfFixture FloorAndLight();

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "input/input_scene.h"
+#include "testing/temp_dir.h"
 #include "tests/input/test_files.h"
 
 namespace radfarm {
@@ -81,8 +82,9 @@ TEST(LoadObjSceneTest, FacesBeforeAnyUsemtlAreGreyWithAWarning) {
 }
 
 TEST(LoadObjSceneTest, KeepsZeroAreaFacesForMeshToDrop) {
+  WriteScratchFile("light.mtl", testing::ReadFile(DataPath("light.mtl")));
   const std::string path =
-      WriteScratchFile("flat.obj", "mtllib " + DataPath("light.mtl") +
+      WriteScratchFile("flat.obj", std::string("mtllib light.mtl") +
                                        "\nusemtl light\nv 0 0 0\nv 1 0 0\nv 2 0 0\n"
                                        "f 1 2 3\nf 1 1 2\n");
   Result<InputScene> scene = LoadObjScene(path);
@@ -305,8 +307,9 @@ TEST(LoadObjSceneTest, NoFaces) {
 }
 
 TEST(LoadObjSceneTest, IgnoredStatementsWarnOnce) {
+  WriteScratchFile("light.mtl", testing::ReadFile(DataPath("light.mtl")));
   const std::string path =
-      WriteScratchFile("lines.obj", "mtllib " + DataPath("light.mtl") +
+      WriteScratchFile("lines.obj", std::string("mtllib light.mtl") +
                                         "\nusemtl light\nv 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\n"
                                         "f 1 2 3\n");
   Result<InputScene> scene = LoadObjScene(path);
