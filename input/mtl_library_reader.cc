@@ -40,18 +40,6 @@ uint32_t MtlLibraryReader::LibraryLine(const std::string& name) const {
   return 0;  // a name tinyobjloader unescaped ("a\ b.mtl")
 }
 
-Status MtlLibraryReader::CheckTextureFiles(const std::string& mtl_path,
-                                           const std::filesystem::path& mtl_file,
-                                           const MtlLineIndex& index) const {
-  for (const MtlFileReference& file : index.files) {
-    Result<std::filesystem::path> target = scene_.Resolve(file.name, mtl_file.parent_path());
-    if (!target) {
-      return ErrorAt(mtl_path, file.line, file.keyword + " '" + file.name + "' " + target.error());
-    }
-  }
-  return Ok{};
-}
-
 bool MtlLibraryReader::operator()(const std::string& name,
                                   std::vector<tinyobj::material_t>* materials,
                                   std::map<std::string, int>* material_map, std::string* /*warn*/,
@@ -79,10 +67,6 @@ bool MtlLibraryReader::operator()(const std::string& name,
   Result<MtlLineIndex> index = IndexMtlLines(path, *text);
   if (!index) {
     error_ = Error{index.error()};
-    return false;
-  }
-  if (Status files = CheckTextureFiles(path, *target, *index); !files) {
-    error_ = Error{files.error()};
     return false;
   }
   warnings_.insert(warnings_.end(), index->warnings.begin(), index->warnings.end());

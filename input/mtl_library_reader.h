@@ -43,8 +43,8 @@ class MtlLibraryReader : public tinyobj::MaterialReader {
   const std::vector<MaterialOrigin>& origins() const { return origins_; }
   // `mtllib` names that do not exist, as written in the OBJ. One that exists but cannot be used
   // (outside the OBJ's directory tree, not a regular file, over the size limit, unreadable) is an
-  // error(), as is a texture map outside the tree ("a.mtl:3: map_Kd '/etc/passwd' is an absolute
-  // path; ...").
+  // error(). Texture maps are never read (IndexMtlLines warns they are ignored), so their paths
+  // are not checked: an exporter's absolute texture path does not refuse the scene.
   const std::vector<std::string>& missing() const { return missing_; }
   // Warnings from the MTL files, already prefixed with their names.
   const std::vector<std::string>& warnings() const { return warnings_; }
@@ -52,8 +52,6 @@ class MtlLibraryReader : public tinyobj::MaterialReader {
   const std::optional<Error>& error() const { return error_; }
 
  private:
-  Status CheckTextureFiles(const std::string& mtl_path, const std::filesystem::path& mtl_file,
-                           const MtlLineIndex& index) const;
   uint32_t LibraryLine(const std::string& name) const;
 
   std::string obj_path_;

@@ -70,10 +70,6 @@ Result<MtlLineIndex> IndexMtlLines(const std::string& path, std::string_view tex
     } else if (words[0] == "Ka") {
       if (current != nullptr) current->ka = line;
     } else if (IsTextureStatement(words[0]) || IsTransparency(words)) {
-      // Options come first (`map_Kd -clamp on tiles.png`), the file last.
-      if (IsTextureStatement(words[0]) && words.size() > 1) {
-        index.files.push_back({std::string(words[0]), std::string(words.back()), line});
-      }
       Ignored& kind = ignored[std::string(words[0])];
       if (kind.count++ == 0) kind.first_line = line;
     }

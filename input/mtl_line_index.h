@@ -25,19 +25,9 @@ struct MtlMaterialLines {
   uint32_t ka = 0;      // line of its `Ka`, 0 if none (named by the emission hint)
 };
 
-// A file an MTL statement names (`map_Kd tiles.png`): the statement's last word.
-struct MtlFileReference {
-  std::string keyword;  // "map_Kd", "bump", ...
-  std::string name;
-  uint32_t line = 0;
-};
-
 struct MtlLineIndex {
   // The first definition of each name, the one tinyobjloader keeps.
   std::map<std::string, MtlMaterialLines, std::less<>> materials;
-  // Every texture map's file, in file order: never read, but held to the scene's directory
-  // (scene_directory.h) like every file a scene names.
-  std::vector<MtlFileReference> files;
   std::vector<std::string> warnings;  // already prefixed with the file name
 };
 
