@@ -27,7 +27,7 @@ BatchBounds BoundsFor(const BatchAssignmentMsg& assignment, const RaySampler& sa
 
 Status ValidateBatchResult(const BatchResultMsg& result, const BatchBounds& bounds) {
   // Sorted ids, non-zero weights, finite compute time.
-  if (Status ok = CheckMessage(result); !ok) return Fail(result, ok.error());
+  if (Status ok = CheckResultEntry(result); !ok) return Fail(result, ok.error());
   if (result.hits.size() > bounds.ray_count) {
     return Fail(result,
                 Str(result.hits.size()) + " hit patches from " + Str(bounds.ray_count) + " rays");

@@ -86,9 +86,9 @@ struct HeartbeatMsg {          // both ways
   bool operator==(const HeartbeatMsg&) const = default;
 };
 
-// Version 1 only (a lease of one batch); version 2 sends LeaseAssignmentMsg. The agent still
-// describes each batch it holds by one (protocol/batch_convert.h, BatchOf).
-struct BatchAssignmentMsg {  // master -> agent
+// One batch of a LeaseAssignmentMsg with its job's fields: how the agent records each batch it
+// holds (protocol/batch_convert.h, BatchOf). Not a message of its own.
+struct BatchAssignmentMsg {
   LeaseRef lease;
   uint32_t round = 0;
   uint32_t shooter = 0;  // < patch_count
@@ -103,8 +103,8 @@ struct BatchAssignmentMsg {  // master -> agent
   bool operator==(const BatchAssignmentMsg&) const = default;
 };
 
-// Version 1 only as a message; in version 2 each entry of a LeaseResultMsg is one.
-struct BatchResultMsg {  // agent -> master
+// One batch's result: an entry of a LeaseResultMsg. Not a message of its own.
+struct BatchResultMsg {
   LeaseRef lease;
   std::vector<PatchHits> hits;  // strictly increasing patch id, no zero weights
   uint64_t escaped_weight = 0;
@@ -199,11 +199,12 @@ struct CloseMsg {  // both ways, any state; the sender closes the connection aft
   bool operator==(const CloseMsg&) const = default;
 };
 
-// In the order of the schema's Payload union: index() + 1 is the wire type.
-using Message = std::variant<HelloMsg, ChallengeMsg, ProofMsg, WelcomeMsg, HeartbeatMsg,
-                             BatchAssignmentMsg, BatchResultMsg, LeaseReturnMsg, CancelMsg,
-                             SceneRequestMsg, SceneChunkMsg, SceneUnavailableMsg, DrainMsg,
-                             CloseMsg, LeaseAssignmentMsg, LeaseResultMsg, LeaseRevokeMsg>;
+// In the order of the schema's Payload union, less its retired slots (the codec takes each
+// message's wire type from its table, wire_encode.cc).
+using Message =
+    std::variant<HelloMsg, ChallengeMsg, ProofMsg, WelcomeMsg, HeartbeatMsg, LeaseReturnMsg,
+                 CancelMsg, SceneRequestMsg, SceneChunkMsg, SceneUnavailableMsg, DrainMsg, CloseMsg,
+                 LeaseAssignmentMsg, LeaseResultMsg, LeaseRevokeMsg>;
 
 // A verified incoming frame.
 struct DecodedFrame {
@@ -212,8 +213,7 @@ struct DecodedFrame {
 };
 
 std::string_view MessageName(const Message& message);
-// Whether `message` exists in protocol `version` (BatchAssignment and BatchResult only in 1, the
-// Lease messages from 2 on).
+// Whether `message` exists in protocol `version` (the Lease messages from 2 on).
 bool InVersion(const Message& message, uint16_t version);
 std::string_view CloseCodeName(CloseCode code);
 

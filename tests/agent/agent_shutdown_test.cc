@@ -22,7 +22,7 @@ class AgentShutdownTest : public ::testing::Test {
   }
 
   // A master that heartbeats every 250 ms and sends `after_welcome` to every agent that joins.
-  void StartMaster(std::vector<protocol::Message> after_welcome) {
+  void StartMaster(std::vector<Outgoing> after_welcome) {
     FakeMasterOptions options = Heartbeats(250, true);
     options.after_welcome = std::move(after_welcome);
     master_.reset();
@@ -49,7 +49,7 @@ class AgentShutdownTest : public ::testing::Test {
   }
 
   void Send(const std::vector<protocol::BatchAssignmentMsg>& leases) {
-    master_->Send(std::vector<protocol::Message>(leases.begin(), leases.end()));
+    master_->Send(std::vector<Outgoing>(leases.begin(), leases.end()));
   }
 
   // Waits until a heartbeat reports `held` leases.
@@ -104,7 +104,7 @@ TEST_F(AgentShutdownTest, SigtermReturnsEveryLeaseEvenWithABatchStillRunning) {
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
   EXPECT_EQ(Returned(protocol::LeaseReturnReason::kDraining), Refs(leases));
   EXPECT_EQ(master_->Snapshot().All<protocol::LeaseReturnMsg>().size(), 1u);
-  EXPECT_TRUE(master_->Snapshot().All<protocol::BatchResultMsg>().empty());
+  EXPECT_TRUE(master_->Snapshot().results.empty());
   ExpectClosedWithShutdown();
   EXPECT_NE(agent->Log().find("exiting without waiting for running batches"), std::string::npos)
       << agent->Log();
@@ -119,7 +119,7 @@ TEST_F(AgentShutdownTest, SigtermReturnsResultsHeldBySlowdown) {
   agent->Signal(SIGTERM);
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
   EXPECT_EQ(Returned(protocol::LeaseReturnReason::kDraining), Refs(leases));
-  EXPECT_TRUE(master_->Snapshot().All<protocol::BatchResultMsg>().empty());
+  EXPECT_TRUE(master_->Snapshot().results.empty());
   ExpectClosedWithShutdown();
   // Nothing was running: the clean exit path.
   EXPECT_NE(agent->Log().find("INFO  agent: exited"), std::string::npos) << agent->Log();
@@ -132,7 +132,7 @@ TEST_F(AgentShutdownTest, DrainFinishLeasesWithExitSendsEveryResultThenCloses) {
   master_->Send(protocol::DrainMsg{protocol::DrainMode::kFinishLeases, /*exit_after=*/true});
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
   const Record seen = master_->Snapshot();
-  EXPECT_EQ(seen.All<protocol::BatchResultMsg>().size(), 4u);
+  EXPECT_EQ(seen.results.size(), 4u);
   EXPECT_TRUE(seen.All<protocol::LeaseReturnMsg>().empty());
   ExpectClosedWithShutdown();
   // The Close comes after the last result.

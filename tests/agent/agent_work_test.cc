@@ -52,7 +52,7 @@ class AgentWorkTest : public ::testing::Test {
                                                      const AgentProcess& agent) {
     std::optional<protocol::BatchResultMsg> found;
     const bool got = master_.WaitFor([&](const Record& r) {
-      for (const auto& result : r.All<protocol::BatchResultMsg>()) {
+      for (const auto& result : r.results) {
         if (result.lease == lease) found = result;
       }
       return found.has_value();
@@ -138,7 +138,7 @@ TEST_F(AgentWorkTest, ResultsEqualBatchTracerOnTheSameBatchBitForBit) {
     assignments.push_back(
         Assign(job, 11, /*shooter=*/17, /*first_ray=*/grid ? 300 : 123456, grid ? 276 : 2000));
   }
-  master_.Send(std::vector<protocol::Message>(assignments.begin(), assignments.end()));
+  master_.Send(std::vector<Outgoing>(assignments.begin(), assignments.end()));
   for (const auto& assignment : assignments) {
     std::optional<protocol::BatchResultMsg> result = WaitResult(assignment.lease, *agent);
     ASSERT_TRUE(result);
@@ -165,7 +165,7 @@ TEST_F(AgentWorkTest, CancelDropsTheJobsQueuedAndRunningWork) {
 
   // Each of job 1's batches takes far longer than the agent needs to read the rest of the burst,
   // so none can finish before the Cancel is read.
-  std::vector<protocol::Message> burst;
+  std::vector<Outgoing> burst;
   for (uint64_t batch = 1; batch <= 20; ++batch) {
     burst.push_back(Assign(Job(1), batch, static_cast<uint32_t>(batch), 0, 2000000));
   }
@@ -183,7 +183,7 @@ TEST_F(AgentWorkTest, CancelDropsTheJobsQueuedAndRunningWork) {
     const auto beats = r.All<protocol::HeartbeatMsg>();
     return !beats.empty() && beats.back().leases_held == 0;
   }));
-  for (const auto& result : master_.Snapshot().All<protocol::BatchResultMsg>()) {
+  for (const auto& result : master_.Snapshot().results) {
     EXPECT_NE(result.lease.job_id, 1u) << "batch " << result.lease.batch_id;
   }
   EXPECT_TRUE(master_.Snapshot().All<protocol::LeaseReturnMsg>().empty());
@@ -209,7 +209,7 @@ TEST_F(AgentWorkTest, ALostConnectionDropsEveryLeaseAndDiscardsTheirResults) {
     const auto beats = r.All<protocol::HeartbeatMsg>();
     return !beats.empty() && beats.back().leases_held == 0;
   }));
-  EXPECT_TRUE(master_.Snapshot().All<protocol::BatchResultMsg>().empty()) << agent->Log();
+  EXPECT_TRUE(master_.Snapshot().results.empty()) << agent->Log();
   agent->Signal(SIGTERM);
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
 }
@@ -228,7 +228,7 @@ TEST_F(AgentWorkTest, AnUnknownSceneReturnsItsLeasesAsSceneUnavailable) {
   for (const auto& back : master_.Snapshot().All<protocol::LeaseReturnMsg>()) {
     EXPECT_EQ(back.reason, protocol::LeaseReturnReason::kSceneUnavailable);
   }
-  EXPECT_TRUE(master_.Snapshot().All<protocol::BatchResultMsg>().empty());
+  EXPECT_TRUE(master_.Snapshot().results.empty());
   agent->Signal(SIGTERM);
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
 }
@@ -329,7 +329,7 @@ TEST_F(AgentBigSceneTest, ASceneOfSeveralChunksIsFetchedOnce) {
   const uint64_t compressed = protocol::PackScene(blob_).compressed.size();
   ASSERT_GT(compressed, 2 * protocol::kMaxSceneChunkBytes);
   std::unique_ptr<AgentProcess> agent = StartAgent(2);
-  std::vector<protocol::Message> leases;
+  std::vector<Outgoing> leases;
   for (uint64_t batch = 1; batch <= 4; ++batch) {
     leases.push_back(Assign(Job(1), batch, static_cast<uint32_t>(batch * 1000), 0, 500));
   }
@@ -374,7 +374,7 @@ TEST_F(AgentManyPatchesTest, AResultFillingAFrameGoesOutBeforeTheLeasesLastBatch
       << agent->Log();
   // The running batch finishes, and its result is dropped rather than sent.
   ASSERT_TRUE(agent->WaitForLog("discarded the result of a lease no longer held")) << agent->Log();
-  for (const auto& sent : master_.Snapshot().All<protocol::BatchResultMsg>()) {
+  for (const auto& sent : master_.Snapshot().results) {
     EXPECT_NE(sent.lease, last.lease) << agent->Log();
   }
   agent->Signal(SIGTERM);

@@ -45,6 +45,8 @@ struct FakeMaster::Loop {
   void Deliver(Connection* c, const protocol::Message& message);
   void Refuse(Connection* c, const std::string& reason);
   void Write(Connection* c, const protocol::Message& message);
+  // A single batch goes out as a LeaseAssignment of that batch alone.
+  void WriteOutgoing(Connection* c, const Outgoing& outgoing);
   Connection* Newest();
   void DrainCommands();
 
@@ -148,7 +150,7 @@ void FakeMaster::Loop::OnFrame(Connection* c, std::span<const uint8_t> payload) 
       c->stream->CloseAfterFlush("the fake master closes the first connections");
       return;
     }
-    for (const protocol::Message& m : master->options_.after_welcome) Write(c, m);
+    for (const Outgoing& m : master->options_.after_welcome) WriteOutgoing(c, m);
     return;
   }
   if (accepted->deliver) Deliver(c, frame->message);
@@ -158,12 +160,10 @@ void FakeMaster::Loop::Deliver(Connection* c, const protocol::Message& message) 
   {
     std::lock_guard lock(master->mutex_);
     master->record_.received.push_back(message);
-    // Each batch of a LeaseResult is recorded as a BatchResultMsg too, right after it, so tests
-    // look results up by lease whichever frame carried them.
+    // Tests look results up by lease whichever frame carried them.
     if (const auto* results = std::get_if<protocol::LeaseResultMsg>(&message)) {
-      for (const protocol::BatchResultMsg& r : results->results) {
-        master->record_.received.push_back(r);
-      }
+      master->record_.results.insert(master->record_.results.end(), results->results.begin(),
+                                     results->results.end());
     }
   }
   if (std::holds_alternative<protocol::CloseMsg>(message)) {
@@ -203,12 +203,15 @@ void FakeMaster::Loop::Refuse(Connection* c, const std::string& reason) {
   c->stream->CloseAfterFlush(reason);
 }
 
-void FakeMaster::Loop::Write(Connection* c, const protocol::Message& message) {
-  // A BatchAssignmentMsg (version 1's message) goes out as a lease frame of that one batch.
-  if (const auto* one = std::get_if<protocol::BatchAssignmentMsg>(&message)) {
+void FakeMaster::Loop::WriteOutgoing(Connection* c, const Outgoing& outgoing) {
+  if (const auto* one = std::get_if<protocol::BatchAssignmentMsg>(&outgoing)) {
     Write(c, LeaseOf({*one}));
     return;
   }
+  Write(c, std::get<protocol::Message>(outgoing));
+}
+
+void FakeMaster::Loop::Write(Connection* c, const protocol::Message& message) {
   Result<std::vector<uint8_t>> frame = c->session.Encode(message);
   if (!frame) {
     std::lock_guard lock(master->mutex_);
@@ -267,7 +270,7 @@ void FakeMaster::AddScene(std::vector<uint8_t> blob) {
   scenes_[packed->hash] = std::move(packed);
 }
 
-void FakeMaster::Send(std::vector<protocol::Message> messages) {
+void FakeMaster::Send(std::vector<Outgoing> messages) {
   Post([this, messages = std::move(messages)] {
     Loop::Connection* c = loop_->Newest();
     if (c == nullptr) {
@@ -275,7 +278,7 @@ void FakeMaster::Send(std::vector<protocol::Message> messages) {
       record_.session_errors.push_back("Send: no authenticated agent");
       return;
     }
-    for (const protocol::Message& m : messages) loop_->Write(c, m);
+    for (const Outgoing& m : messages) loop_->WriteOutgoing(c, m);
   });
 }
 

@@ -139,9 +139,10 @@ TEST(ProtocolValidationTest, RealBatchesRoundTripAndValidate) {
     const uint64_t first = 100;
     const Batch batch{3, shooter, first, kind == SamplerKind::kGrid ? 200u : 5000u};
     const BatchAssignmentMsg assignment = MakeBatchAssignment(job, 11, 1, batch, 60000);
-    Result<DecodedFrame> sent = DecodeFrame(EncodeFrame(assignment));
+    Result<DecodedFrame> sent =
+        DecodeFrame(EncodeFrame(MakeLeaseAssignment(job, {{11, 1, batch}}, 60000)));
     ASSERT_TRUE(sent) << sent.error();
-    const auto& received = std::get<BatchAssignmentMsg>(sent->message);
+    const BatchAssignmentMsg received = BatchOf(std::get<LeaseAssignmentMsg>(sent->message), 0);
     EXPECT_TRUE(received == assignment);
     const Batch agent_batch = ToBatch(received);
     EXPECT_EQ(agent_batch.round, batch.round);
@@ -152,9 +153,9 @@ TEST(ProtocolValidationTest, RealBatchesRoundTripAndValidate) {
     const BatchResult result = runner.Run(agent_batch);
     EXPECT_GT(result.escaped_rays, 0u) << SamplerName(kind);
     Result<DecodedFrame> back =
-        DecodeFrame(EncodeFrame(MakeBatchResult(received.lease, result, 0.5)));
+        DecodeFrame(EncodeFrame(LeaseResultMsg{{MakeBatchResult(received.lease, result, 0.5)}}));
     ASSERT_TRUE(back) << back.error();
-    const auto& result_msg = std::get<BatchResultMsg>(back->message);
+    const BatchResultMsg& result_msg = std::get<LeaseResultMsg>(back->message).results.at(0);
     EXPECT_TRUE(ValidateBatchResult(result_msg, BoundsFor(assignment, sampler)))
         << ValidateBatchResult(result_msg, BoundsFor(assignment, sampler)).error();
     EXPECT_TRUE(ToBatchResult(result_msg) == result) << SamplerName(kind);

@@ -39,7 +39,7 @@ TEST(ProtocolCodecTest, DefaultValuedMessagesRoundTrip) {
       HeartbeatMsg{0, 0, 0},
       DrainMsg{DrainMode::kFinishLeases, false},
       CloseMsg{CloseCode::kNormal, ""},
-      BatchResultMsg{{}, {}, 0, 0, 0, 0, 0},
+      LeaseResultMsg{{BatchResultMsg{{}, {}, 0, 0, 0, 0, 0}}},
   };
   for (const Message& message : messages) {
     Result<DecodedFrame> decoded = DecodeFrame(EncodeFrame(message));
@@ -103,12 +103,12 @@ TEST(ProtocolCodecTest, VersionIsCarried) {
 }
 
 TEST(ProtocolCodecTest, MisalignedBufferDecodes) {
-  const std::vector<uint8_t> frame = EncodeFrame(SampleMessages()[6]);
+  const std::vector<uint8_t> frame = EncodeFrame(testing::SampleOf<LeaseResultMsg>());
   std::vector<uint8_t> shifted(frame.size() + 1);
   std::copy(frame.begin(), frame.end(), shifted.begin() + 1);
   Result<DecodedFrame> decoded = DecodeFrame(std::span(shifted).subspan(1));
   ASSERT_TRUE(decoded) << decoded.error();
-  EXPECT_TRUE(decoded->message == SampleMessages()[6]);
+  EXPECT_TRUE(decoded->message == Message{testing::SampleOf<LeaseResultMsg>()});
 }
 
 TEST(ProtocolCodecTest, LargestSceneChunkFitsTheSmallestPeerLimit) {

@@ -18,10 +18,6 @@ std::vector<Message> SampleMessages() {
       ProofMsg{Pattern(3)},
       WelcomeMsg{Pattern(4), 77, 2500, kDefaultMaxFrameBytes},
       HeartbeatMsg{3.25, 1.5e8, 12},
-      BatchAssignmentMsg{lease, 9, 1234, uint64_t{1} << 40, 65536, 0xdeadbeefcafef00dull,
-                         SamplerKind::kGrid, 2.5, Pattern(5), 5000, 30000},
-      BatchResultMsg{
-          lease, {{0, 5}, {17, 1}, {4999, uint64_t{1} << 50}}, 11, 11, uint64_t{1} << 33, 2, 0.125},
       LeaseReturnMsg{{lease, {2, 3, 4}}, LeaseReturnReason::kSceneUnavailable},
       CancelMsg{42},
       SceneRequestMsg{Pattern(6), 1 << 20, 4096},
