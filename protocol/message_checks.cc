@@ -114,7 +114,7 @@ Status Check(const LeaseAssignmentMsg& m) {
   return Ok{};
 }
 
-Status CheckResult(std::string_view name, const BatchResultMsg& m) {
+Status CheckResult(std::string_view name, const BatchOutcome& m) {
   for (size_t i = 0; i < m.hits.size(); ++i) {
     if (m.hits[i].weight == 0) {
       return Fail(name, "hit " + Str(i) + " (patch " + Str(m.hits[i].patch) + ") has weight 0");
@@ -213,7 +213,7 @@ bool IsValidAgentName(std::string_view name) {
   return true;
 }
 
-Status CheckResultEntry(const BatchResultMsg& result) { return CheckResult("result", result); }
+Status CheckOutcomeValues(const BatchOutcome& result) { return CheckResult("result", result); }
 
 Status CheckMessage(const Message& message) {
   return std::visit([](const auto& m) { return Check(m); }, message);

@@ -15,7 +15,7 @@ Status CheckMessage(const Message& message);
 
 // The context-free rules of one batch's result (an entry of a LeaseResult): hits in strictly
 // increasing patch order with no zero weight, compute_seconds finite and >= 0.
-Status CheckResultEntry(const BatchResultMsg& result);
+Status CheckOutcomeValues(const BatchOutcome& result);
 
 // The agent name rule: 1..kMaxAgentNameBytes of [A-Za-z0-9._:@-] (it goes into logs).
 bool IsValidAgentName(std::string_view name);

@@ -86,9 +86,9 @@ struct HeartbeatMsg {          // both ways
   bool operator==(const HeartbeatMsg&) const = default;
 };
 
-// One batch of a LeaseAssignmentMsg with its job's fields: how the agent records each batch it
-// holds (protocol/batch_convert.h, BatchOf). Not a message of its own.
-struct BatchAssignmentMsg {
+// The agent's record of one batch it leased: a LeaseBatch with its lease's job fields
+// (protocol/batch_convert.h, BatchOf). Not a message: no frame carries one alone.
+struct AssignedBatch {
   LeaseRef lease;
   uint32_t round = 0;
   uint32_t shooter = 0;  // < patch_count
@@ -100,11 +100,12 @@ struct BatchAssignmentMsg {
   SceneHash scene_hash{};
   uint32_t patch_count = 0;  // >= 1
   uint32_t lease_ms = 0;     // >= 1
-  bool operator==(const BatchAssignmentMsg&) const = default;
+  bool operator==(const AssignedBatch&) const = default;
 };
 
-// One batch's result: an entry of a LeaseResultMsg. Not a message of its own.
-struct BatchResultMsg {
+// What became of one leased batch: its result and the lease it answers. Not a message: each entry
+// of a LeaseResultMsg is one.
+struct BatchOutcome {
   LeaseRef lease;
   std::vector<PatchHits> hits;  // strictly increasing patch id, no zero weights
   uint64_t escaped_weight = 0;
@@ -112,7 +113,7 @@ struct BatchResultMsg {
   uint64_t back_weight = 0;
   uint64_t back_rays = 0;
   double compute_seconds = 0;  // finite, >= 0
-  bool operator==(const BatchResultMsg&) const = default;
+  bool operator==(const BatchOutcome&) const = default;
 };
 
 // One batch of a lease: rays [first_ray, first_ray + ray_count) of `shooter`, attempt `attempt_id`.
@@ -125,7 +126,7 @@ struct LeaseBatch {
   bool operator==(const LeaseBatch&) const = default;
 };
 
-// Version 2: many batches of one job and round in one frame; the fields as in BatchAssignmentMsg.
+// Version 2: many batches of one job and round in one frame.
 struct LeaseAssignmentMsg {  // master -> agent
   uint64_t job_id = 0;
   uint32_t round = 0;
@@ -140,8 +141,8 @@ struct LeaseAssignmentMsg {  // master -> agent
 };
 
 // Version 2: results of batches of one or more leases, in one frame.
-struct LeaseResultMsg {                 // agent -> master
-  std::vector<BatchResultMsg> results;  // 1..kMaxLeaseBatches, each as BatchResultMsg's rules
+struct LeaseResultMsg {               // agent -> master
+  std::vector<BatchOutcome> results;  // 1..kMaxLeaseBatches, each as BatchOutcome's rules
   bool operator==(const LeaseResultMsg&) const = default;
 };
 

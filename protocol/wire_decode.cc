@@ -141,7 +141,7 @@ Result<Message> ReadLeaseResult(const wire::LeaseResult& t, uint16_t version) {
   m.results.reserve(t.batches()->size());
   uint32_t next = 0;
   for (const wire::BatchTally* b : *t.batches()) {
-    BatchResultMsg r;
+    BatchOutcome r;
     r.lease = FromWire(b->lease());
     if (packed) {
       const std::string wrong = ReadPackedHits(bytes, &at, b->hit_count(), &r.hits);

@@ -110,7 +110,7 @@ Offset<wire::LeaseAssignment> Build(FlatBufferBuilder& fbb, const LeaseAssignmen
 Offset<wire::LeaseResult> Build(FlatBufferBuilder& fbb, const LeaseResultMsg& m, uint16_t version) {
   std::vector<wire::BatchTally> tallies;
   tallies.reserve(m.results.size());
-  for (const BatchResultMsg& r : m.results) {
+  for (const BatchOutcome& r : m.results) {
     tallies.emplace_back(ToWire(r.lease), r.escaped_weight, r.escaped_rays, r.back_weight,
                          r.back_rays, r.compute_seconds, static_cast<uint32_t>(r.hits.size()));
   }
@@ -118,12 +118,12 @@ Offset<wire::LeaseResult> Build(FlatBufferBuilder& fbb, const LeaseResultMsg& m,
   std::vector<wire::PatchHit> wire_hits;
   if (version >= kPackedHitsVersion) {
     std::vector<uint8_t> packed;
-    for (const BatchResultMsg& r : m.results) AppendPackedHits(r.hits, &packed);
+    for (const BatchOutcome& r : m.results) AppendPackedHits(r.hits, &packed);
     const auto packed_hits = fbb.CreateVector(packed);
     const auto hits = fbb.CreateVectorOfStructs(wire_hits.data(), 0);
     return wire::CreateLeaseResult(fbb, batches, hits, packed_hits);
   }
-  for (const BatchResultMsg& r : m.results) {
+  for (const BatchOutcome& r : m.results) {
     for (const PatchHits& h : r.hits) wire_hits.emplace_back(h.patch, h.weight);
   }
   const auto hits = fbb.CreateVectorOfStructs(wire_hits.data(), wire_hits.size());

@@ -1,5 +1,5 @@
 // SubmitBatchResult: the one path from a received BatchResult message into the scheduler. It
-// validates the result against the batch its lease names (protocol's ValidateBatchResult) and
+// validates the result against the batch its lease names (protocol's CheckBatchOutcome) and
 // then calls RoundScheduler::OnResult, or OnInvalidResult when validation fails.
 #pragma once
 
@@ -22,7 +22,7 @@ struct IntakeVerdict {
 // A result whose batch is not in the current round is dropped unvalidated (kStaleRound): it can
 // never enter a round. On kInvalid the protocol's rule applies: close the agent's connection.
 IntakeVerdict SubmitBatchResult(RoundScheduler& scheduler, AgentId agent,
-                                const protocol::BatchResultMsg& message, const RaySampler& sampler,
+                                const protocol::BatchOutcome& message, const RaySampler& sampler,
                                 uint32_t patch_count, TimePoint now);
 
 // The results of one job from a LeaseResult frame: each validated as above, then all handed to
@@ -37,7 +37,7 @@ struct LeaseIntake {
   size_t rejected = 0;  // not the agent's lease, wrong batch (logged by the caller)
 };
 LeaseIntake SubmitLeaseResults(RoundScheduler& scheduler, AgentId agent,
-                               const std::vector<const protocol::BatchResultMsg*>& results,
+                               const std::vector<const protocol::BatchOutcome*>& results,
                                const RaySampler& sampler, uint32_t patch_count, TimePoint now);
 
 }  // namespace radfarm::scheduler

@@ -75,15 +75,15 @@ class AgentIdleTest : public ::testing::Test {
     return ok;
   }
 
-  protocol::BatchAssignmentMsg Assign(const TestJob& job, uint64_t batch, uint32_t shooter,
-                                      uint64_t first_ray, uint32_t rays) {
+  protocol::AssignedBatch Assign(const TestJob& job, uint64_t batch, uint32_t shooter,
+                                 uint64_t first_ray, uint32_t rays) {
     return Assignment(job, blob_, scene_, batch, shooter, first_ray, rays);
   }
 
   // Sends `assignment` and checks its result equals BatchTracer's on this machine.
-  void ExpectWorks(const protocol::BatchAssignmentMsg& assignment, const AgentProcess& agent) {
+  void ExpectWorks(const protocol::AssignedBatch& assignment, const AgentProcess& agent) {
     master_.Send(assignment);
-    std::optional<protocol::BatchResultMsg> found;
+    std::optional<protocol::BatchOutcome> found;
     ASSERT_TRUE(master_.WaitFor([&](const Record& r) {
       for (const auto& result : r.results) {
         if (result.lease == assignment.lease) found = result;

@@ -42,15 +42,15 @@ class AgentWorkTest : public ::testing::Test {
     return agent;
   }
 
-  protocol::BatchAssignmentMsg Assign(const TestJob& job, uint64_t batch, uint32_t shooter,
-                                      uint64_t first_ray, uint32_t rays) {
+  protocol::AssignedBatch Assign(const TestJob& job, uint64_t batch, uint32_t shooter,
+                                 uint64_t first_ray, uint32_t rays) {
     return Assignment(job, blob_, scene_, batch, shooter, first_ray, rays);
   }
 
   // Waits for the result of `lease`.
-  std::optional<protocol::BatchResultMsg> WaitResult(const protocol::LeaseRef& lease,
-                                                     const AgentProcess& agent) {
-    std::optional<protocol::BatchResultMsg> found;
+  std::optional<protocol::BatchOutcome> WaitResult(const protocol::LeaseRef& lease,
+                                                   const AgentProcess& agent) {
+    std::optional<protocol::BatchOutcome> found;
     const bool got = master_.WaitFor([&](const Record& r) {
       for (const auto& result : r.results) {
         if (result.lease == lease) found = result;
@@ -75,7 +75,7 @@ class AgentWorkTest : public ::testing::Test {
 TEST_F(AgentWorkTest, AMultiBatchLeaseIsAnsweredInOneFrameWithSingleBatchResults) {
   std::unique_ptr<AgentProcess> agent = StartAgent(2);
   const TestJob job = Job(4, SamplerKind::kSobol, 11);
-  std::vector<protocol::BatchAssignmentMsg> batches;
+  std::vector<protocol::AssignedBatch> batches;
   for (uint32_t k = 0; k < 40; ++k) {
     batches.push_back(Assign(job, 100 + k, /*shooter=*/k % 54, /*first_ray=*/1000 * k, 170 + k));
   }
@@ -87,7 +87,7 @@ TEST_F(AgentWorkTest, AMultiBatchLeaseIsAnsweredInOneFrameWithSingleBatchResults
     return frame.has_value();
   })) << agent->Log();
   ASSERT_EQ(frame->results.size(), batches.size());  // all in the one frame
-  for (const protocol::BatchAssignmentMsg& batch : batches) {
+  for (const protocol::AssignedBatch& batch : batches) {
     const auto found = std::find_if(frame->results.begin(), frame->results.end(),
                                     [&](const auto& r) { return r.lease == batch.lease; });
     ASSERT_NE(found, frame->results.end()) << "batch " << batch.lease.batch_id;
@@ -104,7 +104,7 @@ TEST_F(AgentWorkTest, AMultiBatchLeaseIsAnsweredInOneFrameWithSingleBatchResults
 TEST_F(AgentWorkTest, ARevokedBatchNotStartedIsLeftOutOfTheLeaseResult) {
   std::unique_ptr<AgentProcess> agent = StartAgent(1);
   const TestJob job = Job(5, SamplerKind::kSobol, 12);
-  std::vector<protocol::BatchAssignmentMsg> batches;
+  std::vector<protocol::AssignedBatch> batches;
   for (uint32_t k = 0; k < 6; ++k) {
     batches.push_back(Assign(job, 200 + k, /*shooter=*/k, /*first_ray=*/0, 200000));
   }
@@ -130,7 +130,7 @@ TEST_F(AgentWorkTest, ResultsEqualBatchTracerOnTheSameBatchBitForBit) {
   const std::vector<TestJob> jobs = {Job(1, SamplerKind::kSobol, 3),
                                      Job(2, SamplerKind::kRandom, 4),
                                      Job(3, SamplerKind::kGrid, 5, 7.5)};
-  std::vector<protocol::BatchAssignmentMsg> assignments;
+  std::vector<protocol::AssignedBatch> assignments;
   for (const TestJob& job : jobs) {
     // The grid's shot is 12 x 48 = 576 rays at 7.5 degrees: its batches must lie inside it.
     const bool grid = job.sampler == SamplerKind::kGrid;
@@ -140,7 +140,7 @@ TEST_F(AgentWorkTest, ResultsEqualBatchTracerOnTheSameBatchBitForBit) {
   }
   master_.Send(std::vector<Outgoing>(assignments.begin(), assignments.end()));
   for (const auto& assignment : assignments) {
-    std::optional<protocol::BatchResultMsg> result = WaitResult(assignment.lease, *agent);
+    std::optional<protocol::BatchOutcome> result = WaitResult(assignment.lease, *agent);
     ASSERT_TRUE(result);
     EXPECT_EQ(protocol::ToBatchResult(*result), RunLocally(scene_, assignment))
         << "job " << assignment.lease.job_id << " batch " << assignment.lease.batch_id;
@@ -288,7 +288,7 @@ TEST_F(AgentWorkTest, TheStateDirectoryKeepsTheSceneForARestartedAgent) {
   std::unique_ptr<AgentProcess> restarted = StartAgent(1, {"--state-dir", state});
   const auto third = Assign(Job(1), 3, 4, 0, 500);
   master_.Send(third);
-  std::optional<protocol::BatchResultMsg> result = WaitResult(third.lease, *restarted);
+  std::optional<protocol::BatchOutcome> result = WaitResult(third.lease, *restarted);
   ASSERT_TRUE(result);
   EXPECT_EQ(protocol::ToBatchResult(*result), RunLocally(scene_, third));
   EXPECT_EQ(master_.Snapshot().fetches.at(hash_), 1) << "the restarted agent fetched again";
@@ -307,7 +307,7 @@ TEST_F(AgentWorkTest, ADamagedSceneFileIsDeletedAndFetchedAgain) {
   std::unique_ptr<AgentProcess> agent = StartAgent(1, {"--state-dir", state});
   const auto lease = Assign(Job(1), 1, 2, 0, 500);
   master_.Send(lease);
-  std::optional<protocol::BatchResultMsg> result = WaitResult(lease.lease, *agent);
+  std::optional<protocol::BatchOutcome> result = WaitResult(lease.lease, *agent);
   ASSERT_TRUE(result);
   EXPECT_EQ(protocol::ToBatchResult(*result), RunLocally(scene_, lease));
   EXPECT_EQ(master_.Snapshot().fetches.at(hash_), 1);
@@ -335,8 +335,8 @@ TEST_F(AgentBigSceneTest, ASceneOfSeveralChunksIsFetchedOnce) {
   }
   master_.Send(leases);
   for (const auto& message : leases) {
-    const auto& assignment = std::get<protocol::BatchAssignmentMsg>(message);
-    std::optional<protocol::BatchResultMsg> result = WaitResult(assignment.lease, *agent);
+    const auto& assignment = std::get<protocol::AssignedBatch>(message);
+    std::optional<protocol::BatchOutcome> result = WaitResult(assignment.lease, *agent);
     ASSERT_TRUE(result);
     EXPECT_EQ(protocol::ToBatchResult(*result), RunLocally(scene_, assignment));
   }
@@ -364,7 +364,7 @@ TEST_F(AgentManyPatchesTest, AResultFillingAFrameGoesOutBeforeTheLeasesLastBatch
   const auto first = Assign(job, 1, /*shooter=*/100, 0, 4'000'000);
   const auto last = Assign(job, 2, /*shooter=*/200, 0, kLongBatchRays);
   master_.Send(LeaseOf({first, last}));
-  std::optional<protocol::BatchResultMsg> result = WaitResult(first.lease, *agent);
+  std::optional<protocol::BatchOutcome> result = WaitResult(first.lease, *agent);
   ASSERT_TRUE(result);
   ASSERT_GT(protocol::ResultFrameCost(*result, protocol::kProtocolVersion),
             protocol::kResultFrameBytes);  // it fills a frame alone

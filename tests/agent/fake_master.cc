@@ -204,7 +204,7 @@ void FakeMaster::Loop::Refuse(Connection* c, const std::string& reason) {
 }
 
 void FakeMaster::Loop::WriteOutgoing(Connection* c, const Outgoing& outgoing) {
-  if (const auto* one = std::get_if<protocol::BatchAssignmentMsg>(&outgoing)) {
+  if (const auto* one = std::get_if<protocol::AssignedBatch>(&outgoing)) {
     Write(c, LeaseOf({*one}));
     return;
   }
@@ -303,8 +303,8 @@ bool FakeMaster::WaitFor(const std::function<bool(const Record&)>& done,
   return true;
 }
 
-protocol::LeaseAssignmentMsg LeaseOf(const std::vector<protocol::BatchAssignmentMsg>& batches) {
-  const protocol::BatchAssignmentMsg& first = batches.front();
+protocol::LeaseAssignmentMsg LeaseOf(const std::vector<protocol::AssignedBatch>& batches) {
+  const protocol::AssignedBatch& first = batches.front();
   protocol::LeaseAssignmentMsg lease;
   lease.job_id = first.lease.job_id;
   lease.round = first.round;
@@ -314,7 +314,7 @@ protocol::LeaseAssignmentMsg LeaseOf(const std::vector<protocol::BatchAssignment
   lease.scene_hash = first.scene_hash;
   lease.patch_count = first.patch_count;
   lease.lease_ms = first.lease_ms;
-  for (const protocol::BatchAssignmentMsg& b : batches) {
+  for (const protocol::AssignedBatch& b : batches) {
     lease.batches.push_back(
         {b.lease.batch_id, b.lease.attempt_id, b.shooter, b.first_ray, b.ray_count});
   }

@@ -2,7 +2,7 @@
 // thread runs its own loop::EventLoop with a TcpListener on 127.0.0.1 (port 0) and one
 // ProtocolSession::ForMaster per accepted connection. It records every message agents send,
 // answers SceneRequests from the scenes it was given, and sends what the test tells it to.
-// Tests may speak in single batches: a BatchAssignmentMsg is sent as a LeaseAssignment of that
+// Tests may speak in single batches: an AssignedBatch is sent as a LeaseAssignment of that
 // one batch (LeaseOf), and every batch of a LeaseResult is recorded in Record::results.
 //
 // Threads: the test thread calls every method; the loop runs on the master's thread. Commands
@@ -30,7 +30,7 @@ inline constexpr std::chrono::milliseconds kWaitTimeout{60000};  // generous: AS
 
 // What a test sends an agent: a message, or one batch, which goes out as a LeaseAssignment of
 // that batch alone (LeaseOf).
-using Outgoing = std::variant<protocol::Message, protocol::BatchAssignmentMsg>;
+using Outgoing = std::variant<protocol::Message, protocol::AssignedBatch>;
 
 struct FakeMasterOptions {
   uint32_t heartbeat_interval_ms = 60000;
@@ -49,7 +49,7 @@ inline FakeMasterOptions Heartbeats(uint32_t interval_ms, bool send_heartbeats) 
 }
 
 // The lease frame carrying these batches (all of one job, round and scene).
-protocol::LeaseAssignmentMsg LeaseOf(const std::vector<protocol::BatchAssignmentMsg>& batches);
+protocol::LeaseAssignmentMsg LeaseOf(const std::vector<protocol::AssignedBatch>& batches);
 
 // What the master has seen so far.
 struct Record {
@@ -58,10 +58,10 @@ struct Record {
   int auth_failures = 0;  // agent proofs that did not match the secret
   int open = 0;           // authenticated connections still open
   std::vector<std::string> session_errors;
-  std::vector<protocol::Message> received;        // application messages, in order, all connections
-  std::vector<protocol::BatchResultMsg> results;  // every batch of every LeaseResult, in order
-  std::vector<std::string> agent_names;           // from each Hello
-  std::map<protocol::SceneHash, int> fetches;     // SceneRequests at offset 0, per scene
+  std::vector<protocol::Message> received;      // application messages, in order, all connections
+  std::vector<protocol::BatchOutcome> results;  // every batch of every LeaseResult, in order
+  std::vector<std::string> agent_names;         // from each Hello
+  std::map<protocol::SceneHash, int> fetches;   // SceneRequests at offset 0, per scene
   int scene_requests = 0;
 
   template <typename T>

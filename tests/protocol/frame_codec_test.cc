@@ -39,7 +39,7 @@ TEST(ProtocolCodecTest, DefaultValuedMessagesRoundTrip) {
       HeartbeatMsg{0, 0, 0},
       DrainMsg{DrainMode::kFinishLeases, false},
       CloseMsg{CloseCode::kNormal, ""},
-      LeaseResultMsg{{BatchResultMsg{{}, {}, 0, 0, 0, 0, 0}}},
+      LeaseResultMsg{{BatchOutcome{{}, {}, 0, 0, 0, 0, 0}}},
   };
   for (const Message& message : messages) {
     Result<DecodedFrame> decoded = DecodeFrame(EncodeFrame(message));
@@ -72,7 +72,7 @@ TEST(ProtocolCodecTest, ALeaseResultWithoutHitsRoundTrips) {
 TEST(ProtocolCodecTest, ALeaseResultRoundTripsInBothFormsAndPackedIsASixth) {
   LeaseResultMsg message;
   for (uint32_t b = 0; b < 8; ++b) {
-    BatchResultMsg r{{7, 100 + b, 1}, {}, 3, 3, 0, 0, 0.01};
+    BatchOutcome r{{7, 100 + b, 1}, {}, 3, 3, 0, 0, 0.01};
     for (uint32_t k = 0; k < 150; ++k) r.hits.push_back({k * 37 + b, k % 7 == 0 ? 2u : 1u});
     message.results.push_back(r);
   }

@@ -289,7 +289,7 @@ TEST(ProtocolMalformedTest, DeeplyNestedOrHugeVectorsAreBounded) {
   // A LeaseResult whose hits vector (version 4: structs) claims more elements than the buffer
   // holds.
   std::vector<uint8_t> frame =
-      EncodeFrame(LeaseResultMsg{{BatchResultMsg{{}, {{1, 1}, {2, 1}}, 0, 0, 0, 0, 0}}}, 4);
+      EncodeFrame(LeaseResultMsg{{BatchOutcome{{}, {{1, 1}, {2, 1}}, 0, 0, 0, 0, 0}}}, 4);
   // Find the vector length word (2) followed by the first hit (patch 1) and inflate it.
   bool patched = false;
   for (size_t i = kLengthPrefixBytes; i + 4 <= frame.size() && !patched; ++i) {

@@ -341,7 +341,7 @@ TEST(ProtocolSessionTest, AgentWillNotSendAFrameAboveTheMastersLimit) {
   Session agent = Agent();
   RunHandshake(master, agent);
   ASSERT_TRUE(agent.authenticated());
-  BatchResultMsg big;
+  BatchOutcome big;
   // Packed (version 5), a hit of consecutive ids and weight 1 takes 2 bytes.
   for (uint32_t p = 0; p < kMinPeerFrameBytes / 2 + 10; ++p) big.hits.push_back({p, 1});
   Result<std::vector<uint8_t>> frame = agent.Encode(LeaseResultMsg{{big}});

@@ -90,8 +90,8 @@ void FarmSim::Deliver(SimAgent& agent) {
     const Assignment a = agent.pending.front().assignment;
     agent.pending.pop_front();
     const protocol::LeaseRef lease{1, a.batch_id, a.attempt_id};
-    protocol::BatchResultMsg message =
-        protocol::MakeBatchResult(lease, agent.runner->Run(a.batch), 0.01);
+    protocol::BatchOutcome message =
+        protocol::MakeBatchOutcome(lease, agent.runner->Run(a.batch), 0.01);
     if (agent.spec.lies_on_result == agent.results_sent) ++message.escaped_rays;  // a lost ray
     ++agent.results_sent;
     const uint32_t patches = static_cast<uint32_t>(scene_.patches.size());
