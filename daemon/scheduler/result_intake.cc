@@ -61,9 +61,9 @@ LeaseIntake SubmitLeaseResults(RoundScheduler& scheduler, AgentId agent,
   return intake;
 }
 
-IntakeVerdict SubmitBatchResult(RoundScheduler& scheduler, AgentId agent,
-                                const protocol::BatchOutcome& message, const RaySampler& sampler,
-                                uint32_t patch_count, TimePoint now) {
+IntakeVerdict SubmitBatchOutcome(RoundScheduler& scheduler, AgentId agent,
+                                 const protocol::BatchOutcome& message, const RaySampler& sampler,
+                                 uint32_t patch_count, TimePoint now) {
   const protocol::LeaseRef& lease = message.lease;
   const Batch* batch = scheduler.FindBatch(lease.batch_id);
   if (batch == nullptr) {

@@ -96,14 +96,14 @@ void FarmSim::Deliver(SimAgent& agent) {
     ++agent.results_sent;
     const uint32_t patches = static_cast<uint32_t>(scene_.patches.size());
     const IntakeVerdict intake =
-        SubmitBatchResult(scheduler_, agent.id, message, solver_.sampler(), patches, now_);
+        SubmitBatchOutcome(scheduler_, agent.id, message, solver_.sampler(), patches, now_);
     // The daemon's part (daemon/agents/job_blocklist.h), played strictly: one lie blocklists the
     // agent.
     if (intake.verdict.reason == DropReason::kInvalid) {
       scheduler_.Blocklist(agent.id, now_ + std::chrono::hours(1));
     }
     if (agent.spec.sends_twice) {
-      SubmitBatchResult(scheduler_, agent.id, message, solver_.sampler(), patches, now_);
+      SubmitBatchOutcome(scheduler_, agent.id, message, solver_.sampler(), patches, now_);
     }
   }
 }
