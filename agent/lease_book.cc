@@ -2,7 +2,7 @@
 
 namespace radfarm::agent {
 
-HeldLease& LeaseBook::Add(const protocol::BatchAssignmentMsg& assignment, uint64_t group) {
+HeldLease& LeaseBook::Add(const protocol::AssignedBatch& assignment, uint64_t group) {
   const uint64_t id = next_id_++;
   HeldLease& lease = leases_[id];
   lease.id = id;

@@ -30,17 +30,17 @@ enum class LeaseStage { kAwaitingScene, kQueued, kRunning, kDone };
 struct HeldLease {
   uint64_t id = 0;
   uint64_t group = 0;  // the lease frame it came in (LeaseWorker answers a frame at once)
-  protocol::BatchAssignmentMsg assignment;
+  protocol::AssignedBatch assignment;
   LeaseStage stage = LeaseStage::kAwaitingScene;
-  std::shared_ptr<const PreparedScene> scene;      // set from kQueued on
-  std::optional<protocol::BatchResultMsg> result;  // kDone
+  std::shared_ptr<const PreparedScene> scene;    // set from kQueued on
+  std::optional<protocol::BatchOutcome> result;  // kDone
   size_t result_cost = 0;  // kDone: its share of a LeaseResult frame (protocol::ResultFrameCost)
 };
 
 class LeaseBook {
  public:
   // Records a new lease (kAwaitingScene) of lease frame `group`.
-  HeldLease& Add(const protocol::BatchAssignmentMsg& assignment, uint64_t group = 0);
+  HeldLease& Add(const protocol::AssignedBatch& assignment, uint64_t group = 0);
   HeldLease* Find(uint64_t id);
   // The lease a reference names; null when not held. O(log n).
   HeldLease* Find(const protocol::LeaseRef& lease);

@@ -90,7 +90,7 @@ void LeaseWorker::OnLease(const protocol::LeaseAssignmentMsg& frame, bool accept
   }
   std::vector<uint64_t> ids;
   for (size_t k = 0; k < frame.batches.size(); ++k) {
-    const protocol::BatchAssignmentMsg assignment = protocol::BatchOf(frame, k);
+    const protocol::AssignedBatch assignment = protocol::BatchOf(frame, k);
     if (book_.Holds(assignment.lease)) {
       LogLine(LogLevel::kWarning, "agent") << "lease " << Describe(assignment.lease) << " from "
                                            << master_ << ": already held; ignored the repeat";
@@ -146,7 +146,7 @@ size_t LeaseWorker::Revoke(const protocol::LeaseRevokeMsg& revoke) {
   return dropped;
 }
 
-Status LeaseWorker::CheckRayRange(const protocol::BatchAssignmentMsg& a) {
+Status LeaseWorker::CheckRayRange(const protocol::AssignedBatch& a) {
   // The grid sampler has a fixed number of rays per shot and no ray beyond it (its tables end
   // there): such a batch is a master's bug, refused rather than run.
   const uint64_t per_shot =
@@ -202,7 +202,7 @@ void LeaseWorker::Dispatch() {
     HeldLease* first = book_.FrontQueued();
     if (first == nullptr) return;
     const std::shared_ptr<const PreparedScene> scene = first->scene;
-    const protocol::BatchAssignmentMsg& a = first->assignment;
+    const protocol::AssignedBatch& a = first->assignment;
     std::shared_ptr<const RaySampler> sampler =
         samplers_.Get(a.sampler, a.seed, a.grid_step_degrees);
     // An equal share of what is queued for each thread, so the last batches of a lease do not
@@ -213,7 +213,7 @@ void LeaseWorker::Dispatch() {
     std::vector<Batch> batches;
     uint64_t rays = 0;
     while (HeldLease* next = book_.FrontQueued()) {
-      const protocol::BatchAssignmentMsg& n = next->assignment;
+      const protocol::AssignedBatch& n = next->assignment;
       if (!ids.empty() && (rays >= share || next->scene != scene ||
                            samplers_.Get(n.sampler, n.seed, n.grid_step_degrees) != sampler)) {
         break;
@@ -261,8 +261,8 @@ void LeaseWorker::OnBatchesDone(const std::vector<uint64_t>& ids,
     }
     const BatchOutcome& outcome = (*outcomes)[k];
     meter_.Add(lease->assignment.ray_count, outcome.compute_seconds);
-    lease->result =
-        protocol::MakeBatchResult(lease->assignment.lease, outcome.result, outcome.compute_seconds);
+    lease->result = protocol::MakeBatchOutcome(lease->assignment.lease, outcome.result,
+                                               outcome.compute_seconds);
     lease->result_cost = protocol::ResultFrameCost(*lease->result, version);
     lease->stage = LeaseStage::kDone;
   }

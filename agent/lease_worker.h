@@ -76,7 +76,7 @@ class LeaseWorker {
   void OnSceneFailed(const protocol::SceneHash& hash, protocol::LeaseReturnReason reason,
                      const std::string& why);
   // A batch must lie inside its shot where the sampler fixes the shot's size (the grid).
-  Status CheckRayRange(const protocol::BatchAssignmentMsg& assignment);
+  Status CheckRayRange(const protocol::AssignedBatch& assignment);
   // kAwaitingScene -> kQueued once its scene is ready, after checking the patch count.
   void Enqueue(HeldLease& lease, const std::shared_ptr<const PreparedScene>& scene);
   // Starts queued leases while a worker is free.

@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "cli/exit_codes.h"
-#include "cli/job_loader.h"
+#include "cli/job_inputs.h"
 #include "cli/messages.h"
 #include "cli/progress_reporter.h"
 #include "cli/render_outputs.h"

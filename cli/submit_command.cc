@@ -8,7 +8,7 @@
 #include "cli/control_frames.h"
 #include "cli/exit_codes.h"
 #include "cli/farm_command.h"
-#include "cli/job_loader.h"
+#include "cli/job_inputs.h"
 #include "cli/messages.h"
 #include "codec/job_bundle.h"
 

@@ -60,7 +60,7 @@ Status DecodeSolver(const wire::BundleSolver& in, SolverSettings* out) {
   return Ok{};
 }
 
-// The loader's ranges (job/job_loader.cc); ResolveRefineSettings checks the rest against the
+// The loader's ranges (job/job_file.cc); ResolveRefineSettings checks the rest against the
 // mesh.
 Status DecodeRefine(const wire::BundleRefine* in, RefineSettings* out) {
   if (in == nullptr) return Ok{};  // refinement off: the defaults
@@ -80,7 +80,7 @@ Status DecodeRefine(const wire::BundleRefine* in, RefineSettings* out) {
   return Ok{};
 }
 
-// The loader's ranges (job/job_loader.cc): a size or a texel, each 0 when unset.
+// The loader's ranges (job/job_file.cc): a size or a texel, each 0 when unset.
 Status DecodeLightmapSettings(const wire::JobBundleBlob& in, Job* out) {
   out->lightmap_size = in.lightmap_size();
   out->lightmap_texel = in.lightmap_texel();

@@ -140,7 +140,7 @@ void SimAgent::MaybeSendGroup(uint64_t group) {
   groups_.erase(it);
 }
 
-void SimAgent::OnAssignment(const protocol::BatchAssignmentMsg& batch, uint64_t group) {
+void SimAgent::OnAssignment(const protocol::AssignedBatch& batch, uint64_t group) {
   const double now = SteadySeconds();
   const double at_socket = now - settings_.latency_seconds;
   if (stats_.first_assignment < 0) stats_.first_assignment = at_socket;
@@ -231,7 +231,7 @@ void SimAgent::Finish(uint64_t generation) {
   if (generation != generation_ || !computing_) return;
   computing_ = false;
   const double seconds = double(current_.batch.ray_count) / settings_.rays_per_second;
-  Result<protocol::BatchResultMsg> result =
+  Result<protocol::BatchOutcome> result =
       MakeSimulatedResult(current_.batch, settings_.spread, seconds);
   if (!result) {
     Fail(result.error());

@@ -99,7 +99,7 @@ class SimAgent {
 
  private:
   struct Queued {
-    protocol::BatchAssignmentMsg batch;
+    protocol::AssignedBatch batch;
     double arrival;  // after the added latency: when the agent could start it
     uint64_t group = 0;
   };
@@ -107,7 +107,7 @@ class SimAgent {
   struct Group {
     uint64_t job_id = 0;
     size_t outstanding = 0;  // batches neither computed nor revoked
-    std::vector<protocol::BatchResultMsg> results;
+    std::vector<protocol::BatchOutcome> results;
     std::set<uint32_t> rounds;
   };
 
@@ -116,7 +116,7 @@ class SimAgent {
   void OnMessage(const protocol::Message& message);
   void OnLease(const protocol::LeaseAssignmentMsg& lease);
   void OnRevoke(const protocol::LeaseRevokeMsg& revoke);
-  void OnAssignment(const protocol::BatchAssignmentMsg& batch, uint64_t group);
+  void OnAssignment(const protocol::AssignedBatch& batch, uint64_t group);
   void MaybeSendGroup(uint64_t group);
   void OnSceneChunk(const protocol::SceneChunkMsg& chunk);
   void OnCancel(uint64_t job_id);

@@ -14,7 +14,7 @@ uint64_t Mix(uint64_t x) {  // splitmix64's finaliser
 }
 
 // Up to `want` distinct patch ids other than the shooter, increasing.
-std::vector<uint32_t> PickPatches(const protocol::BatchAssignmentMsg& b, uint32_t want) {
+std::vector<uint32_t> PickPatches(const protocol::AssignedBatch& b, uint32_t want) {
   std::vector<uint32_t> patches;
   if (b.patch_count == 1) return {0};
   want = std::min(want, b.patch_count - 1);
@@ -33,8 +33,8 @@ std::vector<uint32_t> PickPatches(const protocol::BatchAssignmentMsg& b, uint32_
 
 }  // namespace
 
-Result<protocol::BatchResultMsg> MakeSimulatedResult(const protocol::BatchAssignmentMsg& batch,
-                                                     uint32_t spread, double compute_seconds) {
+Result<protocol::BatchOutcome> MakeSimulatedResult(const protocol::AssignedBatch& batch,
+                                                   uint32_t spread, double compute_seconds) {
   if (batch.sampler == SamplerKind::kGrid) {
     return Error{
         "the simulator cannot answer grid-sampler batches (their weights depend on the "
@@ -42,7 +42,7 @@ Result<protocol::BatchResultMsg> MakeSimulatedResult(const protocol::BatchAssign
   }
   const std::vector<uint32_t> patches =
       PickPatches(batch, std::clamp<uint32_t>(std::min(spread, batch.ray_count), 1, spread));
-  protocol::BatchResultMsg result;
+  protocol::BatchOutcome result;
   result.lease = batch.lease;
   result.compute_seconds = compute_seconds;
   const uint64_t share = batch.ray_count / patches.size();

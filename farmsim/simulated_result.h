@@ -1,5 +1,5 @@
 // The BatchResult a simulated agent returns: not physics, but a result the master's
-// ValidateBatchResult accepts for that batch (docs/PROTOCOL.md), so energy keeps flowing and the
+// CheckBatchOutcome accepts for that batch (docs/PROTOCOL.md), so energy keeps flowing and the
 // job runs its rounds as a real one would.
 //
 // For the unit-weight samplers (random, sobol) every ray is a front hit, spread as evenly as
@@ -17,7 +17,7 @@
 
 namespace radfarm::sim {
 
-Result<protocol::BatchResultMsg> MakeSimulatedResult(const protocol::BatchAssignmentMsg& batch,
-                                                     uint32_t spread, double compute_seconds);
+Result<protocol::BatchOutcome> MakeSimulatedResult(const protocol::AssignedBatch& batch,
+                                                   uint32_t spread, double compute_seconds);
 
 }  // namespace radfarm::sim

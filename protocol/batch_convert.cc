@@ -2,25 +2,8 @@
 
 namespace radfarm::protocol {
 
-BatchAssignmentMsg MakeBatchAssignment(const JobWireInfo& job, uint64_t batch_id,
-                                       uint32_t attempt_id, const Batch& batch, uint32_t lease_ms) {
-  BatchAssignmentMsg m;
-  m.lease = {job.job_id, batch_id, attempt_id};
-  m.round = batch.round;
-  m.shooter = batch.shooter;
-  m.first_ray = batch.first_ray;
-  m.ray_count = batch.ray_count;
-  m.seed = job.settings.seed;
-  m.sampler = job.settings.sampler;
-  m.grid_step_degrees = job.settings.grid_step_degrees;
-  m.scene_hash = job.scene_hash;
-  m.patch_count = job.patch_count;
-  m.lease_ms = lease_ms;
-  return m;
-}
-
-Batch ToBatch(const BatchAssignmentMsg& assignment) {
-  return {assignment.round, assignment.shooter, assignment.first_ray, assignment.ray_count};
+Batch ToBatch(const AssignedBatch& assigned) {
+  return {assigned.round, assigned.shooter, assigned.first_ray, assigned.ray_count};
 }
 
 LeaseAssignmentMsg MakeLeaseAssignment(const JobWireInfo& job,
@@ -42,9 +25,9 @@ LeaseAssignmentMsg MakeLeaseAssignment(const JobWireInfo& job,
   return m;
 }
 
-BatchAssignmentMsg BatchOf(const LeaseAssignmentMsg& lease, size_t k) {
+AssignedBatch BatchOf(const LeaseAssignmentMsg& lease, size_t k) {
   const LeaseBatch& b = lease.batches[k];
-  BatchAssignmentMsg m;
+  AssignedBatch m;
   m.lease = {lease.job_id, b.batch_id, b.attempt_id};
   m.round = lease.round;
   m.shooter = b.shooter;
@@ -59,8 +42,8 @@ BatchAssignmentMsg BatchOf(const LeaseAssignmentMsg& lease, size_t k) {
   return m;
 }
 
-BatchResultMsg MakeBatchResult(const LeaseRef& lease, const BatchResult& result,
-                               double compute_seconds) {
+BatchOutcome MakeBatchOutcome(const LeaseRef& lease, const BatchResult& result,
+                              double compute_seconds) {
   return {lease,
           result.hits,
           result.escaped_weight,
@@ -70,9 +53,9 @@ BatchResultMsg MakeBatchResult(const LeaseRef& lease, const BatchResult& result,
           compute_seconds};
 }
 
-BatchResult ToBatchResult(const BatchResultMsg& message) {
-  return {message.hits, message.escaped_weight, message.escaped_rays, message.back_weight,
-          message.back_rays};
+BatchResult ToBatchResult(const BatchOutcome& outcome) {
+  return {outcome.hits, outcome.escaped_weight, outcome.escaped_rays, outcome.back_weight,
+          outcome.back_rays};
 }
 
 }  // namespace radfarm::protocol

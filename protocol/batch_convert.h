@@ -1,6 +1,6 @@
-// Between core's batches (core/batch.h) and the wire messages. Every field is an integer or a
-// copied value, so Batch -> message -> Batch and BatchResult -> message -> BatchResult are exact,
-// which the determinism contract needs.
+// Between core's batches (core/batch.h) and the wire's records of them. Every field is an integer
+// or a copied value, so Batch -> AssignedBatch -> Batch and BatchResult -> BatchOutcome ->
+// BatchResult are exact, which the determinism contract needs.
 #pragma once
 
 #include <cstddef>
@@ -21,10 +21,6 @@ struct JobWireInfo {
   uint32_t patch_count = 0;
 };
 
-BatchAssignmentMsg MakeBatchAssignment(const JobWireInfo& job, uint64_t batch_id,
-                                       uint32_t attempt_id, const Batch& batch, uint32_t lease_ms);
-Batch ToBatch(const BatchAssignmentMsg& assignment);
-
 // One batch of a lease to add to MakeLeaseAssignment.
 struct LeasedBatch {
   uint64_t batch_id = 0;
@@ -34,11 +30,13 @@ struct LeasedBatch {
 // A lease of `batches` (one job, one round: the first batch's round is the lease's).
 LeaseAssignmentMsg MakeLeaseAssignment(const JobWireInfo& job,
                                        const std::vector<LeasedBatch>& batches, uint32_t lease_ms);
-// Batch k of a lease, as the one-batch assignment the agent keeps for it.
-BatchAssignmentMsg BatchOf(const LeaseAssignmentMsg& lease, size_t k);
+// Batch k of a lease, as the record the agent keeps of it.
+AssignedBatch BatchOf(const LeaseAssignmentMsg& lease, size_t k);
+Batch ToBatch(const AssignedBatch& assigned);
 
-BatchResultMsg MakeBatchResult(const LeaseRef& lease, const BatchResult& result,
-                               double compute_seconds);
-BatchResult ToBatchResult(const BatchResultMsg& message);
+// The outcome of the batch `lease` names, as the agent sends it back.
+BatchOutcome MakeBatchOutcome(const LeaseRef& lease, const BatchResult& result,
+                              double compute_seconds);
+BatchResult ToBatchResult(const BatchOutcome& outcome);
 
 }  // namespace radfarm::protocol

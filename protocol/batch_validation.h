@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "base/result.h"
+#include "core/batch.h"
 #include "core/ray_sampler.h"
 #include "protocol/messages.h"
 
@@ -20,17 +21,16 @@ struct BatchBounds {
   std::optional<uint64_t> total_weight;
 };
 
-// The bounds of an assigned batch; `sampler` must be the job's sampler (the grid's weights).
-BatchBounds BoundsFor(const BatchAssignmentMsg& assignment, const RaySampler& sampler);
+// The bounds of `batch` in a scene of `patch_count` patches; `sampler` must be the job's sampler
+// (the grid's weights).
+BatchBounds BoundsOf(const Batch& batch, uint32_t patch_count, const RaySampler& sampler);
 
-// Rejects, with the reason: a patch id >= patch_count; unsorted or duplicate patch ids; a zero
-// weight; more hit entries than rays; escaped + back rays above ray_count; non-finite or negative
-// compute_seconds; sums that overflow; and weights that do not add up: with unit weights,
-// escaped_weight == escaped_rays, back_weight == back_rays and hits + escaped + back == ray_count;
-// with weighted rays, hits + escaped + back weight == total_weight.
-Status ValidateBatchResult(const BatchResultMsg& result, const BatchBounds& bounds);
-
-// Unit-weight form: ValidateBatchResult(result, {patch_count, ray_count, nullopt}).
-Status ValidateBatchResult(const BatchResultMsg& result, uint32_t patch_count, uint32_t ray_count);
+// Checks a batch's outcome against the batch's bounds. Rejects, with the reason: a patch id >=
+// patch_count; unsorted or duplicate patch ids; a zero weight; more hit entries than rays; escaped
+// + back rays above ray_count; non-finite or negative compute_seconds; sums that overflow; and
+// weights that do not add up: with unit weights, escaped_weight == escaped_rays, back_weight ==
+// back_rays and hits + escaped + back == ray_count; with weighted rays, hits + escaped + back
+// weight == total_weight.
+Status CheckBatchOutcome(const BatchOutcome& outcome, const BatchBounds& bounds);
 
 }  // namespace radfarm::protocol

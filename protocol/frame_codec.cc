@@ -50,7 +50,7 @@ std::vector<uint8_t> EncodeFrame(const Message& message, uint16_t version) {
   return out;
 }
 
-size_t ResultFrameCost(const BatchResultMsg& result, uint16_t version) {
+size_t ResultFrameCost(const BatchOutcome& result, uint16_t version) {
   return 96 +
          (version >= kPackedHitsVersion ? PackedHitsBytes(result.hits) : 16 * result.hits.size());
 }

@@ -27,7 +27,7 @@ inline constexpr size_t kResultFrameBytes = 60 * 1024;
 
 // About what one batch's result adds to a LeaseResult frame of `version`: its counts (~72 bytes)
 // and its hits, packed from kPackedHitsVersion on (2-3 bytes a hit), 16 bytes a hit before.
-size_t ResultFrameCost(const BatchResultMsg& result, uint16_t version);
+size_t ResultFrameCost(const BatchOutcome& result, uint16_t version);
 
 // Checks a length prefix before anything is allocated for the frame: 0 < length, kMinFrameBytes
 // <= length <= max_frame_bytes.

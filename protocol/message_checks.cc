@@ -65,7 +65,7 @@ bool IsKnown(SamplerKind k) {
   return k == SamplerKind::kGrid || k == SamplerKind::kRandom || k == SamplerKind::kSobol;
 }
 
-// The rules of one batch, shared by BatchAssignment (version 1) and LeaseAssignment.
+// The rules of one batch of a LeaseAssignment.
 Status CheckBatchRange(std::string_view message, uint32_t shooter, uint64_t first_ray,
                        uint32_t ray_count, uint32_t patch_count) {
   if (shooter >= patch_count) {
@@ -76,7 +76,7 @@ Status CheckBatchRange(std::string_view message, uint32_t shooter, uint64_t firs
   return Ok{};
 }
 
-// The rules of the job's fields, shared by BatchAssignment and LeaseAssignment.
+// The rules of a LeaseAssignment's job fields.
 Status CheckJobFields(std::string_view message, SamplerKind sampler, double grid_step_degrees,
                       uint32_t patch_count, uint32_t lease_ms) {
   if (patch_count < 1) return Fail(message, "patch_count 0");
@@ -90,12 +90,6 @@ Status CheckJobFields(std::string_view message, SamplerKind sampler, double grid
   }
   if (lease_ms < 1) return Fail(message, "lease_ms 0");
   return Ok{};
-}
-
-Status Check(const BatchAssignmentMsg& m) {
-  RADFARM_RETURN_IF_ERROR(
-      CheckJobFields("BatchAssignment", m.sampler, m.grid_step_degrees, m.patch_count, m.lease_ms));
-  return CheckBatchRange("BatchAssignment", m.shooter, m.first_ray, m.ray_count, m.patch_count);
 }
 
 Status Check(const LeaseAssignmentMsg& m) {
@@ -120,7 +114,7 @@ Status Check(const LeaseAssignmentMsg& m) {
   return Ok{};
 }
 
-Status CheckResult(std::string_view name, const BatchResultMsg& m) {
+Status CheckResult(std::string_view name, const BatchOutcome& m) {
   for (size_t i = 0; i < m.hits.size(); ++i) {
     if (m.hits[i].weight == 0) {
       return Fail(name, "hit " + Str(i) + " (patch " + Str(m.hits[i].patch) + ") has weight 0");
@@ -135,8 +129,6 @@ Status CheckResult(std::string_view name, const BatchResultMsg& m) {
   }
   return Ok{};
 }
-
-Status Check(const BatchResultMsg& m) { return CheckResult("BatchResult", m); }
 
 Status Check(const LeaseResultMsg& m) {
   if (m.results.empty() || m.results.size() > kMaxLeaseBatches) {
@@ -220,6 +212,8 @@ bool IsValidAgentName(std::string_view name) {
   }
   return true;
 }
+
+Status CheckOutcomeValues(const BatchOutcome& result) { return CheckResult("result", result); }
 
 Status CheckMessage(const Message& message) {
   return std::visit([](const auto& m) { return Check(m); }, message);

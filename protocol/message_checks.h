@@ -9,8 +9,13 @@
 
 namespace radfarm::protocol {
 
-// OK, or an error naming the message and the field ("BatchAssignment: shooter 9 >= patch_count 4").
+// OK, or an error naming the message and the field ("LeaseAssignment batch 0: shooter 9 >=
+// patch_count 4").
 Status CheckMessage(const Message& message);
+
+// The context-free rules of one batch's result (an entry of a LeaseResult): hits in strictly
+// increasing patch order with no zero weight, compute_seconds finite and >= 0.
+Status CheckOutcomeValues(const BatchOutcome& result);
 
 // The agent name rule: 1..kMaxAgentNameBytes of [A-Za-z0-9._:@-] (it goes into logs).
 bool IsValidAgentName(std::string_view name);

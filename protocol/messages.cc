@@ -5,10 +5,9 @@ namespace {
 
 // One name per Message alternative, in variant order.
 constexpr std::string_view kMessageNames[] = {
-    "Hello",           "Challenge",        "Proof",       "Welcome", "Heartbeat",
-    "BatchAssignment", "BatchResult",      "LeaseReturn", "Cancel",  "SceneRequest",
-    "SceneChunk",      "SceneUnavailable", "Drain",       "Close",   "LeaseAssignment",
-    "LeaseResult",     "LeaseRevoke",
+    "Hello",       "Challenge", "Proof",           "Welcome",     "Heartbeat",
+    "LeaseReturn", "Cancel",    "SceneRequest",    "SceneChunk",  "SceneUnavailable",
+    "Drain",       "Close",     "LeaseAssignment", "LeaseResult", "LeaseRevoke",
 };
 static_assert(std::size(kMessageNames) == std::variant_size_v<Message>);
 
@@ -17,10 +16,6 @@ static_assert(std::size(kMessageNames) == std::variant_size_v<Message>);
 std::string_view MessageName(const Message& message) { return kMessageNames[message.index()]; }
 
 bool InVersion(const Message& message, uint16_t version) {
-  if (std::holds_alternative<BatchAssignmentMsg>(message) ||
-      std::holds_alternative<BatchResultMsg>(message)) {
-    return version == 1;
-  }
   if (std::holds_alternative<LeaseAssignmentMsg>(message) ||
       std::holds_alternative<LeaseResultMsg>(message) ||
       std::holds_alternative<LeaseRevokeMsg>(message)) {

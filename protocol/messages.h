@@ -86,9 +86,9 @@ struct HeartbeatMsg {          // both ways
   bool operator==(const HeartbeatMsg&) const = default;
 };
 
-// Version 1 only (a lease of one batch); version 2 sends LeaseAssignmentMsg. The agent still
-// describes each batch it holds by one (protocol/batch_convert.h, BatchOf).
-struct BatchAssignmentMsg {  // master -> agent
+// The agent's record of one batch it leased: a LeaseBatch with its lease's job fields
+// (protocol/batch_convert.h, BatchOf). Not a message: no frame carries one alone.
+struct AssignedBatch {
   LeaseRef lease;
   uint32_t round = 0;
   uint32_t shooter = 0;  // < patch_count
@@ -100,11 +100,12 @@ struct BatchAssignmentMsg {  // master -> agent
   SceneHash scene_hash{};
   uint32_t patch_count = 0;  // >= 1
   uint32_t lease_ms = 0;     // >= 1
-  bool operator==(const BatchAssignmentMsg&) const = default;
+  bool operator==(const AssignedBatch&) const = default;
 };
 
-// Version 1 only as a message; in version 2 each entry of a LeaseResultMsg is one.
-struct BatchResultMsg {  // agent -> master
+// What became of one leased batch: its result and the lease it answers. Not a message: each entry
+// of a LeaseResultMsg is one.
+struct BatchOutcome {
   LeaseRef lease;
   std::vector<PatchHits> hits;  // strictly increasing patch id, no zero weights
   uint64_t escaped_weight = 0;
@@ -112,7 +113,7 @@ struct BatchResultMsg {  // agent -> master
   uint64_t back_weight = 0;
   uint64_t back_rays = 0;
   double compute_seconds = 0;  // finite, >= 0
-  bool operator==(const BatchResultMsg&) const = default;
+  bool operator==(const BatchOutcome&) const = default;
 };
 
 // One batch of a lease: rays [first_ray, first_ray + ray_count) of `shooter`, attempt `attempt_id`.
@@ -125,7 +126,7 @@ struct LeaseBatch {
   bool operator==(const LeaseBatch&) const = default;
 };
 
-// Version 2: many batches of one job and round in one frame; the fields as in BatchAssignmentMsg.
+// Version 2: many batches of one job and round in one frame.
 struct LeaseAssignmentMsg {  // master -> agent
   uint64_t job_id = 0;
   uint32_t round = 0;
@@ -140,8 +141,8 @@ struct LeaseAssignmentMsg {  // master -> agent
 };
 
 // Version 2: results of batches of one or more leases, in one frame.
-struct LeaseResultMsg {                 // agent -> master
-  std::vector<BatchResultMsg> results;  // 1..kMaxLeaseBatches, each as BatchResultMsg's rules
+struct LeaseResultMsg {               // agent -> master
+  std::vector<BatchOutcome> results;  // 1..kMaxLeaseBatches, each as BatchOutcome's rules
   bool operator==(const LeaseResultMsg&) const = default;
 };
 
@@ -199,11 +200,12 @@ struct CloseMsg {  // both ways, any state; the sender closes the connection aft
   bool operator==(const CloseMsg&) const = default;
 };
 
-// In the order of the schema's Payload union: index() + 1 is the wire type.
-using Message = std::variant<HelloMsg, ChallengeMsg, ProofMsg, WelcomeMsg, HeartbeatMsg,
-                             BatchAssignmentMsg, BatchResultMsg, LeaseReturnMsg, CancelMsg,
-                             SceneRequestMsg, SceneChunkMsg, SceneUnavailableMsg, DrainMsg,
-                             CloseMsg, LeaseAssignmentMsg, LeaseResultMsg, LeaseRevokeMsg>;
+// In the order of the schema's Payload union, less its retired slots (the codec takes each
+// message's wire type from its table, wire_encode.cc).
+using Message =
+    std::variant<HelloMsg, ChallengeMsg, ProofMsg, WelcomeMsg, HeartbeatMsg, LeaseReturnMsg,
+                 CancelMsg, SceneRequestMsg, SceneChunkMsg, SceneUnavailableMsg, DrainMsg, CloseMsg,
+                 LeaseAssignmentMsg, LeaseResultMsg, LeaseRevokeMsg>;
 
 // A verified incoming frame.
 struct DecodedFrame {
@@ -212,8 +214,7 @@ struct DecodedFrame {
 };
 
 std::string_view MessageName(const Message& message);
-// Whether `message` exists in protocol `version` (BatchAssignment and BatchResult only in 1, the
-// Lease messages from 2 on).
+// Whether `message` exists in protocol `version` (the Lease messages from 2 on).
 bool InVersion(const Message& message, uint16_t version);
 std::string_view CloseCodeName(CloseCode code);
 

@@ -17,17 +17,17 @@ bool IsHandshake(const Message& m) {
 }
 
 bool MasterMaySend(const Message& m) {
-  return std::holds_alternative<HeartbeatMsg>(m) || std::holds_alternative<BatchAssignmentMsg>(m) ||
-         std::holds_alternative<CancelMsg>(m) || std::holds_alternative<SceneChunkMsg>(m) ||
+  return std::holds_alternative<HeartbeatMsg>(m) || std::holds_alternative<CancelMsg>(m) ||
+         std::holds_alternative<SceneChunkMsg>(m) ||
          std::holds_alternative<SceneUnavailableMsg>(m) || std::holds_alternative<DrainMsg>(m) ||
          std::holds_alternative<CloseMsg>(m) || std::holds_alternative<LeaseAssignmentMsg>(m) ||
          std::holds_alternative<LeaseRevokeMsg>(m);
 }
 
 bool AgentMaySend(const Message& m) {
-  return std::holds_alternative<HeartbeatMsg>(m) || std::holds_alternative<BatchResultMsg>(m) ||
-         std::holds_alternative<LeaseReturnMsg>(m) || std::holds_alternative<SceneRequestMsg>(m) ||
-         std::holds_alternative<CloseMsg>(m) || std::holds_alternative<LeaseResultMsg>(m);
+  return std::holds_alternative<HeartbeatMsg>(m) || std::holds_alternative<LeaseReturnMsg>(m) ||
+         std::holds_alternative<SceneRequestMsg>(m) || std::holds_alternative<CloseMsg>(m) ||
+         std::holds_alternative<LeaseResultMsg>(m);
 }
 
 std::string VersionRange(uint16_t lo, uint16_t hi) {

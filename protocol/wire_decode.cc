@@ -76,42 +76,6 @@ Result<SamplerKind> ReadSampler(wire::SamplerKind kind, const char* message) {
                std::to_string(static_cast<unsigned>(kind))};
 }
 
-Result<Message> Read(const wire::BatchAssignment& t) {
-  if (!t.lease()) return Missing("BatchAssignment", "lease");
-  if (!t.scene_hash()) return Missing("BatchAssignment", "scene_hash");
-  BatchAssignmentMsg m;
-  Result<SamplerKind> sampler = ReadSampler(t.sampler(), "BatchAssignment");
-  RADFARM_RETURN_IF_ERROR(sampler);
-  m.sampler = *sampler;
-  m.lease = FromWire(*t.lease());
-  m.round = t.round();
-  m.shooter = t.shooter();
-  m.first_ray = t.first_ray();
-  m.ray_count = t.ray_count();
-  m.seed = t.seed();
-  m.grid_step_degrees = t.grid_step_degrees();
-  m.scene_hash = FromWire(*t.scene_hash());
-  m.patch_count = t.patch_count();
-  m.lease_ms = t.lease_ms();
-  return Message{std::move(m)};
-}
-
-Result<Message> Read(const wire::BatchResult& t) {
-  if (!t.lease()) return Missing("BatchResult", "lease");
-  if (!t.hits()) return Missing("BatchResult", "hits");
-  if (!IsAligned(*t.hits())) return Error{"BatchResult: misaligned hits"};
-  BatchResultMsg m;
-  m.lease = FromWire(*t.lease());
-  m.hits.reserve(t.hits()->size());
-  for (const wire::PatchHit* h : *t.hits()) m.hits.push_back({h->patch(), h->weight()});
-  m.escaped_weight = t.escaped_weight();
-  m.escaped_rays = t.escaped_rays();
-  m.back_weight = t.back_weight();
-  m.back_rays = t.back_rays();
-  m.compute_seconds = t.compute_seconds();
-  return Message{std::move(m)};
-}
-
 Result<Message> Read(const wire::LeaseReturn& t) {
   if (!t.leases()) return Missing("LeaseReturn", "leases");
   if (!IsAligned(*t.leases())) return Error{"LeaseReturn: misaligned leases"};
@@ -177,7 +141,7 @@ Result<Message> ReadLeaseResult(const wire::LeaseResult& t, uint16_t version) {
   m.results.reserve(t.batches()->size());
   uint32_t next = 0;
   for (const wire::BatchTally* b : *t.batches()) {
-    BatchResultMsg r;
+    BatchOutcome r;
     r.lease = FromWire(b->lease());
     if (packed) {
       const std::string wrong = ReadPackedHits(bytes, &at, b->hit_count(), &r.hits);
@@ -251,6 +215,13 @@ Result<Message> ReadAs(const wire::Frame& frame) {
   return Read(*table);
 }
 
+// A slot kept in the union only so later members keep their numbers (schema/frame.fbs).
+Error Retired(const wire::Frame& frame, const char* message) {
+  return Error{"frame: message type " +
+               std::to_string(static_cast<unsigned>(frame.payload_type())) + " (" + message +
+               ", protocol version 1) is retired"};
+}
+
 }  // namespace
 
 Result<Message> ReadPayload(const wire::Frame& frame) {
@@ -266,10 +237,10 @@ Result<Message> ReadPayload(const wire::Frame& frame) {
       return ReadAs<wire::Welcome>(frame);
     case P::Heartbeat:
       return ReadAs<wire::Heartbeat>(frame);
-    case P::BatchAssignment:
-      return ReadAs<wire::BatchAssignment>(frame);
-    case P::BatchResult:
-      return ReadAs<wire::BatchResult>(frame);
+    case P::RetiredBatchAssignment:
+      return Retired(frame, "BatchAssignment");
+    case P::RetiredBatchResult:
+      return Retired(frame, "BatchResult");
     case P::LeaseReturn:
       return ReadAs<wire::LeaseReturn>(frame);
     case P::Cancel:

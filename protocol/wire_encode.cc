@@ -32,94 +32,69 @@ wire::SamplerKind ToWire(SamplerKind k) {
   return static_cast<wire::SamplerKind>(k);
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const HelloMsg& m) {
+Offset<wire::Hello> Build(FlatBufferBuilder& fbb, const HelloMsg& m) {
   const wire::Bytes32 nonce = ToWire(m.nonce);
   return wire::CreateHello(fbb, m.min_version, m.max_version, fbb.CreateString(m.agent_name),
-                           m.threads, &nonce)
-      .Union();
+                           m.threads, &nonce);
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const ChallengeMsg& m) {
+Offset<wire::Challenge> Build(FlatBufferBuilder& fbb, const ChallengeMsg& m) {
   const wire::Bytes32 nonce = ToWire(m.nonce);
-  return wire::CreateChallenge(fbb, m.version, &nonce).Union();
+  return wire::CreateChallenge(fbb, m.version, &nonce);
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const ProofMsg& m) {
+Offset<wire::Proof> Build(FlatBufferBuilder& fbb, const ProofMsg& m) {
   const wire::Bytes32 tag = ToWire(m.tag);
-  return wire::CreateProof(fbb, &tag).Union();
+  return wire::CreateProof(fbb, &tag);
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const WelcomeMsg& m) {
+Offset<wire::Welcome> Build(FlatBufferBuilder& fbb, const WelcomeMsg& m) {
   const wire::Bytes32 tag = ToWire(m.tag);
-  return wire::CreateWelcome(fbb, &tag, m.agent_id, m.heartbeat_interval_ms, m.max_frame_bytes)
-      .Union();
+  return wire::CreateWelcome(fbb, &tag, m.agent_id, m.heartbeat_interval_ms, m.max_frame_bytes);
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const HeartbeatMsg& m) {
-  return wire::CreateHeartbeat(fbb, m.load, m.rays_per_second, m.leases_held).Union();
+Offset<wire::Heartbeat> Build(FlatBufferBuilder& fbb, const HeartbeatMsg& m) {
+  return wire::CreateHeartbeat(fbb, m.load, m.rays_per_second, m.leases_held);
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const BatchAssignmentMsg& m) {
-  const wire::LeaseRef lease = ToWire(m.lease);
-  const wire::Bytes32 hash = ToWire(m.scene_hash);
-  return wire::CreateBatchAssignment(fbb, &lease, m.round, m.shooter, m.first_ray, m.ray_count,
-                                     m.seed, ToWire(m.sampler), m.grid_step_degrees, &hash,
-                                     m.patch_count, m.lease_ms)
-      .Union();
-}
-
-Offset<void> Build(FlatBufferBuilder& fbb, const BatchResultMsg& m) {
-  // CreateVectorOfStructs aligns by the struct's alignment (the uninitialized variant aligns by
-  // its size, which is wrong for 24-byte structs).
-  std::vector<wire::PatchHit> wire_hits;
-  wire_hits.reserve(m.hits.size());
-  for (const PatchHits& h : m.hits) wire_hits.emplace_back(h.patch, h.weight);
-  const auto hits = fbb.CreateVectorOfStructs(wire_hits.data(), wire_hits.size());
-  const wire::LeaseRef lease = ToWire(m.lease);
-  return wire::CreateBatchResult(fbb, &lease, hits, m.escaped_weight, m.escaped_rays, m.back_weight,
-                                 m.back_rays, m.compute_seconds)
-      .Union();
-}
-
-Offset<void> Build(FlatBufferBuilder& fbb, const LeaseReturnMsg& m) {
+Offset<wire::LeaseReturn> Build(FlatBufferBuilder& fbb, const LeaseReturnMsg& m) {
   std::vector<wire::LeaseRef> wire_leases;
   wire_leases.reserve(m.leases.size());
   for (const LeaseRef& l : m.leases) wire_leases.push_back(ToWire(l));
   const auto leases = fbb.CreateVectorOfStructs(wire_leases.data(), wire_leases.size());
-  return wire::CreateLeaseReturn(fbb, leases, static_cast<wire::LeaseReturnReason>(m.reason))
-      .Union();
+  return wire::CreateLeaseReturn(fbb, leases, static_cast<wire::LeaseReturnReason>(m.reason));
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const CancelMsg& m) {
-  return wire::CreateCancel(fbb, m.job_id).Union();
+Offset<wire::Cancel> Build(FlatBufferBuilder& fbb, const CancelMsg& m) {
+  return wire::CreateCancel(fbb, m.job_id);
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const SceneRequestMsg& m) {
+Offset<wire::SceneRequest> Build(FlatBufferBuilder& fbb, const SceneRequestMsg& m) {
   const wire::Bytes32 hash = ToWire(m.scene_hash);
-  return wire::CreateSceneRequest(fbb, &hash, m.offset, m.max_length).Union();
+  return wire::CreateSceneRequest(fbb, &hash, m.offset, m.max_length);
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const SceneChunkMsg& m) {
+Offset<wire::SceneChunk> Build(FlatBufferBuilder& fbb, const SceneChunkMsg& m) {
   const auto data = fbb.CreateVector(m.data);
   const wire::Bytes32 hash = ToWire(m.scene_hash);
-  return wire::CreateSceneChunk(fbb, &hash, m.total_size, m.offset, data, m.scene_size).Union();
+  return wire::CreateSceneChunk(fbb, &hash, m.total_size, m.offset, data, m.scene_size);
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const SceneUnavailableMsg& m) {
+Offset<wire::SceneUnavailable> Build(FlatBufferBuilder& fbb, const SceneUnavailableMsg& m) {
   const wire::Bytes32 hash = ToWire(m.scene_hash);
-  return wire::CreateSceneUnavailable(fbb, &hash).Union();
+  return wire::CreateSceneUnavailable(fbb, &hash);
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const DrainMsg& m) {
-  return wire::CreateDrain(fbb, static_cast<wire::DrainMode>(m.mode), m.exit_after).Union();
+Offset<wire::Drain> Build(FlatBufferBuilder& fbb, const DrainMsg& m) {
+  return wire::CreateDrain(fbb, static_cast<wire::DrainMode>(m.mode), m.exit_after);
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const CloseMsg& m) {
+Offset<wire::Close> Build(FlatBufferBuilder& fbb, const CloseMsg& m) {
   const auto detail = fbb.CreateString(m.detail);
-  return wire::CreateClose(fbb, static_cast<wire::CloseCode>(m.code), detail).Union();
+  return wire::CreateClose(fbb, static_cast<wire::CloseCode>(m.code), detail);
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const LeaseAssignmentMsg& m) {
+Offset<wire::LeaseAssignment> Build(FlatBufferBuilder& fbb, const LeaseAssignmentMsg& m) {
   std::vector<wire::LeaseBatch> wire_batches;
   wire_batches.reserve(m.batches.size());
   for (const LeaseBatch& b : m.batches) {
@@ -128,14 +103,14 @@ Offset<void> Build(FlatBufferBuilder& fbb, const LeaseAssignmentMsg& m) {
   const auto batches = fbb.CreateVectorOfStructs(wire_batches.data(), wire_batches.size());
   const wire::Bytes32 hash = ToWire(m.scene_hash);
   return wire::CreateLeaseAssignment(fbb, m.job_id, m.round, m.seed, ToWire(m.sampler),
-                                     m.grid_step_degrees, &hash, m.patch_count, m.lease_ms, batches)
-      .Union();
+                                     m.grid_step_degrees, &hash, m.patch_count, m.lease_ms,
+                                     batches);
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const LeaseResultMsg& m, uint16_t version) {
+Offset<wire::LeaseResult> Build(FlatBufferBuilder& fbb, const LeaseResultMsg& m, uint16_t version) {
   std::vector<wire::BatchTally> tallies;
   tallies.reserve(m.results.size());
-  for (const BatchResultMsg& r : m.results) {
+  for (const BatchOutcome& r : m.results) {
     tallies.emplace_back(ToWire(r.lease), r.escaped_weight, r.escaped_rays, r.back_weight,
                          r.back_rays, r.compute_seconds, static_cast<uint32_t>(r.hits.size()));
   }
@@ -143,38 +118,44 @@ Offset<void> Build(FlatBufferBuilder& fbb, const LeaseResultMsg& m, uint16_t ver
   std::vector<wire::PatchHit> wire_hits;
   if (version >= kPackedHitsVersion) {
     std::vector<uint8_t> packed;
-    for (const BatchResultMsg& r : m.results) AppendPackedHits(r.hits, &packed);
+    for (const BatchOutcome& r : m.results) AppendPackedHits(r.hits, &packed);
     const auto packed_hits = fbb.CreateVector(packed);
     const auto hits = fbb.CreateVectorOfStructs(wire_hits.data(), 0);
-    return wire::CreateLeaseResult(fbb, batches, hits, packed_hits).Union();
+    return wire::CreateLeaseResult(fbb, batches, hits, packed_hits);
   }
-  for (const BatchResultMsg& r : m.results) {
+  for (const BatchOutcome& r : m.results) {
     for (const PatchHits& h : r.hits) wire_hits.emplace_back(h.patch, h.weight);
   }
   const auto hits = fbb.CreateVectorOfStructs(wire_hits.data(), wire_hits.size());
-  return wire::CreateLeaseResult(fbb, batches, hits).Union();
+  return wire::CreateLeaseResult(fbb, batches, hits);
 }
 
-Offset<void> Build(FlatBufferBuilder& fbb, const LeaseRevokeMsg& m) {
+Offset<wire::LeaseRevoke> Build(FlatBufferBuilder& fbb, const LeaseRevokeMsg& m) {
   std::vector<wire::LeaseRef> wire_leases;
   wire_leases.reserve(m.leases.size());
   for (const LeaseRef& l : m.leases) wire_leases.push_back(ToWire(l));
   const auto leases = fbb.CreateVectorOfStructs(wire_leases.data(), wire_leases.size());
-  return wire::CreateLeaseRevoke(fbb, leases).Union();
+  return wire::CreateLeaseRevoke(fbb, leases);
+}
+
+// A table as the frame's payload; its union tag comes from the table's type, so the C++ messages
+// need not follow the union's order (retired slots have no message).
+template <typename Table>
+Offset<void> AsPayload(Offset<Table> table, wire::Payload* type) {
+  *type = wire::PayloadTraits<Table>::enum_value;
+  return table.Union();
 }
 
 }  // namespace
 
 Offset<void> BuildPayload(FlatBufferBuilder& fbb, const Message& message, uint16_t version,
                           wire::Payload* type) {
-  // Message alternatives are in Payload order, starting after NONE.
-  *type = static_cast<wire::Payload>(message.index() + 1);
   return std::visit(
-      [&fbb, version](const auto& m) {
+      [&fbb, version, type](const auto& m) {
         if constexpr (std::is_same_v<std::decay_t<decltype(m)>, LeaseResultMsg>) {
-          return Build(fbb, m, version);
+          return AsPayload(Build(fbb, m, version), type);
         } else {
-          return Build(fbb, m);
+          return AsPayload(Build(fbb, m), type);
         }
       },
       message);

@@ -8,7 +8,7 @@
 #include "testing/child_process.h"
 #include "testing/temp_dir.h"
 
-namespace radfarm::bench {
+namespace radfarm::testing {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -159,4 +159,4 @@ AmdahlFit FitAmdahl(const std::vector<std::pair<double, double>>& n_and_seconds)
   return fit;
 }
 
-}  // namespace radfarm::bench
+}  // namespace radfarm::testing

@@ -14,7 +14,7 @@
 #include "testing/cpu_cap.h"
 #include "testing/loopback_farm.h"
 
-namespace radfarm::bench {
+namespace radfarm::testing {
 
 // The outputs compared byte for byte between the farm and one machine.
 inline const std::vector<std::string> kComparedOutputs = {"image.png", "radiosity.ply", "lit.glb",
@@ -63,4 +63,4 @@ struct AmdahlFit {
 };
 AmdahlFit FitAmdahl(const std::vector<std::pair<double, double>>& n_and_seconds);
 
-}  // namespace radfarm::bench
+}  // namespace radfarm::testing

@@ -16,8 +16,8 @@
 
 #include "bench/bench_json.h"
 #include "bench/machine_info.h"
-#include "testing/office_emulation.h"
 #include "bench/office/office_options.h"
+#include "testing/office_emulation.h"
 #include "testing/temp_dir.h"
 
 namespace radfarm::bench {
@@ -47,12 +47,12 @@ int64_t Patches(const std::string& out_dir) {
 
 // One job: one machine, then the farm at each size. Returns the job's JSON; counts the farm runs
 // whose outputs differ from render's in *mismatches.
-nlohmann::json RunJob(OfficeSetup setup, const std::vector<size_t>& sizes, const std::string& dir,
-                      int* mismatches) {
+nlohmann::json RunJob(testing::OfficeSetup setup, const std::vector<size_t>& sizes,
+                      const std::string& dir, int* mismatches) {
   std::filesystem::create_directories(dir);
   const std::string render_out = dir + "/render";
   std::printf("\njob %s %s\n", setup.job_file.c_str(), Join(setup.flags, " ").c_str());
-  const MachineRun one = RunOneMachine(setup, render_out);
+  const testing::MachineRun one = testing::RunOneMachine(setup, render_out);
   const int64_t patches = Patches(render_out);
   std::printf("one machine (radfarm render --threads 1): %.1f s, CPU %.1f s, %lld patches\n",
               one.seconds, one.cpu_seconds, static_cast<long long>(patches));
@@ -64,8 +64,9 @@ nlohmann::json RunJob(OfficeSetup setup, const std::vector<size_t>& sizes, const
   for (size_t n : sizes) {
     const std::string farm_dir = dir + "/farm-" + std::to_string(n);
     std::filesystem::create_directories(farm_dir);
-    const FarmRun run = RunFarm(setup, n, farm_dir, farm_dir + "/out");
-    const std::vector<std::string> differing = DifferingOutputs(render_out, farm_dir + "/out");
+    const testing::FarmRun run = testing::RunFarm(setup, n, farm_dir, farm_dir + "/out");
+    const std::vector<std::string> differing =
+        testing::DifferingOutputs(render_out, farm_dir + "/out");
     *mismatches += differing.empty() ? 0 : 1;
     const double speedup = one.seconds / run.seconds;
     std::printf("%3zu %8.1f %8.1f %8.2f %9.1f%% %8.1f %8.1f %12.1f %11.1f %11.1f  %s\n", n,
@@ -86,7 +87,7 @@ nlohmann::json RunJob(OfficeSetup setup, const std::vector<size_t>& sizes, const
                     {"client_cpu_seconds", run.client_cpu},
                     {"differing_outputs", differing}});
   }
-  const AmdahlFit fit = FitAmdahl(measured);
+  const testing::AmdahlFit fit = testing::FitAmdahl(measured);
   std::printf("T(N) = %.1f s + %.1f s / N (least squares over N = measured):", fit.serial,
               fit.parallel);
   for (double n : {100.0, 1000.0}) {
@@ -144,10 +145,11 @@ int Main(int argc, char** argv) {
   nlohmann::json jobs = nlohmann::json::array();
   int mismatches = 0;
   for (size_t i = 0; i < o.jobs.size(); ++i) {
-    const OfficeSetup setup{*cpu,      {RADFARMD_PATH, RADFARM_AGENT_PATH, RADFARM_CLI_PATH},
-                            o.share,   o.timeout,
-                            o.jobs[i], o.flags,
-                            {}};
+    const testing::OfficeSetup setup{
+        *cpu,      {RADFARMD_PATH, RADFARM_AGENT_PATH, RADFARM_CLI_PATH},
+        o.share,   o.timeout,
+        o.jobs[i], o.flags,
+        {}};
     jobs.push_back(RunJob(setup, sizes, root + "/job-" + std::to_string(i + 1), &mismatches));
   }
   const nlohmann::json out = {

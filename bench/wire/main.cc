@@ -38,14 +38,14 @@ struct Case {
 // The Cornell job's loopback farm moved 3.4 million hits (55.9 MB of version-4 frames).
 constexpr uint64_t kJobHits = 3'400'000;
 
-std::vector<protocol::BatchResultMsg> MakeBatches(const Case& c) {
+std::vector<protocol::BatchOutcome> MakeBatches(const Case& c) {
   std::mt19937_64 rng(c.patches * 7919ull + c.rays);
   std::uniform_int_distribution<uint32_t> patch(0, c.patches - 1);
-  std::vector<protocol::BatchResultMsg> batches;
+  std::vector<protocol::BatchOutcome> batches;
   uint64_t hits = 0;
   std::vector<uint32_t> landed(c.rays);
   while (hits < kJobHits) {
-    protocol::BatchResultMsg r{{1, batches.size() + 1, 1}, {}, 0, 0, 0, 0, 0.01};
+    protocol::BatchOutcome r{{1, batches.size() + 1, 1}, {}, 0, 0, 0, 0, 0.01};
     for (uint32_t& p : landed) p = patch(rng);
     std::sort(landed.begin(), landed.end());
     for (uint32_t p : landed) {
@@ -63,11 +63,11 @@ std::vector<protocol::BatchResultMsg> MakeBatches(const Case& c) {
 
 // The frames an agent speaking `version` sends: about kResultFrameBytes each, by its estimate
 // (agent/lease_worker.cc SendGroup).
-std::vector<protocol::LeaseResultMsg> Frames(const std::vector<protocol::BatchResultMsg>& batches,
+std::vector<protocol::LeaseResultMsg> Frames(const std::vector<protocol::BatchOutcome>& batches,
                                              uint16_t version) {
   std::vector<protocol::LeaseResultMsg> frames(1);
   size_t bytes = 0;
-  for (const protocol::BatchResultMsg& r : batches) {
+  for (const protocol::BatchOutcome& r : batches) {
     const size_t cost = protocol::ResultFrameCost(r, version);
     if (bytes + cost > protocol::kResultFrameBytes && !frames.back().results.empty()) {
       frames.emplace_back();
@@ -159,7 +159,7 @@ int Main(int argc, char** argv) {
               "agent v4 ms", "agent v5 ms", "master v4 ms", "master v5 ms");
   nlohmann::json runs = nlohmann::json::array();
   for (const Case& c : cases) {
-    const std::vector<protocol::BatchResultMsg> batches = MakeBatches(c);
+    const std::vector<protocol::BatchOutcome> batches = MakeBatches(c);
     const std::vector<protocol::LeaseResultMsg> frames[2] = {Frames(batches, 4),
                                                              Frames(batches, 5)};
     uint64_t hits = 0;

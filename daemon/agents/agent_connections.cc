@@ -210,14 +210,14 @@ void AgentConnections::OnAgentMessage(AgentLink& link, protocol::Message& messag
 
 void AgentConnections::OnLeaseResult(AgentLink& link, const protocol::LeaseResultMsg& message) {
   // One frame may answer leases of several jobs: each job's results go to its scheduler together.
-  std::map<uint64_t, std::vector<const protocol::BatchResultMsg*>> by_job;
-  for (const protocol::BatchResultMsg& r : message.results) by_job[r.lease.job_id].push_back(&r);
+  std::map<uint64_t, std::vector<const protocol::BatchOutcome*>> by_job;
+  for (const protocol::BatchOutcome& r : message.results) by_job[r.lease.job_id].push_back(&r);
   for (auto& [job_id, results] : by_job) {
     RunningJob* runner = jobs_.FindRunner(job_id);
     if (runner != nullptr && runner->gather_ahead() != nullptr) {
       // The gather's batches leased ahead of its round, in any phase of the job.
-      std::vector<const protocol::BatchResultMsg*> ahead;
-      std::erase_if(results, [&](const protocol::BatchResultMsg* r) {
+      std::vector<const protocol::BatchOutcome*> ahead;
+      std::erase_if(results, [&](const protocol::BatchOutcome* r) {
         if (!GatherAhead::Names(r->lease.batch_id)) return false;
         ahead.push_back(r);
         return true;
@@ -262,7 +262,7 @@ void AgentConnections::OnLeaseResult(AgentLink& link, const protocol::LeaseResul
 
 bool AgentConnections::OnGatherAheadResults(
     AgentLink& link, RunningJob& runner,
-    const std::vector<const protocol::BatchResultMsg*>& results) {
+    const std::vector<const protocol::BatchOutcome*>& results) {
   GatherAhead& ahead = *runner.gather_ahead();
   const scheduler::LeaseIntake intake = scheduler::SubmitLeaseResults(
       ahead.scheduler(), link.id(), results, runner.sampler(), runner.patch_count(), clock_.Now());

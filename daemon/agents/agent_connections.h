@@ -102,7 +102,7 @@ class AgentConnections {
   // Results of the job's gather ahead (gather_ahead.h): validated and kept there. False when the
   // link is closing (an invalid result, as for a round's).
   bool OnGatherAheadResults(AgentLink& link, RunningJob& runner,
-                            const std::vector<const protocol::BatchResultMsg*>& results);
+                            const std::vector<const protocol::BatchOutcome*>& results);
   // A refused or pre-authentication close, through the rate limiter.
   void LogAtDoor(const std::string& line);
   // Hands leases to one agent.

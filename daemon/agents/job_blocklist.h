@@ -1,5 +1,5 @@
 // JobBlocklist: which agents may not work for which job, by identity. An agent whose results
-// authenticate (so the wire is not to blame) but fail ValidateBatchResult earns a strike for that
+// authenticate (so the wire is not to blame) but fail CheckBatchOutcome earns a strike for that
 // job; kStrikes strikes within `duration` blocklist it for that job until `duration` after the
 // last. Strikes and blocklistings expire; other jobs are not affected.
 //

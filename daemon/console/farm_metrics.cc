@@ -23,7 +23,7 @@ bool IsRejection(scheduler::DropReason r) {
 
 web::FarmMetrics FarmMetricsOf(const nlohmann::json& jobs, const nlohmann::json& agents,
                                const BatchTotals& batches,
-                               const web::LatencyHistogram& checkpoint_latency,
+                               const LatencyHistogram& checkpoint_latency,
                                size_t store_queue_depth) {
   web::FarmMetrics m;
   using store::JobState;

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <nlohmann/json.hpp>
 
-#include "daemon/console/web/latency_histogram.h"
+#include "base/latency_histogram.h"
 #include "daemon/console/web/metrics_text.h"
 #include "daemon/jobs/batch_totals.h"
 
@@ -15,7 +15,7 @@ namespace radfarm::daemon {
 // else busy when it holds leases, else idle.
 web::FarmMetrics FarmMetricsOf(const nlohmann::json& jobs, const nlohmann::json& agents,
                                const BatchTotals& batches,
-                               const web::LatencyHistogram& checkpoint_latency,
+                               const LatencyHistogram& checkpoint_latency,
                                size_t store_queue_depth);
 
 }  // namespace radfarm::daemon

@@ -28,8 +28,8 @@
 #include <string_view>
 #include <vector>
 
+#include "base/latency_histogram.h"
 #include "daemon/config/master_config.h"
-#include "daemon/console/web/latency_histogram.h"
 #include "daemon/jobs/batch_totals.h"
 #include "daemon/jobs/batch_verifier.h"
 #include "daemon/jobs/clock.h"
@@ -127,7 +127,7 @@ class JobRounds {
   // Results of final gathers computed ahead of their rounds and accepted there (gather_ahead.h).
   uint64_t gather_ahead_adopted() const { return gather_ahead_adopted_; }
   // Seconds from queueing each checkpoint on the store thread to its commit.
-  const web::LatencyHistogram& checkpoint_latency() const { return checkpoint_latency_; }
+  const LatencyHistogram& checkpoint_latency() const { return checkpoint_latency_; }
   // The last checkpoint this master committed for job `id`, or null: kept for the
   // kKeptCheckpointReports most recent jobs, finished ones included (the control socket's
   // last_checkpoint).
@@ -205,7 +205,7 @@ class JobRounds {
   uint64_t batches_restored_ = 0;
   uint64_t gather_ahead_adopted_ = 0;
   BatchTotals retired_;  // the counters of runners that went
-  web::LatencyHistogram checkpoint_latency_;
+  LatencyHistogram checkpoint_latency_;
   static constexpr size_t kKeptCheckpointReports = 256;
   std::map<store::JobId, CheckpointReport> checkpoint_reports_;  // by id: oldest job first
   store::CheckpointPacer checkpoints_;                           // which rounds write a checkpoint

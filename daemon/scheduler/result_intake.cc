@@ -7,22 +7,18 @@ namespace radfarm::scheduler {
 
 namespace {
 
-// ValidateBatchResult against the batch the lease names; Ok for a batch not in the round.
-Status Validate(const RoundScheduler& scheduler, const protocol::BatchResultMsg& message,
-                const RaySampler& sampler, uint32_t patch_count) {
-  const Batch* batch = scheduler.FindBatch(message.lease.batch_id);
+// CheckBatchOutcome against the batch the lease names; Ok for a batch not in the round.
+Status Check(const RoundScheduler& scheduler, const protocol::BatchOutcome& outcome,
+             const RaySampler& sampler, uint32_t patch_count) {
+  const Batch* batch = scheduler.FindBatch(outcome.lease.batch_id);
   if (batch == nullptr) return Ok{};
-  protocol::BatchAssignmentMsg assigned;  // only what BoundsFor reads
-  assigned.first_ray = batch->first_ray;
-  assigned.ray_count = batch->ray_count;
-  assigned.patch_count = patch_count;
-  return protocol::ValidateBatchResult(message, protocol::BoundsFor(assigned, sampler));
+  return protocol::CheckBatchOutcome(outcome, protocol::BoundsOf(*batch, patch_count, sampler));
 }
 
 }  // namespace
 
 LeaseIntake SubmitLeaseResults(RoundScheduler& scheduler, AgentId agent,
-                               const std::vector<const protocol::BatchResultMsg*>& results,
+                               const std::vector<const protocol::BatchOutcome*>& results,
                                const RaySampler& sampler, uint32_t patch_count, TimePoint now) {
   LeaseIntake intake;
   std::vector<SubmittedResult> valid;
@@ -49,9 +45,9 @@ LeaseIntake SubmitLeaseResults(RoundScheduler& scheduler, AgentId agent,
       }
     }
   };
-  for (const protocol::BatchResultMsg* message : results) {
+  for (const protocol::BatchOutcome* message : results) {
     const protocol::LeaseRef& lease = message->lease;
-    if (Status ok = Validate(scheduler, *message, sampler, patch_count); !ok) {
+    if (Status ok = Check(scheduler, *message, sampler, patch_count); !ok) {
       // What came before the lie is still fed in: those results passed on their own.
       submit();
       intake.last = {scheduler.OnInvalidResult(agent, lease.batch_id, lease.attempt_id, now),
@@ -65,19 +61,16 @@ LeaseIntake SubmitLeaseResults(RoundScheduler& scheduler, AgentId agent,
   return intake;
 }
 
-IntakeVerdict SubmitBatchResult(RoundScheduler& scheduler, AgentId agent,
-                                const protocol::BatchResultMsg& message, const RaySampler& sampler,
-                                uint32_t patch_count, TimePoint now) {
+IntakeVerdict SubmitBatchOutcome(RoundScheduler& scheduler, AgentId agent,
+                                 const protocol::BatchOutcome& message, const RaySampler& sampler,
+                                 uint32_t patch_count, TimePoint now) {
   const protocol::LeaseRef& lease = message.lease;
   const Batch* batch = scheduler.FindBatch(lease.batch_id);
   if (batch == nullptr) {
     return {scheduler.OnResult(agent, lease.batch_id, lease.attempt_id, {}, now), ""};
   }
-  protocol::BatchAssignmentMsg assigned;  // only what BoundsFor reads
-  assigned.first_ray = batch->first_ray;
-  assigned.ray_count = batch->ray_count;
-  assigned.patch_count = patch_count;
-  if (Status valid = protocol::ValidateBatchResult(message, protocol::BoundsFor(assigned, sampler));
+  if (Status valid =
+          protocol::CheckBatchOutcome(message, protocol::BoundsOf(*batch, patch_count, sampler));
       !valid) {
     return {scheduler.OnInvalidResult(agent, lease.batch_id, lease.attempt_id, now), valid.error()};
   }

@@ -1,6 +1,7 @@
-// SubmitBatchResult: the one path from a received BatchResult message into the scheduler. It
-// validates the result against the batch its lease names (protocol's ValidateBatchResult) and
-// then calls RoundScheduler::OnResult, or OnInvalidResult when validation fails.
+// The path from received batch outcomes into the scheduler: each is checked against the batch its
+// lease names (protocol's CheckBatchOutcome), then RoundScheduler::OnResult(s) takes it, or
+// OnInvalidResult when the check fails. SubmitLeaseResults serves a LeaseResult frame;
+// SubmitBatchOutcome one outcome alone.
 #pragma once
 
 #include <cstdint>
@@ -21,9 +22,9 @@ struct IntakeVerdict {
 // `sampler` is the job's sampler (the grid's ray weights) and `patch_count` its scene's patches.
 // A result whose batch is not in the current round is dropped unvalidated (kStaleRound): it can
 // never enter a round. On kInvalid the protocol's rule applies: close the agent's connection.
-IntakeVerdict SubmitBatchResult(RoundScheduler& scheduler, AgentId agent,
-                                const protocol::BatchResultMsg& message, const RaySampler& sampler,
-                                uint32_t patch_count, TimePoint now);
+IntakeVerdict SubmitBatchOutcome(RoundScheduler& scheduler, AgentId agent,
+                                 const protocol::BatchOutcome& message, const RaySampler& sampler,
+                                 uint32_t patch_count, TimePoint now);
 
 // The results of one job from a LeaseResult frame: each validated as above, then all handed to
 // RoundScheduler::OnResults (the agent's speed measured once over the frame). The first invalid
@@ -37,7 +38,7 @@ struct LeaseIntake {
   size_t rejected = 0;  // not the agent's lease, wrong batch (logged by the caller)
 };
 LeaseIntake SubmitLeaseResults(RoundScheduler& scheduler, AgentId agent,
-                               const std::vector<const protocol::BatchResultMsg*>& results,
+                               const std::vector<const protocol::BatchOutcome*>& results,
                                const RaySampler& sampler, uint32_t patch_count, TimePoint now);
 
 }  // namespace radfarm::scheduler

@@ -12,7 +12,7 @@
 //   plan = solver.PlanRound(scheduler.SuggestedBatchRays());   // empty plan: the job is done
 //   scheduler.StartRound(plan, now);
 //   loop: NextAssignment for agents with room; OnResult / OnInvalidResult (result_intake.h does
-//         both after ValidateBatchResult); OnAgentLost; ReturnLeases; Tick every ~100 ms.
+//         both after CheckBatchOutcome); OnAgentLost; ReturnLeases; Tick every ~100 ms.
 //   when a verdict says round_complete: done = TakeCompletedRound();
 //   solver.ApplyRound(done.plan, done.results); plan the next round.
 // The next round can only be planned after ApplyRound (the plan depends on the unshot radiosity),
@@ -207,7 +207,7 @@ class RoundScheduler {
   uint32_t LeasesHeld(AgentId agent) const;
   // How many leases this scheduler would let `agent` hold now (0 for an unknown agent).
   uint32_t LeaseCapacityOf(AgentId agent) const;
-  // A result that passed ValidateBatchResult against FindBatch(batch_id). The first valid result
+  // A result that passed CheckBatchOutcome against FindBatch(batch_id). The first valid result
   // of a batch wins; see DropReason for the others.
   ResultVerdict OnResult(AgentId agent, BatchId batch_id, AttemptId attempt_id, BatchResult result,
                          TimePoint now);
@@ -215,7 +215,7 @@ class RoundScheduler {
   // measured once, over all their rays (a lease's batches come back together).
   std::vector<ResultVerdict> OnResults(AgentId agent, std::vector<SubmittedResult> results,
                                        TimePoint now);
-  // A result that failed ValidateBatchResult: all the agent's live leases are revoked and
+  // A result that failed CheckBatchOutcome: all the agent's live leases are revoked and
   // requeued (whether to blocklist it is the daemon's call: Blocklist).
   ResultVerdict OnInvalidResult(AgentId agent, BatchId batch_id, AttemptId attempt_id,
                                 TimePoint now);

@@ -41,7 +41,7 @@ enum class DropReason {
   kWrongBatch,      // the attempt exists but belongs to another batch (rejected)
   kNotHolder,       // the attempt was issued to another agent (rejected)
   kBlocklisted,     // the agent is blocklisted (rejected)
-  kInvalid,         // failed ValidateBatchResult (rejected; a strike against the agent)
+  kInvalid,         // failed CheckBatchOutcome (rejected; a strike against the agent)
 };
 inline constexpr size_t kDropReasonCount = 9;
 

@@ -75,17 +75,17 @@ class AgentIdleTest : public ::testing::Test {
     return ok;
   }
 
-  protocol::BatchAssignmentMsg Assign(const TestJob& job, uint64_t batch, uint32_t shooter,
-                                      uint64_t first_ray, uint32_t rays) {
+  protocol::AssignedBatch Assign(const TestJob& job, uint64_t batch, uint32_t shooter,
+                                 uint64_t first_ray, uint32_t rays) {
     return Assignment(job, blob_, scene_, batch, shooter, first_ray, rays);
   }
 
   // Sends `assignment` and checks its result equals BatchTracer's on this machine.
-  void ExpectWorks(const protocol::BatchAssignmentMsg& assignment, const AgentProcess& agent) {
+  void ExpectWorks(const protocol::AssignedBatch& assignment, const AgentProcess& agent) {
     master_.Send(assignment);
-    std::optional<protocol::BatchResultMsg> found;
+    std::optional<protocol::BatchOutcome> found;
     ASSERT_TRUE(master_.WaitFor([&](const Record& r) {
-      for (const auto& result : r.All<protocol::BatchResultMsg>()) {
+      for (const auto& result : r.results) {
         if (result.lease == assignment.lease) found = result;
       }
       return found.has_value();
@@ -125,7 +125,7 @@ TEST_F(AgentIdleTest, AReturningUserGetsEveryLeaseBackAndNoResultIsSent) {
   EXPECT_TRUE(agent.WaitForLog("pausing: user active; returning 3 leases")) << agent.Log();
   // The running batch finishes on a worker; its result is discarded, not sent.
   ASSERT_TRUE(agent.WaitForLog("discarded the result of a lease no longer held")) << agent.Log();
-  EXPECT_TRUE(master_.Snapshot().All<protocol::BatchResultMsg>().empty()) << agent.Log();
+  EXPECT_TRUE(master_.Snapshot().results.empty()) << agent.Log();
   EXPECT_EQ(master_.Snapshot().authenticated, 1) << agent.Log();  // no reconnection while busy
 
   // The user leaves: the agent connects again and takes work.
@@ -133,7 +133,7 @@ TEST_F(AgentIdleTest, AReturningUserGetsEveryLeaseBackAndNoResultIsSent) {
   ASSERT_TRUE(WaitConnected(2, agent));
   EXPECT_TRUE(agent.WaitForLog("resuming: idle: user idle")) << agent.Log();
   ExpectWorks(Assign(Job(2), 1, 5, 0, 2000), agent);
-  for (const auto& result : master_.Snapshot().All<protocol::BatchResultMsg>()) {
+  for (const auto& result : master_.Snapshot().results) {
     EXPECT_NE(result.lease.job_id, 1u)
         << "a result for a returned lease, batch " << result.lease.batch_id;
   }
@@ -172,7 +172,7 @@ TEST_F(AgentIdleTest, TheMastersLeasesReturnEachTimeTheUserComesBack) {
     SetUser("idle");
   }
   ASSERT_TRUE(WaitConnected(3, agent));
-  EXPECT_TRUE(master_.Snapshot().All<protocol::BatchResultMsg>().empty()) << agent.Log();
+  EXPECT_TRUE(master_.Snapshot().results.empty()) << agent.Log();
   agent.Signal(SIGTERM);
   EXPECT_EQ(agent.WaitExit(), 0) << agent.Log();
 }

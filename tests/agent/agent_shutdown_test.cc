@@ -22,7 +22,7 @@ class AgentShutdownTest : public ::testing::Test {
   }
 
   // A master that heartbeats every 250 ms and sends `after_welcome` to every agent that joins.
-  void StartMaster(std::vector<protocol::Message> after_welcome) {
+  void StartMaster(std::vector<Outgoing> after_welcome) {
     FakeMasterOptions options = Heartbeats(250, true);
     options.after_welcome = std::move(after_welcome);
     master_.reset();
@@ -39,8 +39,8 @@ class AgentShutdownTest : public ::testing::Test {
   }
 
   // `count` leases of job 1, `rays` rays each.
-  std::vector<protocol::BatchAssignmentMsg> Leases(int count, uint32_t rays) {
-    std::vector<protocol::BatchAssignmentMsg> leases;
+  std::vector<protocol::AssignedBatch> Leases(int count, uint32_t rays) {
+    std::vector<protocol::AssignedBatch> leases;
     for (int i = 1; i <= count; ++i) {
       leases.push_back(Assignment(Job(1), blob_, scene_, static_cast<uint64_t>(i),
                                   static_cast<uint32_t>(i), 0, rays));
@@ -48,8 +48,8 @@ class AgentShutdownTest : public ::testing::Test {
     return leases;
   }
 
-  void Send(const std::vector<protocol::BatchAssignmentMsg>& leases) {
-    master_->Send(std::vector<protocol::Message>(leases.begin(), leases.end()));
+  void Send(const std::vector<protocol::AssignedBatch>& leases) {
+    master_->Send(std::vector<Outgoing>(leases.begin(), leases.end()));
   }
 
   // Waits until a heartbeat reports `held` leases.
@@ -60,8 +60,7 @@ class AgentShutdownTest : public ::testing::Test {
     });
   }
 
-  static std::vector<protocol::LeaseRef> Refs(
-      const std::vector<protocol::BatchAssignmentMsg>& leases) {
+  static std::vector<protocol::LeaseRef> Refs(const std::vector<protocol::AssignedBatch>& leases) {
     std::vector<protocol::LeaseRef> refs;
     for (const auto& lease : leases) refs.push_back(lease.lease);
     return refs;
@@ -95,7 +94,7 @@ class AgentShutdownTest : public ::testing::Test {
 TEST_F(AgentShutdownTest, SigtermReturnsEveryLeaseEvenWithABatchStillRunning) {
   std::unique_ptr<AgentProcess> agent = StartAgent(1);
   // A batch far too long to finish, then two queued behind it.
-  std::vector<protocol::BatchAssignmentMsg> leases = Leases(3, 1000);
+  std::vector<protocol::AssignedBatch> leases = Leases(3, 1000);
   leases[0].ray_count = 4000000000u;
   Send(leases);
   ASSERT_TRUE(WaitHeld(3)) << agent->Log();
@@ -104,7 +103,7 @@ TEST_F(AgentShutdownTest, SigtermReturnsEveryLeaseEvenWithABatchStillRunning) {
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
   EXPECT_EQ(Returned(protocol::LeaseReturnReason::kDraining), Refs(leases));
   EXPECT_EQ(master_->Snapshot().All<protocol::LeaseReturnMsg>().size(), 1u);
-  EXPECT_TRUE(master_->Snapshot().All<protocol::BatchResultMsg>().empty());
+  EXPECT_TRUE(master_->Snapshot().results.empty());
   ExpectClosedWithShutdown();
   EXPECT_NE(agent->Log().find("exiting without waiting for running batches"), std::string::npos)
       << agent->Log();
@@ -113,13 +112,13 @@ TEST_F(AgentShutdownTest, SigtermReturnsEveryLeaseEvenWithABatchStillRunning) {
 TEST_F(AgentShutdownTest, SigtermReturnsResultsHeldBySlowdown) {
   // --slowdown holds each computed result for 1e6 x its compute time: they are still held.
   std::unique_ptr<AgentProcess> agent = StartAgent(2, {"--slowdown", "1000000"});
-  const std::vector<protocol::BatchAssignmentMsg> leases = Leases(3, 2000);
+  const std::vector<protocol::AssignedBatch> leases = Leases(3, 2000);
   Send(leases);
   ASSERT_TRUE(agent->WaitForLog("result held for", 3)) << agent->Log();
   agent->Signal(SIGTERM);
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
   EXPECT_EQ(Returned(protocol::LeaseReturnReason::kDraining), Refs(leases));
-  EXPECT_TRUE(master_->Snapshot().All<protocol::BatchResultMsg>().empty());
+  EXPECT_TRUE(master_->Snapshot().results.empty());
   ExpectClosedWithShutdown();
   // Nothing was running: the clean exit path.
   EXPECT_NE(agent->Log().find("INFO  agent: exited"), std::string::npos) << agent->Log();
@@ -127,12 +126,12 @@ TEST_F(AgentShutdownTest, SigtermReturnsResultsHeldBySlowdown) {
 
 TEST_F(AgentShutdownTest, DrainFinishLeasesWithExitSendsEveryResultThenCloses) {
   std::unique_ptr<AgentProcess> agent = StartAgent(2);
-  const std::vector<protocol::BatchAssignmentMsg> leases = Leases(4, 5000);
+  const std::vector<protocol::AssignedBatch> leases = Leases(4, 5000);
   Send(leases);
   master_->Send(protocol::DrainMsg{protocol::DrainMode::kFinishLeases, /*exit_after=*/true});
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
   const Record seen = master_->Snapshot();
-  EXPECT_EQ(seen.All<protocol::BatchResultMsg>().size(), 4u);
+  EXPECT_EQ(seen.results.size(), 4u);
   EXPECT_TRUE(seen.All<protocol::LeaseReturnMsg>().empty());
   ExpectClosedWithShutdown();
   // The Close comes after the last result.
@@ -141,7 +140,7 @@ TEST_F(AgentShutdownTest, DrainFinishLeasesWithExitSendsEveryResultThenCloses) {
 
 TEST_F(AgentShutdownTest, DrainReturnLeasesWithExitReturnsThemAndCloses) {
   std::unique_ptr<AgentProcess> agent = StartAgent(1, {"--slowdown", "1000000"});
-  std::vector<protocol::BatchAssignmentMsg> leases = Leases(3, 1000);
+  std::vector<protocol::AssignedBatch> leases = Leases(3, 1000);
   Send(leases);
   ASSERT_TRUE(WaitHeld(3)) << agent->Log();
   master_->Send(protocol::DrainMsg{protocol::DrainMode::kReturnLeases, /*exit_after=*/true});
@@ -153,7 +152,7 @@ TEST_F(AgentShutdownTest, DrainReturnLeasesWithExitReturnsThemAndCloses) {
 TEST_F(AgentShutdownTest, DrainWithoutExitRefusesNewLeasesAndStaysConnected) {
   std::unique_ptr<AgentProcess> agent = StartAgent(1);
   master_->Send(protocol::DrainMsg{protocol::DrainMode::kFinishLeases, /*exit_after=*/false});
-  const std::vector<protocol::BatchAssignmentMsg> leases = Leases(2, 100);
+  const std::vector<protocol::AssignedBatch> leases = Leases(2, 100);
   Send(leases);
   ASSERT_TRUE(master_->WaitFor([](const Record& r) {
     size_t returned = 0;
@@ -179,7 +178,7 @@ TEST_F(AgentShutdownTest, ExitWhenIdleExitsOnceNothingIsHeld) {
 TEST_F(AgentShutdownTest, ExitWhenIdleWaitsForHeldLeases) {
   // The lease comes with the Welcome, so the agent is never idle before it; --slowdown then holds
   // its result, and held results count as held leases.
-  const std::vector<protocol::BatchAssignmentMsg> leases = Leases(1, 100);
+  const std::vector<protocol::AssignedBatch> leases = Leases(1, 100);
   StartMaster({leases[0]});
   std::unique_ptr<AgentProcess> agent =
       StartAgent(1, {"--exit-when-idle", "1", "--slowdown", "1000000"});
@@ -212,7 +211,7 @@ TEST_F(AgentShutdownTest, ExitWhenIdleExitsWhenNoMasterIsReachable) {
 // The master goes away while the agent holds a lease: the lease is dropped with the connection,
 // and the idle period that starts then ends the agent although it never reconnects.
 TEST_F(AgentShutdownTest, ExitWhenIdleExitsWhenTheMasterGoesAwayForGood) {
-  const std::vector<protocol::BatchAssignmentMsg> leases = Leases(1, 100);
+  const std::vector<protocol::AssignedBatch> leases = Leases(1, 100);
   StartMaster({leases[0]});
   const std::string address = master_->address();
   std::unique_ptr<AgentProcess> agent =

@@ -42,17 +42,17 @@ class AgentWorkTest : public ::testing::Test {
     return agent;
   }
 
-  protocol::BatchAssignmentMsg Assign(const TestJob& job, uint64_t batch, uint32_t shooter,
-                                      uint64_t first_ray, uint32_t rays) {
+  protocol::AssignedBatch Assign(const TestJob& job, uint64_t batch, uint32_t shooter,
+                                 uint64_t first_ray, uint32_t rays) {
     return Assignment(job, blob_, scene_, batch, shooter, first_ray, rays);
   }
 
   // Waits for the result of `lease`.
-  std::optional<protocol::BatchResultMsg> WaitResult(const protocol::LeaseRef& lease,
-                                                     const AgentProcess& agent) {
-    std::optional<protocol::BatchResultMsg> found;
+  std::optional<protocol::BatchOutcome> WaitResult(const protocol::LeaseRef& lease,
+                                                   const AgentProcess& agent) {
+    std::optional<protocol::BatchOutcome> found;
     const bool got = master_.WaitFor([&](const Record& r) {
-      for (const auto& result : r.All<protocol::BatchResultMsg>()) {
+      for (const auto& result : r.results) {
         if (result.lease == lease) found = result;
       }
       return found.has_value();
@@ -75,7 +75,7 @@ class AgentWorkTest : public ::testing::Test {
 TEST_F(AgentWorkTest, AMultiBatchLeaseIsAnsweredInOneFrameWithSingleBatchResults) {
   std::unique_ptr<AgentProcess> agent = StartAgent(2);
   const TestJob job = Job(4, SamplerKind::kSobol, 11);
-  std::vector<protocol::BatchAssignmentMsg> batches;
+  std::vector<protocol::AssignedBatch> batches;
   for (uint32_t k = 0; k < 40; ++k) {
     batches.push_back(Assign(job, 100 + k, /*shooter=*/k % 54, /*first_ray=*/1000 * k, 170 + k));
   }
@@ -87,7 +87,7 @@ TEST_F(AgentWorkTest, AMultiBatchLeaseIsAnsweredInOneFrameWithSingleBatchResults
     return frame.has_value();
   })) << agent->Log();
   ASSERT_EQ(frame->results.size(), batches.size());  // all in the one frame
-  for (const protocol::BatchAssignmentMsg& batch : batches) {
+  for (const protocol::AssignedBatch& batch : batches) {
     const auto found = std::find_if(frame->results.begin(), frame->results.end(),
                                     [&](const auto& r) { return r.lease == batch.lease; });
     ASSERT_NE(found, frame->results.end()) << "batch " << batch.lease.batch_id;
@@ -104,7 +104,7 @@ TEST_F(AgentWorkTest, AMultiBatchLeaseIsAnsweredInOneFrameWithSingleBatchResults
 TEST_F(AgentWorkTest, ARevokedBatchNotStartedIsLeftOutOfTheLeaseResult) {
   std::unique_ptr<AgentProcess> agent = StartAgent(1);
   const TestJob job = Job(5, SamplerKind::kSobol, 12);
-  std::vector<protocol::BatchAssignmentMsg> batches;
+  std::vector<protocol::AssignedBatch> batches;
   for (uint32_t k = 0; k < 6; ++k) {
     batches.push_back(Assign(job, 200 + k, /*shooter=*/k, /*first_ray=*/0, 200000));
   }
@@ -130,7 +130,7 @@ TEST_F(AgentWorkTest, ResultsEqualBatchTracerOnTheSameBatchBitForBit) {
   const std::vector<TestJob> jobs = {Job(1, SamplerKind::kSobol, 3),
                                      Job(2, SamplerKind::kRandom, 4),
                                      Job(3, SamplerKind::kGrid, 5, 7.5)};
-  std::vector<protocol::BatchAssignmentMsg> assignments;
+  std::vector<protocol::AssignedBatch> assignments;
   for (const TestJob& job : jobs) {
     // The grid's shot is 12 x 48 = 576 rays at 7.5 degrees: its batches must lie inside it.
     const bool grid = job.sampler == SamplerKind::kGrid;
@@ -138,9 +138,9 @@ TEST_F(AgentWorkTest, ResultsEqualBatchTracerOnTheSameBatchBitForBit) {
     assignments.push_back(
         Assign(job, 11, /*shooter=*/17, /*first_ray=*/grid ? 300 : 123456, grid ? 276 : 2000));
   }
-  master_.Send(std::vector<protocol::Message>(assignments.begin(), assignments.end()));
+  master_.Send(std::vector<Outgoing>(assignments.begin(), assignments.end()));
   for (const auto& assignment : assignments) {
-    std::optional<protocol::BatchResultMsg> result = WaitResult(assignment.lease, *agent);
+    std::optional<protocol::BatchOutcome> result = WaitResult(assignment.lease, *agent);
     ASSERT_TRUE(result);
     EXPECT_EQ(protocol::ToBatchResult(*result), RunLocally(scene_, assignment))
         << "job " << assignment.lease.job_id << " batch " << assignment.lease.batch_id;
@@ -165,7 +165,7 @@ TEST_F(AgentWorkTest, CancelDropsTheJobsQueuedAndRunningWork) {
 
   // Each of job 1's batches takes far longer than the agent needs to read the rest of the burst,
   // so none can finish before the Cancel is read.
-  std::vector<protocol::Message> burst;
+  std::vector<Outgoing> burst;
   for (uint64_t batch = 1; batch <= 20; ++batch) {
     burst.push_back(Assign(Job(1), batch, static_cast<uint32_t>(batch), 0, 2000000));
   }
@@ -183,7 +183,7 @@ TEST_F(AgentWorkTest, CancelDropsTheJobsQueuedAndRunningWork) {
     const auto beats = r.All<protocol::HeartbeatMsg>();
     return !beats.empty() && beats.back().leases_held == 0;
   }));
-  for (const auto& result : master_.Snapshot().All<protocol::BatchResultMsg>()) {
+  for (const auto& result : master_.Snapshot().results) {
     EXPECT_NE(result.lease.job_id, 1u) << "batch " << result.lease.batch_id;
   }
   EXPECT_TRUE(master_.Snapshot().All<protocol::LeaseReturnMsg>().empty());
@@ -209,7 +209,7 @@ TEST_F(AgentWorkTest, ALostConnectionDropsEveryLeaseAndDiscardsTheirResults) {
     const auto beats = r.All<protocol::HeartbeatMsg>();
     return !beats.empty() && beats.back().leases_held == 0;
   }));
-  EXPECT_TRUE(master_.Snapshot().All<protocol::BatchResultMsg>().empty()) << agent->Log();
+  EXPECT_TRUE(master_.Snapshot().results.empty()) << agent->Log();
   agent->Signal(SIGTERM);
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
 }
@@ -228,7 +228,7 @@ TEST_F(AgentWorkTest, AnUnknownSceneReturnsItsLeasesAsSceneUnavailable) {
   for (const auto& back : master_.Snapshot().All<protocol::LeaseReturnMsg>()) {
     EXPECT_EQ(back.reason, protocol::LeaseReturnReason::kSceneUnavailable);
   }
-  EXPECT_TRUE(master_.Snapshot().All<protocol::BatchResultMsg>().empty());
+  EXPECT_TRUE(master_.Snapshot().results.empty());
   agent->Signal(SIGTERM);
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
 }
@@ -288,7 +288,7 @@ TEST_F(AgentWorkTest, TheStateDirectoryKeepsTheSceneForARestartedAgent) {
   std::unique_ptr<AgentProcess> restarted = StartAgent(1, {"--state-dir", state});
   const auto third = Assign(Job(1), 3, 4, 0, 500);
   master_.Send(third);
-  std::optional<protocol::BatchResultMsg> result = WaitResult(third.lease, *restarted);
+  std::optional<protocol::BatchOutcome> result = WaitResult(third.lease, *restarted);
   ASSERT_TRUE(result);
   EXPECT_EQ(protocol::ToBatchResult(*result), RunLocally(scene_, third));
   EXPECT_EQ(master_.Snapshot().fetches.at(hash_), 1) << "the restarted agent fetched again";
@@ -307,7 +307,7 @@ TEST_F(AgentWorkTest, ADamagedSceneFileIsDeletedAndFetchedAgain) {
   std::unique_ptr<AgentProcess> agent = StartAgent(1, {"--state-dir", state});
   const auto lease = Assign(Job(1), 1, 2, 0, 500);
   master_.Send(lease);
-  std::optional<protocol::BatchResultMsg> result = WaitResult(lease.lease, *agent);
+  std::optional<protocol::BatchOutcome> result = WaitResult(lease.lease, *agent);
   ASSERT_TRUE(result);
   EXPECT_EQ(protocol::ToBatchResult(*result), RunLocally(scene_, lease));
   EXPECT_EQ(master_.Snapshot().fetches.at(hash_), 1);
@@ -329,14 +329,14 @@ TEST_F(AgentBigSceneTest, ASceneOfSeveralChunksIsFetchedOnce) {
   const uint64_t compressed = protocol::PackScene(blob_).compressed.size();
   ASSERT_GT(compressed, 2 * protocol::kMaxSceneChunkBytes);
   std::unique_ptr<AgentProcess> agent = StartAgent(2);
-  std::vector<protocol::Message> leases;
+  std::vector<Outgoing> leases;
   for (uint64_t batch = 1; batch <= 4; ++batch) {
     leases.push_back(Assign(Job(1), batch, static_cast<uint32_t>(batch * 1000), 0, 500));
   }
   master_.Send(leases);
   for (const auto& message : leases) {
-    const auto& assignment = std::get<protocol::BatchAssignmentMsg>(message);
-    std::optional<protocol::BatchResultMsg> result = WaitResult(assignment.lease, *agent);
+    const auto& assignment = std::get<protocol::AssignedBatch>(message);
+    std::optional<protocol::BatchOutcome> result = WaitResult(assignment.lease, *agent);
     ASSERT_TRUE(result);
     EXPECT_EQ(protocol::ToBatchResult(*result), RunLocally(scene_, assignment));
   }
@@ -364,7 +364,7 @@ TEST_F(AgentManyPatchesTest, AResultFillingAFrameGoesOutBeforeTheLeasesLastBatch
   const auto first = Assign(job, 1, /*shooter=*/100, 0, 4'000'000);
   const auto last = Assign(job, 2, /*shooter=*/200, 0, kLongBatchRays);
   master_.Send(LeaseOf({first, last}));
-  std::optional<protocol::BatchResultMsg> result = WaitResult(first.lease, *agent);
+  std::optional<protocol::BatchOutcome> result = WaitResult(first.lease, *agent);
   ASSERT_TRUE(result);
   ASSERT_GT(protocol::ResultFrameCost(*result, protocol::kProtocolVersion),
             protocol::kResultFrameBytes);  // it fills a frame alone
@@ -374,7 +374,7 @@ TEST_F(AgentManyPatchesTest, AResultFillingAFrameGoesOutBeforeTheLeasesLastBatch
       << agent->Log();
   // The running batch finishes, and its result is dropped rather than sent.
   ASSERT_TRUE(agent->WaitForLog("discarded the result of a lease no longer held")) << agent->Log();
-  for (const auto& sent : master_.Snapshot().All<protocol::BatchResultMsg>()) {
+  for (const auto& sent : master_.Snapshot().results) {
     EXPECT_NE(sent.lease, last.lease) << agent->Log();
   }
   agent->Signal(SIGTERM);

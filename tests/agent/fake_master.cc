@@ -45,6 +45,8 @@ struct FakeMaster::Loop {
   void Deliver(Connection* c, const protocol::Message& message);
   void Refuse(Connection* c, const std::string& reason);
   void Write(Connection* c, const protocol::Message& message);
+  // A single batch goes out as a LeaseAssignment of that batch alone.
+  void WriteOutgoing(Connection* c, const Outgoing& outgoing);
   Connection* Newest();
   void DrainCommands();
 
@@ -148,7 +150,7 @@ void FakeMaster::Loop::OnFrame(Connection* c, std::span<const uint8_t> payload) 
       c->stream->CloseAfterFlush("the fake master closes the first connections");
       return;
     }
-    for (const protocol::Message& m : master->options_.after_welcome) Write(c, m);
+    for (const Outgoing& m : master->options_.after_welcome) WriteOutgoing(c, m);
     return;
   }
   if (accepted->deliver) Deliver(c, frame->message);
@@ -158,12 +160,10 @@ void FakeMaster::Loop::Deliver(Connection* c, const protocol::Message& message) 
   {
     std::lock_guard lock(master->mutex_);
     master->record_.received.push_back(message);
-    // Each batch of a LeaseResult is recorded as a BatchResultMsg too, right after it, so tests
-    // look results up by lease whichever frame carried them.
+    // Tests look results up by lease whichever frame carried them.
     if (const auto* results = std::get_if<protocol::LeaseResultMsg>(&message)) {
-      for (const protocol::BatchResultMsg& r : results->results) {
-        master->record_.received.push_back(r);
-      }
+      master->record_.results.insert(master->record_.results.end(), results->results.begin(),
+                                     results->results.end());
     }
   }
   if (std::holds_alternative<protocol::CloseMsg>(message)) {
@@ -203,12 +203,15 @@ void FakeMaster::Loop::Refuse(Connection* c, const std::string& reason) {
   c->stream->CloseAfterFlush(reason);
 }
 
-void FakeMaster::Loop::Write(Connection* c, const protocol::Message& message) {
-  // A BatchAssignmentMsg (version 1's message) goes out as a lease frame of that one batch.
-  if (const auto* one = std::get_if<protocol::BatchAssignmentMsg>(&message)) {
+void FakeMaster::Loop::WriteOutgoing(Connection* c, const Outgoing& outgoing) {
+  if (const auto* one = std::get_if<protocol::AssignedBatch>(&outgoing)) {
     Write(c, LeaseOf({*one}));
     return;
   }
+  Write(c, std::get<protocol::Message>(outgoing));
+}
+
+void FakeMaster::Loop::Write(Connection* c, const protocol::Message& message) {
   Result<std::vector<uint8_t>> frame = c->session.Encode(message);
   if (!frame) {
     std::lock_guard lock(master->mutex_);
@@ -267,7 +270,7 @@ void FakeMaster::AddScene(std::vector<uint8_t> blob) {
   scenes_[packed->hash] = std::move(packed);
 }
 
-void FakeMaster::Send(std::vector<protocol::Message> messages) {
+void FakeMaster::Send(std::vector<Outgoing> messages) {
   Post([this, messages = std::move(messages)] {
     Loop::Connection* c = loop_->Newest();
     if (c == nullptr) {
@@ -275,7 +278,7 @@ void FakeMaster::Send(std::vector<protocol::Message> messages) {
       record_.session_errors.push_back("Send: no authenticated agent");
       return;
     }
-    for (const protocol::Message& m : messages) loop_->Write(c, m);
+    for (const Outgoing& m : messages) loop_->WriteOutgoing(c, m);
   });
 }
 
@@ -300,8 +303,8 @@ bool FakeMaster::WaitFor(const std::function<bool(const Record&)>& done,
   return true;
 }
 
-protocol::LeaseAssignmentMsg LeaseOf(const std::vector<protocol::BatchAssignmentMsg>& batches) {
-  const protocol::BatchAssignmentMsg& first = batches.front();
+protocol::LeaseAssignmentMsg LeaseOf(const std::vector<protocol::AssignedBatch>& batches) {
+  const protocol::AssignedBatch& first = batches.front();
   protocol::LeaseAssignmentMsg lease;
   lease.job_id = first.lease.job_id;
   lease.round = first.round;
@@ -311,7 +314,7 @@ protocol::LeaseAssignmentMsg LeaseOf(const std::vector<protocol::BatchAssignment
   lease.scene_hash = first.scene_hash;
   lease.patch_count = first.patch_count;
   lease.lease_ms = first.lease_ms;
-  for (const protocol::BatchAssignmentMsg& b : batches) {
+  for (const protocol::AssignedBatch& b : batches) {
     lease.batches.push_back(
         {b.lease.batch_id, b.lease.attempt_id, b.shooter, b.first_ray, b.ray_count});
   }

@@ -2,8 +2,8 @@
 // thread runs its own loop::EventLoop with a TcpListener on 127.0.0.1 (port 0) and one
 // ProtocolSession::ForMaster per accepted connection. It records every message agents send,
 // answers SceneRequests from the scenes it was given, and sends what the test tells it to.
-// Tests may speak in single batches: a BatchAssignmentMsg is sent as a LeaseAssignment of that
-// one batch (LeaseOf), and every batch of a LeaseResult is recorded as a BatchResultMsg after it.
+// Tests may speak in single batches: an AssignedBatch is sent as a LeaseAssignment of that
+// one batch (LeaseOf), and every batch of a LeaseResult is recorded in Record::results.
 //
 // Threads: the test thread calls every method; the loop runs on the master's thread. Commands
 // cross over through an Async; what the master saw comes back as a Record snapshot under a mutex.
@@ -17,6 +17,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <variant>
 #include <vector>
 
 #include "protocol/farm_secret.h"
@@ -27,11 +28,15 @@ namespace radfarm::agent::testing {
 
 inline constexpr std::chrono::milliseconds kWaitTimeout{60000};  // generous: ASan on 2 shared cores
 
+// What a test sends an agent: a message, or one batch, which goes out as a LeaseAssignment of
+// that batch alone (LeaseOf).
+using Outgoing = std::variant<protocol::Message, protocol::AssignedBatch>;
+
 struct FakeMasterOptions {
   uint32_t heartbeat_interval_ms = 60000;
-  bool send_heartbeats = false;     // every interval, to each authenticated agent
-  int close_first_connections = 0;  // close this many connections right after their Welcome
-  std::vector<protocol::Message> after_welcome;  // sent to every agent right after its Welcome
+  bool send_heartbeats = false;         // every interval, to each authenticated agent
+  int close_first_connections = 0;      // close this many connections right after their Welcome
+  std::vector<Outgoing> after_welcome;  // sent to every agent right after its Welcome
   bool forge_welcome_tag = false;  // send Welcomes whose master tag is wrong (an impostor master)
 };
 
@@ -44,7 +49,7 @@ inline FakeMasterOptions Heartbeats(uint32_t interval_ms, bool send_heartbeats) 
 }
 
 // The lease frame carrying these batches (all of one job, round and scene).
-protocol::LeaseAssignmentMsg LeaseOf(const std::vector<protocol::BatchAssignmentMsg>& batches);
+protocol::LeaseAssignmentMsg LeaseOf(const std::vector<protocol::AssignedBatch>& batches);
 
 // What the master has seen so far.
 struct Record {
@@ -53,9 +58,10 @@ struct Record {
   int auth_failures = 0;  // agent proofs that did not match the secret
   int open = 0;           // authenticated connections still open
   std::vector<std::string> session_errors;
-  std::vector<protocol::Message> received;     // application messages, in order, all connections
-  std::vector<std::string> agent_names;        // from each Hello
-  std::map<protocol::SceneHash, int> fetches;  // SceneRequests at offset 0, per scene
+  std::vector<protocol::Message> received;      // application messages, in order, all connections
+  std::vector<protocol::BatchOutcome> results;  // every batch of every LeaseResult, in order
+  std::vector<std::string> agent_names;         // from each Hello
+  std::map<protocol::SceneHash, int> fetches;   // SceneRequests at offset 0, per scene
   int scene_requests = 0;
 
   template <typename T>
@@ -81,8 +87,8 @@ class FakeMaster {
   // Scene blobs served to SceneRequests by hash; others get SceneUnavailable.
   void AddScene(std::vector<uint8_t> blob);
   // Sends the messages, in order and in one loop iteration, to the newest authenticated agent.
-  void Send(std::vector<protocol::Message> messages);
-  void Send(protocol::Message message) { Send(std::vector<protocol::Message>{std::move(message)}); }
+  void Send(std::vector<Outgoing> messages);
+  void Send(Outgoing message) { Send(std::vector<Outgoing>{std::move(message)}); }
   // Closes the newest authenticated connection (TCP close, no Close message).
   void Drop();
 

@@ -5,8 +5,8 @@
 namespace radfarm::agent {
 namespace {
 
-protocol::BatchAssignmentMsg Lease(uint64_t job, uint64_t batch, uint8_t scene = 1) {
-  protocol::BatchAssignmentMsg a;
+protocol::AssignedBatch Lease(uint64_t job, uint64_t batch, uint8_t scene = 1) {
+  protocol::AssignedBatch a;
   a.lease = {job, batch, 0};
   a.scene_hash.fill(scene);
   return a;

@@ -44,10 +44,9 @@ void WriteSecretFile(const std::string& path, const protocol::FarmSecret& secret
   std::ofstream(path) << secret.ToHex() << "\n";
 }
 
-protocol::BatchAssignmentMsg Assignment(const TestJob& job, const std::vector<uint8_t>& blob,
-                                        const PatchScene& scene, uint64_t batch_id,
-                                        uint32_t shooter, uint64_t first_ray, uint32_t ray_count,
-                                        uint32_t round) {
+protocol::AssignedBatch Assignment(const TestJob& job, const std::vector<uint8_t>& blob,
+                                   const PatchScene& scene, uint64_t batch_id, uint32_t shooter,
+                                   uint64_t first_ray, uint32_t ray_count, uint32_t round) {
   protocol::JobWireInfo info;
   info.job_id = job.job_id;
   info.settings.sampler = job.sampler;
@@ -56,10 +55,12 @@ protocol::BatchAssignmentMsg Assignment(const TestJob& job, const std::vector<ui
   info.scene_hash = protocol::HashScene(blob);
   info.patch_count = static_cast<uint32_t>(scene.patches.size());
   const Batch batch{round, shooter, first_ray, ray_count};
-  return protocol::MakeBatchAssignment(info, batch_id, /*attempt_id=*/0, batch, /*lease_ms=*/60000);
+  return protocol::BatchOf(protocol::MakeLeaseAssignment(
+                               info, {{batch_id, /*attempt_id=*/0, batch}}, /*lease_ms=*/60000),
+                           0);
 }
 
-BatchResult RunLocally(const PatchScene& scene, const protocol::BatchAssignmentMsg& assignment) {
+BatchResult RunLocally(const PatchScene& scene, const protocol::AssignedBatch& assignment) {
   const RayCaster caster(scene);
   const RaySampler sampler(assignment.sampler, assignment.seed, assignment.grid_step_degrees);
   BatchTracer runner(scene, caster, sampler);

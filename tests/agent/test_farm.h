@@ -39,10 +39,9 @@ inline TestJob Job(uint64_t job_id, SamplerKind sampler = SamplerKind::kSobol, u
 }
 
 // The assignment of rays [first_ray, first_ray + ray_count) of `shooter` in `round`.
-protocol::BatchAssignmentMsg Assignment(const TestJob& job, const std::vector<uint8_t>& blob,
-                                        const PatchScene& scene, uint64_t batch_id,
-                                        uint32_t shooter, uint64_t first_ray, uint32_t ray_count,
-                                        uint32_t round = 0);
+protocol::AssignedBatch Assignment(const TestJob& job, const std::vector<uint8_t>& blob,
+                                   const PatchScene& scene, uint64_t batch_id, uint32_t shooter,
+                                   uint64_t first_ray, uint32_t ray_count, uint32_t round = 0);
 
 // Rays of a batch that must still be running when the agent notices something (a user back, a
 // lost connection): about 4.5 s on one core of a 2026 machine (11 M rays/s on these box scenes;
@@ -51,7 +50,7 @@ protocol::BatchAssignmentMsg Assignment(const TestJob& job, const std::vector<ui
 constexpr uint32_t kLongBatchRays = 50'000'000;
 
 // What BatchTracer::Run gives for the assignment on this machine.
-BatchResult RunLocally(const PatchScene& scene, const protocol::BatchAssignmentMsg& assignment);
+BatchResult RunLocally(const PatchScene& scene, const protocol::AssignedBatch& assignment);
 
 // --master, --secret-file, --threads, --name and --log-level debug, then `extra`.
 std::vector<std::string> AgentArgs(const std::string& master, const std::string& secret_file,

@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "cli/exit_codes.h"
-#include "cli/job_loader.h"
+#include "cli/job_inputs.h"
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
 #include "codec/patch_scene_codec.h"

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/exit_codes.h"
-#include "cli/job_loader.h"
+#include "cli/job_inputs.h"
 #include "codec/job_bundle.h"
 #include "tests/cli/control_fixtures.h"
 #include "tests/cli/fake_control_server.h"

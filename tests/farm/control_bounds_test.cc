@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "cli/job_loader.h"
+#include "cli/job_inputs.h"
 #include "codec/job_bundle.h"
 #include "tests/farm/farm_fixture.h"
 #include "tests/farm/raw_peer.h"

@@ -1,7 +1,7 @@
 // radfarm-lying-agent (tests only): radfarm-agent's own main (agent/main.cc is compiled in) with
 // a result tamper installed before main runs. It traces every batch correctly, then on a
 // fraction of them moves a millionth of one hit patch's weight (at least 1) to another hit
-// patch: the ray and weight totals still add up, so the result passes ValidateBatchResult and
+// patch: the ray and weight totals still add up, so the result passes CheckBatchOutcome and
 // only exact validation (daemon/jobs/batch_verifier.h) can tell. RADFARM_TEST_LIE_FRACTION (0..1,
 // default 1) says on which share of batches, chosen from the batch itself, so it is reproducible;
 // RADFARM_TEST_LIE_LATER=1 makes it honest in the first round it traces and lying in every later

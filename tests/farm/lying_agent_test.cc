@@ -114,7 +114,7 @@ TEST_F(FarmTest, AnAgentSendingInvalidResultsIsBlocklistedForTheJobAfterThree) {
     }
     const auto* lease = std::get_if<protocol::LeaseAssignmentMsg>(&*message);
     if (lease == nullptr) continue;
-    protocol::BatchResultMsg lie;
+    protocol::BatchOutcome lie;
     lie.lease = {lease->job_id, lease->batches[0].batch_id, lease->batches[0].attempt_id};
     lie.hits = {{lease->patch_count + 7, lease->batches[0].ray_count}};
     ASSERT_TRUE(liar.Send(protocol::LeaseResultMsg{{lie}}));

@@ -14,12 +14,10 @@ namespace radfarm::protocol {
 namespace {
 
 // 10 rays with unit weights over a 100-patch scene: 6 front hits, 3 escaped, 1 back.
-BatchResultMsg Good() {
-  return BatchResultMsg{{1, 2, 3}, {{4, 1}, {9, 3}, {50, 2}}, 3, 3, 1, 1, 0.01};
-}
+BatchOutcome Good() { return BatchOutcome{{1, 2, 3}, {{4, 1}, {9, 3}, {50, 2}}, 3, 3, 1, 1, 0.01}; }
 
-void ExpectRejected(const BatchResultMsg& m, const BatchBounds& bounds, const std::string& text) {
-  Status s = ValidateBatchResult(m, bounds);
+void ExpectRejected(const BatchOutcome& m, const BatchBounds& bounds, const std::string& text) {
+  Status s = CheckBatchOutcome(m, bounds);
   ASSERT_FALSE(s) << text;
   EXPECT_NE(s.error().find(text), std::string::npos) << s.error();
   EXPECT_NE(s.error().find("job 1 batch 2 attempt 3"), std::string::npos) << s.error();
@@ -27,19 +25,16 @@ void ExpectRejected(const BatchResultMsg& m, const BatchBounds& bounds, const st
 
 const BatchBounds kUnit{100, 10, std::nullopt};
 
-TEST(ProtocolValidationTest, AGoodResultPasses) {
-  EXPECT_TRUE(ValidateBatchResult(Good(), 100, 10));
-  EXPECT_TRUE(ValidateBatchResult(Good(), kUnit));
-}
+TEST(ProtocolValidationTest, AGoodResultPasses) { EXPECT_TRUE(CheckBatchOutcome(Good(), kUnit)); }
 
 TEST(ProtocolValidationTest, PatchIdOutOfRange) {
-  BatchResultMsg m = Good();
+  BatchOutcome m = Good();
   m.hits.back().patch = 100;
   ExpectRejected(m, kUnit, "hit 2 patch 100 >= patch count 100");
 }
 
 TEST(ProtocolValidationTest, UnsortedOrDuplicatePatchIds) {
-  BatchResultMsg m = Good();
+  BatchOutcome m = Good();
   std::swap(m.hits[0], m.hits[2]);
   ExpectRejected(m, kUnit, "not above the previous patch");
   m = Good();
@@ -48,25 +43,25 @@ TEST(ProtocolValidationTest, UnsortedOrDuplicatePatchIds) {
 }
 
 TEST(ProtocolValidationTest, ZeroWeight) {
-  BatchResultMsg m = Good();
+  BatchOutcome m = Good();
   m.hits[1].weight = 0;
   ExpectRejected(m, kUnit, "weight 0");
 }
 
 TEST(ProtocolValidationTest, MoreHitRaysThanRays) {
-  BatchResultMsg m = Good();
+  BatchOutcome m = Good();
   m.hits[0].weight = 2;  // 11 fates for 10 rays
   ExpectRejected(m, kUnit, "not the batch's 10 rays");
 }
 
 TEST(ProtocolValidationTest, FewerFatesThanRays) {
-  BatchResultMsg m = Good();
+  BatchOutcome m = Good();
   m.escaped_rays = m.escaped_weight = 2;  // a ray went missing
   ExpectRejected(m, kUnit, "not the batch's 10 rays");
 }
 
 TEST(ProtocolValidationTest, MoreHitPatchesThanRays) {
-  BatchResultMsg m;
+  BatchOutcome m;
   m.lease = {1, 2, 3};
   for (uint32_t p = 0; p < 11; ++p) m.hits.push_back({p, 1});
   ExpectRejected(m, kUnit, "11 hit patches from 10 rays");
@@ -78,7 +73,7 @@ TEST(ProtocolValidationTest, MoreHitPatchesThanRays) {
 }
 
 TEST(ProtocolValidationTest, EscapedAndBackRaysAboveRayCount) {
-  BatchResultMsg m = Good();
+  BatchOutcome m = Good();
   m.escaped_rays = m.escaped_weight = 10;
   ExpectRejected(m, kUnit, "exceed the batch's 10");
   m = Good();
@@ -88,14 +83,14 @@ TEST(ProtocolValidationTest, EscapedAndBackRaysAboveRayCount) {
 }
 
 TEST(ProtocolValidationTest, UnitWeightsMustMatchRayCounts) {
-  BatchResultMsg m = Good();
+  BatchOutcome m = Good();
   m.escaped_weight = 4;
   m.escaped_rays = 2;  // still 10 "fates" by weight, but weights are not counts
   ExpectRejected(m, kUnit, "differs from its ray count");
 }
 
 TEST(ProtocolValidationTest, OverflowingWeights) {
-  BatchResultMsg m = Good();
+  BatchOutcome m = Good();
   m.hits[0].weight = std::numeric_limits<uint64_t>::max();
   ExpectRejected(m, kUnit, "overflow");
   m = Good();
@@ -106,15 +101,15 @@ TEST(ProtocolValidationTest, OverflowingWeights) {
 TEST(ProtocolValidationTest, NonFiniteComputeTime) {
   for (double bad :
        {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), -1.0}) {
-    BatchResultMsg m = Good();
+    BatchOutcome m = Good();
     m.compute_seconds = bad;
     ExpectRejected(m, kUnit, "compute_seconds");
   }
 }
 
 TEST(ProtocolValidationTest, WeightedRaysCheckTheTotalWeight) {
-  BatchResultMsg m{{1, 2, 3}, {{4, 100}, {9, 300}}, 50, 1, 25, 1, 0};
-  EXPECT_TRUE(ValidateBatchResult(m, BatchBounds{100, 10, 475}));
+  BatchOutcome m{{1, 2, 3}, {{4, 100}, {9, 300}}, 50, 1, 25, 1, 0};
+  EXPECT_TRUE(CheckBatchOutcome(m, BatchBounds{100, 10, 475}));
   ExpectRejected(m, BatchBounds{100, 10, 476}, "add up to 475, not the batch's total weight 476");
   // A ray count limit still holds with weights.
   ExpectRejected(m, BatchBounds{100, 1, 475}, "2 hit patches from 1 rays");
@@ -138,11 +133,15 @@ TEST(ProtocolValidationTest, RealBatchesRoundTripAndValidate) {
     const uint32_t shooter = 4 * 9 + 4;  // the floor's middle patch, facing up
     const uint64_t first = 100;
     const Batch batch{3, shooter, first, kind == SamplerKind::kGrid ? 200u : 5000u};
-    const BatchAssignmentMsg assignment = MakeBatchAssignment(job, 11, 1, batch, 60000);
-    Result<DecodedFrame> sent = DecodeFrame(EncodeFrame(assignment));
+    const LeaseAssignmentMsg lease = MakeLeaseAssignment(job, {{11, 1, batch}}, 60000);
+    Result<DecodedFrame> sent = DecodeFrame(EncodeFrame(lease));
     ASSERT_TRUE(sent) << sent.error();
-    const auto& received = std::get<BatchAssignmentMsg>(sent->message);
-    EXPECT_TRUE(received == assignment);
+    const AssignedBatch received = BatchOf(std::get<LeaseAssignmentMsg>(sent->message), 0);
+    EXPECT_TRUE(received == BatchOf(lease, 0));
+    EXPECT_TRUE(received.lease == (LeaseRef{7, 11, 1}));
+    EXPECT_EQ(received.seed, 99u);
+    EXPECT_EQ(received.sampler, kind);
+    EXPECT_EQ(received.patch_count, patch_count);
     const Batch agent_batch = ToBatch(received);
     EXPECT_EQ(agent_batch.round, batch.round);
     EXPECT_EQ(agent_batch.shooter, batch.shooter);
@@ -152,13 +151,14 @@ TEST(ProtocolValidationTest, RealBatchesRoundTripAndValidate) {
     const BatchResult result = runner.Run(agent_batch);
     EXPECT_GT(result.escaped_rays, 0u) << SamplerName(kind);
     Result<DecodedFrame> back =
-        DecodeFrame(EncodeFrame(MakeBatchResult(received.lease, result, 0.5)));
+        DecodeFrame(EncodeFrame(LeaseResultMsg{{MakeBatchOutcome(received.lease, result, 0.5)}}));
     ASSERT_TRUE(back) << back.error();
-    const auto& result_msg = std::get<BatchResultMsg>(back->message);
-    EXPECT_TRUE(ValidateBatchResult(result_msg, BoundsFor(assignment, sampler)))
-        << ValidateBatchResult(result_msg, BoundsFor(assignment, sampler)).error();
-    EXPECT_TRUE(ToBatchResult(result_msg) == result) << SamplerName(kind);
-    EXPECT_EQ(BoundsFor(assignment, sampler).total_weight.has_value(), kind == SamplerKind::kGrid);
+    const BatchOutcome& outcome = std::get<LeaseResultMsg>(back->message).results.at(0);
+    EXPECT_TRUE(CheckBatchOutcome(outcome, BoundsOf(batch, patch_count, sampler)))
+        << CheckBatchOutcome(outcome, BoundsOf(batch, patch_count, sampler)).error();
+    EXPECT_TRUE(ToBatchResult(outcome) == result) << SamplerName(kind);
+    EXPECT_EQ(BoundsOf(batch, patch_count, sampler).total_weight.has_value(),
+              kind == SamplerKind::kGrid);
   }
 }
 

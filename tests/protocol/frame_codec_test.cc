@@ -39,7 +39,7 @@ TEST(ProtocolCodecTest, DefaultValuedMessagesRoundTrip) {
       HeartbeatMsg{0, 0, 0},
       DrainMsg{DrainMode::kFinishLeases, false},
       CloseMsg{CloseCode::kNormal, ""},
-      BatchResultMsg{{}, {}, 0, 0, 0, 0, 0},
+      LeaseResultMsg{{BatchOutcome{{}, {}, 0, 0, 0, 0, 0}}},
   };
   for (const Message& message : messages) {
     Result<DecodedFrame> decoded = DecodeFrame(EncodeFrame(message));
@@ -72,7 +72,7 @@ TEST(ProtocolCodecTest, ALeaseResultWithoutHitsRoundTrips) {
 TEST(ProtocolCodecTest, ALeaseResultRoundTripsInBothFormsAndPackedIsASixth) {
   LeaseResultMsg message;
   for (uint32_t b = 0; b < 8; ++b) {
-    BatchResultMsg r{{7, 100 + b, 1}, {}, 3, 3, 0, 0, 0.01};
+    BatchOutcome r{{7, 100 + b, 1}, {}, 3, 3, 0, 0, 0.01};
     for (uint32_t k = 0; k < 150; ++k) r.hits.push_back({k * 37 + b, k % 7 == 0 ? 2u : 1u});
     message.results.push_back(r);
   }
@@ -103,12 +103,12 @@ TEST(ProtocolCodecTest, VersionIsCarried) {
 }
 
 TEST(ProtocolCodecTest, MisalignedBufferDecodes) {
-  const std::vector<uint8_t> frame = EncodeFrame(SampleMessages()[6]);
+  const std::vector<uint8_t> frame = EncodeFrame(testing::SampleOf<LeaseResultMsg>());
   std::vector<uint8_t> shifted(frame.size() + 1);
   std::copy(frame.begin(), frame.end(), shifted.begin() + 1);
   Result<DecodedFrame> decoded = DecodeFrame(std::span(shifted).subspan(1));
   ASSERT_TRUE(decoded) << decoded.error();
-  EXPECT_TRUE(decoded->message == SampleMessages()[6]);
+  EXPECT_TRUE(decoded->message == Message{testing::SampleOf<LeaseResultMsg>()});
 }
 
 TEST(ProtocolCodecTest, LargestSceneChunkFitsTheSmallestPeerLimit) {

@@ -72,8 +72,8 @@ TEST(ProtocolDecoderTest, RandomChunkBoundaries) {
 }
 
 TEST(ProtocolDecoderTest, EverySplitPointOfTwoFrames) {
-  const std::vector<uint8_t> a = EncodeFrame(SampleMessages()[6]);
-  const std::vector<uint8_t> b = EncodeFrame(SampleMessages()[5]);
+  const std::vector<uint8_t> a = EncodeFrame(testing::SampleOf<LeaseResultMsg>());
+  const std::vector<uint8_t> b = EncodeFrame(testing::SampleOf<LeaseAssignmentMsg>());
   std::vector<uint8_t> stream = a;
   stream.insert(stream.end(), b.begin(), b.end());
   for (size_t split = 0; split <= stream.size(); ++split) {
@@ -82,8 +82,8 @@ TEST(ProtocolDecoderTest, EverySplitPointOfTwoFrames) {
     const std::vector<Message> out = DecodeInChunks(
         stream, [&] { return call++ == 0 ? std::max<size_t>(split, 1) : stream.size(); }, &decoder);
     ASSERT_EQ(out.size(), 2u) << split;
-    EXPECT_TRUE(out[0] == SampleMessages()[6]);
-    EXPECT_TRUE(out[1] == SampleMessages()[5]);
+    EXPECT_TRUE(out[0] == Message{testing::SampleOf<LeaseResultMsg>()});
+    EXPECT_TRUE(out[1] == Message{testing::SampleOf<LeaseAssignmentMsg>()});
   }
 }
 
@@ -116,7 +116,7 @@ TEST(ProtocolDecoderTest, GoodFramesBeforeABadOneAreDelivered) {
 }
 
 TEST(ProtocolDecoderTest, ConfigurableLimit) {
-  const std::vector<uint8_t> chunk = EncodeFrame(SampleMessages()[10]);
+  const std::vector<uint8_t> chunk = EncodeFrame(testing::SampleOf<SceneChunkMsg>());
   FrameDecoder small(static_cast<uint32_t>(chunk.size() - kLengthPrefixBytes - 1));
   ASSERT_TRUE(small.Feed(std::span(chunk).first(kLengthPrefixBytes)));
   EXPECT_FALSE(small.Next());  // judged on the prefix alone
@@ -128,7 +128,7 @@ TEST(ProtocolDecoderTest, ConfigurableLimit) {
 
 TEST(ProtocolDecoderTest, BufferStaysAboutOneFrameWhenDrained) {
   FrameDecoder decoder;
-  const std::vector<uint8_t> frame = EncodeFrame(SampleMessages()[6]);
+  const std::vector<uint8_t> frame = EncodeFrame(testing::SampleOf<LeaseResultMsg>());
   for (int i = 0; i < 1000; ++i) {
     ASSERT_TRUE(decoder.Feed(std::span(frame).first(frame.size() / 2)));
     ASSERT_TRUE(decoder.Next());

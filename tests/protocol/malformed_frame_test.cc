@@ -130,7 +130,7 @@ TEST(ProtocolMalformedTest, RandomBytesAreRejected) {
 TEST(ProtocolMalformedTest, RandomBytesBehindAValidHeaderAreRejected) {
   // Keep the identifier so the verifier, not the identifier check, has to catch them.
   std::mt19937_64 rng(777);
-  const std::vector<uint8_t> valid = EncodeFrame(SampleMessages()[5]);
+  const std::vector<uint8_t> valid = EncodeFrame(testing::SampleOf<LeaseAssignmentMsg>());
   size_t accepted = 0;
   for (int trial = 0; trial < 20000; ++trial) {
     std::vector<uint8_t> frame = valid;
@@ -159,7 +159,8 @@ TEST(ProtocolMalformedTest, PrefixThatDisagreesWithTheBufferIsRejected) {
 }
 
 TEST(ProtocolMalformedTest, FrameAboveACustomLimitIsRejected) {
-  const std::vector<uint8_t> frame = EncodeFrame(SampleMessages()[10]);  // SceneChunk, 300 B
+  const std::vector<uint8_t> frame =
+      EncodeFrame(testing::SampleOf<SceneChunkMsg>());  // 300 B of data
   EXPECT_TRUE(DecodeFrame(frame, 4096));
   EXPECT_TRUE(ErrorMentions(DecodeFrame(frame, 64), "exceeds the limit"));
 }
@@ -198,11 +199,43 @@ TEST(ProtocolMalformedTest, MissingRequiredFieldIsRejected) {
 }
 
 TEST(ProtocolMalformedTest, PayloadOfTheWrongTableTypeIsRejected) {
-  // A Cancel table labelled as a BatchResult: its required fields are missing.
+  // A Cancel table labelled as a LeaseResult: its required fields are missing.
   flatbuffers::FlatBufferBuilder fbb;
   const auto cancel = wire::CreateCancel(fbb, 5).Union();
-  const auto frame = wire::CreateFrame(fbb, 1, wire::Payload::BatchResult, cancel);
+  const auto frame = wire::CreateFrame(fbb, 1, wire::Payload::LeaseResult, cancel);
   EXPECT_FALSE(DecodeFrame(Finish(fbb, frame)));
+}
+
+// Version 1's BatchAssignment and BatchResult keep their union slots as empty tables, so later
+// messages keep their numbers; a frame in either slot is refused by name, in any version and
+// whatever table it carries.
+TEST(ProtocolMalformedTest, FramesInRetiredSlotsAreRefused) {
+  struct Slot {
+    wire::Payload type;
+    const char* name;
+  };
+  for (const Slot slot : {Slot{wire::Payload::RetiredBatchAssignment, "BatchAssignment"},
+                          Slot{wire::Payload::RetiredBatchResult, "BatchResult"}}) {
+    const std::string expected = std::to_string(static_cast<unsigned>(slot.type)) + " (" +
+                                 slot.name + ", protocol version 1) is retired";
+    for (uint16_t version : {uint16_t{1}, kProtocolVersion}) {
+      flatbuffers::FlatBufferBuilder fbb;
+      const auto empty = slot.type == wire::Payload::RetiredBatchAssignment
+                             ? wire::CreateRetiredBatchAssignment(fbb).Union()
+                             : wire::CreateRetiredBatchResult(fbb).Union();
+      EXPECT_TRUE(ErrorMentions(
+          DecodeFrame(Finish(fbb, wire::CreateFrame(fbb, version, slot.type, empty))), expected))
+          << slot.name << " in version " << version;
+    }
+    // An old peer's table in the slot (here a Cancel's) is refused just the same.
+    flatbuffers::FlatBufferBuilder fbb;
+    const auto cancel = wire::CreateCancel(fbb, 5).Union();
+    EXPECT_TRUE(ErrorMentions(
+        DecodeFrame(Finish(fbb, wire::CreateFrame(fbb, 1, slot.type, cancel))), expected))
+        << slot.name;
+  }
+  EXPECT_EQ(static_cast<unsigned>(wire::Payload::LeaseReturn),
+            8u);  // the next slot kept its number
 }
 
 // A LeaseResult's hits are structs up to version 4 and packed from version 5 (core/packed_hits.h):
@@ -246,15 +279,17 @@ TEST(ProtocolMalformedTest, ALeaseResultsHitsMustBeInItsVersionsForm) {
            {5, 1, false, &cut, "hit 0 ends inside a number"},
        }) {
     const std::vector<wire::PatchHit> hits = r.structs ? structs : std::vector<wire::PatchHit>{};
-    EXPECT_TRUE(ErrorMentions(DecodeFrame(HandMadeLeaseResult(r.version, r.hit_count, hits, r.packed)),
-                              r.error))
+    EXPECT_TRUE(ErrorMentions(
+        DecodeFrame(HandMadeLeaseResult(r.version, r.hit_count, hits, r.packed)), r.error))
         << r.error;
   }
 }
 
 TEST(ProtocolMalformedTest, DeeplyNestedOrHugeVectorsAreBounded) {
-  // A BatchResult whose hits vector claims more elements than the buffer holds.
-  std::vector<uint8_t> frame = EncodeFrame(BatchResultMsg{{}, {{1, 1}, {2, 1}}, 0, 0, 0, 0, 0});
+  // A LeaseResult whose hits vector (version 4: structs) claims more elements than the buffer
+  // holds.
+  std::vector<uint8_t> frame =
+      EncodeFrame(LeaseResultMsg{{BatchOutcome{{}, {{1, 1}, {2, 1}}, 0, 0, 0, 0, 0}}}, 4);
   // Find the vector length word (2) followed by the first hit (patch 1) and inflate it.
   bool patched = false;
   for (size_t i = kLengthPrefixBytes; i + 4 <= frame.size() && !patched; ++i) {

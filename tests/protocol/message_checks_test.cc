@@ -26,10 +26,11 @@ T Sample() {
   return T{};
 }
 
-// The message is rejected on decode, with `text` in the reason.
-void ExpectRejected(const Message& message, const std::string& text) {
+// The message, written in `version`, is rejected on decode, with `text` in the reason.
+void ExpectRejected(const Message& message, const std::string& text,
+                    uint16_t version = kProtocolVersion) {
   EXPECT_FALSE(CheckMessage(message)) << text;
-  Result<DecodedFrame> r = DecodeFrame(EncodeFrame(message));
+  Result<DecodedFrame> r = DecodeFrame(EncodeFrame(message, version));
   ASSERT_FALSE(r) << "accepted: " << text;
   EXPECT_NE(r.error().find(text), std::string::npos) << r.error();
 }
@@ -79,53 +80,65 @@ TEST(ProtocolCheckTest, HeartbeatNumbersMustBeFiniteAndNonNegative) {
   }
 }
 
-TEST(ProtocolCheckTest, BatchAssignment) {
-  BatchAssignmentMsg m = Sample<BatchAssignmentMsg>();
+TEST(ProtocolCheckTest, LeaseAssignment) {
+  LeaseAssignmentMsg m = Sample<LeaseAssignmentMsg>();
   m.patch_count = 0;
-  ExpectRejected(m, "BatchAssignment: patch_count 0");
-  m = Sample<BatchAssignmentMsg>();
-  m.shooter = m.patch_count;
-  ExpectRejected(m, "BatchAssignment: shooter 5000 >= patch_count 5000");
-  m = Sample<BatchAssignmentMsg>();
-  m.ray_count = 0;
-  ExpectRejected(m, "BatchAssignment: ray_count 0");
-  m = Sample<BatchAssignmentMsg>();
-  m.first_ray = UINT64_MAX - 10;
+  ExpectRejected(m, "LeaseAssignment: patch_count 0");
+  m = Sample<LeaseAssignmentMsg>();
+  m.batches[0].shooter = m.patch_count;
+  ExpectRejected(m, "LeaseAssignment batch 0: shooter 5000 >= patch_count 5000");
+  m = Sample<LeaseAssignmentMsg>();
+  m.batches[1].ray_count = 0;
+  ExpectRejected(m, "LeaseAssignment batch 1: ray_count 0");
+  m = Sample<LeaseAssignmentMsg>();
+  m.batches[0].first_ray = UINT64_MAX - 10;
   ExpectRejected(m, "overflows");
-  m = Sample<BatchAssignmentMsg>();
+  m = Sample<LeaseAssignmentMsg>();
   m.sampler = static_cast<SamplerKind>(9);
   ExpectRejected(m, "unknown sampler 9");
   for (double bad : {kNaN, kInf, 0.0, -1.0, 90.5}) {
-    m = Sample<BatchAssignmentMsg>();
+    m = Sample<LeaseAssignmentMsg>();
     m.grid_step_degrees = bad;
     ExpectRejected(m, "grid_step_degrees");
   }
-  m = Sample<BatchAssignmentMsg>();
+  m = Sample<LeaseAssignmentMsg>();
   m.sampler = SamplerKind::kSobol;
   m.grid_step_degrees = 0;  // unused by sobol: any finite value is fine
   EXPECT_TRUE(CheckMessage(m));
   m.grid_step_degrees = kNaN;  // but never a non-finite one
   ExpectRejected(m, "grid_step_degrees not finite");
-  m = Sample<BatchAssignmentMsg>();
+  m = Sample<LeaseAssignmentMsg>();
   m.lease_ms = 0;
   ExpectRejected(m, "lease_ms 0");
+  m = Sample<LeaseAssignmentMsg>();
+  m.batches.clear();
+  ExpectRejected(m, "LeaseAssignment: 0 batches");
+  m = Sample<LeaseAssignmentMsg>();
+  m.batches[2].batch_id = m.batches[0].batch_id;
+  ExpectRejected(m, "appears twice");
 }
 
-TEST(ProtocolCheckTest, BatchResult) {
-  BatchResultMsg m = Sample<BatchResultMsg>();
-  m.hits[1].weight = 0;
-  ExpectRejected(m, "BatchResult: hit 1 (patch 17) has weight 0");
-  m = Sample<BatchResultMsg>();
-  m.hits[2].patch = m.hits[1].patch;
-  ExpectRejected(m, "BatchResult: hit 2 patch 17 not above");
-  m = Sample<BatchResultMsg>();
-  std::swap(m.hits[0], m.hits[1]);
-  ExpectRejected(m, "not above");
+TEST(ProtocolCheckTest, LeaseResult) {
+  // Hits as structs (version 4): packed hits (version 5) out of order or weightless do not even
+  // unpack (ProtocolMalformedTest.ALeaseResultsHitsMustBeInItsVersionsForm).
+  const uint16_t structs = kMinProtocolVersion;
+  LeaseResultMsg m = Sample<LeaseResultMsg>();
+  m.results[0].hits[1].weight = 0;
+  ExpectRejected(m, "LeaseResult result 0: hit 1 (patch 17) has weight 0", structs);
+  m = Sample<LeaseResultMsg>();
+  m.results[0].hits[2].patch = m.results[0].hits[1].patch;
+  ExpectRejected(m, "LeaseResult result 0: hit 2 patch 17 not above", structs);
+  m = Sample<LeaseResultMsg>();
+  std::swap(m.results[0].hits[0], m.results[0].hits[1]);
+  ExpectRejected(m, "not above", structs);
   for (double bad : {kNaN, kInf, -0.5}) {
-    m = Sample<BatchResultMsg>();
-    m.compute_seconds = bad;
-    ExpectRejected(m, "compute_seconds");
+    m = Sample<LeaseResultMsg>();
+    m.results[2].compute_seconds = bad;
+    ExpectRejected(m, "LeaseResult result 2: compute_seconds");
   }
+  m = Sample<LeaseResultMsg>();
+  m.results.clear();
+  ExpectRejected(m, "LeaseResult: 0 results");
 }
 
 TEST(ProtocolCheckTest, LeaseReturn) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "frame_generated.h"
 #include "protocol/frame_codec.h"
 #include "tests/protocol/sample_messages.h"
 #include "tests/protocol/session_test_helpers.h"
@@ -262,28 +263,20 @@ TEST(ProtocolSessionTest, AVersionThreeAgentIsRefusedBeforeItSendsAClearFrame) {
   EXPECT_EQ(CloseOf(agent.CloseFrame()).code, CloseCode::kVersionMismatch);
 }
 
-TEST(ProtocolSessionTest, VersionOneBatchMessagesAreRefusedInTheCurrentVersion) {
-  Session master = Master(), agent = Agent();
-  RunHandshake(master, agent);
-  ASSERT_EQ(master.version(), 5);
-  BatchAssignmentMsg one;
-  one.ray_count = 1;
-  one.patch_count = 1;
-  one.lease_ms = 1;
-  Result<std::vector<uint8_t>> out = master.Encode(one);
-  ASSERT_FALSE(out);
-  EXPECT_NE(out.error().find("not a message of protocol version 5"), std::string::npos);
-  Result<Session::Accepted> in =
-      master.Accept(Decode(EncodeFrame(BatchResultMsg{{}, {}, 0, 0, 0, 0, 0}, 5)));
+// Version 1's BatchAssignment and BatchResult slots are kept in the Payload union, empty, so the
+// later messages keep their numbers: a frame in one is a protocol error that closes the session.
+TEST(ProtocolSessionTest, AFrameInARetiredSlotClosesTheSession) {
+  flatbuffers::FlatBufferBuilder fbb;
+  const auto retired = wire::CreateRetiredBatchResult(fbb).Union();
+  wire::FinishFrameBuffer(fbb,
+                          wire::CreateFrame(fbb, 1, wire::Payload::RetiredBatchResult, retired));
+  Session master = Master();
+  Result<DecodedFrame> in = master.Decode(std::span(fbb.GetBufferPointer(), fbb.GetSize()));
   ASSERT_FALSE(in);
-  EXPECT_NE(in.error().find("BatchResult is not a message of protocol version 5"),
-            std::string::npos)
+  EXPECT_NE(in.error().find("BatchResult, protocol version 1) is retired"), std::string::npos)
       << in.error();
-  // Authenticated: the Close is sealed, for the agent.
-  const std::vector<uint8_t> close = master.CloseFrame();
-  Result<DecodedFrame> read = agent.Decode(std::span(close).subspan(kLengthPrefixBytes));
-  ASSERT_TRUE(read) << read.error();
-  EXPECT_EQ(std::get<CloseMsg>(read->message).code, CloseCode::kProtocolError);
+  EXPECT_EQ(master.state(), State::kClosed);
+  EXPECT_EQ(CloseOf(master.CloseFrame()).code, CloseCode::kProtocolError);
 }
 
 TEST(ProtocolSessionTest, AgentRejectsAVersionItDoesNotSpeak) {
@@ -303,7 +296,6 @@ TEST(ProtocolSessionTest, FramesMustUseTheNegotiatedVersion) {
 }
 
 TEST(ProtocolSessionTest, AfterAuthenticationOnlyTheRightDirectionIsAccepted) {
-  // Version 2: BatchAssignment and BatchResult (version 1's) go neither way.
   const std::vector<std::string> from_agent = {"Heartbeat", "LeaseResult", "LeaseReturn",
                                                "SceneRequest", "Close"};
   for (const Message& m : testing::SampleMessages()) {
@@ -349,7 +341,7 @@ TEST(ProtocolSessionTest, AgentWillNotSendAFrameAboveTheMastersLimit) {
   Session agent = Agent();
   RunHandshake(master, agent);
   ASSERT_TRUE(agent.authenticated());
-  BatchResultMsg big;
+  BatchOutcome big;
   // Packed (version 5), a hit of consecutive ids and weight 1 takes 2 bytes.
   for (uint32_t p = 0; p < kMinPeerFrameBytes / 2 + 10; ++p) big.hits.push_back({p, 1});
   Result<std::vector<uint8_t>> frame = agent.Encode(LeaseResultMsg{{big}});

@@ -11,4 +11,13 @@ namespace radfarm::protocol::testing {
 Bytes32 Pattern(uint8_t seed);          // 32 distinct bytes
 std::vector<Message> SampleMessages();  // in variant order: one of each type
 
+// The sample of message type T.
+template <typename T>
+T SampleOf() {
+  for (const Message& m : SampleMessages()) {
+    if (const T* t = std::get_if<T>(&m)) return *t;
+  }
+  return T{};
+}
+
 }  // namespace radfarm::protocol::testing

@@ -104,7 +104,7 @@ TEST(SealedSessionTest, ReorderedFramesFailAuthentication) {
 // Version 5 packs a LeaseResult's hits; an agent of the release before (version 4) sends them as
 // structs, and this master still reads them: agents can be upgraded one at a time.
 TEST(SealedSessionTest, AVersionFourAgentsResultsStillReachTheMaster) {
-  const LeaseResultMsg result{{BatchResultMsg{{1, 2, 3}, {{4, 1}, {900, 2}}, 1, 1, 0, 0, 0.5}}};
+  const LeaseResultMsg result{{BatchOutcome{{1, 2, 3}, {{4, 1}, {900, 2}}, 1, 1, 0, 0, 0.5}}};
   for (uint16_t version : {uint16_t{4}, uint16_t{5}}) {
     Pair p(version);
     ASSERT_TRUE(p.agent.authenticated()) << version;

@@ -66,7 +66,9 @@ int main(int argc, char** argv) {
   // The version-4 form of a LeaseResult (hits as structs), which this master still reads.
   for (const Message& message : testing::SampleMessages()) {
     if (!std::holds_alternative<LeaseResultMsg>(message)) continue;
-    if (!Write(dir / "18_leaseresult_version4.frame", EncodeFrame(message, 4))) return 1;
+    char name[64];
+    std::snprintf(name, sizeof(name), "%02d_leaseresult_version4.frame", index);
+    if (!Write(dir / name, EncodeFrame(message, 4))) return 1;
   }
   if (!Write(dir / "all_messages.stream", all)) return 1;
   if (!Write(dir / "handshake.stream", HandshakeStream())) return 1;

@@ -11,7 +11,7 @@
 
 #include "testing/temp_dir.h"
 
-namespace radfarm::bench {
+namespace radfarm::testing {
 namespace {
 
 TEST(OfficeEmulationTest, TwoCappedAgentsWriteRendersOutputs) {
@@ -50,4 +50,4 @@ TEST(OfficeEmulationTest, AmdahlsFitRecoversItsOwnModel) {
 }
 
 }  // namespace
-}  // namespace radfarm::bench
+}  // namespace radfarm::testing

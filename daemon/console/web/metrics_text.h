@@ -7,7 +7,7 @@
 #include <map>
 #include <string>
 
-#include "daemon/console/web/latency_histogram.h"
+#include "base/latency_histogram.h"
 
 namespace radfarm::web {
 

@@ -80,7 +80,7 @@ void FakeAgent::OnLease(const protocol::LeaseAssignmentMsg& lease) {
       held_.insert(key);
       continue;
     }
-    Result<protocol::BatchResultMsg> result =
+    Result<protocol::BatchOutcome> result =
         sim::MakeSimulatedResult(protocol::BatchOf(lease, k), 4, 0.001);
     if (!result) return Fail("cannot simulate a result: " + result.error());
     answer.results.push_back(std::move(result).value());

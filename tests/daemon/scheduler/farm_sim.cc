@@ -90,20 +90,20 @@ void FarmSim::Deliver(SimAgent& agent) {
     const Assignment a = agent.pending.front().assignment;
     agent.pending.pop_front();
     const protocol::LeaseRef lease{1, a.batch_id, a.attempt_id};
-    protocol::BatchResultMsg message =
-        protocol::MakeBatchResult(lease, agent.runner->Run(a.batch), 0.01);
+    protocol::BatchOutcome message =
+        protocol::MakeBatchOutcome(lease, agent.runner->Run(a.batch), 0.01);
     if (agent.spec.lies_on_result == agent.results_sent) ++message.escaped_rays;  // a lost ray
     ++agent.results_sent;
     const uint32_t patches = static_cast<uint32_t>(scene_.patches.size());
     const IntakeVerdict intake =
-        SubmitBatchResult(scheduler_, agent.id, message, solver_.sampler(), patches, now_);
+        SubmitBatchOutcome(scheduler_, agent.id, message, solver_.sampler(), patches, now_);
     // The daemon's part (daemon/agents/job_blocklist.h), played strictly: one lie blocklists the
     // agent.
     if (intake.verdict.reason == DropReason::kInvalid) {
       scheduler_.Blocklist(agent.id, now_ + std::chrono::hours(1));
     }
     if (agent.spec.sends_twice) {
-      SubmitBatchResult(scheduler_, agent.id, message, solver_.sampler(), patches, now_);
+      SubmitBatchOutcome(scheduler_, agent.id, message, solver_.sampler(), patches, now_);
     }
   }
 }

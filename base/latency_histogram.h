@@ -1,13 +1,13 @@
 // LatencyHistogram: a Prometheus-style histogram of durations (cumulative buckets, a sum and a
-// count), for the checkpoint latency of /metrics. One thread records (the loop thread); readers
-// get a copy. Plain value type.
+// count), such as the master's checkpoint latency that daemon/jobs records and /metrics prints.
+// Plain value type: one thread records, readers get a copy.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 
-namespace radfarm::web {
+namespace radfarm {
 
 class LatencyHistogram {
  public:
@@ -27,4 +27,4 @@ class LatencyHistogram {
   double sum_ = 0;
 };
 
-}  // namespace radfarm::web
+}  // namespace radfarm

@@ -1,6 +1,6 @@
-#include "daemon/console/web/latency_histogram.h"
+#include "base/latency_histogram.h"
 
-namespace radfarm::web {
+namespace radfarm {
 
 void LatencyHistogram::Record(double seconds) {
   for (size_t i = 0; i < kBounds.size(); ++i) {
@@ -19,4 +19,4 @@ uint64_t LatencyHistogram::CountAtMost(size_t bound) const {
   return total;
 }
 
-}  // namespace radfarm::web
+}  // namespace radfarm

@@ -1,4 +1,4 @@
-#include "cli/job_loader.h"
+#include "cli/job_inputs.h"
 
 #include <utility>
 
