@@ -49,11 +49,12 @@ class TomlTableReader {
   Status Integer(std::string_view key, int64_t lo, int64_t hi, int64_t* out,
                  bool* present = nullptr);
   template <typename T>
-  Status Integer(std::string_view key, int64_t lo, int64_t hi, T* out) {
+  Status Integer(std::string_view key, int64_t lo, int64_t hi, T* out, bool* present = nullptr) {
     int64_t value = 0;
-    bool present = false;
-    Status s = Integer(key, lo, hi, &value, &present);
-    if (s && present) *out = static_cast<T>(value);
+    bool found = false;
+    Status s = Integer(key, lo, hi, &value, &found);
+    if (s && found) *out = static_cast<T>(value);
+    if (present != nullptr) *present = s && found;
     return s;
   }
   Status String(std::string_view key, std::string* out, bool* present = nullptr);

@@ -1,5 +1,8 @@
 #include "cli/scene_settings.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "base/diagnostic.h"
 
 namespace radfarm {
@@ -44,6 +47,18 @@ Status ChooseCamera(const std::string& name, const InputScene& scene, Job* job) 
   job->camera.target = chosen->target;
   job->camera.up = chosen->up;
   job->camera.fov_degrees = chosen->fov_degrees;
+  const double aspect = chosen->aspect_ratio;
+  if (aspect > 0 && !(job->width_given && job->height_given)) {
+    const auto side = [](double pixels) {
+      return static_cast<uint32_t>(
+          std::clamp(std::round(pixels), 1.0, static_cast<double>(kMaxImageSide)));
+    };
+    if (job->width_given) {
+      job->camera.height = side(job->camera.width / aspect);
+    } else {
+      job->camera.width = side(job->camera.height * aspect);
+    }
+  }
   return Ok{};
 }
 

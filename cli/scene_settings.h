@@ -16,8 +16,9 @@ namespace radfarm {
 Status ApplyTwoSided(const std::string& job_path, const Job& job, InputScene* scene);
 
 // Puts the scene's camera named `name` (node or camera name), or with an empty name and a job
-// without its own camera the scene's first, into job->camera. Errors: no camera of that name
-// (naming those there are).
+// without its own camera the scene's first, into job->camera, with the image's shape its aspect
+// ratio (the side the job did not give follows the one it did; the width when it gave none).
+// Errors: no camera of that name (naming those there are).
 Status ChooseCamera(const std::string& name, const InputScene& scene, Job* job);
 
 }  // namespace radfarm

@@ -25,6 +25,10 @@ struct Job {
   // The scene's camera to use (a glTF camera's node or camera name; `[camera] name`, or
   // `--camera`); empty: the job's own camera, else the scene's first, else the automatic one.
   std::string camera_name;
+  // Which of `[camera] width` and `height` were given: a glTF camera's aspect ratio sets the other
+  // (the width when neither was), and leaves an image whose size was given whole alone.
+  bool width_given = false;
+  bool height_given = false;
   // Which materials receive and emit on both sides (Material::two_sided): every one when
   // `two_sided = true` at the top of the job file, and those `[materials.NAME] two_sided` names,
   // which wins over the former and over a glTF file's doubleSided.
@@ -36,6 +40,9 @@ struct Job {
   uint32_t lightmap_size = 0;  // every lightmap this many texels square
   double lightmap_texel = 0;   // each object's texels about this size, in scene units
 };
+
+// The image's width and height at most (`[camera] width`, `height`).
+inline constexpr int64_t kMaxImageSide = 16384;
 
 // The lightmap side a job may choose besides 0, automatic (`[output] lightmap_size`,
 // `--lightmap-size`): one range, so both refuse the same values with the same words.

@@ -61,7 +61,6 @@ namespace {
 constexpr int64_t kMaxInt64 = std::numeric_limits<int64_t>::max();
 constexpr int64_t kMaxUint32 = std::numeric_limits<uint32_t>::max();
 constexpr int64_t kMaxThreads = 65536;
-constexpr int64_t kMaxImageSide = 16384;
 constexpr int64_t kMaxSamplesPerPixel = 1024;
 
 // Applies a section's reads to the sub-table `name` of `root`, then rejects its unknown keys.
@@ -126,14 +125,18 @@ Status CheckExplicitCamera(TomlTableReader* r, bool has_eye, bool has_target,
   return Ok{};
 }
 
-Status ReadCamera(TomlTableReader* r, Camera* camera) {
-  bool has_eye = false, has_target = false, has_exposure = false;
+Status ReadCamera(TomlTableReader* r, Job* job) {
+  Camera* camera = &job->camera;
+  bool has_eye = false, has_target = false, has_exposure = false, has_width = false,
+       has_height = false;
   RADFARM_RETURN_IF_ERROR(r->Vector("eye", &camera->eye, &has_eye));
   RADFARM_RETURN_IF_ERROR(r->Vector("target", &camera->target, &has_target));
   RADFARM_RETURN_IF_ERROR(r->Vector("up", &camera->up));
   RADFARM_RETURN_IF_ERROR(r->Real("fov", Interval::Open(0, 180), &camera->fov_degrees));
-  RADFARM_RETURN_IF_ERROR(r->Integer("width", 1, kMaxImageSide, &camera->width));
-  RADFARM_RETURN_IF_ERROR(r->Integer("height", 1, kMaxImageSide, &camera->height));
+  RADFARM_RETURN_IF_ERROR(r->Integer("width", 1, kMaxImageSide, &camera->width, &has_width));
+  RADFARM_RETURN_IF_ERROR(r->Integer("height", 1, kMaxImageSide, &camera->height, &has_height));
+  job->width_given = has_width;
+  job->height_given = has_height;
   RADFARM_RETURN_IF_ERROR(r->Real("exposure", Interval::Any(), &camera->exposure, &has_exposure));
   RADFARM_RETURN_IF_ERROR(
       r->Integer("samples_per_pixel", 1, kMaxSamplesPerPixel, &camera->samples_per_pixel));
@@ -197,7 +200,7 @@ Status ReadJob(const std::string& path, const toml::table& table, Job* job) {
   RADFARM_RETURN_IF_ERROR(root.Bool("two_sided", &job->two_sided));
   RADFARM_RETURN_IF_ERROR(ReadSection(path, &root, "camera", [&](TomlTableReader* r) -> Status {
     RADFARM_RETURN_IF_ERROR(r->String("name", &job->camera_name));
-    return ReadCamera(r, &job->camera);
+    return ReadCamera(r, job);
   }));
   RADFARM_RETURN_IF_ERROR(
       ReadSection(path, &root, "output", [&](TomlTableReader* r) { return ReadOutput(r, job); }));
