@@ -20,11 +20,13 @@
 
 #include "cli/exit_codes.h"
 #include "testing/child_process.h"
+#include "testing/png_size.h"
 #include "testing/temp_dir.h"
 
 namespace radfarm {
 namespace {
 
+using testing::PngSize;
 using testing::RunCommand;
 using testing::TempDir;
 
@@ -167,18 +169,6 @@ TEST(LightmapRenderTest, ObjectsWithASecondUvGetLightmapsMatchingTheirVertexRadi
     EXPECT_LT(p90, 0.10);
     EXPECT_NEAR(c.lightmap_mean, c.colour_mean, 0.03 * c.colour_mean);
   }
-}
-
-// The width and height in a PNG's IHDR chunk (bytes 16 to 23, big-endian).
-std::pair<uint32_t, uint32_t> PngSize(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  unsigned char header[24] = {};
-  in.read(reinterpret_cast<char*>(header), sizeof header);
-  const auto word = [&](int at) {
-    return uint32_t{header[at]} << 24 | uint32_t{header[at + 1]} << 16 |
-           uint32_t{header[at + 2]} << 8 | uint32_t{header[at + 3]};
-  };
-  return in ? std::pair{word(16), word(20)} : std::pair{0u, 0u};
 }
 
 // The room's job file (kJob) with `output` as its [output] table, written into `dir`.
