@@ -44,8 +44,8 @@ TEST(AgentConnectionsTest, AgentsCountsTheResultsOfAJobThatHasEnded) {
   FakeAgent agent(master.loop(), master.agent_address(), master.secret(), "box-1", true);
   ASSERT_TRUE(agent.Connect().ok());
   ASSERT_TRUE(master.RunUntil([&] {
-    return agent.results_sent() > 0 && master.jobs().FindRunner(job) == nullptr &&
-           master.jobs().starting() == 0;
+    // No phase: neither starting, nor running rounds, nor drawing its display.
+    return agent.results_sent() > 0 && master.jobs().PhaseOf(job).empty();
   }));
   ASSERT_EQ(master.StateOf(job), "done");
 

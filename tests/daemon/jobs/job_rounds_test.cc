@@ -36,10 +36,10 @@ TEST(JobRoundsTest, AJobWithARayBudgetEndsDoneAndLeavesNoRunner) {
   const uint64_t job = master.Submit(200000);
   FakeAgent agent(master.loop(), master.agent_address(), master.secret(), "box-1", true);
   ASSERT_TRUE(agent.Connect().ok());
-  // Results were taken, and the runner is gone: the job ended.
+  // Results were taken, and the job has no phase left (neither starting, nor running rounds, nor
+  // drawing its display): it ended.
   ASSERT_TRUE(master.RunUntil([&] {
-    return agent.results_sent() > 0 && master.jobs().FindRunner(job) == nullptr &&
-           master.jobs().starting() == 0;
+    return agent.results_sent() > 0 && master.jobs().PhaseOf(job).empty();
   }));
   EXPECT_EQ(master.StateOf(job), "done");
   EXPECT_GT(agent.results_sent(), 0u);
