@@ -93,6 +93,19 @@ TEST(RenderCommandTest, CornellBoxWritesEveryOutput) {
   }
 }
 
+// One output that cannot be written (a directory where image.png goes) costs that file only: the
+// others are written, the failure is named on a line of its own, and the exit is non-zero.
+TEST(RenderCommandTest, AnUnwritableOutputLeavesTheOthersWritten) {
+  TempDir out;
+  std::filesystem::create_directories(out.File("image.png"));
+  const auto r = Render("cornell-box.toml", out.path(), {"--tolerance", "0.05", "-q"});
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  EXPECT_NE(r.err.find("radfarm: " + out.File("image.png")), std::string::npos) << r.err;
+  for (const char* file : {"image.exr", "radiosity.ply", "lit.glb", "patches.csv", "stats.json"}) {
+    EXPECT_FALSE(ReadFile(out.File(file)).empty()) << file;
+  }
+}
+
 // A ray budget covers the direct light and the display too: the start's shadow rays
 // (stats.json start_rays) are planned to a quarter of it, the display's rays (display_rays) to
 // another, and the rounds get the rest less the display's quarter, exactly.
