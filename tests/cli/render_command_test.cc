@@ -93,15 +93,19 @@ TEST(RenderCommandTest, CornellBoxWritesEveryOutput) {
   }
 }
 
-// One output that cannot be written (a directory where image.png goes) costs that file only: the
-// others are written, the failure is named on a line of its own, and the exit is non-zero.
-TEST(RenderCommandTest, AnUnwritableOutputLeavesTheOthersWritten) {
+// Outputs that cannot be written (directories where image.png and patches.csv go) cost those files
+// only: the others are written, each failure is named on a line of its own (not just the first),
+// and the exit is non-zero.
+TEST(RenderCommandTest, UnwritableOutputsLeaveTheOthersWrittenAndAreEachNamed) {
   TempDir out;
   std::filesystem::create_directories(out.File("image.png"));
+  std::filesystem::create_directories(out.File("patches.csv"));
   const auto r = Render("cornell-box.toml", out.path(), {"--tolerance", "0.05", "-q"});
   EXPECT_EQ(r.exit_code, kExitFailure);
-  EXPECT_NE(r.err.find("radfarm: " + out.File("image.png")), std::string::npos) << r.err;
-  for (const char* file : {"image.exr", "radiosity.ply", "lit.glb", "patches.csv", "stats.json"}) {
+  for (const char* file : {"image.png", "patches.csv"}) {
+    EXPECT_NE(r.err.find("radfarm: " + out.File(file)), std::string::npos) << r.err;
+  }
+  for (const char* file : {"image.exr", "radiosity.ply", "lit.glb", "stats.json"}) {
     EXPECT_FALSE(ReadFile(out.File(file)).empty()) << file;
   }
 }
