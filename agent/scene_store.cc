@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "base/atomic_file.h"
+#include "base/private_dir.h"
 #include "base/unique_fd.h"
 #include "protocol/limits.h"
 #include "protocol/scene_transfer.h"
@@ -52,9 +53,10 @@ bool IsTemporary(const std::string& name) {
 
 Result<SceneStore> SceneStore::Open(const std::string& state_dir) {
   const fs::path scenes = fs::path(state_dir) / "scenes";
+  if (Status made = CreatePrivateDirectories(scenes.string()); !made.ok()) {
+    return Error{"state directory " + made.error()};
+  }
   std::error_code error;
-  fs::create_directories(scenes, error);
-  if (error) return Error{"state directory " + scenes.string() + ": " + error.message()};
   if (access(scenes.c_str(), R_OK | W_OK | X_OK) != 0) {
     return Error{Errno("state directory " + scenes.string())};
   }
@@ -106,7 +108,8 @@ Status SceneStore::Save(const protocol::SceneHash& hash, std::span<const uint8_t
 
 Result<AtomicFileWriter> SceneStore::Write(const protocol::SceneHash& hash,
                                            std::span<const uint8_t> blob) const {
-  Result<AtomicFileWriter> writer = AtomicFileWriter::Open(PathFor(hash));
+  // Private: scenes are the farm users' data (base/private_dir.h).
+  Result<AtomicFileWriter> writer = AtomicFileWriter::Open(PathFor(hash), 0600);
   RADFARM_RETURN_IF_ERROR(writer);
   RADFARM_RETURN_IF_ERROR(
       writer->Append(std::string_view(reinterpret_cast<const char*>(blob.data()), blob.size())));

@@ -68,11 +68,11 @@ Status WriteFileAtomically(const std::string& path, std::string_view contents) {
   return writer->Commit();
 }
 
-Result<AtomicFileWriter> AtomicFileWriter::Open(const std::string& path) {
+Result<AtomicFileWriter> AtomicFileWriter::Open(const std::string& path, unsigned mode) {
   if (path.empty()) return Error{"(empty path): cannot write a file without a name"};
   std::string temporary = TemporaryName(path);
-  // 0666 lets the umask decide the final permissions, as for any newly created file.
-  UniqueFd fd(open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
+  // The default 0666 lets the umask decide the final permissions, as for any newly created file.
+  UniqueFd fd(open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, mode_t(mode)));
   if (!fd.valid()) return Fail(path, "cannot create temporary file", errno);
   return AtomicFileWriter(path, std::move(temporary), std::move(fd));
 }

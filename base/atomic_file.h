@@ -20,7 +20,9 @@ Status WriteFileAtomically(const std::string& path, std::string_view contents);
 // removes its temporary and leaves `path` untouched. Move-only.
 class AtomicFileWriter {
  public:
-  static Result<AtomicFileWriter> Open(const std::string& path);
+  // `mode`, less the umask, is the file's permissions (0600: its owner's alone, whatever the
+  // umask).
+  static Result<AtomicFileWriter> Open(const std::string& path, unsigned mode = 0666);
   AtomicFileWriter(AtomicFileWriter&& other) noexcept;
   AtomicFileWriter& operator=(AtomicFileWriter&&) = delete;
   AtomicFileWriter(const AtomicFileWriter&) = delete;

@@ -32,8 +32,8 @@ CLI::App* AddBuildingCommand(CLI::App& app, BuildingOptions* options) {
                       "Inside size of a room in metres, as WxD or one number (default: 4x4)");
   command->add_option("--height", options->height, "Room height in metres (default: 3)")
       ->check(PositiveReal());
-  command->add_option("--seed", options->seed,
-                      "Seed of the furniture and door jitter (default: 1)");
+  command->add_option("--seed", options->seed, "Seed of the furniture and door jitter (default: 1)")
+      ->check(UnsignedInteger());
   command->add_option("--lights", options->lights,
                       "Ceiling panels per room along x and z, as AxB (default: 2x1)");
   command->add_flag("--windows", options->windows, "A daylight panel on every outer wall");

@@ -10,6 +10,7 @@
 
 #include "cli/control_frames.h"
 #include "cli/exit_codes.h"
+#include "cli/printable.h"
 
 namespace radfarm {
 namespace {
@@ -130,7 +131,7 @@ Outcome<ControlReply> ControlClient::ReadReply(const std::string& command) {
       }
     }
     return Failure{ExitCodeForErrorCode(body["code"].get<std::string>()),
-                   body["error"].get<std::string>()};
+                   Printable(body["error"].get<std::string>())};
   }
   if (body.contains("attachment_bytes")) {
     const json& n = body["attachment_bytes"];

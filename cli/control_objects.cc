@@ -1,9 +1,23 @@
 #include "cli/control_objects.h"
 
+#include <optional>
+#include <string>
+
 #include "base/result.h"
 #include "cli/json_fields.h"
+#include "cli/printable.h"
 
 namespace radfarm {
+namespace {
+
+// The master's strings are printed on a terminal: control characters come escaped
+// (cli/printable.h).
+std::optional<std::string> PrintableOrNull(const std::optional<std::string>& text) {
+  if (!text) return std::nullopt;
+  return Printable(*text);
+}
+
+}  // namespace
 
 bool IsTerminalState(std::string_view state) {
   return state == "done" || state == "failed" || state == "cancelled";
@@ -13,17 +27,17 @@ Result<JobInfo> ParseJob(const nlohmann::json& object, const std::string& where)
   FieldReader r(object, where);
   JobInfo job;
   job.id = r.Int("id");
-  job.name = r.String("name");
+  job.name = Printable(r.String("name"));
   job.state =
       r.OneOf("state", {"queued", "running", "paused", "held", "done", "failed", "cancelled"});
   job.priority = r.Int("priority");
   job.seed = r.Count("seed");
-  job.scene_hash = r.String("scene_hash");
+  job.scene_hash = Printable(r.String("scene_hash"));
   job.patches = r.Count("patches");
   job.submitted_at_ms = r.NullableInt("submitted_at_ms");
   job.started_at_ms = r.NullableInt("started_at_ms");
   job.finished_at_ms = r.NullableInt("finished_at_ms");
-  job.error = r.NullableString("error");
+  job.error = PrintableOrNull(r.NullableString("error"));
   job.round = r.Count("round");
   job.rays = r.Count("rays");
   job.unshot_fraction = r.Number("unshot_fraction");
@@ -32,7 +46,7 @@ Result<JobInfo> ParseJob(const nlohmann::json& object, const std::string& where)
   job.rays_per_second = r.Number("rays_per_second");
   job.agents = r.Count("agents");
   job.eta_seconds = r.NullableNumber("eta_seconds");
-  job.stop_reason = r.NullableString("stop_reason");
+  job.stop_reason = PrintableOrNull(r.NullableString("stop_reason"));
   job.waiting_for_agents = r.Bool("waiting_for_agents");
   RADFARM_RETURN_IF_ERROR(r.status());
   return job;
@@ -42,8 +56,8 @@ Result<AgentInfo> ParseAgent(const nlohmann::json& object, const std::string& wh
   FieldReader r(object, where);
   AgentInfo agent;
   agent.id = r.Int("id");
-  agent.name = r.String("name");
-  agent.address = r.String("address");
+  agent.name = Printable(r.String("name"));
+  agent.address = Printable(r.String("address"));
   agent.threads = r.Count("threads");
   agent.rays_per_second = r.Number("rays_per_second");
   agent.load = r.Number("load");
@@ -60,7 +74,7 @@ Result<EventInfo> ParseEvent(const nlohmann::json& object, const std::string& wh
   EventInfo event;
   event.time_ms = r.Int("time_ms");
   event.level = r.OneOf("level", {"info", "warning", "error"});
-  event.text = r.String("text");
+  event.text = Printable(r.String("text"));
   RADFARM_RETURN_IF_ERROR(r.status());
   return event;
 }

@@ -29,6 +29,9 @@ Status WriteSolution(const std::vector<uint8_t>& blob, const std::string& out_di
   if (!solution.ok()) return Error{"the job solution from the master: " + solution.error()};
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(solution->bundle);
   if (!bundle.ok()) return Error{"the job bundle in the solution: " + bundle.error()};
+  // The job's thread count is the submitting machine's choice, not this one's: draw and write
+  // with this machine's cores.
+  bundle->job.solver.threads = 0;
   Result<codec::SolutionMesh> solved = codec::MeshOfSolution(*solution, *bundle);
   RADFARM_RETURN_IF_ERROR(solved);
   RADFARM_RETURN_IF_ERROR(CreateOutputDirectory(out_dir));

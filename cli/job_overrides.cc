@@ -3,7 +3,6 @@
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <cstdint>
-#include <limits>
 
 #include "cli/option_checks.h"
 #include "job/job.h"
@@ -29,7 +28,8 @@ CLI::Validator LightmapSizeCheck() {
 }  // namespace
 
 void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
-  command->add_option("--seed", overrides->seed, "Random seed (default 1)");
+  command->add_option("--seed", overrides->seed, "Random seed (default 1)")
+      ->check(UnsignedInteger());
   command
       ->add_option("--tolerance", overrides->tolerance,
                    "Stop when unshot power < T x emitted power (default 0.001)")
@@ -54,15 +54,13 @@ void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
       ->add_option("--max-memory", overrides->max_memory,
                    "Refuse a job whose solve would need more memory than this, e.g. 8G or 512M "
                    "(default: this machine's physical memory)")
-      ->transform(CLI::AsSizeValue(false))
-      ->check(CLI::Range(uint64_t{1}, std::numeric_limits<uint64_t>::max()));
+      ->transform(ByteSize());
   command
       ->add_option(
           "--max-scene-bytes", overrides->max_scene_bytes,
           "Refuse a scene file (OBJ, MTL, glTF) larger than this, from its size before reading it, "
           "e.g. 4G (default 1G)")
-      ->transform(CLI::AsSizeValue(false))
-      ->check(CLI::Range(uint64_t{1}, std::numeric_limits<uint64_t>::max()));
+      ->transform(ByteSize());
   command->add_option("--camera", overrides->camera,
                       "A camera of the glTF scene, by node or camera name (default: the job "
                       "file's camera, else the scene's first camera)");

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -18,6 +19,7 @@
 #include "cli/exit_codes.h"
 #include "cli/fetch_command.h"
 #include "cli/log_command.h"
+#include "cli/messages.h"
 #include "cli/queue_commands.h"
 #include "cli/render_command.h"
 #include "cli/secret_command.h"
@@ -110,7 +112,14 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   }
   for (const auto& [command, run] : commands) {
-    if (command->parsed()) return run();
+    if (!command->parsed()) continue;
+    // Thread pools throw when the system refuses a thread (a process or memory limit).
+    try {
+      return run();
+    } catch (const std::system_error& e) {
+      PrintError(std::string("cannot start the threads this command needs: ") + e.what());
+      return kExitFailure;
+    }
   }
   return kExitBadInput;
 }

@@ -5,7 +5,14 @@
 namespace radfarm {
 
 void PrintError(const std::string& message) {
-  std::fprintf(stderr, "radfarm: %s\n", message.c_str());
+  size_t start = 0;
+  while (true) {
+    const size_t end = message.find('\n', start);
+    const std::string line = message.substr(start, end - start);
+    std::fprintf(stderr, "radfarm: %s\n", line.c_str());
+    if (end == std::string::npos) return;
+    start = end + 1;
+  }
 }
 
 void PrintMessages(const std::vector<std::string>& messages) {

@@ -1,4 +1,5 @@
-// Errors and warnings for a person: one line each on stderr, prefixed with "radfarm: ".
+// Errors and warnings for a person: one line each on stderr, prefixed with "radfarm: " (a message
+// of several lines, such as the files an output could not write, gets the prefix on each).
 #pragma once
 
 #include <string>

@@ -65,17 +65,17 @@ Status WriteOutputs(const std::string& dir, const PatchMesh& mesh, const Display
   const double texel = job.lightmap_texel > 0  ? job.lightmap_texel
                        : shown.stats.added > 0 ? mesh.patch_size() / 16
                                                : mesh.patch_size() / 4;
-  Result<std::vector<Lightmap>> lightmaps =
+  std::vector<std::string> failures;
+  const std::vector<Lightmap> lightmaps =
       WriteLightmaps(dir, display, mesh.objects(), uvs, mesh.lightmap_triangles(), exposed, texel,
-                     job.lightmap_size, warnings);
-  RADFARM_RETURN_IF_ERROR(lightmaps);
+                     job.lightmap_size, warnings, &failures);
   LitLightmaps lit_lightmaps{&uvs, std::vector<std::string>(mesh.objects().size()),
                              std::vector<std::string>(mesh.objects().size())};
-  for (const Lightmap& map : *lightmaps) {
+  for (const Lightmap& map : lightmaps) {
     lit_lightmaps.png[map.object] = map.png;
     lit_lightmaps.exr[map.object] = map.exr;
   }
-  // The files are independent: written side by side, the first failure (in this order) reported.
+  // The files are independent: written side by side, every one that can be; each failure reported.
   const std::vector<std::function<Status()>> writers = {
       [&] { return WritePng(path("image.png"), image, exposed); },
       [&] { return WriteExr(path("image.exr"), image); },
@@ -107,8 +107,13 @@ Status WriteOutputs(const std::string& dir, const PatchMesh& mesh, const Display
       }};
   std::vector<Status> written(writers.size(), Ok{});
   pool.ParallelFor(writers.size(), [&](unsigned, size_t i) { written[i] = writers[i](); });
-  for (const Status& s : written) RADFARM_RETURN_IF_ERROR(s);
-  return Ok{};
+  for (const Status& s : written) {
+    if (!s.ok()) failures.push_back(s.error());
+  }
+  if (failures.empty()) return Ok{};
+  std::string lines;
+  for (const std::string& f : failures) lines += (lines.empty() ? "" : "\n") + f;
+  return Error{lines};
 }
 
 }  // namespace radfarm

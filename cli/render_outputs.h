@@ -21,7 +21,8 @@ namespace radfarm {
 Status CreateOutputDirectory(const std::string& dir);
 
 // `dir` must exist. `display` is the display of `solution` on `mesh` (display/solved_display.h);
-// `solution` must hold one value per patch of `mesh`. Each file is written atomically.
+// `solution` must hold one value per patch of `mesh`. Each file is written atomically, and every
+// file that can be is written: the error holds one line per file that could not be.
 // stats.json reports `patches_before_refinement` (0: the mesh was not refined, so the same as
 // `patches_after_refinement`, which is the patch count of `mesh`) and the display's figures.
 // Objects with a second UV set (glTF TEXCOORD_1) also get lightmaps/<object>.exr and .png

@@ -10,6 +10,7 @@
 #include "cli/farm_command.h"
 #include "cli/job_inputs.h"
 #include "cli/messages.h"
+#include "cli/printable.h"
 #include "codec/job_bundle.h"
 
 namespace radfarm {
@@ -62,7 +63,7 @@ int RunSubmit(const SubmitOptions& options, const std::string& control_path) {
   if (const auto it = reply->body.find("warnings"); it != reply->body.end() && it->is_array()) {
     std::vector<std::string> from_master;
     for (const auto& w : *it) {
-      if (w.is_string()) from_master.push_back(w.get<std::string>());
+      if (w.is_string()) from_master.push_back(Printable(w.get<std::string>()));
     }
     PrintMessages(from_master);
   }

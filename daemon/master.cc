@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "base/atomic_file.h"
+#include "base/private_dir.h"
 #include "base/result.h"
 #include "loop/log.h"
 #include "store/job_transactions.h"
@@ -47,10 +48,9 @@ Master::~Master() = default;
 
 Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const MasterConfig& config,
                                               protocol::FarmSecret secret) {
-  std::error_code ec;
-  std::filesystem::create_directories(config.state_dir, ec);
-  if (ec) {
-    return Error{"state directory " + config.state_dir + ": cannot create it: " + ec.message()};
+  // Private whatever the umask: it holds the job store and the control socket.
+  if (Status made = CreatePrivateDirectories(config.state_dir); !made.ok()) {
+    return Error{"state directory " + made.error()};
   }
   std::unique_ptr<Master> master(new Master(loop, config, std::move(secret)));
 

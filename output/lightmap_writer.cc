@@ -40,6 +40,19 @@ std::vector<bool> BakedSides(const DisplayMesh& mesh, const DisplayLightmapUvs& 
   return out;
 }
 
+// 16 hex digits of the name's 64-bit FNV-1a: fixed, so a name always gives the same stem.
+std::string NameHash(const std::string& name) {
+  uint64_t h = 14695981039346656037ull;
+  for (const char c : name) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 1099511628211ull;
+  }
+  static const char kHex[] = "0123456789abcdef";
+  std::string out(16, '0');
+  for (int i = 15; i >= 0; --i, h >>= 4) out[size_t(i)] = kHex[h & 15];
+  return out;
+}
+
 }  // namespace
 
 uint32_t LightmapSize(double world_area, double uv_area, double texel_size) {
@@ -51,7 +64,7 @@ uint32_t LightmapSize(double world_area, double uv_area, double texel_size) {
 
 std::vector<std::string> LightmapStems(const std::vector<InputObject>& objects) {
   std::vector<std::string> out;
-  std::set<std::string> taken;
+  std::set<std::string> taken;  // lower-cased: case-insensitive file systems fold case
   for (size_t o = 0; o < objects.size(); ++o) {
     std::string stem = objects[o].name;
     for (char& c : stem) {
@@ -60,20 +73,28 @@ std::vector<std::string> LightmapStems(const std::vector<InputObject>& objects) 
       if (!safe) c = '_';
     }
     if (stem.empty() || stem[0] == '.') stem = "object" + std::to_string(o) + stem;
+    if (stem.size() > kMaxLightmapStem) {
+      stem = stem.substr(0, kMaxLightmapStem - 17) + "_" + NameHash(objects[o].name);
+    }
+    const auto folded = [](std::string s) {
+      for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+      return s;
+    };
     std::string unique = stem;
-    for (int n = 2; taken.count(unique) > 0; ++n) unique = stem + "_" + std::to_string(n);
-    taken.insert(unique);
+    for (int n = 2; taken.count(folded(unique)) > 0; ++n) unique = stem + "_" + std::to_string(n);
+    taken.insert(folded(unique));
     out.push_back(unique);
   }
   return out;
 }
 
-Result<std::vector<Lightmap>> WriteLightmaps(const std::string& dir, const DisplayMesh& mesh,
-                                             const std::vector<InputObject>& objects,
-                                             const DisplayLightmapUvs& uvs,
-                                             const std::vector<LightmapTriangle>& triangles,
-                                             const Camera& exposed, double texel_size,
-                                             uint32_t size, std::vector<std::string>* warnings) {
+std::vector<Lightmap> WriteLightmaps(const std::string& dir, const DisplayMesh& mesh,
+                                     const std::vector<InputObject>& objects,
+                                     const DisplayLightmapUvs& uvs,
+                                     const std::vector<LightmapTriangle>& triangles,
+                                     const Camera& exposed, double texel_size, uint32_t size,
+                                     std::vector<std::string>* warnings,
+                                     std::vector<std::string>* failures) {
   std::vector<Lightmap> out;
   const std::vector<bool> baked = BakedSides(mesh, uvs, triangles.size());
   // By object: the input triangles' areas, for the resolution.
@@ -90,12 +111,17 @@ Result<std::vector<Lightmap>> WriteLightmaps(const std::string& dir, const Displ
   }
   const std::vector<std::string> stems = LightmapStems(objects);
   namespace fs = std::filesystem;
+  bool made_dir = false;
   for (uint32_t o = 0; o < objects.size(); ++o) {
     if (o >= uvs.object_has_uv.size() || !uvs.object_has_uv[o]) continue;
-    if (out.empty()) {
+    if (!made_dir) {
       std::error_code ec;
       fs::create_directories(fs::path(dir) / "lightmaps", ec);
-      if (ec) return Error{dir + "/lightmaps: cannot create: " + ec.message()};
+      if (ec) {
+        failures->push_back(dir + "/lightmaps: cannot create: " + ec.message());
+        return out;
+      }
+      made_dir = true;
     }
     Lightmap map;
     map.object = o;
@@ -116,9 +142,15 @@ Result<std::vector<Lightmap>> WriteLightmaps(const std::string& dir, const Displ
                           std::to_string(map.stats.covered) +
                           " texels drawn twice (the first kept); unwrap it without overlaps");
     }
-    RADFARM_RETURN_IF_ERROR(WriteExr((fs::path(dir) / map.exr).string(), raster.image()));
-    RADFARM_RETURN_IF_ERROR(WritePng((fs::path(dir) / map.png).string(), raster.image(), exposed));
-    out.push_back(std::move(map));
+    // One object's failure leaves the others' lightmaps to be written.
+    bool ok = true;
+    for (const Status& s :
+         {WriteExr((fs::path(dir) / map.exr).string(), raster.image()),
+          WritePng((fs::path(dir) / map.png).string(), raster.image(), exposed)}) {
+      if (!s.ok()) failures->push_back(s.error());
+      ok = ok && s.ok();
+    }
+    if (ok) out.push_back(std::move(map));
   }
   if (warnings != nullptr && uvs.unplaced > 0) {
     warnings->push_back(std::to_string(uvs.unplaced) +

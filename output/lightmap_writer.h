@@ -8,6 +8,7 @@
 // luminance over each input triangle: the inside of a room whose walls face out).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -38,20 +39,27 @@ struct Lightmap {
 // [kMinLightmapSize, kMaxLightmapSize] and rounded up to a multiple of 4.
 uint32_t LightmapSize(double world_area, double uv_area, double texel_size);
 
+// Longest stem from a name, well under the 255 bytes most file systems allow a file name.
+inline constexpr size_t kMaxLightmapStem = 96;
+
 // File stems by object: the name with characters other than letters, digits, '-', '_' and '.'
-// made '_' ("object<N>" when empty), "_<N>" appended to the second of two equal stems.
+// made '_' ("object<N>" when empty); a stem over kMaxLightmapStem bytes is cut and ends in "_" and
+// 16 hex digits hashed from the whole name (the same name, the same stem); "_<N>" appended to the
+// second of two stems equal but for case (case-insensitive file systems would make them one file).
 std::vector<std::string> LightmapStems(const std::vector<InputObject>& objects);
 
 // Bakes and writes the lightmaps of the objects `uvs` places (into `dir`/lightmaps/, created when
 // needed). `size` 0: LightmapSize with `texel_size`; otherwise every lightmap is size x size.
 // Appends a warning naming the object when its UVs overlap (more than 1% of its texels drawn
 // twice) or some of its display triangles lie on no input triangle. The PNG uses `exposed`'s
-// exposure. Errors name the file.
-Result<std::vector<Lightmap>> WriteLightmaps(const std::string& dir, const DisplayMesh& mesh,
-                                             const std::vector<InputObject>& objects,
-                                             const DisplayLightmapUvs& uvs,
-                                             const std::vector<LightmapTriangle>& triangles,
-                                             const Camera& exposed, double texel_size,
-                                             uint32_t size, std::vector<std::string>* warnings);
+// exposure. Returns the lightmaps written; a file that cannot be written does not stop the others:
+// its error, naming the file, is appended to *failures (not null) and its object left out.
+std::vector<Lightmap> WriteLightmaps(const std::string& dir, const DisplayMesh& mesh,
+                                     const std::vector<InputObject>& objects,
+                                     const DisplayLightmapUvs& uvs,
+                                     const std::vector<LightmapTriangle>& triangles,
+                                     const Camera& exposed, double texel_size, uint32_t size,
+                                     std::vector<std::string>* warnings,
+                                     std::vector<std::string>* failures);
 
 }  // namespace radfarm

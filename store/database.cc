@@ -1,7 +1,12 @@
 #include "store/database.h"
 
 #include <sqlite3.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
+#include <string>
 #include <utility>
 
 #include "base/result.h"
@@ -14,12 +19,20 @@ namespace radfarm::store {
 Result<Database> Database::Open(const std::string& path, const DatabaseOptions& options) {
   int flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX;
   if (options.create) flags |= SQLITE_OPEN_CREATE;
+  // A new database is its owner's alone whatever the umask; SQLite gives its -wal and -shm files
+  // the database's permissions.
+  const bool made = options.create && access(path.c_str(), F_OK) != 0;
   sqlite3* db = nullptr;
   int rc = sqlite3_open_v2(path.c_str(), &db, flags,
                            options.vfs.empty() ? nullptr : options.vfs.c_str());
   if (rc != SQLITE_OK) {
     // Even a failed open returns a handle (or null on out-of-memory); it must be closed.
     Error error = SqliteError(path, "open", db != nullptr ? sqlite3_extended_errcode(db) : rc, db);
+    sqlite3_close_v2(db);
+    return error;
+  }
+  if (made && chmod(path.c_str(), 0600) != 0 && errno != ENOENT) {
+    Error error{path + ": cannot make it private: " + std::strerror(errno)};
     sqlite3_close_v2(db);
     return error;
   }

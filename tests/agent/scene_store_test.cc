@@ -94,6 +94,27 @@ TEST(SceneStoreTest, OpenRemovesTemporaryFilesOfACrashedWriter) {
   EXPECT_TRUE(std::filesystem::exists(kept));
 }
 
+// An agent started by hand under umask 022 left its scene cache world-readable.
+TEST(SceneStoreTest, TheCacheIsPrivateWhateverTheUmask) {
+  ScratchDir dir;
+  const mode_t old = umask(022);
+  Result<SceneStore> store = SceneStore::Open(dir.File("state"));
+  const std::vector<uint8_t> blob = Blob("a scene blob");
+  const protocol::SceneHash hash = protocol::HashScene(blob);
+  const bool saved = store.ok() && store->Save(hash, blob).ok();
+  umask(old);
+  ASSERT_TRUE(store.ok()) << store.error();
+  ASSERT_TRUE(saved);
+  const auto mode = [](const std::string& path) {
+    struct stat st {};
+    EXPECT_EQ(stat(path.c_str(), &st), 0) << path;
+    return st.st_mode & 0777;
+  };
+  EXPECT_EQ(mode(dir.File("state")), 0700u);
+  EXPECT_EQ(mode(store->scenes_dir()), 0700u);
+  EXPECT_EQ(mode(store->PathFor(hash)), 0600u);
+}
+
 TEST(SceneStoreTest, AnUnusableStateDirectoryIsNamed) {
   ScratchDir dir;
   WriteTextFile(dir.File("file"), "not a directory");

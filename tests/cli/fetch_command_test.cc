@@ -282,6 +282,19 @@ TEST_F(FetchCommandTest, JobWithoutCheckpointIsInvalidState) {
   EXPECT_EQ(r.err, "radfarm: job 5 has no checkpoint yet\n");
 }
 
+TEST_F(FetchCommandTest, UsesThisMachinesThreadsNotTheJobs) {
+  // A job may ask for 65536 threads; more than this machine may start (threads-max), and its
+  // cores, not the submitter's, are what fetch has.
+  codec::JobSolution solution = Solution();
+  Result<codec::JobBundle> bundle = codec::DecodeJobBundle(solution.bundle);
+  ASSERT_TRUE(bundle.ok()) << bundle.error();
+  bundle->job.solver.threads = 65536;
+  solution.bundle = codec::EncodeJobBundle(*bundle);
+  const auto r = Fetch(Serve(solution), dir_.File("out"));
+  EXPECT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_FALSE(ReadFile(dir_.File("out/image.png")).empty());
+}
+
 TEST_F(FetchCommandTest, UnwritableOutputFails) {
   std::ofstream(dir_.File("a-file")) << "in the way";
   const auto r = Fetch(Serve(Solution()), dir_.File("a-file/out"));

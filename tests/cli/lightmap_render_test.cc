@@ -247,6 +247,66 @@ TEST(LightmapRenderTest, HalfTheTexelEdgeDoublesTheAutomaticSides) {
   }
 }
 
+// The room's glTF with its objects renamed (node and mesh names alike), written into `dir`, and a
+// job file rendering it; returns the job file.
+std::string RenamedRoomJob(const TempDir& dir, const std::map<std::string, std::string>& names) {
+  std::ifstream in(RADFARM_SOURCE_DIR "/tests/blender/lightmap_room.glb", std::ios::binary);
+  const std::string glb((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto u32 = [&](size_t at) {
+    uint32_t v;
+    std::memcpy(&v, glb.data() + at, 4);
+    return v;
+  };
+  // GLB: a 12-byte header, then the JSON chunk (length, type, text) and the binary chunk.
+  const uint32_t json_size = u32(12);
+  std::string json = glb.substr(20, json_size);
+  for (const auto& [from, to] : names) {
+    const std::string key = "\"name\":\"" + from + "\"";
+    for (size_t at = json.find(key); at != std::string::npos; at = json.find(key, at + 1)) {
+      json.replace(at, key.size(), "\"name\":\"" + to + "\"");
+    }
+  }
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  const std::string rest = glb.substr(20 + json_size);
+  const auto word = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  const std::string out = glb.substr(0, 8) + word(uint32_t(20 + json.size() + rest.size())) +
+                          word(uint32_t(json.size())) + glb.substr(16, 4) + json + rest;
+  std::ofstream(dir.File("renamed.glb"), std::ios::binary) << out;
+  std::ifstream job_in(kJob);
+  std::string text((std::istreambuf_iterator<char>(job_in)), std::istreambuf_iterator<char>());
+  const std::string scene = "scene = \"lightmap_room.glb\"";
+  text.replace(text.find(scene), scene.size(), "scene = \"renamed.glb\"");
+  std::ofstream(dir.File("renamed.toml")) << text;
+  return dir.File("renamed.toml");
+}
+
+// An object named with 300 characters made a lightmap file name longer than file systems allow:
+// the render failed after its solve. And "Room" and "room" would be one file on a
+// case-insensitive file system.
+TEST(LightmapRenderTest, LongAndCaseFoldedNamesGetShortDistinctFiles) {
+  TempDir dir;
+  const std::string long_name(300, 'F');
+  const std::string job = RenamedRoomJob(dir, {{"Floor", long_name}, {"Table", "room"}});
+  const std::string out = dir.File("out");
+  const testing::CommandResult r =
+      RunCommand({RADFARM_CLI_PATH, "render", job, "--out", out, "-q", "--tolerance", "0.05"});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(out + "/lightmaps")) {
+    files.push_back(entry.path().filename().string());
+  }
+  std::sort(files.begin(), files.end());
+  const std::string cut = std::string(79, 'F') + "_";
+  ASSERT_EQ(files.size(), 6u);
+  EXPECT_EQ(files[0].substr(0, cut.size()), cut);
+  EXPECT_EQ(files[0].size(), 100u);  // 96 bytes of stem and ".exr"
+  EXPECT_EQ(files[1], files[0].substr(0, 96) + ".png");
+  EXPECT_EQ(files[2], "Room.exr");
+  EXPECT_EQ(files[3], "Room.png");
+  EXPECT_EQ(files[4], "room_2.exr");
+  EXPECT_EQ(files[5], "room_2.png");
+}
+
 // A chosen size is refused before the scene is read when one lightmap would not fit the memory
 // limit (the automatic sides stop at 2048).
 TEST(LightmapRenderTest, ALightmapSizeOverTheMemoryLimitIsRefusedBeforeMeshing) {

@@ -100,6 +100,31 @@ TEST(QueueCommandsTest, FailedJobStatusShowsItsError) {
   EXPECT_NE(r.out.find("error:      agent lost the scene"), std::string::npos) << r.out;
 }
 
+// A job named with escape sequences retitled the terminal and cleared the screen when listed.
+TEST(QueueCommandsTest, ControlCharactersFromTheMasterArePrintedEscaped) {
+  json job = JobObject(7, "failed", 4);
+  job["name"] = "evil\x1b]0;owned\x07\x1b[2J";
+  job["error"] = "bad\nline \xc2\x9b" "31m";  // a newline and a C1 CSI
+  FakeControlServer server(Always(OkAnswer({{"job", job}, {"jobs", {job}}})));
+  for (const char* command : {"status", "list"}) {
+    std::vector<std::string> args = {command};
+    if (std::string(command) == "status") args.push_back("7");
+    const auto r = RunFarm(server.socket_path(), args);
+    ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+    EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << command << ": " << r.out;
+    EXPECT_EQ(r.out.find("\xc2\x9b"), std::string::npos) << command << ": " << r.out;
+    EXPECT_NE(r.out.find("evil\\x1b]0;owned\\x07\\x1b[2J"), std::string::npos)
+        << command << ": " << r.out;
+  }
+  const auto r = RunFarm(server.socket_path(), {"status", "7"});
+  EXPECT_NE(r.out.find("bad\\x0aline \\u009b31m"), std::string::npos) << r.out;
+  FakeControlServer failing(
+      Always(testing::ErrorAnswer("not_found", "no job\x1b[2J\x1b]0;owned\x07")));
+  const auto e = RunFarm(failing.socket_path(), {"status", "7"});
+  EXPECT_EQ(e.err.find('\x1b'), std::string::npos) << e.err;
+  EXPECT_NE(e.err.find("no job\\x1b[2J\\x1b]0;owned\\x07"), std::string::npos) << e.err;
+}
+
 TEST(QueueCommandsTest, AHeldJobShowsItsStateAndWhyInStatusAndList) {
   json job = JobObject(7, "held", 4);
   job["error"] = "cannot save the checkpoint: SQLITE_FULL";

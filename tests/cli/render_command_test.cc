@@ -93,6 +93,23 @@ TEST(RenderCommandTest, CornellBoxWritesEveryOutput) {
   }
 }
 
+// Outputs that cannot be written (directories where image.png and patches.csv go) cost those files
+// only: the others are written, each failure is named on a line of its own (not just the first),
+// and the exit is non-zero.
+TEST(RenderCommandTest, UnwritableOutputsLeaveTheOthersWrittenAndAreEachNamed) {
+  TempDir out;
+  std::filesystem::create_directories(out.File("image.png"));
+  std::filesystem::create_directories(out.File("patches.csv"));
+  const auto r = Render("cornell-box.toml", out.path(), {"--tolerance", "0.05", "-q"});
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  for (const char* file : {"image.png", "patches.csv"}) {
+    EXPECT_NE(r.err.find("radfarm: " + out.File(file)), std::string::npos) << r.err;
+  }
+  for (const char* file : {"image.exr", "radiosity.ply", "lit.glb", "stats.json"}) {
+    EXPECT_FALSE(ReadFile(out.File(file)).empty()) << file;
+  }
+}
+
 // A ray budget covers the direct light and the display too: the start's shadow rays
 // (stats.json start_rays) are planned to a quarter of it, the display's rays (display_rays) to
 // another, and the rounds get the rest less the display's quarter, exactly.

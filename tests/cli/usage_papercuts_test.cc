@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "cli/exit_codes.h"
 #include "testing/child_process.h"
@@ -82,6 +85,36 @@ TEST(UsagePapercutsTest, AToleranceThatIsNoNumberIsNamed) {
                              dir.path(), "--tolerance", "small"});
   EXPECT_EQ(r.exit_code, kExitBadInput);
   EXPECT_TRUE(Mentions(r.err, "--tolerance: must be a number, got 'small'")) << r.err;
+}
+
+// "--seed -1" and seeds past 2^64 became 2^64 - 1; "--max-memory -1" meant no limit.
+TEST(UsagePapercutsTest, NumbersOutOfRangeAreRefusedNotWrapped) {
+  TempDir dir;
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"--seed", "-1"},      {"--seed", "18446744073709551616"},     {"--max-memory", "-1"},
+      {"--max-memory", "0"}, {"--max-memory", "20000000000000000T"}, {"--max-scene-bytes", "-1"}};
+  for (const auto& [option, value] : refused) {
+    for (const char* command : {"render", "submit"}) {
+      std::vector<std::string> args = {RADFARM_CLI_PATH, command, kPapercutScenes + "furnace.obj",
+                                       option, value};
+      if (std::string(command) == "render") args.insert(args.end(), {"--out", dir.path()});
+      const auto r = RunCommand(args);
+      EXPECT_EQ(r.exit_code, kExitBadInput) << command << " " << option << " " << value;
+      EXPECT_TRUE(Mentions(r.err, option)) << r.err;
+      EXPECT_TRUE(Mentions(r.err, "'" + value + "'")) << r.err;
+    }
+  }
+  const auto building = RunCommand(
+      {RADFARM_CLI_PATH, "building", "--seed", "-1", "--out", dir.path() + "/building.obj"});
+  EXPECT_EQ(building.exit_code, kExitBadInput) << building.err;
+}
+
+TEST(UsagePapercutsTest, NumbersInRangeAreTaken) {
+  TempDir dir;
+  const auto r = RunCommand({RADFARM_CLI_PATH, "render", kPapercutScenes + "furnace.obj", "--out",
+                             dir.path(), "--tolerance", "0.5", "--quiet", "--seed",
+                             "18446744073709551615", "--max-memory", "2GiB"});
+  EXPECT_EQ(r.exit_code, kExitOk) << r.err;
 }
 
 // Was: "default: job-ID", though the master names a job after its scene's OBJ.

@@ -67,15 +67,58 @@ TEST(LightmapWriterTest, StemsAreSafeAndUnique) {
             (std::vector<std::string>{"Floor", "a_b_c", "object2", "Floor_2", "object4.."}));
 }
 
+TEST(LightmapWriterTest, NamesDifferingOnlyInCaseGetDistinctStems) {
+  // Case-insensitive file systems (macOS, Windows) would make "Wall" and "wall" one file.
+  std::vector<InputObject> objects(3);
+  objects[0].name = "Wall";
+  objects[1].name = "wall";
+  objects[2].name = "WALL";
+  EXPECT_EQ(LightmapStems(objects), (std::vector<std::string>{"Wall", "wall_2", "WALL_3"}));
+}
+
+TEST(LightmapWriterTest, LongNamesAreCutWithAStableHash) {
+  // A 300-byte name made a 304-byte file name: over the 255 bytes file systems allow.
+  std::vector<InputObject> objects(3);
+  objects[0].name = std::string(300, 'a');
+  objects[1].name = std::string(299, 'a') + "b";         // the same first 96 bytes
+  objects[2].name = std::string(kMaxLightmapStem, 'c');  // at the limit: kept whole
+  const std::vector<std::string> stems = LightmapStems(objects);
+  EXPECT_EQ(stems[0].size(), kMaxLightmapStem);
+  EXPECT_EQ(stems[1].size(), kMaxLightmapStem);
+  EXPECT_NE(stems[0], stems[1]);
+  EXPECT_EQ(stems[0].substr(0, 20), std::string(20, 'a'));
+  EXPECT_EQ(stems[2], objects[2].name);
+  // Fixed across runs, builds and machines: FNV-1a of the whole name.
+  EXPECT_EQ(stems[0], std::string(79, 'a') + "_ee7717eba7a17e21");
+}
+
+TEST(LightmapWriterTest, AnUnwritableLightmapLeavesTheOthersWritten) {
+  TestDir dir;
+  const LightmapTestScene s(Rgb(1, 1, 1), Rgb(0, 0, 0));
+  std::vector<InputObject> objects = s.objects;
+  const DisplayLightmapUvs uvs = LocateLightmapUvs(s.mesh, s.patch_object, 2, s.input);
+  // A directory where floor.exr should go: the EXR fails, the PNG is still written.
+  std::filesystem::create_directories(dir.File("out/lightmaps/floor.exr"));
+  std::vector<std::string> warnings, failures;
+  const std::vector<Lightmap> maps = WriteLightmaps(dir.File("out"), s.mesh, objects, uvs, s.input,
+                                                    Exposed(), 0.1, 16, &warnings, &failures);
+  EXPECT_TRUE(maps.empty());
+  ASSERT_EQ(failures.size(), 1u);
+  EXPECT_NE(failures[0].find("floor.exr"), std::string::npos) << failures[0];
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir.File("out/lightmaps/floor.png")));
+}
+
 TEST(LightmapWriterTest, BakesTheBrighterSideWithAGutter) {
   TestDir dir;
   for (const double back : {3.0, 0.5}) {
     const LightmapTestScene s(Rgb(1, 1, 1), Rgb(back, back, back));
     const DisplayLightmapUvs uvs = LocateLightmapUvs(s.mesh, s.patch_object, 2, s.input);
     std::vector<std::string> warnings;
-    Result<std::vector<Lightmap>> maps = WriteLightmaps(dir.File("out"), s.mesh, s.objects, uvs,
-                                                        s.input, Exposed(), 0.1, 16, &warnings);
-    ASSERT_TRUE(maps.ok()) << maps.error();
+    std::vector<std::string> failures;
+    const std::vector<Lightmap> written = WriteLightmaps(
+        dir.File("out"), s.mesh, s.objects, uvs, s.input, Exposed(), 0.1, 16, &warnings, &failures);
+    EXPECT_EQ(failures, std::vector<std::string>{});
+    const std::vector<Lightmap>* maps = &written;
     EXPECT_EQ(warnings, std::vector<std::string>{});
     ASSERT_EQ(maps->size(), 1u);  // the other object has no lightmap UV
     EXPECT_EQ((*maps)[0].object, 0u);
@@ -105,9 +148,10 @@ TEST(LightmapWriterTest, WarnsOfOverlappingUvs) {
   s.input[1].uv = {Uv{0, 0}, Uv{0.5f, 0.5f}, Uv{0.5f, 0}};
   const DisplayLightmapUvs uvs = LocateLightmapUvs(s.mesh, s.patch_object, 2, s.input);
   std::vector<std::string> warnings;
-  ASSERT_TRUE(WriteLightmaps(dir.File("out"), s.mesh, s.objects, uvs, s.input, Exposed(), 0.1, 16,
-                             &warnings)
-                  .ok());
+  std::vector<std::string> failures;
+  WriteLightmaps(dir.File("out"), s.mesh, s.objects, uvs, s.input, Exposed(), 0.1, 16, &warnings,
+                 &failures);
+  ASSERT_EQ(failures, std::vector<std::string>{});
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("floor: its lightmap UVs (TEXCOORD_1) overlap"), std::string::npos)
       << warnings[0];

@@ -2,6 +2,7 @@
 #include "store/job_store.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include "tests/store/temp_dir.h"
 
@@ -45,6 +46,24 @@ TEST_F(JobStoreTest, SubmitAndGetJob) {
   EXPECT_FALSE((*job)->started_at_ms.has_value());
   EXPECT_FALSE(store_->GetJob(id + 100)->has_value());
   EXPECT_EQ(store_->ListJobs()->size(), 1u);
+}
+
+// A master started by hand under umask 022 left radfarm.db world-readable.
+TEST(JobStoreFileTest, ANewStoreIsPrivateWhateverTheUmask) {
+  TempDir dir;
+  const mode_t old = umask(022);
+  Result<JobStore> store = JobStore::Open(dir.File("jobs.db"), {});
+  const bool put = store.ok() && store->PutScene("scene", std::vector<uint8_t>{1, 2, 3}).ok();
+  umask(old);
+  ASSERT_TRUE(store.ok()) << store.error();
+  ASSERT_TRUE(put);
+  for (const char* file : {"jobs.db", "jobs.db-wal"}) {
+    struct stat st {};
+    if (stat(dir.File(file).c_str(), &st) != 0) continue;  // no WAL in this journal mode
+    EXPECT_EQ(st.st_mode & 0777, 0600u) << file;
+  }
+  struct stat db {};
+  ASSERT_EQ(stat(dir.File("jobs.db").c_str(), &db), 0);
 }
 
 TEST_F(JobStoreTest, SeedKeepsAll64Bits) {
