@@ -17,10 +17,11 @@ namespace {
 
 constexpr size_t kMaxBodyBytes = 4096;  // the only body is the login's {"token": "..."}
 
-// Sent with every response: the page loads nothing from elsewhere, is never framed, never cached.
+// Sent with every response: the page loads nothing from elsewhere (its previews are blob: URLs of
+// its own fetches), is never framed, never cached.
 constexpr std::pair<const char*, const char*> kCommonHeaders[] = {
     {"Content-Security-Policy",
-     "default-src 'self'; img-src 'self'; frame-ancestors 'none'; base-uri 'none'; "
+     "default-src 'self'; img-src 'self' blob:; frame-ancestors 'none'; base-uri 'none'; "
      "form-action 'none'"},
     {"X-Content-Type-Options", "nosniff"},
     {"Referrer-Policy", "no-referrer"},
