@@ -14,7 +14,7 @@ namespace {
 
 // Malformed requests made libmicrohttpd log two warnings each, with no limit: one client filled
 // the log with thousands of lines a second.
-TEST(HttpServerTest, MalformedRequestsLogAtMostTheLimitThenOneSummary) {
+TEST(HttpServerTest, MalformedRequestsLogNoMoreLinesThanTheLimit) {
   std::mutex mutex;
   std::vector<std::string> lines;
   loop::SetLogSink([&](std::string_view line) {
