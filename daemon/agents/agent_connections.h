@@ -24,11 +24,11 @@
 #include <unordered_map>
 #include <vector>
 
+#include "base/log_rate_limiter.h"
 #include "daemon/agents/agent_credentials.h"
 #include "daemon/agents/agent_link.h"
 #include "daemon/agents/door_keeper.h"
 #include "daemon/agents/job_blocklist.h"
-#include "daemon/agents/log_rate_limiter.h"
 #include "daemon/config/master_config.h"
 #include "daemon/jobs/clock.h"
 #include "daemon/jobs/job_rounds.h"

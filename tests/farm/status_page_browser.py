@@ -4,7 +4,8 @@ status_page_browser_test.cc, which runs the farm: a master with --http and a web
 agent. This script opens the page, submits a job through the radfarm CLI, and asserts on the
 rendered DOM: the agent is listed, the job appears, its progress moves, the page's pause and
 resume buttons work once signed in with the token, and the job reaches done with a preview. It
-saves a screenshot of the finished page. Every wait polls with a generous timeout; nothing sleeps
+saves a screenshot of the finished page, then signs out: no cookie was ever set, and the tab's
+session is gone. Every wait polls with a generous timeout; nothing sleeps
 a fixed time. Exit 0 on success; any failure raises with what the page showed."""
 
 import argparse
@@ -120,6 +121,14 @@ def main():
                 By.ID, "events").text)
         driver.save_screenshot(args.screenshot)
         print(f"screenshot: {args.screenshot}")
+
+        # Signing out ends the session: the tab forgets it and the page is read-only again.
+        assert driver.execute_script("return sessionStorage.getItem('radfarm.session')")
+        assert not driver.get_cookies(), driver.get_cookies()  # nothing for another port to take
+        driver.find_element(By.ID, "logout").click()
+        wait_for(driver, "signing out", lambda: "read-only until you sign in" in
+                 driver.find_element(By.ID, "session").text)
+        assert driver.execute_script("return sessionStorage.getItem('radfarm.session')") is None
     finally:
         driver.quit()
     return 0

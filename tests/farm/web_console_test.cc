@@ -140,6 +140,36 @@ TEST_F(WebConsoleTest, PauseResumeAndCancelNeedTheTokenAndChangeTheJob) {
   EXPECT_NE(log.out.find("cancel"), std::string::npos) << log.out;
 }
 
+// A cookie is sent to every port of a host, so a page served by another program on 127.0.0.1
+// could replay a session cookie; a session goes only in the Authorization header.
+TEST_F(WebConsoleTest, ASessionInACookieDoesNotActOnlyInTheAuthorizationHeaderUntilSignOut) {
+  address_ = StartMasterWithConsole(true);
+  const int64_t id = Submit("cornell-box.toml");
+  const std::string job = "/api/jobs/" + std::to_string(id);
+  Result<HttpResponse> signed_in = HttpRequest(
+      address_, "POST", "/api/session", {"X-Radfarm-Request: 1", "Content-Type: application/json"},
+      nlohmann::json{{"token", kToken}}.dump());
+  ASSERT_TRUE(signed_in.ok()) << signed_in.error();
+  ASSERT_EQ(signed_in->status, 200) << signed_in->body;
+  EXPECT_EQ(signed_in->headers.count("set-cookie"), 0u);
+  const std::string session = nlohmann::json::parse(signed_in->body).value("session", "");
+  ASSERT_EQ(session.size(), 64u) << signed_in->body;
+
+  // What a neighbouring page could replay: the old cookie, with the page's marker header.
+  for (const std::string& cookie :
+       {"Cookie: radfarm_session=" + session, "Cookie: radfarm_session=" + kToken}) {
+    EXPECT_EQ(Request("POST", job + "/pause", {cookie, "X-Radfarm-Request: 1"}).status, 401);
+  }
+  EXPECT_NE(Status(id).value("state", ""), "paused");
+
+  const std::string bearer = "Authorization: Bearer " + session;
+  EXPECT_EQ(Request("POST", job + "/pause", {bearer}).status, 200);
+  EXPECT_EQ(Status(id).value("state", ""), "paused");
+  EXPECT_EQ(Request("DELETE", "/api/session", {bearer}).status, 200);
+  EXPECT_EQ(Request("POST", job + "/resume", {bearer}).status, 401);
+  EXPECT_EQ(Status(id).value("state", ""), "paused");
+}
+
 TEST_F(WebConsoleTest, WithoutATokenThePageIsReadOnly) {
   address_ = StartMasterWithConsole(false);
   const int64_t id = Submit("cornell-box.toml");

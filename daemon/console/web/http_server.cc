@@ -1,6 +1,7 @@
 #include "daemon/console/web/http_server.h"
 
 #include <microhttpd.h>
+#include <netdb.h>
 
 #include <cstdarg>
 #include <cstdio>
@@ -8,7 +9,6 @@
 #include <utility>
 
 #include "daemon/console/web/event_stream.h"
-#include "loop/log.h"
 #include "loop/socket_address.h"
 
 namespace radfarm::web {
@@ -17,10 +17,11 @@ namespace {
 
 constexpr size_t kMaxBodyBytes = 4096;  // the only body is the login's {"token": "..."}
 
-// Sent with every response: the page loads nothing from elsewhere, is never framed, never cached.
+// Sent with every response: the page loads nothing from elsewhere (its previews are blob: URLs of
+// its own fetches), is never framed, never cached.
 constexpr std::pair<const char*, const char*> kCommonHeaders[] = {
     {"Content-Security-Policy",
-     "default-src 'self'; img-src 'self'; frame-ancestors 'none'; base-uri 'none'; "
+     "default-src 'self'; img-src 'self' blob:; frame-ancestors 'none'; base-uri 'none'; "
      "form-action 'none'"},
     {"X-Content-Type-Options", "nosniff"},
     {"Referrer-Policy", "no-referrer"},
@@ -32,12 +33,26 @@ std::string Header(MHD_Connection* c, const char* name) {
   return value ? value : "";
 }
 
-void LogFromMhd(void*, const char* format, va_list args) {
+// The client's IP address, without its port; "" if libmicrohttpd does not know it.
+std::string ClientOf(MHD_Connection* c) {
+  const MHD_ConnectionInfo* info = MHD_get_connection_info(c, MHD_CONNECTION_INFO_CLIENT_ADDRESS);
+  if (!info || !info->client_addr) return "";
+  const sockaddr* address = info->client_addr;
+  const socklen_t size =
+      address->sa_family == AF_INET6 ? sizeof(sockaddr_in6) : sizeof(sockaddr_in);
+  char host[NI_MAXHOST] = {};
+  if (getnameinfo(address, size, host, sizeof host, nullptr, 0, NI_NUMERICHOST) != 0) return "";
+  return host;
+}
+
+// libmicrohttpd's own complaints (a malformed request is two of them): rate-limited, since any
+// client can make them as fast as it can send.
+void LogFromMhd(void* cls, const char* format, va_list args) {
   char text[512];
   std::vsnprintf(text, sizeof text, format, args);
   std::string line(text);
   while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
-  loop::Log(loop::LogLevel::kWarning, "http", line);
+  static_cast<RateLimitedLog*>(cls)->Warn(line);
 }
 
 }  // namespace
@@ -84,7 +99,7 @@ struct HttpGlue {
     request.path = url;
     request.host = Header(c, "Host");
     request.authorization = Header(c, "Authorization");
-    request.cookie = Header(c, "Cookie");
+    request.client = ClientOf(c);
     request.marked = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "X-Radfarm-Request");
     request.body = std::move(pending->body);
     WebResponse response = pending->too_big
@@ -110,26 +125,30 @@ struct HttpGlue {
   }
 };
 
-HttpServer::HttpServer(std::unique_ptr<WebRoutes> routes, const StatusBoard& board)
-    : routes_(std::move(routes)), board_(board) {}
+HttpServer::HttpServer(std::unique_ptr<WebRoutes> routes, const StatusBoard& board,
+                       std::chrono::seconds log_window)
+    : routes_(std::move(routes)),
+      board_(board),
+      server_log_("http", "HTTP server warnings", kLogLines, log_window) {}
 
 HttpServer::~HttpServer() { Stop(); }
 
 Result<std::unique_ptr<HttpServer>> HttpServer::Start(const loop::HostPort& address,
                                                       std::unique_ptr<WebRoutes> routes,
-                                                      const StatusBoard& board) {
+                                                      const StatusBoard& board,
+                                                      std::chrono::seconds log_window) {
   Result<std::vector<loop::SocketAddress>> resolved = loop::Resolve(address, true);
   if (!resolved) return Error{"--http " + address.ToString() + ": " + resolved.error()};
   if (resolved->empty()) return Error{"--http " + address.ToString() + ": no address"};
   const loop::SocketAddress& bind = resolved->front();
-  std::unique_ptr<HttpServer> server(new HttpServer(std::move(routes), board));
+  std::unique_ptr<HttpServer> server(new HttpServer(std::move(routes), board, log_window));
   unsigned flags =
       MHD_USE_THREAD_PER_CONNECTION | MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_ERROR_LOG;
   if (bind.family() == AF_INET6) flags |= MHD_USE_IPv6;
   server->daemon_ = MHD_start_daemon(
       flags, bind.port(), nullptr, nullptr, &HttpGlue::OnRequest, server.get(),
-      MHD_OPTION_EXTERNAL_LOGGER, &LogFromMhd, nullptr, MHD_OPTION_SOCK_ADDR, bind.get(),
-      MHD_OPTION_CONNECTION_LIMIT, kMaxConnections, MHD_OPTION_PER_IP_CONNECTION_LIMIT,
+      MHD_OPTION_EXTERNAL_LOGGER, &LogFromMhd, &server->server_log_, MHD_OPTION_SOCK_ADDR,
+      bind.get(), MHD_OPTION_CONNECTION_LIMIT, kMaxConnections, MHD_OPTION_PER_IP_CONNECTION_LIMIT,
       kMaxPerAddress, MHD_OPTION_CONNECTION_TIMEOUT, unsigned{60}, MHD_OPTION_NOTIFY_COMPLETED,
       &HttpGlue::Completed, nullptr, MHD_OPTION_END);
   if (!server->daemon_) {
@@ -144,6 +163,7 @@ Result<std::unique_ptr<HttpServer>> HttpServer::Start(const loop::HostPort& addr
 void HttpServer::Stop() {
   if (daemon_) MHD_stop_daemon(daemon_);
   daemon_ = nullptr;
+  server_log_.Flush(std::chrono::steady_clock::now());
 }
 
 }  // namespace radfarm::web

@@ -6,12 +6,17 @@
 // Threads: Start and Stop on the loop thread. Stop joins the HTTP threads; before it, close the
 // StatusBoard (ends the event streams) and the LoopCaller (ends the waits on the loop), or Stop
 // would wait for them. At most kMaxConnections connections (kMaxPerAddress per client address).
+// libmicrohttpd's warnings (two per malformed request) are logged at most kLogLines per window,
+// the rest counted in a summary line (rate_limited_log.h).
 #pragma once
 
+#include <chrono>
+#include <cstdint>
 #include <memory>
 #include <string>
 
 #include "base/result.h"
+#include "daemon/console/web/rate_limited_log.h"
 #include "daemon/console/web/status_board.h"
 #include "daemon/console/web/web_routes.h"
 #include "loop/host_port.h"
@@ -24,11 +29,14 @@ class HttpServer {
  public:
   static constexpr unsigned kMaxConnections = 64;
   static constexpr unsigned kMaxPerAddress = 16;
+  static constexpr uint32_t kLogLines = 20;
+  static constexpr std::chrono::seconds kLogWindow{10};
 
   // Binds `address` (an IP literal or a name; port 0 picks a free port) and starts serving.
   static Result<std::unique_ptr<HttpServer>> Start(const loop::HostPort& address,
                                                    std::unique_ptr<WebRoutes> routes,
-                                                   const StatusBoard& board);
+                                                   const StatusBoard& board,
+                                                   std::chrono::seconds log_window = kLogWindow);
   ~HttpServer();  // Stop()
   HttpServer(const HttpServer&) = delete;
   HttpServer& operator=(const HttpServer&) = delete;
@@ -38,10 +46,12 @@ class HttpServer {
   void Stop();
 
  private:
-  HttpServer(std::unique_ptr<WebRoutes> routes, const StatusBoard& board);
+  HttpServer(std::unique_ptr<WebRoutes> routes, const StatusBoard& board,
+             std::chrono::seconds log_window);
 
   std::unique_ptr<WebRoutes> routes_;
   const StatusBoard& board_;
+  RateLimitedLog server_log_;
   MHD_Daemon* daemon_ = nullptr;
   std::string address_;
 

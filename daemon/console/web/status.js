@@ -1,10 +1,16 @@
 // The radfarm status page: reads GET /api/session, then follows GET /api/events (server-sent
 // events, each a whole status snapshot) and redraws the tables in place. Text goes in through
 // textContent only, so a job or agent name cannot inject markup.
+//
+// Signing in trades the web token for a session that lives in sessionStorage, which only this
+// origin (scheme, host and port) can read, and goes out in an Authorization header, never in a
+// cookie that the browser would also hand to other ports of this host. EventSource cannot send
+// headers, so the event stream is read with fetch().
 "use strict";
 
+const kSessionKey = "radfarm.session";
 let session = { read: false, act: false, token: false, authenticated: false };
-let source = null;
+let stream = null;  // the AbortController of the event stream being read
 const previews = new Map();  // job id -> {key, at}: what its preview shows, and since when
 
 function el(tag, attrs, text) {
@@ -50,12 +56,28 @@ function setText(cell, text, cls) {
   if (cls !== undefined) cell.className = cls;
 }
 
+// The headers that carry this tab's session, if it signed in.
+function auth(extra) {
+  const headers = Object.assign({ "X-Radfarm-Request": "1" }, extra || {});
+  const s = sessionStorage.getItem(kSessionKey);
+  if (s) headers.Authorization = `Bearer ${s}`;
+  return headers;
+}
+
+// fetch() with this tab's session; a session the master no longer knows (expired, signed out, the
+// master restarted) is forgotten and the page starts again signed out.
+async function authFetch(url, options) {
+  const r = await fetch(url, Object.assign({}, options, { headers: auth((options || {}).headers),
+                                                          credentials: "omit" }));
+  if (r.status === 401 && sessionStorage.getItem(kSessionKey)) {
+    sessionStorage.removeItem(kSessionKey);
+    setTimeout(loadSession, 0);
+  }
+  return r;
+}
+
 function act(id, action) {
-  fetch(`/api/jobs/${id}/${action}`, {
-    method: "POST",
-    headers: { "X-Radfarm-Request": "1" },
-    credentials: "same-origin",
-  }).then(async (r) => {
+  authFetch(`/api/jobs/${id}/${action}`, { method: "POST" }).then(async (r) => {
     if (!r.ok) {
       const body = await r.json().catch(() => ({}));
       alert(`${action} job ${id}: ${body.error || r.status}`);
@@ -101,7 +123,14 @@ function drawPreview(cell, job) {
     img.addEventListener("load", () => { img.hidden = false; });
     cell.appendChild(img);
   }
-  img.src = `/api/jobs/${job.id}/preview.png?v=${encodeURIComponent(key)}`;
+  // Fetched with the session's header (an <img> cannot send one), shown from a blob: URL.
+  authFetch(`/api/jobs/${job.id}/preview.png?v=${encodeURIComponent(key)}`)
+    .then((r) => (r.ok ? r.blob() : Promise.reject(r.status)))
+    .then((blob) => {
+      if (img.src.startsWith("blob:")) URL.revokeObjectURL(img.src);
+      img.src = URL.createObjectURL(blob);
+    })
+    .catch(() => { img.hidden = true; });
 }
 
 function drawJobs(jobs) {
@@ -184,24 +213,62 @@ function setConnection(state) {
   c.textContent = state;
 }
 
-function follow() {
-  if (source) source.close();
-  source = new EventSource("/api/events");
-  source.addEventListener("open", () => setConnection("live"));
-  source.addEventListener("error", () => setConnection("reconnecting"));
-  source.addEventListener("status", (e) => draw(JSON.parse(e.data)));
+// One server-sent event ("event: status\ndata: {...}"); comments and retry: lines are skipped.
+function onEvent(block) {
+  let type = "message";
+  const data = [];
+  for (const line of block.split("\n")) {
+    if (line.startsWith("event: ")) type = line.slice(7);
+    else if (line.startsWith("data: ")) data.push(line.slice(6));
+  }
+  if (type === "status" && data.length > 0) draw(JSON.parse(data.join("\n")));
+}
+
+// Reads GET /api/events until it ends, then tries again 2 s later (as EventSource would).
+async function follow() {
+  if (stream) stream.abort();
+  const mine = new AbortController();
+  stream = mine;
+  try {
+    const r = await authFetch("/api/events", { signal: mine.signal });
+    if (!r.ok || !r.body) throw new Error(`HTTP ${r.status}`);
+    setConnection("live");
+    const reader = r.body.pipeThrough(new TextDecoderStream()).getReader();
+    let buffer = "";
+    for (;;) {
+      const { value, done } = await reader.read();
+      if (done) break;
+      buffer += value;
+      let end;
+      while ((end = buffer.indexOf("\n\n")) >= 0) {
+        onEvent(buffer.slice(0, end));
+        buffer = buffer.slice(end + 2);
+      }
+    }
+  } catch (e) {
+    if (mine.signal.aborted) return;  // a newer follow() took over
+  }
+  if (stream !== mine) return;
+  setConnection("reconnecting");
+  setTimeout(() => { if (stream === mine) follow(); }, 2000);
 }
 
 async function loadSession() {
-  const r = await fetch("/api/session", { credentials: "same-origin" });
+  const r = await authFetch("/api/session");
+  if (!r.ok) return;  // a refused session: authFetch starts again signed out
   session = await r.json();
   document.getElementById("login").hidden = !session.token || session.authenticated;
+  document.getElementById("logout").hidden = !session.authenticated;
   document.getElementById("session").textContent =
     session.act ? "signed in: actions enabled"
     : session.token ? "read-only until you sign in"
     : "read-only (no web token configured)";
   if (session.read) follow();
-  else setConnection("sign in to see the farm");
+  else {
+    if (stream) stream.abort();
+    stream = null;
+    setConnection("sign in to see the farm");
+  }
 }
 
 document.getElementById("login").addEventListener("submit", async (e) => {
@@ -210,14 +277,23 @@ document.getElementById("login").addEventListener("submit", async (e) => {
   const r = await fetch("/api/session", {
     method: "POST",
     headers: { "X-Radfarm-Request": "1", "Content-Type": "application/json" },
-    credentials: "same-origin",
+    credentials: "omit",
     body: JSON.stringify({ token }),
   });
-  if (!r.ok) {
-    alert("sign in: wrong token");
+  const body = await r.json().catch(() => ({}));
+  if (!r.ok || !body.session) {
+    alert(`sign in: ${body.error || r.status}`);
     return;
   }
+  sessionStorage.setItem(kSessionKey, body.session);
   document.getElementById("token").value = "";
+  await loadSession();
+});
+
+// Signing out ends the session on the master too, so a copy of it is worth nothing.
+document.getElementById("logout").addEventListener("click", async () => {
+  await authFetch("/api/session", { method: "DELETE" }).catch(() => {});
+  sessionStorage.removeItem(kSessionKey);
   await loadSession();
 });
 

@@ -4,15 +4,13 @@
 #include <sodium.h>
 #include <sys/stat.h>
 
-#include <array>
 #include <cctype>
+#include <cstdlib>
 
 #include "base/text_file.h"
 
 namespace radfarm::web {
 namespace {
-
-constexpr std::string_view kCookieName = "radfarm_session";
 
 std::string_view Trim(std::string_view s) {
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
@@ -62,11 +60,6 @@ Result<std::string> ReadTokenFile(const std::string& path) {
 WebAccess::WebAccess(bool loopback, std::string token)
     : loopback_(loopback), token_(std::move(token)) {
   if (sodium_init() < 0) std::abort();  // libsodium cannot work at all; nothing to fall back on
-  std::array<unsigned char, 32> bytes{};
-  randombytes_buf(bytes.data(), bytes.size());
-  std::array<char, 65> hex{};
-  sodium_bin2hex(hex.data(), hex.size(), bytes.data(), bytes.size());
-  session_ = hex.data();
 }
 
 bool WebAccess::HostAllowed(std::string_view host_header) const {
@@ -74,35 +67,18 @@ bool WebAccess::HostAllowed(std::string_view host_header) const {
   return IsLoopbackHost(HostOf(host_header));
 }
 
-bool WebAccess::BearerValid(std::string_view authorization) const {
+std::string_view WebAccess::BearerOf(std::string_view authorization) {
   constexpr std::string_view kBearer = "Bearer ";
-  if (!has_token() || authorization.substr(0, kBearer.size()) != kBearer) return false;
-  return SameSecret(Trim(authorization.substr(kBearer.size())), token_);
+  if (authorization.substr(0, kBearer.size()) != kBearer) return {};
+  return Trim(authorization.substr(kBearer.size()));
 }
 
-bool WebAccess::SessionValid(std::string_view cookies) const {
-  if (!has_token()) return false;
-  // "a=1; radfarm_session=HEX; b=2"
-  while (!cookies.empty()) {
-    const size_t end = cookies.find(';');
-    const std::string_view pair = Trim(cookies.substr(0, end));
-    const size_t eq = pair.find('=');
-    if (eq != std::string_view::npos && pair.substr(0, eq) == kCookieName &&
-        SameSecret(pair.substr(eq + 1), session_)) {
-      return true;
-    }
-    if (end == std::string_view::npos) break;
-    cookies.remove_prefix(end + 1);
-  }
-  return false;
+bool WebAccess::BearerValid(std::string_view authorization) const {
+  return has_token() && SameSecret(BearerOf(authorization), token_);
 }
 
 bool WebAccess::TokenMatches(std::string_view token) const {
   return has_token() && SameSecret(Trim(token), token_);
-}
-
-std::string WebAccess::SessionCookie() const {
-  return std::string(kCookieName) + "=" + session_ + "; Path=/; HttpOnly; SameSite=Strict";
 }
 
 }  // namespace radfarm::web

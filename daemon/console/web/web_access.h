@@ -5,10 +5,9 @@
 //   bound elsewhere (needs token): reading and acting need the token
 //
 // The token is sent as "Authorization: Bearer TOKEN" (scripts, Prometheus) or traded on the
-// page for a session cookie (HttpOnly, SameSite=Strict) that the browser sends with the page's
-// requests. A request that acts with the cookie must also carry the header X-Radfarm-Request, which
-// no other site can make a browser send without the server's consent (CORS), so a page elsewhere
-// cannot act in the user's name. On loopback the Host header must name a loopback address: a name
+// page for a session of its own (session_table.h), sent the same way. No credential rides in a
+// cookie: a browser hands cookies to every port of a host, so a page served by another program on
+// this machine could replay one. On loopback the Host header must name a loopback address: a name
 // that an attacker's DNS points at 127.0.0.1 (DNS rebinding) is refused.
 //
 // Immutable after construction: any thread.
@@ -40,12 +39,10 @@ class WebAccess {
   bool HostAllowed(std::string_view host_header) const;
   // Whether the Authorization header holds the token (constant time).
   bool BearerValid(std::string_view authorization) const;
-  // Whether the Cookie header holds this server's session.
-  bool SessionValid(std::string_view cookie_header) const;
+  // What follows "Bearer " in an Authorization header, trimmed; "" for any other header.
+  static std::string_view BearerOf(std::string_view authorization);
   // Whether `token` is the token (constant time); false when there is none.
   bool TokenMatches(std::string_view token) const;
-  // The Set-Cookie value that starts a session.
-  std::string SessionCookie() const;
 
   bool MayRead(bool authenticated) const { return loopback_ || authenticated; }
   bool MayAct(bool authenticated) const { return has_token() && authenticated; }
@@ -53,7 +50,6 @@ class WebAccess {
  private:
   bool loopback_;
   std::string token_;
-  std::string session_;  // random, hex; made at start: sessions end when the master restarts
 };
 
 }  // namespace radfarm::web

@@ -39,15 +39,27 @@ int64_t ParseId(std::string_view text) {
 
 }  // namespace
 
-WebRoutes::WebRoutes(WebAccess access, const StatusBoard& board, WebHandlers handlers)
-    : access_(std::move(access)), board_(board), handlers_(std::move(handlers)) {}
+WebRoutes::WebRoutes(WebAccess access, const StatusBoard& board, WebHandlers handlers,
+                     WebClock clock)
+    : access_(std::move(access)),
+      board_(board),
+      handlers_(std::move(handlers)),
+      clock_(std::move(clock)),
+      failure_log_(std::make_unique<RateLimitedLog>("http", "refused web credentials",
+                                                    kFailureLogLines, kFailureLogWindow)) {}
 
 WebResponse WebRoutes::Handle(const WebRequest& request) const {
   if (!access_.HostAllowed(request.host)) {
     return Error(403, "the Host header must name a loopback address");
   }
-  const bool bearer = access_.BearerValid(request.authorization);
-  const bool authenticated = bearer || access_.SessionValid(request.cookie);
+  bool authenticated = false;
+  const std::string_view credential = WebAccess::BearerOf(request.authorization);
+  if (!credential.empty()) {
+    if (std::optional<WebResponse> locked = LockedOut(request)) return std::move(*locked);
+    authenticated = access_.BearerValid(request.authorization) ||
+                    (access_.has_token() && sessions_->Use(credential, clock_()));
+    if (!authenticated) return Refused(request, "a wrong token or an ended session");
+  }
   const std::string_view path = request.path;
   const bool get = request.method == "GET" || request.method == "HEAD";
   if (get && (path == "/" || path == "/index.html")) {
@@ -57,8 +69,9 @@ WebResponse WebRoutes::Handle(const WebRequest& request) const {
   if (get && path == "/status.css") return Asset(StatusPageCss(), "text/css; charset=utf-8");
   if (path == "/api/session") {
     if (request.method == "POST") return Login(request);
-    if (get) return Session(request, authenticated);
-    return Error(405, "GET or POST");
+    if (request.method == "DELETE") return Logout(request);
+    if (get) return Session(authenticated);
+    return Error(405, "GET, POST or DELETE");
   }
   constexpr std::string_view kJobs = "/api/jobs/";
   if (path.substr(0, kJobs.size()) == kJobs) {
@@ -77,7 +90,7 @@ WebResponse WebRoutes::Handle(const WebRequest& request) const {
   return Reply({200, "application/json", snapshot->status_json});
 }
 
-WebResponse WebRoutes::Session(const WebRequest&, bool authenticated) const {
+WebResponse WebRoutes::Session(bool authenticated) const {
   return Reply({200, "application/json",
                 json{{"ok", true},
                      {"authenticated", authenticated},
@@ -99,11 +112,43 @@ WebResponse WebRoutes::Login(const WebRequest& request) const {
       !body["token"].is_string()) {
     return Error(400, "expected {\"token\": \"...\"}");
   }
+  if (std::optional<WebResponse> locked = LockedOut(request)) return std::move(*locked);
   if (!access_.TokenMatches(body["token"].get<std::string>())) {
-    return Error(401, "wrong token");
+    return Refused(request, "a wrong token signing in");
   }
-  WebResponse r = Reply({200, "application/json", json{{"ok", true}}.dump()});
-  r.headers.emplace_back("Set-Cookie", access_.SessionCookie());
+  guard_->Succeeded(request.client);
+  const std::string session = sessions_->Begin(clock_());
+  return Reply({200, "application/json",
+                json{{"ok", true},
+                     {"session", session},
+                     {"idle_seconds", std::chrono::seconds(SessionTable::kIdle).count()},
+                     {"max_age_seconds", std::chrono::seconds(SessionTable::kMaxAge).count()}}
+                    .dump()});
+}
+
+WebResponse WebRoutes::Logout(const WebRequest& request) const {
+  // Handle has already refused a session that is not live.
+  const std::string_view session = WebAccess::BearerOf(request.authorization);
+  if (session.empty()) return Error(400, "sign out with \"Authorization: Bearer SESSION\"");
+  const bool ended = sessions_->End(session, clock_());
+  return Reply({200, "application/json", json{{"ok", true}, {"ended", ended}}.dump()});
+}
+
+WebResponse WebRoutes::Refused(const WebRequest& request, const char* what) const {
+  const uint32_t failures = guard_->Failed(request.client, clock_());
+  // Never the credential itself: log lines end up in bug reports.
+  failure_log_->Warn(request.client + ": refused " + what + " (" + std::to_string(failures) +
+                     " in a row from this address)");
+  return Unauthorized();
+}
+
+std::optional<WebResponse> WebRoutes::LockedOut(const WebRequest& request) const {
+  const auto wait = guard_->LockedFor(request.client, clock_());
+  if (wait <= SignInGuard::Duration::zero()) return std::nullopt;
+  const auto seconds = std::chrono::ceil<std::chrono::seconds>(wait).count();
+  WebResponse r = Error(429, "too many wrong tokens from this address: try again in " +
+                                 std::to_string(seconds) + " s");
+  r.headers.emplace_back("Retry-After", std::to_string(seconds));
   return r;
 }
 
@@ -123,9 +168,8 @@ WebResponse WebRoutes::JobRoute(const WebRequest& request, std::string_view rest
   if (!access_.has_token()) {
     return Error(403, "actions need a web token: start radfarmd with --http-token-file");
   }
+  // Only an Authorization header authenticates, which no other page can make a browser send.
   if (!authenticated) return Unauthorized();
-  const bool bearer = access_.BearerValid(request.authorization);
-  if (!bearer && !request.marked) return Error(403, "the X-Radfarm-Request header is missing");
   return Reply(handlers_.act(what, id));
 }
 

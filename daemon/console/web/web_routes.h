@@ -4,23 +4,35 @@
 //
 //   GET  /, /status.js, /status.css      the page (no data in it: it reads the API)
 //   GET  /api/session                    what this browser may do: {"read", "act", "token", ...}
-//   POST /api/session {"token": T}       trades the token for a session cookie
+//   POST /api/session {"token": T}       trades the token for a new session: {"session": S, ...}
+//   DELETE /api/session                  signs out: ends the session its Authorization names
 //   GET  /api/status                     the latest StatusSnapshot's JSON
 //   GET  /api/events                     server-sent events: each new snapshot (event_stream.h)
 //   GET  /api/jobs/ID/preview.png        the image of the job's latest checkpoint
 //   POST /api/jobs/ID/{pause,resume,cancel}  as `radfarm pause ID`..., through the control code
 //   GET  /metrics                        Prometheus text (metrics_text.h)
 //
+// Credentials come only in "Authorization: Bearer X", X the web token or a session
+// (session_table.h). A wrong one, or a wrong token signing in, counts against the client's
+// address (sign_in_guard.h), which is then answered 429 for a while, and is logged (at most
+// kFailureLogLines lines per kFailureLogWindow).
+//
 // Threads: Handle on any HTTP thread; it may block in a handler (WebHandlers) or not at all.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "daemon/console/web/rate_limited_log.h"
+#include "daemon/console/web/session_table.h"
+#include "daemon/console/web/sign_in_guard.h"
 #include "daemon/console/web/status_board.h"
 #include "daemon/console/web/web_access.h"
 #include "daemon/console/web/web_reply.h"
@@ -28,10 +40,11 @@
 namespace radfarm::web {
 
 struct WebRequest {
-  std::string method;                       // "GET", "POST", ...
-  std::string path;                         // without the query
-  std::string host, authorization, cookie;  // headers ("" when absent)
-  bool marked = false;                      // the X-Radfarm-Request header is present
+  std::string method;               // "GET", "POST", ...
+  std::string path;                 // without the query
+  std::string host, authorization;  // headers ("" when absent)
+  bool marked = false;              // the X-Radfarm-Request header is present
+  std::string client;               // the client's IP address
   std::string body;
 };
 
@@ -49,20 +62,37 @@ struct WebHandlers {
   std::function<WebReply(int64_t id)> preview;
 };
 
+// The time sessions and lockouts are measured in; tests pass a fake one.
+using WebClock = std::function<std::chrono::steady_clock::time_point()>;
+
 class WebRoutes {
  public:
-  WebRoutes(WebAccess access, const StatusBoard& board, WebHandlers handlers);
+  static constexpr uint32_t kFailureLogLines = 10;
+  static constexpr std::chrono::seconds kFailureLogWindow{60};
+
+  WebRoutes(WebAccess access, const StatusBoard& board, WebHandlers handlers,
+            WebClock clock = std::chrono::steady_clock::now);
 
   WebResponse Handle(const WebRequest& request) const;
 
  private:
-  WebResponse Session(const WebRequest& request, bool authenticated) const;
+  WebResponse Session(bool authenticated) const;
   WebResponse Login(const WebRequest& request) const;
+  WebResponse Logout(const WebRequest& request) const;
   WebResponse JobRoute(const WebRequest& request, std::string_view rest, bool authenticated) const;
+  // A refused credential from `request.client`: counted, logged, and the answer to give.
+  WebResponse Refused(const WebRequest& request, const char* what) const;
+  // 429 while the client is locked out; nullopt when it may try.
+  std::optional<WebResponse> LockedOut(const WebRequest& request) const;
 
   WebAccess access_;
   const StatusBoard& board_;
   WebHandlers handlers_;
+  WebClock clock_;
+  // Shared by the HTTP threads, each thread-safe; held by pointer so WebRoutes can move.
+  std::unique_ptr<SessionTable> sessions_ = std::make_unique<SessionTable>();
+  std::unique_ptr<SignInGuard> guard_ = std::make_unique<SignInGuard>();
+  std::unique_ptr<RateLimitedLog> failure_log_;
 };
 
 }  // namespace radfarm::web

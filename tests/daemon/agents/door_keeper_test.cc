@@ -2,8 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include "daemon/agents/log_rate_limiter.h"
-
 namespace radfarm::daemon {
 namespace {
 
@@ -32,20 +30,6 @@ TEST(DoorKeeperTest, AnAuthenticatedAgentLeavesTheQuotaAndIsNeverEvicted) {
   EXPECT_EQ(doors.counters().closed_before_auth, 1u);
   EXPECT_EQ(doors.counters().authenticated, 1u);
   EXPECT_EQ(doors.counters().accepted, 3u);
-}
-
-TEST(LogRateLimiterTest, AllowsLinesPerWindowAndSummarisesTheRestOnceItEnds) {
-  using std::chrono::seconds;
-  LogRateLimiter limiter(3, seconds(10));
-  const scheduler::TimePoint t0{};
-  for (int i = 0; i < 3; ++i) EXPECT_TRUE(limiter.Allow(t0 + seconds(1)));
-  EXPECT_FALSE(limiter.Allow(t0 + seconds(2)));
-  EXPECT_FALSE(limiter.Allow(t0 + seconds(9)));
-  EXPECT_EQ(limiter.TakeSuppressed(t0 + seconds(5)), std::nullopt);  // window not over
-  EXPECT_EQ(limiter.TakeSuppressed(t0 + seconds(11)), std::optional<uint64_t>(2));
-  EXPECT_EQ(limiter.TakeSuppressed(t0 + seconds(30)), std::nullopt);  // said once
-  EXPECT_TRUE(limiter.Allow(t0 + seconds(31)));
-  EXPECT_EQ(limiter.suppressed_total(), 2u);
 }
 
 }  // namespace

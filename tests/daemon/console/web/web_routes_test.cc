@@ -4,6 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "loop/log.h"
+
 namespace radfarm::web {
 namespace {
 
@@ -20,13 +22,14 @@ class WebRoutesTest : public ::testing::Test {
     handlers.preview = [](int64_t id) {
       return WebReply{200, "image/png", "png of " + std::to_string(id)};
     };
-    return WebRoutes(WebAccess(loopback, token), board, handlers);
+    return WebRoutes(WebAccess(loopback, token), board, handlers, [this] { return now; });
   }
   static WebRequest Get(const std::string& path) {
     WebRequest r;
     r.method = "GET";
     r.path = path;
     r.host = "127.0.0.1:8080";
+    r.client = "127.0.0.1";
     return r;
   }
   static WebRequest Post(const std::string& path) {
@@ -35,8 +38,25 @@ class WebRoutesTest : public ::testing::Test {
     return r;
   }
 
+  // Signs in with `token`; returns the answer's session ("" when refused).
+  static std::string SignIn(const WebRoutes& routes, const std::string& token,
+                            const std::string& client = "127.0.0.1") {
+    WebRequest login = Post("/api/session");
+    login.marked = true;
+    login.client = client;
+    login.body = nlohmann::json{{"token", token}}.dump();
+    const WebResponse r = routes.Handle(login);
+    if (r.reply.status != 200) return "";
+    return nlohmann::json::parse(r.reply.body).value("session", "");
+  }
+  static WebRequest WithSession(WebRequest r, const std::string& session) {
+    r.authorization = "Bearer " + session;
+    return r;
+  }
+
   StatusBoard board;
   std::vector<std::string> acted;
+  std::chrono::steady_clock::time_point now{};
 };
 
 TEST_F(WebRoutesTest, ThePageAndItsFilesAreServed) {
@@ -45,7 +65,7 @@ TEST_F(WebRoutesTest, ThePageAndItsFilesAreServed) {
   EXPECT_EQ(page.reply.status, 200u);
   EXPECT_EQ(page.reply.content_type, "text/html; charset=utf-8");
   EXPECT_NE(page.reply.body.find("<table id=\"jobs\">"), std::string::npos);
-  EXPECT_NE(routes.Handle(Get("/status.js")).reply.body.find("EventSource"), std::string::npos);
+  EXPECT_NE(routes.Handle(Get("/status.js")).reply.body.find("sessionStorage"), std::string::npos);
   EXPECT_EQ(routes.Handle(Get("/status.css")).reply.status, 200u);
   EXPECT_EQ(routes.Handle(Get("/nothing")).reply.status, 404u);
 }
@@ -97,36 +117,94 @@ TEST_F(WebRoutesTest, WithoutATokenThePageIsReadOnly) {
   EXPECT_FALSE(session["act"].get<bool>());
 }
 
-TEST_F(WebRoutesTest, ActionsNeedTheTokenAndWithACookieTheRequestHeader) {
+TEST_F(WebRoutesTest, ActionsNeedTheTokenOrASessionInTheAuthorizationHeader) {
   WebRoutes routes = Routes(true, kRoutesToken);
   WebRequest anonymous = Post("/api/jobs/3/pause");
   anonymous.marked = true;
   EXPECT_EQ(routes.Handle(anonymous).reply.status, 401u);
 
+  EXPECT_EQ(SignIn(routes, "wrong-wrong-wrong-wrong"), "");
   WebRequest login = Post("/api/session");
   login.marked = true;
-  login.body = R"({"token":"wrong-wrong-wrong-wrong"})";
-  EXPECT_EQ(routes.Handle(login).reply.status, 401u);
   login.body = nlohmann::json{{"token", kRoutesToken}}.dump();
   const WebResponse signed_in = routes.Handle(login);
   ASSERT_EQ(signed_in.reply.status, 200u);
-  ASSERT_EQ(signed_in.headers.size(), 1u);
-  EXPECT_EQ(signed_in.headers[0].first, "Set-Cookie");
-  const std::string cookie =
-      signed_in.headers[0].second.substr(0, signed_in.headers[0].second.find(';'));
+  // No cookie: a browser would hand one to every other port of this host.
+  EXPECT_TRUE(signed_in.headers.empty());
+  const std::string session = nlohmann::json::parse(signed_in.reply.body)["session"];
+  EXPECT_EQ(session.find(kRoutesToken), std::string::npos);  // the session is not the token
 
-  WebRequest forged = Post("/api/jobs/3/cancel");  // a form on another site: no header
-  forged.cookie = cookie;
-  EXPECT_EQ(routes.Handle(forged).reply.status, 403u);
-  EXPECT_TRUE(acted.empty());
-
-  WebRequest page = forged;
-  page.marked = true;
+  WebRequest page = WithSession(Post("/api/jobs/3/cancel"), session);
   EXPECT_EQ(routes.Handle(page).reply.status, 200u);
-  WebRequest script = Post("/api/jobs/4/resume");
-  script.authorization = "Bearer " + kRoutesToken;
+  const auto state =
+      nlohmann::json::parse(routes.Handle(WithSession(Get("/api/session"), session)).reply.body);
+  EXPECT_TRUE(state["act"].get<bool>());
+  WebRequest script = WithSession(Post("/api/jobs/4/resume"), kRoutesToken);
   EXPECT_EQ(routes.Handle(script).reply.status, 200u);
   EXPECT_EQ(acted, (std::vector<std::string>{"cancel 3", "resume 4"}));
+}
+
+TEST_F(WebRoutesTest, EachSignInHasItsOwnSessionAndSigningOutEndsIt) {
+  WebRoutes routes = Routes(true, kRoutesToken);
+  const std::string first = SignIn(routes, kRoutesToken);
+  const std::string second = SignIn(routes, kRoutesToken);
+  ASSERT_FALSE(first.empty());
+  EXPECT_NE(first, second);
+  WebRequest logout = WithSession(Get("/api/session"), first);
+  logout.method = "DELETE";
+  ASSERT_EQ(routes.Handle(logout).reply.status, 200u);
+  EXPECT_EQ(routes.Handle(WithSession(Post("/api/jobs/3/pause"), first)).reply.status, 401u);
+  EXPECT_EQ(routes.Handle(WithSession(Post("/api/jobs/3/pause"), second)).reply.status, 200u);
+  EXPECT_EQ(acted, (std::vector<std::string>{"pause 3"}));
+}
+
+TEST_F(WebRoutesTest, ASessionExpiresWhenIdleAndAtItsMaximumAge) {
+  WebRoutes routes = Routes(false, kRoutesToken);
+  board.Publish(StatusSnapshot{});
+  const std::string idle = SignIn(routes, kRoutesToken);
+  now += SessionTable::kIdle;
+  EXPECT_EQ(routes.Handle(WithSession(Get("/api/status"), idle)).reply.status, 401u);
+
+  const std::string busy = SignIn(routes, kRoutesToken);
+  const auto began = now;
+  while (now + SessionTable::kIdle / 2 < began + SessionTable::kMaxAge) {
+    now += SessionTable::kIdle / 2;
+    ASSERT_EQ(routes.Handle(WithSession(Get("/api/status"), busy)).reply.status, 200u);
+  }
+  now = began + SessionTable::kMaxAge;
+  EXPECT_EQ(routes.Handle(WithSession(Get("/api/status"), busy)).reply.status, 401u);
+}
+
+TEST_F(WebRoutesTest, WrongTokensAreLoggedAndLockTheirAddressOutWithoutSlowingOthers) {
+  std::vector<std::string> lines;
+  loop::SetLogSink([&](std::string_view line) { lines.emplace_back(line); });
+  WebRoutes routes = Routes(true, kRoutesToken);
+  for (uint32_t i = 0; i <= SignInGuard::kFreeFailures; ++i) {
+    EXPECT_EQ(SignIn(routes, "guess-guess-guess-" + std::to_string(i), "10.1.1.1"), "");
+  }
+  WebRequest locked = Post("/api/session");
+  locked.marked = true;
+  locked.client = "10.1.1.1";
+  locked.body = nlohmann::json{{"token", kRoutesToken}}.dump();
+  const WebResponse refused = routes.Handle(locked);
+  EXPECT_EQ(refused.reply.status, 429u);  // even the right token, until the lockout ends
+  ASSERT_EQ(refused.headers.size(), 1u);
+  EXPECT_EQ(refused.headers[0].first, "Retry-After");
+  // A bearer header is a guess too.
+  EXPECT_EQ(routes.Handle(WithSession(Post("/api/jobs/1/pause"), kRoutesToken)).reply.status, 200u);
+  WebRequest guess = WithSession(Post("/api/jobs/1/pause"), kRoutesToken);
+  guess.client = "10.1.1.1";
+  EXPECT_EQ(routes.Handle(guess).reply.status, 429u);
+  EXPECT_FALSE(SignIn(routes, kRoutesToken, "10.2.2.2").empty());  // others are not slowed
+  now += SignInGuard::kFirstLockout;
+  EXPECT_FALSE(SignIn(routes, kRoutesToken, "10.1.1.1").empty());
+  loop::SetLogSink({});
+  size_t logged = 0;
+  for (const std::string& line : lines) {
+    if (line.find("10.1.1.1: refused a wrong token signing in") != std::string::npos) ++logged;
+    EXPECT_EQ(line.find("guess-guess"), std::string::npos) << line;  // never the guess itself
+  }
+  EXPECT_EQ(logged, SignInGuard::kFreeFailures + 1);
 }
 
 TEST_F(WebRoutesTest, JobRoutesCheckTheIdActionAndMethod) {

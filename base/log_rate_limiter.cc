@@ -1,15 +1,15 @@
-#include "daemon/agents/log_rate_limiter.h"
+#include "base/log_rate_limiter.h"
 
-namespace radfarm::daemon {
+namespace radfarm {
 
-void LogRateLimiter::Roll(scheduler::TimePoint now) {
+void LogRateLimiter::Roll(TimePoint now) {
   if (!window_start_ || now - *window_start_ >= window_) {
     window_start_ = now;
     logged_ = 0;
   }
 }
 
-bool LogRateLimiter::Allow(scheduler::TimePoint now) {
+bool LogRateLimiter::Allow(TimePoint now) {
   Roll(now);
   if (logged_ < lines_) {
     ++logged_;
@@ -20,7 +20,7 @@ bool LogRateLimiter::Allow(scheduler::TimePoint now) {
   return false;
 }
 
-std::optional<uint64_t> LogRateLimiter::TakeSuppressed(scheduler::TimePoint now) {
+std::optional<uint64_t> LogRateLimiter::TakeSuppressed(TimePoint now) {
   if (suppressed_ == 0 || !window_start_ || now - *window_start_ < window_) return std::nullopt;
   const uint64_t n = suppressed_;
   suppressed_ = 0;
@@ -30,4 +30,4 @@ std::optional<uint64_t> LogRateLimiter::TakeSuppressed(scheduler::TimePoint now)
   return n;
 }
 
-}  // namespace radfarm::daemon
+}  // namespace radfarm
