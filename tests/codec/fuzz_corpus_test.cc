@@ -6,9 +6,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "codec/display_blob.h"
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
 
@@ -38,6 +40,13 @@ TEST(CodecFuzzCorpusTest, EverySeedDecodes) {
     Result<JobSolution> solution = DecodeJobSolution(ReadBlob(path));
     ASSERT_TRUE(solution.ok()) << path << ": " << solution.error();
     EXPECT_TRUE(DecodeJobBundle(solution->bundle).ok()) << path;
+  }
+  // The display fuzzer's input: the patch count, then the blob (display_blob_fuzzer.cc).
+  for (const auto& path : FilesIn(kTests / "fuzz_corpus/display_blob")) {
+    const std::vector<uint8_t> seed = ReadBlob(path);
+    ASSERT_FALSE(seed.empty()) << path;
+    Result<Display> display = DecodeDisplay(std::span(seed).subspan(1), seed[0]);
+    EXPECT_TRUE(display.ok()) << path << ": " << display.error();
   }
 }
 

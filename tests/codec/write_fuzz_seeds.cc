@@ -1,5 +1,6 @@
-// Writes the job bundle and job solution fuzzers' seed corpora (tests/codec/fuzz_corpus/, see
-// docs/FUZZING.md) from the shipped scenes: run by scripts/make-fuzz-seeds after a schema change.
+// Writes the job bundle, job solution and display blob fuzzers' seed corpora
+// (tests/codec/fuzz_corpus/, see docs/FUZZING.md) from the shipped scenes: run by
+// scripts/make-fuzz-seeds after a schema change.
 //   codec_fuzz_seed_writer SCENES_DIR OUT_DIR
 #include <cstdio>
 #include <filesystem>
@@ -7,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "codec/display_blob.h"
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
 #include "input/scene_loader.h"
@@ -38,6 +40,24 @@ JobSolution SampleSolution(std::vector<uint8_t> bundle, bool with_scene) {
   return solution;
 }
 
+// A display of three patches, with its front-only flags or without (no patch two-sided), after
+// the patch count the fuzzer decodes it against (display_blob_fuzzer.cc).
+std::vector<uint8_t> SampleDisplaySeed(bool front_only) {
+  radfarm::Display d;
+  d.mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 1e-300}, {1, 1, -2.5}};
+  d.mesh.radiance = {{0.1, 0.2, 0.3}, {1, 2, 3}, {0, 0, 0}, {5e-7, 0.5, 1.0 / 3}};
+  d.mesh.triangles = {{0, 1, 2}, {1, 3, 2}};
+  d.mesh.triangle_patch = {0, 2};
+  if (front_only) d.mesh.patch_front_only = {true, false, true};
+  d.stats.points = 12;
+  d.stats.rays = 1u << 20;
+  d.stats.levels = 2;
+  std::vector<uint8_t> seed = {3};
+  const std::vector<uint8_t> blob = radfarm::codec::EncodeDisplay(d);
+  seed.insert(seed.end(), blob.begin(), blob.end());
+  return seed;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -48,6 +68,9 @@ int main(int argc, char** argv) {
   const std::filesystem::path scenes = argv[1], out = argv[2];
   std::filesystem::create_directories(out / "job_bundle");
   std::filesystem::create_directories(out / "job_solution");
+  std::filesystem::create_directories(out / "display_blob");
+  WriteBlob(out / "display_blob" / "two-sided.bin", SampleDisplaySeed(true));
+  WriteBlob(out / "display_blob" / "one-sided.bin", SampleDisplaySeed(false));
   // Small scenes of each kind: OBJ with and without a job file, glTF and .glb, lights and cameras.
   const char* jobs[] = {"cornell-box.toml",      "seed-room.toml",  "furnace.obj",
                         "cornell-box-lamp.toml", "cornell-box.glb", "hard-shadow.toml"};
