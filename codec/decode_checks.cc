@@ -4,6 +4,12 @@
 
 namespace radfarm::codec {
 
+std::span<const uint8_t> Aligned(std::span<const uint8_t> blob, std::vector<uint8_t>* copy) {
+  if (reinterpret_cast<uintptr_t>(blob.data()) % 8 == 0) return blob;
+  copy->assign(blob.begin(), blob.end());
+  return *copy;
+}
+
 Status CheckBlobHeader(std::span<const uint8_t> blob, std::string_view kind,
                        const char* identifier) {
   if (blob.size() < 8) {

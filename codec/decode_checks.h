@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "base/result.h"
 #include "core/rgb.h"
@@ -22,6 +23,10 @@ inline constexpr size_t kMaxBlobBytes = size_t{1} << 30;
 // Fails unless the blob is 8..kMaxBlobBytes long and carries `identifier` at bytes 4..7.
 Status CheckBlobHeader(std::span<const uint8_t> blob, std::string_view kind,
                        const char* identifier);
+
+// `blob` itself when 8 divides its address, else a copy of it kept in `*copy`: the Verifier needs
+// aligned data; a std::vector's buffer is, a span into a frame may not be.
+std::span<const uint8_t> Aligned(std::span<const uint8_t> blob, std::vector<uint8_t>* copy);
 
 using radfarm::IsFinite;  // Vec3 (core/vec3.h)
 inline bool IsFinite(const Rgb& c) {

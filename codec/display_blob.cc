@@ -114,10 +114,7 @@ std::vector<uint8_t> EncodeDisplay(const Display& display) {
 Result<Display> DecodeDisplay(std::span<const uint8_t> blob, size_t patch_count) {
   RADFARM_RETURN_IF_ERROR(CheckBlobHeader(blob, kKind, "RDDM"));
   std::vector<uint8_t> aligned;
-  if (reinterpret_cast<uintptr_t>(blob.data()) % 8 != 0) {
-    aligned.assign(blob.begin(), blob.end());
-    blob = aligned;
-  }
+  blob = Aligned(blob, &aligned);
   flatbuffers::Verifier::Options options;
   flatbuffers::Verifier verifier(blob.data(), blob.size(), options);
   if (!wire::VerifyDisplayMeshBlobBuffer(verifier)) {

@@ -279,10 +279,7 @@ std::vector<uint8_t> EncodeJobBundle(const JobBundle& bundle) {
 Result<JobBundle> DecodeJobBundle(std::span<const uint8_t> blob) {
   RADFARM_RETURN_IF_ERROR(CheckBlobHeader(blob, kKind, "RDJB"));
   std::vector<uint8_t> aligned;
-  if (reinterpret_cast<uintptr_t>(blob.data()) % 8 != 0) {
-    aligned.assign(blob.begin(), blob.end());
-    blob = aligned;
-  }
+  blob = Aligned(blob, &aligned);
   flatbuffers::Verifier::Options options;
   options.max_tables = 2 * kMaxFaces;
   flatbuffers::Verifier verifier(blob.data(), blob.size(), options);

@@ -53,10 +53,7 @@ std::vector<uint8_t> EncodeJobSolution(const JobSolution& solution) {
 Result<JobSolution> DecodeJobSolution(std::span<const uint8_t> blob) {
   RADFARM_RETURN_IF_ERROR(CheckBlobHeader(blob, kKind, "RDJS"));
   std::vector<uint8_t> aligned;
-  if (reinterpret_cast<uintptr_t>(blob.data()) % 8 != 0) {
-    aligned.assign(blob.begin(), blob.end());
-    blob = aligned;
-  }
+  blob = Aligned(blob, &aligned);
   flatbuffers::Verifier::Options options;
   flatbuffers::Verifier verifier(blob.data(), blob.size(), options);
   if (!wire::VerifyJobSolutionBlobBuffer(verifier)) {

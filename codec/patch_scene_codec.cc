@@ -106,12 +106,8 @@ Result<uint32_t> Decode(
     const std::function<void(const Patch& patch, uint32_t index, uint32_t count)>& each,
     PatchScene* rest) {
   RADFARM_RETURN_IF_ERROR(CheckBlobHeader(blob, kKind, "RDPS"));
-  // The Verifier needs aligned data; a std::vector's buffer is, a span into a frame may not be.
   std::vector<uint8_t> aligned;
-  if (reinterpret_cast<uintptr_t>(blob.data()) % 8 != 0) {
-    aligned.assign(blob.begin(), blob.end());
-    blob = aligned;
-  }
+  blob = Aligned(blob, &aligned);
   if (verify) {
     flatbuffers::Verifier::Options options;
     options.max_tables = 2 * kMaxPatches;
