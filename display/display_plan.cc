@@ -139,6 +139,20 @@ PointLights DisplayPlan::lights() const {
   return {input_.scene, *caster_, fitted_.light.get(), &outgoing_, &corners_, &second_};
 }
 
+PointContext DisplayPlan::context() const {
+  PointContext context;
+  context.emitters = settings_.emitters;
+  context.rays_per_point = fitted_.rays_per_point;
+  context.rays_per_light = fitted_.rays_per_light;
+  if (phase_ != Phase::kDirectLight) {  // gathering needs the direct light's corner offsets
+    context.outgoing = outgoing_;
+    context.corner_offsets = corners_.offsets;
+    context.bounced = second_.bounced;
+    context.second_reach = second_.reach;
+  }
+  return context;
+}
+
 void DisplayPlan::Apply(PointValues values) {
   switch (phase_) {
     case Phase::kDirectLight:

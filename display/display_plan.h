@@ -25,6 +25,7 @@
 #include "display/light_bends.h"
 #include "display/midpoint_split.h"
 #include "display/patch_mean_light.h"
+#include "display/point_context.h"
 #include "display/point_work.h"
 
 namespace radfarm {
@@ -43,6 +44,8 @@ class DisplayPlan {
   DisplayStep step() const;
   // What work() is traced against. Valid while the plan lives.
   PointLights lights() const;
+  // The same as data, to trace work() elsewhere (a PointTracer on the plan's scene).
+  PointContext context() const;
   // The values of every point of work(), in order (AppendPointValues over its pieces). Plans the
   // next work.
   void Apply(PointValues values);

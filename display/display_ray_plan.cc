@@ -40,6 +40,7 @@ DisplayDirectChoice FitDisplayDirectLight(const PatchScene& scene, const RayCast
     return std::make_unique<DirectLight>(scene, caster, per_point, emitters, kExactLights,
                                          kLightCut, per_light);
   };
+  choice.rays_per_point = kPointShadowRays;
   choice.rays_per_light = rays_per_light;
   choice.light = make(kPointShadowRays, rays_per_light);
   if (!allowance) return choice;
@@ -65,6 +66,7 @@ DisplayDirectChoice FitDisplayDirectLight(const PatchScene& scene, const RayCast
     const bool last = t + 1 == tries.size();
     if (spent <= double(*allowance) / 2 || (last && spent <= double(*allowance))) {
       choice.light = std::move(light);
+      if (t > 0) choice.rays_per_point = tries[t];
       choice.rays_per_light = tries[t];
       return choice;
     }

@@ -36,6 +36,7 @@ struct DisplayDirectChoice {
   // Null where even kMinCappedLightRays per light at every point would exceed the allowance:
   // the display then averages the patches.
   std::unique_ptr<DirectLight> light;
+  uint32_t rays_per_point = 0;  // the light's, as DirectLight's arguments (display/point_context.h)
   uint32_t rays_per_light = 0;
   uint64_t probe_rays = 0;  // cast to choose
 };
