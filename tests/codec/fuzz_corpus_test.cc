@@ -13,6 +13,7 @@
 #include "codec/display_blob.h"
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
+#include "codec/point_context_blob.h"
 
 namespace radfarm::codec {
 namespace {
@@ -47,6 +48,10 @@ TEST(CodecFuzzCorpusTest, EverySeedDecodes) {
     ASSERT_FALSE(seed.empty()) << path;
     Result<Display> display = DecodeDisplay(std::span(seed).subspan(1), seed[0]);
     EXPECT_TRUE(display.ok()) << path << ": " << display.error();
+  }
+  for (const auto& path : FilesIn(kTests / "fuzz_corpus/point_context")) {
+    Result<DecodedPointContext> context = DecodePointContext(ReadBlob(path));
+    EXPECT_TRUE(context.ok()) << path << ": " << context.error();
   }
 }
 

@@ -1,4 +1,4 @@
-// Writes the job bundle, job solution and display blob fuzzers' seed corpora
+// Writes the job bundle, job solution, display blob and point context fuzzers' seed corpora
 // (tests/codec/fuzz_corpus/, see docs/FUZZING.md) from the shipped scenes: run by
 // scripts/make-fuzz-seeds after a schema change.
 //   codec_fuzz_seed_writer SCENES_DIR OUT_DIR
@@ -11,6 +11,8 @@
 #include "codec/display_blob.h"
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
+#include "codec/patch_scene_codec.h"
+#include "codec/point_context_blob.h"
 #include "input/scene_loader.h"
 #include "job/job.h"
 
@@ -58,6 +60,33 @@ std::vector<uint8_t> SampleDisplaySeed(bool front_only) {
   return seed;
 }
 
+// A point context over two triangles, gathering or not (point_context_fuzzer.cc).
+std::vector<uint8_t> SamplePointContextSeed(bool gathers) {
+  radfarm::PatchScene scene;
+  scene.material_names = {"white", "lamp"};
+  for (int k = 0; k < 2; ++k) {
+    radfarm::Patch p;
+    p.corners = {radfarm::Vec3{0, double(k), 0}, radfarm::Vec3{1, double(k), 0},
+                 radfarm::Vec3{0, double(k), 1}, radfarm::Vec3{}};
+    p.normal = {0, k == 0 ? 1.0 : -1.0, 0};
+    p.centre = {1.0 / 3, double(k), 1.0 / 3};
+    p.area = 0.5;
+    p.reflectance = {0.5, 0.5, 0.5};
+    if (k == 1) p.emission = {2, 2, 2};
+    p.material = uint32_t(k);
+    scene.patches.push_back(p);
+  }
+  radfarm::PointContext context;
+  context.rays_per_point = 64;
+  if (gathers) {
+    context.rays_per_light = 16;
+    context.outgoing = {{0.1, 0.2, 0.3}, {0, 0, 0}};
+    context.corner_offsets = {{radfarm::Rgb(0.5, 0, 0), {}, {}, {}}, {}};
+    context.bounced = {{0.01, 0.02, 0.03}, {}};
+  }
+  return radfarm::codec::EncodePointContext(radfarm::codec::EncodePatchScene(scene), context);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -71,6 +100,9 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(out / "display_blob");
   WriteBlob(out / "display_blob" / "two-sided.bin", SampleDisplaySeed(true));
   WriteBlob(out / "display_blob" / "one-sided.bin", SampleDisplaySeed(false));
+  std::filesystem::create_directories(out / "point_context");
+  WriteBlob(out / "point_context" / "direct.bin", SamplePointContextSeed(false));
+  WriteBlob(out / "point_context" / "gathering.bin", SamplePointContextSeed(true));
   // Small scenes of each kind: OBJ with and without a job file, glTF and .glb, lights and cameras.
   const char* jobs[] = {"cornell-box.toml",      "seed-room.toml",  "furnace.obj",
                         "cornell-box-lamp.toml", "cornell-box.glb", "hard-shadow.toml"};
