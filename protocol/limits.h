@@ -11,12 +11,14 @@ namespace radfarm::protocol {
 // many batches in one LeaseAssignment and answers them in one LeaseResult; version 3 sends scenes
 // zstd-compressed (SceneChunk.scene_size, protocol/scene_packing.h); version 4 seals every frame
 // after the handshake (frame_seal.h) and adds Close code Blocklisted; version 5 packs a
-// LeaseResult's hits (core/packed_hits.h: 2-3 bytes a hit instead of 16). A version-4 peer still
-// works (a frame's own version says how its hits are written), so agents and master can be
-// upgraded one at a time.
-inline constexpr uint16_t kProtocolVersion = 5;
+// LeaseResult's hits (core/packed_hits.h: 2-3 bytes a hit instead of 16); version 6 leases the
+// display's points (PointLease, PointResult). A version-4 or 5 peer still works (a frame's own
+// version says how its hits are written, and the master leases points only to agents of version
+// 6), so agents and master can be upgraded one at a time.
+inline constexpr uint16_t kProtocolVersion = 6;
 inline constexpr uint16_t kMinProtocolVersion = 4;
 inline constexpr uint16_t kPackedHitsVersion = 5;
+inline constexpr uint16_t kPointLeaseVersion = 6;
 
 // Frame: a 4-byte little-endian length prefix, then that many bytes of FlatBuffer.
 inline constexpr size_t kLengthPrefixBytes = 4;
@@ -46,6 +48,11 @@ inline constexpr uint64_t kDefaultMaxSceneBytes = uint64_t{1} << 30;
 inline constexpr size_t kMaxLeaseReturnEntries = 65536;
 // Batches in one LeaseAssignment, results in one LeaseResult, leases in one LeaseRevoke.
 inline constexpr size_t kMaxLeaseBatches = 65536;
+// Points in one PointLease (and values in its PointResult): about 0.8 MB a frame, under the
+// smallest frame limit a peer may announce (kMinPeerFrameBytes).
+inline constexpr size_t kMaxLeasePoints = 16384;
+// Gathering rays a leased point may ask for (the display's are kPointGatherRays or fewer).
+inline constexpr uint32_t kMaxPointGatherRays = 1u << 16;
 inline constexpr double kMaxGridStepDegrees = 90;
 
 }  // namespace radfarm::protocol

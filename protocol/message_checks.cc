@@ -158,6 +158,64 @@ Status Check(const LeaseReturnMsg& m) {
   return Ok{};
 }
 
+// Flags of one byte each: 0 or 1 (they become std::vector<bool>).
+bool AreFlags(const std::vector<uint8_t>& flags) {
+  return std::all_of(flags.begin(), flags.end(), [](uint8_t f) { return f <= 1; });
+}
+
+Status Check(const PointLeaseMsg& m) {
+  const size_t n = m.points.size();
+  if (n == 0 || n > kMaxLeasePoints) {
+    return Fail("PointLease", Str(n) + " points, not 1.." + Str(kMaxLeasePoints));
+  }
+  if (m.first_index > UINT64_MAX - n) return Fail("PointLease", "first_index overflows");
+  for (size_t i = 0; i < n; ++i) {
+    const LeasedPoint& p = m.points[i];
+    const double length = Length(p.normal);
+    if (!IsFinite(p.position) || !IsFinite(p.normal) || std::abs(length - 1) > 1e-6) {
+      return Fail("PointLease", "point " + Str(i) + " is not finite with a unit normal");
+    }
+  }
+  if (!IsNonNegativeFinite(m.near_radius)) {
+    return Fail("PointLease", "near_radius not finite and >= 0");
+  }
+  if (!m.gather.empty()) {
+    if (m.gather.size() != n) {
+      return Fail("PointLease", Str(m.gather.size()) + " gather flags for " + Str(n) + " points");
+    }
+    if (!AreFlags(m.gather)) return Fail("PointLease", "a gather flag other than 0 or 1");
+    if (m.gather_rays < 1 || m.gather_rays > kMaxPointGatherRays) {
+      return Fail("PointLease",
+                  "gather_rays " + Str(m.gather_rays) + " not in 1.." + Str(kMaxPointGatherRays));
+    }
+  }
+  if (m.near_radius == 0 && !m.direct && m.gather.empty()) {
+    return Fail("PointLease", "asks for nothing");
+  }
+  if (m.lease_ms < 1) return Fail("PointLease", "lease_ms 0");
+  return Ok{};
+}
+
+Status Check(const PointResultMsg& m) {
+  const size_t most = std::max({m.near.size(), m.direct.size(), m.gathered.size()});
+  if (most == 0 || most > kMaxLeasePoints) {
+    return Fail("PointResult", Str(most) + " values, not 1.." + Str(kMaxLeasePoints));
+  }
+  if (!AreFlags(m.near)) return Fail("PointResult", "a near flag other than 0 or 1");
+  for (const auto* values : {&m.direct, &m.gathered}) {
+    for (size_t i = 0; i < values->size(); ++i) {
+      if (!(*values)[i].IsFinite()) {
+        return Fail("PointResult", std::string(values == &m.direct ? "direct" : "gathered") +
+                                       " value " + Str(i) + " not finite");
+      }
+    }
+  }
+  if (!IsNonNegativeFinite(m.compute_seconds)) {
+    return Fail("PointResult", "compute_seconds not finite and >= 0");
+  }
+  return Ok{};
+}
+
 Status Check(const CancelMsg&) { return Ok{}; }
 
 Status Check(const SceneRequestMsg& m) {

@@ -5,9 +5,10 @@ namespace {
 
 // One name per Message alternative, in variant order.
 constexpr std::string_view kMessageNames[] = {
-    "Hello",       "Challenge", "Proof",           "Welcome",     "Heartbeat",
-    "LeaseReturn", "Cancel",    "SceneRequest",    "SceneChunk",  "SceneUnavailable",
-    "Drain",       "Close",     "LeaseAssignment", "LeaseResult", "LeaseRevoke",
+    "Hello",       "Challenge",   "Proof",           "Welcome",     "Heartbeat",
+    "LeaseReturn", "Cancel",      "SceneRequest",    "SceneChunk",  "SceneUnavailable",
+    "Drain",       "Close",       "LeaseAssignment", "LeaseResult", "LeaseRevoke",
+    "PointLease",  "PointResult",
 };
 static_assert(std::size(kMessageNames) == std::variant_size_v<Message>);
 
@@ -16,6 +17,10 @@ static_assert(std::size(kMessageNames) == std::variant_size_v<Message>);
 std::string_view MessageName(const Message& message) { return kMessageNames[message.index()]; }
 
 bool InVersion(const Message& message, uint16_t version) {
+  if (std::holds_alternative<PointLeaseMsg>(message) ||
+      std::holds_alternative<PointResultMsg>(message)) {
+    return version >= kPointLeaseVersion;
+  }
   if (std::holds_alternative<LeaseAssignmentMsg>(message) ||
       std::holds_alternative<LeaseResultMsg>(message) ||
       std::holds_alternative<LeaseRevokeMsg>(message)) {

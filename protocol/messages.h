@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "core/batch.h"
+#include "core/rgb.h"
 #include "core/solver_settings.h"
+#include "core/vec3.h"
 #include "protocol/limits.h"
 
 namespace radfarm::protocol {
@@ -163,6 +165,44 @@ struct CancelMsg {  // master -> agent
   bool operator==(const CancelMsg&) const = default;
 };
 
+// --- The display's points (version 6) ---
+
+// A point the display needs the light at: on a surface, facing along its unit normal.
+struct LeasedPoint {
+  Vec3 position;  // finite
+  Vec3 normal;    // finite, unit
+  bool operator==(const LeasedPoint&) const = default;
+};
+
+// Points [first_index, first_index + points.size()) of one step of a job's display (a piece of a
+// display/point_work.h PointWork), traced against the point context the hash names (fetched as a
+// scene is: codec/point_context_blob.h). `lease.batch_id` names the piece.
+struct PointLeaseMsg {  // master -> agent
+  LeaseRef lease;
+  SceneHash context_hash{};
+  uint64_t seed = 0;
+  double near_radius = 0;           // finite, >= 0; 0: not asked
+  bool direct = false;              // the direct light at every point
+  uint32_t gather_rays = 0;         // 1..kMaxPointGatherRays where `gather` is not empty
+  uint64_t first_index = 0;         // first_index + points.size() does not overflow
+  std::vector<LeasedPoint> points;  // 1..kMaxLeasePoints
+  std::vector<uint8_t> gather;      // empty, or 0 or 1 per point: the points that gather
+  uint32_t lease_ms = 0;            // >= 1
+  bool operator==(const PointLeaseMsg&) const = default;
+};
+
+// The values of a PointLease's points, in order (display/point_work.h PointValues): each list
+// empty where the lease did not ask for it, else one value per point.
+struct PointResultMsg {  // agent -> master
+  LeaseRef lease;
+  std::vector<uint8_t> near;   // 0 or 1 per point
+  std::vector<Rgb> direct;     // finite
+  std::vector<Rgb> gathered;   // finite
+  uint64_t rays = 0;           // shadow and gathering rays cast
+  double compute_seconds = 0;  // finite, >= 0
+  bool operator==(const PointResultMsg&) const = default;
+};
+
 // --- Scene distribution ---
 
 struct SceneRequestMsg {  // agent -> master
@@ -205,7 +245,7 @@ struct CloseMsg {  // both ways, any state; the sender closes the connection aft
 using Message =
     std::variant<HelloMsg, ChallengeMsg, ProofMsg, WelcomeMsg, HeartbeatMsg, LeaseReturnMsg,
                  CancelMsg, SceneRequestMsg, SceneChunkMsg, SceneUnavailableMsg, DrainMsg, CloseMsg,
-                 LeaseAssignmentMsg, LeaseResultMsg, LeaseRevokeMsg>;
+                 LeaseAssignmentMsg, LeaseResultMsg, LeaseRevokeMsg, PointLeaseMsg, PointResultMsg>;
 
 // A verified incoming frame.
 struct DecodedFrame {

@@ -21,13 +21,13 @@ bool MasterMaySend(const Message& m) {
          std::holds_alternative<SceneChunkMsg>(m) ||
          std::holds_alternative<SceneUnavailableMsg>(m) || std::holds_alternative<DrainMsg>(m) ||
          std::holds_alternative<CloseMsg>(m) || std::holds_alternative<LeaseAssignmentMsg>(m) ||
-         std::holds_alternative<LeaseRevokeMsg>(m);
+         std::holds_alternative<LeaseRevokeMsg>(m) || std::holds_alternative<PointLeaseMsg>(m);
 }
 
 bool AgentMaySend(const Message& m) {
   return std::holds_alternative<HeartbeatMsg>(m) || std::holds_alternative<LeaseReturnMsg>(m) ||
          std::holds_alternative<SceneRequestMsg>(m) || std::holds_alternative<CloseMsg>(m) ||
-         std::holds_alternative<LeaseResultMsg>(m);
+         std::holds_alternative<LeaseResultMsg>(m) || std::holds_alternative<PointResultMsg>(m);
 }
 
 std::string VersionRange(uint16_t lo, uint16_t hi) {

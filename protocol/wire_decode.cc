@@ -179,6 +179,50 @@ Result<Message> Read(const wire::LeaseRevoke& t) {
   return Message{std::move(m)};
 }
 
+Result<Message> Read(const wire::PointLease& t) {
+  if (!t.lease()) return Missing("PointLease", "lease");
+  if (!t.context_hash()) return Missing("PointLease", "context_hash");
+  if (!t.points()) return Missing("PointLease", "points");
+  if (!IsAligned(*t.points())) return Error{"PointLease: misaligned points"};
+  PointLeaseMsg m;
+  m.lease = FromWire(*t.lease());
+  m.context_hash = FromWire(*t.context_hash());
+  m.seed = t.seed();
+  m.near_radius = t.near_radius();
+  m.direct = t.direct();
+  m.gather_rays = t.gather_rays();
+  m.first_index = t.first_index();
+  m.points.reserve(t.points()->size());
+  for (const wire::LeasedPoint* p : *t.points()) {
+    m.points.push_back({{p->px(), p->py(), p->pz()}, {p->nx(), p->ny(), p->nz()}});
+  }
+  if (t.gather()) m.gather.assign(t.gather()->begin(), t.gather()->end());
+  m.lease_ms = t.lease_ms();
+  return Message{std::move(m)};
+}
+
+// A list of point values, or an error naming it.
+Status ReadPointValues(const flatbuffers::Vector<const wire::PointValue*>* in, const char* field,
+                       std::vector<Rgb>* out) {
+  if (!in) return Ok{};
+  if (!IsAligned(*in)) return Error{std::string("PointResult: misaligned ") + field};
+  out->reserve(in->size());
+  for (const wire::PointValue* v : *in) out->push_back({v->r(), v->g(), v->b()});
+  return Ok{};
+}
+
+Result<Message> Read(const wire::PointResult& t) {
+  if (!t.lease()) return Missing("PointResult", "lease");
+  PointResultMsg m;
+  m.lease = FromWire(*t.lease());
+  if (t.near()) m.near.assign(t.near()->begin(), t.near()->end());
+  RADFARM_RETURN_IF_ERROR(ReadPointValues(t.direct(), "direct", &m.direct));
+  RADFARM_RETURN_IF_ERROR(ReadPointValues(t.gathered(), "gathered", &m.gathered));
+  m.rays = t.rays();
+  m.compute_seconds = t.compute_seconds();
+  return Message{std::move(m)};
+}
+
 Result<Message> Read(const wire::Cancel& t) { return Message{CancelMsg{t.job_id()}}; }
 
 Result<Message> Read(const wire::SceneRequest& t) {
@@ -264,6 +308,10 @@ Result<Message> ReadPayload(const wire::Frame& frame) {
     }
     case P::LeaseRevoke:
       return ReadAs<wire::LeaseRevoke>(frame);
+    case P::PointLease:
+      return ReadAs<wire::PointLease>(frame);
+    case P::PointResult:
+      return ReadAs<wire::PointResult>(frame);
     default:
       break;
   }

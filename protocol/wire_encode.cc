@@ -138,6 +138,37 @@ Offset<wire::LeaseRevoke> Build(FlatBufferBuilder& fbb, const LeaseRevokeMsg& m)
   return wire::CreateLeaseRevoke(fbb, leases);
 }
 
+Offset<flatbuffers::Vector<const wire::PointValue*>> PointValues(FlatBufferBuilder& fbb,
+                                                                 const std::vector<Rgb>& values) {
+  std::vector<wire::PointValue> out;
+  out.reserve(values.size());
+  for (const Rgb& c : values) out.emplace_back(c.r, c.g, c.b);
+  return fbb.CreateVectorOfStructs(out.data(), out.size());
+}
+
+Offset<wire::PointLease> Build(FlatBufferBuilder& fbb, const PointLeaseMsg& m) {
+  std::vector<wire::LeasedPoint> wire_points;
+  wire_points.reserve(m.points.size());
+  for (const LeasedPoint& p : m.points) {
+    wire_points.emplace_back(p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y,
+                             p.normal.z);
+  }
+  const auto points = fbb.CreateVectorOfStructs(wire_points.data(), wire_points.size());
+  const auto gather = m.gather.empty() ? 0 : fbb.CreateVector(m.gather);
+  const wire::LeaseRef lease = ToWire(m.lease);
+  const wire::Bytes32 hash = ToWire(m.context_hash);
+  return wire::CreatePointLease(fbb, &lease, &hash, m.seed, m.near_radius, m.direct, m.gather_rays,
+                                m.first_index, points, gather, m.lease_ms);
+}
+
+Offset<wire::PointResult> Build(FlatBufferBuilder& fbb, const PointResultMsg& m) {
+  const auto near = m.near.empty() ? 0 : fbb.CreateVector(m.near);
+  const auto direct = m.direct.empty() ? 0 : PointValues(fbb, m.direct);
+  const auto gathered = m.gathered.empty() ? 0 : PointValues(fbb, m.gathered);
+  const wire::LeaseRef lease = ToWire(m.lease);
+  return wire::CreatePointResult(fbb, &lease, near, direct, gathered, m.rays, m.compute_seconds);
+}
+
 // A table as the frame's payload; its union tag comes from the table's type, so the C++ messages
 // need not follow the union's order (retired slots have no message).
 template <typename Table>

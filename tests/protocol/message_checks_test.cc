@@ -141,6 +141,76 @@ TEST(ProtocolCheckTest, LeaseResult) {
   ExpectRejected(m, "LeaseResult: 0 results");
 }
 
+TEST(ProtocolCheckTest, PointLease) {
+  PointLeaseMsg m = Sample<PointLeaseMsg>();
+  m.points.clear();
+  ExpectRejected(m, "PointLease: 0 points");
+  m = Sample<PointLeaseMsg>();
+  m.points.resize(kMaxLeasePoints + 1, m.points[0]);
+  m.gather.clear();
+  ExpectRejected(m, "PointLease: 16385 points");
+  m = Sample<PointLeaseMsg>();
+  m.first_index = UINT64_MAX - 1;
+  ExpectRejected(m, "PointLease: first_index overflows");
+  for (double bad : {kNaN, kInf}) {
+    m = Sample<PointLeaseMsg>();
+    m.points[1].position.y = bad;
+    ExpectRejected(m, "PointLease: point 1 is not finite");
+  }
+  m = Sample<PointLeaseMsg>();
+  m.points[0].normal = {0, 2, 0};
+  ExpectRejected(m, "PointLease: point 0 is not finite with a unit normal");
+  for (double bad : {kNaN, kInf, -0.5}) {
+    m = Sample<PointLeaseMsg>();
+    m.near_radius = bad;
+    ExpectRejected(m, "PointLease: near_radius");
+  }
+  m = Sample<PointLeaseMsg>();
+  m.gather.push_back(1);
+  ExpectRejected(m, "PointLease: 3 gather flags for 2 points");
+  m = Sample<PointLeaseMsg>();
+  m.gather[1] = 2;
+  ExpectRejected(m, "PointLease: a gather flag other than 0 or 1");
+  for (uint32_t bad : {0u, kMaxPointGatherRays + 1}) {
+    m = Sample<PointLeaseMsg>();
+    m.gather_rays = bad;
+    ExpectRejected(m, "PointLease: gather_rays");
+  }
+  m = Sample<PointLeaseMsg>();
+  m.near_radius = 0;
+  m.direct = false;
+  m.gather.clear();
+  ExpectRejected(m, "PointLease: asks for nothing");
+  m = Sample<PointLeaseMsg>();
+  m.lease_ms = 0;
+  ExpectRejected(m, "PointLease: lease_ms 0");
+}
+
+TEST(ProtocolCheckTest, PointResult) {
+  PointResultMsg m = Sample<PointResultMsg>();
+  m.near.clear();
+  m.direct.clear();
+  m.gathered.clear();
+  ExpectRejected(m, "PointResult: 0 values");
+  m = Sample<PointResultMsg>();
+  m.direct.resize(kMaxLeasePoints + 1);
+  ExpectRejected(m, "PointResult: 16385 values");
+  m = Sample<PointResultMsg>();
+  m.near[0] = 7;
+  ExpectRejected(m, "PointResult: a near flag other than 0 or 1");
+  m = Sample<PointResultMsg>();
+  m.direct[1].g = kNaN;
+  ExpectRejected(m, "PointResult: direct value 1 not finite");
+  m = Sample<PointResultMsg>();
+  m.gathered[0].b = -kInf;
+  ExpectRejected(m, "PointResult: gathered value 0 not finite");
+  for (double bad : {kNaN, kInf, -0.5}) {
+    m = Sample<PointResultMsg>();
+    m.compute_seconds = bad;
+    ExpectRejected(m, "PointResult: compute_seconds");
+  }
+}
+
 TEST(ProtocolCheckTest, LeaseReturn) {
   LeaseReturnMsg m = Sample<LeaseReturnMsg>();
   m.leases.clear();

@@ -194,19 +194,19 @@ TEST(ProtocolSessionTest, TamperedHelloFailsAuthentication) {
 }
 
 TEST(ProtocolSessionTest, VersionNegotiation) {
-  // An agent that speaks 2..6 gets version 5 from this master.
+  // An agent that speaks 2..7 gets version 6 from this master.
   Session master = Master();
-  Session agent = Session::ForAgent(Secret(1), AgentConfig{"new-agent", 2, 2, 6});
+  Session agent = Session::ForAgent(Secret(1), AgentConfig{"new-agent", 2, 2, 7});
   const std::vector<uint8_t> hello = *agent.Start();
-  EXPECT_EQ(Decode(hello).version, 6);
+  EXPECT_EQ(Decode(hello).version, 7);
   Result<Session::Accepted> a = master.Accept(Decode(hello));
   ASSERT_TRUE(a) << a.error();
-  EXPECT_EQ(master.version(), 5);
+  EXPECT_EQ(master.version(), 6);
   ASSERT_TRUE(agent.Accept(Decode(a->reply)));
-  EXPECT_EQ(agent.version(), 5);
-  // One that only speaks 6..7 is turned away.
+  EXPECT_EQ(agent.version(), 6);
+  // One that only speaks 7..8 is turned away.
   Session old_master = Master();
-  Session newer = Session::ForAgent(Secret(1), AgentConfig{"newer", 2, 6, 7});
+  Session newer = Session::ForAgent(Secret(1), AgentConfig{"newer", 2, 7, 8});
   EXPECT_FALSE(old_master.Accept(Decode(*newer.Start())));
   EXPECT_EQ(CloseOf(old_master.CloseFrame()).code, CloseCode::kVersionMismatch);
 }
@@ -223,7 +223,7 @@ TEST(ProtocolSessionTest, AVersionOneAgentIsRefusedWithAMessageNamingBothVersion
   const CloseMsg close = CloseOf(master.CloseFrame());
   EXPECT_EQ(close.code, CloseCode::kVersionMismatch);
   EXPECT_NE(close.detail.find("the agent speaks 1..1"), std::string::npos) << close.detail;
-  EXPECT_NE(close.detail.find("this master 4..5"), std::string::npos) << close.detail;
+  EXPECT_NE(close.detail.find("this master 4..6"), std::string::npos) << close.detail;
   // The old agent reads that Close (a Close is accepted in any version, in any state).
   Result<Session::Accepted> read = old_agent.Accept(Decode(master.CloseFrame()));
   ASSERT_TRUE(read) << read.error();
@@ -238,7 +238,7 @@ TEST(ProtocolSessionTest, AVersionTwoAgentIsRefusedBeforeItFetchesACompressedSce
   ASSERT_FALSE(master.Accept(Decode(*old_agent.Start())));
   const CloseMsg close = CloseOf(master.CloseFrame());
   EXPECT_EQ(close.code, CloseCode::kVersionMismatch);
-  EXPECT_NE(close.detail.find("the agent speaks 2..2, this master 4..5"), std::string::npos)
+  EXPECT_NE(close.detail.find("the agent speaks 2..2, this master 4..6"), std::string::npos)
       << close.detail;
   // And a version-4 agent refuses a master that chooses version 2.
   Session agent = Agent();
@@ -253,7 +253,7 @@ TEST(ProtocolSessionTest, AVersionThreeAgentIsRefusedBeforeItSendsAClearFrame) {
   Session master = Master();
   Session old_agent = Session::ForAgent(Secret(1), AgentConfig{"v3-agent", 2, 3, 3});
   ASSERT_FALSE(master.Accept(Decode(*old_agent.Start())));
-  EXPECT_NE(CloseOf(master.CloseFrame()).detail.find("the agent speaks 3..3, this master 4..5"),
+  EXPECT_NE(CloseOf(master.CloseFrame()).detail.find("the agent speaks 3..3, this master 4..6"),
             std::string::npos);
   ASSERT_TRUE(old_agent.Accept(Decode(master.CloseFrame())));
   EXPECT_EQ(old_agent.peer_close()->code, CloseCode::kVersionMismatch);
@@ -261,6 +261,22 @@ TEST(ProtocolSessionTest, AVersionThreeAgentIsRefusedBeforeItSendsAClearFrame) {
   ASSERT_TRUE(agent.Start());
   EXPECT_FALSE(agent.Accept(Decode(EncodeFrame(ChallengeMsg{3, testing::Pattern(1)}, 3))));
   EXPECT_EQ(CloseOf(agent.CloseFrame()).code, CloseCode::kVersionMismatch);
+}
+
+// Version 6 leases the display's points: a session of an older agent neither sends nor accepts a
+// PointLease or a PointResult (the master leases points only to agents of version 6).
+TEST(ProtocolSessionTest, PointMessagesNeedVersionSix) {
+  Session master = Master();
+  Session agent = Session::ForAgent(Secret(1), AgentConfig{"v5-agent", 2, 4, 5});
+  RunHandshake(master, agent);
+  ASSERT_TRUE(master.authenticated());
+  ASSERT_EQ(master.version(), 5);
+  EXPECT_FALSE(master.Encode(testing::SampleOf<PointLeaseMsg>()));
+  EXPECT_FALSE(agent.Encode(testing::SampleOf<PointResultMsg>()));
+  Session m6 = Master(), a6 = Agent();
+  RunHandshake(m6, a6);
+  EXPECT_TRUE(m6.Encode(testing::SampleOf<PointLeaseMsg>()));
+  EXPECT_TRUE(a6.Encode(testing::SampleOf<PointResultMsg>()));
 }
 
 // Version 1's BatchAssignment and BatchResult slots are kept in the Payload union, empty, so the
@@ -282,7 +298,7 @@ TEST(ProtocolSessionTest, AFrameInARetiredSlotClosesTheSession) {
 TEST(ProtocolSessionTest, AgentRejectsAVersionItDoesNotSpeak) {
   Session agent = Agent();
   ASSERT_TRUE(agent.Start());
-  EXPECT_FALSE(agent.Accept(Decode(EncodeFrame(ChallengeMsg{6, testing::Pattern(1)}, 6))));
+  EXPECT_FALSE(agent.Accept(Decode(EncodeFrame(ChallengeMsg{7, testing::Pattern(1)}, 7))));
   EXPECT_EQ(CloseOf(agent.CloseFrame()).code, CloseCode::kVersionMismatch);
 }
 
@@ -296,8 +312,8 @@ TEST(ProtocolSessionTest, FramesMustUseTheNegotiatedVersion) {
 }
 
 TEST(ProtocolSessionTest, AfterAuthenticationOnlyTheRightDirectionIsAccepted) {
-  const std::vector<std::string> from_agent = {"Heartbeat", "LeaseResult", "LeaseReturn",
-                                               "SceneRequest", "Close"};
+  const std::vector<std::string> from_agent = {"Heartbeat",    "LeaseResult", "LeaseReturn",
+                                               "SceneRequest", "Close",       "PointResult"};
   for (const Message& m : testing::SampleMessages()) {
     Session master = Master(), agent = Agent();
     RunHandshake(master, agent);
@@ -306,7 +322,8 @@ TEST(ProtocolSessionTest, AfterAuthenticationOnlyTheRightDirectionIsAccepted) {
         std::find(from_agent.begin(), from_agent.end(), name) != from_agent.end();
     const bool master_sends = name == "Heartbeat" || name == "LeaseAssignment" ||
                               name == "LeaseRevoke" || name == "Cancel" || name == "SceneChunk" ||
-                              name == "SceneUnavailable" || name == "Drain" || name == "Close";
+                              name == "SceneUnavailable" || name == "Drain" || name == "Close" ||
+                              name == "PointLease";
     Result<Session::Accepted> at_master = master.Accept(Decode(EncodeFrame(m)));
     Result<Session::Accepted> at_agent = agent.Accept(Decode(EncodeFrame(m)));
     EXPECT_EQ(at_master.ok(), agent_sends) << name;

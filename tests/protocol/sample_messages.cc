@@ -48,6 +48,22 @@ std::vector<Message> SampleMessages() {
           BatchOutcome{{lease.job_id, lease.batch_id + 7, 3}, {{3, 300}}, 0, 0, 0, 0, 1e-3},
       }},
       LeaseRevokeMsg{{lease, {lease.job_id, lease.batch_id + 7, 3}}},
+      PointLeaseMsg{lease,
+                    Pattern(10),
+                    0x0badc0ffee0ddf00ull,
+                    0.375,
+                    true,
+                    128,
+                    uint64_t{1} << 35,
+                    {{{1.5, -2.25, 1e-300}, {0, 1, 0}}, {{0, 0, 548.75}, {0.6, 0, -0.8}}},
+                    {1, 0},
+                    45000},
+      PointResultMsg{lease,
+                     {0, 1},
+                     {{0.5, 0.25, 1e-9}, {12, 0, 3}},
+                     {{0.1, -1e-17, 0.3}, {0, 0, 0}},
+                     uint64_t{1} << 40,
+                     0.0625},
   };
 }
 
