@@ -19,12 +19,31 @@ PointValues TracePoints(const PointLights& lights, const PointWork& work, size_t
   if (!work.gather.empty()) {
     const std::vector<bool> gather(work.gather.begin() + begin, work.gather.begin() + end);
     out.gathered = GatherLight(lights.caster, *lights.outgoing, points, gather, work.seed, threads,
-                               work.gather_rays, lights.corners, lights.second, &out.rays, begin);
+                               work.gather_rays, lights.corners, lights.second, &out.rays,
+                               work.first_index + begin);
   }
   if (work.direct) {
-    out.direct = PointsDirectLight(*lights.direct, points, work.seed, threads, &out.rays, begin);
+    out.direct = PointsDirectLight(*lights.direct, points, work.seed, threads, &out.rays,
+                                   work.first_index + begin);
   }
   return out;
+}
+
+PointWork PieceOf(const PointWork& work, size_t begin, size_t end) {
+  if (begin > end || end > work.points.size()) {
+    std::fprintf(stderr, "PieceOf: points [%zu, %zu) of %zu\n", begin, end, work.points.size());
+    std::abort();
+  }
+  PointWork piece;
+  piece.points.assign(work.points.begin() + begin, work.points.begin() + end);
+  piece.seed = work.seed;
+  piece.first_index = work.first_index + begin;
+  piece.near_radius = work.near_radius;
+  piece.direct = work.direct;
+  if (!work.gather.empty())
+    piece.gather.assign(work.gather.begin() + begin, work.gather.begin() + end);
+  piece.gather_rays = work.gather_rays;
+  return piece;
 }
 
 void AppendPointValues(PointValues piece, PointValues* whole) {

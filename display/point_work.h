@@ -18,7 +18,10 @@ namespace radfarm {
 
 struct PointWork {
   std::vector<ReceiverPoint> points;
-  uint64_t seed = 0;  // keys the shadow and gathering rays of point i with i
+  uint64_t seed = 0;  // keys the shadow and gathering rays of point i with first_index + i
+  // Where points[0] stands in the whole list: 0 for a whole step's work, the piece's first point
+  // for a piece of it cut out and traced elsewhere (PieceOf).
+  uint64_t first_index = 0;
   // Whether each point lies within near_radius of another surface (a point query, no ray;
   // core/point_gather.h's NearOtherSurfaces); 0: not asked.
   double near_radius = 0;
@@ -52,6 +55,10 @@ struct PointLights {
 // Traces points [begin, end) of `work` on `threads` (0: all cores).
 PointValues TracePoints(const PointLights& lights, const PointWork& work, size_t begin, size_t end,
                         unsigned threads);
+
+// Points [begin, end) of `work` as work of their own, keyed as they are in `work`: traced whole, it
+// gives the values TracePoints gives them in `work`.
+PointWork PieceOf(const PointWork& work, size_t begin, size_t end);
 
 // Appends `piece`, the values of the points that follow those in `*whole`, to `*whole`.
 void AppendPointValues(PointValues piece, PointValues* whole);

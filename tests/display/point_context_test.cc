@@ -46,8 +46,8 @@ class PointContextTest : public ::testing::Test {
     return settings;
   }
 
-  // Each step's work traced by a PointTracer of its own on a copy of the scene, `piece` points
-  // at a time on one thread, as agents would.
+  // Each step's work cut into pieces of `piece` points (PieceOf), each traced by a PointTracer of
+  // its own on a copy of the scene on one thread, as agents do.
   Display TracedElsewhere(const DisplaySettings& settings, size_t piece) const {
     const PatchScene copy = mesh_->patch_scene();
     DisplayPlan plan(Input(), settings);
@@ -56,7 +56,8 @@ class PointContextTest : public ::testing::Test {
       PointValues whole;
       for (size_t begin = 0; begin < work->points.size(); begin += piece) {
         const size_t end = std::min(work->points.size(), begin + piece);
-        AppendPointValues(tracer.Trace(*work, begin, end, 1), &whole);
+        const PointWork cut = PieceOf(*work, begin, end);
+        AppendPointValues(tracer.Trace(cut, 0, cut.points.size(), 1), &whole);
       }
       plan.Apply(std::move(whole));
     }
