@@ -91,12 +91,14 @@ Result<std::unique_ptr<Master>> Master::Start(loop::EventLoop& loop, const Maste
 
 Status Master::Wire(const std::vector<store::AgentCredential>& credentials) {
   // JobRounds reaches the agents only through these hooks (agents_ is made right after it).
-  AgentHooks hooks{
-      [this] { agents_->DispatchAll(); }, [this](store::JobId id) { agents_->CancelJob(id); },
-      [this] { return agents_->Available(); }, [this] { return agents_->ReportedRaysPerSecond(); },
-      [this](store::JobId id, const std::string& agent, const std::string& why) {
-        agents_->Convict(id, agent, why);
-      }};
+  AgentHooks hooks{[this] { agents_->DispatchAll(); },
+                   [this](store::JobId id) { agents_->CancelJob(id); },
+                   [this] { return agents_->Available(); },
+                   [this] { return agents_->ReportedRaysPerSecond(); },
+                   [this](store::JobId id, const std::string& agent, const std::string& why) {
+                     agents_->Convict(id, agent, why);
+                   },
+                   [this] { return agents_->DisplayAgents(); }};
   jobs_ = std::make_unique<JobRounds>(clock_, config_, scheduler_options_, *store_, *compute_,
                                       std::move(hooks));
   agents_ = std::make_unique<AgentConnections>(loop_, clock_, config_, secret_, scheduler_options_,
@@ -179,7 +181,9 @@ void Master::OnHeartbeatTimer() {
 }
 
 void Master::OnTickTimer() {
-  if (jobs_->Tick(clock_.Now()) > 0 || jobs_->InEndGame()) agents_->DispatchAll();
+  if (jobs_->Tick(clock_.Now()) > 0 || jobs_->InEndGame() || jobs_->LeasingDisplays()) {
+    agents_->DispatchAll();
+  }
   jobs_->RetryHeldJobs(clock_.NowMs());
 }
 

@@ -29,7 +29,11 @@ SimAgent::SimAgent(loop::EventLoop& loop, DelayLine& delays, const loop::SocketA
       settings_(settings),
       name_(std::move(name)),
       hooks_(hooks),
-      session_(protocol::ProtocolSession::ForAgent(secret, protocol::AgentConfig{name_, 1})) {}
+      // Version 5 at most: it traces no display points (PointLease), so the master traces a
+      // finished job's display itself, as it does for any farm without version-6 agents.
+      session_(protocol::ProtocolSession::ForAgent(
+          secret, protocol::AgentConfig{name_, 1, protocol::kMinProtocolVersion,
+                                        protocol::kPointLeaseVersion - 1})) {}
 
 Status SimAgent::Connect() {
   loop::ConnectionOptions options;

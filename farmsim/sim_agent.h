@@ -4,7 +4,8 @@
 // takes ray_count / rays_per_second seconds of simulated time, one batch after another (a
 // one-thread "office machine"), and a LeaseAssignment's batches are answered together in one
 // LeaseResult of MakeSimulatedResults; a LeaseRevoke drops the named batches still queued. An
-// optional one-way latency delays every frame it sends and every frame it receives. Its
+// optional one-way latency delays every frame it sends and every frame it receives. It speaks
+// protocol version 5, so it is never leased a display's points. Its
 // heartbeats (the first right after the welcome, as a real agent's) report its speed from the
 // start: an agent that has worked before, whose meter holds its recent batches.
 //

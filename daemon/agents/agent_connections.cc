@@ -166,6 +166,7 @@ void AgentConnections::OnAgentClosed(AgentLink& link, const std::string& reason)
     for (auto& [job, runner] : jobs_.runners()) {
       runner->ForEachScheduler([&](scheduler::RoundScheduler& s) { s.OnAgentLost(id); });
     }
+    jobs_.OnDisplayAgentLost(id);
   } else if (doors_.ClosedBeforeAuth(id)) {
     LogAtDoor(link.address() + ": closed before authentication: " + reason);
   }
@@ -181,6 +182,7 @@ void AgentConnections::TakeLeasesAway(AgentLink& link, const char* why) {
       s.OnAgentLost(link.id());
     });
   }
+  jobs_.OnDisplayAgentLost(link.id());
   LogLine(LogLevel::kWarning, "agents")
       << link.Describe() << " " << why << ": its " << held << " leases go back to the queue";
 }
@@ -198,6 +200,7 @@ void AgentConnections::OnAgentMessage(AgentLink& link, protocol::Message& messag
                  [&](const protocol::LeaseResultMsg& r) { OnLeaseResult(link, r); },
                  [&](const protocol::LeaseReturnMsg& r) { OnLeaseReturn(link, r); },
                  [&](const protocol::SceneRequestMsg& r) { OnSceneRequest(link, r); },
+                 [&](const protocol::PointResultMsg& r) { OnPointResult(link, r); },
                  [&](const auto& other) {
                    // The session lets through only what an agent may send; anything else is a bug.
                    LogLine(LogLevel::kError, "agents")
@@ -362,6 +365,9 @@ void AgentConnections::OnLeaseReturn(AgentLink& link, const protocol::LeaseRetur
   for (const protocol::LeaseRef& lease : message.leases)
     by_job[lease.job_id].push_back(lease.batch_id);
   size_t returned = 0;
+  for (const protocol::LeaseRef& lease : message.leases) {
+    returned += jobs_.ReturnDisplayPieces(link.id(), lease);
+  }
   for (auto& [job, batches] : by_job) {
     if (RunningJob* runner = jobs_.FindRunner(job)) {
       // Each scheduler takes back the batches of its own round.
@@ -403,7 +409,36 @@ void AgentConnections::OnSceneRequest(AgentLink& link, const protocol::SceneRequ
     (void)link.Send(std::move(*chunk));
     return;
   }
+  if (const auto context = jobs_.DisplayContext(request.scene_hash)) {
+    Result<protocol::SceneChunkMsg> chunk = protocol::MakeSceneChunk(*context, request);
+    if (!chunk) {
+      LogLine(LogLevel::kWarning, "agents")
+          << link.Describe() << ": bad point context request: " << chunk.error() << "; closing";
+      link.Close(protocol::CloseCode::kProtocolError, chunk.error());
+      return;
+    }
+    (void)link.Send(std::move(*chunk));
+    return;
+  }
   (void)link.Send(protocol::SceneUnavailableMsg{request.scene_hash});
+}
+
+void AgentConnections::OnPointResult(AgentLink& link, const protocol::PointResultMsg& result) {
+  link.CountAccepted(1);
+  Status s = jobs_.OnPointResult(link.id(), result);
+  if (!s) {
+    // The frame authenticated, so the agent computed (or made up) these values itself.
+    Convict(static_cast<store::JobId>(result.lease.job_id), link.name(), s.error());
+  }
+}
+
+size_t AgentConnections::DisplayAgents() const {
+  size_t agents = 0;
+  for (const auto& [id, link] : links_) {
+    agents +=
+        link->authenticated() && !link->stale() && link->version() >= protocol::kPointLeaseVersion;
+  }
+  return agents;
 }
 
 void AgentConnections::Dispatch(AgentLink& link) {
@@ -430,6 +465,16 @@ void AgentConnections::Dispatch(AgentLink& link) {
   // LeaseAssignment frames of at most LeaseSizeOf() batches; leases taken over from another agent
   // are revoked there in one LeaseRevoke per agent. A job with batches queued takes the agent's
   // leases of lower-priority jobs and of the gathers ahead back first.
+  // A finished job's display first: its steps are the end of a job, and each waits for its last
+  // piece. An agent holds a piece per thread and one more, so it has the next when one ends.
+  if (link.version() >= protocol::kPointLeaseVersion) {
+    for (protocol::PointLeaseMsg& lease : jobs_.DisplayLeasesFor(link.id(), link.threads() + 1)) {
+      if (Status st = link.Send(std::move(lease)); !st) {
+        LogLine(LogLevel::kWarning, "agents") << link.Describe() << ": " << st.error();
+        break;
+      }
+    }
+  }
   std::map<uint64_t, std::vector<protocol::LeaseRef>> revoked;
   auto lease_from = [&](RunningJob& runner, scheduler::RoundScheduler& s) {
     bool more = true;

@@ -61,6 +61,8 @@ class AgentConnections {
   std::vector<uint64_t> Available() const;
   // The available agents' last reported rays/s (their heartbeats), summed.
   double ReportedRaysPerSecond() const;
+  // Available agents of protocol version 6, which trace the display's points.
+  size_t DisplayAgents() const;
   // The heartbeat: marks agents silent past agent_timeout_ms stale (their leases go back),
   // sends the others a heartbeat, then dispatches.
   void Heartbeat();
@@ -94,6 +96,9 @@ class AgentConnections {
   void OnLeaseResult(AgentLink& link, const protocol::LeaseResultMsg& message);
   void OnLeaseReturn(AgentLink& link, const protocol::LeaseReturnMsg& message);
   void OnSceneRequest(AgentLink& link, const protocol::SceneRequestMsg& request);
+  // The values of a display piece (job_display.cc); values that do not answer it convict the
+  // agent.
+  void OnPointResult(AgentLink& link, const protocol::PointResultMsg& result);
   void TakeLeasesAway(AgentLink& link, const char* why);
   // A result of `runner`'s job from `link` failed validation: a strike, maybe a blocklisting.
   void OnInvalidResult(AgentLink& link, RunningJob& runner, const std::string& why);

@@ -69,6 +69,8 @@ class AgentLink {
   // The agent's name and threads (from its Hello), once authenticated.
   const std::string& name() const { return session_.hello().agent_name; }
   uint32_t threads() const { return session_.hello().threads; }
+  // The protocol version the session speaks, once authenticated.
+  uint16_t version() const { return session_.version(); }
   // "name@address" once known, else the address: for logs.
   std::string Describe() const;
   // loop NowMs() of the last frame received.

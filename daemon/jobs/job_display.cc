@@ -1,8 +1,14 @@
-// JobRounds: a finished job's display. It is drawn once, here, from the job's last checkpoint on
-// the compute thread, and stored with the solution before the job reads `done`, so `radfarm fetch`
-// only writes files. A master stopped before the store took it finds the job still running at its
-// start, resumes it at its last checkpoint (the rounds are over) and draws the display again:
-// the same bits, since the display is a pure function of the solution.
+// JobRounds: a finished job's display. When its rounds end, the master loads the job's last
+// checkpoint and plans the display on the compute thread (display_draft.h); the display's ray work
+// then goes out step by step, each step's points in pieces leased to agents of protocol version 6
+// (display_pieces.h, display_run.h), or traced here when no such agent is there or the step is
+// small. Each step's values go back to the draft in point order, so the display is the one
+// `radfarm render` draws, whoever traced it. It is stored with the solution before the job reads
+// `done`, so `radfarm fetch` only writes files. A master stopped before the store took it finds
+// the job still running at its start, resumes it at its last checkpoint (the rounds are over) and
+// draws the display again: the same bits, since the display is a pure function of the solution.
+#include <algorithm>
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
@@ -10,7 +16,6 @@
 #include <vector>
 
 #include "codec/job_solution.h"
-#include "codec/solution_display.h"
 #include "daemon/jobs/job_rounds.h"
 #include "loop/log.h"
 
@@ -19,31 +24,48 @@ namespace radfarm::daemon {
 using loop::LogLevel;
 using loop::LogLine;
 
+namespace {
+
+// A step of fewer points is traced here: its leases would cost more round trips than rays.
+constexpr size_t kLocalStepPoints = 64;
+// How long an agent has for a piece before an idle agent may take it as well: several times what
+// an office desktop spends on the largest piece.
+constexpr std::chrono::milliseconds kPieceLeaseTime{60000};
+
+}  // namespace
+
+DisplayRun* JobRounds::FindDisplay(store::JobId id, uint64_t serial) {
+  const auto it = display_runs_.find(id);
+  return it == display_runs_.end() || it->second.serial != serial ? nullptr : &it->second;
+}
+
 void JobRounds::FinishJob(const std::shared_ptr<RunningJob>& runner) {
   const store::JobId id = runner->id();
-  const std::string reason = runner->stop_reason().value_or("stopped");
   DropRunner(id);
-  displaying_.insert(id);
+  const uint64_t serial = ++display_serial_;
+  display_runs_.erase(id);
+  DisplayRun& run = display_runs_[id];
+  run.serial = serial;
+  run.reason = runner->stop_reason().value_or("stopped");
   store_.Run([id](store::JobStore& s) { return store::LoadSolution(s, id); },
-             [this, id, reason](Result<std::optional<store::StoredSolution>> loaded) {
-               if (stopping_ || !displaying_.count(id)) return;  // dropped meanwhile
+             [this, id, serial](Result<std::optional<store::StoredSolution>> loaded) {
+               if (stopping_ || !FindDisplay(id, serial)) return;  // dropped meanwhile
                if (!loaded) {
-                 displaying_.erase(id);
+                 display_runs_.erase(id);
                  HoldOrFail(id,
                             Error{"cannot load its solution to draw the display: " + loaded.error(),
                                   loaded.error_kind()});
                  return;
                }
                if (!*loaded) {  // no checkpoint: nothing to draw
-                 MarkDone(id, reason, std::nullopt);
+                 MarkDone(id, serial, std::nullopt);
                  return;
                }
-               DrawDisplay(id, reason, std::move(**loaded));
+               PlanDisplay(id, serial, std::move(**loaded));
              });
 }
 
-void JobRounds::DrawDisplay(store::JobId id, const std::string& reason,
-                            store::StoredSolution stored) {
+void JobRounds::PlanDisplay(store::JobId id, uint64_t serial, store::StoredSolution stored) {
   const uint32_t round = stored.checkpoint.round;
   auto solution = std::make_shared<codec::JobSolution>();
   solution->bundle = std::move(stored.bundle);
@@ -53,27 +75,98 @@ void JobRounds::DrawDisplay(store::JobId id, const std::string& reason,
   LogLine(LogLevel::kInfo, "job " + std::to_string(id))
       << "drawing the display of round " << round << "'s solution";
   Status s = compute_.Submit(
-      [solution, round]() -> Result<store::StoredDisplay> {
-        Result<std::vector<uint8_t>> bytes = codec::DrawEncodedDisplay(*solution);
-        RADFARM_RETURN_IF_ERROR(bytes);
-        return store::StoredDisplay{round, std::move(*bytes)};
+      [solution]() -> Result<std::shared_ptr<DisplayDraft>> {
+        Result<std::unique_ptr<DisplayDraft>> draft =
+            DisplayDraft::Start(std::move(*solution), /*direct_light=*/{});
+        RADFARM_RETURN_IF_ERROR(draft);
+        return std::shared_ptr<DisplayDraft>(std::move(*draft));
       },
-      [this, id, reason](Result<store::StoredDisplay> display) {
-        if (stopping_ || !displaying_.count(id)) return;
-        if (!display) {
-          displaying_.erase(id);
-          FailJob(id, "its display: " + display.error());
+      [this, id, serial, round](Result<std::shared_ptr<DisplayDraft>> draft) {
+        DisplayRun* run = FindDisplay(id, serial);
+        if (stopping_ || !run) return;
+        if (!draft) {
+          display_runs_.erase(id);
+          FailJob(id, "its display: " + draft.error());
           return;
         }
-        MarkDone(id, reason, std::move(*display));
+        run->draft = std::move(*draft);
+        run->round = round;
+        NextDisplayStep(id, serial);
       });
   if (!s) {
-    displaying_.erase(id);
+    display_runs_.erase(id);
     FailJob(id, "its display: " + s.error());
   }
 }
 
-void JobRounds::MarkDone(store::JobId id, const std::string& reason,
+void JobRounds::NextDisplayStep(store::JobId id, uint64_t serial) {
+  DisplayRun& run = *FindDisplay(id, serial);
+  const PointWork* work = run.draft->work();
+  if (!work) return FinishDisplay(id, serial);
+  const size_t agents = agents_.display_agents ? agents_.display_agents() : 0;
+  if (agents == 0 || work->points.size() < kLocalStepPoints) {
+    ++run.local_steps;
+    ApplyDisplayStep(id, serial, std::nullopt);
+    return;
+  }
+  ++run.leased_steps;
+  run.pieces.emplace(run.draft->steps_applied(), work->points.size(),
+                     PiecePoints(work->points.size(), agents), kPieceLeaseTime);
+  agents_.dispatch_all();
+}
+
+void JobRounds::ApplyDisplayStep(store::JobId id, uint64_t serial,
+                                 std::optional<PointValues> values) {
+  std::shared_ptr<DisplayDraft> draft = FindDisplay(id, serial)->draft;
+  auto kept = std::make_shared<std::optional<PointValues>>(std::move(values));
+  Status s = compute_.Submit(
+      [draft, kept]() -> Status {
+        // Values the agents traced, or the step traced here.
+        draft->Apply(*kept ? std::move(**kept) : draft->TraceHere());
+        return Ok{};
+      },
+      [this, id, serial](Status applied) {
+        if (stopping_ || !FindDisplay(id, serial)) return;
+        if (!applied) {
+          display_runs_.erase(id);
+          FailJob(id, "its display: " + applied.error());
+          return;
+        }
+        NextDisplayStep(id, serial);
+      });
+  if (!s) {
+    display_runs_.erase(id);
+    FailJob(id, "its display: " + s.error());
+  }
+}
+
+void JobRounds::FinishDisplay(store::JobId id, uint64_t serial) {
+  DisplayRun& run = *FindDisplay(id, serial);
+  LogLine(LogLevel::kInfo, "job " + std::to_string(id))
+      << "display: " << run.leased_steps << " steps traced by agents, " << run.local_steps
+      << " here";
+  std::shared_ptr<DisplayDraft> draft = std::move(run.draft);
+  const uint32_t round = run.round;
+  Status s = compute_.Submit(
+      [draft, round]() -> Result<store::StoredDisplay> {
+        return store::StoredDisplay{round, std::move(*draft).Finish()};
+      },
+      [this, id, serial](Result<store::StoredDisplay> display) {
+        if (stopping_ || !FindDisplay(id, serial)) return;
+        if (!display) {
+          display_runs_.erase(id);
+          FailJob(id, "its display: " + display.error());
+          return;
+        }
+        MarkDone(id, serial, std::move(*display));
+      });
+  if (!s) {
+    display_runs_.erase(id);
+    FailJob(id, "its display: " + s.error());
+  }
+}
+
+void JobRounds::MarkDone(store::JobId id, uint64_t serial,
                          std::optional<store::StoredDisplay> display) {
   auto kept = std::make_shared<std::optional<store::StoredDisplay>>(std::move(display));
   store_.Run(
@@ -81,8 +174,11 @@ void JobRounds::MarkDone(store::JobId id, const std::string& reason,
         if (*kept) RADFARM_RETURN_IF_ERROR(s.PutDisplay(id, (*kept)->round, (*kept)->display));
         return s.SetJobState(id, store::JobState::kDone);
       },
-      [this, id, reason](Status s) {
-        if (!displaying_.erase(id)) return;  // cancelled or paused meanwhile
+      [this, id, serial](Status s) {
+        DisplayRun* run = FindDisplay(id, serial);
+        if (!run) return;  // cancelled or paused meanwhile
+        const std::string reason = run->reason;
+        display_runs_.erase(id);
         if (!s) {
           // Held on a store fault: once the store writes again the job resumes at its last
           // checkpoint and comes back here.
@@ -95,6 +191,75 @@ void JobRounds::MarkDone(store::JobId id, const std::string& reason,
         // at 10^6 patches. A master stopped in between prunes at its start.
         PruneKeptResults(id, UINT32_MAX);
       });
+}
+
+std::vector<protocol::PointLeaseMsg> JobRounds::DisplayLeasesFor(uint64_t agent, uint32_t room) {
+  std::vector<protocol::PointLeaseMsg> leases;
+  const scheduler::TimePoint now = clock_.Now();
+  for (auto& [id, run] : display_runs_) {
+    if (!run.pieces) continue;
+    const PointWork& work = *run.draft->work();
+    const protocol::SceneHash& context = run.draft->context()->hash;
+    while (run.pieces->HeldBy(agent) < room) {
+      const std::optional<PieceLease> piece = run.pieces->Next(agent, now);
+      if (!piece) break;
+      leases.push_back(MakePointLease(id, *piece, work, context,
+                                      static_cast<uint32_t>(kPieceLeaseTime.count())));
+    }
+  }
+  return leases;
+}
+
+Status JobRounds::OnPointResult(uint64_t agent, const protocol::PointResultMsg& result) {
+  const store::JobId id = static_cast<store::JobId>(result.lease.job_id);
+  const auto it = display_runs_.find(id);
+  if (it == display_runs_.end() || !it->second.pieces) return Ok{};  // late: dropped
+  DisplayRun& run = it->second;
+  const std::optional<std::pair<size_t, size_t>> points =
+      run.pieces->PointsOf(result.lease.batch_id);
+  if (!points) return Ok{};  // of an earlier step
+  Result<PointValues> values =
+      ValuesOfResult(result, *run.draft->work(), points->first, points->second);
+  if (!values) {
+    run.pieces->OnAgentLost(agent);
+    return Error{"job " + std::to_string(id) + ": " + values.error()};
+  }
+  run.pieces->OnResult(agent, result.lease.batch_id, result.lease.attempt_id, std::move(*values));
+  if (run.pieces->Complete()) {
+    PointValues whole = run.pieces->TakeValues();
+    run.pieces.reset();
+    ApplyDisplayStep(id, run.serial, std::move(whole));
+  }
+  return Ok{};
+}
+
+void JobRounds::OnDisplayAgentLost(uint64_t agent) {
+  for (auto& [id, run] : display_runs_) {
+    if (run.pieces) run.pieces->OnAgentLost(agent);
+  }
+}
+
+size_t JobRounds::ReturnDisplayPieces(uint64_t agent, const protocol::LeaseRef& lease) {
+  const auto it = display_runs_.find(static_cast<store::JobId>(lease.job_id));
+  if (it == display_runs_.end() || !it->second.pieces) return 0;
+  const uint32_t before = it->second.pieces->HeldBy(agent);
+  it->second.pieces->Return(agent, lease.batch_id, lease.attempt_id);
+  return before - it->second.pieces->HeldBy(agent);
+}
+
+std::shared_ptr<const protocol::PackedScene> JobRounds::DisplayContext(
+    const protocol::SceneHash& hash) const {
+  for (const auto& [id, run] : display_runs_) {
+    if (run.pieces && run.draft->context() && run.draft->context()->hash == hash) {
+      return run.draft->context();
+    }
+  }
+  return nullptr;
+}
+
+bool JobRounds::LeasingDisplays() const {
+  return std::any_of(display_runs_.begin(), display_runs_.end(),
+                     [](const auto& run) { return run.second.pieces.has_value(); });
 }
 
 }  // namespace radfarm::daemon

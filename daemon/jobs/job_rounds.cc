@@ -64,7 +64,7 @@ void JobRounds::RecordCheckpoint(store::JobId id, CheckpointReport report) {
 
 std::string_view JobRounds::PhaseOf(store::JobId id) const {
   if (starting_.count(id)) return "preparing";
-  if (displaying_.count(id)) return "display";
+  if (display_runs_.count(id)) return "display";
   const auto it = runners_.find(id);
   if (it == runners_.end()) return {};
   switch (it->second->phase()) {
@@ -92,7 +92,7 @@ void JobRounds::StartQueuedJobs() {
     start_again_ = true;
     return;
   }
-  const size_t busy = runners_.size() + starting_.size() + displaying_.size();
+  const size_t busy = runners_.size() + starting_.size() + display_runs_.size();
   if (busy >= config_.max_running_jobs) {
     submitted_mesh_ = {};  // its job waits in the queue
     return;
@@ -408,7 +408,10 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
 
 void JobRounds::DropJob(store::JobId id) {
   if (starting_.count(id)) starting_[id] = true;
-  displaying_.erase(id);
+  if (display_runs_.erase(id)) {
+    // Agents drop the display's pieces; results still in flight are ignored on arrival.
+    agents_.cancel_job(id);
+  }
   DropRunner(id);
 }
 

@@ -33,6 +33,7 @@
 #include "daemon/jobs/batch_totals.h"
 #include "daemon/jobs/batch_verifier.h"
 #include "daemon/jobs/clock.h"
+#include "daemon/jobs/display_run.h"
 #include "daemon/jobs/result_journal.h"
 #include "daemon/jobs/running_job.h"
 #include "daemon/jobs/store_thread.h"
@@ -55,6 +56,8 @@ struct AgentHooks {
   // A result of `agent` failed exact validation (`why` names the batch and both digests):
   // blocklist it for the job and close its connections.
   std::function<void(store::JobId, const std::string& agent, const std::string& why)> convict;
+  // Available agents that trace the display's points (protocol version 6); none: traced here.
+  std::function<size_t()> display_agents;
 };
 
 // Exact validation since the master started (job_verification.cc).
@@ -135,6 +138,23 @@ class JobRounds {
   // "preparing" (being meshed and loaded), "round", "reducing", "finishing" or "display" (its
   // display being drawn, job_display.cc) for a job this master runs; empty for any other.
   std::string_view PhaseOf(store::JobId id) const;
+  // --- The display's leases (job_display.cc) ---
+  // New pieces of the displays under way for `agent`, while it holds fewer than `room`.
+  std::vector<protocol::PointLeaseMsg> DisplayLeasesFor(uint64_t agent, uint32_t room);
+  // A PointResult of `agent`. An error (values that do not answer the piece's work) names what
+  // is wrong; the agent's pieces are then queued again, and the caller treats it as a liar.
+  Status OnPointResult(uint64_t agent, const protocol::PointResultMsg& result);
+  // The agent went: its pieces go back to the queue.
+  void OnDisplayAgentLost(uint64_t agent);
+  // The agent gave a piece back (LeaseReturn); returns 1 when it held it, else 0.
+  size_t ReturnDisplayPieces(uint64_t agent, const protocol::LeaseRef& lease);
+  // The point context of a display's step under lease, for the agents' SceneRequests; null
+  // when no display under way has this hash.
+  std::shared_ptr<const protocol::PackedScene> DisplayContext(
+      const protocol::SceneHash& hash) const;
+  // Some display's step is leased: idle agents should be offered its pieces on every tick.
+  bool LeasingDisplays() const;
+
   // Offers overdue leases again (RoundScheduler::Tick); returns how many.
   size_t Tick(scheduler::TimePoint now);
   // Whether some job's round is in its end game (RoundScheduler::InEndGame): idle agents should be
@@ -179,9 +199,15 @@ class JobRounds {
   // The job's rounds are over: its display is drawn from its last checkpoint and stored with it
   // (job_display.cc), then the job is done.
   void FinishJob(const std::shared_ptr<RunningJob>& runner);
-  void DrawDisplay(store::JobId id, const std::string& reason, store::StoredSolution solution);
-  void MarkDone(store::JobId id, const std::string& reason,
-                std::optional<store::StoredDisplay> display);
+  // The display run of job `id` started as `serial`, or null (dropped, or a later run's).
+  DisplayRun* FindDisplay(store::JobId id, uint64_t serial);
+  void PlanDisplay(store::JobId id, uint64_t serial, store::StoredSolution solution);
+  // Leases the draft's next step, traces it here, or finishes the display.
+  void NextDisplayStep(store::JobId id, uint64_t serial);
+  // The step's values (traced here when nullopt) go to the draft on the compute thread.
+  void ApplyDisplayStep(store::JobId id, uint64_t serial, std::optional<PointValues> values);
+  void FinishDisplay(store::JobId id, uint64_t serial);
+  void MarkDone(store::JobId id, uint64_t serial, std::optional<store::StoredDisplay> display);
   // Keeps `report` as job `id`'s last checkpoint, its count one more; forgets the oldest job's
   // beyond kKeptCheckpointReports.
   void RecordCheckpoint(store::JobId id, CheckpointReport report);
@@ -196,7 +222,9 @@ class JobRounds {
   AgentHooks agents_;
 
   Runners runners_;
-  std::set<store::JobId> displaying_;  // finished jobs whose display is being drawn and stored
+  // Finished jobs whose display is being drawn and stored.
+  std::map<store::JobId, DisplayRun> display_runs_;
+  uint64_t display_serial_ = 0;
   ResultJournal journal_;
   uint64_t verify_seed_;                             // secret: agents cannot predict samples
   std::map<store::JobId, BatchVerifier> verifiers_;  // of the running jobs

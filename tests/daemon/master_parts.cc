@@ -33,12 +33,12 @@ MasterConfig TestMasterConfig() {
   return config;
 }
 
-std::vector<uint8_t> CornellBundle(uint64_t max_rays) {
+std::vector<uint8_t> CornellBundle(uint64_t max_rays, uint32_t gather_rays) {
   Job job = Must(LoadJob(RADFARM_SOURCE_DIR "/scenes/cornell-box.toml"), "job file");
   InputScene scene = Must(LoadObjScene(job.scene_path), "scene");
   job.mesh.patch_size = 150;  // a few hundred patches: rounds of a few leases
   job.solver.max_rays = max_rays;
-  job.solver.gather_rays = 0;  // the budget ends the job; no final gather round after it
+  job.solver.gather_rays = gather_rays;
   return codec::EncodeJobBundle({job, scene});
 }
 
@@ -61,7 +61,8 @@ MasterParts::MasterParts(const MasterConfig& config)
       [this] { return agents_->Available(); }, [this] { return agents_->ReportedRaysPerSecond(); },
       [this](store::JobId id, const std::string& agent, const std::string& why) {
         agents_->Convict(id, agent, why);
-      }};
+      },
+      [this] { return agents_->DisplayAgents(); }};
   jobs_ =
       std::make_unique<JobRounds>(clock_, config_, options_, *store_, *compute_, std::move(hooks));
   agents_ = std::make_unique<AgentConnections>(loop_, clock_, config_, secret_, options_, *store_,
@@ -121,12 +122,12 @@ ControlResponse MasterParts::Request(ControlCommand command, uint64_t id) {
   return Request(std::move(request));
 }
 
-uint64_t MasterParts::Submit(uint64_t max_rays, int64_t priority) {
+uint64_t MasterParts::Submit(uint64_t max_rays, int64_t priority, uint32_t gather_rays) {
   ControlRequest request;
   request.command = ControlCommand::kSubmit;
   request.name = "cornell";
   request.priority = priority;
-  request.attachment = CornellBundle(max_rays);
+  request.attachment = CornellBundle(max_rays, gather_rays);
   const ControlResponse answer = Request(std::move(request));
   EXPECT_TRUE(answer.body.value("ok", false)) << answer.body.dump();
   return answer.body.value("ok", false) ? answer.body["job"]["id"].get<uint64_t>() : 0;

@@ -43,8 +43,10 @@ class FakeClock final : public Clock {
 // exact validation, so that what the fake agents send is all that happens to a round.
 MasterConfig TestMasterConfig();
 
-// A job bundle of the Cornell box at a coarse patch size, its ray budget `max_rays` (0: none).
-std::vector<uint8_t> CornellBundle(uint64_t max_rays);
+// A job bundle of the Cornell box at a coarse patch size, its ray budget `max_rays` (0: none),
+// with `gather_rays` of final gather (0: none, so the budget ends the job, and the display has
+// no direct light to start from: the patches' averages, no ray).
+std::vector<uint8_t> CornellBundle(uint64_t max_rays, uint32_t gather_rays = 0);
 
 class MasterParts {
  public:
@@ -59,8 +61,9 @@ class MasterParts {
   ControlResponse Request(ControlRequest request);
   // `command` with `id`, answered.
   ControlResponse Request(ControlCommand command, uint64_t id);
-  // Submits CornellBundle(max_rays); returns the new job's id (0 if refused: a test failure).
-  uint64_t Submit(uint64_t max_rays, int64_t priority = 0);
+  // Submits CornellBundle(max_rays, gather_rays); returns the new job's id (0 if refused: a test
+  // failure).
+  uint64_t Submit(uint64_t max_rays, int64_t priority = 0, uint32_t gather_rays = 0);
   // The job's state as `status` answers it ("queued", "running", ...).
   std::string StateOf(uint64_t id);
 

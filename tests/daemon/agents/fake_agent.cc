@@ -64,10 +64,30 @@ void FakeAgent::OnFrame(std::span<const uint8_t> payload) {
   if (!accepted->deliver) return;
   if (const auto* lease = std::get_if<protocol::LeaseAssignmentMsg>(&frame->message)) {
     OnLease(*lease);
+  } else if (const auto* piece = std::get_if<protocol::PointLeaseMsg>(&frame->message)) {
+    OnPointLease(*piece);
   } else if (const auto* cancel = std::get_if<protocol::CancelMsg>(&frame->message)) {
     cancelled_jobs_.push_back(cancel->job_id);
     std::erase_if(held_, [&](const BatchKey& key) { return std::get<0>(key) == cancel->job_id; });
+    std::erase_if(pieces_held_, [&](const auto& key) { return key.first == cancel->job_id; });
   }
+}
+
+void FakeAgent::OnPointLease(const protocol::PointLeaseMsg& lease) {
+  ++pieces_received_;
+  if (!answering_pieces_.value_or(answering_)) {
+    pieces_held_.insert({lease.lease.job_id, lease.lease.batch_id});
+    return;
+  }
+  const size_t n = lease.points.size();
+  protocol::PointResultMsg answer;
+  answer.lease = lease.lease;
+  if (lease.near_radius > 0) answer.near.assign(n, 0);
+  if (lease.direct) answer.direct.assign(n, Rgb());
+  if (!lease.gather.empty()) answer.gathered.assign(n, Rgb());
+  answer.rays = n;
+  ++results_sent_;
+  Send(answer);
 }
 
 void FakeAgent::OnLease(const protocol::LeaseAssignmentMsg& lease) {

@@ -2,8 +2,8 @@
 // runs the real handshake (ProtocolSession::ForAgent) and reports its speed in a heartbeat, as
 // radfarm-agent does on its welcome; then it keeps every lease it is given and, when answering,
 // returns each lease at once with the simulated results farmsim/ makes (valid for their batches,
-// not physics). Silent (answering off), it holds its leases until the test closes it or the
-// master cancels their job.
+// not physics), and each display piece with zero values of the right counts. Silent (answering
+// off), it holds its leases until the test closes it or the master cancels their job.
 //
 // Loop thread only; its connection closes with it.
 #pragma once
@@ -53,11 +53,17 @@ class FakeAgent {
   // Batches received in leases, counting every time one comes again.
   uint64_t batches_received() const { return batches_received_; }
   uint64_t results_sent() const { return results_sent_; }
+  // Whether it answers display pieces (by default as it answers batches).
+  void set_answering_pieces(bool answering) { answering_pieces_ = answering; }
+  // Display pieces (PointLease) received, and those it holds unanswered.
+  uint64_t pieces_received() const { return pieces_received_; }
+  size_t pieces_held() const { return pieces_held_.size(); }
   const std::vector<uint64_t>& cancelled_jobs() const { return cancelled_jobs_; }
 
  private:
   void OnFrame(std::span<const uint8_t> payload);
   void OnLease(const protocol::LeaseAssignmentMsg& lease);
+  void OnPointLease(const protocol::PointLeaseMsg& lease);
   void Send(const protocol::Message& message);
   void Fail(const std::string& reason);
 
@@ -73,6 +79,9 @@ class FakeAgent {
   uint64_t batches_received_ = 0;
   uint64_t results_sent_ = 0;
   std::vector<uint64_t> cancelled_jobs_;
+  std::optional<bool> answering_pieces_;
+  uint64_t pieces_received_ = 0;
+  std::set<std::pair<uint64_t, uint64_t>> pieces_held_;  // (job, piece)
 };
 
 }  // namespace radfarm::daemon::fakes

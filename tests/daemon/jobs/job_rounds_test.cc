@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 
 #include "tests/daemon/agents/fake_agent.h"
 #include "tests/daemon/master_parts.h"
@@ -38,9 +39,8 @@ TEST(JobRoundsTest, AJobWithARayBudgetEndsDoneAndLeavesNoRunner) {
   ASSERT_TRUE(agent.Connect().ok());
   // Results were taken, and the job has no phase left (neither starting, nor running rounds, nor
   // drawing its display): it ended.
-  ASSERT_TRUE(master.RunUntil([&] {
-    return agent.results_sent() > 0 && master.jobs().PhaseOf(job).empty();
-  }));
+  ASSERT_TRUE(master.RunUntil(
+      [&] { return agent.results_sent() > 0 && master.jobs().PhaseOf(job).empty(); }));
   EXPECT_EQ(master.StateOf(job), "done");
   EXPECT_GT(agent.results_sent(), 0u);
   EXPECT_TRUE(master.jobs().runners().empty());
@@ -87,6 +87,55 @@ TEST(JobRoundsTest, APausedJobLeavesItsAgentsAndAResumedOneRunsAgain) {
   // Its batches go out again: the agent dropped them with the Cancel.
   ASSERT_TRUE(master.RunUntil([&] { return agent.batches_received() > received; }));
   EXPECT_FALSE(agent.held().empty());
+}
+
+// With a final gather the solve starts from the direct light and the display computes its own
+// at its points: ray work for the agents.
+constexpr uint32_t kGatherRays = 64;
+
+// A finished job's display is traced by the agents of protocol version 6, in pieces.
+TEST(JobRoundsTest, TheDisplaysPiecesGoToTheAgents) {
+  MasterParts master;
+  const uint64_t job = master.Submit(0, 0, kGatherRays);
+  FakeAgent agent(master.loop(), master.agent_address(), master.secret(), "box-1", true);
+  ASSERT_TRUE(agent.Connect().ok());
+  ASSERT_TRUE(master.RunUntil([&] { return master.StateOf(job) == "done"; }));
+  EXPECT_GT(agent.pieces_received(), 0u);
+  EXPECT_FALSE(master.jobs().LeasingDisplays());
+}
+
+TEST(JobRoundsTest, ACancelDuringTheDisplayDropsItsPiecesOnTheAgents) {
+  MasterParts master;
+  const uint64_t job = master.Submit(0, 0, kGatherRays);
+  FakeAgent agent(master.loop(), master.agent_address(), master.secret(), "box-1", true);
+  agent.set_answering_pieces(false);
+  ASSERT_TRUE(agent.Connect().ok());
+  ASSERT_TRUE(master.RunUntil([&] { return agent.pieces_held() > 0; }));
+  EXPECT_EQ(master.jobs().PhaseOf(job), "display");
+  EXPECT_TRUE(master.jobs().LeasingDisplays());
+  ASSERT_TRUE(master.Request(ControlCommand::kCancel, job).body["ok"].get<bool>());
+  ASSERT_TRUE(master.RunUntil([&] {
+    return std::count(agent.cancelled_jobs().begin(), agent.cancelled_jobs().end(), job) > 0 &&
+           agent.pieces_held() == 0;
+  }));
+  EXPECT_FALSE(master.jobs().LeasingDisplays());
+  EXPECT_EQ(master.StateOf(job), "cancelled");
+}
+
+TEST(JobRoundsTest, ALostAgentsPiecesGoToAnother) {
+  MasterParts master;
+  const uint64_t job = master.Submit(0, 0, kGatherRays);
+  auto silent = std::make_unique<FakeAgent>(master.loop(), master.agent_address(), master.secret(),
+                                            "box-1", true);
+  silent->set_answering_pieces(false);
+  ASSERT_TRUE(silent->Connect().ok());
+  ASSERT_TRUE(master.RunUntil([&] { return silent->pieces_held() > 0; }));
+  FakeAgent other(master.loop(), master.agent_address(), master.secret(), "box-2", true);
+  ASSERT_TRUE(other.Connect().ok());
+  ASSERT_TRUE(master.RunUntil([&] { return other.authenticated(); }));
+  silent->Drop();
+  ASSERT_TRUE(master.RunUntil([&] { return master.StateOf(job) == "done"; }));
+  EXPECT_GT(other.pieces_received(), 0u);
 }
 
 }  // namespace

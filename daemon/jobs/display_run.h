@@ -1,0 +1,46 @@
+// DisplayRun: one finished job's display on its way (job_display.cc): its draft, the step's pieces
+// leased to agents (display_pieces.h), and the frames between the two: a piece as a PointLease,
+// a PointResult checked against the piece it answers.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "base/result.h"
+#include "daemon/jobs/display_draft.h"
+#include "daemon/jobs/display_pieces.h"
+#include "display/point_work.h"
+#include "protocol/messages.h"
+#include "store/job_store.h"
+
+namespace radfarm::daemon {
+
+struct DisplayRun {
+  uint64_t serial = 0;  // tells this run's callbacks from an earlier run's of the same job
+  std::string reason;   // why the rounds ended, for the job's `done` event
+  uint32_t round = 0;   // of the checkpoint whose solution it shows
+  std::shared_ptr<DisplayDraft> draft;  // null until planned
+  // The step leased to agents; empty while the draft is on the compute thread.
+  std::optional<DisplayPieces> pieces;
+  uint32_t leased_steps = 0, local_steps = 0;
+};
+
+// Points a lease carries: about a quarter of an agent's share of the step, so that a step ends
+// with the agents finishing close together, within [kMinLeasePoints, protocol::kMaxLeasePoints].
+inline constexpr size_t kMinLeasePoints = 256;
+size_t PiecePoints(size_t points, size_t agents);
+
+// Piece `lease` of `work` as the frame that leases it.
+protocol::PointLeaseMsg MakePointLease(store::JobId job, const PieceLease& lease,
+                                       const PointWork& work, const protocol::SceneHash& context,
+                                       uint32_t lease_ms);
+
+// The values of `result`, which answers points [begin, end) of `work`: one value per point in
+// each list the work asked for and none in the others. Errors name the list.
+Result<PointValues> ValuesOfResult(const protocol::PointResultMsg& result, const PointWork& work,
+                                   size_t begin, size_t end);
+
+}  // namespace radfarm::daemon
