@@ -8,6 +8,7 @@
 #include "input/scene_loader.h"
 #include "job/output_budget.h"
 #include "mesh/back_face_warnings.h"
+#include "mesh/near_emitter_warnings.h"
 #include "mesh/refine.h"
 
 namespace radfarm {
@@ -59,6 +60,9 @@ Result<LoadedJob> LoadJobForSolve(const std::string& path, const JobOverrides& o
   RADFARM_RETURN_IF_ERROR(mesh);
   const std::vector<std::string> back = BackFaceWarnings(loaded->scene.path, mesh->patch_scene());
   warnings->insert(warnings->end(), back.begin(), back.end());
+  const std::vector<std::string> near =
+      NearEmitterWarnings(loaded->scene.path, mesh->patch_scene());
+  warnings->insert(warnings->end(), near.begin(), near.end());
   RADFARM_RETURN_IF_ERROR(
       CheckRefinement(path, loaded->job,
                       MeshCheck{mesh->patch_scene().patches.size(), mesh->patch_size(),

@@ -7,6 +7,7 @@
 #include <span>
 
 #include "core/direct_light.h"
+#include "core/gathering_patches.h"
 
 namespace radfarm {
 namespace {
@@ -58,6 +59,7 @@ ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettin
   if (area > 0) mean_reflectance_ /= area;
   energy_.unshot = energy_.emitted;
   gather_ = GatherOn(settings_);
+  gathering_ = GatheringPatchMask(scene);
   // Start from the direct light where DirectLightSections says it pays. Elsewhere (a furnace, a
   // sky of emitters) the emitters shoot as usual and the gather sees their light like any other.
   // The direct light is delivered (absorbed or reflected), the reflected part is unshot, and what
@@ -134,7 +136,7 @@ void KeepStrongest(size_t limit, const std::function<double(uint32_t)>& power,
 
 uint64_t ProgressiveSolver::GatheringPatches() const {
   uint64_t n = 0;
-  for (const Patch& p : scene_.patches) n += p.reflectance.Max() > 0;
+  for (bool gathers : gathering_) n += gathers;
   return n;
 }
 
@@ -155,7 +157,7 @@ RoundPlan ProgressiveSolver::PlanGather(uint32_t batch_rays, uint64_t ray_cap) c
   plan.round = rounds_done_;
   plan.gather = true;
   for (uint32_t i = 0; i < scene_.patches.size(); ++i) {
-    if (scene_.patches[i].reflectance.Max() <= 0) continue;  // a black patch shows only E
+    if (!gathering_[i]) continue;  // core/gathering_patches.h
     plan.shots.push_back({i, settings_.gather_rays});
     plan.rays += settings_.gather_rays;
   }

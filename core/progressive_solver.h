@@ -21,7 +21,8 @@
 // the scene has so many emitter patches that this would cost more shadow rays than the gather
 // casts: then the emitters shoot, and the gather takes their light with the rest.) When
 // the unshot fraction is at or below the tolerance, PlanRound plans one gather round instead of a
-// shooting round: every reflecting patch casts gather_rays rays (ordinary batches, so the farm
+// shooting round: every reflecting patch not facing the void (core/gathering_patches.h) casts
+// gather_rays rays (ordinary batches, so the farm
 // runs them like any other), and ApplyRound reads each patch's hit weights the other way round:
 // the mean radiosity, less emission, of what its rays hit is the light that bounced onto it. Its
 // radiosity becomes E + rho * (direct + that), and every unshot is zero: the solve is done (the
@@ -126,7 +127,8 @@ class ProgressiveSolver {
   // The next round PlanRound plans is the gather: one is pending and the unshot fraction is at or
   // below the tolerance.
   bool GatherNext() const { return GatherPending() && UnshotFraction() <= settings_.tolerance; }
-  // Patches a gather round gathers for: those that reflect.
+  // Patches a gather round gathers for: those that reflect and do not face the void
+  // (core/gathering_patches.h).
   uint64_t GatheringPatches() const;
   // The fewest rays a gather cut by a budget is planned with: kMinGatherShare of gather_rays per
   // gathering patch (at least one). With fewer, each patch's gathered light would be noisier
@@ -174,8 +176,9 @@ class ProgressiveSolver {
   RaySampler sampler_;
   std::vector<Rgb> radiosity_;
   std::vector<Rgb> unshot_;
-  bool gather_ = false;      // GatherOn(settings)
-  std::vector<Rgb> direct_;  // per patch, Ke units; empty unless the solve started from it
+  bool gather_ = false;          // GatherOn(settings)
+  std::vector<bool> gathering_;  // by patch: GatheringPatchMask
+  std::vector<Rgb> direct_;      // per patch, Ke units; empty unless the solve started from it
   // The emitter patches' light is in direct_ (EmittersInDirectStart): they do not shoot, and the
   // gather takes only bounced light. Otherwise direct_ holds the punctual lights' alone, if any.
   bool emitters_direct_ = false;

@@ -39,7 +39,8 @@
 //                                 # > 0 (absent: patch size / 4, or / 16 where the display
 //                                 # refined itself); not with lightmap_size
 //   [materials.NAME]              # per material of the scene, by name
-//   two_sided = true              # this material receives and emits on both sides
+//   two_sided = true              # this material receives and emits on both sides (an
+//                                 # emitter then lights both ways; false: its front only)
 //
 // Errors are one line naming the file, the line and the dotted key:
 // "job.toml:7: unknown key 'solver.sampel'".

@@ -28,10 +28,14 @@ std::vector<std::string> BackFaceWarnings(const std::string& scene_path, const P
     back += counts.back[m];
   }
   std::vector<std::string> warnings;
-  const char* hint = IsGltf(scene_path)
-                         ? "facing outward? set doubleSided, or two_sided in a job file"
-                         : "walls facing outward? set two_sided in the job file";
   for (const auto& [name, hits] : by_name) {
+    // Only this material: a top-level two_sided would make every emitter shine both ways too.
+    const std::string setting = "[materials." + name + "] two_sided = true";
+    const std::string hint =
+        IsGltf(scene_path)
+            ? "facing outward? set doubleSided (Backface Culling off in Blender), or " + setting +
+                  " in a job file"
+            : "walls facing outward? set " + setting + " in the job file";
     const auto [front, back] = hits;
     const double reached = static_cast<double>(front + back);
     if (reached < kBackFaceMinShare * static_cast<double>(counts.rays)) continue;

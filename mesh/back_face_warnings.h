@@ -19,7 +19,7 @@ inline constexpr uint64_t kBackFaceSurveyRays = 1 << 16;
 
 // One warning per material (by name) that more than kBackFaceWarnShare of the emitters' light
 // reaching it meets from behind: "scene.obj: warning: 'wall' is lit from behind by 97% of the light
-// reaching it (walls facing outward? set two_sided)".
+// reaching it (walls facing outward? set [materials.wall] two_sided = true in the job file)".
 std::vector<std::string> BackFaceWarnings(const std::string& scene_path, const PatchScene& scene);
 
 }  // namespace radfarm

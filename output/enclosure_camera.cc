@@ -5,90 +5,137 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <vector>
+
+#include "core/ray_caster.h"
 
 namespace radfarm {
 namespace {
 
-constexpr int kRays = 26;
-// How far in front of the wall behind the centre the eye stands, as a share of the way there.
-constexpr double kEyeShare = 0.95;
-constexpr double kMinSpanShare = 0.25;
+constexpr int kProbeRays = 128;
+// Rays of a probe that may find no front of a surface: cracks between triangles, not an opening.
+constexpr int kMaxMisses = 2;
+// Where an eye may stand along its line, as shares of the bounds' extent from the wall behind.
+constexpr std::array<double, 5> kDepthShares = {0.1, 0.2, 0.3, 0.4, 0.5};
+// The lines' sideways places and heights, as shares of the bounds: the middle first.
+constexpr std::array<double, 3> kSideShares = {0.5, 0.35, 0.65};
+constexpr std::array<double, 3> kHeightShares = {0.5, 0.62, 0.38};
 // The far end of the room fills this share of the frame, so the walls, floor and ceiling leading
 // to it are in the picture too.
 constexpr double kFarEndShare = 0.65;
 constexpr double kMinFovDegrees = 50;
-// A view replaces an earlier one (in the order +z, +x, -z, -x) only if it sees this much deeper:
-// the Cornell box's convention wins unless another way is clearly more open.
-constexpr double kBetterView = 1.1;
 constexpr double kMaxFovDegrees = 90;
+// A view replaces an earlier one only if it sees this much deeper.
+constexpr double kBetterView = 1.1;
 
-std::array<Vec3, kRays> CubeDirections() {
-  std::array<Vec3, kRays> directions;
-  int n = 0;
-  for (int x = -1; x <= 1; ++x) {
-    for (int y = -1; y <= 1; ++y) {
-      for (int z = -1; z <= 1; ++z) {
-        if (x != 0 || y != 0 || z != 0) directions[n++] = Normalize(Vec3(x, y, z));
-      }
-    }
-  }
-  return directions;
-}
-
-int DirectionIndex(int x, int y, int z) {
-  const int cell = (x + 1) * 9 + (y + 1) * 3 + (z + 1);
-  return cell < 13 ? cell : cell - 1;  // cell 13 is (0, 0, 0), left out
-}
-
-// Möller-Trumbore: the distance along `dir` from `origin` to the triangle, or infinity. Both sides
-// count: a wall is a wall whichever way it faces.
-double HitDistance(const Vec3& origin, const Vec3& dir, const Vec3& a, const Vec3& b,
-                   const Vec3& c) {
-  constexpr double kNone = std::numeric_limits<double>::infinity();
-  const Vec3 e1 = b - a, e2 = c - a;
-  const Vec3 p = Cross(dir, e2);
-  const double det = Dot(e1, p);
-  if (det == 0 || !std::isfinite(det)) return kNone;
-  const double inv = 1 / det;
-  const Vec3 s = origin - a;
-  const double u = Dot(s, p) * inv;
-  if (u < 0 || u > 1) return kNone;
-  const Vec3 q = Cross(s, e1);
-  const double v = Dot(dir, q) * inv;
-  if (v < 0 || u + v > 1) return kNone;
-  const double t = Dot(e2, q) * inv;
-  return t > 0 ? t : kNone;
-}
-
-struct Ray {
-  Vec3 origin, dir;
+// The display triangles as shapes Embree traces: two-sided layers (patch_front_only) seen from
+// their front only, the others from both sides. Degenerate triangles are left out.
+struct TriangleShapes {
+  std::vector<PatchShape> shapes;
+  std::vector<uint8_t> front_only;
 };
 
-// The distance to the nearest triangle along each ray (infinity for a miss): one pass over the
-// triangles, skipping those with an index out of range, as RenderImage does.
-std::vector<double> NearestHits(const DisplayMesh& mesh, const std::vector<Ray>& rays) {
-  std::vector<double> nearest(rays.size(), std::numeric_limits<double>::infinity());
+TriangleShapes ShapesOf(const DisplayMesh& mesh) {
+  TriangleShapes out;
   const size_t vertices = mesh.positions.size();
-  for (const auto& tri : mesh.triangles) {
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
     if (tri[0] >= vertices || tri[1] >= vertices || tri[2] >= vertices) continue;
-    const Vec3 &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]],
-               &c = mesh.positions[tri[2]];
-    for (size_t i = 0; i < rays.size(); ++i) {
-      nearest[i] = std::min(nearest[i], HitDistance(rays[i].origin, rays[i].dir, a, b, c));
-    }
+    PatchShape s;
+    s.corners = {mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]], Vec3{}};
+    s.corner_count = 3;
+    const Vec3 n = Cross(s.corners[1] - s.corners[0], s.corners[2] - s.corners[0]);
+    const double length = Length(n);
+    if (!(length > 0) || !std::isfinite(length)) continue;
+    s.normal = n / length;
+    s.centre = (s.corners[0] + s.corners[1] + s.corners[2]) / 3;
+    const uint32_t patch = t < mesh.triangle_patch.size() ? mesh.triangle_patch[t] : 0;
+    out.shapes.push_back(s);
+    out.front_only.push_back(patch < mesh.patch_front_only.size() && mesh.patch_front_only[patch]);
   }
-  return nearest;
+  return out;
 }
 
-// A way to look across the room: from just inside the wall behind the centre, along `axis`.
+// Directions on a golden-angle spiral over the sphere.
+std::array<Vec3, kProbeRays> SphereDirections() {
+  std::array<Vec3, kProbeRays> out;
+  const double golden = std::numbers::pi * (3 - std::sqrt(5.0));
+  for (int i = 0; i < kProbeRays; ++i) {
+    const double y = 1 - (i + 0.5) * 2 / kProbeRays;
+    const double r = std::sqrt(1 - y * y);
+    out[i] = {r * std::cos(golden * i), y, r * std::sin(golden * i)};
+  }
+  return out;
+}
+
+class Prober {
+ public:
+  explicit Prober(const DisplayMesh& mesh) : shapes_(ShapesOf(mesh)) {
+    if (!shapes_.shapes.empty()) caster_.emplace(shapes_.shapes, shapes_.front_only);
+  }
+  bool empty() const { return !caster_.has_value(); }
+
+  // The distance along `dir` to the first surface, and whether its front faces the ray (a
+  // triangle drawn from both sides counts by its normal); infinity for a miss.
+  std::pair<double, bool> Hit(const Vec3& origin, const Vec3& dir) const {
+    const RayHit hit = caster_->Trace(origin, dir, dir);
+    if (hit.patch == RayHit::kMiss) return {std::numeric_limits<double>::infinity(), false};
+    const PatchShape& s = shapes_.shapes[hit.patch];
+    const double along = Dot(dir, s.normal);
+    const double t = along != 0 ? Dot(s.centre - origin, s.normal) / along : 0;
+    return {std::max(t, 0.0), along < 0};
+  }
+
+  // What the rays from `p` meet: fronts, backs, nothing, and the nearest surface.
+  struct Probe {
+    int front = 0, back = 0, miss = 0;
+    double nearest = std::numeric_limits<double>::infinity();
+  };
+  Probe Look(const Vec3& p) const {
+    Probe out;
+    for (const Vec3& dir : directions_) {
+      const auto [t, front] = Hit(p, dir);
+      out.nearest = std::min(out.nearest, t);
+      ++(std::isinf(t) ? out.miss : front ? out.front : out.back);
+    }
+    return out;
+  }
+
+ private:
+  TriangleShapes shapes_;
+  std::optional<RayCaster> caster_;  // none without triangles
+  std::array<Vec3, kProbeRays> directions_ = SphereDirections();
+};
+
 struct View {
   Vec3 axis;
   Vec3 eye;
   double far = 0;  // from the eye to the far face of the bounds, along the axis
 };
 
-Vec3 Perpendicular(const Vec3& axis) { return Cross(Vec3(0, 1, 0), axis); }
+Vec3 Sideways(const Vec3& axis) { return Cross(Vec3(0, 1, 0), axis); }
+
+// How deep the view sees: a 3 x 3 fan of rays 20 degrees apart, each ray's depth along the axis up
+// to the far face. A long room scores high along its length; a block in front of the eye low.
+double Depth(const Prober& prober, const View& view) {
+  const double spread = std::tan(20 * std::numbers::pi / 180);
+  double score = 0;
+  for (int i = -1; i <= 1; ++i) {
+    for (int j = -1; j <= 1; ++j) {
+      const Vec3 dir =
+          Normalize(view.axis + Sideways(view.axis) * (i * spread) + Vec3(0, 1, 0) * (j * spread));
+      score += std::min(prober.Hit(view.eye, dir).first * Dot(dir, view.axis), view.far);
+    }
+  }
+  return score;
+}
+
+// A point of the bounds by its shares along x, y and z.
+Vec3 At(const Bounds3& b, double x, double y, double z) {
+  return {b.lo.x + x * (b.hi.x - b.lo.x), b.lo.y + y * (b.hi.y - b.lo.y),
+          b.lo.z + z * (b.hi.z - b.lo.z)};
+}
 
 }  // namespace
 
@@ -97,71 +144,57 @@ std::optional<Camera> InsideCamera(const DisplayMesh& mesh, const Bounds3& bound
   if (bounds.Empty() || !(bounds.Diagonal() > 0) || !std::isfinite(bounds.Diagonal())) {
     return std::nullopt;
   }
-  const Vec3 centre = bounds.Centre();
-  std::vector<Ray> probes;
-  for (const Vec3& dir : CubeDirections()) probes.push_back({centre, dir});
-  const std::vector<double> around = NearestHits(mesh, probes);
-  if (!std::all_of(around.begin(), around.end(), [](double t) { return std::isfinite(t); })) {
-    return std::nullopt;
-  }
+  const Prober prober(mesh);
+  if (prober.empty()) return std::nullopt;
+  const Vec3 extent = bounds.hi - bounds.lo;
+  const double clearance = kEyeClearance * std::min({extent.x, extent.y, extent.z});
 
-  // The four horizontal views, +z first: the convention of the Cornell box, kept on a tie.
+  // +z first: the convention of the Cornell box, kept on a tie.
   const std::array<Vec3, 4> axes = {Vec3(0, 0, 1), Vec3(1, 0, 0), Vec3(0, 0, -1), Vec3(-1, 0, 0)};
-  std::array<View, 4> views;
-  bool room = false;
-  for (size_t v = 0; v < axes.size(); ++v) {
-    const Vec3& a = axes[v];
-    const double behind = around[DirectionIndex(static_cast<int>(-a.x), 0, static_cast<int>(-a.z))];
-    const double ahead = around[DirectionIndex(static_cast<int>(a.x), 0, static_cast<int>(a.z))];
-    room = room || behind + ahead >= kMinSpanShare * std::abs(Dot(bounds.hi - bounds.lo, a));
-    views[v].axis = a;
-    views[v].eye = centre - a * (kEyeShare * behind);
-    views[v].far = Dot((a.x + a.z > 0 ? bounds.hi : bounds.lo) - views[v].eye, a);
-  }
-  if (!room) return std::nullopt;  // the centre is inside a solid block
-
-  // Score each view by how deep it sees: a 3 x 3 fan of rays 20 degrees apart, each ray's depth
-  // along the axis up to the far face. A long room scores high along its length; a block in front
-  // of the eye scores low.
-  std::vector<Ray> fans;
-  const double spread = std::tan(20 * std::numbers::pi / 180);
-  for (const View& view : views) {
-    for (int i = -1; i <= 1; ++i) {
-      for (int j = -1; j <= 1; ++j) {
-        fans.push_back({view.eye, Normalize(view.axis + Perpendicular(view.axis) * (i * spread) +
-                                            Vec3(0, 1, 0) * (j * spread))});
+  std::optional<View> best;
+  double best_score = 0;
+  for (const Vec3& axis : axes) {
+    const bool along_z = axis.z != 0;
+    const bool forward = axis.x + axis.z > 0;
+    for (double side : kSideShares) {
+      for (double height : kHeightShares) {
+        bool line_has_eye = false;
+        for (double depth : kDepthShares) {
+          const double s = forward ? depth : 1 - depth;  // from the wall behind
+          const Vec3 eye = along_z ? At(bounds, side, height, s) : At(bounds, s, height, side);
+          const Prober::Probe probe = prober.Look(eye);
+          // Open space (no backs) that sees out: the scene is open, wherever else it looks closed
+          // (a nook behind a block in an open box).
+          if (probe.back <= kMaxMisses && probe.miss > kMaxMisses) return std::nullopt;
+          if (line_has_eye || probe.back + probe.miss > kMaxMisses || probe.nearest < clearance) {
+            continue;
+          }
+          line_has_eye = true;  // the line's eye: the first good place from the wall behind
+          View view{axis, eye, Dot((forward ? bounds.hi : bounds.lo) - eye, axis)};
+          const double score = Depth(prober, view);
+          if (!best || score > best_score * kBetterView) {
+            best = view;
+            best_score = score;
+          }
+        }
       }
     }
   }
-  const std::vector<double> depth = NearestHits(mesh, fans);
-  size_t best = 0;
-  double best_score = -1;
-  for (size_t v = 0; v < views.size(); ++v) {
-    double score = 0;
-    for (size_t r = 0; r < 9; ++r) {
-      const Ray& ray = fans[v * 9 + r];
-      score += std::min(depth[v * 9 + r] * Dot(ray.dir, views[v].axis), views[v].far);
-    }
-    if (score > best_score * kBetterView) {
-      best = v;
-      best_score = score;
-    }
-  }
-  const View& view = views[best];
+  if (!best) return std::nullopt;
 
   Camera camera = base;
   camera.automatic = false;
-  camera.eye = view.eye;
-  camera.target = centre;
+  camera.eye = best->eye;
+  camera.target = best->eye + best->axis * best->far;
   camera.up = Vec3(0, 1, 0);
   // Take in the far end of the bounds (its half height, and its half width over the aspect) with
   // the way to it.
-  const double half_height = 0.5 * (bounds.hi.y - bounds.lo.y);
-  const double half_width = 0.5 * std::abs(Dot(bounds.hi - bounds.lo, Perpendicular(view.axis)));
+  const double half_height = 0.5 * extent.y;
+  const double half_width = 0.5 * std::abs(Dot(extent, Sideways(best->axis)));
   const double aspect = (camera.width > 0 && camera.height > 0)
                             ? static_cast<double>(camera.width) / camera.height
                             : 1.0;
-  const double tan_half = std::max(half_height, half_width / aspect) / view.far / kFarEndShare;
+  const double tan_half = std::max(half_height, half_width / aspect) / best->far / kFarEndShare;
   const double fov = 2 * std::atan(tan_half) * 180 / std::numbers::pi;
   camera.fov_degrees =
       std::clamp(std::isfinite(fov) ? fov : kMaxFovDegrees, kMinFovDegrees, kMaxFovDegrees);

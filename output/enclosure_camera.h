@@ -10,17 +10,24 @@
 
 namespace radfarm {
 
-// Whether the centre of `bounds` is enclosed by `mesh`: rays from it in 26 directions (the faces,
-// edges and corners of a cube) all hit a triangle, and the free span through it along x and z is at
-// least a quarter of the scene's extent (the centre is in a room, not inside a solid block at the
-// middle). Then the camera stands just inside a wall, at the centre's height, and looks at the
-// centre along +z, +x, -z or -x: whichever sees deepest into the room (a fan of 9 rays from each
-// eye; +z, the Cornell box's convention, unless another sees 10% deeper), with a field of view in
-// which the far end of the scene's bounds fills 65% of the frame (50-90 degrees vertically, y up).
-// Otherwise nothing: the scene is open.
+// An inside view when one exists, else nothing (the scene is open). Candidate places stand on
+// lines across the bounds along +z, +x, -z and -x (y up), at a few heights and sideways places,
+// at a few depths each. Rays from a place in 128 directions (a spiral over the sphere, which meets
+// no edge or corner of an axis-aligned box exactly) count what they meet: the front of a surface,
+// its back (inside a solid block, or behind a wall), or nothing; a few may slip through cracks.
+// A place in open space (no backs) from which more than a few rays leave the scene makes the
+// scene open, even if another place (a nook behind a block) looks closed. Along each line, the
+// first place from the wall behind that almost only meets fronts, with nothing within
+// kEyeClearance of the bounds' smallest extent, is that line's eye. Of the eyes, the one that sees
+// deepest along its line wins (a fan of 9 rays; an earlier one unless another sees 10% deeper: the
+// Cornell box's +z first), looking along the line with a field of view in which the far end of the
+// bounds fills 65% of the frame (50-90 degrees vertically).
 //
-// Cost: two passes over the triangles, 26 and 36 ray tests each.
+// Cost: an Embree BVH of the triangles, and a few thousand to some 25,000 rays.
 std::optional<Camera> InsideCamera(const DisplayMesh& mesh, const Bounds3& bounds,
                                    const Camera& base);
+
+// The eye's least distance to geometry, as a share of the bounds' smallest extent.
+inline constexpr double kEyeClearance = 0.08;
 
 }  // namespace radfarm

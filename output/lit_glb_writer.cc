@@ -9,6 +9,7 @@
 #include "base/atomic_file.h"
 #include "base/little_endian.h"
 #include "output/affine_matrix.h"
+#include "output/layer_separation.h"
 
 namespace radfarm {
 namespace {
@@ -173,6 +174,7 @@ std::array<float, 3> LocalPosition(const Placement& place, uint32_t object, cons
 }
 
 Result<std::vector<ObjectLayout>> Layout(const std::string& path, const DisplayMesh& mesh,
+                                         const std::vector<Vec3>& positions,
                                          const ObjectTriangles& groups, const Placement& place,
                                          const LitLightmaps& lightmaps, VertexGather* gather) {
   std::vector<ObjectLayout> out(groups.offsets.size() - 1);
@@ -190,7 +192,7 @@ Result<std::vector<ObjectLayout>> Layout(const std::string& path, const DisplayM
         return Error{path + ": cannot write lit.glb: vertex " + std::to_string(v) +
                      " has non-finite radiance"};
       }
-      const std::array<float, 3> p = LocalPosition(place, o, mesh.positions[v]);
+      const std::array<float, 3> p = LocalPosition(place, o, positions[v]);
       for (int k = 0; k < 3; ++k) {
         layout.min[k] = std::min(layout.min[k], p[k]);
         layout.max[k] = std::max(layout.max[k], p[k]);
@@ -340,6 +342,7 @@ uint64_t FileBytes(const std::string& json, uint64_t binary) {
 // Everything but the binary chunk's contents, computed from the mesh.
 struct Plan {
   ObjectTriangles groups;
+  std::vector<Vec3> positions;  // by display vertex, two-sided layers apart (layer_separation.h)
   Placement place;
   std::vector<ObjectLayout> layout;
   std::string json;
@@ -358,12 +361,13 @@ Result<Plan> MakePlan(const std::string& path, const DisplayMesh& mesh, const Li
   Result<ObjectTriangles> groups = GroupTriangles(path, mesh, lit);
   RADFARM_RETURN_IF_ERROR(groups);
   plan.groups = std::move(*groups);
+  plan.positions = SeparatedLayerPositions(mesh);
   plan.place = PlaceObjects(lit.objects);
   if (lightmaps.uvs != nullptr && lightmaps.uvs->source.size() != mesh.triangles.size()) {
     return Error{path + ": cannot write lit.glb: lightmap UVs and triangles differ in number"};
   }
   Result<std::vector<ObjectLayout>> layout =
-      Layout(path, mesh, plan.groups, plan.place, lightmaps, gather);
+      Layout(path, mesh, plan.positions, plan.groups, plan.place, lightmaps, gather);
   RADFARM_RETURN_IF_ERROR(layout);
   plan.layout = std::move(*layout);
   plan.json = JsonChunk(lit.objects, plan.layout, plan.place, exposure_stops, lightmaps);
@@ -384,7 +388,7 @@ Status WriteObject(const DisplayMesh& mesh, const Plan& plan, uint32_t object, V
     return s;
   };
   for (uint32_t v : gather->vertices()) {
-    for (float x : LocalPosition(plan.place, object, mesh.positions[v])) {
+    for (float x : LocalPosition(plan.place, object, plan.positions[v])) {
       AppendLittleEndian(x, &bytes);
     }
     RADFARM_RETURN_IF_ERROR(flush_if_full());

@@ -3,7 +3,9 @@
 // transforms), each with a mesh of its display triangles (display/display_mesh.h) in the node's own
 // frame. Every vertex carries its linear radiance (MTL Ke units) as COLOR_0, VEC3 FLOAT, so a
 // vertex is shared wherever the display shares it and split only where the display splits the
-// light (creases, materials, contact lines, sheet outlines). The material is KHR_materials_unlit
+// light (creases, materials, contact lines, sheet outlines). The two layers of a two-sided surface
+// are moved apart along their normals (output/layer_separation.h), so no two triangles lie
+// coincident back to back for a viewer to z-fight on. The material is KHR_materials_unlit
 // white: a viewer shows COLOR_0 as it is. The image's exposure is in asset.extras.radfarm:
 // `exposure_stops` and `exposure_scale` (2^stops, what the image multiplies radiance by before its
 // sRGB curve).

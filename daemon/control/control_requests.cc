@@ -13,6 +13,7 @@
 #include "core/solve_control.h"
 #include "loop/log.h"
 #include "mesh/back_face_warnings.h"
+#include "mesh/near_emitter_warnings.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/refine.h"
 #include "protocol/message_checks.h"
@@ -393,6 +394,9 @@ void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
         // without meshing it and prints these from the reply.
         const PatchScene& patches = meshed.mesh ? meshed.mesh->patch_scene() : *meshed.patches;
         std::vector<std::string> warnings = BackFaceWarnings(bundle->scene.path, patches);
+        for (std::string& w : NearEmitterWarnings(bundle->scene.path, patches)) {
+          warnings.push_back(std::move(w));
+        }
         return CheckedSubmission{settings, solver.seed,
                                  protocol::HashToHex(protocol::HashScene(*blob)), std::move(meshed),
                                  std::move(warnings)};

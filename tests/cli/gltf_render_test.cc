@@ -194,6 +194,10 @@ TEST(GltfRenderTest, AnOutwardFacingRoomWarnsAndIsLitWhenTwoSided) {
                          "emitters' light"),
               std::string::npos)
         << r.err;
+    // The advice names this material's setting: a top-level two_sided would turn lamps too.
+    EXPECT_NE(r.err.find("set [materials.wall] two_sided = true in the job file"),
+              std::string::npos)
+        << r.err;
     EXPECT_DOUBLE_EQ(MaterialMeans(ReadCsvPatches(out.File("patches.csv")))["wall"], 0);
   }
   TempDir out;

@@ -8,6 +8,7 @@
 #include "core/batch_tracer.h"
 #include "core/direct_light.h"
 #include "core/display_budget.h"
+#include "core/gathering_patches.h"
 #include "core/ray_caster.h"
 #include "core/solve_control.h"
 #include "solve/local_solve.h"
@@ -228,6 +229,54 @@ TEST(GatherTest, RayBudgetCutsTheGatherRound) {
   const SolveResult least_gather = Solve(scene, settings);
   EXPECT_EQ(least_gather.stats.rays, shooting_rays + least);
   EXPECT_EQ(least_gather.unshot, std::vector<Rgb>(scene.patches.size()));
+}
+
+// A closed room of two-sided walls (a Blender room with outward normals): each wall's outer layer
+// faces the void, so its gather rays would all escape: it is not gathered, and the solve reports
+// no escaped rays. Its radiosity is what the gather would have made of it: none.
+TEST(GatherTest, TheOuterLayerOfAClosedRoomIsNotGathered) {
+  PatchScene scene = LitBox();
+  const size_t inner = scene.patches.size();
+  for (size_t i = 0; i < inner; ++i) {
+    Patch back = scene.patches[i];
+    std::reverse(back.corners.begin(), back.corners.begin() + back.corner_count);
+    back.normal = -back.normal;
+    back.surface += 6;
+    back.emission = {};
+    scene.patches[i].two_sided = back.two_sided = true;
+    scene.patches.push_back(back);
+  }
+  const SolverSettings settings = Gathering(256, kShotRays);
+  const ProgressiveSolver solver(scene, settings);
+  EXPECT_EQ(solver.GatheringPatches(), inner);
+  EXPECT_EQ(solver.PendingGatherRays(), inner * 256);
+  const RoundPlan gather = solver.PlanPendingGather(4096);
+  ASSERT_EQ(gather.shots.size(), inner);
+  for (const Shot& shot : gather.shots) EXPECT_LT(shot.shooter, inner);
+
+  const SolveResult r = Solve(scene, settings);
+  EXPECT_EQ(r.stats.escaped_rays, 0u);
+  for (size_t i = inner; i < scene.patches.size(); ++i) EXPECT_EQ(r.radiosity[i], Rgb()) << i;
+  for (size_t i = 0; i < inner; ++i) EXPECT_GT(r.radiosity[i].g, 0) << i;
+}
+
+TEST(GatherTest, OnlyAPatchWithTheWholeSceneBehindItFacesTheVoid) {
+  const PatchScene box = LitBox();
+  Bounds3 bounds;
+  bounds.Extend({0, 0, 0});
+  bounds.Extend({1, 1, 1});
+  for (const Patch& p : box.patches) {
+    EXPECT_FALSE(FacesTheVoid(p, bounds));  // facing in: the room is in front
+    Patch out = p;
+    out.normal = -p.normal;
+    EXPECT_TRUE(FacesTheVoid(out, bounds));  // facing out of the bounds
+  }
+  // A floor inside a larger scene, facing down with a basement under it: not the void.
+  Patch floor = box.patches.front();
+  bounds.Extend({0, -5, 0});
+  floor.normal = {0, -1, 0};
+  floor.centre = {0.5, 0, 0.5};
+  EXPECT_FALSE(FacesTheVoid(floor, bounds));
 }
 
 // The energy account balances after every round, the gather round included.

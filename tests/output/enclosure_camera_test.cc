@@ -7,7 +7,7 @@
 namespace radfarm {
 namespace {
 
-// Adds the quad a, b, c, d (in order around it) as two triangles of one colour.
+// Adds the quad a, b, c, d (clockwise seen from its front) as two triangles of one colour.
 void AddQuad(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Rgb& colour,
              DisplayMesh* mesh) {
   const uint32_t first = static_cast<uint32_t>(mesh->positions.size());
@@ -17,8 +17,8 @@ void AddQuad(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const R
   }
   const uint32_t patch = static_cast<uint32_t>(mesh->patch_front_only.size());
   mesh->patch_front_only.push_back(false);
-  mesh->triangles.push_back({first, first + 1, first + 2});
-  mesh->triangles.push_back({first, first + 2, first + 3});
+  mesh->triangles.push_back({first, first + 2, first + 1});
+  mesh->triangles.push_back({first, first + 3, first + 2});
   mesh->triangle_patch.insert(mesh->triangle_patch.end(), 2, patch);
 }
 
@@ -28,7 +28,7 @@ struct Walls {
       ceiling{0, 0, 1};
 };
 
-// An axis-aligned room from `lo` to `hi`.
+// An axis-aligned room from `lo` to `hi`, its walls facing in.
 DisplayMesh Room(const Vec3& lo, const Vec3& hi, const Walls& walls = {}) {
   DisplayMesh mesh;
   const auto p = [&](int x, int y, int z) {
@@ -62,21 +62,23 @@ TEST(InsideCameraTest, AClosedRoomIsSeenFromInsideAlongItsLongerAxis) {
   const std::optional<Camera> camera = InsideCamera(mesh, MeshBounds(mesh), Camera{});
   ASSERT_TRUE(camera.has_value());
   EXPECT_FALSE(camera->automatic);
-  // Just inside the -z wall, at the centre's height, looking at the centre along +z.
+  // A tenth of the way in from the -z wall, in the middle at half height, looking along +z.
   EXPECT_NEAR(camera->eye.x, 2, 1e-12);
   EXPECT_NEAR(camera->eye.y, 1.5, 1e-12);
-  EXPECT_NEAR(camera->eye.z, 0.15, 1e-12);
-  EXPECT_EQ(camera->target, Vec3(2, 1.5, 3));
+  EXPECT_NEAR(camera->eye.z, 0.6, 1e-12);
+  EXPECT_NEAR(camera->target.z, 6, 1e-12);
+  EXPECT_EQ(camera->target.x, camera->eye.x);
+  EXPECT_EQ(camera->target.y, camera->eye.y);
   EXPECT_EQ(camera->up, Vec3(0, 1, 0));
-  // The far wall (2 m half-width, 5.85 m away) fills 65% of the frame: 2 atan(2 / 5.85 / 0.65).
-  EXPECT_NEAR(camera->fov_degrees, 55.49, 0.01);
+  // The far wall (2 m half-width, 5.4 m away) fills 65% of the frame: 2 atan(2 / 5.4 / 0.65).
+  EXPECT_NEAR(camera->fov_degrees, 59.35, 0.01);
 }
 
 TEST(InsideCameraTest, AWideRoomIsSeenAlongX) {
   const DisplayMesh mesh = Room({-3, 0, -1}, {3, 2.5, 1});
   const std::optional<Camera> camera = InsideCamera(mesh, MeshBounds(mesh), Camera{});
   ASSERT_TRUE(camera.has_value());
-  EXPECT_NEAR(camera->eye.x, -2.85, 1e-12);
+  EXPECT_NEAR(camera->eye.x, -2.4, 1e-12);
   EXPECT_NEAR(camera->eye.z, 0, 1e-12);
   EXPECT_GT(camera->target.x, camera->eye.x);
 }
@@ -100,14 +102,35 @@ TEST(InsideCameraTest, AnOpenBoxIsNotAnEnclosure) {
   EXPECT_LT(resolved.eye.z, 0);
 }
 
-TEST(InsideCameraTest, ACentreInsideASolidBlockIsNotARoom) {
-  // A 10 m open-fronted hall with a closed 1 m crate at its centre: every ray from the centre hits
-  // the crate, but the free span is 1 m of 10.
+TEST(InsideCameraTest, AnOpenHallWithACrateIsOpen) {
+  // A 10 m open-fronted hall with a closed 1 m crate at its centre, facing in as a room would: from
+  // inside the crate every ray meets the front of a wall, but the hall around it sees out.
   Walls open;
   open.front = false;
   DisplayMesh mesh = Room({0, 0, 0}, {10, 10, 10}, open);
   Append(Room({4.5, 4.5, 4.5}, {5.5, 5.5, 5.5}), &mesh);
   EXPECT_FALSE(InsideCamera(mesh, MeshBounds(mesh), Camera{}).has_value());
+}
+
+// A room whose walls face out is dark inside (their backs absorb): no inside view, as from inside
+// a solid block.
+TEST(InsideCameraTest, ARoomFacingOutIsNotARoom) {
+  DisplayMesh mesh = Room({0, 0, 0}, {4, 3, 6});
+  for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+  EXPECT_FALSE(InsideCamera(mesh, MeshBounds(mesh), Camera{}).has_value());
+}
+
+// The eye keeps clear of furniture: a block at the room's centre, and the eye is not in it.
+TEST(InsideCameraTest, TheEyeStandsClearOfABlockAtTheCentre) {
+  DisplayMesh mesh = Room({0, 0, 0}, {4, 3, 4});
+  DisplayMesh block = Room({1.5, 0, 1.5}, {2.5, 2, 2.5});
+  for (auto& t : block.triangles) std::swap(t[1], t[2]);  // a solid: its faces look out
+  Append(block, &mesh);
+  const std::optional<Camera> camera = InsideCamera(mesh, MeshBounds(mesh), Camera{});
+  ASSERT_TRUE(camera.has_value());
+  const Vec3& e = camera->eye;
+  const bool in_block = e.x > 1.5 && e.x < 2.5 && e.z > 1.5 && e.z < 2.5 && e.y < 2;
+  EXPECT_FALSE(in_block) << e.x << " " << e.y << " " << e.z;
 }
 
 TEST(InsideCameraTest, EmptyAndDegenerateMeshesHaveNoInsideView) {

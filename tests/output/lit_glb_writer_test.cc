@@ -13,7 +13,9 @@
 #include <vector>
 
 #include "output/affine_matrix.h"
+#include "output/layer_separation.h"
 #include "output/png_writer.h"
+#include "tests/output/coincident_triangles.h"
 #include "tests/output/test_dir.h"
 
 namespace radfarm {
@@ -166,6 +168,46 @@ TEST(LitGlbWriterTest, AnObjectFlattenedToZeroScaleKeepsItsVerticesInWorldSpace)
   EXPECT_TRUE(model.nodes[2].matrix.empty());
   // Its parent has no inverse either, so the lamp's node sits at the identity under the identity.
   EXPECT_TRUE(model.nodes[1].matrix.empty());
+}
+
+// A two-sided wall, as the display draws it: its lit front (patch 0) and its dark back (patch 1)
+// at the same place facing opposite ways, and a one-sided floor (patch 2) beside it.
+DisplayMesh TwoSidedWall() {
+  DisplayMesh mesh;
+  mesh.positions = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, 0}, {2, 0, 0},
+                    {2, 2, 0}, {0, 2, 0}, {0, 0, 1}, {2, 0, 1}, {2, 0, 0}};
+  mesh.radiance.assign(mesh.positions.size(), Rgb(0.5, 0.5, 0.5));
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 6, 5}, {4, 7, 6}, {8, 9, 10}};
+  mesh.triangle_patch = {0, 0, 1, 1, 2};
+  mesh.patch_front_only = {true, true, false};
+  return mesh;
+}
+
+TEST(LitGlbWriterTest, TheTwoLayersOfATwoSidedSurfaceAreNotCoincident) {
+  TestDir dir;
+  const DisplayMesh mesh = TwoSidedWall();
+  std::vector<InputObject> objects(1);
+  objects[0].name = "wall";
+  objects[0].has_faces = true;
+  const std::vector<uint32_t> patch_object = {0, 0, 0};
+  const std::string path = dir.File("lit.glb");
+  ASSERT_TRUE(WriteLitGlb(path, mesh, {objects, patch_object}, 0).ok());
+  EXPECT_EQ(std::filesystem::file_size(path), LitGlbBytes(mesh, {objects, patch_object}, 0));
+  const std::vector<WorldTriangle> triangles = WorldTriangles(Load(path));
+  ASSERT_EQ(triangles.size(), 5u);
+  // Written as the display has them, the layers would be two coincident pairs.
+  EXPECT_EQ(CoincidentOppositePairs(triangles, 1e-6), 0u);
+
+  // Each layer moved along its own normal, by kLayerGap of the diagonal (3 here): the front
+  // (normal +z) toward +z, the back toward -z; the floor stays where it is.
+  const double gap = kLayerGap * 3;
+  for (int t = 0; t < 2; ++t) {
+    for (const auto& p : triangles[t]) EXPECT_NEAR(p[2], gap, 1e-7);
+  }
+  for (int t = 2; t < 4; ++t) {
+    for (const auto& p : triangles[t]) EXPECT_NEAR(p[2], -gap, 1e-7);
+  }
+  EXPECT_EQ(triangles[4][2], (std::array<double, 3>{2, 0, 0}));
 }
 
 TEST(LitGlbWriterTest, ObjectsWithALightmapCarryItsUvAndShowItAsEmission) {
