@@ -47,8 +47,10 @@ void JobRounds::FinishJob(const std::shared_ptr<RunningJob>& runner) {
   DisplayRun& run = display_runs_[id];
   run.serial = serial;
   run.reason = runner->stop_reason().value_or("stopped");
+  // Kept for the display: computing it again costs the start's shadow rays.
+  auto direct = std::make_shared<std::vector<Rgb>>(runner->direct_light());
   store_.Run([id](store::JobStore& s) { return store::LoadSolution(s, id); },
-             [this, id, serial](Result<std::optional<store::StoredSolution>> loaded) {
+             [this, id, serial, direct](Result<std::optional<store::StoredSolution>> loaded) {
                if (stopping_ || !FindDisplay(id, serial)) return;  // dropped meanwhile
                if (!loaded) {
                  display_runs_.erase(id);
@@ -61,11 +63,12 @@ void JobRounds::FinishJob(const std::shared_ptr<RunningJob>& runner) {
                  MarkDone(id, serial, std::nullopt);
                  return;
                }
-               PlanDisplay(id, serial, std::move(**loaded));
+               PlanDisplay(id, serial, std::move(**loaded), std::move(*direct));
              });
 }
 
-void JobRounds::PlanDisplay(store::JobId id, uint64_t serial, store::StoredSolution stored) {
+void JobRounds::PlanDisplay(store::JobId id, uint64_t serial, store::StoredSolution stored,
+                            std::vector<Rgb> direct_light) {
   const uint32_t round = stored.checkpoint.round;
   auto solution = std::make_shared<codec::JobSolution>();
   solution->bundle = std::move(stored.bundle);
@@ -74,10 +77,11 @@ void JobRounds::PlanDisplay(store::JobId id, uint64_t serial, store::StoredSolut
   solution->unshot = std::move(stored.checkpoint.unshot);
   LogLine(LogLevel::kInfo, "job " + std::to_string(id))
       << "drawing the display of round " << round << "'s solution";
+  auto direct = std::make_shared<std::vector<Rgb>>(std::move(direct_light));
   Status s = compute_.Submit(
-      [solution]() -> Result<std::shared_ptr<DisplayDraft>> {
+      [solution, direct]() -> Result<std::shared_ptr<DisplayDraft>> {
         Result<std::unique_ptr<DisplayDraft>> draft =
-            DisplayDraft::Start(std::move(*solution), /*direct_light=*/{});
+            DisplayDraft::Start(std::move(*solution), std::move(*direct));
         RADFARM_RETURN_IF_ERROR(draft);
         return std::shared_ptr<DisplayDraft>(std::move(*draft));
       },

@@ -201,7 +201,9 @@ class JobRounds {
   void FinishJob(const std::shared_ptr<RunningJob>& runner);
   // The display run of job `id` started as `serial`, or null (dropped, or a later run's).
   DisplayRun* FindDisplay(store::JobId id, uint64_t serial);
-  void PlanDisplay(store::JobId id, uint64_t serial, store::StoredSolution solution);
+  // `direct_light`: the solve's start, when the runner had it (else empty: computed again).
+  void PlanDisplay(store::JobId id, uint64_t serial, store::StoredSolution solution,
+                   std::vector<Rgb> direct_light);
   // Leases the draft's next step, traces it here, or finishes the display.
   void NextDisplayStep(store::JobId id, uint64_t serial);
   // The step's values (traced here when nullopt) go to the draft on the compute thread.

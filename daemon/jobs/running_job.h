@@ -121,6 +121,9 @@ class RunningJob {
   const std::shared_ptr<const protocol::PackedScene>& packed_scene() const { return scene_; }
   uint32_t patch_count() const { return wire_.patch_count; }
   const RaySampler& sampler() const { return driver_->solver().sampler(); }
+  // Loop thread, once kFinished: the direct light the solve started from, one value per patch of
+  // its last mesh (ProgressiveSolver::direct_light), or empty; the display starts from it.
+  const std::vector<Rgb>& direct_light() const { return driver_->solver().direct_light(); }
   const JobTotals& totals() const { return totals_; }
   Phase phase() const { return phase_; }
   // Whether Prepare took the mesh built at submission rather than meshing the scene again.
