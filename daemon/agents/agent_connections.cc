@@ -468,7 +468,11 @@ void AgentConnections::Dispatch(AgentLink& link) {
   // A finished job's display first: its steps are the end of a job, and each waits for its last
   // piece. An agent holds a piece per thread and one more, so it has the next when one ends.
   if (link.version() >= protocol::kPointLeaseVersion) {
-    for (protocol::PointLeaseMsg& lease : jobs_.DisplayLeasesFor(link.id(), link.threads() + 1)) {
+    const auto refused = [&](store::JobId job) {
+      return blocklist_.BlockedUntil(job, link.name(), now).has_value();
+    };
+    for (protocol::PointLeaseMsg& lease :
+         jobs_.DisplayLeasesFor(link.id(), link.threads() + 1, refused)) {
       if (Status st = link.Send(std::move(lease)); !st) {
         LogLine(LogLevel::kWarning, "agents") << link.Describe() << ": " << st.error();
         break;

@@ -197,11 +197,12 @@ void JobRounds::MarkDone(store::JobId id, uint64_t serial,
       });
 }
 
-std::vector<protocol::PointLeaseMsg> JobRounds::DisplayLeasesFor(uint64_t agent, uint32_t room) {
+std::vector<protocol::PointLeaseMsg> JobRounds::DisplayLeasesFor(
+    uint64_t agent, uint32_t room, const std::function<bool(store::JobId)>& refused) {
   std::vector<protocol::PointLeaseMsg> leases;
   const scheduler::TimePoint now = clock_.Now();
   for (auto& [id, run] : display_runs_) {
-    if (!run.pieces) continue;
+    if (!run.pieces || refused(id)) continue;
     const PointWork& work = *run.draft->work();
     const protocol::SceneHash& context = run.draft->context()->hash;
     while (run.pieces->HeldBy(agent) < room) {

@@ -139,8 +139,10 @@ class JobRounds {
   // display being drawn, job_display.cc) for a job this master runs; empty for any other.
   std::string_view PhaseOf(store::JobId id) const;
   // --- The display's leases (job_display.cc) ---
-  // New pieces of the displays under way for `agent`, while it holds fewer than `room`.
-  std::vector<protocol::PointLeaseMsg> DisplayLeasesFor(uint64_t agent, uint32_t room);
+  // New pieces of the displays under way for `agent`, while it holds fewer than `room`; none of
+  // a job `refused(job)` says the agent may not work for (blocklisted).
+  std::vector<protocol::PointLeaseMsg> DisplayLeasesFor(
+      uint64_t agent, uint32_t room, const std::function<bool(store::JobId)>& refused);
   // A PointResult of `agent`. An error (values that do not answer the piece's work) names what
   // is wrong; the agent's pieces are then queued again, and the caller treats it as a liar.
   Status OnPointResult(uint64_t agent, const protocol::PointResultMsg& result);
