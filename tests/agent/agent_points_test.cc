@@ -222,5 +222,72 @@ TEST_F(AgentPointsTest, CancelDropsTheJobsQueuedAndRunningPointLeases) {
   EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
 }
 
+// The LeaseReturn carrying `lease`, once the master has it.
+std::optional<protocol::LeaseReturnMsg> WaitReturn(const FakeMaster& master,
+                                                   const protocol::LeaseRef& lease) {
+  std::optional<protocol::LeaseReturnMsg> found;
+  master.WaitFor([&](const Record& r) {
+    for (const auto& returned : r.All<protocol::LeaseReturnMsg>()) {
+      if (std::find(returned.leases.begin(), returned.leases.end(), lease) !=
+          returned.leases.end()) {
+        found = returned;
+      }
+    }
+    return found.has_value();
+  });
+  return found;
+}
+
+TEST_F(AgentPointsTest, AContextTheMasterLacksOrADrainReturnsThePointLease) {
+  std::unique_ptr<AgentProcess> agent = StartAgent(1);
+  DisplayStep unknown = steps_[0];
+  unknown.hash = protocol::HashScene(std::vector<uint8_t>{1, 2, 3});  // never added to the master
+  const protocol::LeaseRef lacking{4, 1, 0};
+  master_.Send(protocol::Message(PointLeaseOf(lacking, unknown, 0, 10)));
+  const std::optional<protocol::LeaseReturnMsg> unavailable = WaitReturn(master_, lacking);
+  ASSERT_TRUE(unavailable) << agent->Log();
+  EXPECT_EQ(unavailable->reason, protocol::LeaseReturnReason::kSceneUnavailable);
+
+  const protocol::LeaseRef drained{4, 2, 0};
+  master_.Send({protocol::Message(protocol::DrainMsg{protocol::DrainMode::kFinishLeases, false}),
+                protocol::Message(PointLeaseOf(drained, steps_[0], 0, 10))});
+  const std::optional<protocol::LeaseReturnMsg> draining = WaitReturn(master_, drained);
+  ASSERT_TRUE(draining) << agent->Log();
+  EXPECT_EQ(draining->reason, protocol::LeaseReturnReason::kDraining);
+  EXPECT_TRUE(master_.Snapshot().All<protocol::PointResultMsg>().empty());
+  agent->Signal(SIGTERM);
+  EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
+}
+
+TEST_F(AgentPointsTest, ARevokedPointLeaseNotStartedIsDropped) {
+  std::unique_ptr<AgentProcess> agent = StartAgent(1);
+  const DisplayStep& gathering = steps_[1];
+  const protocol::LeaseRef warm{5, 100, 0};
+  master_.Send(protocol::Message(PointLeaseOf(warm, gathering, 0, 10)));
+  ASSERT_TRUE(WaitResult(warm, *agent));
+  // The agent's one worker takes the first lease; the second waits behind it when the revoke,
+  // read in the same burst, drops it.
+  const size_t points = std::min<size_t>(gathering.work.points.size(), 100);
+  protocol::PointLeaseMsg first = PointLeaseOf({5, 1, 0}, gathering, 0, points);
+  first.gather.assign(points, 1);
+  first.gather_rays = 4096;
+  const protocol::LeaseRef second{5, 2, 0};
+  master_.Send({protocol::Message(first),
+                protocol::Message(PointLeaseOf(second, gathering, 0, points)),
+                protocol::Message(protocol::LeaseRevokeMsg{{second}})});
+  ASSERT_TRUE(WaitResult(first.lease, *agent));
+  ASSERT_TRUE(agent->WaitForLog("took back 1 of our point leases not started yet")) << agent->Log();
+  ASSERT_TRUE(master_.WaitFor([](const Record& r) {
+    const auto beats = r.All<protocol::HeartbeatMsg>();
+    return !beats.empty() && beats.back().leases_held == 0;
+  }));
+  for (const auto& result : master_.Snapshot().All<protocol::PointResultMsg>()) {
+    EXPECT_NE(result.lease, second);
+  }
+  EXPECT_TRUE(master_.Snapshot().All<protocol::LeaseReturnMsg>().empty());
+  agent->Signal(SIGTERM);
+  EXPECT_EQ(agent->WaitExit(), 0) << agent->Log();
+}
+
 }  // namespace
 }  // namespace radfarm::agent::testing
