@@ -16,8 +16,8 @@
 //   Want --scene, state dir--> kLoading --file ok: decoded, caster built--> on_ready
 //     |                          |
 //     |                          +--no file, damaged file--+
-//     +--context, or no state dir--------------------------+--> kFetching --last chunk-->
-//     kPreparing
+//     +--context, or no state dir--------------------------+--> kFetching
+//   kFetching --last chunk--> kPreparing
 //   kFetching --SceneUnavailable, bad chunk--> on_failed
 //   kPreparing --unpacked and checked, decoded, (a scene) written, caster built--> on_ready (then
 //              the scene's file committed: Commit) or on_context_ready;
