@@ -233,6 +233,9 @@ void Agent::OnMessage(const protocol::Message& message) {
   if (const auto* lease = std::get_if<protocol::LeaseAssignmentMsg>(&message)) {
     runner_->OnLease(*lease, !draining_);
     UpdateIdleTimer();
+  } else if (const auto* points = std::get_if<protocol::PointLeaseMsg>(&message)) {
+    runner_->OnPointLease(*points, !draining_);
+    UpdateIdleTimer();
   } else if (const auto* revoke = std::get_if<protocol::LeaseRevokeMsg>(&message)) {
     runner_->Revoke(*revoke);
   } else if (const auto* cancel = std::get_if<protocol::CancelMsg>(&message)) {

@@ -59,13 +59,31 @@ LeaseWorker::LeaseWorker(loop::EventLoop& loop, const AgentSettings& settings,
       meter_(settings.threads, settings.slowdown) {
   SceneSupply::Callbacks scene_callbacks;
   scene_callbacks.on_ready = [this](const auto& scene) { OnSceneReady(scene); };
+  scene_callbacks.on_context_ready = [this](const auto& context) {
+    points_->OnContextReady(context);
+  };
   scene_callbacks.on_failed = [this](const auto& hash, auto reason, const std::string& why) {
     OnSceneFailed(hash, reason, why);
+    points_->OnContextFailed(hash, reason, why);
   };
   scene_callbacks.send_request = [this](const protocol::SceneRequestMsg& request) {
     return callbacks_.send(request);
   };
   scenes_ = std::make_unique<SceneSupply>(io, std::move(store), master_, scene_callbacks);
+  PointLeases::Callbacks point_callbacks;
+  point_callbacks.send = [this](const protocol::Message& message) {
+    return callbacks_.send(message);
+  };
+  point_callbacks.return_leases = [this](std::vector<protocol::LeaseRef> leases, auto reason,
+                                         const std::string& why) {
+    Return(std::move(leases), reason, why);
+  };
+  point_callbacks.on_leases_changed = [this] { callbacks_.on_leases_changed(); };
+  points_ = std::make_unique<PointLeases>(batches, *scenes_, master_, point_callbacks);
+}
+
+void LeaseWorker::OnPointLease(const protocol::PointLeaseMsg& lease, bool accepting) {
+  points_->OnLease(lease, accepting);
 }
 
 void LeaseWorker::OnLease(const protocol::LeaseAssignmentMsg& frame, bool accepting) {
@@ -125,6 +143,7 @@ void LeaseWorker::OnLease(const protocol::LeaseAssignmentMsg& frame, bool accept
 }
 
 size_t LeaseWorker::Revoke(const protocol::LeaseRevokeMsg& revoke) {
+  const size_t points = points_->Revoke(revoke.leases);
   std::vector<uint64_t> touched;
   size_t dropped = 0;
   for (const protocol::LeaseRef& ref : revoke.leases) {
@@ -143,7 +162,7 @@ size_t LeaseWorker::Revoke(const protocol::LeaseRevokeMsg& revoke) {
         << master_ << " took back " << dropped << " of our batches not started yet";
     callbacks_.on_leases_changed();
   }
-  return dropped;
+  return dropped + points;
 }
 
 Status LeaseWorker::CheckRayRange(const protocol::AssignedBatch& a) {
@@ -367,12 +386,13 @@ size_t LeaseWorker::Cancel(uint64_t job_id) {
   const std::vector<protocol::LeaseRef> dropped = book_.RemoveJob(job_id);
   std::erase_if(groups_, [&](const auto& entry) { return entry.second.job_id == job_id; });
   if (!dropped.empty()) callbacks_.on_leases_changed();
-  return dropped.size();
+  return dropped.size() + points_->Cancel(job_id);
 }
 
 void LeaseWorker::ReturnAll(protocol::LeaseReturnReason reason, const std::string& why) {
   std::vector<protocol::LeaseRef> leases = book_.RemoveAll();
   groups_.clear();
+  for (const protocol::LeaseRef& ref : points_->TakeAll()) leases.push_back(ref);
   if (leases.empty()) return;
   Return(std::move(leases), reason, why);
   callbacks_.on_leases_changed();
@@ -381,7 +401,7 @@ void LeaseWorker::ReturnAll(protocol::LeaseReturnReason reason, const std::strin
 size_t LeaseWorker::DropAll() {
   scenes_->OnDisconnected();
   groups_.clear();
-  return book_.RemoveAll().size();
+  return book_.RemoveAll().size() + points_->TakeAll().size();
 }
 
 void LeaseWorker::ReturnOne(uint64_t id, protocol::LeaseReturnReason reason,

@@ -4,6 +4,8 @@
 // LeaseResult once all are computed (after --slowdown's hold), or returns a batch in a LeaseReturn
 // when it cannot run it. A LeaseRevoke drops the named batches not started yet (another agent
 // took them over); the frame is then answered without them. LeaseBook has each batch's stages.
+// Point leases (pieces of a job's display) are PointLeases' (agent/point_leases.h); Revoke,
+// Cancel, ReturnAll, DropAll, held() and busy() cover them too.
 //
 // The runner keeps at most `threads` tasks on the work queue, each a run of queued batches of about
 // an equal share of the queued rays (at most kChunkRays), and the rest in its own queue, so a
@@ -25,6 +27,7 @@
 
 #include "agent/agent_settings.h"
 #include "agent/lease_book.h"
+#include "agent/point_leases.h"
 #include "agent/sampler_cache.h"
 #include "agent/scene_store.h"
 #include "agent/scene_supply.h"
@@ -56,7 +59,9 @@ class LeaseWorker {
   // A new lease frame. When not `accepting` (draining) its batches are returned at once (reason
   // Draining).
   void OnLease(const protocol::LeaseAssignmentMsg& lease, bool accepting);
-  // Drops the named batches that have not started; returns how many were dropped.
+  // A new point lease (PointLeases::OnLease).
+  void OnPointLease(const protocol::PointLeaseMsg& lease, bool accepting);
+  // Drops the named batches and point leases that have not started; returns how many were dropped.
   size_t Revoke(const protocol::LeaseRevokeMsg& revoke);
   // Drops the job's leases, queued and running; returns how many were held.
   size_t Cancel(uint64_t job_id);
@@ -66,9 +71,10 @@ class LeaseWorker {
   size_t DropAll();
 
   SceneSupply& scenes() { return *scenes_; }
-  size_t held() const { return book_.size(); }
-  // Batches submitted to the workers and scene work on the I/O queue, not yet delivered back.
-  bool busy() const { return tasks_in_flight_ > 0 || scenes_->busy() > 0; }
+  size_t held() const { return book_.size() + points_->held(); }
+  // Batches and point leases submitted to the workers and scene work on the I/O queue, not yet
+  // delivered back.
+  bool busy() const { return tasks_in_flight_ > 0 || points_->busy() > 0 || scenes_->busy() > 0; }
   double RaysPerSecond() const { return meter_.RaysPerSecond(); }
 
  private:
@@ -103,6 +109,7 @@ class LeaseWorker {
   std::shared_ptr<TracerPool> runners_ = std::make_shared<TracerPool>();
   ThroughputMeter meter_;
   std::unique_ptr<SceneSupply> scenes_;
+  std::unique_ptr<PointLeases> points_;
   size_t tasks_in_flight_ = 0;
 
   // One lease frame's batches (LeaseBook ids), answered together, except that results filling a

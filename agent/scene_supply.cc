@@ -12,7 +12,10 @@ namespace {
 using loop::LogLevel;
 using loop::LogLine;
 
-std::string Name(const protocol::SceneHash& hash) { return "scene " + protocol::HashToHex(hash); }
+std::string NameOf(const protocol::SceneHash& hash, SceneSupply::Blob what) {
+  return (what == SceneSupply::Blob::kScene ? "scene " : "point context ") +
+         protocol::HashToHex(hash);
+}
 
 long Ms(double seconds) { return std::lround(seconds * 1000); }
 
@@ -29,13 +32,24 @@ std::shared_ptr<const PreparedScene> SceneSupply::Find(const protocol::SceneHash
   return recent_.Find(hash);
 }
 
-Status SceneSupply::Want(const protocol::SceneHash& hash) {
+std::shared_ptr<const PreparedContext> SceneSupply::FindContext(const protocol::SceneHash& hash) {
+  return recent_contexts_.Find(hash);
+}
+
+std::string SceneSupply::Name(const protocol::SceneHash& hash) const {
+  auto found = pending_.find(hash);
+  return NameOf(hash, found == pending_.end() ? Blob::kScene : found->second.what);
+}
+
+Status SceneSupply::Want(const protocol::SceneHash& hash, Blob what) {
   if (pending_.contains(hash)) return Ok{};
   if (undecodable_.contains(hash)) {
-    return Error{Name(hash) + " could not be decoded before; it is not fetched again"};
+    return Error{NameOf(hash, what) + " could not be decoded before; it is not fetched again"};
   }
   Pending& pending = pending_[hash];
-  Status started = store_ ? LoadFromDisk(hash) : StartFetch(hash, pending);
+  pending.what = what;
+  // Contexts are not saved: a display's are fetched once per job and replaced by its next one.
+  Status started = store_ && what == Blob::kScene ? LoadFromDisk(hash) : StartFetch(hash, pending);
   if (!started) pending_.erase(hash);
   return started;
 }
@@ -145,15 +159,15 @@ void SceneSupply::OnDisconnected() {
 
 void SceneSupply::Abandon(const protocol::SceneHash& hash, uint32_t answers_due) {
   if (answers_due > 0) stale_answers_[hash] += answers_due;
-  pending_.erase(hash);
 }
 
 void SceneSupply::PrepareFetched(const protocol::SceneHash& hash,
                                  protocol::ReceivedScene received) {
-  pending_[hash].stage = Stage::kPreparing;
+  Pending& pending = pending_[hash];
+  pending.stage = Stage::kPreparing;
   const SceneStore* store = store_ ? &*store_ : nullptr;
   Status submitted = io_.Submit(
-      [store, hash, received = std::move(received)]() mutable -> Prepared {
+      [store, hash, what = pending.what, received = std::move(received)]() mutable -> Prepared {
         Prepared prepared;
         // Written once decoded (an undecodable scene is not kept), before the caster is built
         // from the file; made durable and put in place only once the scene is ready (OnPrepared).
@@ -175,6 +189,18 @@ void SceneSupply::PrepareFetched(const protocol::SceneHash& hash,
         if (!blob) {
           prepared.kind = Prepared::Kind::kBadTransfer;
           prepared.detail = blob.error();
+          return prepared;
+        }
+        if (what == Blob::kPointContext) {
+          Result<std::shared_ptr<const PreparedContext>> context =
+              PrepareContext(hash, std::move(blob).value());
+          if (!context) {
+            prepared.kind = Prepared::Kind::kUndecodable;
+            prepared.detail = context.error();
+            return prepared;
+          }
+          prepared.kind = Prepared::Kind::kReady;
+          prepared.context = std::move(context).value();
           return prepared;
         }
         Result<std::shared_ptr<const PreparedScene>> scene =
@@ -208,6 +234,16 @@ void SceneSupply::OnPrepared(const protocol::SceneHash& hash, Result<Prepared> p
   }
   switch (prepared->kind) {
     case Prepared::Kind::kReady: {
+      if (prepared->context) {
+        LogLine(LogLevel::kInfo, "agent")
+            << Name(hash) << ": ready, " << prepared->context->patch_count()
+            << " patches; decompressed and its SHA-256 checked in " << Ms(prepared->times.unpack)
+            << " ms";
+        pending_.erase(found);
+        recent_contexts_.Insert(prepared->context);
+        callbacks_.on_context_ready(prepared->context);
+        return;
+      }
       LogLine(LogLevel::kInfo, "agent")
           << Name(hash) << ": ready, " << prepared->scene->patch_count() << " patches"
           << (prepared->detail.empty() ? "" : "; " + prepared->detail);
@@ -262,8 +298,9 @@ void SceneSupply::Commit(const protocol::SceneHash& hash,
 
 void SceneSupply::Fail(const protocol::SceneHash& hash, protocol::LeaseReturnReason reason,
                        const std::string& why) {
+  const std::string name = Name(hash);
   pending_.erase(hash);
-  LogLine(LogLevel::kWarning, "agent") << Name(hash) << ": " << why;
+  LogLine(LogLevel::kWarning, "agent") << name << ": " << why;
   callbacks_.on_failed(hash, reason, why);
 }
 

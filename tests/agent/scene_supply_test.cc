@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "codec/patch_scene_codec.h"
+#include "codec/point_context_blob.h"
 #include "protocol/scene_transfer.h"
 #include "tests/agent/agent_process.h"
 #include "tests/agent/test_farm.h"
@@ -29,6 +30,7 @@ struct Harness {
       ready.push_back(scene);
       if (at_ready) at_ready();
     };
+    callbacks.on_context_ready = [this](const auto& context) { contexts.push_back(context); };
     callbacks.on_failed = [this](const auto&, auto reason, const std::string& why) {
       failures.emplace_back(reason, why);
     };
@@ -56,7 +58,8 @@ struct Harness {
     }
   }
   bool RunUntilSettled() {
-    return RunUntil(loop, [this] { return !ready.empty() || !failures.empty(); });
+    return RunUntil(loop,
+                    [this] { return !ready.empty() || !contexts.empty() || !failures.empty(); });
   }
 
   loop::EventLoop loop;
@@ -66,6 +69,7 @@ struct Harness {
   size_t max_in_flight = 0;
   int served = 0;
   std::vector<std::shared_ptr<const PreparedScene>> ready;
+  std::vector<std::shared_ptr<const PreparedContext>> contexts;
   std::function<void()> at_ready;  // runs inside on_ready
   std::vector<std::pair<protocol::LeaseReturnReason, std::string>> failures;
 };
@@ -268,6 +272,103 @@ TEST(SceneSupplyTest, AChunkNobodyAskedForIsIgnored) {
   ASSERT_TRUE(h.RunUntilSettled());
   EXPECT_EQ(h.ready.size(), 1u);
   EXPECT_TRUE(h.failures.empty());
+}
+
+// A display step's point context on `scene`: direct light only, or gathering with made-up but
+// valid per-patch values.
+std::vector<uint8_t> PointContextBlob(const PatchScene& scene, bool gathers) {
+  PointContext context;
+  context.rays_per_point = 4;
+  context.rays_per_light = 2;
+  if (gathers) {
+    const size_t n = scene.patches.size();
+    context.outgoing.assign(n, Rgb{0.25, 0.5, 0.75});
+    context.corner_offsets.assign(n, {Rgb{0.01, 0, 0}, Rgb{0, 0.01, 0}, Rgb{}, Rgb{}});
+    context.bounced.assign(n, Rgb{0.1, 0.1, 0.1});
+  }
+  return codec::EncodePointContext(codec::EncodePatchScene(scene), context);
+}
+
+TEST(SceneSupplyTest, APointContextIsFetchedInChunksPreparedAndKeptButNotSaved) {
+  ScratchDir dir;
+  const PatchScene scene = testing::VariedBoxScene(testing::kBigBox);
+  const std::vector<uint8_t> blob = PointContextBlob(scene, /*gathers=*/true);
+  ASSERT_GT(protocol::PackScene(blob).compressed.size(), 2 * protocol::kMaxSceneChunkBytes)
+      << "the compressed context should take 3+ chunks";
+  const protocol::SceneHash hash = protocol::HashScene(blob);
+  Harness h(SceneStore::Open(dir.path()).value());
+  ASSERT_TRUE(h.supply->Want(hash, SceneSupply::Blob::kPointContext).ok());
+  EXPECT_EQ(h.requests.size(), 1u);  // straight to the master: contexts are not on disk
+  h.Serve(blob);
+  EXPECT_GT(h.served, 2);
+  ASSERT_TRUE(h.RunUntilSettled());
+  ASSERT_TRUE(h.failures.empty()) << h.failures[0].second;
+  EXPECT_TRUE(h.ready.empty());
+  ASSERT_EQ(h.contexts.size(), 1u);
+  EXPECT_EQ(h.contexts[0]->hash, hash);
+  EXPECT_EQ(h.contexts[0]->patch_count(), scene.patches.size());
+  EXPECT_EQ(h.supply->FindContext(hash), h.contexts[0]);
+  EXPECT_EQ(h.supply->Find(hash), nullptr);  // not a scene
+  ASSERT_TRUE(RunUntil(h.loop, [&] { return h.supply->busy() == 0; }));
+  EXPECT_NE(SceneStore::Open(dir.path()).value().Load(hash).outcome,
+            SceneStore::LoadOutcome::kFound);
+}
+
+TEST(SceneSupplyTest, TheLastTwoPointContextsStayInMemory) {
+  Harness h(std::nullopt);
+  std::vector<protocol::SceneHash> hashes;
+  for (int n : {2, 3, 4}) {
+    const std::vector<uint8_t> blob = PointContextBlob(testing::BoxScene(n), /*gathers=*/false);
+    hashes.push_back(protocol::HashScene(blob));
+    ASSERT_TRUE(h.supply->Want(hashes.back(), SceneSupply::Blob::kPointContext).ok());
+    h.Serve(blob);
+    ASSERT_TRUE(RunUntil(h.loop, [&] { return h.contexts.size() == hashes.size(); }));
+  }
+  EXPECT_EQ(h.supply->FindContext(hashes[0]), nullptr);
+  EXPECT_NE(h.supply->FindContext(hashes[1]), nullptr);
+  EXPECT_NE(h.supply->FindContext(hashes[2]), nullptr);
+}
+
+TEST(SceneSupplyTest, ADamagedPointContextIsRefusedAndMayBeFetchedAgain) {
+  const std::vector<uint8_t> blob = PointContextBlob(testing::BoxScene(3), /*gathers=*/true);
+  const protocol::SceneHash hash = protocol::HashScene(blob);
+  std::vector<uint8_t> tampered = blob;
+  tampered[tampered.size() / 2] ^= 1;  // the same size, another SHA-256
+  Harness h(std::nullopt);
+  ASSERT_TRUE(h.supply->Want(hash, SceneSupply::Blob::kPointContext).ok());
+  const protocol::PackedScene packed = protocol::PackScene(tampered);
+  while (!h.requests.empty()) {
+    protocol::SceneChunkMsg chunk = protocol::MakeSceneChunk(packed, h.requests.front()).value();
+    h.requests.pop_front();
+    chunk.scene_hash = hash;
+    h.supply->OnChunk(chunk);
+  }
+  ASSERT_TRUE(h.RunUntilSettled());
+  ASSERT_EQ(h.failures.size(), 1u);
+  EXPECT_EQ(h.failures[0].first, protocol::LeaseReturnReason::kFailed);
+  EXPECT_NE(h.failures[0].second.find("SHA-256"), std::string::npos) << h.failures[0].second;
+  EXPECT_TRUE(h.contexts.empty());
+  ASSERT_TRUE(h.supply->Want(hash, SceneSupply::Blob::kPointContext).ok());
+  h.Serve(blob);
+  ASSERT_TRUE(RunUntil(h.loop, [&] { return !h.contexts.empty(); }));
+  EXPECT_EQ(h.failures.size(), 1u);
+}
+
+TEST(SceneSupplyTest, APointContextThatDoesNotDecodeIsRememberedAndNotFetchedAgain) {
+  // Verified by its hash, but a scene's blob, not a point context's.
+  const std::vector<uint8_t> blob = codec::EncodePatchScene(testing::BoxScene(2));
+  const protocol::SceneHash hash = protocol::HashScene(blob);
+  Harness h(std::nullopt);
+  ASSERT_TRUE(h.supply->Want(hash, SceneSupply::Blob::kPointContext).ok());
+  h.Serve(blob);
+  ASSERT_TRUE(h.RunUntilSettled());
+  ASSERT_EQ(h.failures.size(), 1u);
+  EXPECT_EQ(h.failures[0].first, protocol::LeaseReturnReason::kFailed);
+  EXPECT_TRUE(h.contexts.empty());
+  const Status again = h.supply->Want(hash, SceneSupply::Blob::kPointContext);
+  ASSERT_FALSE(again.ok());
+  EXPECT_NE(again.error().find("point context"), std::string::npos) << again.error();
+  EXPECT_TRUE(h.requests.empty());
 }
 
 }  // namespace
