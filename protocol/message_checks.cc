@@ -184,9 +184,12 @@ Status Check(const PointLeaseMsg& m) {
       return Fail("PointLease", Str(m.gather.size()) + " gather flags for " + Str(n) + " points");
     }
     if (!AreFlags(m.gather)) return Fail("PointLease", "a gather flag other than 0 or 1");
-    if (m.gather_rays < 1 || m.gather_rays > kMaxPointGatherRays) {
-      return Fail("PointLease",
-                  "gather_rays " + Str(m.gather_rays) + " not in 1.." + Str(kMaxPointGatherRays));
+    // A step may gather at no point of a piece (or anywhere, its rays fitted to nothing): its
+    // gathered values are then zeros, and no ray is asked for.
+    const bool any = std::find(m.gather.begin(), m.gather.end(), 1) != m.gather.end();
+    if ((any && m.gather_rays < 1) || m.gather_rays > kMaxPointGatherRays) {
+      return Fail("PointLease", "gather_rays " + Str(m.gather_rays) + " not in " +
+                                    (any ? "1" : "0") + ".." + Str(kMaxPointGatherRays));
     }
   }
   if (m.near_radius == 0 && !m.direct && m.gather.empty()) {

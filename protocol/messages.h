@@ -183,7 +183,7 @@ struct PointLeaseMsg {  // master -> agent
   uint64_t seed = 0;
   double near_radius = 0;           // finite, >= 0; 0: not asked
   bool direct = false;              // the direct light at every point
-  uint32_t gather_rays = 0;         // 1..kMaxPointGatherRays where `gather` is not empty
+  uint32_t gather_rays = 0;         // <= kMaxPointGatherRays; >= 1 where a gather flag is 1
   uint64_t first_index = 0;         // first_index + points.size() does not overflow
   std::vector<LeasedPoint> points;  // 1..kMaxLeasePoints
   std::vector<uint8_t> gather;      // empty, or 0 or 1 per point: the points that gather

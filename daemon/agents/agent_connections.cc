@@ -471,12 +471,18 @@ void AgentConnections::Dispatch(AgentLink& link) {
     const auto refused = [&](store::JobId job) {
       return blocklist_.BlockedUntil(job, link.name(), now).has_value();
     };
+    bool sending = true;
     for (protocol::PointLeaseMsg& lease :
          jobs_.DisplayLeasesFor(link.id(), link.threads() + 1, refused)) {
-      if (Status st = link.Send(std::move(lease)); !st) {
+      const protocol::LeaseRef ref = lease.lease;
+      if (sending) {
+        const Status st = link.Send(std::move(lease));
+        if (st) continue;
         LogLine(LogLevel::kWarning, "agents") << link.Describe() << ": " << st.error();
-        break;
+        sending = false;
       }
+      // Not sent: back to the queue rather than wait for its deadline.
+      jobs_.ReturnDisplayPieces(link.id(), ref);
     }
   }
   std::map<uint64_t, std::vector<protocol::LeaseRef>> revoked;

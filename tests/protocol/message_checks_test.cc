@@ -176,6 +176,11 @@ TEST(ProtocolCheckTest, PointLease) {
     m.gather_rays = bad;
     ExpectRejected(m, "PointLease: gather_rays");
   }
+  // No point of the piece gathers: no ray asked for, and the lease stands.
+  m = Sample<PointLeaseMsg>();
+  m.gather = {0, 0};
+  m.gather_rays = 0;
+  EXPECT_TRUE(CheckMessage(m));
   m = Sample<PointLeaseMsg>();
   m.near_radius = 0;
   m.direct = false;
