@@ -28,6 +28,23 @@ Status CheckBlobHeader(std::span<const uint8_t> blob, std::string_view kind,
 // aligned data; a std::vector's buffer is, a span into a frame may not be.
 std::span<const uint8_t> Aligned(std::span<const uint8_t> blob, std::vector<uint8_t>* copy);
 
+// The root table of a blob of `kind` once CheckBlobHeader and the FlatBuffers verifier
+// (`verify`, the schema's VerifyXBuffer) passed. The root points into `blob`, or into `*aligned`
+// where Aligned copied it: both must outlive its use.
+template <typename Root>
+Result<const Root*> VerifiedRoot(std::span<const uint8_t> blob, std::string_view kind,
+                                 const char* identifier, bool (*verify)(flatbuffers::Verifier&),
+                                 std::vector<uint8_t>* aligned,
+                                 const flatbuffers::Verifier::Options& options = {}) {
+  RADFARM_RETURN_IF_ERROR(CheckBlobHeader(blob, kind, identifier));
+  blob = Aligned(blob, aligned);
+  flatbuffers::Verifier verifier(blob.data(), blob.size(), options);
+  if (!verify(verifier)) {
+    return Error{std::string(kind) + ": not a valid FlatBuffer (verification failed)"};
+  }
+  return flatbuffers::GetRoot<Root>(blob.data());
+}
+
 using radfarm::IsFinite;  // Vec3 (core/vec3.h)
 inline bool IsFinite(const Rgb& c) {
   return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b);

@@ -112,15 +112,11 @@ std::vector<uint8_t> EncodeDisplay(const Display& display) {
 }
 
 Result<Display> DecodeDisplay(std::span<const uint8_t> blob, size_t patch_count) {
-  RADFARM_RETURN_IF_ERROR(CheckBlobHeader(blob, kKind, "RDDM"));
   std::vector<uint8_t> aligned;
-  blob = Aligned(blob, &aligned);
-  flatbuffers::Verifier::Options options;
-  flatbuffers::Verifier verifier(blob.data(), blob.size(), options);
-  if (!wire::VerifyDisplayMeshBlobBuffer(verifier)) {
-    return Error{std::string(kKind) + ": not a valid FlatBuffer (verification failed)"};
-  }
-  const wire::DisplayMeshBlob* root = wire::GetDisplayMeshBlob(blob.data());
+  Result<const wire::DisplayMeshBlob*> verified = VerifiedRoot<wire::DisplayMeshBlob>(
+      blob, kKind, "RDDM", &wire::VerifyDisplayMeshBlobBuffer, &aligned);
+  RADFARM_RETURN_IF_ERROR(verified);
+  const wire::DisplayMeshBlob* root = *verified;
   // Empty where no patch is two-sided (DisplayMesh::patch_front_only).
   const size_t fronts = root->patch_front_only()->size();
   if (fronts != 0 && fronts != patch_count) {

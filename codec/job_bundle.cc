@@ -277,16 +277,13 @@ std::vector<uint8_t> EncodeJobBundle(const JobBundle& bundle) {
 }
 
 Result<JobBundle> DecodeJobBundle(std::span<const uint8_t> blob) {
-  RADFARM_RETURN_IF_ERROR(CheckBlobHeader(blob, kKind, "RDJB"));
   std::vector<uint8_t> aligned;
-  blob = Aligned(blob, &aligned);
   flatbuffers::Verifier::Options options;
   options.max_tables = 2 * kMaxFaces;
-  flatbuffers::Verifier verifier(blob.data(), blob.size(), options);
-  if (!wire::VerifyJobBundleBlobBuffer(verifier)) {
-    return Error{std::string(kKind) + ": not a valid FlatBuffer (verification failed)"};
-  }
-  const wire::JobBundleBlob* root = wire::GetJobBundleBlob(blob.data());
+  Result<const wire::JobBundleBlob*> verified = VerifiedRoot<wire::JobBundleBlob>(
+      blob, kKind, "RDJB", &wire::VerifyJobBundleBlobBuffer, &aligned, options);
+  RADFARM_RETURN_IF_ERROR(verified);
+  const wire::JobBundleBlob* root = *verified;
   JobBundle bundle;
   bundle.job.scene_path = root->scene_path()->str();
   bundle.scene.path = bundle.job.scene_path;

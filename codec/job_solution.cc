@@ -51,15 +51,11 @@ std::vector<uint8_t> EncodeJobSolution(const JobSolution& solution) {
 }
 
 Result<JobSolution> DecodeJobSolution(std::span<const uint8_t> blob) {
-  RADFARM_RETURN_IF_ERROR(CheckBlobHeader(blob, kKind, "RDJS"));
   std::vector<uint8_t> aligned;
-  blob = Aligned(blob, &aligned);
-  flatbuffers::Verifier::Options options;
-  flatbuffers::Verifier verifier(blob.data(), blob.size(), options);
-  if (!wire::VerifyJobSolutionBlobBuffer(verifier)) {
-    return Error{std::string(kKind) + ": not a valid FlatBuffer (verification failed)"};
-  }
-  const wire::JobSolutionBlob* root = wire::GetJobSolutionBlob(blob.data());
+  Result<const wire::JobSolutionBlob*> verified = VerifiedRoot<wire::JobSolutionBlob>(
+      blob, kKind, "RDJS", &wire::VerifyJobSolutionBlobBuffer, &aligned);
+  RADFARM_RETURN_IF_ERROR(verified);
+  const wire::JobSolutionBlob* root = *verified;
   JobSolution solution;
   solution.bundle.assign(root->bundle()->begin(), root->bundle()->end());
   if (root->scene()) solution.scene.assign(root->scene()->begin(), root->scene()->end());

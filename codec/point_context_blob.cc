@@ -91,15 +91,11 @@ std::vector<uint8_t> EncodePointContext(std::span<const uint8_t> scene,
 }
 
 Result<DecodedPointContext> DecodePointContext(std::span<const uint8_t> blob) {
-  RADFARM_RETURN_IF_ERROR(CheckBlobHeader(blob, kKind, "RDPC"));
   std::vector<uint8_t> aligned;
-  blob = Aligned(blob, &aligned);
-  flatbuffers::Verifier::Options options;
-  flatbuffers::Verifier verifier(blob.data(), blob.size(), options);
-  if (!wire::VerifyPointContextBlobBuffer(verifier)) {
-    return Error{std::string(kKind) + ": not a valid FlatBuffer (verification failed)"};
-  }
-  const wire::PointContextBlob* root = wire::GetPointContextBlob(blob.data());
+  Result<const wire::PointContextBlob*> verified = VerifiedRoot<wire::PointContextBlob>(
+      blob, kKind, "RDPC", &wire::VerifyPointContextBlobBuffer, &aligned);
+  RADFARM_RETURN_IF_ERROR(verified);
+  const wire::PointContextBlob* root = *verified;
   DecodedPointContext out;
   const auto& scene = *root->scene();
   Result<PatchScene> decoded = DecodePatchScene({scene.data(), scene.size()});

@@ -39,6 +39,11 @@ DisplayRun* JobRounds::FindDisplay(store::JobId id, uint64_t serial) {
   return it == display_runs_.end() || it->second.serial != serial ? nullptr : &it->second;
 }
 
+void JobRounds::DisplayFailed(store::JobId id, const std::string& error) {
+  display_runs_.erase(id);
+  FailJob(id, "its display: " + error);
+}
+
 void JobRounds::FinishJob(const std::shared_ptr<RunningJob>& runner) {
   const store::JobId id = runner->id();
   DropRunner(id);
@@ -89,8 +94,7 @@ void JobRounds::PlanDisplay(store::JobId id, uint64_t serial, store::StoredSolut
         DisplayRun* run = FindDisplay(id, serial);
         if (stopping_ || !run) return;
         if (!draft) {
-          display_runs_.erase(id);
-          FailJob(id, "its display: " + draft.error());
+          DisplayFailed(id, draft.error());
           return;
         }
         run->draft = std::move(*draft);
@@ -98,8 +102,7 @@ void JobRounds::PlanDisplay(store::JobId id, uint64_t serial, store::StoredSolut
         NextDisplayStep(id, serial);
       });
   if (!s) {
-    display_runs_.erase(id);
-    FailJob(id, "its display: " + s.error());
+    DisplayFailed(id, s.error());
   }
 }
 
@@ -132,15 +135,13 @@ void JobRounds::ApplyDisplayStep(store::JobId id, uint64_t serial,
       [this, id, serial](Status applied) {
         if (stopping_ || !FindDisplay(id, serial)) return;
         if (!applied) {
-          display_runs_.erase(id);
-          FailJob(id, "its display: " + applied.error());
+          DisplayFailed(id, applied.error());
           return;
         }
         NextDisplayStep(id, serial);
       });
   if (!s) {
-    display_runs_.erase(id);
-    FailJob(id, "its display: " + s.error());
+    DisplayFailed(id, s.error());
   }
 }
 
@@ -158,15 +159,13 @@ void JobRounds::FinishDisplay(store::JobId id, uint64_t serial) {
       [this, id, serial](Result<store::StoredDisplay> display) {
         if (stopping_ || !FindDisplay(id, serial)) return;
         if (!display) {
-          display_runs_.erase(id);
-          FailJob(id, "its display: " + display.error());
+          DisplayFailed(id, display.error());
           return;
         }
         MarkDone(id, serial, std::move(*display));
       });
   if (!s) {
-    display_runs_.erase(id);
-    FailJob(id, "its display: " + s.error());
+    DisplayFailed(id, s.error());
   }
 }
 

@@ -211,6 +211,8 @@ class JobRounds {
   // The step's values (traced here when nullopt) go to the draft on the compute thread.
   void ApplyDisplayStep(store::JobId id, uint64_t serial, std::optional<PointValues> values);
   void FinishDisplay(store::JobId id, uint64_t serial);
+  // The display could not be drawn: the job fails, saying why.
+  void DisplayFailed(store::JobId id, const std::string& error);
   void MarkDone(store::JobId id, uint64_t serial, std::optional<store::StoredDisplay> display);
   // Keeps `report` as job `id`'s last checkpoint, its count one more; forgets the oldest job's
   // beyond kKeptCheckpointReports.
