@@ -24,7 +24,7 @@ std::string ProgressReporter::Eta(const ProgressEstimate& e) {
 }
 
 void ProgressReporter::Bar(double fraction, const std::string& text) {
-  const int filled = int(std::clamp(fraction, 0.0, 1.0) * kBarWidth);
+  const int filled = int(shown_.Show(fraction) * kBarWidth);
   std::fprintf(out_, "\r[%s%s] %s   ", std::string(filled, '#').c_str(),
                std::string(kBarWidth - filled, '.').c_str(), text.c_str());
   drew_ = true;

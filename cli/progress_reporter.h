@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/progress_estimator.h"
+#include "core/progress_ratchet.h"
 #include "display/display_settings.h"
 #include "solve/solve_state.h"
 
@@ -51,6 +52,7 @@ class ProgressReporter {
   uint32_t running_round_ = UINT32_MAX;  // the round OnRoundRunning last saw
   double last_running_print_ = -1;       // its round seconds at its last line
   bool drew_ = false;
+  ProgressRatchet shown_;  // the bar never goes back when a round refits the estimate
 };
 
 }  // namespace radfarm

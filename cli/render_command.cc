@@ -28,7 +28,7 @@ void PrintCheckpoints(RenderState& state) {
     std::printf(
         "--db: round %u checkpoint: %llu bytes in %.1f ms (encode %.1f, commit %.1f; the "
         "render waited %.1f ms)\n",
-        r.round, static_cast<unsigned long long>(r.cost.bytes), 1000 * r.seconds,
+        ShownRound(r.round), static_cast<unsigned long long>(r.cost.bytes), 1000 * r.seconds,
         1000 * r.cost.encode_seconds, 1000 * r.cost.commit_seconds, 1000 * r.waited_seconds);
   }
   std::fflush(stdout);
@@ -106,7 +106,7 @@ void KeepRounds(const RenderOptions& options, RenderState* state, Status* save_s
   hooks->resume = state->resume();
   if (hooks->resume && !options.quiet) {
     std::printf("%s: continuing job %lld after round %u (%llu rays done)\n", options.db.c_str(),
-                static_cast<long long>(state->job_id()), hooks->resume->round,
+                static_cast<long long>(state->job_id()), ShownRound(hooks->resume->round),
                 static_cast<unsigned long long>(hooks->resume->totals.rays));
   }
   hooks->after_round = [&options, state, save_status](const SolveState& c) {

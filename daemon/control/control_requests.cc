@@ -242,9 +242,10 @@ json ControlRequests::JobJson(const JobSummary& s) {
     // The live view is ahead of the store by the rounds not yet committed.
     const JobTotals& t = runner->totals();
     job["round"] = t.round;
-    job["rays"] = t.rays;
+    const auto now = clock_.Now();
+    job["rays"] = t.rays + runner->RunningRaysDone(now);
     job["unshot_fraction"] = t.unshot_fraction;
-    job["rays_per_second"] = runner->RaysPerSecond();
+    job["rays_per_second"] = runner->RaysPerSecond(now);
     // Agents holding its leases: the round's, or its final gather's leased ahead (gather_ahead.h).
     std::set<scheduler::AgentId> working;
     runner->ForEachScheduler([&](const scheduler::RoundScheduler& s) {
@@ -265,8 +266,20 @@ json ControlRequests::JobJson(const JobSummary& s) {
     job["stop_reason"] = StopReasonOf(s);
     job["eta_seconds"] = 0.0;
   }
-  job["progress"] = r.state == store::JobState::kDone ? 1.0 : progress;
+  job["progress"] = ShownProgress(r, progress);
   return job;
+}
+
+double ControlRequests::ShownProgress(const store::JobRecord& record, double estimate) {
+  if (record.state == store::JobState::kDone) {
+    shown_progress_.erase(record.id);
+    return 1.0;
+  }
+  if (store::IsTerminal(record.state)) {
+    shown_progress_.erase(record.id);
+    return estimate;
+  }
+  return shown_progress_[record.id].Show(estimate);
 }
 
 json ControlRequests::DoorsJson() const {

@@ -51,7 +51,7 @@ void JobRounds::DrawDisplay(store::JobId id, const std::string& reason,
   solution->radiosity = std::move(stored.checkpoint.radiosity);
   solution->unshot = std::move(stored.checkpoint.unshot);
   LogLine(LogLevel::kInfo, "job " + std::to_string(id))
-      << "drawing the display of round " << round << "'s solution";
+      << "drawing the display of round " << ShownRound(round) << "'s solution";
   Status s = compute_.Submit(
       [solution, round]() -> Result<store::StoredDisplay> {
         Result<std::vector<uint8_t>> bytes = codec::DrawEncodedDisplay(*solution);

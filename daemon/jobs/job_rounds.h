@@ -66,7 +66,7 @@ struct VerifyCounters {
 
 // What the last checkpoint the master committed for a job cost.
 struct CheckpointReport {
-  uint32_t round = 0;
+  uint32_t round = 0;      // the round it ends, as shown (ShownRound: from 1)
   uint64_t bytes = 0;      // its blobs and checksums (store::CheckpointCost)
   double copy_ms = 0;      // copying the state from the solver, on the compute thread
   double encode_ms = 0;    // encoding it, on the store thread

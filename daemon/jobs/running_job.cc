@@ -93,6 +93,13 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   runner->record_ = record;
   runner->settings_ = bundle->job.solver;
   runner->estimator_ = ProgressEstimator(runner->settings_.tolerance);
+  // A resumed job's estimate starts from the rounds it ran, not from nothing.
+  double unshot_before = 1;
+  for (const store::RoundRecord& r : rounds) {
+    runner->estimator_.AddRound(
+        {r.rays, r.duration_seconds, unshot_before, r.unshot_fraction, false});
+    unshot_before = r.unshot_fraction;
+  }
   runner->reported_pace_ = kReportedPaceShare * std::max(0.0, agents_rays_per_second);
   // The checkpoint as the driver resumes it; a refined mesh's scene checked against its hash.
   std::optional<SolveState> resume;
@@ -457,6 +464,23 @@ double RunningJob::RaysPerSecond() const {
   return seconds > 0 ? double(rays) / seconds : 0;
 }
 
+uint64_t RunningJob::RunningRaysDone(scheduler::TimePoint now) const {
+  if (phase_ != Phase::kRound) return 0;
+  const scheduler::SchedulerCounters counters = scheduler_.counters(now);
+  if (!counters.round_active || counters.batches == 0) return 0;
+  return running_rays_ * counters.batches_done / counters.batches;
+}
+
+double RunningJob::RaysPerSecond(scheduler::TimePoint now) const {
+  uint64_t rays = RunningRaysDone(now);
+  double seconds = rays > 0 ? std::chrono::duration<double>(now - round_started_).count() : 0;
+  for (const auto& [r, s] : recent_) {
+    rays += r;
+    seconds += s;
+  }
+  return seconds > 0 ? double(rays) / seconds : 0;
+}
+
 ProgressEstimate RunningJob::Progress(scheduler::TimePoint now) const {
   if (phase_ == Phase::kFinished) return {1.0, 0.0, 0};
   if (phase_ == Phase::kReducing) return last_progress_;
@@ -464,7 +488,7 @@ ProgressEstimate RunningJob::Progress(scheduler::TimePoint now) const {
   const scheduler::SchedulerCounters counters = scheduler_.counters(now);
   if (counters.round_active && counters.batches > 0) {
     at.round_rays = running_rays_;
-    at.round_rays_done = running_rays_ * counters.batches_done / counters.batches;
+    at.round_rays_done = RunningRaysDone(now);
     at.round_seconds = std::chrono::duration<double>(now - round_started_).count();
     at.round_gather = running_gather_;
   }

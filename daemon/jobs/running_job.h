@@ -203,8 +203,13 @@ class RunningJob {
   // job goes on (a round is planned), false when it is finished.
   bool InstallOutcome(RoundOutcome& outcome);
 
-  // Recent throughput for status: rays/s over the last rounds (0 before the first).
+  // Recent throughput: rays/s over the last rounds (0 before the first), for pacing.
   double RaysPerSecond() const;
+  // Loop thread, for status: the rays of the running round whose batches are in (0 outside
+  // kRound), so the rays shown count on through a long round such as the final gather; and the
+  // throughput over the last rounds and the running round so far.
+  uint64_t RunningRaysDone(scheduler::TimePoint now) const;
+  double RaysPerSecond(scheduler::TimePoint now) const;
   // Loop thread: the share of the job's rays done, the running round's accepted batches included,
   // and the seconds left (core/progress_estimator.h). While kReducing, the figures from before.
   ProgressEstimate Progress(scheduler::TimePoint now) const;
