@@ -243,7 +243,7 @@ json ControlRequests::JobJson(const JobSummary& s) {
     const JobTotals& t = runner->totals();
     job["round"] = t.round;
     const auto now = clock_.Now();
-    job["rays"] = t.rays + runner->RunningRaysDone(now);
+    job["rays"] = runner->RaysShown(now);
     job["unshot_fraction"] = t.unshot_fraction;
     job["rays_per_second"] = runner->RaysPerSecond(now);
     // Agents holding its leases: the round's, or its final gather's leased ahead (gather_ahead.h).

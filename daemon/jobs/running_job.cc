@@ -254,6 +254,7 @@ void RunningJob::LeaseReturnedAheadFirst() {
 Status RunningJob::StartPlannedRound(scheduler::TimePoint now) {
   if (!planned_) return Error{"job " + std::to_string(id()) + ": no round planned"};
   running_rays_ = planned_->rays;
+  rays_before_round_ = totals_.rays;
   running_gather_ = planned_->gather;
   running_sizing_ = planned_sizing_;
   running_round_ = planned_->round;
@@ -469,6 +470,20 @@ uint64_t RunningJob::RunningRaysDone(scheduler::TimePoint now) const {
   const scheduler::SchedulerCounters counters = scheduler_.counters(now);
   if (!counters.round_active || counters.batches == 0) return 0;
   return running_rays_ * counters.batches_done / counters.batches;
+}
+
+uint64_t RunningJob::RaysShown(scheduler::TimePoint now) const {
+  switch (phase_) {
+    case Phase::kRound:
+      if (scheduler_.counters(now).round_active) return rays_before_round_ + RunningRaysDone(now);
+      break;
+    case Phase::kReducing:
+      if (running_rays_ > 0) return rays_before_round_ + running_rays_;  // leased, not local
+      break;
+    case Phase::kFinished:
+      break;
+  }
+  return totals_.rays;
 }
 
 double RunningJob::RaysPerSecond(scheduler::TimePoint now) const {

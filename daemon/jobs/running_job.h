@@ -206,9 +206,12 @@ class RunningJob {
   // Recent throughput: rays/s over the last rounds (0 before the first), for pacing.
   double RaysPerSecond() const;
   // Loop thread, for status: the rays of the running round whose batches are in (0 outside
-  // kRound), so the rays shown count on through a long round such as the final gather; and the
-  // throughput over the last rounds and the running round so far.
+  // kRound); the job's rays with them, so the rays shown count on through a long round such as the
+  // final gather and never fall when it ends (a leased round counts whole while it is reduced,
+  // Reduce updating totals() meanwhile); and the throughput over the last rounds and the running
+  // round so far.
   uint64_t RunningRaysDone(scheduler::TimePoint now) const;
+  uint64_t RaysShown(scheduler::TimePoint now) const;
   double RaysPerSecond(scheduler::TimePoint now) const;
   // Loop thread: the share of the job's rays done, the running round's accepted batches included,
   // and the seconds left (core/progress_estimator.h). While kReducing, the figures from before.
@@ -292,6 +295,7 @@ class RunningJob {
   // Loop side: the round the scheduler or this machine runs (rays, final gather), and the last
   // estimate, shown while the worker reduces.
   uint64_t running_rays_ = 0;
+  uint64_t rays_before_round_ = 0;  // totals_.rays when the running round started
   bool running_gather_ = false;
   mutable ProgressEstimate last_progress_;
 };
