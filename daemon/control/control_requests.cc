@@ -227,7 +227,13 @@ json ControlRequests::JobJson(const JobSummary& s) {
            {"stop_reason", nullptr},
            {"waiting_for_agents", false},
            {"phase", nullptr},
-           {"last_checkpoint", nullptr}};
+           {"last_checkpoint", nullptr},
+           {"direct_start", nullptr},
+           {"display", nullptr}};
+  if (const JobRules* rules = jobs_.RulesOf(r.id)) {
+    job["direct_start"] = rules->direct_start;
+    job["display"] = rules->display;
+  }
   const std::string_view phase = jobs_.PhaseOf(r.id);
   if (!phase.empty()) job["phase"] = std::string(phase);
   if (const CheckpointReport* c = jobs_.LastCheckpoint(r.id)) {

@@ -68,6 +68,26 @@ void JobRounds::RecordCheckpoint(store::JobId id, CheckpointReport report) {
   }
 }
 
+const JobRules* JobRounds::RulesOf(store::JobId id) const {
+  const auto it = job_rules_.find(id);
+  return it == job_rules_.end() ? nullptr : &it->second;
+}
+
+void JobRounds::KeepRules(store::JobId id, const JobRules& rules) {
+  JobRules& kept = job_rules_[id];
+  if (kept.direct_start != rules.direct_start || kept.display != rules.display) {
+    // Said once, and again when a refinement step changes them: a big job that gets less than a
+    // small one says so in the log and its events, not only in status.
+    for (const std::string& line :
+         {"direct light: " + rules.direct_start, "display: " + rules.display}) {
+      LogLine(LogLevel::kInfo, "job " + std::to_string(id)) << line;
+      store_.LogEvent(id, store::EventLevel::kInfo, line);
+    }
+  }
+  kept = rules;
+  if (job_rules_.size() > kKeptCheckpointReports) job_rules_.erase(job_rules_.begin());
+}
+
 std::string_view JobRounds::PhaseOf(store::JobId id) const {
   if (starting_.count(id)) return "preparing";
   if (displaying_.count(id)) return "display";
@@ -167,6 +187,7 @@ void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob
   }
   std::shared_ptr<RunningJob> r = std::move(*runner);
   runners_[id] = r;
+  KeepRules(id, r->rules());
   if (r->phase() == RunningJob::Phase::kFinished) {
     FinishJob(r);
     return;
@@ -401,6 +422,7 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
                     "refined after round " + std::to_string(ShownRound(record.round)) + ": " +
                         std::to_string(outcome.new_patch_count) + " elements, scene " +
                         protocol::HashToHex(outcome.new_scene_hash));
+    KeepRules(id, runner->rules());
   }
   if (runner->InstallOutcome(outcome)) {
     // A job started with no agent known plans its gather ahead after round 0 (RunningJob::Reduce).

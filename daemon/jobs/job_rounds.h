@@ -132,6 +132,9 @@ class JobRounds {
   // kKeptCheckpointReports most recent jobs, finished ones included (the control socket's
   // last_checkpoint).
   const CheckpointReport* LastCheckpoint(store::JobId id) const;
+  // What the rules gave job `id`'s scene (RunningJob::rules), or null: kept as LastCheckpoint is,
+  // so a job drawing its display, or done, still shows them.
+  const JobRules* RulesOf(store::JobId id) const;
   // "preparing" (being meshed and loaded), "round", "reducing", "finishing" or "display" (its
   // display being drawn, job_display.cc) for a job this master runs; empty for any other.
   std::string_view PhaseOf(store::JobId id) const;
@@ -185,6 +188,9 @@ class JobRounds {
   // Keeps `report` as job `id`'s last checkpoint, its count one more; forgets the oldest job's
   // beyond kKeptCheckpointReports.
   void RecordCheckpoint(store::JobId id, CheckpointReport report);
+  // Keeps `rules` as job `id`'s (an event when they change); forgets the oldest job's beyond
+  // kKeptCheckpointReports.
+  void KeepRules(store::JobId id, const JobRules& rules);
   // Stops a job's work on every agent (Cancel) and forgets its runner.
   void DropRunner(store::JobId id);
 
@@ -208,6 +214,7 @@ class JobRounds {
   LatencyHistogram checkpoint_latency_;
   static constexpr size_t kKeptCheckpointReports = 256;
   std::map<store::JobId, CheckpointReport> checkpoint_reports_;  // by id: oldest job first
+  std::map<store::JobId, JobRules> job_rules_;                   // likewise
   store::CheckpointPacer checkpoints_;                           // which rounds write a checkpoint
   std::map<store::JobId, bool> starting_;  // being prepared; true once cancelled meanwhile
   // OfferSubmittedMesh's, until the next start pass takes or drops it.

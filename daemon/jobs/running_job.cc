@@ -10,6 +10,7 @@
 #include "codec/patch_scene_codec.h"
 #include "core/batch_tracer.h"
 #include "core/solve_control.h"
+#include "core/solve_rules.h"
 #include "mesh/patch_mesh.h"
 #include "protocol/scene_transfer.h"
 #include "solve/local_solve.h"
@@ -162,6 +163,7 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   runner->scene_ = std::move(packed);
   runner->scheduler_ = scheduler::RoundScheduler(options);
   runner->UpdateTotals();
+  runner->UpdateRules();
 
   // The round the solver plans next, with the batch size its kept results were planned with.
   runner->stored_ = std::move(stored);
@@ -380,6 +382,7 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
                 applied.escaped_rays,
                 applied.back_rays};
   if (applied.refined) {
+    UpdateRules();
     EncodeRefinedScene();
     out.new_scene = refined_packed_;
     out.new_scene_hash = refined_packed_->hash;
@@ -427,6 +430,11 @@ void RunningJob::UpdateTotals() {
   totals_.seconds = spent.seconds;
   totals_.unshot_fraction = solver.UnshotFraction();
   totals_.gather_rays_left = solver.PendingGatherRays();
+}
+
+void RunningJob::UpdateRules() {
+  rules_ = {DirectStartRule(driver_->scene(), settings_).why,
+            DisplayRule(driver_->scene(), settings_).why};
 }
 
 void RunningJob::EncodeRefinedScene() {

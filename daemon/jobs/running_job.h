@@ -90,6 +90,13 @@ struct RoundOutcome {
   size_t results_held_peak = 0;
 };
 
+// What the rules (core/solve_rules.h) gave the job's scene at its size: the direct-light start and
+// the display, in words for status.
+struct JobRules {
+  std::string direct_start;
+  std::string display;
+};
+
 class RunningJob {
  public:
   enum class Phase { kRound, kReducing, kFinished };
@@ -123,6 +130,8 @@ class RunningJob {
   const RaySampler& sampler() const { return driver_->solver().sampler(); }
   const JobTotals& totals() const { return totals_; }
   Phase phase() const { return phase_; }
+  // The rules for the job's scene as it stands (Prepare, and again after a refinement step).
+  const JobRules& rules() const { return rules_; }
   // Whether Prepare took the mesh built at submission rather than meshing the scene again.
   bool meshed_at_submission() const { return meshed_at_submission_; }
   // Set when Prepare found nothing left to do (the checkpoint already met a stopping rule).
@@ -238,6 +247,8 @@ class RunningJob {
   void EncodeRefinedScene();
   // The totals and progress figures of the driver's state, for status.
   void UpdateTotals();
+  // The rules for the driver's scene (rules_).
+  void UpdateRules();
 
   store::JobRecord record_;
   SolverSettings settings_;
@@ -281,6 +292,7 @@ class RunningJob {
   scheduler::SchedulerOptions options_;
   std::vector<std::pair<uint32_t, std::string>> adopted_;
   std::optional<std::string> stop_reason_;
+  JobRules rules_;  // written on the worker (Prepare, Reduce), read on the loop outside kReducing
   JobTotals totals_;
   Phase phase_ = Phase::kRound;
   bool meshed_at_submission_ = false;

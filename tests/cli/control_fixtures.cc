@@ -26,7 +26,9 @@ const std::vector<std::string> kJobKeys = {"id",
                                            "stop_reason",
                                            "waiting_for_agents",
                                            "phase",
-                                           "last_checkpoint"};
+                                           "last_checkpoint",
+                                           "direct_start",
+                                           "display"};
 const std::vector<std::string> kAgentKeys = {"id",
                                              "name",
                                              "address",
@@ -65,7 +67,9 @@ nlohmann::json JobObject(int64_t id, const std::string& state, uint64_t round) {
           {"stop_reason", state == "done" ? nlohmann::json("converged") : nlohmann::json()},
           {"waiting_for_agents", false},
           {"phase", state == "running" ? nlohmann::json("round") : nlohmann::json()},
-          {"last_checkpoint", nlohmann::json()}};
+          {"last_checkpoint", nlohmann::json()},
+          {"direct_start", nlohmann::json()},
+          {"display", nlohmann::json()}};
 }
 
 nlohmann::json AgentObject(int64_t id, const std::string& name) {

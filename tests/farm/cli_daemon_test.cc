@@ -44,7 +44,9 @@ void ExpectJobKeys(const nlohmann::json& job) {
                           "stop_reason",
                           "waiting_for_agents",
                           "phase",
-                          "last_checkpoint"}) {
+                          "last_checkpoint",
+                          "direct_start",
+                          "display"}) {
     EXPECT_TRUE(job.contains(key)) << key << " missing from " << job.dump();
   }
 }
@@ -123,6 +125,13 @@ TEST_F(FarmTest, EveryQueueCommandAgainstARunningMaster) {
   ExpectJobKeys(done);
   EXPECT_EQ(done["state"], "done");
   EXPECT_EQ(done["stop_reason"], "ray budget");
+  // What the scene's size got, kept after the job is done (core/solve_rules.h): a bigger scene
+  // lost its direct-light start and its display without a word.
+  EXPECT_EQ(done["direct_start"].get<std::string>().rfind("from the direct light of ", 0), 0u)
+      << done.dump();
+  EXPECT_EQ(done["display"].get<std::string>().rfind("at its own points: ", 0), 0u) << done.dump();
+  r = Cli({"status", std::to_string(alpha)});
+  EXPECT_NE(r.out.find("\ndirect light:  from the direct light of "), std::string::npos) << r.out;
   // What its last checkpoint cost, kept after the job ended (a stopping round always writes one).
   EXPECT_TRUE(done["phase"].is_null()) << done.dump();
   const nlohmann::json& checkpoint = done["last_checkpoint"];
