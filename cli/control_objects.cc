@@ -76,6 +76,7 @@ Result<EventInfo> ParseEvent(const nlohmann::json& object, const std::string& wh
   EventInfo event;
   event.time_ms = r.Int("time_ms");
   event.level = r.OneOf("level", {"info", "warning", "error"});
+  event.job = r.NullableInt("job");
   event.text = Printable(r.String("text"));
   RADFARM_RETURN_IF_ERROR(r.status());
   return event;

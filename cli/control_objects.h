@@ -55,6 +55,7 @@ struct EventInfo {
   int64_t time_ms = 0;
   std::string level;  // info, warning, error
   std::string text;
+  std::optional<int64_t> job{};  // the job it is about; none for the farm's own
 };
 
 // done, failed and cancelled: the job will not change again.

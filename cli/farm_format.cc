@@ -126,7 +126,8 @@ std::string FormatAgentTable(const std::vector<AgentInfo>& agents) {
 
 std::string FormatEvent(const EventInfo& e) {
   return FormatUtcTime(e.time_ms, /*with_ms=*/true) + "  " + e.level +
-         std::string(e.level.size() < 7 ? 7 - e.level.size() : 0, ' ') + "  " + e.text;
+         std::string(e.level.size() < 7 ? 7 - e.level.size() : 0, ' ') + "  " +
+         (e.job ? "job " + std::to_string(*e.job) + ": " : std::string()) + e.text;
 }
 
 }  // namespace radfarm

@@ -187,7 +187,10 @@ void ControlRequests::Log(ControlRequest request, ControlRespond respond) {
           RADFARM_RETURN_IF_ERROR(job);
           if (!*job) return std::optional<std::vector<store::Event>>();
         }
-        Result<std::vector<store::Event>> events = s.ListEvents(id, limit);
+        // Without an id: the whole farm's, every job's events with its own (a farm-wide log of
+        // only the events tied to no job printed nothing after jobs had run).
+        Result<std::vector<store::Event>> events =
+            id ? s.ListEvents(id, limit) : s.ListRecentEvents(limit);
         RADFARM_RETURN_IF_ERROR(events);
         return std::optional(std::move(*events));
       },
@@ -198,6 +201,7 @@ void ControlRequests::Log(ControlRequest request, ControlRespond respond) {
         for (const store::Event& e : **events) {
           list.push_back({{"time_ms", e.time_ms},
                           {"level", std::string(store::EventLevelName(e.level))},
+                          {"job", e.job ? json(*e.job) : json(nullptr)},
                           {"text", e.text}});
         }
         respond({json{{"ok", true}, {"events", list}}, {}});

@@ -77,9 +77,12 @@ void JobRounds::MarkDone(store::JobId id, const std::string& reason,
                          std::optional<store::StoredDisplay> display) {
   auto kept = std::make_shared<std::optional<store::StoredDisplay>>(std::move(display));
   store_.Run(
-      [id, kept](store::JobStore& s) -> Status {
+      [id, kept, reason](store::JobStore& s) -> Status {
         if (*kept) RADFARM_RETURN_IF_ERROR(s.PutDisplay(id, (*kept)->round, (*kept)->display));
-        return s.SetJobState(id, store::JobState::kDone);
+        RADFARM_RETURN_IF_ERROR(s.SetJobState(id, store::JobState::kDone));
+        // With the state, so no reader sees the job done without its event (the status page's
+        // recent events once missed it).
+        return s.AppendEvent(id, store::EventLevel::kInfo, "done: " + reason);
       },
       [this, id, reason](Status s) {
         if (!displaying_.erase(id)) return;  // cancelled or paused meanwhile
@@ -89,7 +92,6 @@ void JobRounds::MarkDone(store::JobId id, const std::string& reason,
           HoldOrFail(id, Error{"cannot record that it is done: " + s.error(), s.error_kind()});
           return;
         }
-        store_.LogEvent(id, store::EventLevel::kInfo, "done: " + reason);
         StartQueuedJobs();
         // After the job is done, not before: deleting a big round's kept results takes a while
         // at 10^6 patches. A master stopped in between prunes at its start.

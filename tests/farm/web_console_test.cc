@@ -232,6 +232,21 @@ TEST_F(WebConsoleTest, WithoutATokenThePageIsReadOnly) {
   EXPECT_NE(Status(id).value("state", ""), "cancelled");
 }
 
+// The page as served, before its script has heard from the master: it says it is loading, not
+// "No jobs yet" or "No agent is connected" (a farm it knows nothing of yet).
+TEST_F(WebConsoleTest, ThePageSaysLoadingUntilItsFirstUpdate) {
+  address_ = StartMasterWithConsole(false);
+  const HttpResponse page = Request("GET", "/");
+  ASSERT_EQ(page.status, 200);
+  for (const char* loading : {"id=\"loading-jobs\"", "id=\"loading-agents\""}) {
+    EXPECT_NE(page.body.find(loading), std::string::npos) << loading << " in " << page.body;
+  }
+  for (const char* empty : {"no-jobs", "no-agents"}) {
+    const std::regex hidden(std::string("<p id=\"") + empty + "\"[^>]*\\bhidden\\b");
+    EXPECT_TRUE(std::regex_search(page.body, hidden)) << empty << " shown in " << page.body;
+  }
+}
+
 TEST_F(WebConsoleTest, AConsoleBeyondLoopbackWithoutATokenIsRefusedAtStart) {
   farm_.StartMaster({"--http", "0.0.0.0:0"}, std::chrono::seconds(5));
   EXPECT_EQ(farm_.master()->WaitExit(std::chrono::seconds(60)), 2);
