@@ -48,6 +48,7 @@ Result<JobInfo> ParseJob(const nlohmann::json& object, const std::string& where)
   job.eta_seconds = r.NullableNumber("eta_seconds");
   job.stop_reason = PrintableOrNull(r.NullableString("stop_reason"));
   job.waiting_for_agents = r.Bool("waiting_for_agents");
+  job.phase = PrintableOrNull(r.NullableString("phase"));
   job.direct_start = PrintableOrNull(r.NullableString("direct_start"));
   job.display = PrintableOrNull(r.NullableString("display"));
   RADFARM_RETURN_IF_ERROR(r.status());

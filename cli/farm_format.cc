@@ -84,7 +84,7 @@ std::string FormatJobStatus(const JobInfo& j) {
   std::vector<std::vector<std::string>> rows = {
       {"job:", std::to_string(j.id)},
       {"name:", j.name},
-      {"state:", j.state},
+      {"state:", j.state + (j.phase ? " (" + *j.phase + ")" : std::string())},
       {"priority:", std::to_string(j.priority)},
       {"round:", std::to_string(j.round)},
       {"unshot:", Percent(j.unshot_fraction, "%.4f%%") + " of emitted (tolerance " +

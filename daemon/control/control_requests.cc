@@ -2,6 +2,7 @@
 
 #include <malloc.h>
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <map>
@@ -289,7 +290,8 @@ double ControlRequests::ShownProgress(const store::JobRecord& record, double est
     shown_progress_.erase(record.id);
     return estimate;
   }
-  return shown_progress_[record.id].Show(estimate);
+  // 1 only once done: a job whose rounds are over still has its display to draw and store.
+  return shown_progress_[record.id].Show(std::min(estimate, kProgressBeforeDone));
 }
 
 json ControlRequests::DoorsJson() const {

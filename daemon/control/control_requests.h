@@ -40,8 +40,10 @@ class ControlRequests {
   nlohmann::json JobJson(const JobSummary& summary);
   // The progress shown for a job whose progress is estimated at `estimate` now: never less than
   // shown before while the job lives (core/progress_ratchet.h), whatever its phase (preparing,
-  // rounds, reducing, display, paused); 1 once done. A job that ended is forgotten.
+  // rounds, reducing, display, paused); at most kProgressBeforeDone until the job is done, 1 once
+  // done. A job that ended is forgotten.
   double ShownProgress(const store::JobRecord& record, double estimate);
+  static constexpr double kProgressBeforeDone = 0.99;
   nlohmann::json AgentJson(const AgentLink& link) const;
   // `enrolled_agents`: every enrolled name, its state and how many of its connections are in.
   nlohmann::json EnrolledJson() const;
