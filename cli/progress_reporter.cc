@@ -18,9 +18,10 @@ constexpr double kLogLineSeconds = 1.0;
 ProgressReporter::ProgressReporter(std::FILE* out, bool interactive)
     : out_(out), interactive_(interactive) {}
 
-std::string ProgressReporter::Eta(const ProgressEstimate& e) {
-  if (!e.seconds_left) return "ETA ?";
-  return "ETA " + std::to_string(int64_t(std::ceil(*e.seconds_left))) + "s";
+std::string ProgressReporter::Eta(const ProgressEstimate& e) const {
+  const std::string display = display_follows_ ? " + display" : "";
+  if (!e.seconds_left) return "ETA ?" + display;
+  return "ETA " + std::to_string(int64_t(std::ceil(*e.seconds_left))) + "s" + display;
 }
 
 void ProgressReporter::Bar(double fraction, const std::string& text) {
