@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/batch.h"
 #include "loop/log.h"
 #include "protocol/batch_convert.h"
 #include "protocol/frame_codec.h"
@@ -102,8 +103,10 @@ void LeaseWorker::OnLease(const protocol::LeaseAssignmentMsg& frame, bool accept
       refs.push_back({frame.job_id, frame.batches[k].batch_id, frame.batches[k].attempt_id});
     }
     LogLine(LogLevel::kDebug, "agent")
-        << "received " << frame.batches.size() << " batches of round " << frame.round << ": "
-        << DescribeLeases(refs) << " from " << master_ << ", scene "
+        << "received " << frame.batches.size() << " batches of "
+        << (frame.round == kGatherRound ? std::string("the final gather")
+                                        : "round " + std::to_string(ShownRound(frame.round)))
+        << ": " << DescribeLeases(refs) << " from " << master_ << ", scene "
         << protocol::HashToHex(frame.scene_hash);
   }
   std::vector<uint64_t> ids;

@@ -48,6 +48,9 @@ Result<JobInfo> ParseJob(const nlohmann::json& object, const std::string& where)
   job.eta_seconds = r.NullableNumber("eta_seconds");
   job.stop_reason = PrintableOrNull(r.NullableString("stop_reason"));
   job.waiting_for_agents = r.Bool("waiting_for_agents");
+  job.phase = PrintableOrNull(r.NullableString("phase"));
+  job.direct_start = PrintableOrNull(r.NullableString("direct_start"));
+  job.display = PrintableOrNull(r.NullableString("display"));
   RADFARM_RETURN_IF_ERROR(r.status());
   return job;
 }
@@ -74,6 +77,7 @@ Result<EventInfo> ParseEvent(const nlohmann::json& object, const std::string& wh
   EventInfo event;
   event.time_ms = r.Int("time_ms");
   event.level = r.OneOf("level", {"info", "warning", "error"});
+  event.job = r.NullableInt("job");
   event.text = Printable(r.String("text"));
   RADFARM_RETURN_IF_ERROR(r.status());
   return event;

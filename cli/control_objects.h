@@ -33,6 +33,12 @@ struct JobInfo {
   std::optional<double> eta_seconds;
   std::optional<std::string> stop_reason;
   bool waiting_for_agents = false;  // its round is leased out and no agent is connected
+  // Of a job the master runs: preparing, round, reducing, finishing or display (its display being
+  // drawn after its rounds); none otherwise.
+  std::optional<std::string> phase;
+  // The rules the job's scene got at its size (core/solve_rules.h); null before it is prepared.
+  std::optional<std::string> direct_start;
+  std::optional<std::string> display;
 };
 
 struct AgentInfo {
@@ -52,6 +58,7 @@ struct EventInfo {
   int64_t time_ms = 0;
   std::string level;  // info, warning, error
   std::string text;
+  std::optional<int64_t> job{};  // the job it is about; none for the farm's own
 };
 
 // done, failed and cancelled: the job will not change again.

@@ -84,7 +84,7 @@ std::string FormatJobStatus(const JobInfo& j) {
   std::vector<std::vector<std::string>> rows = {
       {"job:", std::to_string(j.id)},
       {"name:", j.name},
-      {"state:", j.state},
+      {"state:", j.state + (j.phase ? " (" + *j.phase + ")" : std::string())},
       {"priority:", std::to_string(j.priority)},
       {"round:", std::to_string(j.round)},
       {"unshot:", Percent(j.unshot_fraction, "%.4f%%") + " of emitted (tolerance " +
@@ -102,6 +102,8 @@ std::string FormatJobStatus(const JobInfo& j) {
       {"started:", OptionalTime(j.started_at_ms)},
       {"finished:", OptionalTime(j.finished_at_ms)}};
   if (j.stop_reason) rows.push_back({"stopped:", *j.stop_reason});
+  if (j.direct_start) rows.push_back({"direct light:", *j.direct_start});
+  if (j.display) rows.push_back({"display:", *j.display});
   // A held or paused job is not broken: its text is why it waits.
   const bool waiting = j.state == "held" || j.state == "paused";
   if (j.error) rows.push_back({waiting ? "reason:" : "error:", *j.error});
@@ -124,7 +126,8 @@ std::string FormatAgentTable(const std::vector<AgentInfo>& agents) {
 
 std::string FormatEvent(const EventInfo& e) {
   return FormatUtcTime(e.time_ms, /*with_ms=*/true) + "  " + e.level +
-         std::string(e.level.size() < 7 ? 7 - e.level.size() : 0, ' ') + "  " + e.text;
+         std::string(e.level.size() < 7 ? 7 - e.level.size() : 0, ' ') + "  " +
+         (e.job ? "job " + std::to_string(*e.job) + ": " : std::string()) + e.text;
 }
 
 }  // namespace radfarm

@@ -12,8 +12,11 @@ namespace radfarm {
 
 CLI::App* AddLogCommand(CLI::App& app, LogOptions* options) {
   CLI::App* log = app.add_subcommand(
-      "log", "Show a job's events, or the farm-wide log without an ID (oldest first)");
-  log->add_option("ID", options->id, "Job id (default: the farm-wide log)")->check(PositiveId());
+      "log",
+      "Show a job's events, or without an ID the whole farm's: every job's and the farm's own "
+      "(oldest first)");
+  log->add_option("ID", options->id, "Job id (default: every job's events and the farm's)")
+      ->check(PositiveId());
   log->add_option("--limit,-n", options->limit, "Show the last N events (default 100)")
       ->check(PositiveInteger());
   AddJsonFlag(log, &options->json);

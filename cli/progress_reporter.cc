@@ -18,13 +18,14 @@ constexpr double kLogLineSeconds = 1.0;
 ProgressReporter::ProgressReporter(std::FILE* out, bool interactive)
     : out_(out), interactive_(interactive) {}
 
-std::string ProgressReporter::Eta(const ProgressEstimate& e) {
-  if (!e.seconds_left) return "ETA ?";
-  return "ETA " + std::to_string(int64_t(std::ceil(*e.seconds_left))) + "s";
+std::string ProgressReporter::Eta(const ProgressEstimate& e) const {
+  const std::string display = display_follows_ ? " + display" : "";
+  if (!e.seconds_left) return "ETA ?" + display;
+  return "ETA " + std::to_string(int64_t(std::ceil(*e.seconds_left))) + "s" + display;
 }
 
 void ProgressReporter::Bar(double fraction, const std::string& text) {
-  const int filled = int(std::clamp(fraction, 0.0, 1.0) * kBarWidth);
+  const int filled = int(shown_.Show(fraction) * kBarWidth);
   std::fprintf(out_, "\r[%s%s] %s   ", std::string(filled, '#').c_str(),
                std::string(kBarWidth - filled, '.').c_str(), text.c_str());
   drew_ = true;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/progress_estimator.h"
+#include "core/progress_ratchet.h"
 #include "display/display_settings.h"
 #include "solve/solve_state.h"
 
@@ -32,14 +33,18 @@ class ProgressReporter {
   // that take a while (a count, not a clock, so a log is the same every run).
   void OnDisplayStep(const DisplayStep& step);
   static constexpr uint64_t kDisplayLogPoints = 20000;
+  // A display with rays of its own follows the solve (core/solve_rules.h DisplayRule): the ETA
+  // reads "ETA 12s + display", since it counts the solve alone and on a big scene the display can
+  // take longer than the solve.
+  void SetDisplayFollows(bool follows) { display_follows_ = follows; }
   // Ends the bar's line (interactive) so later output starts on a fresh line.
   void Finish();
   // Erases the line drawn last (interactive), for output that replaces it.
   void ClearLine();
 
  private:
-  // "ETA 12s", or "ETA ?" before anything is known.
-  static std::string Eta(const ProgressEstimate& estimate);
+  // "ETA 12s", or "ETA ?" before anything is known; " + display" after it (SetDisplayFollows).
+  std::string Eta(const ProgressEstimate& estimate) const;
   void Bar(double fraction, const std::string& text);
 
   std::FILE* out_;
@@ -51,6 +56,8 @@ class ProgressReporter {
   uint32_t running_round_ = UINT32_MAX;  // the round OnRoundRunning last saw
   double last_running_print_ = -1;       // its round seconds at its last line
   bool drew_ = false;
+  bool display_follows_ = false;
+  ProgressRatchet shown_;  // the bar never goes back when a round refits the estimate
 };
 
 }  // namespace radfarm

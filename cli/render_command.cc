@@ -16,6 +16,7 @@
 #include "cli/render_state.h"
 #include "core/display_budget.h"
 #include "core/solve_control.h"
+#include "core/solve_rules.h"
 #include "display/solved_display.h"
 #include "solve/local_solve.h"
 
@@ -28,7 +29,7 @@ void PrintCheckpoints(RenderState& state) {
     std::printf(
         "--db: round %u checkpoint: %llu bytes in %.1f ms (encode %.1f, commit %.1f; the "
         "render waited %.1f ms)\n",
-        r.round, static_cast<unsigned long long>(r.cost.bytes), 1000 * r.seconds,
+        ShownRound(r.round), static_cast<unsigned long long>(r.cost.bytes), 1000 * r.seconds,
         1000 * r.cost.encode_seconds, 1000 * r.cost.commit_seconds, 1000 * r.waited_seconds);
   }
   std::fflush(stdout);
@@ -64,7 +65,7 @@ void WarnOfNoRound(const Job& job, const PatchScene& scene) {
 // What the display did, when it was worth waiting for or a budget cut it.
 void PrintDisplaySummary(const DisplayStats& d, const SolverSettings& solver) {
   if (d.averaged) {
-    std::printf("display: the patches' averages (the budget left no shadow rays for its points)\n");
+    std::printf("display: %s\n", kDisplayAveragedByBudget);
     return;
   }
   if (d.seconds < 0.5) return;
@@ -85,18 +86,23 @@ void PrintDisplaySummary(const DisplayStats& d, const SolverSettings& solver) {
   }
 }
 
-// The solve's closing line.
-void PrintSolveSummary(const SolveStats& st, const std::string& out_dir) {
+// The solve's closing line: the solve's figures, then the display's seconds and the command's
+// whole time, so a job whose display took longer than its solve does not look done at the solve.
+void PrintSolveSummary(const SolveStats& st, double display_seconds, double total_seconds,
+                       const std::string& out_dir) {
   char shadow[64] = "";
   if (st.start_rays > 0) {  // spent from the same ray budget
     std::snprintf(shadow, sizeof shadow, " (and %llu shadow rays of the direct light)",
                   static_cast<unsigned long long>(st.start_rays));
   }
-  std::printf("%s after %llu %s: unshot %.4f%%, %llu rays%s in %.2f s (%.2f Mrays/s); wrote %s\n",
-              st.stop_reason.c_str(), static_cast<unsigned long long>(st.rounds),
-              st.rounds == 1 ? "round" : "rounds", 100 * st.unshot_fraction,
-              static_cast<unsigned long long>(st.rays), shadow, st.seconds,
-              st.rays_per_second / 1e6, out_dir.c_str());
+  std::printf(
+      "%s after %llu %s: unshot %.4f%%, %llu rays%s in %.2f s (%.2f Mrays/s), the display and "
+      "files in "
+      "%.2f s; %.2f s in all; wrote %s\n",
+      st.stop_reason.c_str(), static_cast<unsigned long long>(st.rounds),
+      st.rounds == 1 ? "round" : "rounds", 100 * st.unshot_fraction,
+      static_cast<unsigned long long>(st.rays), shadow, st.seconds, st.rays_per_second / 1e6,
+      display_seconds, total_seconds, out_dir.c_str());
 }
 
 // With --db: the solve resumes where the state's rounds end, and each round is saved (the first
@@ -106,7 +112,7 @@ void KeepRounds(const RenderOptions& options, RenderState* state, Status* save_s
   hooks->resume = state->resume();
   if (hooks->resume && !options.quiet) {
     std::printf("%s: continuing job %lld after round %u (%llu rays done)\n", options.db.c_str(),
-                static_cast<long long>(state->job_id()), hooks->resume->round,
+                static_cast<long long>(state->job_id()), ShownRound(hooks->resume->round),
                 static_cast<unsigned long long>(hooks->resume->totals.rays));
   }
   hooks->after_round = [&options, state, save_status](const SolveState& c) {
@@ -115,13 +121,18 @@ void KeepRounds(const RenderOptions& options, RenderState* state, Status* save_s
   };
 }
 
-// The rounds on `reporter`, and the direct light's time when it was worth waiting for.
-void ReportProgress(bool announce, ProgressReporter* reporter, RefiningHooks* hooks) {
+// The rounds on `reporter`; the direct light the solve starts from, or why it does not
+// (`start`, core/solve_rules.h), with its time when that was worth waiting for.
+void ReportProgress(bool announce, const RuleOutcome& start, ProgressReporter* reporter,
+                    RefiningHooks* hooks) {
   hooks->during_round = [reporter](const RoundRunning& r) { reporter->OnRoundRunning(r); };
-  hooks->after_start = [announce](double seconds, uint64_t shadow_rays) {
+  hooks->after_start = [announce, start](double seconds, uint64_t shadow_rays) {
     if (announce) std::printf("\r\033[K");
-    if (seconds >= 0.5) {
-      std::printf("direct light in %.1f s (%.1f M shadow rays)\n", seconds, shadow_rays / 1e6);
+    if (start.used && seconds >= 0.5) {
+      std::printf("direct light in %.1f s (%.1f M shadow rays): %s\n", seconds, shadow_rays / 1e6,
+                  start.why.c_str());
+    } else {
+      std::printf("direct light: %s\n", start.why.c_str());
     }
     std::fflush(stdout);
   };
@@ -198,7 +209,11 @@ int RunRender(const RenderOptions& options) {
     KeepRounds(options, &*state, &save_status, &hooks);
   }
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
-  if (!options.quiet) ReportProgress(announce, &reporter, &hooks);
+  if (!options.quiet) {
+    ReportProgress(announce, DirectStartRule(loaded->mesh.patch_scene(), job.solver), &reporter,
+                   &hooks);
+    reporter.SetDisplayFollows(DisplayRule(loaded->mesh.patch_scene(), job.solver).used);
+  }
   hooks.seconds_spent_before = seconds_since_start();
   Result<RefiningSolveResult> solved = Error{"not solved"};
   try {
@@ -237,8 +252,12 @@ int RunRender(const RenderOptions& options) {
   std::vector<std::string> output_warnings;
   DisplayProgress display_progress;
   if (!options.quiet) {
+    // What the display will be and why, before it starts: on a big scene it takes a while.
+    std::printf("display: %s\n", DisplayRule(mesh.patch_scene(), job.solver).why.c_str());
+    std::fflush(stdout);
     display_progress = [&](const DisplayStep& step) { reporter.OnDisplayStep(step); };
   }
+  const double display_started = seconds_since_start();
   const Display display =
       SolvedDisplay(mesh, solution.radiosity, solution.direct_light, job.solver, display_progress);
   const Status written =
@@ -251,7 +270,8 @@ int RunRender(const RenderOptions& options) {
   }
   if (!options.quiet) {
     PrintDisplaySummary(display.stats, job.solver);
-    PrintSolveSummary(solution.stats, options.out_dir);
+    PrintSolveSummary(solution.stats, seconds_since_start() - display_started,
+                      seconds_since_start(), options.out_dir);
   }
   return kExitOk;
 }

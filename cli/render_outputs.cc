@@ -10,6 +10,7 @@
 #include <system_error>
 #include <vector>
 
+#include "core/solve_rules.h"
 #include "output/exposure_meter.h"
 #include "output/exr_writer.h"
 #include "output/image.h"
@@ -87,6 +88,9 @@ Status WriteOutputs(const std::string& dir, const PatchMesh& mesh, const Display
       [&] { return WritePatchesCsv(path("patches.csv"), mesh.patch_scene(), solution.radiosity); },
       [&] {
         const DisplayStats& d = shown.stats;
+        // The rules that decided the start and the display for this mesh, in words.
+        const RuleOutcome start = DirectStartRule(mesh.patch_scene(), job.solver);
+        const RuleOutcome display = DisplayRule(mesh.patch_scene(), job.solver);
         return WriteStatsJson(path("stats.json"), solution.stats,
                               {{"patch_size", mesh.patch_size()},
                                {"patch_size_min", mesh.patch_size_min()},
@@ -103,7 +107,11 @@ Status WriteOutputs(const std::string& dir, const PatchMesh& mesh, const Display
                                {"display_rays", double(d.rays)},
                                {"display_rays_per_light", double(d.rays_per_light)},
                                {"display_gather_rays", double(d.gather_rays)},
-                               {"display_levels", double(d.levels)}});
+                               {"display_levels", double(d.levels)},
+                               {"direct_start_used", start.used ? 1.0 : 0.0},
+                               {"display_at_points", display.used && !d.averaged ? 1.0 : 0.0}},
+                              {{"direct_start", start.why},
+                               {"display", d.averaged ? kDisplayAveragedByBudget : display.why}});
       }};
   std::vector<Status> written(writers.size(), Ok{});
   pool.ParallelFor(writers.size(), [&](unsigned, size_t i) { written[i] = writers[i](); });

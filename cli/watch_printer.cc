@@ -21,6 +21,8 @@ std::string FormatWatchLine(const JobInfo& j) {
     std::snprintf(done, sizeof done, ", %.0f%% done", 100 * std::clamp(j.progress, 0.0, 1.0));
     line += done;
   }
+  // Its rounds are over but its display is not drawn yet: on a big scene that takes a while.
+  if (j.phase == "display") line += ", drawing the display";
   if (j.waiting_for_agents) line += std::string("; ") + kNoAgentConnected;
   if (j.stop_reason) line += ", " + *j.stop_reason;
   if (j.error) line += ": " + *j.error;
@@ -38,8 +40,12 @@ void WatchPrinter::Show(const JobInfo& job, const nlohmann::json& object) {
                  std::string(kWidth - filled, '.').c_str(), FormatWatchLine(job).c_str());
     drew_bar_ = true;
   } else {
-    const Seen seen{job.state, job.round, job.agents, job.waiting_for_agents,
-                    int(std::clamp(job.progress, 0.0, 1.0) * 10)};
+    const Seen seen{job.state,
+                    job.round,
+                    job.agents,
+                    job.waiting_for_agents,
+                    int(std::clamp(job.progress, 0.0, 1.0) * 10),
+                    job.phase == "display"};
     if (last_ == seen) return;
     last_ = seen;
     const std::string line =

@@ -40,7 +40,8 @@ class WatchPrinter {
     uint64_t round;
     uint64_t agents;
     bool waiting_for_agents;
-    int tenths;  // of progress: a long round (the final gather) still shows it moving
+    int tenths;    // of progress: a long round (the final gather) still shows it moving
+    bool display;  // its display being drawn: the line says so
     bool operator==(const Seen&) const = default;
   };
 

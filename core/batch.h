@@ -24,6 +24,10 @@ namespace radfarm {
 // The round key of every final-gather batch (Batch::round): no shooting round reaches it.
 inline constexpr uint32_t kGatherRound = UINT32_MAX;
 
+// The number of a round as people read it (logs, events, status, render's lines): from 1, the
+// plan's round + 1. Plans, batch ids, the store's rows and checkpoints keep the plan's number.
+inline uint32_t ShownRound(uint32_t plan_round) { return plan_round + 1; }
+
 struct Batch {
   uint32_t round = 0;    // the rays' key: the round's number, or kGatherRound for the gather
   uint32_t shooter = 0;  // patch id

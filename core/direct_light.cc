@@ -368,11 +368,15 @@ struct StartPlan {
   uint32_t rays_per_light = 0;
   uint64_t emitter_rays = 0;
   uint32_t sections = 0;
+  DirectStartDecision::Why why = DirectStartDecision::kNothingEmits;
 };
 
 StartPlan PlanEmitters(const PatchScene& scene, const SolverSettings& settings) {
   StartPlan plan;
-  if (!GatherOn(settings)) return plan;
+  if (!GatherOn(settings)) {
+    plan.why = DirectStartDecision::kGatherOff;
+    return plan;
+  }
   // A shadow ray per point and emitter patch, at least 4 x 4 points per patch: no more than the
   // gather's rays. Beyond, the rays per light are capped while that leaves every light
   // kMinCappedLightRays, which serves a few finely meshed lights; a furnace's or a sky's emitters
@@ -383,12 +387,16 @@ StartPlan PlanEmitters(const PatchScene& scene, const SolverSettings& settings) 
   if (emitters * 16 <= settings.gather_rays) {
     plan.emitters = true;
     plan.emitter_rays = emitters;
+    plan.why = DirectStartDecision::kEmitters;
     return plan;
   }
+  plan.why = DirectStartDecision::kManyEmitterPatches;
   if (emitters * 4 > scene.patches.size()) return plan;
   const uint64_t lights = LightsPerPoint(scene);
+  plan.why = DirectStartDecision::kManyLights;
   if (lights * 16 * kMinCappedLightRays > settings.gather_rays) return plan;
   plan.emitters = true;
+  plan.why = DirectStartDecision::kEmittersCapped;
   plan.rays_per_light = static_cast<uint32_t>(settings.gather_rays / (16 * lights));
   plan.emitter_rays = std::min<uint64_t>(emitters, uint64_t(plan.rays_per_light) * lights);
   return plan;
@@ -433,6 +441,7 @@ void FitStart(const PatchScene& scene, const SolverSettings& settings, uint64_t 
   plan->emitters = false;
   plan->rays_per_light = 0;
   plan->emitter_rays = 0;
+  plan->why = DirectStartDecision::kBudget;
   plan->sections = SectionsOf(*plan, scene, settings);
   fewer_sections();
 }
@@ -454,6 +463,21 @@ uint64_t StartRayAllowance(const SolverSettings& settings) {
 
 bool EmittersInDirectStart(const PatchScene& scene, const SolverSettings& settings) {
   return PlanStart(scene, settings).emitters;
+}
+
+DirectStartDecision DecideDirectStart(const PatchScene& scene, const SolverSettings& settings) {
+  const StartPlan plan = PlanStart(scene, settings);
+  DirectStartDecision d;
+  d.why = plan.why;
+  d.emitters = plan.emitters;
+  d.sections = plan.sections;
+  d.rays_per_light = plan.rays_per_light;
+  d.emitter_patches = EmitterPatches(scene);
+  d.lights = d.emitter_patches > 0 ? LightsPerPoint(scene) : 0;
+  d.lamps = scene.lights.size();
+  d.patches = scene.patches.size();
+  d.allowance = StartRayAllowance(settings);
+  return d;
 }
 
 uint32_t DirectLightRaysPerLight(const PatchScene& scene, const SolverSettings& settings) {

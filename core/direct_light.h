@@ -144,6 +144,30 @@ inline constexpr double kStartShadowRaysPerSecond = 4e6;
 // emitters shoot.
 bool EmittersInDirectStart(const PatchScene& scene, const SolverSettings& settings);
 
+// The start EmittersInDirectStart and DirectLightSections describe, with the rule that decided
+// for the emitter patches and its figures (core/solve_rules.h puts it in words).
+struct DirectStartDecision {
+  enum Why {
+    kEmitters,            // in the start, a shadow ray per emitter patch
+    kEmittersCapped,      // in the start, rays_per_light per light
+    kGatherOff,           // they shoot: no final gather to price the start against
+    kNothingEmits,        // no emitter patch
+    kManyEmitterPatches,  // they shoot: more than a quarter of the patches emit
+    kManyLights,          // they shoot: more lights than gather_rays / (16 kMinCappedLightRays)
+    kBudget,              // they shoot: the budget's share does not cover the start
+  };
+  Why why = kNothingEmits;
+  bool emitters = false;
+  uint32_t sections = 0;  // points per side of each patch, 0: no start (no lamp either)
+  uint32_t rays_per_light = 0;
+  uint64_t emitter_patches = 0;
+  uint64_t lights = 0;  // emitter lights a point evaluates (LightsPerPoint)
+  uint64_t lamps = 0;   // punctual lights: always in the start
+  uint64_t patches = 0;
+  uint64_t allowance = 0;  // StartRayAllowance
+};
+DirectStartDecision DecideDirectStart(const PatchScene& scene, const SolverSettings& settings);
+
 // The shadow rays a light gets at most per point in the direct-light start and the display (0: no
 // limit): the gather's rays over 16 points and the lights a point evaluates (all of them, or the
 // light tree's cut), at least kMinCappedLightRays where the emitter patches are capped at all (0

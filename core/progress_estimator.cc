@@ -140,9 +140,18 @@ ProgressEstimate ProgressEstimator::Estimate(const SolvePosition& now) const {
   const double rays_left = round_rest + later_rays;
   out.rays_left = uint64_t(std::llround(rays_left));
   const double done = double(now.rays_done + std::min(now.round_rays, now.round_rays_done));
+  if (!shooting) {
+    // The shooting still to come cannot be sized yet (no shooting round seen): the rays known
+    // so far (the first round, the gather) are only part of the rest, and a fraction of them
+    // climbed high in the first round, then fell when the second showed the rounds to come. So
+    // the fraction is the one the budget bounds it by, or 0: it only rises from there.
+    if (now.budget_rays_left) {
+      const double most = done + double(*now.budget_rays_left);
+      out.fraction = most > 0 ? done / most : 0;
+    }
+    return out;
+  }
   out.fraction = done + rays_left > 0 ? done / (done + rays_left) : 0;
-  // The shooting still to come cannot be sized yet.
-  if (!shooting) return WithinBudget(out, now, done);
 
   const double later_cost = (shooting ? shooting->rays : 0) + gather_rays * gather_ray_cost_;
   std::optional<double> later = Seconds(later_cost, shooting->rounds + gather_rounds);

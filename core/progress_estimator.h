@@ -49,7 +49,10 @@ struct SolvePosition {
 };
 
 struct ProgressEstimate {
-  double fraction = 0;                 // of the solve's rays, 0..1
+  // Of the solve's rays, 0..1. Before a shooting round has been seen the rounds to come cannot be
+  // sized: then the share of a ray budget spent, or 0 without one (a lower bound, so a display
+  // that never lets it fall, core/progress_ratchet.h, does not stall at an early guess).
+  double fraction = 0;
   std::optional<double> seconds_left;  // nullopt until a round has been timed
   uint64_t rays_left = 0;              // predicted, the running round's rest included
 };

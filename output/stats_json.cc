@@ -117,7 +117,8 @@ std::string JsonString(std::string_view text) {
   return out + "\"";
 }
 
-Result<std::string> FormatStatsJson(const SolveStats& stats, const JsonNumbers& extra_numbers) {
+Result<std::string> FormatStatsJson(const SolveStats& stats, const JsonNumbers& extra_numbers,
+                                    const JsonStrings& extra_strings) {
   ObjectWriter object;
   // The field list mirrors core/solve_stats.h in declaration order.
   object.Add("rays", FormatUnsigned(stats.rays));
@@ -142,12 +143,17 @@ Result<std::string> FormatStatsJson(const SolveStats& stats, const JsonNumbers& 
       return Error{"stats: duplicate key " + JsonString(key)};
     }
   }
+  for (const auto& [key, value] : extra_strings) {
+    if (!object.Add(key, JsonString(value))) {
+      return Error{"stats: duplicate key " + JsonString(key)};
+    }
+  }
   return object.Finish();
 }
 
 Status WriteStatsJson(const std::string& path, const SolveStats& stats,
-                      const JsonNumbers& extra_numbers) {
-  Result<std::string> text = FormatStatsJson(stats, extra_numbers);
+                      const JsonNumbers& extra_numbers, const JsonStrings& extra_strings) {
+  Result<std::string> text = FormatStatsJson(stats, extra_numbers, extra_strings);
   if (!text.ok()) return Error{path + ": cannot write " + text.error()};
   return WriteFileAtomically(path, *text);
 }

@@ -1,6 +1,7 @@
-// stats.json: every SolveStats field under its own name, then caller-supplied extra numbers, as one
-// JSON object. Non-finite numbers are written as null (JSON has no NaN or infinity); strings are
-// escaped per RFC 8259, invalid UTF-8 bytes replaced by U+FFFD so the file always parses.
+// stats.json: every SolveStats field under its own name, then caller-supplied extra numbers and
+// strings, as one JSON object. Non-finite numbers are written as null (JSON has no NaN or
+// infinity); strings are escaped per RFC 8259, invalid UTF-8 bytes replaced by U+FFFD so the file
+// always parses.
 #pragma once
 
 #include <string>
@@ -14,15 +15,17 @@
 namespace radfarm {
 
 using JsonNumbers = std::vector<std::pair<std::string, double>>;
+using JsonStrings = std::vector<std::pair<std::string, std::string>>;
 
 // A JSON string literal, quotes included.
 std::string JsonString(std::string_view text);
 
 // The document WriteStatsJson writes. Fails when an extra key repeats a field or another extra.
-Result<std::string> FormatStatsJson(const SolveStats& stats, const JsonNumbers& extra_numbers);
+Result<std::string> FormatStatsJson(const SolveStats& stats, const JsonNumbers& extra_numbers,
+                                    const JsonStrings& extra_strings = {});
 
 // Written atomically; errors name `path`.
 Status WriteStatsJson(const std::string& path, const SolveStats& stats,
-                      const JsonNumbers& extra_numbers);
+                      const JsonNumbers& extra_numbers, const JsonStrings& extra_strings = {});
 
 }  // namespace radfarm

@@ -79,7 +79,8 @@ struct CheckpointWatch {
     // A restarted master counts from 1 again.
     missed += now > committed ? now - committed - 1 : now - 1;
     committed = now;
-    Round& r = (*rounds)[c.value("round", 0u)];
+    // Shown from 1 (core/progressive_solver.h ShownRound); the store's rows are the plan's.
+    Round& r = (*rounds)[c.value("round", 1u) - 1];
     r.checkpoint = true;
     r.bytes = c.value("bytes", 0.0);
     r.copy_ms = c.value("copy_ms", 0.0);
@@ -112,7 +113,7 @@ std::map<uint32_t, Round> RenderRounds(const std::string& out, const std::string
   for (std::string line; std::getline(lines, line);) {
     std::smatch m;
     if (!std::regex_search(line, m, line_re)) continue;
-    Round& r = rounds[std::stoul(m[1])];
+    Round& r = rounds[std::stoul(m[1]) - 1];  // shown from 1, the store's rows from 0
     r.checkpoint = true;
     r.bytes = std::stod(m[2]);
     r.total_ms = std::stod(m[3]);
@@ -194,11 +195,11 @@ Run RunFarm(const BigJobOptions& o, const std::string& job, const std::string& d
     const nlohmann::json at = wait(
         [](const nlohmann::json& j) {
           const nlohmann::json& c = j.value("last_checkpoint", nlohmann::json());
-          return c.is_object() && c.value("round", 0u) >= 1;
+          return c.is_object() && c.value("round", 1u) >= 2;
         },
         std::chrono::minutes(30));
     if (testing::IsFinished(at)) throw std::runtime_error("no checkpoint after round 0");
-    run.killed_after_round = at["last_checkpoint"].value("round", 0u);
+    run.killed_after_round = at["last_checkpoint"].value("round", 1u) - 1;
     farm.master()->Signal(SIGKILL);
     if (!farm.master()->WaitExit(std::chrono::seconds(30))) throw std::runtime_error("no exit");
     std::filesystem::remove(farm.state_dir() + "/http.addr");

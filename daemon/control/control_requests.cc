@@ -2,6 +2,7 @@
 
 #include <malloc.h>
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <map>
@@ -188,7 +189,10 @@ void ControlRequests::Log(ControlRequest request, ControlRespond respond) {
           RADFARM_RETURN_IF_ERROR(job);
           if (!*job) return std::optional<std::vector<store::Event>>();
         }
-        Result<std::vector<store::Event>> events = s.ListEvents(id, limit);
+        // Without an id: the whole farm's, every job's events with its own (a farm-wide log of
+        // only the events tied to no job printed nothing after jobs had run).
+        Result<std::vector<store::Event>> events =
+            id ? s.ListEvents(id, limit) : s.ListRecentEvents(limit);
         RADFARM_RETURN_IF_ERROR(events);
         return std::optional(std::move(*events));
       },
@@ -199,6 +203,7 @@ void ControlRequests::Log(ControlRequest request, ControlRespond respond) {
         for (const store::Event& e : **events) {
           list.push_back({{"time_ms", e.time_ms},
                           {"level", std::string(store::EventLevelName(e.level))},
+                          {"job", e.job ? json(*e.job) : json(nullptr)},
                           {"text", e.text}});
         }
         respond({json{{"ok", true}, {"events", list}}, {}});
@@ -228,7 +233,13 @@ json ControlRequests::JobJson(const JobSummary& s) {
            {"stop_reason", nullptr},
            {"waiting_for_agents", false},
            {"phase", nullptr},
-           {"last_checkpoint", nullptr}};
+           {"last_checkpoint", nullptr},
+           {"direct_start", nullptr},
+           {"display", nullptr}};
+  if (const JobRules* rules = jobs_.RulesOf(r.id)) {
+    job["direct_start"] = rules->direct_start;
+    job["display"] = rules->display;
+  }
   const std::string_view phase = jobs_.PhaseOf(r.id);
   if (!phase.empty()) job["phase"] = std::string(phase);
   if (const CheckpointReport* c = jobs_.LastCheckpoint(r.id)) {
@@ -243,9 +254,10 @@ json ControlRequests::JobJson(const JobSummary& s) {
     // The live view is ahead of the store by the rounds not yet committed.
     const JobTotals& t = runner->totals();
     job["round"] = t.round;
-    job["rays"] = t.rays;
+    const auto now = clock_.Now();
+    job["rays"] = runner->RaysShown(now);
     job["unshot_fraction"] = t.unshot_fraction;
-    job["rays_per_second"] = runner->RaysPerSecond();
+    job["rays_per_second"] = runner->RaysPerSecond(now);
     // Agents holding its leases: the round's, or its final gather's leased ahead (gather_ahead.h).
     std::set<scheduler::AgentId> working;
     runner->ForEachScheduler([&](const scheduler::RoundScheduler& s) {
@@ -266,8 +278,21 @@ json ControlRequests::JobJson(const JobSummary& s) {
     job["stop_reason"] = StopReasonOf(s);
     job["eta_seconds"] = 0.0;
   }
-  job["progress"] = r.state == store::JobState::kDone ? 1.0 : progress;
+  job["progress"] = ShownProgress(r, progress);
   return job;
+}
+
+double ControlRequests::ShownProgress(const store::JobRecord& record, double estimate) {
+  if (record.state == store::JobState::kDone) {
+    shown_progress_.erase(record.id);
+    return 1.0;
+  }
+  if (store::IsTerminal(record.state)) {
+    shown_progress_.erase(record.id);
+    return estimate;
+  }
+  // 1 only once done: a job whose rounds are over still has its display to draw and store.
+  return shown_progress_[record.id].Show(std::min(estimate, kProgressBeforeDone));
 }
 
 json ControlRequests::DoorsJson() const {

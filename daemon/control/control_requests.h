@@ -9,8 +9,10 @@
 // Loop thread only.
 #pragma once
 
+#include <map>
 #include <nlohmann/json.hpp>
 
+#include "core/progress_ratchet.h"
 #include "daemon/agents/agent_connections.h"
 #include "daemon/control/control_types.h"
 #include "daemon/control/job_summary.h"
@@ -36,6 +38,12 @@ class ControlRequests {
 
  private:
   nlohmann::json JobJson(const JobSummary& summary);
+  // The progress shown for a job whose progress is estimated at `estimate` now: never less than
+  // shown before while the job lives (core/progress_ratchet.h), whatever its phase (preparing,
+  // rounds, reducing, display, paused); at most kProgressBeforeDone until the job is done, 1 once
+  // done. A job that ended is forgotten.
+  double ShownProgress(const store::JobRecord& record, double estimate);
+  static constexpr double kProgressBeforeDone = 0.99;
   nlohmann::json AgentJson(const AgentLink& link) const;
   // `enrolled_agents`: every enrolled name, its state and how many of its connections are in.
   nlohmann::json EnrolledJson() const;
@@ -57,6 +65,8 @@ class ControlRequests {
   JobRounds& jobs_;
   AgentConnections& agents_;
   bool stopping_ = false;
+  // Loop thread: the progress shown so far of each job not ended that status has shown.
+  std::map<store::JobId, ProgressRatchet> shown_progress_;
 };
 
 }  // namespace radfarm::daemon

@@ -81,7 +81,7 @@ void JobRounds::PlanDisplay(store::JobId id, uint64_t serial, store::StoredSolut
   solution->radiosity = std::move(stored.checkpoint.radiosity);
   solution->unshot = std::move(stored.checkpoint.unshot);
   LogLine(LogLevel::kInfo, "job " + std::to_string(id))
-      << "drawing the display of round " << round << "'s solution";
+      << "drawing the display of round " << ShownRound(round) << "'s solution";
   auto direct = std::make_shared<std::vector<Rgb>>(std::move(direct_light));
   Status s = compute_.Submit(
       [solution, direct]() -> Result<std::shared_ptr<DisplayDraft>> {
@@ -172,15 +172,18 @@ void JobRounds::FinishDisplay(store::JobId id, uint64_t serial) {
 void JobRounds::MarkDone(store::JobId id, uint64_t serial,
                          std::optional<store::StoredDisplay> display) {
   auto kept = std::make_shared<std::optional<store::StoredDisplay>>(std::move(display));
+  const std::string reason = FindDisplay(id, serial)->reason;
   store_.Run(
-      [id, kept](store::JobStore& s) -> Status {
+      [id, kept, reason](store::JobStore& s) -> Status {
         if (*kept) RADFARM_RETURN_IF_ERROR(s.PutDisplay(id, (*kept)->round, (*kept)->display));
-        return s.SetJobState(id, store::JobState::kDone);
+        RADFARM_RETURN_IF_ERROR(s.SetJobState(id, store::JobState::kDone));
+        // With the state, so no reader sees the job done without its event (the status page's
+        // recent events once missed it).
+        return s.AppendEvent(id, store::EventLevel::kInfo, "done: " + reason);
       },
       [this, id, serial](Status s) {
         DisplayRun* run = FindDisplay(id, serial);
         if (!run) return;  // cancelled or paused meanwhile
-        const std::string reason = run->reason;
         display_runs_.erase(id);
         if (!s) {
           // Held on a store fault: once the store writes again the job resumes at its last
@@ -188,7 +191,6 @@ void JobRounds::MarkDone(store::JobId id, uint64_t serial,
           HoldOrFail(id, Error{"cannot record that it is done: " + s.error(), s.error_kind()});
           return;
         }
-        store_.LogEvent(id, store::EventLevel::kInfo, "done: " + reason);
         StartQueuedJobs();
         // After the job is done, not before: deleting a big round's kept results takes a while
         // at 10^6 patches. A master stopped in between prunes at its start.

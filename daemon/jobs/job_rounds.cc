@@ -27,6 +27,12 @@ std::string Ms(double seconds) {
   return text;
 }
 
+// The event of a job's start: resuming after the round of its checkpoint, numbered as shown.
+std::string StartedEvent(const store::JobStart& start) {
+  if (!start.checkpoint) return "started";
+  return "started, resuming after round " + std::to_string(ShownRound(start.checkpoint->round));
+}
+
 }  // namespace
 
 JobRounds::JobRounds(const Clock& clock, const MasterConfig& config,
@@ -60,6 +66,26 @@ void JobRounds::RecordCheckpoint(store::JobId id, CheckpointReport report) {
   if (checkpoint_reports_.size() > kKeptCheckpointReports) {
     checkpoint_reports_.erase(checkpoint_reports_.begin());
   }
+}
+
+const JobRules* JobRounds::RulesOf(store::JobId id) const {
+  const auto it = job_rules_.find(id);
+  return it == job_rules_.end() ? nullptr : &it->second;
+}
+
+void JobRounds::KeepRules(store::JobId id, const JobRules& rules) {
+  JobRules& kept = job_rules_[id];
+  if (kept.direct_start != rules.direct_start || kept.display != rules.display) {
+    // Said once, and again when a refinement step changes them: a big job that gets less than a
+    // small one says so in the log and its events, not only in status.
+    for (const std::string& line :
+         {"direct light: " + rules.direct_start, "display: " + rules.display}) {
+      LogLine(LogLevel::kInfo, "job " + std::to_string(id)) << line;
+      store_.LogEvent(id, store::EventLevel::kInfo, line);
+    }
+  }
+  kept = rules;
+  if (job_rules_.size() > kKeptCheckpointReports) job_rules_.erase(job_rules_.begin());
 }
 
 std::string_view JobRounds::PhaseOf(store::JobId id) const {
@@ -116,10 +142,7 @@ void JobRounds::StartQueuedJobs() {
                  for (const std::string& w : start.warnings) {
                    LogLine(LogLevel::kWarning, "job " + std::to_string(id)) << w;
                  }
-                 store_.LogEvent(id, store::EventLevel::kInfo,
-                                 start.checkpoint ? "started, resuming after round " +
-                                                        std::to_string(start.checkpoint->round)
-                                                  : "started");
+                 store_.LogEvent(id, store::EventLevel::kInfo, StartedEvent(start));
                  auto options = options_;
                  auto shared = std::make_shared<store::JobStart>(std::move(start));
                  SubmittedMesh meshed;
@@ -164,6 +187,7 @@ void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob
   }
   std::shared_ptr<RunningJob> r = std::move(*runner);
   runners_[id] = r;
+  KeepRules(id, r->rules());
   if (r->phase() == RunningJob::Phase::kFinished) {
     FinishJob(r);
     return;
@@ -210,8 +234,8 @@ void JobRounds::BeginRound(const std::shared_ptr<RunningJob>& runner) {
     }
     const scheduler::SchedulerCounters c = runner->scheduler().counters(clock_.Now());
     LogLine(LogLevel::kInfo, "job " + std::to_string(runner->id()))
-        << "round " << c.round << " (the final gather): " << adopted.size() << " of " << c.batches
-        << " batches computed ahead, " << c.batches - c.batches_done << " to lease";
+        << "round " << ShownRound(c.round) << " (the final gather): " << adopted.size() << " of "
+        << c.batches << " batches computed ahead, " << c.batches - c.batches_done << " to lease";
     gather_ahead_adopted_ += adopted.size();
   }
   const size_t restored = runner->restored_batches();
@@ -220,7 +244,7 @@ void JobRounds::BeginRound(const std::shared_ptr<RunningJob>& runner) {
     batches_restored_ += restored;
     const scheduler::SchedulerCounters c = runner->scheduler().counters(clock_.Now());
     LogLine(LogLevel::kInfo, "job " + std::to_string(runner->id()))
-        << "round " << c.round << ": " << restored << " of " << c.batches
+        << "round " << ShownRound(c.round) << ": " << restored << " of " << c.batches
         << " batches restored from the store, " << c.batches - restored << " to lease"
         << (runner->restore_mismatches() > 0 ? " (" + std::to_string(runner->restore_mismatches()) +
                                                    " stored results did not match the plan)"
@@ -329,7 +353,9 @@ void JobRounds::PruneKeptResults(store::JobId id, uint32_t round) {
                // Harmless if it fails: a restart reads only the rounds after the checkpoint, and
                // the next checkpoint's pruning takes these rows too.
                LogLine(s ? LogLevel::kDebug : LogLevel::kWarning, "job " + std::to_string(id))
-                   << "kept results up to round " << round
+                   << (round == UINT32_MAX
+                           ? std::string("all kept results")
+                           : "kept results up to round " + std::to_string(ShownRound(round)))
                    << (s ? " pruned in " + std::to_string(clock_.NowMs() - queued_ms) + " ms"
                          : " not pruned: " + s.error());
              });
@@ -368,11 +394,11 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
           }
           checkpoint_latency_.Record(latency);
           PruneKeptResults(id, round);
-          RecordCheckpoint(id,
-                           {round, cost->bytes, 1000 * copy_seconds, 1000 * cost->encode_seconds,
-                            1000 * cost->commit_seconds, 1000 * latency});
+          RecordCheckpoint(
+              id, {ShownRound(round), cost->bytes, 1000 * copy_seconds, 1000 * cost->encode_seconds,
+                   1000 * cost->commit_seconds, 1000 * latency});
           LogLine(LogLevel::kInfo, "job " + std::to_string(id))
-              << "round " << round << " checkpoint: " << cost->bytes << " bytes, copy "
+              << "round " << ShownRound(round) << " checkpoint: " << cost->bytes << " bytes, copy "
               << Ms(copy_seconds) << " ms, encode " << Ms(cost->encode_seconds) << " ms, commit "
               << Ms(cost->commit_seconds) << " ms, queued to committed " << Ms(latency) << " ms";
         });
@@ -385,7 +411,7 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
   }
   const auto v = verifiers_.find(id);
   LogLine(LogLevel::kInfo, "job " + std::to_string(id))
-      << "round " << record.round << ": " << record.rays << " rays, unshot "
+      << "round " << ShownRound(record.round) << ": " << record.rays << " rays, unshot "
       << Percent(record.unshot_fraction) << ", " << record.duration_seconds << " s"
       << (v != verifiers_.end() && v->second.enabled()
               ? "; " + std::to_string(v->second.verified()) + " batches verified so far"
@@ -393,9 +419,10 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
       << "; at most " << outcome.results_held_peak << " results held for the fold";
   if (outcome.new_scene) {
     store_.LogEvent(id, store::EventLevel::kInfo,
-                    "refined after round " + std::to_string(record.round) + ": " +
+                    "refined after round " + std::to_string(ShownRound(record.round)) + ": " +
                         std::to_string(outcome.new_patch_count) + " elements, scene " +
                         protocol::HashToHex(outcome.new_scene_hash));
+    KeepRules(id, runner->rules());
   }
   if (runner->InstallOutcome(outcome)) {
     // A job started with no agent known plans its gather ahead after round 0 (RunningJob::Reduce).

@@ -69,7 +69,7 @@ struct VerifyCounters {
 
 // What the last checkpoint the master committed for a job cost.
 struct CheckpointReport {
-  uint32_t round = 0;
+  uint32_t round = 0;      // the round it ends, as shown (ShownRound: from 1)
   uint64_t bytes = 0;      // its blobs and checksums (store::CheckpointCost)
   double copy_ms = 0;      // copying the state from the solver, on the compute thread
   double encode_ms = 0;    // encoding it, on the store thread
@@ -135,6 +135,9 @@ class JobRounds {
   // kKeptCheckpointReports most recent jobs, finished ones included (the control socket's
   // last_checkpoint).
   const CheckpointReport* LastCheckpoint(store::JobId id) const;
+  // What the rules gave job `id`'s scene (RunningJob::rules), or null: kept as LastCheckpoint is,
+  // so a job drawing its display, or done, still shows them.
+  const JobRules* RulesOf(store::JobId id) const;
   // "preparing" (being meshed and loaded), "round", "reducing", "finishing" or "display" (its
   // display being drawn, job_display.cc) for a job this master runs; empty for any other.
   std::string_view PhaseOf(store::JobId id) const;
@@ -217,6 +220,9 @@ class JobRounds {
   // Keeps `report` as job `id`'s last checkpoint, its count one more; forgets the oldest job's
   // beyond kKeptCheckpointReports.
   void RecordCheckpoint(store::JobId id, CheckpointReport report);
+  // Keeps `rules` as job `id`'s (an event when they change); forgets the oldest job's beyond
+  // kKeptCheckpointReports.
+  void KeepRules(store::JobId id, const JobRules& rules);
   // Stops a job's work on every agent (Cancel) and forgets its runner.
   void DropRunner(store::JobId id);
 
@@ -242,6 +248,7 @@ class JobRounds {
   LatencyHistogram checkpoint_latency_;
   static constexpr size_t kKeptCheckpointReports = 256;
   std::map<store::JobId, CheckpointReport> checkpoint_reports_;  // by id: oldest job first
+  std::map<store::JobId, JobRules> job_rules_;                   // likewise
   store::CheckpointPacer checkpoints_;                           // which rounds write a checkpoint
   std::map<store::JobId, bool> starting_;  // being prepared; true once cancelled meanwhile
   // OfferSubmittedMesh's, until the next start pass takes or drops it.

@@ -91,11 +91,11 @@ void JobRounds::Rewind(const std::shared_ptr<RunningJob>& runner, const Mismatch
   if (!whole_round) discard = verifier.BatchesOf(lie.agent);
   const Batch& batch = *runner->scheduler().FindBatch(scheduler::MakeBatchId(lie.round, lie.index));
   const std::string why =
-      "round " + std::to_string(lie.round) + " batch " + std::to_string(lie.index) + " (shooter " +
-      std::to_string(batch.shooter) + ", " + std::to_string(batch.ray_count) + " rays from " +
-      std::to_string(batch.first_ray) + "): its result has SHA-256 " + DigestHex(lie.agent_digest) +
-      ", the master's " + DigestHex(lie.master_digest);
-  const std::string back = "the job goes back before round " + std::to_string(from) +
+      "round " + std::to_string(ShownRound(lie.round)) + " batch " + std::to_string(lie.index) +
+      " (shooter " + std::to_string(batch.shooter) + ", " + std::to_string(batch.ray_count) +
+      " rays from " + std::to_string(batch.first_ray) + "): its result has SHA-256 " +
+      DigestHex(lie.agent_digest) + ", the master's " + DigestHex(lie.master_digest);
+  const std::string back = "the job goes back before round " + std::to_string(ShownRound(from)) +
                            " without its results (" +
                            (whole_round ? std::string("every result from then on")
                                         : std::to_string(discard.size()) + " of its results") +

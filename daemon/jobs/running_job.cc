@@ -10,6 +10,7 @@
 #include "codec/patch_scene_codec.h"
 #include "core/batch_tracer.h"
 #include "core/solve_control.h"
+#include "core/solve_rules.h"
 #include "mesh/patch_mesh.h"
 #include "protocol/scene_transfer.h"
 #include "solve/local_solve.h"
@@ -93,6 +94,13 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   runner->record_ = record;
   runner->settings_ = bundle->job.solver;
   runner->estimator_ = ProgressEstimator(runner->settings_.tolerance);
+  // A resumed job's estimate starts from the rounds it ran, not from nothing.
+  double unshot_before = 1;
+  for (const store::RoundRecord& r : rounds) {
+    runner->estimator_.AddRound(
+        {r.rays, r.duration_seconds, unshot_before, r.unshot_fraction, false});
+    unshot_before = r.unshot_fraction;
+  }
   runner->reported_pace_ = kReportedPaceShare * std::max(0.0, agents_rays_per_second);
   // The checkpoint as the driver resumes it; a refined mesh's scene checked against its hash.
   std::optional<SolveState> resume;
@@ -155,6 +163,7 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   runner->scene_ = std::move(packed);
   runner->scheduler_ = scheduler::RoundScheduler(options);
   runner->UpdateTotals();
+  runner->UpdateRules();
 
   // The round the solver plans next, with the batch size its kept results were planned with.
   runner->stored_ = std::move(stored);
@@ -247,6 +256,7 @@ void RunningJob::LeaseReturnedAheadFirst() {
 Status RunningJob::StartPlannedRound(scheduler::TimePoint now) {
   if (!planned_) return Error{"job " + std::to_string(id()) + ": no round planned"};
   running_rays_ = planned_->rays;
+  rays_before_round_ = totals_.rays;
   running_gather_ = planned_->gather;
   running_sizing_ = planned_sizing_;
   running_round_ = planned_->round;
@@ -372,6 +382,7 @@ RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double r
                 applied.escaped_rays,
                 applied.back_rays};
   if (applied.refined) {
+    UpdateRules();
     EncodeRefinedScene();
     out.new_scene = refined_packed_;
     out.new_scene_hash = refined_packed_->hash;
@@ -421,6 +432,11 @@ void RunningJob::UpdateTotals() {
   totals_.gather_rays_left = solver.PendingGatherRays();
 }
 
+void RunningJob::UpdateRules() {
+  rules_ = {DirectStartRule(driver_->scene(), settings_).why,
+            DisplayRule(driver_->scene(), settings_).why};
+}
+
 void RunningJob::EncodeRefinedScene() {
   refined_blob_ =
       std::make_shared<const std::vector<uint8_t>>(codec::EncodePatchScene(driver_->scene()));
@@ -457,6 +473,37 @@ double RunningJob::RaysPerSecond() const {
   return seconds > 0 ? double(rays) / seconds : 0;
 }
 
+uint64_t RunningJob::RunningRaysDone(scheduler::TimePoint now) const {
+  if (phase_ != Phase::kRound) return 0;
+  const scheduler::SchedulerCounters counters = scheduler_.counters(now);
+  if (!counters.round_active || counters.batches == 0) return 0;
+  return running_rays_ * counters.batches_done / counters.batches;
+}
+
+uint64_t RunningJob::RaysShown(scheduler::TimePoint now) const {
+  switch (phase_) {
+    case Phase::kRound:
+      if (scheduler_.counters(now).round_active) return rays_before_round_ + RunningRaysDone(now);
+      break;
+    case Phase::kReducing:
+      if (running_rays_ > 0) return rays_before_round_ + running_rays_;  // leased, not local
+      break;
+    case Phase::kFinished:
+      break;
+  }
+  return totals_.rays;
+}
+
+double RunningJob::RaysPerSecond(scheduler::TimePoint now) const {
+  uint64_t rays = RunningRaysDone(now);
+  double seconds = rays > 0 ? std::chrono::duration<double>(now - round_started_).count() : 0;
+  for (const auto& [r, s] : recent_) {
+    rays += r;
+    seconds += s;
+  }
+  return seconds > 0 ? double(rays) / seconds : 0;
+}
+
 ProgressEstimate RunningJob::Progress(scheduler::TimePoint now) const {
   if (phase_ == Phase::kFinished) return {1.0, 0.0, 0};
   if (phase_ == Phase::kReducing) return last_progress_;
@@ -464,7 +511,7 @@ ProgressEstimate RunningJob::Progress(scheduler::TimePoint now) const {
   const scheduler::SchedulerCounters counters = scheduler_.counters(now);
   if (counters.round_active && counters.batches > 0) {
     at.round_rays = running_rays_;
-    at.round_rays_done = running_rays_ * counters.batches_done / counters.batches;
+    at.round_rays_done = RunningRaysDone(now);
     at.round_seconds = std::chrono::duration<double>(now - round_started_).count();
     at.round_gather = running_gather_;
   }

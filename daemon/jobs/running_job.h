@@ -90,6 +90,13 @@ struct RoundOutcome {
   size_t results_held_peak = 0;
 };
 
+// What the rules (core/solve_rules.h) gave the job's scene at its size: the direct-light start and
+// the display, in words for status.
+struct JobRules {
+  std::string direct_start;
+  std::string display;
+};
+
 class RunningJob {
  public:
   enum class Phase { kRound, kReducing, kFinished };
@@ -126,6 +133,8 @@ class RunningJob {
   const std::vector<Rgb>& direct_light() const { return driver_->solver().direct_light(); }
   const JobTotals& totals() const { return totals_; }
   Phase phase() const { return phase_; }
+  // The rules for the job's scene as it stands (Prepare, and again after a refinement step).
+  const JobRules& rules() const { return rules_; }
   // Whether Prepare took the mesh built at submission rather than meshing the scene again.
   bool meshed_at_submission() const { return meshed_at_submission_; }
   // Set when Prepare found nothing left to do (the checkpoint already met a stopping rule).
@@ -206,8 +215,16 @@ class RunningJob {
   // job goes on (a round is planned), false when it is finished.
   bool InstallOutcome(RoundOutcome& outcome);
 
-  // Recent throughput for status: rays/s over the last rounds (0 before the first).
+  // Recent throughput: rays/s over the last rounds (0 before the first), for pacing.
   double RaysPerSecond() const;
+  // Loop thread, for status: the rays of the running round whose batches are in (0 outside
+  // kRound); the job's rays with them, so the rays shown count on through a long round such as the
+  // final gather and never fall when it ends (a leased round counts whole while it is reduced,
+  // Reduce updating totals() meanwhile); and the throughput over the last rounds and the running
+  // round so far.
+  uint64_t RunningRaysDone(scheduler::TimePoint now) const;
+  uint64_t RaysShown(scheduler::TimePoint now) const;
+  double RaysPerSecond(scheduler::TimePoint now) const;
   // Loop thread: the share of the job's rays done, the running round's accepted batches included,
   // and the seconds left (core/progress_estimator.h). While kReducing, the figures from before.
   ProgressEstimate Progress(scheduler::TimePoint now) const;
@@ -233,6 +250,8 @@ class RunningJob {
   void EncodeRefinedScene();
   // The totals and progress figures of the driver's state, for status.
   void UpdateTotals();
+  // The rules for the driver's scene (rules_).
+  void UpdateRules();
 
   store::JobRecord record_;
   SolverSettings settings_;
@@ -276,6 +295,7 @@ class RunningJob {
   scheduler::SchedulerOptions options_;
   std::vector<std::pair<uint32_t, std::string>> adopted_;
   std::optional<std::string> stop_reason_;
+  JobRules rules_;  // written on the worker (Prepare, Reduce), read on the loop outside kReducing
   JobTotals totals_;
   Phase phase_ = Phase::kRound;
   bool meshed_at_submission_ = false;
@@ -290,6 +310,7 @@ class RunningJob {
   // Loop side: the round the scheduler or this machine runs (rays, final gather), and the last
   // estimate, shown while the worker reduces.
   uint64_t running_rays_ = 0;
+  uint64_t rays_before_round_ = 0;  // totals_.rays when the running round started
   bool running_gather_ = false;
   mutable ProgressEstimate last_progress_;
 };

@@ -26,7 +26,9 @@ const std::vector<std::string> kJobKeys = {"id",
                                            "stop_reason",
                                            "waiting_for_agents",
                                            "phase",
-                                           "last_checkpoint"};
+                                           "last_checkpoint",
+                                           "direct_start",
+                                           "display"};
 const std::vector<std::string> kAgentKeys = {"id",
                                              "name",
                                              "address",
@@ -37,7 +39,7 @@ const std::vector<std::string> kAgentKeys = {"id",
                                              "connected_ms",
                                              "last_heartbeat_ms_ago",
                                              "results"};
-const std::vector<std::string> kEventKeys = {"time_ms", "level", "text"};
+const std::vector<std::string> kEventKeys = {"time_ms", "level", "job", "text"};
 
 nlohmann::json JobObject(int64_t id, const std::string& state, uint64_t round) {
   const bool ended = state == "done" || state == "failed" || state == "cancelled";
@@ -65,7 +67,9 @@ nlohmann::json JobObject(int64_t id, const std::string& state, uint64_t round) {
           {"stop_reason", state == "done" ? nlohmann::json("converged") : nlohmann::json()},
           {"waiting_for_agents", false},
           {"phase", state == "running" ? nlohmann::json("round") : nlohmann::json()},
-          {"last_checkpoint", nlohmann::json()}};
+          {"last_checkpoint", nlohmann::json()},
+          {"direct_start", nlohmann::json()},
+          {"display", nlohmann::json()}};
 }
 
 nlohmann::json AgentObject(int64_t id, const std::string& name) {
@@ -81,8 +85,12 @@ nlohmann::json AgentObject(int64_t id, const std::string& name) {
           {"results", 99}};
 }
 
-nlohmann::json EventObject(int64_t time_ms, const std::string& level, const std::string& text) {
-  return {{"time_ms", time_ms}, {"level", level}, {"text", text}};
+nlohmann::json EventObject(int64_t time_ms, const std::string& level, const std::string& text,
+                           std::optional<int64_t> job) {
+  return {{"time_ms", time_ms},
+          {"level", level},
+          {"job", job ? nlohmann::json(*job) : nlohmann::json()},
+          {"text", text}};
 }
 
 CommandResult RunFarm(const std::string& socket, const std::vector<std::string>& args) {

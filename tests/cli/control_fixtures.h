@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,7 +20,9 @@ extern const std::vector<std::string> kEventKeys;
 // A job object with every documented key; `round` also sets rays and lowers unshot_fraction.
 nlohmann::json JobObject(int64_t id, const std::string& state, uint64_t round = 0);
 nlohmann::json AgentObject(int64_t id, const std::string& name);
-nlohmann::json EventObject(int64_t time_ms, const std::string& level, const std::string& text);
+// An event of the master's log; `job` the job it is about (none: the farm's own).
+nlohmann::json EventObject(int64_t time_ms, const std::string& level, const std::string& text,
+                           std::optional<int64_t> job = std::nullopt);
 
 // Runs the radfarm binary with `--control socket` in front of `args`.
 CommandResult RunFarm(const std::string& socket, const std::vector<std::string>& args);

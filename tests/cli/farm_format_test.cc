@@ -43,6 +43,9 @@ TEST(FarmFormatTest, EventLinesAlignTheText) {
             "2026-11-18 11:06:40.123 UTC  info     submitted");
   EXPECT_EQ(FormatEvent({1795000000123, "warning", "slow"}),
             "2026-11-18 11:06:40.123 UTC  warning  slow");
+  // An event about a job names it (the farm's log holds every job's).
+  EXPECT_EQ(FormatEvent({1795000000123, "info", "done: converged", 4}),
+            "2026-11-18 11:06:40.123 UTC  info     job 4: done: converged");
 }
 
 }  // namespace

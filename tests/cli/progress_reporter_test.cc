@@ -179,6 +179,18 @@ TEST(ProgressTest, ALongShootingRoundShowsItsProgressBeforeItsEnd) {
   EXPECT_EQ(out.Text().find("round 2 "), std::string::npos) << out.Text();
 }
 
+// The ETA counts the solve alone: where a display with rays follows (a big scene's can take longer
+// than its solve) it says so, as a bar that said "ETA 1s" before a 24 s display did not.
+TEST(ProgressTest, TheEtaSaysADisplayFollows) {
+  Captured out;
+  ProgressReporter reporter(out.file(), false);
+  reporter.SetDisplayFollows(true);
+  for (double seconds : {1.1, 2.4}) {
+    reporter.OnRoundRunning({0, 4'000'000, uint64_t(seconds / 4 * 4'000'000), seconds, false});
+  }
+  EXPECT_NE(out.Text().find("1.00 Mrays/s  ETA ? + display\n"), std::string::npos) << out.Text();
+}
+
 // Under a time budget the ETA is at most the time the budget leaves the rounds, after a round and
 // while one runs (a --seconds 5 render on 88,750 patches showed "ETA 36s").
 TEST(ProgressTest, TheEtaKeepsWithinTheBudget) {

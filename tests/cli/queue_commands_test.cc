@@ -169,6 +169,18 @@ TEST(QueueCommandsTest, LogOfAJobSendsIdAndLimit) {
             "2026-11-18 11:06:45.000 UTC  warning  agent b timed out\n");
 }
 
+// Without an id the log is the whole farm's: each job's events name their job.
+TEST(QueueCommandsTest, LogWithoutIdNamesEachEventsJob) {
+  const json events = {EventObject(1795000000000, "info", "done: converged", 7),
+                       EventObject(1795000001000, "warning", "agent b blocklisted")};
+  FakeControlServer server(Always(OkAnswer({{"events", events}})));
+  const auto r = RunFarm(server.socket_path(), {"log"});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_EQ(r.out,
+            "2026-11-18 11:06:40.000 UTC  info     job 7: done: converged\n"
+            "2026-11-18 11:06:41.000 UTC  warning  agent b blocklisted\n");
+}
+
 TEST(QueueCommandsTest, LogWithoutIdIsTheFarmLogWithTheDefaultLimit) {
   const json events = {EventObject(1795000000000, "error", "store: disk full")};
   FakeControlServer server(Always(OkAnswer({{"events", events}})));

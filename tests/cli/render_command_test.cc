@@ -83,6 +83,21 @@ TEST(RenderCommandTest, CornellBoxWritesEveryOutput) {
   EXPECT_NE(stats.find("\"sampler\": \"sobol\""), std::string::npos) << stats;
   EXPECT_EQ(JsonNumber(stats, "patches"), double(csv.size() - 1));
   EXPECT_LE(JsonNumber(stats, "unshot_fraction"), 0.01);
+  // What the scene's size got, in stats.json and on the terminal (core/solve_rules.h): the start
+  // and the display were skipped above some size with no word.
+  EXPECT_EQ(JsonNumber(stats, "direct_start_used"), 1) << stats;
+  EXPECT_EQ(JsonNumber(stats, "display_at_points"), 1) << stats;
+  EXPECT_NE(stats.find("\"direct_start\": \"from the direct light of 30 emitter patches"),
+            std::string::npos)
+      << stats;
+  EXPECT_NE(stats.find("\"display\": \"at its own points: "), std::string::npos) << stats;
+  EXPECT_NE(r.out.find("\ndirect light: from the direct light of 30 emitter patches"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("\ndisplay: at its own points: "), std::string::npos) << r.out;
+  // The closing line counts the display: its seconds and the whole command's.
+  EXPECT_NE(r.out.find("), the display and files in "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" s in all; wrote "), std::string::npos) << r.out;
   // Every patch lit, nothing negative or NaN.
   for (size_t i = 1; i < csv.size(); ++i) {
     ASSERT_EQ(csv[i].size(), 13u);

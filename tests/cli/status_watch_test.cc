@@ -91,6 +91,21 @@ TEST(StatusWatchTest, SaysPlainlyWhenNoAgentIsConnectedAndWhenOneComes) {
   EXPECT_EQ(lines[2].find("no agent connected"), std::string::npos) << lines[2];
 }
 
+// A job whose rounds are over and whose display is being drawn says so, short of 100 %: the
+// display of a big scene takes longer than its last rounds, after a bar that had said done.
+TEST(StatusWatchTest, TheDisplayAfterTheRoundsIsALineOfItsOwn) {
+  json drawing = JobObject(3, "running", 3);
+  drawing["phase"] = "display";
+  drawing["progress"] = 0.99;
+  FakeControlServer server(Script({JobObject(3, "running", 3), drawing, JobObject(3, "done", 3)}));
+  const auto r = RunFarm(server.socket_path(), {"status", "3", "--watch"});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  const std::vector<std::string> lines = Lines(r.out);
+  ASSERT_EQ(lines.size(), 3u) << r.out;
+  EXPECT_EQ(lines[0].find("drawing the display"), std::string::npos) << lines[0];
+  EXPECT_NE(lines[1].find(", 99% done, drawing the display"), std::string::npos) << lines[1];
+}
+
 TEST(StatusWatchTest, StatusSaysNoAgentIsConnected) {
   FakeControlServer server([](const ControlRequest&) {
     return OkAnswer({{"job", Waiting(JobObject(3, "running", 0), true)}});

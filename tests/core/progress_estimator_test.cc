@@ -180,6 +180,52 @@ TEST(ProgressEstimatorTest, ARunningShootingRoundIsNotCountedTwice) {
   EXPECT_NEAR(*r.seconds_left, *b.seconds_left, 0.01 * *b.seconds_left);
 }
 
+// Progress ran backwards on the farm: during the first round nothing sized the rounds to come,
+// so the fraction counted the first round against the gather alone and climbed to 65-77 % on the
+// building, then fell to 8 % when the second round started. A solve whose gather is about its
+// first round's size, sampled during every round (a quarter at a time) and between rounds, from
+// before the first round to the end: the fraction never falls by more than a point.
+TEST(ProgressEstimatorTest, TheFractionDoesNotFallOverASolvesLife) {
+  FakeSolve solve;
+  solve.gather_rays = 500'000;
+  const std::vector<RoundSample> rounds = solve.Rounds();
+  ProgressEstimator estimator(solve.tolerance);
+  SolvePosition between;
+  between.unshot_fraction = solve.unshot0;
+  between.gather_rays_left = solve.gather_rays;
+  double last = 0;
+  std::vector<double> seen;
+  for (size_t k = 0; k < rounds.size(); ++k) {
+    for (int quarter = 0; quarter <= 4; ++quarter) {
+      SolvePosition at = between;
+      at.round_rays = rounds[k].rays;
+      at.round_rays_done = rounds[k].rays * quarter / 4;
+      at.round_seconds = rounds[k].seconds * quarter / 4;
+      at.round_gather = rounds[k].gather;
+      const double fraction = estimator.Estimate(at).fraction;
+      EXPECT_GE(fraction, last - 0.01) << "round " << k << ", quarter " << quarter;
+      last = std::max(last, fraction);
+      seen.push_back(fraction);
+    }
+    estimator.AddRound(rounds[k]);
+    between = After(rounds, k + 1, solve.gather_rays);
+    const double fraction = estimator.Estimate(between).fraction;
+    EXPECT_GE(fraction, last - 0.01) << "after round " << k;
+    last = std::max(last, fraction);
+  }
+  EXPECT_DOUBLE_EQ(last, 1.0);
+  // Before the first round is applied the rounds to come are unknown: no share is claimed.
+  for (int quarter = 0; quarter <= 4; ++quarter) EXPECT_EQ(seen[quarter], 0) << quarter;
+}
+
+// Under a ray budget the first round's fraction is the budget's share spent: a lower bound.
+TEST(ProgressEstimatorTest, TheFirstRoundUnderARayBudgetShowsTheBudgetSpent) {
+  ProgressEstimator estimator(1e-3);
+  SolvePosition at{0, 1.0, 1000, 4000, 1000, 0.5, false};
+  at.budget_rays_left = 9000;  // from the round's start: 10,000 less the 1,000 done
+  EXPECT_DOUBLE_EQ(estimator.Estimate(at).fraction, 0.1);
+}
+
 TEST(ProgressEstimatorTest, ASolveThatStoppedConvergingStillGetsAFiniteEstimate) {
   ProgressEstimator estimator(1e-3);
   estimator.AddRound({1000, 1.0, 0.5, 0.5, false});

@@ -44,7 +44,9 @@ void ExpectJobKeys(const nlohmann::json& job) {
                           "stop_reason",
                           "waiting_for_agents",
                           "phase",
-                          "last_checkpoint"}) {
+                          "last_checkpoint",
+                          "direct_start",
+                          "display"}) {
     EXPECT_TRUE(job.contains(key)) << key << " missing from " << job.dump();
   }
 }
@@ -123,11 +125,19 @@ TEST_F(FarmTest, EveryQueueCommandAgainstARunningMaster) {
   ExpectJobKeys(done);
   EXPECT_EQ(done["state"], "done");
   EXPECT_EQ(done["stop_reason"], "ray budget");
+  // What the scene's size got, kept after the job is done (core/solve_rules.h): a bigger scene
+  // lost its direct-light start and its display without a word.
+  EXPECT_EQ(done["direct_start"].get<std::string>().rfind("from the direct light of ", 0), 0u)
+      << done.dump();
+  EXPECT_EQ(done["display"].get<std::string>().rfind("at its own points: ", 0), 0u) << done.dump();
+  r = Cli({"status", std::to_string(alpha)});
+  EXPECT_NE(r.out.find("\ndirect light:  from the direct light of "), std::string::npos) << r.out;
   // What its last checkpoint cost, kept after the job ended (a stopping round always writes one).
   EXPECT_TRUE(done["phase"].is_null()) << done.dump();
   const nlohmann::json& checkpoint = done["last_checkpoint"];
   ASSERT_TRUE(checkpoint.is_object()) << done.dump();
-  EXPECT_LT(checkpoint["round"].get<uint64_t>(), done["round"].get<uint64_t>()) << done.dump();
+  // Rounds are counted from 1 in both: the stopping round is the one checkpointed.
+  EXPECT_EQ(checkpoint["round"].get<uint64_t>(), done["round"].get<uint64_t>()) << done.dump();
   EXPECT_GT(checkpoint["bytes"].get<uint64_t>(), done["patches"].get<uint64_t>() * 48)
       << done.dump();
   EXPECT_GE(checkpoint["committed"].get<uint64_t>(), 1u) << done.dump();
@@ -151,7 +161,15 @@ TEST_F(FarmTest, EveryQueueCommandAgainstARunningMaster) {
   for (const auto& e : events) {
     EXPECT_TRUE(e.contains("time_ms") && e.contains("level") && e.contains("text")) << e.dump();
   }
-  EXPECT_EQ(Cli({"log", "--json"}).exit_code, 0);
+  // Without an id: every job's events with the farm's own, each naming its job (it printed
+  // nothing after jobs had run, the farm having no event of its own yet).
+  r = Cli({"log"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("job " + std::to_string(alpha) + ": done: ray budget"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("job " + std::to_string(alpha) + ": direct light: "), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("job " + std::to_string(alpha) + ": display: "), std::string::npos) << r.out;
 
   // A bad scene is refused before the master is asked (exit 2), and the master stays up.
   r = Cli({"submit", Path("missing.obj")});

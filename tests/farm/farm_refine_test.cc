@@ -80,7 +80,7 @@ TEST_F(FarmRefineTest, ThreeAgentsRenderAnAdaptiveJobLikeRadfarmRender) {
   ExpectLikeRender(id);
   // The restart point after round 0 split elements: a new scene the agents fetched.
   const std::string log = MasterLog();
-  EXPECT_GE(CountLines(log, "refined after round 0:"), 1u) << log;
+  EXPECT_GE(CountLines(log, "refined after round 1:"), 1u) << log;
   EXPECT_GE(CountLines(log, "fetches the scene of job"), 2u) << log;
 }
 

@@ -66,6 +66,15 @@ def main():
     driver = webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
     try:
         driver.get(args.url)
+        # Before its first update the page says it is loading: it asserted "No jobs yet" and "No
+        # agent is connected" on a farm it had not heard from. One script, so no redraw between.
+        first = driver.execute_script(
+            "const shown = (id) => !document.getElementById(id).hidden;"
+            "return {drawn: document.getElementById('updated').textContent !== '',"
+            "        loading: shown('loading-jobs') && shown('loading-agents'),"
+            "        empty: shown('no-jobs') || shown('no-agents')};")
+        if not first["drawn"]:
+            assert first["loading"] and not first["empty"], first
         wait_for(driver, "the event stream to connect", lambda: driver.find_element(
             By.ID, "connection").get_attribute("data-state") == "live")
         wait_for(driver, f"agent {args.agent} to be listed", lambda: driver.find_elements(
@@ -116,6 +125,14 @@ def main():
             "const i = document.querySelector(arguments[0]);"
             "return i !== null && i.complete && i.naturalWidth > 0;",
             f'#jobs tbody tr[data-key="{job_id}"] img.preview'))
+        # The preview is big enough to see (it was 60 x 45 px) and a link to the whole image.
+        size = wait_for(driver, "the preview at its size, in a link", lambda: driver.execute_script(
+            "const i = document.querySelector(arguments[0]);"
+            "const a = i && i.closest('a.preview-link');"
+            "return a && a.href.startsWith('blob:') && Math.max(i.width, i.height) >= 150"
+            "  ? [i.width, i.height] : null;",
+            f'#jobs tbody tr[data-key="{job_id}"] img.preview'))
+        print(f"preview shown at {size[0]} x {size[1]} px, linked")
         for text in ("paused", "done"):
             wait_for(driver, f"an event saying {text}", lambda: text in driver.find_element(
                 By.ID, "events").text)

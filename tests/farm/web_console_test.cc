@@ -6,6 +6,7 @@
 #include <fstream>
 #include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "testing/http_client.h"
@@ -114,6 +115,61 @@ TEST_F(WebConsoleTest, MetricsCountARealJobsBatchesCheckpointsAndAgents) {
   EXPECT_EQ(Request("GET", "/api/jobs/999/preview.png").status, 404);
 }
 
+// Progress ran backwards on the farm: status and the page climbed high in the first round and fell
+// when the second began; the gather's rays stood still while its bar moved; the master's log
+// counted rounds from 0 where status counted from 1. Sampled over a real job's life (its rounds,
+// the final gather and the display) from `status` and the page's data: progress and rays never
+// fall, and every round the log names is numbered from 1.
+TEST_F(WebConsoleTest, ProgressAndRaysNeverFallOverAJobsLife) {
+  address_ = StartMasterWithConsole(false, {"--local-round-rays", "0"});
+  StartAgent("progress-agent");
+  ASSERT_TRUE(farm_.WaitForAgents(1, std::chrono::seconds(60)));
+  const int64_t id = Submit("cornell-box.toml");  // converges: shooting rounds, gather, display
+  struct Series {
+    double progress = 0;
+    uint64_t rays = 0;
+    size_t samples = 0;
+    std::set<std::string> phases;
+  } status, page;
+  const auto take = [&](const nlohmann::json& job, Series& series, const char* from) {
+    if (!job.is_object() || !job.contains("progress")) return;
+    const double progress = job["progress"].get<double>();
+    const uint64_t rays = job["rays"].get<uint64_t>();
+    EXPECT_GE(progress, series.progress) << from << ": " << job.dump();
+    EXPECT_GE(rays, series.rays) << from << ": " << job.dump();
+    // 1 only once done: the display after the rounds is still to come.
+    if (job["state"] != "done") {
+      EXPECT_LT(progress, 1.0) << from << ": " << job.dump();
+    }
+    series.progress = progress;
+    series.rays = rays;
+    ++series.samples;
+    if (job["phase"].is_string()) series.phases.insert(job["phase"].get<std::string>());
+  };
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        const nlohmann::json job = Status(id);
+        take(job, status, "status");
+        const nlohmann::json data =
+            nlohmann::json::parse(Request("GET", "/api/status").body, nullptr, false);
+        if (data.is_object() && data["jobs"].is_array()) {
+          for (const nlohmann::json& j : data["jobs"]) {
+            if (j["id"] == id) take(j, page, "page");
+          }
+        }
+        return job.is_object() && job["state"] == "done";
+      },
+      kJobTimeout))
+      << MasterLog();
+  EXPECT_EQ(status.progress, 1.0);
+  EXPECT_GE(status.samples, 3u);
+  EXPECT_GE(page.samples, 3u);
+  EXPECT_TRUE(status.phases.count("round")) << "no sample while a round ran";
+  const std::string log = MasterLog();
+  EXPECT_GE(CountLines(log, "round 1: "), 1u) << log;
+  EXPECT_EQ(CountLines(log, "round 0"), 0u) << log;
+}
+
 TEST_F(WebConsoleTest, PauseResumeAndCancelNeedTheTokenAndChangeTheJob) {
   address_ = StartMasterWithConsole(true);
   // No agent: the job stays queued or running while we act on it.
@@ -178,6 +234,21 @@ TEST_F(WebConsoleTest, WithoutATokenThePageIsReadOnly) {
   EXPECT_EQ(refused.status, 403);
   EXPECT_NE(refused.body.find("--http-token-file"), std::string::npos);
   EXPECT_NE(Status(id).value("state", ""), "cancelled");
+}
+
+// The page as served, before its script has heard from the master: it says it is loading, not
+// "No jobs yet" or "No agent is connected" (a farm it knows nothing of yet).
+TEST_F(WebConsoleTest, ThePageSaysLoadingUntilItsFirstUpdate) {
+  address_ = StartMasterWithConsole(false);
+  const HttpResponse page = Request("GET", "/");
+  ASSERT_EQ(page.status, 200);
+  for (const char* loading : {"id=\"loading-jobs\"", "id=\"loading-agents\""}) {
+    EXPECT_NE(page.body.find(loading), std::string::npos) << loading << " in " << page.body;
+  }
+  for (const char* empty : {"no-jobs", "no-agents"}) {
+    const std::regex hidden(std::string("<p id=\"") + empty + "\"[^>]*\\bhidden\\b");
+    EXPECT_TRUE(std::regex_search(page.body, hidden)) << empty << " shown in " << page.body;
+  }
 }
 
 TEST_F(WebConsoleTest, AConsoleBeyondLoopbackWithoutATokenIsRefusedAtStart) {

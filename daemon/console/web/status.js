@@ -117,11 +117,16 @@ function drawPreview(cell, job) {
   if (seen && (seen.key === key || (!finished && now - seen.at < 5000))) return;
   previews.set(job.id, { key, at: now });
   let img = cell.querySelector("img");
+  let link = cell.querySelector("a");
   if (!img) {
+    // A link to the whole image (kPreviewPixels on its longer side) in a tab of its own.
+    link = el("a", { class: "preview-link", target: "_blank", rel: "noopener",
+                     title: `job ${job.id}: the whole preview` });
     img = el("img", { class: "preview", alt: `job ${job.id}` });
     img.addEventListener("error", () => { img.hidden = true; });
     img.addEventListener("load", () => { img.hidden = false; });
-    cell.appendChild(img);
+    link.appendChild(img);
+    cell.appendChild(link);
   }
   // Fetched with the session's header (an <img> cannot send one), shown from a blob: URL.
   authFetch(`/api/jobs/${job.id}/preview.png?v=${encodeURIComponent(key)}`)
@@ -129,6 +134,7 @@ function drawPreview(cell, job) {
     .then((blob) => {
       if (img.src.startsWith("blob:")) URL.revokeObjectURL(img.src);
       img.src = URL.createObjectURL(blob);
+      link.href = img.src;
     })
     .catch(() => { img.hidden = true; });
 }
@@ -200,6 +206,10 @@ function drawEvents(events) {
 }
 
 function draw(status) {
+  // Until the first snapshot the page says it is loading, never that there is nothing.
+  for (const id of ["loading-jobs", "loading-agents", "loading-events"]) {
+    document.getElementById(id).hidden = true;
+  }
   drawJobs(status.jobs);
   drawAgents(status.agents);
   drawEvents(status.events);
