@@ -424,12 +424,13 @@ void AgentConnections::OnSceneRequest(AgentLink& link, const protocol::SceneRequ
 }
 
 void AgentConnections::OnPointResult(AgentLink& link, const protocol::PointResultMsg& result) {
-  link.CountAccepted(1);
-  Status s = jobs_.OnPointResult(link.id(), result);
-  if (!s) {
+  const Result<bool> accepted = jobs_.OnPointResult(link.id(), result);
+  if (!accepted) {
     // The frame authenticated, so the agent computed (or made up) these values itself.
-    Convict(static_cast<store::JobId>(result.lease.job_id), link.name(), s.error());
+    Convict(static_cast<store::JobId>(result.lease.job_id), link.name(), accepted.error());
+    return;
   }
+  if (*accepted) link.CountAccepted(1);
 }
 
 size_t AgentConnections::DisplayAgents() const {

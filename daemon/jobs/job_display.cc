@@ -216,27 +216,29 @@ std::vector<protocol::PointLeaseMsg> JobRounds::DisplayLeasesFor(
   return leases;
 }
 
-Status JobRounds::OnPointResult(uint64_t agent, const protocol::PointResultMsg& result) {
+Result<bool> JobRounds::OnPointResult(uint64_t agent, const protocol::PointResultMsg& result) {
   const store::JobId id = static_cast<store::JobId>(result.lease.job_id);
   const auto it = display_runs_.find(id);
-  if (it == display_runs_.end() || !it->second.pieces) return Ok{};  // late: dropped
+  if (it == display_runs_.end() || !it->second.pieces) return false;  // late: dropped
   DisplayRun& run = it->second;
   const std::optional<std::pair<size_t, size_t>> points =
       run.pieces->PointsOf(result.lease.batch_id);
-  if (!points) return Ok{};  // of an earlier step
+  if (!points) return false;  // of an earlier step
   Result<PointValues> values =
       ValuesOfResult(result, *run.draft->work(), points->first, points->second);
   if (!values) {
     run.pieces->OnAgentLost(agent);
     return Error{"job " + std::to_string(id) + ": " + values.error()};
   }
-  run.pieces->OnResult(agent, result.lease.batch_id, result.lease.attempt_id, std::move(*values));
+  const bool accepted =
+      run.pieces->OnResult(agent, result.lease.batch_id, result.lease.attempt_id,
+                           std::move(*values)) == DisplayPieces::Verdict::kAccepted;
   if (run.pieces->Complete()) {
     PointValues whole = run.pieces->TakeValues();
     run.pieces.reset();
     ApplyDisplayStep(id, run.serial, std::move(whole));
   }
-  return Ok{};
+  return accepted;
 }
 
 void JobRounds::OnDisplayAgentLost(uint64_t agent) {

@@ -146,9 +146,11 @@ class JobRounds {
   // a job `refused(job)` says the agent may not work for (blocklisted).
   std::vector<protocol::PointLeaseMsg> DisplayLeasesFor(
       uint64_t agent, uint32_t room, const std::function<bool(store::JobId)>& refused);
-  // A PointResult of `agent`. An error (values that do not answer the piece's work) names what
-  // is wrong; the agent's pieces are then queued again, and the caller treats it as a liar.
-  Status OnPointResult(uint64_t agent, const protocol::PointResultMsg& result);
+  // A PointResult of `agent`: true when it is its piece's first (accepted), false when dropped
+  // (late, of an earlier step or a job no longer drawn). An error (values that do not answer the
+  // piece's work) names what is wrong; the agent's pieces are then queued again, and the caller
+  // treats it as a liar.
+  Result<bool> OnPointResult(uint64_t agent, const protocol::PointResultMsg& result);
   // The agent went: its pieces go back to the queue.
   void OnDisplayAgentLost(uint64_t agent);
   // The agent gave a piece back (LeaseReturn); returns 1 when it held it, else 0.
