@@ -19,9 +19,8 @@ ProgressReporter::ProgressReporter(std::FILE* out, bool interactive)
     : out_(out), interactive_(interactive) {}
 
 std::string ProgressReporter::Eta(const ProgressEstimate& e) const {
-  const std::string display = display_follows_ ? " + display" : "";
-  if (!e.seconds_left) return "ETA ?" + display;
-  return "ETA " + std::to_string(int64_t(std::ceil(*e.seconds_left))) + "s" + display;
+  if (!e.seconds_left) return "ETA ?";
+  return "ETA " + std::to_string(int64_t(std::ceil(*e.seconds_left))) + "s";
 }
 
 void ProgressReporter::Bar(double fraction, const std::string& text) {
@@ -65,6 +64,7 @@ void ProgressReporter::OnRound(const RoundProgress& p) {
   position_ = {p.rays, p.unshot_fraction, p.gather_rays_left};
   position_.budget_rays_left = p.budget_rays_left;
   position_.budget_seconds_left = p.budget_seconds_left;
+  position_.display_rays = p.display_rays;
   const ProgressEstimate e = estimator_->Estimate(position_);
   const double rate = p.seconds > 0 ? double(p.rays) / p.seconds : 0;
   char text[160];

@@ -33,17 +33,14 @@ class ProgressReporter {
   // that take a while (a count, not a clock, so a log is the same every run).
   void OnDisplayStep(const DisplayStep& step);
   static constexpr uint64_t kDisplayLogPoints = 20000;
-  // A display with rays of its own follows the solve (core/solve_rules.h DisplayRule): the ETA
-  // reads "ETA 12s + display", since it counts the solve alone and on a big scene the display can
-  // take longer than the solve.
-  void SetDisplayFollows(bool follows) { display_follows_ = follows; }
   // Ends the bar's line (interactive) so later output starts on a fresh line.
   void Finish();
   // Erases the line drawn last (interactive), for output that replaces it.
   void ClearLine();
 
  private:
-  // "ETA 12s", or "ETA ?" before anything is known; " + display" after it (SetDisplayFollows).
+  // "ETA 12s" (the display that follows the solve included: RoundProgress::display_rays), or
+  // "ETA ?" before anything is known.
   std::string Eta(const ProgressEstimate& estimate) const;
   void Bar(double fraction, const std::string& text);
 
@@ -56,7 +53,6 @@ class ProgressReporter {
   uint32_t running_round_ = UINT32_MAX;  // the round OnRoundRunning last saw
   double last_running_print_ = -1;       // its round seconds at its last line
   bool drew_ = false;
-  bool display_follows_ = false;
   ProgressRatchet shown_;  // the bar never goes back when a round refits the estimate
 };
 

@@ -212,7 +212,6 @@ int RunRender(const RenderOptions& options) {
   if (!options.quiet) {
     ReportProgress(announce, DirectStartRule(loaded->mesh.patch_scene(), job.solver), &reporter,
                    &hooks);
-    reporter.SetDisplayFollows(DisplayRule(loaded->mesh.patch_scene(), job.solver).used);
   }
   hooks.seconds_spent_before = seconds_since_start();
   Result<RefiningSolveResult> solved = Error{"not solved"};

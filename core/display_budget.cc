@@ -15,6 +15,14 @@ uint64_t DisplayRayAllowance(const SolverSettings& settings) {
   return BudgetShare(settings, kDisplayBudgetShare, kDisplayRaysPerSecond);
 }
 
+uint64_t DisplayRaysForecast(const PatchScene& scene, const SolverSettings& settings,
+                             uint64_t start_rays) {
+  if (start_rays == 0 || !DisplayCastsRays(scene, settings)) return 0;
+  const uint64_t forecast = uint64_t(kDisplayRaysPerStartRay * double(start_rays));
+  const uint64_t allowance = DisplayRayAllowance(settings);
+  return allowance > 0 ? std::min(forecast, allowance) : forecast;
+}
+
 namespace {
 
 // AfterSolveSeconds with DisplayCastsRays known (it plans the start: asked once a budget).

@@ -54,4 +54,16 @@ double AfterSolveSeconds(const PatchScene& scene, const SolverSettings& settings
 SolverSettings SolveBudget(const PatchScene& scene, const SolverSettings& settings);
 inline constexpr double kMinSolveSeconds = 1e-3;
 
+// The display's rays per shadow ray of the direct-light start, for a forecast made before the
+// display is planned: both grow with the patches and the lights a point sees. Across the shipped
+// scenes the ratio runs from about 2 (one lamp over large plain surfaces) to about 10 (a building
+// of many lamps, where the display cuts most where the light bends); this is its median.
+inline constexpr double kDisplayRaysPerStartRay = 6;
+
+// The rays the display is expected to cast after the solve, for an ETA that includes it: none
+// where it casts none (DisplayCastsRays), else kDisplayRaysPerStartRay x `start_rays` (the
+// shadow rays of the solve's start on this mesh), at most DisplayRayAllowance under a budget.
+uint64_t DisplayRaysForecast(const PatchScene& scene, const SolverSettings& settings,
+                             uint64_t start_rays);
+
 }  // namespace radfarm

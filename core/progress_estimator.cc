@@ -118,6 +118,16 @@ ProgressEstimate WithinBudget(ProgressEstimate e, const SolvePosition& now, doub
 }  // namespace
 
 ProgressEstimate ProgressEstimator::Estimate(const SolvePosition& now) const {
+  ProgressEstimate out = SolveEstimate(now);
+  if (now.display_rays == 0 || !out.seconds_left) return out;
+  // The display's rays are traced as one pass over its points: no round's fixed cost.
+  if (std::optional<double> display = Seconds(double(now.display_rays) * gather_ray_cost_, 0)) {
+    *out.seconds_left += *display;
+  }
+  return out;
+}
+
+ProgressEstimate ProgressEstimator::SolveEstimate(const SolvePosition& now) const {
   ProgressEstimate out;
   const bool running = now.round_rays > 0;
   const double round_rest = double(now.round_rays - std::min(now.round_rays, now.round_rays_done));

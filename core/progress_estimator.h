@@ -46,6 +46,9 @@ struct SolvePosition {
   // seconds to convergence would run past it, so the estimate stops there too.
   std::optional<uint64_t> budget_rays_left{};
   std::optional<double> budget_seconds_left{};
+  // The display's rays expected after the solve (core/display_budget.h DisplayRaysForecast),
+  // priced as the gather's: the ETA includes them, the fraction (of the solve's rays) does not.
+  uint64_t display_rays = 0;
 };
 
 struct ProgressEstimate {
@@ -53,8 +56,9 @@ struct ProgressEstimate {
   // sized: then the share of a ray budget spent, or 0 without one (a lower bound, so a display
   // that never lets it fall, core/progress_ratchet.h, does not stall at an early guess).
   double fraction = 0;
-  std::optional<double> seconds_left;  // nullopt until a round has been timed
-  uint64_t rays_left = 0;              // predicted, the running round's rest included
+  std::optional<double>
+      seconds_left;        // nullopt until a round has been timed; the display's included
+  uint64_t rays_left = 0;  // predicted, the running round's rest included
 };
 
 class ProgressEstimator {
@@ -81,6 +85,9 @@ class ProgressEstimator {
   std::optional<double> Seconds(double rays, double rounds) const;
 
  private:
+  // Estimate without the display that follows the solve.
+  ProgressEstimate SolveEstimate(const SolvePosition& now) const;
+
   // The rounds the fits use: the last kWindow shooting rounds for rays (older ones describe a
   // solve that has moved on); up to kTimedWindow rounds for time, so the big early rounds anchor
   // the rate: the last rounds cast a few rays each, and a rate fitted to them alone is mostly

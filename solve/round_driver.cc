@@ -254,6 +254,7 @@ RoundProgress RoundDriver::Progress(const RoundPlan& plan, const AppliedRound& a
       solver_->rounds_done(), totals_.rays,       totals_.seconds, applied.unshot_fraction,
       settings_.tolerance,    &solver_->energy(), plan.gather,     solver_->PendingGatherRays()};
   progress.gather_ray_cost = gather_ray_cost_.value_or(0);
+  progress.display_rays = display_forecast_;
   return progress;
 }
 
@@ -280,6 +281,7 @@ SolverSettings RoundDriver::PhaseSettings() const {
 void RoundDriver::RebuildSolver() {
   solver_ = std::make_unique<ProgressiveSolver>(*scene_, PhaseSettings());
   budget_ = SolveBudget(*scene_, settings_);
+  display_forecast_ = DisplayRaysForecast(*scene_, settings_, solver_->start_rays());
 }
 
 }  // namespace radfarm

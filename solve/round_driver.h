@@ -128,6 +128,9 @@ class RoundDriver {
   // spent in all; nullopt where there is no such budget. For progress estimates.
   std::optional<uint64_t> BudgetRaysLeft() const;
   std::optional<double> BudgetSecondsLeft(double seconds) const;
+  // The rays the display is expected to cast after the solve of the current mesh
+  // (core/display_budget.h DisplayRaysForecast), for estimates that include it.
+  uint64_t display_rays_forecast() const { return display_forecast_; }
   const SolveTotals& totals() const { return totals_; }
   // The ray caster of the current scene, built on first use.
   const RayCaster& caster();
@@ -165,6 +168,7 @@ class RoundDriver {
   uint32_t refinements_ = 0;
   bool refined_ = false;                   // the mesh is no longer the one given
   std::optional<double> gather_ray_cost_;  // MeasureGatherRayCost's ratio
+  uint64_t display_forecast_ = 0;          // made with each solver (RebuildSolver)
   bool gather_ray_cost_tried_ = false;
 };
 

@@ -56,6 +56,8 @@ struct RoundProgress {
   // What the rounds' budgets (RoundDriver::budget) leave after the round; nullopt: no such budget.
   std::optional<uint64_t> budget_rays_left{};
   std::optional<double> budget_seconds_left{};
+  // The display's rays expected after the solve (RoundDriver::display_rays_forecast).
+  uint64_t display_rays = 0;
 };
 
 // While a round of a local solve runs (RefiningHooks::during_round), after each of its batches.

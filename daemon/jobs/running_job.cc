@@ -521,6 +521,7 @@ ProgressEstimate RunningJob::Progress(scheduler::TimePoint now) const {
     *at.budget_rays_left -= std::min(*at.budget_rays_left, at.round_rays_done);
   }
   at.budget_seconds_left = driver_->BudgetSecondsLeft(totals_.seconds + at.round_seconds);
+  at.display_rays = driver_->display_rays_forecast();
   last_progress_ = estimator_.Estimate(at);
   return last_progress_;
 }

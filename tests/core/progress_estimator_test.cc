@@ -120,6 +120,32 @@ TEST(ProgressEstimatorTest, TheGatherStillToComeIsPricedAtItsMeasuredCost) {
   EXPECT_EQ(*told.Estimate(at).seconds_left, *unaware.Estimate(at).seconds_left);
 }
 
+// A bar that said "ETA 1s" before a 24 s display: the display's forecast rays are priced as the
+// gather's, in the seconds and not in the solve's fraction.
+TEST(ProgressEstimatorTest, TheEtaIncludesTheDisplayThatFollows) {
+  FakeSolve solve;
+  solve.gather_ray_cost = 0.5;
+  const std::vector<RoundSample> rounds = solve.Rounds();
+  ProgressEstimator estimator(solve.tolerance);
+  estimator.SetGatherRayCost(solve.gather_ray_cost);
+  for (size_t k = 0; k < 4; ++k) estimator.AddRound(rounds[k]);
+  const SolvePosition solve_alone = After(rounds, 4, solve.gather_rays);
+  SolvePosition with_display = solve_alone;
+  with_display.display_rays = 3 * solve.gather_rays;
+  const ProgressEstimate a = estimator.Estimate(solve_alone);
+  const ProgressEstimate b = estimator.Estimate(with_display);
+  ASSERT_TRUE(a.seconds_left && b.seconds_left);
+  const double ray_seconds = *estimator.Seconds(1e6, 0) / 1e6;
+  EXPECT_NEAR(*b.seconds_left - *a.seconds_left,
+              double(with_display.display_rays) * solve.gather_ray_cost * ray_seconds,
+              1e-9 * *b.seconds_left);
+  EXPECT_EQ(b.fraction, a.fraction);
+  EXPECT_EQ(b.rays_left, a.rays_left);
+  // Once the solve is done nothing is left to price it against: no ETA appears from nothing.
+  ProgressEstimator fresh(solve.tolerance);
+  EXPECT_FALSE(fresh.Estimate(with_display).seconds_left);
+}
+
 TEST(ProgressEstimatorTest, ProgressCountsTheGatherStillToCome) {
   const FakeSolve solve;
   const std::vector<RoundSample> rounds = solve.Rounds();
