@@ -273,6 +273,8 @@ json ControlRequests::JobJson(const JobSummary& s) {
     // thread in the other phases) and nobody is there to take the leases.
     job["waiting_for_agents"] =
         runner->phase() == RunningJob::Phase::kRound && agents_.active() == 0;
+  } else if (std::optional<double> display = jobs_.DisplaySecondsLeft(r.id)) {
+    job["eta_seconds"] = *display;
   }
   if (r.state == store::JobState::kDone) {
     job["stop_reason"] = StopReasonOf(s);

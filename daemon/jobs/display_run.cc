@@ -5,6 +5,14 @@
 
 namespace radfarm::daemon {
 
+std::optional<double> DisplaySecondsLeft(const DisplayRun& run, uint64_t now_ms) {
+  if (run.rays_done == 0 || run.rays_done >= run.forecast_rays || now_ms <= run.started_ms) {
+    return std::nullopt;
+  }
+  const double seconds = double(now_ms - run.started_ms) / 1000;
+  return seconds * double(run.forecast_rays - run.rays_done) / double(run.rays_done);
+}
+
 size_t PiecePoints(size_t points, size_t agents) {
   const size_t share =
       (points + 4 * std::max<size_t>(1, agents) - 1) / (4 * std::max<size_t>(1, agents));

@@ -26,7 +26,17 @@ struct DisplayRun {
   // The step leased to agents; empty while the draft is on the compute thread.
   std::optional<DisplayPieces> pieces;
   uint32_t leased_steps = 0, local_steps = 0;
+  // For its ETA: the rays forecast before it (RoundDriver::display_rays_forecast), those its
+  // applied steps cast, and when it started.
+  uint64_t forecast_rays = 0;
+  uint64_t rays_done = 0;
+  uint64_t started_ms = 0;
 };
+
+// The seconds `run` has left at `now_ms`: its forecast rays still to cast at the pace of those
+// cast so far; nullopt before a step is applied or once the forecast is spent (the last steps'
+// size is unknown until the light is seen).
+std::optional<double> DisplaySecondsLeft(const DisplayRun& run, uint64_t now_ms);
 
 // Points a lease carries: about a quarter of an agent's share of the step, so that a step ends
 // with the agents finishing close together, within [kMinLeasePoints, protocol::kMaxLeasePoints].

@@ -52,6 +52,8 @@ void JobRounds::FinishJob(const std::shared_ptr<RunningJob>& runner) {
   DisplayRun& run = display_runs_[id];
   run.serial = serial;
   run.reason = runner->stop_reason().value_or("stopped");
+  run.forecast_rays = runner->display_rays_forecast();
+  run.started_ms = clock_.NowMs();
   // Kept for the display: computing it again costs the start's shadow rays.
   auto direct = std::make_shared<std::vector<Rgb>>(runner->direct_light());
   store_.Run([id](store::JobStore& s) { return store::LoadSolution(s, id); },
@@ -127,17 +129,21 @@ void JobRounds::ApplyDisplayStep(store::JobId id, uint64_t serial,
   std::shared_ptr<DisplayDraft> draft = FindDisplay(id, serial)->draft;
   auto kept = std::make_shared<std::optional<PointValues>>(std::move(values));
   Status s = compute_.Submit(
-      [draft, kept]() -> Status {
+      [draft, kept]() -> Result<uint64_t> {
         // Values the agents traced, or the step traced here.
-        draft->Apply(*kept ? std::move(**kept) : draft->TraceHere());
-        return Ok{};
+        PointValues values = *kept ? std::move(**kept) : draft->TraceHere();
+        const uint64_t rays = values.rays;
+        draft->Apply(std::move(values));
+        return rays;
       },
-      [this, id, serial](Status applied) {
-        if (stopping_ || !FindDisplay(id, serial)) return;
+      [this, id, serial](Result<uint64_t> applied) {
+        DisplayRun* run = FindDisplay(id, serial);
+        if (stopping_ || !run) return;
         if (!applied) {
           DisplayFailed(id, applied.error());
           return;
         }
+        run->rays_done += *applied;
         NextDisplayStep(id, serial);
       });
   if (!s) {

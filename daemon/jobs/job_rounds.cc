@@ -88,6 +88,12 @@ void JobRounds::KeepRules(store::JobId id, const JobRules& rules) {
   if (job_rules_.size() > kKeptCheckpointReports) job_rules_.erase(job_rules_.begin());
 }
 
+std::optional<double> JobRounds::DisplaySecondsLeft(store::JobId id) const {
+  const auto it = display_runs_.find(id);
+  if (it == display_runs_.end()) return std::nullopt;
+  return daemon::DisplaySecondsLeft(it->second, clock_.NowMs());
+}
+
 std::string_view JobRounds::PhaseOf(store::JobId id) const {
   if (starting_.count(id)) return "preparing";
   if (display_runs_.count(id)) return "display";

@@ -141,6 +141,9 @@ class JobRounds {
   // "preparing" (being meshed and loaded), "round", "reducing", "finishing" or "display" (its
   // display being drawn, job_display.cc) for a job this master runs; empty for any other.
   std::string_view PhaseOf(store::JobId id) const;
+  // The seconds job `id`'s display has left (DisplaySecondsLeft), or nullopt: not drawing its
+  // display, or no estimate yet.
+  std::optional<double> DisplaySecondsLeft(store::JobId id) const;
   // --- The display's leases (job_display.cc) ---
   // New pieces of the displays under way for `agent`, while it holds fewer than `room`; none of
   // a job `refused(job)` says the agent may not work for (blocklisted).

@@ -131,6 +131,8 @@ class RunningJob {
   // Loop thread, once kFinished: the direct light the solve started from, one value per patch of
   // its last mesh (ProgressiveSolver::direct_light), or empty; the display starts from it.
   const std::vector<Rgb>& direct_light() const { return driver_->solver().direct_light(); }
+  // The rays its display is expected to cast (RoundDriver::display_rays_forecast).
+  uint64_t display_rays_forecast() const { return driver_->display_rays_forecast(); }
   const JobTotals& totals() const { return totals_; }
   Phase phase() const { return phase_; }
   // The rules for the job's scene as it stands (Prepare, and again after a refinement step).

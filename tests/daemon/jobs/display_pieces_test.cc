@@ -151,5 +151,19 @@ TEST(DisplayRunTest, PiecesAreAQuarterOfAnAgentsShareWithinBounds) {
   EXPECT_EQ(PiecePoints(80000, 0), protocol::kMaxLeasePoints);
 }
 
+// The farm's ETA while the display is drawn: the forecast rays still to cast at the pace so far.
+TEST(DisplayRunTest, TheSecondsLeftAreTheForecastsRestAtThePaceSoFar) {
+  DisplayRun run;
+  run.forecast_rays = 40'000'000;
+  run.started_ms = 1'000;
+  EXPECT_FALSE(DisplaySecondsLeft(run, 3'000));  // no step applied yet: no pace
+  run.rays_done = 10'000'000;
+  ASSERT_TRUE(DisplaySecondsLeft(run, 3'000));
+  EXPECT_DOUBLE_EQ(*DisplaySecondsLeft(run, 3'000), 6.0);  // 10 M in 2 s, 30 M to go
+  // Past its forecast the last steps' size is unknown: no estimate rather than a wrong one.
+  run.rays_done = 40'000'000;
+  EXPECT_FALSE(DisplaySecondsLeft(run, 9'000));
+}
+
 }  // namespace
 }  // namespace radfarm::daemon
