@@ -32,13 +32,21 @@ const char* FileKind(mode_t mode) {
 
 }  // namespace
 
-Result<std::string> ReadTextFile(const std::string& path, uint64_t max_bytes) {
+int OpenForReading(const std::string& path) {
   // O_NONBLOCK: opening a FIFO with no writer would wait for one forever. It changes nothing for
-  // the regular files read below.
-  UniqueFd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY));
+  // the regular files read after.
+  return ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
+}
+
+Result<std::string> ReadTextFile(const std::string& path, uint64_t max_bytes) {
+  UniqueFd fd(OpenForReading(path));
   if (!fd.valid()) return Error{path + ": cannot open: " + std::strerror(errno)};
+  return ReadOpenFile(fd.get(), path, max_bytes);
+}
+
+Result<std::string> ReadOpenFile(int fd, const std::string& path, uint64_t max_bytes) {
   struct stat st {};
-  if (::fstat(fd.get(), &st) != 0) return Error{path + ": cannot stat: " + std::strerror(errno)};
+  if (::fstat(fd, &st) != 0) return Error{path + ": cannot stat: " + std::strerror(errno)};
   if (!S_ISREG(st.st_mode)) return Error{path + ": cannot open: " + FileKind(st.st_mode)};
   const uint64_t size = static_cast<uint64_t>(st.st_size);
   if (size > max_bytes) {
@@ -52,7 +60,7 @@ Result<std::string> ReadTextFile(const std::string& path, uint64_t max_bytes) {
       // The file may have grown since fstat: read on, within the limit.
       if (bytes.size() >= max_bytes) {
         char probe;
-        const ssize_t more = ::read(fd.get(), &probe, 1);
+        const ssize_t more = ::read(fd, &probe, 1);
         if (more > 0) {
           return Error{path + ": the file grew past the limit of " + std::to_string(max_bytes) +
                        " bytes while it was read"};
@@ -61,7 +69,7 @@ Result<std::string> ReadTextFile(const std::string& path, uint64_t max_bytes) {
       }
       bytes.resize(std::min<uint64_t>(max_bytes, bytes.size() + 65536));
     }
-    const ssize_t got = ::read(fd.get(), bytes.data() + have, bytes.size() - have);
+    const ssize_t got = ::read(fd, bytes.data() + have, bytes.size() - have);
     if (got < 0) {
       if (errno == EINTR) continue;
       return Error{path + ": cannot read: " + std::strerror(errno)};

@@ -21,6 +21,13 @@ inline constexpr uint64_t kDefaultMaxInputFileBytes = uint64_t{1} << 30;
 // the limit of M bytes" when it is larger than `max_bytes`, decided from its size alone.
 Result<std::string> ReadTextFile(const std::string& path,
                                  uint64_t max_bytes = kDefaultMaxInputFileBytes);
+// The same for a file already open as `fd` (the caller keeps it), `path` naming it in errors: for
+// callers that check what they opened before reading it.
+Result<std::string> ReadOpenFile(int fd, const std::string& path,
+                                 uint64_t max_bytes = kDefaultMaxInputFileBytes);
+// open(2) as ReadTextFile opens (read-only, close-on-exec, never waiting on a FIFO); -1 and errno
+// on failure.
+int OpenForReading(const std::string& path);
 
 // Splits at "\n", "\r\n" or a lone "\r", the same line breaks tinyobjloader honours, so line
 // numbers agree with it. The views point into `text`.

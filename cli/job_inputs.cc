@@ -32,7 +32,8 @@ Result<CheckedJob> LoadJobAndScene(const std::string& path, const JobOverrides& 
   // Textures are decoded, averaged and freed before meshing: --max-memory bounds them alone.
   Result<InputScene> scene =
       LoadScene(job->scene_path, overrides.max_scene_bytes.value_or(kDefaultMaxInputFileBytes),
-                job->mesh.max_memory);
+                job->mesh.max_memory,
+                overrides.allow_outside_files ? FileReach::kAnywhere : FileReach::kSceneTree);
   RADFARM_RETURN_IF_ERROR(scene);
   warnings->insert(warnings->end(), scene->warnings.begin(), scene->warnings.end());
   RADFARM_RETURN_IF_ERROR(ApplyTwoSided(path, *job, &*scene));

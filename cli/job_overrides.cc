@@ -61,6 +61,9 @@ void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
           "Refuse a scene file (OBJ, MTL, glTF) larger than this, from its size before reading it, "
           "e.g. 4G (default 1G)")
       ->transform(ByteSize());
+  command->add_flag("--allow-outside-files", overrides->allow_outside_files,
+                    "Let the scene read files it names outside its own directory (absolute paths, "
+                    "'..'): only for a scene you trust; /proc, /sys and /dev stay refused");
   command->add_option("--camera", overrides->camera,
                       "A camera of the glTF scene, by node or camera name (default: the job "
                       "file's camera, else the scene's first camera)");

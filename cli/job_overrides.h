@@ -29,10 +29,13 @@ struct JobOverrides {
   std::optional<uint64_t> max_scene_bytes;
   std::optional<std::string> camera;      // a camera of the scene file by name (Job::camera_name)
   std::optional<uint32_t> lightmap_size;  // Job::lightmap_size; 0: automatic
+  // The scene may read files outside its own directory (input/scene_directory.h): the user's
+  // explicit trust, never the job file's.
+  bool allow_outside_files = false;
 };
 
 // Adds --seed, --tolerance, --rays, --seconds, --sampler, --patch-size, --max-memory,
-// --max-scene-bytes, --camera and --lightmap-size (not --threads).
+// --max-scene-bytes, --allow-outside-files, --camera and --lightmap-size (not --threads).
 void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides);
 
 // Applies the overrides on top of the job file's settings. Errors name the option.

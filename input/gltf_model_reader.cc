@@ -85,7 +85,7 @@ bool ReadConfined(std::vector<unsigned char>* out, std::string* err, const std::
     *err += "no such file";
     return false;
   }
-  Result<std::string> bytes = ReadTextFile(target->string(), reads->remaining_bytes);
+  Result<std::string> bytes = reads->directory.Read(*target, reads->remaining_bytes);
   if (!bytes) return refuse("cannot be read: " + bytes.error());
   reads->remaining_bytes -= bytes->size();
   out->assign(bytes->begin(), bytes->end());
@@ -164,7 +164,7 @@ std::string FieldOf(const tinygltf::Model& model, const std::string& decoded_uri
 
 Result<tinygltf::Model> ReadGltfModel(const std::string& path, uint64_t max_file_bytes,
                                       uint64_t max_texture_bytes,
-                                      std::vector<std::string>* warnings) {
+                                      std::vector<std::string>* warnings, FileReach reach) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return ErrorAt(path, 0, "cannot open: no such file");
   if (!std::filesystem::is_regular_file(path, ec)) {
@@ -175,7 +175,7 @@ Result<tinygltf::Model> ReadGltfModel(const std::string& path, uint64_t max_file
   if (file->size() > std::numeric_limits<unsigned int>::max()) {
     return ErrorAt(path, 0, "too large for the glTF reader (4 GiB at most)");
   }
-  const SceneDirectory directory(path);
+  const SceneDirectory directory(path, reach);
   SceneReads reads{directory,         max_file_bytes - file->size(),
                    max_texture_bytes, max_texture_bytes,
                    std::nullopt,      {},

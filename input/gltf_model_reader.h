@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "base/result.h"
+#include "input/scene_directory.h"
 
 namespace radfarm {
 
@@ -28,7 +29,8 @@ namespace radfarm {
 // tinygltf's copy of it), and the model keeps the copy.
 Result<tinygltf::Model> ReadGltfModel(const std::string& path, uint64_t max_file_bytes,
                                       uint64_t max_texture_bytes,
-                                      std::vector<std::string>* warnings);
+                                      std::vector<std::string>* warnings,
+                                      FileReach reach = FileReach::kSceneTree);
 
 // The most pixels a texture may have when no memory limit is given: 512 MB of 16-bit RGBA.
 inline constexpr uint64_t kDefaultMaxTexturePixels = uint64_t{8192} * 8192;

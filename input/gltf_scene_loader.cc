@@ -301,11 +301,11 @@ Status CheckSomethingEmits(const std::string& path, const tinygltf::Model& model
 }  // namespace
 
 Result<InputScene> LoadGltfScene(const std::string& path, uint64_t max_file_bytes,
-                                 uint64_t max_texture_bytes) {
+                                 uint64_t max_texture_bytes, FileReach reach) {
   InputScene scene;
   scene.path = path;
   Result<tinygltf::Model> model =
-      ReadGltfModel(path, max_file_bytes, max_texture_bytes, &scene.warnings);
+      ReadGltfModel(path, max_file_bytes, max_texture_bytes, &scene.warnings, reach);
   RADFARM_RETURN_IF_ERROR(model);
   RADFARM_RETURN_IF_ERROR(CheckExtensions(path, *model, &scene.warnings));
   if (model->scenes.empty()) return ErrorAt(path, 0, "no scene");

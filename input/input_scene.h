@@ -12,6 +12,7 @@
 #include "core/rgb.h"
 #include "core/vec3.h"
 #include "input/input_camera.h"
+#include "input/scene_directory.h"
 
 namespace radfarm {
 
@@ -82,8 +83,9 @@ std::vector<LightmapTriangle> LightmapTriangles(const InputScene& scene);
 // the line, face or material: missing file, unparseable line, index out of range, non-finite
 // coordinates, reflectance outside [0, 1), negative emission, no emitter ("nothing to light");
 // an OBJ or MTL that is not a regular file or is larger than `max_file_bytes` (refused from its
-// size, before it is read).
+// size, before it is read); an MTL file outside where `reach` allows (input/scene_directory.h).
 Result<InputScene> LoadObjScene(const std::string& path,
-                                uint64_t max_file_bytes = kDefaultMaxInputFileBytes);
+                                uint64_t max_file_bytes = kDefaultMaxInputFileBytes,
+                                FileReach reach = FileReach::kSceneTree);
 
 }  // namespace radfarm

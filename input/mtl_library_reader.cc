@@ -26,10 +26,10 @@ void TrimNames(size_t first, std::vector<tinyobj::material_t>* materials,
 }  // namespace
 
 MtlLibraryReader::MtlLibraryReader(const std::string& obj_path, std::vector<ObjNamedLine> libraries,
-                                   uint64_t max_file_bytes)
+                                   uint64_t max_file_bytes, FileReach reach)
     : obj_path_(obj_path),
       directory_(std::filesystem::path(obj_path).parent_path()),
-      scene_(obj_path),
+      scene_(obj_path, reach),
       libraries_(std::move(libraries)),
       max_file_bytes_(max_file_bytes) {}
 
@@ -58,7 +58,7 @@ bool MtlLibraryReader::operator()(const std::string& name,
     missing_.push_back(name);
     return false;
   }
-  Result<std::string> text = ReadTextFile(target->string(), max_file_bytes_);
+  Result<std::string> text = scene_.Read(*target, max_file_bytes_);
   if (!text) {
     error_ = Error{text.error()};
     return false;

@@ -28,9 +28,10 @@ struct MaterialOrigin {
 class MtlLibraryReader : public tinyobj::MaterialReader {
  public:
   // `obj_path`: the OBJ, as given; `libraries`: its `mtllib` names and lines, for messages
-  // (ObjLineIndex). Each MTL file may be at most `max_file_bytes` (ReadTextFile).
+  // (ObjLineIndex). Each MTL file may be at most `max_file_bytes` (ReadTextFile) and lie where
+  // `reach` allows (scene_directory.h).
   MtlLibraryReader(const std::string& obj_path, std::vector<ObjNamedLine> libraries,
-                   uint64_t max_file_bytes);
+                   uint64_t max_file_bytes, FileReach reach = FileReach::kSceneTree);
 
   // Called by tinyobjloader once per file named by `mtllib`. Always returns false: tinyobjloader
   // stops at the first file of a `mtllib` line that loads, but the OBJ specification loads them

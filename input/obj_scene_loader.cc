@@ -213,7 +213,7 @@ Status CheckFinitePositions(const std::string& path, std::string_view text,
 
 }  // namespace
 
-Result<InputScene> LoadObjScene(const std::string& path, uint64_t max_file_bytes) {
+Result<InputScene> LoadObjScene(const std::string& path, uint64_t max_file_bytes, FileReach reach) {
   Result<std::string> text = ReadTextFile(path, max_file_bytes);
   RADFARM_RETURN_IF_ERROR(text);
   BlankComments(&*text);
@@ -224,7 +224,7 @@ Result<InputScene> LoadObjScene(const std::string& path, uint64_t max_file_bytes
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
   std::string warn, err;
-  MtlLibraryReader reader(path, index->material_libraries, max_file_bytes);
+  MtlLibraryReader reader(path, index->material_libraries, max_file_bytes, reach);
   std::istringstream stream(*text);
   const bool parsed = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &stream, &reader,
                                        /*triangulate=*/false, /*default_vcols_fallback=*/false);

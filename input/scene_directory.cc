@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
+#include <cstring>
+
+#include "base/text_file.h"
+#include "base/unique_fd.h"
 
 namespace radfarm {
 namespace {
@@ -34,7 +39,7 @@ std::filesystem::path CanonicalOrLexical(const std::filesystem::path& path) {
 
 }  // namespace
 
-SceneDirectory::SceneDirectory(const std::string& scene_path) {
+SceneDirectory::SceneDirectory(const std::string& scene_path, FileReach reach) : reach_(reach) {
   std::filesystem::path dir = std::filesystem::path(scene_path).parent_path();
   if (dir.empty()) dir = ".";
   // A directory that cannot be resolved makes every file in it unreadable anyway.
@@ -45,20 +50,42 @@ Result<std::filesystem::path> SceneDirectory::Resolve(const std::string& name,
                                                       const std::filesystem::path& from) const {
   if (name.empty()) return Error{"is empty"};
   const std::filesystem::path written(name);
-  if (written.is_absolute()) return Error{"is an absolute path; " + std::string(kRule)};
+  if (written.is_absolute() && reach_ == FileReach::kSceneTree) {
+    return Error{"is an absolute path; " + std::string(kRule)};
+  }
   std::error_code ec;
   const std::filesystem::path target =
       std::filesystem::weakly_canonical((from.empty() ? root_ : from) / written, ec);
   if (ec) return Error{"cannot be resolved: " + ec.message()};
-  if (IsSystemPath(target)) {
-    return Error{"leads to " + target.string() + "; files under /proc, /sys and /dev are not " +
-                 "scene data"};
-  }
-  if (!IsWithin(target, root_)) {
-    return Error{"leads outside the scene's directory " + root_.string() + " (to " +
-                 target.string() + "); " + kRule};
-  }
+  if (std::string why = Refusal(target); !why.empty()) return Error{"leads " + why};
   return target;
+}
+
+std::string SceneDirectory::Refusal(const std::filesystem::path& target) const {
+  if (IsSystemPath(target)) {
+    return "to " + target.string() + "; files under /proc, /sys and /dev are not scene data";
+  }
+  if (reach_ == FileReach::kSceneTree && !IsWithin(target, root_)) {
+    return "outside the scene's directory " + root_.string() + " (to " + target.string() + "); " +
+           kRule;
+  }
+  return "";
+}
+
+Result<std::string> SceneDirectory::Read(const std::filesystem::path& resolved,
+                                         uint64_t max_bytes) const {
+  const std::string path = resolved.string();
+  UniqueFd fd(OpenForReading(path));
+  if (!fd.valid()) return Error{path + ": cannot open: " + std::strerror(errno)};
+  // Where the open file really is: a component swapped for a symlink since Resolve shows here.
+  std::error_code ec;
+  const std::filesystem::path opened =
+      std::filesystem::read_symlink("/proc/self/fd/" + std::to_string(fd.get()), ec);
+  if (ec) return Error{path + ": cannot tell where the opened file lies: " + ec.message()};
+  if (std::string why = Refusal(opened); !why.empty()) {
+    return Error{path + ": is reached through a symlink that now leads " + why};
+  }
+  return ReadOpenFile(fd.get(), path, max_bytes);
 }
 
 }  // namespace radfarm

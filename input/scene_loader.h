@@ -7,6 +7,7 @@
 #include "base/result.h"
 #include "base/text_file.h"
 #include "input/input_scene.h"
+#include "input/scene_directory.h"
 
 namespace radfarm {
 
@@ -16,9 +17,11 @@ bool IsSceneFile(const std::string& path);
 // LoadObjScene or LoadGltfScene; any other extension is an error naming the file. The scene file
 // must be a regular file of at most `max_file_bytes` (decided from its size, before reading).
 // `max_texture_bytes` bounds a glTF's decoded images together (--max-memory; 0: each image at
-// most kDefaultMaxTexturePixels pixels); OBJ scenes read no images.
+// most kDefaultMaxTexturePixels pixels); OBJ scenes read no images. The files a scene names lie
+// where `reach` allows (input/scene_directory.h).
 Result<InputScene> LoadScene(const std::string& path,
                              uint64_t max_file_bytes = kDefaultMaxInputFileBytes,
-                             uint64_t max_texture_bytes = 0);
+                             uint64_t max_texture_bytes = 0,
+                             FileReach reach = FileReach::kSceneTree);
 
 }  // namespace radfarm

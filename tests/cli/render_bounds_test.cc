@@ -98,6 +98,23 @@ TEST(RenderBoundsTest, ASceneOverTheSizeLimitIsRefusedFromItsSize) {
       << r.err;
 }
 
+// A scene whose library lies beside its directory: refused, unless the user says they trust it.
+TEST(RenderBoundsTest, FilesOutsideTheScenesDirectoryNeedTheUsersLeave) {
+  TempDir dir;
+  std::filesystem::create_directory(dir.File("scene"));
+  Write(dir.File("shared.mtl"), "newmtl glow\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
+  const std::string obj = dir.File("scene/s.obj");
+  Write(obj, "mtllib ../shared.mtl\nusemtl glow\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  CommandResult r = Render(dir, obj);
+  EXPECT_EQ(r.exit_code, kExitBadInput) << r.err;
+  EXPECT_NE(r.err.find("s.obj:1: mtllib '../shared.mtl' leads outside the scene's directory"),
+            std::string::npos)
+      << r.err;
+  r = Render(dir, obj, {"--allow-outside-files"});
+  EXPECT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.File("out/image.png")));
+}
+
 TEST(RenderBoundsTest, AnImageOverThePixelSampleLimitIsRefusedBeforeMeshing) {
   TempDir dir;
   CommandResult r = Render(dir, JobWithCamera(dir, 16384, 1024));

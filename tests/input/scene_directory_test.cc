@@ -217,5 +217,69 @@ TEST(SceneDirectoryTest, ObjFilesInANestedDirectoryStillLoad) {
   EXPECT_EQ(scene->materials[0].name, "glow");
 }
 
+// A user who trusts a scene lets it read files elsewhere (--allow-outside-files): absolute and
+// climbing names load; the kernel's and devices' files stay refused.
+TEST(SceneDirectoryTest, AllowedOutsideFilesLoadButSystemFilesStayRefused) {
+  HostileTree tree;
+  const SceneDirectory anywhere(tree.InScene("s.gltf"), FileReach::kAnywhere);
+  const std::string secret = tree.top() + "/secret.bin";
+  Result<fs::path> absolute = anywhere.Resolve(secret);
+  ASSERT_TRUE(absolute.ok()) << absolute.error();
+  EXPECT_EQ(*absolute, fs::canonical(secret));
+  EXPECT_TRUE(anywhere.Resolve("../secret.bin").ok());
+  ExpectMentions(anywhere.Resolve("/proc/self/environ").error(), kNotSceneData);
+  ExpectMentions(anywhere.Resolve(tree.Climbing("/dev/zero")).error(), kNotSceneData);
+
+  for (const std::string& uri : {secret, std::string("../secret.bin")}) {
+    SCOPED_TRACE(uri);
+    const std::string path = GltfWithBuffer(tree, uri);
+    EXPECT_FALSE(LoadScene(path).ok());
+    Result<InputScene> scene = LoadScene(path, kDefaultMaxInputFileBytes, 0, FileReach::kAnywhere);
+    EXPECT_TRUE(scene.ok()) << scene.error();
+  }
+  const std::string obj = ObjWithLibrary(tree, "../secret.mtl");
+  EXPECT_FALSE(LoadScene(obj).ok());
+  Result<InputScene> lit = LoadScene(obj, kDefaultMaxInputFileBytes, 0, FileReach::kAnywhere);
+  ASSERT_TRUE(lit.ok()) << lit.error();
+  const std::string env = GltfWithBuffer(tree, tree.Climbing("/proc/self/environ"));
+  Result<InputScene> refused = LoadScene(env, kDefaultMaxInputFileBytes, 0, FileReach::kAnywhere);
+  ASSERT_FALSE(refused.ok());
+  ExpectMentions(refused.error(), kNotSceneData);
+}
+
+// Between the check of a name and the read of its file, a directory on the way may be swapped
+// for a symlink to elsewhere: the read checks where the file it opened really lies. (The swap is
+// made before Read here: the path Resolve gave, TOP/scene/sub/secret.bin, now runs through a
+// symlink to TOP.)
+TEST(SceneDirectoryTest, AReadChecksWhereTheOpenedFileLies) {
+  HostileTree tree;
+  const SceneDirectory scene(tree.InScene("s.gltf"));
+  HostileTree::Write(tree.InScene("sub/secret.bin"), "inside");
+  Result<fs::path> resolved = scene.Resolve("sub/secret.bin");
+  ASSERT_TRUE(resolved.ok()) << resolved.error();
+  Result<std::string> read = scene.Read(*resolved, 1024);
+  ASSERT_TRUE(read.ok()) << read.error();
+  EXPECT_EQ(*read, "inside");
+
+  fs::remove_all(tree.InScene("sub"));
+  fs::create_directory_symlink(tree.top(), tree.InScene("sub"));
+  read = scene.Read(*resolved, 1024);
+  ASSERT_FALSE(read.ok()) << "read " << *read;
+  ExpectMentions(read.error(), resolved->string() +
+                                   ": is reached through a symlink that now leads " +
+                                   "outside the scene's directory ");
+  // Allowed to reach anywhere, the same read goes on; the kernel's files stay refused.
+  const SceneDirectory anywhere(tree.InScene("s.gltf"), FileReach::kAnywhere);
+  read = anywhere.Read(*resolved, 1024);
+  ASSERT_TRUE(read.ok()) << read.error();
+  EXPECT_EQ(*read, std::string(64, 's'));
+  fs::remove(tree.InScene("sub"));
+  fs::create_directory_symlink("/proc/self", tree.InScene("sub"));
+  const fs::path environ = scene.root() / "sub/environ";
+  read = anywhere.Read(environ, 1 << 20);
+  ASSERT_FALSE(read.ok());
+  ExpectMentions(read.error(), kNotSceneData);
+}
+
 }  // namespace
 }  // namespace radfarm
