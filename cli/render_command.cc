@@ -6,8 +6,10 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <optional>
 
+#include "base/cpu_clock.h"
 #include "cli/exit_codes.h"
 #include "cli/job_inputs.h"
 #include "cli/messages.h"
@@ -15,6 +17,7 @@
 #include "cli/render_outputs.h"
 #include "cli/render_state.h"
 #include "core/display_budget.h"
+#include "core/job_timeline.h"
 #include "core/solve_control.h"
 #include "core/solve_rules.h"
 #include "display/solved_display.h"
@@ -164,6 +167,13 @@ CLI::App* AddRenderCommand(CLI::App& app, RenderOptions* options) {
 int RunRender(const RenderOptions& options) {
   // The time budget (--seconds) counts from here: reading and meshing the scene are part of it.
   const auto started = std::chrono::steady_clock::now();
+  // Where the command's time goes, phase by phase (stats.json's timeline and the closing lines).
+  LapClock lap;
+  JobTimeline timeline;
+  auto spent_on = [&](JobPhase phase) {
+    const Spent s = lap.Lap();
+    AddToTimeline(&timeline, phase, kRanHere, s.wall_seconds, s.cpu_seconds);
+  };
   auto seconds_since_start = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   };
@@ -190,6 +200,7 @@ int RunRender(const RenderOptions& options) {
     PrintError(s.error());
     return kExitFailure;
   }
+  spent_on(JobPhase::kMeshing);
 
   if (!options.quiet) {
     PrintMeshSummary(job, loaded->mesh, seconds_since_start());
@@ -214,11 +225,19 @@ int RunRender(const RenderOptions& options) {
                    &hooks);
   }
   hooks.seconds_spent_before = seconds_since_start();
+  std::function<void(double, uint64_t)> announce_start = std::move(hooks.after_start);
+  hooks.after_start = [&](double seconds, uint64_t shadow_rays) {
+    spent_on(JobPhase::kDirectLight);
+    if (announce_start) announce_start(seconds, shadow_rays);
+  };
+  JobPhase solving = JobPhase::kRounds;  // the phase of the last round, for the solve's tail
   Result<RefiningSolveResult> solved = Error{"not solved"};
   try {
     solved = SolveRefining(
         std::move(loaded->mesh), job.solver, job.refine,
         [&](const RoundProgress& p) {
+          solving = p.gather ? JobPhase::kGather : JobPhase::kRounds;
+          spent_on(solving);
           if (!options.quiet) reporter.OnRound(p);
         },
         hooks);
@@ -242,6 +261,7 @@ int RunRender(const RenderOptions& options) {
     }
   }
 
+  spent_on(solving);
   PatchMesh& mesh = *solved->mesh;
   const SolveResult& solution = solved->solution;
   if (solution.stats.rounds == 0 && solution.stats.stop_reason == kStopTimeBudget) {
@@ -259,8 +279,14 @@ int RunRender(const RenderOptions& options) {
   const double display_started = seconds_since_start();
   const Display display =
       SolvedDisplay(mesh, solution.radiosity, solution.direct_light, job.solver, display_progress);
-  const Status written =
-      WriteOutputs(options.out_dir, mesh, display, solution, job, patches_before, &output_warnings);
+  spent_on(JobPhase::kDisplay);
+  // stats.json's timeline counts the outputs up to its own writing.
+  const Status written = WriteOutputs(options.out_dir, mesh, display, solution, job, patches_before,
+                                      &output_warnings, [&] {
+                                        spent_on(JobPhase::kOutputs);
+                                        return timeline;
+                                      });
+  spent_on(JobPhase::kOutputs);
   reporter.ClearLine();
   PrintMessages(output_warnings);
   if (Status s = written; !s.ok()) {
@@ -271,6 +297,7 @@ int RunRender(const RenderOptions& options) {
     PrintDisplaySummary(display.stats, job.solver);
     PrintSolveSummary(solution.stats, seconds_since_start() - display_started,
                       seconds_since_start(), options.out_dir);
+    std::printf("time: %s\n", TimelineLine(timeline).c_str());
   }
   return kExitOk;
 }

@@ -42,7 +42,8 @@ Status CreateOutputDirectory(const std::string& dir) {
 
 Status WriteOutputs(const std::string& dir, const PatchMesh& mesh, const Display& shown,
                     const SolveResult& solution, const Job& job, uint64_t patches_before_refinement,
-                    std::vector<std::string>* warnings) {
+                    std::vector<std::string>* warnings,
+                    const std::function<JobTimeline()>& timeline) {
   const double patches_after = double(mesh.patch_scene().patches.size());
   const double patches_before =
       patches_before_refinement > 0 ? double(patches_before_refinement) : patches_after;
@@ -111,7 +112,8 @@ Status WriteOutputs(const std::string& dir, const PatchMesh& mesh, const Display
                                {"direct_start_used", start.used ? 1.0 : 0.0},
                                {"display_at_points", display.used && !d.averaged ? 1.0 : 0.0}},
                               {{"direct_start", start.why},
-                               {"display", d.averaged ? kDisplayAveragedByBudget : display.why}});
+                               {"display", d.averaged ? kDisplayAveragedByBudget : display.why}},
+                              timeline ? timeline() : JobTimeline{});
       }};
   std::vector<Status> written(writers.size(), Ok{});
   pool.ParallelFor(writers.size(), [&](unsigned, size_t i) { written[i] = writers[i](); });

@@ -5,10 +5,12 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "base/result.h"
+#include "core/job_timeline.h"
 #include "display/display_stage.h"
 #include "job/job.h"
 #include "mesh/patch_mesh.h"
@@ -27,10 +29,12 @@ Status CreateOutputDirectory(const std::string& dir);
 // `patches_after_refinement`, which is the patch count of `mesh`) and the display's figures.
 // Objects with a second UV set (glTF TEXCOORD_1) also get lightmaps/<object>.exr and .png
 // (output/lightmap_writer.h), referenced from lit.glb; their warnings (overlapping UVs) are
-// appended to *warnings when it is not null.
+// appended to *warnings when it is not null. stats.json carries the job's timeline as `timeline`
+// gives it when stats.json is written (after the lightmaps, beside the other files), if given.
 Status WriteOutputs(const std::string& dir, const PatchMesh& mesh, const Display& display,
                     const SolveResult& solution, const Job& job,
                     uint64_t patches_before_refinement = 0,
-                    std::vector<std::string>* warnings = nullptr);
+                    std::vector<std::string>* warnings = nullptr,
+                    const std::function<JobTimeline()>& timeline = {});
 
 }  // namespace radfarm

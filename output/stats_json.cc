@@ -118,7 +118,7 @@ std::string JsonString(std::string_view text) {
 }
 
 Result<std::string> FormatStatsJson(const SolveStats& stats, const JsonNumbers& extra_numbers,
-                                    const JsonStrings& extra_strings) {
+                                    const JsonStrings& extra_strings, const JobTimeline& timeline) {
   ObjectWriter object;
   // The field list mirrors core/solve_stats.h in declaration order.
   object.Add("rays", FormatUnsigned(stats.rays));
@@ -148,12 +148,26 @@ Result<std::string> FormatStatsJson(const SolveStats& stats, const JsonNumbers& 
       return Error{"stats: duplicate key " + JsonString(key)};
     }
   }
+  if (!timeline.empty()) {
+    std::string entries;
+    for (const TimelineEntry& e : timeline) {
+      entries += std::string(entries.empty() ? "" : ",") +
+                 "\n    {\"phase\": " + JsonString(JobPhaseName(e.phase)) +
+                 ", \"where\": " + JsonString(e.where) +
+                 ", \"wall_seconds\": " + JsonNumber(e.wall_seconds) +
+                 ", \"cpu_seconds\": " + JsonNumber(e.cpu_seconds) + "}";
+    }
+    if (!object.Add("timeline", "[" + entries + "\n  ]")) {
+      return Error{"stats: duplicate key \"timeline\""};
+    }
+  }
   return object.Finish();
 }
 
 Status WriteStatsJson(const std::string& path, const SolveStats& stats,
-                      const JsonNumbers& extra_numbers, const JsonStrings& extra_strings) {
-  Result<std::string> text = FormatStatsJson(stats, extra_numbers, extra_strings);
+                      const JsonNumbers& extra_numbers, const JsonStrings& extra_strings,
+                      const JobTimeline& timeline) {
+  Result<std::string> text = FormatStatsJson(stats, extra_numbers, extra_strings, timeline);
   if (!text.ok()) return Error{path + ": cannot write " + text.error()};
   return WriteFileAtomically(path, *text);
 }

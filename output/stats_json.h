@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "base/result.h"
+#include "core/job_timeline.h"
 #include "core/solve_stats.h"
 
 namespace radfarm {
@@ -20,12 +21,16 @@ using JsonStrings = std::vector<std::pair<std::string, std::string>>;
 // A JSON string literal, quotes included.
 std::string JsonString(std::string_view text);
 
-// The document WriteStatsJson writes. Fails when an extra key repeats a field or another extra.
+// The document WriteStatsJson writes: the extras, then `timeline` (when not empty) as an array
+// "timeline" of {"phase", "where", "wall_seconds", "cpu_seconds"}. Fails when an extra key
+// repeats a field or another extra.
 Result<std::string> FormatStatsJson(const SolveStats& stats, const JsonNumbers& extra_numbers,
-                                    const JsonStrings& extra_strings = {});
+                                    const JsonStrings& extra_strings = {},
+                                    const JobTimeline& timeline = {});
 
 // Written atomically; errors name `path`.
 Status WriteStatsJson(const std::string& path, const SolveStats& stats,
-                      const JsonNumbers& extra_numbers, const JsonStrings& extra_strings = {});
+                      const JsonNumbers& extra_numbers, const JsonStrings& extra_strings = {},
+                      const JobTimeline& timeline = {});
 
 }  // namespace radfarm

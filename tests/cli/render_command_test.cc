@@ -98,6 +98,16 @@ TEST(RenderCommandTest, CornellBoxWritesEveryOutput) {
   // The closing line counts the display: its seconds and the whole command's.
   EXPECT_NE(r.out.find("), the display and files in "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(" s in all; wrote "), std::string::npos) << r.out;
+  // Where the time went: each phase, its wall and CPU seconds, in stats.json and a closing line.
+  for (const char* phase : {"meshing", "direct light", "rounds", "gather", "display", "outputs"}) {
+    EXPECT_NE(stats.find(std::string("{\"phase\": \"") + phase +
+                         "\", \"where\": \"render\", "
+                         "\"wall_seconds\": "),
+              std::string::npos)
+        << phase << " in " << stats;
+  }
+  EXPECT_NE(r.out.find("\ntime: meshing "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(", display "), std::string::npos) << r.out;
   // Every patch lit, nothing negative or NaN.
   for (size_t i = 1; i < csv.size(); ++i) {
     ASSERT_EQ(csv[i].size(), 13u);

@@ -59,6 +59,24 @@ TEST(StatsJsonTest, EveryFieldAndExtra) {
   EXPECT_FALSE(Contains(text, "inf"));
 }
 
+// A job's timeline, last, one object per phase and place.
+TEST(StatsJsonTest, TheTimelineIsAnArrayOfPhases) {
+  JobTimeline timeline;
+  AddToTimeline(&timeline, JobPhase::kMeshing, kRanOnMaster, 0.5, 0.25);
+  AddToTimeline(&timeline, JobPhase::kGather, kRanOnAgents, 0, 12);
+  Result<std::string> text = FormatStatsJson(SomeStats(), {{"x", 1}}, {}, timeline);
+  ASSERT_TRUE(text.ok()) << text.error();
+  EXPECT_TRUE(Contains(*text,
+                       "\"x\": 1,\n  \"timeline\": [\n"
+                       "    {\"phase\": \"meshing\", \"where\": \"master\", \"wall_seconds\": 0.5, "
+                       "\"cpu_seconds\": 0.25},\n"
+                       "    {\"phase\": \"gather\", \"where\": \"agents\", \"wall_seconds\": 0, "
+                       "\"cpu_seconds\": 12}\n  ]\n}\n"))
+      << *text;
+  // None: no key.
+  EXPECT_FALSE(Contains(*FormatStatsJson(SomeStats(), {}), "timeline"));
+}
+
 TEST(StatsJsonTest, EscapesStrings) {
   EXPECT_EQ(JsonString("plain"), "\"plain\"");
   EXPECT_EQ(JsonString("q\"b\\s/"), "\"q\\\"b\\\\s/\"");
