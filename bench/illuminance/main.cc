@@ -250,8 +250,8 @@ nlohmann::json RunCase(const Options& o, const Case& c) {
 int Main(int argc, char** argv) {
   Options o;
   ParseOptions(argc, argv, &o);
-  std::printf("%-20s %7s %6s %9s %9s %8s %8s %8s %8s %8s\n", "case", "plane", "points", "render s",
-              "ref s", "median", "p95", "worst", "bias", "ref err");
+  std::printf("%-20s %7s %6s %9s %9s %8s %8s %8s %8s %8s %5s\n", "case", "plane", "points",
+              "render s", "ref s", "median", "p95", "worst", "bias", "ref err", "dark");
   nlohmann::json cases = nlohmann::json::array();
   for (const Case& c : o.cases) cases.push_back(RunCase(o, c));
   bench::WriteJson(o.out, {{"benchmark", "illuminance_bench"},
