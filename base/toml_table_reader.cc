@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "base/diagnostic.h"
 
@@ -139,6 +140,38 @@ Result<const toml::table*> TomlTableReader::Table(std::string_view key) {
   if (node == nullptr) return static_cast<const toml::table*>(nullptr);
   if (!node->is_table()) return ErrorFor(key, "must be a table, not " + TomlTypeName(*node));
   return node->as_table();
+}
+
+Status TomlTableReader::Strings(std::string_view key, std::vector<std::string>* out,
+                                bool* present) {
+  const toml::node* node = Find(key);
+  if (present != nullptr) *present = node != nullptr;
+  if (node == nullptr) return Ok{};
+  const toml::array* array = node->as_array();
+  std::vector<std::string> strings;
+  bool ok = array != nullptr;
+  for (size_t i = 0; ok && i < array->size(); ++i) {
+    const auto* value = array->get(i)->as_string();
+    ok = value != nullptr;
+    if (ok) strings.push_back(value->get());
+  }
+  if (!ok) return ErrorFor(key, "must be an array of strings, e.g. [\"Desk*\"]");
+  *out = std::move(strings);
+  return Ok{};
+}
+
+Result<std::vector<const toml::table*>> TomlTableReader::Tables(std::string_view key) {
+  const toml::node* node = Find(key);
+  std::vector<const toml::table*> tables;
+  if (node == nullptr) return tables;
+  const toml::array* array = node->as_array();
+  bool ok = array != nullptr;
+  for (size_t i = 0; ok && i < array->size(); ++i) {
+    ok = array->get(i)->is_table();
+    if (ok) tables.push_back(array->get(i)->as_table());
+  }
+  if (!ok) return ErrorFor(key, "must be an array of tables ([[" + std::string(key) + "]])");
+  return tables;
 }
 
 Status TomlTableReader::CheckNoUnknownKeys() const {

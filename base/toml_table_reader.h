@@ -12,6 +12,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "base/result.h"
 
@@ -70,8 +71,12 @@ class TomlTableReader {
     if (s && found) *out = V(xyz[0], xyz[1], xyz[2]);
     return s;
   }
+  // An array of strings (each element a string; it may be empty).
+  Status Strings(std::string_view key, std::vector<std::string>* out, bool* present = nullptr);
   // The sub-table at `key`, or null when absent.
   Result<const toml::table*> Table(std::string_view key);
+  // The tables of an array of tables (`[[key]]`), in order; empty when absent.
+  Result<std::vector<const toml::table*>> Tables(std::string_view key);
 
   // An error for the first (by line) key that no read asked for.
   Status CheckNoUnknownKeys() const;

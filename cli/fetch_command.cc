@@ -57,7 +57,8 @@ CLI::App* AddFetchCommand(CLI::App& app, FetchOptions* options) {
   CLI::App* fetch = app.add_subcommand(
       "fetch",
       "Download a job's latest solution and write image.png, image.exr, radiosity.ply, "
-      "lit.glb, lightmaps/, patches.csv and stats.json, as render does");
+      "lit.glb, lightmaps/, patches.csv, stats.json and the job's illuminance report, as render "
+      "does");
   AddJobIdArgument(fetch, &options->id);
   fetch->add_option("--out", options->out_dir, "Output directory (created if missing)")->required();
   AddJsonFlag(fetch, &options->json);

@@ -10,9 +10,12 @@
 #include <system_error>
 #include <vector>
 
+#include "core/ray_caster.h"
 #include "core/solve_rules.h"
 #include "output/exposure_meter.h"
 #include "output/exr_writer.h"
+#include "output/illuminance_files.h"
+#include "output/illuminance_planes.h"
 #include "output/image.h"
 #include "output/lightmap_uvs.h"
 #include "output/lightmap_writer.h"
@@ -115,6 +118,16 @@ Status WriteOutputs(const std::string& dir, const PatchMesh& mesh, const Display
                                {"display", d.averaged ? kDisplayAveragedByBudget : display.why}},
                               timeline ? timeline() : JobTimeline{});
       }};
+  // The illuminance report's planes, from the same solution (the same bits from render and fetch).
+  if (!job.illuminance.empty()) {
+    const RayCaster caster(mesh.patch_scene());
+    Result<std::vector<PlaneIlluminance>> planes = MeasurePlanes(
+        {mesh.patch_scene(), caster, solution.radiosity, solution.direct_light, job.solver},
+        mesh.objects(), patch_object, job.illuminance);
+    const Status report =
+        planes.ok() ? WriteIlluminanceFiles(dir, *planes) : Status(Error{planes.error()});
+    if (!report.ok()) failures.push_back(report.error());
+  }
   std::vector<Status> written(writers.size(), Ok{});
   pool.ParallelFor(writers.size(), [&](unsigned, size_t i) { written[i] = writers[i](); });
   for (const Status& s : written) {

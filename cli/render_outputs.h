@@ -1,5 +1,6 @@
 // The files of a solved job: image.png, image.exr, radiosity.ply, lit.glb (the user's objects with
-// their light: output/lit_glb_writer.h), lightmaps/, patches.csv and stats.json.
+// their light: output/lit_glb_writer.h), lightmaps/, patches.csv and stats.json, and with
+// `[[illuminance]]` planes the illuminance report (output/illuminance_files.h).
 // `radfarm render` and `radfarm fetch` both write them here, so for the same radiosity they are
 // byte-identical (stats.json aside: it carries the solve's timings).
 #pragma once

@@ -12,6 +12,7 @@
 #include "codec/punctual_light_codec.h"
 #include "job/output_budget.h"
 #include "job_bundle_generated.h"
+#include "output/illuminance_plane.h"
 
 namespace radfarm::codec {
 namespace {
@@ -92,6 +93,28 @@ Status DecodeLightmapSettings(const wire::JobBundleBlob& in, Job* out) {
   }
   if (out->lightmap_size > 0 && out->lightmap_texel > 0) {
     return Bad("output.lightmap_texel", "is set with output.lightmap_size");
+  }
+  return Ok{};
+}
+
+// The loader's rules (output/illuminance_plane.h), and unique names as in the job file.
+Status DecodeIlluminance(const wire::JobBundleBlob& in, Job* out) {
+  if (in.illuminance() == nullptr) return Ok{};
+  for (flatbuffers::uoffset_t i = 0; i < in.illuminance()->size(); ++i) {
+    const wire::BundleIlluminancePlane* p = in.illuminance()->Get(i);
+    const std::string field = "illuminance[" + std::to_string(i) + "]";
+    IlluminancePlane plane{p->name()->str(), p->height(), p->spacing(), {}};
+    if (p->surfaces() != nullptr) {
+      for (const flatbuffers::String* pattern : *p->surfaces()) {
+        plane.surfaces.push_back(pattern->str());
+      }
+    }
+    const std::string problem = IlluminancePlaneProblem(plane);
+    if (!problem.empty()) return Bad(field, problem);
+    for (const IlluminancePlane& other : out->illuminance) {
+      if (other.name == plane.name) return Bad(field, "repeats an earlier plane's name");
+    }
+    out->illuminance.push_back(std::move(plane));
   }
   return Ok{};
 }
@@ -269,9 +292,21 @@ std::vector<uint8_t> EncodeJobBundle(const JobBundle& bundle) {
                                       job.refine.max_elements);
   }
   const auto lights = EncodeLights(fbb, scene.lights);
+  flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<wire::BundleIlluminancePlane>>>
+      illuminance = 0;
+  if (!job.illuminance.empty()) {
+    std::vector<flatbuffers::Offset<wire::BundleIlluminancePlane>> planes;
+    for (const IlluminancePlane& p : job.illuminance) {
+      const auto name = fbb.CreateString(p.name);
+      const auto surfaces = p.surfaces.empty() ? 0 : fbb.CreateVectorOfStrings(p.surfaces);
+      planes.push_back(
+          wire::CreateBundleIlluminancePlane(fbb, name, p.height, p.spacing, surfaces));
+    }
+    illuminance = fbb.CreateVector(planes);
+  }
   fbb.Finish(wire::CreateJobBundleBlob(fbb, path, job.mesh.patch_size, solver, camera, positions,
                                        material_vec, face_vec, refine, lights, object_vec,
-                                       job.lightmap_size, job.lightmap_texel),
+                                       job.lightmap_size, job.lightmap_texel, illuminance),
              "RDJB");
   return {fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()};
 }
@@ -295,6 +330,7 @@ Result<JobBundle> DecodeJobBundle(std::span<const uint8_t> blob) {
   RADFARM_RETURN_IF_ERROR(DecodeCamera(*root->camera(), &bundle.job.camera));
   RADFARM_RETURN_IF_ERROR(DecodeRefine(root->refine(), &bundle.job.refine));
   RADFARM_RETURN_IF_ERROR(DecodeLightmapSettings(*root, &bundle.job));
+  RADFARM_RETURN_IF_ERROR(DecodeIlluminance(*root, &bundle.job));
   RADFARM_RETURN_IF_ERROR(DecodeObjects(*root, &bundle.scene));
   RADFARM_RETURN_IF_ERROR(DecodeScene(*root, &bundle.scene));
   Result<std::vector<PunctualLight>> lights = DecodeLights(root->lights(), kKind);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "base/result.h"
 #include "base/toml_table_reader.h"
@@ -12,6 +13,7 @@
 #include "mesh/mesh_settings.h"
 #include "mesh/refine_settings.h"
 #include "output/camera.h"
+#include "output/illuminance_plane.h"
 
 namespace radfarm {
 
@@ -39,6 +41,8 @@ struct Job {
   // (a sixteenth where the display refined itself).
   uint32_t lightmap_size = 0;  // every lightmap this many texels square
   double lightmap_texel = 0;   // each object's texels about this size, in scene units
+  // The illuminance reports' calculation planes (`[[illuminance]]`), in the file's order.
+  std::vector<IlluminancePlane> illuminance;
 };
 
 // The image's width and height at most (`[camera] width`, `height`).

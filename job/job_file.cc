@@ -38,6 +38,12 @@
 //   lightmap_texel = 0.01         # automatic size from texels of about this edge, scene units,
 //                                 # > 0 (absent: patch size / 4, or / 16 where the display
 //                                 # refined itself); not with lightmap_size
+//   [[illuminance]]               # a calculation plane of the illuminance report; repeatable
+//   name = "desks"                # the files' stem, unique: letters, digits, '-', '_', '.'
+//   height = 0.8                  # above the surfaces, scene units, >= 0
+//   spacing = 0.25                # between grid points, scene units, > 0
+//   surfaces = ["Desk*"]          # objects or materials (shell patterns) carrying the plane
+//                                 # (absent: every floor)
 //   [materials.NAME]              # per material of the scene, by name
 //   two_sided = true              # this material receives and emits on both sides (an
 //                                 # emitter then lights both ways; false: its front only)
@@ -48,6 +54,9 @@
 #include <cctype>
 #include <filesystem>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "base/diagnostic.h"
 #include "base/file_extension.h"
@@ -169,6 +178,42 @@ Status ReadOutput(TomlTableReader* r, Job* job) {
   return Ok{};
 }
 
+// One [[illuminance]] table: name, height and spacing are required.
+Status ReadIlluminancePlane(TomlTableReader* r, const std::vector<IlluminancePlane>& earlier,
+                            IlluminancePlane* plane) {
+  bool has_name = false, has_height = false, has_spacing = false;
+  RADFARM_RETURN_IF_ERROR(r->String("name", &plane->name, &has_name));
+  RADFARM_RETURN_IF_ERROR(r->Real("height", Interval::AtLeast(0), &plane->height, &has_height));
+  RADFARM_RETURN_IF_ERROR(r->Real("spacing", Interval::Above(0), &plane->spacing, &has_spacing));
+  RADFARM_RETURN_IF_ERROR(r->Strings("surfaces", &plane->surfaces));
+  for (const auto& [key, given] :
+       {std::pair{"name", has_name}, {"height", has_height}, {"spacing", has_spacing}}) {
+    if (!given) return r->ErrorFor(key, "is missing (name, height and spacing are required)");
+  }
+  // The problem's first word is the key it is about ("name must be ...").
+  const std::string problem = IlluminancePlaneProblem(*plane);
+  if (!problem.empty()) {
+    const size_t space = problem.find(' ');
+    return r->ErrorFor(problem.substr(0, space), problem.substr(space + 1));
+  }
+  for (const IlluminancePlane& other : earlier) {
+    if (other.name == plane->name) return r->ErrorFor("name", "repeats an earlier plane's name");
+  }
+  return r->CheckNoUnknownKeys();
+}
+
+Status ReadIlluminance(const std::string& path, TomlTableReader* root, Job* job) {
+  Result<std::vector<const toml::table*>> tables = root->Tables("illuminance");
+  RADFARM_RETURN_IF_ERROR(tables);
+  for (size_t i = 0; i < tables->size(); ++i) {
+    TomlTableReader reader(path, *(*tables)[i], "illuminance[" + std::to_string(i) + "].");
+    IlluminancePlane plane;
+    RADFARM_RETURN_IF_ERROR(ReadIlluminancePlane(&reader, job->illuminance, &plane));
+    job->illuminance.push_back(std::move(plane));
+  }
+  return Ok{};
+}
+
 // [materials.NAME] tables, one per material named, each with its optional two_sided.
 Status ReadMaterials(const std::string& path, TomlTableReader* materials, const toml::table& table,
                      Job* job) {
@@ -205,6 +250,7 @@ Status ReadJob(const std::string& path, const toml::table& table, Job* job) {
   }));
   RADFARM_RETURN_IF_ERROR(
       ReadSection(path, &root, "output", [&](TomlTableReader* r) { return ReadOutput(r, job); }));
+  RADFARM_RETURN_IF_ERROR(ReadIlluminance(path, &root, job));
   Result<const toml::table*> materials = root.Table("materials");
   RADFARM_RETURN_IF_ERROR(materials);
   if (*materials != nullptr) {

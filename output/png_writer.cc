@@ -12,25 +12,23 @@
 
 namespace radfarm {
 
-Result<std::string> EncodePng(const Image& linear, const Camera& camera) {
-  if (linear.width == 0 || linear.height == 0 ||
-      linear.pixels.size() != static_cast<size_t>(linear.width) * linear.height) {
+Result<std::string> EncodeRgb8Png(uint32_t width, uint32_t height,
+                                  const std::vector<uint8_t>& rgb) {
+  if (width == 0 || height == 0 || rgb.size() != static_cast<size_t>(width) * height * 3) {
     return Error{"cannot write PNG: image is empty or its size does not match its pixels"};
   }
-  if (linear.width > std::numeric_limits<png_int_32>::max() / 3) {
+  if (width > std::numeric_limits<png_int_32>::max() / 3) {
     return Error{"cannot write PNG: image too wide"};
   }
-  const std::vector<uint8_t> rgb = ToneMapImage(linear, camera);
-
   // libpng's simplified API reports errors through image.message instead of longjmp, and writing
   // to memory lets the atomic-file helper own the file handling.
   png_image image;
   std::memset(&image, 0, sizeof(image));
   image.version = PNG_IMAGE_VERSION;
-  image.width = linear.width;
-  image.height = linear.height;
+  image.width = width;
+  image.height = height;
   image.format = PNG_FORMAT_RGB;  // 8-bit non-linear: libpng tags it as sRGB
-  const png_int_32 stride = static_cast<png_int_32>(linear.width * 3);
+  const png_int_32 stride = static_cast<png_int_32>(width * 3);
 
   png_alloc_size_t size = 0;
   if (!png_image_write_get_memory_size(image, size, 0, rgb.data(), stride, nullptr)) {
@@ -47,6 +45,17 @@ Result<std::string> EncodePng(const Image& linear, const Camera& camera) {
   png_image_free(&image);
   encoded.resize(size);
   return encoded;
+}
+
+Result<std::string> EncodePng(const Image& linear, const Camera& camera) {
+  if (linear.width == 0 || linear.height == 0 ||
+      linear.pixels.size() != static_cast<size_t>(linear.width) * linear.height) {
+    return Error{"cannot write PNG: image is empty or its size does not match its pixels"};
+  }
+  if (linear.width > std::numeric_limits<png_int_32>::max() / 3) {
+    return Error{"cannot write PNG: image too wide"};
+  }
+  return EncodeRgb8Png(linear.width, linear.height, ToneMapImage(linear, camera));
 }
 
 Status WritePng(const std::string& path, const Image& linear, const Camera& camera) {

@@ -74,11 +74,8 @@ Rgb PathTracer::PunctualIrradiance(const Vec3& x, const Vec3& n, uint64_t* rays)
   return sum;
 }
 
-Rgb PathTracer::SamplePath(const SurfacePoint& point, uint64_t key, uint64_t* rays) const {
-  Vec3 x = point.position;
-  Vec3 n = point.normal;
-  uint32_t self = point.triangle;
-  Rgb beta = scene_.materials()[scene_.triangles()[self].material].diffuse;
+Rgb PathTracer::SamplePath(Vec3 x, Vec3 n, uint32_t self, Rgb beta, uint64_t key,
+                           uint64_t* rays) const {
   Rgb sum;
   for (int depth = 0; beta.Max() > 0; ++depth) {
     const uint32_t dim = uint32_t(depth) * kDimsPerBounce;
@@ -117,11 +114,9 @@ Rgb PathTracer::SamplePath(const SurfacePoint& point, uint64_t key, uint64_t* ra
   return sum;
 }
 
-PointEstimate PathTracer::Estimate(const SurfacePoint& point, uint64_t index,
-                                   const TraceSettings& settings) const {
-  const Triangle& tri = scene_.triangles()[point.triangle];
-  const bool front = Dot(point.normal, tri.normal) > 0;
-  const Rgb own = Emitted(point.triangle, front);
+template <typename Sample>
+PointEstimate PathTracer::Accumulate(const Rgb& own, uint64_t index, const TraceSettings& settings,
+                                     const Sample& sample) const {
   Rgb sum, sum2;
   double total_sum = 0, total_sum2 = 0;  // the channel sum's, for the relative error
   PointEstimate out;
@@ -129,7 +124,7 @@ PointEstimate PathTracer::Estimate(const SurfacePoint& point, uint64_t index,
   while (out.samples < settings.max_samples) {
     const uint64_t end = std::min(settings.max_samples, out.samples + block);
     for (uint64_t s = out.samples; s < end; ++s) {
-      const Rgb v = SamplePath(point, HashWords(settings.seed, index, s), &out.rays);
+      const Rgb v = sample(HashWords(settings.seed, index, s), &out.rays);
       sum += v;
       sum2 += v * v;
       total_sum += v.Sum();
@@ -150,6 +145,41 @@ PointEstimate PathTracer::Estimate(const SurfacePoint& point, uint64_t index,
       break;
     }
   }
+  return out;
+}
+
+PointEstimate PathTracer::Estimate(const SurfacePoint& point, uint64_t index,
+                                   const TraceSettings& settings) const {
+  const Triangle& tri = scene_.triangles()[point.triangle];
+  const bool front = Dot(point.normal, tri.normal) > 0;
+  const Rgb rho = scene_.materials()[tri.material].diffuse;
+  return Accumulate(
+      Emitted(point.triangle, front), index, settings, [&](uint64_t key, uint64_t* rays) {
+        return SamplePath(point.position, point.normal, point.triangle, rho, key, rays);
+      });
+}
+
+PointEstimate PathTracer::EstimateIrradiance(const Vec3& position, const Vec3& normal,
+                                             uint64_t index, const TraceSettings& settings) const {
+  return Accumulate({}, index, settings, [&](uint64_t key, uint64_t* rays) {
+    return SamplePath(position, normal, SurfaceHit::kMiss, {1, 1, 1}, key, rays);
+  });
+}
+
+std::vector<PointEstimate> PathTracer::EstimateIrradianceAll(const std::vector<Vec3>& positions,
+                                                             const std::vector<Vec3>& normals,
+                                                             const TraceSettings& settings) const {
+  std::vector<PointEstimate> out(positions.size());
+  std::atomic<size_t> next{0};
+  auto work = [&] {
+    for (size_t i = next++; i < positions.size(); i = next++) {
+      out[i] = EstimateIrradiance(positions[i], normals[i], i, settings);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (unsigned t = 1; t < std::max(1u, settings.threads); ++t) threads.emplace_back(work);
+  work();
+  for (std::thread& t : threads) t.join();
   return out;
 }
 

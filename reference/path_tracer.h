@@ -60,10 +60,25 @@ class PathTracer {
   // Every point, on settings.threads threads; result i is Estimate(points[i], i, settings).
   std::vector<PointEstimate> EstimateAll(const std::vector<SurfacePoint>& points,
                                          const TraceSettings& settings) const;
+  // The irradiance at a point in open space facing `normal` (a calculation point of an
+  // illuminance report), as E / pi in the units of emitted radiance: the outgoing radiance a white
+  // (rho = 1) surface there would have, less its emission. Keyed as Estimate.
+  PointEstimate EstimateIrradiance(const Vec3& position, const Vec3& normal, uint64_t index,
+                                   const TraceSettings& settings) const;
+  // Every point (position and unit normal), on settings.threads threads.
+  std::vector<PointEstimate> EstimateIrradianceAll(const std::vector<Vec3>& positions,
+                                                   const std::vector<Vec3>& normals,
+                                                   const TraceSettings& settings) const;
 
  private:
-  // One path's contribution beyond the point's own emission, and the rays it cast.
-  Rgb SamplePath(const SurfacePoint& point, uint64_t key, uint64_t* rays) const;
+  // One path's contribution from x (normal n, on triangle `self` or none: SurfaceHit::kMiss) with
+  // throughput `beta` at its start, beyond the point's own emission, and the rays it cast.
+  Rgb SamplePath(Vec3 x, Vec3 n, uint32_t self, Rgb beta, uint64_t key, uint64_t* rays) const;
+  // Samples `sample(key, &rays)` keyed (seed, index, s) in blocks until the stopping rule holds;
+  // `own` is added to the mean.
+  template <typename Sample>
+  PointEstimate Accumulate(const Rgb& own, uint64_t index, const TraceSettings& settings,
+                           const Sample& sample) const;
   // Next-event estimation on the emitter triangles at x (normal n, on triangle `self`), MIS
   // weighted; `dim` is the first random dimension it may use (three).
   Rgb SampleEmitters(const Vec3& x, const Vec3& n, uint32_t self, uint64_t key, uint32_t dim,

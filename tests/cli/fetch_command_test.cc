@@ -159,6 +159,46 @@ TEST_F(FetchCommandTest, WritesTheLightmapsRenderWrites) {
   }
 }
 
+// The bundle carries the job's illuminance planes, so fetch writes the report render writes, from
+// the same solution the same bytes.
+TEST_F(FetchCommandTest, WritesTheIlluminanceReportRenderWrites) {
+  const std::string job_file = dir_.File("planes.toml");
+  std::ofstream(job_file) << "scene = \"" RADFARM_SOURCE_DIR "/scenes/cornell-box.obj\"\n"
+                          << "[mesh]\npatch_size = 60\n[solver]\ntolerance = 0.05\n"
+                          << "[[illuminance]]\nname = \"floor\"\nheight = 100\nspacing = 50\n";
+  std::vector<std::string> warnings;
+  Result<LoadedJob> job = LoadJobForSolve(job_file, {}, &warnings);
+  ASSERT_TRUE(job.ok()) << job.error();
+  const SolveResult solved = Solve(job->mesh.patch_scene(), job->job.solver);
+  const codec::JobSolution solution{codec::EncodeJobBundle({job->job, job->scene}),
+                                    solved.radiosity,
+                                    solved.unshot,
+                                    solved.stats,
+                                    {},
+                                    {}};
+  const std::string fetched = dir_.File("fetched");
+  const auto r = Fetch(Serve(solution), fetched);
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  const std::string rendered = dir_.File("rendered");
+  const auto render =
+      RunCommand({RADFARM_CLI_PATH, "render", job_file, "--quiet", "--out", rendered});
+  ASSERT_EQ(render.exit_code, kExitOk) << render.err;
+  for (const char* file : {"illuminance.json", "illuminance/floor.csv", "illuminance/floor.png"}) {
+    const std::string mine = ReadFile(fetched + "/" + file);
+    EXPECT_FALSE(mine.empty()) << file;
+    EXPECT_TRUE(mine == ReadFile(rendered + "/" + file)) << file << " differs from render's";
+  }
+  const json report = json::parse(ReadFile(fetched + "/illuminance.json"), nullptr, false);
+  ASSERT_TRUE(report.is_object());
+  const json& floor = report["planes"][0];
+  EXPECT_EQ(floor["name"], "floor");
+  // The floor is about 556 x 559: 11 x 11 cells of 50, of which those wholly on it.
+  EXPECT_GE(floor["points"].get<int>(), 81);
+  EXPECT_GT(floor["min"].get<double>(), 0);
+  EXPECT_LT(floor["min"].get<double>(), floor["mean"].get<double>());
+  EXPECT_LT(floor["mean"].get<double>(), floor["max"].get<double>());
+}
+
 TEST_F(FetchCommandTest, WritesTheDisplayTheMasterDrewWithoutDrawingIt) {
   // The master's display of the same solution: the files of the test above, and no display
   // progress, since nothing is drawn here.

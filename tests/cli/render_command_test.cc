@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "cli/exit_codes.h"
@@ -133,6 +134,52 @@ TEST(RenderCommandTest, UnwritableOutputsLeaveTheOthersWrittenAndAreEachNamed) {
   for (const char* file : {"image.exr", "radiosity.ply", "lit.glb", "stats.json"}) {
     EXPECT_FALSE(ReadFile(out.File(file)).empty()) << file;
   }
+}
+
+// A job file in `dir` rendering the Cornell box coarsely with one illuminance plane over the floor.
+std::string IlluminanceJob(const TempDir& dir, const std::string& surfaces) {
+  const std::string path = dir.File("planes.toml");
+  std::ofstream(path) << "scene = \"" << kScenes << "cornell-box.obj\"\n[mesh]\npatch_size = 60\n"
+                      << "[solver]\ntolerance = 0.05\n[[illuminance]]\nname = \"floor\"\n"
+                      << "height = 100\nspacing = 50\nsurfaces = [" << surfaces << "]\n";
+  return path;
+}
+
+// The illuminance report is part of the determinism contract: the thread count changes no byte.
+TEST(RenderCommandTest, TheIlluminanceReportIsTheSameOnAnyThreads) {
+  TempDir jobs;
+  const std::string job = IlluminanceJob(jobs, "\"floor\"");
+  std::string reference;
+  for (const char* threads : {"1", "2"}) {
+    TempDir out;
+    const auto r = RunCommand(
+        {RADFARM_CLI_PATH, "render", job, "--out", out.path(), "--threads", threads, "-q"});
+    ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+    const std::string report = ReadFile(out.File("illuminance.json")) +
+                               ReadFile(out.File("illuminance/floor.csv")) +
+                               ReadFile(out.File("illuminance/floor.png"));
+    ASSERT_NE(ReadFile(out.File("illuminance/floor.csv")).find("x,y,z,lux\n"), std::string::npos);
+    if (reference.empty()) {
+      reference = report;
+    } else {
+      EXPECT_TRUE(report == reference) << "--threads " << threads << " differs";
+    }
+  }
+}
+
+// A plane whose surfaces name nothing in the scene costs its report only, named on its own line.
+TEST(RenderCommandTest, AnIlluminancePlaneNamingNothingFailsAloneAndSaysWhy) {
+  TempDir jobs, out;
+  const auto r = RunCommand(
+      {RADFARM_CLI_PATH, "render", IlluminanceJob(jobs, "\"Desk*\""), "--out", out.path(), "-q"});
+  EXPECT_EQ(r.exit_code, kExitFailure);
+  EXPECT_NE(r.err.find("illuminance plane 'floor': 'Desk*' names no object and no material"),
+            std::string::npos)
+      << r.err;
+  for (const char* file : {"image.png", "patches.csv", "stats.json"}) {
+    EXPECT_FALSE(ReadFile(out.File(file)).empty()) << file;
+  }
+  EXPECT_TRUE(ReadFile(out.File("illuminance.json")).empty());
 }
 
 // A ray budget covers the direct light and the display too: the start's shadow rays

@@ -291,5 +291,33 @@ TEST(JobBundleTest, CarriesTheLightmapSettingsAndRejectsBadOnes) {
   expect_error(64, 0.5, "output.lightmap_texel is set with output.lightmap_size");
 }
 
+// `radfarm fetch` writes the illuminance report from the bundle's job, so its planes travel with
+// it; a job without planes keeps its bytes.
+TEST(JobBundleTest, CarriesTheIlluminancePlanesAndRejectsBadOnes) {
+  const JobBundle plain = LoadBundle(RADFARM_SOURCE_DIR "/scenes/cornell-box.toml");
+  ASSERT_TRUE(plain.job.illuminance.empty());
+  JobBundle bundle = plain;
+  bundle.job.illuminance = {{"desks", 0.8, 0.25, {"Desk*", "table"}}, {"floor", 0, 1, {}}};
+  const std::vector<uint8_t> blob = EncodeJobBundle(bundle);
+  EXPECT_GT(blob.size(), EncodeJobBundle(plain).size());
+  Result<JobBundle> back = DecodeJobBundle(blob);
+  ASSERT_TRUE(back.ok()) << back.error();
+  EXPECT_EQ(back->job.illuminance, bundle.job.illuminance);
+
+  const auto expect_error = [&plain](std::vector<IlluminancePlane> planes, const char* words) {
+    JobBundle bad = plain;
+    bad.job.illuminance = std::move(planes);
+    Result<JobBundle> r = DecodeJobBundle(EncodeJobBundle(bad));
+    ASSERT_FALSE(r.ok()) << words;
+    EXPECT_NE(r.error().find(words), std::string::npos) << r.error();
+  };
+  expect_error({{"../up", 0.8, 1, {}}}, "illuminance[0] name must be");
+  expect_error({{"a", 0.8, 0, {}}}, "illuminance[0] spacing must be finite and > 0");
+  expect_error({{"a", std::numeric_limits<double>::quiet_NaN(), 1, {}}},
+               "illuminance[0] height must be finite");
+  expect_error({{"a", 0.8, 1, {}}, {"a", 1, 1, {}}},
+               "illuminance[1] repeats an earlier plane's name");
+}
+
 }  // namespace
 }  // namespace radfarm::codec

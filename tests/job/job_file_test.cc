@@ -190,6 +190,19 @@ TEST(LoadJobTest, RefineKeyErrorsNameLineAndKey) {
       << JobError(budget);
 }
 
+TEST(LoadJobTest, IlluminancePlanesAreReadInOrder) {
+  const std::string path = WriteScratchFile(
+      "planes.toml",
+      "scene = \"x.obj\"\n[[illuminance]]\nname = \"desks\"\nheight = 0.8\nspacing = 0.25\n"
+      "surfaces = [\"Desk*\", \"table\"]\n[[illuminance]]\nname = \"floor\"\nheight = 0\n"
+      "spacing = 1\n");
+  Result<Job> job = LoadJob(path);
+  ASSERT_TRUE(job.ok()) << job.error();
+  ASSERT_EQ(job->illuminance.size(), 2u);
+  EXPECT_EQ(job->illuminance[0], (IlluminancePlane{"desks", 0.8, 0.25, {"Desk*", "table"}}));
+  EXPECT_EQ(job->illuminance[1], (IlluminancePlane{"floor", 0, 1, {}}));
+}
+
 TEST(LoadJobTest, SyntaxErrorGivesTomlsDescriptionAndLine) {
   const std::string path = DataPath("jobs/syntax_error.toml");
   const std::string error = JobError(path);
@@ -226,6 +239,29 @@ INSTANTIATE_TEST_SUITE_P(
     Values, BadJobTest,
     ::testing::Values(
         BadJob{"UnknownRootKey", "color = 3\n", "2: unknown key 'color'"},
+        BadJob{"IlluminanceNotTables", "illuminance = 3\n",
+               "2: 'illuminance' must be an array of tables ([[illuminance]])"},
+        BadJob{"IlluminanceWithoutSpacing", "[[illuminance]]\nname = \"a\"\nheight = 1\n",
+               "2: 'illuminance[0].spacing' is missing (name, height and spacing are required)"},
+        BadJob{"IlluminanceZeroSpacing", "[[illuminance]]\nname = \"a\"\nheight = 1\nspacing = 0\n",
+               "5: 'illuminance[0].spacing' must be > 0, got 0"},
+        BadJob{"IlluminanceNegativeHeight",
+               "[[illuminance]]\nname = \"a\"\nheight = -1\nspacing = 1\n",
+               "4: 'illuminance[0].height' must be >= 0, got -1"},
+        BadJob{"IlluminanceNameWithSlash",
+               "[[illuminance]]\nname = \"a/b\"\nheight = 1\nspacing = 1\n",
+               "3: 'illuminance[0].name' must be 1 to 64 letters, digits, '-', '_' or '.', not "
+               "starting with '.'"},
+        BadJob{"IlluminanceNameRepeated",
+               "[[illuminance]]\nname = \"a\"\nheight = 1\nspacing = 1\n"
+               "[[illuminance]]\nname = \"a\"\nheight = 2\nspacing = 1\n",
+               "7: 'illuminance[1].name' repeats an earlier plane's name"},
+        BadJob{"IlluminanceSurfacesNotStrings",
+               "[[illuminance]]\nname = \"a\"\nheight = 1\nspacing = 1\nsurfaces = [1]\n",
+               "6: 'illuminance[0].surfaces' must be an array of strings, e.g. [\"Desk*\"]"},
+        BadJob{"IlluminanceUnknownKey",
+               "[[illuminance]]\nname = \"a\"\nheight = 1\nspacing = 1\nspace = 2\n",
+               "6: unknown key 'illuminance[0].space'"},
         BadJob{"UnknownTable", "[render]\nwidth = 3\n", "2: unknown key 'render'"},
         BadJob{"UnknownCameraKey", "[camera]\nwidht = 3\n", "3: unknown key 'camera.widht'"},
         BadJob{"SectionNotATable", "mesh = 3\n", "2: 'mesh' must be a table, not an integer"},

@@ -156,6 +156,47 @@ TEST(ReferenceClosedFormsTest, PointLampOverAFloor) {
   EXPECT_NEAR(e.radiance.r, exact, 1e-6 * exact);  // one bounce, no randomness
 }
 
+// A calculation point in open space (an illuminance report's): E / pi, the radiance a white
+// surface there would reflect. In a furnace every direction sees B = Le / (1 - rho); under a lamp
+// over a floor, facing up, only the lamp: I cos / (pi r^2).
+TEST(ReferenceClosedFormsTest, IrradianceAtAFreePoint) {
+  const auto box = BuildOrDie(ClosedBox(2, {0.5, 0.7, 0.8}, {1, 2, 0.5}));
+  ExpectNear(PathTracer(*box).EstimateIrradiance({1, 0.7, 1}, {0, 0, 1}, 0, Tight()),
+             {1 / 0.5, 2 / 0.3, 0.5 / 0.2}, 0.01);
+
+  InputScene input;
+  input.path = "lamp";
+  AddSquareAt(&input, 0, true, AddMaterial(&input, {0.6, 0.6, 0.6}, {}));
+  PunctualLight lamp;
+  lamp.position = {0.5, 0.5, 2};
+  lamp.intensity = {3, 3, 3};
+  input.lights.push_back(lamp);
+  const auto scene = BuildOrDie(input);
+  const double r2 = 0.4 * 0.4 + 1.2 * 1.2, cos = 1.2 / std::sqrt(r2);
+  const PointEstimate e =
+      PathTracer(*scene).EstimateIrradiance({0.9, 0.5, 0.8}, {0, 0, 1}, 0, Tight());
+  EXPECT_NEAR(e.radiance.r, 3 * cos / (kPi * r2), 1e-9);  // the lamp alone: no randomness
+
+  std::vector<Vec3> positions, normals;
+  for (int i = 0; i < 4; ++i) {
+    positions.push_back({0.2 + 0.2 * i, 0.5, 0.5});
+    normals.push_back({0, 0, 1});
+  }
+  TraceSettings s;
+  s.min_samples = s.max_samples = 256;
+  s.threads = 1;
+  const std::vector<PointEstimate> one =
+      PathTracer(*box).EstimateIrradianceAll(positions, normals, s);
+  s.threads = 3;
+  const std::vector<PointEstimate> three =
+      PathTracer(*box).EstimateIrradianceAll(positions, normals, s);
+  for (size_t i = 0; i < positions.size(); ++i) {
+    EXPECT_EQ(one[i].radiance, three[i].radiance) << i;
+    EXPECT_EQ(one[i].radiance,
+              PathTracer(*box).EstimateIrradiance(positions[i], normals[i], i, s).radiance);
+  }
+}
+
 TEST(ReferenceClosedFormsTest, EstimatesDoNotDependOnThreads) {
   const auto scene = BuildOrDie(ClosedBox(1, {0.5, 0.5, 0.5}, {1, 1, 1}));
   std::vector<SurfacePoint> points;
