@@ -17,6 +17,26 @@ std::optional<std::string> PrintableOrNull(const std::optional<std::string>& tex
   return Printable(*text);
 }
 
+// The optional "timeline" array: {phase, where, wall_seconds, cpu_seconds} each.
+Status ParseTimeline(const nlohmann::json& object, const std::string& where,
+                     JobTimeline* timeline) {
+  const auto it = object.find("timeline");
+  if (it == object.end() || it->is_null()) return Ok{};
+  if (!it->is_array()) return Error{"'" + where + ".timeline' is not an array"};
+  std::vector<std::string_view> phases;
+  for (JobPhase phase : kJobPhases) phases.push_back(JobPhaseName(phase));
+  for (size_t i = 0; i < it->size(); ++i) {
+    FieldReader r((*it)[i], where + ".timeline[" + std::to_string(i) + "]");
+    const std::optional<JobPhase> phase = JobPhaseNamed(r.OneOf("phase", phases));
+    const std::string place = r.OneOf("where", {kRanOnMaster, kRanOnAgents, kRanOnClient});
+    const double wall = r.Number("wall_seconds");
+    const double cpu = r.Number("cpu_seconds");
+    RADFARM_RETURN_IF_ERROR(r.status());
+    AddToTimeline(timeline, *phase, place, wall, cpu);
+  }
+  return Ok{};
+}
+
 }  // namespace
 
 bool IsTerminalState(std::string_view state) {
@@ -52,6 +72,7 @@ Result<JobInfo> ParseJob(const nlohmann::json& object, const std::string& where)
   job.direct_start = PrintableOrNull(r.NullableString("direct_start"));
   job.display = PrintableOrNull(r.NullableString("display"));
   RADFARM_RETURN_IF_ERROR(r.status());
+  RADFARM_RETURN_IF_ERROR(ParseTimeline(object, where, &job.timeline));
   return job;
 }
 

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "base/result.h"
+#include "core/job_timeline.h"
 
 namespace radfarm {
 
@@ -39,6 +40,8 @@ struct JobInfo {
   // The rules the job's scene got at its size (core/solve_rules.h); null before it is prepared.
   std::optional<std::string> direct_start;
   std::optional<std::string> display;
+  // Where its time went on the master and its agents (core/job_timeline.h); empty when unknown.
+  JobTimeline timeline;
 };
 
 struct AgentInfo {

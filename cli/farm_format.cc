@@ -104,6 +104,7 @@ std::string FormatJobStatus(const JobInfo& j) {
   if (j.stop_reason) rows.push_back({"stopped:", *j.stop_reason});
   if (j.direct_start) rows.push_back({"direct light:", *j.direct_start});
   if (j.display) rows.push_back({"display:", *j.display});
+  if (!j.timeline.empty()) rows.push_back({"time:", TimelineLine(j.timeline)});
   // A held or paused job is not broken: its text is why it waits.
   const bool waiting = j.state == "held" || j.state == "paused";
   if (j.error) rows.push_back({waiting ? "reason:" : "error:", *j.error});

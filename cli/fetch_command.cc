@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "base/cpu_clock.h"
 #include "base/result.h"
 #include "cli/exit_codes.h"
 #include "cli/farm_command.h"
@@ -22,9 +23,11 @@ namespace radfarm {
 namespace {
 
 // Turns the master's solution into the output files. Every error is the master's data being
-// wrong or the directory unwritable: exit 1.
+// wrong or the directory unwritable: exit 1. stats.json's timeline is the master's (`timeline`)
+// with this client's part added.
 Status WriteSolution(const std::vector<uint8_t>& blob, const std::string& out_dir,
-                     const DisplayProgress& display_progress) {
+                     const DisplayProgress& display_progress, JobTimeline timeline) {
+  LapClock lap;
   Result<codec::JobSolution> solution = codec::DecodeJobSolution(blob);
   if (!solution.ok()) return Error{"the job solution from the master: " + solution.error()};
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(solution->bundle);
@@ -43,12 +46,20 @@ Status WriteSolution(const std::vector<uint8_t>& blob, const std::string& out_di
     display = std::move(*decoded);
   } else {
     display = codec::DrawSolutionDisplay(*solution, *bundle, *solved, display_progress);
+    const Spent drawn = lap.Lap();
+    AddToTimeline(&timeline, JobPhase::kDisplay, kRanOnClient, drawn.wall_seconds,
+                  drawn.cpu_seconds);
   }
   const SolveResult result{
       std::move(solution->radiosity), std::move(solution->unshot), std::move(solution->stats), {}};
   // As `radfarm render`: stats.json names the initial patch count of a refining job.
   return WriteOutputs(out_dir, solved->mesh, display, result, bundle->job,
-                      bundle->job.refine.enabled ? solved->initial_patches : 0);
+                      bundle->job.refine.enabled ? solved->initial_patches : 0, nullptr, [&] {
+                        const Spent written = lap.Lap();
+                        AddToTimeline(&timeline, JobPhase::kOutputs, kRanOnClient,
+                                      written.wall_seconds, written.cpu_seconds);
+                        return timeline;
+                      });
 }
 
 }  // namespace
@@ -81,7 +92,8 @@ int RunFetch(const FetchOptions& options, const std::string& control_path) {
   if (!options.json) {
     display_progress = [&](const DisplayStep& step) { reporter.OnDisplayStep(step); };
   }
-  const Status written = WriteSolution(reply->attachment, options.out_dir, display_progress);
+  const Status written =
+      WriteSolution(reply->attachment, options.out_dir, display_progress, job->timeline);
   reporter.ClearLine();
   if (!written.ok()) {
     return ReportFailure(

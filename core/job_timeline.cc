@@ -23,6 +23,13 @@ std::string_view JobPhaseName(JobPhase phase) {
   return "?";
 }
 
+std::optional<JobPhase> JobPhaseNamed(std::string_view name) {
+  for (JobPhase phase : kJobPhases) {
+    if (JobPhaseName(phase) == name) return phase;
+  }
+  return std::nullopt;
+}
+
 void AddToTimeline(JobTimeline* timeline, JobPhase phase, std::string_view where,
                    double wall_seconds, double cpu_seconds) {
   for (TimelineEntry& e : *timeline) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,6 +23,11 @@ enum class JobPhase : uint8_t {
 
 // "meshing", "direct light", "rounds", "gather", "display", "outputs".
 std::string_view JobPhaseName(JobPhase phase);
+// The phase of that name, or nullopt.
+std::optional<JobPhase> JobPhaseNamed(std::string_view name);
+inline constexpr JobPhase kJobPhases[] = {JobPhase::kMeshing, JobPhase::kDirectLight,
+                                          JobPhase::kRounds,  JobPhase::kGather,
+                                          JobPhase::kDisplay, JobPhase::kOutputs};
 
 // Where a phase ran.
 inline constexpr std::string_view kRanHere = "render";

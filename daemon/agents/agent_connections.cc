@@ -10,6 +10,19 @@
 namespace radfarm::daemon {
 namespace {
 
+// The compute seconds the agent reported for those of `results` that were accepted, for the job's
+// timeline.
+double AcceptedSeconds(const std::vector<const protocol::BatchOutcome*>& results,
+                       const std::vector<scheduler::BatchId>& accepted) {
+  double seconds = 0;
+  for (const protocol::BatchOutcome* r : results) {
+    if (std::find(accepted.begin(), accepted.end(), r->lease.batch_id) != accepted.end()) {
+      seconds += r->compute_seconds;
+    }
+  }
+  return seconds;
+}
+
 using loop::LogLevel;
 using loop::LogLine;
 
@@ -238,6 +251,8 @@ void AgentConnections::OnLeaseResult(AgentLink& link, const protocol::LeaseResul
         scheduler::SubmitLeaseResults(runner->scheduler(), link.id(), results, runner->sampler(),
                                       runner->patch_count(), clock_.Now());
     link.CountAccepted(intake.accepted_batches.size());
+    runner->AddAgentSeconds(runner->running_gather(),
+                            AcceptedSeconds(results, intake.accepted_batches));
     const scheduler::ResultVerdict& v = intake.last.verdict;
     if (v.reason == scheduler::DropReason::kInvalid) {
       for (scheduler::BatchId batch : intake.accepted_batches) {
@@ -270,6 +285,7 @@ bool AgentConnections::OnGatherAheadResults(
   const scheduler::LeaseIntake intake = scheduler::SubmitLeaseResults(
       ahead.scheduler(), link.id(), results, runner.sampler(), runner.patch_count(), clock_.Now());
   link.CountAccepted(intake.accepted_batches.size());
+  runner.AddAgentSeconds(true, AcceptedSeconds(results, intake.accepted_batches));
   bool round_complete = false;
   for (scheduler::BatchId batch : intake.accepted_batches) {
     if (!ahead.adopted()) {

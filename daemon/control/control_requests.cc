@@ -242,6 +242,16 @@ json ControlRequests::JobJson(const JobSummary& s) {
   }
   const std::string_view phase = jobs_.PhaseOf(r.id);
   if (!phase.empty()) job["phase"] = std::string(phase);
+  if (const JobTimeline* timeline = jobs_.TimelineOf(r.id); timeline && !timeline->empty()) {
+    json entries = json::array();
+    for (const TimelineEntry& e : *timeline) {
+      entries.push_back({{"phase", std::string(JobPhaseName(e.phase))},
+                         {"where", e.where},
+                         {"wall_seconds", e.wall_seconds},
+                         {"cpu_seconds", e.cpu_seconds}});
+    }
+    job["timeline"] = std::move(entries);
+  }
   if (const CheckpointReport* c = jobs_.LastCheckpoint(r.id)) {
     job["last_checkpoint"] =
         json{{"round", c->round},         {"bytes", c->bytes},         {"copy_ms", c->copy_ms},

@@ -9,7 +9,9 @@
 #include <optional>
 #include <string>
 
+#include "base/cpu_clock.h"
 #include "base/result.h"
+#include "core/job_timeline.h"
 #include "daemon/jobs/display_draft.h"
 #include "daemon/jobs/display_pieces.h"
 #include "display/point_work.h"
@@ -31,6 +33,11 @@ struct DisplayRun {
   uint64_t forecast_rays = 0;
   uint64_t rays_done = 0;
   uint64_t started_ms = 0;
+  // The job's timeline (core/job_timeline.h): the rounds', then the agents' display pieces as
+  // they come, and the master's wall and CPU seconds over the whole display at its end (the
+  // whole process's, as for the rounds).
+  JobTimeline timeline;
+  LapClock clock;
 };
 
 // The seconds `run` has left at `now_ms`: its forecast rays still to cast at the pace of those

@@ -54,6 +54,7 @@ void JobRounds::FinishJob(const std::shared_ptr<RunningJob>& runner) {
   run.reason = runner->stop_reason().value_or("stopped");
   run.forecast_rays = runner->display_rays_forecast();
   run.started_ms = clock_.NowMs();
+  run.timeline = runner->TakeTimeline();
   // Kept for the display: computing it again costs the start's shadow rays.
   auto direct = std::make_shared<std::vector<Rgb>>(runner->direct_light());
   store_.Run([id](store::JobStore& s) { return store::LoadSolution(s, id); },
@@ -163,7 +164,11 @@ void JobRounds::FinishDisplay(store::JobId id, uint64_t serial) {
         return store::StoredDisplay{round, std::move(*draft).Finish()};
       },
       [this, id, serial](Result<store::StoredDisplay> display) {
-        if (stopping_ || !FindDisplay(id, serial)) return;
+        DisplayRun* run = FindDisplay(id, serial);
+        if (stopping_ || !run) return;
+        const Spent spent = run->clock.Lap();
+        AddToTimeline(&run->timeline, JobPhase::kDisplay, kRanOnMaster, spent.wall_seconds,
+                      spent.cpu_seconds);
         if (!display) {
           DisplayFailed(id, display.error());
           return;
@@ -190,6 +195,8 @@ void JobRounds::MarkDone(store::JobId id, uint64_t serial,
       [this, id, serial](Status s) {
         DisplayRun* run = FindDisplay(id, serial);
         if (!run) return;  // cancelled or paused meanwhile
+        timelines_[id] = std::move(run->timeline);
+        if (timelines_.size() > kKeptCheckpointReports) timelines_.erase(timelines_.begin());
         display_runs_.erase(id);
         if (!s) {
           // Held on a store fault: once the store writes again the job resumes at its last
@@ -239,6 +246,9 @@ Result<bool> JobRounds::OnPointResult(uint64_t agent, const protocol::PointResul
   const bool accepted =
       run.pieces->OnResult(agent, result.lease.batch_id, result.lease.attempt_id,
                            std::move(*values)) == DisplayPieces::Verdict::kAccepted;
+  if (accepted) {
+    AddToTimeline(&run.timeline, JobPhase::kDisplay, kRanOnAgents, 0, result.compute_seconds);
+  }
   if (run.pieces->Complete()) {
     PointValues whole = run.pieces->TakeValues();
     run.pieces.reset();

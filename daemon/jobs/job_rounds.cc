@@ -68,6 +68,13 @@ void JobRounds::RecordCheckpoint(store::JobId id, CheckpointReport report) {
   }
 }
 
+const JobTimeline* JobRounds::TimelineOf(store::JobId id) const {
+  if (const auto r = runners_.find(id); r != runners_.end()) return &r->second->timeline();
+  if (const auto d = display_runs_.find(id); d != display_runs_.end()) return &d->second.timeline;
+  const auto kept = timelines_.find(id);
+  return kept == timelines_.end() ? nullptr : &kept->second;
+}
+
 const JobRules* JobRounds::RulesOf(store::JobId id) const {
   const auto it = job_rules_.find(id);
   return it == job_rules_.end() ? nullptr : &it->second;

@@ -138,6 +138,10 @@ class JobRounds {
   // What the rules gave job `id`'s scene (RunningJob::rules), or null: kept as LastCheckpoint is,
   // so a job drawing its display, or done, still shows them.
   const JobRules* RulesOf(store::JobId id) const;
+  // Where job `id`'s time went on this master (core/job_timeline.h): a running job's so far, one
+  // drawing its display, or a finished one's (kept as LastCheckpoint is); null for any other, and
+  // what ran before a restart of the master is not in it.
+  const JobTimeline* TimelineOf(store::JobId id) const;
   // "preparing" (being meshed and loaded), "round", "reducing", "finishing" or "display" (its
   // display being drawn, job_display.cc) for a job this master runs; empty for any other.
   std::string_view PhaseOf(store::JobId id) const;
@@ -254,6 +258,7 @@ class JobRounds {
   static constexpr size_t kKeptCheckpointReports = 256;
   std::map<store::JobId, CheckpointReport> checkpoint_reports_;  // by id: oldest job first
   std::map<store::JobId, JobRules> job_rules_;                   // likewise
+  std::map<store::JobId, JobTimeline> timelines_;                // of finished jobs, likewise
   store::CheckpointPacer checkpoints_;                           // which rounds write a checkpoint
   std::map<store::JobId, bool> starting_;  // being prepared; true once cancelled meanwhile
   // OfferSubmittedMesh's, until the next start pass takes or drops it.

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "base/cpu_clock.h"
 #include "base/result.h"
 #include "codec/patch_scene_codec.h"
 #include "core/batch_tracer.h"
@@ -71,6 +72,13 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
     std::vector<store::StoredBatchResult> stored, SubmittedMesh meshed, size_t agents,
     double agents_rays_per_second) {
   const std::string job = "job " + std::to_string(record.id);
+  // The whole process's CPU: the start's direct light runs on a pool of its own.
+  LapClock lap;
+  JobTimeline timeline;
+  auto spent_on = [&](JobPhase phase) {
+    const Spent s = lap.Lap();
+    AddToTimeline(&timeline, phase, kRanOnMaster, s.wall_seconds, s.cpu_seconds);
+  };
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(bundle_blob);
   RADFARM_RETURN_IF_ERROR(bundle);
   const bool meshed_at_submission = !meshed.empty();
@@ -88,6 +96,7 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
     mesh.emplace(std::move(*built));
   }
   meshed = {};
+  spent_on(JobPhase::kMeshing);
 
   std::shared_ptr<RunningJob> runner(new RunningJob());
   runner->meshed_at_submission_ = meshed_at_submission;
@@ -136,6 +145,7 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   }();
   if (!driver) return Error{job + ": " + driver.error()};
   runner->driver_ = std::move(*driver);
+  spent_on(JobPhase::kDirectLight);  // the solver's start (and, packed before it, the scene)
   if (refined_scene) {
     // Agents trace the stored blob, the solver the rebuilt mesh: they must be the same elements.
     auto encoded = std::make_shared<const std::vector<uint8_t>>(
@@ -158,6 +168,9 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   } else if (!packed) {
     packed = PackPatchScene(runner->driver_->scene());
   }
+  spent_on(JobPhase::kMeshing);  // the refined scene encoded, the scene packed
+  runner->timeline_ = std::move(timeline);
+  runner->round_clock_ = LapClock();
   runner->wire_ = {static_cast<uint64_t>(record.id), runner->settings_, packed->hash,
                    static_cast<uint32_t>(runner->driver_->scene().patches.size())};
   runner->scene_ = std::move(packed);
@@ -351,9 +364,15 @@ void RunningJob::Fold(std::vector<std::pair<uint32_t, BatchResult>> results) {
   for (auto& [index, result] : results) fold_->Add(index, std::move(result));
 }
 
+void RunningJob::AddAgentSeconds(bool gather, double seconds) {
+  AddToTimeline(&timeline_, gather ? JobPhase::kGather : JobPhase::kRounds, kRanOnAgents, 0,
+                seconds);
+}
+
 RoundOutcome RunningJob::Reduce(const scheduler::CompletedRound& round, double round_seconds,
                                 bool checkpoint_due, BatchSizing sizing) {
   RoundOutcome out;
+  out.gather = round.plan.gather;
   const double seconds = totals_.seconds + round_seconds;
   // The round's verifications are done (the barrier). A refining job's caster goes before Apply,
   // whose refinement step builds its own for a new mesh. Any other job keeps it for its rounds:
@@ -447,6 +466,9 @@ void RunningJob::EncodeRefinedScene() {
 }
 
 bool RunningJob::InstallOutcome(RoundOutcome& outcome) {
+  const Spent spent = round_clock_.Lap();
+  AddToTimeline(&timeline_, outcome.gather ? JobPhase::kGather : JobPhase::kRounds, kRanOnMaster,
+                spent.wall_seconds, spent.cpu_seconds);
   if (outcome.new_scene) {
     scene_ = std::move(outcome.new_scene);
     wire_.scene_hash = outcome.new_scene_hash;

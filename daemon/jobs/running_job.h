@@ -31,8 +31,10 @@
 #include <utility>
 #include <vector>
 
+#include "base/cpu_clock.h"
 #include "base/result.h"
 #include "codec/job_bundle.h"
+#include "core/job_timeline.h"
 #include "core/patch_scene.h"
 #include "core/progress_estimator.h"
 #include "core/progressive_solver.h"
@@ -88,6 +90,7 @@ struct RoundOutcome {
   // The most results the fold held at once, waiting for an earlier batch's (RoundReduction):
   // the master's memory for results, which stays small while batches come back in plan order.
   size_t results_held_peak = 0;
+  bool gather = false;  // the round was the final gather
 };
 
 // What the rules (core/solve_rules.h) gave the job's scene at its size: the direct-light start and
@@ -131,6 +134,16 @@ class RunningJob {
   // Loop thread, once kFinished: the direct light the solve started from, one value per patch of
   // its last mesh (ProgressiveSolver::direct_light), or empty; the display starts from it.
   const std::vector<Rgb>& direct_light() const { return driver_->solver().direct_light(); }
+  // Loop thread: where the job's time went so far (core/job_timeline.h): Prepare's meshing and
+  // start, the agents' compute seconds, and the master's wall and CPU seconds from one round's
+  // end to the next's as InstallOutcome takes it back (the whole process's CPU: the loop's work
+  // on the results and the compute thread's, every job's together when several run).
+  const JobTimeline& timeline() const { return timeline_; }
+  JobTimeline TakeTimeline() { return std::move(timeline_); }
+  // Loop thread: `seconds` of agents' computing on accepted results of the gather (`gather`) or
+  // of a shooting round.
+  void AddAgentSeconds(bool gather, double seconds);
+  bool running_gather() const { return running_gather_; }
   // The rays its display is expected to cast (RoundDriver::display_rays_forecast).
   uint64_t display_rays_forecast() const { return driver_->display_rays_forecast(); }
   const JobTotals& totals() const { return totals_; }
@@ -314,6 +327,8 @@ class RunningJob {
   uint64_t running_rays_ = 0;
   uint64_t rays_before_round_ = 0;  // totals_.rays when the running round started
   bool running_gather_ = false;
+  JobTimeline timeline_;  // Prepare's (worker, before the loop has the job), then the loop's
+  LapClock round_clock_;  // the master's, since Prepare ended or the last round's end
   mutable ProgressEstimate last_progress_;
 };
 

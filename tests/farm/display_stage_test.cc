@@ -3,6 +3,8 @@
 // killed while drawing it.
 #include <signal.h>
 
+#include <set>
+
 #include "tests/farm/farm_fixture.h"
 
 namespace radfarm::testing {
@@ -23,6 +25,25 @@ TEST_F(FarmTest, TheMasterDrawsTheDisplayAndFetchWritesRendersFiles) {
     EXPECT_FALSE(fetched.at(f).empty()) << f;
     EXPECT_TRUE(fetched.at(f) == rendered.at(f)) << f << ": farm and render differ";
   }
+  // Where the job's time went: the master's phases, the agents' tracing of the rounds, the
+  // gather and the display, and this client's outputs, in status and in stats.json.
+  const nlohmann::json status = Status(id);
+  ASSERT_TRUE(status.contains("timeline")) << status.dump();
+  std::set<std::string> places;
+  for (const nlohmann::json& e : status["timeline"]) {
+    places.insert(e["phase"].get<std::string>() + "@" + e["where"].get<std::string>());
+    EXPECT_GE(e["cpu_seconds"].get<double>(), 0) << e.dump();
+  }
+  for (const char* entry : {"direct light@master", "rounds@master", "rounds@agents",
+                            "gather@master", "gather@agents", "display@master", "display@agents"}) {
+    EXPECT_TRUE(places.count(entry)) << entry << " not in " << status["timeline"].dump();
+  }
+  const nlohmann::json stats =
+      nlohmann::json::parse(ReadFile(Path("fetched") + "/stats.json"), nullptr, false);
+  ASSERT_TRUE(stats.contains("timeline")) << stats.dump();
+  EXPECT_EQ(stats["timeline"].size(), status["timeline"].size() + 1);
+  EXPECT_EQ(stats["timeline"].back()["phase"], "outputs");
+  EXPECT_EQ(stats["timeline"].back()["where"], "client");
 }
 
 TEST_F(FarmTest, AMasterKilledWhileDrawingTheDisplayDrawsItAgainAfterItsRestart) {
