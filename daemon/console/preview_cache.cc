@@ -14,6 +14,11 @@ PreviewFlight::PreviewFlight() : done_(::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK))
   LOOP_CHECK(done_.valid());
 }
 
+void PreviewFlight::Wake() {
+  const uint64_t one = 1;
+  LOOP_CHECK(::write(done_.get(), &one, sizeof one) == sizeof one);
+}
+
 bool PreviewFlight::cancelled() const {
   std::lock_guard lock(mutex_);
   return cancelled_;
@@ -95,11 +100,11 @@ void PreviewCache::Finish(const std::shared_ptr<PreviewFlight>& flight, Result<s
   bool cancelled = false;
   {
     std::lock_guard flight_lock(flight->mutex_);
+    if (flight->png_) return;
     cancelled = flight->cancelled_;
     flight->png_ = std::move(png);
   }
-  const uint64_t one = 1;
-  LOOP_CHECK(::write(flight->done_.get(), &one, sizeof one) == sizeof one);
+  flight->Wake();
   if (cancelled) return;  // forgotten already; a newer flight of its key may be running
   if (!ok) {
     Forget(flight.get());  // the next request tries again
@@ -111,6 +116,20 @@ void PreviewCache::Finish(const std::shared_ptr<PreviewFlight>& flight, Result<s
     flights_.erase(recent_.back());
     recent_.pop_back();
   }
+}
+
+void PreviewCache::Close(const std::string& why) {
+  std::lock_guard lock(mutex_);
+  for (auto& [key, flight] : flights_) {
+    {
+      std::lock_guard flight_lock(flight->mutex_);
+      if (flight->png_) continue;
+      flight->png_ = Error{why};
+    }
+    flight->Wake();
+  }
+  flights_.clear();
+  recent_.clear();
 }
 
 void PreviewCache::Forget(const PreviewFlight* flight) {

@@ -57,6 +57,8 @@ class PreviewFlight {
 
  private:
   friend class PreviewCache;
+  void Wake();  // makes done_ readable for every waiter
+
   mutable std::mutex mutex_;
   std::optional<Result<std::string>> png_;
   int requesters_ = 0;
@@ -78,8 +80,12 @@ class PreviewCache {
   // The requester has its answer or its client has gone. The last requester of an unfinished
   // flight cancels it.
   void Leave(const std::shared_ptr<PreviewFlight>& flight);
-  // The computation's end: waiters wake; a PNG is kept for later requests, an error is not.
+  // The computation's end: waiters wake; a PNG is kept for later requests, an error is not. Once
+  // a flight has finished (or Close ended it), later Finishes are ignored.
   void Finish(const std::shared_ptr<PreviewFlight>& flight, Result<std::string> png);
+  // Shutdown: every unfinished flight ends with `why` (its waiters wake: the HTTP threads must
+  // not wait for drawings the stopping preview thread will not finish), and nothing is kept.
+  void Close(const std::string& why);
 
   // Previews drawn, flights cancelled, requests answered from a kept or running flight.
   uint64_t drawn() const;

@@ -215,6 +215,7 @@ void WebConsole::Stop() {
   stopped_ = true;
   board_.Close();                 // event streams end
   if (caller_) caller_->Close();  // HTTP threads waiting on the loop get 503
+  previews_cache_->Close("the master is shutting down");  // and those waiting on a drawing
   publisher_.Stop();
   if (server_) server_->Stop();  // joins the HTTP threads, none of them waiting now
   if (previews_) previews_->Shutdown(loop::WorkQueue::ShutdownMode::kCancel, [] {});

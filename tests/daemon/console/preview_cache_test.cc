@@ -92,6 +92,23 @@ TEST(PreviewCacheTest, TheLastRequesterLeavingCancelsTheComputation) {
   EXPECT_EQ(cache.drawn(), 0u);
 }
 
+TEST(PreviewCacheTest, ClosingEndsEveryWaitAndKeepsNothing) {
+  PreviewCache cache;
+  PreviewCache::Joined running = cache.Join({7, 12, 1000});
+  PreviewCache::Joined drawn = cache.Join({8, 3, 1000});
+  cache.Finish(drawn.flight, std::string("png"));
+  std::thread waiter([&] {
+    const auto png = running.flight->Wait(-1, kLong);
+    ASSERT_TRUE(png.has_value());
+    EXPECT_EQ(png->error(), "the master is shutting down");
+  });
+  cache.Close("the master is shutting down");
+  waiter.join();
+  cache.Finish(running.flight, std::string("too late"));  // ignored
+  EXPECT_FALSE((*running.flight->Wait(-1, kLong)).ok());
+  EXPECT_TRUE(cache.Join({8, 3, 1000}).compute);
+}
+
 TEST(PreviewCacheTest, AWaitEndsWhenItsClientCloses) {
   PreviewCache cache;
   PreviewCache::Joined joined = cache.Join({7, 12, 1000});
