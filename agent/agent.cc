@@ -217,8 +217,8 @@ void Agent::Connect(const loop::SocketAddress& address) {
 void Agent::OnAuthenticated(const protocol::WelcomeMsg& welcome) {
   state_ = State::kConnected;
   // The backoff starts over only once the master sends something after its Welcome (OnMessage):
-  // a master that refuses agents does so right after the handshake, and an agent that took each
-  // Welcome for a success came back every 50-100 ms for as long as it was refused.
+  // a master refuses agents right after the handshake, so a Welcome alone is no success, and a
+  // refused agent must ask less and less often.
   draining_ = false;
   LogLine(LogLevel::kInfo, "agent") << "connected to " << master_ << " as " << settings_.name
                                     << " (agent id " << welcome.agent_id << ")";

@@ -1,7 +1,6 @@
 // PreviewCache: the status page's job previews, drawn once per checkpoint and shared. A preview
-// costs the whole solution read and the scene meshed again; drawn afresh per request, 64 clients
-// of one big job held a core, tripled the master's memory and kept a core busy for minutes after
-// they left. So:
+// costs the whole solution read and the scene meshed again, and any client that can read the page
+// can ask for one as often as it likes. So:
 //
 //  - a preview is keyed by its job's latest checkpoint (PreviewKey) and kept once drawn, until a
 //    newer checkpoint of the job is asked for (at most kMaxKept jobs' previews, least recently
