@@ -216,8 +216,9 @@ void Agent::Connect(const loop::SocketAddress& address) {
 
 void Agent::OnAuthenticated(const protocol::WelcomeMsg& welcome) {
   state_ = State::kConnected;
-  attempt_ = 0;
-  backoff_.Reset();
+  // The backoff starts over only once the master sends something after its Welcome (OnMessage):
+  // a master refuses agents right after the handshake, so a Welcome alone is no success, and a
+  // refused agent must ask less and less often.
   draining_ = false;
   LogLine(LogLevel::kInfo, "agent") << "connected to " << master_ << " as " << settings_.name
                                     << " (agent id " << welcome.agent_id << ")";
@@ -230,6 +231,10 @@ void Agent::OnAuthenticated(const protocol::WelcomeMsg& welcome) {
 
 void Agent::OnMessage(const protocol::Message& message) {
   if (state_ != State::kConnected) return;  // stopping: the work messages no longer matter
+  if (attempt_ > 0) {  // the first message since the Welcome: this connection is a success
+    attempt_ = 0;
+    backoff_.Reset();
+  }
   if (const auto* lease = std::get_if<protocol::LeaseAssignmentMsg>(&message)) {
     runner_->OnLease(*lease, !draining_);
     UpdateIdleTimer();
@@ -307,6 +312,10 @@ void Agent::OnLinkClosed(const LinkClosed& closed) {
                       " (this agent's results failed validation: check its hardware "
                       "and that it runs the master's radfarm release)",
                   kBlocklistedRetry);
+  } else if (closed.refused) {
+    // Full, or this name has its connections: the backoff grows, so a refused agent asks less
+    // and less often, and says why at each step.
+    ScheduleRetry("refused by", closed.reason);
   } else if (closed.was_authenticated && closed.auth_failed) {
     // `radfarm agents revoke`: our key is no good any more; retrying is refused at the handshake
     // until an operator enrolls this agent again and gives it the new key.

@@ -110,7 +110,9 @@ class Agent {
   std::string master_;  // HOST:PORT as given or last read from the master file, for logs
   ReconnectBackoff backoff_;
   State state_ = State::kWaiting;
-  uint32_t attempt_ = 0;  // attempts since the last handshake that succeeded
+  // Attempts since the last connection that succeeded: one the master sent a message on after
+  // its Welcome.
+  uint32_t attempt_ = 0;
   bool draining_ = false;
   bool exit_when_drained_ = false;
   size_t resolving_ = 0;        // name lookups on the I/O queue

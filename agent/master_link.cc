@@ -75,6 +75,7 @@ void MasterLink::OnFrame(std::span<const uint8_t> payload) {
   if (const auto& close = session_.peer_close(); close && accepted->deliver) {
     auth_failed_ = close->code == protocol::CloseCode::kAuthFailed;
     blocklisted_ = close->code == protocol::CloseCode::kBlocklisted;
+    refused_ = was_authenticated_ && !heard_after_welcome_ && !auth_failed_ && !blocklisted_;
     close_reason_ =
         "the master closed the connection: " + std::string(protocol::CloseCodeName(close->code)) +
         (close->detail.empty() ? "" : " (" + close->detail + ")");
@@ -87,7 +88,9 @@ void MasterLink::OnFrame(std::span<const uint8_t> payload) {
     if (callbacks_.on_authenticated) callbacks_.on_authenticated(session_.welcome());
     return;
   }
-  if (accepted->deliver && callbacks_.on_message) callbacks_.on_message(frame->message);
+  if (!accepted->deliver) return;
+  heard_after_welcome_ = true;
+  if (callbacks_.on_message) callbacks_.on_message(frame->message);
 }
 
 void MasterLink::FailWith(const std::string& reason) {
@@ -102,6 +105,7 @@ void MasterLink::OnClose(const std::string& reason) {
   closed.auth_failed = auth_failed_;
   closed.blocklisted = blocklisted_;
   closed.was_authenticated = was_authenticated_;
+  closed.refused = refused_;
   std::function<void(const LinkClosed&)> on_closed = std::move(callbacks_.on_closed);
   if (on_closed) on_closed(closed);  // last: it may destroy this link
 }

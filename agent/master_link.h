@@ -35,6 +35,10 @@ struct LinkClosed {
   // The master closed with Close(Blocklisted): its results for a job failed validation too often.
   bool blocklisted = false;
   bool was_authenticated = false;
+  // The master closed with Close right after its Welcome, before any other message: it refuses
+  // this agent for now (it has its --max-agents, or this name has its connections); the detail
+  // in `reason` says which.
+  bool refused = false;
 };
 
 class MasterLink {
@@ -94,6 +98,8 @@ class MasterLink {
   bool auth_failed_ = false;
   bool blocklisted_ = false;
   bool was_authenticated_ = false;
+  bool heard_after_welcome_ = false;  // an application message came after the Welcome
+  bool refused_ = false;
 };
 
 }  // namespace radfarm::agent

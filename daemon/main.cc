@@ -29,10 +29,11 @@ struct Flags {
       http_token_file;
   std::optional<uint32_t> heartbeat_ms, agent_timeout_ms, handshake_timeout_ms, control_timeout_ms,
       hold_retry_ms, checkpoint_keep, max_running_jobs, max_agents, max_unauthenticated,
-      blocklist_seconds;
+      max_connections_per_agent, blocklist_seconds;
   std::optional<double> checkpoint_seconds, checkpoint_time_share, lease_seconds,
       keep_results_after_seconds, verify_fraction;
-  std::optional<uint64_t> local_round_rays, gather_ahead_rays, max_store_bytes;
+  std::optional<uint64_t> local_round_rays, gather_ahead_rays, max_store_bytes,
+      max_frame_bytes_held;
   std::optional<bool> keep_round_results;
   bool detach = false;
 };
@@ -102,6 +103,15 @@ void AddFlags(CLI::App& app, Flags* f) {
                  "Connections in the handshake at once; a newer one closes the oldest, and they "
                  "never count toward --max-agents (default 64)")
       ->check(CLI::Range(1u, 1000000u));
+  app.add_option("--max-connections-per-agent", f->max_connections_per_agent,
+                 "Authenticated connections at once under one agent name; more are refused after "
+                 "their handshake (default 2)")
+      ->check(CLI::Range(1u, 1000000u));
+  app.add_option("--max-frame-bytes-held", f->max_frame_bytes_held,
+                 "Bytes held at once in agents' frames still arriving, all connections together; "
+                 "a frame that would pass it closes its connection (default 268435456, at least "
+                 "16777216)")
+      ->check(CLI::Range(kMinFrameBytesHeld, uint64_t{1} << 40));
   app.add_option("--local-round-rays", f->local_round_rays,
                  "Rounds of at most this many rays are computed by the master, not leased to "
                  "agents; 0 = never (default 262144)")
@@ -162,6 +172,8 @@ Result<MasterConfig> ResolveConfig(const Flags& f) {
   Override(f.blocklist_seconds, &c.blocklist_seconds);
   Override(f.verify_fraction, &c.verify_fraction);
   Override(f.max_unauthenticated, &c.max_unauthenticated);
+  Override(f.max_connections_per_agent, &c.max_connections_per_agent);
+  Override(f.max_frame_bytes_held, &c.max_frame_bytes_held);
   Override(f.local_round_rays, &c.local_round_rays);
   Override(f.gather_ahead_rays, &c.gather_ahead_rays);
   Override(f.keep_round_results, &c.keep_round_results);

@@ -20,7 +20,37 @@ uint32_t ReadFramePrefix(const uint8_t* bytes) {
   return value;
 }
 
-FrameSplitter::FrameSplitter(uint32_t max_payload_bytes) : max_payload_bytes_(max_payload_bytes) {}
+FrameSplitter::FrameSplitter(uint32_t max_payload_bytes, std::shared_ptr<FrameBudget> budget)
+    : max_payload_bytes_(max_payload_bytes), budget_(std::move(budget)) {}
+
+FrameSplitter::~FrameSplitter() {
+  if (budget_) budget_->Give(charged_);
+}
+
+Status FrameSplitter::Reserve(size_t bytes) {
+  size_t capacity = partial_.capacity();
+  if (bytes > capacity) capacity = std::min<size_t>(expected_, std::max(bytes, 2 * capacity));
+  // A buffer kept from an earlier frame is the connection's own; only growth past it is charged.
+  if (budget_ && capacity > charged_ && capacity > partial_.capacity()) {
+    if (!budget_->Take(capacity - charged_)) {
+      error_ = "frame of " + std::to_string(expected_) + " bytes refused at " +
+               std::to_string(partial_.size()) + " bytes: unfinished frames already hold " +
+               std::to_string(budget_->held()) + " of the " + std::to_string(budget_->limit()) +
+               " bytes allowed (" + budget_->name() + ")";
+      return Error{error_};
+    }
+    charged_ = capacity;
+  }
+  partial_.reserve(capacity);
+  return Ok{};
+}
+
+void FrameSplitter::FrameDone() {
+  partial_.clear();
+  if (partial_.capacity() > kKeptCapacity) partial_.shrink_to_fit();
+  if (budget_) budget_->Give(charged_);
+  charged_ = 0;
+}
 
 Status FrameSplitter::Feed(std::span<const uint8_t> bytes, const OnPayload& on_payload) {
   if (failed()) return Error{error_};
@@ -49,13 +79,13 @@ Status FrameSplitter::Feed(std::span<const uint8_t> bytes, const OnPayload& on_p
       continue;
     }
     const size_t take = std::min<size_t>(expected_ - partial_.size(), bytes.size());
+    RADFARM_RETURN_IF_ERROR(Reserve(partial_.size() + take));
     partial_.insert(partial_.end(), bytes.begin(), bytes.begin() + static_cast<ptrdiff_t>(take));
     bytes = bytes.subspan(take);
     if (partial_.size() < expected_) break;
     in_payload_ = false;
     const bool go_on = on_payload(partial_);
-    partial_.clear();
-    if (partial_.capacity() > kKeptCapacity) partial_.shrink_to_fit();
+    FrameDone();
     if (!go_on) return Ok{};
   }
   return Ok{};

@@ -3,9 +3,11 @@
 // docs/PROTOCOL.md; what the payload holds is protocol/'s business).
 //
 // Memory: the length is checked against the limit as soon as its 4 bytes are in, before anything
-// is reserved for the payload, and the buffer grows only with bytes that actually arrived, so a
-// peer cannot make us allocate more than it sends. Complete frames inside one chunk are passed
-// straight from the chunk without copying. After an error the splitter stays failed: a byte
+// is reserved for the payload, and the buffer grows only with bytes that actually arrived
+// (doubling, to at most the frame's length), so a peer cannot make us allocate more than twice what
+// it sends. With a FrameBudget, a partial frame's buffer is charged to it while the frame is
+// unfinished, and a growth it cannot cover fails the stream. Complete frames inside one chunk are
+// passed straight from the chunk without copying. After an error the splitter stays failed: a byte
 // stream cannot be resynchronised. Not thread-safe (one per connection).
 #pragma once
 
@@ -13,11 +15,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "base/result.h"
+#include "loop/frame_budget.h"
 
 namespace radfarm::loop {
 
@@ -28,7 +32,10 @@ uint32_t ReadFramePrefix(const uint8_t* bytes);
 
 class FrameSplitter {
  public:
-  explicit FrameSplitter(uint32_t max_payload_bytes);
+  explicit FrameSplitter(uint32_t max_payload_bytes, std::shared_ptr<FrameBudget> budget = nullptr);
+  ~FrameSplitter();
+  FrameSplitter(const FrameSplitter&) = delete;
+  FrameSplitter& operator=(const FrameSplitter&) = delete;
 
   // Called for each complete payload, valid during the call only. Returning false stops the
   // splitter at once; the rest of the chunk is dropped (the caller is closing the stream).
@@ -40,7 +47,8 @@ class FrameSplitter {
   void set_max_payload_bytes(uint32_t max_payload_bytes) { max_payload_bytes_ = max_payload_bytes; }
   uint32_t max_payload_bytes() const { return max_payload_bytes_; }
 
-  // Fails (and stays failed) on a length above the limit.
+  // Fails (and stays failed) on a length above the limit, or a partial frame the budget cannot
+  // hold.
   Status Feed(std::span<const uint8_t> bytes, const OnPayload& on_payload);
 
   // Bytes of the current partial frame held here, and the memory reserved for them.
@@ -49,6 +57,11 @@ class FrameSplitter {
   bool failed() const { return !error_.empty(); }
 
  private:
+  // Room for `bytes` of the partial frame, charged to the budget; fails the stream if it is full.
+  Status Reserve(size_t bytes);
+  // The partial frame was handed on: its buffer shrinks, its charge goes back.
+  void FrameDone();
+
   uint32_t max_payload_bytes_;
   std::array<uint8_t, kFramePrefixBytes> prefix_{};
   size_t prefix_have_ = 0;
@@ -56,6 +69,8 @@ class FrameSplitter {
   uint32_t expected_ = 0;
   std::vector<uint8_t> partial_;  // payload bytes of a frame split across chunks
   std::string error_;
+  std::shared_ptr<FrameBudget> budget_;
+  uint64_t charged_ = 0;  // what the unfinished frame's buffer holds of the budget
 };
 
 }  // namespace radfarm::loop

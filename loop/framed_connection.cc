@@ -288,7 +288,7 @@ void FramedConnection::Start(const ConnectionOptions& options, OnFrame on_frame,
   internal::CheckLoopThread(impl->timer.loop);
   impl->started = true;
   impl->options = options;
-  impl->splitter = std::make_unique<FrameSplitter>(options.max_frame_bytes);
+  impl->splitter = std::make_unique<FrameSplitter>(options.max_frame_bytes, options.frame_budget);
   impl->on_frame = std::move(on_frame);
   impl->on_close = std::move(on_close);
   if (!impl->connecting) impl->StartReading();

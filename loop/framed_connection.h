@@ -14,8 +14,9 @@
 // it may destroy the connection. Destroying a connection closes it silently (no on_close).
 //
 // Limits: a peer announcing a frame above max_frame_bytes is dropped before anything is allocated
-// for it; if more than max_queued_bytes wait to be written (the peer does not read), the
-// connection is closed rather than buffering without bound.
+// for it, and one whose partial frame the frame_budget cannot hold is dropped then; if more than
+// max_queued_bytes wait to be written (the peer does not read), the connection is closed rather
+// than buffering without bound.
 #pragma once
 
 #include <chrono>
@@ -28,6 +29,7 @@
 
 #include "base/result.h"
 #include "loop/event_loop.h"
+#include "loop/frame_budget.h"
 #include "loop/handle_block.h"
 #include "loop/socket_address.h"
 
@@ -47,6 +49,9 @@ struct ConnectionOptions {
   // included); any received byte restarts it. Change it with SetReadIdleTimeout.
   std::chrono::milliseconds read_idle_timeout{0};
   std::chrono::milliseconds flush_timeout{5000};  // CloseAfterFlush's deadline
+  // Shared by connections whose unfinished frames together may hold only so much (none: each
+  // holds at most its own frame limit).
+  std::shared_ptr<FrameBudget> frame_budget;
 };
 
 class FramedConnection {

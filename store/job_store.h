@@ -23,6 +23,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "base/result.h"
@@ -124,7 +125,8 @@ struct StoredRoundResults {
   std::vector<std::string> damaged;
 };
 
-// A finished job's display (codec/display_blob.h's bytes) and the checkpoint round it was drawn from.
+// A finished job's display (codec/display_blob.h's bytes) and the checkpoint round it was drawn
+// from.
 struct StoredDisplay {
   uint32_t round = 0;
   std::vector<uint8_t> display;
@@ -207,6 +209,9 @@ class JobStore {
   // Freed pages are reused by later checkpoints, so the file stays near keep_last+1 checkpoints.
   Status PruneCheckpoints(JobId job, int keep_last);
   Result<int64_t> CountCheckpoints(JobId job);
+  // The round and created_at_ms of the checkpoint with the highest round, without reading its
+  // arrays or checking them (what a preview of it is cached under); nullopt: none.
+  Result<std::optional<std::pair<uint32_t, int64_t>>> LatestCheckpointStamp(JobId job);
 
   // --- results of the round in progress (round_results, see StoredBatchResult) ---
   // Writes `results` (all of job `job`) in one transaction; a result stored again replaces the row.

@@ -202,6 +202,17 @@ Status JobStore::PruneCheckpoints(JobId job, int keep_last) {
   return stmt->Run();
 }
 
+Result<std::optional<std::pair<uint32_t, int64_t>>> JobStore::LatestCheckpointStamp(JobId job) {
+  Result<Statement> stmt = db_.Prepare(
+      "SELECT round, created_at_ms FROM checkpoints WHERE job_id = ?1 ORDER BY round DESC LIMIT 1");
+  RADFARM_RETURN_IF_ERROR(stmt);
+  stmt->Bind(1, job);
+  Result<bool> row = stmt->Step();
+  RADFARM_RETURN_IF_ERROR(row);
+  if (!*row) return std::optional<std::pair<uint32_t, int64_t>>();
+  return std::optional(std::pair(static_cast<uint32_t>(stmt->Int(0)), stmt->Int(1)));
+}
+
 Result<int64_t> JobStore::CountCheckpoints(JobId job) {
   Result<Statement> stmt = db_.Prepare("SELECT count(*) FROM checkpoints WHERE job_id = ?1");
   RADFARM_RETURN_IF_ERROR(stmt);

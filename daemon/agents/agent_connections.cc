@@ -3,8 +3,10 @@
 #include <algorithm>
 
 #include "daemon/scheduler/result_intake.h"
+#include "loop/frame_budget.h"
 #include "loop/log.h"
 #include "protocol/batch_convert.h"
+#include "protocol/limits.h"
 #include "protocol/scene_transfer.h"
 
 namespace radfarm::daemon {
@@ -22,6 +24,9 @@ double AcceptedSeconds(const std::vector<const protocol::BatchOutcome*>& results
   }
   return seconds;
 }
+
+static_assert(kMinFrameBytesHeld >= protocol::kDefaultMaxFrameBytes,
+              "--max-frame-bytes-held must hold one whole frame of the agents' limit");
 
 using loop::LogLevel;
 using loop::LogLine;
@@ -81,6 +86,8 @@ AgentConnections::AgentConnections(loop::EventLoop& loop, const Clock& clock,
       blocklist_(options.blocklist_duration),
       credentials_(secret, credentials, config.allow_shared_secret),
       doors_(config.max_unauthenticated),
+      frame_budget_(std::make_shared<loop::FrameBudget>(config.max_frame_bytes_held,
+                                                        "--max-frame-bytes-held")),
       door_log_(kDoorLogLines, kDoorLogWindow) {}
 
 void AgentConnections::LogAtDoor(const std::string& line) {
@@ -97,6 +104,7 @@ void AgentConnections::OnConnection(std::unique_ptr<loop::FramedConnection> conn
   AgentLinkOptions options;
   options.handshake_timeout = std::chrono::milliseconds(config_.handshake_timeout_ms);
   options.idle_close_timeout = std::chrono::milliseconds(6 * uint64_t{config_.agent_timeout_ms});
+  options.frame_budget = frame_budget_;
   AgentLink::Callbacks callbacks{
       [this](AgentLink& link) { OnAuthenticated(link); },
       [this](AgentLink& link, protocol::Message& m) { OnAgentMessage(link, m); },
@@ -143,18 +151,32 @@ size_t AgentConnections::Revoked(const store::AgentCredential& credential) {
   return closing.size();
 }
 
-void AgentConnections::OnAuthenticated(AgentLink& link) {
-  doors_.Authenticated(link.id());
-  size_t agents = 0;
+std::optional<std::string> AgentConnections::RefusalOf(const AgentLink& link) {
+  size_t agents = 0, same_name = 0;
   for (const auto& [id, other] : links_) {
-    agents += other.get() != &link && other->authenticated() && !other->closing();
+    if (other.get() == &link || !other->authenticated() || other->closing()) continue;
+    ++agents;
+    same_name += other->name() == link.name();
+  }
+  // The name first: one credential must not take every place, and its owner learns which limit.
+  if (same_name >= config_.max_connections_per_agent) {
+    doors_.RefusedPerAgent();
+    return "agent " + link.name() + " already has " + std::to_string(same_name) +
+           " connections (--max-connections-per-agent)";
   }
   if (agents >= config_.max_agents) {
     doors_.RefusedFull();
-    LogAtDoor(link.Describe() + ": refused, already " + std::to_string(agents) +
-              " agents (--max-agents)");
-    link.Close(protocol::CloseCode::kShutdown,
-               "the master has its " + std::to_string(config_.max_agents) + " agents");
+    return "the master has its " + std::to_string(config_.max_agents) + " agents (--max-agents)";
+  }
+  return std::nullopt;
+}
+
+void AgentConnections::OnAuthenticated(AgentLink& link) {
+  doors_.Authenticated(link.id());
+  if (const std::optional<std::string> refusal = RefusalOf(link)) {
+    // Right after the Welcome: the agent backs off further at each refusal (agent/README.md).
+    LogAtDoor(link.Describe() + ": refused: " + *refusal);
+    link.Close(protocol::CloseCode::kShutdown, *refusal);
     return;
   }
   LogLine(LogLevel::kInfo, "agents")

@@ -1,6 +1,8 @@
 // AgentConnections: the master's side of its agent connections. It accepts connections (one
 // AgentLink each; those still in the handshake under DoorKeeper's quota, door_keeper.h), admits
-// up to max_agents authenticated agents, hands
+// up to max_agents authenticated agents and max_connections_per_agent under one name (the rest
+// are refused with a Close saying why, right after their handshake), charges every connection's
+// unfinished frames to one FrameBudget of max_frame_bytes_held (loop/frame_budget.h), hands
 // leases of the running jobs' rounds to agents with room (Dispatch), takes their results, lease
 // returns and scene requests, sends heartbeats, and takes the leases of an agent that disconnects
 // or misses its heartbeats away (the job's scheduler requeues them).
@@ -20,6 +22,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -74,6 +77,8 @@ class AgentConnections {
   // The connections at the door: strangers waiting, evicted, refused (control `agents`).
   const DoorCounters& doors() const { return doors_.counters(); }
   uint32_t max_unauthenticated() const { return doors_.max_unauthenticated(); }
+  // What the agents' unfinished frames hold now, at most, and are refused (control `agents`).
+  const loop::FrameBudget& frame_budget() const { return *frame_budget_; }
 
   // After the store committed `radfarm agents enroll`: the name proves itself with this key from
   // its next handshake on (a live connection stays). Returns the key to hand out.
@@ -108,6 +113,9 @@ class AgentConnections {
   // link is closing (an invalid result, as for a round's).
   bool OnGatherAheadResults(AgentLink& link, RunningJob& runner,
                             const std::vector<const protocol::BatchOutcome*>& results);
+  // Why `link`, just authenticated, may not stay (its name's connections, --max-agents), or
+  // nothing.
+  std::optional<std::string> RefusalOf(const AgentLink& link);
   // A refused or pre-authentication close, through the rate limiter.
   void LogAtDoor(const std::string& line);
   // Hands leases to one agent.
@@ -126,6 +134,7 @@ class AgentConnections {
   JobBlocklist blocklist_;
   AgentCredentials credentials_;
   DoorKeeper doors_;
+  std::shared_ptr<loop::FrameBudget> frame_budget_;
   LogRateLimiter door_log_;
   bool stopping_ = false;
 };

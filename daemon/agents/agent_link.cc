@@ -39,6 +39,7 @@ void AgentLink::Start() {
   last_heard_ms_ = clock_.NowMs();
   loop::ConnectionOptions options;
   options.max_frame_bytes = options_.max_frame_bytes;
+  options.frame_budget = options_.frame_budget;
   connection_->Start(
       options, [this](std::span<const uint8_t> payload) { OnFrame(payload); },
       [this](const std::string& reason) {

@@ -20,6 +20,7 @@
 
 #include "daemon/jobs/clock.h"
 #include "loop/event_loop.h"
+#include "loop/frame_budget.h"
 #include "loop/framed_connection.h"
 #include "loop/timer.h"
 #include "protocol/farm_secret.h"
@@ -34,6 +35,8 @@ struct AgentLinkOptions {
   // much earlier, after agent_timeout; this frees the socket of a peer that never comes back).
   std::chrono::milliseconds idle_close_timeout{30000};
   uint32_t max_frame_bytes = protocol::kDefaultMaxFrameBytes;
+  // What every agent's unfinished frames may hold together (--max-frame-bytes-held).
+  std::shared_ptr<loop::FrameBudget> frame_budget;
 };
 
 class AgentLink {

@@ -28,6 +28,8 @@ struct DoorCounters {
   uint64_t evicted = 0;               // closed to make room for a newer one (the quota)
   uint64_t closed_before_auth = 0;    // deadline, malformed or oversized frame, bad proof, EOF
   uint64_t refused_full = 0;          // authenticated with --max-agents agents connected
+  // Authenticated while its name had --max-connections-per-agent connections.
+  uint64_t refused_per_agent = 0;
 };
 
 class DoorKeeper {
@@ -42,6 +44,7 @@ class DoorKeeper {
   // `id` closed without authenticating. False if it had been evicted (counted and logged then).
   bool ClosedBeforeAuth(uint64_t id);
   void RefusedFull() { ++counters_.refused_full; }
+  void RefusedPerAgent() { ++counters_.refused_per_agent; }
 
   uint32_t max_unauthenticated() const { return max_; }
   const DoorCounters& counters() const { return counters_; }

@@ -11,6 +11,10 @@
 
 namespace radfarm::daemon {
 
+// max_frame_bytes_held at least: one whole frame of protocol::kDefaultMaxFrameBytes (the agents'
+// limit; daemon/agents checks that they agree).
+inline constexpr uint64_t kMinFrameBytesHeld = uint64_t{16} << 20;
+
 struct MasterConfig {
   std::string listen = "0.0.0.0:7878";  // agents connect here; port 0 picks a free port
   std::string state_dir = "/var/lib/radfarm";
@@ -62,6 +66,14 @@ struct MasterConfig {
   uint32_t max_agents = 4096;  // authenticated agents beyond this are refused
   // Connections still in the handshake at once; a newer one makes the oldest go (door_keeper.h).
   uint32_t max_unauthenticated = 64;
+  // Authenticated connections at once under one agent name (an enrolled name's key is its own):
+  // more are refused after their handshake, so one credential cannot take every --max-agents
+  // place. 2 lets an agent whose old connection the master has not yet seen die come back.
+  uint32_t max_connections_per_agent = 2;
+  // Bytes the master holds at once in frames still arriving, over every agent connection
+  // (loop/frame_budget.h): a frame that would pass it closes its connection, so peers trickling
+  // big frames cannot hold the master's memory. At least one whole frame of the largest size.
+  uint64_t max_frame_bytes_held = uint64_t{256} << 20;
   // Whether an agent that is not enrolled (`radfarm agents enroll`) may prove itself with the farm
   // secret. false: only enrolled agents, each with its own key, which can be revoked alone.
   bool allow_shared_secret = true;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 
@@ -16,7 +17,10 @@ namespace radfarm::daemon {
 
 inline constexpr uint32_t kPreviewPixels = 320;  // the longer side
 
-// `solution`: EncodeJobSolution's bytes (ControlRequests' fetch attachment).
-Result<std::string> RenderPreviewPng(std::span<const uint8_t> solution);
+// `solution`: EncodeJobSolution's bytes (ControlRequests' fetch attachment). `cancelled` is asked
+// between the steps (decode, mesh, display, draw): once it says true, the rest is skipped and the
+// result is an error (every requester has gone: preview_cache.h).
+Result<std::string> RenderPreviewPng(std::span<const uint8_t> solution,
+                                     const std::function<bool()>& cancelled = {});
 
 }  // namespace radfarm::daemon

@@ -2,6 +2,9 @@
 
 #include <sys/stat.h>
 
+#include <mutex>
+#include <optional>
+
 #include "base/atomic_file.h"
 #include "daemon/console/job_preview.h"
 #include "daemon/console/web/web_access.h"
@@ -27,9 +30,34 @@ web::WebReply ToWebReply(const ControlResponse& response) {
 
 }  // namespace
 
+// What the loop thread hands an HTTP thread waiting on a preview: the flight it joined for it.
+// Once the HTTP thread stopped waiting (Take), the loop joins nothing more for it.
+struct WebConsole::PreviewTicket {
+  std::mutex mutex;
+  bool taken = false;
+  std::shared_ptr<PreviewFlight> flight;
+
+  // Loop thread. False when the HTTP thread has stopped waiting.
+  bool Give(std::shared_ptr<PreviewFlight> joined) {
+    std::lock_guard lock(mutex);
+    if (taken) return false;
+    flight = std::move(joined);
+    return true;
+  }
+  // HTTP thread, once.
+  std::shared_ptr<PreviewFlight> Take() {
+    std::lock_guard lock(mutex);
+    taken = true;
+    return std::move(flight);
+  }
+};
+
 WebConsole::WebConsole(loop::EventLoop& loop, ControlRequests& control, JobRounds& jobs,
                        StoreThread& store)
-    : loop_(loop), control_(control), publisher_(loop, control, jobs, store, board_) {}
+    : loop_(loop),
+      control_(control),
+      store_(store),
+      publisher_(loop, control, jobs, store, board_) {}
 
 WebConsole::~WebConsole() { Stop(); }
 
@@ -84,9 +112,8 @@ web::WebHandlers WebConsole::Handlers() {
         [this, command, id](web::LoopCaller::Reply reply) { Act(command, id, std::move(reply)); },
         kCallTimeout);
   };
-  handlers.preview = [this](int64_t id) {
-    return caller_->Call(
-        [this, id](web::LoopCaller::Reply reply) { Preview(id, std::move(reply)); }, kCallTimeout);
+  handlers.preview = [this](int64_t id, int connection_fd) {
+    return PreviewFor(id, connection_fd);
   };
   return handlers;
 }
@@ -105,19 +132,81 @@ void WebConsole::Act(ControlCommand command, int64_t id, web::LoopCaller::Reply 
   });
 }
 
-void WebConsole::Preview(int64_t id, web::LoopCaller::Reply reply) {
+web::WebReply WebConsole::PreviewFor(int64_t id, int connection_fd) {
+  auto ticket = std::make_shared<PreviewTicket>();
+  web::WebReply joined = caller_->Call(
+      [this, id, ticket](web::LoopCaller::Reply reply) {
+        JoinPreview(id, ticket, std::move(reply));
+      },
+      kCallTimeout);
+  const std::shared_ptr<PreviewFlight> flight = ticket->Take();
+  if (!flight) return joined;  // no such job, no checkpoint yet, the store failed, or no answer
+  std::optional<Result<std::string>> png = flight->Wait(connection_fd, kCallTimeout);
+  previews_cache_->Leave(flight);
+  if (!png) return web::JsonError(503, "the preview was not drawn in time");
+  if (!*png) return web::JsonError(500, png->error());
+  return {200, "image/png", std::move(**png)};
+}
+
+void WebConsole::JoinPreview(int64_t id, std::shared_ptr<PreviewTicket> ticket,
+                             web::LoopCaller::Reply reply) {
+  using Stamp = std::optional<std::pair<uint32_t, int64_t>>;
+  store_.Run(
+      [id](store::JobStore& s) -> Result<std::optional<Stamp>> {
+        Result<std::optional<store::JobRecord>> job = s.GetJob(store::JobId(id));
+        RADFARM_RETURN_IF_ERROR(job);
+        if (!*job) return std::optional<Stamp>();
+        Result<Stamp> stamp = s.LatestCheckpointStamp(store::JobId(id));
+        RADFARM_RETURN_IF_ERROR(stamp);
+        return std::optional<Stamp>(*stamp);
+      },
+      [this, id, ticket, reply](Result<std::optional<Stamp>> found) {
+        if (!found) return reply(web::JsonError(500, found.error()));
+        const std::string job = "job " + std::to_string(id);
+        if (!*found) return reply(web::JsonError(404, "no " + job));
+        if (!**found) return reply(web::JsonError(409, job + " has no checkpoint yet"));
+        const PreviewKey key{id, (**found)->first, (**found)->second};
+        PreviewCache::Joined joined = previews_cache_->Join(key);
+        if (!ticket->Give(joined.flight)) {
+          previews_cache_->Leave(joined.flight);  // its requester stopped waiting meanwhile
+          return;
+        }
+        reply({202, "text/plain", "joined"});  // the HTTP thread waits on the flight now
+        if (joined.compute) DrawPreview(key, std::move(joined.flight));
+      });
+}
+
+void WebConsole::DrawPreview(const PreviewKey& key, std::shared_ptr<PreviewFlight> flight) {
   ControlRequest request;
   request.command = ControlCommand::kFetch;
-  request.id = id;
-  control_.Handle(std::move(request), [this, reply](ControlResponse response) {
-    if (!response.body.value("ok", false)) return reply(ToWebReply(response));
+  request.id = key.job;
+  control_.Handle(std::move(request), [this, key, flight](ControlResponse response) {
+    if (!response.body.value("ok", false)) {
+      return previews_cache_->Finish(flight,
+                                     Error{response.body.value("error", std::string("fetch"))});
+    }
     auto blob = std::make_shared<std::vector<uint8_t>>(std::move(response.attachment));
-    Status s = previews_->Submit([blob] { return RenderPreviewPng(*blob); },
-                                 [reply](Result<std::string> png) {
-                                   if (!png) return reply(web::JsonError(500, png.error()));
-                                   reply({200, "image/png", std::move(*png)});
-                                 });
-    if (!s) reply(web::JsonError(503, s.error()));
+    const auto start = std::chrono::steady_clock::now();
+    Status s = previews_->Submit(
+        [blob, flight] {
+          return RenderPreviewPng(*blob, [flight] { return flight->cancelled(); });
+        },
+        [cache = previews_cache_, key, flight, start](Result<std::string> png) {
+          const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(
+                              std::chrono::steady_clock::now() - start)
+                              .count();
+          if (flight->cancelled()) {
+            loop::LogLine(loop::LogLevel::kInfo, "http")
+                << "job " << key.job << ": preview of round " << key.round << " dropped after "
+                << ms << " ms: every request for it has gone";
+          } else if (png) {
+            loop::LogLine(loop::LogLevel::kInfo, "http")
+                << "job " << key.job << ": preview of round " << key.round << " drawn in " << ms
+                << " ms";
+          }
+          cache->Finish(flight, std::move(png));
+        });
+    if (!s) previews_cache_->Finish(flight, Error{s.error()});
   });
 }
 
@@ -126,6 +215,7 @@ void WebConsole::Stop() {
   stopped_ = true;
   board_.Close();                 // event streams end
   if (caller_) caller_->Close();  // HTTP threads waiting on the loop get 503
+  previews_cache_->Close("the master is shutting down");  // and those waiting on a drawing
   publisher_.Stop();
   if (server_) server_->Stop();  // joins the HTTP threads, none of them waiting now
   if (previews_) previews_->Shutdown(loop::WorkQueue::ShutdownMode::kCancel, [] {});

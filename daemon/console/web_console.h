@@ -8,6 +8,11 @@
 //     to ControlRequests::Handle, the control socket's own code for pause, resume, cancel and
 //     fetch; a preview is then drawn on the console's own preview thread.
 //
+// Previews (preview_cache.h): the HTTP thread asks the loop for the job's latest checkpoint (a
+// small store query) and joins the PreviewCache's flight of that checkpoint; only a new flight
+// fetches the solution and draws it. The HTTP thread then waits on the flight and on its client's
+// socket: a client that goes leaves the flight, and a flight every client left is cancelled.
+//
 // Loop thread: Start, Stop. Stop closes the board and the caller (so no HTTP thread waits on the
 // loop), then joins the HTTP threads; the object must outlive the master's store drain.
 #pragma once
@@ -17,6 +22,7 @@
 
 #include "base/result.h"
 #include "daemon/config/master_config.h"
+#include "daemon/console/preview_cache.h"
 #include "daemon/console/status_publisher.h"
 #include "daemon/console/web/http_server.h"
 #include "daemon/console/web/loop_caller.h"
@@ -51,10 +57,19 @@ class WebConsole {
   web::WebHandlers Handlers();
   // On the loop thread: `command` of job `id` through ControlRequests.
   void Act(ControlCommand command, int64_t id, web::LoopCaller::Reply reply);
-  void Preview(int64_t id, web::LoopCaller::Reply reply);
+  // HTTP thread: job `id`'s preview for the client on `connection_fd`.
+  web::WebReply PreviewFor(int64_t id, int connection_fd);
+  struct PreviewTicket;
+  // On the loop thread: finds job `id`'s latest checkpoint, joins its flight into `ticket`.
+  void JoinPreview(int64_t id, std::shared_ptr<PreviewTicket> ticket, web::LoopCaller::Reply reply);
+  // On the loop thread: fetches the solution and draws it on the preview thread.
+  void DrawPreview(const PreviewKey& key, std::shared_ptr<PreviewFlight> flight);
 
   loop::EventLoop& loop_;
   ControlRequests& control_;
+  StoreThread& store_;
+  // Shared with the preview thread's callbacks, which may run after Stop.
+  std::shared_ptr<PreviewCache> previews_cache_ = std::make_shared<PreviewCache>();
   web::StatusBoard board_;
   std::unique_ptr<web::LoopCaller> caller_;
   std::unique_ptr<loop::WorkQueue> previews_;

@@ -316,7 +316,12 @@ json ControlRequests::DoorsJson() const {
               {"authenticated", d.authenticated},
               {"evicted", d.evicted},
               {"closed_before_auth", d.closed_before_auth},
-              {"refused_full", d.refused_full}};
+              {"refused_full", d.refused_full},
+              {"refused_per_agent", d.refused_per_agent},
+              {"frame_bytes_held", agents_.frame_budget().held()},
+              {"frame_bytes_held_peak", agents_.frame_budget().peak()},
+              {"max_frame_bytes_held", agents_.frame_budget().limit()},
+              {"frames_refused_over_budget", agents_.frame_budget().refused()}};
 }
 
 json ControlRequests::EnrolledJson() const {

@@ -2,6 +2,10 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <regex>
+#include <string>
+#include <vector>
+
 #include "protocol/scene_transfer.h"
 #include "tests/agent/agent_process.h"
 #include "tests/agent/fake_master.h"
@@ -121,6 +125,71 @@ TEST(AgentConnectionTest, ABlocklistedAgentSaysWhyAndBacksOff) {
       << log;
   EXPECT_NE(log.find("retrying in 60000 ms"), std::string::npos) << log;
   EXPECT_EQ(master.Snapshot().accepted, 1) << log;
+  agent.Signal(SIGTERM);
+  EXPECT_EQ(agent.WaitExit(), 0) << agent.Log();
+}
+
+// The delays of the agent's "retrying in N ms" lines that follow `what`, in order.
+std::vector<int64_t> RetryDelays(const std::string& log, const std::string& what) {
+  std::vector<int64_t> delays;
+  const std::regex line(what + R"([^\n]*; retrying in (\d+) ms)");
+  for (auto it = std::sregex_iterator(log.begin(), log.end(), line); it != std::sregex_iterator();
+       ++it) {
+    delays.push_back(std::stoll((*it)[1]));
+  }
+  return delays;
+}
+
+// A master that refuses agents (full: --max-agents, or the name has its connections) does so
+// right after the handshake. A refused agent once took each Welcome for a success and reset its
+// backoff, coming back every 50-100 ms for as long as it was refused; it must back off
+// exponentially, and say why at each step.
+TEST(AgentConnectionTest, AnAgentRefusedAfterItsHandshakeBacksOffExponentially) {
+  ScratchDir dir;
+  const protocol::FarmSecret secret = TestSecret(0x46);
+  WriteSecretFile(dir.File("key"), secret);
+  FakeMasterOptions options;
+  options.after_welcome = {
+      protocol::CloseMsg{protocol::CloseCode::kShutdown, "the master has its 4 agents"}};
+  FakeMaster master(secret, options);
+  AgentProcess agent(AgentArgs(master.address(), dir.File("key"), 1));
+  const std::string refused = "refused by " + master.address();
+  ASSERT_TRUE(agent.WaitForLog(refused, 6)) << agent.Log();
+  const std::string log = agent.Log();
+  EXPECT_NE(log.find("the master has its 4 agents"), std::string::npos) << log;
+  const std::vector<int64_t> delays = RetryDelays(log, refused);
+  ASSERT_GE(delays.size(), 6u) << log;
+  // Equal jitter under a base of 100 ms doubling per refusal: delay k is in [base/2, base].
+  int64_t base = 100;
+  for (size_t k = 0; k < 6; ++k) {
+    EXPECT_GE(delays[k], base / 2) << "refusal " << k << "\n" << log;
+    EXPECT_LE(delays[k], base) << "refusal " << k << "\n" << log;
+    base *= 2;
+  }
+  agent.Signal(SIGTERM);
+  EXPECT_EQ(agent.WaitExit(), 0) << agent.Log();
+}
+
+// A connection the master talks on after its Welcome is a success: the next loss starts the
+// backoff over.
+TEST(AgentConnectionTest, AConnectionTheMasterTalksOnResetsTheBackoff) {
+  ScratchDir dir;
+  const protocol::FarmSecret secret = TestSecret(0x47);
+  WriteSecretFile(dir.File("key"), secret);
+  FakeMasterOptions options = Heartbeats(60000, false);
+  options.close_first_connections = 3;
+  FakeMaster master(secret, options);
+  AgentProcess agent(AgentArgs(master.address(), dir.File("key"), 1));
+  ASSERT_TRUE(agent.WaitForLog(Connected(master, 4))) << agent.Log();
+  master.Send(protocol::HeartbeatMsg{});
+  ASSERT_TRUE(agent.WaitForLog("heartbeat from " + master.address())) << agent.Log();
+  master.Drop();
+  const std::string lost = "lost the connection to " + master.address();
+  ASSERT_TRUE(agent.WaitForLog(lost, 4)) << agent.Log();
+  const std::vector<int64_t> delays = RetryDelays(agent.Log(), lost);
+  ASSERT_EQ(delays.size(), 4u) << agent.Log();
+  EXPECT_GE(delays[2], 200) << agent.Log();  // the third loss in a row: base 400 ms
+  EXPECT_LE(delays[3], 100) << agent.Log();  // after a connection that worked: base 100 ms again
   agent.Signal(SIGTERM);
   EXPECT_EQ(agent.WaitExit(), 0) << agent.Log();
 }

@@ -89,7 +89,7 @@ TEST_F(FarmTest, JunkConnectionsNeitherKeepARealAgentOutNorHoldMemory) {
   // A second real agent is refused after its handshake: --max-agents counts agents, not sockets.
   StartAgent("second");
   EXPECT_TRUE(WaitUntil([&] {
-    return CountLines(MasterLog(), "refused, already 1 agents (--max-agents)") > 0;
+    return CountLines(MasterLog(), "refused: the master has its 1 agents (--max-agents)") > 0;
   })) << MasterLog();
   for (int fd : junk) ::close(fd);
 }

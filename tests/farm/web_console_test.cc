@@ -8,6 +8,8 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <thread>
+#include <vector>
 
 #include "testing/http_client.h"
 #include "tests/farm/farm_fixture.h"
@@ -113,6 +115,27 @@ TEST_F(WebConsoleTest, MetricsCountARealJobsBatchesCheckpointsAndAgents) {
   EXPECT_EQ(preview.headers.at("content-type"), "image/png");
   EXPECT_EQ(preview.body.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
   EXPECT_EQ(Request("GET", "/api/jobs/999/preview.png").status, 404);
+
+  // Previews were drawn afresh per request (the solution read, the scene meshed again). Now one
+  // checkpoint is drawn once: concurrent requests after the first get the same bytes, undrawn.
+  const std::string path = "/api/jobs/" + std::to_string(id) + "/preview.png";
+  std::vector<std::thread> clients;
+  std::vector<HttpResponse> answers(8);
+  for (HttpResponse& answer : answers) {
+    clients.emplace_back([&] {
+      Result<HttpResponse> r = HttpRequest(address_, "GET", path, {});
+      if (r.ok()) answer = *r;
+    });
+  }
+  for (std::thread& t : clients) t.join();
+  for (const HttpResponse& answer : answers) {
+    EXPECT_EQ(answer.status, 200) << answer.body;
+    EXPECT_EQ(answer.body, preview.body);
+  }
+  EXPECT_EQ(CountLinesWithBoth(MasterLog(), "job " + std::to_string(id) + ": preview of round",
+                               "drawn in"),
+            1u)
+      << MasterLog();
 }
 
 // Progress ran backwards on the farm: status and the page climbed high in the first round and fell

@@ -144,6 +144,8 @@ TEST(ExampleConfigTest, RadfarmdReadsItsExampleAndItHoldsTheDefaults) {
   EXPECT_EQ(config.lease_seconds, defaults.lease_seconds);
   EXPECT_EQ(config.max_agents, defaults.max_agents);
   EXPECT_EQ(config.max_unauthenticated, defaults.max_unauthenticated);
+  EXPECT_EQ(config.max_connections_per_agent, defaults.max_connections_per_agent);
+  EXPECT_EQ(config.max_frame_bytes_held, defaults.max_frame_bytes_held);
   EXPECT_EQ(config.allow_shared_secret, defaults.allow_shared_secret);
   EXPECT_EQ(config.local_round_rays, defaults.local_round_rays);
   EXPECT_EQ(config.keep_round_results, defaults.keep_round_results);

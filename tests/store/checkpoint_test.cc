@@ -113,6 +113,20 @@ TEST_F(CheckpointTest, SaveReportsWhatTheCheckpointCost) {
   EXPECT_GE(cost.commit_seconds, 0);
 }
 
+// The key the web console caches a job's preview under: the latest checkpoint's round and time
+// of writing, read without its arrays.
+TEST_F(CheckpointTest, TheLatestStampIsTheHighestRoundsRoundAndTime) {
+  EXPECT_FALSE(store_->LatestCheckpointStamp(job_)->has_value());
+  for (uint32_t round : {2u, 7u, 5u}) {
+    Checkpoint checkpoint = Make(job_, round, 4);
+    ASSERT_TRUE(store_->SaveCheckpoint(RoundOf(checkpoint), checkpoint).ok());
+  }
+  const std::optional<std::pair<uint32_t, int64_t>> stamp = *store_->LatestCheckpointStamp(job_);
+  ASSERT_TRUE(stamp.has_value());
+  EXPECT_EQ(stamp->first, 7u);
+  EXPECT_EQ(stamp->second, (*store_->LoadLatestCheckpoint(job_))->created_at_ms);
+}
+
 TEST_F(CheckpointTest, PruneKeepsExactlyTheLastK) {
   for (uint32_t round = 0; round < 10; ++round) {
     Checkpoint checkpoint = Make(job_, round, 4);

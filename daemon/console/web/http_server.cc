@@ -100,6 +100,10 @@ struct HttpGlue {
     request.host = Header(c, "Host");
     request.authorization = Header(c, "Authorization");
     request.client = ClientOf(c);
+    if (const MHD_ConnectionInfo* info =
+            MHD_get_connection_info(c, MHD_CONNECTION_INFO_CONNECTION_FD)) {
+      request.connection_fd = info->connect_fd;
+    }
     request.marked = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "X-Radfarm-Request");
     request.body = std::move(pending->body);
     WebResponse response = pending->too_big

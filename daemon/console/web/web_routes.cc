@@ -161,7 +161,7 @@ WebResponse WebRoutes::JobRoute(const WebRequest& request, std::string_view rest
   if (what == "preview.png") {
     if (request.method != "GET" && request.method != "HEAD") return Error(405, "GET only");
     if (!access_.MayRead(authenticated)) return Unauthorized();
-    return Reply(handlers_.preview(id));
+    return Reply(handlers_.preview(id, request.connection_fd));
   }
   if (what != "pause" && what != "resume" && what != "cancel") return Error(404, "no such page");
   if (request.method != "POST") return Error(405, "POST only");

@@ -45,6 +45,7 @@ struct WebRequest {
   std::string host, authorization;  // headers ("" when absent)
   bool marked = false;              // the X-Radfarm-Request header is present
   std::string client;               // the client's IP address
+  int connection_fd = -1;           // the client's socket, to see it leave (-1: unknown)
   std::string body;
 };
 
@@ -58,8 +59,9 @@ struct WebResponse {
 struct WebHandlers {
   // "pause", "resume" or "cancel" of job `id`.
   std::function<WebReply(std::string_view action, int64_t id)> act;
-  // A PNG of job `id`'s latest checkpoint.
-  std::function<WebReply(int64_t id)> preview;
+  // A PNG of job `id`'s latest checkpoint; `connection_fd` as in WebRequest: a wait for it ends
+  // when the client goes.
+  std::function<WebReply(int64_t id, int connection_fd)> preview;
 };
 
 // The time sessions and lockouts are measured in; tests pass a fake one.

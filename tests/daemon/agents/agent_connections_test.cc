@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
+#include <vector>
 
 #include "tests/daemon/agents/fake_agent.h"
 #include "tests/daemon/master_parts.h"
@@ -136,6 +138,44 @@ TEST(AgentConnectionsTest, AStaleAgentThatSpeaksAgainGetsWorkAgain) {
   ASSERT_TRUE(master.RunUntil([&] { return agent.batches_received() > received; }));
   EXPECT_EQ(master.agents().active(), 1u);
   EXPECT_GT(CountersOf(master, job).batches_leased, 0u);
+}
+
+// One credential took every --max-agents place (60 connections under one enrolled name), and
+// real agents were refused. A name now has at most max_connections_per_agent connections; the
+// rest are refused after their handshake, told why, and another name still gets in.
+TEST(AgentConnectionsTest, OneNameGetsAtMostItsConnectionsAndAnotherNameStillGetsIn) {
+  MasterConfig config = TestMasterConfig();
+  config.max_agents = 4;
+  MasterParts master(config);
+  std::vector<std::unique_ptr<FakeAgent>> one_name;
+  for (int i = 0; i < 6; ++i) {
+    one_name.push_back(std::make_unique<FakeAgent>(master.loop(), master.agent_address(),
+                                                   master.secret(), "one-key", false));
+    ASSERT_TRUE(one_name.back()->Connect().ok());
+    // One at a time, so that which ones stay is known.
+    ASSERT_TRUE(master.RunUntil(
+        [&] { return one_name.back()->authenticated() || one_name.back()->closed(); }));
+  }
+  ASSERT_TRUE(master.RunUntil([&] {
+    return std::count_if(one_name.begin(), one_name.end(),
+                         [](const auto& a) { return a->closed(); }) == 4;
+  }));
+  for (size_t i = 0; i < one_name.size(); ++i) {
+    if (i < 2) {
+      EXPECT_FALSE(one_name[i]->closed()) << i;
+    } else {
+      EXPECT_EQ(one_name[i]->closed_reason(),
+                "agent one-key already has 2 connections (--max-connections-per-agent)")
+          << i;
+    }
+  }
+  EXPECT_EQ(master.agents().doors().refused_per_agent, 4u);
+  EXPECT_EQ(master.agents().active(), 2u);
+
+  FakeAgent other(master.loop(), master.agent_address(), master.secret(), "other", true);
+  ASSERT_TRUE(other.Connect().ok());
+  ASSERT_TRUE(master.RunUntil([&] { return master.agents().active() == 3; }));
+  EXPECT_FALSE(other.closed());
 }
 
 }  // namespace

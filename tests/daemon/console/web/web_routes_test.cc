@@ -19,7 +19,7 @@ class WebRoutesTest : public ::testing::Test {
       acted.push_back(std::string(action) + " " + std::to_string(id));
       return WebReply{200, "application/json", R"({"ok":true})"};
     };
-    handlers.preview = [](int64_t id) {
+    handlers.preview = [](int64_t id, int) {
       return WebReply{200, "image/png", "png of " + std::to_string(id)};
     };
     return WebRoutes(WebAccess(loopback, token), board, handlers, [this] { return now; });
