@@ -25,12 +25,16 @@ _GATHER = re.compile(r"^final gather")
 class JobRunner:
     """One bake's commands. `poll` and `cancel` belong to the thread that made the runner."""
 
-    def __init__(self, radfarm, job_file, out_dir, control=None, clock=time.monotonic):
+    def __init__(self, radfarm, job_file, out_dir, control=None, clock=time.monotonic,
+                 on_line=None):
+        """`on_line(runner)`, if given, is called after each line a command prints has been
+        taken in (poll takes in all that came since the last call at once)."""
         self.radfarm = radfarm
         self.job_file = job_file
         self.out_dir = out_dir
         self.control = control  # the farm's control socket; None: render on this machine
         self.clock = clock
+        self._listener = on_line
         self.state = RUNNING
         self.stage = ""  # what the bake is doing, in words
         self.progress = 0.0  # 0..1, never falls
@@ -202,6 +206,8 @@ class JobRunner:
                 self._on_exit(code)
         elif name == "out":
             self._on_line(line)
+            if self._listener is not None:
+                self._listener(self)
         else:
             self._stderr.append(line)
 
