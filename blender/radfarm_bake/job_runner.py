@@ -160,8 +160,11 @@ class JobRunner:
         self.progress = max(self.progress, min(max(fraction, 0.0), 1.0))
 
     def _error_text(self, what):
+        # radfarm's last line on stderr says why, after its "radfarm: " prefix.
         lines = [line for line in self._stderr if line.strip()]
-        return lines[-1] if lines else "%s failed" % what
+        if not lines:
+            return "%s failed" % what
+        return lines[-1][len("radfarm: "):] if lines[-1].startswith("radfarm: ") else lines[-1]
 
     def _finish(self):
         self.state = DONE

@@ -61,6 +61,7 @@ class RADFARM_OT_bake(bpy.types.Operator):
     bl_idname = "radfarm.bake"
     bl_label = "Bake"
     bl_description = "Export the scene, light it with radfarm and apply the result"
+    bl_options = {"REGISTER", "UNDO"}
 
     _timer = None
 
@@ -114,7 +115,7 @@ class RADFARM_OT_bake(bpy.types.Operator):
         return {"RUNNING_MODAL"}
 
     def modal(self, context, event):
-        if event.type != "TIMER" or event.timer != self._timer:
+        if event.type != "TIMER":  # ours, or another's: polling more often does no harm
             return {"PASS_THROUGH"}
         running = _Bake.runner.poll()
         for area in context.screen.areas:
@@ -146,6 +147,7 @@ class RADFARM_OT_apply(bpy.types.Operator):
     bl_idname = "radfarm.apply"
     bl_label = "Apply Again"
     bl_description = "Apply the last bake's result again, as the panel's Result says"
+    bl_options = {"REGISTER", "UNDO"}
 
     @classmethod
     def poll(cls, context):
@@ -158,15 +160,28 @@ class RADFARM_OT_apply(bpy.types.Operator):
         return {"FINISHED"}
 
 
+@bpy.app.handlers.persistent
+def _cancel_on_load(_):
+    # Opening another file ends the modal operator that polled the bake: nothing would ever
+    # apply it, so it stops, and its folder belongs to the file it came from.
+    if baking():
+        _Bake.runner.cancel()
+    _Bake.runner = None
+    _Bake.out_dir = None
+
+
 CLASSES = (RADFARM_OT_bake, RADFARM_OT_cancel, RADFARM_OT_apply)
 
 
 def register():
     for cls in CLASSES:
         bpy.utils.register_class(cls)
+    bpy.app.handlers.load_pre.append(_cancel_on_load)
 
 
 def unregister():
+    if _cancel_on_load in bpy.app.handlers.load_pre:
+        bpy.app.handlers.load_pre.remove(_cancel_on_load)
     if baking():
         _Bake.runner.cancel()
     for cls in reversed(CLASSES):

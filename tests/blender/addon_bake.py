@@ -6,7 +6,8 @@
 # WHERE is LOCAL or FARM (CONTROL: the master's control socket), RESULT LIT_COPIES or LIGHTMAPS.
 # The add-on must be installed in $BLENDER_USER_SCRIPTS/addons. The script enables it, models a
 # closed room (two-sided walls, a floor, a table and a box sharing one material, a one-sided lamp
-# panel; the first three and the box with a second UV map for lightmaps), presses Bake, and checks:
+# panel, a point lamp; the first four with a second UV map for lightmaps), presses Bake, and checks:
+# - the point lamp exported as radfarm reads lamps: intensity = watts / (4 pi);
 # - the user's objects keep their names and materials (in LIGHTMAPS a shared material is copied
 #   for each object, nodes added, its own nodes all kept);
 # - LIT_COPIES: each mesh has a lit copy "NAME lit" with a colour attribute, the originals hidden,
@@ -19,7 +20,10 @@
 #   within 3% (see TOLERANCE).
 # Exits 1 with a message on the first failed check.
 import csv
+import json
+import math
 import os
+import struct
 import sys
 
 import addon_utils
@@ -106,6 +110,11 @@ objects = [room,
            add("plane", "Lamp", lamp, (0.0, 0.0, 2.48), (1.0, 0.6, 1.0), (3.141592653589793, 0, 0))]
 for obj in objects[:4]:
     lightmap_uv(obj)
+# A lamp beside the panel: it must reach radfarm in the emitters' units (export.py).
+bpy.ops.object.light_add(type="POINT", location=(-1.2, 0.8, 2.0))
+bulb = bpy.context.active_object
+bulb.name = "Bulb"
+bulb.data.energy = 40.0
 own_materials = {obj.name: [m.name for m in obj.data.materials] for obj in objects}
 own_nodes = {m.name: sorted(n.name for n in m.node_tree.nodes) for m in bpy.data.materials}
 
@@ -122,6 +131,18 @@ settings.lightmap_size = 64
 if bpy.ops.radfarm.bake() != {"FINISHED"}:
     fail("Bake did not finish")
 out = os.path.join(folder, "out")
+
+# The lamp as exported: Blender's watts over 4 pi, as an emissive surface's strength counts.
+with open(os.path.join(folder, "scene.glb"), "rb") as f:
+    data = f.read()
+scene_json = json.loads(data[20:20 + struct.unpack_from("<I", data, 12)[0]])
+lights = scene_json.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
+if len(lights) != 1 or abs(lights[0]["intensity"] - 40.0 / (4 * math.pi)) > 1e-6:
+    fail("the lamp was exported as %s, expected intensity 40 / (4 pi)" % lights)
+if bpy.data.objects.get("Bulb").type != "LIGHT" or any(o.type == "LIGHT" for o in (
+        bpy.data.collections["radfarm lit"].objects if "radfarm lit" in bpy.data.collections
+        else [])):
+    fail("the user's lamp is gone, or came back twice")
 
 # Each object by its own name, its own materials (or a copy of a shared one) with their nodes.
 for obj in objects:

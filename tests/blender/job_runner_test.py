@@ -91,7 +91,7 @@ class JobRunnerTest(unittest.TestCase):
         runner = self.start(control="c.sock")
         self.run_to_end(runner)
         self.assertEqual(runner.state, job_runner.FAILED)
-        self.assertEqual(runner.message, "radfarm: scene.glb: no emitter")
+        self.assertEqual(runner.message, "scene.glb: no emitter")
         self.assertEqual(len(self.commands()), 1, "went on after a failed submit")
 
     def test_a_failed_farm_job_is_not_fetched(self):
