@@ -9,6 +9,7 @@ import time
 import unittest
 
 source_dir = sys.argv.pop(1)
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, os.path.join(source_dir, "blender", "radfarm_bake"))
 import job_runner  # noqa: E402
 
