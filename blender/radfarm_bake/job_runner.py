@@ -68,7 +68,7 @@ class JobRunner:
         try:
             self._process = subprocess.Popen(self._command(args), stdin=subprocess.DEVNULL,
                                              stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                             text=True, bufsize=1)
+                                             encoding="utf-8", errors="replace", bufsize=1)
         except OSError as error:
             self._fail("cannot run %s: %s" % (self.radfarm, error.strerror))
             return

@@ -2,6 +2,7 @@
 radfarm commands (job_runner.py) and the UI never waits for them; from a script or in background
 mode, where no timer runs, Bake waits for the result itself."""
 
+import atexit
 import os
 import tempfile
 
@@ -170,6 +171,12 @@ def _cancel_on_load(_):
     _Bake.out_dir = None
 
 
+def _cancel_on_quit():
+    # Quitting Blender leaves no radfarm command running and no farm job nobody will fetch.
+    if baking():
+        _Bake.runner.cancel()
+
+
 CLASSES = (RADFARM_OT_bake, RADFARM_OT_cancel, RADFARM_OT_apply)
 
 
@@ -177,11 +184,13 @@ def register():
     for cls in CLASSES:
         bpy.utils.register_class(cls)
     bpy.app.handlers.load_pre.append(_cancel_on_load)
+    atexit.register(_cancel_on_quit)
 
 
 def unregister():
     if _cancel_on_load in bpy.app.handlers.load_pre:
         bpy.app.handlers.load_pre.remove(_cancel_on_load)
+    atexit.unregister(_cancel_on_quit)
     if baking():
         _Bake.runner.cancel()
     for cls in reversed(CLASSES):
