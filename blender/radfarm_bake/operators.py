@@ -40,6 +40,19 @@ def status_line(runner):
     return "radfarm: %s, %d%%%s" % (runner.stage, int(100 * runner.progress), eta)
 
 
+def _advance(context, wait_seconds=0.0):
+    """Takes in what the bake's commands printed (waiting up to WAIT_SECONDS for it) and shows it
+    in the status bar and the panel; returns True while the bake runs. Both ways of running Bake
+    call it: the modal operator at each timer tick, and execute in a loop."""
+    running = _Bake.runner.poll(wait_seconds)
+    if context.workspace is not None:
+        context.workspace.status_text_set(status_line(_Bake.runner) if running else None)
+    for area in context.screen.areas if context.screen is not None else []:
+        if area.type == "VIEW_3D":
+            area.tag_redraw()
+    return running
+
+
 def _export_originals(settings, folder):
     # The export sees the user's own objects: the originals lit copies hid are shown, the lit
     # copies hidden, and both put back as they were afterwards.
@@ -102,7 +115,7 @@ class RADFARM_OT_bake(bpy.types.Operator):
     def execute(self, context):
         if not self._start(context):
             return {"CANCELLED"}
-        while _Bake.runner.poll(wait_seconds=1.0):
+        while _advance(context, wait_seconds=1.0):
             pass
         return self._finish(context)
 
@@ -112,21 +125,15 @@ class RADFARM_OT_bake(bpy.types.Operator):
         wm = context.window_manager
         self._timer = wm.event_timer_add(0.25, window=context.window)
         wm.modal_handler_add(self)
-        context.workspace.status_text_set(status_line(_Bake.runner))
+        _advance(context)
         return {"RUNNING_MODAL"}
 
     def modal(self, context, event):
         if event.type != "TIMER":  # ours, or another's: polling more often does no harm
             return {"PASS_THROUGH"}
-        running = _Bake.runner.poll()
-        for area in context.screen.areas:
-            if area.type == "VIEW_3D":
-                area.tag_redraw()
-        if running:
-            context.workspace.status_text_set(status_line(_Bake.runner))
+        if _advance(context):
             return {"PASS_THROUGH"}
         context.window_manager.event_timer_remove(self._timer)
-        context.workspace.status_text_set(None)
         return self._finish(context)
 
 
