@@ -130,6 +130,29 @@ def _original_name(imported_name, names):
 # --- lightmaps ----------------------------------------------------------------------------------
 
 
+def unplug_lightmaps():
+    """Connects each material with lightmap nodes straight to its own shader again, for an
+    export: glTF would write the lightmap as emission, and the next bake would light the scene
+    with its own result. Returns what plug_lightmaps needs to put them back."""
+    unplugged = []
+    for material in bpy.data.materials:
+        mix = material.node_tree.nodes.get(_NODE + " mix") if material.node_tree else None
+        if mix is None or not mix.outputs["Shader"].is_linked:
+            continue
+        surface = mix.outputs["Shader"].links[0].to_socket
+        links = material.node_tree.links
+        links.remove(mix.outputs["Shader"].links[0])
+        if mix.inputs[1].is_linked:
+            links.new(mix.inputs[1].links[0].from_socket, surface)
+        unplugged.append((material, mix, surface))
+    return unplugged
+
+
+def plug_lightmaps(unplugged):
+    for material, mix, surface in unplugged:
+        material.node_tree.links.new(mix.outputs["Shader"], surface)
+
+
 def add_lightmap(obj, image_path, strength):
     """Adds OBJ's lightmap to each of its materials. A material other objects use too is copied
     for OBJ first, since each object's lightmap is its own image."""

@@ -1,6 +1,6 @@
 """Bake, Cancel and Apply. Bake from the UI is a modal operator: a window timer polls the running
 radfarm commands (job_runner.py) and the UI never waits for them; from a script or in background
-mode, where no timer runs, Bake waits for the result itself."""
+mode, where Blender calls execute (no window events), Bake waits for the result itself."""
 
 import atexit
 import os
@@ -54,16 +54,19 @@ def _advance(context, wait_seconds=0.0):
 
 
 def _export_originals(settings, folder):
-    # The export sees the user's own objects: the originals lit copies hid are shown, the lit
-    # copies hidden, and both put back as they were afterwards.
+    # The export sees the user's own objects as they were before any bake: the originals lit
+    # copies hid are shown, the lit copies hidden, the lightmaps unplugged from the materials,
+    # and all put back as they were afterwards.
     shown = apply.show_originals()
     collection = bpy.data.collections.get(apply.LIT_COLLECTION)
     copies = [o for o in collection.objects if o.visible_get()] if collection else []
     for obj in copies:
         obj.hide_set(True)
+    unplugged = apply.unplug_lightmaps()
     try:
         return export.export_scene(folder, settings)
     finally:
+        apply.plug_lightmaps(unplugged)
         for obj in copies:
             obj.hide_set(False)
         for obj in shown:

@@ -6,7 +6,9 @@
 # WHERE is LOCAL or FARM (CONTROL: the master's control socket), RESULT LIT_COPIES or LIGHTMAPS.
 # The add-on must be installed in $BLENDER_USER_SCRIPTS/addons. The script enables it, models a
 # closed room (two-sided walls, a floor, a table and a box sharing one material, a one-sided lamp
-# panel, a point lamp; the first four with a second UV map for lightmaps), presses Bake, and checks:
+# panel, a point lamp; the first four with a second UV map for lightmaps), presses Bake twice (the
+# second bake exports the user's objects as the first did, not the first one's result, and
+# replaces it), and checks:
 # - the point lamp exported as radfarm reads lamps: intensity = watts / (4 pi);
 # - the user's objects keep their names and materials (in LIGHTMAPS a shared material is copied
 #   for each object, nodes added, its own nodes all kept);
@@ -128,14 +130,25 @@ settings.result = result
 settings.tolerance = 0.01
 settings.patch_size = 0.25
 settings.lightmap_size = 64
-if bpy.ops.radfarm.bake() != {"FINISHED"}:
-    fail("Bake did not finish")
+# Bake twice: the second export must see the user's objects as the first found them (the first
+# result's lit copies hidden, its hidden originals shown, its lightmaps not exported as emission),
+# and its result must replace the first, not add to it.
+for _ in range(2):
+    if bpy.ops.radfarm.bake() != {"FINISHED"}:
+        fail("Bake did not finish")
 out = os.path.join(folder, "out")
 
 # The lamp as exported: Blender's watts over 4 pi, as an emissive surface's strength counts.
 with open(os.path.join(folder, "scene.glb"), "rb") as f:
     data = f.read()
 scene_json = json.loads(data[20:20 + struct.unpack_from("<I", data, 12)[0]])
+exported = sorted(n["name"] for n in scene_json["nodes"])
+if exported != sorted([obj.name for obj in objects] + ["Bulb"]):
+    fail("the second bake exported %s" % exported)
+# The first bake's lightmaps are light the scene gives, not light it emits.
+emitters = sorted(m["name"] for m in scene_json["materials"] if any(m.get("emissiveFactor", [0])))
+if emitters != ["lamp"] or any("emissiveTexture" in m for m in scene_json["materials"]):
+    fail("the second bake exported emitters %s" % emitters)
 lights = scene_json.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
 if len(lights) != 1 or abs(lights[0]["intensity"] - 40.0 / (4 * math.pi)) > 1e-6:
     fail("the lamp was exported as %s, expected intensity 40 / (4 pi)" % lights)
@@ -268,9 +281,11 @@ report = []
 exposure_scale = None
 lit = bpy.data.collections.get("radfarm lit")
 copies = {o.get("radfarm_lit_of"): o for o in (lit.objects if lit else []) if o.type == "MESH"}
+if lit is None or len(lit.objects) != len(copies):
+    fail("the lit copies are %s" % ([o.name for o in lit.objects] if lit else None))
 lightmapped = [obj.name for obj in objects[:4]] if result == "LIGHTMAPS" else []
 for obj in objects:
-    materials = own_materials[obj.name]
+    materials = [m.name for m in obj.data.materials]  # as the second bake exported them
     if obj.name in lightmapped:
         if obj.name in copies or not obj.visible_get():
             fail("%s has a lightmap but a lit copy too, or is hidden" % obj.name)
@@ -279,6 +294,8 @@ for obj in objects:
         if texture is None or texture.image is None or not texture.image.filepath.endswith(
                 os.path.join("lightmaps", obj.name + ".png")):
             fail("%s: no lightmaps/%s.png in its material" % (obj.name, obj.name))
+        if sum(n.name.startswith("radfarm lightmap") for n in tree.nodes) != 4:
+            fail("%s: the second bake added lightmap nodes again" % obj.name)
         if tree.nodes["radfarm lightmap uv"].uv_map != obj.data.uv_layers[1].name:
             fail("%s: the lightmap is not on its second UV map" % obj.name)
         output = [n for n in tree.nodes if n.type == "OUTPUT_MATERIAL" and n.is_active_output][0]
