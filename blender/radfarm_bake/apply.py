@@ -7,7 +7,7 @@ Two ways, by the panel's choice:
 - lightmaps: each object that got a lightmap (a second UV map) keeps its materials, each with
   nodes added (tagged `radfarm lightmap ...`): its second UV map into an Image Texture of
   lightmaps/NAME.png into an Emission, mixed over the material's own surface; objects without a
-  lightmap come back as lit copies.
+  lightmap, or without a material, come back as lit copies.
 """
 
 import os
@@ -34,7 +34,9 @@ def apply_result(context, out_dir, mode):
         for name in names:
             obj = bpy.data.objects.get(name)
             image_path = os.path.join(out_dir, "lightmaps", name + ".png")
-            if obj is not None and obj.type == "MESH" and os.path.isfile(image_path):
+            # An object with no material has none to keep the lightmap in: it gets a lit copy.
+            if (obj is not None and obj.type == "MESH" and os.path.isfile(image_path)
+                    and any(slot.material for slot in obj.material_slots)):
                 add_lightmap(obj, image_path, 1.0 / scale)
                 lightmapped.append(name)
     copies = import_lit_copies(context, lit_path, names, skip=set(lightmapped))

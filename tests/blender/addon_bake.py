@@ -15,7 +15,8 @@
 # - LIT_COPIES: each mesh has a lit copy "NAME lit" with a colour attribute, the originals hidden,
 #   the viewports in Solid with the colour attribute and backface culling; LIGHTMAPS: each
 #   lightmapped object's materials show lightmaps/NAME.png on its second UV map, the lamp comes
-#   back as a lit copy, the viewports in Material Preview;
+#   back as a lit copy, the viewports in Material Preview; an object without a material gets a
+#   lit copy either way;
 # - each object's colours against patches.csv: its area-weighted mean colour (a lit copy's colour
 #   attribute, or its lightmap sampled over its own faces) against the area-weighted mean radiance
 #   of the patches of its material inside its bounds (radiance clipped as Blender keeps it),
@@ -112,6 +113,11 @@ objects = [room,
            add("plane", "Lamp", lamp, (0.0, 0.0, 2.48), (1.0, 0.6, 1.0), (3.141592653589793, 0, 0))]
 for obj in objects[:4]:
     lightmap_uv(obj)
+# A stool with a lightmap's UV map but no material: nowhere to put a lightmap, so a lit copy.
+bpy.ops.mesh.primitive_cube_add(size=0.4, location=(1.4, -1.0, 0.2))
+stool = bpy.context.active_object
+stool.name = stool.data.name = "Stool"
+lightmap_uv(stool)
 # A lamp beside the panel: it must reach radfarm in the emitters' units (export.py).
 bpy.ops.object.light_add(type="POINT", location=(-1.2, 0.8, 2.0))
 bulb = bpy.context.active_object
@@ -143,7 +149,7 @@ with open(os.path.join(folder, "scene.glb"), "rb") as f:
     data = f.read()
 scene_json = json.loads(data[20:20 + struct.unpack_from("<I", data, 12)[0]])
 exported = sorted(n["name"] for n in scene_json["nodes"])
-if exported != sorted([obj.name for obj in objects] + ["Bulb"]):
+if exported != sorted([obj.name for obj in objects] + ["Bulb", "Stool"]):
     fail("the second bake exported %s" % exported)
 # The first bake's lightmaps are light the scene gives, not light it emits.
 emitters = sorted(m["name"] for m in scene_json["materials"] if any(m.get("emissiveFactor", [0])))
@@ -283,6 +289,8 @@ lit = bpy.data.collections.get("radfarm lit")
 copies = {o.get("radfarm_lit_of"): o for o in (lit.objects if lit else []) if o.type == "MESH"}
 if lit is None or len(lit.objects) != len(copies):
     fail("the lit copies are %s" % ([o.name for o in lit.objects] if lit else None))
+if "Stool" not in copies or stool.visible_get():
+    fail("the stool, which has no material, has no lit copy, or still shows")
 lightmapped = [obj.name for obj in objects[:4]] if result == "LIGHTMAPS" else []
 for obj in objects:
     materials = [m.name for m in obj.data.materials]  # as the second bake exported them
