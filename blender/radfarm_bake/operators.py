@@ -19,6 +19,7 @@ class _Bake:
 
     runner = None
     out_dir = None
+    summary = ""  # what the last apply did, for the panel
 
 
 def work_folder(settings):
@@ -106,8 +107,9 @@ class RADFARM_OT_bake(bpy.types.Operator):
     def _finish(self, context):
         runner = _Bake.runner
         if runner.state == job_runner.DONE:
-            summary = apply.apply_result(context, _Bake.out_dir, context.scene.radfarm.result)
-            self.report({"INFO"}, summary)
+            _Bake.summary = apply.apply_result(context, _Bake.out_dir,
+                                               context.scene.radfarm.result)
+            self.report({"INFO"}, _Bake.summary)
             return {"FINISHED"}
         if runner.state == job_runner.FAILED:
             self.report({"ERROR"}, "radfarm: " + runner.message)
@@ -166,8 +168,8 @@ class RADFARM_OT_apply(bpy.types.Operator):
                 and os.path.isfile(os.path.join(_Bake.out_dir, "lit.glb")))
 
     def execute(self, context):
-        summary = apply.apply_result(context, _Bake.out_dir, context.scene.radfarm.result)
-        self.report({"INFO"}, summary)
+        _Bake.summary = apply.apply_result(context, _Bake.out_dir, context.scene.radfarm.result)
+        self.report({"INFO"}, _Bake.summary)
         return {"FINISHED"}
 
 
@@ -179,6 +181,7 @@ def _cancel_on_load(_):
         _Bake.runner.cancel()
     _Bake.runner = None
     _Bake.out_dir = None
+    _Bake.summary = ""
 
 
 def _cancel_on_quit():

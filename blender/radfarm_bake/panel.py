@@ -2,6 +2,7 @@
 
 import bpy
 
+from . import job_runner
 from . import operators
 
 
@@ -34,6 +35,8 @@ class RADFARM_PT_bake(bpy.types.Panel):
         else:
             if runner is not None and runner.message:
                 layout.label(text=runner.message, icon="ERROR")
+            elif runner is not None and runner.state == job_runner.DONE and operators._Bake.summary:
+                layout.label(text=operators._Bake.summary, icon="CHECKMARK")
             layout.operator("radfarm.bake", icon="LIGHT_SUN")
             layout.operator("radfarm.apply", icon="FILE_REFRESH")
 
