@@ -5,6 +5,8 @@
 //   agents [enroll NAME | revoke NAME]   per-agent keys (agent_credential_commands.h)
 //   secret new                  a fresh farm secret (secret_command.h)
 //   building                    a procedural building scene (building_command.h, scenegen/)
+//   blender-addon install       the Blender add-on into Blender's add-ons folder
+//                               (blender_addon_command.h, blender/)
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <string>
@@ -14,6 +16,7 @@
 
 #include "cli/agent_credential_commands.h"
 #include "cli/agents_command.h"
+#include "cli/blender_addon_command.h"
 #include "cli/building_command.h"
 #include "cli/control_client.h"
 #include "cli/exit_codes.h"
@@ -103,6 +106,9 @@ int main(int argc, char** argv) {
   commands.emplace_back(AddSecretCommand(app, &secret), [&] { return RunSecretNew(secret); });
   BuildingOptions building;
   commands.emplace_back(AddBuildingCommand(app, &building), [&] { return RunBuilding(building); });
+  BlenderAddonOptions blender_addon;
+  commands.emplace_back(AddBlenderAddonCommand(app, &blender_addon),
+                        [&] { return RunBlenderAddonInstall(blender_addon); });
 
   try {
     app.parse(argc, argv);
