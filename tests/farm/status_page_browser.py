@@ -121,6 +121,13 @@ def main():
                  "done")
         assert float(job_field(driver, job_id, "progress")) == 1.0
         assert "100.0%" in job_row(driver, job_id).text, job_row(driver, job_id).text
+        # Where its time went: a line per phase, every place's CPU seconds in its title.
+        timeline = wait_for(driver, "the job's timeline", lambda: driver.execute_script(
+            "const c = document.querySelector(arguments[0]);"
+            "return c && c.textContent.includes('display') ? [c.textContent, c.title] : null;",
+            f'#jobs tbody tr[data-key="{job_id}"] td.timeline'))
+        assert "gather" in timeline[0] and "agents" in timeline[1], timeline
+        print(f"timeline shown: {timeline[0]!r}")
         wait_for(driver, "the preview image to load", lambda: driver.execute_script(
             "const i = document.querySelector(arguments[0]);"
             "return i !== null && i.complete && i.naturalWidth > 0;",

@@ -139,12 +139,31 @@ function drawPreview(cell, job) {
     .catch(() => { img.hidden = true; });
 }
 
+// Where a job's time went: each phase's wall seconds (the longest place's), one line each, and
+// every place's CPU seconds in the cell's title.
+function drawTimeline(cell, job) {
+  const phases = new Map();
+  for (const e of job.timeline || []) {
+    const p = phases.get(e.phase) || { wall: 0, cpu: [] };
+    p.wall = Math.max(p.wall, e.wall_seconds);
+    p.cpu.push(`${e.where} ${seconds(e.cpu_seconds)}`);
+    phases.set(e.phase, p);
+  }
+  const lines = [], titles = [];
+  for (const [phase, p] of phases) {
+    lines.push(`${phase} ${seconds(p.wall)}`);
+    titles.push(`${phase}: ${seconds(p.wall)}, CPU ${p.cpu.join(", ")}`);
+  }
+  setText(cell, lines.join("\n"), "timeline");
+  if (cell.title !== titles.join("\n")) cell.title = titles.join("\n");
+}
+
 function drawJobs(jobs) {
   const tbody = document.querySelector("#jobs tbody");
   const keep = new Set();
   for (const job of jobs) {
     keep.add(String(job.id));
-    const row = rowFor(tbody, job.id, 10);
+    const row = rowFor(tbody, job.id, 11);
     row.className = `job state-${job.state}`;
     row.dataset.state = job.state;
     row.dataset.progress = String(job.progress);
@@ -164,8 +183,9 @@ function drawJobs(jobs) {
     setText(c[5], job.state === "running" ? seconds(job.eta_seconds) : "", "number eta");
     setText(c[6], job.state === "running" ? rate(job.rays_per_second) : "", "number rate");
     setText(c[7], String(job.agents), "number");
-    drawPreview(c[8], job);
-    drawActions(c[9], job);
+    drawTimeline(c[8], job);
+    drawPreview(c[9], job);
+    drawActions(c[10], job);
   }
   prune(tbody, keep);
   document.getElementById("no-jobs").hidden = jobs.length > 0;
