@@ -8,21 +8,8 @@
 namespace radfarm {
 namespace {
 
-// `count` lights of 36 patches each over a grey floor: up to 8 keep the direct-light start.
-PatchScene Lamps(int count) {
-  PatchScene scene;
-  for (int i = 0; i < count; ++i) {
-    const double x = 2.0 * i;
-    testing::AddQuadGrid({x, 0, 1}, {x, 1, 1}, {x + 1, 1, 1}, {x + 1, 0, 1}, 6,
-                         testing::Surface{{}, {1, 1, 1}, uint32_t(10 + i)}, &scene);
-  }
-  testing::AddQuadGrid({-2, -2, 0}, {30, -2, 0}, {30, 2, 0}, {-2, 2, 0}, 60,
-                       testing::Surface{{0.5, 0.5, 0.5}, {}, 1}, &scene);
-  return scene;
-}
-
 TEST(DisplayForecastTest, ADisplayWithRaysIsForecastFromTheStartsShadowRays) {
-  const PatchScene scene = Lamps(2);
+  const PatchScene scene = testing::LightsOverFloor(2);
   const SolverSettings settings = testing::Gathering(2048);
   ASSERT_TRUE(DisplayCastsRays(scene, settings));
   EXPECT_EQ(DisplayRaysForecast(scene, settings, 1'000'000), 6'000'000u);
@@ -31,14 +18,15 @@ TEST(DisplayForecastTest, ADisplayWithRaysIsForecastFromTheStartsShadowRays) {
 }
 
 TEST(DisplayForecastTest, ADisplayWithoutRaysCostsNothing) {
-  const PatchScene scene = Lamps(9);  // the emitters shoot: the display averages the patches
+  const PatchScene scene =
+      testing::LightsOverFloor(9);  // the emitters shoot: the display averages the patches
   const SolverSettings settings = testing::Gathering(2048);
   ASSERT_FALSE(DisplayCastsRays(scene, settings));
   EXPECT_EQ(DisplayRaysForecast(scene, settings, 1'000'000), 0u);
 }
 
 TEST(DisplayForecastTest, ABudgetCapsTheForecastAtTheDisplaysAllowance) {
-  const PatchScene scene = Lamps(1);
+  const PatchScene scene = testing::LightsOverFloor(1);
   SolverSettings settings = testing::Gathering(2048);
   settings.max_rays = 400'000'000;
   ASSERT_TRUE(DisplayCastsRays(scene, settings));

@@ -12,21 +12,8 @@
 namespace radfarm {
 namespace {
 
-// `count` lights of 36 patches each (distinct surfaces) over a grey 60 x 60 floor.
-PatchScene Lights(int count) {
-  PatchScene scene;
-  for (int i = 0; i < count; ++i) {
-    const double x = 2.0 * i;
-    testing::AddQuadGrid({x, 0, 1}, {x, 1, 1}, {x + 1, 1, 1}, {x + 1, 0, 1}, 6,
-                         testing::Surface{{}, {1, 1, 1}, uint32_t(10 + i)}, &scene);
-  }
-  testing::AddQuadGrid({-2, -2, 0}, {30, -2, 0}, {30, 2, 0}, {-2, 2, 0}, 60,
-                       testing::Surface{{0.5, 0.5, 0.5}, {}, 1}, &scene);
-  return scene;
-}
-
 TEST(SolveRulesTest, AFewLightsGetTheStartAndADisplayAtItsPoints) {
-  const PatchScene scene = Lights(8);
+  const PatchScene scene = testing::LightsOverFloor(8);
   const SolverSettings settings = testing::Gathering(2048);
   const RuleOutcome start = DirectStartRule(scene, settings);
   EXPECT_TRUE(start.used);
@@ -40,7 +27,7 @@ TEST(SolveRulesTest, AFewLightsGetTheStartAndADisplayAtItsPoints) {
 }
 
 TEST(SolveRulesTest, ManyLightsSayWhyTheyShootAndTheDisplayAverages) {
-  const PatchScene scene = Lights(9);
+  const PatchScene scene = testing::LightsOverFloor(9);
   const SolverSettings settings = testing::Gathering(2048);
   const RuleOutcome start = DirectStartRule(scene, settings);
   EXPECT_FALSE(start.used);
@@ -70,12 +57,13 @@ TEST(SolveRulesTest, EachOtherReasonIsNamed) {
   // No gather, no start.
   SolverSettings no_gather = testing::Gathering(2048);
   no_gather.gather_rays = 0;
-  EXPECT_NE(DirectStartRule(Lights(1), no_gather).why.find("the final gather is off"),
-            std::string::npos);
+  EXPECT_NE(
+      DirectStartRule(testing::LightsOverFloor(1), no_gather).why.find("the final gather is off"),
+      std::string::npos);
   // A ray budget too small for 16 rays per light at a point a patch.
   SolverSettings budget = testing::Gathering(2048);
   budget.max_rays = 4000;
-  const RuleOutcome tight = DirectStartRule(Lights(8), budget);
+  const RuleOutcome tight = DirectStartRule(testing::LightsOverFloor(8), budget);
   EXPECT_NE(tight.why.find("the budget's share for it (1000 shadow rays)"), std::string::npos)
       << tight.why;
 }

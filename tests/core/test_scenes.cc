@@ -90,6 +90,18 @@ PatchScene LitBox() {
   return scene;
 }
 
+PatchScene LightsOverFloor(int count) {
+  PatchScene scene;
+  for (int i = 0; i < count; ++i) {
+    const double x = 2.0 * i;
+    AddQuadGrid({x, 0, 1}, {x, 1, 1}, {x + 1, 1, 1}, {x + 1, 0, 1}, 6,
+                Surface{{}, {1, 1, 1}, uint32_t(10 + i)}, &scene);
+  }
+  AddQuadGrid({-2, -2, 0}, {30, -2, 0}, {30, 2, 0}, {-2, 2, 0}, 60, Surface{{0.5, 0.5, 0.5}, {}, 1},
+              &scene);
+  return scene;
+}
+
 bool BitIdentical(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
   // memcmp of two empty vectors' null data pointers is undefined, even for 0 bytes.
   return a.size() == b.size() &&

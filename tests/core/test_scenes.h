@@ -33,6 +33,10 @@ PatchScene MakeClosedBox(const Vec3& lo, const Vec3& hi, int n, const Surface& s
 // the +y face (the ceiling) emitting 10.
 PatchScene LitBox();
 
+// `count` lights of 36 patches each (distinct surfaces 10, 11, ...) over a grey 60 x 60 floor: up
+// to 8 keep the direct-light start at 2048 gather rays (core/direct_light.h).
+PatchScene LightsOverFloor(int count);
+
 // Whether two solutions are the same to the bit.
 bool BitIdentical(const std::vector<Rgb>& a, const std::vector<Rgb>& b);
 
