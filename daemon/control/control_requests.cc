@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 
+#include "base/cpu_clock.h"
 #include "base/result.h"
 #include "codec/job_bundle.h"
 #include "codec/job_solution.h"
@@ -405,6 +406,7 @@ void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
   auto blob = std::make_shared<std::vector<uint8_t>>(std::move(request.attachment));
   Status s = compute_.Submit(
       [blob]() -> Result<CheckedSubmission> {
+        LapClock lap;
         Result<codec::JobBundle> bundle = codec::DecodeJobBundle(*blob);
         RADFARM_RETURN_IF_ERROR(bundle);
         Result<PatchMesh> mesh = PatchMesh::Build(bundle->scene, bundle->job.mesh, nullptr);
@@ -426,6 +428,7 @@ void ControlRequests::Submit(ControlRequest request, ControlRespond respond) {
         // A job that does not refine needs only the patches (RunningJob::Prepare): the rest of
         // the mesh goes before the survey below builds its ray caster.
         SubmittedMesh meshed;
+        meshed.meshing = lap.Lap();
         if (bundle->job.refine.enabled) {
           meshed.mesh = std::make_shared<PatchMesh>(std::move(*mesh));
         } else {

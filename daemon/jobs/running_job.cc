@@ -82,6 +82,10 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(bundle_blob);
   RADFARM_RETURN_IF_ERROR(bundle);
   const bool meshed_at_submission = !meshed.empty();
+  if (meshed_at_submission) {
+    AddToTimeline(&timeline, JobPhase::kMeshing, kRanOnMaster, meshed.meshing.wall_seconds,
+                  meshed.meshing.cpu_seconds);
+  }
   // The patches alone when that is all the submission kept (a job without refinement); else the
   // mesh, as submitted or built now.
   std::optional<PatchScene> patches;

@@ -56,6 +56,7 @@ namespace radfarm::daemon {
 struct SubmittedMesh {
   std::shared_ptr<PatchMesh> mesh;
   std::shared_ptr<PatchScene> patches;
+  Spent meshing;  // what the check's decoding and meshing cost the master, for the job's timeline
   bool empty() const { return !mesh && !patches; }
 };
 
