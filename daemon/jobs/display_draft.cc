@@ -19,6 +19,7 @@ Result<std::unique_ptr<DisplayDraft>> DisplayDraft::Start(codec::JobSolution sol
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(draft->solution_.bundle);
   if (!bundle.ok()) return Error{"the job bundle: " + bundle.error()};
   draft->bundle_ = std::move(*bundle);
+  draft->bundle_.job.solver.threads = 0;  // the master's cores, as RunningJob::Prepare's
   Result<codec::SolutionMesh> solved = codec::MeshOfSolution(draft->solution_, draft->bundle_);
   RADFARM_RETURN_IF_ERROR(solved);
   draft->solved_.emplace(std::move(*solved));

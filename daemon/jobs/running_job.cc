@@ -81,6 +81,9 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   };
   Result<codec::JobBundle> bundle = codec::DecodeJobBundle(bundle_blob);
   RADFARM_RETURN_IF_ERROR(bundle);
+  // The job file's threads are the submitting machine's choice: the master's work (the start's
+  // direct light, refinement) runs on the master's cores. The bits do not depend on the count.
+  bundle->job.solver.threads = 0;
   const bool meshed_at_submission = !meshed.empty();
   if (meshed_at_submission) {
     AddToTimeline(&timeline, JobPhase::kMeshing, kRanOnMaster, meshed.meshing.wall_seconds,
