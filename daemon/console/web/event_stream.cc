@@ -14,9 +14,18 @@ size_t EventStream::Read(char* out, size_t max) {
 }
 
 bool EventStream::Refill() {
-  auto snapshot = board_.WaitNewer(sent_version_, std::chrono::steady_clock::now() + kKeepAlive);
+  if (ended_) return false;
+  const std::atomic<bool>* stop = ticket_ ? &ticket_->evicted_flag() : nullptr;
+  auto snapshot =
+      board_.WaitNewer(sent_version_, std::chrono::steady_clock::now() + kKeepAlive, stop);
   if (board_.closed()) return false;
   offset_ = 0;
+  if (ticket_ && ticket_->evicted()) {
+    ended_ = true;
+    pending_ = "event: evicted\ndata: {\"retry_ms\":" +
+               std::to_string(std::chrono::milliseconds(kRetryAfterEviction).count()) + "}\n\n";
+    return true;
+  }
   if (!snapshot || snapshot->version <= sent_version_) {
     pending_ = ": keep-alive\n\n";
     return true;

@@ -2,7 +2,9 @@
 
 #include <microhttpd.h>
 #include <netdb.h>
+#include <sys/socket.h>
 
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
@@ -71,9 +73,31 @@ struct HttpGlue {
   }
   static void FreeStream(void* cls) { delete static_cast<EventStream*>(cls); }
 
-  static void Completed(void*, MHD_Connection*, void** req_cls, MHD_RequestTerminationCode) {
+  static void Completed(void* cls, MHD_Connection* c, void** req_cls, MHD_RequestTerminationCode) {
     delete static_cast<Pending*>(*req_cls);
     *req_cls = nullptr;
+    auto* server = static_cast<HttpServer*>(cls);
+    std::lock_guard lock(server->deadlines_mutex_);
+    server->deadlines_.Waiting(c, std::chrono::steady_clock::now());
+  }
+
+  static void Connection(void* cls, MHD_Connection* c, void**,
+                         MHD_ConnectionNotificationCode code) {
+    auto* server = static_cast<HttpServer*>(cls);
+    if (code == MHD_CONNECTION_NOTIFY_CLOSED) {
+      std::lock_guard lock(server->deadlines_mutex_);
+      server->deadlines_.Closed(c);
+      return;
+    }
+    int fd = -1;
+    if (const MHD_ConnectionInfo* info =
+            MHD_get_connection_info(c, MHD_CONNECTION_INFO_CONNECTION_FD)) {
+      fd = info->connect_fd;
+    }
+    std::string client = ClientOf(c);
+    std::lock_guard lock(server->deadlines_mutex_);
+    HttpServer::Shut(
+        server->deadlines_.Opened(c, std::move(client), fd, std::chrono::steady_clock::now()));
   }
 
   static MHD_Result OnRequest(void* cls, MHD_Connection* c, const char* url, const char* method,
@@ -94,6 +118,10 @@ struct HttpGlue {
       *upload_data_size = 0;
       return MHD_YES;
     }
+    {
+      std::lock_guard lock(server->deadlines_mutex_);
+      server->deadlines_.Serving(c);
+    }
     WebRequest request;
     request.method = method;
     request.path = url;
@@ -111,8 +139,9 @@ struct HttpGlue {
                                : server->routes_->Handle(request);
     MHD_Response* r = nullptr;
     if (response.event_stream) {
-      r = MHD_create_response_from_callback(MHD_SIZE_UNKNOWN, 16 * 1024, &ReadStream,
-                                            new EventStream(server->board_), &FreeStream);
+      r = MHD_create_response_from_callback(
+          MHD_SIZE_UNKNOWN, 16 * 1024, &ReadStream,
+          new EventStream(server->board_, server->streams_.Join(request.client)), &FreeStream);
     } else {
       std::string& body = response.reply.body;
       r = MHD_create_response_from_buffer(body.size(), body.data(), MHD_RESPMEM_MUST_COPY);
@@ -130,41 +159,70 @@ struct HttpGlue {
 };
 
 HttpServer::HttpServer(std::unique_ptr<WebRoutes> routes, const StatusBoard& board,
-                       std::chrono::seconds log_window)
+                       const Limits& limits)
     : routes_(std::move(routes)),
       board_(board),
-      server_log_("http", "HTTP server warnings", kLogLines, log_window) {}
+      limits_(limits),
+      server_log_("http", "HTTP server warnings", kLogLines, limits.log_window),
+      streams_(board, limits.max_event_streams, limits.max_event_streams_per_address),
+      deadlines_(limits.request_deadline, limits.max_waiting, limits.max_waiting_per_address) {}
+
+void HttpServer::Shut(const std::vector<int>& fds) {
+  // shutdown, not close: libmicrohttpd still owns the descriptor and closes it after telling
+  // Connection, which waits for deadlines_mutex_.
+  for (const int fd : fds) {
+    if (fd >= 0) shutdown(fd, SHUT_RDWR);
+  }
+}
+
+void HttpServer::Reap() {
+  const auto tick =
+      std::min<std::chrono::milliseconds>(std::chrono::seconds(1), limits_.request_deadline / 4);
+  std::unique_lock lock(deadlines_mutex_);
+  while (!stopping_) {
+    reaper_wake_.wait_for(lock, tick);
+    Shut(deadlines_.Expired(std::chrono::steady_clock::now()));
+  }
+}
 
 HttpServer::~HttpServer() { Stop(); }
 
 Result<std::unique_ptr<HttpServer>> HttpServer::Start(const loop::HostPort& address,
                                                       std::unique_ptr<WebRoutes> routes,
-                                                      const StatusBoard& board,
-                                                      std::chrono::seconds log_window) {
+                                                      const StatusBoard& board, Limits limits) {
   Result<std::vector<loop::SocketAddress>> resolved = loop::Resolve(address, true);
   if (!resolved) return Error{"--http " + address.ToString() + ": " + resolved.error()};
   if (resolved->empty()) return Error{"--http " + address.ToString() + ": no address"};
   const loop::SocketAddress& bind = resolved->front();
-  std::unique_ptr<HttpServer> server(new HttpServer(std::move(routes), board, log_window));
+  std::unique_ptr<HttpServer> server(new HttpServer(std::move(routes), board, limits));
   unsigned flags =
       MHD_USE_THREAD_PER_CONNECTION | MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_ERROR_LOG;
   if (bind.family() == AF_INET6) flags |= MHD_USE_IPv6;
   server->daemon_ = MHD_start_daemon(
       flags, bind.port(), nullptr, nullptr, &HttpGlue::OnRequest, server.get(),
       MHD_OPTION_EXTERNAL_LOGGER, &LogFromMhd, &server->server_log_, MHD_OPTION_SOCK_ADDR,
-      bind.get(), MHD_OPTION_CONNECTION_LIMIT, kMaxConnections, MHD_OPTION_PER_IP_CONNECTION_LIMIT,
-      kMaxPerAddress, MHD_OPTION_CONNECTION_TIMEOUT, unsigned{60}, MHD_OPTION_NOTIFY_COMPLETED,
-      &HttpGlue::Completed, nullptr, MHD_OPTION_END);
+      bind.get(), MHD_OPTION_CONNECTION_LIMIT, kMaxConnections, MHD_OPTION_CONNECTION_TIMEOUT,
+      unsigned{60}, MHD_OPTION_NOTIFY_COMPLETED, &HttpGlue::Completed, server.get(),
+      MHD_OPTION_NOTIFY_CONNECTION, &HttpGlue::Connection, server.get(), MHD_OPTION_END);
   if (!server->daemon_) {
     return Error{"--http " + address.ToString() + ": cannot listen (address in use?)"};
   }
   const MHD_DaemonInfo* info = MHD_get_daemon_info(server->daemon_, MHD_DAEMON_INFO_BIND_PORT);
   loop::HostPort bound{address.host, info ? info->port : address.port};
   server->address_ = bound.ToString();
+  server->reaper_ = std::thread([s = server.get()] { s->Reap(); });
   return server;
 }
 
 void HttpServer::Stop() {
+  if (reaper_.joinable()) {
+    {
+      std::lock_guard lock(deadlines_mutex_);
+      stopping_ = true;
+    }
+    reaper_wake_.notify_all();
+    reaper_.join();
+  }
   if (daemon_) MHD_stop_daemon(daemon_);
   daemon_ = nullptr;
   server_log_.Flush(std::chrono::steady_clock::now());

@@ -11,6 +11,7 @@
 const kSessionKey = "radfarm.session";
 let session = { read: false, act: false, token: false, authenticated: false };
 let stream = null;  // the AbortController of the event stream being read
+let retryMs = 2000;  // before following the stream again once it ends
 const previews = new Map();  // job id -> {key, at}: what its preview shows, and since when
 
 function el(tag, attrs, text) {
@@ -244,6 +245,7 @@ function setConnection(state) {
 }
 
 // One server-sent event ("event: status\ndata: {...}"); comments and retry: lines are skipped.
+// "evicted" comes last on a stream a newer tab took the place of: it says when to come back.
 function onEvent(block) {
   let type = "message";
   const data = [];
@@ -252,13 +254,16 @@ function onEvent(block) {
     else if (line.startsWith("data: ")) data.push(line.slice(6));
   }
   if (type === "status" && data.length > 0) draw(JSON.parse(data.join("\n")));
+  if (type === "evicted" && data.length > 0) retryMs = JSON.parse(data.join("\n")).retry_ms;
 }
 
-// Reads GET /api/events until it ends, then tries again 2 s later (as EventSource would).
+// Reads GET /api/events until it ends, then tries again 2 s later (as EventSource would), or as
+// much later as an "evicted" event asked.
 async function follow() {
   if (stream) stream.abort();
   const mine = new AbortController();
   stream = mine;
+  retryMs = 2000;
   try {
     const r = await authFetch("/api/events", { signal: mine.signal });
     if (!r.ok || !r.body) throw new Error(`HTTP ${r.status}`);
@@ -279,8 +284,8 @@ async function follow() {
     if (mine.signal.aborted) return;  // a newer follow() took over
   }
   if (stream !== mine) return;
-  setConnection("reconnecting");
-  setTimeout(() => { if (stream === mine) follow(); }, 2000);
+  setConnection(retryMs > 2000 ? "too many open pages: reconnecting later" : "reconnecting");
+  setTimeout(() => { if (stream === mine) follow(); }, retryMs);
 }
 
 async function loadSession() {

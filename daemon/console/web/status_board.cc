@@ -19,11 +19,19 @@ std::shared_ptr<const StatusSnapshot> StatusBoard::Latest() const {
 }
 
 std::shared_ptr<const StatusSnapshot> StatusBoard::WaitNewer(
-    uint64_t version, std::chrono::steady_clock::time_point deadline) const {
+    uint64_t version, std::chrono::steady_clock::time_point deadline,
+    const std::atomic<bool>* stop) const {
   std::unique_lock lock(mutex_);
-  changed_.wait_until(lock, deadline, [&] { return closed_ || version_ > version; });
+  changed_.wait_until(lock, deadline,
+                      [&] { return closed_ || version_ > version || (stop && stop->load()); });
   if (closed_) return nullptr;
   return latest_;
+}
+
+void StatusBoard::Wake() const {
+  // Under the mutex, so a waiter between its check of `stop` and its wait cannot miss it.
+  { std::lock_guard lock(mutex_); }
+  changed_.notify_all();
 }
 
 void StatusBoard::Close() {

@@ -7,6 +7,7 @@
 // every waiter; WaitNewer returns null from then on, which ends the event streams.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -24,9 +25,13 @@ class StatusBoard {
   // The latest snapshot; null before the first.
   std::shared_ptr<const StatusSnapshot> Latest() const;
   // Waits until a snapshot with a version above `version` is published (returns it), `deadline`
-  // passes (returns the latest, perhaps null) or the board closes (returns null).
-  std::shared_ptr<const StatusSnapshot> WaitNewer(
-      uint64_t version, std::chrono::steady_clock::time_point deadline) const;
+  // passes or `*stop` is set and Wake called (returns the latest, perhaps null) or the board
+  // closes (returns null).
+  std::shared_ptr<const StatusSnapshot> WaitNewer(uint64_t version,
+                                                  std::chrono::steady_clock::time_point deadline,
+                                                  const std::atomic<bool>* stop = nullptr) const;
+  // Wakes every waiter to look at its `stop` again (set it before calling).
+  void Wake() const;
   void Close();
   bool closed() const;
 

@@ -57,5 +57,25 @@ TEST(EventStreamTest, EndsWhenTheBoardCloses) {
   EXPECT_EQ(rest.find("event:"), std::string::npos);
 }
 
+// A stream evicted while it waits for the next snapshot wakes at once (not at its keep-alive),
+// tells the page when to come back, and ends.
+TEST(EventStreamTest, AnEvictedStreamSendsALastEventAndEnds) {
+  StatusBoard board;
+  StreamSlots slots(board, 1, 1);
+  EventStream old_stream(board, slots.Join("127.0.0.1"));
+  EXPECT_EQ(ReadThrough(old_stream, "\n\n"), "retry: 2000\n\n");
+  std::unique_ptr<StreamSlots::Ticket> newer;
+  std::thread joiner([&] { newer = slots.Join("127.0.0.1"); });
+  std::string rest;
+  while (true) {
+    const std::string piece = ReadSome(old_stream, 64);
+    if (piece.empty()) break;
+    rest += piece;
+  }
+  joiner.join();
+  EXPECT_NE(rest.find("event: evicted\ndata: {\"retry_ms\":30000}\n\n"), std::string::npos);
+  EXPECT_EQ(slots.size(), 1u);
+}
+
 }  // namespace
 }  // namespace radfarm::web
