@@ -284,8 +284,13 @@ json ControlRequests::JobJson(const JobSummary& s) {
     // thread in the other phases) and nobody is there to take the leases.
     job["waiting_for_agents"] =
         runner->phase() == RunningJob::Phase::kRound && agents_.active() == 0;
-  } else if (std::optional<double> display = jobs_.DisplaySecondsLeft(r.id)) {
-    job["eta_seconds"] = *display;
+  } else if (std::optional<SolveShown> solve = jobs_.DisplayedSolve(r.id)) {
+    // Drawing its display: the record read from the store may predate the rounds' end.
+    job["round"] = std::max(s.rounds, solve->round);
+    job["rays"] = std::max(s.rays, solve->rays);
+    if (std::optional<double> display = jobs_.DisplaySecondsLeft(r.id)) {
+      job["eta_seconds"] = *display;
+    }
   }
   if (r.state == store::JobState::kDone) {
     job["stop_reason"] = StopReasonOf(s);

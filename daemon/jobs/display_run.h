@@ -20,10 +20,18 @@
 
 namespace radfarm::daemon {
 
+struct SolveShown {
+  uint32_t round = 0;
+  uint64_t rays = 0;
+};
+
 struct DisplayRun {
   uint64_t serial = 0;  // tells this run's callbacks from an earlier run's of the same job
   std::string reason;   // why the rounds ended, for the job's `done` event
   uint32_t round = 0;   // of the checkpoint whose solution it shows
+  // The finished solve's round and rays as its runner showed them last: a status read from the
+  // store before the rounds ended would otherwise show fewer while the display is drawn.
+  SolveShown solve;
   std::shared_ptr<DisplayDraft> draft;  // null until planned
   // The step leased to agents; empty while the draft is on the compute thread.
   std::optional<DisplayPieces> pieces;

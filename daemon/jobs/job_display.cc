@@ -55,6 +55,7 @@ void JobRounds::FinishJob(const std::shared_ptr<RunningJob>& runner) {
   run.forecast_rays = runner->display_rays_forecast();
   run.started_ms = clock_.NowMs();
   run.timeline = runner->TakeTimeline();
+  run.solve = {runner->totals().round, runner->RaysShown(clock_.Now())};
   // Kept for the display: computing it again costs the start's shadow rays.
   auto direct = std::make_shared<std::vector<Rgb>>(runner->direct_light());
   store_.Run([id](store::JobStore& s) { return store::LoadSolution(s, id); },

@@ -101,6 +101,12 @@ std::optional<double> JobRounds::DisplaySecondsLeft(store::JobId id) const {
   return daemon::DisplaySecondsLeft(it->second, clock_.NowMs());
 }
 
+std::optional<SolveShown> JobRounds::DisplayedSolve(store::JobId id) const {
+  const auto it = display_runs_.find(id);
+  if (it == display_runs_.end()) return std::nullopt;
+  return it->second.solve;
+}
+
 std::string_view JobRounds::PhaseOf(store::JobId id) const {
   if (starting_.count(id)) return "preparing";
   if (display_runs_.count(id)) return "display";

@@ -148,6 +148,9 @@ class JobRounds {
   // The seconds job `id`'s display has left (DisplaySecondsLeft), or nullopt: not drawing its
   // display, or no estimate yet.
   std::optional<double> DisplaySecondsLeft(store::JobId id) const;
+  // The round and rays job `id`'s finished solve showed, while its display is drawn; nullopt for
+  // any other job.
+  std::optional<SolveShown> DisplayedSolve(store::JobId id) const;
   // --- The display's leases (job_display.cc) ---
   // New pieces of the displays under way for `agent`, while it holds fewer than `room`; none of
   // a job `refused(job)` says the agent may not work for (blocklisted).

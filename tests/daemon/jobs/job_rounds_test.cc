@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 
 #include "tests/daemon/agents/fake_agent.h"
 #include "tests/daemon/master_parts.h"
@@ -102,6 +103,35 @@ TEST(JobRoundsTest, TheDisplaysPiecesGoToTheAgents) {
   ASSERT_TRUE(master.RunUntil([&] { return master.StateOf(job) == "done"; }));
   EXPECT_GT(agent.pieces_received(), 0u);
   EXPECT_FALSE(master.jobs().LeasingDisplays());
+}
+
+// Status read the store's round records, whose last may commit after the display began: the job
+// showed fewer rays and rounds while its display was drawn than its rounds had shown.
+TEST(JobRoundsTest, WhileTheDisplayIsDrawnTheJobShowsItsFinishedSolvesRoundsAndRays) {
+  MasterParts master;
+  const uint64_t job = master.Submit(0, 0, kGatherRays);
+  FakeAgent agent(master.loop(), master.agent_address(), master.secret(), "box-1", true);
+  agent.set_answering_pieces(false);
+  ASSERT_TRUE(agent.Connect().ok());
+  uint32_t last_round = 0;
+  uint64_t last_rays = 0;
+  ASSERT_TRUE(master.RunUntil([&] {
+    if (RunningJob* runner = master.jobs().FindRunner(job)) {
+      last_round = runner->totals().round;
+      last_rays = runner->totals().rays;
+    }
+    return agent.pieces_held() > 0;
+  }));
+  const std::optional<SolveShown> solve = master.jobs().DisplayedSolve(job);
+  ASSERT_TRUE(solve.has_value());
+  EXPECT_GE(solve->round, last_round);  // its last round may end between two looks
+  EXPECT_GE(solve->rays, last_rays);
+  EXPECT_GT(solve->rays, 0u);
+  const ControlResponse status = master.Request(ControlCommand::kStatus, job);
+  EXPECT_EQ(status.body["job"]["phase"], "display");
+  EXPECT_GE(status.body["job"]["rays"].get<uint64_t>(), solve->rays);
+  EXPECT_GE(status.body["job"]["round"].get<uint32_t>(), solve->round);
+  EXPECT_FALSE(master.jobs().DisplayedSolve(job + 1).has_value());
 }
 
 TEST(JobRoundsTest, ACancelDuringTheDisplayDropsItsPiecesOnTheAgents) {
