@@ -30,6 +30,8 @@ PointWork PointWorkOf(const protocol::PointLeaseMsg& lease) {
   work.direct = lease.direct;
   work.gather.assign(lease.gather.begin(), lease.gather.end());
   work.gather_rays = lease.gather_rays;
+  work.start_sections = lease.start_sections;
+  work.start_patches = lease.start_patches;
   return work;
 }
 
@@ -40,6 +42,7 @@ protocol::PointResultMsg PointResultOf(const protocol::LeaseRef& lease, PointVal
   result.near.assign(values.near.begin(), values.near.end());
   result.direct = std::move(values.direct);
   result.gathered = std::move(values.gathered);
+  result.punctual = std::move(values.punctual);
   result.rays = values.rays;
   result.compute_seconds = compute_seconds;
   return result;
@@ -65,8 +68,10 @@ void PointLeases::OnLease(const protocol::PointLeaseMsg& lease, bool accepting) 
     }
   }
   LogLine(LogLevel::kDebug, "agent")
-      << "received " << Describe(lease.lease) << ": " << lease.points.size() << " points from "
-      << master_ << ", point context " << protocol::HashToHex(lease.context_hash);
+      << "received " << Describe(lease.lease) << ": "
+      << (lease.start_sections > 0 ? std::to_string(lease.start_patches) + " start patches"
+                                   : std::to_string(lease.points.size()) + " points")
+      << " from " << master_ << ", point context " << protocol::HashToHex(lease.context_hash);
   const uint64_t id = next_id_++;
   leases_[id] = Held{lease, nullptr};
   if (std::shared_ptr<const PreparedContext> context = supply_.FindContext(lease.context_hash)) {
@@ -102,6 +107,16 @@ void PointLeases::OnContextFailed(const protocol::SceneHash& hash,
 
 void PointLeases::Submit(uint64_t id, const std::shared_ptr<const PreparedContext>& context) {
   Held& held = leases_.at(id);
+  // A start lease names patches of the context's scene: the master's mistake if they lie past it.
+  const protocol::PointLeaseMsg& lease = held.lease;
+  if (lease.start_sections > 0 &&
+      lease.first_index + lease.start_patches > context->scene->patches.size()) {
+    ReturnOne(id, protocol::LeaseReturnReason::kFailed,
+              "start patches " + std::to_string(lease.first_index) + ".." +
+                  std::to_string(lease.first_index + lease.start_patches) + " past the scene's " +
+                  std::to_string(context->scene->patches.size()));
+    return;
+  }
   auto task = std::make_shared<std::atomic<int>>(kWaiting);
   Status submitted = batches_.Submit(
       [task, context, work = PointWorkOf(held.lease)]() -> Traced {
@@ -113,7 +128,7 @@ void PointLeases::Submit(uint64_t id, const std::shared_ptr<const PreparedContex
         }
         const auto start = std::chrono::steady_clock::now();
         // One thread per task, as batches: the workers are the agent's threads.
-        traced.values = context->tracer->Trace(work, 0, work.points.size(), 1);
+        traced.values = context->tracer->Trace(work, 0, work.size(), 1);
         traced.compute_seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return traced;
@@ -143,7 +158,9 @@ void PointLeases::OnTraced(uint64_t id, Result<Traced> traced) {
     return;
   }
   const protocol::LeaseRef ref = found->second.lease.lease;
-  const size_t points = found->second.lease.points.size();
+  const protocol::PointLeaseMsg& leased = found->second.lease;
+  const size_t items = leased.start_sections > 0 ? leased.start_patches : leased.points.size();
+  const char* unit = leased.start_sections > 0 ? " start patches, " : " points, ";
   leases_.erase(found);
   const protocol::PointResultMsg result =
       PointResultOf(ref, std::move(traced->values), traced->compute_seconds);
@@ -152,9 +169,8 @@ void PointLeases::OnTraced(uint64_t id, Result<Traced> traced) {
     LogLine(LogLevel::kError, "agent") << "cannot send the result of " << Describe(ref) << " to "
                                        << master_ << ": " << sent.error();
   } else {
-    LogLine(LogLevel::kDebug, "agent")
-        << "result of " << Describe(ref) << " (" << points << " points, " << result.rays
-        << " rays) sent to " << master_;
+    LogLine(LogLevel::kDebug, "agent") << "result of " << Describe(ref) << " (" << items << unit
+                                       << result.rays << " rays) sent to " << master_;
   }
   callbacks_.on_leases_changed();
 }

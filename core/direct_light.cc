@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "core/counter_rng.h"
+#include "core/direct_start.h"
 #include "core/point_form_factor.h"
 #include "core/ray_sampler.h"
 #include "core/thread_pool.h"
@@ -284,55 +285,21 @@ Rgb DirectLight::EmitterIrradiance(const Vec3& x, const Vec3& n, uint64_t key, u
 std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, uint64_t seed,
                                   unsigned threads, bool emitters, double* punctual_power,
                                   uint32_t rays_per_light, uint64_t* shadow_rays) {
-  std::vector<Rgb> out(scene.patches.size());
   if (punctual_power != nullptr) *punctual_power = 0;
   if (shadow_rays != nullptr) *shadow_rays = 0;
   bool any_emitter = false;
   for (const Patch& p : scene.patches) any_emitter = any_emitter || p.emission.Max() > 0;
-  if (!(any_emitter && emitters) && scene.lights.empty()) return out;
-  const RayCaster caster(scene);
-  const DirectLight direct(scene, caster, 1, emitters, kExactLights, kLightCut, rays_per_light);
-  std::vector<Rgb> punctual(scene.lights.empty() ? 0 : scene.patches.size());
-  // Per patch, so that the count is a sum of integers in a fixed order whatever the threads.
-  std::vector<uint32_t> rays(shadow_rays != nullptr ? scene.patches.size() : 0);
-  ThreadPool pool(threads);
-  const uint32_t m = std::max(1u, sections);
-  // Stream constant: keeps these keys apart from every other use of the seed.
-  const uint64_t stream = HashWords(seed, 0x6469726563746cull);
-  pool.ParallelFor(scene.patches.size(), [&](unsigned, size_t i) {
-    const Patch& p = scene.patches[i];
-    const PatchSampling sampling = PreparePatchSampling(p, caster.origin_offset());
-    Rgb sum, lamps;
-    uint64_t cast = 0;
-    uint64_t* counted = rays.empty() ? nullptr : &cast;
-    for (uint32_t a = 0; a < m; ++a) {
-      for (uint32_t b = 0; b < m; ++b) {
-        const CounterRng rng(HashWords(stream, i, a * m + b));
-        const Vec3 x =
-            SamplePatchPoint(p, sampling, (a + rng.Uniform(0)) / m, (b + rng.Uniform(1)) / m);
-        sum += direct.EmitterIrradiance(x, p.normal, HashWords(stream, i, a * m + b, 1), nullptr,
-                                        counted);
-        if (!punctual.empty()) {
-          lamps +=
-              direct.PunctualIrradiance(x, p.normal, HashWords(stream, i, a * m + b, 2), counted);
-        }
-      }
-    }
-    if (!rays.empty()) rays[i] = static_cast<uint32_t>(std::min<uint64_t>(cast, UINT32_MAX));
-    if (punctual.empty()) {
-      out[i] = sum / double(m * m);
-    } else {
-      punctual[i] = lamps / double(m * m);
-      out[i] = (sum + lamps) / double(m * m);
-    }
-  });
-  for (uint32_t r : rays) *shadow_rays += r;
-  if (punctual_power != nullptr) {
-    for (size_t i = 0; i < punctual.size(); ++i) {
-      *punctual_power += scene.patches[i].area * punctual[i].Sum();
-    }
+  if (!(any_emitter && emitters) && scene.lights.empty()) {
+    return std::vector<Rgb>(scene.patches.size());
   }
-  return out;
+  const StartWork work{sections, seed, emitters, rays_per_light};
+  const RayCaster caster(scene);
+  const DirectLight direct = StartDirectLight(scene, caster, work);
+  StartLight start = StartLightOf(
+      scene, TraceStartPatches(scene, direct, caster, work, 0, scene.patches.size(), threads));
+  if (punctual_power != nullptr) *punctual_power = start.punctual_power;
+  if (shadow_rays != nullptr) *shadow_rays = start.shadow_rays;
+  return std::move(start.direct);
 }
 
 namespace {

@@ -40,7 +40,8 @@ ShotHits SumShotHits(std::span<const BatchResult> results, std::vector<uint64_t>
 
 }  // namespace
 
-ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettings& settings)
+ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettings& settings,
+                                     const StartLightSource& start)
     : scene_(scene),
       settings_(settings),
       sampler_(settings.sampler, settings.seed, settings.grid_step_degrees),
@@ -67,7 +68,14 @@ ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettin
   // in the start (they have no surface to shoot from); what they deliver counts as their emitted
   // power (a sun's whole power has no bound).
   double punctual_power = 0;
-  direct_ = StartingDirectLight(scene, settings_, &punctual_power, &start_rays_);
+  if (!start) {
+    direct_ = StartingDirectLight(scene, settings_, &punctual_power, &start_rays_);
+  } else if (const std::optional<StartWork> work = StartWorkOf(scene, settings_)) {
+    StartLight light = start(scene, *work);
+    direct_ = std::move(light.direct);
+    punctual_power = light.punctual_power;
+    start_rays_ = light.shadow_rays;
+  }
   if (direct_.empty()) return;
   emitters_direct_ = EmittersInDirectStart(scene, settings_);
   const double emitter_power = energy_.emitted;

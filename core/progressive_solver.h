@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "core/batch.h"
+#include "core/direct_start.h"
 #include "core/patch_scene.h"
 #include "core/ray_sampler.h"
 #include "core/rgb.h"
@@ -81,7 +82,10 @@ inline constexpr uint32_t kMinGatherShare = 16;
 
 class ProgressiveSolver {
  public:
-  ProgressiveSolver(const PatchScene& scene, const SolverSettings& settings);
+  // `start`, if given, traces the direct light the solve starts from (core/direct_start.h);
+  // without, it is traced here.
+  ProgressiveSolver(const PatchScene& scene, const SolverSettings& settings,
+                    const StartLightSource& start = {});
 
   // With the final gather on (GatherOn(settings)), computes the direct light first (ray casting
   // on `settings.threads` threads: this is the one place the solver casts rays itself).

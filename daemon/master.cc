@@ -98,9 +98,10 @@ Status Master::Wire(const std::vector<store::AgentCredential>& credentials) {
                    [this](store::JobId id, const std::string& agent, const std::string& why) {
                      agents_->Convict(id, agent, why);
                    },
-                   [this] { return agents_->DisplayAgents(); }};
-  jobs_ = std::make_unique<JobRounds>(clock_, config_, scheduler_options_, *store_, *compute_,
-                                      std::move(hooks));
+                   [this] { return agents_->PointAgents(protocol::kPointLeaseVersion); },
+                   [this] { return agents_->PointAgents(protocol::kStartLeaseVersion); }};
+  jobs_ = std::make_unique<JobRounds>(loop_, clock_, config_, scheduler_options_, *store_,
+                                      *compute_, std::move(hooks));
   agents_ = std::make_unique<AgentConnections>(loop_, clock_, config_, secret_, scheduler_options_,
                                                *store_, *jobs_, credentials);
   control_ = std::make_unique<ControlRequests>(clock_, *store_, *compute_, *jobs_, *agents_);
@@ -181,7 +182,7 @@ void Master::OnHeartbeatTimer() {
 }
 
 void Master::OnTickTimer() {
-  if (jobs_->Tick(clock_.Now()) > 0 || jobs_->InEndGame() || jobs_->LeasingDisplays()) {
+  if (jobs_->Tick(clock_.Now()) > 0 || jobs_->InEndGame() || jobs_->LeasingPoints()) {
     agents_->DispatchAll();
   }
   jobs_->RetryHeldJobs(clock_.NowMs());

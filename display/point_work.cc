@@ -2,14 +2,28 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
+
+#include "core/direct_start.h"
 
 namespace radfarm {
 
 PointValues TracePoints(const PointLights& lights, const PointWork& work, size_t begin, size_t end,
                         unsigned threads) {
-  if (begin > end || end > work.points.size()) {
-    std::fprintf(stderr, "TracePoints: points [%zu, %zu) of %zu\n", begin, end, work.points.size());
+  if (begin > end || end > work.size()) {
+    std::fprintf(stderr, "TracePoints: items [%zu, %zu) of %zu\n", begin, end, work.size());
     std::abort();
+  }
+  if (work.start()) {
+    const StartWork start{work.start_sections, work.seed};
+    PatchStartValues patches =
+        TraceStartPatches(lights.scene, *lights.direct, lights.caster, start,
+                          work.first_index + begin, work.first_index + end, threads);
+    PointValues out;
+    out.direct = std::move(patches.direct);
+    out.punctual = std::move(patches.punctual);
+    out.rays = patches.rays;
+    return out;
   }
   const std::vector<ReceiverPoint> points(work.points.begin() + begin, work.points.begin() + end);
   PointValues out;
@@ -30,12 +44,18 @@ PointValues TracePoints(const PointLights& lights, const PointWork& work, size_t
 }
 
 PointWork PieceOf(const PointWork& work, size_t begin, size_t end) {
-  if (begin > end || end > work.points.size()) {
-    std::fprintf(stderr, "PieceOf: points [%zu, %zu) of %zu\n", begin, end, work.points.size());
+  if (begin > end || end > work.size()) {
+    std::fprintf(stderr, "PieceOf: items [%zu, %zu) of %zu\n", begin, end, work.size());
     std::abort();
   }
   PointWork piece;
-  piece.points.assign(work.points.begin() + begin, work.points.begin() + end);
+  if (work.start()) {
+    piece.start_sections = work.start_sections;
+    piece.start_patches = end - begin;
+    piece.start_punctual = work.start_punctual;
+  } else {
+    piece.points.assign(work.points.begin() + begin, work.points.begin() + end);
+  }
   piece.seed = work.seed;
   piece.first_index = work.first_index + begin;
   piece.near_radius = work.near_radius;
@@ -50,6 +70,7 @@ void AppendPointValues(PointValues piece, PointValues* whole) {
   whole->near.insert(whole->near.end(), piece.near.begin(), piece.near.end());
   whole->direct.insert(whole->direct.end(), piece.direct.begin(), piece.direct.end());
   whole->gathered.insert(whole->gathered.end(), piece.gathered.begin(), piece.gathered.end());
+  whole->punctual.insert(whole->punctual.end(), piece.punctual.begin(), piece.punctual.end());
   whole->rays += piece.rays;
 }
 

@@ -30,6 +30,16 @@ struct PointWork {
   // The points that gather (GatherLight), with gather_rays each; empty: none.
   std::vector<bool> gather;
   uint32_t gather_rays = 0;
+  // Start work instead of points (core/direct_start.h): patches [first_index, first_index +
+  // start_patches) of the scene, each lit at start_sections^2 points keyed from `seed`, traced
+  // against a context of one shadow ray per point and light. `points` is empty then.
+  uint32_t start_sections = 0;  // 0: point work
+  uint64_t start_patches = 0;
+  bool start_punctual = false;  // the scene has punctual lights: each patch has their share too
+
+  bool start() const { return start_sections > 0; }
+  // The items a piece is cut from: points, or patches of start work.
+  size_t size() const { return start() ? start_patches : points.size(); }
 };
 
 // The values of points [begin, end) of a PointWork, in order; an empty vector where the work did
@@ -38,6 +48,9 @@ struct PointValues {
   std::vector<bool> near;
   std::vector<Rgb> direct;
   std::vector<Rgb> gathered;
+  // Start work's per patch (core/direct_start.h's PatchStartValues): its direct light is `direct`,
+  // its punctual lights' share this (empty where the scene has none).
+  std::vector<Rgb> punctual;
   uint64_t rays = 0;  // shadow and gathering rays cast, second bounces included
 };
 
@@ -52,7 +65,8 @@ struct PointLights {
   const SecondBounce* second = nullptr;
 };
 
-// Traces points [begin, end) of `work` on `threads` (0: all cores).
+// Traces points [begin, end) of `work` on `threads` (0: all cores); of start work, its patches
+// [begin, end) counted from first_index.
 PointValues TracePoints(const PointLights& lights, const PointWork& work, size_t begin, size_t end,
                         unsigned threads);
 

@@ -14,11 +14,15 @@ namespace radfarm::protocol {
 // LeaseResult's hits (core/packed_hits.h: 2-3 bytes a hit instead of 16); version 6 leases the
 // display's points (PointLease, PointResult). A version-4 or 5 peer still works (a frame's own
 // version says how its hits are written, and the master leases points only to agents of version
-// 6), so agents and master can be upgraded one at a time.
-inline constexpr uint16_t kProtocolVersion = 6;
+// 6), so agents and master can be upgraded one at a time. Version 7 leases the direct-light start
+// by patch (PointLease start_sections, PointResult punctual), to agents of version 7 alone.
+inline constexpr uint16_t kProtocolVersion = 7;
 inline constexpr uint16_t kMinProtocolVersion = 4;
 inline constexpr uint16_t kPackedHitsVersion = 5;
 inline constexpr uint16_t kPointLeaseVersion = 6;
+inline constexpr uint16_t kStartLeaseVersion = 7;
+// A start's points per side of a patch (core/direct_light.h: at most 16).
+inline constexpr uint32_t kMaxStartSections = 64;
 
 // Frame: a 4-byte little-endian length prefix, then that many bytes of FlatBuffer.
 inline constexpr size_t kLengthPrefixBytes = 4;

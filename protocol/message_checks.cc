@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace radfarm::protocol {
@@ -163,7 +164,26 @@ bool AreFlags(const std::vector<uint8_t>& flags) {
   return std::all_of(flags.begin(), flags.end(), [](uint8_t f) { return f <= 1; });
 }
 
+Status CheckStartLease(const PointLeaseMsg& m) {
+  const size_t n = m.start_patches;
+  if (n == 0 || n > kMaxLeasePoints) {
+    return Fail("PointLease", Str(n) + " start patches, not 1.." + Str(kMaxLeasePoints));
+  }
+  if (m.start_sections > kMaxStartSections) {
+    return Fail("PointLease",
+                "start_sections " + Str(m.start_sections) + " not in 1.." + Str(kMaxStartSections));
+  }
+  if (!m.points.empty() || !m.gather.empty() || m.near_radius != 0 || !m.direct) {
+    return Fail("PointLease", "a start lease with points, gathering or near flags");
+  }
+  if (m.first_index > UINT64_MAX - n) return Fail("PointLease", "first_index overflows");
+  if (m.lease_ms < 1) return Fail("PointLease", "lease_ms 0");
+  return Ok{};
+}
+
 Status Check(const PointLeaseMsg& m) {
+  if (m.start_sections > 0) return CheckStartLease(m);
+  if (m.start_patches != 0) return Fail("PointLease", "start_patches without start_sections");
   const size_t n = m.points.size();
   if (n == 0 || n > kMaxLeasePoints) {
     return Fail("PointLease", Str(n) + " points, not 1.." + Str(kMaxLeasePoints));
@@ -200,16 +220,18 @@ Status Check(const PointLeaseMsg& m) {
 }
 
 Status Check(const PointResultMsg& m) {
-  const size_t most = std::max({m.near.size(), m.direct.size(), m.gathered.size()});
+  const size_t most =
+      std::max({m.near.size(), m.direct.size(), m.gathered.size(), m.punctual.size()});
   if (most == 0 || most > kMaxLeasePoints) {
     return Fail("PointResult", Str(most) + " values, not 1.." + Str(kMaxLeasePoints));
   }
   if (!AreFlags(m.near)) return Fail("PointResult", "a near flag other than 0 or 1");
-  for (const auto* values : {&m.direct, &m.gathered}) {
+  for (const auto& [values, name] :
+       {std::pair{&m.direct, "direct"}, std::pair{&m.gathered, "gathered"},
+        std::pair{&m.punctual, "punctual"}}) {
     for (size_t i = 0; i < values->size(); ++i) {
       if (!(*values)[i].IsFinite()) {
-        return Fail("PointResult", std::string(values == &m.direct ? "direct" : "gathered") +
-                                       " value " + Str(i) + " not finite");
+        return Fail("PointResult", std::string(name) + " value " + Str(i) + " not finite");
       }
     }
   }

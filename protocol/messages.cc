@@ -17,9 +17,11 @@ static_assert(std::size(kMessageNames) == std::variant_size_v<Message>);
 std::string_view MessageName(const Message& message) { return kMessageNames[message.index()]; }
 
 bool InVersion(const Message& message, uint16_t version) {
-  if (std::holds_alternative<PointLeaseMsg>(message) ||
-      std::holds_alternative<PointResultMsg>(message)) {
-    return version >= kPointLeaseVersion;
+  if (const auto* lease = std::get_if<PointLeaseMsg>(&message)) {
+    return version >= (lease->start_sections > 0 ? kStartLeaseVersion : kPointLeaseVersion);
+  }
+  if (const auto* result = std::get_if<PointResultMsg>(&message)) {
+    return version >= (result->punctual.empty() ? kPointLeaseVersion : kStartLeaseVersion);
   }
   if (std::holds_alternative<LeaseAssignmentMsg>(message) ||
       std::holds_alternative<LeaseResultMsg>(message) ||

@@ -176,7 +176,9 @@ struct LeasedPoint {
 
 // Points [first_index, first_index + points.size()) of one step of a job's display (a piece of a
 // display/point_work.h PointWork), traced against the point context the hash names (fetched as a
-// scene is: codec/point_context_blob.h). `lease.batch_id` names the piece.
+// scene is: codec/point_context_blob.h). `lease.batch_id` names the piece. From version 7, a
+// piece of a direct-light start instead (start_sections > 0, core/direct_start.h): patches
+// [first_index, first_index + start_patches) of the context's scene, no points, `direct` set.
 struct PointLeaseMsg {  // master -> agent
   LeaseRef lease;
   SceneHash context_hash{};
@@ -188,6 +190,8 @@ struct PointLeaseMsg {  // master -> agent
   std::vector<LeasedPoint> points;  // 1..kMaxLeasePoints
   std::vector<uint8_t> gather;      // empty, or 0 or 1 per point: the points that gather
   uint32_t lease_ms = 0;            // >= 1
+  uint32_t start_sections = 0;      // <= kMaxStartSections; 0: point work
+  uint32_t start_patches = 0;       // 1..kMaxLeasePoints with start_sections, else 0
   bool operator==(const PointLeaseMsg&) const = default;
 };
 
@@ -200,6 +204,7 @@ struct PointResultMsg {  // agent -> master
   std::vector<Rgb> gathered;   // finite
   uint64_t rays = 0;           // shadow and gathering rays cast
   double compute_seconds = 0;  // finite, >= 0
+  std::vector<Rgb> punctual;   // finite; a start's punctual lights' share per patch (version 7)
   bool operator==(const PointResultMsg&) const = default;
 };
 

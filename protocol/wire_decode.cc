@@ -198,6 +198,8 @@ Result<Message> Read(const wire::PointLease& t) {
   }
   if (t.gather()) m.gather.assign(t.gather()->begin(), t.gather()->end());
   m.lease_ms = t.lease_ms();
+  m.start_sections = t.start_sections();
+  m.start_patches = t.start_patches();
   return Message{std::move(m)};
 }
 
@@ -218,6 +220,7 @@ Result<Message> Read(const wire::PointResult& t) {
   if (t.near()) m.near.assign(t.near()->begin(), t.near()->end());
   RADFARM_RETURN_IF_ERROR(ReadPointValues(t.direct(), "direct", &m.direct));
   RADFARM_RETURN_IF_ERROR(ReadPointValues(t.gathered(), "gathered", &m.gathered));
+  RADFARM_RETURN_IF_ERROR(ReadPointValues(t.punctual(), "punctual", &m.punctual));
   m.rays = t.rays();
   m.compute_seconds = t.compute_seconds();
   return Message{std::move(m)};

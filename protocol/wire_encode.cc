@@ -158,15 +158,18 @@ Offset<wire::PointLease> Build(FlatBufferBuilder& fbb, const PointLeaseMsg& m) {
   const wire::LeaseRef lease = ToWire(m.lease);
   const wire::Bytes32 hash = ToWire(m.context_hash);
   return wire::CreatePointLease(fbb, &lease, &hash, m.seed, m.near_radius, m.direct, m.gather_rays,
-                                m.first_index, points, gather, m.lease_ms);
+                                m.first_index, points, gather, m.lease_ms, m.start_sections,
+                                m.start_patches);
 }
 
 Offset<wire::PointResult> Build(FlatBufferBuilder& fbb, const PointResultMsg& m) {
   const auto near = m.near.empty() ? 0 : fbb.CreateVector(m.near);
   const auto direct = m.direct.empty() ? 0 : PointValues(fbb, m.direct);
   const auto gathered = m.gathered.empty() ? 0 : PointValues(fbb, m.gathered);
+  const auto punctual = m.punctual.empty() ? 0 : PointValues(fbb, m.punctual);
   const wire::LeaseRef lease = ToWire(m.lease);
-  return wire::CreatePointResult(fbb, &lease, near, direct, gathered, m.rays, m.compute_seconds);
+  return wire::CreatePointResult(fbb, &lease, near, direct, gathered, m.rays, m.compute_seconds,
+                                 punctual);
 }
 
 // A table as the frame's payload; its union tag comes from the table's type, so the C++ messages

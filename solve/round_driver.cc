@@ -22,9 +22,10 @@ RoundDriver::~RoundDriver() {
 Result<std::unique_ptr<RoundDriver>> RoundDriver::Start(PatchMesh mesh,
                                                         const SolverSettings& settings,
                                                         const RefineSettings& refine,
-                                                        const SolveState* resume,
-                                                        ThreadPool& pool) {
+                                                        const SolveState* resume, ThreadPool& pool,
+                                                        StartLightSource start) {
   std::unique_ptr<RoundDriver> driver(new RoundDriver(settings, &pool));
+  driver->start_ = std::move(start);
   driver->mesh_ = std::make_unique<PatchMesh>(std::move(mesh));
   if (refine.enabled) {
     Result<RefinementSchedule> schedule = RefinementSchedule::Create(
@@ -72,11 +73,13 @@ std::unique_ptr<RoundDriver> RoundDriver::Start(const PatchScene& scene,
 
 Result<std::unique_ptr<RoundDriver>> RoundDriver::StartOwning(PatchScene scene,
                                                               const SolverSettings& settings,
-                                                              const SolveState* resume) {
+                                                              const SolveState* resume,
+                                                              StartLightSource start) {
   if (resume != nullptr && resume->refined_scene != nullptr) {
     return Error{"cannot resume an unrefined solve on a refined mesh"};
   }
   std::unique_ptr<RoundDriver> driver(new RoundDriver(settings, nullptr));
+  driver->start_ = std::move(start);
   driver->owned_scene_ = std::make_unique<const PatchScene>(std::move(scene));
   driver->scene_ = driver->owned_scene_.get();
   driver->RebuildSolver();
@@ -279,7 +282,7 @@ SolverSettings RoundDriver::PhaseSettings() const {
 }
 
 void RoundDriver::RebuildSolver() {
-  solver_ = std::make_unique<ProgressiveSolver>(*scene_, PhaseSettings());
+  solver_ = std::make_unique<ProgressiveSolver>(*scene_, PhaseSettings(), start_);
   budget_ = SolveBudget(*scene_, settings_);
   display_forecast_ = DisplayRaysForecast(*scene_, settings_, solver_->start_rays());
 }

@@ -28,6 +28,7 @@
 
 #include "base/result.h"
 #include "core/batch.h"
+#include "core/direct_start.h"
 #include "core/patch_scene.h"
 #include "core/progressive_solver.h"
 #include "core/ray_caster.h"
@@ -59,9 +60,12 @@ class RoundDriver {
   // per element of the refined scene it names, or of `mesh`). `pool` serves refinement steps and
   // must outlive the driver. Errors: refinement settings out of range (naming the job file key); a
   // resume state that does not fit the mesh.
+  // `start`, if given, traces every solver's direct-light start, the one a refinement restart
+  // makes included (core/direct_start.h); without, the solver traces it on settings.threads.
   static Result<std::unique_ptr<RoundDriver>> Start(PatchMesh mesh, const SolverSettings& settings,
                                                     const RefineSettings& refine,
-                                                    const SolveState* resume, ThreadPool& pool);
+                                                    const SolveState* resume, ThreadPool& pool,
+                                                    StartLightSource start = {});
   // A solve of a bare scene, never refined; `scene` must outlive the driver.
   static std::unique_ptr<RoundDriver> Start(const PatchScene& scene, const SolverSettings& settings,
                                             const SolveState* resume);
@@ -70,7 +74,8 @@ class RoundDriver {
   // patch, while it solves). Errors: a resume state that does not fit the scene.
   static Result<std::unique_ptr<RoundDriver>> StartOwning(PatchScene scene,
                                                           const SolverSettings& settings,
-                                                          const SolveState* resume);
+                                                          const SolveState* resume,
+                                                          StartLightSource start = {});
   ~RoundDriver();
   RoundDriver(const RoundDriver&) = delete;
   RoundDriver& operator=(const RoundDriver&) = delete;
@@ -151,6 +156,7 @@ class RoundDriver {
   void RebuildSolver();
 
   SolverSettings settings_;
+  StartLightSource start_;  // empty: each solver traces its own start
   // The budgets the rounds stop at: settings_'s less the display's share (core/display_budget.h).
   SolverSettings budget_;
   ThreadPool* pool_ = nullptr;                     // null for a bare scene

@@ -203,7 +203,7 @@ void AgentConnections::OnAgentClosed(AgentLink& link, const std::string& reason)
     for (auto& [job, runner] : jobs_.runners()) {
       runner->ForEachScheduler([&](scheduler::RoundScheduler& s) { s.OnAgentLost(id); });
     }
-    jobs_.OnDisplayAgentLost(id);
+    jobs_.OnPointAgentLost(id);
   } else if (doors_.ClosedBeforeAuth(id)) {
     LogAtDoor(link.address() + ": closed before authentication: " + reason);
   }
@@ -219,7 +219,7 @@ void AgentConnections::TakeLeasesAway(AgentLink& link, const char* why) {
       s.OnAgentLost(link.id());
     });
   }
-  jobs_.OnDisplayAgentLost(link.id());
+  jobs_.OnPointAgentLost(link.id());
   LogLine(LogLevel::kWarning, "agents")
       << link.Describe() << " " << why << ": its " << held << " leases go back to the queue";
 }
@@ -406,7 +406,7 @@ void AgentConnections::OnLeaseReturn(AgentLink& link, const protocol::LeaseRetur
     by_job[lease.job_id].push_back(lease.batch_id);
   size_t returned = 0;
   for (const protocol::LeaseRef& lease : message.leases) {
-    returned += jobs_.ReturnDisplayPieces(link.id(), lease);
+    returned += jobs_.ReturnPointPieces(link.id(), lease);
   }
   for (auto& [job, batches] : by_job) {
     if (RunningJob* runner = jobs_.FindRunner(job)) {
@@ -449,7 +449,7 @@ void AgentConnections::OnSceneRequest(AgentLink& link, const protocol::SceneRequ
     (void)link.Send(std::move(*chunk));
     return;
   }
-  if (const auto context = jobs_.DisplayContext(request.scene_hash)) {
+  if (const auto context = jobs_.PointContextOf(request.scene_hash)) {
     Result<protocol::SceneChunkMsg> chunk = protocol::MakeSceneChunk(*context, request);
     if (!chunk) {
       LogLine(LogLevel::kWarning, "agents")
@@ -473,11 +473,10 @@ void AgentConnections::OnPointResult(AgentLink& link, const protocol::PointResul
   if (*accepted) link.CountAccepted(1);
 }
 
-size_t AgentConnections::DisplayAgents() const {
+size_t AgentConnections::PointAgents(uint16_t version) const {
   size_t agents = 0;
   for (const auto& [id, link] : links_) {
-    agents +=
-        link->authenticated() && !link->stale() && link->version() >= protocol::kPointLeaseVersion;
+    agents += link->authenticated() && !link->stale() && link->version() >= version;
   }
   return agents;
 }
@@ -506,15 +505,16 @@ void AgentConnections::Dispatch(AgentLink& link) {
   // LeaseAssignment frames of at most LeaseSizeOf() batches; leases taken over from another agent
   // are revoked there in one LeaseRevoke per agent. A job with batches queued takes the agent's
   // leases of lower-priority jobs and of the gathers ahead back first.
-  // A finished job's display first: its steps are the end of a job, and each waits for its last
-  // piece. An agent holds a piece per thread and one more, so it has the next when one ends.
+  // Point work first: a running job's start (its job waits for the last piece) and a finished
+  // job's display (its steps are the end of a job, and each waits for its last piece). An agent
+  // holds a piece per thread and one more, so it has the next when one ends.
   if (link.version() >= protocol::kPointLeaseVersion) {
     const auto refused = [&](store::JobId job) {
       return blocklist_.BlockedUntil(job, link.name(), now).has_value();
     };
     bool sending = true;
     for (protocol::PointLeaseMsg& lease :
-         jobs_.DisplayLeasesFor(link.id(), link.threads() + 1, refused)) {
+         jobs_.PointLeasesFor(link.id(), link.version(), link.threads() + 1, refused)) {
       const protocol::LeaseRef ref = lease.lease;
       if (sending) {
         const Status st = link.Send(std::move(lease));
@@ -523,7 +523,7 @@ void AgentConnections::Dispatch(AgentLink& link) {
         sending = false;
       }
       // Not sent: back to the queue rather than wait for its deadline.
-      jobs_.ReturnDisplayPieces(link.id(), ref);
+      jobs_.ReturnPointPieces(link.id(), ref);
     }
   }
   std::map<uint64_t, std::vector<protocol::LeaseRef>> revoked;

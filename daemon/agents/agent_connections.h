@@ -64,8 +64,9 @@ class AgentConnections {
   std::vector<uint64_t> Available() const;
   // The available agents' last reported rays/s (their heartbeats), summed.
   double ReportedRaysPerSecond() const;
-  // Available agents of protocol version 6, which trace the display's points.
-  size_t DisplayAgents() const;
+  // Available agents of protocol `version` or later: 6 trace the display's points, 7 a start's
+  // patches too.
+  size_t PointAgents(uint16_t version) const;
   // The heartbeat: marks agents silent past agent_timeout_ms stale (their leases go back),
   // sends the others a heartbeat, then dispatches.
   void Heartbeat();

@@ -29,6 +29,12 @@ protocol::PointLeaseMsg MakePointLease(store::JobId job, const PieceLease& lease
   m.near_radius = work.near_radius;
   m.direct = work.direct;
   m.first_index = work.first_index + lease.begin;
+  m.lease_ms = std::max<uint32_t>(1, lease_ms);
+  if (work.start()) {
+    m.start_sections = work.start_sections;
+    m.start_patches = static_cast<uint32_t>(lease.end - lease.begin);
+    return m;
+  }
   m.points.reserve(lease.end - lease.begin);
   for (size_t i = lease.begin; i < lease.end; ++i) {
     m.points.push_back({work.points[i].position, work.points[i].normal});
@@ -59,10 +65,13 @@ Result<PointValues> ValuesOfResult(const protocol::PointResultMsg& result, const
   RADFARM_RETURN_IF_ERROR(CheckCount("direct", result.direct.size(), work.direct, points));
   RADFARM_RETURN_IF_ERROR(
       CheckCount("gathered", result.gathered.size(), !work.gather.empty(), points));
+  RADFARM_RETURN_IF_ERROR(
+      CheckCount("punctual", result.punctual.size(), work.start() && work.start_punctual, points));
   PointValues values;
   values.near.assign(result.near.begin(), result.near.end());
   values.direct = result.direct;
   values.gathered = result.gathered;
+  values.punctual = result.punctual;
   values.rays = result.rays;
   return values;
 }

@@ -3,6 +3,7 @@
 // a PointResult checked against the piece it answers.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -53,12 +54,19 @@ struct DisplayRun {
 // size is unknown until the light is seen).
 std::optional<double> DisplaySecondsLeft(const DisplayRun& run, uint64_t now_ms);
 
+// Work of fewer items (a display step's points, a start's patches) is traced here: its leases
+// would cost more round trips than rays.
+inline constexpr size_t kLocalPiecesWork = 64;
+// How long an agent has for a piece before an idle agent may take it as well: several times what
+// an office desktop spends on the largest piece.
+inline constexpr std::chrono::milliseconds kPieceLeaseTime{60000};
+
 // Points a lease carries: about a quarter of an agent's share of the step, so that a step ends
 // with the agents finishing close together, within [kMinLeasePoints, protocol::kMaxLeasePoints].
 inline constexpr size_t kMinLeasePoints = 256;
 size_t PiecePoints(size_t points, size_t agents);
 
-// Piece `lease` of `work` as the frame that leases it.
+// Piece `lease` of `work` (points, or a start's patches) as the frame that leases it.
 protocol::PointLeaseMsg MakePointLease(store::JobId job, const PieceLease& lease,
                                        const PointWork& work, const protocol::SceneHash& context,
                                        uint32_t lease_ms);

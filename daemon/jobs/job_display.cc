@@ -24,16 +24,6 @@ namespace radfarm::daemon {
 using loop::LogLevel;
 using loop::LogLine;
 
-namespace {
-
-// A step of fewer points is traced here: its leases would cost more round trips than rays.
-constexpr size_t kLocalStepPoints = 64;
-// How long an agent has for a piece before an idle agent may take it as well: several times what
-// an office desktop spends on the largest piece.
-constexpr std::chrono::milliseconds kPieceLeaseTime{60000};
-
-}  // namespace
-
 DisplayRun* JobRounds::FindDisplay(store::JobId id, uint64_t serial) {
   const auto it = display_runs_.find(id);
   return it == display_runs_.end() || it->second.serial != serial ? nullptr : &it->second;
@@ -115,7 +105,7 @@ void JobRounds::NextDisplayStep(store::JobId id, uint64_t serial) {
   const PointWork* work = run.draft->work();
   if (!work) return FinishDisplay(id, serial);
   const size_t agents = agents_.display_agents ? agents_.display_agents() : 0;
-  if (agents == 0 || work->points.size() < kLocalStepPoints) {
+  if (agents == 0 || work->points.size() < kLocalPiecesWork) {
     ++run.local_steps;
     ApplyDisplayStep(id, serial, std::nullopt);
     return;
@@ -210,81 +200,6 @@ void JobRounds::MarkDone(store::JobId id, uint64_t serial,
         // at 10^6 patches. A master stopped in between prunes at its start.
         PruneKeptResults(id, UINT32_MAX);
       });
-}
-
-std::vector<protocol::PointLeaseMsg> JobRounds::DisplayLeasesFor(
-    uint64_t agent, uint32_t room, const std::function<bool(store::JobId)>& refused) {
-  std::vector<protocol::PointLeaseMsg> leases;
-  const scheduler::TimePoint now = clock_.Now();
-  for (auto& [id, run] : display_runs_) {
-    if (!run.pieces || refused(id)) continue;
-    const PointWork& work = *run.draft->work();
-    const protocol::SceneHash& context = run.draft->context()->hash;
-    while (run.pieces->HeldBy(agent) < room) {
-      const std::optional<PieceLease> piece = run.pieces->Next(agent, now);
-      if (!piece) break;
-      leases.push_back(MakePointLease(id, *piece, work, context,
-                                      static_cast<uint32_t>(kPieceLeaseTime.count())));
-    }
-  }
-  return leases;
-}
-
-Result<bool> JobRounds::OnPointResult(uint64_t agent, const protocol::PointResultMsg& result) {
-  const store::JobId id = static_cast<store::JobId>(result.lease.job_id);
-  const auto it = display_runs_.find(id);
-  if (it == display_runs_.end() || !it->second.pieces) return false;  // late: dropped
-  DisplayRun& run = it->second;
-  const std::optional<std::pair<size_t, size_t>> points =
-      run.pieces->PointsOf(result.lease.batch_id);
-  if (!points) return false;  // of an earlier step
-  Result<PointValues> values =
-      ValuesOfResult(result, *run.draft->work(), points->first, points->second);
-  if (!values) {
-    run.pieces->OnAgentLost(agent);
-    return Error{"job " + std::to_string(id) + ": " + values.error()};
-  }
-  const bool accepted =
-      run.pieces->OnResult(agent, result.lease.batch_id, result.lease.attempt_id,
-                           std::move(*values)) == DisplayPieces::Verdict::kAccepted;
-  if (accepted) {
-    AddToTimeline(&run.timeline, JobPhase::kDisplay, kRanOnAgents, 0, result.compute_seconds);
-  }
-  if (run.pieces->Complete()) {
-    PointValues whole = run.pieces->TakeValues();
-    run.pieces.reset();
-    ApplyDisplayStep(id, run.serial, std::move(whole));
-  }
-  return accepted;
-}
-
-void JobRounds::OnDisplayAgentLost(uint64_t agent) {
-  for (auto& [id, run] : display_runs_) {
-    if (run.pieces) run.pieces->OnAgentLost(agent);
-  }
-}
-
-size_t JobRounds::ReturnDisplayPieces(uint64_t agent, const protocol::LeaseRef& lease) {
-  const auto it = display_runs_.find(static_cast<store::JobId>(lease.job_id));
-  if (it == display_runs_.end() || !it->second.pieces) return 0;
-  const uint32_t before = it->second.pieces->HeldBy(agent);
-  it->second.pieces->Return(agent, lease.batch_id, lease.attempt_id);
-  return before - it->second.pieces->HeldBy(agent);
-}
-
-std::shared_ptr<const protocol::PackedScene> JobRounds::DisplayContext(
-    const protocol::SceneHash& hash) const {
-  for (const auto& [id, run] : display_runs_) {
-    if (run.pieces && run.draft->context() && run.draft->context()->hash == hash) {
-      return run.draft->context();
-    }
-  }
-  return nullptr;
-}
-
-bool JobRounds::LeasingDisplays() const {
-  return std::any_of(display_runs_.begin(), display_runs_.end(),
-                     [](const auto& run) { return run.second.pieces.has_value(); });
 }
 
 }  // namespace radfarm::daemon

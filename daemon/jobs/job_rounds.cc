@@ -35,7 +35,7 @@ std::string StartedEvent(const store::JobStart& start) {
 
 }  // namespace
 
-JobRounds::JobRounds(const Clock& clock, const MasterConfig& config,
+JobRounds::JobRounds(loop::EventLoop& loop, const Clock& clock, const MasterConfig& config,
                      const scheduler::SchedulerOptions& options, StoreThread& store,
                      loop::WorkQueue& compute, AgentHooks agents)
     : clock_(clock),
@@ -46,7 +46,30 @@ JobRounds::JobRounds(const Clock& clock, const MasterConfig& config,
       agents_(std::move(agents)),
       journal_(store),
       verify_seed_((uint64_t{std::random_device{}()} << 32) ^ std::random_device{}()),
-      checkpoints_(config.checkpoint_seconds, config.checkpoint_time_share) {}
+      checkpoints_(config.checkpoint_seconds, config.checkpoint_time_share) {
+  Result<std::unique_ptr<loop::Async>> wake =
+      loop::Async::Create(loop, [this] { TakeStartRequests(); });
+  if (wake) {
+    start_wake_ = std::move(*wake);
+  } else {  // Tick takes the requests then, within its period
+    LogLine(LogLevel::kWarning, "master") << "starts wait for the tick: " << wake.error();
+  }
+  loop::Async* async = start_wake_.get();
+  start_handoff_ = std::make_shared<StartHandoff>([async] {
+    if (async != nullptr) async->Send();
+  });
+}
+
+JobRounds::~JobRounds() {
+  // No compute thread may Send after this: start_wake_ goes with the object.
+  start_handoff_->AbandonAll("the master stops");
+}
+
+void JobRounds::Stop() {
+  stopping_ = true;
+  start_handoff_->AbandonAll("the master stops");
+  if (start_wake_) start_wake_->Close();
+}
 
 RunningJob* JobRounds::FindRunner(uint64_t job_id) {
   const auto it = runners_.find(static_cast<store::JobId>(job_id));
@@ -146,50 +169,50 @@ void JobRounds::StartQueuedJobs() {
   const int slots = static_cast<int>(config_.max_running_jobs - busy);
   // One step on the store thread: pick the jobs, mark them running, read what they need. The loop
   // thread then prepares them on the compute thread.
-  store_.Run([slots](store::JobStore& s) { return store::StartQueuedJobs(s, slots); },
-             [this](Result<std::vector<store::JobStart>> starts) {
-               start_pending_ = false;
-               if (stopping_) return;
-               if (!starts) {
-                 LogLine(LogLevel::kError, "store")
-                     << "cannot start queued jobs: " << starts.error();
-                 return;
-               }
-               for (store::JobStart& start : *starts) {
-                 const store::JobId id = start.record.id;
-                 starting_[id] = false;
-                 for (const std::string& w : start.warnings) {
-                   LogLine(LogLevel::kWarning, "job " + std::to_string(id)) << w;
-                 }
-                 store_.LogEvent(id, store::EventLevel::kInfo, StartedEvent(start));
-                 auto options = options_;
-                 auto shared = std::make_shared<store::JobStart>(std::move(start));
-                 SubmittedMesh meshed;
-                 if (!submitted_mesh_.empty() && submitted_mesh_job_ == id && !shared->checkpoint) {
-                   meshed = std::move(submitted_mesh_);
-                 }
-                 const size_t agents = agents_.available_agents().size();
-                 const double speed =
-                     agents_.reported_rays_per_second ? agents_.reported_rays_per_second() : 0.0;
-                 Status s = compute_.Submit(
-                     [shared, options, meshed, agents, speed]() mutable {
-                       return RunningJob::Prepare(
-                           shared->record, shared->bundle, shared->checkpoint,
-                           shared->checkpoint_scene, shared->rounds, options,
-                           std::move(shared->round_results), std::move(meshed), agents, speed);
-                     },
-                     [this, id](Result<std::shared_ptr<RunningJob>> runner) {
-                       OnJobPrepared(id, std::move(runner));
-                     });
-                 if (!s) LogLine(LogLevel::kError, "master") << s.error();
-               }
-               if (start_again_) {
-                 start_again_ = false;
-                 StartQueuedJobs();
-               } else {
-                 submitted_mesh_ = {};  // its job was not among those started
-               }
-             });
+  store_.Run(
+      [slots](store::JobStore& s) { return store::StartQueuedJobs(s, slots); },
+      [this](Result<std::vector<store::JobStart>> starts) {
+        start_pending_ = false;
+        if (stopping_) return;
+        if (!starts) {
+          LogLine(LogLevel::kError, "store") << "cannot start queued jobs: " << starts.error();
+          return;
+        }
+        for (store::JobStart& start : *starts) {
+          const store::JobId id = start.record.id;
+          starting_[id] = false;
+          for (const std::string& w : start.warnings) {
+            LogLine(LogLevel::kWarning, "job " + std::to_string(id)) << w;
+          }
+          store_.LogEvent(id, store::EventLevel::kInfo, StartedEvent(start));
+          auto options = options_;
+          auto shared = std::make_shared<store::JobStart>(std::move(start));
+          SubmittedMesh meshed;
+          if (!submitted_mesh_.empty() && submitted_mesh_job_ == id && !shared->checkpoint) {
+            meshed = std::move(submitted_mesh_);
+          }
+          const size_t agents = agents_.available_agents().size();
+          const double speed =
+              agents_.reported_rays_per_second ? agents_.reported_rays_per_second() : 0.0;
+          Status s = compute_.Submit(
+              [shared, options, meshed, agents, speed, start = StartSourceFor(id)]() mutable {
+                return RunningJob::Prepare(shared->record, shared->bundle, shared->checkpoint,
+                                           shared->checkpoint_scene, shared->rounds, options,
+                                           std::move(shared->round_results), std::move(meshed),
+                                           agents, speed, std::move(start));
+              },
+              [this, id](Result<std::shared_ptr<RunningJob>> runner) {
+                OnJobPrepared(id, std::move(runner));
+              });
+          if (!s) LogLine(LogLevel::kError, "master") << s.error();
+        }
+        if (start_again_) {
+          start_again_ = false;
+          StartQueuedJobs();
+        } else {
+          submitted_mesh_ = {};  // its job was not among those started
+        }
+      });
 }
 
 void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob>> runner) {
@@ -206,6 +229,7 @@ void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob
   }
   std::shared_ptr<RunningJob> r = std::move(*runner);
   runners_[id] = r;
+  AddStartSeconds(*r);
   KeepRules(id, r->rules());
   if (r->phase() == RunningJob::Phase::kFinished) {
     FinishJob(r);
@@ -356,6 +380,9 @@ void JobRounds::ReduceOnComputeThread(const std::shared_ptr<RunningJob>& runner,
                                       std::function<RoundOutcome()> work) {
   Status s = compute_.Submit(std::move(work), [this, runner](Result<RoundOutcome> outcome) {
     if (stopping_) return;
+    // Dropped meanwhile (cancelled, paused): a start it waited for ended with an error.
+    const auto it = runners_.find(runner->id());
+    if (it == runners_.end() || it->second != runner) return;
     if (!outcome) {
       FailJob(runner->id(), outcome.error());
       return;
@@ -383,6 +410,7 @@ void JobRounds::PruneKeptResults(store::JobId id, uint32_t round) {
 void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundOutcome outcome) {
   if (FindRunner(runner->id()) != runner.get()) return;  // cancelled or paused meanwhile
   const store::JobId id = runner->id();
+  AddStartSeconds(*runner);  // a refinement restart's start
   const uint32_t keep = config_.checkpoint_keep;
   // The store thread commits the round while agents start on the next one.
   auto record = outcome.record;
@@ -454,6 +482,7 @@ void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundO
 
 void JobRounds::DropJob(store::JobId id) {
   if (starting_.count(id)) starting_[id] = true;
+  DropStart(id);
   if (display_runs_.erase(id)) {
     // Agents drop the display's pieces; results still in flight are ignored on arrival.
     agents_.cancel_job(id);
@@ -515,6 +544,8 @@ BatchTotals JobRounds::batch_totals(scheduler::TimePoint now) const {
 }
 
 size_t JobRounds::Tick(scheduler::TimePoint now) {
+  if (!start_wake_) TakeStartRequests();
+  TakeBackOrphanedStarts();
   size_t offered = 0;
   for (auto& [job, runner] : runners_) {
     if (runner->phase() == RunningJob::Phase::kRound) offered += runner->scheduler().Tick(now);

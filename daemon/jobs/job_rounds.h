@@ -36,8 +36,11 @@
 #include "daemon/jobs/display_run.h"
 #include "daemon/jobs/result_journal.h"
 #include "daemon/jobs/running_job.h"
+#include "daemon/jobs/start_handoff.h"
+#include "daemon/jobs/start_run.h"
 #include "daemon/jobs/store_thread.h"
 #include "daemon/scheduler/round_scheduler.h"
+#include "loop/async.h"
 #include "loop/event_loop.h"
 #include "loop/work_queue.h"
 #include "store/checkpoint_pacer.h"
@@ -58,6 +61,8 @@ struct AgentHooks {
   std::function<void(store::JobId, const std::string& agent, const std::string& why)> convict;
   // Available agents that trace the display's points (protocol version 6); none: traced here.
   std::function<size_t()> display_agents;
+  // Available agents that trace a direct-light start's patches (version 7); none: traced here.
+  std::function<size_t()> start_agents;
 };
 
 // Exact validation since the master started (job_verification.cc).
@@ -82,9 +87,10 @@ class JobRounds {
  public:
   using Runners = std::map<store::JobId, std::shared_ptr<RunningJob>>;
 
-  JobRounds(const Clock& clock, const MasterConfig& config,
+  JobRounds(loop::EventLoop& loop, const Clock& clock, const MasterConfig& config,
             const scheduler::SchedulerOptions& options, StoreThread& store,
             loop::WorkQueue& compute, AgentHooks agents);
+  ~JobRounds();
   JobRounds(const JobRounds&) = delete;
   JobRounds& operator=(const JobRounds&) = delete;
 
@@ -151,26 +157,28 @@ class JobRounds {
   // The round and rays job `id`'s finished solve showed, while its display is drawn; nullopt for
   // any other job.
   std::optional<SolveShown> DisplayedSolve(store::JobId id) const;
-  // --- The display's leases (job_display.cc) ---
-  // New pieces of the displays under way for `agent`, while it holds fewer than `room`; none of
-  // a job `refused(job)` says the agent may not work for (blocklisted).
-  std::vector<protocol::PointLeaseMsg> DisplayLeasesFor(
-      uint64_t agent, uint32_t room, const std::function<bool(store::JobId)>& refused);
+  // --- Point work on the agents: starts and displays (job_point_leases.cc) ---
+  // New pieces of the starts (to agents of protocol version 7) and displays (version 6) under way
+  // for `agent`, while it holds fewer than `room` of each; none of a job `refused(job)` says the
+  // agent may not work for (blocklisted).
+  std::vector<protocol::PointLeaseMsg> PointLeasesFor(
+      uint64_t agent, uint16_t version, uint32_t room,
+      const std::function<bool(store::JobId)>& refused);
   // A PointResult of `agent`: true when it is its piece's first (accepted), false when dropped
   // (late, of an earlier step or a job no longer drawn). An error (values that do not answer the
   // piece's work) names what is wrong; the agent's pieces are then queued again, and the caller
   // treats it as a liar.
   Result<bool> OnPointResult(uint64_t agent, const protocol::PointResultMsg& result);
   // The agent went: its pieces go back to the queue.
-  void OnDisplayAgentLost(uint64_t agent);
+  void OnPointAgentLost(uint64_t agent);
   // The agent gave a piece back (LeaseReturn); returns 1 when it held it, else 0.
-  size_t ReturnDisplayPieces(uint64_t agent, const protocol::LeaseRef& lease);
+  size_t ReturnPointPieces(uint64_t agent, const protocol::LeaseRef& lease);
   // The point context of a display's step under lease, for the agents' SceneRequests; null
   // when no display under way has this hash.
-  std::shared_ptr<const protocol::PackedScene> DisplayContext(
+  std::shared_ptr<const protocol::PackedScene> PointContextOf(
       const protocol::SceneHash& hash) const;
   // Some display's step is leased: idle agents should be offered its pieces on every tick.
-  bool LeasingDisplays() const;
+  bool LeasingPoints() const;
 
   // Offers overdue leases again (RoundScheduler::Tick); returns how many.
   size_t Tick(scheduler::TimePoint now);
@@ -178,12 +186,28 @@ class JobRounds {
   // offered work on every tick, not only when they speak.
   bool InEndGame() const;
 
-  // Shutdown: no new work starts, results coming back are dropped.
-  void Stop() { stopping_ = true; }
+  // Shutdown: no new work starts, results coming back are dropped, a start the compute thread
+  // waits for ends with an error.
+  void Stop();
   // After the store thread drained: the runners go.
   void Clear() { runners_.clear(); }
 
  private:
+  // --- Direct-light starts (job_start.cc) ---
+  // What traces job `id`'s starts: the agents, through start_handoff_.
+  StartLightSource StartSourceFor(store::JobId id) const;
+  // The starts the compute thread handed over: leased, or sent back to be traced there.
+  void TakeStartRequests();
+  // A PointResult of a piece of `run` (OnPointResult's contract).
+  Result<bool> OnStartResult(uint64_t agent, StartRun& run, const protocol::PointResultMsg& result);
+  // Ends job `id`'s start under lease, if any: the compute thread's wait ends with an error.
+  void DropStart(store::JobId id);
+  // With no agent left that takes start work, the starts under lease are traced on the compute
+  // thread instead (Tick): a job does not wait for agents that may never come back.
+  void TakeBackOrphanedStarts();
+  // Adds the agents' seconds on the runner's last start to its timeline.
+  void AddStartSeconds(RunningJob& runner);
+
   void OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob>> runner);
   // Leases the job's final gather ahead (gather_ahead.h) if its preparation or last reduction
   // planned one and the agents, not this master, will compute the gather. False when it failed
@@ -246,6 +270,12 @@ class JobRounds {
   AgentHooks agents_;
 
   Runners runners_;
+  // Starts handed from the compute thread (start_handoff.h), woken by start_wake_.
+  std::shared_ptr<StartHandoff> start_handoff_;
+  std::unique_ptr<loop::Async> start_wake_;
+  std::map<store::JobId, StartRun> start_runs_;
+  uint32_t start_serial_ = 0;
+  std::map<store::JobId, double> start_agent_seconds_;  // until the runner is back on the loop
   // Finished jobs whose display is being drawn and stored.
   std::map<store::JobId, DisplayRun> display_runs_;
   uint64_t display_serial_ = 0;

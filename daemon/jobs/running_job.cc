@@ -70,7 +70,7 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
     const std::optional<std::vector<uint8_t>>& checkpoint_scene,
     const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options,
     std::vector<store::StoredBatchResult> stored, SubmittedMesh meshed, size_t agents,
-    double agents_rays_per_second) {
+    double agents_rays_per_second, StartLightSource start) {
   const std::string job = "job " + std::to_string(record.id);
   // The whole process's CPU: the start's direct light runs on a pool of its own.
   LapClock lap;
@@ -136,7 +136,7 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   Result<std::unique_ptr<RoundDriver>> driver = [&]() -> Result<std::unique_ptr<RoundDriver>> {
     if (bundle->job.refine.enabled) {
       return RoundDriver::Start(std::move(*mesh), runner->settings_, bundle->job.refine, resume_at,
-                                *runner->pool_);
+                                *runner->pool_, std::move(start));
     }
     // Without refinement the master needs the patches alone (agents trace, `radfarm fetch` makes
     // the display): the mesh (about 300 bytes a patch) goes first, its pages back to the system,
@@ -148,7 +148,8 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
       malloc_trim(0);
     }
     packed = PackPatchScene(*patches);
-    return RoundDriver::StartOwning(std::move(*patches), runner->settings_, resume_at);
+    return RoundDriver::StartOwning(std::move(*patches), runner->settings_, resume_at,
+                                    std::move(start));
   }();
   if (!driver) return Error{job + ": " + driver.error()};
   runner->driver_ = std::move(*driver);
@@ -369,6 +370,10 @@ std::vector<ResultDigest> RunningJob::VerifyBatches(const std::vector<Batch>& ba
 void RunningJob::Fold(std::vector<std::pair<uint32_t, BatchResult>> results) {
   if (!fold_) fold_ = driver_->Reduction(*fold_plan_);
   for (auto& [index, result] : results) fold_->Add(index, std::move(result));
+}
+
+void RunningJob::AddStartAgentSeconds(double seconds) {
+  AddToTimeline(&timeline_, JobPhase::kDirectLight, kRanOnAgents, 0, seconds);
 }
 
 void RunningJob::AddAgentSeconds(bool gather, double seconds) {

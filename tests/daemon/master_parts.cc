@@ -56,15 +56,17 @@ MasterParts::MasterParts(const MasterConfig& config)
       StoreThread::Start(loop_, Must(store::JobStore::Open(config_.DatabasePath()), "job store")),
       "store thread");
   compute_ = Must(loop::WorkQueue::Create(loop_, 1, "compute"), "compute thread");
-  AgentHooks hooks{
-      [this] { agents_->DispatchAll(); }, [this](store::JobId id) { agents_->CancelJob(id); },
-      [this] { return agents_->Available(); }, [this] { return agents_->ReportedRaysPerSecond(); },
-      [this](store::JobId id, const std::string& agent, const std::string& why) {
-        agents_->Convict(id, agent, why);
-      },
-      [this] { return agents_->DisplayAgents(); }};
-  jobs_ =
-      std::make_unique<JobRounds>(clock_, config_, options_, *store_, *compute_, std::move(hooks));
+  AgentHooks hooks{[this] { agents_->DispatchAll(); },
+                   [this](store::JobId id) { agents_->CancelJob(id); },
+                   [this] { return agents_->Available(); },
+                   [this] { return agents_->ReportedRaysPerSecond(); },
+                   [this](store::JobId id, const std::string& agent, const std::string& why) {
+                     agents_->Convict(id, agent, why);
+                   },
+                   [this] { return agents_->PointAgents(protocol::kPointLeaseVersion); },
+                   [this] { return agents_->PointAgents(protocol::kStartLeaseVersion); }};
+  jobs_ = std::make_unique<JobRounds>(loop_, clock_, config_, options_, *store_, *compute_,
+                                      std::move(hooks));
   agents_ = std::make_unique<AgentConnections>(loop_, clock_, config_, secret_, options_, *store_,
                                                *jobs_, std::vector<store::AgentCredential>{});
   control_ = std::make_unique<ControlRequests>(clock_, *store_, *compute_, *jobs_, *agents_);

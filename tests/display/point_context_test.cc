@@ -9,10 +9,12 @@
 #include <optional>
 
 #include "core/direct_light.h"
+#include "core/direct_start.h"
 #include "display/display_plan.h"
 #include "display/display_stage.h"
 #include "mesh/patch_mesh.h"
 #include "solve/local_solve.h"
+#include "tests/core/test_scenes.h"
 #include "tests/mesh/test_scenes.h"
 
 namespace radfarm {
@@ -121,6 +123,55 @@ TEST_F(PointContextTest, TheContextGathersOnlyOnceTheDirectLightIsIn) {
   EXPECT_EQ(second.outgoing.size(), patches);
   EXPECT_EQ(second.corner_offsets.size(), patches);
   EXPECT_EQ(second.bounced.size(), patches);
+}
+
+// Two emitter lights over a floor and a point lamp: emitters and punctual lights in a start.
+PatchScene LampsAndLights() {
+  PatchScene scene = testing::LightsOverFloor(2);
+  PunctualLight lamp;
+  lamp.kind = PunctualKind::kPoint;
+  lamp.position = {5, 8, 5};
+  lamp.direction = {0, -1, 0};
+  lamp.intensity = {40, 30, 20};
+  scene.lights.push_back(lamp);
+  return scene;
+}
+
+constexpr StartWork kWork{4, 99, true, 8};
+
+// A direct-light start traced by agents (core/direct_start.h): a PointTracer on the start's
+// context, tracing start work in pieces, gives PatchDirectLight's bits and punctual power.
+TEST(PointContextStartTest, AStartsPatchesTracedElsewhereInPiecesGivePatchDirectLightsBits) {
+  const PatchScene scene = LampsAndLights();
+  double power = 0;
+  const std::vector<Rgb> whole = PatchDirectLight(scene, kWork.sections, kWork.seed, 2,
+                                                  kWork.emitters, &power, kWork.rays_per_light);
+  // What an agent holds: a copy of the scene and the start's context.
+  const PatchScene copy = scene;
+  PointContext context;
+  context.emitters = kWork.emitters;
+  context.rays_per_point = 1;
+  context.rays_per_light = kWork.rays_per_light;
+  const PointTracer tracer(copy, context);
+  PointWork work;
+  work.seed = kWork.seed;
+  work.direct = true;
+  work.start_sections = kWork.sections;
+  work.start_patches = scene.patches.size();
+  work.start_punctual = true;
+  ASSERT_EQ(work.size(), scene.patches.size());
+  PatchStartValues values;
+  for (size_t begin = 0; begin < work.size(); begin += 13) {
+    const size_t end = std::min(work.size(), begin + 13);
+    const PointWork piece = PieceOf(work, begin, end);
+    PointValues traced = tracer.Trace(piece, 0, piece.size(), 1);
+    values.direct.insert(values.direct.end(), traced.direct.begin(), traced.direct.end());
+    values.punctual.insert(values.punctual.end(), traced.punctual.begin(), traced.punctual.end());
+    values.rays += traced.rays;
+  }
+  const StartLight start = StartLightOf(scene, std::move(values));
+  EXPECT_TRUE(testing::BitIdentical(start.direct, whole));
+  EXPECT_EQ(start.punctual_power, power);
 }
 
 }  // namespace

@@ -15,9 +15,13 @@ constexpr char kDrawing[] = "drawing the display";
 TEST_F(FarmTest, TheMasterDrawsTheDisplayAndFetchWritesRendersFiles) {
   StartMaster();
   StartAgent("a1");
+  // Known before the job starts: its direct-light start goes to the agent too.
+  ASSERT_TRUE(farm_.WaitForAgents(1, std::chrono::seconds(60))) << MasterLog();
   const int64_t id = Submit("cornell-box.toml", kShortJob);
   ASSERT_TRUE(WaitForState(id, "done"));
   EXPECT_EQ(CountLinesWithBoth(MasterLog(), "job " + std::to_string(id), kDrawing), 1u)
+      << MasterLog();
+  EXPECT_EQ(CountLinesWithBoth(MasterLog(), "job " + std::to_string(id), "direct-light start:"), 1u)
       << MasterLog();
   const auto fetched = FetchOutputs(id, "fetched");
   const auto& rendered = ReferenceOutputs("cornell-box.toml", kShortJob);
@@ -25,8 +29,8 @@ TEST_F(FarmTest, TheMasterDrawsTheDisplayAndFetchWritesRendersFiles) {
     EXPECT_FALSE(fetched.at(f).empty()) << f;
     EXPECT_TRUE(fetched.at(f) == rendered.at(f)) << f << ": farm and render differ";
   }
-  // Where the job's time went: the master's phases, the agents' tracing of the rounds, the
-  // gather and the display, and this client's outputs, in status and in stats.json.
+  // Where the job's time went: the master's phases, the agents' tracing of the start, the rounds,
+  // the gather and the display, and this client's outputs, in status and in stats.json.
   const nlohmann::json status = Status(id);
   ASSERT_TRUE(status.contains("timeline")) << status.dump();
   std::set<std::string> places;
@@ -34,8 +38,9 @@ TEST_F(FarmTest, TheMasterDrawsTheDisplayAndFetchWritesRendersFiles) {
     places.insert(e["phase"].get<std::string>() + "@" + e["where"].get<std::string>());
     EXPECT_GE(e["cpu_seconds"].get<double>(), 0) << e.dump();
   }
-  for (const char* entry : {"direct light@master", "rounds@master", "rounds@agents",
-                            "gather@master", "gather@agents", "display@master", "display@agents"}) {
+  for (const char* entry :
+       {"direct light@master", "direct light@agents", "rounds@master", "rounds@agents",
+        "gather@master", "gather@agents", "display@master", "display@agents"}) {
     EXPECT_TRUE(places.count(entry)) << entry << " not in " << status["timeline"].dump();
   }
   const nlohmann::json stats =

@@ -16,11 +16,12 @@
 namespace radfarm::testing {
 namespace {
 
-// A blocking agent speaking the protocol by hand.
+// A blocking agent speaking the protocol by hand: batches alone (version 5), no point work.
 class HandAgent {
  public:
   HandAgent(const std::string& address, const protocol::FarmSecret& secret, std::string name)
-      : session_(protocol::ProtocolSession::ForAgent(secret, {std::move(name), 1})) {
+      : session_(protocol::ProtocolSession::ForAgent(
+            secret, {std::move(name), 1, protocol::kMinProtocolVersion, protocol::kPackedHitsVersion})) {
     const size_t colon = address.rfind(':');
     sockaddr_in sa{};
     sa.sin_family = AF_INET;

@@ -22,6 +22,15 @@ TEST(ProtocolCodecTest, SamplesCoverEveryMessageTypeAndAreValid) {
   }
 }
 
+TEST(ProtocolCodecTest, StartSamplesAreValidAndRoundTrip) {
+  for (const Message& message : testing::StartSamples()) {
+    EXPECT_TRUE(CheckMessage(message)) << CheckMessage(message).error();
+    Result<DecodedFrame> decoded = DecodeFrame(EncodeFrame(message));
+    ASSERT_TRUE(decoded) << MessageName(message) << ": " << decoded.error();
+    EXPECT_EQ(decoded->message, message);
+  }
+}
+
 TEST(ProtocolCodecTest, EveryMessageTypeRoundTrips) {
   for (const Message& message : SampleMessages()) {
     const std::vector<uint8_t> frame = EncodeFrame(message);

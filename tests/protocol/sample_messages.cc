@@ -57,13 +57,24 @@ std::vector<Message> SampleMessages() {
                     uint64_t{1} << 35,
                     {{{1.5, -2.25, 1e-300}, {0, 1, 0}}, {{0, 0, 548.75}, {0.6, 0, -0.8}}},
                     {1, 0},
-                    45000},
+                    45000,
+                    0,
+                    0},
       PointResultMsg{lease,
                      {0, 1},
                      {{0.5, 0.25, 1e-9}, {12, 0, 3}},
                      {{0.1, -1e-17, 0.3}, {0, 0, 0}},
                      uint64_t{1} << 40,
-                     0.0625},
+                     0.0625,
+                     {}},
+  };
+}
+
+std::vector<Message> StartSamples() {
+  const LeaseRef lease{0x0102030405060708ull, 0x1111222233334444ull, 3};
+  return {
+      PointLeaseMsg{lease, Pattern(11), 77, 0, true, 0, 4096, {}, {}, 60000, 8, 1024},
+      PointResultMsg{lease, {}, {{0.5, 0.25, 1e-9}}, {}, 320, 0.5, {{0.25, 0, 1e-3}}},
   };
 }
 

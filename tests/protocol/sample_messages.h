@@ -10,6 +10,9 @@ namespace radfarm::protocol::testing {
 
 Bytes32 Pattern(uint8_t seed);          // 32 distinct bytes
 std::vector<Message> SampleMessages();  // in variant order: one of each type
+// Version 7's point messages of a direct-light start: a PointLease of patches, its PointResult
+// with the punctual lights' share.
+std::vector<Message> StartSamples();
 
 // The sample of message type T.
 template <typename T>

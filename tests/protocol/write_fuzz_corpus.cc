@@ -1,6 +1,6 @@
 // Writes the fuzzer's seed corpus: one valid frame of every message type, a LeaseResult also in
-// version 4's form, a whole handshake as one stream, and every sample back to back. Run it after
-// changing the schema or the samples:
+// version 4's form, a direct-light start's lease and result, a whole handshake as one stream, and
+// every sample back to back. Run it after changing the schema or the samples:
 //   build/tests/protocol/protocol_corpus_writer tests/protocol/fuzz_corpus
 #include <cctype>
 #include <cstdio>
@@ -69,6 +69,12 @@ int main(int argc, char** argv) {
     char name[64];
     std::snprintf(name, sizeof(name), "%02d_leaseresult_version4.frame", index);
     if (!Write(dir / name, EncodeFrame(message, 4))) return 1;
+  }
+  // A direct-light start's lease and result (version 7).
+  for (const Message& message : testing::StartSamples()) {
+    char name[64];
+    std::snprintf(name, sizeof(name), "start_%s.frame", Lower(MessageName(message)).c_str());
+    if (!Write(dir / name, EncodeFrame(message))) return 1;
   }
   if (!Write(dir / "all_messages.stream", all)) return 1;
   if (!Write(dir / "handshake.stream", HandshakeStream())) return 1;

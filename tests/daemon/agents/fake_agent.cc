@@ -70,10 +70,26 @@ void FakeAgent::OnFrame(std::span<const uint8_t> payload) {
     cancelled_jobs_.push_back(cancel->job_id);
     std::erase_if(held_, [&](const BatchKey& key) { return std::get<0>(key) == cancel->job_id; });
     std::erase_if(pieces_held_, [&](const auto& key) { return key.first == cancel->job_id; });
+    std::erase_if(start_pieces_held_, [&](const auto& key) { return key.first == cancel->job_id; });
   }
 }
 
 void FakeAgent::OnPointLease(const protocol::PointLeaseMsg& lease) {
+  if (lease.start_sections > 0) {
+    // A start's patches: a grey direct light on every one (no punctual light in the test scenes).
+    ++start_pieces_received_;
+    if (!answering_starts_) {
+      start_pieces_held_.insert({lease.lease.job_id, lease.lease.batch_id});
+      return;
+    }
+    protocol::PointResultMsg answer;
+    answer.lease = lease.lease;
+    answer.direct.assign(lease.start_patches, Rgb{0.25, 0.25, 0.25});
+    answer.rays = lease.start_patches;
+    ++results_sent_;
+    Send(answer);
+    return;
+  }
   ++pieces_received_;
   if (!answering_pieces_.value_or(answering_)) {
     pieces_held_.insert({lease.lease.job_id, lease.lease.batch_id});

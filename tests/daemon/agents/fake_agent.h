@@ -59,6 +59,11 @@ class FakeAgent {
   uint64_t pieces_received() const { return pieces_received_; }
   size_t pieces_held() const { return pieces_held_.size(); }
   const std::vector<uint64_t>& cancelled_jobs() const { return cancelled_jobs_; }
+  // Whether it answers the pieces of a direct-light start (by default it does, whatever it does
+  // with batches); the start pieces received, and those held unanswered.
+  void set_answering_starts(bool answering) { answering_starts_ = answering; }
+  uint64_t start_pieces_received() const { return start_pieces_received_; }
+  size_t start_pieces_held() const { return start_pieces_held_.size(); }
 
  private:
   void OnFrame(std::span<const uint8_t> payload);
@@ -82,6 +87,9 @@ class FakeAgent {
   std::optional<bool> answering_pieces_;
   uint64_t pieces_received_ = 0;
   std::set<std::pair<uint64_t, uint64_t>> pieces_held_;  // (job, piece)
+  bool answering_starts_ = true;
+  uint64_t start_pieces_received_ = 0;
+  std::set<std::pair<uint64_t, uint64_t>> start_pieces_held_;  // (job, piece)
 };
 
 }  // namespace radfarm::daemon::fakes

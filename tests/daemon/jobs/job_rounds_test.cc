@@ -102,7 +102,7 @@ TEST(JobRoundsTest, TheDisplaysPiecesGoToTheAgents) {
   ASSERT_TRUE(agent.Connect().ok());
   ASSERT_TRUE(master.RunUntil([&] { return master.StateOf(job) == "done"; }));
   EXPECT_GT(agent.pieces_received(), 0u);
-  EXPECT_FALSE(master.jobs().LeasingDisplays());
+  EXPECT_FALSE(master.jobs().LeasingPoints());
 }
 
 // Status read the store's round records, whose last may commit after the display began: the job
@@ -134,6 +134,46 @@ TEST(JobRoundsTest, WhileTheDisplayIsDrawnTheJobShowsItsFinishedSolvesRoundsAndR
   EXPECT_FALSE(master.jobs().DisplayedSolve(job + 1).has_value());
 }
 
+// A job's direct-light start is traced by the agents of protocol version 7, in pieces of its
+// patches, and the solver starts from what they sent (the fake agent's grey light on every patch).
+TEST(JobRoundsTest, TheStartsPatchesGoToTheAgentsAndTheSolverStartsFromThem) {
+  MasterParts master;
+  FakeAgent agent(master.loop(), master.agent_address(), master.secret(), "box-1", false);
+  ASSERT_TRUE(agent.Connect().ok());
+  ASSERT_TRUE(master.RunUntil([&] { return agent.authenticated(); }));
+  const uint64_t job = master.Submit(0, 0, kGatherRays);
+  ASSERT_TRUE(master.RunUntil([&] { return master.jobs().FindRunner(job) != nullptr; }));
+  EXPECT_GT(agent.start_pieces_received(), 0u);
+  const std::vector<Rgb>& direct = master.jobs().FindRunner(job)->direct_light();
+  ASSERT_FALSE(direct.empty());
+  EXPECT_TRUE(std::all_of(direct.begin(), direct.end(), [](const Rgb& e) {
+    return e == Rgb{0.25, 0.25, 0.25};
+  }));
+  EXPECT_FALSE(master.jobs().LeasingPoints());
+}
+
+// A job cancelled while the compute thread waits for its start: the wait ends, the agents drop
+// its pieces, and the master goes on (the next job starts, its start traced by the agent).
+TEST(JobRoundsTest, ACancelDuringTheStartEndsTheWaitAndTheAgentsPieces) {
+  MasterParts master;
+  FakeAgent agent(master.loop(), master.agent_address(), master.secret(), "box-1", true);
+  agent.set_answering_starts(false);
+  ASSERT_TRUE(agent.Connect().ok());
+  ASSERT_TRUE(master.RunUntil([&] { return agent.authenticated(); }));
+  const uint64_t job = master.Submit(0, 0, kGatherRays);
+  ASSERT_TRUE(master.RunUntil([&] { return agent.start_pieces_held() > 0; }));
+  EXPECT_EQ(master.jobs().PhaseOf(job), "preparing");
+  EXPECT_TRUE(master.jobs().LeasingPoints());
+  ASSERT_TRUE(master.Request(ControlCommand::kCancel, job).body["ok"].get<bool>());
+  ASSERT_TRUE(master.RunUntil(
+      [&] { return agent.start_pieces_held() == 0 && master.jobs().starting() == 0; }));
+  EXPECT_EQ(master.StateOf(job), "cancelled");
+  EXPECT_FALSE(master.jobs().LeasingPoints());
+  agent.set_answering_starts(true);
+  const uint64_t next = master.Submit(200000, 0, kGatherRays);
+  ASSERT_TRUE(master.RunUntil([&] { return master.StateOf(next) == "done"; }));
+}
+
 TEST(JobRoundsTest, ACancelDuringTheDisplayDropsItsPiecesOnTheAgents) {
   MasterParts master;
   const uint64_t job = master.Submit(0, 0, kGatherRays);
@@ -142,13 +182,13 @@ TEST(JobRoundsTest, ACancelDuringTheDisplayDropsItsPiecesOnTheAgents) {
   ASSERT_TRUE(agent.Connect().ok());
   ASSERT_TRUE(master.RunUntil([&] { return agent.pieces_held() > 0; }));
   EXPECT_EQ(master.jobs().PhaseOf(job), "display");
-  EXPECT_TRUE(master.jobs().LeasingDisplays());
+  EXPECT_TRUE(master.jobs().LeasingPoints());
   ASSERT_TRUE(master.Request(ControlCommand::kCancel, job).body["ok"].get<bool>());
   ASSERT_TRUE(master.RunUntil([&] {
     return std::count(agent.cancelled_jobs().begin(), agent.cancelled_jobs().end(), job) > 0 &&
            agent.pieces_held() == 0;
   }));
-  EXPECT_FALSE(master.jobs().LeasingDisplays());
+  EXPECT_FALSE(master.jobs().LeasingPoints());
   EXPECT_EQ(master.StateOf(job), "cancelled");
 }
 
