@@ -289,6 +289,8 @@ void FramedConnection::Start(const ConnectionOptions& options, OnFrame on_frame,
   impl->started = true;
   impl->options = options;
   impl->splitter = std::make_unique<FrameSplitter>(options.max_frame_bytes, options.frame_budget);
+  // Another connection's frame needed the budget this one held the most of.
+  impl->splitter->set_on_evicted([impl](const std::string& reason) { impl->CloseWith(reason); });
   impl->on_frame = std::move(on_frame);
   impl->on_close = std::move(on_close);
   if (!impl->connecting) impl->StartReading();
