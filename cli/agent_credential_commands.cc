@@ -7,6 +7,7 @@
 #include "cli/exit_codes.h"
 #include "cli/farm_command.h"
 #include "cli/farm_format.h"
+#include "cli/printable.h"
 #include "cli/secret_command.h"
 #include "protocol/farm_secret.h"
 
@@ -58,7 +59,7 @@ Outcome<std::vector<std::string>> EnrolledRow(const nlohmann::json& entry) {
     }
   }
   return std::vector<std::string>{
-      name->get<std::string>(), std::to_string(generation->get<uint64_t>()), state,
+      Printable(name->get<std::string>()), std::to_string(generation->get<uint64_t>()), state,
       FormatUtcTime(enrolled_at->get<int64_t>()), std::to_string(connected->get<uint64_t>())};
 }
 

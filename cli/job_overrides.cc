@@ -1,10 +1,12 @@
 #include "cli/job_overrides.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
 
 #include "cli/option_checks.h"
+#include "core/thread_pool.h"
 #include "job/job.h"
 
 namespace radfarm {
@@ -76,7 +78,13 @@ void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides) {
 
 Status ApplyOverrides(const JobOverrides& overrides, Job* job) {
   SolverSettings& s = job->solver;
-  if (overrides.threads) s.threads = *overrides.threads;
+  // The job file may come from anyone (threads up to 65536): on this machine it asks for at most
+  // its cores. --threads is the user's own choice, within its range.
+  if (overrides.threads) {
+    s.threads = *overrides.threads;
+  } else {
+    s.threads = std::min(s.threads, MachineThreads());
+  }
   job->mesh.threads = s.threads;  // meshing uses the solve's threads (0: one per core)
   if (overrides.seed) s.seed = *overrides.seed;
   if (overrides.tolerance) s.tolerance = *overrides.tolerance;

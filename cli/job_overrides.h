@@ -38,7 +38,9 @@ struct JobOverrides {
 // --max-scene-bytes, --allow-outside-files, --camera and --lightmap-size (not --threads).
 void AddJobOverrideOptions(CLI::App* command, JobOverrides* overrides);
 
-// Applies the overrides on top of the job file's settings. Errors name the option.
+// Applies the overrides on top of the job file's settings. Errors name the option. The threads
+// this machine uses (solve and meshing) are --threads, else the job file's within this machine's
+// cores.
 Status ApplyOverrides(const JobOverrides& overrides, Job* job);
 
 }  // namespace radfarm

@@ -1,6 +1,9 @@
 #include "cli/messages.h"
 
 #include <cstdio>
+#include <string_view>
+
+#include "cli/printable.h"
 
 namespace radfarm {
 
@@ -8,7 +11,7 @@ void PrintError(const std::string& message) {
   size_t start = 0;
   while (true) {
     const size_t end = message.find('\n', start);
-    const std::string line = message.substr(start, end - start);
+    const std::string line = Printable(std::string_view(message).substr(start, end - start));
     std::fprintf(stderr, "radfarm: %s\n", line.c_str());
     if (end == std::string::npos) return;
     start = end + 1;

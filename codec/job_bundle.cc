@@ -58,6 +58,7 @@ Status DecodeSolver(const wire::BundleSolver& in, SolverSettings* out) {
     return Bad("solver.overrelaxation", "not in [1, 2)");
   }
   if (out->gather_rays > kMaxGatherRays) return Bad("solver.gather_rays", "is above 2^20");
+  if (out->threads > kMaxSolverThreads) return Bad("solver.threads", "is above 65536");
   return Ok{};
 }
 

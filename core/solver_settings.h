@@ -25,6 +25,8 @@ inline constexpr uint64_t kAutoShotRaysPerPatchBeforeGather = 384;
 // default is 0, plain progressive refinement, which the core tests pin down.
 inline constexpr uint32_t kDefaultGatherRays = 2048;
 inline constexpr uint32_t kMaxGatherRays = 1u << 20;
+// SolverSettings::threads at most: a job file's range, checked again when a bundle is decoded.
+inline constexpr uint32_t kMaxSolverThreads = 65536;
 inline constexpr uint64_t kMinAutoShotRays = 1 << 16;
 
 // SolverSettings::overrelaxation lies in [kMinOverrelaxation, kMaxOverrelaxation): below 1 is

@@ -4,12 +4,22 @@
 
 namespace radfarm {
 
-ThreadPool::ThreadPool(unsigned threads)
-    : size_(threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency())) {
-  for (unsigned w = 1; w < size_; ++w) threads_.emplace_back([this, w] { WorkerLoop(w); });
+ThreadPool::ThreadPool(unsigned threads) : size_(threads != 0 ? threads : MachineThreads()) {
+  try {
+    for (unsigned w = 1; w < size_; ++w) threads_.emplace_back([this, w] { WorkerLoop(w); });
+  } catch (...) {
+    // The system refused a thread: the ones started must be joined before the exception leaves,
+    // or their std::thread destructors terminate the process.
+    Stop();
+    throw;
+  }
 }
 
-ThreadPool::~ThreadPool() {
+unsigned MachineThreads() { return std::max(1u, std::thread::hardware_concurrency()); }
+
+ThreadPool::~ThreadPool() { Stop(); }
+
+void ThreadPool::Stop() {
   {
     std::lock_guard lock(mutex_);
     stopping_ = true;

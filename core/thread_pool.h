@@ -22,9 +22,13 @@ void ParallelForOrInline(ThreadPool* pool, size_t count,
 // The workers ParallelForOrInline may name: pool->size(), or 1 without a pool.
 unsigned WorkersOf(const ThreadPool* pool);
 
+// One per core (at least 1): what `threads == 0` means.
+unsigned MachineThreads();
+
 class ThreadPool {
  public:
-  // threads == 0 means one per core.
+  // threads == 0 means one per core. Throws std::system_error when the system refuses a thread
+  // (a process or memory limit), after joining the ones it started.
   explicit ThreadPool(unsigned threads);
   ~ThreadPool();
   ThreadPool(const ThreadPool&) = delete;
@@ -38,6 +42,7 @@ class ThreadPool {
   void ParallelFor(size_t count, const std::function<void(unsigned worker, size_t index)>& body);
 
  private:
+  void Stop();  // ends and joins the workers
   void WorkerLoop(unsigned worker);
   void RunShare(unsigned worker);
 

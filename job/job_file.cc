@@ -70,7 +70,6 @@ namespace {
 
 constexpr int64_t kMaxInt64 = std::numeric_limits<int64_t>::max();
 constexpr int64_t kMaxUint32 = std::numeric_limits<uint32_t>::max();
-constexpr int64_t kMaxThreads = 65536;
 constexpr int64_t kMaxSamplesPerPixel = 1024;
 
 // Applies a section's reads to the sub-table `name` of `root`, then rejects its unknown keys.
@@ -116,7 +115,7 @@ Status ReadSolver(TomlTableReader* r, SolverSettings* solver) {
   RADFARM_RETURN_IF_ERROR(
       r->Real("grid_step_degrees", Interval::OpenClosed(0, 90), &solver->grid_step_degrees));
   RADFARM_RETURN_IF_ERROR(r->Integer("gather_rays", 0, kMaxGatherRays, &solver->gather_rays));
-  return r->Integer("threads", 0, kMaxThreads, &solver->threads);
+  return r->Integer("threads", 0, int64_t{kMaxSolverThreads}, &solver->threads);
 }
 
 // An explicit camera needs both ends of its view direction and an up vector off that direction.

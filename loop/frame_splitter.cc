@@ -21,10 +21,20 @@ uint32_t ReadFramePrefix(const uint8_t* bytes) {
 }
 
 FrameSplitter::FrameSplitter(uint32_t max_payload_bytes, std::shared_ptr<FrameBudget> budget)
-    : max_payload_bytes_(max_payload_bytes), budget_(std::move(budget)) {}
+    : max_payload_bytes_(max_payload_bytes), budget_(std::move(budget)) {
+  if (budget_) holder_ = budget_->Join([this](const std::string& reason) { Evicted(reason); });
+}
 
 FrameSplitter::~FrameSplitter() {
-  if (budget_) budget_->Give(charged_);
+  if (budget_) budget_->Leave(holder_);
+}
+
+void FrameSplitter::Evicted(const std::string& reason) {
+  error_ = reason;
+  charged_ = 0;
+  partial_.clear();
+  partial_.shrink_to_fit();  // the memory goes now, not when the connection is freed
+  if (on_evicted_) on_evicted_(reason);
 }
 
 Status FrameSplitter::Reserve(size_t bytes) {
@@ -32,7 +42,7 @@ Status FrameSplitter::Reserve(size_t bytes) {
   if (bytes > capacity) capacity = std::min<size_t>(expected_, std::max(bytes, 2 * capacity));
   // A buffer kept from an earlier frame is the connection's own; only growth past it is charged.
   if (budget_ && capacity > charged_ && capacity > partial_.capacity()) {
-    if (!budget_->Take(capacity - charged_)) {
+    if (!budget_->Take(holder_, capacity - charged_)) {
       error_ = "frame of " + std::to_string(expected_) + " bytes refused at " +
                std::to_string(partial_.size()) + " bytes: unfinished frames already hold " +
                std::to_string(budget_->held()) + " of the " + std::to_string(budget_->limit()) +
@@ -48,7 +58,7 @@ Status FrameSplitter::Reserve(size_t bytes) {
 void FrameSplitter::FrameDone() {
   partial_.clear();
   if (partial_.capacity() > kKeptCapacity) partial_.shrink_to_fit();
-  if (budget_) budget_->Give(charged_);
+  if (budget_) budget_->Give(holder_, charged_);
   charged_ = 0;
 }
 

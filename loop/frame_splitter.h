@@ -6,7 +6,8 @@
 // is reserved for the payload, and the buffer grows only with bytes that actually arrived
 // (doubling, to at most the frame's length), so a peer cannot make us allocate more than twice what
 // it sends. With a FrameBudget, a partial frame's buffer is charged to it while the frame is
-// unfinished, and a growth it cannot cover fails the stream. Complete frames inside one chunk are
+// unfinished; a growth it cannot cover fails the stream, or another's that holds more
+// (set_on_evicted tells the owner of that one). Complete frames inside one chunk are
 // passed straight from the chunk without copying. After an error the splitter stays failed: a byte
 // stream cannot be resynchronised. Not thread-safe (one per connection).
 #pragma once
@@ -18,6 +19,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "base/result.h"
@@ -45,6 +47,12 @@ class FrameSplitter {
   // the limit it was checked against). Callable from on_payload: the next frame of the same
   // chunk is checked against the new limit.
   void set_max_payload_bytes(uint32_t max_payload_bytes) { max_payload_bytes_ = max_payload_bytes; }
+
+  // Called when the budget evicts this splitter for another's frame (it is failed by then, its
+  // buffer freed); the owner closes the stream. Never called from within this splitter's Feed.
+  void set_on_evicted(std::function<void(const std::string& reason)> on_evicted) {
+    on_evicted_ = std::move(on_evicted);
+  }
   uint32_t max_payload_bytes() const { return max_payload_bytes_; }
 
   // Fails (and stays failed) on a length above the limit, or a partial frame the budget cannot
@@ -61,6 +69,7 @@ class FrameSplitter {
   Status Reserve(size_t bytes);
   // The partial frame was handed on: its buffer shrinks, its charge goes back.
   void FrameDone();
+  void Evicted(const std::string& reason);
 
   uint32_t max_payload_bytes_;
   std::array<uint8_t, kFramePrefixBytes> prefix_{};
@@ -70,7 +79,9 @@ class FrameSplitter {
   std::vector<uint8_t> partial_;  // payload bytes of a frame split across chunks
   std::string error_;
   std::shared_ptr<FrameBudget> budget_;
+  uint64_t holder_ = 0;   // this splitter in budget_
   uint64_t charged_ = 0;  // what the unfinished frame's buffer holds of the budget
+  std::function<void(const std::string&)> on_evicted_;
 };
 
 }  // namespace radfarm::loop

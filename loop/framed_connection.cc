@@ -1,9 +1,11 @@
 #include "loop/framed_connection.h"
 
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/un.h>
 
 #include <array>
+#include <string>
 
 #include "loop/check.h"
 #include "loop/frame_splitter.h"
@@ -13,6 +15,22 @@ namespace radfarm::loop {
 namespace {
 
 constexpr size_t kReadBufferBytes = 64 * 1024;
+// Descriptors kept for the process's own files (the store, scenes, logs) when accepting.
+constexpr uint64_t kSpareDescriptors = 32;
+
+// Descriptors are handed out lowest first, so a new socket's number is about how many are open.
+// Past the spare ones a connection is refused with this error: at the limit itself the kernel's
+// EMFILE has libuv accept and drop connections without a word (its reserve descriptor trick).
+Status CheckDescriptorRoom(int fd) {
+  rlimit limit{};
+  if (fd < 0 || getrlimit(RLIMIT_NOFILE, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) {
+    return Ok{};
+  }
+  if (uint64_t(fd) + kSpareDescriptors < limit.rlim_cur) return Ok{};
+  return Error{"refused: out of file descriptors (this one is number " + std::to_string(fd) +
+               " of the " + std::to_string(limit.rlim_cur) + " allowed, RLIMIT_NOFILE; the last " +
+               std::to_string(kSpareDescriptors) + " are kept for the process's own files)"};
+}
 
 // The buffer every connection of this thread's loop reads into. OnRead consumes it before it
 // returns (FrameSplitter copies a partial frame), and libuv reads one stream at a time, so one
@@ -257,6 +275,12 @@ Result<std::unique_ptr<FramedConnection>> FramedConnection::Accept(
   if (int rc = uv_accept(server, impl->stream()); rc < 0) {
     return UvError("accept on " + listener_name, rc);
   }
+  uv_os_fd_t fd = -1;
+  if (uv_fileno(reinterpret_cast<uv_handle_t*>(impl->stream()), &fd) == 0) {
+    if (Status room = CheckDescriptorRoom(fd); !room.ok()) {
+      return Error{"accept on " + listener_name + ": " + room.error()};
+    }
+  }
   if (unix_socket) {
     std::string peer = "unix:" + listener_name;
     uv_os_fd_t fd;
@@ -289,6 +313,8 @@ void FramedConnection::Start(const ConnectionOptions& options, OnFrame on_frame,
   impl->started = true;
   impl->options = options;
   impl->splitter = std::make_unique<FrameSplitter>(options.max_frame_bytes, options.frame_budget);
+  // Another connection's frame needed the budget this one held the most of.
+  impl->splitter->set_on_evicted([impl](const std::string& reason) { impl->CloseWith(reason); });
   impl->on_frame = std::move(on_frame);
   impl->on_close = std::move(on_close);
   if (!impl->connecting) impl->StartReading();

@@ -7,16 +7,16 @@
 //
 // Lifecycle:
 //   open     --Close(reason), a read/write error, EOF, an oversized frame, a full send queue,
-//             the read-idle timeout-->                                                 closing
+//             the read-idle timeout, evicted from the frame budget-->                  closing
 //   open     --CloseAfterFlush(reason): stop reading, send what is queued, then-->     closing
 //   closing  --libuv closed the socket: on_close(reason)-->                            closed
 // on_close runs exactly once per connection, with the first reason, after the socket is closed;
 // it may destroy the connection. Destroying a connection closes it silently (no on_close).
 //
 // Limits: a peer announcing a frame above max_frame_bytes is dropped before anything is allocated
-// for it, and one whose partial frame the frame_budget cannot hold is dropped then; if more than
-// max_queued_bytes wait to be written (the peer does not read), the connection is closed rather
-// than buffering without bound.
+// for it; when a partial frame would pass the frame_budget, the connection holding the most of it
+// is dropped (frame_budget.h), this one or another; if more than max_queued_bytes wait to be
+// written (the peer does not read), the connection is closed rather than buffering without bound.
 #pragma once
 
 #include <chrono>

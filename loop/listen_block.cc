@@ -2,6 +2,9 @@
 
 #include <sys/socket.h>
 
+#include <optional>
+#include <string>
+
 #include "loop/check.h"
 #include "loop/log.h"
 #include "loop/uv_error.h"
@@ -25,16 +28,25 @@ void ListenBlock::OnClosing() {
   if (on_closing) on_closing();
 }
 
+void ListenBlock::LogAcceptFailure(const std::string& text) {
+  const auto now = std::chrono::steady_clock::now();
+  const std::optional<uint64_t> held_back = accept_log.TakeSuppressed(now);  // a past window's
+  if (!accept_log.Allow(now)) return;
+  Log(LogLevel::kWarning, "loop",
+      held_back ? text + " (and " + std::to_string(*held_back) + " more not logged before it)"
+                : text);
+}
+
 void ListenBlock::OnConnectionReady(uv_stream_t* server, int status) noexcept {
   auto* block = Of<ListenBlock>(server);
   if (status < 0) {
-    Log(LogLevel::kWarning, "loop", UvErrorText("incoming connection on " + block->name, status));
+    block->LogAcceptFailure(UvErrorText("incoming connection on " + block->name, status));
     return;
   }
   Result<std::unique_ptr<FramedConnection>> connection =
       FramedConnection::Accept(server, block->unix_socket, block->name);
   if (!connection.ok()) {
-    Log(LogLevel::kWarning, "loop", connection.error());
+    block->LogAcceptFailure(connection.error());
     return;
   }
   block->on_connection(std::move(connection).value());  // may close or destroy the listener

@@ -71,8 +71,9 @@ struct MasterConfig {
   // place. 2 lets an agent whose old connection the master has not yet seen die come back.
   uint32_t max_connections_per_agent = 2;
   // Bytes the master holds at once in frames still arriving, over every agent connection
-  // (loop/frame_budget.h): a frame that would pass it closes its connection, so peers trickling
-  // big frames cannot hold the master's memory. At least one whole frame of the largest size.
+  // (loop/frame_budget.h): a frame that would pass it closes the connection holding the most, so
+  // peers trickling big frames cannot hold the master's memory nor starve small frames. At least
+  // one whole frame of the largest size.
   uint64_t max_frame_bytes_held = uint64_t{256} << 20;
   // Whether an agent that is not enrolled (`radfarm agents enroll`) may prove itself with the farm
   // secret. false: only enrolled agents, each with its own key, which can be revoked alone.

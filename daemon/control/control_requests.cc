@@ -327,7 +327,8 @@ json ControlRequests::DoorsJson() const {
               {"frame_bytes_held", agents_.frame_budget().held()},
               {"frame_bytes_held_peak", agents_.frame_budget().peak()},
               {"max_frame_bytes_held", agents_.frame_budget().limit()},
-              {"frames_refused_over_budget", agents_.frame_budget().refused()}};
+              {"frames_refused_over_budget", agents_.frame_budget().refused()},
+              {"frames_evicted_over_budget", agents_.frame_budget().evicted()}};
 }
 
 json ControlRequests::EnrolledJson() const {

@@ -335,6 +335,19 @@ TEST_F(FetchCommandTest, UsesThisMachinesThreadsNotTheJobs) {
   EXPECT_FALSE(ReadFile(dir_.File("out/image.png")).empty());
 }
 
+// A job's result is never lost to its outputs: with image.png impossible to write (a directory
+// in its place), fetch still writes every other file and names the one it could not.
+TEST_F(FetchCommandTest, AnOutputThatCannotBeWrittenIsNamedAndTheOthersAreWritten) {
+  const std::string out = dir_.File("out");
+  std::filesystem::create_directories(out + "/image.png/in-the-way");
+  const auto r = Fetch(Serve(Solution()), out);
+  EXPECT_EQ(r.exit_code, kExitFailure) << r.err;
+  EXPECT_NE(r.err.find("image.png"), std::string::npos) << r.err;
+  for (const char* file : {"patches.csv", "image.exr", "radiosity.ply", "lit.glb", "stats.json"}) {
+    EXPECT_FALSE(ReadFile(out + "/" + file).empty()) << file << "\n" << r.err;
+  }
+}
+
 TEST_F(FetchCommandTest, UnwritableOutputFails) {
   std::ofstream(dir_.File("a-file")) << "in the way";
   const auto r = Fetch(Serve(Solution()), dir_.File("a-file/out"));

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cli/exit_codes.h"
+#include "core/thread_pool.h"
 #include "testing/child_process.h"
 #include "testing/temp_dir.h"
 
@@ -143,6 +144,25 @@ std::string IlluminanceJob(const TempDir& dir, const std::string& surfaces) {
                       << "[solver]\ntolerance = 0.05\n[[illuminance]]\nname = \"floor\"\n"
                       << "height = 100\nspacing = 50\nsurfaces = [" << surfaces << "]\n";
   return path;
+}
+
+// Hostile scenes, threads: a job file saying threads = 65536 made `render` start 65536 threads.
+// Without --threads it runs on this machine's cores at most; --threads still chooses.
+TEST(RenderCommandTest, AJobFileAsking65536ThreadsRunsOnThisMachinesCores) {
+  TempDir jobs;
+  const std::string job = jobs.File("greedy.toml");
+  std::ofstream(job) << "scene = \"" << kScenes << "cornell-box.obj\"\n[mesh]\npatch_size = 60\n"
+                     << "[solver]\ntolerance = 0.2\nthreads = 65536\n[camera]\nwidth = 64\n"
+                     << "height = 64\n";
+  for (const auto& [extra, threads] : std::vector<std::pair<std::vector<std::string>, double>>{
+           {{}, double(MachineThreads())}, {{"--threads", "3"}, 3.0}}) {
+    TempDir out;
+    std::vector<std::string> args = {RADFARM_CLI_PATH, "render", job, "--out", out.path(), "-q"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = RunCommand(args);
+    ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+    EXPECT_EQ(JsonNumber(ReadFile(out.File("stats.json")), "threads"), threads);
+  }
 }
 
 // The illuminance report is part of the determinism contract: the thread count changes no byte.

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "cli/exit_codes.h"
 #include "testing/child_process.h"
@@ -79,6 +80,27 @@ TEST(RenderUsageTest, BadOptionValuesExitTwo) {
     EXPECT_EQ(r.exit_code, kExitBadInput) << extra[0] << ": " << r.err;
     EXPECT_NE(r.err.find(extra[0]), std::string::npos) << r.err;
   }
+}
+
+// Hostile scenes: a material name with terminal escapes, quoted in a warning, retitled the
+// terminal and cleared the screen. Every message the CLI prints is escaped.
+TEST(RenderUsageTest, ControlCharactersFromTheSceneArePrintedEscaped) {
+  TempDir dir;
+  std::ofstream(dir.File("evil.mtl")) << "newmtl light\nKd 0.5 0.5 0.5\nKe 1 1 1\n";
+  std::ofstream(dir.File("evil.obj")) << "mtllib evil.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\n"
+                                      << "usemtl light\nf 1 2 3\n"
+                                      << "usemtl evil\x1b]0;owned\x07\x1b[2J\xc2\x9b"
+                                         "31m\n"
+                                      << "f 1 2 4\n";
+  const auto r = RunCommand(
+      {RADFARM_CLI_PATH, "render", dir.File("evil.obj"), "--out", dir.File("out"), "-q"});
+  EXPECT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\x07'), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("\xc2\x9b"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("material 'evil\\x1b]0;owned\\x07\\x1b[2J\\u009b31m' not defined"),
+            std::string::npos)
+      << r.err;
 }
 
 TEST(RenderUsageTest, MissingArgumentsExitTwo) {

@@ -2,12 +2,14 @@
 // bad scenes refused locally, with render's messages, before any connection.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cli/exit_codes.h"
 #include "cli/job_inputs.h"
 #include "codec/job_bundle.h"
+#include "core/thread_pool.h"
 #include "tests/cli/control_fixtures.h"
 #include "tests/cli/fake_control_server.h"
 
@@ -136,6 +138,28 @@ TEST(SubmitCommandTest, BadScenesFailLocallyLikeRenderWithoutConnecting) {
     EXPECT_EQ(r.err, rendered.err) << "submit and render disagree";
   }
   EXPECT_FALSE(listener.HasPendingConnection()) << "submit connected despite a bad scene";
+}
+
+// Hostile scenes, threads: a job file saying threads = 65536 made `submit` mesh on that many
+// threads, and abort where the system refused one. It meshes on this machine's cores at most:
+// with address space for a few hundred thread stacks, not 65536, it still submits.
+TEST(SubmitCommandTest, AJobFileAskingFor65536ThreadsMeshesOnThisMachinesCores) {
+  TempDir dir;
+  for (const char* file : {"cornell-box.obj", "cornell-box.mtl"}) {
+    std::filesystem::copy_file(RADFARM_SOURCE_DIR "/scenes/" + std::string(file), dir.File(file));
+  }
+  std::ofstream(dir.File("greedy.toml"))
+      << "scene = \"cornell-box.obj\"\n[mesh]\npatch_size = 25.0\n[solver]\nthreads = 65536\n";
+  FakeControlServer server(AnswerJob(7));
+  const auto r =
+      RunCommand({"/bin/sh", "-c", "ulimit -v 2097152 && exec \"$@\"", "sh", RADFARM_CLI_PATH,
+                  "--control", server.socket_path(), "submit", dir.File("greedy.toml")});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_EQ(r.out, "7\n");
+  ASSERT_EQ(server.requests().size(), 1u);
+  Result<codec::JobBundle> bundle = codec::DecodeJobBundle(server.requests()[0].attachment);
+  ASSERT_TRUE(bundle.ok()) << bundle.error();
+  EXPECT_LE(bundle->job.solver.threads, MachineThreads());
 }
 
 TEST(SubmitCommandTest, BadOverridesAreUsageErrors) {

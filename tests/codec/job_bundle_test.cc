@@ -101,6 +101,12 @@ TEST(JobBundleTest, RejectsCorruptBlobsAndBadValues) {
   b = good;
   b.job.camera.width = 0;
   expect_error(b, "camera.width");
+  // Hostile scenes, threads: a bundle's threads were not range-checked as the job file's are.
+  b = good;
+  b.job.solver.threads = kMaxSolverThreads + 1;
+  expect_error(b, "solver.threads");
+  b.job.solver.threads = kMaxSolverThreads;
+  EXPECT_TRUE(DecodeJobBundle(EncodeJobBundle(b)).ok());
   for (double omega : {0.5, 2.0, std::numeric_limits<double>::infinity(),
                        std::numeric_limits<double>::quiet_NaN()}) {
     b = good;

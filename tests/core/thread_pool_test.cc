@@ -1,9 +1,14 @@
 #include "core/thread_pool.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include <atomic>
+#include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
+#include <system_error>
 
 namespace radfarm {
 namespace {
@@ -56,6 +61,40 @@ TEST(ThreadPoolTest, ExceptionIsRethrownAndPoolStaysUsable) {
   std::atomic<int> n = 0;
   pool.ParallelFor(10, [&](unsigned, size_t) { n++; });
   EXPECT_EQ(n.load(), 10);
+}
+
+// The address space mapped now, from /proc/self/statm.
+uint64_t MappedBytes() {
+  unsigned long pages = 0;
+  FILE* statm = std::fopen("/proc/self/statm", "r");
+  if (statm == nullptr) return 0;
+  if (std::fscanf(statm, "%lu", &pages) != 1) pages = 0;
+  std::fclose(statm);
+  return uint64_t{pages} * static_cast<uint64_t>(sysconf(_SC_PAGESIZE));
+}
+
+// In a child: a pool of 4096 threads with address space for a few more thread stacks (8 MiB
+// each). Exits 3 when the pool throws std::system_error, 0 when it starts them all, 2 when the
+// limit cannot be set.
+[[noreturn]] void StartMoreThreadsThanTheAddressSpaceHolds() {
+  const uint64_t mapped = MappedBytes();
+  rlimit limit{};
+  limit.rlim_cur = limit.rlim_max = mapped + (64u << 20);
+  if (mapped == 0 || setrlimit(RLIMIT_AS, &limit) != 0) std::_Exit(2);
+  try {
+    ThreadPool pool(4096);
+  } catch (const std::system_error&) {
+    std::_Exit(3);
+  }
+  std::_Exit(0);
+}
+
+// Hostile scenes, threads: where the system refuses a thread, `render` and `fetch` aborted, since
+// the pool's constructor let std::system_error out past the threads it had started (their
+// std::thread destructors terminate). Now the exception arrives and the caller reports it.
+TEST(ThreadPoolDeathTest, AThreadTheSystemRefusesIsAnExceptionNotAnAbort) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(StartMoreThreadsThanTheAddressSpaceHolds(), ::testing::ExitedWithCode(3), "");
 }
 
 }  // namespace

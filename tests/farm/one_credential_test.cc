@@ -96,5 +96,36 @@ TEST_F(FarmTest, FramesTrickledByManyAgentsHoldAtMostTheMastersBudget) {
   })) << ConnectionCounters(control());
 }
 
+// Hostile neighbours: one agent holding the whole budget in a frame that never ends made every
+// other agent's next buffered frame fail. Now the connection holding the most is the one closed,
+// and the other's frame goes on to its own checks (junk here: it fails authentication).
+TEST_F(FarmTest, AnAgentHoldingTheFrameBudgetIsClosedNotTheOneSendingAfterIt) {
+  constexpr uint64_t kBudget = uint64_t{16} << 20;  // the least allowed: one whole frame
+  StartMaster({"--max-frame-bytes-held", std::to_string(kBudget)});
+  const protocol::FarmSecret secret = FarmSecretOf(farm_);
+  RawAgent hog(master_address(), secret, "hog");
+  RawAgent other(master_address(), secret, "other");
+  ASSERT_TRUE(hog.welcomed() && other.welcomed()) << MasterLog();
+  // A frame of the whole budget, all but its last byte: its buffer holds every byte allowed.
+  ASSERT_TRUE(hog.SendAll(FramePrefix(uint32_t{kBudget}) + std::string(kBudget - 1, 'h')));
+  ASSERT_TRUE(WaitUntil([&] {
+    return Counter(ConnectionCounters(control()), "frame_bytes_held") == kBudget;
+  })) << ConnectionCounters(control());
+
+  (void)other.SendAll(FramePrefix(1u << 20) + std::string(1u << 20, 'o'));
+  ASSERT_TRUE(hog.WaitForClose(kWait)) << MasterLog();
+  ASSERT_TRUE(other.WaitForClose(kWait)) << MasterLog();
+  const nlohmann::json counters = ConnectionCounters(control());
+  EXPECT_EQ(Counter(counters, "frames_evicted_over_budget"), 1u) << counters;
+  EXPECT_EQ(Counter(counters, "frames_refused_over_budget"), 1u) << counters;
+  EXPECT_EQ(CountLinesWithBoth(MasterLog(), "hog@", "closed holding the most bytes"), 1u)
+      << MasterLog();
+  EXPECT_EQ(CountLinesWithBoth(MasterLog(), "other@", "unfinished frames already hold"), 0u)
+      << MasterLog();
+  EXPECT_TRUE(WaitUntil([&] {
+    return Counter(ConnectionCounters(control()), "frame_bytes_held") == 0;
+  })) << ConnectionCounters(control());
+}
+
 }  // namespace
 }  // namespace radfarm::testing

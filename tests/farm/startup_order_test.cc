@@ -3,6 +3,7 @@
 // radfarm-agent --master-file reads the master's listen.addr before every connection attempt, and
 // radfarmd --detach returns only once the master is ready.
 #include <signal.h>
+#include <sys/stat.h>
 
 #include <chrono>
 #include <filesystem>
@@ -64,6 +65,27 @@ TEST_F(FarmTest, DetachReturnsOnceTheMasterIsReadyWithItsPid) {
   const CommandResult list =
       RunCommand({RADFARM_CLI_PATH, "--control", state + "/control.sock", "list"});
   EXPECT_EQ(list.exit_code, 0) << list.err;
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  EXPECT_TRUE(WaitUntil([&] { return ::kill(pid, 0) != 0; }, seconds(30)));
+}
+
+// Hostile neighbours: radfarmd started by hand under umask 022 made its state directory and
+// store world-readable. They are its owner's alone whatever the umask.
+TEST_F(FarmTest, AMasterStartedUnderUmask022KeepsItsStateAndStorePrivate) {
+  const std::string state = Path("fresh/state");  // its parent is missing too
+  const CommandResult r = RunCommand({"/bin/sh", "-c", "umask 022 && exec \"$@\"", "sh",
+                                      RADFARMD_PATH, "--detach", "--listen", "127.0.0.1:0",
+                                      "--state-dir", state, "--secret-file", farm_.secret_file()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const pid_t pid = std::stoi(r.out);
+  ASSERT_GT(pid, 0) << r.out;
+  const auto mode = [](const std::string& path) {
+    struct stat st {};
+    return ::stat(path.c_str(), &st) == 0 ? st.st_mode & 0777 : 01000u;
+  };
+  EXPECT_EQ(mode(Path("fresh")), 0700u);
+  EXPECT_EQ(mode(state), 0700u);
+  EXPECT_EQ(mode(state + "/radfarm.db"), 0600u);
   ASSERT_EQ(::kill(pid, SIGTERM), 0);
   EXPECT_TRUE(WaitUntil([&] { return ::kill(pid, 0) != 0; }, seconds(30)));
 }

@@ -235,6 +235,48 @@ TEST(FramedConnectionTest, OversizedPrefixClosesOnlyThatConnection) {
   ExpectClosesClean(loop);
 }
 
+// Hostile neighbours: a peer holding the whole frame budget in an unfinished frame made every
+// other peer's next buffered frame fail. Now that peer is the one closed, with the reason.
+TEST(FramedConnectionTest, FrameBudgetClosesTheLargestHolderAndTheSmallFrameGetsThrough) {
+  EventLoop loop;
+  {
+    constexpr uint32_t kBudget = 1u << 20;
+    ConnectionOptions options;
+    options.max_frame_bytes = 4u << 20;
+    options.frame_budget = std::make_shared<FrameBudget>(kBudget, "the budget");
+    Server server(loop, options);
+    RawClient hog;
+    RawClient honest;
+    ASSERT_TRUE(hog.ConnectTcp("127.0.0.1", server.port()));
+    ASSERT_TRUE(RunUntil(loop, [&] { return server.connections.size() == 1; }));
+    ASSERT_TRUE(honest.ConnectTcp("127.0.0.1", server.port()));
+    ASSERT_TRUE(RunUntil(loop, [&] { return server.connections.size() == 2; }));
+
+    // A frame of exactly the budget, all but its last byte: its buffer holds the whole budget.
+    Payload hog_bytes = Frame(Pattern(kBudget, 7));
+    hog_bytes.pop_back();
+    ASSERT_TRUE(hog.SendAll(hog_bytes));
+    ASSERT_TRUE(RunUntil(loop, [&] { return options.frame_budget->held() == kBudget; }));
+
+    const Payload small = Pattern(300u << 10, 8);  // more than one read: buffered
+    ASSERT_TRUE(honest.SendAll(Frame(small)));
+    Payload echoed;
+    ASSERT_TRUE(RunUntil(loop, [&] {
+      honest.ReadAvailable(&echoed);
+      return echoed.size() == 4 + small.size();
+    }));
+    EXPECT_EQ(SplitFrames(echoed), std::vector<Payload>{small});
+    EXPECT_TRUE(server.closes[1].empty());
+    ASSERT_TRUE(RunUntil(loop, [&] { return !server.closes[0].empty(); }));
+    EXPECT_NE(server.closes[0][0].find("closed holding the most bytes of unfinished frames"),
+              std::string::npos)
+        << server.closes[0][0];
+    EXPECT_EQ(options.frame_budget->evicted(), 1u);
+    EXPECT_EQ(options.frame_budget->held(), 0u);
+  }
+  ExpectClosesClean(loop);
+}
+
 // A peer that never reads cannot make us buffer without bound.
 TEST(FramedConnectionTest, PeerThatDoesNotReadHitsTheSendQueueLimit) {
   EventLoop loop;
