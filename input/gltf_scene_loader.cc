@@ -283,8 +283,9 @@ void PruneObjects(InputScene* scene) {
 }
 
 Status CheckSomethingEmits(const std::string& path, const tinygltf::Model& model,
-                           const InputScene& scene) {
+                           const InputScene& scene, bool lamps_added) {
   if (scene.faces.empty()) return ErrorAt(path, 0, "no triangles in the scene");
+  if (lamps_added) return Ok{};
   for (const InputFace& face : scene.faces) {
     if (scene.materials[face.material].emission.Max() > 0) return Ok{};
   }
@@ -301,7 +302,7 @@ Status CheckSomethingEmits(const std::string& path, const tinygltf::Model& model
 }  // namespace
 
 Result<InputScene> LoadGltfScene(const std::string& path, uint64_t max_file_bytes,
-                                 uint64_t max_texture_bytes, FileReach reach) {
+                                 uint64_t max_texture_bytes, FileReach reach, bool lamps_added) {
   InputScene scene;
   scene.path = path;
   Result<tinygltf::Model> model =
@@ -325,7 +326,7 @@ Result<InputScene> LoadGltfScene(const std::string& path, uint64_t max_file_byte
   }
   scene.materials = builder.TakeMaterials();
   PruneObjects(&scene);
-  RADFARM_RETURN_IF_ERROR(CheckSomethingEmits(path, *model, scene));
+  RADFARM_RETURN_IF_ERROR(CheckSomethingEmits(path, *model, scene, lamps_added));
   return scene;
 }
 

@@ -5,6 +5,7 @@
 // refuses).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -14,6 +15,9 @@
 #include "core/candela_table.h"
 
 namespace radfarm {
+
+// An IES file is a few kilobytes; a megabyte holds the largest table a goniophotometer writes.
+inline constexpr uint64_t kMaxIesFileBytes = uint64_t{1} << 20;
 
 struct IesPhotometry {
   std::string format;  // "LM-63-2002", "LM-63-1995" or "LM-63-1991"
