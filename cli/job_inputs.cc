@@ -4,6 +4,7 @@
 
 #include "base/result.h"
 #include "base/text_file.h"
+#include "cli/job_lamps.h"
 #include "cli/scene_settings.h"
 #include "input/scene_loader.h"
 #include "job/output_budget.h"
@@ -30,11 +31,13 @@ Result<CheckedJob> LoadJobAndScene(const std::string& path, const JobOverrides& 
     return Error{path + ": " + budget.error()};
   }
   // Textures are decoded, averaged and freed before meshing: --max-memory bounds them alone.
+  const FileReach reach =
+      overrides.allow_outside_files ? FileReach::kAnywhere : FileReach::kSceneTree;
   Result<InputScene> scene =
       LoadScene(job->scene_path, overrides.max_scene_bytes.value_or(kDefaultMaxInputFileBytes),
-                job->mesh.max_memory,
-                overrides.allow_outside_files ? FileReach::kAnywhere : FileReach::kSceneTree);
+                job->mesh.max_memory, reach, !job->lamps.empty());
   RADFARM_RETURN_IF_ERROR(scene);
+  RADFARM_RETURN_IF_ERROR(AddJobLamps(path, *job, reach, &*scene));
   warnings->insert(warnings->end(), scene->warnings.begin(), scene->warnings.end());
   RADFARM_RETURN_IF_ERROR(ApplyTwoSided(path, *job, &*scene));
   if (overrides.camera) job->camera_name = *overrides.camera;

@@ -13,22 +13,7 @@ namespace {
 // A round number no solve reaches, so the survey's rays are not any round's.
 constexpr uint32_t kSurveyRound = 0xfffffffeu;
 
-// A point or spot lamp's power in the solver's units (lux m^2 / pi): 4 I for a point (4 pi I
-// lumens), 2 (1 - cos outer) I for a spot (its whole cone at full intensity: an upper bound).
-// Suns are left out: their power has no bound, and a sun lighting walls from outside is no mistake.
-double LampPower(const PunctualLight& light) {
-  switch (light.kind) {
-    case PunctualKind::kPoint:
-      return 4 * light.intensity.Sum();
-    case PunctualKind::kSpot:
-      return 2 * (1 - std::cos(light.outer_cone)) * light.intensity.Sum();
-    case PunctualKind::kSun:
-      break;
-  }
-  return 0;
-}
-
-// Ray k of a lamp's survey: uniform over the sphere (point) or the outer cone (spot).
+// Ray k of a lamp's survey: uniform over the outer cone (spot) or the sphere (the others).
 Vec3 LampRay(const PunctualLight& light, uint32_t lamp, uint64_t k) {
   const CounterRng rng(HashWords(0x6c616d70ull, lamp, k));
   const double lo = light.kind == PunctualKind::kSpot ? std::cos(light.outer_cone) : -1.0;
@@ -55,7 +40,7 @@ BackFaceCounts SurveyBackFaces(const PatchScene& scene, const RayCaster& caster,
   counts.back.resize(scene.material_names.size());
   double total = 0;
   for (const Patch& p : scene.patches) total += p.area * p.emission.Sum();
-  for (const PunctualLight& light : scene.lights) total += LampPower(light);
+  for (const PunctualLight& light : scene.lights) total += PunctualPower(light);
   if (!(total > 0)) return counts;
   const RaySampler sampler(SamplerKind::kSobol, 1, 1.0);
   RayBlock block;
@@ -76,7 +61,7 @@ BackFaceCounts SurveyBackFaces(const PatchScene& scene, const RayCaster& caster,
   }
   for (uint32_t l = 0; l < scene.lights.size(); ++l) {
     const PunctualLight& light = scene.lights[l];
-    const double share = LampPower(light) / total;
+    const double share = PunctualPower(light) / total;
     if (!(share > 0)) continue;
     const auto count = static_cast<uint64_t>(std::ceil(share * static_cast<double>(rays)));
     for (uint64_t k = 0; k < count; ++k) {

@@ -49,7 +49,9 @@ LightBounds EmitterLightBounds(const std::vector<const Patch*>& patches, bool pl
 LightBounds PunctualLightBounds(const PunctualLight& light) {
   LightBounds b;  // [-1, 1]^3 normals: it shines every way
   b.box.Extend(light.position);
-  b.power = light.intensity.Sum();
+  // A point's candela; a photometric lamp's mean candela over the sphere.
+  b.power =
+      light.kind == PunctualKind::kPhotometric ? PunctualPower(light) / 4 : light.intensity.Sum();
   b.cap = INFINITY;
   return b;
 }

@@ -4,12 +4,14 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 
 namespace radfarm {
 
 std::string PunctualLightProblem(const PunctualLight& light) {
-  if (static_cast<uint8_t>(light.kind) > static_cast<uint8_t>(PunctualKind::kSun)) {
-    return "kind " + std::to_string(static_cast<int>(light.kind)) + " is not point, spot or sun";
+  if (static_cast<uint8_t>(light.kind) > static_cast<uint8_t>(PunctualKind::kPhotometric)) {
+    return "kind " + std::to_string(static_cast<int>(light.kind)) +
+           " is not point, spot, sun or photometric";
   }
   if (!IsFinite(light.position)) return "position is not finite";
   const double length = Length(light.direction);
@@ -24,7 +26,50 @@ std::string PunctualLightProblem(const PunctualLight& light) {
         light.outer_cone <= std::numbers::pi / 2)) {
     return "cone angles must satisfy 0 <= innerConeAngle <= outerConeAngle <= pi/2";
   }
+  if (light.kind != PunctualKind::kPhotometric) return "";
+  if (light.table == nullptr) return "a photometric light has no candela table";
+  if (std::string problem = CandelaTableProblem(*light.table); !problem.empty()) return problem;
+  const double ref = Length(light.reference);
+  if (!IsFinite(light.reference) || !(ref > 0.999 && ref < 1.001) ||
+      std::abs(Dot(light.reference, light.direction)) > 1e-3) {
+    return "the reference direction is not a unit vector perpendicular to the direction";
+  }
   return "";
+}
+
+PunctualLight MakePhotometricLight(const Vec3& position, const Vec3& nadir, const Vec3& reference,
+                                   const Rgb& scale, CandelaTable table) {
+  PunctualLight light;
+  light.kind = PunctualKind::kPhotometric;
+  light.position = position;
+  light.direction = nadir;
+  light.reference = reference;
+  light.intensity = scale;
+  light.table_lumens = TableLumens(table);
+  light.table = std::make_shared<const CandelaTable>(std::move(table));
+  return light;
+}
+
+double PhotometricCandela(const PunctualLight& light, const Vec3& w) {
+  constexpr double kDegrees = 180 / std::numbers::pi;
+  const double theta = std::acos(std::clamp(Dot(w, light.direction), -1.0, 1.0)) * kDegrees;
+  const Vec3 ninety = Cross(light.reference, light.direction);
+  const double phi = std::atan2(Dot(w, ninety), Dot(w, light.reference)) * kDegrees;
+  return CandelaAt(*light.table, theta, phi);
+}
+
+double PunctualPower(const PunctualLight& light) {
+  switch (light.kind) {
+    case PunctualKind::kPoint:
+      return 4 * light.intensity.Sum();
+    case PunctualKind::kSpot:
+      return 2 * (1 - std::cos(light.outer_cone)) * light.intensity.Sum();
+    case PunctualKind::kPhotometric:
+      return light.table_lumens / std::numbers::pi * light.intensity.Sum();
+    case PunctualKind::kSun:
+      break;
+  }
+  return 0;
 }
 
 double SpotFalloff(const PunctualLight& light, double cos_angle) {
@@ -50,6 +95,10 @@ Rgb UnshadowedIrradiance(const PunctualLight& light, const Vec3& x, const Vec3& 
   double window = 1;
   if (light.kind == PunctualKind::kSpot) {
     window = SpotFalloff(light, -Dot(light.direction, to_light) / d);
+    if (!(window > 0)) return {};
+  }
+  if (light.kind == PunctualKind::kPhotometric) {
+    window = PhotometricCandela(light, to_light * (-1 / d));
     if (!(window > 0)) return {};
   }
   if (light.range > 0) {

@@ -11,10 +11,12 @@
 
 #include "base/diagnostic.h"
 #include "input/gltf_accessor.h"
+#include "input/gltf_ies_lamp.h"
 #include "input/gltf_light.h"
 #include "input/gltf_material.h"
 #include "input/gltf_model_reader.h"
 #include "input/gltf_node_walk.h"
+#include "input/scene_directory.h"
 
 namespace radfarm {
 namespace {
@@ -67,8 +69,13 @@ const char* ModeName(int mode) {
 
 class SceneBuilder {
  public:
-  SceneBuilder(const std::string& path, const tinygltf::Model& model, InputScene* scene)
-      : path_(path), model_(model), scene_(scene), materials_(model, path, &scene->warnings) {}
+  SceneBuilder(const std::string& path, const tinygltf::Model& model, FileReach reach,
+               InputScene* scene)
+      : path_(path),
+        model_(model),
+        scene_(scene),
+        materials_(model, path, &scene->warnings),
+        directory_(path, reach) {}
 
   // parent_visit: as WalkSceneTree gives it. Every visit becomes an object (PruneObjects later
   // drops those with no mesh below them).
@@ -86,7 +93,18 @@ class SceneBuilder {
     if (n.camera >= 0) RADFARM_RETURN_IF_ERROR(Camera(node, world));
     Result<std::optional<PunctualLight>> light = ReadNodeLight(model_, node, world);
     if (!light.ok()) return ErrorAt(path_, 0, light.error());
-    if (light->has_value()) scene_->lights.push_back(**light);
+    Result<std::optional<PunctualLight>> ies =
+        ReadNodeIesLamp(model_, node, world, path_, directory_);
+    RADFARM_RETURN_IF_ERROR(ies);
+    if (ies->has_value()) {
+      if (light->has_value()) {
+        scene_->warnings.push_back(WarningAt(
+            path_, 0, NodeName(model_, node) + ": its IES lamp (extras.ies) replaces its light"));
+      }
+      scene_->lights.push_back(**ies);
+    } else if (light->has_value()) {
+      scene_->lights.push_back(**light);
+    }
     if (n.mesh < 0) return Ok{};
     if (static_cast<size_t>(n.mesh) >= model_.meshes.size()) {
       return ErrorAt(
@@ -256,6 +274,7 @@ class SceneBuilder {
   const tinygltf::Model& model_;
   InputScene* scene_;
   GltfMaterials materials_;
+  SceneDirectory directory_;  // where IES files named in extras may be read
   uint64_t triangles_ = 0;
   std::set<int> warned_skin_;
   uint32_t object_ = 0;  // of the node being visited
@@ -283,8 +302,9 @@ void PruneObjects(InputScene* scene) {
 }
 
 Status CheckSomethingEmits(const std::string& path, const tinygltf::Model& model,
-                           const InputScene& scene) {
+                           const InputScene& scene, bool lamps_added) {
   if (scene.faces.empty()) return ErrorAt(path, 0, "no triangles in the scene");
+  if (lamps_added) return Ok{};
   for (const InputFace& face : scene.faces) {
     if (scene.materials[face.material].emission.Max() > 0) return Ok{};
   }
@@ -301,7 +321,7 @@ Status CheckSomethingEmits(const std::string& path, const tinygltf::Model& model
 }  // namespace
 
 Result<InputScene> LoadGltfScene(const std::string& path, uint64_t max_file_bytes,
-                                 uint64_t max_texture_bytes, FileReach reach) {
+                                 uint64_t max_texture_bytes, FileReach reach, bool lamps_added) {
   InputScene scene;
   scene.path = path;
   Result<tinygltf::Model> model =
@@ -313,7 +333,7 @@ Result<InputScene> LoadGltfScene(const std::string& path, uint64_t max_file_byte
   if (static_cast<size_t>(which) >= model->scenes.size()) {
     return ErrorAt(path, 0, "default scene " + std::to_string(which) + " does not exist");
   }
-  SceneBuilder builder(path, *model, &scene);
+  SceneBuilder builder(path, *model, reach, &scene);
   Status walked = WalkSceneTree(
       *model, model->scenes[which],
       [&](int node, const Mat4& world, int parent) { return builder.Node(node, world, parent); });
@@ -325,7 +345,7 @@ Result<InputScene> LoadGltfScene(const std::string& path, uint64_t max_file_byte
   }
   scene.materials = builder.TakeMaterials();
   PruneObjects(&scene);
-  RADFARM_RETURN_IF_ERROR(CheckSomethingEmits(path, *model, scene));
+  RADFARM_RETURN_IF_ERROR(CheckSomethingEmits(path, *model, scene, lamps_added));
   return scene;
 }
 

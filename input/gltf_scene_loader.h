@@ -24,10 +24,11 @@ namespace radfarm {
 // most `max_file_bytes` ("path: the file is N bytes, over the limit of M bytes", M what is left).
 // Images are bounded before they are decoded, by `max_texture_bytes` for all of them together or,
 // when it is 0, by kDefaultMaxTexturePixels each (gltf_model_reader.h). `reach` widens where the
-// files may lie (input/scene_directory.h).
+// files may lie (input/scene_directory.h). `lamps_added`: the job places lamps of its own, so
+// "nothing to light" is no error.
 Result<InputScene> LoadGltfScene(const std::string& path,
                                  uint64_t max_file_bytes = kDefaultMaxInputFileBytes,
                                  uint64_t max_texture_bytes = 0,
-                                 FileReach reach = FileReach::kSceneTree);
+                                 FileReach reach = FileReach::kSceneTree, bool lamps_added = false);
 
 }  // namespace radfarm

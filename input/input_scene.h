@@ -84,8 +84,9 @@ std::vector<LightmapTriangle> LightmapTriangles(const InputScene& scene);
 // coordinates, reflectance outside [0, 1), negative emission, no emitter ("nothing to light");
 // an OBJ or MTL that is not a regular file or is larger than `max_file_bytes` (refused from its
 // size, before it is read); an MTL file outside where `reach` allows (input/scene_directory.h).
+// `lamps_added`: the job places lamps of its own, so "nothing to light" is no error.
 Result<InputScene> LoadObjScene(const std::string& path,
                                 uint64_t max_file_bytes = kDefaultMaxInputFileBytes,
-                                FileReach reach = FileReach::kSceneTree);
+                                FileReach reach = FileReach::kSceneTree, bool lamps_added = false);
 
 }  // namespace radfarm

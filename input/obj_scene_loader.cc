@@ -173,8 +173,9 @@ std::vector<DarkMaterial> UsedMaterials(const std::vector<tinyobj::material_t>& 
 
 Status CheckSomethingEmits(const std::string& path, const MtlLibraryReader& reader,
                            const std::vector<tinyobj::material_t>& materials,
-                           const InputScene& scene) {
+                           const InputScene& scene, bool lamps_added) {
   if (scene.faces.empty()) return ErrorAt(path, 0, "no faces");
+  if (lamps_added) return Ok{};
   for (const InputFace& face : scene.faces) {
     if (scene.materials[face.material].emission.Max() > 0) return Ok{};
   }
@@ -213,7 +214,8 @@ Status CheckFinitePositions(const std::string& path, std::string_view text,
 
 }  // namespace
 
-Result<InputScene> LoadObjScene(const std::string& path, uint64_t max_file_bytes, FileReach reach) {
+Result<InputScene> LoadObjScene(const std::string& path, uint64_t max_file_bytes, FileReach reach,
+                                bool lamps_added) {
   Result<std::string> text = ReadTextFile(path, max_file_bytes);
   RADFARM_RETURN_IF_ERROR(text);
   BlankComments(&*text);
@@ -247,7 +249,7 @@ Result<InputScene> LoadObjScene(const std::string& path, uint64_t max_file_bytes
   RADFARM_RETURN_IF_ERROR(CollectFaces(path, shapes, *index, &table, &scene));
   scene.materials = table.Take();
   WarnAboutGrey(path, *index, reader, materials, &scene);
-  RADFARM_RETURN_IF_ERROR(CheckSomethingEmits(path, reader, materials, scene));
+  RADFARM_RETURN_IF_ERROR(CheckSomethingEmits(path, reader, materials, scene, lamps_added));
   return scene;
 }
 

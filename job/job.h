@@ -10,6 +10,7 @@
 #include "base/result.h"
 #include "base/toml_table_reader.h"
 #include "core/solver_settings.h"
+#include "job/job_lamp.h"
 #include "mesh/mesh_settings.h"
 #include "mesh/refine_settings.h"
 #include "output/camera.h"
@@ -43,6 +44,8 @@ struct Job {
   double lightmap_texel = 0;   // each object's texels about this size, in scene units
   // The illuminance reports' calculation planes (`[[illuminance]]`), in the file's order.
   std::vector<IlluminancePlane> illuminance;
+  // The IES lamps the job hangs in the scene (`[[lamps]]`), in the file's order.
+  std::vector<JobLamp> lamps;
 };
 
 // The image's width and height at most (`[camera] width`, `height`).

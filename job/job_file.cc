@@ -44,6 +44,12 @@
 //   spacing = 0.25                # between grid points, scene units, > 0
 //   surfaces = ["Desk*"]          # objects or materials (shell patterns) carrying the plane
 //                                 # (absent: every floor)
+//   [[lamps]]                     # an IES lamp hung in the scene; repeatable
+//   file = "downlight.ies"        # LM-63 photometric file, relative to this file's directory
+//   position = [2, 2.7, 3]        # scene units (metres)
+//   aim = [0, -1, 0]              # the lamp's nadir axis, nonzero (absent: straight down)
+//   rotate = 0                    # degrees around the aim (turns horizontal angle 0 toward 90)
+//   multiplier = 1                # times the file's candela, > 0
 //   [materials.NAME]              # per material of the scene, by name
 //   two_sided = true              # this material receives and emits on both sides (an
 //                                 # emitter then lights both ways; false: its front only)
@@ -213,6 +219,41 @@ Status ReadIlluminance(const std::string& path, TomlTableReader* root, Job* job)
   return Ok{};
 }
 
+// One [[lamps]] table: file and position are required.
+Status ReadLamp(const std::string& path, const toml::table& table, TomlTableReader* r,
+                JobLamp* lamp) {
+  bool has_file = false, has_position = false;
+  RADFARM_RETURN_IF_ERROR(r->String("file", &lamp->file, &has_file));
+  RADFARM_RETURN_IF_ERROR(r->Vector("position", &lamp->position, &has_position));
+  RADFARM_RETURN_IF_ERROR(r->Vector("aim", &lamp->aim));
+  RADFARM_RETURN_IF_ERROR(r->Real("rotate", Interval::Any(), &lamp->rotate));
+  RADFARM_RETURN_IF_ERROR(r->Real("multiplier", Interval::Above(0), &lamp->multiplier));
+  for (const auto& [key, given] : {std::pair{"file", has_file}, {"position", has_position}}) {
+    if (!given) return r->ErrorFor(key, "is missing (file and position are required)");
+  }
+  if (lamp->file.empty()) return r->ErrorFor("file", "must not be empty");
+  if (!IsFinite(lamp->position)) return r->ErrorFor("position", "must be finite");
+  const double length = Length(lamp->aim);
+  if (!IsFinite(lamp->aim) || !(length > 0))
+    return r->ErrorFor("aim", "must be finite and nonzero");
+  lamp->aim = lamp->aim / length;
+  lamp->location = path + ":" + std::to_string(table.at("file").source().begin.line) + ": '" +
+                   r->DottedKey("file") + "'";
+  return r->CheckNoUnknownKeys();
+}
+
+Status ReadLamps(const std::string& path, TomlTableReader* root, Job* job) {
+  Result<std::vector<const toml::table*>> tables = root->Tables("lamps");
+  RADFARM_RETURN_IF_ERROR(tables);
+  for (size_t i = 0; i < tables->size(); ++i) {
+    TomlTableReader reader(path, *(*tables)[i], "lamps[" + std::to_string(i) + "].");
+    JobLamp lamp;
+    RADFARM_RETURN_IF_ERROR(ReadLamp(path, *(*tables)[i], &reader, &lamp));
+    job->lamps.push_back(std::move(lamp));
+  }
+  return Ok{};
+}
+
 // [materials.NAME] tables, one per material named, each with its optional two_sided.
 Status ReadMaterials(const std::string& path, TomlTableReader* materials, const toml::table& table,
                      Job* job) {
@@ -250,6 +291,7 @@ Status ReadJob(const std::string& path, const toml::table& table, Job* job) {
   RADFARM_RETURN_IF_ERROR(
       ReadSection(path, &root, "output", [&](TomlTableReader* r) { return ReadOutput(r, job); }));
   RADFARM_RETURN_IF_ERROR(ReadIlluminance(path, &root, job));
+  RADFARM_RETURN_IF_ERROR(ReadLamps(path, &root, job));
   Result<const toml::table*> materials = root.Table("materials");
   RADFARM_RETURN_IF_ERROR(materials);
   if (*materials != nullptr) {

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "cli/exit_codes.h"
 #include "testing/child_process.h"
 #include "testing/temp_dir.h"
+#include "tests/cli/shipped_scenes.h"
 
 namespace radfarm {
 namespace {
@@ -30,11 +32,16 @@ const std::string kGoldenScenes = RADFARM_SOURCE_DIR "/scenes/";
 const std::string kGoldenFile = RADFARM_SOURCE_DIR "/tests/cli/golden_render.sha256";
 const char* const kCheckedFiles[] = {"patches.csv", "image.exr", "radiosity.ply", "lit.glb"};
 
-// Every job file, and every OBJ (a bare OBJ is a job of its own: automatic camera, defaults).
+// Every job file, and every OBJ (a bare OBJ is a job of its own: automatic camera, defaults) but
+// those lit only by a job's IES lamps.
 std::vector<std::string> ShippedScenes() {
   std::vector<std::string> scenes;
+  const std::set<std::filesystem::path> lamp_lit = testing::ScenesLitByJobLamps(kGoldenScenes);
   for (const auto& entry : std::filesystem::directory_iterator(kGoldenScenes)) {
     const std::string ext = entry.path().extension().string();
+    if (ext == ".obj" && lamp_lit.contains(std::filesystem::weakly_canonical(entry.path()))) {
+      continue;
+    }
     if (ext == ".toml" || ext == ".obj") scenes.push_back(entry.path().filename().string());
   }
   std::sort(scenes.begin(), scenes.end());

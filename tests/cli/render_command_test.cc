@@ -6,12 +6,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "cli/exit_codes.h"
 #include "core/thread_pool.h"
 #include "testing/child_process.h"
 #include "testing/temp_dir.h"
+#include "tests/cli/shipped_scenes.h"
 
 namespace radfarm {
 namespace {
@@ -183,6 +185,41 @@ TEST(RenderCommandTest, TheIlluminanceReportIsTheSameOnAnyThreads) {
       reference = report;
     } else {
       EXPECT_TRUE(report == reference) << "--threads " << threads << " differs";
+    }
+  }
+}
+
+// The IES example job: four downlights from a manufacturer's file light a room that emits nothing.
+// Every output is written, and the patches and the work plane's report are the same bytes on one
+// thread and two.
+TEST(RenderCommandTest, TheIesDownlightsJobWritesItsOutputsTheSameOnAnyThreads) {
+  std::string reference;
+  for (const char* threads : {"1", "2"}) {
+    TempDir out;
+    const auto r =
+        Render("ies-downlights.toml", out.path(), {"--threads", threads, "--rays", "400000", "-q"});
+    ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+    for (const char* file :
+         {"image.png", "patches.csv", "stats.json", "lit.glb", "illuminance.json",
+          "illuminance/workplane.csv", "illuminance/workplane.png"}) {
+      EXPECT_FALSE(ReadFile(out.File(file)).empty()) << file;
+    }
+
+    // Four 2100 lm downlights 2.2 m above the plane: some hundreds of lux under them.
+    const std::vector<std::vector<std::string>> rows =
+        ReadCsv(out.File("illuminance/workplane.csv"));
+    ASSERT_GT(rows.size(), 10u);
+    double most = 0;
+    for (size_t i = 1; i < rows.size(); ++i) most = std::max(most, std::stod(rows[i].back()));
+    EXPECT_GT(most, 200);
+    EXPECT_LT(most, 2000);
+    const std::string run = ReadFile(out.File("patches.csv")) +
+                            ReadFile(out.File("illuminance.json")) +
+                            ReadFile(out.File("illuminance/workplane.csv"));
+    if (reference.empty()) {
+      reference = run;
+    } else {
+      EXPECT_TRUE(run == reference) << "--threads " << threads << " differs";
     }
   }
 }
@@ -411,9 +448,13 @@ namespace {
 // quick).
 TEST(RenderCommandTest, EveryShippedSceneRenders) {
   int rendered = 0;
+  // An OBJ lit only by a job's IES lamps renders through its job.
+  const std::set<std::filesystem::path> lamp_lit = testing::ScenesLitByJobLamps(kScenes);
+  EXPECT_FALSE(lamp_lit.empty()) << "ies-downlights.toml lights its OBJ";
   for (const auto& entry : std::filesystem::directory_iterator(kScenes)) {
     const std::string ext = entry.path().extension().string();
     if (ext != ".obj" && ext != ".toml") continue;
+    if (lamp_lit.contains(std::filesystem::weakly_canonical(entry.path()))) continue;
     TempDir out;
     const auto r = RunCommand({RADFARM_CLI_PATH, "render", entry.path().string(), "--out",
                                out.path(), "--rays", "20000", "-q"});

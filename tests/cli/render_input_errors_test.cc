@@ -55,7 +55,9 @@ INSTANTIATE_TEST_SUITE_P(
                  "negative"},
         BadInput{"no_light.obj", "no_light.obj: nothing to light"},
         BadInput{"jobs/unknown_key.toml", "unknown_key.toml:"},
-        BadInput{"jobs/syntax_error.toml", "syntax_error.toml:"}),
+        BadInput{"jobs/syntax_error.toml", "syntax_error.toml:"},
+        BadInput{"jobs/lamp_type_b.toml",
+                 "jobs/type_b.ies:4: photometric type 2 (type B) is not supported"}),
     [](const auto& info) {
       std::string name = info.param.file.substr(info.param.file.rfind('/') + 1);
       for (char& c : name) {
@@ -63,6 +65,17 @@ INSTANTIATE_TEST_SUITE_P(
       }
       return name;
     });
+
+// A job's IES lamp whose file is not there: the job file's line and key, then the file.
+TEST(RenderLampErrorTest, AMissingIesFileIsNamedAfterItsJobFileLine) {
+  TempDir out;
+  const auto r = RunCommand(
+      {RADFARM_CLI_PATH, "render", kData + "jobs/lamp_missing_file.toml", "--out", out.path()});
+  EXPECT_EQ(r.exit_code, kExitBadInput) << r.err;
+  const size_t at = r.err.find("lamp_missing_file.toml:5: 'lamps[0].file': ");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("jobs/no_such_lamp.ies: cannot open", at), std::string::npos) << r.err;
+}
 
 TEST(RenderUsageTest, BadOptionValuesExitTwo) {
   TempDir out;

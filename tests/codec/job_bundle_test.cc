@@ -4,8 +4,11 @@
 
 #include <limits>
 
+#include "base/text_file.h"
 #include "codec/patch_scene_codec.h"
+#include "input/ies_file.h"
 #include "input/scene_loader.h"
+#include "job/job_lamp.h"
 #include "mesh/patch_mesh.h"
 
 namespace radfarm::codec {
@@ -68,6 +71,41 @@ TEST(JobBundleTest, CarriesPunctualLights) {
     EXPECT_EQ(back->scene.lights[i].position, scene->lights[i].position) << i;
     EXPECT_EQ(back->scene.lights[i].direction, scene->lights[i].direction) << i;
     EXPECT_EQ(back->scene.lights[i].intensity, scene->lights[i].intensity) << i;
+  }
+  EXPECT_EQ(MeshBlob(*back), MeshBlob(bundle)) << "the meshed scene carries them too";
+}
+
+// The IES example (scenes/ies-downlights.toml): its lamps, hung as render and submit hang them,
+// reach the master with their candela tables, and the meshed scene the agents get carries them.
+TEST(JobBundleTest, CarriesIesLampsWithTheirTables) {
+  Result<Job> job = LoadJob(RADFARM_SOURCE_DIR "/scenes/ies-downlights.toml");
+  ASSERT_TRUE(job.ok()) << job.error();
+  Result<InputScene> scene =
+      LoadScene(job->scene_path, kDefaultMaxInputFileBytes, 0, FileReach::kSceneTree, true);
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  Result<std::string> text = ReadTextFile(RADFARM_SOURCE_DIR "/scenes/ies-downlights.ies");
+  ASSERT_TRUE(text.ok()) << text.error();
+  Result<IesPhotometry> ies = ParseIes(*text, "ies-downlights.ies");
+  ASSERT_TRUE(ies.ok()) << ies.error();
+  ASSERT_EQ(job->lamps.size(), 4u);
+  for (const JobLamp& lamp : job->lamps) {
+    scene->lights.push_back(
+        MakePhotometricLight(lamp.position, lamp.aim, LampReference(lamp), {1, 1, 1}, ies->table));
+  }
+  const JobBundle bundle{*job, *scene};
+  const std::vector<uint8_t> blob = EncodeJobBundle(bundle);
+  Result<JobBundle> back = DecodeJobBundle(blob);
+  ASSERT_TRUE(back.ok()) << back.error();
+  EXPECT_EQ(EncodeJobBundle(*back), blob);
+  ASSERT_EQ(back->scene.lights.size(), 4u);
+  for (size_t i = 0; i < 4; ++i) {
+    const PunctualLight& b = back->scene.lights[i];
+    EXPECT_EQ(b.kind, PunctualKind::kPhotometric) << i;
+    EXPECT_EQ(b.position, scene->lights[i].position) << i;
+    EXPECT_EQ(b.reference, scene->lights[i].reference) << i;
+    ASSERT_NE(b.table, nullptr) << i;
+    EXPECT_EQ(b.table->candela, ies->table.candela) << i;
+    EXPECT_EQ(b.table_lumens, scene->lights[i].table_lumens) << i;
   }
   EXPECT_EQ(MeshBlob(*back), MeshBlob(bundle)) << "the meshed scene carries them too";
 }

@@ -211,5 +211,31 @@ TEST(PatchSceneCodecTest, CarriesPunctualLightsAndChecksThem) {
   EXPECT_NE(bad.error().find("light 1 kind 7"), std::string::npos) << bad.error();
 }
 
+// A photometric lamp carries its candela table; the decoder checks the table before using it.
+TEST(PatchSceneCodecTest, CarriesAPhotometricLampsTableAndChecksIt) {
+  PatchScene scene = CornellPatches();
+  const CandelaTable table{{0, 45, 90}, {0, 90}, {100, 80, 0, 300, 200, 0}};
+  scene.lights = {MakePhotometricLight({0.2, 0.5, 0.2}, {0, -1, 0}, {0, 0, 1}, {2, 2, 2}, table)};
+  const std::vector<uint8_t> with = EncodePatchScene(scene);
+  Result<PatchScene> back = DecodePatchScene(with);
+  ASSERT_TRUE(back.ok()) << back.error();
+  ASSERT_EQ(back->lights.size(), 1u);
+  const PunctualLight& b = back->lights[0];
+  EXPECT_EQ(b.kind, PunctualKind::kPhotometric);
+  EXPECT_TRUE(SameBits(b.reference, Vec3{0, 0, 1}));
+  ASSERT_NE(b.table, nullptr);
+  EXPECT_EQ(b.table->vertical, table.vertical);
+  EXPECT_EQ(b.table->horizontal, table.horizontal);
+  EXPECT_EQ(b.table->candela, table.candela);
+  EXPECT_TRUE(SameBits(b.table_lumens, scene.lights[0].table_lumens));
+  EXPECT_EQ(EncodePatchScene(*back), with);
+  CandelaTable short_table = table;
+  short_table.candela.pop_back();
+  scene.lights[0].table = std::make_shared<const CandelaTable>(short_table);
+  Result<PatchScene> bad = DecodePatchScene(EncodePatchScene(scene));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error(), "scene blob: light 0 the table has 5 candela values, not 6");
+}
+
 }  // namespace
 }  // namespace radfarm::codec

@@ -203,6 +203,38 @@ TEST(LoadJobTest, IlluminancePlanesAreReadInOrder) {
   EXPECT_EQ(job->illuminance[1], (IlluminancePlane{"floor", 0, 1, {}}));
 }
 
+TEST(LoadJobTest, LampsAreReadInOrderWithTheirDefaults) {
+  const std::string path = WriteScratchFile(
+      "lamps.toml",
+      "scene = \"x.obj\"\n[[lamps]]\nfile = \"dl.ies\"\nposition = [1, 2.5, 3]\n[[lamps]]\n"
+      "file = \"ww.ies\"\nposition = [0, 2, 0]\naim = [0, 0, -2]\nrotate = 90\n"
+      "multiplier = 0.5\n");
+  Result<Job> job = LoadJob(path);
+  ASSERT_TRUE(job.ok()) << job.error();
+  ASSERT_EQ(job->lamps.size(), 2u);
+  EXPECT_EQ(job->lamps[0].file, "dl.ies");
+  EXPECT_EQ(job->lamps[0].location, path + ":3: 'lamps[0].file'");
+  EXPECT_EQ(job->lamps[0].position, (Vec3{1, 2.5, 3}));
+  EXPECT_EQ(job->lamps[0].aim, (Vec3{0, -1, 0}));
+  EXPECT_EQ(job->lamps[0].rotate, 0);
+  EXPECT_EQ(job->lamps[0].multiplier, 1);
+  EXPECT_EQ(job->lamps[1].aim, (Vec3{0, 0, -1})) << "made unit";
+  EXPECT_EQ(job->lamps[1].rotate, 90);
+  EXPECT_EQ(job->lamps[1].multiplier, 0.5);
+}
+
+TEST(LoadJobTest, ALampsHorizontalAnglesTurnAsLm63Says) {
+  JobLamp lamp;  // aimed down in +Y up: 0 toward +X, 90 toward -Z (counter-clockwise from above)
+  const auto near = [](const Vec3& a, const Vec3& b) { return Length(a - b) < 1e-12; };
+  EXPECT_TRUE(near(LampReference(lamp), {1, 0, 0}));
+  EXPECT_TRUE(near(Cross(LampReference(lamp), lamp.aim), {0, 0, -1}));
+  lamp.rotate = 90;
+  EXPECT_TRUE(near(LampReference(lamp), {0, 0, -1}));
+  lamp.aim = {1, 0, 0};  // along X: 0 toward -Z
+  lamp.rotate = 0;
+  EXPECT_TRUE(near(LampReference(lamp), {0, 0, -1}));
+}
+
 TEST(LoadJobTest, SyntaxErrorGivesTomlsDescriptionAndLine) {
   const std::string path = DataPath("jobs/syntax_error.toml");
   const std::string error = JobError(path);
@@ -262,6 +294,18 @@ INSTANTIATE_TEST_SUITE_P(
         BadJob{"IlluminanceUnknownKey",
                "[[illuminance]]\nname = \"a\"\nheight = 1\nspacing = 1\nspace = 2\n",
                "6: unknown key 'illuminance[0].space'"},
+        BadJob{"LampWithoutPosition", "[[lamps]]\nfile = \"a.ies\"\n",
+               "2: 'lamps[0].position' is missing (file and position are required)"},
+        BadJob{"LampEmptyFile", "[[lamps]]\nfile = \"\"\nposition = [0, 1, 0]\n",
+               "3: 'lamps[0].file' must not be empty"},
+        BadJob{"LampZeroAim",
+               "[[lamps]]\nfile = \"a.ies\"\nposition = [0, 1, 0]\naim = [0, 0, 0]\n",
+               "5: 'lamps[0].aim' must be finite and nonzero"},
+        BadJob{"LampZeroMultiplier",
+               "[[lamps]]\nfile = \"a.ies\"\nposition = [0, 1, 0]\nmultiplier = 0\n",
+               "5: 'lamps[0].multiplier' must be > 0, got 0"},
+        BadJob{"LampUnknownKey", "[[lamps]]\nfile = \"a.ies\"\nposition = [0, 1, 0]\ntilt = 3\n",
+               "5: unknown key 'lamps[0].tilt'"},
         BadJob{"UnknownTable", "[render]\nwidth = 3\n", "2: unknown key 'render'"},
         BadJob{"UnknownCameraKey", "[camera]\nwidht = 3\n", "3: unknown key 'camera.widht'"},
         BadJob{"SectionNotATable", "mesh = 3\n", "2: 'mesh' must be a table, not an integer"},

@@ -1,6 +1,6 @@
 // The path-traced reference against closed forms: a white furnace, two parallel squares, a point
-// lamp over a floor. Each estimate must land within 3 standard errors of the exact value, and its
-// standard error must be small (so a bias above about 1.5% fails).
+// lamp and an IES lamp over a floor. Each estimate must land within 3 standard errors of the exact
+// value, and its standard error must be small (so a bias above about 1.5% fails).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -154,6 +154,37 @@ TEST(ReferenceClosedFormsTest, PointLampOverAFloor) {
   const double exact = 0.6 * 3 * cos / (kPi * r2);
   const PointEstimate e = PathTracer(*scene).Estimate(p, 0, Tight());
   EXPECT_NEAR(e.radiance.r, exact, 1e-6 * exact);  // one bounce, no randomness
+}
+
+// An IES lamp aimed down (-z) with horizontal angle 0 toward +x, so 90 lies toward +y: each point
+// 45 degrees off the nadir in one of the four planes gets that plane's candela, I cos / (pi r^2)
+// with cos = 1 / sqrt 2. On the floor 0.3 m below (r^2 = 0.18) times rho; at free points facing
+// up 0.2 m below (r^2 = 0.08) as it is.
+TEST(ReferenceClosedFormsTest, PhotometricLampOverAFloorTurnsAsItsTable) {
+  const CandelaTable table{{0, 45, 90},
+                           {0, 90, 180, 270, 360},
+                           {100, 80, 0, 200, 160, 0, 300, 240, 0, 400, 320, 0, 100, 80, 0}};
+  const Vec3 lamp{0.5, 0.5, 0.3};
+  InputScene input;
+  input.path = "ies";
+  AddSquareAt(&input, 0, true, AddMaterial(&input, {0.6, 0.6, 0.6}, {}));
+  input.lights.push_back(MakePhotometricLight(lamp, {0, 0, -1}, {1, 0, 0}, {1, 1, 1}, table));
+  const auto scene = BuildOrDie(input);
+  const PathTracer tracer(*scene);
+  const struct {
+    Vec3 plane;  // the horizontal direction of the plane
+    double candela;
+  } cases[] = {{{1, 0, 0}, 80}, {{0, 1, 0}, 160}, {{-1, 0, 0}, 240}, {{0, -1, 0}, 320}};
+  for (const auto& c : cases) {
+    const double on_floor = c.candela / std::sqrt(2.0) / (kPi * 0.18);
+    const Vec3 floor = lamp + c.plane * 0.3 - Vec3{0, 0, 0.3};
+    const PointEstimate on = tracer.Estimate(At(*scene, floor, {0, 0, 1}), 0, Tight());
+    EXPECT_NEAR(on.radiance.r, 0.6 * on_floor, 1e-6 * on_floor) << c.candela;  // no randomness
+    const double free = c.candela / std::sqrt(2.0) / (kPi * 0.08);
+    const PointEstimate above =
+        tracer.EstimateIrradiance(lamp + c.plane * 0.2 - Vec3{0, 0, 0.2}, {0, 0, 1}, 0, Tight());
+    EXPECT_NEAR(above.radiance.r, free, 1e-9 * free) << c.candela;
+  }
 }
 
 // A calculation point in open space (an illuminance report's): E / pi, the radiance a white
