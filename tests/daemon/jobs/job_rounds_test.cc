@@ -174,6 +174,24 @@ TEST(JobRoundsTest, ACancelDuringTheStartEndsTheWaitAndTheAgentsPieces) {
   ASSERT_TRUE(master.RunUntil([&] { return master.StateOf(next) == "done"; }));
 }
 
+// An agent lost while it holds a start's pieces: they go to another agent, and the job starts.
+TEST(JobRoundsTest, ALostAgentsStartPiecesGoToAnother) {
+  MasterParts master;
+  auto silent = std::make_unique<FakeAgent>(master.loop(), master.agent_address(), master.secret(),
+                                            "box-1", true);
+  silent->set_answering_starts(false);
+  ASSERT_TRUE(silent->Connect().ok());
+  ASSERT_TRUE(master.RunUntil([&] { return silent->authenticated(); }));
+  const uint64_t job = master.Submit(0, 0, kGatherRays);
+  ASSERT_TRUE(master.RunUntil([&] { return silent->start_pieces_held() > 0; }));
+  FakeAgent other(master.loop(), master.agent_address(), master.secret(), "box-2", true);
+  ASSERT_TRUE(other.Connect().ok());
+  ASSERT_TRUE(master.RunUntil([&] { return other.authenticated(); }));
+  silent->Drop();
+  ASSERT_TRUE(master.RunUntil([&] { return master.jobs().FindRunner(job) != nullptr; }));
+  EXPECT_GT(other.start_pieces_received(), 0u);
+}
+
 TEST(JobRoundsTest, ACancelDuringTheDisplayDropsItsPiecesOnTheAgents) {
   MasterParts master;
   const uint64_t job = master.Submit(0, 0, kGatherRays);
