@@ -17,22 +17,10 @@
 namespace radfarm {
 namespace {
 
-// Two emitter lights over a floor and a point lamp: emitters and punctual lights both in the start.
-PatchScene LampsAndLights() {
-  PatchScene scene = testing::LightsOverFloor(2);
-  PunctualLight lamp;
-  lamp.kind = PunctualKind::kPoint;
-  lamp.position = {5, 8, 5};
-  lamp.direction = {0, -1, 0};
-  lamp.intensity = {40, 30, 20};
-  scene.lights.push_back(lamp);
-  return scene;
-}
-
 constexpr StartWork kWork{4, 99, true, 8};
 
 TEST(DirectStartTest, PiecesOnAnyThreadsGiveThePatchDirectLight) {
-  const PatchScene scene = LampsAndLights();
+  const PatchScene scene = testing::LightsAndLampOverFloor();
   double power = 0;
   uint64_t rays = 0;
   const std::vector<Rgb> whole = PatchDirectLight(

@@ -102,6 +102,17 @@ PatchScene LightsOverFloor(int count) {
   return scene;
 }
 
+PatchScene LightsAndLampOverFloor() {
+  PatchScene scene = LightsOverFloor(2);
+  PunctualLight lamp;
+  lamp.kind = PunctualKind::kPoint;
+  lamp.position = {5, 8, 5};
+  lamp.direction = {0, -1, 0};
+  lamp.intensity = {40, 30, 20};
+  scene.lights.push_back(lamp);
+  return scene;
+}
+
 bool BitIdentical(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
   // memcmp of two empty vectors' null data pointers is undefined, even for 0 bytes.
   return a.size() == b.size() &&

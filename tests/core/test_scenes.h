@@ -37,6 +37,10 @@ PatchScene LitBox();
 // to 8 keep the direct-light start at 2048 gather rays (core/direct_light.h).
 PatchScene LightsOverFloor(int count);
 
+// LightsOverFloor(2) and a point lamp over the floor: emitter patches and a punctual light both in
+// a direct-light start.
+PatchScene LightsAndLampOverFloor();
+
 // Whether two solutions are the same to the bit.
 bool BitIdentical(const std::vector<Rgb>& a, const std::vector<Rgb>& b);
 

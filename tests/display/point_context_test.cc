@@ -125,24 +125,12 @@ TEST_F(PointContextTest, TheContextGathersOnlyOnceTheDirectLightIsIn) {
   EXPECT_EQ(second.bounced.size(), patches);
 }
 
-// Two emitter lights over a floor and a point lamp: emitters and punctual lights in a start.
-PatchScene LampsAndLights() {
-  PatchScene scene = testing::LightsOverFloor(2);
-  PunctualLight lamp;
-  lamp.kind = PunctualKind::kPoint;
-  lamp.position = {5, 8, 5};
-  lamp.direction = {0, -1, 0};
-  lamp.intensity = {40, 30, 20};
-  scene.lights.push_back(lamp);
-  return scene;
-}
-
 constexpr StartWork kWork{4, 99, true, 8};
 
 // A direct-light start traced by agents (core/direct_start.h): a PointTracer on the start's
 // context, tracing start work in pieces, gives PatchDirectLight's bits and punctual power.
 TEST(PointContextStartTest, AStartsPatchesTracedElsewhereInPiecesGivePatchDirectLightsBits) {
-  const PatchScene scene = LampsAndLights();
+  const PatchScene scene = testing::LightsAndLampOverFloor();
   double power = 0;
   const std::vector<Rgb> whole = PatchDirectLight(scene, kWork.sections, kWork.seed, 2,
                                                   kWork.emitters, &power, kWork.rays_per_light);
