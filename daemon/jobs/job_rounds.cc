@@ -220,6 +220,7 @@ void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob
   const bool cancelled = starting_[id];
   starting_.erase(id);
   if (cancelled) {  // cancelled or paused while it was being prepared: the store knows already
+    start_agent_seconds_.erase(id);
     StartQueuedJobs();
     return;
   }
@@ -491,6 +492,7 @@ void JobRounds::DropJob(store::JobId id) {
 }
 
 void JobRounds::DropRunner(store::JobId id) {
+  start_agent_seconds_.erase(id);  // of a start whose runner will not come back
   const auto it = runners_.find(id);
   if (it == runners_.end()) return;
   retired_.Add(it->second->scheduler().counters(clock_.Now()));
