@@ -32,6 +32,7 @@ PointWork PointWorkOf(const protocol::PointLeaseMsg& lease) {
   work.gather_rays = lease.gather_rays;
   work.start_sections = lease.start_sections;
   work.start_patches = lease.start_patches;
+  work.score_elements = lease.score_elements;
   return work;
 }
 
@@ -43,6 +44,7 @@ protocol::PointResultMsg PointResultOf(const protocol::LeaseRef& lease, PointVal
   result.direct = std::move(values.direct);
   result.gathered = std::move(values.gathered);
   result.punctual = std::move(values.punctual);
+  result.scores = std::move(values.scores);
   result.rays = values.rays;
   result.compute_seconds = compute_seconds;
   return result;
@@ -69,8 +71,9 @@ void PointLeases::OnLease(const protocol::PointLeaseMsg& lease, bool accepting) 
   }
   LogLine(LogLevel::kDebug, "agent")
       << "received " << Describe(lease.lease) << ": "
-      << (lease.start_sections > 0 ? std::to_string(lease.start_patches) + " start patches"
-                                   : std::to_string(lease.points.size()) + " points")
+      << (lease.start_sections > 0   ? std::to_string(lease.start_patches) + " start patches"
+          : lease.score_elements > 0 ? std::to_string(lease.score_elements) + " score elements"
+                                     : std::to_string(lease.points.size()) + " points")
       << " from " << master_ << ", point context " << protocol::HashToHex(lease.context_hash);
   const uint64_t id = next_id_++;
   leases_[id] = Held{lease, nullptr};
@@ -117,6 +120,15 @@ void PointLeases::Submit(uint64_t id, const std::shared_ptr<const PreparedContex
                   std::to_string(context->scene->patches.size()));
     return;
   }
+  // So does a score lease's elements past the context's score work.
+  if (lease.score_elements > 0 &&
+      lease.first_index + lease.score_elements > context->tracer->score_elements()) {
+    ReturnOne(id, protocol::LeaseReturnReason::kFailed,
+              "score elements " + std::to_string(lease.first_index) + ".." +
+                  std::to_string(lease.first_index + lease.score_elements) +
+                  " past the point context's " + std::to_string(context->tracer->score_elements()));
+    return;
+  }
   auto task = std::make_shared<std::atomic<int>>(kWaiting);
   Status submitted = batches_.Submit(
       [task, context, work = PointWorkOf(held.lease)]() -> Traced {
@@ -159,8 +171,12 @@ void PointLeases::OnTraced(uint64_t id, Result<Traced> traced) {
   }
   const protocol::LeaseRef ref = found->second.lease.lease;
   const protocol::PointLeaseMsg& leased = found->second.lease;
-  const size_t items = leased.start_sections > 0 ? leased.start_patches : leased.points.size();
-  const char* unit = leased.start_sections > 0 ? " start patches, " : " points, ";
+  const size_t items = leased.start_sections > 0   ? leased.start_patches
+                       : leased.score_elements > 0 ? leased.score_elements
+                                                   : leased.points.size();
+  const char* unit = leased.start_sections > 0   ? " start patches, "
+                     : leased.score_elements > 0 ? " score elements, "
+                                                 : " points, ";
   leases_.erase(found);
   const protocol::PointResultMsg result =
       PointResultOf(ref, std::move(traced->values), traced->compute_seconds);

@@ -67,6 +67,96 @@ Status ReadGathering(const wire::PointContextBlob& root, size_t patches, PointCo
   return Ok{};
 }
 
+wire::ScoreVec Wire(const Vec3& v) { return {v.x, v.y, v.z}; }
+wire::PointColour Wire(const Rgb& c) { return {c.r, c.g, c.b}; }
+Vec3 Read(const wire::ScoreVec& v) { return {v.x(), v.y(), v.z()}; }
+Rgb Read(const wire::PointColour& c) { return {c.r(), c.g(), c.b()}; }
+
+void WriteScoring(flatbuffers::FlatBufferBuilder& fbb, const LightScoreWork& work,
+                  flatbuffers::Offset<flatbuffers::Vector<const wire::ScoreSource*>>* sources,
+                  flatbuffers::Offset<flatbuffers::Vector<const wire::ScoreElement*>>* elements) {
+  std::vector<wire::ScoreSource> s;
+  s.reserve(work.sources.size());
+  for (const LightSource& l : work.sources) {
+    s.emplace_back(Wire(l.samples[0]), Wire(l.samples[1]), Wire(l.samples[2]), Wire(l.samples[3]),
+                   Wire(l.normal), l.sample_area, Wire(l.unshot), l.surface);
+  }
+  *sources = fbb.CreateVectorOfStructs(s);
+  std::vector<wire::ScoreElement> e;
+  e.reserve(work.elements.size());
+  for (const ScoredElement& x : work.elements) {
+    const auto& c = x.shape.corners;
+    e.emplace_back(Wire(c[0]), Wire(c[1]), Wire(c[2]), Wire(c[3]), x.shape.corner_count,
+                   Wire(x.shape.normal), Wire(x.shape.centre), Wire(x.reflectance), x.surface,
+                   Wire(x.radiosity));
+  }
+  *elements = fbb.CreateVectorOfStructs(e);
+}
+
+Status ReadScoring(const wire::PointContextBlob& root, LightScoreWork* work) {
+  if (!root.score_sources() && !root.score_elements()) return Ok{};
+  if (!root.score_sources() || !root.score_elements()) {
+    return FieldError(kKind, "score_sources and score_elements", "are not both present");
+  }
+  const auto& sources = *root.score_sources();
+  const auto& elements = *root.score_elements();
+  if (sources.size() < 1 || sources.size() > kLightSources) {
+    return FieldError(kKind, "score_sources",
+                      "holds " + std::to_string(sources.size()) + " sources, not 1.." +
+                          std::to_string(kLightSources));
+  }
+  if (elements.size() < 1 || elements.size() > kMaxScoreElements) {
+    return FieldError(kKind, "score_elements",
+                      "holds " + std::to_string(elements.size()) + " elements, not 1.." +
+                          std::to_string(kMaxScoreElements));
+  }
+  work->tolerance = root.score_tolerance();
+  if (!std::isfinite(work->tolerance) || work->tolerance <= 0) {
+    return FieldError(kKind, "score_tolerance", "is not a finite number > 0");
+  }
+  for (flatbuffers::uoffset_t i = 0; i < sources.size(); ++i) {
+    const wire::ScoreSource s = StructAt(sources, i);
+    LightSource l;
+    l.samples = {Read(s.sample0()), Read(s.sample1()), Read(s.sample2()), Read(s.sample3())};
+    l.normal = Read(s.normal());
+    l.sample_area = s.sample_area();
+    l.unshot = Read(s.unshot());
+    l.surface = s.surface();
+    bool finite = IsFinite(l.normal) && IsFinite(l.unshot) && std::isfinite(l.sample_area) &&
+                  l.sample_area >= 0;
+    for (const Vec3& v : l.samples) finite = finite && IsFinite(v);
+    if (!finite) {
+      return FieldError(kKind, "score_sources " + std::to_string(i),
+                        "holds a value not finite (or a negative area)");
+    }
+    work->sources.push_back(l);
+  }
+  work->elements.reserve(elements.size());
+  for (flatbuffers::uoffset_t i = 0; i < elements.size(); ++i) {
+    const wire::ScoreElement w = StructAt(elements, i);
+    ScoredElement e;
+    e.shape.corners = {Read(w.corner0()), Read(w.corner1()), Read(w.corner2()), Read(w.corner3())};
+    e.shape.corner_count = w.corner_count();
+    e.shape.normal = Read(w.normal());
+    e.shape.centre = Read(w.centre());
+    e.reflectance = Read(w.reflectance());
+    e.surface = w.surface();
+    e.radiosity = Read(w.radiosity());
+    bool finite = IsFinite(e.shape.normal) && IsFinite(e.shape.centre) && IsFinite(e.reflectance) &&
+                  IsFinite(e.radiosity);
+    for (const Vec3& v : e.shape.corners) finite = finite && IsFinite(v);
+    if (!finite) {
+      return FieldError(kKind, "score_elements " + std::to_string(i), "holds a value not finite");
+    }
+    if (e.shape.corner_count != 3 && e.shape.corner_count != 4) {
+      return FieldError(kKind, "score_elements " + std::to_string(i),
+                        "has " + std::to_string(e.shape.corner_count) + " corners, not 3 or 4");
+    }
+    work->elements.push_back(e);
+  }
+  return Ok{};
+}
+
 }  // namespace
 
 std::vector<uint8_t> EncodePointContext(std::span<const uint8_t> scene,
@@ -83,9 +173,16 @@ std::vector<uint8_t> EncodePointContext(std::span<const uint8_t> scene,
     corners = Colours(fbb, flat);
     bounced = Colours(fbb, context.bounced);
   }
-  fbb.Finish(wire::CreatePointContextBlob(fbb, scene_offset, context.emitters,
-                                          context.rays_per_point, context.rays_per_light, outgoing,
-                                          corners, bounced, context.second_reach),
+  flatbuffers::Offset<flatbuffers::Vector<const wire::ScoreSource*>> score_sources;
+  flatbuffers::Offset<flatbuffers::Vector<const wire::ScoreElement*>> score_elements;
+  if (!context.scoring.elements.empty()) {
+    WriteScoring(fbb, context.scoring, &score_sources, &score_elements);
+  }
+  fbb.Finish(wire::CreatePointContextBlob(
+                 fbb, scene_offset, context.emitters, context.rays_per_point,
+                 context.rays_per_light, outgoing, corners, bounced, context.second_reach,
+                 context.scoring.elements.empty() ? 0.0 : context.scoring.tolerance, score_sources,
+                 score_elements),
              "RDPC");
   return {fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()};
 }
@@ -116,6 +213,7 @@ Result<DecodedPointContext> DecodePointContext(std::span<const uint8_t> blob) {
     return FieldError(kKind, "second_reach", "is not a finite positive length");
   }
   RADFARM_RETURN_IF_ERROR(ReadGathering(*root, out.scene.patches.size(), &context));
+  RADFARM_RETURN_IF_ERROR(ReadScoring(*root, &context.scoring));
   return out;
 }
 

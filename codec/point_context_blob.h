@@ -11,6 +11,7 @@
 #include "base/result.h"
 #include "core/patch_scene.h"
 #include "display/point_context.h"
+#include "mesh/patch_mesh.h"
 
 namespace radfarm::codec {
 
@@ -23,9 +24,14 @@ struct DecodedPointContext {
   PointContext context;
 };
 
+// The elements a point context's score work may hold: as many as a mesh's patches may be.
+inline constexpr size_t kMaxScoreElements = kMaxPatches;
+
 // Checks the scene as DecodePatchScene does, and the context: rays per point at least 1 and
 // within bounds, the gathering arrays all absent or one per patch (four offsets per patch),
-// finite values, a finite positive reach. Errors name the field.
+// finite values, a finite positive reach, score work absent or with 1..kLightSources sources, a
+// finite positive tolerance and 1..kMaxScoreElements elements of 3 or 4 corners. Errors name the
+// field.
 Result<DecodedPointContext> DecodePointContext(std::span<const uint8_t> blob);
 
 }  // namespace radfarm::codec

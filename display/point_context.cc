@@ -35,6 +35,10 @@ PointTracer::PointTracer(const PatchScene& scene, PointContext context)
   second_.scene = &scene_;
   second_.bounced = std::move(context.bounced);
   second_.reach = context.second_reach;
+  if (!context.scoring.elements.empty()) {
+    scoring_ = std::move(context.scoring);
+    surface_of_ = SurfacesOf(scene);
+  }
 }
 
 PointLights PointTracer::lights() const {
@@ -44,7 +48,9 @@ PointLights PointTracer::lights() const {
           &direct_,
           gathers ? &outgoing_ : nullptr,
           gathers ? &corners_ : nullptr,
-          gathers ? &second_ : nullptr};
+          gathers ? &second_ : nullptr,
+          scoring_.elements.empty() ? nullptr : &scoring_,
+          scoring_.elements.empty() ? nullptr : &surface_of_};
 }
 
 PointValues PointTracer::Trace(const PointWork& work, size_t begin, size_t end,

@@ -16,6 +16,7 @@
 #include "core/ray_caster.h"
 #include "core/rgb.h"
 #include "display/point_work.h"
+#include "mesh/light_scores.h"
 
 namespace radfarm {
 
@@ -31,6 +32,9 @@ struct PointContext {
   std::vector<std::array<Rgb, 4>> corner_offsets;
   std::vector<Rgb> bounced;
   double second_reach = kSecondBounceReach;
+  // For a refinement step's score work (display/point_work.h): its elements and sources; no
+  // elements: none.
+  LightScoreWork scoring;
 
   bool gathers() const { return !outgoing.empty(); }
   bool operator==(const PointContext&) const = default;
@@ -47,6 +51,8 @@ class PointTracer {
   PointTracer& operator=(const PointTracer&) = delete;
 
   PointLights lights() const;
+  // The elements of the context's score work (0: none).
+  size_t score_elements() const { return scoring_.elements.size(); }
   // TracePoints on these lights.
   PointValues Trace(const PointWork& work, size_t begin, size_t end, unsigned threads) const;
 
@@ -57,6 +63,8 @@ class PointTracer {
   std::vector<Rgb> outgoing_;  // empty: the context does not gather
   PatchCornerOffsets corners_;
   SecondBounce second_;
+  LightScoreWork scoring_;
+  std::vector<uint32_t> surface_of_;  // of the scene's patches, for score work
 };
 
 }  // namespace radfarm

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/direct_start.h"
+#include "core/thread_pool.h"
 
 namespace radfarm {
 
@@ -23,6 +24,19 @@ PointValues TracePoints(const PointLights& lights, const PointWork& work, size_t
     out.direct = std::move(patches.direct);
     out.punctual = std::move(patches.punctual);
     out.rays = patches.rays;
+    return out;
+  }
+  if (work.scores()) {
+    if (lights.scoring == nullptr || lights.surface_of == nullptr ||
+        work.first_index + end > lights.scoring->elements.size()) {
+      std::fprintf(stderr, "TracePoints: score elements [%zu, %zu) past the context's\n",
+                   size_t(work.first_index + begin), size_t(work.first_index + end));
+      std::abort();
+    }
+    ThreadPool pool(threads);
+    PointValues out;
+    out.scores = TraceLightScores(*lights.scoring, *lights.surface_of, lights.caster,
+                                  work.first_index + begin, work.first_index + end, pool);
     return out;
   }
   const std::vector<ReceiverPoint> points(work.points.begin() + begin, work.points.begin() + end);
@@ -53,6 +67,8 @@ PointWork PieceOf(const PointWork& work, size_t begin, size_t end) {
     piece.start_sections = work.start_sections;
     piece.start_patches = end - begin;
     piece.start_punctual = work.start_punctual;
+  } else if (work.scores()) {
+    piece.score_elements = end - begin;
   } else {
     piece.points.assign(work.points.begin() + begin, work.points.begin() + end);
   }
@@ -71,6 +87,7 @@ void AppendPointValues(PointValues piece, PointValues* whole) {
   whole->direct.insert(whole->direct.end(), piece.direct.begin(), piece.direct.end());
   whole->gathered.insert(whole->gathered.end(), piece.gathered.begin(), piece.gathered.end());
   whole->punctual.insert(whole->punctual.end(), piece.punctual.begin(), piece.punctual.end());
+  whole->scores.insert(whole->scores.end(), piece.scores.begin(), piece.scores.end());
   whole->rays += piece.rays;
 }
 

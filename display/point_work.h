@@ -13,6 +13,7 @@
 #include "core/point_gather.h"
 #include "core/ray_caster.h"
 #include "core/rgb.h"
+#include "mesh/light_scores.h"
 
 namespace radfarm {
 
@@ -36,10 +37,16 @@ struct PointWork {
   uint32_t start_sections = 0;  // 0: point work
   uint64_t start_patches = 0;
   bool start_punctual = false;  // the scene has punctual lights: each patch has their share too
+  // A refinement step's light scores instead (mesh/light_scores.h): elements [first_index,
+  // first_index + score_elements) of the context's LightScoreWork. `points` is empty then.
+  uint64_t score_elements = 0;  // 0: not score work
 
   bool start() const { return start_sections > 0; }
-  // The items a piece is cut from: points, or patches of start work.
-  size_t size() const { return start() ? start_patches : points.size(); }
+  bool scores() const { return score_elements > 0; }
+  // The items a piece is cut from: points, patches of start work, or elements of score work.
+  size_t size() const {
+    return start() ? start_patches : scores() ? score_elements : points.size();
+  }
 };
 
 // The values of points [begin, end) of a PointWork, in order; an empty vector where the work did
@@ -51,7 +58,8 @@ struct PointValues {
   // Start work's per patch (core/direct_start.h's PatchStartValues): its direct light is `direct`,
   // its punctual lights' share this (empty where the scene has none).
   std::vector<Rgb> punctual;
-  uint64_t rays = 0;  // shadow and gathering rays cast, second bounces included
+  std::vector<double> scores;  // score work's, per element
+  uint64_t rays = 0;           // shadow and gathering rays cast, second bounces included
 };
 
 // What the points are traced against: the display's lights, the same for all its work. All must
@@ -63,10 +71,14 @@ struct PointLights {
   const std::vector<Rgb>* outgoing = nullptr;  // for work that gathers: GatherLight's arguments
   const PatchCornerOffsets* corners = nullptr;
   const SecondBounce* second = nullptr;
+  // For score work: the step's elements and sources, and the surface of each of the scene's
+  // patches (SurfacesOf).
+  const LightScoreWork* scoring = nullptr;
+  const std::vector<uint32_t>* surface_of = nullptr;
 };
 
 // Traces points [begin, end) of `work` on `threads` (0: all cores); of start work, its patches
-// [begin, end) counted from first_index.
+// [begin, end) counted from first_index; of score work, its elements so counted.
 PointValues TracePoints(const PointLights& lights, const PointWork& work, size_t begin, size_t end,
                         unsigned threads);
 

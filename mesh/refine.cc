@@ -74,6 +74,27 @@ bool Splittable(const Patch& p, double min_element_size) {
   return p.emission.Max() == 0 && LongestPatchEdge(p) >= 2 * min_element_size;
 }
 
+// The light scores of `chosen` elements, in their order: traced where `source` says, else on
+// `pool`.
+std::vector<double> ScoreLight(const std::vector<Element>& elements,
+                               const std::vector<uint32_t>& chosen, const PatchScene& scene,
+                               const std::vector<LightSource>& sources,
+                               const std::vector<uint32_t>& surface_of, double tolerance,
+                               const RayCaster& caster, ThreadPool& pool,
+                               const LightScoreSource& source) {
+  LightScoreWork work{sources, tolerance, {}};
+  if (sources.empty() || chosen.empty()) return std::vector<double>(chosen.size(), 0.0);
+  work.elements.reserve(chosen.size());
+  for (uint32_t i : chosen) {
+    const Element& e = elements[i];
+    work.elements.push_back({e.patch, e.patch.reflectance, e.patch.surface, e.radiosity});
+  }
+  if (source) {
+    if (std::optional<std::vector<double>> traced = source(scene, work)) return std::move(*traced);
+  }
+  return TraceLightScores(work, surface_of, caster, 0, work.elements.size(), pool);
+}
+
 }  // namespace
 
 uint64_t AutomaticElementBudget(size_t initial_patches, uint64_t memory_limit) {
@@ -140,7 +161,7 @@ CarriedState CarryOver(RefinedMesh& refined, const EnergyAccount& energy, bool r
 RefinedMesh Refine(const PatchMesh& mesh, const std::vector<Rgb>& radiosity,
                    const std::vector<Rgb>& unshot, double ray_power,
                    const ResolvedRefineSettings& settings, const RayCaster& caster,
-                   ThreadPool& pool) {
+                   ThreadPool& pool, const LightScoreSource& scores) {
   const PatchScene& scene = mesh.patch_scene();
   if (radiosity.size() != scene.patches.size() || unshot.size() != scene.patches.size()) {
     std::fprintf(stderr, "Refine: %zu radiosities, %zu unshot values, %zu patches\n",
@@ -151,38 +172,49 @@ RefinedMesh Refine(const PatchMesh& mesh, const std::vector<Rgb>& radiosity,
   const std::vector<Rgb> vertex_value =
       SmoothVertexValues(mesh.display_topology(), scene, radiosity);
   const OmMesh& om = mesh.mesh();
-  std::vector<uint32_t> surface_of;
-  for (const Patch& p : scene.patches) surface_of.push_back(p.surface);
+  const std::vector<uint32_t> surface_of = SurfacesOf(scene);
   const std::vector<LightSource> sources = StrongestSources(scene, unshot, kLightSources);
 
   std::vector<Element> elements;
   for (uint32_t i = 0; i < scene.patches.size(); ++i) {
     elements.push_back({scene.patches[i], radiosity[i], unshot[i], i, false});
   }
+  std::vector<uint32_t> chosen;
+  for (uint32_t i = 0; i < elements.size(); ++i) {
+    if (Splittable(elements[i].patch, settings.min_element_size)) chosen.push_back(i);
+  }
   std::vector<double> score(elements.size(), 0.0);
-  pool.ParallelFor(elements.size(), [&](unsigned, size_t i) {
+  {
+    const std::vector<double> light = ScoreLight(elements, chosen, scene, sources, surface_of,
+                                                 settings.tolerance, caster, pool, scores);
+    for (size_t k = 0; k < chosen.size(); ++k) score[chosen[k]] = light[k];
+  }
+  pool.ParallelFor(chosen.size(), [&](unsigned, size_t k) {
+    const uint32_t i = chosen[k];
     const Element& e = elements[i];
-    if (!Splittable(e.patch, settings.min_element_size)) return;
     std::array<OmMesh::VertexHandle, 4> corners;
     const int n = FaceCorners(om, om.face_handle(static_cast<int>(i)), &corners);
     std::vector<Rgb> vertex_radiance;
-    for (int k = 0; k < n; ++k) {
-      vertex_radiance.push_back(vertex_value[om.property(mesh.properties().group, corners[k])]);
+    for (int c = 0; c < n; ++c) {
+      vertex_radiance.push_back(vertex_value[om.property(mesh.properties().group, corners[c])]);
     }
-    score[i] = std::max(
-        LightScore(e.patch, e.radiosity, sources, surface_of, caster, settings.tolerance),
-        GradientScore(e.patch, e.radiosity, vertex_radiance, ray_power, settings.tolerance));
+    score[i] = std::max(score[i], GradientScore(e.patch, e.radiosity, vertex_radiance, ray_power,
+                                                settings.tolerance));
   });
   uint64_t splits = SplitScored(score, settings.max_elements, &elements);
   uint64_t total_splits = splits;
   // Children of a split are judged again by the light to come, down to the minimum size.
   while (splits > 0) {
+    chosen.clear();
+    for (uint32_t i = 0; i < elements.size(); ++i) {
+      if (elements[i].fresh && Splittable(elements[i].patch, settings.min_element_size)) {
+        chosen.push_back(i);
+      }
+    }
+    const std::vector<double> light = ScoreLight(elements, chosen, scene, sources, surface_of,
+                                                 settings.tolerance, caster, pool, scores);
     score.assign(elements.size(), 0.0);
-    pool.ParallelFor(elements.size(), [&](unsigned, size_t i) {
-      const Element& e = elements[i];
-      if (!e.fresh || !Splittable(e.patch, settings.min_element_size)) return;
-      score[i] = LightScore(e.patch, e.radiosity, sources, surface_of, caster, settings.tolerance);
-    });
+    for (size_t k = 0; k < chosen.size(); ++k) score[chosen[k]] = light[k];
     splits = SplitScored(score, settings.max_elements, &elements);
     total_splits += splits;
   }

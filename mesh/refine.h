@@ -39,6 +39,7 @@
 #include "core/ray_caster.h"
 #include "core/rgb.h"
 #include "core/thread_pool.h"
+#include "mesh/light_scores.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/refine_settings.h"
 
@@ -88,12 +89,13 @@ struct RefinedMesh {
 
 // One refinement step; its gradient test reads the solution at the vertices
 // (mesh/vertex_averages.h). `ray_power` is emitted power / shot_rays of the rounds so far (0 before
-// the first round). `caster` is a RayCaster of `mesh`'s scene. Evaluations run on `pool`; the
-// result does not depend on its size.
+// the first round). `caster` is a RayCaster of `mesh`'s scene. Evaluations run on `pool`, the
+// light scores where `scores` traces them (light_scores.h; empty or nullopt: on `pool`); the
+// result depends on neither.
 RefinedMesh Refine(const PatchMesh& mesh, const std::vector<Rgb>& radiosity,
                    const std::vector<Rgb>& unshot, double ray_power,
                    const ResolvedRefineSettings& settings, const RayCaster& caster,
-                   ThreadPool& pool);
+                   ThreadPool& pool, const LightScoreSource& scores = {});
 
 // The solver state to Restore() on the refined mesh after a step that split something: the
 // children's inherited values with the energy account's unshot power summed again over them, or,

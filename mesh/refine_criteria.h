@@ -40,6 +40,7 @@ struct LightSource {
   double sample_area = 0;  // area / kSourceSamples
   Rgb unshot;              // radiance still to shoot
   uint32_t surface = 0;
+  bool operator==(const LightSource&) const = default;
 };
 
 // The `limit` patches with the most unshot power (ties by id), strongest first.

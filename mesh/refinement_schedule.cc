@@ -32,11 +32,10 @@ Result<RefinementSchedule> RefinementSchedule::Create(const RefineSettings& sett
   return RefinementSchedule(*resolved, shot_rays, next_point);
 }
 
-std::optional<RefinementStep> RefinementSchedule::BeforeFirstRound(PatchMesh& mesh,
-                                                                   const ProgressiveSolver& solver,
-                                                                   const RayCaster& caster,
-                                                                   ThreadPool& pool) const {
-  return Step(mesh, solver, 0, false, caster, pool);
+std::optional<RefinementStep> RefinementSchedule::BeforeFirstRound(
+    PatchMesh& mesh, const ProgressiveSolver& solver, const RayCaster& caster, ThreadPool& pool,
+    const LightScoreSource& scores) const {
+  return Step(mesh, solver, 0, false, caster, pool, scores);
 }
 
 bool RefinementSchedule::BeforeRestart() const {
@@ -67,7 +66,8 @@ bool RefinementSchedule::PointPassed(const ProgressiveSolver& solver) const {
 std::optional<RefinementStep> RefinementSchedule::AfterRound(PatchMesh& mesh,
                                                              const ProgressiveSolver& solver,
                                                              const RayCaster& caster,
-                                                             ThreadPool& pool) {
+                                                             ThreadPool& pool,
+                                                             const LightScoreSource& scores) {
   // The power each ray of the rounds so far carried, before the point passed changes the phase.
   SolverSettings used;
   used.shot_rays = shot_rays_;
@@ -76,16 +76,16 @@ std::optional<RefinementStep> RefinementSchedule::AfterRound(PatchMesh& mesh,
       solver.energy().emitted / double(ResolvedShotRays(used, mesh.patch_scene().patches.size()));
   const RefinePoint* point = PassedRefinePoint(solver.UnshotFraction(), &next_point_);
   if (point == nullptr) return std::nullopt;
-  return Step(mesh, solver, ray_power, point->restart, caster, pool);
+  return Step(mesh, solver, ray_power, point->restart, caster, pool, scores);
 }
 
 std::optional<RefinementStep> RefinementSchedule::Step(PatchMesh& mesh,
                                                        const ProgressiveSolver& solver,
                                                        double ray_power, bool restart,
-                                                       const RayCaster& caster,
-                                                       ThreadPool& pool) const {
+                                                       const RayCaster& caster, ThreadPool& pool,
+                                                       const LightScoreSource& scores) const {
   RefinedMesh refined =
-      Refine(mesh, solver.radiosity(), solver.unshot(), ray_power, settings_, caster, pool);
+      Refine(mesh, solver.radiosity(), solver.unshot(), ray_power, settings_, caster, pool, scores);
   // A restart point restarts even when nothing split: the rounds before it had fewer rays.
   if (refined.split == 0 && !restart) return std::nullopt;
   CarriedState carried = CarryOver(refined, solver.energy(), restart);

@@ -53,9 +53,11 @@ class RefinementSchedule {
                                            uint64_t shot_rays, size_t next_point = 0);
 
   // Before round 0. `mesh` and `solver` are the solve's (solver on mesh.patch_scene(), nothing
-  // applied yet); `caster` traces mesh.patch_scene(). Refine stores the solution in `mesh`.
+  // applied yet); `caster` traces mesh.patch_scene(). Refine stores the solution in `mesh`. The
+  // light scores are traced where `scores` says (mesh/light_scores.h; empty: on `pool`).
   std::optional<RefinementStep> BeforeFirstRound(PatchMesh& mesh, const ProgressiveSolver& solver,
-                                                 const RayCaster& caster, ThreadPool& pool) const;
+                                                 const RayCaster& caster, ThreadPool& pool,
+                                                 const LightScoreSource& scores = {}) const;
 
   // Whether the round just applied passes a refinement point, without advancing: callers that
   // build the caster only when needed ask this first.
@@ -64,7 +66,8 @@ class RefinementSchedule {
   // After a round that did not end the solve: advances past the points the unshot fraction has
   // fallen below and, if it passed any, refines at the last of them.
   std::optional<RefinementStep> AfterRound(PatchMesh& mesh, const ProgressiveSolver& solver,
-                                           const RayCaster& caster, ThreadPool& pool);
+                                           const RayCaster& caster, ThreadPool& pool,
+                                           const LightScoreSource& scores = {});
 
   // The settings of the solver for the rounds up to the next refinement point, on a mesh of
   // `patches` elements: before a restart point the shot rays are divided by
@@ -85,7 +88,7 @@ class RefinementSchedule {
       : settings_(settings), shot_rays_(shot_rays), next_point_(next_point) {}
   std::optional<RefinementStep> Step(PatchMesh& mesh, const ProgressiveSolver& solver,
                                      double ray_power, bool restart, const RayCaster& caster,
-                                     ThreadPool& pool) const;
+                                     ThreadPool& pool, const LightScoreSource& scores) const;
 
   ResolvedRefineSettings settings_;
   uint64_t shot_rays_ = 0;

@@ -181,7 +181,22 @@ Status CheckStartLease(const PointLeaseMsg& m) {
   return Ok{};
 }
 
+Status CheckScoreLease(const PointLeaseMsg& m) {
+  const size_t n = m.score_elements;
+  if (n > kMaxLeasePoints) {
+    return Fail("PointLease", Str(n) + " score elements, not 1.." + Str(kMaxLeasePoints));
+  }
+  if (!m.points.empty() || !m.gather.empty() || m.near_radius != 0 || m.direct ||
+      m.start_sections != 0 || m.start_patches != 0) {
+    return Fail("PointLease", "a score lease with points, lights, gathering or start patches");
+  }
+  if (m.first_index > UINT64_MAX - n) return Fail("PointLease", "first_index overflows");
+  if (m.lease_ms < 1) return Fail("PointLease", "lease_ms 0");
+  return Ok{};
+}
+
 Status Check(const PointLeaseMsg& m) {
+  if (m.score_elements > 0) return CheckScoreLease(m);
   if (m.start_sections > 0) return CheckStartLease(m);
   if (m.start_patches != 0) return Fail("PointLease", "start_patches without start_sections");
   const size_t n = m.points.size();
@@ -220,8 +235,8 @@ Status Check(const PointLeaseMsg& m) {
 }
 
 Status Check(const PointResultMsg& m) {
-  const size_t most =
-      std::max({m.near.size(), m.direct.size(), m.gathered.size(), m.punctual.size()});
+  const size_t most = std::max(
+      {m.near.size(), m.direct.size(), m.gathered.size(), m.punctual.size(), m.scores.size()});
   if (most == 0 || most > kMaxLeasePoints) {
     return Fail("PointResult", Str(most) + " values, not 1.." + Str(kMaxLeasePoints));
   }
@@ -233,6 +248,11 @@ Status Check(const PointResultMsg& m) {
       if (!(*values)[i].IsFinite()) {
         return Fail("PointResult", std::string(name) + " value " + Str(i) + " not finite");
       }
+    }
+  }
+  for (size_t i = 0; i < m.scores.size(); ++i) {
+    if (!IsNonNegativeFinite(m.scores[i])) {
+      return Fail("PointResult", "score " + Str(i) + " not finite and >= 0");
     }
   }
   if (!IsNonNegativeFinite(m.compute_seconds)) {

@@ -18,10 +18,14 @@ std::string_view MessageName(const Message& message) { return kMessageNames[mess
 
 bool InVersion(const Message& message, uint16_t version) {
   if (const auto* lease = std::get_if<PointLeaseMsg>(&message)) {
-    return version >= (lease->start_sections > 0 ? kStartLeaseVersion : kPointLeaseVersion);
+    return version >= (lease->score_elements > 0   ? kScoreLeaseVersion
+                       : lease->start_sections > 0 ? kStartLeaseVersion
+                                                   : kPointLeaseVersion);
   }
   if (const auto* result = std::get_if<PointResultMsg>(&message)) {
-    return version >= (result->punctual.empty() ? kPointLeaseVersion : kStartLeaseVersion);
+    return version >= (!result->scores.empty()     ? kScoreLeaseVersion
+                       : !result->punctual.empty() ? kStartLeaseVersion
+                                                   : kPointLeaseVersion);
   }
   if (std::holds_alternative<LeaseAssignmentMsg>(message) ||
       std::holds_alternative<LeaseResultMsg>(message) ||

@@ -178,7 +178,10 @@ struct LeasedPoint {
 // display/point_work.h PointWork), traced against the point context the hash names (fetched as a
 // scene is: codec/point_context_blob.h). `lease.batch_id` names the piece. From version 7, a
 // piece of a direct-light start instead (start_sections > 0, core/direct_start.h): patches
-// [first_index, first_index + start_patches) of the context's scene, no points, `direct` set.
+// [first_index, first_index + start_patches) of the context's scene, no points, `direct` set. From
+// version 8, a piece of a refinement step's light scores (score_elements > 0,
+// mesh/light_scores.h): elements [first_index, first_index + score_elements) of the context's
+// score work, no points, nothing else asked.
 struct PointLeaseMsg {  // master -> agent
   LeaseRef lease;
   SceneHash context_hash{};
@@ -192,6 +195,7 @@ struct PointLeaseMsg {  // master -> agent
   uint32_t lease_ms = 0;            // >= 1
   uint32_t start_sections = 0;      // <= kMaxStartSections; 0: point work
   uint32_t start_patches = 0;       // 1..kMaxLeasePoints with start_sections, else 0
+  uint32_t score_elements = 0;      // 1..kMaxLeasePoints for score work, else 0
   bool operator==(const PointLeaseMsg&) const = default;
 };
 
@@ -205,6 +209,7 @@ struct PointResultMsg {  // agent -> master
   uint64_t rays = 0;           // shadow and gathering rays cast
   double compute_seconds = 0;  // finite, >= 0
   std::vector<Rgb> punctual;   // finite; a start's punctual lights' share per patch (version 7)
+  std::vector<double> scores;  // finite, >= 0; score work's per element (version 8)
   bool operator==(const PointResultMsg&) const = default;
 };
 

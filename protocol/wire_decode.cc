@@ -200,6 +200,7 @@ Result<Message> Read(const wire::PointLease& t) {
   m.lease_ms = t.lease_ms();
   m.start_sections = t.start_sections();
   m.start_patches = t.start_patches();
+  m.score_elements = t.score_elements();
   return Message{std::move(m)};
 }
 
@@ -221,6 +222,7 @@ Result<Message> Read(const wire::PointResult& t) {
   RADFARM_RETURN_IF_ERROR(ReadPointValues(t.direct(), "direct", &m.direct));
   RADFARM_RETURN_IF_ERROR(ReadPointValues(t.gathered(), "gathered", &m.gathered));
   RADFARM_RETURN_IF_ERROR(ReadPointValues(t.punctual(), "punctual", &m.punctual));
+  if (t.scores()) m.scores.assign(t.scores()->begin(), t.scores()->end());
   m.rays = t.rays();
   m.compute_seconds = t.compute_seconds();
   return Message{std::move(m)};

@@ -159,7 +159,7 @@ Offset<wire::PointLease> Build(FlatBufferBuilder& fbb, const PointLeaseMsg& m) {
   const wire::Bytes32 hash = ToWire(m.context_hash);
   return wire::CreatePointLease(fbb, &lease, &hash, m.seed, m.near_radius, m.direct, m.gather_rays,
                                 m.first_index, points, gather, m.lease_ms, m.start_sections,
-                                m.start_patches);
+                                m.start_patches, m.score_elements);
 }
 
 Offset<wire::PointResult> Build(FlatBufferBuilder& fbb, const PointResultMsg& m) {
@@ -167,9 +167,10 @@ Offset<wire::PointResult> Build(FlatBufferBuilder& fbb, const PointResultMsg& m)
   const auto direct = m.direct.empty() ? 0 : PointValues(fbb, m.direct);
   const auto gathered = m.gathered.empty() ? 0 : PointValues(fbb, m.gathered);
   const auto punctual = m.punctual.empty() ? 0 : PointValues(fbb, m.punctual);
+  const auto scores = m.scores.empty() ? 0 : fbb.CreateVector(m.scores);
   const wire::LeaseRef lease = ToWire(m.lease);
   return wire::CreatePointResult(fbb, &lease, near, direct, gathered, m.rays, m.compute_seconds,
-                                 punctual);
+                                 punctual, scores);
 }
 
 // A table as the frame's payload; its union tag comes from the table's type, so the C++ messages

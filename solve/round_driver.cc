@@ -19,13 +19,12 @@ RoundDriver::~RoundDriver() {
   solver_.reset();
 }
 
-Result<std::unique_ptr<RoundDriver>> RoundDriver::Start(PatchMesh mesh,
-                                                        const SolverSettings& settings,
-                                                        const RefineSettings& refine,
-                                                        const SolveState* resume, ThreadPool& pool,
-                                                        StartLightSource start) {
+Result<std::unique_ptr<RoundDriver>> RoundDriver::Start(
+    PatchMesh mesh, const SolverSettings& settings, const RefineSettings& refine,
+    const SolveState* resume, ThreadPool& pool, StartLightSource start, LightScoreSource scores) {
   std::unique_ptr<RoundDriver> driver(new RoundDriver(settings, &pool));
   driver->start_ = std::move(start);
+  driver->scores_ = std::move(scores);
   driver->mesh_ = std::make_unique<PatchMesh>(std::move(mesh));
   if (refine.enabled) {
     Result<RefinementSchedule> schedule = RefinementSchedule::Create(
@@ -52,7 +51,7 @@ Result<std::unique_ptr<RoundDriver>> RoundDriver::Start(PatchMesh mesh,
     if (Status s = driver->Resume(*resume); !s) return Error{s.error()};
   } else if (driver->schedule_) {
     std::optional<RefinementStep> step = driver->schedule_->BeforeFirstRound(
-        *driver->mesh_, *driver->solver_, driver->caster(), pool);
+        *driver->mesh_, *driver->solver_, driver->caster(), pool, driver->scores_);
     if (step) driver->Install(std::move(*step));
   }
   return driver;
@@ -192,7 +191,8 @@ AppliedRound RoundDriver::AfterApply(const RoundPlan& plan, uint64_t escaped_ray
   // Refinement between rounds: only when the solve goes on.
   if (!stop_ && schedule_ && schedule_->PointPassed(*solver_)) {
     const auto start = std::chrono::steady_clock::now();
-    std::optional<RefinementStep> step = schedule_->AfterRound(*mesh_, *solver_, caster(), *pool_);
+    std::optional<RefinementStep> step =
+        schedule_->AfterRound(*mesh_, *solver_, caster(), *pool_, scores_);
     if (step) {
       Install(std::move(*step));
       applied.refined = true;

@@ -36,6 +36,7 @@
 #include "core/round_reduction.h"
 #include "core/solver_settings.h"
 #include "core/thread_pool.h"
+#include "mesh/light_scores.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/refine_settings.h"
 #include "mesh/refinement_schedule.h"
@@ -62,10 +63,13 @@ class RoundDriver {
   // resume state that does not fit the mesh.
   // `start`, if given, traces every solver's direct-light start, the one a refinement restart
   // makes included (core/direct_start.h); without, the solver traces it on settings.threads.
+  // `scores`, if given, traces every refinement step's light scores (mesh/light_scores.h);
+  // without, they are traced on `pool`.
   static Result<std::unique_ptr<RoundDriver>> Start(PatchMesh mesh, const SolverSettings& settings,
                                                     const RefineSettings& refine,
                                                     const SolveState* resume, ThreadPool& pool,
-                                                    StartLightSource start = {});
+                                                    StartLightSource start = {},
+                                                    LightScoreSource scores = {});
   // A solve of a bare scene, never refined; `scene` must outlive the driver.
   static std::unique_ptr<RoundDriver> Start(const PatchScene& scene, const SolverSettings& settings,
                                             const SolveState* resume);
@@ -156,7 +160,8 @@ class RoundDriver {
   void RebuildSolver();
 
   SolverSettings settings_;
-  StartLightSource start_;  // empty: each solver traces its own start
+  StartLightSource start_;   // empty: each solver traces its own start
+  LightScoreSource scores_;  // empty: refinement steps score on pool_
   // The budgets the rounds stop at: settings_'s less the display's share (core/display_budget.h).
   SolverSettings budget_;
   ThreadPool* pool_ = nullptr;                     // null for a bare scene

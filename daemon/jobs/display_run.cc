@@ -35,6 +35,10 @@ protocol::PointLeaseMsg MakePointLease(store::JobId job, const PieceLease& lease
     m.start_patches = static_cast<uint32_t>(lease.end - lease.begin);
     return m;
   }
+  if (work.scores()) {
+    m.score_elements = static_cast<uint32_t>(lease.end - lease.begin);
+    return m;
+  }
   m.points.reserve(lease.end - lease.begin);
   for (size_t i = lease.begin; i < lease.end; ++i) {
     m.points.push_back({work.points[i].position, work.points[i].normal});
@@ -67,11 +71,13 @@ Result<PointValues> ValuesOfResult(const protocol::PointResultMsg& result, const
       CheckCount("gathered", result.gathered.size(), !work.gather.empty(), points));
   RADFARM_RETURN_IF_ERROR(
       CheckCount("punctual", result.punctual.size(), work.start() && work.start_punctual, points));
+  RADFARM_RETURN_IF_ERROR(CheckCount("scores", result.scores.size(), work.scores(), points));
   PointValues values;
   values.near.assign(result.near.begin(), result.near.end());
   values.direct = result.direct;
   values.gathered = result.gathered;
   values.punctual = result.punctual;
+  values.scores = result.scores;
   values.rays = result.rays;
   return values;
 }

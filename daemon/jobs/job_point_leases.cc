@@ -1,6 +1,7 @@
-// JobRounds: pieces of point work on the agents, of two kinds: a running job's direct-light start
-// (job_start.cc; its patches, to agents of protocol version 7) and a finished job's display
-// (job_display.cc; its points, to agents of version 6). Both are cut and leased by DisplayPieces
+// JobRounds: pieces of point work on the agents, of three kinds: a running job's direct-light start
+// and its refinement steps' light scores (job_start.cc; patches to agents of protocol version 7,
+// elements to version 8) and a finished job's display (job_display.cc; its points, to agents of
+// version 6). Both are cut and leased by DisplayPieces
 // and answered by PointResults checked against the piece they answer. A start comes first: a job
 // waits on it, where a display only ends a job.
 #include <algorithm>
@@ -33,12 +34,10 @@ std::vector<protocol::PointLeaseMsg> JobRounds::PointLeasesFor(
     const std::function<bool(store::JobId)>& refused) {
   std::vector<protocol::PointLeaseMsg> leases;
   const scheduler::TimePoint now = clock_.Now();
-  if (version >= protocol::kStartLeaseVersion) {
-    for (auto& [id, run] : start_runs_) {
-      if (refused(id)) continue;
-      LeasePieces(id, run.pieces, run.request.work, run.request.context->hash, agent, room, now,
-                  &leases);
-    }
+  for (auto& [id, run] : start_runs_) {
+    if (version < run.request.version || refused(id)) continue;
+    LeasePieces(id, run.pieces, run.request.work, run.request.context->hash, agent, room, now,
+                &leases);
   }
   if (version < protocol::kPointLeaseVersion) return leases;
   for (auto& [id, run] : display_runs_) {

@@ -195,11 +195,12 @@ void JobRounds::StartQueuedJobs() {
           const double speed =
               agents_.reported_rays_per_second ? agents_.reported_rays_per_second() : 0.0;
           Status s = compute_.Submit(
-              [shared, options, meshed, agents, speed, start = StartSourceFor(id)]() mutable {
+              [shared, options, meshed, agents, speed, start = StartSourceFor(id),
+               scores = ScoreSourceFor(id)]() mutable {
                 return RunningJob::Prepare(shared->record, shared->bundle, shared->checkpoint,
                                            shared->checkpoint_scene, shared->rounds, options,
                                            std::move(shared->round_results), std::move(meshed),
-                                           agents, speed, std::move(start));
+                                           agents, speed, std::move(start), std::move(scores));
               },
               [this, id](Result<std::shared_ptr<RunningJob>> runner) {
                 OnJobPrepared(id, std::move(runner));
@@ -230,7 +231,7 @@ void JobRounds::OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob
   }
   std::shared_ptr<RunningJob> r = std::move(*runner);
   runners_[id] = r;
-  AddStartSeconds(*r);
+  AddStartSeconds(*r, JobPhase::kDirectLight);
   KeepRules(id, r->rules());
   if (r->phase() == RunningJob::Phase::kFinished) {
     FinishJob(r);
@@ -411,7 +412,7 @@ void JobRounds::PruneKeptResults(store::JobId id, uint32_t round) {
 void JobRounds::OnRoundReduced(const std::shared_ptr<RunningJob>& runner, RoundOutcome outcome) {
   if (FindRunner(runner->id()) != runner.get()) return;  // cancelled or paused meanwhile
   const store::JobId id = runner->id();
-  AddStartSeconds(*runner);  // a refinement restart's start
+  AddStartSeconds(*runner, JobPhase::kRounds);  // a refinement step's
   const uint32_t keep = config_.checkpoint_keep;
   // The store thread commits the round while agents start on the next one.
   auto record = outcome.record;

@@ -61,8 +61,9 @@ struct AgentHooks {
   std::function<void(store::JobId, const std::string& agent, const std::string& why)> convict;
   // Available agents that trace the display's points (protocol version 6); none: traced here.
   std::function<size_t()> display_agents;
-  // Available agents that trace a direct-light start's patches (version 7); none: traced here.
-  std::function<size_t()> start_agents;
+  // Available agents of at least protocol `version` (a direct-light start's patches: 7; a
+  // refinement step's light scores: 8); none: traced here.
+  std::function<size_t(uint16_t version)> piece_agents;
 };
 
 // Exact validation since the master started (job_verification.cc).
@@ -194,8 +195,10 @@ class JobRounds {
 
  private:
   // --- Direct-light starts (job_start.cc) ---
-  // What traces job `id`'s starts: the agents, through start_handoff_.
+  // What traces job `id`'s starts and refinement steps' light scores: the agents, through
+  // start_handoff_.
   StartLightSource StartSourceFor(store::JobId id) const;
+  LightScoreSource ScoreSourceFor(store::JobId id) const;
   // The starts the compute thread handed over: leased, or sent back to be traced there.
   void TakeStartRequests();
   // A PointResult of a piece of `run` (OnPointResult's contract).
@@ -205,8 +208,9 @@ class JobRounds {
   // With no agent left that takes start work, the starts under lease are traced on the compute
   // thread instead (Tick): a job does not wait for agents that may never come back.
   void TakeBackOrphanedStarts();
-  // Adds the agents' seconds on the runner's last start to its timeline.
-  void AddStartSeconds(RunningJob& runner);
+  // Adds the agents' seconds on the runner's last starts to its timeline, and on its light
+  // scores since, to `scores_phase` (the phase the compute work that made them ran in).
+  void AddStartSeconds(RunningJob& runner, JobPhase scores_phase);
 
   void OnJobPrepared(store::JobId id, Result<std::shared_ptr<RunningJob>> runner);
   // Leases the job's final gather ahead (gather_ahead.h) if its preparation or last reduction
@@ -275,7 +279,11 @@ class JobRounds {
   std::unique_ptr<loop::Async> start_wake_;
   std::map<store::JobId, StartRun> start_runs_;
   uint32_t start_serial_ = 0;
-  std::map<store::JobId, double> start_agent_seconds_;  // until the runner is back on the loop
+  struct PieceSeconds {
+    double start = 0;
+    double scores = 0;
+  };
+  std::map<store::JobId, PieceSeconds> start_agent_seconds_;  // until the runner is back
   // Finished jobs whose display is being drawn and stored.
   std::map<store::JobId, DisplayRun> display_runs_;
   uint64_t display_serial_ = 0;

@@ -1,10 +1,10 @@
-// JobRounds: a running job's direct-light start on the agents. The compute thread building the
-// job's solver (RunningJob::Prepare, or Reduce at a refinement restart) hands the start over
-// (start_source.h, start_handoff.h) and waits; here its patches are cut into pieces and leased to
-// agents of protocol version 7 (job_point_leases.cc), and the values of every piece, in patch
-// order, go back. Where no such agent is there, or the start is small, the compute thread is told
-// to trace it itself. A job dropped meanwhile (cancelled, paused) or a master stopping ends the
-// wait with an error.
+// JobRounds: a running job's direct-light start and its refinement steps' light scores on the
+// agents. The compute thread building the job's solver or refining its mesh (RunningJob::Prepare,
+// or Reduce) hands the work over (start_source.h, start_handoff.h) and waits; here its patches or
+// elements are cut into pieces and leased to agents of protocol version 7 (a start) or 8 (scores)
+// (job_point_leases.cc), and the values of every piece, in order, go back. Where no such agent is
+// there, or the work is small, the compute thread is told to trace it itself. A job dropped
+// meanwhile (cancelled, paused) or a master stopping ends the wait with an error.
 #include <string>
 #include <utility>
 
@@ -21,6 +21,10 @@ StartLightSource JobRounds::StartSourceFor(store::JobId id) const {
   return AgentsStartSource(start_handoff_, id);
 }
 
+LightScoreSource JobRounds::ScoreSourceFor(store::JobId id) const {
+  return AgentsLightScoreSource(start_handoff_, id);
+}
+
 void JobRounds::TakeStartRequests() {
   bool leased = false;
   for (auto& [ticket, request] : start_handoff_->Take()) {
@@ -31,7 +35,7 @@ void JobRounds::TakeStartRequests() {
       start_handoff_->Answer(ticket, Error{"job " + std::to_string(id) + " was dropped"});
       continue;
     }
-    const size_t agents = agents_.start_agents ? agents_.start_agents() : 0;
+    const size_t agents = agents_.piece_agents ? agents_.piece_agents(request.version) : 0;
     const size_t patches = request.work.size();
     if (agents == 0 || patches < kLocalPiecesWork) {
       start_handoff_->Answer(ticket, std::optional<PointValues>());
@@ -41,8 +45,9 @@ void JobRounds::TakeStartRequests() {
     StartRun run{ticket, std::move(request),
                  DisplayPieces(step, patches, PiecePoints(patches, agents), kPieceLeaseTime)};
     LogLine(LogLevel::kInfo, "job " + std::to_string(id))
-        << "direct-light start: " << patches << " patches in " << run.pieces.pieces()
-        << " pieces for " << agents << " agents";
+        << (run.request.work.scores() ? "refinement's light scores: " : "direct-light start: ")
+        << patches << (run.request.work.scores() ? " elements in " : " patches in ")
+        << run.pieces.pieces() << " pieces for " << agents << " agents";
     DropStart(id);  // a job waits on one start at a time: none is left, but be sure
     start_runs_.emplace(id, std::move(run));
     leased = true;
@@ -66,7 +71,8 @@ Result<bool> JobRounds::OnStartResult(uint64_t agent, StartRun& run,
                           std::move(*values)) == DisplayPieces::Verdict::kAccepted;
   if (accepted) run.agent_seconds += result.compute_seconds;
   if (run.pieces.Complete()) {
-    start_agent_seconds_[id] += run.agent_seconds;
+    PieceSeconds& seconds = start_agent_seconds_[id];
+    (run.request.work.scores() ? seconds.scores : seconds.start) += run.agent_seconds;
     start_handoff_->Answer(run.ticket, std::optional<PointValues>(run.pieces.TakeValues()));
     start_runs_.erase(id);  // `run` goes with it
   }
@@ -74,14 +80,19 @@ Result<bool> JobRounds::OnStartResult(uint64_t agent, StartRun& run,
 }
 
 void JobRounds::TakeBackOrphanedStarts() {
-  if (start_runs_.empty() || (agents_.start_agents && agents_.start_agents() > 0)) return;
-  for (auto& [id, run] : start_runs_) {
+  for (auto it = start_runs_.begin(); it != start_runs_.end();) {
+    const auto& [id, run] = *it;
+    if (agents_.piece_agents && agents_.piece_agents(run.request.version) > 0) {
+      ++it;
+      continue;
+    }
     LogLine(LogLevel::kWarning, "job " + std::to_string(id))
-        << "no agent left for its direct-light start (" << run.pieces.done() << " of "
-        << run.pieces.pieces() << " pieces in): traced here";
+        << "no agent left for its "
+        << (run.request.work.scores() ? "refinement's light scores" : "direct-light start") << " ("
+        << run.pieces.done() << " of " << run.pieces.pieces() << " pieces in): traced here";
     start_handoff_->Answer(run.ticket, std::optional<PointValues>());
+    it = start_runs_.erase(it);
   }
-  start_runs_.clear();
 }
 
 void JobRounds::DropStart(store::JobId id) {
@@ -92,10 +103,11 @@ void JobRounds::DropStart(store::JobId id) {
   agents_.cancel_job(id);  // agents drop its pieces; results still in flight are ignored
 }
 
-void JobRounds::AddStartSeconds(RunningJob& runner) {
+void JobRounds::AddStartSeconds(RunningJob& runner, JobPhase scores_phase) {
   const auto it = start_agent_seconds_.find(runner.id());
   if (it == start_agent_seconds_.end()) return;
-  runner.AddStartAgentSeconds(it->second);
+  if (it->second.start > 0) runner.AddPieceAgentSeconds(JobPhase::kDirectLight, it->second.start);
+  if (it->second.scores > 0) runner.AddPieceAgentSeconds(scores_phase, it->second.scores);
   start_agent_seconds_.erase(it);
 }
 

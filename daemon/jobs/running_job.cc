@@ -70,7 +70,7 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
     const std::optional<std::vector<uint8_t>>& checkpoint_scene,
     const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options,
     std::vector<store::StoredBatchResult> stored, SubmittedMesh meshed, size_t agents,
-    double agents_rays_per_second, StartLightSource start) {
+    double agents_rays_per_second, StartLightSource start, LightScoreSource scores) {
   const std::string job = "job " + std::to_string(record.id);
   // The whole process's CPU: the start's direct light runs on a pool of its own.
   LapClock lap;
@@ -136,7 +136,7 @@ Result<std::shared_ptr<RunningJob>> RunningJob::Prepare(
   Result<std::unique_ptr<RoundDriver>> driver = [&]() -> Result<std::unique_ptr<RoundDriver>> {
     if (bundle->job.refine.enabled) {
       return RoundDriver::Start(std::move(*mesh), runner->settings_, bundle->job.refine, resume_at,
-                                *runner->pool_, std::move(start));
+                                *runner->pool_, std::move(start), std::move(scores));
     }
     // Without refinement the master needs the patches alone (agents trace, `radfarm fetch` makes
     // the display): the mesh (about 300 bytes a patch) goes first, its pages back to the system,
@@ -372,8 +372,8 @@ void RunningJob::Fold(std::vector<std::pair<uint32_t, BatchResult>> results) {
   for (auto& [index, result] : results) fold_->Add(index, std::move(result));
 }
 
-void RunningJob::AddStartAgentSeconds(double seconds) {
-  AddToTimeline(&timeline_, JobPhase::kDirectLight, kRanOnAgents, 0, seconds);
+void RunningJob::AddPieceAgentSeconds(JobPhase phase, double seconds) {
+  AddToTimeline(&timeline_, phase, kRanOnAgents, 0, seconds);
 }
 
 void RunningJob::AddAgentSeconds(bool gather, double seconds) {

@@ -115,14 +115,16 @@ class RunningJob {
   // of meshing again. `agents`: those known when the job started, for the first round's taper;
   // `agents_rays_per_second`: their last reported speeds summed (0: none measured), the pace of a
   // time budget's first round (kReportedPaceShare of it) until a round has been timed. `start`
-  // traces the solver's direct-light starts, a refinement restart's included (empty: here).
+  // traces the solver's direct-light starts, a refinement restart's included, and `scores` the
+  // refinement steps' light scores (empty: here).
   static Result<std::shared_ptr<RunningJob>> Prepare(
       const store::JobRecord& record, const std::vector<uint8_t>& bundle_blob,
       const std::optional<store::Checkpoint>& checkpoint,
       const std::optional<std::vector<uint8_t>>& checkpoint_scene,
       const std::vector<store::RoundRecord>& rounds, const scheduler::SchedulerOptions& options,
       std::vector<store::StoredBatchResult> stored = {}, SubmittedMesh meshed = {},
-      size_t agents = 0, double agents_rays_per_second = 0, StartLightSource start = {});
+      size_t agents = 0, double agents_rays_per_second = 0, StartLightSource start = {},
+      LightScoreSource scores = {});
 
   store::JobId id() const { return record_.id; }
   const store::JobRecord& record() const { return record_; }
@@ -145,8 +147,9 @@ class RunningJob {
   // Loop thread: `seconds` of agents' computing on accepted results of the gather (`gather`) or
   // of a shooting round.
   void AddAgentSeconds(bool gather, double seconds);
-  // Loop thread: `seconds` of agents' computing on the pieces of a direct-light start.
-  void AddStartAgentSeconds(double seconds);
+  // Loop thread: `seconds` of agents' computing on the pieces of a direct-light start or of a
+  // refinement step's light scores, made in `phase`.
+  void AddPieceAgentSeconds(JobPhase phase, double seconds);
   bool running_gather() const { return running_gather_; }
   // The rays its display is expected to cast (RoundDriver::display_rays_forecast).
   uint64_t display_rays_forecast() const { return driver_->display_rays_forecast(); }

@@ -1,6 +1,7 @@
-// StartHandoff: a job's direct-light start (core/direct_start.h), handed from the compute thread,
-// where its solver is being built (RunningJob::Prepare, or a refinement restart in Reduce), to the
-// loop thread, which leases its patches to the agents (job_start.cc); and their values handed back.
+// StartHandoff: a job's direct-light start (core/direct_start.h) or a refinement step's light
+// scores (mesh/light_scores.h), handed from the compute thread, where its solver is being built or
+// its mesh refined (RunningJob::Prepare, or Reduce), to the loop thread, which leases the patches
+// or elements to the agents (job_start.cc); and their values handed back.
 //
 // The compute thread waits in Await: the solver cannot be built without its start, and nothing
 // else of the job can happen meanwhile; the loop goes on serving agents and clients. The loop
@@ -27,6 +28,7 @@
 
 #include "base/result.h"
 #include "display/point_work.h"
+#include "protocol/limits.h"
 #include "protocol/scene_packing.h"
 #include "store/job_store.h"
 
@@ -34,8 +36,11 @@ namespace radfarm::daemon {
 
 struct StartRequest {
   store::JobId job = 0;
-  PointWork work;  // start work over every patch of the context's scene
+  // Start work over every patch of the context's scene, or score work over every element of the
+  // context's score work.
+  PointWork work;
   std::shared_ptr<const protocol::PackedScene> context;
+  uint16_t version = protocol::kStartLeaseVersion;  // the agents' protocol version it needs
 };
 
 using StartAnswer = Result<std::optional<PointValues>>;

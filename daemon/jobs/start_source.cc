@@ -6,6 +6,7 @@
 #include "codec/patch_scene_codec.h"
 #include "codec/point_context_blob.h"
 #include "core/ray_caster.h"
+#include "daemon/jobs/display_run.h"
 #include "display/point_context.h"
 #include "protocol/scene_packing.h"
 
@@ -24,6 +25,26 @@ std::shared_ptr<const protocol::PackedScene> StartContext(const PatchScene& scen
 }
 
 }  // namespace
+
+LightScoreSource AgentsLightScoreSource(std::shared_ptr<StartHandoff> handoff, store::JobId job) {
+  return [handoff = std::move(handoff), job](
+             const PatchScene& scene,
+             const LightScoreWork& work) -> std::optional<std::vector<double>> {
+    if (work.elements.size() < kLocalPiecesWork) return std::nullopt;
+    PointWork elements;
+    elements.score_elements = work.elements.size();
+    PointContext context;
+    context.rays_per_point = 1;
+    context.scoring = work;
+    auto packed = std::make_shared<const protocol::PackedScene>(
+        protocol::PackScene(codec::EncodePointContext(codec::EncodePatchScene(scene), context)));
+    StartAnswer answer =
+        handoff->Await({job, std::move(elements), std::move(packed), protocol::kScoreLeaseVersion});
+    if (!answer) throw std::runtime_error(answer.error());
+    if (!*answer) return std::nullopt;
+    return std::move((*answer)->scores);
+  };
+}
 
 StartLightSource AgentsStartSource(std::shared_ptr<StartHandoff> handoff, store::JobId job) {
   return [handoff = std::move(handoff), job](const PatchScene& scene,

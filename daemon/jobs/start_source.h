@@ -9,6 +9,7 @@
 
 #include "core/direct_start.h"
 #include "daemon/jobs/start_handoff.h"
+#include "mesh/light_scores.h"
 #include "store/job_store.h"
 
 namespace radfarm::daemon {
@@ -16,5 +17,10 @@ namespace radfarm::daemon {
 // Runs on the compute thread. Throws std::runtime_error with the handoff's error when the job was
 // dropped or the master stops meanwhile (the compute work then ends with it).
 StartLightSource AgentsStartSource(std::shared_ptr<StartHandoff> handoff, store::JobId job);
+
+// The LightScoreSource of such a job: each refinement step's light scores, handed over and leased
+// as a start is, to agents of protocol version 8; nullopt (scored on the compute thread's pool)
+// where no agent takes them or the step scores too few elements to be worth a lease.
+LightScoreSource AgentsLightScoreSource(std::shared_ptr<StartHandoff> handoff, store::JobId job);
 
 }  // namespace radfarm::daemon

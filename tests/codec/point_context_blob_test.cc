@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -47,6 +49,33 @@ PointContext Direct() {
   return c;
 }
 
+// A refinement step's score work: two sources, a triangle and a quad.
+PointContext Scoring() {
+  PointContext c;
+  c.rays_per_point = 1;
+  LightSource a{{Vec3{0, 1, 0}, Vec3{0.25, 1, 0}, Vec3{0, 1, 0.25}, Vec3{1.0 / 3, 1, 1e-300}},
+                {0, -1, 0},
+                0.125,
+                {2, 2, 2},
+                1};
+  LightSource b = a;
+  b.unshot = {0.5, 0.25, 1.0 / 7};
+  b.surface = 7;
+  c.scoring.sources = {a, b};
+  c.scoring.tolerance = 0.1;
+  ScoredElement triangle{{}, {0.5, 0.5, 0.5}, 0, {0.1, 0.2, 0.3}};
+  triangle.shape.corners = {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 0, 1}, Vec3{}};
+  triangle.shape.corner_count = 3;
+  triangle.shape.normal = {0, 1, 0};
+  triangle.shape.centre = {1.0 / 3, 0, 1.0 / 3};
+  ScoredElement quad = triangle;
+  quad.shape.corners[3] = {1, 0, 1};
+  quad.shape.corner_count = 4;
+  quad.surface = 3;
+  c.scoring.elements = {triangle, quad, triangle};
+  return c;
+}
+
 std::string ErrorOf(const PointContext& context) {
   Result<DecodedPointContext> back =
       DecodePointContext(EncodePointContext(EncodePatchScene(TwoTriangles()), context));
@@ -55,7 +84,7 @@ std::string ErrorOf(const PointContext& context) {
 
 TEST(PointContextBlobTest, RoundTripsEveryBit) {
   const std::vector<uint8_t> scene = EncodePatchScene(TwoTriangles());
-  for (const PointContext& context : {Direct(), Gathering()}) {
+  for (const PointContext& context : {Direct(), Gathering(), Scoring()}) {
     const std::vector<uint8_t> blob = EncodePointContext(scene, context);
     Result<DecodedPointContext> back = DecodePointContext(blob);
     ASSERT_TRUE(back.ok()) << back.error();
@@ -84,6 +113,31 @@ TEST(PointContextBlobTest, RefusesBadValuesByName) {
   c = Gathering();
   c.corner_offsets.push_back({});
   EXPECT_NE(ErrorOf(c).find("corner_offsets"), std::string::npos) << ErrorOf(c);
+}
+
+TEST(PointContextBlobTest, RefusesBadScoreWorkByName) {
+  auto error = [](const std::function<void(LightScoreWork&)>& damage) {
+    PointContext c = Scoring();
+    damage(c.scoring);
+    return ErrorOf(c);
+  };
+  EXPECT_EQ(error([](LightScoreWork&) {}), "");
+  std::string e = error([](LightScoreWork& w) { w.elements[2].shape.corner_count = 5; });
+  EXPECT_NE(e.find("score_elements 2"), std::string::npos) << e;
+  e = error([](LightScoreWork& w) {
+    w.elements[0].radiosity.g = std::numeric_limits<double>::quiet_NaN();
+  });
+  EXPECT_NE(e.find("score_elements 0"), std::string::npos) << e;
+  e = error([](LightScoreWork& w) { w.elements[1].shape.corners[3].x = INFINITY; });
+  EXPECT_NE(e.find("score_elements 1"), std::string::npos) << e;
+  e = error([](LightScoreWork& w) { w.tolerance = 0; });
+  EXPECT_NE(e.find("score_tolerance"), std::string::npos) << e;
+  e = error([](LightScoreWork& w) { w.sources.resize(kLightSources + 1, w.sources[0]); });
+  EXPECT_NE(e.find("score_sources"), std::string::npos) << e;
+  e = error([](LightScoreWork& w) { w.sources[1].sample_area = -1; });
+  EXPECT_NE(e.find("score_sources 1"), std::string::npos) << e;
+  e = error([](LightScoreWork& w) { w.sources.clear(); });
+  EXPECT_NE(e.find("score_sources"), std::string::npos) << e;
 }
 
 TEST(PointContextBlobTest, RefusesABadSceneOrBuffer) {

@@ -12,6 +12,7 @@
 #include "core/direct_start.h"
 #include "display/display_plan.h"
 #include "display/display_stage.h"
+#include "mesh/light_scores.h"
 #include "mesh/patch_mesh.h"
 #include "solve/local_solve.h"
 #include "tests/core/test_scenes.h"
@@ -160,6 +161,41 @@ TEST(PointContextStartTest, AStartsPatchesTracedElsewhereInPiecesGivePatchDirect
   const StartLight start = StartLightOf(scene, std::move(values));
   EXPECT_TRUE(testing::BitIdentical(start.direct, whole));
   EXPECT_EQ(start.punctual_power, power);
+}
+
+// A refinement step's light scores traced by agents (mesh/light_scores.h): a PointTracer on a
+// copy of the scene and a context holding the score work, tracing it in pieces, gives the scores
+// the refining thread would.
+TEST(PointContextScoreTest, AStepsLightScoresTracedElsewhereInPiecesGiveTheBits) {
+  Result<PatchMesh> mesh = PatchMesh::Build(testing::OccluderScene(), {0.5}, nullptr);
+  ASSERT_TRUE(mesh.ok()) << mesh.error();
+  const PatchScene& scene = mesh->patch_scene();
+  std::vector<Rgb> unshot;
+  for (const Patch& p : scene.patches) unshot.push_back(p.emission);
+  PointContext context;
+  context.rays_per_point = 1;
+  context.scoring.sources = StrongestSources(scene, unshot, kLightSources);
+  context.scoring.tolerance = 0.1;
+  for (const Patch& p : scene.patches) {
+    context.scoring.elements.push_back({p, p.reflectance, p.surface, p.emission});
+  }
+  const RayCaster caster(scene);
+  ThreadPool pool(2);
+  const std::vector<double> whole =
+      TraceLightScores(context.scoring, SurfacesOf(scene), caster, 0, scene.patches.size(), pool);
+  const PatchScene copy = scene;
+  const PointTracer tracer(copy, context);
+  ASSERT_EQ(tracer.score_elements(), scene.patches.size());
+  PointWork work;
+  work.score_elements = scene.patches.size();
+  ASSERT_EQ(work.size(), scene.patches.size());
+  PointValues values;
+  for (size_t begin = 0; begin < work.size(); begin += 29) {
+    const PointWork piece = PieceOf(work, begin, std::min(work.size(), begin + 29));
+    AppendPointValues(tracer.Trace(piece, 0, piece.size(), 1), &values);
+  }
+  EXPECT_EQ(values.scores, whole);
+  EXPECT_TRUE(values.direct.empty());
 }
 
 }  // namespace

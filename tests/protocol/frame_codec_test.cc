@@ -23,7 +23,11 @@ TEST(ProtocolCodecTest, SamplesCoverEveryMessageTypeAndAreValid) {
 }
 
 TEST(ProtocolCodecTest, StartSamplesAreValidAndRoundTrip) {
-  for (const Message& message : testing::StartSamples()) {
+  for (const Message& message : [] {
+         std::vector<Message> all = testing::StartSamples();
+         for (Message& m : testing::ScoreSamples()) all.push_back(std::move(m));
+         return all;
+       }()) {
     EXPECT_TRUE(CheckMessage(message)) << CheckMessage(message).error();
     Result<DecodedFrame> decoded = DecodeFrame(EncodeFrame(message));
     ASSERT_TRUE(decoded) << MessageName(message) << ": " << decoded.error();

@@ -59,6 +59,7 @@ std::vector<Message> SampleMessages() {
                     {1, 0},
                     45000,
                     0,
+                    0,
                     0},
       PointResultMsg{lease,
                      {0, 1},
@@ -66,6 +67,7 @@ std::vector<Message> SampleMessages() {
                      {{0.1, -1e-17, 0.3}, {0, 0, 0}},
                      uint64_t{1} << 40,
                      0.0625,
+                     {},
                      {}},
   };
 }
@@ -73,9 +75,16 @@ std::vector<Message> SampleMessages() {
 std::vector<Message> StartSamples() {
   const LeaseRef lease{0x0102030405060708ull, 0x1111222233334444ull, 3};
   return {
-      PointLeaseMsg{lease, Pattern(11), 77, 0, true, 0, 4096, {}, {}, 60000, 8, 1024},
-      PointResultMsg{lease, {}, {{0.5, 0.25, 1e-9}}, {}, 320, 0.5, {{0.25, 0, 1e-3}}},
+      PointLeaseMsg{lease, Pattern(11), 77, 0, true, 0, 4096, {}, {}, 60000, 8, 1024, 0},
+      PointResultMsg{lease, {}, {{0.5, 0.25, 1e-9}}, {}, 320, 0.5, {{0.25, 0, 1e-3}}, {}},
   };
+}
+
+std::vector<Message> ScoreSamples() {
+  const LeaseRef lease{0x0102030405060708ull, 0x1111222233334444ull, 4};
+  const PointLeaseMsg scores{lease, Pattern(12), 0, 0, false, 0, 2048, {}, {}, 60000, 0, 0, 3};
+  const PointResultMsg result{lease, {}, {}, {}, 0, 0.25, {}, {0, 1.5, 1e-300}};
+  return {scores, result};
 }
 
 }  // namespace radfarm::protocol::testing

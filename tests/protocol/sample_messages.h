@@ -13,6 +13,8 @@ std::vector<Message> SampleMessages();  // in variant order: one of each type
 // Version 7's point messages of a direct-light start: a PointLease of patches, its PointResult
 // with the punctual lights' share.
 std::vector<Message> StartSamples();
+// Version 8's of a refinement step's light scores: a PointLease of elements, its PointResult.
+std::vector<Message> ScoreSamples();
 
 // The sample of message type T.
 template <typename T>

@@ -76,6 +76,12 @@ int main(int argc, char** argv) {
     std::snprintf(name, sizeof(name), "start_%s.frame", Lower(MessageName(message)).c_str());
     if (!Write(dir / name, EncodeFrame(message))) return 1;
   }
+  // A refinement step's light scores' lease and result (version 8).
+  for (const Message& message : testing::ScoreSamples()) {
+    char name[64];
+    std::snprintf(name, sizeof(name), "score_%s.frame", Lower(MessageName(message)).c_str());
+    if (!Write(dir / name, EncodeFrame(message))) return 1;
+  }
   if (!Write(dir / "all_messages.stream", all)) return 1;
   if (!Write(dir / "handshake.stream", HandshakeStream())) return 1;
   return 0;
