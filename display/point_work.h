@@ -35,7 +35,7 @@ struct PointWork {
   // against a context of one shadow ray per point and light. `points` is empty then.
   uint32_t start_sections = 0;  // 0: point work
   uint64_t start_patches = 0;
-  bool start_punctual = false;  // the scene has punctual lights: each patch has their share too
+  bool start_punctual = false;  // HasSurfacelessLight: each patch has their share too
 
   bool start() const { return start_sections > 0; }
   // The items a piece is cut from: points, or patches of start work.
