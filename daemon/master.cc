@@ -99,7 +99,8 @@ Status Master::Wire(const std::vector<store::AgentCredential>& credentials) {
                      agents_->Convict(id, agent, why);
                    },
                    [this] { return agents_->PointAgents(protocol::kPointLeaseVersion); },
-                   [this] { return agents_->PointAgents(protocol::kStartLeaseVersion); }};
+                   [this] { return agents_->PointAgents(protocol::kStartLeaseVersion); },
+                   [this] { return agents_->PointAgents(protocol::kSkyVersion); }};
   jobs_ = std::make_unique<JobRounds>(loop_, clock_, config_, scheduler_options_, *store_,
                                       *compute_, std::move(hooks));
   agents_ = std::make_unique<AgentConnections>(loop_, clock_, config_, secret_, scheduler_options_,

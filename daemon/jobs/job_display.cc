@@ -104,7 +104,9 @@ void JobRounds::NextDisplayStep(store::JobId id, uint64_t serial) {
   DisplayRun& run = *FindDisplay(id, serial);
   const PointWork* work = run.draft->work();
   if (!work) return FinishDisplay(id, serial);
-  const size_t agents = agents_.display_agents ? agents_.display_agents() : 0;
+  const std::function<size_t()>& count =
+      run.draft->sky() ? agents_.sky_agents : agents_.display_agents;
+  const size_t agents = count ? count() : 0;
   if (agents == 0 || work->points.size() < kLocalPiecesWork) {
     ++run.local_steps;
     ApplyDisplayStep(id, serial, std::nullopt);

@@ -1,8 +1,8 @@
 // JobRounds: pieces of point work on the agents, of two kinds: a running job's direct-light start
 // (job_start.cc; its patches, to agents of protocol version 7) and a finished job's display
-// (job_display.cc; its points, to agents of version 6). Both are cut and leased by DisplayPieces
-// and answered by PointResults checked against the piece they answer. A start comes first: a job
-// waits on it, where a display only ends a job.
+// (job_display.cc; its points, to agents of version 6); a scene with a sky's, to version 8 alone.
+// Both are cut and leased by DisplayPieces and answered by PointResults checked against the piece
+// they answer. A start comes first: a job waits on it, where a display only ends a job.
 #include <algorithm>
 #include <optional>
 #include <string>
@@ -35,7 +35,7 @@ std::vector<protocol::PointLeaseMsg> JobRounds::PointLeasesFor(
   const scheduler::TimePoint now = clock_.Now();
   if (version >= protocol::kStartLeaseVersion) {
     for (auto& [id, run] : start_runs_) {
-      if (refused(id)) continue;
+      if (refused(id) || (run.request.sky && version < protocol::kSkyVersion)) continue;
       LeasePieces(id, run.pieces, run.request.work, run.request.context->hash, agent, room, now,
                   &leases);
     }
@@ -43,6 +43,7 @@ std::vector<protocol::PointLeaseMsg> JobRounds::PointLeasesFor(
   if (version < protocol::kPointLeaseVersion) return leases;
   for (auto& [id, run] : display_runs_) {
     if (!run.pieces || refused(id)) continue;
+    if (run.draft->sky() && version < protocol::kSkyVersion) continue;
     LeasePieces(id, *run.pieces, *run.draft->work(), run.draft->context()->hash, agent, room, now,
                 &leases);
   }

@@ -63,6 +63,9 @@ struct AgentHooks {
   std::function<size_t()> display_agents;
   // Available agents that trace a direct-light start's patches (version 7); none: traced here.
   std::function<size_t()> start_agents;
+  // Available agents that read a scene's sky (version 8): a sky job's start and display points go
+  // to them alone; none (or no hook): traced here.
+  std::function<size_t()> sky_agents;
 };
 
 // Exact validation since the master started (job_verification.cc).
@@ -205,6 +208,8 @@ class JobRounds {
   // With no agent left that takes start work, the starts under lease are traced on the compute
   // thread instead (Tick): a job does not wait for agents that may never come back.
   void TakeBackOrphanedStarts();
+  // The available agents that may trace a start: of version 8 for a scene with a sky, else 7.
+  size_t StartAgents(bool sky) const;
   // Adds the agents' seconds on the runner's last start to its timeline.
   void AddStartSeconds(RunningJob& runner);
 

@@ -1,10 +1,10 @@
 // JobRounds: a running job's direct-light start on the agents. The compute thread building the
 // job's solver (RunningJob::Prepare, or Reduce at a refinement restart) hands the start over
 // (start_source.h, start_handoff.h) and waits; here its patches are cut into pieces and leased to
-// agents of protocol version 7 (job_point_leases.cc), and the values of every piece, in patch
-// order, go back. Where no such agent is there, or the start is small, the compute thread is told
-// to trace it itself. A job dropped meanwhile (cancelled, paused) or a master stopping ends the
-// wait with an error.
+// agents of protocol version 7, or 8 for a scene with a sky (job_point_leases.cc), and the values
+// of every piece, in patch order, go back. Where no such agent is there, or the start is small, the
+// compute thread is told to trace it itself. A job dropped meanwhile (cancelled, paused) or a
+// master stopping ends the wait with an error.
 #include <string>
 #include <utility>
 
@@ -31,7 +31,7 @@ void JobRounds::TakeStartRequests() {
       start_handoff_->Answer(ticket, Error{"job " + std::to_string(id) + " was dropped"});
       continue;
     }
-    const size_t agents = agents_.start_agents ? agents_.start_agents() : 0;
+    const size_t agents = StartAgents(request.sky);
     const size_t patches = request.work.size();
     if (agents == 0 || patches < kLocalPiecesWork) {
       start_handoff_->Answer(ticket, std::optional<PointValues>());
@@ -73,15 +73,24 @@ Result<bool> JobRounds::OnStartResult(uint64_t agent, StartRun& run,
   return accepted;
 }
 
+size_t JobRounds::StartAgents(bool sky) const {
+  const std::function<size_t()>& count = sky ? agents_.sky_agents : agents_.start_agents;
+  return count ? count() : 0;
+}
+
 void JobRounds::TakeBackOrphanedStarts() {
-  if (start_runs_.empty() || (agents_.start_agents && agents_.start_agents() > 0)) return;
-  for (auto& [id, run] : start_runs_) {
+  for (auto it = start_runs_.begin(); it != start_runs_.end();) {
+    auto& [id, run] = *it;
+    if (StartAgents(run.request.sky) > 0) {
+      ++it;
+      continue;
+    }
     LogLine(LogLevel::kWarning, "job " + std::to_string(id))
         << "no agent left for its direct-light start (" << run.pieces.done() << " of "
         << run.pieces.pieces() << " pieces in): traced here";
     start_handoff_->Answer(run.ticket, std::optional<PointValues>());
+    it = start_runs_.erase(it);
   }
-  start_runs_.clear();
 }
 
 void JobRounds::DropStart(store::JobId id) {

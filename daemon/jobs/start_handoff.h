@@ -36,6 +36,7 @@ struct StartRequest {
   store::JobId job = 0;
   PointWork work;  // start work over every patch of the context's scene
   std::shared_ptr<const protocol::PackedScene> context;
+  bool sky = false;  // the scene has a sky: for agents of protocol::kSkyVersion alone
 };
 
 using StartAnswer = Result<std::optional<PointValues>>;

@@ -64,7 +64,8 @@ MasterParts::MasterParts(const MasterConfig& config)
                      agents_->Convict(id, agent, why);
                    },
                    [this] { return agents_->PointAgents(protocol::kPointLeaseVersion); },
-                   [this] { return agents_->PointAgents(protocol::kStartLeaseVersion); }};
+                   [this] { return agents_->PointAgents(protocol::kStartLeaseVersion); },
+                   [this] { return agents_->PointAgents(protocol::kSkyVersion); }};
   jobs_ = std::make_unique<JobRounds>(loop_, clock_, config_, options_, *store_, *compute_,
                                       std::move(hooks));
   agents_ = std::make_unique<AgentConnections>(loop_, clock_, config_, secret_, options_, *store_,
