@@ -43,8 +43,8 @@ DirectLight::DirectLight(const PatchScene& scene, const RayCaster& caster, uint3
     : scene_(scene), caster_(caster), light_cut_(light_cut), rays_per_light_(rays_per_light) {
   if (!scene.lights.empty()) sun_reach_ = SceneReach(scene);
   if (scene.sky.present()) {
-    sky_rays_ = std::clamp(kSkyRaysPerShadowRay * rays_per_point, kSkyRaysPerPoint,
-                           kMaxSkyRaysPerPoint);
+    sky_rays_ =
+        std::clamp(kSkyRaysPerShadowRay * rays_per_point, kSkyRaysPerPoint, kMaxSkyRaysPerPoint);
   }
   std::map<LightKey, size_t> light_of;
   for (uint32_t i = 0; i < scene.patches.size() && emitters; ++i) {
@@ -482,7 +482,8 @@ DirectStartDecision DecideDirectStart(const PatchScene& scene, const SolverSetti
   d.rays_per_light = plan.rays_per_light;
   d.emitter_patches = EmitterPatches(scene);
   d.lights = d.emitter_patches > 0 ? LightsPerPoint(scene) : 0;
-  d.lamps = scene.lights.size() + (scene.sky.present() ? 1 : 0);
+  d.lamps = scene.lights.size();
+  d.sky = scene.sky.present();
   d.patches = scene.patches.size();
   d.allowance = StartRayAllowance(settings);
   return d;

@@ -179,7 +179,8 @@ struct DirectStartDecision {
   uint32_t rays_per_light = 0;
   uint64_t emitter_patches = 0;
   uint64_t lights = 0;  // emitter lights a point evaluates (LightsPerPoint)
-  uint64_t lamps = 0;   // punctual lights and the sky (as one): always in the start
+  uint64_t lamps = 0;   // punctual lights: always in the start
+  bool sky = false;     // a sky: always in the start too
   uint64_t patches = 0;
   uint64_t allowance = 0;  // StartRayAllowance
 };

@@ -13,6 +13,7 @@
 #include "core/direct_start.h"
 #include "core/point_form_factor.h"
 #include "core/ray_caster.h"
+#include "core/solve_rules.h"
 #include "tests/core/test_scenes.h"
 
 namespace radfarm {
@@ -157,6 +158,9 @@ TEST(SkyTest, ASkyAloneStartsTheSolveFromItsDirectLight) {
   EXPECT_GT(DirectLightSections(scene, testing::Gathering(2048)), 0u);
   SolverSettings off = testing::Gathering(0);
   EXPECT_GT(DirectLightSections(scene, off), 0u) << "as the lamps: nothing else shoots it";
+  const std::string why = DirectStartRule(scene, testing::Gathering(2048)).why;
+  EXPECT_EQ(why.rfind("from the direct light of the sky alone, at 4 x 4 points per patch", 0), 0u)
+      << why;
 }
 
 }  // namespace
