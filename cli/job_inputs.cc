@@ -1,5 +1,6 @@
 #include "cli/job_inputs.h"
 
+#include <optional>
 #include <utility>
 
 #include "base/result.h"
@@ -33,11 +34,13 @@ Result<CheckedJob> LoadJobAndScene(const std::string& path, const JobOverrides& 
   // Textures are decoded, averaged and freed before meshing: --max-memory bounds them alone.
   const FileReach reach =
       overrides.allow_outside_files ? FileReach::kAnywhere : FileReach::kSceneTree;
-  Result<InputScene> scene =
-      LoadScene(job->scene_path, overrides.max_scene_bytes.value_or(kDefaultMaxInputFileBytes),
-                job->mesh.max_memory, reach, !job->lamps.empty());
+  Result<InputScene> scene = LoadScene(
+      job->scene_path, overrides.max_scene_bytes.value_or(kDefaultMaxInputFileBytes),
+      job->mesh.max_memory, reach, !job->lamps.empty() || job->sky.kind != SkyKind::kNone);
   RADFARM_RETURN_IF_ERROR(scene);
   RADFARM_RETURN_IF_ERROR(AddJobLamps(path, *job, reach, &*scene));
+  scene->sky = SkyOf(job->sky);
+  if (std::optional<PunctualLight> sun = SunOf(job->sky)) scene->lights.push_back(*sun);
   warnings->insert(warnings->end(), scene->warnings.begin(), scene->warnings.end());
   RADFARM_RETURN_IF_ERROR(ApplyTwoSided(path, *job, &*scene));
   if (overrides.camera) job->camera_name = *overrides.camera;

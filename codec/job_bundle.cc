@@ -10,6 +10,7 @@
 #include "base/result.h"
 #include "codec/decode_checks.h"
 #include "codec/punctual_light_codec.h"
+#include "codec/sky_codec.h"
 #include "job/output_budget.h"
 #include "job_bundle_generated.h"
 #include "output/illuminance_plane.h"
@@ -307,7 +308,8 @@ std::vector<uint8_t> EncodeJobBundle(const JobBundle& bundle) {
   }
   fbb.Finish(wire::CreateJobBundleBlob(fbb, path, job.mesh.patch_size, solver, camera, positions,
                                        material_vec, face_vec, refine, lights, object_vec,
-                                       job.lightmap_size, job.lightmap_texel, illuminance),
+                                       job.lightmap_size, job.lightmap_texel, illuminance,
+                                       EncodeSky(fbb, scene.sky)),
              "RDJB");
   return {fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()};
 }
@@ -337,6 +339,9 @@ Result<JobBundle> DecodeJobBundle(std::span<const uint8_t> blob) {
   Result<std::vector<PunctualLight>> lights = DecodeLights(root->lights(), kKind);
   RADFARM_RETURN_IF_ERROR(lights);
   bundle.scene.lights = std::move(*lights);
+  Result<Sky> sky = DecodeSky(root->sky(), kKind);
+  RADFARM_RETURN_IF_ERROR(sky);
+  bundle.scene.sky = *sky;
   return bundle;
 }
 

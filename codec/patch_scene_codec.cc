@@ -8,6 +8,7 @@
 #include "base/result.h"
 #include "codec/decode_checks.h"
 #include "codec/punctual_light_codec.h"
+#include "codec/sky_codec.h"
 #include "patch_scene_generated.h"
 
 namespace radfarm::codec {
@@ -94,7 +95,8 @@ void EncodePatchScene(const PatchScene& scene,
   const auto patch_vec = fbb.CreateVector(patches);
   const auto names = fbb.CreateVectorOfStrings(scene.material_names);
   const auto lights = EncodeLights(fbb, scene.lights);
-  fbb.Finish(wire::CreatePatchSceneBlob(fbb, patch_vec, names, lights), "RDPS");
+  const auto sky = EncodeSky(fbb, scene.sky);
+  fbb.Finish(wire::CreatePatchSceneBlob(fbb, patch_vec, names, lights, sky), "RDPS");
   use(std::span<const uint8_t>(fbb.GetBufferPointer(), fbb.GetSize()));
 }
 
@@ -129,9 +131,12 @@ Result<uint32_t> Decode(
   }
   Result<std::vector<PunctualLight>> lights = DecodeLights(root->lights(), kKind);
   RADFARM_RETURN_IF_ERROR(lights);
+  Result<Sky> sky = DecodeSky(root->sky(), kKind);
+  RADFARM_RETURN_IF_ERROR(sky);
   if (rest) {
     rest->material_names = std::move(material_names);
     rest->lights = std::move(*lights);
+    rest->sky = *sky;
   }
   return patches->size();
 }

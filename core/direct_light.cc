@@ -12,6 +12,7 @@
 #include "core/direct_start.h"
 #include "core/point_form_factor.h"
 #include "core/ray_sampler.h"
+#include "core/sobol.h"
 #include "core/thread_pool.h"
 
 namespace radfarm {
@@ -41,6 +42,10 @@ DirectLight::DirectLight(const PatchScene& scene, const RayCaster& caster, uint3
                          uint32_t rays_per_light)
     : scene_(scene), caster_(caster), light_cut_(light_cut), rays_per_light_(rays_per_light) {
   if (!scene.lights.empty()) sun_reach_ = SceneReach(scene);
+  if (scene.sky.present()) {
+    sky_rays_ =
+        std::clamp(kSkyRaysPerShadowRay * rays_per_point, kSkyRaysPerPoint, kMaxSkyRaysPerPoint);
+  }
   std::map<LightKey, size_t> light_of;
   for (uint32_t i = 0; i < scene.patches.size() && emitters; ++i) {
     const Patch& p = scene.patches[i];
@@ -166,8 +171,41 @@ double DirectLight::CappedVisible(const Vec3& x, const Vec3& n, const Light& lig
 }
 
 Rgb DirectLight::Irradiance(const Vec3& x, const Vec3& n, uint64_t key, uint64_t* rays) const {
-  if (scene_.lights.empty()) return EmitterIrradiance(x, n, key, nullptr, rays);
+  if (!HasSurfacelessLight(scene_)) return EmitterIrradiance(x, n, key, nullptr, rays);
   return EmitterIrradiance(x, n, key, nullptr, rays) + PunctualIrradiance(x, n, key, rays);
+}
+
+Rgb DirectLight::SkyIrradiance(const Vec3& x, const Vec3& n, uint64_t key, uint64_t* rays) const {
+  if (sky_rays_ == 0) return {};
+  Vec3 t, b;
+  OrthonormalBasis(n, &t, &b);
+  // Its own stream: apart from the shadow rays' and the light tree's numbers of the same key.
+  const ScrambledSobol4 sobol(HashWords(key, 0x736b79ull));
+  RayBlock block;
+  RayHit hits[RayBlock::kSize];
+  double sum = 0;
+  for (uint32_t first = 0; first < sky_rays_; first += RayBlock::kSize) {
+    block.count = int(std::min<uint32_t>(RayBlock::kSize, sky_rays_ - first));
+    for (int j = 0; j < block.count; ++j) {
+      const std::array<double, 4> u = sobol.Point(first + uint32_t(j));
+      const Vec3 d = SampleCosineDirection(t, b, n, u[0], u[1]);
+      block.origin_x[j] = x.x;
+      block.origin_y[j] = x.y;
+      block.origin_z[j] = x.z;
+      block.direction_x[j] = d.x;
+      block.direction_y[j] = d.y;
+      block.direction_z[j] = d.z;
+    }
+    caster_.TraceBlock(block, n, hits);
+    for (int j = 0; j < block.count; ++j) {
+      if (hits[j].patch != RayHit::kMiss) continue;
+      sum += SkyLuminance(scene_.sky,
+                          {block.direction_x[j], block.direction_y[j], block.direction_z[j]});
+    }
+  }
+  if (rays != nullptr) *rays += sky_rays_;
+  const double e = sum / double(sky_rays_);
+  return {e, e, e};
 }
 
 void DirectLight::AddPunctual(uint32_t i, const Vec3& x, const Vec3& n, double weight, Rgb* e,
@@ -184,7 +222,7 @@ Rgb DirectLight::PunctualIrradiance(const Vec3& x, const Vec3& n, uint64_t key,
   Rgb e;
   if (punctual_tree_ == nullptr) {
     for (uint32_t i = 0; i < scene_.lights.size(); ++i) AddPunctual(i, x, n, 1.0, &e, rays);
-    return e;
+    return e + SkyIrradiance(x, n, key, rays);
   }
   for (uint32_t i : suns_) AddPunctual(i, x, n, 1.0, &e, rays);
   std::vector<LightPick> picks;
@@ -192,7 +230,7 @@ Rgb DirectLight::PunctualIrradiance(const Vec3& x, const Vec3& n, uint64_t key,
   for (const LightPick& pick : picks) {
     AddPunctual(positional_[pick.light], x, n, pick.weight, &e, rays);
   }
-  return e;
+  return e + SkyIrradiance(x, n, key, rays);
 }
 
 void DirectLight::AddLight(const Light& light, const Vec3& x, const Vec3& n, uint64_t key,
@@ -289,7 +327,7 @@ std::vector<Rgb> PatchDirectLight(const PatchScene& scene, uint32_t sections, ui
   if (shadow_rays != nullptr) *shadow_rays = 0;
   bool any_emitter = false;
   for (const Patch& p : scene.patches) any_emitter = any_emitter || p.emission.Max() > 0;
-  if (!(any_emitter && emitters) && scene.lights.empty()) {
+  if (!(any_emitter && emitters) && !HasSurfacelessLight(scene)) {
     return std::vector<Rgb>(scene.patches.size());
   }
   const StartWork work{sections, seed, emitters, rays_per_light};
@@ -320,11 +358,12 @@ uint64_t LightsPerPoint(const PatchScene& scene) {
   return std::max<uint64_t>(1, n > kExactLights ? std::min<size_t>(n, kLightCut) : n);
 }
 
-// Shadow rays a point casts to the punctual lights at most: one per lamp, or the light tree's cut
-// of them.
+// Rays a point casts to the punctual lights and the sky at most: one per lamp, or the light tree's
+// cut of them, and the sky's.
 uint64_t LampRaysPerPoint(const PatchScene& scene) {
   const size_t n = scene.lights.size();
-  return n > kExactLights ? std::min<size_t>(n, kLightCut) : n;
+  const uint64_t sky = scene.sky.present() ? kSkyRaysPerPoint : 0;
+  return (n > kExactLights ? std::min<size_t>(n, kLightCut) : n) + sky;
 }
 
 // How a solve with these settings starts: whether the emitter patches are in the start, each
@@ -371,8 +410,10 @@ StartPlan PlanEmitters(const PatchScene& scene, const SolverSettings& settings) 
 
 uint32_t SectionsOf(const StartPlan& plan, const PatchScene& scene,
                     const SolverSettings& settings) {
-  // Punctual lights have no surface to shoot from: they are always in the start.
-  const uint64_t sources = scene.lights.size() + plan.emitter_rays;
+  // Punctual lights and the sky have no surface to shoot from: they are always in the start (the
+  // sky's rays count as that many lights).
+  const uint64_t sources =
+      scene.lights.size() + plan.emitter_rays + (scene.sky.present() ? kSkyRaysPerPoint : 0);
   if (sources == 0) return 0;
   // Big patches near a light need more points (the irradiance changes across the patch).
   const double rays = GatherOn(settings) ? double(settings.gather_rays) : 512.0;
@@ -442,6 +483,7 @@ DirectStartDecision DecideDirectStart(const PatchScene& scene, const SolverSetti
   d.emitter_patches = EmitterPatches(scene);
   d.lights = d.emitter_patches > 0 ? LightsPerPoint(scene) : 0;
   d.lamps = scene.lights.size();
+  d.sky = scene.sky.present();
   d.patches = scene.patches.size();
   d.allowance = StartRayAllowance(settings);
   return d;

@@ -8,7 +8,8 @@
 // exact; in a penumbra its noise is that of the shadow rays, not of a mesh.
 //
 // Punctual lights (PatchScene::lights, core/punctual_light.h) add their closed-form irradiance
-// times one shadow ray each.
+// times one shadow ray each. A sky (PatchScene::sky, core/sky.h) adds the mean of its luminance
+// over cosine-weighted rays that leave the scene (SkyIrradiance).
 //
 // Many lights: above kExactLights emitter lights (or point and spot lights), a
 // LightTree (core/light_tree.h) picks about kLightCut of them per point, the strong ones exactly
@@ -46,7 +47,8 @@ class DirectLight {
 
   // Irradiance at x (unit normal n) in Ke units; `key` picks the shadow rays' points (and with
   // many lights the lights sampled), so a call is a pure function of its arguments.
-  // EmitterIrradiance + PunctualIrradiance; `rays`, if not null, is increased by the shadow rays.
+  // EmitterIrradiance + PunctualIrradiance (with the sky's); `rays`, if not null, is increased by
+  // the shadow rays.
   Rgb Irradiance(const Vec3& x, const Vec3& n, uint64_t key, uint64_t* rays = nullptr) const;
   // From the emitter patches alone (zero without `emitters`). `evaluated`, if not null, receives
   // how many lights (emitters of one surface and emission) were evaluated; `rays`, if not null,
@@ -57,6 +59,11 @@ class DirectLight {
   // `key` picks the lights sampled when there are many; with few, it is unused. `rays` as above.
   Rgb PunctualIrradiance(const Vec3& x, const Vec3& n, uint64_t key = 0,
                          uint64_t* rays = nullptr) const;
+  // From the sky alone: sky_rays() cosine-weighted rays about n from a scrambled Sobol sequence
+  // keyed by `key`; each that leaves the scene counts the sky's luminance in its direction, and the
+  // mean is the irradiance (E / pi). Zero without a sky. `rays` as above.
+  Rgb SkyIrradiance(const Vec3& x, const Vec3& n, uint64_t key, uint64_t* rays = nullptr) const;
+  uint32_t sky_rays() const { return sky_rays_; }
   // The emitter lights (surfaces), and whether they are sampled through a LightTree.
   size_t emitter_lights() const { return lights_.size(); }
   bool emitters_sampled() const { return emitter_tree_ != nullptr; }
@@ -107,7 +114,17 @@ class DirectLight {
   double sun_reach_ = 0;  // beyond the scene from any point in it (ShadowRayTarget)
   uint32_t light_cut_ = kLightCut;
   uint32_t rays_per_light_ = 0;  // 0: one or more rays per patch of every light
+  uint32_t sky_rays_ = 0;        // per point, 0 without a sky
 };
+
+// Rays per point toward the sky: kSkyRaysPerShadowRay per shadow ray a point is given, from
+// kSkyRaysPerPoint (the start's points, which a patch's 4 x 4 or more average) to
+// kMaxSkyRaysPerPoint (the illuminance report's). A window that fills a few per cent of a point's
+// cosine-weighted view gets only that share of the rays, so a point alone needs many: at 256 rays
+// a work plane's lux beside a window were off by up to 30 % (tests/cli/daylight_accuracy_test.cc).
+inline constexpr uint32_t kSkyRaysPerPoint = 64;
+inline constexpr uint32_t kSkyRaysPerShadowRay = 16;
+inline constexpr uint32_t kMaxSkyRaysPerPoint = 4096;
 
 // Per patch, the direct irradiance averaged over the patch (Ke units): DirectLight at
 // sections^2 jittered points of each patch (one per stratum), one shadow ray per emitter patch
@@ -163,6 +180,7 @@ struct DirectStartDecision {
   uint64_t emitter_patches = 0;
   uint64_t lights = 0;  // emitter lights a point evaluates (LightsPerPoint)
   uint64_t lamps = 0;   // punctual lights: always in the start
+  bool sky = false;     // a sky: always in the start too
   uint64_t patches = 0;
   uint64_t allowance = 0;  // StartRayAllowance
 };

@@ -32,7 +32,7 @@ PatchStartValues TraceStartPatches(const PatchScene& scene, const DirectLight& d
   const size_t n = end - begin;
   PatchStartValues out;
   out.direct.resize(n);
-  if (!scene.lights.empty()) out.punctual.resize(n);
+  if (HasSurfacelessLight(scene)) out.punctual.resize(n);
   // Per patch, so that the count is a sum of integers in a fixed order whatever the threads.
   std::vector<uint32_t> rays(n);
   const uint32_t m = std::max(1u, work.sections);

@@ -38,8 +38,9 @@ std::optional<StartWork> StartWorkOf(const PatchScene& scene, const SolverSettin
 DirectLight StartDirectLight(const PatchScene& scene, const RayCaster& caster,
                              const StartWork& work);
 
-// Per patch of a range: its mean direct irradiance (emitters and punctual lights), the punctual
-// lights' share alone (empty where the scene has none), and the shadow rays cast.
+// Per patch of a range: its mean direct irradiance (emitters, punctual lights and the sky), the
+// punctual lights' and the sky's share alone (empty where the scene has neither:
+// HasSurfacelessLight), and the shadow and sky rays cast.
 struct PatchStartValues {
   std::vector<Rgb> direct;
   std::vector<Rgb> punctual;
@@ -54,8 +55,9 @@ PatchStartValues TraceStartPatches(const PatchScene& scene, const DirectLight& d
 // Appends `piece`, the values of the patches that follow those in `*whole`, to `*whole`.
 void AppendStartValues(PatchStartValues piece, PatchStartValues* whole);
 
-// What a solver takes from its start: the direct light per patch, the punctual lights' power
-// (area times channel sum over the patches, in patch order) and the shadow rays cast.
+// What a solver takes from its start: the direct light per patch, the punctual lights' and the
+// sky's power that reaches the patches (area times channel sum over the patches, in patch order:
+// the energy account's light in) and the shadow rays cast.
 struct StartLight {
   std::vector<Rgb> direct;
   double punctual_power = 0;

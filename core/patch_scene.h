@@ -9,6 +9,7 @@
 
 #include "core/punctual_light.h"
 #include "core/rgb.h"
+#include "core/sky.h"
 #include "core/vec3.h"
 
 namespace radfarm {
@@ -43,6 +44,15 @@ struct PatchScene {
   // Lights without a surface (glTF KHR_lights_punctual), in world space: they light the patches
   // directly (core/direct_light.h) and are never hit.
   std::vector<PunctualLight> lights;
+  // Light from beyond the scene (core/sky.h): rays that leave the scene upward take its luminance.
+  // It lights the patches directly, as the punctual lights do (core/direct_light.h).
+  Sky sky;
 };
+
+// Whether the scene has light that comes from no patch: punctual lights or a sky. Those are always
+// in the direct-light start (core/direct_start.h), with their share kept apart.
+inline bool HasSurfacelessLight(const PatchScene& scene) {
+  return !scene.lights.empty() || scene.sky.present();
+}
 
 }  // namespace radfarm

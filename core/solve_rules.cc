@@ -39,6 +39,13 @@ std::string WhyEmittersShoot(const DirectStartDecision& d, const SolverSettings&
   return {};
 }
 
+// The lights without a surface in words: "2 lamps", "the sky", "1 lamp and the sky".
+std::string Surfaceless(const DirectStartDecision& d) {
+  std::string out = d.lamps > 0 ? Plural(d.lamps, "lamp", "lamps") : "";
+  if (d.sky) out += out.empty() ? "the sky" : " and the sky";
+  return out;
+}
+
 }  // namespace
 
 RuleOutcome DirectStartRule(const PatchScene& scene, const SolverSettings& settings) {
@@ -49,15 +56,15 @@ RuleOutcome DirectStartRule(const PatchScene& scene, const SolverSettings& setti
   if (d.emitters) {
     std::string what =
         "from the direct light of " + Plural(d.emitter_patches, "emitter patch", "emitter patches");
-    if (d.lamps > 0) what += " and " + Plural(d.lamps, "lamp", "lamps");
+    if (d.lamps > 0 || d.sky) what += " and " + Surfaceless(d);
     if (d.rays_per_light > 0) what += ", " + N(d.rays_per_light) + " shadow rays per light";
     out.why = what + ", at " + points;
     return out;
   }
   const std::string why = WhyEmittersShoot(d, settings);
-  if (out.used) {  // lamps alone: they have no surface to shoot from
-    out.why = "from the direct light of " + Plural(d.lamps, "lamp", "lamps") + " alone, at " +
-              points + "; the emitter patches shoot theirs: " + why;
+  if (out.used) {  // lamps or the sky alone: they have no surface to shoot from
+    out.why = "from the direct light of " + Surfaceless(d) + " alone, at " + points +
+              "; the emitter patches shoot theirs: " + why;
   } else if (d.why == DirectStartDecision::kNothingEmits) {
     out.why = "not used: no patch emits and there is no lamp";
   } else {

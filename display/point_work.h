@@ -36,7 +36,7 @@ struct PointWork {
   // against a context of one shadow ray per point and light. `points` is empty then.
   uint32_t start_sections = 0;  // 0: point work
   uint64_t start_patches = 0;
-  bool start_punctual = false;  // the scene has punctual lights: each patch has their share too
+  bool start_punctual = false;  // HasSurfacelessLight: each patch has their share too
   // A refinement step's light scores instead (mesh/light_scores.h): elements [first_index,
   // first_index + score_elements) of the context's LightScoreWork. `points` is empty then.
   uint64_t score_elements = 0;  // 0: not score work

@@ -10,6 +10,7 @@
 #include "base/text_file.h"
 #include "core/punctual_light.h"
 #include "core/rgb.h"
+#include "core/sky.h"
 #include "core/vec3.h"
 #include "input/input_camera.h"
 #include "input/scene_directory.h"
@@ -59,6 +60,7 @@ struct InputScene {
   std::vector<std::string> warnings;  // one line each, already prefixed with the file name
   std::vector<InputCamera> cameras;   // in the file's order (glTF); the first is the default
   std::vector<PunctualLight> lights;  // glTF KHR_lights_punctual, in world space, the walk's order
+  Sky sky;                            // the job file's `[sky]` (none unless a job sets one)
   // Parents before children. Empty in scenes made in code: every face is then object 0 of one
   // unnamed object (ObjectsOrDefault).
   std::vector<InputObject> objects;
@@ -84,7 +86,7 @@ std::vector<LightmapTriangle> LightmapTriangles(const InputScene& scene);
 // coordinates, reflectance outside [0, 1), negative emission, no emitter ("nothing to light");
 // an OBJ or MTL that is not a regular file or is larger than `max_file_bytes` (refused from its
 // size, before it is read); an MTL file outside where `reach` allows (input/scene_directory.h).
-// `lamps_added`: the job places lamps of its own, so "nothing to light" is no error.
+// `lamps_added`: the job places lamps or a sky of its own, so "nothing to light" is no error.
 Result<InputScene> LoadObjScene(const std::string& path,
                                 uint64_t max_file_bytes = kDefaultMaxInputFileBytes,
                                 FileReach reach = FileReach::kSceneTree, bool lamps_added = false);

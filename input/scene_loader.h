@@ -18,8 +18,8 @@ bool IsSceneFile(const std::string& path);
 // must be a regular file of at most `max_file_bytes` (decided from its size, before reading).
 // `max_texture_bytes` bounds a glTF's decoded images together (--max-memory; 0: each image at
 // most kDefaultMaxTexturePixels pixels); OBJ scenes read no images. The files a scene names lie
-// where `reach` allows (input/scene_directory.h). With `lamps_added` (the job places lamps of
-// its own), a scene that emits nothing is no error.
+// where `reach` allows (input/scene_directory.h). With `lamps_added` (the job places lamps or a
+// sky of its own), a scene that emits nothing is no error.
 Result<InputScene> LoadScene(const std::string& path,
                              uint64_t max_file_bytes = kDefaultMaxInputFileBytes,
                              uint64_t max_texture_bytes = 0,

@@ -11,6 +11,7 @@
 #include "base/toml_table_reader.h"
 #include "core/solver_settings.h"
 #include "job/job_lamp.h"
+#include "job/job_sky.h"
 #include "mesh/mesh_settings.h"
 #include "mesh/refine_settings.h"
 #include "output/camera.h"
@@ -46,6 +47,8 @@ struct Job {
   std::vector<IlluminancePlane> illuminance;
   // The IES lamps the job hangs in the scene (`[[lamps]]`), in the file's order.
   std::vector<JobLamp> lamps;
+  // The sky (`[sky]`; kind none without one). cli/ puts its dome and its sun in the scene.
+  JobSky sky;
 };
 
 // The image's width and height at most (`[camera] width`, `height`).

@@ -50,6 +50,18 @@
 //   aim = [0, -1, 0]              # the lamp's nadir axis, nonzero (absent: straight down)
 //   rotate = 0                    # degrees around the aim (turns horizontal angle 0 toward 90)
 //   multiplier = 1                # times the file's candela, > 0
+//   [sky]                         # light from beyond the scene (core/sky.h); +Y is up
+//   type = "cie-overcast"         # uniform | cie-overcast | cie-clear
+//   zenith_luminance = 3000       # cd/m^2 at the zenith (a uniform sky's everywhere), > 0; or
+//   horizontal_illuminance = 10000  # lux the dome gives an open horizontal plane, > 0 (one of
+//   them) sun = [0.3, 0.8, -0.5]        # cie-clear: toward the sun, above the horizon; or: date =
+//   "2025-06-21"           # cie-clear: the sun from date, local clock time and place time =
+//   "14:30"                #   "HH:MM" (24-hour) timezone = 1                  #   hours east of
+//   UTC of the clock, in [-14, 14] (absent: 0) latitude = 51.5               #   degrees north, in
+//   [-90, 90] longitude = -0.12             #   degrees east, in [-180, 180] north = [0, 0, -1] #
+//   the scene's north, horizontal (absent: -Z; east is +X) sun_illuminance = 80000       #
+//   cie-clear: the sun's lux on a plane facing it, >= 0 (absent:
+//                                 # from its altitude, 127500 exp(-0.21 / sin altitude))
 //   [materials.NAME]              # per material of the scene, by name
 //   two_sided = true              # this material receives and emits on both sides (an
 //                                 # emitter then lights both ways; false: its front only)
@@ -70,6 +82,7 @@
 #include "base/toml_file.h"
 #include "base/toml_table_reader.h"
 #include "job/job.h"
+#include "job/job_sky.h"
 
 namespace radfarm {
 namespace {
@@ -292,6 +305,8 @@ Status ReadJob(const std::string& path, const toml::table& table, Job* job) {
       ReadSection(path, &root, "output", [&](TomlTableReader* r) { return ReadOutput(r, job); }));
   RADFARM_RETURN_IF_ERROR(ReadIlluminance(path, &root, job));
   RADFARM_RETURN_IF_ERROR(ReadLamps(path, &root, job));
+  RADFARM_RETURN_IF_ERROR(
+      ReadSection(path, &root, "sky", [&](TomlTableReader* r) { return ReadSky(r, &job->sky); }));
   Result<const toml::table*> materials = root.Table("materials");
   RADFARM_RETURN_IF_ERROR(materials);
   if (*materials != nullptr) {

@@ -38,7 +38,9 @@ std::vector<std::string> BackFaceWarnings(const std::string& scene_path, const P
             : "walls facing outward? set " + setting + " in the job file";
     const auto [front, back] = hits;
     const double reached = static_cast<double>(front + back);
-    if (reached < kBackFaceMinShare * static_cast<double>(counts.rays)) continue;
+    // No ray reached it: a scene lit by nothing the survey shoots from (a sky, a sun) made the
+    // share 0 / 0, printed as "-9223372036854775808%".
+    if (reached == 0 || reached < kBackFaceMinShare * static_cast<double>(counts.rays)) continue;
     const double share = static_cast<double>(back) / reached;
     if (share <= kBackFaceWarnShare) continue;
     warnings.push_back(WarningAt(

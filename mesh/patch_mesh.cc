@@ -354,6 +354,7 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   pm.surface_object_.resize(pm.surface_count_);
   pm.data_ = std::move(assembler).Finish(&pool);
   pm.data_.scene.lights = scene.lights;
+  pm.data_.scene.sky = scene.sky;
   return pm;
 }
 
@@ -391,6 +392,7 @@ PatchMesh PatchMesh::Rebuilt(const std::vector<Piece>& pieces, ThreadPool* pool)
   for (const Piece& piece : pieces) assembler.Add(piece.corners, piece.surface, piece.material);
   pm.data_ = std::move(assembler).Finish(pool);
   pm.data_.scene.lights = data_.scene.lights;
+  pm.data_.scene.sky = data_.scene.sky;
   return pm;
 }
 

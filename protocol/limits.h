@@ -17,13 +17,16 @@ namespace radfarm::protocol {
 // 6), so agents and master can be upgraded one at a time. Version 7 leases the direct-light start
 // by patch (PointLease start_sections, PointResult punctual), to agents of version 7 alone.
 // Version 8 leases a refinement step's light scores by element (PointLease score_elements,
-// PointResult scores), to agents of version 8 alone.
+// PointResult scores), and its agents read a scene's sky (schema/sky.fbs in the scene blob): an
+// older agent would decode such a scene without it, so both, and a sky job's start and display
+// points, go to version 8 alone.
 inline constexpr uint16_t kProtocolVersion = 8;
 inline constexpr uint16_t kMinProtocolVersion = 4;
 inline constexpr uint16_t kPackedHitsVersion = 5;
 inline constexpr uint16_t kPointLeaseVersion = 6;
 inline constexpr uint16_t kStartLeaseVersion = 7;
 inline constexpr uint16_t kScoreLeaseVersion = 8;
+inline constexpr uint16_t kSkyVersion = 8;
 // A start's points per side of a patch (core/direct_light.h: at most 16).
 inline constexpr uint32_t kMaxStartSections = 64;
 

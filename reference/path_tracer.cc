@@ -7,6 +7,7 @@
 
 #include "core/counter_rng.h"
 #include "core/punctual_light.h"
+#include "core/sky.h"
 
 namespace radfarm::reference {
 namespace {
@@ -84,7 +85,11 @@ Rgb PathTracer::SamplePath(Vec3 x, Vec3 n, uint32_t self, Rgb beta, uint64_t key
     const Vec3 w = CosineDirection(n, Uniform(key, dim + 3), Uniform(key, dim + 4));
     ++*rays;
     const SurfaceHit hit = scene_.Trace(x, w, n);
-    if (hit.triangle == SurfaceHit::kMiss) break;
+    if (hit.triangle == SurfaceHit::kMiss) {
+      // The cosine-weighted direction's estimate of rho/pi * L cos / pdf is rho * L.
+      sum += beta * SkyRadiance(scene_.sky(), w);
+      break;
+    }
     const Triangle& tri = scene_.triangles()[hit.triangle];
     const Material& m = scene_.materials()[tri.material];
     if (!hit.front && !m.two_sided) break;  // a one-sided surface's back absorbs

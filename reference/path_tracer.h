@@ -5,9 +5,10 @@
 // triangle (picked by area times emitted radiance, a point uniform on it) and on every punctual
 // lamp (one shadow ray each); then a cosine-weighted direction. An emitter hit by that direction
 // and sampled by next-event estimation too is weighted by the balance heuristic (multiple
-// importance sampling), so neither strategy counts it twice. Russian roulette from the third
-// bounce on (survival = the path's largest channel of throughput, at most 0.95), so paths have no
-// length limit and no bias.
+// importance sampling), so neither strategy counts it twice. A direction that leaves the scene
+// takes the sky's luminance along it (core/sky.h; none without a sky). Russian roulette from the
+// third bounce on (survival = the path's largest channel of throughput, at most 0.95), so paths
+// have no length limit and no bias.
 //
 // Determinism: sample s of point i draws its numbers from CounterRng(HashWords(seed, i, s)), and a
 // point's samples are summed in order, so the estimates depend on (scene, points, settings) only,

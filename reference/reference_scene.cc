@@ -41,6 +41,7 @@ Result<std::unique_ptr<ReferenceScene>> ReferenceScene::Build(const InputScene& 
   std::unique_ptr<ReferenceScene> scene(new ReferenceScene());
   scene->materials_ = input.materials;
   scene->lights_ = input.lights;
+  scene->sky_ = input.sky;
   Bounds3 bounds;
   for (uint32_t f = 0; f < input.faces.size(); ++f) {
     const InputFace& face = input.faces[f];

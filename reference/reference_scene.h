@@ -1,6 +1,6 @@
 // ReferenceScene: the input's triangles as the path tracer sees them, with no patch meshing. Each
 // input polygon is split into triangles (a fan when convex, ear clipping otherwise) and put in one
-// Embree BVH; materials, emitters and punctual lights are the input's.
+// Embree BVH; materials, emitters, punctual lights and the sky are the input's.
 //
 // Sides, as the solver treats them: a triangle's front is the side its corners run
 // counter-clockwise about; a one-sided material absorbs light arriving at its back and emits
@@ -21,6 +21,7 @@
 #include "base/result.h"
 #include "core/punctual_light.h"
 #include "core/rgb.h"
+#include "core/sky.h"
 #include "core/vec3.h"
 #include "input/input_scene.h"
 
@@ -53,6 +54,7 @@ class ReferenceScene {
   const std::vector<Triangle>& triangles() const { return triangles_; }
   const std::vector<Material>& materials() const { return materials_; }
   const std::vector<PunctualLight>& lights() const { return lights_; }
+  const Sky& sky() const { return sky_; }
   double diagonal() const { return diagonal_; }
 
   // Closest hit along origin + t * direction, t > 0, the origin lifted off its surface along
@@ -81,6 +83,7 @@ class ReferenceScene {
   std::vector<Triangle> triangles_;
   std::vector<Material> materials_;
   std::vector<PunctualLight> lights_;
+  Sky sky_;
   std::vector<Emitter> emitters_;
   std::vector<double> emitter_cdf_;          // upper ends, last = 1
   std::vector<double> emitter_probability_;  // per triangle

@@ -4,8 +4,8 @@
 // way (codec/point_context_blob.h, packed as a scene is). Each step's values, however they were
 // traced, go back through Apply; the display it finishes is the one `radfarm render` draws.
 //
-// Compute thread only, except work(), step() and context(), which the loop thread reads while no
-// compute task holds the draft (between Start or Apply and the next Apply).
+// Compute thread only, except work(), step(), context() and sky(), which the loop thread reads
+// while no compute task holds the draft (between Start or Apply and the next Apply).
 #pragma once
 
 #include <cstdint>
@@ -41,6 +41,8 @@ class DisplayDraft {
   const std::shared_ptr<const protocol::PackedScene>& context() const { return context_; }
   // Steps applied so far: names the step work() is (a piece's lease carries it).
   uint32_t steps_applied() const { return steps_; }
+  // Whether the job's scene has a sky: its points go to agents of protocol::kSkyVersion alone.
+  bool sky() const { return bundle_.scene.sky.present(); }
 
   // work() traced here, on the job's threads (its solver settings').
   PointValues TraceHere() const;

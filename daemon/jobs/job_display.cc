@@ -104,7 +104,12 @@ void JobRounds::NextDisplayStep(store::JobId id, uint64_t serial) {
   DisplayRun& run = *FindDisplay(id, serial);
   const PointWork* work = run.draft->work();
   if (!work) return FinishDisplay(id, serial);
-  const size_t agents = agents_.display_agents ? agents_.display_agents() : 0;
+  size_t agents = 0;
+  if (run.draft->sky()) {
+    agents = agents_.piece_agents ? agents_.piece_agents(protocol::kSkyVersion) : 0;
+  } else {
+    agents = agents_.display_agents ? agents_.display_agents() : 0;
+  }
   if (agents == 0 || work->points.size() < kLocalPiecesWork) {
     ++run.local_steps;
     ApplyDisplayStep(id, serial, std::nullopt);

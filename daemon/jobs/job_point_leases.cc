@@ -1,7 +1,7 @@
 // JobRounds: pieces of point work on the agents, of three kinds: a running job's direct-light start
 // and its refinement steps' light scores (job_start.cc; patches to agents of protocol version 7,
 // elements to version 8) and a finished job's display (job_display.cc; its points, to agents of
-// version 6). Both are cut and leased by DisplayPieces
+// version 6); a scene with a sky's, to version 8 alone. All are cut and leased by DisplayPieces
 // and answered by PointResults checked against the piece they answer. A start comes first: a job
 // waits on it, where a display only ends a job.
 #include <algorithm>
@@ -42,6 +42,7 @@ std::vector<protocol::PointLeaseMsg> JobRounds::PointLeasesFor(
   if (version < protocol::kPointLeaseVersion) return leases;
   for (auto& [id, run] : display_runs_) {
     if (!run.pieces || refused(id)) continue;
+    if (run.draft->sky() && version < protocol::kSkyVersion) continue;
     LeasePieces(id, *run.pieces, *run.draft->work(), run.draft->context()->hash, agent, room, now,
                 &leases);
   }

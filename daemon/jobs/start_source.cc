@@ -54,8 +54,10 @@ StartLightSource AgentsStartSource(std::shared_ptr<StartHandoff> handoff, store:
     patches.direct = true;
     patches.start_sections = work.sections;
     patches.start_patches = scene.patches.size();
-    patches.start_punctual = !scene.lights.empty();
-    StartAnswer answer = handoff->Await({job, std::move(patches), StartContext(scene, work)});
+    patches.start_punctual = HasSurfacelessLight(scene);
+    StartAnswer answer =
+        handoff->Await({job, std::move(patches), StartContext(scene, work),
+                        scene.sky.present() ? protocol::kSkyVersion : protocol::kStartLeaseVersion});
     if (!answer) throw std::runtime_error(answer.error());
     PatchStartValues values;
     if (*answer) {

@@ -9,6 +9,7 @@
 #include "input/ies_file.h"
 #include "input/scene_loader.h"
 #include "job/job_lamp.h"
+#include "job/job_sky.h"
 #include "mesh/patch_mesh.h"
 
 namespace radfarm::codec {
@@ -73,6 +74,31 @@ TEST(JobBundleTest, CarriesPunctualLights) {
     EXPECT_EQ(back->scene.lights[i].intensity, scene->lights[i].intensity) << i;
   }
   EXPECT_EQ(MeshBlob(*back), MeshBlob(bundle)) << "the meshed scene carries them too";
+}
+
+// The daylight example (scenes/daylit-room.toml): its sky reaches the master in the bundle and the
+// meshed scene; a clear sky's sun rides as a punctual sun.
+TEST(JobBundleTest, CarriesTheSky) {
+  Result<Job> job = LoadJob(RADFARM_SOURCE_DIR "/scenes/daylit-room.toml");
+  ASSERT_TRUE(job.ok()) << job.error();
+  // Nothing in the room emits: the job's sky lights it, as its lamps may.
+  Result<InputScene> scene =
+      LoadScene(job->scene_path, kDefaultMaxInputFileBytes, 0, FileReach::kSceneTree, true);
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  const std::vector<uint8_t> without = EncodeJobBundle({*job, *scene});
+  scene->sky = SkyOf(job->sky);
+  ASSERT_TRUE(scene->sky.present());
+  const JobBundle bundle{*job, *scene};
+  const std::vector<uint8_t> with = EncodeJobBundle(bundle);
+  EXPECT_GT(with.size(), without.size());
+  Result<JobBundle> back = DecodeJobBundle(with);
+  ASSERT_TRUE(back.ok()) << back.error();
+  EXPECT_EQ(back->scene.sky, scene->sky);
+  const std::vector<uint8_t> meshed = MeshBlob(*back);
+  EXPECT_EQ(meshed, MeshBlob(bundle));
+  Result<PatchScene> patches = DecodePatchScene(meshed);
+  ASSERT_TRUE(patches.ok()) << patches.error();
+  EXPECT_EQ(patches->sky, scene->sky) << "the meshed scene carries it too";
 }
 
 // The IES example (scenes/ies-downlights.toml): its lamps, hung as render and submit hang them,

@@ -211,6 +211,28 @@ TEST(PatchSceneCodecTest, CarriesPunctualLightsAndChecksThem) {
   EXPECT_NE(bad.error().find("light 1 kind 7"), std::string::npos) << bad.error();
 }
 
+// The sky rides in the blob as the lamps do (the agents' start and display points light patches
+// with it); a scene without one keeps its bytes: no `sky` field at all.
+TEST(PatchSceneCodecTest, CarriesTheSkyAndChecksIt) {
+  PatchScene scene = CornellPatches();
+  const std::vector<uint8_t> without = EncodePatchScene(scene);
+  scene.sky = {SkyKind::kCieClear, 4321.5, Normalize(Vec3{0.3, 0.8, -0.5})};
+  const std::vector<uint8_t> with = EncodePatchScene(scene);
+  EXPECT_GT(with.size(), without.size());
+  Result<PatchScene> back = DecodePatchScene(with);
+  ASSERT_TRUE(back.ok()) << back.error();
+  EXPECT_EQ(back->sky, scene.sky);
+  EXPECT_EQ(EncodePatchScene(*back), with);
+  scene.sky.zenith = -1;
+  Result<PatchScene> bad = DecodePatchScene(EncodePatchScene(scene));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error(), "scene blob: sky sky zenith luminance must be finite and >= 0");
+  scene.sky = {static_cast<SkyKind>(9), 1, {0, 1, 0}};
+  bad = DecodePatchScene(EncodePatchScene(scene));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().find("sky kind out of range"), std::string::npos) << bad.error();
+}
+
 // A photometric lamp carries its candela table; the decoder checks the table before using it.
 TEST(PatchSceneCodecTest, CarriesAPhotometricLampsTableAndChecksIt) {
   PatchScene scene = CornellPatches();

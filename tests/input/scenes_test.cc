@@ -55,13 +55,14 @@ const Material& MaterialOf(const InputScene& scene, size_t face) {
   return scene.materials[scene.faces[face].material];
 }
 
-// The OBJ scenes a shipped job hangs IES lamps in: they need emit nothing of their own.
+// The OBJ scenes a shipped job hangs IES lamps in or lights by a sky: they need emit nothing of
+// their own.
 std::set<std::filesystem::path> ScenesLitByJobLamps() {
   std::set<std::filesystem::path> out;
   for (const auto& entry : std::filesystem::directory_iterator(ScenePath(""))) {
     if (entry.path().extension() != ".toml") continue;
     Result<Job> job = LoadJob(entry.path().string());
-    if (job.ok() && !job->lamps.empty()) {
+    if (job.ok() && (!job->lamps.empty() || job->sky.kind != SkyKind::kNone)) {
       out.insert(std::filesystem::weakly_canonical(job->scene_path));
     }
   }
@@ -89,8 +90,9 @@ TEST(ScenesTest, EveryJobLoadsAndNamesAnExistingScene) {
     Result<Job> job = LoadJob(entry.path().string());
     ASSERT_TRUE(job.ok()) << job.error();
     // LoadScene: OBJ or glTF by the extension (cornell-box-lamp.toml names a .gltf).
-    const Result<InputScene> scene = LoadScene(job->scene_path, kDefaultMaxInputFileBytes, 0,
-                                               FileReach::kSceneTree, !job->lamps.empty());
+    const Result<InputScene> scene =
+        LoadScene(job->scene_path, kDefaultMaxInputFileBytes, 0, FileReach::kSceneTree,
+                  !job->lamps.empty() || job->sky.kind != SkyKind::kNone);
     EXPECT_TRUE(scene.ok()) << job->scene_path << ": " << (scene.ok() ? "" : scene.error());
   }
 }

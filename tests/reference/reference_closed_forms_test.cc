@@ -1,6 +1,7 @@
 // The path-traced reference against closed forms: a white furnace, two parallel squares, a point
-// lamp and an IES lamp over a floor. Each estimate must land within 3 standard errors of the exact
-// value, and its standard error must be small (so a bias above about 1.5% fails).
+// lamp and an IES lamp over a floor, skies over an open floor. Each estimate must land within 3
+// standard errors of the exact value, and its standard error must be small (so a bias above
+// about 1.5% fails).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -243,6 +244,28 @@ TEST(ReferenceClosedFormsTest, EstimatesDoNotDependOnThreads) {
     EXPECT_EQ(one[i].samples, three[i].samples);
   }
   EXPECT_NE(one[0].radiance, one[1].radiance);  // different points draw different numbers
+}
+
+TEST(ReferenceClosedFormsTest, SkiesOverAnOpenFloorGivePiLAndSevenNinthsPiLz) {
+  // A grey floor facing +Y (the sky's up); a point above it sees the whole dome.
+  InputScene input;
+  input.path = "floor";
+  const uint32_t grey = AddMaterial(&input, {0.5, 0.5, 0.5}, {});
+  testing::AddQuad(&input, {Vec3{-5, 0, -5}, Vec3{-5, 0, 5}, Vec3{5, 0, 5}, Vec3{5, 0, -5}}, grey);
+  input.sky = {SkyKind::kUniform, 300, {0, 1, 0}};
+  auto scene = BuildOrDie(input);
+  PathTracer tracer(*scene);
+  // Irradiance over pi: every path escapes at once with L.
+  ExpectNear(tracer.EstimateIrradiance({0.2, 0.5, 0.1}, {0, 1, 0}, 0, Tight()), {300, 300, 300},
+             0.004);
+  // On the floor: rho L, the floor seeing the uniform sky alone.
+  ExpectNear(tracer.Estimate(At(*scene, {0.2, 0, 0.1}, {0, 1, 0}), 1, Tight()), {150, 150, 150},
+             0.004);
+  input.sky = {SkyKind::kCieOvercast, 900, {0, 1, 0}};
+  scene = BuildOrDie(input);
+  PathTracer overcast(*scene);
+  ExpectNear(overcast.EstimateIrradiance({0.2, 0.5, 0.1}, {0, 1, 0}, 2, Tight()), {700, 700, 700},
+             0.01);
 }
 
 }  // namespace
