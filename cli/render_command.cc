@@ -145,23 +145,24 @@ void ReportProgress(bool announce, const RuleOutcome& start, ProgressReporter* r
 
 // With --from: the previous solution the solve starts from (`previous`, which must outlive the
 // solve), and its direct light where nothing it sees changed.
-Status StartFromPrevious(const RenderOptions& options, const PatchScene& scene,
-                         const SolverSettings& settings, std::optional<PreviousSolve>* previous,
-                         bool refines, RefiningHooks* hooks) {
+Status StartFromPrevious(const RenderOptions& options, const std::string& from,
+                         const PatchScene& scene, const SolverSettings& settings,
+                         std::optional<PreviousSolve>* previous, bool refines,
+                         RefiningHooks* hooks) {
   if (refines) {
     return Error{
         "--from: a re-bake keeps the previous mesh, so it does not combine with adaptive "
         "refinement ([refine] in the job file)"};
   }
   const SceneHashes hashes = HashesOf(scene);
-  Result<PreviousSolve> read = LoadPreviousSolve(options.from, scene, hashes);
+  Result<PreviousSolve> read = LoadPreviousSolve(from, scene, hashes);
   if (!read) return Error{read.error()};
   previous->emplace(std::move(*read));
   hooks->previous = &(*previous)->values;
   hooks->start = ReusedStart(**previous, settings, hashes);
   if (!options.quiet) {
     std::printf(
-        "re-bake from %s: %zu patches kept, the direct light %s\n", options.from.c_str(),
+        "re-bake from %s: %zu patches kept, the direct light %s\n", from.c_str(),
         scene.patches.size(),
         hooks->start ? "of the emission's change alone traced" : "traced again (a lamp changed)");
   }
@@ -253,9 +254,14 @@ int RunRender(const RenderOptions& options) {
     KeepRounds(options, &*state, &save_status, &hooks);
   }
   std::optional<PreviousSolve> previous;
-  if (!options.from.empty()) {
+  const std::string& from = options.from.empty() ? job.from : options.from;
+  if (!from.empty() && !options.db.empty()) {
+    PrintError(options.scene + ": from: a re-bake does not combine with --db");
+    return kExitBadInput;
+  }
+  if (!from.empty()) {
     if (announce) std::printf("\r\033[K");
-    Status s = StartFromPrevious(options, loaded->mesh.patch_scene(), job.solver, &previous,
+    Status s = StartFromPrevious(options, from, loaded->mesh.patch_scene(), job.solver, &previous,
                                  job.refine.enabled, &hooks);
     if (!s.ok()) {
       PrintError(s.error());

@@ -46,6 +46,10 @@ struct Job {
   std::vector<IlluminancePlane> illuminance;
   // The IES lamps the job hangs in the scene (`[[lamps]]`), in the file's order.
   std::vector<JobLamp> lamps;
+  // A re-bake's previous render (`from`, relative to the job file; `render --from` wins): the
+  // output directory whose rebake.bin the solve starts from (cli/rebake_inputs.h). Empty: none.
+  // Not part of the job bundle: the farm does not run re-bakes.
+  std::string from;
 };
 
 // The image's width and height at most (`[camera] width`, `height`).

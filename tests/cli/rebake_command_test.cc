@@ -70,6 +70,24 @@ TEST(RebakeCommandTest, DimmedLightRebakesCheaplyWithTheSameBitsOnAnyThreads) {
   EXPECT_LT(4 * RebakeRaysOf(one.path()), 3 * RebakeRaysOf(full.path()));
 }
 
+// A job file's `from` names the previous render for `render`; the farm refuses it before
+// connecting, since it would solve the job in full.
+TEST(RebakeCommandTest, JobFileFromServesRenderAndSubmitRefusesIt) {
+  TempDir before_scene, after_scene, before, out;
+  ASSERT_EQ(RenderBox(CornellBoxLitBy(before_scene, 1), before.path()).exit_code, kExitOk);
+  CornellBoxLitBy(after_scene, 2);
+  const std::string job = after_scene.File("job.toml");
+  std::ofstream(job) << "scene = \"cornell-box.obj\"\nfrom = \"" << before.path() << "\"\n";
+  const auto r = RenderBox(job, out.path());
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("re-bake from " + before.path()), std::string::npos) << r.out;
+  const auto submitted = RunCommand(
+      {RADFARM_CLI_PATH, "--control", after_scene.File("no-master.sock"), "submit", job});
+  EXPECT_EQ(submitted.exit_code, kExitBadInput);
+  EXPECT_NE(submitted.err.find("the farm does not run re-bakes"), std::string::npos)
+      << submitted.err;
+}
+
 TEST(RebakeCommandTest, MissingDirectoryIsAnInputError) {
   TempDir scene, out;
   const auto r =

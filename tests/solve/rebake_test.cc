@@ -21,8 +21,8 @@ using bench::RmsError;
 using bench::RoomChange;
 using bench::TracePatchReference;
 
-SolverSettings Settings(uint32_t threads = 2) {
-  SolverSettings s{.gather_rays = kDefaultGatherRays};
+SolverSettings Settings(uint32_t threads = 2, uint32_t gather_rays = kDefaultGatherRays) {
+  SolverSettings s{.gather_rays = gather_rays};
   s.tolerance = 1e-3;
   s.threads = threads;
   return s;
@@ -42,12 +42,13 @@ struct Solved {
 // With `previous`, a re-bake from it; `reuse_start`: its direct light plus the change's is the
 // start, as `render --from` makes it where no lamp changed (cli/rebake_inputs.h).
 Solved SolveRoom(const RoomChange& change, const PreviousPatchValues* previous = nullptr,
-                 uint32_t threads = 2, bool reuse_start = false) {
+                 uint32_t threads = 2, bool reuse_start = false,
+                 uint32_t gather_rays = kDefaultGatherRays) {
   RefiningHooks hooks;
   hooks.previous = previous;
   if (reuse_start) hooks.start = RebakeStart(*previous, threads);
-  Result<RefiningSolveResult> solved =
-      SolveRefining(Meshed(FurnishedRoom(change)), Settings(threads), RefineSettings{}, {}, hooks);
+  Result<RefiningSolveResult> solved = SolveRefining(
+      Meshed(FurnishedRoom(change)), Settings(threads, gather_rays), RefineSettings{}, {}, hooks);
   EXPECT_TRUE(solved) << solved.error();
   return {std::move(solved->solution), solved->mesh->patch_scene()};
 }
@@ -68,11 +69,13 @@ double RmsDifference(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
 uint64_t RaysOf(const SolveResult& s) { return s.stats.rays + s.stats.start_rays; }
 
 // One change, judged: the re-bake from `before`'s solution against a full solve of `after`.
-void ExpectRebakeAsGoodAsFull(const RoomChange& before, const RoomChange& after) {
-  const Solved old = SolveRoom(before);
+// `gather_rays` 0: no direct start and no gather, the emitters shoot (their change too).
+void ExpectRebakeAsGoodAsFull(const RoomChange& before, const RoomChange& after,
+                              uint32_t gather_rays = kDefaultGatherRays) {
+  const Solved old = SolveRoom(before, nullptr, 2, false, gather_rays);
   const PreviousPatchValues previous = PreviousValuesOf(old.scene, old.solution);
-  const Solved full = SolveRoom(after);
-  const Solved rebake = SolveRoom(after, &previous, 2, true);
+  const Solved full = SolveRoom(after, nullptr, 2, false, gather_rays);
+  const Solved rebake = SolveRoom(after, &previous, 2, true, gather_rays);
   ASSERT_EQ(rebake.solution.radiosity.size(), full.solution.radiosity.size());
   const PatchReference ref = TracePatchReference(FurnishedRoom(after), full.scene, 37, 0.01, 2);
   ASSERT_GE(ref.patches.size(), 20u);
@@ -97,6 +100,11 @@ void ExpectRebakeAsGoodAsFull(const RoomChange& before, const RoomChange& after)
 }
 
 TEST(RebakeTest, DimmingOneLampOfEight) { ExpectRebakeAsGoodAsFull({}, {.lamp0_scale = 0.2}); }
+
+// Without the direct start the dimmed lamp's patches shoot their change as negative light.
+TEST(RebakeTest, DimmingOneLampOfEightWithoutTheDirectStart) {
+  ExpectRebakeAsGoodAsFull({}, {.lamp0_scale = 0.2}, 0);
+}
 
 TEST(RebakeTest, ReflectanceChanges) {
   ExpectRebakeAsGoodAsFull({}, {.wall = {0.8, 0.75, 0.7}, .table = {0.1, 0.1, 0.1}});
