@@ -143,8 +143,9 @@ void ReportProgress(bool announce, const RuleOutcome& start, ProgressReporter* r
   };
 }
 
-// With --from: the previous solution the solve starts from (`previous`, which must outlive the
-// solve), and its direct light where nothing it sees changed.
+// With --from (or the job's `from`): the previous solution the solve starts from (`previous`,
+// which must outlive the solve), and its start: the previous direct light plus the change's where
+// no lamp changed.
 Status StartFromPrevious(const RenderOptions& options, const std::string& from,
                          const PatchScene& scene, const SolverSettings& settings,
                          std::optional<PreviousSolve>* previous, bool refines,
