@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <functional>
 #include <optional>
 
@@ -14,6 +15,7 @@
 #include "cli/job_inputs.h"
 #include "cli/messages.h"
 #include "cli/progress_reporter.h"
+#include "cli/rebake_inputs.h"
 #include "cli/render_outputs.h"
 #include "cli/render_state.h"
 #include "core/display_budget.h"
@@ -141,6 +143,33 @@ void ReportProgress(bool announce, const RuleOutcome& start, ProgressReporter* r
   };
 }
 
+// With --from (or the job's `from`): the previous solution the solve starts from (`previous`,
+// which must outlive the solve), and its start: the previous direct light plus the change's where
+// no lamp changed.
+Status StartFromPrevious(const RenderOptions& options, const std::string& from,
+                         const PatchScene& scene, const SolverSettings& settings,
+                         std::optional<PreviousSolve>* previous, bool refines,
+                         RefiningHooks* hooks) {
+  if (refines) {
+    return Error{
+        "--from: a re-bake keeps the previous mesh, so it does not combine with adaptive "
+        "refinement ([refine] in the job file)"};
+  }
+  const SceneHashes hashes = HashesOf(scene);
+  Result<PreviousSolve> read = LoadPreviousSolve(from, scene, hashes);
+  if (!read) return Error{read.error()};
+  previous->emplace(std::move(*read));
+  hooks->previous = &(*previous)->values;
+  hooks->start = ReusedStart(**previous, settings, hashes);
+  if (!options.quiet) {
+    std::printf(
+        "re-bake from %s: %zu patches kept, the direct light %s\n", from.c_str(),
+        scene.patches.size(),
+        hooks->start ? "of the emission's change alone traced" : "traced again (a lamp changed)");
+  }
+  return Ok{};
+}
+
 }  // namespace
 
 CLI::App* AddRenderCommand(CLI::App& app, RenderOptions* options) {
@@ -162,6 +191,11 @@ CLI::App* AddRenderCommand(CLI::App& app, RenderOptions* options) {
   render->add_option("--db", options->db,
                      "Keep the rounds in this SQLite file; run the same command again to continue "
                      "an interrupted render where it stopped (same result)");
+  render
+      ->add_option("--from", options->from,
+                   "Re-bake: start from the solution a render wrote in this output directory and "
+                   "shoot only what changed (emission and reflectance of the same geometry)")
+      ->excludes("--db");
   return render;
 }
 
@@ -219,6 +253,21 @@ int RunRender(const RenderOptions& options) {
     }
     state.emplace(std::move(*opened));
     KeepRounds(options, &*state, &save_status, &hooks);
+  }
+  std::optional<PreviousSolve> previous;
+  const std::string& from = options.from.empty() ? job.from : options.from;
+  if (!from.empty() && !options.db.empty()) {
+    PrintError(options.scene + ": from: a re-bake does not combine with --db");
+    return kExitBadInput;
+  }
+  if (!from.empty()) {
+    if (announce) std::printf("\r\033[K");
+    Status s = StartFromPrevious(options, from, loaded->mesh.patch_scene(), job.solver, &previous,
+                                 job.refine.enabled, &hooks);
+    if (!s.ok()) {
+      PrintError(s.error());
+      return kExitBadInput;
+    }
   }
   ProgressReporter reporter(stdout, isatty(STDOUT_FILENO) == 1);
   if (!options.quiet) {
@@ -287,12 +336,18 @@ int RunRender(const RenderOptions& options) {
                                         spent_on(JobPhase::kOutputs);
                                         return timeline;
                                       });
+  // What a re-bake of this render starts from (solve/previous_solve.h).
+  const Status kept =
+      WritePreviousSolve((std::filesystem::path(options.out_dir) / kPreviousSolveFile).string(),
+                         PreviousSolveOf(mesh.patch_scene(), job.solver, solution));
   spent_on(JobPhase::kOutputs);
   reporter.ClearLine();
   PrintMessages(output_warnings);
-  if (Status s = written; !s.ok()) {
-    PrintError(s.error());
-    return kExitFailure;
+  for (const Status& s : {written, kept}) {
+    if (!s.ok()) {
+      PrintError(s.error());
+      return kExitFailure;
+    }
   }
   if (!options.quiet) {
     PrintDisplaySummary(display.stats, job.solver);

@@ -19,6 +19,7 @@ struct RenderOptions {
   JobOverrides overrides;
   bool quiet = false;  // no progress output
   std::string db;      // --db FILE: keep the rounds in a job store and resume from it
+  std::string from;    // --from DIR: re-bake from the solution a render wrote in DIR
 };
 
 CLI::App* AddRenderCommand(CLI::App& app, RenderOptions* options);

@@ -46,6 +46,11 @@ int RunSubmit(const SubmitOptions& options, const std::string& control_path) {
     PrintError(loaded.error());
     return kExitBadInput;
   }
+  if (!loaded->job.from.empty()) {
+    PrintError(options.scene + ": from: the farm does not run re-bakes; run `radfarm render " +
+               options.scene + " --out DIR` on one machine");
+    return kExitBadInput;
+  }
   const std::vector<uint8_t> bundle = codec::EncodeJobBundle({loaded->job, loaded->scene});
   if (bundle.size() > kMaxAttachmentBytes) {
     PrintError(options.scene + ": the job bundle is " + std::to_string(bundle.size()) +

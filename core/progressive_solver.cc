@@ -79,6 +79,7 @@ ProgressiveSolver::ProgressiveSolver(const PatchScene& scene, const SolverSettin
   if (direct_.empty()) return;
   emitters_direct_ = EmittersInDirectStart(scene, settings_);
   const double emitter_power = energy_.emitted;
+  punctual_power_ = punctual_power;
   energy_.emitted += punctual_power;
   double delivered = 0;
   energy_.absorbed = 0;
@@ -377,6 +378,14 @@ void ProgressiveSolver::Restore(uint32_t rounds_done, std::vector<Rgb> radiosity
   radiosity_ = std::move(radiosity);
   unshot_ = std::move(unshot);
   energy_ = energy;
+  energy_.unshot = TotalUnshotPower();
+}
+
+void ProgressiveSolver::StartFrom(std::vector<Rgb> radiosity, std::vector<Rgb> unshot) {
+  radiosity_ = std::move(radiosity);
+  unshot_ = std::move(unshot);
+  gather_ = false;
+  energy_.absorbed = energy_.emitted - energy_.escaped - SignedUnshotPower();
   energy_.unshot = TotalUnshotPower();
 }
 

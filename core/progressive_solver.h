@@ -152,6 +152,8 @@ class ProgressiveSolver {
   // The shadow rays the direct light above cast: they count against the ray budget
   // (core/solve_control.h), and are the same whatever the threads.
   uint64_t start_rays() const { return start_rays_; }
+  // What the punctual lamps delivered in the start, counted as emitted power.
+  double punctual_power() const { return punctual_power_; }
   // Unshot power (magnitudes) over emitted power: the convergence measure.
   double UnshotFraction() const;
   // Sum over patches of A_i times the unshot radiosity's channel sum, with its sign: the term of
@@ -164,6 +166,14 @@ class ProgressiveSolver {
   // energy.unshot is not taken but recomputed from `unshot`, as ApplyRound computes it.
   void Restore(uint32_t rounds_done, std::vector<Rgb> radiosity, std::vector<Rgb> unshot,
                const EnergyAccount& energy);
+  // A re-bake's start (core/warm_start.h), before round 0: the state becomes `radiosity` and the
+  // signed `unshot`, and no final gather follows. The previous solution's bounced light was
+  // gathered already; what is left to shoot is a change, small beside it, whose noise a gather of
+  // every patch would cost more to remove than it is worth. The energy account keeps what the
+  // start emitted and saw escape and books the rest as absorbed, so it balances.
+  void StartFrom(std::vector<Rgb> radiosity, std::vector<Rgb> unshot);
+  // Whether the emitter patches' light is in the direct start (they then never shoot).
+  bool emitters_direct() const { return emitters_direct_; }
 
  private:
   // A_i * (|r| + |g| + |b|) of the unshot radiosity.
@@ -187,6 +197,7 @@ class ProgressiveSolver {
   // gather takes only bounced light. Otherwise direct_ holds the punctual lights' alone, if any.
   bool emitters_direct_ = false;
   uint64_t start_rays_ = 0;
+  double punctual_power_ = 0;
   double mean_reflectance_ = 0;  // area-weighted, channel mean (EstimatedCarry)
   EnergyAccount energy_;
   uint32_t rounds_done_ = 0;

@@ -49,6 +49,10 @@ struct Job {
   std::vector<JobLamp> lamps;
   // The sky (`[sky]`; kind none without one). cli/ puts its dome and its sun in the scene.
   JobSky sky;
+  // A re-bake's previous render (`from`, relative to the job file; `render --from` wins): the
+  // output directory whose rebake.bin the solve starts from (cli/rebake_inputs.h). Empty: none.
+  // Not part of the job bundle: the farm does not run re-bakes.
+  std::string from;
 };
 
 // The image's width and height at most (`[camera] width`, `height`).

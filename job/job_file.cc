@@ -2,6 +2,8 @@
 //
 //   scene = "cornell-box.obj"     # the OBJ, .gltf or .glb; relative to this file's directory
 //   two_sided = false             # every surface receives and emits on both sides
+//   from = "out"                  # re-bake from the render written to this directory (relative
+//                                 # to this file), shooting only what changed: `render` only
 //   [mesh]
 //   patch_size = 30.0             # largest patch edge in scene units, > 0 (absent: automatic);
 //                                 # a triangle's longest edge may be sqrt(2) times it
@@ -297,6 +299,11 @@ Status ReadJob(const std::string& path, const toml::table& table, Job* job) {
   RADFARM_RETURN_IF_ERROR(ReadSection(
       path, &root, "solver", [&](TomlTableReader* r) { return ReadSolver(r, &job->solver); }));
   RADFARM_RETURN_IF_ERROR(root.Bool("two_sided", &job->two_sided));
+  std::string from;
+  bool has_from = false;
+  RADFARM_RETURN_IF_ERROR(root.String("from", &from, &has_from));
+  if (has_from && from.empty()) return root.ErrorFor("from", "must not be empty");
+  if (has_from) job->from = (std::filesystem::path(path).parent_path() / from).string();
   RADFARM_RETURN_IF_ERROR(ReadSection(path, &root, "camera", [&](TomlTableReader* r) -> Status {
     RADFARM_RETURN_IF_ERROR(r->String("name", &job->camera_name));
     return ReadCamera(r, job);

@@ -177,8 +177,14 @@ Result<RefiningSolveResult> SolveRefining(PatchMesh mesh, const SolverSettings& 
   out.patches_before = mesh.patch_scene().patches.size();
   ThreadPool pool(settings.threads);
   Result<std::unique_ptr<RoundDriver>> driver =
-      RoundDriver::Start(std::move(mesh), settings, refine, hooks.resume, pool);
+      RoundDriver::Start(std::move(mesh), settings, refine, hooks.resume, pool, hooks.start);
   if (!driver) return Error{driver.error()};
+  if (hooks.previous != nullptr) {
+    if (refine.enabled || hooks.resume != nullptr) {
+      return Error{"a re-bake does not combine with adaptive refinement or a resumed render"};
+    }
+    if (Status s = (*driver)->WarmStart(*hooks.previous); !s) return Error{s.error()};
+  }
   const double start_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (hooks.after_start) hooks.after_start(start_seconds, (*driver)->solver().start_rays());

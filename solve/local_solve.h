@@ -15,6 +15,7 @@
 #include "core/round_reduction.h"
 #include "core/solver_settings.h"
 #include "core/thread_pool.h"
+#include "core/warm_start.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/refine_settings.h"
 #include "solve/round_driver.h"
@@ -74,6 +75,12 @@ struct RefiningHooks {
   // the seconds that took and the shadow rays the direct light cast (ProgressiveSolver::
   // start_rays: they count against the ray budget).
   std::function<void(double seconds, uint64_t shadow_rays)> after_start;
+  // Traces the direct-light start (core/direct_start.h); empty: on the solve's own threads. A
+  // re-bake whose lights did not change gives back the previous start's.
+  StartLightSource start;
+  // A re-bake (`radfarm render --from`): the previous solution of the same patches the solve
+  // starts from (RoundDriver::WarmStart). Not with refinement or `resume`.
+  const PreviousPatchValues* previous = nullptr;
 };
 
 // Solves `mesh` with adaptive refinement as `refine` says (off: the mesh as given) until a

@@ -101,6 +101,30 @@ Status RoundDriver::Resume(const SolveState& state) {
   return Ok{};
 }
 
+Status RoundDriver::WarmStart(const PreviousPatchValues& previous) {
+  const size_t n = scene_->patches.size();
+  for (const std::vector<Rgb>* v :
+       {&previous.radiosity, &previous.unshot, &previous.emission, &previous.reflectance}) {
+    if (v->size() != n) {
+      return Error{"the previous solution holds " + std::to_string(v->size()) +
+                   " patches, the mesh " + std::to_string(n)};
+    }
+  }
+  if (!previous.direct.empty() && previous.direct.size() != n) {
+    return Error{"the previous solution's direct light does not fit the mesh"};
+  }
+  uint32_t black = 0;
+  std::optional<WarmState> warm =
+      WarmStartOf(*scene_, solver_->direct_light(), solver_->emitters_direct(), previous, &black);
+  if (!warm) {
+    return Error{"patch " + std::to_string(black) +
+                 " was black and now reflects: the light it received was not recorded, so only a "
+                 "full render can light it"};
+  }
+  solver_->StartFrom(std::move(warm->radiosity), std::move(warm->unshot));
+  return Ok{};
+}
+
 std::optional<uint64_t> RoundDriver::BudgetRaysLeft() const {
   if (budget_.max_rays == 0) return std::nullopt;
   return budget_.max_rays - std::min(budget_.max_rays, RaysSpent());
@@ -235,6 +259,8 @@ SolveResult RoundDriver::Finish(double seconds, uint32_t threads) const {
   out.radiosity = solver_->radiosity();
   out.unshot = solver_->unshot();
   out.direct_light = solver_->direct_light();
+  out.emitters_direct = solver_->emitters_direct();
+  out.punctual_power = solver_->punctual_power();
   return out;
 }
 

@@ -36,6 +36,7 @@
 #include "core/round_reduction.h"
 #include "core/solver_settings.h"
 #include "core/thread_pool.h"
+#include "core/warm_start.h"
 #include "mesh/light_scores.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/refine_settings.h"
@@ -100,6 +101,12 @@ class RoundDriver {
   // Apply nothing else may be called on the driver.
   std::unique_ptr<RoundReduction> Reduction(const RoundPlan& plan);
   AppliedRound Apply(const RoundPlan& plan, RoundReduction& reduction, double seconds);
+
+  // A re-bake: before the first round, the solver starts from `previous`, a converged solution of
+  // the same patches with other emission and reflectance (core/warm_start.h), and shoots the
+  // difference; no final gather. Errors: sizes that do not fit the scene; a patch that was black
+  // and now reflects.
+  Status WarmStart(const PreviousPatchValues& previous);
 
   // Set once the solve has stopped (by PlanNext or a capped round in Apply), with the reason.
   const std::optional<std::string>& stop_reason() const { return stop_; }

@@ -77,6 +77,10 @@ struct SolveResult {
   // The direct light per patch the solve started from (ProgressiveSolver::direct_light()); empty
   // where it did not. The display uses it (display/solved_display.h).
   std::vector<Rgb> direct_light;
+  // The emitter patches' light is in direct_light (ProgressiveSolver::emitters_direct), and what
+  // the punctual lamps delivered in it (ProgressiveSolver::punctual_power): a re-bake needs both.
+  bool emitters_direct = false;
+  double punctual_power = 0;
 };
 
 }  // namespace radfarm

@@ -92,6 +92,17 @@ TEST(LoadJobTest, AbsoluteScenePathIsKept) {
   EXPECT_EQ(job->scene_path, "/data/room.obj");
 }
 
+TEST(LoadJobTest, FromIsRelativeToTheJobFileAndNotEmpty) {
+  const std::string path = WriteScratchFile("from.toml", "scene = \"x.obj\"\nfrom = \"out\"\n");
+  Result<Job> job = LoadJob(path);
+  ASSERT_TRUE(job.ok()) << job.error();
+  EXPECT_EQ(job->from, (std::filesystem::path(path).parent_path() / "out").string());
+  EXPECT_EQ(LoadJob(WriteScratchFile("abs.toml", "scene = \"x.obj\"\n"))->from, "");
+  const std::string empty = WriteScratchFile("from_empty.toml", "scene = \"x.obj\"\nfrom = \"\"\n");
+  EXPECT_EQ(JobError(empty).rfind(empty + ":2: 'from' must not be empty", 0), 0u)
+      << JobError(empty);
+}
+
 TEST(LoadJobTest, ReadsEveryKey) {
   Result<Job> job = LoadJob(DataPath("jobs/full.toml"));
   ASSERT_TRUE(job.ok()) << job.error();
