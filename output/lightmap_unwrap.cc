@@ -123,8 +123,9 @@ UnwrappedLightmaps UnwrapLightmaps(const std::vector<LightmapTriangle>& triangle
   for (uint32_t o = 0; o < objects.size(); ++o) {
     if (by_object[o].empty()) continue;
     const ObjectCharts charts = Chart(triangles, std::move(by_object[o]));
+    if (!(charts.area > 0)) continue;  // nothing to light: the mesh drops such faces too
     const auto fit = Fit(charts, texel_size, fixed_size);
-    if (!fit || !(charts.area > 0)) {
+    if (!fit) {
       if (warnings != nullptr) {
         warnings->push_back(objects[o].name +
                             ": its lightmap charts do not fit a lightmap; it "

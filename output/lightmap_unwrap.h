@@ -28,7 +28,8 @@ struct UnwrappedLightmaps {
 // `texel_size` scene units, packed into the smallest square that holds them. A square over
 // kMaxLightmapSize takes coarser texels. `fixed_size` > 0: every object's square is that side,
 // with the texel the largest that fits (the job's lightmap_size). An object whose charts cannot
-// fit gets no UVs and a warning naming it in *warnings (may be null).
+// fit gets no UVs and a warning naming it in *warnings (may be null); one without area gets no
+// UVs and no warning (the mesh drops its faces).
 UnwrappedLightmaps UnwrapLightmaps(const std::vector<LightmapTriangle>& triangles,
                                    const std::vector<InputObject>& objects, double texel_size,
                                    uint32_t fixed_size, std::vector<std::string>* warnings);

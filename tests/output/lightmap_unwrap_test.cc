@@ -146,5 +146,14 @@ TEST(LightmapUnwrapTest, GutterTexelsAreAFewPercentOfALargeChartsSquare) {
   EXPECT_GT(fraction, 0.0);
 }
 
+TEST(LightmapUnwrapTest, AnObjectWithoutAreaGetsNoLightmapAndNoWarning) {
+  std::vector<LightmapTriangle> triangles = {
+      {0, {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{2, 0, 0}}, {}}};
+  std::vector<std::string> warnings;
+  const UnwrappedLightmaps u = UnwrapLightmaps(triangles, Objects(1), 0.05, 0, &warnings);
+  EXPECT_EQ(u.size[0], 0u);
+  EXPECT_EQ(warnings, std::vector<std::string>{});
+}
+
 }  // namespace
 }  // namespace radfarm
