@@ -176,7 +176,7 @@ CLI::App* AddRenderCommand(CLI::App& app, RenderOptions* options) {
   CLI::App* render = app.add_subcommand(
       "render",
       "Solve a scene on this machine and write image.png, image.exr, radiosity.ply, lit.glb, "
-      "lightmaps/ (objects with a second UV set), patches.csv, stats.json and the job file's "
+      "lightmaps/, patches.csv, stats.json and the job file's "
       "illuminance report");
   render
       ->add_option("SCENE", options->scene,

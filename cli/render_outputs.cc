@@ -17,6 +17,7 @@
 #include "output/illuminance_files.h"
 #include "output/illuminance_planes.h"
 #include "output/image.h"
+#include "output/lightmap_unwrap.h"
 #include "output/lightmap_uvs.h"
 #include "output/lightmap_writer.h"
 #include "output/lit_glb_writer.h"
@@ -61,19 +62,27 @@ Status WriteOutputs(const std::string& dir, const PatchMesh& mesh, const Display
   const auto path = [&](const char* name) { return (fs::path(dir) / name).string(); };
   std::vector<uint32_t> patch_object(mesh.patch_scene().patches.size());
   for (uint32_t p = 0; p < patch_object.size(); ++p) patch_object[p] = mesh.patch_object(p);
-  // Lightmaps of the objects with a second UV set, in that UV: the job's size or texel, else
-  // texels of a quarter patch, about the display's vertex spacing after its midpoint cut, or of a
-  // sixteenth where the display added points where the light bends (near a lamp or a shadow's
-  // edge a quarter patch blurs what the display shows: tests/cli/lightmap_render_test.cc).
-  const DisplayLightmapUvs uvs =
-      LocateLightmapUvs(display, patch_object, mesh.objects().size(), mesh.lightmap_triangles());
+  // Lightmaps of every object: in its second UV set, or in charts made for it where it has none.
+  // Texels of the job's size, else of a quarter patch, about the display's vertex spacing after
+  // its midpoint cut, or of a sixteenth where the display added points where the light bends (near
+  // a lamp or a shadow's edge a quarter patch blurs what the display shows:
+  // tests/cli/lightmap_render_test.cc).
   const double texel = job.lightmap_texel > 0  ? job.lightmap_texel
                        : shown.stats.added > 0 ? mesh.patch_size() / 16
                                                : mesh.patch_size() / 4;
+  const UnwrappedLightmaps unwrapped = UnwrapLightmaps(mesh.unmapped_triangles(), mesh.objects(),
+                                                       texel, job.lightmap_size, warnings);
+  std::vector<LightmapTriangle> lightmap_triangles = mesh.lightmap_triangles();
+  lightmap_triangles.insert(lightmap_triangles.end(), unwrapped.triangles.begin(),
+                            unwrapped.triangles.end());
+  std::vector<uint32_t> sizes = unwrapped.size;
+  for (uint32_t& size : sizes) size = size > 0 ? size : job.lightmap_size;
+  const DisplayLightmapUvs uvs =
+      LocateLightmapUvs(display, patch_object, mesh.objects().size(), lightmap_triangles);
   std::vector<std::string> failures;
   const std::vector<Lightmap> lightmaps =
-      WriteLightmaps(dir, display, mesh.objects(), uvs, mesh.lightmap_triangles(), exposed, texel,
-                     job.lightmap_size, warnings, &failures);
+      WriteLightmaps(dir, display, mesh.objects(), uvs, lightmap_triangles, exposed, texel, sizes,
+                     warnings, &failures);
   LitLightmaps lit_lightmaps{&uvs, std::vector<std::string>(mesh.objects().size()),
                              std::vector<std::string>(mesh.objects().size())};
   for (const Lightmap& map : lightmaps) {

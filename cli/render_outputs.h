@@ -28,8 +28,9 @@ Status CreateOutputDirectory(const std::string& dir);
 // file that can be is written: the error holds one line per file that could not be.
 // stats.json reports `patches_before_refinement` (0: the mesh was not refined, so the same as
 // `patches_after_refinement`, which is the patch count of `mesh`) and the display's figures.
-// Objects with a second UV set (glTF TEXCOORD_1) also get lightmaps/<object>.exr and .png
-// (output/lightmap_writer.h), referenced from lit.glb; their warnings (overlapping UVs) are
+// Every object also gets lightmaps/<object>.exr and .png (output/lightmap_writer.h), in its second
+// UV set (glTF TEXCOORD_1) or in charts made for it (output/lightmap_unwrap.h), referenced from
+// lit.glb; their warnings (overlapping UVs) are
 // appended to *warnings when it is not null. stats.json carries the job's timeline as `timeline`
 // gives it when stats.json is written (after the lightmaps, beside the other files), if given.
 Status WriteOutputs(const std::string& dir, const PatchMesh& mesh, const Display& display,

@@ -80,6 +80,10 @@ struct LightmapTriangle {
   std::array<std::array<float, 2>, 3> uv;
 };
 std::vector<LightmapTriangle> LightmapTriangles(const InputScene& scene);
+// The faces of the objects none of whose faces has a lightmap UV (every OBJ object; glTF objects
+// without TEXCOORD_1), fanned as LightmapTriangles with zero UVs: output/lightmap_unwrap.h gives
+// them charts of their own.
+std::vector<LightmapTriangle> UnmappedTriangles(const InputScene& scene);
 
 // Reads and validates an OBJ (and the MTL files it names). Errors are one line naming the file and
 // the line, face or material: missing file, unparseable line, index out of range, non-finite

@@ -229,7 +229,8 @@ Result<MeshPlan> PlanMesh(const InputScene& scene, const MeshSettings& settings,
       const int sides = scene.materials[face.material].two_sided ? 2 : 1;
       piece_count += sides * std::min(plans.back().PieceCount(), kMaxPatches + 1);  // no overflow
     }
-    const uint64_t allowed = std::min(kMaxPatches, PatchesThatFit(memory_limit).value_or(kMaxPatches));
+    const uint64_t allowed =
+        std::min(kMaxPatches, PatchesThatFit(memory_limit).value_or(kMaxPatches));
     mp.size = SummarizePatchSizes(plans, sizes);
     mp.sheets.assign(faces.size(), {});
     mp.narrow.assign(faces.size(), {});
@@ -319,6 +320,7 @@ Result<PatchMesh> PatchMesh::Build(const InputScene& scene, const MeshSettings& 
   pm.materials_ = scene.materials;
   pm.objects_ = ObjectsOrDefault(scene);
   pm.lightmap_triangles_ = LightmapTriangles(scene);
+  pm.unmapped_triangles_ = UnmappedTriangles(scene);
   const auto set_object = [&pm](uint32_t surface, uint32_t object) {
     if (pm.surface_object_.size() <= surface) pm.surface_object_.resize(surface + 1);
     pm.surface_object_[surface] = object;
@@ -384,6 +386,7 @@ PatchMesh PatchMesh::Rebuilt(const std::vector<Piece>& pieces, ThreadPool* pool)
   pm.objects_ = objects_;
   pm.surface_object_ = surface_object_;
   pm.lightmap_triangles_ = lightmap_triangles_;
+  pm.unmapped_triangles_ = unmapped_triangles_;
   pm.materials_ = materials_;
   pm.tol_ = tol_;
   pm.memory_limit_ = memory_limit_;

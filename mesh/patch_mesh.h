@@ -107,6 +107,8 @@ class PatchMesh {
   const std::vector<InputObject>& objects() const { return objects_; }
   // The input's faces with a lightmap UV (glTF TEXCOORD_1), for output/lightmap_writer.h.
   const std::vector<LightmapTriangle>& lightmap_triangles() const { return lightmap_triangles_; }
+  // The faces of the objects without one (UnmappedTriangles), for output/lightmap_unwrap.h.
+  const std::vector<LightmapTriangle>& unmapped_triangles() const { return unmapped_triangles_; }
   uint32_t patch_object(uint32_t patch) const {
     return surface_object_[data_.scene.patches[patch].surface];
   }
@@ -132,6 +134,7 @@ class PatchMesh {
   std::vector<InputObject> objects_;
   std::vector<uint32_t> surface_object_;  // by surface id
   std::vector<LightmapTriangle> lightmap_triangles_;
+  std::vector<LightmapTriangle> unmapped_triangles_;
   std::vector<Material> materials_;
   double tol_ = 0;
   uint64_t memory_limit_ = 0;

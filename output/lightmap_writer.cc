@@ -4,8 +4,10 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <system_error>
+#include <tuple>
 
 #include "output/exr_writer.h"
 #include "output/png_writer.h"
@@ -13,6 +15,8 @@
 
 namespace radfarm {
 namespace {
+
+constexpr int kSeamFitPasses = 16;
 
 double UvArea(const std::array<Uv, 3>& t) {
   return 0.5 * std::abs(double(t[1][0] - t[0][0]) * double(t[2][1] - t[0][1]) -
@@ -53,6 +57,61 @@ std::string NameHash(const std::string& name) {
   return out;
 }
 
+// Samples along every seam of one lightmap: display edges drawn twice (by position, bit for bit)
+// at different UVs, about two a texel on each side, each side's own light at each point.
+std::vector<UvRaster::Sample> SeamSamples(const DisplayMesh& mesh, const DisplayLightmapUvs& uvs,
+                                          const std::vector<uint32_t>& drawn, uint32_t size) {
+  using Key = std::tuple<double, double, double, double, double, double>;
+  struct Side {
+    uint32_t triangle;
+    int corner;  // the edge from this corner to the next
+    bool reversed;
+  };
+  std::map<Key, std::vector<Side>> edges;
+  for (const uint32_t d : drawn) {
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& a = mesh.positions[mesh.triangles[d][k]];
+      const Vec3& b = mesh.positions[mesh.triangles[d][(k + 1) % 3]];
+      const bool reversed = std::tie(b.x, b.y, b.z) < std::tie(a.x, a.y, a.z);
+      const Vec3& lo = reversed ? b : a;
+      const Vec3& hi = reversed ? a : b;
+      edges[Key{lo.x, lo.y, lo.z, hi.x, hi.y, hi.z}].push_back({d, k, reversed});
+    }
+  }
+  std::vector<UvRaster::Sample> out;
+  for (const auto& [key, sides] : edges) {
+    if (sides.size() != 2) continue;
+    std::array<std::array<Uv, 2>, 2> uv;
+    std::array<std::array<Rgb, 2>, 2> light;
+    for (int s = 0; s < 2; ++s) {
+      const Side& side = sides[s];
+      for (int e = 0; e < 2; ++e) {
+        const int corner = (side.corner + (e != side.reversed ? 1 : 0)) % 3;
+        uv[s][e] = uvs.uv[side.triangle][corner];
+        light[s][e] = mesh.radiance[mesh.triangles[side.triangle][corner]];
+      }
+    }
+    double texels = 0;
+    for (int e = 0; e < 2; ++e) {
+      texels = std::max({texels, std::abs(double(uv[0][e][0]) - uv[1][e][0]) * size,
+                         std::abs(double(uv[0][e][1]) - uv[1][e][1]) * size});
+    }
+    if (texels < 0.5) continue;  // one place in UV: no seam
+    for (int s = 0; s < 2; ++s) {
+      const double length =
+          std::hypot(double(uv[s][1][0]) - uv[s][0][0], double(uv[s][1][1]) - uv[s][0][1]) * size;
+      const int count = std::clamp(int(std::ceil(2 * length)), 1, 1 << 16);
+      for (int i = 0; i < count; ++i) {
+        const double f = (i + 0.5) / count;
+        out.push_back({Uv{float((1 - f) * uv[s][0][0] + f * uv[s][1][0]),
+                          float((1 - f) * uv[s][0][1] + f * uv[s][1][1])},
+                       light[s][0] * (1 - f) + light[s][1] * f});
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 uint32_t LightmapSize(double world_area, double uv_area, double texel_size) {
@@ -88,13 +147,11 @@ std::vector<std::string> LightmapStems(const std::vector<InputObject>& objects) 
   return out;
 }
 
-std::vector<Lightmap> WriteLightmaps(const std::string& dir, const DisplayMesh& mesh,
-                                     const std::vector<InputObject>& objects,
-                                     const DisplayLightmapUvs& uvs,
-                                     const std::vector<LightmapTriangle>& triangles,
-                                     const Camera& exposed, double texel_size, uint32_t size,
-                                     std::vector<std::string>* warnings,
-                                     std::vector<std::string>* failures) {
+std::vector<Lightmap> WriteLightmaps(
+    const std::string& dir, const DisplayMesh& mesh, const std::vector<InputObject>& objects,
+    const DisplayLightmapUvs& uvs, const std::vector<LightmapTriangle>& triangles,
+    const Camera& exposed, double texel_size, const std::vector<uint32_t>& sizes,
+    std::vector<std::string>* warnings, std::vector<std::string>* failures) {
   std::vector<Lightmap> out;
   const std::vector<bool> baked = BakedSides(mesh, uvs, triangles.size());
   // By object: the input triangles' areas, for the resolution.
@@ -125,6 +182,7 @@ std::vector<Lightmap> WriteLightmaps(const std::string& dir, const DisplayMesh& 
     }
     Lightmap map;
     map.object = o;
+    const uint32_t size = o < sizes.size() ? sizes[o] : 0;
     map.size = size > 0 ? size : LightmapSize(world_area[o], uv_area[o], texel_size);
     map.exr = "lightmaps/" + stems[o] + ".exr";
     map.png = "lightmaps/" + stems[o] + ".png";
@@ -133,6 +191,8 @@ std::vector<Lightmap> WriteLightmaps(const std::string& dir, const DisplayMesh& 
       const auto& t = mesh.triangles[d];
       raster.Draw(uvs.uv[d], {mesh.radiance[t[0]], mesh.radiance[t[1]], mesh.radiance[t[2]]});
     }
+    raster.Extend(1.0);  // every texel bilinear filtering reads at the island's border
+    raster.Fit(SeamSamples(mesh, uvs, drawn[o], map.size), kSeamFitPasses);
     raster.Dilate(kLightmapGutter);
     map.stats = raster.stats();
     const std::string& name = objects[o].name.empty() ? stems[o] : objects[o].name;

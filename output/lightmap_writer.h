@@ -1,9 +1,12 @@
-// Lightmaps: for every object with a lightmap UV (glTF TEXCOORD_1; output/lightmap_uvs.h), its
-// light baked in that UV: lightmaps/<object>.exr (float linear radiance, the units of COLOR_0) and
+// Lightmaps: for every object with a lightmap UV (glTF TEXCOORD_1, or charts made for it:
+// output/lightmap_unwrap.h; placed on the display by output/lightmap_uvs.h), its light baked in
+// that UV: lightmaps/<object>.exr (float linear radiance, the units of COLOR_0) and
 // lightmaps/<object>.png (the image's exposure and sRGB curve, a preview lit.glb shows as its
 // emission). Each display triangle is drawn in UV space with its vertices' radiance
 // (output/uv_raster.h), so a texel shows what the display shows at its point, cuts across
-// discontinuities included; then kLightmapGutter texels of gutter are filled around every island.
+// discontinuities included; the texels just outside every island are stitched (UvRaster::Extend,
+// then UvRaster::Fit to samples along every seam: bilinear filtering on either side of a seam
+// reads the display's light there) and kLightmapGutter texels of gutter filled around it.
 // A lightmap holds one side: where a two-sided surface has both, the brighter side (area-weighted
 // luminance over each input triangle: the inside of a room whose walls face out).
 #pragma once
@@ -49,17 +52,16 @@ inline constexpr size_t kMaxLightmapStem = 96;
 std::vector<std::string> LightmapStems(const std::vector<InputObject>& objects);
 
 // Bakes and writes the lightmaps of the objects `uvs` places (into `dir`/lightmaps/, created when
-// needed). `size` 0: LightmapSize with `texel_size`; otherwise every lightmap is size x size.
+// needed). `sizes`, by object (missing entries 0): the side of its lightmap, 0 for LightmapSize
+// with `texel_size`.
 // Appends a warning naming the object when its UVs overlap (more than 1% of its texels drawn
 // twice) or some of its display triangles lie on no input triangle. The PNG uses `exposed`'s
 // exposure. Returns the lightmaps written; a file that cannot be written does not stop the others:
 // its error, naming the file, is appended to *failures (not null) and its object left out.
-std::vector<Lightmap> WriteLightmaps(const std::string& dir, const DisplayMesh& mesh,
-                                     const std::vector<InputObject>& objects,
-                                     const DisplayLightmapUvs& uvs,
-                                     const std::vector<LightmapTriangle>& triangles,
-                                     const Camera& exposed, double texel_size, uint32_t size,
-                                     std::vector<std::string>* warnings,
-                                     std::vector<std::string>* failures);
+std::vector<Lightmap> WriteLightmaps(
+    const std::string& dir, const DisplayMesh& mesh, const std::vector<InputObject>& objects,
+    const DisplayLightmapUvs& uvs, const std::vector<LightmapTriangle>& triangles,
+    const Camera& exposed, double texel_size, const std::vector<uint32_t>& sizes,
+    std::vector<std::string>* warnings, std::vector<std::string>* failures);
 
 }  // namespace radfarm

@@ -28,6 +28,37 @@ bool OwnsEdge(const Point& a, const Point& b) {
   return dy < 0 || (dy == 0 && dx > 0);
 }
 
+using Point2 = std::array<double, 2>;
+
+// Twice the signed area of (a, b, p), as Edge in texels.
+double Cross2(const Point2& a, const Point2& b, const Point2& p) {
+  return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+}
+
+// The Chebyshev (L-infinity) distance from p to the segment a-b: max(|dx|, |dy|) is convex and
+// piecewise linear along the segment, so its least is at an end or where |dx| = |dy|.
+double DistanceToSegment(const Point2& a, const Point2& b, const Point2& p) {
+  const double ax = a[0] - p[0], ay = a[1] - p[1], dx = b[0] - a[0], dy = b[1] - a[1];
+  const auto at = [&](double s) { return std::max(std::abs(ax + s * dx), std::abs(ay + s * dy)); };
+  double best = std::min(at(0), at(1));
+  // ax + s dx = ay + s dy, and ax + s dx = -(ay + s dy).
+  for (const double denominator : {dx - dy, dx + dy}) {
+    if (denominator == 0) continue;
+    const double s = (denominator == dx - dy ? ay - ax : -ay - ax) / denominator;
+    if (s > 0 && s < 1) best = std::min(best, at(s));
+  }
+  return best;
+}
+
+// From p to the counter-clockwise triangle t, Chebyshev: 0 inside.
+double DistanceToTriangle(const std::array<Point2, 3>& t, const Point2& p) {
+  if (Cross2(t[0], t[1], p) >= 0 && Cross2(t[1], t[2], p) >= 0 && Cross2(t[2], t[0], p) >= 0) {
+    return 0;
+  }
+  return std::min({DistanceToSegment(t[0], t[1], p), DistanceToSegment(t[1], t[2], p),
+                   DistanceToSegment(t[2], t[0], p)});
+}
+
 }  // namespace
 
 UvRaster::UvRaster(uint32_t width, uint32_t height) {
@@ -60,6 +91,9 @@ void UvRaster::Draw(const std::array<Uv, 3>& uv, const std::array<Rgb, 3>& value
     ++stats_.degenerate;
     return;
   }
+  Drawn& drawn = drawn_.emplace_back();
+  for (int k = 0; k < 3; ++k) drawn.at[k] = {double(p[k].x) / kSub, double(p[k].y) / kSub};
+  drawn.value = v;
   const auto texel_range = [](int64_t lo, int64_t hi, uint32_t size) {
     // The texels whose centres, (i + 0.5) * kSub, lie within [lo, hi].
     const int64_t first = -FloorDiv(kSub / 2 - lo, kSub);
@@ -87,6 +121,72 @@ void UvRaster::Draw(const std::array<Uv, 3>& uv, const std::array<Rgb, 3>& value
           v[0] * (double(w0) / a) + v[1] * (double(w1) / a) + v[2] * (double(w2) / a);
       state_[i] = kDrawn;
       ++stats_.covered;
+    }
+  }
+}
+
+void UvRaster::Extend(double reach) {
+  std::vector<double> nearest(state_.size(), INFINITY);
+  for (const Drawn& t : drawn_) {
+    const auto& [a, b, c] = t.at;
+    const double area = Cross2(a, b, c);
+    const auto range = [&](int axis, uint32_t size) {
+      const double lo = std::min({a[axis], b[axis], c[axis]}) - reach - 0.5;
+      const double hi = std::max({a[axis], b[axis], c[axis]}) + reach - 0.5;
+      return std::pair{int64_t(std::max(std::ceil(lo), 0.0)),
+                       int64_t(std::min(std::floor(hi), double(size) - 1))};
+    };
+    const auto [x0, x1] = range(0, image_.width);
+    const auto [y0, y1] = range(1, image_.height);
+    for (int64_t y = y0; y <= y1; ++y) {
+      for (int64_t x = x0; x <= x1; ++x) {
+        const size_t i = Index(uint32_t(x), uint32_t(y));
+        if (state_[i] == kDrawn) continue;
+        const Point2 p{double(x) + 0.5, double(y) + 0.5};
+        const double d = DistanceToTriangle(t.at, p);
+        if (!(d <= reach) || !(d < nearest[i])) continue;
+        nearest[i] = d;
+        // Barycentric coordinates, negative outside: the triangle's linear function extended.
+        const double w0 = Cross2(b, c, p) / area, w1 = Cross2(c, a, p) / area;
+        const Rgb value = t.value[0] * w0 + t.value[1] * w1 + t.value[2] * (1 - w0 - w1);
+        image_.pixels[i] =
+            Rgb(std::max(value.r, 0.0), std::max(value.g, 0.0), std::max(value.b, 0.0));
+        if (state_[i] == kEmpty) ++stats_.extended;
+        state_[i] = kExtended;
+      }
+    }
+  }
+}
+
+void UvRaster::Fit(const std::vector<Sample>& samples, int passes) {
+  const int64_t w = image_.width, h = image_.height;
+  for (int pass = 0; pass < passes; ++pass) {
+    for (const Sample& s : samples) {
+      const double x = double(s.uv[0]) * w - 0.5, y = double(s.uv[1]) * h - 0.5;
+      if (!std::isfinite(x) || !std::isfinite(y)) continue;
+      const int64_t x0 = int64_t(std::floor(x)), y0 = int64_t(std::floor(y));
+      const double fx = x - double(x0), fy = y - double(y0);
+      const std::array<double, 4> weight = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy,
+                                            fx * fy};
+      std::array<int64_t, 4> at{};
+      Rgb read;
+      double free_weight = 0;  // sum of the squared weights of the texels Fit may move
+      for (int k = 0; k < 4; ++k) {
+        const int64_t tx = x0 + (k & 1), ty = y0 + (k >> 1);
+        at[k] = tx < 0 || ty < 0 || tx >= w || ty >= h ? -1
+                                                       : int64_t(Index(uint32_t(tx), uint32_t(ty)));
+        if (at[k] < 0) continue;
+        read += image_.pixels[size_t(at[k])] * weight[k];
+        if (state_[size_t(at[k])] == kExtended) free_weight += weight[k] * weight[k];
+      }
+      if (free_weight < 1e-6) continue;
+      const Rgb step = (s.value - read) / free_weight;
+      for (int k = 0; k < 4; ++k) {
+        if (at[k] < 0 || state_[size_t(at[k])] != kExtended) continue;
+        Rgb& texel = image_.pixels[size_t(at[k])];
+        texel = texel + step * weight[k];
+        texel = Rgb(std::max(texel.r, 0.0), std::max(texel.g, 0.0), std::max(texel.b, 0.0));
+      }
     }
   }
 }

@@ -4,10 +4,11 @@ Two ways, by the panel's choice:
 - lit copies: lit.glb imported into the collection "radfarm lit", each object named "NAME lit"
   and tagged with its original's name (`radfarm_lit_of`); the originals are hidden in the
   viewport (tagged `radfarm_hidden`, shown again for the next bake's export), never changed.
-- lightmaps: each object that got a lightmap (a second UV map) keeps its materials, each with
-  nodes added (tagged `radfarm lightmap ...`): its second UV map into an Image Texture of
-  lightmaps/NAME.png into an Emission, mixed over the material's own surface; objects without a
-  lightmap, or without a material, come back as lit copies.
+- lightmaps: each object with a second UV map (its lightmap is baked in it) keeps its materials,
+  each with nodes added (tagged `radfarm lightmap ...`): its second UV map into an Image Texture
+  of lightmaps/NAME.png into an Emission, mixed over the material's own surface; objects without
+  a second UV map (radfarm charted their lightmaps in UVs only lit.glb carries) or without a
+  material come back as lit copies.
 """
 
 import os
@@ -34,8 +35,11 @@ def apply_result(context, out_dir, mode):
         for name in names:
             obj = bpy.data.objects.get(name)
             image_path = os.path.join(out_dir, "lightmaps", name + ".png")
-            # An object with no material has none to keep the lightmap in: it gets a lit copy.
+            # An object with no material has none to keep the lightmap in, and one without a
+            # second UV map has its lightmap in charts radfarm made, which only lit.glb carries:
+            # either gets a lit copy.
             if (obj is not None and obj.type == "MESH" and os.path.isfile(image_path)
+                    and len(obj.data.uv_layers) > 1
                     and any(slot.material for slot in obj.material_slots)):
                 add_lightmap(obj, image_path, 1.0 / scale)
                 lightmapped.append(name)

@@ -65,7 +65,8 @@ class RadfarmSettings(bpy.types.PropertyGroup):
                 "Import the lit objects beside yours (yours hidden), shown in Solid view"),
                ("LIGHTMAPS", "Lightmaps",
                 "Add each lightmap to your own object's materials (objects with a second UV "
-                "map); the others come back as lit copies; shown in Material Preview")),
+                "map); the others come back as lit copies, their lightmaps in UVs radfarm "
+                "made; shown in Material Preview")),
         default="LIT_COPIES",
     )
     tolerance: bpy.props.FloatProperty(

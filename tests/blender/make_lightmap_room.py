@@ -7,8 +7,8 @@
 # The room is 4 x 3 x 2.5 m: walls and ceiling ("Room", the default cube without its bottom face,
 # normals outward, two-sided), a separate one-sided "Floor" facing up, a "Table" block on it and an
 # emissive "Lamp" panel 2 cm below the ceiling. Room, Floor and Table get a second UV map
-# "Lightmap" from Blender's Lightmap Pack; the Lamp keeps only its first UV map, so it gets no
-# lightmap. Blender 3.4.1 (Debian 12) made the committed file.
+# "Lightmap" from Blender's Lightmap Pack; the Lamp keeps only its first UV map, so radfarm
+# makes its lightmap's charts itself. Blender 3.4.1 (Debian 12) made the committed file.
 import os
 import sys
 

@@ -100,8 +100,9 @@ TEST(LightmapWriterTest, AnUnwritableLightmapLeavesTheOthersWritten) {
   // A directory where floor.exr should go: the EXR fails, the PNG is still written.
   std::filesystem::create_directories(dir.File("out/lightmaps/floor.exr"));
   std::vector<std::string> warnings, failures;
-  const std::vector<Lightmap> maps = WriteLightmaps(dir.File("out"), s.mesh, objects, uvs, s.input,
-                                                    Exposed(), 0.1, 16, &warnings, &failures);
+  const std::vector<Lightmap> maps =
+      WriteLightmaps(dir.File("out"), s.mesh, objects, uvs, s.input, Exposed(), 0.1,
+                     {16, 16, 16, 16}, &warnings, &failures);
   EXPECT_TRUE(maps.empty());
   ASSERT_EQ(failures.size(), 1u);
   EXPECT_NE(failures[0].find("floor.exr"), std::string::npos) << failures[0];
@@ -115,8 +116,9 @@ TEST(LightmapWriterTest, BakesTheBrighterSideWithAGutter) {
     const DisplayLightmapUvs uvs = LocateLightmapUvs(s.mesh, s.patch_object, 2, s.input);
     std::vector<std::string> warnings;
     std::vector<std::string> failures;
-    const std::vector<Lightmap> written = WriteLightmaps(
-        dir.File("out"), s.mesh, s.objects, uvs, s.input, Exposed(), 0.1, 16, &warnings, &failures);
+    const std::vector<Lightmap> written =
+        WriteLightmaps(dir.File("out"), s.mesh, s.objects, uvs, s.input, Exposed(), 0.1,
+                       {16, 16, 16, 16}, &warnings, &failures);
     EXPECT_EQ(failures, std::vector<std::string>{});
     const std::vector<Lightmap>* maps = &written;
     EXPECT_EQ(warnings, std::vector<std::string>{});
@@ -125,11 +127,12 @@ TEST(LightmapWriterTest, BakesTheBrighterSideWithAGutter) {
     EXPECT_EQ((*maps)[0].exr, "lightmaps/floor.exr");
     EXPECT_EQ((*maps)[0].png, "lightmaps/floor.png");
     EXPECT_TRUE(std::filesystem::exists(dir.File("out/lightmaps/floor.png")));
-    // The island is UV [0, 0.5]^2: texels 0..7 of 16; the gutter reaches texel 7 + kLightmapGutter.
+    // The island is UV [0, 0.5]^2: texels 0..7 of 16; the stitched ring (texel 8) and then the
+    // gutter reach texel 8 + kLightmapGutter.
     const Image exr = ReadExr(dir.File("out/lightmaps/floor.exr"));
     ASSERT_EQ(exr.width, 16u);
     const double expected = std::max(back, 1.0);
-    const uint32_t edge = 7 + kLightmapGutter;
+    const uint32_t edge = 8 + kLightmapGutter;
     for (uint32_t y = 0; y < 16; ++y) {
       for (uint32_t x = 0; x < 16; ++x) {
         const bool filled = x <= edge && y <= edge;
@@ -149,8 +152,8 @@ TEST(LightmapWriterTest, WarnsOfOverlappingUvs) {
   const DisplayLightmapUvs uvs = LocateLightmapUvs(s.mesh, s.patch_object, 2, s.input);
   std::vector<std::string> warnings;
   std::vector<std::string> failures;
-  WriteLightmaps(dir.File("out"), s.mesh, s.objects, uvs, s.input, Exposed(), 0.1, 16, &warnings,
-                 &failures);
+  WriteLightmaps(dir.File("out"), s.mesh, s.objects, uvs, s.input, Exposed(), 0.1, {16, 16, 16, 16},
+                 &warnings, &failures);
   ASSERT_EQ(failures, std::vector<std::string>{});
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("floor: its lightmap UVs (TEXCOORD_1) overlap"), std::string::npos)

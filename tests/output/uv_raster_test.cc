@@ -133,3 +133,55 @@ TEST(UvRasterTest, DilateAveragesTheNeighboursOfTwoIslands) {
 
 }  // namespace
 }  // namespace radfarm
+
+namespace radfarm {
+namespace {
+
+// Bilinear at texel coordinates (x, y) (texel centres at i + 0.5), as a GPU samples.
+double Bilinear(const Image& image, double x, double y) {
+  x -= 0.5;
+  y -= 0.5;
+  const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+  const double fx = x - x0, fy = y - y0;
+  const auto at = [&](int xi, int yi) { return image.At(uint32_t(xi), uint32_t(yi)).r; };
+  return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
+         fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
+}
+
+TEST(UvRasterTest, ExtendStitchesASeamSoBothSidesReadTheSameValue) {
+  // One square of a surface lit by the linear ramp L = 1 + 2 s + t over s, t in [0, 1], cut along
+  // its diagonal into two islands placed apart in a 64 x 64 lightmap: the diagonal is a seam.
+  const auto light = [](double s, double t) { return Rgb(1 + 2 * s + t, 0, 0); };
+  const float side = 20.0f / 64;
+  const Uv a0{4 / 64.f, 4 / 64.f}, b0{34 / 64.f, 8 / 64.f};  // the islands' (0, 0) corners
+  UvRaster raster(64, 64);
+  raster.Draw({Uv{a0[0], a0[1]}, Uv{a0[0] + side, a0[1]}, Uv{a0[0] + side, a0[1] + side}},
+              {light(0, 0), light(1, 0), light(1, 1)});
+  raster.Draw({Uv{b0[0], b0[1]}, Uv{b0[0] + side, b0[1] + side}, Uv{b0[0], b0[1] + side}},
+              {light(0, 0), light(1, 1), light(0, 1)});
+  raster.Extend(1.0);
+  raster.Dilate(4);
+  EXPECT_GT(raster.stats().extended, 0u);
+  for (double f = 0.05; f < 1; f += 0.05) {  // points along the diagonal, in both islands
+    const double ua = (a0[0] + f * side) * 64, va = (a0[1] + f * side) * 64;
+    const double ub = (b0[0] + f * side) * 64, vb = (b0[1] + f * side) * 64;
+    const double expected = light(f, f).r;
+    EXPECT_NEAR(Bilinear(raster.image(), ua, va), expected, 1e-6 * expected) << f;
+    EXPECT_NEAR(Bilinear(raster.image(), ub, vb), expected, 1e-6 * expected) << f;
+  }
+}
+
+TEST(UvRasterTest, ExtendFillsOnlyNearTexelsAndClampsAtZero) {
+  UvRaster raster(16, 16);
+  // A steep ramp from 0 at the left: extended leftwards it would go negative.
+  raster.Draw({Uv{0.25f, 0.25f}, Uv{0.75f, 0.25f}, Uv{0.25f, 0.75f}},
+              {Rgb(0, 0, 0), Rgb(8, 8, 8), Rgb(0, 0, 0)});
+  raster.Extend(1.0);
+  EXPECT_FALSE(raster.Covered(1, 8));  // 2.5 texels out
+  EXPECT_TRUE(raster.Covered(3, 8));   // 0.5 texels out
+  EXPECT_EQ(raster.image().At(3, 8).r, 0.0);
+  EXPECT_NEAR(raster.image().At(8, 3).r, 8.5 - 4, 1e-9);  // 0.5 above the top edge
+}
+
+}  // namespace
+}  // namespace radfarm
