@@ -15,12 +15,14 @@ std::string HashOf(const PatchScene& scene) {
 }  // namespace
 
 SceneHashes HashesOf(const PatchScene& scene) {
-  // Reflectance and emission never change the mesh; the lamps are recorded apart, since a change
-  // of theirs makes the re-bake trace its start again (a change of emission only the change's).
+  // Reflectance and emission never change the mesh; the lamps and the sky are recorded apart,
+  // since a change of theirs makes the re-bake trace its start again (a change of emission only
+  // the change's).
   PatchScene lamps = scene;
   for (Patch& p : lamps.patches) p.reflectance = p.emission = Rgb{};
   PatchScene bare = lamps;
   bare.lights.clear();
+  bare.sky = Sky{};
   return {HashOf(bare), HashOf(lamps)};
 }
 
