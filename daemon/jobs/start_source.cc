@@ -55,9 +55,9 @@ StartLightSource AgentsStartSource(std::shared_ptr<StartHandoff> handoff, store:
     patches.start_sections = work.sections;
     patches.start_patches = scene.patches.size();
     patches.start_punctual = HasSurfacelessLight(scene);
-    StartAnswer answer =
-        handoff->Await({job, std::move(patches), StartContext(scene, work),
-                        scene.sky.present() ? protocol::kSkyVersion : protocol::kStartLeaseVersion});
+    StartAnswer answer = handoff->Await(
+        {job, std::move(patches), StartContext(scene, work),
+         scene.sky.present() ? protocol::kSkyVersion : protocol::kStartLeaseVersion});
     if (!answer) throw std::runtime_error(answer.error());
     PatchStartValues values;
     if (*answer) {

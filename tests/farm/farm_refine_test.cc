@@ -1,7 +1,7 @@
 // Adaptive refinement in farm mode: the master refines at the rounds `radfarm render` refines at,
 // ships each refined scene to the agents, keeps the refined mesh in its checkpoints, and a job ends
-// with the bytes of `radfarm render` however many agents work on it and whether the master was
-// killed after a refinement point.
+// with the bytes of `radfarm render` however many agents work on it, whether they scored its
+// refinement steps and whether the master was killed after a refinement point.
 #include <signal.h>
 
 #include <filesystem>
@@ -82,6 +82,9 @@ TEST_F(FarmRefineTest, ThreeAgentsRenderAnAdaptiveJobLikeRadfarmRender) {
   const std::string log = MasterLog();
   EXPECT_GE(CountLines(log, "refined after round 1:"), 1u) << log;
   EXPECT_GE(CountLines(log, "fetches the scene of job"), 2u) << log;
+  // The step after round 0 is made while the agents trace: they scored its elements, to the bits
+  // render scores them to.
+  EXPECT_GE(CountLines(log, "refinement's light scores:"), 1u) << log;
 }
 
 TEST_F(FarmRefineTest, TheMasterKilledAfterARefinementPointResumesTheAdaptiveJobIdentically) {
