@@ -128,7 +128,9 @@ void UvRaster::Draw(const std::array<Uv, 3>& uv, const std::array<Rgb, 3>& value
 void UvRaster::Extend(double reach) {
   std::vector<double> nearest(state_.size(), INFINITY);
   for (const Drawn& t : drawn_) {
-    const auto& [a, b, c] = t.at;
+    // References, not a structured binding: the lambda below captures them, which clang 14
+    // refuses for a binding.
+    const std::array<double, 2>&a = t.at[0], &b = t.at[1], &c = t.at[2];
     const double area = Cross2(a, b, c);
     const auto range = [&](int axis, uint32_t size) {
       const double lo = std::min({a[axis], b[axis], c[axis]}) - reach - 0.5;
